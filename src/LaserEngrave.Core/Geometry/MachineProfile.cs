@@ -1,0 +1,178 @@
+using System.Text.Json;
+using System.Text.Json.Serialization;
+
+namespace LaserEngrave.Core.Geometry;
+
+/// <summary>One linear axis of the stage: which Zaber device drives it and what it can do.</summary>
+public sealed record AxisProfile
+{
+    /// <summary>Zaber device number on the daisy chain (1 = X, 2 = Y by default).</summary>
+    public byte DeviceNumber { get; init; }
+
+    /// <summary>Length of one microstep in µm (T-LA: 0.09921875 µm at 64 microsteps per step).</summary>
+    public double MicrostepUm { get; init; } = 0.09921875;
+
+    /// <summary>Travel of the axis in mm.</summary>
+    public double TravelMm { get; init; } = 60;
+
+    /// <summary>Highest speed the axis is allowed, mm/s.</summary>
+    public double MaxSpeedMmPerS { get; init; } = 4;
+
+    /// <summary>Highest acceleration the axis is allowed, mm/s².</summary>
+    public double MaxAccelerationMmPerS2 { get; init; } = 200;
+
+    /// <summary>Travel in whole microsteps (the device's Maximum Position).</summary>
+    [JsonIgnore]
+    public long TravelMicrosteps => (long)Math.Floor(TravelMm * 1000 / MicrostepUm);
+}
+
+/// <summary>How the laser gate is spoken to; every string is overridable for a PIC that speaks differently.</summary>
+public sealed record LaserGateProfile
+{
+    public int BaudRate { get; init; } = 9600;
+
+    public string IdentifyCommand { get; init; } = "*IDN?";
+
+    /// <summary>Sets the Q-switch frequency; {0} is the frequency in whole Hz (0 = off).</summary>
+    public string FrequencyCommand { get; init; } = "FREQ {0}";
+
+    public string OffCommand { get; init; } = "OFF";
+
+    public string StatusCommand { get; init; } = "STATE?";
+
+    public string KeepAliveCommand { get; init; } = "PING";
+
+    /// <summary>Sets the watchdog time; {0} is milliseconds (0 = disabled).</summary>
+    public string WatchdogCommand { get; init; } = "WDOG {0}";
+
+    /// <summary>Fires a burst; {0} is the pulse count, {1} the frequency in Hz.</summary>
+    public string BurstCommand { get; init; } = "BURST {0} {1}";
+
+    /// <summary>Every successful reply starts with this.</summary>
+    public string AckPrefix { get; init; } = "OK";
+
+    /// <summary>Every refusal starts with this.</summary>
+    public string ErrorPrefix { get; init; } = "ERR";
+
+    public string LineTerminator { get; init; } = "\n";
+
+    /// <summary>How long to wait for an acknowledgement before the gate counts as silent.</summary>
+    public int TimeoutMs { get; init; } = 500;
+
+    /// <summary>Watchdog time programmed into the gate: it switches the laser off after this long without a command.</summary>
+    public int WatchdogMs { get; init; } = 1000;
+}
+
+/// <summary>The machine: two Zaber axes, the laser gate, the spot and the default process settings.</summary>
+public sealed record MachineProfile
+{
+    private static readonly JsonSerializerOptions JsonOptions = new()
+    {
+        WriteIndented = true,
+        PropertyNamingPolicy = JsonNamingPolicy.CamelCase,
+        ReadCommentHandling = JsonCommentHandling.Skip,
+        AllowTrailingCommas = true,
+    };
+
+    public string Name { get; init; } = "Two Zaber T-LA60A (default)";
+
+    public AxisProfile X { get; init; } = new() { DeviceNumber = 1 };
+
+    public AxisProfile Y { get; init; } = new() { DeviceNumber = 2 };
+
+    /// <summary>Baud rate of the Zaber chain (T-series speak only 9600).</summary>
+    public int StageBaudRate { get; init; } = 9600;
+
+    /// <summary>Focused laser spot diameter, µm.</summary>
+    public double SpotDiameterUm { get; init; } = 20;
+
+    /// <summary>Default speed while burning, mm/s.</summary>
+    public double BurnSpeedMmPerS { get; init; } = 1;
+
+    /// <summary>Default speed while travelling with the laser off, mm/s.</summary>
+    public double TravelSpeedMmPerS { get; init; } = 4;
+
+    /// <summary>Default acceleration, mm/s².</summary>
+    public double AccelerationMmPerS2 { get; init; } = 50;
+
+    /// <summary>Default Q-switch frequency while burning, Hz (seed 000 used 1 kHz).</summary>
+    public double LaserFrequencyHz { get; init; } = 1000;
+
+    public LaserGateProfile Gate { get; init; } = new();
+
+    /// <summary>The built-in profile: two Zaber T-LA60A, device 1 = X, device 2 = Y.</summary>
+    public static MachineProfile Default { get; } = new();
+
+    public static MachineProfile Load(string path)
+    {
+        string text;
+        try
+        {
+            text = File.ReadAllText(path);
+        }
+        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
+        {
+            throw new ProfileException($"{path}: cannot read the machine profile: {ex.Message}", ex);
+        }
+
+        try
+        {
+            var profile = JsonSerializer.Deserialize<MachineProfile>(text, JsonOptions)
+                ?? throw new ProfileException($"{path}: the machine profile is empty");
+            profile.Validate(path);
+            return profile;
+        }
+        catch (JsonException ex)
+        {
+            throw new ProfileException($"{path}: not a valid machine profile: {ex.Message}", ex);
+        }
+    }
+
+    public string ToJson() => JsonSerializer.Serialize(this, JsonOptions);
+
+    public void Save(string path) => File.WriteAllText(path, ToJson());
+
+    /// <summary>Checks every value is usable; throws a <see cref="ProfileException"/> naming the first that is not.</summary>
+    public void Validate(string source = "profile")
+    {
+        foreach (var (axisName, axis) in new[] { ("x", X), ("y", Y) })
+        {
+            Require(axis.MicrostepUm > 0, $"{axisName}.microstepUm must be above 0 (got {axis.MicrostepUm})");
+            Require(axis.TravelMm > 0, $"{axisName}.travelMm must be above 0 (got {axis.TravelMm})");
+            Require(axis.MaxSpeedMmPerS > 0, $"{axisName}.maxSpeedMmPerS must be above 0 (got {axis.MaxSpeedMmPerS})");
+            Require(axis.MaxAccelerationMmPerS2 > 0, $"{axisName}.maxAccelerationMmPerS2 must be above 0 (got {axis.MaxAccelerationMmPerS2})");
+            Require(axis.DeviceNumber is >= 1 and <= 254, $"{axisName}.deviceNumber must be 1..254 (got {axis.DeviceNumber})");
+        }
+
+        Require(X.DeviceNumber != Y.DeviceNumber, $"x and y cannot both be device {X.DeviceNumber}");
+        Require(SpotDiameterUm > 0, $"spotDiameterUm must be above 0 (got {SpotDiameterUm})");
+        Require(BurnSpeedMmPerS > 0, $"burnSpeedMmPerS must be above 0 (got {BurnSpeedMmPerS})");
+        Require(TravelSpeedMmPerS > 0, $"travelSpeedMmPerS must be above 0 (got {TravelSpeedMmPerS})");
+        Require(AccelerationMmPerS2 > 0, $"accelerationMmPerS2 must be above 0 (got {AccelerationMmPerS2})");
+        Require(LaserFrequencyHz > 0, $"laserFrequencyHz must be above 0 (got {LaserFrequencyHz})");
+        Require(StageBaudRate > 0 && Gate.BaudRate > 0, "baud rates must be above 0");
+        Require(Gate.TimeoutMs > 0, $"gate.timeoutMs must be above 0 (got {Gate.TimeoutMs})");
+
+        void Require(bool ok, string what)
+        {
+            if (!ok)
+            {
+                throw new ProfileException($"{source}: {what}");
+            }
+        }
+    }
+}
+
+/// <summary>A machine profile that cannot be read or holds an unusable value.</summary>
+public sealed class ProfileException : Exception
+{
+    public ProfileException(string message)
+        : base(message)
+    {
+    }
+
+    public ProfileException(string message, Exception inner)
+        : base(message, inner)
+    {
+    }
+}

@@ -1,0 +1,37 @@
+namespace LaserEngrave.Core.Geometry;
+
+/// <summary>The one place where millimetres, micrometres and Zaber's device units are converted.</summary>
+/// <remarks>T-series firmware 5.xx: speed = data x 9.375 microsteps/s, acceleration = data x 11250 microsteps/s².</remarks>
+public static class StageUnits
+{
+    /// <summary>Microsteps per second for one unit of Set Target Speed data.</summary>
+    public const double SpeedUnitMicrostepsPerS = 9.375;
+
+    /// <summary>Microsteps per second squared for one unit of Set Acceleration data.</summary>
+    public const double AccelerationUnitMicrostepsPerS2 = 11250;
+
+    /// <summary>Highest speed or acceleration data at 64 microsteps per step (512 x 64 - 1).</summary>
+    public const int MaxSettingData = 32767;
+
+    public static double MmToMicrosteps(double mm, double microstepUm) => mm * 1000.0 / microstepUm;
+
+    public static double MicrostepsToMm(double microsteps, double microstepUm) => microsteps * microstepUm / 1000.0;
+
+    public static double UmToMicrosteps(double um, double microstepUm) => um / microstepUm;
+
+    public static double MicrostepsToUm(double microsteps, double microstepUm) => microsteps * microstepUm;
+
+    /// <summary>Set Target Speed data for a speed in mm/s, rounded to the nearest unit and kept in 1..32767.</summary>
+    public static int SpeedData(double mmPerS, double microstepUm) =>
+        (int)Math.Clamp(Math.Round(MmToMicrosteps(mmPerS, microstepUm) / SpeedUnitMicrostepsPerS), 1, MaxSettingData);
+
+    /// <summary>Set Acceleration data for an acceleration in mm/s², rounded to the nearest unit and kept in 1..32767.</summary>
+    public static int AccelerationData(double mmPerS2, double microstepUm) =>
+        (int)Math.Clamp(Math.Round(MmToMicrosteps(mmPerS2, microstepUm) / AccelerationUnitMicrostepsPerS2), 1, MaxSettingData);
+
+    /// <summary>The speed in microsteps/s that Set Target Speed data gives.</summary>
+    public static double SpeedMicrostepsPerS(int data) => data * SpeedUnitMicrostepsPerS;
+
+    /// <summary>The acceleration in microsteps/s² that Set Acceleration data gives (0 means the maximum).</summary>
+    public static double AccelerationMicrostepsPerS2(int data) => (data == 0 ? MaxSettingData : data) * AccelerationUnitMicrostepsPerS2;
+}
