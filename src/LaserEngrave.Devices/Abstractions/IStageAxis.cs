@@ -1,0 +1,57 @@
+namespace LaserEngrave.Devices.Abstractions;
+
+/// <summary>One linear axis of the stage (a Zaber device), in microsteps.</summary>
+/// <remarks>Moves complete when the device replies on arrival; every call has its own timeout.</remarks>
+public interface IStageAxis
+{
+    /// <summary>Zaber device number of the axis.</summary>
+    byte DeviceNumber { get; }
+
+    /// <summary>Homes the axis; returns the final position (0).</summary>
+    Task<long> HomeAsync(CancellationToken cancellationToken);
+
+    /// <summary>Moves to an absolute position and waits for arrival; returns the final position.</summary>
+    Task<long> MoveAbsoluteAsync(long position, CancellationToken cancellationToken);
+
+    /// <summary>Moves by a signed distance and waits for arrival; returns the final position.</summary>
+    Task<long> MoveRelativeAsync(long distance, CancellationToken cancellationToken);
+
+    /// <summary>Decelerates to a stop; returns the position where it stopped.</summary>
+    Task<long> StopAsync(CancellationToken cancellationToken);
+
+    Task<long> GetPositionAsync(CancellationToken cancellationToken);
+
+    /// <summary>Sets the target speed, in device units (x 9.375 microsteps/s).</summary>
+    Task SetTargetSpeedAsync(int speedData, CancellationToken cancellationToken);
+
+    /// <summary>Sets the acceleration, in device units (x 11250 microsteps/s²).</summary>
+    Task SetAccelerationAsync(int accelerationData, CancellationToken cancellationToken);
+
+    /// <summary>Reads the device type ID, firmware version and Device Mode.</summary>
+    Task<AxisIdentity> IdentifyAsync(CancellationToken cancellationToken);
+}
+
+/// <summary>What a Zaber device says about itself.</summary>
+/// <param name="DeviceNumber">Number on the chain.</param>
+/// <param name="DeviceId">Device type ID (Return Device ID).</param>
+/// <param name="FirmwareVersion">Firmware version x 100 (502 = 5.02).</param>
+/// <param name="DeviceMode">Set Device Mode bits.</param>
+/// <param name="MaximumPosition">Maximum Position setting, microsteps.</param>
+public sealed record AxisIdentity(byte DeviceNumber, int DeviceId, int FirmwareVersion, int DeviceMode, long MaximumPosition)
+{
+    /// <summary>Bit 7 of the Device Mode: the position is valid because the axis was homed.</summary>
+    public bool IsHomed => (DeviceMode & 0x80) != 0;
+
+    /// <summary>Bit 0 of the Device Mode: the device does not reply to commands.</summary>
+    public bool AutoReplyDisabled => (DeviceMode & 0x01) != 0;
+
+    public string FirmwareText => $"{FirmwareVersion / 100}.{FirmwareVersion % 100:00}";
+}
+
+/// <summary>The two axes of the X-Y stage.</summary>
+public interface IStage
+{
+    IStageAxis X { get; }
+
+    IStageAxis Y { get; }
+}
