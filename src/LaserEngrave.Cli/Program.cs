@@ -1,10 +1,26 @@
+using System.CommandLine;
+using LaserEngrave.Cli.Commands;
+
 namespace LaserEngrave.Cli;
 
 internal static class Program
 {
-    public static int Main(string[] args)
+    public static async Task<int> Main(string[] args)
     {
-        Console.Error.WriteLine("laserengrave: no commands yet");
-        return args.Length == 0 ? 2 : 1;
+        var root = BuildRoot();
+        return await CliRunner.InvokeAsync(root, args, Console.Out, Console.Error).ConfigureAwait(false);
+    }
+
+    /// <summary>Every command of `laserengrave`; each lives in its own file under Commands/.</summary>
+    internal static RootCommand BuildRoot()
+    {
+        var root = new RootCommand("LaserEngrave: plan, preview and engrave monochrome images on a Zaber X-Y stage with a gated laser.");
+        root.Options.Add(CliOptions.Verbose);
+        foreach (var command in CommandRegistry.All())
+        {
+            root.Subcommands.Add(command);
+        }
+
+        return root;
     }
 }

@@ -1,0 +1,13 @@
+using System.CommandLine;
+using LaserEngrave.Cli.Commands;
+
+namespace LaserEngrave.Cli;
+
+/// <summary>The list of top-level commands, in the order `--help` shows them.</summary>
+internal static class CommandRegistry
+{
+    public static IEnumerable<Command> All()
+    {
+        yield break;
+    }
+}
