@@ -12,11 +12,12 @@ namespace LaserEngrave.Simulator.Timing;
 /// goes silent still lets a host timeout fire.
 /// </para>
 /// <para>
-/// Quiet means all of: no <see cref="NotifyActivity"/> call, no timer created, changed or fired, and no timer callback
-/// still running during the quiet period, and no work item waiting in the thread pool at its end. The last condition
-/// keeps the clock still while a continuation (a reply being parsed, the next command being sent) is queued but has not
-/// run yet, which a loaded machine would otherwise turn into a spurious timeout. A callback that blocks longer than
-/// <see cref="BlockedCallbackLimit"/> stops holding the clock, so sync-over-async in a callback cannot freeze time.
+/// Quiet means all of: no <see cref="NotifyActivity"/> call, no timer created, changed or fired, no timer callback
+/// still running and no <see cref="Hold"/> taken during the quiet period, and no work item waiting in the thread pool
+/// at its end. The last condition keeps the clock still while a continuation (a reply being parsed, the next command
+/// being sent) is queued but has not run yet; holds cover code that is running but slow (a loaded machine, the JIT),
+/// which would otherwise let the clock jump past its own next step and fire a spurious timeout. A callback or hold
+/// older than <see cref="BlockedCallbackLimit"/> stops holding the clock, so nothing can freeze time for good.
 /// </para>
 /// </remarks>
 public sealed class VirtualTimeProvider : TimeProvider, IDisposable
@@ -24,13 +25,14 @@ public sealed class VirtualTimeProvider : TimeProvider, IDisposable
     /// <summary>Wall-clock quiet time after which the clock jumps when none is given.</summary>
     public static readonly TimeSpan DefaultQuietPeriod = TimeSpan.FromMilliseconds(1);
 
-    /// <summary>A timer callback running longer than this (wall clock) no longer keeps the clock still.</summary>
+    /// <summary>A timer callback running, or a hold kept, longer than this (wall clock) no longer keeps the clock still.</summary>
     public static readonly TimeSpan BlockedCallbackLimit = TimeSpan.FromMilliseconds(250);
 
     // A plain monitor rather than System.Threading.Lock: the advancer thread needs Monitor.Wait/PulseAll.
     private readonly object _gate = new();
     private readonly PriorityQueue<(VirtualTimer Timer, long Version), (long Due, long Sequence)> _queue = new();
-    private readonly Dictionary<long, long> _runningCallbacks = [];
+    // Running timer callbacks and holds, by id, with the wall-clock timestamp when they began.
+    private readonly Dictionary<long, long> _holds = [];
     private readonly DateTimeOffset _start;
     private readonly Thread _advancer;
     private long _nowTicks;
@@ -94,6 +96,19 @@ public sealed class VirtualTimeProvider : TimeProvider, IDisposable
 
     /// <summary>Tells the clock that something happened (a byte was sent or delivered), so it waits for quiet again.</summary>
     public void NotifyActivity() => Interlocked.Increment(ref _activity);
+
+    /// <summary>Keeps the clock still until the hold is disposed (or <see cref="BlockedCallbackLimit"/> has passed).</summary>
+    /// <remarks>For code that must finish a step before virtual time may move on, e.g. parsing bytes just received.</remarks>
+    public ClockHold Hold()
+    {
+        lock (_gate)
+        {
+            var id = ++_callbackIds;
+            _holds[id] = Stopwatch.GetTimestamp();
+            Interlocked.Increment(ref _activity);
+            return new ClockHold(this, id);
+        }
+    }
 
     public override ITimer CreateTimer(TimerCallback callback, object? state, TimeSpan dueTime, TimeSpan period)
     {
@@ -181,7 +196,7 @@ public sealed class VirtualTimeProvider : TimeProvider, IDisposable
     private void Fire(VirtualTimer timer)
     {
         var id = ++_callbackIds;
-        _runningCallbacks[id] = Stopwatch.GetTimestamp();
+        _holds[id] = Stopwatch.GetTimestamp();
         Interlocked.Increment(ref _activity);
         Interlocked.Increment(ref _firedTimers);
         ThreadPool.UnsafeQueueUserWorkItem(
@@ -200,11 +215,13 @@ public sealed class VirtualTimeProvider : TimeProvider, IDisposable
             preferLocal: false);
     }
 
+    internal void Release(long id) => CallbackDone(id);
+
     private void CallbackDone(long id)
     {
         lock (_gate)
         {
-            _runningCallbacks.Remove(id);
+            _holds.Remove(id);
             Interlocked.Increment(ref _activity);
         }
     }
@@ -221,7 +238,7 @@ public sealed class VirtualTimeProvider : TimeProvider, IDisposable
     // Caller holds _gate.
     private bool CallbacksHoldClock()
     {
-        foreach (var started in _runningCallbacks.Values)
+        foreach (var started in _holds.Values)
         {
             if (Stopwatch.GetElapsedTime(started) < BlockedCallbackLimit)
             {

@@ -1,0 +1,93 @@
+namespace LaserEngrave.Simulator.Burn;
+
+/// <summary>A job's pixel grid on the stage, in microsteps, as the burn recorder reads it.</summary>
+/// <remarks>
+/// Pixel <c>c</c> of a row spans x in [<see cref="ColumnEdge"/>(c), <see cref="ColumnEdge"/>(c + 1)); row <c>r</c> is burned
+/// along y = <see cref="RowLine"/>(r). Every edge is computed from the unrounded origin and pitch and rounded once, half
+/// away from zero, the same rule as the planner's job geometry.
+/// </remarks>
+public sealed record BurnGrid
+{
+    public BurnGrid(double originXMicrosteps, double originYMicrosteps, double pitchMicrosteps, int widthPx, int heightPx)
+    {
+        if (!(pitchMicrosteps >= 1) || double.IsInfinity(pitchMicrosteps))
+        {
+            throw new ArgumentOutOfRangeException(nameof(pitchMicrosteps), pitchMicrosteps, "the pitch must be at least one microstep");
+        }
+
+        if (widthPx <= 0 || heightPx <= 0)
+        {
+            throw new ArgumentOutOfRangeException(nameof(widthPx), $"a grid of {widthPx} x {heightPx} pixels is empty");
+        }
+
+        OriginXMicrosteps = originXMicrosteps;
+        OriginYMicrosteps = originYMicrosteps;
+        PitchMicrosteps = pitchMicrosteps;
+        WidthPx = widthPx;
+        HeightPx = heightPx;
+    }
+
+    /// <summary>x of the left edge of column 0, unrounded.</summary>
+    public double OriginXMicrosteps { get; }
+
+    /// <summary>y of the top edge of row 0, unrounded.</summary>
+    public double OriginYMicrosteps { get; }
+
+    /// <summary>Pixel pitch, unrounded.</summary>
+    public double PitchMicrosteps { get; }
+
+    public int WidthPx { get; }
+
+    public int HeightPx { get; }
+
+    /// <summary>Rounds a position to the whole microstep the stage is sent: half away from zero.</summary>
+    public static long Round(double microsteps) => (long)Math.Round(microsteps, MidpointRounding.AwayFromZero);
+
+    /// <summary>x of the left edge of column <paramref name="column"/> (the right edge of the previous one).</summary>
+    public long ColumnEdge(int column) => Round(Math.FusedMultiplyAdd(column, PitchMicrosteps, OriginXMicrosteps));
+
+    /// <summary>y of the centre line along which row <paramref name="row"/> is burned.</summary>
+    public long RowLine(int row) => Round(Math.FusedMultiplyAdd(row + 0.5, PitchMicrosteps, OriginYMicrosteps));
+
+    /// <summary>The row whose centre line is <paramref name="y"/>, or -1.</summary>
+    public int RowAt(long y)
+    {
+        var guess = (int)Math.Clamp(Math.Floor(((y - OriginYMicrosteps) / PitchMicrosteps) - 0.5), -2, HeightPx + 1);
+        for (var row = Math.Max(0, guess - 1); row <= Math.Min(HeightPx - 1, guess + 2); row++)
+        {
+            if (RowLine(row) == y)
+            {
+                return row;
+            }
+        }
+
+        return -1;
+    }
+
+    /// <summary>The column whose span holds <paramref name="x"/>: -1 left of the grid, <see cref="WidthPx"/> right of it.</summary>
+    public int ColumnAt(double x)
+    {
+        if (x < ColumnEdge(0))
+        {
+            return -1;
+        }
+
+        if (x >= ColumnEdge(WidthPx))
+        {
+            return WidthPx;
+        }
+
+        var column = (int)Math.Clamp(Math.Floor((x - OriginXMicrosteps) / PitchMicrosteps), 0, WidthPx - 1);
+        while (column > 0 && x < ColumnEdge(column))
+        {
+            column--;
+        }
+
+        while (column < WidthPx - 1 && x >= ColumnEdge(column + 1))
+        {
+            column++;
+        }
+
+        return column;
+    }
+}

@@ -1,0 +1,290 @@
+using System.Globalization;
+using System.Text;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Devices.Serial;
+using LaserEngrave.Simulator.Burn;
+using LaserEngrave.Simulator.Faults;
+using LaserEngrave.Simulator.Serial;
+using LaserEngrave.Simulator.Timing;
+
+namespace LaserEngrave.Simulator.LaserGate;
+
+/// <summary>The simulated PIC laser gate, speaking docs/laser-gate-protocol.md (with the profile's command strings).</summary>
+/// <remarks>
+/// A command takes effect when its line's last byte has arrived; the reply then takes its own time on the wire.
+/// Every line received, valid or not, feeds the watchdog; a Silent fault stops the gate hearing lines, so its
+/// watchdog then switches the laser off, as a hung PIC's hardware watchdog would.
+/// </remarks>
+public sealed class VirtualLaserGate
+{
+    /// <summary>Highest frequency accepted, Hz.</summary>
+    public const int MaxFrequencyHz = 100_000;
+
+    /// <summary>Longest line kept; a longer one is answered as unknown.</summary>
+    public const int MaxLineLength = 128;
+
+    private readonly LaserGateProfile _profile;
+    private readonly SimulatorOptions _options;
+    private readonly SimulationClock _clock;
+    private readonly FaultInjector _faults;
+    private readonly BurnRecorder _recorder;
+    private readonly GateCommandSet _commands;
+    private readonly Lock _lock = new();
+    private readonly List<byte> _line = [];
+    private bool _overflow;
+    private double _lastHeard;
+    private long _generation;
+    private ITimer? _watchdog;
+    private ITimer? _burstEnd;
+    private LinkSession? _session;
+    private Action<string> _log = _ => { };
+
+    internal VirtualLaserGate(LaserGateProfile profile, SimulatorOptions options, SimulationClock clock, FaultInjector faults, BurnRecorder recorder)
+    {
+        _profile = profile;
+        _options = options;
+        _clock = clock;
+        _faults = faults;
+        _recorder = recorder;
+        _commands = new GateCommandSet(profile);
+        WatchdogMs = options.GateWatchdogMs ?? profile.WatchdogMs;
+        BaudRate = profile.BaudRate;
+    }
+
+    public int BaudRate { get; }
+
+    /// <summary>Frequency the laser fires at now, Hz (0 = off).</summary>
+    public int FrequencyHz { get; private set; }
+
+    public bool IsFiring => FrequencyHz > 0;
+
+    /// <summary>Watchdog time, ms (0 = disabled).</summary>
+    public int WatchdogMs { get; private set; }
+
+    /// <summary>How many times the watchdog has switched the laser off.</summary>
+    public int WatchdogTrips { get; private set; }
+
+    /// <summary>Whether the watchdog tripped since the last STATE? query.</summary>
+    public bool Tripped { get; private set; }
+
+    /// <summary>Serves <paramref name="link"/> until it closes, the token is cancelled, or a Disconnect fault strikes.</summary>
+    internal async Task RunAsync(ISerialLink link, Action<string> log, ClockHold starting, CancellationToken cancellationToken)
+    {
+        var session = new LinkSession(link, _clock, BaudRate, _options.BitsPerByte, log);
+        lock (_lock)
+        {
+            _session = session;
+            _log = log;
+            _line.Clear();
+            _overflow = false;
+        }
+
+        try
+        {
+            await session.RunAsync(OnByte, starting, cancellationToken).ConfigureAwait(false);
+        }
+        finally
+        {
+            lock (_lock)
+            {
+                if (_session == session)
+                {
+                    _session = null;
+                }
+            }
+        }
+    }
+
+    private Action? OnByte(byte value, double arrivedAt)
+    {
+        lock (_lock)
+        {
+            if (value != (byte)'\n')
+            {
+                if (_line.Count < MaxLineLength)
+                {
+                    _line.Add(value);
+                }
+                else
+                {
+                    _overflow = true;
+                }
+
+                return null;
+            }
+
+            var line = _overflow ? "\u0000" : Encoding.ASCII.GetString([.. _line]).TrimEnd('\r').Trim();
+            _line.Clear();
+            _overflow = false;
+            return () => Execute(line);
+        }
+    }
+
+    private void Execute(string line)
+    {
+        bool disconnect;
+        lock (_lock)
+        {
+            var now = _clock.NowSeconds;
+            var fault = _faults.OnCommand(FaultTarget.Gate);
+            disconnect = fault.Disconnect;
+            if (!fault.Ignore && !fault.Disconnect)
+            {
+                _lastHeard = now;
+                ArmWatchdog();
+                if (fault.RefuseCode is { } code)
+                {
+                    Reply($"{_profile.ErrorPrefix} {code.ToString(CultureInfo.InvariantCulture)} INJECTED");
+                }
+                else if (line.Length > 0)
+                {
+                    Reply(Run(line, now));
+                }
+            }
+        }
+
+        if (disconnect)
+        {
+            _session?.Close("disconnected by an injected fault");
+        }
+    }
+
+    private string Run(string line, double now)
+    {
+        var ok = _profile.AckPrefix;
+        var command = _commands.Match(line, out var args);
+        switch (command)
+        {
+            case GateCommand.Identify:
+                return $"{ok} PICGATE {_options.GateFirmware}";
+            case GateCommand.Frequency:
+                if (!TryNumber(args[0], out var hz))
+                {
+                    return Syntax();
+                }
+
+                if (hz is < 0 or > MaxFrequencyHz)
+                {
+                    return Range();
+                }
+
+                SetFrequency(hz, now);
+                return $"{ok} FREQ {hz}";
+            case GateCommand.Off:
+                SetFrequency(0, now);
+                return $"{ok} FREQ 0";
+            case GateCommand.State:
+                var state = $"{ok} STATE {FrequencyHz} {(IsFiring ? "ON" : "OFF")} WDOG {WatchdogMs}{(Tripped ? " TRIPPED" : string.Empty)}";
+                Tripped = false;
+                return state;
+            case GateCommand.KeepAlive:
+                return $"{ok} PONG";
+            case GateCommand.Watchdog:
+                if (!TryNumber(args[0], out var ms))
+                {
+                    return Syntax();
+                }
+
+                if (ms != 0 && ms is < 50 or > 60_000)
+                {
+                    return Range();
+                }
+
+                WatchdogMs = ms;
+                ArmWatchdog();
+                return $"{ok} WDOG {ms}";
+            case GateCommand.Burst:
+                if (!TryNumber(args[0], out var pulses) || !TryNumber(args[1], out var burstHz))
+                {
+                    return Syntax();
+                }
+
+                if (pulses is < 1 or > 1_000_000 || burstHz is < 1 or > MaxFrequencyHz)
+                {
+                    return Range();
+                }
+
+                SetFrequency(burstHz, now);
+                var generation = _generation;
+                _burstEnd = _clock.At(now + ((double)pulses / burstHz), () =>
+                {
+                    lock (_lock)
+                    {
+                        if (generation == _generation)
+                        {
+                            SetFrequency(0, _clock.NowSeconds);
+                        }
+                    }
+                });
+                return $"{ok} BURST {pulses}";
+            case GateCommand.Malformed:
+                return Syntax();
+            default:
+                return $"{_profile.ErrorPrefix} 1 UNKNOWN";
+        }
+
+        string Syntax() => $"{_profile.ErrorPrefix} 3 SYNTAX";
+
+        string Range() => $"{_profile.ErrorPrefix} 2 RANGE";
+    }
+
+    private static bool TryNumber(string text, out int value) =>
+        int.TryParse(text, NumberStyles.AllowLeadingSign, CultureInfo.InvariantCulture, out value);
+
+    // Caller holds _lock. Any frequency change ends a burst in progress.
+    private void SetFrequency(int hz, double now)
+    {
+        _generation++;
+        _burstEnd?.Dispose();
+        _burstEnd = null;
+        FrequencyHz = hz;
+        _recorder.RecordLaser(now, hz);
+        ArmWatchdog();
+    }
+
+    // Caller holds _lock. (Re)starts the watchdog from the last line heard while the laser fires.
+    private void ArmWatchdog()
+    {
+        _watchdog?.Dispose();
+        _watchdog = null;
+        if (!IsFiring || WatchdogMs <= 0)
+        {
+            return;
+        }
+
+        var generation = _generation;
+        var heard = _lastHeard;
+        _watchdog = _clock.At(heard + (WatchdogMs / 1000.0), () =>
+        {
+            lock (_lock)
+            {
+                if (generation != _generation || heard != _lastHeard || !IsFiring)
+                {
+                    return;
+                }
+
+                SetFrequency(0, _clock.NowSeconds);
+                Tripped = true;
+                WatchdogTrips++;
+                _log($"watchdog switched the laser off after {WatchdogMs} ms without a line");
+            }
+        });
+    }
+
+    private void Reply(string text)
+    {
+        var fault = _faults.OnReply(FaultTarget.Gate);
+        if (fault.Drop)
+        {
+            return;
+        }
+
+        var bytes = Encoding.ASCII.GetBytes(text + _profile.LineTerminator);
+        if (fault.CorruptByte is int index && index < bytes.Length)
+        {
+            bytes[index] ^= 0xFF;
+        }
+
+        _session?.Send(bytes, fault.Delay);
+    }
+}

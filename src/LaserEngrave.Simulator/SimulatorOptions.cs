@@ -1,0 +1,69 @@
+namespace LaserEngrave.Simulator;
+
+/// <summary>How the simulated machine behaves where the hardware leaves a choice or the documentation is silent.</summary>
+public sealed record SimulatorOptions
+{
+    /// <summary>Run on the wall clock (<see cref="TimeProvider.System"/>) instead of virtual time, e.g. for the app's live view.</summary>
+    public bool RealTime { get; init; }
+
+    /// <summary>A clock to share instead of making one (e.g. one virtual clock for several machines); overrides <see cref="RealTime"/>.</summary>
+    public TimeProvider? TimeProvider { get; init; }
+
+    /// <summary>Wall-clock quiet time after which a virtual clock made by the machine jumps to its next timer.</summary>
+    public TimeSpan QuietPeriod { get; init; } = Timing.VirtualTimeProvider.DefaultQuietPeriod;
+
+    /// <summary>Faults to inject from the start, in the grammar of <see cref="Faults.FaultInjector.Parse"/>.</summary>
+    public string? FaultSpec { get; init; }
+
+    /// <summary>Bits per byte on the wire: 8 data bits, no parity, 1 stop bit, plus the start bit.</summary>
+    public int BitsPerByte { get; init; } = 10;
+
+    /// <summary>A partial Zaber frame is dropped when the next byte comes later than this after the previous one.</summary>
+    public TimeSpan PartialFrameTimeout { get; init; } = TimeSpan.FromMilliseconds(10);
+
+    /// <summary>Firmware version answered to Return Firmware Version (502 = 5.02).</summary>
+    public int FirmwareVersion { get; init; } = 502;
+
+    /// <summary>Device type ID answered to Return Device ID.</summary>
+    /// <remarks>The real T-LA60A ID is not documented in the sources we have; this is a stand-in the host only displays.</remarks>
+    public int DeviceId { get; init; } = 4212;
+
+    /// <summary>Target Speed data at power-up (x 9.375 microsteps/s; 2000 = 1.74 mm/s on a T-LA).</summary>
+    public int TargetSpeedData { get; init; } = 2000;
+
+    /// <summary>Home Speed data at power-up.</summary>
+    public int HomeSpeedData { get; init; } = 2000;
+
+    /// <summary>Acceleration data at power-up (x 11250 microsteps/s²; 10 = 11 mm/s² on a T-LA).</summary>
+    public int AccelerationData { get; init; } = 10;
+
+    /// <summary>Device Mode at power-up (0: auto-reply on, move tracking off).</summary>
+    public int DeviceMode { get; init; }
+
+    /// <summary>Interval of Move Tracking replies (command 8) while Device Mode bit 4 is set.</summary>
+    public TimeSpan MoveTrackingPeriod { get; init; } = TimeSpan.FromMilliseconds(250);
+
+    /// <summary>How long a Renumber takes before the device replies ("less than a second").</summary>
+    public TimeSpan RenumberTime { get; init; } = TimeSpan.FromMilliseconds(500);
+
+    /// <summary>
+    /// Whether a move that another move pre-empts still replies (with the position where it was pre-empted).
+    /// Undocumented for T-series; off by default because Zaber's own libraries expect one reply per command.
+    /// </summary>
+    public bool ReplyToPreemptedMoves { get; init; }
+
+    /// <summary>Firmware text of the laser gate's identification reply.</summary>
+    public string GateFirmware { get; init; } = "SIM-1.0";
+
+    /// <summary>Watchdog time of the gate at power-up, ms; null takes the machine profile's.</summary>
+    public int? GateWatchdogMs { get; init; }
+
+    /// <summary>Laser-on intervals with both axes still shorter than this are not counted as dwell.</summary>
+    /// <remarks>
+    /// With completion-based replies the laser unavoidably stands still at both ends of every burn run: at the start
+    /// for the gate's acknowledgement and the move command (13.5 + 6.25 ms at 9600 baud for "OK FREQ 1000"), at the
+    /// end for the move's reply and the OFF line (6.25 + 4.2 ms). A speed change between switching the laser on and
+    /// the move adds 12.5 ms and goes over the default.
+    /// </remarks>
+    public TimeSpan DwellTolerance { get; init; } = TimeSpan.FromMilliseconds(25);
+}
