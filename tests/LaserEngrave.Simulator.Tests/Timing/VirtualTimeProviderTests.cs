@@ -193,22 +193,29 @@ public class VirtualTimeProviderTests
     }
 
     [Fact(Timeout = 10_000)]
-    public async Task NotifyActivity_KeptUp_HoldsTheClock()
+    public async Task Hold_Kept_ClockStandsStillUntilReleased()
     {
-        using var time = new VirtualTimeProvider(quietPeriod: TimeSpan.FromMilliseconds(20));
+        using var time = new VirtualTimeProvider();
+        var hold = time.Hold();
         var delay = Task.Delay(TimeSpan.FromSeconds(1), time, None);
 
-        // Activity every few milliseconds of wall time: the system is never quiet for 20 ms, so the clock must not jump.
-        var wall = System.Diagnostics.Stopwatch.StartNew();
-        while (wall.ElapsedMilliseconds < 200)
-        {
-            time.NotifyActivity();
-            Thread.Sleep(2);
-        }
+        Thread.Sleep(50);
 
         Assert.False(delay.IsCompleted);
         Assert.Equal(TimeSpan.Zero, time.Elapsed);
+        hold.Dispose();
         await delay;
+        Assert.Equal(TimeSpan.FromSeconds(1), time.Elapsed);
+    }
+
+    [Fact(Timeout = 10_000)]
+    public async Task Hold_ForgottenPastTheLimit_NoLongerHoldsTheClock()
+    {
+        using var time = new VirtualTimeProvider();
+        _ = time.Hold();
+
+        await Task.Delay(TimeSpan.FromSeconds(1), time, None);
+
         Assert.Equal(TimeSpan.FromSeconds(1), time.Elapsed);
     }
 
