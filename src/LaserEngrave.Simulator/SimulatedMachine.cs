@@ -32,7 +32,7 @@ public sealed class SimulatedMachine : IAsyncDisposable
     private Task _stageServed = Task.CompletedTask;
     private Task _laserServed = Task.CompletedTask;
 
-    private SimulatedMachine(MachineProfile profile, SimulatorOptions options, ISerialLink? stageHost, ISerialLink? laserHost)
+    private SimulatedMachine(MachineProfile profile, SimulatorOptions options, bool inProcess)
     {
         ArgumentNullException.ThrowIfNull(profile);
         ArgumentNullException.ThrowIfNull(options);
@@ -61,8 +61,15 @@ public sealed class SimulatedMachine : IAsyncDisposable
         Recorder = new BurnRecorder(x, y, profile.X.MicrostepUm, profile.Y.MicrostepUm, options.DwellTolerance, () => _clock.NowSeconds);
         Stage = new VirtualZaberChain(profile, options, _clock, Faults, Recorder);
         Gate = new VirtualLaserGate(profile.Gate, options, _clock, Faults, Recorder);
-        _stageHost = stageHost is null ? null : new ActivityLink(stageHost, _clock);
-        _laserHost = laserHost is null ? null : new ActivityLink(laserHost, _clock);
+        if (inProcess)
+        {
+            var (stageHost, stageDevice) = InMemorySerialLink.CreatePair("simulated stage");
+            var (laserHost, laserDevice) = InMemorySerialLink.CreatePair("simulated laser gate");
+            (_stageHost, var stage) = ActivityLink.WrapPair(stageHost, stageDevice, _clock);
+            (_laserHost, var laser) = ActivityLink.WrapPair(laserHost, laserDevice, _clock);
+            ServeStage(stage);
+            ServeLaser(laser);
+        }
     }
 
     /// <summary>Raised for every connection event, injected fault and watchdog trip; handlers run on the simulator's threads.</summary>
@@ -103,12 +110,7 @@ public sealed class SimulatedMachine : IAsyncDisposable
     /// <summary>A machine on in-memory links, for tests and the app: the host uses <see cref="StageLink"/> and <see cref="LaserLink"/>.</summary>
     public static SimulatedMachine CreateInProcess(MachineProfile profile, SimulatorOptions? options = null)
     {
-        var (stageHost, stageDevice) = InMemorySerialLink.CreatePair("simulated stage");
-        var (laserHost, laserDevice) = InMemorySerialLink.CreatePair("simulated laser gate");
-        var machine = new SimulatedMachine(profile, options ?? new SimulatorOptions(), stageHost, laserHost);
-        machine.ServeStage(stageDevice);
-        machine.ServeLaser(laserDevice);
-        return machine;
+        return new SimulatedMachine(profile, options ?? new SimulatorOptions(), inProcess: true);
     }
 
     /// <summary>A machine serving the device ends of two links, e.g. ptys made by socat or real serial ports.</summary>
@@ -116,7 +118,7 @@ public sealed class SimulatedMachine : IAsyncDisposable
     {
         ArgumentNullException.ThrowIfNull(stageDeviceEnd);
         ArgumentNullException.ThrowIfNull(laserDeviceEnd);
-        var machine = new SimulatedMachine(profile, options ?? new SimulatorOptions(), null, null);
+        var machine = new SimulatedMachine(profile, options ?? new SimulatorOptions(), inProcess: false);
         machine.ServeStage(stageDeviceEnd);
         machine.ServeLaser(laserDeviceEnd);
         return machine;

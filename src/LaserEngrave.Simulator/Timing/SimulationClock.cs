@@ -20,7 +20,7 @@ internal sealed class SimulationClock
     public void Signal() => (Time as VirtualTimeProvider)?.NotifyActivity();
 
     /// <summary>Keeps a virtual clock still while the simulator works on something (no-op in real time).</summary>
-    public ClockHold Hold() => (Time as VirtualTimeProvider)?.Hold() ?? default;
+    public ClockHold Hold(TimeSpan? limit = null) => (Time as VirtualTimeProvider)?.Hold(limit) ?? default;
 
     /// <summary>Runs <paramref name="action"/> once at <paramref name="atSeconds"/> (at once when that has passed).</summary>
     public ITimer At(double atSeconds, Action action) =>

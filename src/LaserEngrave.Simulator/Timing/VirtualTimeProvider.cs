@@ -31,8 +31,8 @@ public sealed class VirtualTimeProvider : TimeProvider, IDisposable
     // A plain monitor rather than System.Threading.Lock: the advancer thread needs Monitor.Wait/PulseAll.
     private readonly object _gate = new();
     private readonly PriorityQueue<(VirtualTimer Timer, long Version), (long Due, long Sequence)> _queue = new();
-    // Running timer callbacks and holds, by id, with the wall-clock timestamp when they began.
-    private readonly Dictionary<long, long> _holds = [];
+    // Running timer callbacks and holds, by id: the wall-clock timestamp when they began and how long they may hold.
+    private readonly Dictionary<long, (long Started, TimeSpan Limit)> _holds = [];
     private readonly DateTimeOffset _start;
     private readonly Thread _advancer;
     private long _nowTicks;
@@ -97,14 +97,15 @@ public sealed class VirtualTimeProvider : TimeProvider, IDisposable
     /// <summary>Tells the clock that something happened (a byte was sent or delivered), so it waits for quiet again.</summary>
     public void NotifyActivity() => Interlocked.Increment(ref _activity);
 
-    /// <summary>Keeps the clock still until the hold is disposed (or <see cref="BlockedCallbackLimit"/> has passed).</summary>
+    /// <summary>Keeps the clock still until the hold is disposed, or <paramref name="limit"/> of wall-clock time has passed.</summary>
     /// <remarks>For code that must finish a step before virtual time may move on, e.g. parsing bytes just received.</remarks>
-    public ClockHold Hold()
+    /// <param name="limit">Longest the hold counts; <see cref="BlockedCallbackLimit"/> by default.</param>
+    public ClockHold Hold(TimeSpan? limit = null)
     {
         lock (_gate)
         {
             var id = ++_callbackIds;
-            _holds[id] = Stopwatch.GetTimestamp();
+            _holds[id] = (Stopwatch.GetTimestamp(), limit ?? BlockedCallbackLimit);
             Interlocked.Increment(ref _activity);
             return new ClockHold(this, id);
         }
@@ -196,7 +197,7 @@ public sealed class VirtualTimeProvider : TimeProvider, IDisposable
     private void Fire(VirtualTimer timer)
     {
         var id = ++_callbackIds;
-        _holds[id] = Stopwatch.GetTimestamp();
+        _holds[id] = (Stopwatch.GetTimestamp(), BlockedCallbackLimit);
         Interlocked.Increment(ref _activity);
         Interlocked.Increment(ref _firedTimers);
         ThreadPool.UnsafeQueueUserWorkItem(
@@ -238,9 +239,9 @@ public sealed class VirtualTimeProvider : TimeProvider, IDisposable
     // Caller holds _gate.
     private bool CallbacksHoldClock()
     {
-        foreach (var started in _holds.Values)
+        foreach (var (started, limit) in _holds.Values)
         {
-            if (Stopwatch.GetElapsedTime(started) < BlockedCallbackLimit)
+            if (Stopwatch.GetElapsedTime(started) < limit)
             {
                 return true;
             }
