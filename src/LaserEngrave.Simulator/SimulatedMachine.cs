@@ -10,9 +10,11 @@ namespace LaserEngrave.Simulator;
 
 /// <summary>The whole machine in software: the Zaber chain on one link, the laser gate on another, a burn recorder and faults.</summary>
 /// <remarks>
-/// In-process (<see cref="CreateInProcess"/>) the host talks to <see cref="StageLink"/> and <see cref="LaserLink"/>;
-/// attached (<see cref="Attach"/>) the simulator serves the device ends of real ports or ptys. Host code under test
-/// must use <see cref="TimeProvider"/> for every wait. Runs until disposed.
+/// In-process (<see cref="CreateInProcess"/>) the host talks to <see cref="StageLink"/> and <see cref="LaserLink"/>
+/// and must use <see cref="TimeProvider"/> for every wait. Attached (<see cref="Attach"/>) the simulator serves the
+/// device ends of real ports or ptys for a host in another process, living in real time: in virtual time the devices'
+/// own waiting (motion, bytes on the wire) is fast-forwarded, while what measures the host (the gate's watchdog, the
+/// 10 ms gap that drops a partial Zaber frame) runs on the wall clock. Runs until disposed.
 /// </remarks>
 public sealed class SimulatedMachine : IAsyncDisposable
 {
@@ -53,7 +55,8 @@ public sealed class SimulatedMachine : IAsyncDisposable
             TimeProvider = _ownedClock;
         }
 
-        _clock = new SimulationClock(TimeProvider);
+        // In-process the host shares the clock; attached, the host is another process on the wall clock.
+        _clock = new SimulationClock(TimeProvider, inProcess ? TimeProvider : System.TimeProvider.System);
         Faults = FaultInjector.Parse(options.FaultSpec);
         Faults.Triggered += (_, rule) => Raise(rule.Target == FaultTarget.Stage ? StagePort : LaserPort, $"fault injected: {rule}");
         var x = new Motion.AxisTrajectory(profile.X.TravelMicrosteps);

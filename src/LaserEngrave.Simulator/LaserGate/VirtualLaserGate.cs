@@ -13,7 +13,8 @@ namespace LaserEngrave.Simulator.LaserGate;
 /// <remarks>
 /// A command takes effect when its line's last byte has arrived; the reply then takes its own time on the wire.
 /// Every line received, valid or not, feeds the watchdog; a Silent fault stops the gate hearing lines, so its
-/// watchdog then switches the laser off, as a hung PIC's hardware watchdog would.
+/// watchdog then switches the laser off, as a hung PIC's hardware watchdog would. The watchdog measures the host's
+/// silence on the host's clock (the wall clock when attached to ports in virtual time).
 /// </remarks>
 public sealed class VirtualLaserGate
 {
@@ -95,7 +96,7 @@ public sealed class VirtualLaserGate
         }
     }
 
-    private Action? OnByte(byte value, double arrivedAt)
+    private Action? OnByte(byte value, double arrivedAt, double gapSeconds)
     {
         lock (_lock)
         {
@@ -130,7 +131,7 @@ public sealed class VirtualLaserGate
             disconnect = fault.Disconnect;
             if (!fault.Ignore && !fault.Disconnect)
             {
-                _lastHeard = now;
+                _lastHeard = _clock.Host.NowSeconds;
                 ArmWatchdog();
                 if (fault.RefuseCode is { } code)
                 {
@@ -242,7 +243,8 @@ public sealed class VirtualLaserGate
         ArmWatchdog();
     }
 
-    // Caller holds _lock. (Re)starts the watchdog from the last line heard while the laser fires.
+    // Caller holds _lock. (Re)starts the watchdog from the last line heard while the laser fires; it measures the host's
+    // silence, so it runs on the host's clock.
     private void ArmWatchdog()
     {
         _watchdog?.Dispose();
@@ -254,7 +256,7 @@ public sealed class VirtualLaserGate
 
         var generation = _generation;
         var heard = _lastHeard;
-        _watchdog = _clock.At(heard + (WatchdogMs / 1000.0), () =>
+        _watchdog = _clock.Host.At(heard + (WatchdogMs / 1000.0), () =>
         {
             lock (_lock)
             {

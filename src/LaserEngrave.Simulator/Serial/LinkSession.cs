@@ -21,6 +21,8 @@ internal sealed class LinkSession
     private readonly CancellationTokenSource _stop = new();
     private double _outBusyUntil;
     private double _inBusyUntil;
+    private double _hostBusyUntil;
+    private double _hostLastArrival = double.NegativeInfinity;
     private int _closed;
 
     public LinkSession(ISerialLink link, SimulationClock clock, int baudRate, int bitsPerByte, Action<string> log)
@@ -66,10 +68,10 @@ internal sealed class LinkSession
     /// Serves the link until it closes: every received byte goes to <paramref name="onByte"/> with its arrival time;
     /// an action it returns runs at that time, before later bytes are looked at.
     /// </summary>
-    /// <param name="onByte">Takes each byte and its arrival time.</param>
+    /// <param name="onByte">Takes each byte, its arrival time, and the gap since the previous byte on the host's clock (seconds).</param>
     /// <param name="starting">A hold on the clock taken when the session was started, released once the reader waits for bytes.</param>
     /// <param name="cancellationToken">Ends the session.</param>
-    public async Task RunAsync(Func<byte, double, Action?> onByte, ClockHold starting, CancellationToken cancellationToken)
+    public async Task RunAsync(Func<byte, double, double, Action?> onByte, ClockHold starting, CancellationToken cancellationToken)
     {
         using var linked = CancellationTokenSource.CreateLinkedTokenSource(cancellationToken, _stop.Token);
         var writer = WriteLoopAsync(linked.Token);
@@ -97,7 +99,7 @@ internal sealed class LinkSession
         }
     }
 
-    private async Task<string> ReadLoopAsync(Func<byte, double, Action?> onByte, ClockHold starting, CancellationToken cancellationToken)
+    private async Task<string> ReadLoopAsync(Func<byte, double, double, Action?> onByte, ClockHold starting, CancellationToken cancellationToken)
     {
         var buffer = new byte[256];
         var first = true;
@@ -136,11 +138,15 @@ internal sealed class LinkSession
                 }
 
                 var receivedAt = _clock.NowSeconds;
+                var hostReceivedAt = _clock.Host.NowSeconds;
                 for (var i = 0; i < n; i++)
                 {
                     // A byte cannot arrive before it was written, nor before the previous byte has finished arriving.
                     _inBusyUntil = Math.Max(receivedAt, _inBusyUntil) + _secondsPerByte;
-                    var action = onByte(buffer[i], _inBusyUntil);
+                    _hostBusyUntil = Math.Max(hostReceivedAt, _hostBusyUntil) + _secondsPerByte;
+                    var gap = _hostBusyUntil - _hostLastArrival;
+                    _hostLastArrival = _hostBusyUntil;
+                    var action = onByte(buffer[i], _inBusyUntil, gap);
                     if (action is null)
                     {
                         continue;

@@ -5,13 +5,22 @@ internal sealed class SimulationClock
 {
     private readonly long _origin;
 
-    public SimulationClock(TimeProvider time)
+    /// <param name="time">The clock of the devices' own waiting: motion, bytes on the wire.</param>
+    /// <param name="hostTime">The clock the host lives on, for what measures the host (watchdog, gaps between bytes); the same by default.</param>
+    public SimulationClock(TimeProvider time, TimeProvider? hostTime = null)
     {
         Time = time;
         _origin = time.GetTimestamp();
+        Host = hostTime is null || hostTime == time ? this : new SimulationClock(hostTime);
     }
 
     public TimeProvider Time { get; }
+
+    /// <summary>
+    /// The host's clock. In-process the host shares the simulator's clock; attached to ports in virtual time the host is
+    /// another process living in real time, so silence and gaps it causes are measured on the wall clock.
+    /// </summary>
+    public SimulationClock Host { get; }
 
     /// <summary>Seconds since the machine started.</summary>
     public double NowSeconds => (Time.GetTimestamp() - _origin) / (double)Time.TimestampFrequency;

@@ -21,7 +21,6 @@ public sealed class VirtualZaberChain
     private readonly FaultInjector _faults;
     private readonly byte[] _partial = new byte[ZaberFrame.Length];
     private int _partialCount;
-    private double _lastByteAt = double.NegativeInfinity;
     private LinkSession? _session;
 
     internal VirtualZaberChain(MachineProfile profile, SimulatorOptions options, SimulationClock clock, FaultInjector faults, BurnRecorder recorder)
@@ -100,16 +99,14 @@ public sealed class VirtualZaberChain
         _session?.Send(bytes, fault.Delay);
     }
 
-    private Action? OnByte(byte value, double arrivedAt)
+    private Action? OnByte(byte value, double arrivedAt, double gapSeconds)
     {
         lock (Lock)
         {
-            if (_partialCount > 0 && arrivedAt - _lastByteAt > _options.PartialFrameTimeout.TotalSeconds)
+            if (_partialCount > 0 && gapSeconds > _options.PartialFrameTimeout.TotalSeconds)
             {
                 _partialCount = 0;
             }
-
-            _lastByteAt = arrivedAt;
             _partial[_partialCount++] = value;
             if (_partialCount < ZaberFrame.Length)
             {

@@ -1,0 +1,48 @@
+using System.Text;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Simulator.Serial;
+
+namespace LaserEngrave.Simulator.Tests.Serial;
+
+/// <summary>The simulator attached to real ptys (socat), spoken to with raw bytes through the other ends.</summary>
+public class PtyAttachTests
+{
+    private static readonly TimeSpan WallTimeout = TimeSpan.FromSeconds(10);
+
+    [Fact(Timeout = 30_000)]
+    public async Task Attach_SocatPtys_StageAndGateAnswerRawBytes()
+    {
+        var ct = TestContext.Current.CancellationToken;
+        await using var stagePair = await SocatPtyPair.StartAsync(ct);
+        await using var laserPair = await SocatPtyPair.StartAsync(ct);
+        await using var machine = SimulatedMachine.Attach(
+            new StreamSerialLink(stagePair.A, SocatPtyPair.Open(stagePair.A)),
+            new StreamSerialLink(laserPair.A, SocatPtyPair.Open(laserPair.A)),
+            MachineProfile.Default);
+        await using var stage = SocatPtyPair.Open(stagePair.B);
+        await using var laser = SocatPtyPair.Open(laserPair.B);
+
+        await stage.WriteAsync(new ZaberFrame(0, ZaberCommand.ReturnFirmwareVersion, 0).ToBytes(), ct);
+        var first = ZaberFrame.Decode(await ReadExactlyAsync(stage, 6, ct));
+        var second = ZaberFrame.Decode(await ReadExactlyAsync(stage, 6, ct));
+        await stage.WriteAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 12_345).ToBytes(), ct);
+        var move = ZaberFrame.Decode(await ReadExactlyAsync(stage, 6, ct));
+        await laser.WriteAsync(Encoding.ASCII.GetBytes("FREQ 1000\n"), ct);
+        var ack = Encoding.ASCII.GetString(await ReadExactlyAsync(laser, "OK FREQ 1000\n".Length, ct));
+
+        Assert.Equal(new ZaberFrame(1, ZaberCommand.ReturnFirmwareVersion, 502), first);
+        Assert.Equal(new ZaberFrame(2, ZaberCommand.ReturnFirmwareVersion, 502), second);
+        Assert.Equal(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 12_345), move);
+        Assert.Equal("OK FREQ 1000\n", ack);
+        Assert.True(machine.Gate.IsFiring);
+    }
+
+    // A pty file's reads block: read on a thread of its own rather than tie up the thread pool.
+    private static async Task<byte[]> ReadExactlyAsync(Stream stream, int count, CancellationToken ct)
+    {
+        var buffer = new byte[count];
+        await Task.Factory.StartNew(() => stream.ReadExactly(buffer), ct, TaskCreationOptions.LongRunning, TaskScheduler.Default).WaitAsync(WallTimeout, ct);
+        return buffer;
+    }
+}
