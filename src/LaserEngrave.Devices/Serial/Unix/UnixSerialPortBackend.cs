@@ -78,17 +78,7 @@ internal sealed unsafe class UnixSerialPortBackend : SerialPortBackend
         }
     }
 
-    /// <summary>The one-line message for an errno from opening or configuring a port.</summary>
-    internal static SerialPortException OpenError(string name, int errno) => errno switch
-    {
-        UnixPlatform.ErrNoEntry or UnixPlatform.ErrNoDeviceOrAddress or UnixPlatform.ErrNoDevice =>
-            new SerialPortException(name, $"{name}: no such port"),
-        UnixPlatform.ErrBusy => new SerialPortException(name, $"{name}: port is in use by another program"),
-        UnixPlatform.ErrAccess or UnixPlatform.ErrPermission =>
-            new SerialPortException(name, $"{name}: permission denied (on Linux add the user to the dialout group)"),
-        UnixPlatform.ErrNotTty or UnixPlatform.ErrIsDirectory => new SerialPortException(name, $"{name}: not a serial port"),
-        _ => new SerialPortException(name, $"{name}: cannot open: {Marshal.GetPInvokeErrorMessage(errno)}"),
-    };
+    private static SerialPortException OpenError(string name, int errno) => SerialPortErrors.FromErrno(name, errno);
 
     public override int Read(Span<byte> buffer)
     {

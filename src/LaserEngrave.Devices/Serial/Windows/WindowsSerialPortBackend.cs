@@ -47,14 +47,14 @@ internal sealed unsafe class WindowsSerialPortBackend : SerialPortBackend
         {
             var error = Marshal.GetLastPInvokeError();
             handle.Dispose();
-            throw OpenError(name, error);
+            throw SerialPortErrors.FromWin32(name, error);
         }
 
         try
         {
             if (Kernel32.GetFileType(handle) != Kernel32.FileTypeChar)
             {
-                throw new SerialPortException(name, $"{name}: not a serial port");
+                throw SerialPortErrors.NotASerialPort(name);
             }
 
             Configure(handle, settings);
@@ -66,17 +66,6 @@ internal sealed unsafe class WindowsSerialPortBackend : SerialPortBackend
             throw;
         }
     }
-
-    /// <summary>The one-line message for a Win32 error from opening a port.</summary>
-    internal static SerialPortException OpenError(string name, int error) => error switch
-    {
-        Kernel32.ErrorFileNotFound or Kernel32.ErrorPathNotFound => new SerialPortException(name, $"{name}: no such port"),
-
-        // Windows answers "access denied" when another program holds the port open.
-        Kernel32.ErrorAccessDenied or Kernel32.ErrorSharingViolation =>
-            new SerialPortException(name, $"{name}: port is in use by another program"),
-        _ => new SerialPortException(name, $"{name}: cannot open: {Marshal.GetPInvokeErrorMessage(error)}"),
-    };
 
     public override int Read(Span<byte> buffer)
     {
