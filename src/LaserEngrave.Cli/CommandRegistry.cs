@@ -8,6 +8,8 @@ internal static class CommandRegistry
 {
     public static IEnumerable<Command> All()
     {
-        yield break;
+        yield return PortsCommand.Create();
+        yield return StageCommand.Create();
+        yield return LaserCommand.Create();
     }
 }
