@@ -16,7 +16,7 @@ public sealed class SocatLaserGateTests : IAsyncDisposable
     public SocatLaserGateTests()
     {
         _fake = new FakeLaserGate(NativeSerialPort.Open(_pair.B));
-        _gate = PicLaserGate.Open(_pair.A, new LaserGateProfile { TimeoutMs = 200 }, TimeProvider.System);
+        _gate = PicLaserGate.Open(_pair.A, new LaserGateProfile { TimeoutMs = 1000 }, TimeProvider.System);
     }
 
     private static CancellationToken Token => TestContext.Current.CancellationToken;
@@ -49,7 +49,7 @@ public sealed class SocatLaserGateTests : IAsyncDisposable
 
         var error = await Assert.ThrowsAsync<DeviceTimeoutException>(() => _gate.SetFrequencyAsync(1000, Token).Within());
 
-        Assert.Equal($"laser gate on {_pair.A} did not acknowledge 'FREQ 1000' within 200 ms", error.Message);
+        Assert.Equal($"laser gate on {_pair.A} did not acknowledge 'FREQ 1000' within 1000 ms", error.Message);
     }
 
     [Fact]

@@ -9,7 +9,7 @@ namespace LaserEngrave.Devices.Tests.Integration;
 /// <summary>The Zaber host over a real pty (NativeSerialPort on both ends of a socat pair), in real time.</summary>
 public sealed class SocatZaberTests : IAsyncDisposable
 {
-    private static readonly ZaberConnectionOptions Options = new() { CommandTimeout = TimeSpan.FromMilliseconds(300), BroadcastQuietPeriod = TimeSpan.FromMilliseconds(100) };
+    private static readonly ZaberConnectionOptions Options = new() { CommandTimeout = TimeSpan.FromSeconds(1), BroadcastQuietPeriod = TimeSpan.FromMilliseconds(100) };
 
     private readonly SocatPair _pair = new();
     private readonly FakeZaberChain _devices;
@@ -73,7 +73,7 @@ public sealed class SocatZaberTests : IAsyncDisposable
 
         var error = await Assert.ThrowsAsync<DeviceTimeoutException>(() => _chain.Y.GetPositionAsync(Token).Within());
 
-        Assert.Equal($"{_pair.A}: device 2 (Y) did not reply to Return Current Position within 300 ms", error.Message);
+        Assert.Equal($"{_pair.A}: device 2 (Y) did not reply to Return Current Position within 1000 ms", error.Message);
     }
 
     [Fact]
