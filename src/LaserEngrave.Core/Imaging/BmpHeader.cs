@@ -30,9 +30,6 @@ internal sealed record BmpHeader
     /// <summary>Palette entries the pixels may index (at most 2^bits); 0 for direct colour.</summary>
     public required int PaletteCount { get; init; }
 
-    /// <summary>Palette entries the header declares (may be more than the pixels can index, or present on a direct-colour image).</summary>
-    public required int DeclaredPaletteCount { get; init; }
-
     public required uint RedMask { get; init; }
 
     public required uint GreenMask { get; init; }
@@ -76,7 +73,7 @@ internal sealed record BmpHeader
         path,
         ImageFormat.Bmp,
         BitsPerPixel,
-        BitsPerPixel <= 8 ? PaletteCount : DeclaredPaletteCount,
+        PaletteCount,
         Width,
         Height,
         fileSize,
@@ -256,7 +253,6 @@ internal sealed record BmpHeader
             PaletteOffset = paletteOffset,
             PaletteEntrySize = entrySize,
             PaletteCount = paletteCount,
-            DeclaredPaletteCount = (int)Math.Min(declared, int.MaxValue),
             RedMask = red,
             GreenMask = green,
             BlueMask = blue,
