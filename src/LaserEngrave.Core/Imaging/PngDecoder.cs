@@ -55,6 +55,8 @@ internal static class PngDecoder
             {
                 DecodePass(reader, png, zlib, pixels, stride, indexed, outBits, x0, y0, dx, dy);
             }
+
+            idat.CheckRemainingChunks();
         }
         catch (InvalidDataException ex)
         {

@@ -58,6 +58,15 @@ internal sealed class PngIdatStream : Stream
         return n;
     }
 
+    /// <summary>Reads what is left of the image data, so every IDAT chunk's CRC gets checked, including the last one.</summary>
+    public void CheckRemainingChunks()
+    {
+        Span<byte> scratch = stackalloc byte[4096];
+        while (Read(scratch) > 0)
+        {
+        }
+    }
+
     public override void Flush()
     {
     }
