@@ -115,6 +115,33 @@ public class BmpSuiteTests
         }
     }
 
+    [Theory]
+    [MemberData(nameof(GoodFiles))]
+    public void Load_GoodFileCutOrCorrupted_IsRefusedOrDecodedNeverAnythingElse(string file)
+    {
+        var original = File.ReadAllBytes(BmpSuite.PathOf(file));
+        var random = new Random(original.Length);
+        for (var i = 0; i < 200; i++)
+        {
+            var variant = i % 4 == 0 ? original[..random.Next(original.Length)] : (byte[])original.Clone();
+            if (i % 4 != 0)
+            {
+                // Corrupt the headers and palette most of the time, where a wrong value changes the most.
+                var limit = random.Next(2) == 0 ? Math.Min(variant.Length, 1100) : variant.Length;
+                variant[random.Next(limit)] = (byte)random.Next(256);
+            }
+
+            try
+            {
+                MaskBuilder.Build(ImageLoader.Load(new MemoryStream(variant), file), MaskOptions.Default);
+            }
+            catch (ImageLoadException ex)
+            {
+                Assert.DoesNotContain('\n', ex.Message);
+            }
+        }
+    }
+
     [Fact]
     public void Load_ReallyBig_IsRefusedWithoutAllocating()
     {
