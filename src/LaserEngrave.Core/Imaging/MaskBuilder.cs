@@ -62,10 +62,12 @@ public static class MaskBuilder
     {
         for (var y = 0; y < image.Height; y++)
         {
+            var source = image.Row(y);
             var row = mask.Row(y);
             for (var x = 0; x < image.Width; x++)
             {
-                if (options.Burns(image.GetPixel(x, y)))
+                var p = source.Slice(4 * x, 4);
+                if (options.Burns(new Rgba32(p[0], p[1], p[2], p[3])))
                 {
                     row[x >> 6] |= 1UL << (x & 63);
                 }
