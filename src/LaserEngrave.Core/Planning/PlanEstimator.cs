@@ -1,4 +1,5 @@
 using System.Globalization;
+using System.Runtime.CompilerServices;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Motion;
 
@@ -73,6 +74,7 @@ public sealed class PlanEstimator
     public long SpeedChanges { get; private set; }
 
     /// <summary>Advances over one move; returns its time (laser command, speed changes and motion).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public double Add(in Move move)
     {
         var seconds = 0.0;

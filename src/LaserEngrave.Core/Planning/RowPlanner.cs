@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
 
@@ -7,6 +8,8 @@ namespace LaserEngrave.Core.Planning;
 /// <remarks>
 /// The single source of every plan's moves: <see cref="RasterPlan"/> enumerates, visits, counts and resumes through it,
 /// so the executor, the statistics, the preview and the CSV all see the same sequence.
+/// The hot methods are compiled fully optimised on their first call (AggressiveOptimization): one statistics pass over a
+/// large mask is over before tiered compilation would have promoted them, and the CLI plans a mask exactly once.
 /// </remarks>
 internal sealed class RowPlanner
 {
@@ -40,6 +43,7 @@ internal sealed class RowPlanner
     public bool LastRowLeftToRight { get; private set; } = true;
 
     /// <summary>Plans row <see cref="NextRow"/> into <paramref name="sink"/>; returns whether it produced moves. Call only while NextRow &lt; height.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public bool PlanRow<TSink>(ref TSink sink)
         where TSink : IMoveVisitor
     {
@@ -62,6 +66,7 @@ internal sealed class RowPlanner
         return true;
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     private void PlanPaperRow<TSink>(ref TSink sink, int row, int runCount)
         where TSink : IMoveVisitor
     {
@@ -100,6 +105,7 @@ internal sealed class RowPlanner
         SetPosition(x, y);
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     private void PlanOptimizedRow<TSink>(ref TSink sink, int row, int runCount, bool leftToRight)
         where TSink : IMoveVisitor
     {

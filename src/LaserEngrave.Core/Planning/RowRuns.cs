@@ -1,4 +1,5 @@
 using System.Numerics;
+using System.Runtime.CompilerServices;
 
 namespace LaserEngrave.Core.Planning;
 
@@ -13,6 +14,7 @@ internal static class RowRuns
     /// Relies on <see cref="Imaging.BitMask"/>'s guarantee that bits past the width are zero, so a run can only end past
     /// the last word when the width is a multiple of 64, and then it ends exactly at the width.
     /// </remarks>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public static int Find(ReadOnlySpan<ulong> words, ref int[] runs)
     {
         if (words.IsEmpty)
