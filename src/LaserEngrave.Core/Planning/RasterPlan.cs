@@ -67,7 +67,7 @@ public sealed class RasterPlan
         var planner = NewPlanner();
         while (planner.NextRow < Mask.Height)
         {
-            planner.PlanRow(ref visitor);
+            planner.PlanNextRow(ref visitor);
         }
     }
 
@@ -81,7 +81,7 @@ public sealed class RasterPlan
         {
             var row = planner.NextRow;
             counter.Count = 0;
-            if (planner.PlanRow(ref counter))
+            if (planner.PlanNextRow(ref counter))
             {
                 yield return new PlanRow(row, planner.LastRowLeftToRight, index, counter.Count);
                 index += counter.Count;
@@ -98,7 +98,7 @@ public sealed class RasterPlan
         var planner = NewPlanner();
         while (planner.NextRow < Mask.Height)
         {
-            planner.PlanRow(ref visitor);
+            planner.PlanNextRow(ref visitor);
         }
 
         return visitor.Finish(planner.VisitedRows, Geometry.MicrostepUm);
@@ -110,7 +110,7 @@ public sealed class RasterPlan
         var skipped = default(NullVisitor);
         while (planner.NextRow < fromRow)
         {
-            planner.PlanRow(ref skipped);
+            planner.PlanNextRow(ref skipped);
         }
 
         // One row's moves at a time: bounded by the width, however tall the mask.
@@ -118,7 +118,7 @@ public sealed class RasterPlan
         while (planner.NextRow < Mask.Height)
         {
             buffer.Moves.Clear();
-            planner.PlanRow(ref buffer);
+            planner.PlanNextRow(ref buffer);
             foreach (var move in buffer.Moves)
             {
                 yield return move;

@@ -36,15 +36,15 @@ internal sealed class RowPlanner
     /// <summary>Index of the next row to plan; equals the mask height when every row is done.</summary>
     public int NextRow { get; private set; }
 
-    /// <summary>Rows that produced moves so far.</summary>
+    /// <summary>Rows visited so far.</summary>
     public int VisitedRows { get; private set; }
 
     /// <summary>Direction of the row planned last (meaningful after it produced moves).</summary>
     public bool LastRowLeftToRight { get; private set; } = true;
 
-    /// <summary>Plans row <see cref="NextRow"/> into <paramref name="sink"/>; returns whether it produced moves. Call only while NextRow &lt; height.</summary>
+    /// <summary>Plans row <see cref="NextRow"/> into <paramref name="sink"/>; returns whether the row is visited (every row under Paper, non-blank rows under Optimized). Call only while NextRow &lt; height.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    public bool PlanRow<TSink>(ref TSink sink)
+    public bool PlanNextRow<TSink>(ref TSink sink)
         where TSink : IMoveVisitor
     {
         var row = NextRow++;

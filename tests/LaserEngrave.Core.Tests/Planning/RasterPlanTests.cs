@@ -1,4 +1,5 @@
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Imaging;
 using LaserEngrave.Core.Planning;
 
 namespace LaserEngrave.Core.Tests.Planning;
@@ -145,6 +146,26 @@ public class RasterPlanTests
         {
             Assert.All(all.Skip((int)row.FirstMoveIndex).Take(row.MoveCount), m => Assert.Equal(row.Row, m.Row));
         }
+    }
+
+    [Fact]
+    public void Moves_LargePlan_StreamsARowAtATimeInsteadOfBuildingThePlan()
+    {
+        // 200 rows of 10000 one-pixel runs: about 4 million moves, some 190 MB if held whole.
+        var mask = new BitMask(20_000, 200);
+        for (var y = 0; y < mask.Height; y++)
+        {
+            mask.Row(y).Fill(0x5555_5555_5555_5555UL);
+        }
+
+        mask.ClearPadding();
+        var plan = new RasterPlan(mask, TestMasks.Geometry(mask, pitch: 10));
+        var before = GC.GetAllocatedBytesForCurrentThread();
+        var first = plan.Moves().Take(3).ToList();
+        var allocated = GC.GetAllocatedBytesForCurrentThread() - before;
+
+        Assert.Equal(3, first.Count);
+        Assert.True(allocated < 4_000_000, $"{allocated} bytes allocated for the first three moves");
     }
 
     [Fact]
