@@ -174,7 +174,7 @@ internal sealed class JobOptions
 /// <summary>Threshold, dither and invert: how an image becomes a burn mask.</summary>
 internal sealed class MaskOptionSet
 {
-    public Option<double?> Threshold { get; } = new("--threshold") { Description = "Luminance threshold in percent (default 50): darker pixels burn" };
+    public Option<double?> Threshold { get; } = new("--threshold") { Description = "Luminance threshold in percent (default 50): darker pixels burn; dithering quantises at mid-grey instead" };
 
     public Option<string?> Dither { get; } = new("--dither") { Description = "none, floyd-steinberg, atkinson or bayer" };
 
