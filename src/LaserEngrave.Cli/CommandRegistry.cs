@@ -8,6 +8,13 @@ internal static class CommandRegistry
 {
     public static IEnumerable<Command> All()
     {
-        yield break;
+        yield return InfoCommand.Create();
+        yield return MaskCommand.Create();
+        yield return PlanCommand.Create();
+        yield return PreviewCommand.Create();
+        yield return BenchCommand.Create();
+        yield return PortsCommand.Create();
+        yield return StageCommand.Create();
+        yield return LaserCommand.Create();
     }
 }

@@ -1,0 +1,209 @@
+using System.CommandLine;
+using System.Globalization;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Imaging;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Planning;
+
+namespace LaserEngrave.Cli.Commands;
+
+/// <summary>The options that define a job (image, mask, size, origin, plan, process, profile), shared by every command that plans.</summary>
+internal sealed class JobOptions
+{
+    public Argument<string> Image { get; } = new("IMAGE") { Description = "Image file: BMP, PNG, GIF or PBM/PGM/PPM" };
+
+    public MaskOptionSet Mask { get; } = new();
+
+    public Option<double?> WidthMm { get; } = new("--width-mm") { Description = "Width of the engraving in mm (aspect kept)" };
+
+    public Option<double?> HeightMm { get; } = new("--height-mm") { Description = "Height of the engraving in mm (aspect kept)" };
+
+    public Option<double?> PitchUm { get; } = new("--pitch-um") { Description = "Pixel pitch in µm" };
+
+    public Option<bool> ImageDpi { get; } = new("--image-dpi") { Description = "Use the image's own resolution for the size" };
+
+    public Option<string?> OriginMm { get; } = new("--origin-mm") { Description = "Stage position of the image's top-left corner, X,Y in mm (default 0,0)" };
+
+    public Option<string> Strategy { get; } = new("--strategy")
+    {
+        Description = "paper (every run its own move, as seed 000) or optimized",
+        DefaultValueFactory = _ => "optimized",
+    };
+
+    public Option<bool> Bidirectional { get; } = new("--bidirectional") { Description = "Serpentine rows (the default)" };
+
+    public Option<bool> Unidirectional { get; } = new("--unidirectional") { Description = "Every row left to right" };
+
+    public Option<double> OverscanMm { get; } = new("--overscan-mm") { Description = "Laser-off run-up before and after each burn run, mm" };
+
+    public Option<string?> Profile { get; } = new("--profile") { Description = "Machine profile (JSON); default: two Zaber T-LA60A" };
+
+    public Option<double?> FrequencyHz { get; } = new("--frequency-hz") { Description = "Laser Q-switch frequency while burning, Hz" };
+
+    public Option<double?> SpeedMmS { get; } = new("--speed-mm-s") { Description = "Burn speed, mm/s" };
+
+    public Option<double?> TravelSpeedMmS { get; } = new("--travel-speed-mm-s") { Description = "Travel speed with the laser off, mm/s" };
+
+    public Option<double?> AccelerationMmS2 { get; } = new("--acceleration-mm-s2") { Description = "Acceleration, mm/s²" };
+
+    public void AddTo(Command command)
+    {
+        command.Arguments.Add(Image);
+        Mask.AddTo(command);
+        foreach (var option in new Option[]
+        {
+            WidthMm, HeightMm, PitchUm, ImageDpi, OriginMm, Strategy, Bidirectional, Unidirectional, OverscanMm,
+            Profile, FrequencyHz, SpeedMmS, TravelSpeedMmS, AccelerationMmS2,
+        })
+        {
+            command.Options.Add(option);
+        }
+    }
+
+    /// <summary>Reads the options into a job spec; throws <see cref="UsageException"/> naming the bad value.</summary>
+    public JobSpec Bind(ParseResult result)
+    {
+        var profile = result.GetValue(Profile) is { } path ? MachineProfile.Load(path) : MachineProfile.Default;
+        var image = result.GetValue(Image) ?? throw new UsageException("IMAGE is required");
+        var process = ProcessSettings.FromProfile(profile) with
+        {
+            BurnSpeedMmPerS = result.GetValue(SpeedMmS) ?? profile.BurnSpeedMmPerS,
+            TravelSpeedMmPerS = result.GetValue(TravelSpeedMmS) ?? profile.TravelSpeedMmPerS,
+            AccelerationMmPerS2 = result.GetValue(AccelerationMmS2) ?? profile.AccelerationMmPerS2,
+            LaserFrequencyHz = result.GetValue(FrequencyHz) ?? profile.LaserFrequencyHz,
+        };
+        return new JobSpec
+        {
+            ImagePath = image,
+            Mask = Mask.Bind(result),
+            Size = BindSize(result, image),
+            Origin = ParseOrigin(result.GetValue(OriginMm)),
+            Plan = BindPlan(result),
+            Process = process,
+            Profile = profile,
+        };
+    }
+
+    private SizeSpec BindSize(ParseResult result, string image)
+    {
+        var width = result.GetValue(WidthMm);
+        var height = result.GetValue(HeightMm);
+        var pitch = result.GetValue(PitchUm);
+        var dpi = result.GetValue(ImageDpi);
+        var given = (width.HasValue || height.HasValue ? 1 : 0) + (pitch.HasValue ? 1 : 0) + (dpi ? 1 : 0);
+        if (given == 0)
+        {
+            throw new UsageException("give the size: --width-mm, --height-mm, --pitch-um or --image-dpi");
+        }
+
+        if (given > 1)
+        {
+            throw new UsageException("give the size one way only: --width-mm/--height-mm, --pitch-um or --image-dpi");
+        }
+
+        Positive(width, "--width-mm");
+        Positive(height, "--height-mm");
+        Positive(pitch, "--pitch-um");
+        if (dpi)
+        {
+            var info = ImageLoader.ReadInfo(image);
+            return info.DpiX is { } x && x > 0
+                ? SizeSpec.Resolution(x)
+                : throw new UsageException($"{image}: the image states no resolution; give --width-mm, --height-mm or --pitch-um");
+        }
+
+        return (width, height, pitch) switch
+        {
+            ({ } w, { } h, _) => SizeSpec.WidthAndHeight(w, h),
+            ({ } w, null, _) => SizeSpec.Width(w),
+            (null, { } h, _) => SizeSpec.Height(h),
+            _ => SizeSpec.Pitch(pitch!.Value),
+        };
+    }
+
+    private PlanOptions BindPlan(ParseResult result)
+    {
+        var strategy = result.GetValue(Strategy)?.Trim().ToLowerInvariant() switch
+        {
+            "paper" => PlanStrategy.Paper,
+            "optimized" or "optimised" => PlanStrategy.Optimized,
+            var other => throw new UsageException($"--strategy {other}: use paper or optimized"),
+        };
+        if (result.GetValue(Bidirectional) && result.GetValue(Unidirectional))
+        {
+            throw new UsageException("--bidirectional and --unidirectional contradict each other");
+        }
+
+        var overscan = result.GetValue(OverscanMm);
+        if (!(overscan >= 0))
+        {
+            throw new UsageException($"--overscan-mm {overscan}: must be 0 or more");
+        }
+
+        return new PlanOptions { Strategy = strategy, Bidirectional = !result.GetValue(Unidirectional), OverscanMm = overscan };
+    }
+
+    internal static OriginMm ParseOrigin(string? text)
+    {
+        if (string.IsNullOrWhiteSpace(text))
+        {
+            return Core.Geometry.OriginMm.Zero;
+        }
+
+        var parts = text.Split(',');
+        if (parts.Length == 2
+            && double.TryParse(parts[0], NumberStyles.Float, CultureInfo.InvariantCulture, out var x)
+            && double.TryParse(parts[1], NumberStyles.Float, CultureInfo.InvariantCulture, out var y)
+            && double.IsFinite(x) && double.IsFinite(y))
+        {
+            return new OriginMm(x, y);
+        }
+
+        throw new UsageException($"--origin-mm {text}: expected X,Y in mm, e.g. 10,5");
+    }
+
+    private static void Positive(double? value, string name)
+    {
+        if (value is { } v && !(v > 0 && double.IsFinite(v)))
+        {
+            throw new UsageException($"{name} {v.ToString(CultureInfo.InvariantCulture)}: must be above 0");
+        }
+    }
+}
+
+/// <summary>Threshold, dither and invert: how an image becomes a burn mask.</summary>
+internal sealed class MaskOptionSet
+{
+    public Option<double?> Threshold { get; } = new("--threshold") { Description = "Luminance threshold in percent (default 50): darker pixels burn; dithering quantises at mid-grey instead" };
+
+    public Option<string?> Dither { get; } = new("--dither") { Description = "none, floyd-steinberg, atkinson or bayer" };
+
+    public Option<bool> Invert { get; } = new("--invert") { Description = "Burn the light pixels instead of the dark ones" };
+
+    public void AddTo(Command command)
+    {
+        command.Options.Add(Threshold);
+        command.Options.Add(Dither);
+        command.Options.Add(Invert);
+    }
+
+    public MaskOptions Bind(ParseResult result)
+    {
+        var threshold = result.GetValue(Threshold) ?? 50;
+        if (!(threshold >= 0 && threshold <= 100))
+        {
+            throw new UsageException($"--threshold {threshold.ToString(CultureInfo.InvariantCulture)}: must be between 0 and 100");
+        }
+
+        return new MaskOptions { ThresholdPercent = threshold, Dither = ParseDither(result.GetValue(Dither)), Invert = result.GetValue(Invert) };
+    }
+
+    internal static DitherMethod ParseDither(string? text) => text?.Trim().ToLowerInvariant().Replace("_", "-", StringComparison.Ordinal) switch
+    {
+        null or "" or "none" => DitherMethod.None,
+        "floyd-steinberg" or "floydsteinberg" or "fs" => DitherMethod.FloydSteinberg,
+        "atkinson" => DitherMethod.Atkinson,
+        "bayer" or "ordered" => DitherMethod.Bayer,
+        _ => throw new UsageException($"--dither {text}: use none, floyd-steinberg, atkinson or bayer"),
+    };
+}

@@ -1,0 +1,128 @@
+using System.CommandLine;
+using System.Globalization;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Planning;
+
+namespace LaserEngrave.Cli.Commands;
+
+/// <summary>`laserengrave plan IMAGE (size) ...`: the raster plan's figures, and optionally every move as CSV.</summary>
+internal static class PlanCommand
+{
+    public static Command Create()
+    {
+        var job = new JobOptions();
+        var json = new Option<bool>("--json") { Description = "Print one JSON object" };
+        var segments = new Option<string?>("--segments") { Description = "Write every move in order as CSV (kind,x0,y0,x1,y1 in microsteps)" };
+        var command = new Command("plan", "Size an image on the stage and plan the raster: runs, lengths, laser switches, estimated time");
+        job.AddTo(command);
+        command.Options.Add(json);
+        command.Options.Add(segments);
+        command.SetAction(result =>
+        {
+            var prepared = PreparedJob.Prepare(job.Bind(result));
+            if (result.GetValue(segments) is { } csv)
+            {
+                MoveCsvWriter.Write(prepared.Plan, csv);
+            }
+
+            var output = result.InvocationConfiguration.Output;
+            if (result.GetValue(json))
+            {
+                CliJson.Write(output, JobSummary.From(prepared));
+            }
+            else
+            {
+                JobSummary.WriteText(output, prepared);
+            }
+
+            foreach (var warning in prepared.Warnings)
+            {
+                result.InvocationConfiguration.Error.WriteLine($"warning: {warning.Message}");
+            }
+
+            return 0;
+        });
+        return command;
+    }
+}
+
+/// <summary>The figures of a prepared job, as `plan --json` prints them.</summary>
+internal sealed record JobSummary(
+    string Image,
+    int WidthPx,
+    int HeightPx,
+    double PitchUm,
+    double MicrostepsPerPixel,
+    double WidthMm,
+    double HeightMm,
+    double OriginXMm,
+    double OriginYMm,
+    double ResidualScaleError,
+    bool FitsTravel,
+    string Strategy,
+    bool Bidirectional,
+    double OverscanMm,
+    int Rows,
+    long Moves,
+    long BurnRuns,
+    double BurnLengthMm,
+    double TravelLengthMm,
+    long LaserSwitches,
+    double EstimatedSeconds,
+    IReadOnlyList<string> Warnings)
+{
+    public static JobSummary From(PreparedJob job)
+    {
+        var g = job.Geometry;
+        var s = job.Statistics;
+        return new JobSummary(
+            job.Spec.ImagePath,
+            job.Mask.Width,
+            job.Mask.Height,
+            g.PitchUm,
+            g.MicrostepsPerPixel,
+            g.AchievedWidthMm,
+            g.AchievedHeightMm,
+            job.Spec.Origin.X,
+            job.Spec.Origin.Y,
+            g.ResidualScaleError,
+            g.FitsTravel,
+            job.Spec.Plan.Strategy.ToString().ToLowerInvariant(),
+            job.Spec.Plan.Bidirectional,
+            job.Spec.Plan.OverscanMm,
+            s.Rows,
+            s.Moves,
+            s.BurnRuns,
+            s.BurnLengthMm,
+            s.TravelLengthMm,
+            s.LaserSwitches,
+            s.EstimatedSeconds,
+            [.. job.Warnings.Select(w => w.Message)]);
+    }
+
+    public static void WriteText(TextWriter output, PreparedJob job)
+    {
+        var s = From(job);
+        var c = CultureInfo.InvariantCulture;
+        output.WriteLine(string.Create(c, $"Image:            {s.Image} ({s.WidthPx} x {s.HeightPx} px)"));
+        output.WriteLine(string.Create(c, $"Size on stage:    {s.WidthMm:0.####} x {s.HeightMm:0.####} mm at origin {s.OriginXMm:0.###}, {s.OriginYMm:0.###} mm"));
+        output.WriteLine(string.Create(c, $"Pitch:            {s.PitchUm:0.####} µm = {s.MicrostepsPerPixel:0.####} microsteps per pixel"));
+        output.WriteLine(string.Create(c, $"Scale error:      {s.ResidualScaleError * 1e6:0.##} ppm after rounding to microsteps"));
+        output.WriteLine(string.Create(c, $"Fits the travel:  {(s.FitsTravel ? "yes" : "NO")}"));
+        output.WriteLine(string.Create(c, $"Strategy:         {s.Strategy}{(s.Strategy == "optimized" ? $", {(s.Bidirectional ? "bidirectional" : "unidirectional")}, overscan {s.OverscanMm:0.###} mm" : string.Empty)}"));
+        output.WriteLine(string.Create(c, $"Rows:             {s.Rows}"));
+        output.WriteLine(string.Create(c, $"Moves:            {s.Moves}"));
+        output.WriteLine(string.Create(c, $"Burn runs:        {s.BurnRuns} ({s.BurnLengthMm:0.###} mm)"));
+        output.WriteLine(string.Create(c, $"Travel:           {s.TravelLengthMm:0.###} mm"));
+        output.WriteLine(string.Create(c, $"Laser switches:   {s.LaserSwitches}"));
+        output.WriteLine(string.Create(c, $"Estimated time:   {Duration(s.EstimatedSeconds)}"));
+    }
+
+    public static string Duration(double seconds)
+    {
+        var t = TimeSpan.FromSeconds(Math.Round(seconds));
+        return t.TotalHours >= 1
+            ? string.Create(CultureInfo.InvariantCulture, $"{(int)t.TotalHours} h {t.Minutes:00} min {t.Seconds:00} s")
+            : string.Create(CultureInfo.InvariantCulture, $"{t.Minutes} min {t.Seconds:00} s ({seconds:0.0} s)");
+    }
+}

@@ -1,0 +1,22 @@
+namespace LaserEngrave.Core.Geometry;
+
+/// <summary>What a job warning is about.</summary>
+public enum JobWarningKind
+{
+    /// <summary>The pixel pitch is below one microstep: neighbouring edges can fall on the same microstep.</summary>
+    PitchBelowMicrostep,
+
+    /// <summary>Part of the job lies outside the stage's travel.</summary>
+    OutsideTravel,
+
+    /// <summary>The pixel pitch is smaller than the laser spot: each pixel burns wider than it is.</summary>
+    PitchBelowSpot,
+
+    /// <summary>The overscan run-up or run-out reaches past the stage's travel and is shortened there.</summary>
+    OverscanClamped,
+}
+
+/// <summary>A condition the job can run with but the user should know about.</summary>
+/// <param name="Kind">What the warning is about, for code that reacts to it.</param>
+/// <param name="Message">One line for the user, with the numbers.</param>
+public sealed record JobWarning(JobWarningKind Kind, string Message);

@@ -1,0 +1,23 @@
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Imaging;
+using LaserEngrave.Core.Planning;
+
+namespace LaserEngrave.Core.Jobs;
+
+/// <summary>Everything that defines an engraving job before the machine moves: image, mask, size, plan and process.</summary>
+public sealed record JobSpec
+{
+    public required string ImagePath { get; init; }
+
+    public MaskOptions Mask { get; init; } = MaskOptions.Default;
+
+    public required SizeSpec Size { get; init; }
+
+    public OriginMm Origin { get; init; } = OriginMm.Zero;
+
+    public PlanOptions Plan { get; init; } = new();
+
+    public ProcessSettings Process { get; init; } = ProcessSettings.Default;
+
+    public MachineProfile Profile { get; init; } = MachineProfile.Default;
+}

@@ -1,0 +1,64 @@
+using System.Security.Cryptography;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Imaging;
+using LaserEngrave.Core.Planning;
+
+namespace LaserEngrave.Core.Jobs;
+
+/// <summary>A job ready to preview, estimate or engrave: the mask, its geometry on the stage, the plan and its figures.</summary>
+public sealed class PreparedJob
+{
+    private PreparedJob(JobSpec spec, ImageInfo image, BitMask mask, GeometryReport geometry, RasterPlan plan, PlanStatistics statistics)
+    {
+        Spec = spec;
+        Image = image;
+        Mask = mask;
+        Geometry = geometry;
+        Plan = plan;
+        Statistics = statistics;
+    }
+
+    public JobSpec Spec { get; }
+
+    public ImageInfo Image { get; }
+
+    public BitMask Mask { get; }
+
+    public GeometryReport Geometry { get; }
+
+    public RasterPlan Plan { get; }
+
+    public PlanStatistics Statistics { get; }
+
+    /// <summary>Warnings of the geometry and of the plan, in that order.</summary>
+    public IReadOnlyList<JobWarning> Warnings => [.. Geometry.Warnings, .. Plan.Warnings];
+
+    /// <summary>Loads the image, builds the mask, resolves the geometry and plans; throws one-line typed errors.</summary>
+    public static PreparedJob Prepare(JobSpec spec)
+    {
+        ArgumentNullException.ThrowIfNull(spec);
+        spec.Mask.Validate();
+        spec.Process.Validate();
+        var mask = MaskBuilder.FromFile(spec.ImagePath, spec.Mask, out var info);
+        return Prepare(spec, info, mask);
+    }
+
+    /// <summary>Plans an already built mask (the app rebuilds the mask as a slider moves, then re-plans).</summary>
+    public static PreparedJob Prepare(JobSpec spec, ImageInfo info, BitMask mask)
+    {
+        ArgumentNullException.ThrowIfNull(spec);
+        ArgumentNullException.ThrowIfNull(info);
+        ArgumentNullException.ThrowIfNull(mask);
+        var geometry = GeometryResolver.Resolve(spec.Size, mask.Width, mask.Height, spec.Origin, spec.Profile);
+        var plan = new RasterPlan(mask, geometry.Geometry, spec.Plan);
+        var statistics = plan.ComputeStatistics(spec.Process, spec.Profile.Gate);
+        return new PreparedJob(spec, info, mask, geometry, plan, statistics);
+    }
+
+    /// <summary>SHA-256 of the image file, lower-case hex, for the run log.</summary>
+    public static string HashFile(string path)
+    {
+        using var stream = File.OpenRead(path);
+        return Convert.ToHexStringLower(SHA256.HashData(stream));
+    }
+}

@@ -1,0 +1,149 @@
+using System.Globalization;
+using System.Runtime.CompilerServices;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Motion;
+
+namespace LaserEngrave.Core.Planning;
+
+/// <summary>Estimates how long the executor takes for a sequence of moves by replaying its protocol step by step.</summary>
+/// <remarks>
+/// The model, in the executor's order (PREAMBLE "How the executor drives the machine"):
+/// <list type="number">
+/// <item>Start: Set Acceleration and Set Target Speed (the travel speed of the strategy) on each axis, each a Zaber round trip.</item>
+/// <item>Laser: before a burn with the laser off, the frequency command and its reply; before anything else with the laser
+/// on, the off command and its reply. Each line takes its length in bytes (terminator included) at the gate's baud rate, 10
+/// bits per byte (8N1); the replies are the documented ones, "OK FREQ f" and "OK FREQ 0" (docs/laser-gate-protocol.md).</item>
+/// <item>Speed: on each axis that moves, Set Target Speed and its reply when the axis' speed data differ from what the move needs.</item>
+/// <item>Motion: per moving axis, Move Absolute sent and its completion reply (two 6-byte frames) plus the trapezoid over the
+/// microstep distance at the quantised Zaber speed and acceleration; when both axes move, the longer of the two.</item>
+/// <item>End: the laser switched off if it is still on.</item>
+/// </list>
+/// Device and gate processing time and the time to reach the plan's first position are not modelled.
+/// </remarks>
+public sealed class PlanEstimator
+{
+    private const int ZaberFrameBytes = 6;
+    private const double BitsPerByte = 10;
+
+    private readonly PlanStrategy _strategy;
+    private readonly double _roundTripSeconds;
+    private readonly double _laserOnSeconds;
+    private readonly double _laserOffSeconds;
+    private readonly double _accelerationMicrostepsPerS2;
+    private readonly int _burnSpeedData;
+    private readonly int _travelSpeedData;
+    private int _xSpeedData;
+    private int _ySpeedData;
+
+    public PlanEstimator(ProcessSettings process, PlanStrategy strategy, double microstepUm, LaserGateProfile? gate = null)
+    {
+        ArgumentNullException.ThrowIfNull(process);
+        process.Validate();
+        gate ??= new LaserGateProfile();
+        _strategy = strategy;
+
+        _roundTripSeconds = 2 * ZaberFrameBytes * BitsPerByte / process.StageBaudRate;
+        var gateByteSeconds = BitsPerByte / process.GateBaudRate;
+        var onCommand = Line(gate, gate.FrequencyCommand, process.LaserFrequencyWholeHz);
+        var onReply = gate.AckPrefix + " " + Line(gate, gate.FrequencyCommand, process.LaserFrequencyWholeHz);
+        var offCommand = gate.OffCommand + gate.LineTerminator;
+        var offReply = gate.AckPrefix + " " + Line(gate, gate.FrequencyCommand, 0);
+        _laserOnSeconds = (onCommand.Length + onReply.Length) * gateByteSeconds;
+        _laserOffSeconds = (offCommand.Length + offReply.Length) * gateByteSeconds;
+
+        _accelerationMicrostepsPerS2 = StageUnits.AccelerationMicrostepsPerS2(StageUnits.AccelerationData(process.AccelerationMmPerS2, microstepUm));
+        _burnSpeedData = StageUnits.SpeedData(process.SpeedMmPerS(MoveKind.Burn, strategy), microstepUm);
+        _travelSpeedData = StageUnits.SpeedData(process.SpeedMmPerS(MoveKind.Travel, strategy), microstepUm);
+
+        _xSpeedData = _travelSpeedData;
+        _ySpeedData = _travelSpeedData;
+        StartSeconds = 4 * _roundTripSeconds;
+        ElapsedSeconds = StartSeconds;
+    }
+
+    /// <summary>Time for the start: acceleration and speed set on both axes.</summary>
+    public double StartSeconds { get; }
+
+    /// <summary>Time so far: the start plus every move added (and the final switch-off once <see cref="Finish"/> ran).</summary>
+    public double ElapsedSeconds { get; private set; }
+
+    public bool LaserOn { get; private set; }
+
+    public long LaserSwitches { get; private set; }
+
+    public long SpeedChanges { get; private set; }
+
+    /// <summary>Advances over one move; returns its time (laser command, speed changes and motion).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    public double Add(in Move move)
+    {
+        var seconds = 0.0;
+        if (move.Kind == MoveKind.Burn)
+        {
+            if (!LaserOn)
+            {
+                seconds += _laserOnSeconds;
+                LaserOn = true;
+                LaserSwitches++;
+            }
+        }
+        else if (LaserOn)
+        {
+            seconds += _laserOffSeconds;
+            LaserOn = false;
+            LaserSwitches++;
+        }
+
+        var speedData = _strategy == PlanStrategy.Optimized && move.Kind == MoveKind.Travel ? _travelSpeedData : _burnSpeedData;
+        var dx = move.LengthX;
+        var dy = move.LengthY;
+        var motion = 0.0;
+        if (dx != 0)
+        {
+            seconds += SetSpeed(ref _xSpeedData, speedData);
+            motion = AxisSeconds(dx, speedData);
+        }
+
+        if (dy != 0)
+        {
+            seconds += SetSpeed(ref _ySpeedData, speedData);
+            motion = Math.Max(motion, AxisSeconds(dy, speedData));
+        }
+
+        seconds += motion;
+        ElapsedSeconds += seconds;
+        return seconds;
+    }
+
+    /// <summary>Ends the run: switches the laser off if it is on; returns the time that took.</summary>
+    public double Finish()
+    {
+        if (!LaserOn)
+        {
+            return 0;
+        }
+
+        LaserOn = false;
+        LaserSwitches++;
+        ElapsedSeconds += _laserOffSeconds;
+        return _laserOffSeconds;
+    }
+
+    private double SetSpeed(ref int axisSpeedData, int wanted)
+    {
+        if (axisSpeedData == wanted)
+        {
+            return 0;
+        }
+
+        axisSpeedData = wanted;
+        SpeedChanges++;
+        return _roundTripSeconds;
+    }
+
+    private double AxisSeconds(long distanceMicrosteps, int speedData) =>
+        _roundTripSeconds + new TrapezoidProfile(distanceMicrosteps, StageUnits.SpeedMicrostepsPerS(speedData), _accelerationMicrostepsPerS2).Duration;
+
+    private static string Line(LaserGateProfile gate, string format, int value) =>
+        string.Format(CultureInfo.InvariantCulture, format, value) + gate.LineTerminator;
+}

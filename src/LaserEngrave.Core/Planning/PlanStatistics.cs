@@ -1,0 +1,31 @@
+namespace LaserEngrave.Core.Planning;
+
+/// <summary>Totals of a plan and its estimated duration, computed by streaming its moves once.</summary>
+public sealed record PlanStatistics
+{
+    /// <summary>Image rows that have moves (all rows under <see cref="PlanStrategy.Paper"/>, non-blank rows otherwise).</summary>
+    public required int Rows { get; init; }
+
+    public required long Moves { get; init; }
+
+    /// <summary>Burn moves (laser on).</summary>
+    public required long BurnRuns { get; init; }
+
+    /// <summary>Distance travelled with the laser on, mm.</summary>
+    public required double BurnLengthMm { get; init; }
+
+    /// <summary>Distance travelled with the laser off (travels and overscans; a diagonal travel counts its straight length), mm.</summary>
+    public required double TravelLengthMm { get; init; }
+
+    /// <summary>The part of <see cref="TravelLengthMm"/> run as overscan at the burn speed, mm.</summary>
+    public required double OverscanLengthMm { get; init; }
+
+    /// <summary>Laser gate commands sent: each switch on, each switch off, the final switch-off included.</summary>
+    public required long LaserSwitches { get; init; }
+
+    /// <summary>Set Target Speed commands sent after the start.</summary>
+    public required long SpeedChanges { get; init; }
+
+    /// <summary>Estimated duration of the run, s (see <see cref="PlanEstimator"/> for the model).</summary>
+    public required double EstimatedSeconds { get; init; }
+}

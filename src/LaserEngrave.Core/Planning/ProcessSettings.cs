@@ -1,0 +1,79 @@
+using System.Globalization;
+using LaserEngrave.Core.Geometry;
+
+namespace LaserEngrave.Core.Planning;
+
+/// <summary>The process parameters of a run: speeds, acceleration, laser frequency and the two serial lines' baud rates.</summary>
+public sealed record ProcessSettings
+{
+    /// <summary>The built-in profile's defaults.</summary>
+    public static ProcessSettings Default { get; } = FromProfile(MachineProfile.Default);
+
+    /// <summary>Stage speed while burning (and overscanning), mm/s.</summary>
+    public double BurnSpeedMmPerS { get; init; } = 1;
+
+    /// <summary>Stage speed while travelling with the laser off, mm/s (<see cref="PlanStrategy.Optimized"/> only).</summary>
+    public double TravelSpeedMmPerS { get; init; } = 4;
+
+    /// <summary>Acceleration of both axes, set once at the start of a run, mm/s².</summary>
+    public double AccelerationMmPerS2 { get; init; } = 50;
+
+    /// <summary>Q-switch frequency while burning, Hz (sent to the gate in whole Hz).</summary>
+    public double LaserFrequencyHz { get; init; } = 1000;
+
+    /// <summary>Baud rate of the Zaber chain.</summary>
+    public int StageBaudRate { get; init; } = 9600;
+
+    /// <summary>Baud rate of the laser gate's line.</summary>
+    public int GateBaudRate { get; init; } = 9600;
+
+    /// <summary>The machine profile's default process values.</summary>
+    public static ProcessSettings FromProfile(MachineProfile profile)
+    {
+        ArgumentNullException.ThrowIfNull(profile);
+        return new ProcessSettings
+        {
+            BurnSpeedMmPerS = profile.BurnSpeedMmPerS,
+            TravelSpeedMmPerS = profile.TravelSpeedMmPerS,
+            AccelerationMmPerS2 = profile.AccelerationMmPerS2,
+            LaserFrequencyHz = profile.LaserFrequencyHz,
+            StageBaudRate = profile.StageBaudRate,
+            GateBaudRate = profile.Gate.BaudRate,
+        };
+    }
+
+    /// <summary>The stage speed a move of <paramref name="kind"/> runs at: the burn speed for burns and overscans, and for everything under <see cref="PlanStrategy.Paper"/>; the travel speed otherwise.</summary>
+    public double SpeedMmPerS(MoveKind kind, PlanStrategy strategy) =>
+        strategy == PlanStrategy.Paper || kind != MoveKind.Travel ? BurnSpeedMmPerS : TravelSpeedMmPerS;
+
+    /// <summary>The laser frequency as the gate is sent it: whole Hz.</summary>
+    public int LaserFrequencyWholeHz => (int)Math.Round(LaserFrequencyHz, MidpointRounding.AwayFromZero);
+
+    /// <summary>Throws a <see cref="PlanException"/> naming the first unusable value.</summary>
+    public void Validate()
+    {
+        Positive(BurnSpeedMmPerS, "burn speed", "mm/s");
+        Positive(TravelSpeedMmPerS, "travel speed", "mm/s");
+        Positive(AccelerationMmPerS2, "acceleration", "mm/s²");
+        Positive(LaserFrequencyHz, "laser frequency", "Hz");
+        if (LaserFrequencyWholeHz < 1)
+        {
+            throw new PlanException($"laser frequency {N(LaserFrequencyHz)} Hz rounds to 0 Hz, which is off");
+        }
+
+        if (StageBaudRate <= 0 || GateBaudRate <= 0)
+        {
+            throw new PlanException($"baud rates {StageBaudRate} (stage) and {GateBaudRate} (gate) must be above 0");
+        }
+
+        static void Positive(double value, string what, string unit)
+        {
+            if (!(value > 0) || double.IsInfinity(value))
+            {
+                throw new PlanException($"{what} {N(value)} {unit} must be a finite number above 0");
+            }
+        }
+    }
+
+    private static string N(double value) => value.ToString(CultureInfo.InvariantCulture);
+}

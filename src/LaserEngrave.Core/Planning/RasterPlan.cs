@@ -1,0 +1,172 @@
+using System.Globalization;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Imaging;
+
+namespace LaserEngrave.Core.Planning;
+
+/// <summary>A raster plan: a mask, where it lands on the stage and how it is scanned; its moves are generated row by row on demand, never held whole.</summary>
+/// <remarks>
+/// Every position comes from <see cref="JobGeometry"/>'s edge formula, rounded once. Moves of zero length are left out.
+/// A move's <see cref="Move.Row"/> is the image row it burns on, or for a travel between rows the row it leads to.
+/// The plan begins at the first move's start; reaching it is the executor's business.
+/// <see cref="PlanStrategy.Paper"/> ignores <see cref="PlanOptions.Bidirectional"/> and <see cref="PlanOptions.OverscanMm"/>.
+/// The plan reads the mask each time it is enumerated, so the mask must not change while the plan is in use.
+/// </remarks>
+public sealed class RasterPlan
+{
+    public RasterPlan(BitMask mask, JobGeometry geometry, PlanOptions? options = null)
+    {
+        ArgumentNullException.ThrowIfNull(mask);
+        ArgumentNullException.ThrowIfNull(geometry);
+        options ??= PlanOptions.Default;
+        options.Validate();
+        if (mask.Width != geometry.WidthPx || mask.Height != geometry.HeightPx)
+        {
+            throw new PlanException($"the mask is {mask.Width} x {mask.Height} pixels but the geometry is for {geometry.WidthPx} x {geometry.HeightPx}");
+        }
+
+        Mask = mask;
+        Geometry = geometry;
+        Options = options;
+        OverscanMicrosteps = options.Strategy == PlanStrategy.Paper
+            ? 0
+            : JobGeometry.Round(StageUnits.MmToMicrosteps(options.OverscanMm, geometry.MicrostepUm));
+        Warnings = OverscanWarnings();
+    }
+
+    public BitMask Mask { get; }
+
+    public JobGeometry Geometry { get; }
+
+    public PlanOptions Options { get; }
+
+    /// <summary>Overscan length in whole microsteps (0 under <see cref="PlanStrategy.Paper"/>).</summary>
+    public long OverscanMicrosteps { get; }
+
+    /// <summary>Warnings about the plan itself (the geometry's own are in its <see cref="GeometryReport"/>).</summary>
+    public IReadOnlyList<JobWarning> Warnings { get; }
+
+    /// <summary>Every move in order, generated row by row.</summary>
+    public IEnumerable<Move> Moves() => Moves(0);
+
+    /// <summary>
+    /// The moves tagged with row <paramref name="fromRow"/> or later, in order: the same moves as <see cref="Moves()"/> from
+    /// that point, beginning with the travel into the first visited row at or after <paramref name="fromRow"/>. For resuming a run.
+    /// </summary>
+    public IEnumerable<Move> Moves(int fromRow)
+    {
+        ArgumentOutOfRangeException.ThrowIfNegative(fromRow);
+        ArgumentOutOfRangeException.ThrowIfGreaterThan(fromRow, Mask.Height);
+        return Enumerate(fromRow);
+    }
+
+    /// <summary>Passes every move in order to <paramref name="visitor"/>; with a struct visitor nothing is allocated per move.</summary>
+    public void Visit<TVisitor>(ref TVisitor visitor)
+        where TVisitor : IMoveVisitor
+    {
+        var planner = NewPlanner();
+        while (planner.NextRow < Mask.Height)
+        {
+            planner.PlanNextRow(ref visitor);
+        }
+    }
+
+    /// <summary>The visited rows in order with the index and count of their moves (progress, and the move index to row map for resume).</summary>
+    public IEnumerable<PlanRow> Rows()
+    {
+        var planner = NewPlanner();
+        var counter = new CountingVisitor();
+        long index = 0;
+        while (planner.NextRow < Mask.Height)
+        {
+            var row = planner.NextRow;
+            counter.Count = 0;
+            if (planner.PlanNextRow(ref counter))
+            {
+                yield return new PlanRow(row, planner.LastRowLeftToRight, index, counter.Count);
+                index += counter.Count;
+            }
+        }
+    }
+
+    /// <summary>Rows, runs, lengths, laser switches and the estimated duration under <paramref name="process"/>, in one streaming pass.</summary>
+    /// <param name="process">Speeds, acceleration, frequency and baud rates.</param>
+    /// <param name="gate">The gate's command strings (default: <see cref="LaserGateProfile"/>'s defaults).</param>
+    public PlanStatistics ComputeStatistics(ProcessSettings process, LaserGateProfile? gate = null)
+    {
+        var visitor = new StatisticsVisitor(new PlanEstimator(process, Options.Strategy, Geometry.MicrostepUm, gate));
+        var planner = NewPlanner();
+        while (planner.NextRow < Mask.Height)
+        {
+            planner.PlanNextRow(ref visitor);
+        }
+
+        return visitor.Finish(planner.VisitedRows, Geometry.MicrostepUm);
+    }
+
+    private IEnumerable<Move> Enumerate(int fromRow)
+    {
+        var planner = NewPlanner();
+        var skipped = default(NullVisitor);
+        while (planner.NextRow < fromRow)
+        {
+            planner.PlanNextRow(ref skipped);
+        }
+
+        // One row's moves at a time: bounded by the width, however tall the mask.
+        var buffer = new BufferVisitor();
+        while (planner.NextRow < Mask.Height)
+        {
+            buffer.Moves.Clear();
+            planner.PlanNextRow(ref buffer);
+            foreach (var move in buffer.Moves)
+            {
+                yield return move;
+            }
+        }
+    }
+
+    private RowPlanner NewPlanner() => new(Mask, Geometry, Options, OverscanMicrosteps);
+
+    private List<JobWarning> OverscanWarnings()
+    {
+        var warnings = new List<JobWarning>();
+        if (OverscanMicrosteps == 0)
+        {
+            return warnings;
+        }
+
+        var left = Geometry.EdgeX(0) - OverscanMicrosteps;
+        var right = Geometry.EdgeX(Geometry.WidthPx) + OverscanMicrosteps;
+        if (left < 0 || right > Geometry.TravelXMicrosteps)
+        {
+            var side = left < 0 && right > Geometry.TravelXMicrosteps ? "both edges" : left < 0 ? "the left edge" : "the right edge";
+            warnings.Add(new JobWarning(
+                JobWarningKind.OverscanClamped,
+                $"overscan {Options.OverscanMm.ToString("0.###", CultureInfo.InvariantCulture)} mm reaches past the stage travel at {side} of the job: run-ups and run-outs there are shortened, so burning starts or stops while the stage is still changing speed"));
+        }
+
+        return warnings;
+    }
+
+    private struct NullVisitor : IMoveVisitor
+    {
+        public readonly void Visit(in Move move)
+        {
+        }
+    }
+
+    private sealed class CountingVisitor : IMoveVisitor
+    {
+        public int Count { get; set; }
+
+        public void Visit(in Move move) => Count++;
+    }
+
+    private sealed class BufferVisitor : IMoveVisitor
+    {
+        public List<Move> Moves { get; } = [];
+
+        public void Visit(in Move move) => Moves.Add(move);
+    }
+}

@@ -1,0 +1,189 @@
+using System.Runtime.CompilerServices;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Imaging;
+
+namespace LaserEngrave.Core.Planning;
+
+/// <summary>Plans a raster one image row at a time, keeping only what the next row needs (scan parity, where the stage stopped).</summary>
+/// <remarks>
+/// The single source of every plan's moves: <see cref="RasterPlan"/> enumerates, visits, counts and resumes through it,
+/// so the executor, the statistics, the preview and the CSV all see the same sequence.
+/// The hot methods are compiled fully optimised on their first call (AggressiveOptimization): one statistics pass over a
+/// large mask is over before tiered compilation would have promoted them, and the CLI plans a mask exactly once.
+/// </remarks>
+internal sealed class RowPlanner
+{
+    private readonly BitMask _mask;
+    private readonly JobGeometry _geometry;
+    private readonly bool _paper;
+    private readonly bool _bidirectional;
+    private readonly long _overscan;
+    private int[] _runs = new int[64];
+    private long[] _edges = new long[64];
+    private bool _hasPosition;
+    private long _x;
+    private long _y;
+
+    public RowPlanner(BitMask mask, JobGeometry geometry, PlanOptions options, long overscanMicrosteps)
+    {
+        _mask = mask;
+        _geometry = geometry;
+        _paper = options.Strategy == PlanStrategy.Paper;
+        _bidirectional = options.Bidirectional;
+        _overscan = overscanMicrosteps;
+    }
+
+    /// <summary>Index of the next row to plan; equals the mask height when every row is done.</summary>
+    public int NextRow { get; private set; }
+
+    /// <summary>Rows visited so far.</summary>
+    public int VisitedRows { get; private set; }
+
+    /// <summary>Direction of the row planned last (meaningful after it produced moves).</summary>
+    public bool LastRowLeftToRight { get; private set; } = true;
+
+    /// <summary>Plans row <see cref="NextRow"/> into <paramref name="sink"/>; returns whether the row is visited (every row under Paper, non-blank rows under Optimized). Call only while NextRow &lt; height.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    public bool PlanNextRow<TSink>(ref TSink sink)
+        where TSink : IMoveVisitor
+    {
+        var row = NextRow++;
+        var runCount = RowRuns.Find(_mask.ReadRow(row), ref _runs);
+        if (_paper)
+        {
+            PlanPaperRow(ref sink, row, runCount);
+        }
+        else if (runCount == 0)
+        {
+            return false;
+        }
+        else
+        {
+            PlanOptimizedRow(ref sink, row, runCount, leftToRight: !_bidirectional || VisitedRows % 2 == 0);
+        }
+
+        VisitedRows++;
+        return true;
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    private void PlanPaperRow<TSink>(ref TSink sink, int row, int runCount)
+        where TSink : IMoveVisitor
+    {
+        LastRowLeftToRight = true;
+        var y = _geometry.RowY(row);
+        var x = _geometry.EdgeX(0);
+        if (_hasPosition)
+        {
+            Emit(ref sink, MoveKind.Travel, _x, _y, x, y, row);
+        }
+
+        var column = 0;
+        for (var i = 0; i < runCount; i++)
+        {
+            int start = _runs[2 * i], end = _runs[(2 * i) + 1];
+            if (start > column)
+            {
+                var whiteEnd = _geometry.EdgeX(start);
+                Emit(ref sink, MoveKind.Travel, x, y, whiteEnd, y, row);
+                x = whiteEnd;
+            }
+
+            var burnEnd = _geometry.EdgeX(end);
+            Emit(ref sink, MoveKind.Burn, x, y, burnEnd, y, row);
+            x = burnEnd;
+            column = end;
+        }
+
+        if (column < _geometry.WidthPx)
+        {
+            var rowEnd = _geometry.EdgeX(_geometry.WidthPx);
+            Emit(ref sink, MoveKind.Travel, x, y, rowEnd, y, row);
+            x = rowEnd;
+        }
+
+        SetPosition(x, y);
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    private void PlanOptimizedRow<TSink>(ref TSink sink, int row, int runCount, bool leftToRight)
+        where TSink : IMoveVisitor
+    {
+        LastRowLeftToRight = leftToRight;
+        if (_edges.Length < _runs.Length)
+        {
+            _edges = new long[_runs.Length];
+        }
+
+        for (var i = 0; i < 2 * runCount; i++)
+        {
+            _edges[i] = _geometry.EdgeX(_runs[i]);
+        }
+
+        var y = _geometry.RowY(row);
+        var o = _overscan;
+        var travel = _geometry.TravelXMicrosteps;
+        var dir = leftToRight ? 1L : -1L;
+        for (var j = 0; j < runCount; j++)
+        {
+            // A run is entered at its left edge going right and at its right edge going left.
+            var i = leftToRight ? j : runCount - 1 - j;
+            var entry = _edges[leftToRight ? 2 * i : (2 * i) + 1];
+            var exit = _edges[leftToRight ? (2 * i) + 1 : 2 * i];
+            if (j == 0)
+            {
+                var roomBefore = Math.Max(0, leftToRight ? entry : travel - entry);
+                var runUp = entry - (dir * Math.Min(o, roomBefore));
+                if (_hasPosition)
+                {
+                    Emit(ref sink, MoveKind.Travel, _x, _y, runUp, y, row);
+                }
+
+                Emit(ref sink, MoveKind.Overscan, runUp, y, entry, y, row);
+            }
+
+            Emit(ref sink, MoveKind.Burn, entry, y, exit, y, row);
+
+            if (j < runCount - 1)
+            {
+                var next = leftToRight ? i + 1 : i - 1;
+                var nextEntry = _edges[leftToRight ? 2 * next : (2 * next) + 1];
+                if (Math.Abs(nextEntry - exit) <= 2 * o)
+                {
+                    // A gap no longer than two overscans is crossed at the burn speed in one move, so the speed never dips.
+                    Emit(ref sink, MoveKind.Overscan, exit, y, nextEntry, y, row);
+                }
+                else
+                {
+                    Emit(ref sink, MoveKind.Overscan, exit, y, exit + (dir * o), y, row);
+                    Emit(ref sink, MoveKind.Travel, exit + (dir * o), y, nextEntry - (dir * o), y, row);
+                    Emit(ref sink, MoveKind.Overscan, nextEntry - (dir * o), y, nextEntry, y, row);
+                }
+            }
+            else
+            {
+                var roomAfter = Math.Max(0, leftToRight ? travel - exit : exit);
+                var runOut = exit + (dir * Math.Min(o, roomAfter));
+                Emit(ref sink, MoveKind.Overscan, exit, y, runOut, y, row);
+                SetPosition(runOut, y);
+            }
+        }
+    }
+
+    private void SetPosition(long x, long y)
+    {
+        _hasPosition = true;
+        _x = x;
+        _y = y;
+    }
+
+    /// <summary>Passes a move on unless it goes nowhere (possible only with a pitch or overscan below one microstep, or an overscan of 0).</summary>
+    private static void Emit<TSink>(ref TSink sink, MoveKind kind, long x0, long y0, long x1, long y1, int row)
+        where TSink : IMoveVisitor
+    {
+        if (x0 != x1 || y0 != y1)
+        {
+            sink.Visit(new Move(kind, x0, y0, x1, y1, row));
+        }
+    }
+}

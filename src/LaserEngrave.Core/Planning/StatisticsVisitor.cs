@@ -1,0 +1,55 @@
+using LaserEngrave.Core.Geometry;
+
+namespace LaserEngrave.Core.Planning;
+
+/// <summary>Adds up a plan's statistics move by move without allocating.</summary>
+internal struct StatisticsVisitor : IMoveVisitor
+{
+    private readonly PlanEstimator _estimator;
+    private long _moves;
+    private long _burnRuns;
+    private long _burnMicrosteps;
+    private long _overscanMicrosteps;
+    private double _travelMicrosteps;
+
+    public StatisticsVisitor(PlanEstimator estimator) => _estimator = estimator;
+
+    public void Visit(in Move move)
+    {
+        _moves++;
+        switch (move.Kind)
+        {
+            case MoveKind.Burn:
+                _burnRuns++;
+                _burnMicrosteps += move.LengthX;
+                break;
+            case MoveKind.Overscan:
+                _overscanMicrosteps += move.LengthX;
+                break;
+            default:
+                _travelMicrosteps += move.LengthY == 0 ? move.LengthX
+                    : move.LengthX == 0 ? move.LengthY
+                    : Math.Sqrt(((double)move.LengthX * move.LengthX) + ((double)move.LengthY * move.LengthY));
+                break;
+        }
+
+        _estimator.Add(move);
+    }
+
+    public readonly PlanStatistics Finish(int rows, double microstepUm)
+    {
+        _estimator.Finish();
+        return new PlanStatistics
+        {
+            Rows = rows,
+            Moves = _moves,
+            BurnRuns = _burnRuns,
+            BurnLengthMm = StageUnits.MicrostepsToMm(_burnMicrosteps, microstepUm),
+            TravelLengthMm = StageUnits.MicrostepsToMm(_travelMicrosteps + _overscanMicrosteps, microstepUm),
+            OverscanLengthMm = StageUnits.MicrostepsToMm(_overscanMicrosteps, microstepUm),
+            LaserSwitches = _estimator.LaserSwitches,
+            SpeedChanges = _estimator.SpeedChanges,
+            EstimatedSeconds = _estimator.ElapsedSeconds,
+        };
+    }
+}

@@ -1,0 +1,362 @@
+using System.Globalization;
+using System.Text;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Devices.Serial;
+
+namespace LaserEngrave.Devices.LaserGate;
+
+/// <summary>The PIC that gates the laser's Q-switch, spoken to in ASCII lines (docs/laser-gate-protocol.md).</summary>
+/// <remarks>
+/// Every command string and the acknowledgement and error prefixes come from the <see cref="LaserGateProfile"/>.
+/// One reader loop frames lines (ended by '\n', '\r' or both); commands go one at a time and each waits for its one
+/// reply line within the profile's timeout on the given <see cref="System.TimeProvider"/>.
+/// </remarks>
+public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
+{
+    private const int MaxLineLength = 1024;
+
+    private readonly ISerialLink _link;
+    private readonly TimeProvider _time;
+    private readonly Lock _gate = new();
+    private readonly SemaphoreSlim _sendLock = new(1, 1);
+    private readonly CancellationTokenSource _stop = new();
+    private readonly Task _readLoop;
+    private (string Command, TaskCompletionSource<string> Reply)? _pending;
+    private bool _closed;
+    private bool _disposing;
+    private Exception? _closeReason;
+    private int _disposed;
+
+    public PicLaserGate(ISerialLink link, LaserGateProfile profile, TimeProvider? timeProvider = null)
+    {
+        ArgumentNullException.ThrowIfNull(link);
+        ArgumentNullException.ThrowIfNull(profile);
+        _link = link;
+        Profile = profile;
+        _time = timeProvider ?? TimeProvider.System;
+        _readLoop = Task.Run(ReadLoopAsync);
+    }
+
+    /// <summary>A line arrived while no command was waiting; raised on the reader loop.</summary>
+    public event EventHandler<LaserGateLineEventArgs>? UnexpectedLine;
+
+    public string PortName => _link.Name;
+
+    public LaserGateProfile Profile { get; }
+
+    public TimeSpan Timeout => TimeSpan.FromMilliseconds(Profile.TimeoutMs);
+
+    public bool IsOpen
+    {
+        get
+        {
+            lock (_gate)
+            {
+                return !_closed;
+            }
+        }
+    }
+
+    /// <summary>Opens the port at the profile's baud rate (8N1, no handshake).</summary>
+    public static PicLaserGate Open(string portName, LaserGateProfile profile, TimeProvider? timeProvider = null)
+    {
+        ArgumentNullException.ThrowIfNull(profile);
+        var port = NativeSerialPort.Open(new SerialPortSettings(portName) { BaudRate = profile.BaudRate });
+        return new PicLaserGate(port, profile, timeProvider);
+    }
+
+    public Task<string> IdentifyAsync(CancellationToken cancellationToken) => SendAsync(Profile.IdentifyCommand, cancellationToken);
+
+    public async Task SetFrequencyAsync(int frequencyHz, CancellationToken cancellationToken)
+    {
+        ArgumentOutOfRangeException.ThrowIfNegative(frequencyHz);
+        await SendAsync(Format(Profile.FrequencyCommand, frequencyHz), cancellationToken).ConfigureAwait(false);
+    }
+
+    public async Task OffAsync(CancellationToken cancellationToken) =>
+        await SendAsync(Profile.OffCommand, cancellationToken).ConfigureAwait(false);
+
+    /// <summary>Asks for the state; the reply must read "STATE &lt;hz&gt; ON|OFF WDOG &lt;ms&gt; [TRIPPED]" after the acknowledgement prefix.</summary>
+    public async Task<LaserGateState> GetStateAsync(CancellationToken cancellationToken)
+    {
+        var text = await SendAsync(Profile.StatusCommand, cancellationToken).ConfigureAwait(false);
+        return ParseState(text) ?? throw new LaserGateException(
+            PortName, Profile.StatusCommand, text, $"laser gate on {PortName}: cannot read the state from '{text}' (expected 'STATE <hz> ON|OFF WDOG <ms> [TRIPPED]')");
+    }
+
+    public async Task KeepAliveAsync(CancellationToken cancellationToken) =>
+        await SendAsync(Profile.KeepAliveCommand, cancellationToken).ConfigureAwait(false);
+
+    public async Task SetWatchdogAsync(int milliseconds, CancellationToken cancellationToken)
+    {
+        ArgumentOutOfRangeException.ThrowIfNegative(milliseconds);
+        await SendAsync(Format(Profile.WatchdogCommand, milliseconds), cancellationToken).ConfigureAwait(false);
+    }
+
+    public async Task BurstAsync(int pulses, int frequencyHz, CancellationToken cancellationToken)
+    {
+        ArgumentOutOfRangeException.ThrowIfNegativeOrZero(pulses);
+        ArgumentOutOfRangeException.ThrowIfNegativeOrZero(frequencyHz);
+        await SendAsync(Format(Profile.BurstCommand, pulses, frequencyHz), cancellationToken).ConfigureAwait(false);
+    }
+
+    /// <summary>Sends one command line and waits for its reply line.</summary>
+    /// <returns>The reply after the acknowledgement prefix, trimmed ("PICGATE 1.2" for "OK PICGATE 1.2").</returns>
+    /// <exception cref="LaserGateException">The gate answered with the error prefix, or with neither prefix.</exception>
+    /// <exception cref="DeviceTimeoutException">No reply line within the profile's timeout.</exception>
+    /// <exception cref="LinkLostException">The link closed.</exception>
+    public async Task<string> SendAsync(string command, CancellationToken cancellationToken)
+    {
+        ArgumentNullException.ThrowIfNull(command);
+        await _sendLock.WaitAsync(cancellationToken).ConfigureAwait(false);
+        try
+        {
+            var reply = new TaskCompletionSource<string>(TaskCreationOptions.RunContinuationsAsynchronously);
+            lock (_gate)
+            {
+                if (_closed)
+                {
+                    throw LinkLost(command, waiting: false);
+                }
+
+                _pending = (command, reply);
+            }
+
+            try
+            {
+                await _link.WriteAsync(Encoding.ASCII.GetBytes(command + Profile.LineTerminator), cancellationToken).ConfigureAwait(false);
+            }
+            catch (Exception ex) when (ex is IOException or ObjectDisposedException or InvalidOperationException)
+            {
+                ClearPending(reply);
+                throw new LinkLostException($"laser gate on {PortName}: cannot send '{command}': {ex.Message}", ex);
+            }
+            catch
+            {
+                ClearPending(reply);
+                throw;
+            }
+
+            string line;
+            try
+            {
+                line = await reply.Task.WaitAsync(Timeout, _time, cancellationToken).ConfigureAwait(false);
+            }
+            catch (TimeoutException)
+            {
+                ClearPending(reply);
+                if (reply.Task.IsCompletedSuccessfully)
+                {
+                    line = reply.Task.Result;
+                }
+                else
+                {
+                    throw new DeviceTimeoutException($"laser gate on {PortName} did not acknowledge '{command}' within {Profile.TimeoutMs} ms");
+                }
+            }
+            catch (OperationCanceledException)
+            {
+                ClearPending(reply);
+                throw;
+            }
+
+            return Interpret(command, line);
+        }
+        finally
+        {
+            _sendLock.Release();
+        }
+    }
+
+    public async ValueTask DisposeAsync()
+    {
+        if (Interlocked.Exchange(ref _disposed, 1) != 0)
+        {
+            return;
+        }
+
+        lock (_gate)
+        {
+            _disposing = true;
+        }
+
+        await _stop.CancelAsync().ConfigureAwait(false);
+        await _link.DisposeAsync().ConfigureAwait(false);
+        await _readLoop.ConfigureAwait(false);
+        Close(null);
+        _stop.Dispose();
+    }
+
+    /// <summary>Reads "STATE 1000 ON WDOG 1000 [TRIPPED]"; null when the text has another shape.</summary>
+    internal static LaserGateState? ParseState(string text)
+    {
+        var words = text.Split(' ', StringSplitOptions.RemoveEmptyEntries | StringSplitOptions.TrimEntries);
+        if (words.Length is < 5 or > 6
+            || !words[0].Equals("STATE", StringComparison.OrdinalIgnoreCase)
+            || !int.TryParse(words[1], NumberStyles.None, CultureInfo.InvariantCulture, out var hz)
+            || !words[3].Equals("WDOG", StringComparison.OrdinalIgnoreCase)
+            || !int.TryParse(words[4], NumberStyles.None, CultureInfo.InvariantCulture, out var watchdogMs))
+        {
+            return null;
+        }
+
+        bool firing;
+        if (words[2].Equals("ON", StringComparison.OrdinalIgnoreCase))
+        {
+            firing = true;
+        }
+        else if (words[2].Equals("OFF", StringComparison.OrdinalIgnoreCase))
+        {
+            firing = false;
+        }
+        else
+        {
+            return null;
+        }
+
+        var tripped = words.Length == 6;
+        if (tripped && !words[5].Equals("TRIPPED", StringComparison.OrdinalIgnoreCase))
+        {
+            return null;
+        }
+
+        return new LaserGateState(hz, firing, watchdogMs, tripped);
+    }
+
+    private static string Format(string format, params object[] values) => string.Format(CultureInfo.InvariantCulture, format, values);
+
+    private string Interpret(string command, string line)
+    {
+        // The error prefix is checked first so that a profile whose prefixes overlap still sees refusals.
+        if (Profile.ErrorPrefix.Length > 0 && line.StartsWith(Profile.ErrorPrefix, StringComparison.Ordinal))
+        {
+            throw new LaserGateException(PortName, command, line, $"laser gate on {PortName} refused '{command}': {line}");
+        }
+
+        if (line.StartsWith(Profile.AckPrefix, StringComparison.Ordinal))
+        {
+            return line[Profile.AckPrefix.Length..].Trim();
+        }
+
+        throw new LaserGateException(
+            PortName, command, line, $"laser gate on {PortName} answered '{command}' with '{line}' (expected '{Profile.AckPrefix}' or '{Profile.ErrorPrefix}')");
+    }
+
+    private void ClearPending(TaskCompletionSource<string> reply)
+    {
+        lock (_gate)
+        {
+            if (_pending is { } pending && pending.Reply == reply)
+            {
+                _pending = null;
+            }
+        }
+    }
+
+    private LinkLostException LinkLost(string command, bool waiting)
+    {
+        var what = _disposing ? "the connection was closed" : "the link was lost";
+        var reason = _closeReason is null ? string.Empty : $" ({_closeReason.Message})";
+        var message = waiting
+            ? $"laser gate on {PortName}: {what} while waiting for the reply to '{command}'{reason}"
+            : $"laser gate on {PortName}: cannot send '{command}': {what}{reason}";
+        return _closeReason is null ? new LinkLostException(message) : new LinkLostException(message, _closeReason);
+    }
+
+    private async Task ReadLoopAsync()
+    {
+        var buffer = new byte[256];
+        var line = new StringBuilder();
+        Exception? failure = null;
+        try
+        {
+            while (true)
+            {
+                var n = await _link.ReadAsync(buffer, _stop.Token).ConfigureAwait(false);
+                if (n == 0)
+                {
+                    break;
+                }
+
+                for (var i = 0; i < n; i++)
+                {
+                    var c = (char)buffer[i];
+                    if (c is '\n' or '\r')
+                    {
+                        if (line.Length > 0)
+                        {
+                            OnLine(line.ToString());
+                            line.Clear();
+                        }
+                    }
+                    else if (line.Length < MaxLineLength)
+                    {
+                        line.Append(c);
+                    }
+                }
+            }
+        }
+        catch (OperationCanceledException) when (_stop.IsCancellationRequested)
+        {
+            // Disposal.
+        }
+#pragma warning disable CA1031 // Whatever ends the reader loop is handed to the waiting command as the reason the link was lost.
+        catch (Exception ex)
+#pragma warning restore CA1031
+        {
+            failure = ex;
+        }
+
+        Close(failure);
+    }
+
+    private void OnLine(string line)
+    {
+        TaskCompletionSource<string>? waiter = null;
+        lock (_gate)
+        {
+            if (_pending is { } pending)
+            {
+                waiter = pending.Reply;
+                _pending = null;
+            }
+        }
+
+        if (waiter is not null)
+        {
+            waiter.TrySetResult(line);
+        }
+        else
+        {
+            UnexpectedLine?.Invoke(this, new LaserGateLineEventArgs(line));
+        }
+    }
+
+    private void Close(Exception? reason)
+    {
+        (string Command, TaskCompletionSource<string> Reply)? pending;
+        LinkLostException? error = null;
+        lock (_gate)
+        {
+            if (_closed)
+            {
+                return;
+            }
+
+            _closed = true;
+            _closeReason = reason;
+            pending = _pending;
+            _pending = null;
+            if (pending is { } p)
+            {
+                error = LinkLost(p.Command, waiting: true);
+            }
+        }
+
+        if (pending is { } waiting)
+        {
+            waiting.Reply.TrySetException(error!);
+        }
+    }
+}

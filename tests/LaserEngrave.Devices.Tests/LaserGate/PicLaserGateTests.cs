@@ -1,0 +1,253 @@
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Devices.LaserGate;
+using LaserEngrave.Devices.Serial;
+using LaserEngrave.Devices.Tests.Fakes;
+
+namespace LaserEngrave.Devices.Tests.LaserGate;
+
+public class PicLaserGateTests
+{
+    private const string Port = "/dev/fake-gate";
+    private static readonly CancellationToken None = CancellationToken.None;
+
+    [Fact]
+    public async Task IdentifyAsync_GateAnswers_ReturnsTheTextAfterOk()
+    {
+        await using var rig = new GateRig();
+        rig.Fake.Firmware = "PICGATE 2.1";
+
+        Assert.Equal("PICGATE 2.1", await rig.Gate.IdentifyAsync(None).Within());
+        Assert.Equal("*IDN?", await rig.Fake.NextAsync());
+    }
+
+    [Fact]
+    public async Task SetFrequencyAsync_1kHz_SendsFreqLineAndWaitsForOk()
+    {
+        await using var rig = new GateRig();
+
+        await rig.Gate.SetFrequencyAsync(1000, None).Within();
+
+        Assert.Equal("FREQ 1000", await rig.Fake.NextAsync());
+        Assert.Equal(1000, rig.Fake.FrequencyHz);
+    }
+
+    [Fact]
+    public async Task OffAsync_AfterFiring_StopsTheGate()
+    {
+        await using var rig = new GateRig();
+        await rig.Gate.SetFrequencyAsync(1000, None).Within();
+
+        await rig.Gate.OffAsync(None).Within();
+
+        Assert.Equal(0, rig.Fake.FrequencyHz);
+    }
+
+    [Theory]
+    [InlineData("OK STATE 1000 ON WDOG 800", 1000, true, 800, false)]
+    [InlineData("OK STATE 0 OFF WDOG 0 TRIPPED", 0, false, 0, true)]
+    public async Task GetStateAsync_StateLine_IsParsed(string reply, int hz, bool firing, int watchdogMs, bool tripped)
+    {
+        await using var rig = new GateRig();
+        rig.Fake.Intercept = _ => reply + "\n";
+
+        var state = await rig.Gate.GetStateAsync(None).Within();
+
+        Assert.Equal(new LaserGateState(hz, firing, watchdogMs, tripped), state);
+    }
+
+    [Fact]
+    public async Task GetStateAsync_AfterSettingUp_ReflectsTheGate()
+    {
+        await using var rig = new GateRig();
+        await rig.Gate.SetWatchdogAsync(750, None).Within();
+        await rig.Gate.SetFrequencyAsync(2500, None).Within();
+
+        Assert.Equal(new LaserGateState(2500, true, 750, false), await rig.Gate.GetStateAsync(None).Within());
+    }
+
+    [Theory]
+    [InlineData("OK STATE 1000 MAYBE WDOG 800")]
+    [InlineData("OK STATE fast ON WDOG 800")]
+    [InlineData("OK 1000 ON")]
+    public async Task GetStateAsync_UnreadableState_ThrowsNamingTheReply(string reply)
+    {
+        await using var rig = new GateRig();
+        rig.Fake.Intercept = _ => reply + "\n";
+
+        var error = await Assert.ThrowsAsync<LaserGateException>(() => rig.Gate.GetStateAsync(None).Within());
+
+        Assert.Contains($"laser gate on {Port}: cannot read the state", error.Message, StringComparison.Ordinal);
+        Assert.Contains(reply[3..], error.Message, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task SetFrequencyAsync_GateSaysErr_ThrowsWithTheGatesText()
+    {
+        await using var rig = new GateRig();
+
+        var error = await Assert.ThrowsAsync<LaserGateException>(() => rig.Gate.SetFrequencyAsync(200000, None).Within());
+
+        Assert.Equal($"laser gate on {Port} refused 'FREQ 200000': ERR 2 RANGE", error.Message);
+        Assert.Equal("FREQ 200000", error.Command);
+    }
+
+    [Fact]
+    public async Task SendAsync_ReplyWithNeitherPrefix_ThrowsSayingWhatWasExpected()
+    {
+        await using var rig = new GateRig();
+        rig.Fake.Intercept = _ => "HELLO\n";
+
+        var error = await Assert.ThrowsAsync<LaserGateException>(() => rig.Gate.KeepAliveAsync(None).Within());
+
+        Assert.Contains("answered 'PING' with 'HELLO'", error.Message, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task SetFrequencyAsync_SilentGate_TimesOutOnTheClockWithAClearMessage()
+    {
+        await using var rig = new GateRig();
+        rig.Fake.Intercept = _ => string.Empty;
+        var command = rig.Gate.SetFrequencyAsync(1000, None);
+        await rig.Fake.NextAsync();
+        await rig.Clock.WaitForTimerAsync(TimeSpan.FromMilliseconds(500), TimeSpan.FromMilliseconds(500));
+
+        rig.Clock.Advance(TimeSpan.FromMilliseconds(499));
+        await Eventually.AssertStillPendingAsync(command);
+        rig.Clock.Advance(TimeSpan.FromMilliseconds(1));
+
+        var error = await Assert.ThrowsAsync<DeviceTimeoutException>(() => command.Within());
+        Assert.Equal($"laser gate on {Port} did not acknowledge 'FREQ 1000' within 500 ms", error.Message);
+    }
+
+    [Fact]
+    public async Task Profile_OverriddenCommandsAndPrefixes_AreUsed()
+    {
+        var profile = new LaserGateProfile
+        {
+            FrequencyCommand = "F{0}",
+            OffCommand = "F0",
+            AckPrefix = "ACK",
+            ErrorPrefix = "NAK",
+            LineTerminator = "\r\n",
+        };
+        await using var rig = new GateRig(profile);
+        rig.Fake.Intercept = line => line switch
+        {
+            "F1000" => "ACK\r\n",
+            "F0" => "ACK\r\n",
+            _ => "NAK what\r\n",
+        };
+
+        await rig.Gate.SetFrequencyAsync(1000, None).Within();
+        await rig.Gate.OffAsync(None).Within();
+        var error = await Assert.ThrowsAsync<LaserGateException>(() => rig.Gate.KeepAliveAsync(None).Within());
+
+        Assert.Equal("F1000", await rig.Fake.NextAsync());
+        Assert.Equal("F0", await rig.Fake.NextAsync());
+        Assert.Contains("refused 'PING': NAK what", error.Message, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task SendAsync_ReplyInPiecesEndedByCrLf_IsOneLine()
+    {
+        await using var rig = new GateRig();
+        rig.Fake.Intercept = _ => string.Empty;
+        var identify = rig.Gate.IdentifyAsync(None);
+        await rig.Fake.NextAsync();
+
+        await rig.Fake.SendRawAsync("OK PIC");
+        await rig.Fake.SendRawAsync("GATE 3\r");
+        await rig.Fake.SendRawAsync("\n");
+
+        Assert.Equal("PICGATE 3", await identify.Within());
+    }
+
+    [Fact]
+    public async Task UnexpectedLine_WithNoCommandWaiting_IsReportedAndNotTakenAsTheNextReply()
+    {
+        await using var rig = new GateRig();
+        var stray = new List<string>();
+        rig.Gate.UnexpectedLine += (_, e) => stray.Add(e.Line);
+
+        await rig.Fake.SendRawAsync("OK LATE\n");
+        await Eventually.TrueAsync(() => stray.Count == 1, "the stray line was reported");
+
+        Assert.Equal("PICGATE 1.0", await rig.Gate.IdentifyAsync(None).Within());
+        Assert.Equal(["OK LATE"], stray);
+    }
+
+    [Fact]
+    public async Task SendAsync_TwoCommandsAtOnce_SecondIsSentOnlyAfterTheFirstIsAcknowledged()
+    {
+        await using var rig = new GateRig();
+        rig.Fake.Intercept = _ => string.Empty;
+        var first = rig.Gate.SetFrequencyAsync(1000, None);
+        Assert.Equal("FREQ 1000", await rig.Fake.NextAsync());
+        var second = rig.Gate.KeepAliveAsync(None);
+        await Task.Delay(50, TestContext.Current.CancellationToken);
+        Assert.Equal(["FREQ 1000"], rig.Fake.AllReceived());
+
+        await rig.Fake.SendRawAsync("OK FREQ 1000\n");
+        Assert.Equal("PING", await rig.Fake.NextAsync());
+        await rig.Fake.SendRawAsync("OK PONG\n");
+
+        await Task.WhenAll(first, second).Within();
+    }
+
+    [Fact]
+    public async Task SendAsync_LinkDropsWhileWaiting_ThrowsLinkLostNamingPortAndCommand()
+    {
+        await using var rig = new GateRig();
+        rig.Fake.Intercept = _ => string.Empty;
+        var command = rig.Gate.SetFrequencyAsync(1000, None);
+        await rig.Fake.NextAsync();
+
+        await rig.Fake.DisposeAsync();
+
+        var error = await Assert.ThrowsAsync<LinkLostException>(() => command.Within());
+        Assert.Equal($"laser gate on {Port}: the link was lost while waiting for the reply to 'FREQ 1000'", error.Message);
+        var next = await Assert.ThrowsAsync<LinkLostException>(() => rig.Gate.OffAsync(None).Within());
+        Assert.Contains("cannot send 'OFF'", next.Message, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task SetFrequencyAsync_Negative_IsRefusedBeforeSending()
+    {
+        await using var rig = new GateRig();
+
+        await Assert.ThrowsAsync<ArgumentOutOfRangeException>(() => rig.Gate.SetFrequencyAsync(-1, None));
+    }
+
+    [Fact]
+    public async Task BurstAsync_SendsPulseCountAndFrequency()
+    {
+        await using var rig = new GateRig();
+
+        await rig.Gate.BurstAsync(10, 500, None).Within();
+
+        Assert.Equal("BURST 10 500", await rig.Fake.NextAsync());
+    }
+
+    private sealed class GateRig : IAsyncDisposable
+    {
+        public GateRig(LaserGateProfile? profile = null)
+        {
+            var (host, device) = InMemorySerialLink.CreatePair(Port);
+            Fake = new FakeLaserGate(device);
+            Gate = new PicLaserGate(host, profile ?? new LaserGateProfile(), Clock);
+        }
+
+        public ManualTimeProvider Clock { get; } = new();
+
+        public FakeLaserGate Fake { get; }
+
+        public PicLaserGate Gate { get; }
+
+        public async ValueTask DisposeAsync()
+        {
+            await Gate.DisposeAsync().AsTask().Within();
+            await Fake.DisposeAsync().AsTask().Within();
+        }
+    }
+}
