@@ -16,5 +16,6 @@ internal static class CommandRegistry
         yield return PortsCommand.Create();
         yield return StageCommand.Create();
         yield return LaserCommand.Create();
+        yield return SimulatorCommand.Create();
     }
 }

@@ -1,11 +1,11 @@
 using System.Text;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Zaber;
-using LaserEngrave.Simulator.Serial;
+using LaserEngrave.Devices.Serial;
 
 namespace LaserEngrave.Simulator.Tests.Serial;
 
-/// <summary>The simulator attached to real ptys (socat), spoken to with raw bytes through the other ends.</summary>
+/// <summary>The simulator attached to real ptys (socat) through <see cref="NativeSerialPort"/>, spoken to with raw bytes through the other ends.</summary>
 public class PtyAttachTests
 {
     private static readonly TimeSpan WallTimeout = TimeSpan.FromSeconds(10);
@@ -17,8 +17,8 @@ public class PtyAttachTests
         await using var stagePair = await SocatPtyPair.StartAsync(ct);
         await using var laserPair = await SocatPtyPair.StartAsync(ct);
         await using var machine = SimulatedMachine.Attach(
-            new StreamSerialLink(stagePair.A, SocatPtyPair.Open(stagePair.A)),
-            new StreamSerialLink(laserPair.A, SocatPtyPair.Open(laserPair.A)),
+            NativeSerialPort.Open(stagePair.A),
+            NativeSerialPort.Open(laserPair.A),
             MachineProfile.Default);
         await using var stage = SocatPtyPair.Open(stagePair.B);
         await using var laser = SocatPtyPair.Open(laserPair.B);
