@@ -137,9 +137,10 @@ public sealed class VirtualTimeProvider : TimeProvider, IDisposable
             return -1;
         }
 
-        if (span < TimeSpan.Zero)
+        // The same limits as the system's timers (0 to 4294967294 ms), which also keeps due times from overflowing.
+        if (span < TimeSpan.Zero || span.TotalMilliseconds > uint.MaxValue - 1)
         {
-            throw new ArgumentOutOfRangeException(name, span, "a timer time must be zero or more, or infinite");
+            throw new ArgumentOutOfRangeException(name, span, "a timer time must be 0 to 4294967294 ms, or infinite");
         }
 
         return span.Ticks;

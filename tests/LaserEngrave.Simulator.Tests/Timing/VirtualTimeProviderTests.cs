@@ -276,4 +276,13 @@ public class VirtualTimeProviderTests
 
         Assert.Throws<ArgumentOutOfRangeException>(() => time.CreateTimer(_ => { }, null, TimeSpan.FromSeconds(-1), Timeout.InfiniteTimeSpan));
     }
+
+    [Fact]
+    public void CreateTimer_DueTimeBeyondTheSystemLimit_Throws()
+    {
+        using var time = new VirtualTimeProvider();
+
+        Assert.Throws<ArgumentOutOfRangeException>(() => time.CreateTimer(_ => { }, null, TimeSpan.MaxValue, Timeout.InfiniteTimeSpan));
+        Assert.Throws<ArgumentOutOfRangeException>(() => time.CreateTimer(_ => { }, null, TimeSpan.FromSeconds(1), TimeSpan.FromDays(50)));
+    }
 }
