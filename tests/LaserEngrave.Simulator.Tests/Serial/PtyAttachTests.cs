@@ -3,6 +3,8 @@ using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Zaber;
 using LaserEngrave.Devices.Serial;
 
+using LaserEngrave.Testing;
+
 namespace LaserEngrave.Simulator.Tests.Serial;
 
 /// <summary>The simulator attached to real ptys (socat) through <see cref="NativeSerialPort"/>, spoken to with raw bytes through the other ends.</summary>

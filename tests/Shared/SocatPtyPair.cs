@@ -1,8 +1,9 @@
 using System.Diagnostics;
 
-namespace LaserEngrave.Simulator.Tests.Serial;
+namespace LaserEngrave.Testing;
 
 /// <summary>A virtual serial cable: two linked ptys made by socat, removed again on dispose.</summary>
+/// <remarks>Compiled into each test project that needs it (tests/Shared), so the real serial path is tested everywhere the same way.</remarks>
 internal sealed class SocatPtyPair : IAsyncDisposable
 {
     private readonly Process _socat;
@@ -21,7 +22,7 @@ internal sealed class SocatPtyPair : IAsyncDisposable
     /// <summary>Starts socat; fails (never skips) when socat is missing, since CI installs it.</summary>
     public static async Task<SocatPtyPair> StartAsync(CancellationToken cancellationToken)
     {
-        var stem = $"/tmp/le-sim-{Guid.NewGuid():N}"[..20];
+        var stem = $"/tmp/le-pty-{Guid.NewGuid():N}"[..20];
         var (a, b) = (stem + "-a", stem + "-b");
         var start = new ProcessStartInfo("socat")
         {

@@ -1,0 +1,176 @@
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Devices.Serial;
+using LaserEngrave.Simulator;
+using LaserEngrave.Testing;
+
+namespace LaserEngrave.Cli.Tests;
+
+/// <summary>The wiring-check commands through real ptys (socat) with the simulator on the other ends, as a technician would use them.</summary>
+public sealed class DeviceCommandsTests : IAsyncLifetime
+{
+    private SocatPtyPair? _stage;
+    private SocatPtyPair? _laser;
+    private SimulatedMachine? _machine;
+
+    private string StagePort => _stage!.B;
+
+    private string LaserPort => _laser!.B;
+
+    private SimulatedMachine Machine => _machine!;
+
+    public async ValueTask InitializeAsync()
+    {
+        var ct = TestContext.Current.CancellationToken;
+        _stage = await SocatPtyPair.StartAsync(ct);
+        _laser = await SocatPtyPair.StartAsync(ct);
+        _machine = SimulatedMachine.Attach(NativeSerialPort.Open(_stage.A), NativeSerialPort.Open(_laser.A), MachineProfile.Default);
+    }
+
+    public async ValueTask DisposeAsync()
+    {
+        if (_machine is not null)
+        {
+            await _machine.DisposeAsync();
+        }
+
+        if (_stage is not null)
+        {
+            await _stage.DisposeAsync();
+        }
+
+        if (_laser is not null)
+        {
+            await _laser.DisposeAsync();
+        }
+    }
+
+    [Fact(Timeout = 60_000)]
+    public async Task StageIdentify_SimulatedChain_ListsBothAxesWithFirmware()
+    {
+        var (exit, output, error) = await CliHarness.RunAsync("stage", "--port", StagePort, "identify");
+
+        Assert.True(exit == 0, error);
+        Assert.Contains("2 Zaber device(s)", output, StringComparison.Ordinal);
+        Assert.Contains("device 1", output, StringComparison.Ordinal);
+        Assert.Contains("device 2", output, StringComparison.Ordinal);
+        Assert.Contains("firmware 5.02", output, StringComparison.Ordinal);
+    }
+
+    [Fact(Timeout = 60_000)]
+    public async Task StageHomeThenMoveAbs_PositionIsTheTargetRoundedOnce()
+    {
+        Assert.Equal(0, (await CliHarness.RunAsync("stage", "--port", StagePort, "home")).Exit);
+        var (exit, _, error) = await CliHarness.RunAsync("stage", "--port", StagePort, "move-abs", "1000", "2500.5");
+        var (_, position, _) = await CliHarness.RunAsync("stage", "--port", StagePort, "position");
+
+        Assert.True(exit == 0, error);
+        var um = MachineProfile.Default.X.MicrostepUm;
+        Assert.Equal((long)Math.Round(1000 / um, MidpointRounding.AwayFromZero), Machine.Stage.X.Position);
+        Assert.Equal((long)Math.Round(2500.5 / um, MidpointRounding.AwayFromZero), Machine.Stage.Y.Position);
+        Assert.Contains(Machine.Stage.X.Position.ToString(System.Globalization.CultureInfo.InvariantCulture), position, StringComparison.Ordinal);
+    }
+
+    [Fact(Timeout = 60_000)]
+    public async Task StageMoveAbs_OutsideTravel_Exit2AndNothingMoves()
+    {
+        var before = Machine.Stage.X.Position;
+
+        var (exit, _, error) = await CliHarness.RunAsync("stage", "--port", StagePort, "move-abs", "70000", "0");
+
+        Assert.Equal(2, exit);
+        Assert.Contains("outside the travel", error, StringComparison.Ordinal);
+        Assert.Equal(before, Machine.Stage.X.Position);
+    }
+
+    [Fact(Timeout = 60_000)]
+    public async Task LaserCommands_IdentifyOnStatusOff_GateFollows()
+    {
+        var (identifyExit, identify, _) = await CliHarness.RunAsync("laser", "--port", LaserPort, "identify");
+        var (onExit, _, onError) = await CliHarness.RunAsync("laser", "--port", LaserPort, "on", "1000", "--seconds", "0.3");
+        var (statusExit, status, _) = await CliHarness.RunAsync("laser", "--port", LaserPort, "status");
+
+        Assert.Equal(0, identifyExit);
+        Assert.Contains("PICGATE", identify, StringComparison.Ordinal);
+        Assert.True(onExit == 0, onError);
+        Assert.Equal(0, statusExit);
+        Assert.False(Machine.Gate.IsFiring);
+        Assert.Contains("not firing", status, StringComparison.Ordinal);
+    }
+
+    [Fact(Timeout = 60_000)]
+    public async Task Stage_MissingPort_Exit1NamingThePort()
+    {
+        var (exit, _, error) = await CliHarness.RunAsync("stage", "--port", "/dev/ttyNOPE42", "identify");
+
+        Assert.Equal(1, exit);
+        Assert.Contains("/dev/ttyNOPE42", error, StringComparison.Ordinal);
+        Assert.Contains("no such port", error, StringComparison.Ordinal);
+        Assert.Single(error.TrimEnd().Split('\n'));
+    }
+
+    [Fact(Timeout = 60_000)]
+    public async Task Ports_Lists_WithoutFailing()
+    {
+        var (exit, _, error) = await CliHarness.RunAsync("ports");
+
+        Assert.True(exit == 0, error);
+    }
+}
+
+/// <summary>`laserengrave simulator` on its own ptys, spoken to by `laserengrave stage` and `laser` on the other ends.</summary>
+public sealed class SimulatorCommandTests
+{
+    [Fact(Timeout = 60_000)]
+    public async Task Simulator_OnPtys_AnswersTheWiringChecksUntilCancelled()
+    {
+        var ct = TestContext.Current.CancellationToken;
+        await using var stage = await SocatPtyPair.StartAsync(ct);
+        await using var laser = await SocatPtyPair.StartAsync(ct);
+        using var stop = CancellationTokenSource.CreateLinkedTokenSource(ct);
+        using var simOut = new StringWriter();
+        using var simErr = new StringWriter();
+        var simulator = CliRunner.InvokeAsync(Program.BuildRoot(), ["simulator", "--stage-port", stage.A, "--laser-port", laser.A], simOut, simErr, stop.Token);
+
+        var (stageExit, stageOut, stageErr) = await RetryUntilReadyAsync(() => CliHarness.RunAsync("stage", "--port", stage.B, "identify"));
+        var (laserExit, laserOut, _) = await CliHarness.RunAsync("laser", "--port", laser.B, "identify");
+        await stop.CancelAsync();
+        var simulatorExit = await simulator.WaitAsync(TimeSpan.FromSeconds(20), ct);
+
+        Assert.True(stageExit == 0, stageErr);
+        Assert.Contains("2 Zaber device(s)", stageOut, StringComparison.Ordinal);
+        Assert.Equal(0, laserExit);
+        Assert.Contains("PICGATE", laserOut, StringComparison.Ordinal);
+        Assert.True(simulatorExit is 0 or 1, simErr.ToString());
+    }
+
+    [Fact(Timeout = 30_000)]
+    public async Task Simulator_BadFaultSpec_Exit2NamingTheRule()
+    {
+        var ct = TestContext.Current.CancellationToken;
+        await using var stage = await SocatPtyPair.StartAsync(ct);
+        await using var laser = await SocatPtyPair.StartAsync(ct);
+
+        var (exit, _, error) = await CliHarness.RunAsync("simulator", "--stage-port", stage.A, "--laser-port", laser.A, "--fault", "explode:stage");
+
+        Assert.Equal(2, exit);
+        Assert.Contains("explode", error, StringComparison.Ordinal);
+    }
+
+    // The simulator opens its ports a moment after it starts; the first identify may find nobody answering yet.
+    private static async Task<(int Exit, string Out, string Err)> RetryUntilReadyAsync(Func<Task<(int Exit, string Out, string Err)>> run)
+    {
+        (int Exit, string Out, string Err) last = default;
+        for (var attempt = 0; attempt < 5; attempt++)
+        {
+            last = await run();
+            if (last.Exit == 0)
+            {
+                return last;
+            }
+
+            await Task.Delay(200, TestContext.Current.CancellationToken);
+        }
+
+        return last;
+    }
+}
