@@ -40,6 +40,29 @@ public class PtyAttachTests
         Assert.True(machine.Gate.IsFiring);
     }
 
+    [Fact(Timeout = 30_000)]
+    public async Task Attach_FramesForBothAxesInOneWrite_BothAnswer()
+    {
+        var ct = TestContext.Current.CancellationToken;
+        await using var stagePair = await SocatPtyPair.StartAsync(ct);
+        await using var laserPair = await SocatPtyPair.StartAsync(ct);
+        await using var machine = SimulatedMachine.Attach(
+            NativeSerialPort.Open(stagePair.A),
+            NativeSerialPort.Open(laserPair.A),
+            MachineProfile.Default);
+        await using var stage = SocatPtyPair.Open(stagePair.B);
+
+        for (var round = 0; round < 20; round++)
+        {
+            var both = new ZaberFrame(1, ZaberCommand.ReturnSetting, (int)ZaberCommand.SetTargetSpeed).ToBytes()
+                .Concat(new ZaberFrame(2, ZaberCommand.ReturnSetting, (int)ZaberCommand.SetTargetSpeed).ToBytes()).ToArray();
+            await stage.WriteAsync(both, ct);
+            var replies = await ReadExactlyAsync(stage, 12, ct);
+
+            Assert.Equal(new byte[] { 1, 2 }, new[] { replies[0], replies[6] }.Order().ToArray());
+        }
+    }
+
     // A pty file's reads block: read on a thread of its own rather than tie up the thread pool.
     private static async Task<byte[]> ReadExactlyAsync(Stream stream, int count, CancellationToken ct)
     {
