@@ -16,7 +16,7 @@ internal static class SimulatorCommand
 {
     private static readonly TimeSpan ReopenInterval = TimeSpan.FromMilliseconds(500);
 
-    public static Command Create() => Create(static (path, baudRate) => NativeSerialPort.Open(path, baudRate));
+    public static Command Create() => Create(static (path, baudRate) => SerialPortLink.Open(path, baudRate));
 
     /// <param name="open">Opens a port path at a baud rate as the simulator's end of the link.</param>
     internal static Command Create(Func<string, int, ISerialLink> open)

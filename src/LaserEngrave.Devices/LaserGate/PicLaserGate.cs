@@ -62,7 +62,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
     public static PicLaserGate Open(string portName, LaserGateProfile profile, TimeProvider? timeProvider = null)
     {
         ArgumentNullException.ThrowIfNull(profile);
-        var port = NativeSerialPort.Open(new SerialPortSettings(portName) { BaudRate = profile.BaudRate });
+        var port = SerialPortLink.Open(new SerialPortSettings(portName) { BaudRate = profile.BaudRate });
         return new PicLaserGate(port, profile, timeProvider);
     }
 

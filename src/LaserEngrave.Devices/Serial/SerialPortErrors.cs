@@ -25,6 +25,20 @@ internal static class SerialPortErrors
         _ => new SerialPortException(name, $"{name}: cannot open: {Marshal.GetPInvokeErrorMessage(errno)}"),
     };
 
+    /// <summary>The message for a failed <see cref="System.IO.Ports.SerialPort.Open"/>.</summary>
+    public static SerialPortException FromOpenFailure(string name, Exception error) => error switch
+    {
+        // On Unix System.IO.Ports answers every failed open with "access denied" around an IOException whose HResult
+        // is the errno.
+        UnauthorizedAccessException { InnerException: IOException inner } when !OperatingSystem.IsWindows() => FromErrno(name, inner.HResult),
+
+        // Windows answers "access denied" when another program holds the port open.
+        UnauthorizedAccessException when OperatingSystem.IsWindows() => InUse(name),
+        IOException or ArgumentException when OperatingSystem.IsWindows()
+            && !System.IO.Ports.SerialPort.GetPortNames().Contains(name, StringComparer.OrdinalIgnoreCase) => NoSuchPort(name),
+        _ => new SerialPortException(name, $"{name}: cannot open: {error.Message}"),
+    };
+
     public static SerialPortException FromWin32(string name, int error) => error switch
     {
         Kernel32.ErrorFileNotFound or Kernel32.ErrorPathNotFound => NoSuchPort(name),

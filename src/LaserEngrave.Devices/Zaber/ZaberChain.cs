@@ -33,7 +33,7 @@ public sealed class ZaberChain : IStage, IAsyncDisposable
     public static ZaberChain Open(string portName, MachineProfile profile, TimeProvider? timeProvider = null, ZaberConnectionOptions? options = null)
     {
         ArgumentNullException.ThrowIfNull(profile);
-        var port = NativeSerialPort.Open(new SerialPortSettings(portName) { BaudRate = profile.StageBaudRate });
+        var port = SerialPortLink.Open(new SerialPortSettings(portName) { BaudRate = profile.StageBaudRate });
         return new ZaberChain(new ZaberConnection(port, timeProvider, options), profile);
     }
 

@@ -6,7 +6,7 @@ using LaserEngrave.Devices.Tests.Fakes;
 
 namespace LaserEngrave.Devices.Tests.Integration;
 
-/// <summary>The laser gate host over a real pty (NativeSerialPort on both ends of a socat pair), in real time.</summary>
+/// <summary>The laser gate host over a real pty (SerialPortLink on both ends of a socat pair), in real time.</summary>
 public sealed class SocatLaserGateTests : IAsyncDisposable
 {
     private readonly SocatPair _pair = new();
@@ -15,7 +15,7 @@ public sealed class SocatLaserGateTests : IAsyncDisposable
 
     public SocatLaserGateTests()
     {
-        _fake = new FakeLaserGate(NativeSerialPort.Open(_pair.B));
+        _fake = new FakeLaserGate(SerialPortLink.Open(_pair.B));
         _gate = PicLaserGate.Open(_pair.A, new LaserGateProfile { TimeoutMs = 1000 }, TimeProvider.System);
     }
 

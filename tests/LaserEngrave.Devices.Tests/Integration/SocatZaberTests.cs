@@ -6,7 +6,7 @@ using LaserEngrave.Devices.Zaber;
 
 namespace LaserEngrave.Devices.Tests.Integration;
 
-/// <summary>The Zaber host over a real pty (NativeSerialPort on both ends of a socat pair), in real time.</summary>
+/// <summary>The Zaber host over a real pty (SerialPortLink on both ends of a socat pair), in real time.</summary>
 public sealed class SocatZaberTests : IAsyncDisposable
 {
     private static readonly ZaberConnectionOptions Options = new() { CommandTimeout = TimeSpan.FromSeconds(1), BroadcastQuietPeriod = TimeSpan.FromMilliseconds(100) };
@@ -17,7 +17,7 @@ public sealed class SocatZaberTests : IAsyncDisposable
 
     public SocatZaberTests()
     {
-        _devices = new FakeZaberChain(NativeSerialPort.Open(_pair.B), new FakeZaberDevice(1) { Firmware = 523 }, new FakeZaberDevice(2) { Firmware = 522 });
+        _devices = new FakeZaberChain(SerialPortLink.Open(_pair.B), new FakeZaberDevice(1) { Firmware = 523 }, new FakeZaberDevice(2) { Firmware = 522 });
         _chain = ZaberChain.Open(_pair.A, MachineProfile.Default, TimeProvider.System, Options);
     }
 

@@ -7,7 +7,7 @@ using LaserEngrave.Testing;
 
 namespace LaserEngrave.Simulator.Tests.Serial;
 
-/// <summary>The simulator attached to real ptys (socat) through <see cref="NativeSerialPort"/>, spoken to with raw bytes through the other ends.</summary>
+/// <summary>The simulator attached to real ptys (socat) through <see cref="SerialPortLink"/>, spoken to with raw bytes through the other ends.</summary>
 public class PtyAttachTests
 {
     private static readonly TimeSpan WallTimeout = TimeSpan.FromSeconds(10);
@@ -19,8 +19,8 @@ public class PtyAttachTests
         await using var stagePair = await SocatPtyPair.StartAsync(ct);
         await using var laserPair = await SocatPtyPair.StartAsync(ct);
         await using var machine = SimulatedMachine.Attach(
-            NativeSerialPort.Open(stagePair.A),
-            NativeSerialPort.Open(laserPair.A),
+            SerialPortLink.Open(stagePair.A),
+            SerialPortLink.Open(laserPair.A),
             MachineProfile.Default);
         await using var stage = SocatPtyPair.Open(stagePair.B);
         await using var laser = SocatPtyPair.Open(laserPair.B);
@@ -47,8 +47,8 @@ public class PtyAttachTests
         await using var stagePair = await SocatPtyPair.StartAsync(ct);
         await using var laserPair = await SocatPtyPair.StartAsync(ct);
         await using var machine = SimulatedMachine.Attach(
-            NativeSerialPort.Open(stagePair.A),
-            NativeSerialPort.Open(laserPair.A),
+            SerialPortLink.Open(stagePair.A),
+            SerialPortLink.Open(laserPair.A),
             MachineProfile.Default);
         await using var stage = SocatPtyPair.Open(stagePair.B);
 
