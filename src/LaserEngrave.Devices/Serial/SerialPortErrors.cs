@@ -1,12 +1,21 @@
+using System.IO.Ports;
 using System.Runtime.InteropServices;
-using LaserEngrave.Devices.Serial.Unix;
-using LaserEngrave.Devices.Serial.Windows;
 
 namespace LaserEngrave.Devices.Serial;
 
-/// <summary>The one-line messages for a port that cannot be opened, from an errno (Unix) or a Win32 error.</summary>
+/// <summary>The one-line messages for a port that cannot be opened.</summary>
 internal static class SerialPortErrors
 {
+    // errno values, the same on Linux and macOS.
+    private const int ErrPermission = 1;
+    private const int ErrNoEntry = 2;
+    private const int ErrNoDeviceOrAddress = 6;
+    private const int ErrAccess = 13;
+    private const int ErrBusy = 16;
+    private const int ErrNoDevice = 19;
+    private const int ErrIsDirectory = 21;
+    private const int ErrNotTty = 25;
+
     public static SerialPortException NoSuchPort(string name) => new(name, $"{name}: no such port");
 
     public static SerialPortException InUse(string name) => new(name, $"{name}: port is in use by another program");
@@ -16,16 +25,7 @@ internal static class SerialPortErrors
 
     public static SerialPortException NotASerialPort(string name) => new(name, $"{name}: not a serial port");
 
-    public static SerialPortException FromErrno(string name, int errno) => errno switch
-    {
-        UnixPlatform.ErrNoEntry or UnixPlatform.ErrNoDeviceOrAddress or UnixPlatform.ErrNoDevice => NoSuchPort(name),
-        UnixPlatform.ErrBusy => InUse(name),
-        UnixPlatform.ErrAccess or UnixPlatform.ErrPermission => PermissionDenied(name),
-        UnixPlatform.ErrNotTty or UnixPlatform.ErrIsDirectory => NotASerialPort(name),
-        _ => new SerialPortException(name, $"{name}: cannot open: {Marshal.GetPInvokeErrorMessage(errno)}"),
-    };
-
-    /// <summary>The message for a failed <see cref="System.IO.Ports.SerialPort.Open"/>.</summary>
+    /// <summary>The message for a failed <see cref="SerialPort.Open"/>.</summary>
     public static SerialPortException FromOpenFailure(string name, Exception error) => error switch
     {
         // On Unix System.IO.Ports answers every failed open with "access denied" around an IOException whose HResult
@@ -35,16 +35,16 @@ internal static class SerialPortErrors
         // Windows answers "access denied" when another program holds the port open.
         UnauthorizedAccessException when OperatingSystem.IsWindows() => InUse(name),
         IOException or ArgumentException when OperatingSystem.IsWindows()
-            && !System.IO.Ports.SerialPort.GetPortNames().Contains(name, StringComparer.OrdinalIgnoreCase) => NoSuchPort(name),
+            && !SerialPort.GetPortNames().Contains(name, StringComparer.OrdinalIgnoreCase) => NoSuchPort(name),
         _ => new SerialPortException(name, $"{name}: cannot open: {error.Message}"),
     };
 
-    public static SerialPortException FromWin32(string name, int error) => error switch
+    public static SerialPortException FromErrno(string name, int errno) => errno switch
     {
-        Kernel32.ErrorFileNotFound or Kernel32.ErrorPathNotFound => NoSuchPort(name),
-
-        // Windows answers "access denied" when another program holds the port open.
-        Kernel32.ErrorAccessDenied or Kernel32.ErrorSharingViolation => InUse(name),
-        _ => new SerialPortException(name, $"{name}: cannot open: {Marshal.GetPInvokeErrorMessage(error)}"),
+        ErrNoEntry or ErrNoDeviceOrAddress or ErrNoDevice => NoSuchPort(name),
+        ErrBusy => InUse(name),
+        ErrAccess or ErrPermission => PermissionDenied(name),
+        ErrNotTty or ErrIsDirectory => NotASerialPort(name),
+        _ => new SerialPortException(name, $"{name}: cannot open: {Marshal.GetPInvokeErrorMessage(errno)}"),
     };
 }

@@ -1,5 +1,5 @@
-using System.Runtime.Versioning;
-using Microsoft.Win32;
+using System.Globalization;
+using System.IO.Ports;
 
 namespace LaserEngrave.Devices.Serial;
 
@@ -7,89 +7,18 @@ namespace LaserEngrave.Devices.Serial;
 /// <remarks>Ptys (socat pairs, the simulator) are not listed; any typed path is accepted where a port is asked for.</remarks>
 public static class SerialPortNames
 {
+    /// <summary><see cref="SerialPort.GetPortNames"/> without duplicates, in natural order, and on macOS only the call-out (cu.*) side.</summary>
     public static IReadOnlyList<string> List()
     {
-        IEnumerable<string> names;
-        if (OperatingSystem.IsWindows())
-        {
-            names = ListWindows();
-        }
-        else if (OperatingSystem.IsLinux())
-        {
-            names = ListLinux("/sys/class/tty");
-        }
-        else if (OperatingSystem.IsMacOS())
-        {
-            names = Directory.Exists("/dev") ? Directory.EnumerateFiles("/dev", "cu.*") : [];
-        }
-        else
-        {
-            names = [];
-        }
-
-        return names.Distinct(StringComparer.Ordinal).Order(NaturalOrder.Instance).ToArray();
+        // macOS lists each port twice: /dev/tty.* waits for carrier on open, /dev/cu.* is the one to dial out on.
+        var names = SerialPort.GetPortNames().Where(n => !OperatingSystem.IsMacOS() || !n.StartsWith("/dev/tty.", StringComparison.Ordinal));
+        return Sort(names);
     }
 
-    [SupportedOSPlatform("windows")]
-    private static List<string> ListWindows()
-    {
-        using var key = Registry.LocalMachine.OpenSubKey(@"HARDWARE\DEVICEMAP\SERIALCOMM");
-        var names = new List<string>();
-        foreach (var value in key?.GetValueNames() ?? [])
-        {
-            if (key!.GetValue(value) is string name)
-            {
-                names.Add(name);
-            }
-        }
+    /// <summary>Without duplicates, COM2 before COM10, /dev/ttyUSB2 before /dev/ttyUSB10.</summary>
+    internal static IReadOnlyList<string> Sort(IEnumerable<string> names) =>
+        names.Distinct(StringComparer.Ordinal).Order(NaturalOrder.Instance).ToArray();
 
-        return names;
-    }
-
-    /// <summary>Every tty under <paramref name="sysClassTty"/> backed by a device, as /dev/NAME.</summary>
-    internal static IEnumerable<string> ListLinux(string sysClassTty)
-    {
-        if (!Directory.Exists(sysClassTty))
-        {
-            yield break;
-        }
-
-        foreach (var dir in Directory.EnumerateDirectories(sysClassTty))
-        {
-            var name = Path.GetFileName(dir);
-            if (!Path.Exists(Path.Combine(dir, "device")))
-            {
-                continue;
-            }
-
-            // The 8250 driver registers ttyS0..ttyS31 whether or not a UART is there; type 0 means none.
-            var typePath = Path.Combine(dir, "type");
-            if (File.Exists(typePath) && ReadTrimmed(typePath) == "0")
-            {
-                continue;
-            }
-
-            yield return "/dev/" + name;
-        }
-    }
-
-    private static string? ReadTrimmed(string path)
-    {
-        try
-        {
-            return File.ReadAllText(path).Trim();
-        }
-        catch (IOException)
-        {
-            return null;
-        }
-        catch (UnauthorizedAccessException)
-        {
-            return null;
-        }
-    }
-
-    /// <summary>COM2 before COM10, /dev/ttyUSB2 before /dev/ttyUSB10.</summary>
     private sealed class NaturalOrder : IComparer<string>
     {
         public static readonly NaturalOrder Instance = new();
@@ -117,7 +46,7 @@ public static class SerialPortNames
 
             return end == name.Length || name.Length - end > 18
                 ? (name, -1)
-                : (name[..end], long.Parse(name.AsSpan(end), System.Globalization.CultureInfo.InvariantCulture));
+                : (name[..end], long.Parse(name.AsSpan(end), CultureInfo.InvariantCulture));
         }
     }
 }

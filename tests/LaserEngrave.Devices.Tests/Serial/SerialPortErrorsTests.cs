@@ -14,15 +14,6 @@ public class SerialPortErrorsTests
         Assert.Equal(message, SerialPortErrors.FromErrno("/dev/ttyUSB3", errno).Message);
     }
 
-    [Theory]
-    [InlineData(2, "COM3: no such port")]
-    [InlineData(5, "COM3: port is in use by another program")]
-    [InlineData(32, "COM3: port is in use by another program")]
-    public void FromWin32_KnownErrors_OneLineNamingThePort(int error, string message)
-    {
-        Assert.Equal(message, SerialPortErrors.FromWin32("COM3", error).Message);
-    }
-
     [Fact]
     public void FromErrno_OtherError_KeepsThePortAndTheSystemText()
     {
@@ -30,5 +21,35 @@ public class SerialPortErrorsTests
 
         Assert.StartsWith("/dev/ttyS0: cannot open: ", message, StringComparison.Ordinal);
         Assert.True(message.Length > "/dev/ttyS0: cannot open: ".Length);
+    }
+
+    [Fact]
+    public void FromOpenFailure_AccessDeniedAroundEbusy_SaysInUse()
+    {
+        // What System.IO.Ports throws on Linux when another user's program holds the tty with TIOCEXCL.
+        var error = new UnauthorizedAccessException("Access to the port '/dev/ttyUSB3' is denied.", new IOException("Device or resource busy", 16));
+
+        var result = SerialPortErrors.FromOpenFailure("/dev/ttyUSB3", error);
+
+        Assert.Equal("/dev/ttyUSB3: port is in use by another program", result.Message);
+        Assert.Equal("/dev/ttyUSB3", result.PortName);
+    }
+
+    [Fact]
+    public void FromOpenFailure_AccessDeniedAroundEacces_SaysPermissionDenied()
+    {
+        var error = new UnauthorizedAccessException("Access to the port '/dev/ttyUSB3' is denied.", new IOException("Permission denied", 13));
+
+        Assert.Equal(
+            "/dev/ttyUSB3: permission denied (on Linux add the user to the dialout group)",
+            SerialPortErrors.FromOpenFailure("/dev/ttyUSB3", error).Message);
+    }
+
+    [Fact]
+    public void FromOpenFailure_OtherFailure_NamesThePortAndKeepsTheText()
+    {
+        var result = SerialPortErrors.FromOpenFailure("/dev/ttyUSB3", new InvalidOperationException("The port is already open."));
+
+        Assert.Equal("/dev/ttyUSB3: cannot open: The port is already open.", result.Message);
     }
 }

@@ -2,29 +2,22 @@ using LaserEngrave.Devices.Serial;
 
 namespace LaserEngrave.Devices.Tests.Serial;
 
-public sealed class SerialPortNamesTests : IDisposable
+public sealed class SerialPortNamesTests
 {
-    private readonly string _sys = Path.Combine(Path.GetTempPath(), $"le-sys-{Guid.NewGuid():N}");
-
     [Fact]
-    public void ListLinux_SysClassTty_ListsTtysWithADeviceExceptEmptyUartSlots()
+    public void Sort_NumberedNames_NaturalOrderWithoutDuplicates()
     {
-        AddTty("ttyUSB0", withDevice: true, type: null);
-        AddTty("ttyACM1", withDevice: true, type: null);
-        AddTty("ttyS0", withDevice: true, type: "4");
-        AddTty("ttyS1", withDevice: true, type: "0");
-        AddTty("tty1", withDevice: false, type: null);
-        AddTty("pts", withDevice: false, type: null);
+        var names = SerialPortNames.Sort(["COM10", "/dev/ttyUSB10", "COM2", "/dev/ttyUSB2", "/dev/ttyACM0", "COM2", "/dev/ttyS0"]);
 
-        var names = SerialPortNames.ListLinux(_sys).Order(StringComparer.Ordinal).ToArray();
-
-        Assert.Equal(["/dev/ttyACM1", "/dev/ttyS0", "/dev/ttyUSB0"], names);
+        Assert.Equal(["/dev/ttyACM0", "/dev/ttyS0", "/dev/ttyUSB2", "/dev/ttyUSB10", "COM2", "COM10"], names);
     }
 
     [Fact]
-    public void ListLinux_NoSysfs_ListsNothing()
+    public void Sort_NameWithoutNumber_GoesBeforeTheNumberedOnesOfItsStem()
     {
-        Assert.Empty(SerialPortNames.ListLinux(Path.Combine(_sys, "absent")));
+        var names = SerialPortNames.Sort(["/dev/ttyUSB1", "/dev/ttyUSB"]);
+
+        Assert.Equal(["/dev/ttyUSB", "/dev/ttyUSB1"], names);
     }
 
     [Fact]
@@ -33,29 +26,6 @@ public sealed class SerialPortNamesTests : IDisposable
         var names = SerialPortNames.List();
 
         Assert.All(names, n => Assert.StartsWith("/dev/", n, StringComparison.Ordinal));
-        Assert.Equal(names.Count, names.Distinct().Count());
-    }
-
-    public void Dispose()
-    {
-        if (Directory.Exists(_sys))
-        {
-            Directory.Delete(_sys, recursive: true);
-        }
-    }
-
-    private void AddTty(string name, bool withDevice, string? type)
-    {
-        var dir = Directory.CreateDirectory(Path.Combine(_sys, name)).FullName;
-        if (withDevice)
-        {
-            Directory.CreateDirectory(Path.Combine(_sys, "devices", name));
-            File.CreateSymbolicLink(Path.Combine(dir, "device"), Path.Combine(_sys, "devices", name));
-        }
-
-        if (type is not null)
-        {
-            File.WriteAllText(Path.Combine(dir, "type"), type + "\n");
-        }
+        Assert.Equal(names, SerialPortNames.Sort(names));
     }
 }
