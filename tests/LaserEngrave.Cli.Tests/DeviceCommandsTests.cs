@@ -109,6 +109,16 @@ public sealed class DeviceCommandsTests : IAsyncLifetime
     }
 
     [Fact(Timeout = 60_000)]
+    public async Task Stage_PortHeldByTheSimulator_Exit1SaysInUse()
+    {
+        // The simulator process holds the A end; opening it again from here must be refused, not share the line.
+        var (exit, _, error) = await CliHarness.RunAsync("stage", "--port", _stage!.A, "identify");
+
+        Assert.Equal(1, exit);
+        Assert.Equal($"laserengrave: {_stage.A}: port is in use by another program", error.TrimEnd());
+    }
+
+    [Fact(Timeout = 60_000)]
     public async Task Ports_Lists_WithoutFailing()
     {
         var (exit, _, error) = await CliHarness.RunAsync("ports");
