@@ -28,7 +28,7 @@ internal static partial class MagickDecoder
 
         using var image = new MagickImage();
         string? corruption = null;
-        image.Warning += (_, e) => corruption ??= e.Exception is MagickCorruptImageWarningException ? Describe(e.Message) : null;
+        image.Warning += (_, e) => corruption ??= e.Exception is MagickCorruptImageWarningException && !IsHarmless(e.Message) ? Describe(e.Message) : null;
         reader.Position = 0;
         image.Read(reader.BaseStream, Settings(format));
         if (corruption is not null)
@@ -72,6 +72,12 @@ internal static partial class MagickDecoder
         // Many reasons are bare tags such as "InsufficientImageDataInFile".
         return text.Contains(' ', StringComparison.Ordinal) ? text : CamelCaseBoundary().Replace(text, " $1").ToLowerInvariant();
     }
+
+    /// <summary>
+    /// Bytes between JPEG segments that libjpeg skips: common in camera files, and no pixel is lost, so every viewer shows
+    /// them. Every other corrupt-data warning means rows were guessed.
+    /// </summary>
+    private static bool IsHarmless(string warning) => warning.Contains("extraneous bytes before marker", StringComparison.Ordinal);
 
     private static T Run<T>(ImageReader reader, ImageFormat format, Func<T> action)
     {

@@ -205,6 +205,37 @@ public class MagickDecoderTests
     }
 
     [Fact]
+    public void Load_AnimatedWebP_DecodesTheFirstFrameAndCountsThem()
+    {
+        using var frames = new MagickImageCollection
+        {
+            TestMagick.Draw((x, y) => TestMagick.InRectangle(x, y) ? (byte)0 : (byte)255),
+            TestMagick.Draw((_, _) => 255),
+            TestMagick.Draw((_, _) => 0),
+        };
+        var file = frames.ToByteArray(MagickFormat.WebP);
+
+        var image = ImageAssert.Load(file);
+
+        Assert.Equal(3, image.Info.FrameCount);
+        Assert.Equal("VP8X (extended)", image.Info.Compression);
+        ImageAssert.MaskEquals(TestMagick.InRectangle, MaskBuilder.Build(image, MaskOptions.Default));
+    }
+
+    [Fact]
+    public void Load_JpegWithExtraneousBytesBeforeAMarker_DecodesAsViewersDo()
+    {
+        // libjpeg warns and skips the bytes; no pixel is lost, so this warning alone does not refuse the file.
+        var file = TestMagick.BlackOnWhite(MagickFormat.Jpeg);
+        var scan = file.AsSpan().IndexOf((ReadOnlySpan<byte>)[0xFF, 0xDA]);
+        byte[] padded = [.. file[..scan], 0x12, 0x34, 0x56, .. file[scan..]];
+
+        var image = ImageAssert.Load(padded);
+
+        ImageAssert.MaskEquals(TestMagick.InRectangle, MaskBuilder.Build(image, MaskOptions.Default));
+    }
+
+    [Fact]
     public void Load_TiffTurnedAQuarter_IsShownTheWayAViewerShowsIt()
     {
         // Stored 64 x 32 with orientation 6 (RightTop): shown 32 wide, 64 tall, the stored top row on the right.
