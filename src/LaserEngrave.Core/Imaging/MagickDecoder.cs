@@ -1,4 +1,3 @@
-using System.Buffers.Binary;
 using System.Text.RegularExpressions;
 using ImageMagick;
 
@@ -7,10 +6,11 @@ namespace LaserEngrave.Core.Imaging;
 /// <summary>Decodes JPEG, TIFF and WebP through ImageMagick (Magick.NET) into a <see cref="LoadedImage"/>, within <see cref="ImageLimits"/>.</summary>
 /// <remarks>
 /// Every file is pinged (headers only) first and its size checked against <see cref="ImageLimits"/> before a pixel is
-/// read. ImageMagick's own resource limits are set from the same numbers, with no disk cache, so even a header that
-/// lies cannot make it allocate more or spill to a temporary file. The coder is forced to the format the signature
-/// showed, so no other ImageMagick coder or delegate program ever sees the file. A corrupt-image warning refuses the
-/// file: ImageMagick would fill a truncated JPEG's missing rows with grey, and grey can burn.
+/// read, counting ImageMagick's pixel cache and, for TIFF, its strip buffer (<see cref="TiffDirectory"/>).
+/// ImageMagick's own resource limits are set from the same numbers, with no disk cache, so even a header that lies
+/// cannot make it allocate more or spill to a temporary file. The coder is forced to the format the signature showed,
+/// so no other ImageMagick coder or delegate program ever sees the file. A corrupt-image warning refuses the file:
+/// ImageMagick would fill a truncated JPEG's missing rows with grey, and grey can burn.
 /// </remarks>
 internal static partial class MagickDecoder
 {
@@ -145,11 +145,7 @@ internal static partial class MagickDecoder
 
     private static Pinged Ping(ImageReader reader, ImageFormat format)
     {
-        if (format == ImageFormat.Tiff)
-        {
-            CheckTiffDirectory(reader);
-        }
-
+        var tiff = format == ImageFormat.Tiff ? TiffDirectory.Read(reader) : null;
         using var image = new MagickImage();
         reader.Position = 0;
         image.Ping(reader.BaseStream, Settings(format));
@@ -210,35 +206,7 @@ internal static partial class MagickDecoder
             HasAlpha: image.HasAlpha,
             Interlaced: image.Interlace is not (Interlace.NoInterlace or Interlace.Undefined),
             FrameCount: format == ImageFormat.Jpeg ? 1 : CountFrames(reader, format));
-        return new Pinged(info, cacheChannels);
-    }
-
-    /// <summary>
-    /// Refuses a TIFF whose first directory lies past the end, with the offsets, where libtiff would only say it cannot
-    /// read the directory count: writers often put the directory last, so a cut TIFF loses it first.
-    /// </summary>
-    private static void CheckTiffDirectory(ImageReader reader)
-    {
-        Span<byte> head = stackalloc byte[16];
-        reader.Position = 0;
-        var n = reader.ReadAtMost(head);
-        var bigEndian = head[0] == (byte)'M';
-        var bigTiff = n >= 4 && head[bigEndian ? 3 : 2] == 43;
-        var offsetBytes = bigTiff ? 8 : 4;
-        var offsetAt = bigTiff ? 8 : 4;
-        if (n < offsetAt + offsetBytes)
-        {
-            throw reader.Fail($"the file is truncated: a TIFF header needs {offsetAt + offsetBytes} bytes, but the file has {n}");
-        }
-
-        var field = head.Slice(offsetAt, offsetBytes);
-        var offset = bigTiff
-            ? (bigEndian ? BinaryPrimitives.ReadUInt64BigEndian(field) : BinaryPrimitives.ReadUInt64LittleEndian(field))
-            : (bigEndian ? BinaryPrimitives.ReadUInt32BigEndian(field) : BinaryPrimitives.ReadUInt32LittleEndian(field));
-        if (offset >= (ulong)reader.Length)
-        {
-            throw reader.Fail($"the file is truncated: its first TIFF directory is at offset {offset}, but the file ends after {reader.Length} bytes");
-        }
+        return new Pinged(info, cacheChannels, tiff?.BufferBytes(image.Width, image.Height) ?? 0);
     }
 
     /// <summary>Pages (TIFF) or frames (WebP) up to <see cref="ImageInfo.MaxFramesCounted"/>; null when a later one cannot be read.</summary>
@@ -287,12 +255,17 @@ internal static partial class MagickDecoder
 
     private static void CheckCache(ImageReader reader, ImageFormat format, Pinged pinged)
     {
-        var bytes = (long)pinged.Info.Width * pinged.Info.Height * pinged.CacheChannels;
-        if (bytes > ImageLimits.MaxDecodedBytes)
+        var bytes = ((long)pinged.Info.Width * pinged.Info.Height * pinged.CacheChannels) + pinged.ReadBufferBytes;
+        if (bytes <= ImageLimits.MaxDecodedBytes)
         {
-            throw reader.Fail(
-                $"a {pinged.Info.Width} x {pinged.Info.Height} {Name(format)} image needs {bytes >> 20} MB to decode, more than the {ImageLimits.MaxDecodedBytes >> 20} MB limit");
+            return;
         }
+
+        var advice = pinged.ReadBufferBytes > ImageLimits.MaxDecodedBytes / 4
+            ? $" (its strips are read {pinged.ReadBufferBytes >> 20} MB at a time); save it with smaller strips, or as a 1-bit BMP"
+            : string.Empty;
+        throw reader.Fail(
+            $"a {pinged.Info.Width} x {pinged.Info.Height} {Name(format)} image needs {bytes >> 20} MB to decode, more than the {ImageLimits.MaxDecodedBytes >> 20} MB limit{advice}");
     }
 
     /// <summary>1-bit grey (bilevel TIFF) stays 1 bit per pixel, so a 20000 x 20000 page takes 50 MB.</summary>
@@ -418,6 +391,6 @@ internal static partial class MagickDecoder
     [GeneratedRegex(@"(?<=[a-z])([A-Z])")]
     private static partial Regex CamelCaseBoundary();
 
-    /// <summary>What a ping found, and the bytes per pixel ImageMagick's pixel cache will need to decode it.</summary>
-    private sealed record Pinged(ImageInfo Info, int CacheChannels);
+    /// <summary>What a ping found, the bytes per pixel of ImageMagick's pixel cache, and the bytes of its TIFF read buffer.</summary>
+    private sealed record Pinged(ImageInfo Info, int CacheChannels, long ReadBufferBytes);
 }

@@ -396,6 +396,33 @@ public class MagickDecoderTests
     }
 
     [Fact]
+    public void Load_TinyTiffClaimingOneHugeStrip_RefusedBeforeImageMagickAllocatesTheStrip()
+    {
+        // 16000 x 16000 grey fits the pixel cache limit, but ImageMagick would read the one 16000-row strip into a buffer of 976 MB.
+        var tiny = TestMagick.Grey((_, _) => 0, MagickFormat.Tiff, image => image.ColorType = ColorType.Grayscale);
+        var file = TestMagick.WithTiffSize(tiny, 16000, 16000, rowsPerStrip: 16000);
+
+        var ex = ImageAssert.Refused(file);
+
+        Assert.Equal(
+            "test-image: a 16000 x 16000 TIFF image needs 1464 MB to decode, more than the 1024 MB limit (its strips are read 976 MB at a time); save it with smaller strips, or as a 1-bit BMP",
+            ex.Message);
+    }
+
+    [Fact]
+    public void Load_TiffClaimingBigButThinStrips_GoesToImageMagickAndIsRefusedThere()
+    {
+        // A big claim with 16-row strips passes the size check; the missing strips are then ImageMagick's to find.
+        var tiny = TestMagick.Grey((_, _) => 0, MagickFormat.Tiff, image => image.ColorType = ColorType.Grayscale);
+        var file = TestMagick.WithTiffSize(tiny, 4000, 4000, rowsPerStrip: 16);
+
+        var ex = ImageAssert.Refused(file);
+
+        Assert.StartsWith("test-image: the TIFF ", ex.Message, StringComparison.Ordinal);
+        Assert.IsAssignableFrom<MagickException>(ex.InnerException);
+    }
+
+    [Fact]
     public void Load_AnyMagickFormat_LeavesImageMagickLimitedToOurLimits()
     {
         _ = ImageAssert.Load(TestMagick.BlackOnWhite(MagickFormat.WebP));

@@ -81,8 +81,8 @@ internal static class TestMagick
         throw new InvalidOperationException("no SOF0 or SOF2 marker in the JPEG");
     }
 
-    /// <summary>Rewrites the first IFD of a little-endian TIFF to claim <paramref name="width"/> x <paramref name="height"/> (tags 256, 257 as LONG).</summary>
-    public static byte[] WithTiffSize(byte[] tiff, uint width, uint height)
+    /// <summary>Rewrites the first IFD of a little-endian TIFF to claim <paramref name="width"/> x <paramref name="height"/> (tags 256, 257 as LONG), and optionally its rows per strip (278).</summary>
+    public static byte[] WithTiffSize(byte[] tiff, uint width, uint height, uint? rowsPerStrip = null)
     {
         var patched = (byte[])tiff.Clone();
         if (patched[0] != (byte)'I')
@@ -97,12 +97,12 @@ internal static class TestMagick
         {
             var entry = patched.AsSpan(ifd + 2 + (e * 12), 12);
             var tag = BinaryPrimitives.ReadUInt16LittleEndian(entry);
-            if (tag is 256 or 257)
+            if (tag is 256 or 257 || (tag == 278 && rowsPerStrip is not null))
             {
                 BinaryPrimitives.WriteUInt16LittleEndian(entry[2..], 4);
                 BinaryPrimitives.WriteUInt32LittleEndian(entry[4..], 1);
-                BinaryPrimitives.WriteUInt32LittleEndian(entry[8..], tag == 256 ? width : height);
-                found++;
+                BinaryPrimitives.WriteUInt32LittleEndian(entry[8..], tag switch { 256 => width, 257 => height, _ => rowsPerStrip!.Value });
+                found += tag == 278 ? 0 : 1;
             }
         }
 
