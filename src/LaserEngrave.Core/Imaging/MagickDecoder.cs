@@ -6,7 +6,8 @@ namespace LaserEngrave.Core.Imaging;
 /// <summary>Decodes JPEG, TIFF and WebP through ImageMagick (Magick.NET) into a <see cref="LoadedImage"/>, within <see cref="ImageLimits"/>.</summary>
 /// <remarks>
 /// Every file is pinged (headers only) first and its size checked against <see cref="ImageLimits"/> before a pixel is
-/// read, counting ImageMagick's pixel cache and, for TIFF, its strip buffer (<see cref="TiffDirectory"/>).
+/// read, counting ImageMagick's pixel cache and, for TIFF, its strip buffer (<see cref="TiffDirectory"/>); a JPEG
+/// must also be long enough for the picture it claims (<see cref="JpegFrame"/>).
 /// ImageMagick's own resource limits are set from the same numbers, with no disk cache, so even a header that lies
 /// cannot make it allocate more or spill to a temporary file. The coder is forced to the format the signature showed,
 /// so no other ImageMagick coder or delegate program ever sees the file. A corrupt-image warning refuses the file:
@@ -25,6 +26,11 @@ internal static partial class MagickDecoder
     {
         var pinged = Ping(reader, format);
         CheckCache(reader, format, pinged);
+        if (format == ImageFormat.Jpeg && JpegFrame.Read(reader) is { IsHuffmanDct: true } frame && frame.MinimumScanBytes > reader.Length)
+        {
+            throw reader.Fail(
+                $"the file is truncated: a {frame.Width} x {frame.Height} JPEG needs at least {frame.MinimumScanBytes} bytes of image data, but the file has {reader.Length}");
+        }
 
         using var image = new MagickImage();
         string? corruption = null;

@@ -378,6 +378,28 @@ public class MagickDecoderTests
     }
 
     [Theory]
+    [InlineData(false)]
+    [InlineData(true)]
+    public void Load_TinyJpegClaimingBigPicture_RefusedBeforeImageMagickFillsIt(bool progressive)
+    {
+        // 16000 x 16000 grey fits the limits, but 4 million 8 x 8 blocks need at least 500,000 bytes.
+        var small = TestMagick.Grey((_, _) => 128, MagickFormat.Jpeg, image =>
+        {
+            image.ColorType = ColorType.Grayscale;
+            image.Settings.Interlace = progressive ? Interlace.Plane : Interlace.NoInterlace;
+        });
+        var file = TestMagick.WithJpegSize(small, 16000, 16000);
+        var before = GC.GetAllocatedBytesForCurrentThread();
+
+        var ex = ImageAssert.Refused(file);
+
+        var allocated = GC.GetAllocatedBytesForCurrentThread() - before;
+        Assert.Equal($"test-image: the file is truncated: a 16000 x 16000 JPEG needs at least 500000 bytes of image data, but the file has {file.Length}", ex.Message);
+        Assert.True(allocated < 1 << 20, $"refusing the file allocated {allocated} bytes");
+        Assert.Equal((16000, 16000), (ImageAssert.Info(file).Width, ImageAssert.Info(file).Height));
+    }
+
+    [Theory]
     [InlineData(1_000_000u, 1_000_000u, "larger than the limit")]
     [InlineData(30_000u, 30_000u, "MB limit")]
     [InlineData(0u, 10u, "TIFF")]
