@@ -33,6 +33,11 @@ internal static class InfoCommand
             output.WriteLine(string.Create(c, $"Transparency:    {(info.HasAlpha ? "yes" : "no")}"));
             output.WriteLine(string.Create(c, $"Resolution:      {(info.DpiX is { } x ? $"{x:0.##} x {info.DpiY ?? x:0.##} dpi" : "not stated")}"));
             output.WriteLine(string.Create(c, $"File size:       {info.FileSizeBytes} bytes"));
+            if (info.FrameCount is { } frames)
+            {
+                output.WriteLine(string.Create(c, $"Frames:          {frames}{(frames > 1 ? " (only the first is used)" : string.Empty)}"));
+            }
+
             return 0;
         });
         return command;

@@ -18,6 +18,13 @@ internal static class MaskCommand
         {
             var options = mask.Bind(result);
             var bits = MaskBuilder.FromFile(result.GetValue(image)!, options, out var info);
+            if (info.HasMoreFrames)
+            {
+                result.InvocationConfiguration.Error.WriteLine(string.Create(
+                    CultureInfo.InvariantCulture,
+                    $"warning: {info.Path} holds {info.FrameCount} pages or frames; only the first is used"));
+            }
+
             var path = result.GetValue(output)!;
             PngWriter.WriteMask(path, bits);
             var burn = bits.CountSet();

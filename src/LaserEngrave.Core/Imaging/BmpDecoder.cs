@@ -16,10 +16,13 @@ internal static class BmpDecoder
         var info = Info(reader, header);
         if (header.Compression == BmpCompression.Png)
         {
-            var png = PngDecoder.Decode(reader, header.PixelOffset);
-            return png.Layout == PixelLayout.Indexed
-                ? LoadedImage.Indexed(info, png.Width, png.Height, png.BitsPerIndex, png.Palette.ToArray(), png.PixelData)
-                : LoadedImage.Rgba(info, png.Width, png.Height, png.PixelData);
+            return Rewrap(info, PngDecoder.Decode(reader, header.PixelOffset));
+        }
+
+        if (header.Compression == BmpCompression.Jpeg)
+        {
+            using var jpeg = EmbeddedJpeg(reader, header);
+            return Rewrap(info, MagickDecoder.Decode(jpeg, ImageFormat.Jpeg));
         }
 
         if (header.IsRle)
@@ -88,22 +91,46 @@ internal static class BmpDecoder
     private static ImageInfo Info(ImageReader reader, BmpHeader header)
     {
         var info = header.ToInfo(reader.Path, reader.Length);
-        if (header.Compression != BmpCompression.Png)
+        ImageInfo embedded;
+        switch (header.Compression)
         {
-            return info;
+            case BmpCompression.Png:
+                embedded = PngDecoder.ReadInfo(reader, header.PixelOffset);
+                break;
+            case BmpCompression.Jpeg:
+                using (var jpeg = EmbeddedJpeg(reader, header))
+                {
+                    embedded = MagickDecoder.ReadInfo(jpeg, ImageFormat.Jpeg);
+                }
+
+                break;
+            default:
+                return info;
         }
 
-        var png = PngDecoder.ReadInfo(reader, header.PixelOffset);
         return info with
         {
-            BitsPerPixel = png.BitsPerPixel,
-            PaletteSize = png.PaletteSize,
-            Width = png.Width,
-            Height = png.Height,
-            HasAlpha = png.HasAlpha,
-            Interlaced = png.Interlaced,
+            BitsPerPixel = embedded.BitsPerPixel,
+            PaletteSize = embedded.PaletteSize,
+            Width = embedded.Width,
+            Height = embedded.Height,
+            HasAlpha = embedded.HasAlpha,
+            Interlaced = embedded.Interlaced,
             RowOrder = RowOrder.TopDown,
         };
+    }
+
+    /// <summary>A BMP's embedded PNG or JPEG decoded as a whole image, given the BMP's own metadata.</summary>
+    private static LoadedImage Rewrap(ImageInfo info, LoadedImage inner) => inner.Layout == PixelLayout.Indexed
+        ? LoadedImage.Indexed(info, inner.Width, inner.Height, inner.BitsPerIndex, inner.Palette.ToArray(), inner.PixelData)
+        : LoadedImage.Rgba(info, inner.Width, inner.Height, inner.PixelData);
+
+    /// <summary>The JPEG stream after the BMP headers, as its own source (ImageMagick reads a whole stream, not a part).</summary>
+    private static ImageReader EmbeddedJpeg(ImageReader reader, BmpHeader header)
+    {
+        reader.Position = header.PixelOffset;
+        var data = reader.ReadBlock(reader.Length - header.PixelOffset, "the embedded JPEG image");
+        return new ImageReader(new MemoryStream(data, writable: false), reader.Path, ownsStream: true);
     }
 
     /// <summary>Refuses a file too short for its rows before anything is allocated for them.</summary>

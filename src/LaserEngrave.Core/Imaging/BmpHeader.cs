@@ -218,7 +218,7 @@ internal sealed record BmpHeader
 
         var paletteCount = 0;
         var declared = (long)colorsUsed;
-        if (bits <= 8 && compression != BmpCompression.Png)
+        if (bits <= 8 && compression is not (BmpCompression.Png or BmpCompression.Jpeg))
         {
             var maxColours = 1 << bits;
             if (declared == 0 || headerSize == 12)
@@ -286,13 +286,11 @@ internal sealed record BmpHeader
     {
         switch (compression)
         {
-            case BmpCompression.Jpeg:
-                throw reader.Fail("BMP with an embedded JPEG image: no decoder for that format is available in this build; save it as PNG or BMP and load that");
             case BmpCompression.Huffman1D:
                 throw reader.Fail("OS/2 BMP with Huffman 1D compression is not supported; save it as an uncompressed BMP or PNG");
             case BmpCompression.Cmyk:
                 throw reader.Fail("CMYK BMP is not supported; save it as an RGB BMP or PNG");
-            case BmpCompression.Png:
+            case BmpCompression.Png or BmpCompression.Jpeg:
                 return;
         }
 

@@ -29,7 +29,7 @@ internal static class FormatSniffer
             throw reader.Fail($"{unsupported} image: no decoder for that format is available in this build; save it as PNG or BMP and load that");
         }
 
-        throw reader.Fail($"not a BMP, PNG, GIF or Netpbm image (it starts with bytes {Convert.ToHexString(head[..Math.Min(n, 8)])})");
+        throw reader.Fail($"not a BMP, PNG, GIF, JPEG, TIFF, WebP or Netpbm image (it starts with bytes {Convert.ToHexString(head[..Math.Min(n, 8)])})");
     }
 
     /// <summary>The format, or null with <paramref name="unsupported"/> naming a recognised format that has no decoder.</summary>
@@ -49,6 +49,21 @@ internal static class FormatSniffer
         if (head.StartsWith("GIF87a"u8) || head.StartsWith("GIF89a"u8))
         {
             return ImageFormat.Gif;
+        }
+
+        if (head.StartsWith((ReadOnlySpan<byte>)[0xFF, 0xD8, 0xFF]))
+        {
+            return ImageFormat.Jpeg;
+        }
+
+        if (head.StartsWith("II*\0"u8) || head.StartsWith("MM\0*"u8) || head.StartsWith("II+\0"u8) || head.StartsWith("MM\0+"u8))
+        {
+            return ImageFormat.Tiff;
+        }
+
+        if (head.Length >= 12 && head.StartsWith("RIFF"u8) && head.Slice(8, 4).SequenceEqual("WEBP"u8))
+        {
+            return ImageFormat.WebP;
         }
 
         if (head.Length >= 3 && head[0] == (byte)'P' && IsNetpbmSpace(head[2]))
@@ -76,21 +91,6 @@ internal static class FormatSniffer
 
     private static string? DetectUnsupported(ReadOnlySpan<byte> head)
     {
-        if (head.StartsWith((ReadOnlySpan<byte>)[0xFF, 0xD8, 0xFF]))
-        {
-            return "JPEG";
-        }
-
-        if (head.StartsWith("II*\0"u8) || head.StartsWith("MM\0*"u8) || head.StartsWith("II+\0"u8) || head.StartsWith("MM\0+"u8))
-        {
-            return "TIFF";
-        }
-
-        if (head.Length >= 12 && head.StartsWith("RIFF"u8) && head.Slice(8, 4).SequenceEqual("WEBP"u8))
-        {
-            return "WebP";
-        }
-
         if (head.StartsWith("BA"u8) || head.StartsWith("CI"u8) || head.StartsWith("CP"u8) || head.StartsWith("IC"u8) || head.StartsWith("PT"u8))
         {
             return "OS/2 bitmap array, icon or pointer";

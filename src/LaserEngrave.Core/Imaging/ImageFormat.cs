@@ -15,4 +15,13 @@ public enum ImageFormat
 
     /// <summary>Netpbm pixmap (P3 ASCII, P6 binary).</summary>
     Ppm,
+
+    /// <summary>JPEG (JFIF, EXIF), decoded through ImageMagick.</summary>
+    Jpeg,
+
+    /// <summary>TIFF and BigTIFF, first page only, decoded through ImageMagick.</summary>
+    Tiff,
+
+    /// <summary>WebP, lossy or lossless, first frame only, decoded through ImageMagick.</summary>
+    WebP,
 }

@@ -1,9 +1,10 @@
 namespace LaserEngrave.Core.Imaging;
 
-/// <summary>Reads image headers and decodes images (BMP, PNG, GIF, Netpbm), refusing bad files with one clear line.</summary>
+/// <summary>Reads image headers and decodes images (BMP, PNG, GIF, Netpbm, JPEG, TIFF, WebP), refusing bad files with one clear line.</summary>
 /// <remarks>
-/// The decoders are our own because SixLabors.ImageSharp is not on this machine's package source. JPEG, TIFF and WebP
-/// are recognised and refused with a message saying to save the image as PNG or BMP.
+/// BMP, PNG, GIF and Netpbm use our own decoders: SixLabors.ImageSharp is not on this machine's package source, and ours
+/// match the whole BMP suite where ImageMagick does not (docs/dependencies.md). JPEG, TIFF and WebP go through
+/// ImageMagick (<see cref="MagickDecoder"/>), under the same size limits.
 /// </remarks>
 public static class ImageLoader
 {
@@ -14,7 +15,7 @@ public static class ImageLoader
     /// <summary>What a seekable stream's headers say; <paramref name="name"/> names it in errors.</summary>
     public static ImageInfo ReadInfo(Stream stream, string name) => WithStream(stream, name, ReadInfo);
 
-    /// <summary>Decodes the whole image (for GIF, its first frame).</summary>
+    /// <summary>Decodes the whole image (for GIF and WebP, its first frame; for TIFF, its first page).</summary>
     /// <exception cref="ImageLoadException">The file cannot be read or decoded.</exception>
     public static LoadedImage Load(string path) => WithFile(path, Decode);
 
@@ -26,7 +27,8 @@ public static class ImageLoader
         ImageFormat.Bmp => BmpDecoder.ReadInfo(reader),
         ImageFormat.Png => PngDecoder.ReadInfo(reader),
         ImageFormat.Gif => GifDecoder.ReadInfo(reader),
-        _ => NetpbmDecoder.ReadInfo(reader),
+        ImageFormat.Pbm or ImageFormat.Pgm or ImageFormat.Ppm => NetpbmDecoder.ReadInfo(reader),
+        var other => MagickDecoder.ReadInfo(reader, other),
     };
 
     internal static LoadedImage Decode(ImageReader reader) => FormatSniffer.Detect(reader) switch
@@ -34,7 +36,8 @@ public static class ImageLoader
         ImageFormat.Bmp => BmpDecoder.Decode(reader),
         ImageFormat.Png => PngDecoder.Decode(reader),
         ImageFormat.Gif => GifDecoder.Decode(reader),
-        _ => NetpbmDecoder.Decode(reader),
+        ImageFormat.Pbm or ImageFormat.Pgm or ImageFormat.Ppm => NetpbmDecoder.Decode(reader),
+        var other => MagickDecoder.Decode(reader, other),
     };
 
     /// <summary>Opens <paramref name="path"/>, runs <paramref name="action"/>, and turns every I/O failure into an <see cref="ImageLoadException"/>.</summary>

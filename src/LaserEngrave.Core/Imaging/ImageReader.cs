@@ -32,6 +32,9 @@ internal sealed class ImageReader : IDisposable
 
     public long Remaining => Length - _stream.Position;
 
+    /// <summary>The underlying seekable stream, for a library decoder that reads it itself (ImageMagick).</summary>
+    public Stream BaseStream => _stream;
+
     public static ImageReader Open(string path)
     {
         var stream = new FileStream(path, FileMode.Open, FileAccess.Read, FileShare.Read, bufferSize: 1 << 16, FileOptions.SequentialScan);

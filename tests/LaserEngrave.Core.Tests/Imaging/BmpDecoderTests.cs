@@ -253,13 +253,27 @@ public class BmpDecoderTests
     }
 
     [Fact]
-    public void Load_EmbeddedJpeg_IsRefusedWithAdvice()
+    public void Load_EmbeddedJpegCut_IsRefusedNamingTheJpeg()
     {
         var file = new TestBmp { Width = 2, Height = 2, BitsPerPixel = 0, Compression = 4, PixelData = [0xFF, 0xD8, 0xFF, 0xE0] }.ToBytes();
 
         var ex = ImageAssert.Refused(file, "photo.bmp");
 
-        Assert.Equal("photo.bmp: BMP with an embedded JPEG image: no decoder for that format is available in this build; save it as PNG or BMP and load that", ex.Message);
+        Assert.StartsWith("photo.bmp: the JPEG data is corrupt or truncated (", ex.Message, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void Load_EmbeddedJpeg_DecodesTheJpegWithTheBmpHeaderFacts()
+    {
+        var jpeg = TestMagick.BlackOnWhite(ImageMagick.MagickFormat.Jpeg);
+        var file = new TestBmp { Width = TestMagick.Width, Height = TestMagick.Height, BitsPerPixel = 0, Compression = 4, PixelData = jpeg }.ToBytes();
+
+        var image = ImageAssert.Load(file, "photo.bmp");
+
+        Assert.Equal((ImageFormat.Bmp, "JPEG"), (image.Info.Format, image.Info.Compression));
+        Assert.Equal((TestMagick.Width, TestMagick.Height), (image.Info.Width, image.Info.Height));
+        Assert.Equal(image.Info, ImageAssert.Info(file, "photo.bmp"));
+        ImageAssert.MaskEquals(TestMagick.InRectangle, MaskBuilder.Build(image, MaskOptions.Default));
     }
 
     [Fact]

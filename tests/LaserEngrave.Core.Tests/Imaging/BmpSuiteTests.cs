@@ -166,7 +166,7 @@ public class BmpSuiteTests
     [InlineData("b/badrle.bmp", "RLE")]
     [InlineData("b/badrle4bis.bmp", "RLE")]
     [InlineData("b/pal8badindex.bmp", "colour index")]
-    [InlineData("q/rgb24jpeg.bmp", "save it as PNG or BMP")]
+    [InlineData("q/rgba64.bmp", "64-bit")]
     public void Load_KnownBadFile_NamesTheProblem(string file, string problem)
     {
         var ex = Assert.Throws<ImageLoadException>(() => ImageLoader.Load(BmpSuite.PathOf(file)));
