@@ -16,7 +16,9 @@ namespace LaserEngrave.Simulator.Timing;
 /// still running and no <see cref="Hold"/> taken during the quiet period, and no work item waiting in the thread pool
 /// at its end. The last condition keeps the clock still while a continuation (a reply being parsed, the next command
 /// being sent) is queued but has not run yet; holds cover code that is running but slow (a loaded machine, the JIT),
-/// which would otherwise let the clock jump past its own next step and fire a spurious timeout. A callback or hold
+/// which would otherwise let the clock jump past its own next step and fire a spurious timeout. On Linux, no other thread
+/// of the process may be running or waiting for a CPU either (<see cref="RunnableThreads"/>): that covers a host thread
+/// descheduled between reading a reply and sending its next command, which no hold marks. A callback or hold
 /// older than <see cref="BlockedCallbackLimit"/> stops holding the clock, so nothing can freeze time for good.
 /// </para>
 /// </remarks>
@@ -253,6 +255,19 @@ public sealed class VirtualTimeProvider : TimeProvider, IDisposable
 
     private void Advance()
     {
+        RunnableThreads.IgnoreCurrentThread();
+        try
+        {
+            AdvanceUntilDisposed();
+        }
+        finally
+        {
+            RunnableThreads.ForgetCurrentThread();
+        }
+    }
+
+    private void AdvanceUntilDisposed()
+    {
         while (true)
         {
             long seen;
@@ -275,6 +290,8 @@ public sealed class VirtualTimeProvider : TimeProvider, IDisposable
 
             Thread.Sleep(QuietPeriod);
 
+            // Looked at outside the lock: reading /proc must not keep other threads from arming timers.
+            var runnable = RunnableThreads.AnyOtherRunnable();
             lock (_gate)
             {
                 if (_disposed)
@@ -282,7 +299,7 @@ public sealed class VirtualTimeProvider : TimeProvider, IDisposable
                     return;
                 }
 
-                if (Interlocked.Read(ref _activity) != seen || CallbacksHoldClock() || ThreadPool.PendingWorkItemCount > 0)
+                if (Interlocked.Read(ref _activity) != seen || CallbacksHoldClock() || ThreadPool.PendingWorkItemCount > 0 || runnable)
                 {
                     continue;
                 }
