@@ -280,7 +280,7 @@ public sealed class RunExecutor
         string gateIdentity;
         try
         {
-            gateIdentity = await Gate.IdentifyAsync(token).ConfigureAwait(false);
+            gateIdentity = await OnceMoreAfterTimeoutAsync(() => Gate.IdentifyAsync(token)).ConfigureAwait(false);
             await Gate.OffAsync(token).ConfigureAwait(false);
             await Gate.SetWatchdogAsync(_profile.Gate.WatchdogMs, token).ConfigureAwait(false);
         }
@@ -323,7 +323,7 @@ public sealed class RunExecutor
         AxisIdentity identity;
         try
         {
-            identity = await axis.IdentifyAsync(token).ConfigureAwait(false);
+            identity = await OnceMoreAfterTimeoutAsync(() => axis.IdentifyAsync(token)).ConfigureAwait(false);
             if (identity.AutoReplyDisabled)
             {
                 if (!Options.FixAutoReply || axis is not ZaberBinaryDevice zaber)
@@ -342,6 +342,19 @@ public sealed class RunExecutor
         }
 
         return identity;
+    }
+
+    /// <summary>Asks twice before giving up: the first line after a port opens can be lost (a device still waking, noise on the line).</summary>
+    private static async Task<T> OnceMoreAfterTimeoutAsync<T>(Func<Task<T>> ask)
+    {
+        try
+        {
+            return await ask().ConfigureAwait(false);
+        }
+        catch (DeviceTimeoutException)
+        {
+            return await ask().ConfigureAwait(false);
+        }
     }
 
     /// <summary>Refuses a job that leaves the travel or asks for speeds the stage cannot run.</summary>
