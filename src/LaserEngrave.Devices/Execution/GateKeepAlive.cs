@@ -16,6 +16,7 @@ internal sealed class GateKeepAlive : IAsyncDisposable
     private readonly CancellationTokenSource _stop = new();
     private readonly Task _loop;
     private volatile bool _active;
+    private long _quietFrom = long.MaxValue;
 
     /// <param name="gate">The gate to feed.</param>
     /// <param name="period">Time between keepalives; zero or less disables the loop (watchdog off).</param>
@@ -35,6 +36,16 @@ internal sealed class GateKeepAlive : IAsyncDisposable
     {
         get => _active;
         set => _active = value;
+    }
+
+    /// <summary>
+    /// Clock timestamp from which no keepalive is started (<see cref="long.MaxValue"/> = none): set to just before a burn
+    /// run ends, so the switch-off never waits behind a keepalive's reply while the laser stands still.
+    /// </summary>
+    public long QuietFrom
+    {
+        get => Interlocked.Read(ref _quietFrom);
+        set => Interlocked.Exchange(ref _quietFrom, value);
     }
 
     public Exception? Fault { get; private set; }
@@ -64,7 +75,7 @@ internal sealed class GateKeepAlive : IAsyncDisposable
         while (!token.IsCancellationRequested)
         {
             await Task.Delay(_period, _time, token).ConfigureAwait(false);
-            if (!_active)
+            if (!_active || _time.GetTimestamp() >= QuietFrom)
             {
                 continue;
             }

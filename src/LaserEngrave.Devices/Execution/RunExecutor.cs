@@ -1,6 +1,7 @@
 using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Motion;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Zaber;
@@ -17,6 +18,9 @@ namespace LaserEngrave.Devices.Execution;
 public sealed class RunExecutor
 {
     private const string AbortedMessage = "aborted by the operator";
+
+    // Longer than a keepalive's round trip on the gate's line (PING and OK PONG: 13.5 ms at 9600 baud), with a margin.
+    private const double KeepAliveQuietSeconds = 0.05;
 
     private readonly Lock _lock = new();
 
@@ -562,6 +566,14 @@ public sealed class RunExecutor
         if (burn && !_laserOn)
         {
             await SwitchLaserAsync(on: true).ConfigureAwait(false);
+        }
+
+        if (burn)
+        {
+            // No keepalive in the last moments of the run: a switch-off queued behind one would leave the laser standing on.
+            var motion = new TrapezoidProfile(move.LengthX, StageUnits.SpeedMicrostepsPerS(speedData), StageUnits.AccelerationMicrostepsPerS2(_accelerationData));
+            var quietAfterSeconds = Math.Max(0, motion.Duration - KeepAliveQuietSeconds);
+            _keepAlive!.QuietFrom = TimeProvider.GetTimestamp() + (long)(quietAfterSeconds * TimeProvider.TimestampFrequency);
         }
 
         await MoveAxesAsync(move.LengthX != 0 ? move.X1 : null, move.LengthY != 0 ? move.Y1 : null, token).ConfigureAwait(false);
