@@ -83,6 +83,38 @@ public class RunControlTests
     }
 
     [Fact(Timeout = 60_000)]
+    public async Task Abort_WhilePaused_EndsAbortedWithoutAnotherMove()
+    {
+        await using var run = SimulatedRun.Create();
+        var job = TestJobs.FromMask(TestJobs.RandomMask(seed: 4, 16, 8), 1.2, new PlanOptions());
+        var executor = run.Executor(job);
+        var moves = 0;
+        var movesWhenPaused = -1;
+        executor.MoveCompleted += (_, _) =>
+        {
+            if (++moves == 15)
+            {
+                executor.Pause();
+            }
+        };
+        executor.StateChanged += (_, e) =>
+        {
+            if (e.State == RunState.Paused)
+            {
+                movesWhenPaused = moves;
+                _ = Task.Delay(TimeSpan.FromSeconds(2), run.Time).ContinueWith(_ => executor.Abort(), TaskScheduler.Default);
+            }
+        };
+
+        var result = await executor.RunAsync(TestContext.Current.CancellationToken);
+
+        Assert.Equal(RunOutcome.Aborted, result.Outcome);
+        Assert.Equal(movesWhenPaused, moves);
+        Assert.False(run.Machine.Gate.IsFiring);
+        Assert.Equal(movesWhenPaused, Assert.IsType<RunStopPoint>(result.StopPoint).MoveIndex);
+    }
+
+    [Fact(Timeout = 60_000)]
     public async Task Abort_BeforePreflightEnds_EndsAbortedWithTheLaserOff()
     {
         await using var run = SimulatedRun.Create();
