@@ -42,7 +42,7 @@ public class ExecutionFigures
             simulated[(sample, strategy)] = seconds;
             lines.Add(string.Create(
                 CultureInfo.InvariantCulture,
-                $"| {sample} | {strategy} | {job.Statistics.Moves} | {job.Statistics.BurnRuns} | {result.EstimatedSeconds:0.0} | {seconds:0.0} | {difference:+0.00%;-0.00%} | {result.Duration.TotalSeconds:0.0} | {report.Burned.ContentEquals(job.Mask)} |"));
+                $"| {sample} | {strategy} | {job.Statistics.Moves} | {job.Statistics.BurnRuns} | {result.EstimatedSeconds:0.0} | {seconds:0.0} | {Percent(difference)} | {result.Duration.TotalSeconds:0.0} | {report.Burned.ContentEquals(job.Mask)} |"));
             Assert.Equal(RunOutcome.Completed, result.Outcome);
             Assert.True(report.Burned.ContentEquals(job.Mask), $"{sample} {strategy}: burned differs from the mask");
             Assert.Equal(0, report.LaserOnTravelCount);
@@ -58,5 +58,11 @@ public class ExecutionFigures
 
         Assert.True(speedup >= 3, $"optimized is only {speedup:0.00}x faster than paper");
         Assert.True(worst <= 0.05, $"the estimate is {worst:0.00%} off the simulated time");
+    }
+
+    private static string Percent(double fraction)
+    {
+        var rounded = Math.Round(fraction * 100, 2);
+        return string.Create(CultureInfo.InvariantCulture, $"{(rounded > 0 ? "+" : string.Empty)}{rounded:0.00} %");
     }
 }
