@@ -164,8 +164,9 @@ public sealed class RunExecutor
             SetState(RunState.Failed);
             throw;
         }
-        catch (Exception ex) when (ex is DeviceException or OperationCanceledException)
+        catch (Exception ex)
         {
+            // Whatever went wrong (a device, or a bug), the laser goes off and the stage stops before anything else.
             if (IsAbortRequested)
             {
                 return await FinishAsync(RunOutcome.Aborted, AbortedMessage, identity, startedAt).ConfigureAwait(false);

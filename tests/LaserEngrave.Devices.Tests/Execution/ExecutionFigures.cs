@@ -62,7 +62,7 @@ public class ExecutionFigures
 
     private static string Percent(double fraction)
     {
-        var rounded = Math.Round(fraction * 100, 2);
+        var rounded = Math.Round(fraction * 100, 2) + 0.0;
         return string.Create(CultureInfo.InvariantCulture, $"{(rounded > 0 ? "+" : string.Empty)}{rounded:0.00} %");
     }
 }
