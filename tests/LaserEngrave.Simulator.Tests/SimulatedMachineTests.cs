@@ -120,6 +120,39 @@ public class SimulatedMachineTests
     }
 
     [Fact(Timeout = 20_000)]
+    public async Task ReconnectAsync_AfterADisconnectFault_ServesFreshLinksWithTheDevicesState()
+    {
+        var ct = TestContext.Current.CancellationToken;
+        await using var machine = SimulatedMachine.CreateInProcess(MachineProfile.Default, new SimulatorOptions { FaultSpec = "disconnect:stage:after=1" });
+        var old = machine.StageLink;
+        await old.WriteAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 5000).ToBytes(), ct);
+        await ReadFrameAsync(old, ct);
+        await old.WriteAsync(new ZaberFrame(1, ZaberCommand.EchoData, 1).ToBytes(), ct);
+        Assert.Equal(0, await old.ReadAsync(new byte[6], ct));
+
+        machine.Faults.Clear();
+        await machine.ReconnectAsync();
+        await machine.StageLink.WriteAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 0).ToBytes(), ct);
+
+        Assert.NotSame(old, machine.StageLink);
+        Assert.Equal(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 5000), await ReadFrameAsync(machine.StageLink, ct));
+    }
+
+    private static async Task<ZaberFrame> ReadFrameAsync(LaserEngrave.Devices.Serial.ISerialLink link, CancellationToken ct)
+    {
+        var buffer = new byte[6];
+        var read = 0;
+        while (read < 6)
+        {
+            var n = await link.ReadAsync(buffer.AsMemory(read), ct);
+            Assert.True(n > 0, "the link closed");
+            read += n;
+        }
+
+        return ZaberFrame.Decode(buffer);
+    }
+
+    [Fact(Timeout = 20_000)]
     public async Task Dispose_HostSeesBothLinksClose()
     {
         var machine = SimulatedMachine.CreateInProcess(MachineProfile.Default);

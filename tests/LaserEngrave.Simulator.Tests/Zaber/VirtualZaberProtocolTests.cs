@@ -472,6 +472,17 @@ public class VirtualZaberProtocolTests
     }
 
     [Fact(Timeout = 20_000)]
+    public async Task DeviceModeBit0_AutoReplyDisabled_ReturnSettingStillAnswers()
+    {
+        await using var bench = MachineBench.Create();
+        await bench.SendAsync(1, ZaberCommand.SetDeviceMode, 1);
+
+        var mode = await bench.RequestAsync(1, ZaberCommand.ReturnSetting, (int)ZaberCommand.SetDeviceMode);
+
+        Assert.Equal(new ZaberFrame(1, ZaberCommand.SetDeviceMode, 1), mode);
+    }
+
+    [Fact(Timeout = 20_000)]
     public async Task DeviceModeBit4_MoveTracking_Reply8EveryQuarterSecondThenTheMoveReply()
     {
         await using var bench = MachineBench.Create();
