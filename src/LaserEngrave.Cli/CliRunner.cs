@@ -1,6 +1,7 @@
 using System.CommandLine;
 using LaserEngrave.Cli.Commands;
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Logging;
 using LaserEngrave.Devices.Abstractions;
 
 namespace LaserEngrave.Cli;
@@ -30,6 +31,10 @@ internal static class CliRunner
             Output = stdout,
             Error = stderr,
             EnableDefaultExceptionHandler = false,
+
+            // Ctrl+C cancels the command's token; a run then needs time to switch the laser off, stop the stage and
+            // write its log before the process may end (the default is 2 s).
+            ProcessTerminationTimeout = TimeSpan.FromSeconds(30),
         };
         try
         {
@@ -50,7 +55,7 @@ internal static class CliRunner
 
     public static int ExitCodeFor(Exception ex) => ex switch
     {
-        UsageException or ProfileException or ArgumentException or FormatException => BadInput,
+        UsageException or ProfileException or RunLogException or ArgumentException or FormatException => BadInput,
         _ when ex.GetType().Name == "ImageLoadException" => BadInput,
         DeviceException => Failure,
         OperationCanceledException => Failure,

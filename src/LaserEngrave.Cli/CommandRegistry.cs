@@ -17,5 +17,6 @@ internal static class CommandRegistry
         yield return StageCommand.Create();
         yield return LaserCommand.Create();
         yield return SimulatorCommand.Create();
+        yield return LogCommand.Create();
     }
 }

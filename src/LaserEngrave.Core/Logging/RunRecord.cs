@@ -32,7 +32,7 @@ public sealed record RunRecord
     /// <summary>What stopped the run; null when it completed.</summary>
     public RunFault? Fault { get; init; }
 
-    /// <summary>Where it stopped (the first burn run not completed); null when it completed.</summary>
+    /// <summary>Where it stopped (the first move not completed); null when it completed.</summary>
     public RunStopPoint? StoppedAt { get; init; }
 
     public required RunImage Image { get; init; }
@@ -79,6 +79,12 @@ public sealed record RunRecord
 
     /// <summary>The sample's ID, as typed; also part of the log's file name.</summary>
     public string? SampleId { get; init; }
+
+    /// <summary>The run log this run repeated or resumed (`engrave --from-log`); null for a new job.</summary>
+    public string? RepeatOf { get; init; }
+
+    /// <summary>Whether this run resumed <see cref="RepeatOf"/> from its stop point rather than starting over.</summary>
+    public bool Resumed { get; init; }
 
     /// <summary>The version of the LaserEngrave.Core assembly, as built (its informational version, with the source revision when known).</summary>
     public static string CurrentSoftwareVersion { get; } = ReadSoftwareVersion();

@@ -26,7 +26,7 @@ public static class RunSummaryText
         if (record.StoppedAt is { } stop)
         {
             var position = stop.XMicrosteps is { } x && stop.YMicrosteps is { } y ? string.Create(c, $", stage at {x}, {y} microsteps") : string.Empty;
-            Line("Stopped at", string.Create(c, $"row {stop.Row}, burn run {stop.RunIndex + 1} of {record.RunsTotal}{position}"));
+            Line("Stopped at", string.Create(c, $"row {stop.Row}, move {stop.MoveIndex}{position}"));
         }
 
         Line("Started", record.StartedAt.ToString("yyyy-MM-dd HH:mm:ss zzz", c));
@@ -54,6 +54,11 @@ public static class RunSummaryText
         foreach (var device in record.Devices)
         {
             Line("Device", $"{device.Role} on {device.Port}: {device.Identity}, firmware {device.Firmware}");
+        }
+
+        if (record.RepeatOf is { } repeated)
+        {
+            Line(record.Resumed ? "Resumes" : "Repeats", repeated + (record.Resumed ? " (from where it stopped)" : string.Empty));
         }
 
         Line("Software", "LaserEngrave " + record.SoftwareVersion);

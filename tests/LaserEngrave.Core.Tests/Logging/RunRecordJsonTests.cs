@@ -45,7 +45,7 @@ public sealed class RunRecordJsonTests : IDisposable
 
         Assert.Equal(RunRecord.CurrentSoftwareVersion, root.GetProperty("softwareVersion").GetString());
         Assert.Equal("timeout", root.GetProperty("fault").GetProperty("kind").GetString());
-        Assert.Equal(40, root.GetProperty("stoppedAt").GetProperty("runIndex").GetInt64());
+        Assert.Equal(40, root.GetProperty("stoppedAt").GetProperty("moveIndex").GetInt64());
         Assert.Equal(PreparedJob.HashFile(runs.ImagePath), root.GetProperty("image").GetProperty("sha256").GetString());
         Assert.Equal(record.Image.WidthPx, root.GetProperty("image").GetProperty("widthPx").GetInt32());
         Assert.Equal(42, root.GetProperty("mask").GetProperty("thresholdPercent").GetDouble());

@@ -51,6 +51,7 @@ internal sealed class TestRuns : IDisposable
             RunsDone = 40,
             Notes = "first try\nfocus 2 turns down",
             SampleId = sample,
+            RepeatOf = "/logs/2026-11-22_090000_S-16.json",
         };
     }
 
