@@ -2,7 +2,9 @@ using System.CommandLine;
 using LaserEngrave.Cli.Commands;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Logging;
+using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Devices.Execution;
 
 namespace LaserEngrave.Cli;
 
@@ -55,8 +57,9 @@ internal static class CliRunner
 
     public static int ExitCodeFor(Exception ex) => ex switch
     {
-        UsageException or ProfileException or RunLogException or ArgumentException or FormatException => BadInput,
+        UsageException or ProfileException or RunLogException or GeometryException or PlanException or ArgumentException or FormatException => BadInput,
         _ when ex.GetType().Name == "ImageLoadException" => BadInput,
+        TestMoveException => BadInput,
         DeviceException => Failure,
         OperationCanceledException => Failure,
         _ => Failure,

@@ -55,11 +55,14 @@ public sealed record RunRecord
     /// <summary>The devices as they identified themselves, with their firmware versions.</summary>
     public IReadOnlyList<RunDevice> Devices { get; init; } = [];
 
-    /// <summary>The plan's estimated duration, s.</summary>
+    /// <summary>The estimated duration of the moves this run was to execute (all of them, or those after a resume point), s.</summary>
     public required double EstimatedSeconds { get; init; }
 
     /// <summary>How long the run took from start to end, s (virtual when simulated).</summary>
     public double ActualSeconds { get; init; }
+
+    /// <summary>The part of <see cref="ActualSeconds"/> the estimate models (from the first move of the plan to the end, pauses left out), s.</summary>
+    public double EngravingSeconds { get; init; }
 
     /// <summary>How long the laser was on, s.</summary>
     public double LaserOnSeconds { get; init; }
