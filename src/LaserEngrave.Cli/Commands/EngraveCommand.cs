@@ -42,15 +42,7 @@ internal static class EngraveCommand
 
         var (spec, repeatOf, resumeFrom) = BindJob(result, o);
         var prepared = PreparedJob.Prepare(spec);
-        if (!prepared.Geometry.FitsTravel)
-        {
-            var g = prepared.Geometry;
-            var p = spec.Profile;
-            throw new UsageException(string.Create(
-                CultureInfo.InvariantCulture,
-                $"the job ({g.AchievedWidthMm:0.###} x {g.AchievedHeightMm:0.###} mm at origin {spec.Origin.X:0.###}, {spec.Origin.Y:0.###} mm) does not fit the stage's travel ({p.X.TravelMm:0.###} x {p.Y.TravelMm:0.###} mm); move --origin-mm or make it smaller"));
-        }
-
+        RefuseOutsideTravel(prepared);
         foreach (var warning in prepared.Warnings)
         {
             stderr.WriteLine($"warning: {warning.Message}");
@@ -126,6 +118,21 @@ internal static class EngraveCommand
         }
 
         return CliRunner.Ok;
+    }
+
+    /// <summary>Refuses a job that does not fit the travel before any port opens (preflight would refuse it later).</summary>
+    internal static void RefuseOutsideTravel(PreparedJob prepared)
+    {
+        if (prepared.Geometry.FitsTravel)
+        {
+            return;
+        }
+
+        var g = prepared.Geometry;
+        var spec = prepared.Spec;
+        throw new UsageException(string.Create(
+            CultureInfo.InvariantCulture,
+            $"the job ({g.AchievedWidthMm:0.###} x {g.AchievedHeightMm:0.###} mm at origin {spec.Origin.X:0.###}, {spec.Origin.Y:0.###} mm) does not fit the stage's travel ({spec.Profile.X.TravelMm:0.###} x {spec.Profile.Y.TravelMm:0.###} mm); move --origin-mm or make it smaller"));
     }
 
     /// <summary>The job from the options, or from a run log (the image checked against its SHA-256), with the stop point to resume from.</summary>

@@ -29,6 +29,7 @@ internal static class TestMoveCommands
         command.SetAction(async (result, ct) =>
         {
             var prepared = PreparedJob.Prepare(job.Bind(result));
+            EngraveCommand.RefuseOutsideTravel(prepared);
             if (result.GetValue(visibleHz) is { } hz && hz <= 0)
             {
                 throw new UsageException($"--visible-hz {hz}: must be above 0");
@@ -78,8 +79,11 @@ internal static class TestMoveCommands
         command.SetAction(async (result, ct) =>
         {
             var machineProfile = LoadProfile(result, profile);
+            var (xMm, yMm) = (result.GetValue(x), result.GetValue(y));
+            WithinTravel(xMm, machineProfile.X.TravelMm, "X_MM");
+            WithinTravel(yMm, machineProfile.Y.TravelMm, "Y_MM");
             return await WithMovesAsync(result, machine, machineProfile, null, async moves =>
-                Describe(await moves.GoToAsync(result.GetValue(x), result.GetValue(y), ct).ConfigureAwait(false), machineProfile)).ConfigureAwait(false);
+                Describe(await moves.GoToAsync(xMm, yMm, ct).ConfigureAwait(false), machineProfile)).ConfigureAwait(false);
         });
         return command;
     }
@@ -125,6 +129,15 @@ internal static class TestMoveCommands
             }).ConfigureAwait(false);
         });
         return command;
+    }
+
+    /// <summary>Refuses a target off the axis before any port opens.</summary>
+    private static void WithinTravel(double mm, double travelMm, string name)
+    {
+        if (!(mm >= 0 && mm <= travelMm))
+        {
+            throw new UsageException(string.Create(CultureInfo.InvariantCulture, $"{name} {mm}: outside the travel 0..{travelMm} mm"));
+        }
     }
 
     private static Option<string?> ProfileOption() => new("--profile") { Description = "Machine profile (JSON); default: two Zaber T-LA60A" };
