@@ -28,12 +28,26 @@ public class TestMoveCommandsTests
     }
 
     [Fact]
-    public async Task JogSimulate_XBy100Um_EndsOneStepFromWhereItWas()
+    public async Task JogSimulate_XByMinus100Um_MovesXOnlyByTheStep()
     {
-        var (exit, output, error) = await CliHarness.RunAsync("jog", "x", "100", "--simulate");
+        // The simulated stage powers up at the far end of its travel on both axes.
+        var travel = MachineProfile.Default.X.TravelMicrosteps;
+        var step = JobGeometry.Round(StageUnits.UmToMicrosteps(100, MachineProfile.Default.X.MicrostepUm));
+
+        var (exit, output, error) = await CliHarness.RunAsync("jog", "x", "-100", "--simulate");
 
         Assert.True(exit == 0, error);
-        Assert.StartsWith($"at {JobGeometry.Round(StageUnits.UmToMicrosteps(100, MachineProfile.Default.X.MicrostepUm))}, ", output, StringComparison.Ordinal);
+        Assert.StartsWith($"at {travel - step}, {MachineProfile.Default.Y.TravelMicrosteps} microsteps", output, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task JogSimulate_PastTheEndOfTheTravel_Exit2WithOneLine()
+    {
+        var (exit, _, error) = await CliHarness.RunAsync("jog", "y", "100", "--simulate");
+
+        Assert.Equal(2, exit);
+        Assert.Contains("outside the stage travel", error, StringComparison.Ordinal);
+        Assert.Single(error.TrimEnd().Split('\n'));
     }
 
     [Theory]
