@@ -64,6 +64,7 @@ public sealed class RunRecordJsonTests : IDisposable
         Assert.Equal("5.29", root.GetProperty("devices")[0].GetProperty("firmware").GetString());
         Assert.Equal(record.EstimatedSeconds, root.GetProperty("estimatedSeconds").GetDouble());
         Assert.Equal(61.5, root.GetProperty("actualSeconds").GetDouble());
+        Assert.Equal(55.5, root.GetProperty("engravingSeconds").GetDouble());
         Assert.Equal(20.25, root.GetProperty("laserOnSeconds").GetDouble());
         Assert.Equal(11, root.GetProperty("rowsDone").GetInt32());
         Assert.Equal(40, root.GetProperty("runsDone").GetInt64());
