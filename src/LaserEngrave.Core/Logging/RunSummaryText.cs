@@ -20,7 +20,7 @@ public static class RunSummaryText
         if (record.Fault is { } fault)
         {
             Line("Fault", fault.Message + (fault.Kind is null ? string.Empty : $" ({fault.Kind})"));
-            Line("Laser off confirmed", fault.LaserOffConfirmed ? "yes" : "NO: check the laser by hand");
+            Line("Laser off", fault.LaserOffConfirmed ? "confirmed by the gate" : "NOT CONFIRMED: the gate did not answer; check the laser by hand");
         }
 
         if (record.StoppedAt is { } stop)

@@ -72,6 +72,15 @@ public sealed class RunRecordJsonTests : IDisposable
         Assert.Equal("S-17", root.GetProperty("sampleId").GetString());
     }
 
+    [Fact]
+    public void Serialize_NotesWithAccentsAndAVersionWithPlus_WrittenAsTyped()
+    {
+        var json = RunRecordJson.Serialize(runs.FailedRecord() with { Notes = "Probe µ-3, réglage", SoftwareVersion = "0.1.0+abc" });
+
+        Assert.Contains("\"notes\": \"Probe µ-3, réglage\"", json, StringComparison.Ordinal);
+        Assert.Contains("\"softwareVersion\": \"0.1.0+abc\"", json, StringComparison.Ordinal);
+    }
+
     [Theory]
     [InlineData("{", "not a run log")]
     [InlineData("null", "not a run log")]

@@ -15,6 +15,7 @@ public sealed class RunSummaryTextTests : IDisposable
 
         Assert.Contains("Outcome:            FAILED", text, StringComparison.Ordinal);
         Assert.Contains("Fault:              x axis: no reply within 500 ms (timeout)", text, StringComparison.Ordinal);
+        Assert.Contains("Laser off:          confirmed by the gate", text, StringComparison.Ordinal);
         Assert.Contains("Stopped at:         row 12, move 40, stage at 123456, 98765 microsteps", text, StringComparison.Ordinal);
         Assert.Contains("Started:            2026-11-23 14:30:05 +02:00", text, StringComparison.Ordinal);
         Assert.Contains(record.Image.Sha256, text, StringComparison.Ordinal);
