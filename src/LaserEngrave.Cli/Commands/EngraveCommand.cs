@@ -49,6 +49,9 @@ internal static class EngraveCommand
         }
 
         var store = new RunLogStore(result.GetValue(o.LogDir) ?? RunLogStore.DefaultFolder);
+
+        // A run must not start without a place for its log.
+        store.CreateFolder();
         var record = RunRecord.ForJob(prepared, PreparedJob.HashFile(spec.ImagePath), DateTimeOffset.Now) with
         {
             Simulated = simulate,
@@ -90,7 +93,18 @@ internal static class EngraveCommand
             record = Finish(record, run, error, session, DateTimeOffset.Now);
         }
 
-        var files = store.Write(record);
+        RunLogFiles files;
+        try
+        {
+            files = store.Write(record);
+        }
+        catch (RunLogException ex)
+        {
+            // The run happened: keep what the log would have said on stderr, and fail (not "bad input").
+            stderr.Write(RunSummaryText.Format(record));
+            throw new InvalidOperationException($"the run ended ({record.Outcome.ToString().ToLowerInvariant()}) but its log could not be written, so the summary is above: {ex.Message}", ex);
+        }
+
         if (burnedPath is not null && burn is not null)
         {
             burn.WritePng(burnedPath);
