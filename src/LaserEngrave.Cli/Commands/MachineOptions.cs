@@ -4,6 +4,7 @@ using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.LaserGate;
 using LaserEngrave.Devices.Zaber;
 using LaserEngrave.Simulator;
+using LaserEngrave.Simulator.Faults;
 
 namespace LaserEngrave.Cli.Commands;
 
@@ -60,6 +61,9 @@ internal sealed class MachineOptions
         {
             throw new UsageException("--fault works only with --simulate");
         }
+
+        // Parsed here only to refuse a bad spec before anything is created or opened.
+        FaultInjector.ParseRules(FaultSpec(result));
     }
 
     public string FaultSpec(ParseResult result) => string.Join(',', result.GetValue(Fault) ?? []);
