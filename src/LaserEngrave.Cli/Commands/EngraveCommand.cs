@@ -70,6 +70,7 @@ internal static class EngraveCommand
             var executor = new RunExecutor(session.Stage, session.Gate, prepared, session.TimeProvider, new RunOptions { Home = result.GetValue(o.Home), ResumeFrom = resumeFrom });
             var printer = new ProgressPrinter(stderr, terminal: ReferenceEquals(stderr, Console.Error) && !Console.IsErrorRedirected);
             executor.ProgressChanged += (_, progress) => printer.Report(progress);
+            var clockStart = session.TimeProvider.GetTimestamp();
             try
             {
                 run = await executor.RunAsync(cancellationToken).ConfigureAwait(false);
@@ -90,7 +91,7 @@ internal static class EngraveCommand
                 burn = simulator.Recorder.Analyze(new BurnGrid(g.OriginXMicrosteps, g.OriginYMicrosteps, g.PitchMicrosteps, g.WidthPx, g.HeightPx), prepared.Mask);
             }
 
-            record = Finish(record, run, error, session, DateTimeOffset.Now);
+            record = Finish(record, run, error, session, DateTimeOffset.Now, session.TimeProvider.GetElapsedTime(clockStart));
         }
 
         RunLogFiles files;
@@ -178,7 +179,8 @@ internal static class EngraveCommand
         return (spec, Path.GetFullPath(fromLog), new RunStopPoint(stop.Row, stop.MoveIndex, stop.XMicrosteps, stop.YMicrosteps));
     }
 
-    private static RunRecord Finish(RunRecord record, RunResult? run, Exception? error, MachineSession session, DateTimeOffset endedAt)
+    /// <param name="elapsed">The run's time on the machine's clock (virtual on the simulator), for a run that ended without a result.</param>
+    private static RunRecord Finish(RunRecord record, RunResult? run, Exception? error, MachineSession session, DateTimeOffset endedAt, TimeSpan elapsed)
     {
         if (run is null)
         {
@@ -191,7 +193,7 @@ internal static class EngraveCommand
             return record with
             {
                 EndedAt = endedAt,
-                ActualSeconds = (endedAt - record.StartedAt).TotalSeconds,
+                ActualSeconds = elapsed.TotalSeconds,
                 Outcome = outcome,
                 Fault = new RunFault(error?.Message.ReplaceLineEndings(" ") ?? "the run ended without a result", outcome == LogOutcome.Refused ? "preflight" : error?.GetType().Name),
             };
