@@ -1,0 +1,231 @@
+using CommunityToolkit.Mvvm.ComponentModel;
+using CommunityToolkit.Mvvm.Input;
+using LaserEngrave.App.Services;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Devices.Abstractions;
+
+namespace LaserEngrave.App.ViewModels;
+
+/// <summary>The Preview view's run: start, pause, resume, abort (always allowed), and live progress.</summary>
+/// <remarks>
+/// Progress is stored as the latest value only: the page samples it at its own pace, so a run of many short moves
+/// never floods it. Abort cancels the run, whose executor switches the laser off before it stops the axes.
+/// </remarks>
+public sealed partial class RunViewModel : ObservableObject
+{
+    private readonly IRunService _runs;
+    private readonly JobViewModel _job;
+    private readonly MachineViewModel _machine;
+    private readonly TestMovesViewModel _testMoves;
+    private readonly LogViewModel _log;
+    private readonly TimeProvider _time;
+    private RunPauseGate _pause = new();
+    private long _startedTicks;
+    private double _estimatedSeconds;
+
+    public RunViewModel(IRunService runs, JobViewModel job, MachineViewModel machine, TestMovesViewModel testMoves, LogViewModel log, TimeProvider time)
+    {
+        ArgumentNullException.ThrowIfNull(runs);
+        ArgumentNullException.ThrowIfNull(job);
+        ArgumentNullException.ThrowIfNull(machine);
+        ArgumentNullException.ThrowIfNull(testMoves);
+        ArgumentNullException.ThrowIfNull(log);
+        ArgumentNullException.ThrowIfNull(time);
+        _runs = runs;
+        _job = job;
+        _machine = machine;
+        _testMoves = testMoves;
+        _log = log;
+        _time = time;
+    }
+
+    [ObservableProperty]
+    public partial RunState State { get; private set; }
+
+    /// <summary>The latest progress of the run under way (or of the last one).</summary>
+    [ObservableProperty]
+    public partial RunProgress? Progress { get; private set; }
+
+    /// <summary>The plan version the run executes, so the page draws the burned part over the right plan.</summary>
+    [ObservableProperty]
+    public partial int RunPlanVersion { get; private set; }
+
+    [ObservableProperty]
+    public partial string? Error { get; private set; }
+
+    [ObservableProperty]
+    public partial double ElapsedSecondsAtEnd { get; private set; }
+
+    public bool IsActive => State is RunState.Running or RunState.Paused or RunState.Aborting;
+
+    /// <summary>Fraction of all passes done, 0..1.</summary>
+    public double Fraction => Progress is { } p && p.MovesTotal > 0
+        ? Math.Clamp((p.Pass - 1 + ((double)p.MovesDone / p.MovesTotal)) / Math.Max(1, _job.Passes), 0, 1)
+        : State == RunState.Completed ? 1 : 0;
+
+    public double ElapsedSeconds => IsActive ? _time.GetElapsedTime(_startedTicks).TotalSeconds : ElapsedSecondsAtEnd;
+
+    /// <summary>Time left: from the pace so far once a little is done, from the estimate before that.</summary>
+    public double RemainingSeconds
+    {
+        get
+        {
+            if (!IsActive)
+            {
+                return 0;
+            }
+
+            var fraction = Fraction;
+            return fraction > 0.05 ? ElapsedSeconds * (1 - fraction) / fraction : Math.Max(0, _estimatedSeconds * (1 - fraction));
+        }
+    }
+
+    /// <summary>Runs the planned job on the connected machine; its cancel command is the abort.</summary>
+    [RelayCommand(IncludeCancelCommand = true)]
+    private async Task StartAsync(CancellationToken cancellationToken)
+    {
+        Error = null;
+        if (IsActive)
+        {
+            Error = "a run is already under way";
+            return;
+        }
+
+        var job = _job.Job;
+        var connection = _machine.Connection;
+        var problem = job is null ? "no job planned: open an image and give it a usable size first"
+            : !job.Geometry.FitsTravel ? "the job lies outside the stage's travel: move the origin or make it smaller"
+            : job.Statistics.BurnRuns == 0 ? "the mask has no pixel to burn: change the threshold or invert it"
+            : connection is null ? "not connected: connect to the simulator or the machine first"
+            : null;
+        if (problem is not null)
+        {
+            Error = problem;
+            State = RunState.Failed;
+            return;
+        }
+
+        await RunAsync(job!, connection!, cancellationToken).ConfigureAwait(false);
+    }
+
+    [RelayCommand]
+    private void Pause()
+    {
+        if (State == RunState.Running)
+        {
+            _pause.Pause();
+            State = RunState.Paused;
+        }
+    }
+
+    [RelayCommand]
+    private void Resume()
+    {
+        if (State == RunState.Paused)
+        {
+            _pause.Resume();
+            State = RunState.Running;
+        }
+    }
+
+    /// <summary>Aborts the run; always allowed, harmless when nothing runs.</summary>
+    [RelayCommand]
+    private void Abort()
+    {
+        if (IsActive)
+        {
+            State = RunState.Aborting;
+            StartCancelCommand.Execute(null);
+        }
+    }
+
+    private async Task RunAsync(PreparedJob job, IMachineConnection connection, CancellationToken cancellationToken)
+    {
+        _pause = new RunPauseGate();
+        _startedTicks = _time.GetTimestamp();
+        _estimatedSeconds = _job.EstimatedSeconds ?? 0;
+        var started = _time.GetUtcNow();
+        var settings = _job.ToSettings();
+        RunPlanVersion = _job.PlanVersion;
+        Progress = new RunProgress(0, 0, 0, 0, 1, 0, 0, false);
+        State = RunState.Running;
+        _testMoves.RunActive = true;
+        string outcome;
+        string? error = null;
+        try
+        {
+            await _runs.RunAsync(new RunRequest(job, connection.Stage, connection.Gate, settings.Passes, _pause), new LatestProgress(this), cancellationToken).ConfigureAwait(false);
+            State = RunState.Completed;
+            outcome = "completed";
+        }
+        catch (OperationCanceledException)
+        {
+            State = RunState.Aborted;
+            outcome = "aborted";
+        }
+        catch (Exception ex) when (ex is DeviceException or IOException or InvalidOperationException or TimeoutException or ObjectDisposedException)
+        {
+            State = RunState.Failed;
+            outcome = "failed";
+            error = ex.Message;
+            Error = ex.Message;
+        }
+        finally
+        {
+            ElapsedSecondsAtEnd = _time.GetElapsedTime(_startedTicks).TotalSeconds;
+            _testMoves.RunActive = false;
+        }
+
+        var progress = Progress;
+        _log.Record(new RunRecord
+        {
+            Id = started.ToString("yyyyMMdd-HHmmss-fff", System.Globalization.CultureInfo.InvariantCulture),
+            StartedUtc = started,
+            FinishedUtc = _time.GetUtcNow(),
+            Outcome = outcome,
+            Error = error,
+            SampleId = _log.SampleId,
+            Notes = _log.Notes,
+            Machine = connection.Description,
+            ImageSha256 = HashOrNull(job.Spec.ImagePath),
+            Settings = settings,
+            AchievedWidthMm = job.Geometry.AchievedWidthMm,
+            AchievedHeightMm = job.Geometry.AchievedHeightMm,
+            EstimatedSeconds = _estimatedSeconds,
+            MovesDone = progress?.MovesDone ?? 0,
+            MovesTotal = progress?.MovesTotal ?? 0,
+            PassesDone = State == RunState.Completed ? settings.Passes : Math.Max(0, (progress?.Pass ?? 1) - 1),
+        });
+        try
+        {
+            await _machine.ReadPositionsAsync(CancellationToken.None).ConfigureAwait(false);
+        }
+        catch (Exception ex) when (ex is DeviceException or InvalidOperationException or ObjectDisposedException)
+        {
+            _machine.Error = ex.Message;
+        }
+    }
+
+    private static string? HashOrNull(string path)
+    {
+        try
+        {
+            return PreparedJob.HashFile(path);
+        }
+        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
+        {
+            return null;
+        }
+    }
+
+    /// <summary>Keeps only the newest report: assigning a reference is all a serial reply costs the UI.</summary>
+    private sealed class LatestProgress(RunViewModel owner) : IProgress<RunProgress>
+    {
+        public void Report(RunProgress value)
+        {
+            owner.Progress = value;
+            owner._machine.XMicrosteps = value.XMicrosteps;
+            owner._machine.YMicrosteps = value.YMicrosteps;
+        }
+    }
+}
