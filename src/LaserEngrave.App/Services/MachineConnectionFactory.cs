@@ -8,8 +8,11 @@ using LaserEngrave.Simulator;
 namespace LaserEngrave.App.Services;
 
 /// <summary>Opens the in-process simulator (real time, so the page shows a run at the machine's pace) or two real ports.</summary>
-public sealed class MachineConnectionFactory : IMachineConnectionFactory
+/// <param name="simulatorOptions">How the simulator runs; by default in real time. Tests pass virtual time.</param>
+public sealed class MachineConnectionFactory(SimulatorOptions? simulatorOptions = null) : IMachineConnectionFactory
 {
+    private readonly SimulatorOptions _simulatorOptions = simulatorOptions ?? new SimulatorOptions { RealTime = true };
+
     public Task<IMachineConnection> ConnectAsync(MachineChoice choice, MachineProfile profile, CancellationToken cancellationToken)
     {
         ArgumentNullException.ThrowIfNull(choice);
@@ -17,10 +20,10 @@ public sealed class MachineConnectionFactory : IMachineConnectionFactory
         cancellationToken.ThrowIfCancellationRequested();
         if (choice.UseSimulator)
         {
-            var machine = SimulatedMachine.CreateInProcess(profile, new SimulatorOptions { RealTime = true });
+            var machine = SimulatedMachine.CreateInProcess(profile, _simulatorOptions);
             var chain = new ZaberChain(new ZaberConnection(machine.StageLink, machine.TimeProvider), profile);
             var gate = new PicLaserGate(machine.LaserLink, profile.Gate, machine.TimeProvider);
-            return Task.FromResult<IMachineConnection>(new Connection("simulator (in-process, real time)", profile, chain, gate, machine));
+            return Task.FromResult<IMachineConnection>(new Connection(_simulatorOptions.RealTime ? "simulator (in-process, real time)" : "simulator (in-process, virtual time)", profile, chain, gate, machine));
         }
 
         var stagePort = Required(choice.StagePort, "stage");

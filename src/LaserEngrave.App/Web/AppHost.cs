@@ -25,7 +25,7 @@ public static class AppHost
         services.AddSingleton(AppFolders.Default);
         services.AddSingleton(TimeProvider.System);
         services.AddSingleton<IImageService, ImageService>();
-        services.AddSingleton<IMachineConnectionFactory, MachineConnectionFactory>();
+        services.AddSingleton<IMachineConnectionFactory>(new MachineConnectionFactory());
         services.AddSingleton<IRunService, SequentialRunService>();
         services.AddSingleton<IFileAccess>(sp => new Services.FileAccess(sp.GetRequiredService<AppFolders>()));
         services.AddSingleton<ISettingsStore>(sp => new JsonSettingsStore(sp.GetRequiredService<AppFolders>().SettingsFile));
