@@ -27,8 +27,9 @@ public sealed class SimulatedMachine : IAsyncDisposable
     private readonly CancellationTokenSource _stop = new();
     private readonly SimulationClock _clock;
     private readonly VirtualTimeProvider? _ownedClock;
-    private readonly ISerialLink? _stageHost;
-    private readonly ISerialLink? _laserHost;
+    private readonly bool _inProcess;
+    private ISerialLink? _stageHost;
+    private ISerialLink? _laserHost;
     private readonly Lock _tasksLock = new();
     private readonly List<Task> _tasks = [];
     private Task _stageServed = Task.CompletedTask;
@@ -64,14 +65,11 @@ public sealed class SimulatedMachine : IAsyncDisposable
         Recorder = new BurnRecorder(x, y, profile.X.MicrostepUm, profile.Y.MicrostepUm, options.DwellTolerance, () => _clock.NowSeconds);
         Stage = new VirtualZaberChain(profile, options, _clock, Faults, Recorder);
         Gate = new VirtualLaserGate(profile.Gate, options, _clock, Faults, Recorder);
+        _inProcess = inProcess;
         if (inProcess)
         {
-            var (stageHost, stageDevice) = InMemorySerialLink.CreatePair("simulated stage");
-            var (laserHost, laserDevice) = InMemorySerialLink.CreatePair("simulated laser gate");
-            (_stageHost, var stage) = ActivityLink.WrapPair(stageHost, stageDevice, _clock);
-            (_laserHost, var laser) = ActivityLink.WrapPair(laserHost, laserDevice, _clock);
-            ServeStage(stage);
-            ServeLaser(laser);
+            _stageHost = ServeInProcessStage();
+            _laserHost = ServeInProcessLaser();
         }
     }
 
@@ -141,6 +139,25 @@ public sealed class SimulatedMachine : IAsyncDisposable
         _laserServed = Track(LaserPort, deviceEnd, (log, starting) => Gate.RunAsync(deviceEnd, log, starting, _stop.Token));
     }
 
+    /// <summary>
+    /// In-process: closes both host links (if the host has not) and serves fresh ones, as if the cables were plugged in
+    /// again after a fault; the devices keep their state. The new host ends are <see cref="StageLink"/> and <see cref="LaserLink"/>.
+    /// </summary>
+    public async Task ReconnectAsync()
+    {
+        if (!_inProcess)
+        {
+            throw new InvalidOperationException("an attached simulator is reconnected by serving new device ends (ServeStage, ServeLaser)");
+        }
+
+        await _stageHost!.DisposeAsync().ConfigureAwait(false);
+        await _laserHost!.DisposeAsync().ConfigureAwait(false);
+        await _stageServed.ConfigureAwait(false);
+        await _laserServed.ConfigureAwait(false);
+        _stageHost = ServeInProcessStage();
+        _laserHost = ServeInProcessLaser();
+    }
+
     /// <summary>Stops serving, closes the links and, in virtual time, stops the clock.</summary>
     public async ValueTask DisposeAsync()
     {
@@ -168,6 +185,22 @@ public sealed class SimulatedMachine : IAsyncDisposable
 
         _ownedClock?.Dispose();
         _stop.Dispose();
+    }
+
+    private ISerialLink ServeInProcessStage()
+    {
+        var (host, device) = InMemorySerialLink.CreatePair("simulated stage");
+        var (wrappedHost, wrappedDevice) = ActivityLink.WrapPair(host, device, _clock);
+        ServeStage(wrappedDevice);
+        return wrappedHost;
+    }
+
+    private ISerialLink ServeInProcessLaser()
+    {
+        var (host, device) = InMemorySerialLink.CreatePair("simulated laser gate");
+        var (wrappedHost, wrappedDevice) = ActivityLink.WrapPair(host, device, _clock);
+        ServeLaser(wrappedDevice);
+        return wrappedHost;
     }
 
     private Task Track(string port, ISerialLink link, Func<Action<string>, ClockHold, Task> serve)

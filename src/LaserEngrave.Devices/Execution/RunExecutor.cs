@@ -1,0 +1,915 @@
+using System.Globalization;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Planning;
+using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Devices.Zaber;
+
+namespace LaserEngrave.Devices.Execution;
+
+/// <summary>Executes a <see cref="PreparedJob"/>'s plan on a stage and a laser gate, safely, waiting only on a <see cref="TimeProvider"/>.</summary>
+/// <remarks>
+/// One executor runs one job once (<see cref="RunAsync"/>); to resume after a fault make a new executor with
+/// <see cref="RunOptions.ResumeFrom"/>. Events are raised on the run's thread: handlers must be quick and must not block.
+/// <see cref="Pause"/>, <see cref="Resume"/> and <see cref="Abort"/> may be called from any thread at any time.
+/// The protocol is the one <see cref="PlanEstimator"/> models; docs/execution.md describes it.
+/// </remarks>
+public sealed class RunExecutor
+{
+    private const string AbortedMessage = "aborted by the operator";
+
+    private readonly Lock _lock = new();
+
+    // Every laser command goes under this lock, and a switch-on checks for an abort inside it: so once Abort has sent
+    // its switch-off, no switch-on can follow it on the wire.
+    private readonly SemaphoreSlim _laserLock = new(1, 1);
+    private readonly CancellationTokenSource _abortDone = new();
+    private readonly CancellationTokenSource _fault = new();
+    private readonly ProcessSettings _process;
+    private readonly MachineProfile _profile;
+    private readonly int _burnSpeedData;
+    private readonly int _travelSpeedData;
+    private readonly int _accelerationData;
+    private RunState _state = RunState.Idle;
+    private RunProgress _progress;
+    private int _started;
+    private bool _abortRequested;
+    private bool _pauseRequested;
+    private TaskCompletionSource _resumed = NewSignal();
+    private Task _abortSequence = Task.CompletedTask;
+    private GateKeepAlive? _keepAlive;
+    private bool _laserOn;
+    private long _laserOnSince;
+    private double _laserOnSeconds;
+    private bool _laserOffConfirmed = true;
+    private string? _laserOffProblem;
+    private long _startTimestamp;
+    private long _engravingStart;
+    private TimeSpan _notEngraving;
+    private long _x;
+    private long _y;
+    private int _xSpeedData;
+    private int _ySpeedData;
+
+    // The move being executed (the first not completed) and the counters over the whole plan.
+    private long _moveIndex;
+    private int _moveRow;
+    private Move? _currentMove;
+    private long _currentIndex = -1;
+    private bool _stoppedAtKnownPosition;
+    private int _rowsDone;
+    private int _lastRow = -1;
+    private long _runsDone;
+    private double _estimateBefore;
+    private double _estimateTotal;
+    private PlanEstimator? _estimator;
+
+    public RunExecutor(IStage stage, ILaserGate gate, PreparedJob job, TimeProvider? timeProvider = null, RunOptions? options = null)
+    {
+        ArgumentNullException.ThrowIfNull(stage);
+        ArgumentNullException.ThrowIfNull(gate);
+        ArgumentNullException.ThrowIfNull(job);
+        Stage = stage;
+        Gate = gate;
+        Job = job;
+        TimeProvider = timeProvider ?? TimeProvider.System;
+        Options = options ?? RunOptions.Default;
+        _process = job.Spec.Process;
+        _profile = job.Spec.Profile;
+        var microstepUm = job.Plan.Geometry.MicrostepUm;
+        var strategy = job.Plan.Options.Strategy;
+        _burnSpeedData = StageUnits.SpeedData(_process.SpeedMmPerS(MoveKind.Burn, strategy), microstepUm);
+        _travelSpeedData = StageUnits.SpeedData(_process.SpeedMmPerS(MoveKind.Travel, strategy), microstepUm);
+        _accelerationData = StageUnits.AccelerationData(_process.AccelerationMmPerS2, microstepUm);
+        _progress = new RunProgress(RunState.Idle, 0, job.Statistics.Rows, 0, job.Statistics.BurnRuns, 0, TimeSpan.Zero, TimeSpan.FromSeconds(job.Statistics.EstimatedSeconds), 0, 0, false);
+    }
+
+    /// <summary>Raised on every state change.</summary>
+    public event EventHandler<RunStateChangedEventArgs>? StateChanged;
+
+    /// <summary>Raised after every move and on every state change.</summary>
+    public event EventHandler<RunProgress>? ProgressChanged;
+
+    /// <summary>Raised after every move of the plan, with the move.</summary>
+    public event EventHandler<MoveCompletedEventArgs>? MoveCompleted;
+
+    public IStage Stage { get; }
+
+    public ILaserGate Gate { get; }
+
+    public PreparedJob Job { get; }
+
+    public TimeProvider TimeProvider { get; }
+
+    public RunOptions Options { get; }
+
+    public RunState State
+    {
+        get
+        {
+            lock (_lock)
+            {
+                return _state;
+            }
+        }
+    }
+
+    /// <summary>The latest progress snapshot.</summary>
+    public RunProgress Progress
+    {
+        get
+        {
+            lock (_lock)
+            {
+                return _progress;
+            }
+        }
+    }
+
+    /// <summary>Preflight, then the plan; returns how it ended (completed, aborted or failed: faults do not throw).</summary>
+    /// <param name="cancellationToken">Cancelling it aborts the run (laser off, then the stage stopped), as <see cref="Abort"/>.</param>
+    /// <exception cref="PreflightException">Preflight refused to start; nothing moved under the laser.</exception>
+    public async Task<RunResult> RunAsync(CancellationToken cancellationToken)
+    {
+        if (Interlocked.Exchange(ref _started, 1) != 0)
+        {
+            throw new InvalidOperationException("a RunExecutor runs once; make a new one (with RunOptions.ResumeFrom to continue)");
+        }
+
+        var startedAt = TimeProvider.GetUtcNow();
+        _startTimestamp = TimeProvider.GetTimestamp();
+        await using var registration = cancellationToken.Register(Abort).ConfigureAwait(false);
+        var token = _abortDone.Token;
+        MachineIdentity? identity = null;
+        try
+        {
+            SetState(RunState.Preflight);
+            identity = await PreflightAsync(token).ConfigureAwait(false);
+            var (moves, firstIndex) = Prepare();
+            SetState(RunState.Running);
+            _keepAlive = new GateKeepAlive(Gate, GateKeepAlive.PeriodFor(_profile.Gate.WatchdogMs, Options.KeepAliveFraction), TimeProvider, OnKeepAliveFailed);
+            using var linked = CancellationTokenSource.CreateLinkedTokenSource(token, _fault.Token);
+            await ExecuteAsync(moves, firstIndex, linked.Token).ConfigureAwait(false);
+            await SwitchLaserAsync(on: false).ConfigureAwait(false);
+            return await FinishAsync(RunOutcome.Completed, null, identity, startedAt).ConfigureAwait(false);
+        }
+        catch (PreflightException) when (!IsAbortRequested)
+        {
+            await LaserOffSafelyAsync().ConfigureAwait(false);
+            SetState(RunState.Failed);
+            throw;
+        }
+        catch (Exception ex) when (ex is DeviceException or OperationCanceledException)
+        {
+            if (IsAbortRequested)
+            {
+                return await FinishAsync(RunOutcome.Aborted, AbortedMessage, identity, startedAt).ConfigureAwait(false);
+            }
+
+            var reason = _keepAlive?.Fault is { } keepAliveFault ? $"the laser gate did not answer the keepalive: {keepAliveFault.Message}" : ex.Message;
+            return await FailAsync(reason, identity, startedAt).ConfigureAwait(false);
+        }
+        finally
+        {
+            if (_keepAlive is not null)
+            {
+                await _keepAlive.DisposeAsync().ConfigureAwait(false);
+            }
+        }
+    }
+
+    /// <summary>Stops after the current burn run with the laser off (state Pausing, then Paused).</summary>
+    public void Pause()
+    {
+        lock (_lock)
+        {
+            if (_abortRequested || _state is RunState.Completed or RunState.Failed or RunState.Paused or RunState.Pausing)
+            {
+                return;
+            }
+
+            _pauseRequested = true;
+        }
+
+        if (State is RunState.Running)
+        {
+            SetState(RunState.Pausing);
+        }
+    }
+
+    /// <summary>Continues a paused (or pausing) run.</summary>
+    public void Resume()
+    {
+        TaskCompletionSource resumed;
+        lock (_lock)
+        {
+            if (!_pauseRequested)
+            {
+                return;
+            }
+
+            _pauseRequested = false;
+            resumed = _resumed;
+            _resumed = NewSignal();
+        }
+
+        if (State is RunState.Pausing)
+        {
+            SetState(RunState.Running);
+        }
+
+        resumed.TrySetResult();
+    }
+
+    /// <summary>Switches the laser off, then stops both axes; wins over everything else, from any thread, at any time.</summary>
+    public void Abort()
+    {
+        TaskCompletionSource resumed;
+        lock (_lock)
+        {
+            if (_abortRequested || _state is RunState.Completed or RunState.Failed)
+            {
+                return;
+            }
+
+            _abortRequested = true;
+            resumed = _resumed;
+            _abortSequence = Task.Run(AbortSequenceAsync);
+        }
+
+        SetState(RunState.Aborting);
+        resumed.TrySetResult();
+    }
+
+    private static TaskCompletionSource NewSignal() => new(TaskCreationOptions.RunContinuationsAsynchronously);
+
+    private static string N(double value) => value.ToString("0.####", CultureInfo.InvariantCulture);
+
+    private bool IsAbortRequested
+    {
+        get
+        {
+            lock (_lock)
+            {
+                return _abortRequested;
+            }
+        }
+    }
+
+    private async Task AbortSequenceAsync()
+    {
+        try
+        {
+            await LaserOffSafelyAsync().ConfigureAwait(false);
+            await StopAxesAsync().ConfigureAwait(false);
+        }
+        finally
+        {
+            // Releases whatever the run is waiting for (a move the stop did not interrupt, a pause).
+            await _abortDone.CancelAsync().ConfigureAwait(false);
+        }
+    }
+
+    private void OnKeepAliveFailed(Exception ex) => _fault.Cancel();
+
+    // ---- preflight ----
+
+    private async Task<MachineIdentity> PreflightAsync(CancellationToken token)
+    {
+        CheckJob();
+        string gateIdentity;
+        try
+        {
+            gateIdentity = await Gate.IdentifyAsync(token).ConfigureAwait(false);
+            await Gate.OffAsync(token).ConfigureAwait(false);
+            await Gate.SetWatchdogAsync(_profile.Gate.WatchdogMs, token).ConfigureAwait(false);
+        }
+        catch (DeviceException ex)
+        {
+            throw new PreflightException($"the laser gate does not answer as it should: {ex.Message}", ex);
+        }
+
+        var x = await IdentifyAxisAsync(Stage.X, "X", token).ConfigureAwait(false);
+        var y = await IdentifyAxisAsync(Stage.Y, "Y", token).ConfigureAwait(false);
+        CheckReach(x, y);
+
+        var homing = new List<Task<long>>();
+        if (Options.Home || !x.IsHomed)
+        {
+            homing.Add(Stage.X.HomeAsync(token));
+        }
+
+        if (Options.Home || !y.IsHomed)
+        {
+            homing.Add(Stage.Y.HomeAsync(token));
+        }
+
+        try
+        {
+            await Task.WhenAll(homing).ConfigureAwait(false);
+            _x = await Stage.X.GetPositionAsync(token).ConfigureAwait(false);
+            _y = await Stage.Y.GetPositionAsync(token).ConfigureAwait(false);
+        }
+        catch (DeviceException ex)
+        {
+            throw new PreflightException($"homing failed: {ex.Message}", ex);
+        }
+
+        return new MachineIdentity(x, y, gateIdentity);
+    }
+
+    private async Task<AxisIdentity> IdentifyAxisAsync(IStageAxis axis, string name, CancellationToken token)
+    {
+        AxisIdentity identity;
+        try
+        {
+            identity = await axis.IdentifyAsync(token).ConfigureAwait(false);
+            if (identity.AutoReplyDisabled)
+            {
+                if (!Options.FixAutoReply || axis is not ZaberBinaryDevice zaber)
+                {
+                    throw new PreflightException(
+                        $"the {name} axis (device {axis.DeviceNumber}) has auto-reply disabled (Device Mode bit 0), so it would never confirm a move; clear bit 0 first");
+                }
+
+                await zaber.SetDeviceModeAsync(0, ZaberBinaryDevice.AutoReplyDisabledBit, token).ConfigureAwait(false);
+                identity = await axis.IdentifyAsync(token).ConfigureAwait(false);
+            }
+        }
+        catch (DeviceException ex) when (ex is not PreflightException)
+        {
+            throw new PreflightException($"the {name} axis (device {axis.DeviceNumber}) does not answer as it should: {ex.Message}", ex);
+        }
+
+        return identity;
+    }
+
+    /// <summary>Refuses a job that leaves the travel or asks for speeds the stage cannot run.</summary>
+    private void CheckJob()
+    {
+        var geometry = Job.Geometry;
+        if (!geometry.FitsTravel)
+        {
+            var outside = geometry.Warnings.FirstOrDefault(w => w.Kind == JobWarningKind.OutsideTravel);
+            throw new PreflightException(outside?.Message ?? "the job does not fit the stage travel");
+        }
+
+        var strategy = Job.Plan.Options.Strategy;
+        var microstepUm = Job.Plan.Geometry.MicrostepUm;
+        CheckSpeed("burn speed", _process.SpeedMmPerS(MoveKind.Burn, strategy));
+        CheckSpeed("travel speed", _process.SpeedMmPerS(MoveKind.Travel, strategy));
+        var accelerationUnits = Math.Round(StageUnits.MmToMicrosteps(_process.AccelerationMmPerS2, microstepUm) / StageUnits.AccelerationUnitMicrostepsPerS2);
+        var maxAcceleration = Math.Min(_profile.X.MaxAccelerationMmPerS2, _profile.Y.MaxAccelerationMmPerS2);
+        if (accelerationUnits < 1 || accelerationUnits > StageUnits.MaxSettingData || _process.AccelerationMmPerS2 > maxAcceleration)
+        {
+            throw new PreflightException(
+                $"acceleration {N(_process.AccelerationMmPerS2)} mm/s² is outside what the stage takes ({N(Unit(StageUnits.AccelerationUnitMicrostepsPerS2))}..{N(maxAcceleration)} mm/s²)");
+        }
+
+        void CheckSpeed(string what, double mmPerS)
+        {
+            var units = Math.Round(StageUnits.MmToMicrosteps(mmPerS, microstepUm) / StageUnits.SpeedUnitMicrostepsPerS);
+            var max = Math.Min(_profile.X.MaxSpeedMmPerS, _profile.Y.MaxSpeedMmPerS);
+            if (units < 1 || units > StageUnits.MaxSettingData || mmPerS > max)
+            {
+                throw new PreflightException($"{what} {N(mmPerS)} mm/s is outside what the stage takes ({N(Unit(StageUnits.SpeedUnitMicrostepsPerS))}..{N(max)} mm/s)");
+            }
+        }
+
+        double Unit(double microsteps) => StageUnits.MicrostepsToMm(microsteps, microstepUm);
+    }
+
+    /// <summary>Refuses a job that reaches past an axis' Maximum Position (the device's own limit may be below the profile's travel).</summary>
+    private void CheckReach(AxisIdentity x, AxisIdentity y)
+    {
+        var plan = Job.Plan;
+        var geometry = plan.Geometry;
+        var right = Math.Min(geometry.EdgeX(geometry.WidthPx) + plan.OverscanMicrosteps, geometry.TravelXMicrosteps);
+        var bottom = geometry.EdgeY(geometry.HeightPx);
+        foreach (var (name, reach, identity) in new[] { ("X", right, x), ("Y", bottom, y) })
+        {
+            if (identity.MaximumPosition > 0 && reach > identity.MaximumPosition)
+            {
+                throw new PreflightException(
+                    $"the job reaches {name} = {N(StageUnits.MicrostepsToMm(reach, geometry.MicrostepUm))} mm but the {name} axis stops at {N(StageUnits.MicrostepsToMm(identity.MaximumPosition, geometry.MicrostepUm))} mm (its Maximum Position)");
+            }
+        }
+    }
+
+    // ---- the plan ----
+
+    private async Task ExecuteAsync(IEnumerable<Move> moves, long firstIndex, CancellationToken token)
+    {
+        lock (_lock)
+        {
+            _moveIndex = firstIndex;
+            _moveRow = Options.ResumeFrom?.Row ?? 0;
+        }
+
+
+        // The start the estimate models: acceleration and the travel speed on both axes.
+        _engravingStart = TimeProvider.GetTimestamp();
+        foreach (var axis in new[] { Stage.X, Stage.Y })
+        {
+            await axis.SetAccelerationAsync(_accelerationData, token).ConfigureAwait(false);
+            await axis.SetTargetSpeedAsync(_travelSpeedData, token).ConfigureAwait(false);
+        }
+
+        (_xSpeedData, _ySpeedData) = (_travelSpeedData, _travelSpeedData);
+        var index = firstIndex;
+        var first = true;
+        foreach (var move in moves)
+        {
+            if (first)
+            {
+                // Reaching the plan's (or the resume point's) first position is not part of the estimate.
+                var positioning = TimeProvider.GetTimestamp();
+                await MoveToAsync(move.X0, move.Y0, _travelSpeedData, token).ConfigureAwait(false);
+                _notEngraving += TimeProvider.GetElapsedTime(positioning);
+                first = false;
+            }
+
+            lock (_lock)
+            {
+                _moveIndex = index;
+                _currentIndex = index;
+                _moveRow = move.Row;
+                _currentMove = move;
+            }
+
+            await PauseIfAskedAsync(token).ConfigureAwait(false);
+            await ExecuteMoveAsync(move, token).ConfigureAwait(false);
+            Completed(move, index);
+            index++;
+        }
+
+        lock (_lock)
+        {
+            _moveIndex = index;
+            _moveRow = Job.Plan.Mask.Height;
+            _currentMove = null;
+            if (_lastRow >= 0)
+            {
+                _rowsDone++;
+                _lastRow = -1;
+            }
+        }
+    }
+
+    /// <summary>The moves to execute and the index of the first; for a resumed run also the counters and estimates of what was done before.</summary>
+    /// <exception cref="PreflightException">The resume point is not in this job's plan.</exception>
+    private (IEnumerable<Move> Moves, long FirstIndex) Prepare()
+    {
+        var plan = Job.Plan;
+        var microstepUm = plan.Geometry.MicrostepUm;
+        var strategy = plan.Options.Strategy;
+        _estimator = new PlanEstimator(_process, strategy, microstepUm, _profile.Gate);
+        if (Options.ResumeFrom is not { } resume)
+        {
+            _estimateTotal = Job.Statistics.EstimatedSeconds;
+            return (plan.Moves(), 0);
+        }
+
+        // A burn run is resumed with its run-up, as it was planned.
+        var start = resume.MoveIndex;
+        long index = 0;
+        Move? previous = null;
+        foreach (var move in plan.Moves())
+        {
+            if (index == resume.MoveIndex)
+            {
+                if (move.Kind == MoveKind.Burn && previous is { Kind: MoveKind.Overscan } runUp && runUp.Row == move.Row)
+                {
+                    start--;
+                }
+
+                break;
+            }
+
+            previous = move;
+            index++;
+        }
+
+        // What was done before the resume point, where its row starts, and the estimate of what is left.
+        var before = new PlanEstimator(_process, strategy, microstepUm, _profile.Gate);
+        var remaining = new PlanEstimator(_process, strategy, microstepUm, _profile.Gate);
+        long rowStart = -1;
+        index = 0;
+        foreach (var move in plan.Moves())
+        {
+            if (rowStart < 0 && move.Row >= resume.Row)
+            {
+                rowStart = index;
+            }
+
+            if (index < start)
+            {
+                before.Add(move);
+                _runsDone += move.Kind == MoveKind.Burn ? 1 : 0;
+                if (move.Row != _lastRow)
+                {
+                    _rowsDone += _lastRow >= 0 ? 1 : 0;
+                    _lastRow = move.Row;
+                }
+            }
+            else
+            {
+                remaining.Add(move);
+            }
+
+            index++;
+        }
+
+        remaining.Finish();
+        if (start < 0 || start > index || (start < index && (rowStart < 0 || rowStart > start)))
+        {
+            throw new PreflightException($"the resume point (row {resume.Row}, move {resume.MoveIndex}) is not in this job's plan of {index} moves");
+        }
+
+        _estimateBefore = before.ElapsedSeconds - before.StartSeconds;
+        _estimateTotal = _estimateBefore + remaining.ElapsedSeconds;
+        return start == index ? ([], index) : (plan.Moves(resume.Row).Skip(checked((int)(start - rowStart))), start);
+    }
+
+    private async Task ExecuteMoveAsync(Move move, CancellationToken token)
+    {
+        var burn = move.Kind == MoveKind.Burn;
+
+        // Off before anything else, so the laser never stands still on while speeds are set.
+        if (!burn && _laserOn)
+        {
+            await SwitchLaserAsync(on: false).ConfigureAwait(false);
+        }
+
+        // Speeds before switching on, for the same reason (docs/simulator.md: dwell).
+        var speedData = burn || move.Kind == MoveKind.Overscan ? _burnSpeedData : _travelSpeedData;
+        await SetSpeedsAsync(move.LengthX != 0, move.LengthY != 0, speedData, token).ConfigureAwait(false);
+        if (burn && !_laserOn)
+        {
+            await SwitchLaserAsync(on: true).ConfigureAwait(false);
+        }
+
+        await MoveAxesAsync(move.LengthX != 0 ? move.X1 : null, move.LengthY != 0 ? move.Y1 : null, token).ConfigureAwait(false);
+    }
+
+    private async Task MoveToAsync(long x, long y, int speedData, CancellationToken token)
+    {
+        if (_laserOn)
+        {
+            await SwitchLaserAsync(on: false).ConfigureAwait(false);
+        }
+
+        await SetSpeedsAsync(x != _x, y != _y, speedData, token).ConfigureAwait(false);
+        await MoveAxesAsync(x != _x ? x : null, y != _y ? y : null, token).ConfigureAwait(false);
+    }
+
+    private async Task SetSpeedsAsync(bool x, bool y, int speedData, CancellationToken token)
+    {
+        if (x && _xSpeedData != speedData)
+        {
+            await Stage.X.SetTargetSpeedAsync(speedData, token).ConfigureAwait(false);
+            _xSpeedData = speedData;
+        }
+
+        if (y && _ySpeedData != speedData)
+        {
+            await Stage.Y.SetTargetSpeedAsync(speedData, token).ConfigureAwait(false);
+            _ySpeedData = speedData;
+        }
+    }
+
+    private async Task MoveAxesAsync(long? x, long? y, CancellationToken token)
+    {
+        ThrowIfAborted();
+        var xMove = x is { } toX ? Stage.X.MoveAbsoluteAsync(toX, token) : null;
+        var yMove = y is { } toY ? Stage.Y.MoveAbsoluteAsync(toY, token) : null;
+        try
+        {
+            if (xMove is not null)
+            {
+                _x = Arrived("X", await xMove.ConfigureAwait(false), x!.Value);
+            }
+
+            if (yMove is not null)
+            {
+                _y = Arrived("Y", await yMove.ConfigureAwait(false), y!.Value);
+            }
+        }
+        catch
+        {
+            // Observe the other axis' move so its failure is not left unobserved.
+            foreach (var pending in new[] { xMove, yMove })
+            {
+                if (pending is not null)
+                {
+                    _ = pending.ContinueWith(t => t.Exception, CancellationToken.None, TaskContinuationOptions.OnlyOnFaulted, TaskScheduler.Default);
+                }
+            }
+
+            throw;
+        }
+    }
+
+    private static long Arrived(string axis, long position, long target) =>
+        position == target
+            ? position
+            : throw new DeviceException($"the {axis} axis reports arriving at {position} instead of {target} microsteps (a garbled reply, or the axis was stopped)");
+
+    private void ThrowIfAborted()
+    {
+        if (IsAbortRequested)
+        {
+            throw new OperationCanceledException("aborted");
+        }
+    }
+
+    private async Task PauseIfAskedAsync(CancellationToken token)
+    {
+        TaskCompletionSource resumed;
+        lock (_lock)
+        {
+            if (!_pauseRequested || _abortRequested)
+            {
+                return;
+            }
+
+            resumed = _resumed;
+        }
+
+        if (_laserOn)
+        {
+            await SwitchLaserAsync(on: false).ConfigureAwait(false);
+        }
+
+        var pausedAt = TimeProvider.GetTimestamp();
+        SetState(RunState.Paused);
+        await resumed.Task.WaitAsync(token).ConfigureAwait(false);
+        _notEngraving += TimeProvider.GetElapsedTime(pausedAt);
+        ThrowIfAborted();
+        SetState(RunState.Running);
+    }
+
+    private void Completed(Move move, long index)
+    {
+        RunProgress progress;
+        lock (_lock)
+        {
+            _estimator!.Add(move);
+            if (move.Kind == MoveKind.Burn)
+            {
+                _runsDone++;
+            }
+
+            if (move.Row != _lastRow)
+            {
+                _rowsDone += _lastRow >= 0 ? 1 : 0;
+                _lastRow = move.Row;
+            }
+
+            _moveIndex = index + 1;
+            _progress = Snapshot();
+            progress = _progress;
+        }
+
+        MoveCompleted?.Invoke(this, new MoveCompletedEventArgs(move, index));
+        ProgressChanged?.Invoke(this, progress);
+    }
+
+    // ---- the laser ----
+
+    private async Task SwitchLaserAsync(bool on)
+    {
+        await _laserLock.WaitAsync().ConfigureAwait(false);
+        try
+        {
+            if (on)
+            {
+                // Inside the lock: an abort's switch-off is either already sent (and we stop here) or comes after this.
+                ThrowIfAborted();
+
+                // Gate commands are not cancelled: a reply arriving after a cancelled command would be taken for the next one's.
+                await Gate.SetFrequencyAsync(_process.LaserFrequencyWholeHz, CancellationToken.None).ConfigureAwait(false);
+                lock (_lock)
+                {
+                    _laserOn = true;
+                    _laserOnSince = TimeProvider.GetTimestamp();
+                }
+
+                _keepAlive!.Active = true;
+            }
+            else
+            {
+                if (_keepAlive is not null)
+                {
+                    _keepAlive.Active = false;
+                }
+
+                await Gate.OffAsync(CancellationToken.None).ConfigureAwait(false);
+                MarkLaserOff();
+            }
+        }
+        finally
+        {
+            _laserLock.Release();
+        }
+    }
+
+    private void MarkLaserOff()
+    {
+        lock (_lock)
+        {
+            if (_laserOn)
+            {
+                _laserOnSeconds += TimeProvider.GetElapsedTime(_laserOnSince).TotalSeconds;
+                _laserOn = false;
+            }
+        }
+    }
+
+    /// <summary>Switches the laser off, trying <see cref="RunOptions.LaserOffAttempts"/> times; records when the gate cannot be reached.</summary>
+    private async Task LaserOffSafelyAsync()
+    {
+        await _laserLock.WaitAsync().ConfigureAwait(false);
+        try
+        {
+            if (_keepAlive is not null)
+            {
+                _keepAlive.Active = false;
+            }
+
+            Exception? last = null;
+            for (var attempt = 0; attempt < Math.Max(1, Options.LaserOffAttempts); attempt++)
+            {
+                try
+                {
+                    await Gate.OffAsync(CancellationToken.None).ConfigureAwait(false);
+                    MarkLaserOff();
+                    lock (_lock)
+                    {
+                        _laserOffConfirmed = true;
+                        _laserOffProblem = null;
+                    }
+
+                    return;
+                }
+                catch (DeviceException ex)
+                {
+                    last = ex;
+                }
+            }
+
+            MarkLaserOff();
+            lock (_lock)
+            {
+                _laserOffConfirmed = false;
+                _laserOffProblem = $"the laser could not be confirmed off after {Options.LaserOffAttempts} attempts ({last?.Message}); switch it off at the laser";
+            }
+        }
+        finally
+        {
+            _laserLock.Release();
+        }
+    }
+
+    // ---- the end ----
+
+    private async Task StopAxesAsync()
+    {
+        var known = true;
+        foreach (var axis in new[] { Stage.X, Stage.Y })
+        {
+            try
+            {
+                var position = await axis.StopAsync(CancellationToken.None).ConfigureAwait(false);
+                lock (_lock)
+                {
+                    if (axis == Stage.X)
+                    {
+                        _x = position;
+                    }
+                    else
+                    {
+                        _y = position;
+                    }
+                }
+            }
+            catch (DeviceException)
+            {
+                // The stage may be gone (port lost, silent): the stop point then has no position.
+                known = false;
+            }
+        }
+
+        lock (_lock)
+        {
+            _stoppedAtKnownPosition = known;
+        }
+    }
+
+    private async Task<RunResult> FailAsync(string reason, MachineIdentity? identity, DateTimeOffset startedAt)
+    {
+        await LaserOffSafelyAsync().ConfigureAwait(false);
+        await StopAxesAsync().ConfigureAwait(false);
+        if (IsAbortRequested)
+        {
+            return await FinishAsync(RunOutcome.Aborted, AbortedMessage, identity, startedAt).ConfigureAwait(false);
+        }
+
+        return await FinishAsync(RunOutcome.Failed, reason, identity, startedAt).ConfigureAwait(false);
+    }
+
+    private async Task<RunResult> FinishAsync(RunOutcome outcome, string? message, MachineIdentity? identity, DateTimeOffset startedAt)
+    {
+        if (outcome == RunOutcome.Aborted)
+        {
+            await _abortSequence.ConfigureAwait(false);
+
+            // A move may have been sent in the moment between the abort and the run noticing it: stop again.
+            await StopAxesAsync().ConfigureAwait(false);
+        }
+
+        if (outcome == RunOutcome.Completed)
+        {
+            _estimator?.Finish();
+        }
+
+        var stopPoint = outcome == RunOutcome.Completed ? null : StopPoint();
+        RunResult result;
+        lock (_lock)
+        {
+            var fault = _laserOffProblem is null ? message : message is null ? _laserOffProblem : $"{message}; {_laserOffProblem}";
+            var engraving = _engravingStart == 0 ? TimeSpan.Zero : TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving;
+            result = new RunResult
+            {
+                Outcome = outcome,
+                FaultMessage = fault,
+                StopPoint = stopPoint,
+                LaserOffConfirmed = _laserOffConfirmed,
+                StartedAt = startedAt,
+                EndedAt = TimeProvider.GetUtcNow(),
+                EngravingDuration = engraving < TimeSpan.Zero ? TimeSpan.Zero : engraving,
+                EstimatedSeconds = _estimateTotal - _estimateBefore,
+                LaserOnSeconds = _laserOnSeconds,
+                RowsDone = _rowsDone,
+                RowsTotal = Job.Statistics.Rows,
+                RunsDone = _runsDone,
+                RunsTotal = Job.Statistics.BurnRuns,
+                Machine = identity,
+            };
+        }
+
+        SetState(outcome == RunOutcome.Failed ? RunState.Failed : RunState.Completed);
+        return result;
+    }
+
+    /// <summary>The first move not completed; a move whose stage stopped at its end counts as completed (only its reply was lost).</summary>
+    private RunStopPoint StopPoint()
+    {
+        lock (_lock)
+        {
+            var index = _moveIndex;
+            var row = _moveRow;
+            if (_stoppedAtKnownPosition && _currentMove is { } move && _x == move.X1 && _y == move.Y1 && index == _currentIndex)
+            {
+                index++;
+            }
+
+            return new RunStopPoint(row, index, _stoppedAtKnownPosition ? _x : null, _stoppedAtKnownPosition ? _y : null);
+        }
+    }
+
+    private RunProgress Snapshot()
+    {
+        var elapsed = TimeProvider.GetElapsedTime(_startTimestamp);
+        var estimateDone = _estimator is null ? 0 : _estimator.ElapsedSeconds - _estimator.StartSeconds;
+        var done = _estimateBefore + estimateDone;
+        var percent = _estimateTotal > 0 ? Math.Clamp(100 * done / _estimateTotal, 0, 100) : 0;
+        var engraving = _engravingStart == 0 ? 0 : (TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving).TotalSeconds;
+        var ratio = estimateDone > 1 && engraving > 0 ? engraving / estimateDone : 1;
+        var remaining = Math.Max(0, _estimateTotal - done) * ratio;
+        return new RunProgress(_state, _rowsDone, Job.Statistics.Rows, _runsDone, Job.Statistics.BurnRuns, percent, elapsed, TimeSpan.FromSeconds(remaining), _x, _y, _laserOn);
+    }
+
+    private void SetState(RunState state)
+    {
+        RunState previous;
+        RunProgress progress;
+        lock (_lock)
+        {
+            previous = _state;
+            if (previous == state
+                || previous is RunState.Completed or RunState.Failed
+                || (_abortRequested && state is not (RunState.Aborting or RunState.Completed or RunState.Failed)))
+            {
+                return;
+            }
+
+            _state = state;
+            _progress = Snapshot();
+            progress = _progress;
+        }
+
+        StateChanged?.Invoke(this, new RunStateChangedEventArgs(previous, state));
+        ProgressChanged?.Invoke(this, progress);
+    }
+}

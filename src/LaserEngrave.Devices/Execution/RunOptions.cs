@@ -1,0 +1,22 @@
+namespace LaserEngrave.Devices.Execution;
+
+/// <summary>How a run starts and how hard it tries when things go wrong.</summary>
+public sealed record RunOptions
+{
+    public static RunOptions Default { get; } = new();
+
+    /// <summary>Home both axes in preflight even when they are homed already.</summary>
+    public bool Home { get; init; }
+
+    /// <summary>An axis with auto-reply disabled (Device Mode bit 0) never confirms a move: clear the bit (true) or refuse (false).</summary>
+    public bool FixAutoReply { get; init; } = true;
+
+    /// <summary>Continue a stopped run from here: the first burn run not completed (null = from the start).</summary>
+    public RunStopPoint? ResumeFrom { get; init; }
+
+    /// <summary>Keepalive period as a fraction of the gate's watchdog time (the profile's <c>gate.watchdogMs</c>).</summary>
+    public double KeepAliveFraction { get; init; } = 0.25;
+
+    /// <summary>How many times the laser-off command is tried after a fault before the gate counts as unreachable.</summary>
+    public int LaserOffAttempts { get; init; } = 3;
+}

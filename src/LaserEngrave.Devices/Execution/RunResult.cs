@@ -1,0 +1,53 @@
+using LaserEngrave.Devices.Abstractions;
+
+namespace LaserEngrave.Devices.Execution;
+
+/// <summary>What the devices said about themselves in preflight, for the run log.</summary>
+/// <param name="X">The X axis.</param>
+/// <param name="Y">The Y axis.</param>
+/// <param name="Gate">The gate's identification text ("PICGATE SIM-1.0").</param>
+public sealed record MachineIdentity(AxisIdentity X, AxisIdentity Y, string Gate);
+
+/// <summary>How a run ended, with everything the run log needs.</summary>
+public sealed record RunResult
+{
+    public required RunOutcome Outcome { get; init; }
+
+    /// <summary>One line: what went wrong (null when completed; "aborted by the operator" when aborted).</summary>
+    public string? FaultMessage { get; init; }
+
+    /// <summary>Where the run stopped; give it to <see cref="RunOptions.ResumeFrom"/> to finish the job (null when completed).</summary>
+    public RunStopPoint? StopPoint { get; init; }
+
+    /// <summary>False when the laser could not be confirmed off at the end (the gate did not answer any attempt).</summary>
+    public required bool LaserOffConfirmed { get; init; }
+
+    public required DateTimeOffset StartedAt { get; init; }
+
+    public required DateTimeOffset EndedAt { get; init; }
+
+    /// <summary>The whole run on its clock (virtual time on the in-process simulator): preflight, positioning, plan, pauses.</summary>
+    public TimeSpan Duration => EndedAt - StartedAt;
+
+    /// <summary>The part the estimate models: from setting speed and acceleration at the plan's first position to the end, pauses left out.</summary>
+    public required TimeSpan EngravingDuration { get; init; }
+
+    /// <summary>Estimated duration of the moves this run was to execute (all of them, or those after the resume point), s.</summary>
+    public required double EstimatedSeconds { get; init; }
+
+    /// <summary>Time the laser was on (from each switch-on's acknowledgement to the switch-off's), s.</summary>
+    public required double LaserOnSeconds { get; init; }
+
+    /// <summary>Visited rows finished over the whole plan (with those done before a resume).</summary>
+    public required int RowsDone { get; init; }
+
+    public required int RowsTotal { get; init; }
+
+    /// <summary>Burn runs finished over the whole plan (with those done before a resume).</summary>
+    public required long RunsDone { get; init; }
+
+    public required long RunsTotal { get; init; }
+
+    /// <summary>The devices' identities (firmware), null when preflight did not get that far.</summary>
+    public MachineIdentity? Machine { get; init; }
+}

@@ -1,0 +1,139 @@
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Imaging;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Planning;
+using LaserEngrave.Devices.Execution;
+using LaserEngrave.Devices.LaserGate;
+using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Simulator;
+using LaserEngrave.Simulator.Burn;
+
+namespace LaserEngrave.Devices.Tests.Execution;
+
+/// <summary>An in-process simulated machine with the real ZaberChain and PicLaserGate on its links, in virtual time.</summary>
+internal sealed class SimulatedRun : IAsyncDisposable
+{
+    private SimulatedRun(SimulatedMachine machine)
+    {
+        Machine = machine;
+        Connect();
+    }
+
+    public SimulatedMachine Machine { get; }
+
+    public ZaberChain Stage { get; private set; } = null!;
+
+    public PicLaserGate Gate { get; private set; } = null!;
+
+    public TimeProvider Time => Machine.TimeProvider;
+
+    public static SimulatedRun Create(SimulatorOptions? options = null) =>
+        new(SimulatedMachine.CreateInProcess(MachineProfile.Default, options));
+
+    public RunExecutor Executor(PreparedJob job, RunOptions? options = null) => new(Stage, Gate, job, Time, options);
+
+    public StageTestMoves TestMoves() => new(Stage, Gate, Machine.Profile, timeProvider: Time);
+
+    /// <summary>Clears every fault and plugs fresh links in (the machine keeps its state), as a technician would after a fault.</summary>
+    public async Task RecoverAsync()
+    {
+        Machine.Faults.Clear();
+        await Stage.DisposeAsync();
+        await Gate.DisposeAsync();
+        await Machine.ReconnectAsync();
+        Connect();
+    }
+
+    public BurnReport Analyze(PreparedJob job) => Machine.Recorder.Analyze(Grid(job), job.Mask);
+
+    public static BurnGrid Grid(PreparedJob job)
+    {
+        var g = job.Plan.Geometry;
+        return new BurnGrid(g.OriginXMicrosteps, g.OriginYMicrosteps, g.PitchMicrosteps, g.WidthPx, g.HeightPx);
+    }
+
+    public async ValueTask DisposeAsync()
+    {
+        await Stage.DisposeAsync();
+        await Gate.DisposeAsync();
+        await Machine.DisposeAsync();
+    }
+
+    private void Connect()
+    {
+        Stage = new ZaberChain(new ZaberConnection(Machine.StageLink, Machine.TimeProvider), Machine.Profile);
+        Gate = new PicLaserGate(Machine.LaserLink, Machine.Profile.Gate, Machine.TimeProvider);
+    }
+}
+
+/// <summary>Jobs for the run tests: sample images and seeded random masks.</summary>
+internal static class TestJobs
+{
+    public static readonly OriginMm Origin = new(10, 10);
+
+    public static PreparedJob FromAsset(string name, double widthMm, PlanOptions plan, ProcessSettings? process = null) =>
+        PreparedJob.Prepare(new JobSpec
+        {
+            ImagePath = AssetPath(name),
+            Size = SizeSpec.Width(widthMm),
+            Origin = Origin,
+            Plan = plan,
+            Process = process ?? ProcessSettings.Default,
+        });
+
+    public static PreparedJob FromMask(BitMask mask, double widthMm, PlanOptions plan, OriginMm? origin = null, ProcessSettings? process = null)
+    {
+        var spec = new JobSpec
+        {
+            ImagePath = "mask",
+            Size = SizeSpec.Width(widthMm),
+            Origin = origin ?? Origin,
+            Plan = plan,
+            Process = process ?? ProcessSettings.Default,
+        };
+        var info = new ImageInfo("mask", ImageFormat.Pbm, 1, 2, mask.Width, mask.Height, 0, null, null, RowOrder.TopDown, "none", false);
+        return PreparedJob.Prepare(spec, info, mask);
+    }
+
+    public static BitMask RandomMask(int seed, int width, int height, double black = 0.4)
+    {
+        var random = new Random(seed);
+        var mask = new BitMask(width, height);
+        for (var y = 0; y < height; y++)
+        {
+            for (var x = 0; x < width; x++)
+            {
+                mask[x, y] = random.NextDouble() < black;
+            }
+        }
+
+        return mask;
+    }
+
+    public static BitMask Mask(params string[] rows)
+    {
+        var mask = new BitMask(rows[0].Length, rows.Length);
+        for (var y = 0; y < rows.Length; y++)
+        {
+            for (var x = 0; x < rows[y].Length; x++)
+            {
+                mask[x, y] = rows[y][x] == '#';
+            }
+        }
+
+        return mask;
+    }
+
+    public static string AssetPath(string name)
+    {
+        var directory = new DirectoryInfo(AppContext.BaseDirectory);
+        while (directory is not null && !Directory.Exists(Path.Combine(directory.FullName, "assets")))
+        {
+            directory = directory.Parent;
+        }
+
+        return directory is null
+            ? throw new FileNotFoundException($"no assets folder above {AppContext.BaseDirectory}")
+            : Path.Combine(directory.FullName, "assets", name);
+    }
+}
