@@ -1,7 +1,10 @@
 using System.CommandLine;
 using LaserEngrave.Cli.Commands;
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Logging;
+using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Devices.Execution;
 
 namespace LaserEngrave.Cli;
 
@@ -30,6 +33,10 @@ internal static class CliRunner
             Output = stdout,
             Error = stderr,
             EnableDefaultExceptionHandler = false,
+
+            // Ctrl+C cancels the command's token; a run then needs time to switch the laser off, stop the stage and
+            // write its log before the process may end (the default is 2 s).
+            ProcessTerminationTimeout = TimeSpan.FromSeconds(30),
         };
         try
         {
@@ -50,8 +57,9 @@ internal static class CliRunner
 
     public static int ExitCodeFor(Exception ex) => ex switch
     {
-        UsageException or ProfileException or ArgumentException or FormatException => BadInput,
+        UsageException or ProfileException or RunLogException or GeometryException or PlanException or ArgumentException or FormatException => BadInput,
         _ when ex.GetType().Name == "ImageLoadException" => BadInput,
+        TestMoveException => BadInput,
         DeviceException => Failure,
         OperationCanceledException => Failure,
         _ => Failure,

@@ -17,5 +17,11 @@ internal static class CommandRegistry
         yield return StageCommand.Create();
         yield return LaserCommand.Create();
         yield return SimulatorCommand.Create();
+        yield return EngraveCommand.Create();
+        yield return LogCommand.Create();
+        foreach (var command in TestMoveCommands.All())
+        {
+            yield return command;
+        }
     }
 }

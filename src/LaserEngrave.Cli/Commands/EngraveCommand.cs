@@ -1,0 +1,330 @@
+using System.CommandLine;
+using System.Globalization;
+using System.Runtime.ExceptionServices;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Logging;
+using LaserEngrave.Devices.Execution;
+using LaserEngrave.Simulator.Burn;
+using LogOutcome = LaserEngrave.Core.Logging.RunOutcome;
+using LogStopPoint = LaserEngrave.Core.Logging.RunStopPoint;
+using RunOutcome = LaserEngrave.Devices.Execution.RunOutcome;
+using RunStopPoint = LaserEngrave.Devices.Execution.RunStopPoint;
+
+namespace LaserEngrave.Cli.Commands;
+
+/// <summary>`laserengrave engrave IMAGE (size) ... (--simulate | --stage-port P --laser-port Q)`: runs a job, shows its progress and logs it.</summary>
+/// <remarks>
+/// Exit code 0 only when every run was burned; 1 when the run was aborted, failed or refused by preflight (the log is
+/// written in every one of those cases); 2 for bad input, before anything opens.
+/// </remarks>
+internal static class EngraveCommand
+{
+    public static Command Create()
+    {
+        var o = new EngraveOptions();
+        var command = new Command("engrave", "Engrave an image: plan, run on the machine or the simulator with a progress bar, and log the run");
+        o.AddTo(command);
+        command.SetAction((result, ct) => RunAsync(result, o, ct));
+        return command;
+    }
+
+    private static async Task<int> RunAsync(ParseResult result, EngraveOptions o, CancellationToken cancellationToken)
+    {
+        var stdout = result.InvocationConfiguration.Output;
+        var stderr = result.InvocationConfiguration.Error;
+        o.Machine.Validate(result);
+        var simulate = result.GetValue(o.Machine.Simulate);
+        var burnedPath = result.GetValue(o.Burned);
+        if (burnedPath is not null && !simulate)
+        {
+            throw new UsageException("--burned needs --simulate: only the simulator knows what was burned");
+        }
+
+        var (spec, repeatOf, resumeFrom) = BindJob(result, o);
+        var prepared = PreparedJob.Prepare(spec);
+        RefuseOutsideTravel(prepared);
+        foreach (var warning in prepared.Warnings)
+        {
+            stderr.WriteLine($"warning: {warning.Message}");
+        }
+
+        var store = new RunLogStore(result.GetValue(o.LogDir) ?? RunLogStore.DefaultFolder);
+        var record = RunRecord.ForJob(prepared, PreparedJob.HashFile(spec.ImagePath), DateTimeOffset.Now) with
+        {
+            Simulated = simulate,
+            Notes = result.GetValue(o.Notes),
+            SampleId = result.GetValue(o.Sample),
+            RepeatOf = repeatOf,
+            Resumed = resumeFrom is not null,
+        };
+
+        RunResult? run = null;
+        Exception? error = null;
+        BurnReport? burn = null;
+        var session = o.Machine.Open(result, spec.Profile);
+        await using (session.ConfigureAwait(false))
+        {
+            var executor = new RunExecutor(session.Stage, session.Gate, prepared, session.TimeProvider, new RunOptions { Home = result.GetValue(o.Home), ResumeFrom = resumeFrom });
+            var printer = new ProgressPrinter(stderr, terminal: ReferenceEquals(stderr, Console.Error) && !Console.IsErrorRedirected);
+            executor.ProgressChanged += (_, progress) => printer.Report(progress);
+            try
+            {
+                run = await executor.RunAsync(cancellationToken).ConfigureAwait(false);
+            }
+            catch (Exception ex) when (ex is not OutOfMemoryException)
+            {
+                // Whatever stopped the run, the log is still written; the error is reported once that is done.
+                error = ex;
+            }
+            finally
+            {
+                printer.Finish();
+            }
+
+            if (session.Simulator is { } simulator)
+            {
+                var g = prepared.Geometry.Geometry;
+                burn = simulator.Recorder.Analyze(new BurnGrid(g.OriginXMicrosteps, g.OriginYMicrosteps, g.PitchMicrosteps, g.WidthPx, g.HeightPx), prepared.Mask);
+            }
+
+            record = Finish(record, run, error, session, DateTimeOffset.Now);
+        }
+
+        var files = store.Write(record);
+        if (burnedPath is not null && burn is not null)
+        {
+            burn.WritePng(burnedPath);
+        }
+
+        var summary = EngraveSummary.From(record, files, burnedPath, burn);
+        if (result.GetValue(o.Json))
+        {
+            CliJson.Write(stdout, summary);
+        }
+        else
+        {
+            WriteText(stdout, summary);
+        }
+
+        if (error is not null)
+        {
+            ExceptionDispatchInfo.Throw(error);
+        }
+
+        if (record.Outcome != LogOutcome.Completed)
+        {
+            stderr.WriteLine($"laserengrave: run {summary.Outcome}: {record.Fault?.Message ?? "no reason given"} (log: {files.JsonPath})");
+            return CliRunner.Failure;
+        }
+
+        return CliRunner.Ok;
+    }
+
+    /// <summary>Refuses a job that does not fit the travel before any port opens (preflight would refuse it later).</summary>
+    internal static void RefuseOutsideTravel(PreparedJob prepared)
+    {
+        if (prepared.Geometry.FitsTravel)
+        {
+            return;
+        }
+
+        var g = prepared.Geometry;
+        var spec = prepared.Spec;
+        throw new UsageException(string.Create(
+            CultureInfo.InvariantCulture,
+            $"the job ({g.AchievedWidthMm:0.###} x {g.AchievedHeightMm:0.###} mm at origin {spec.Origin.X:0.###}, {spec.Origin.Y:0.###} mm) does not fit the stage's travel ({spec.Profile.X.TravelMm:0.###} x {spec.Profile.Y.TravelMm:0.###} mm); move --origin-mm or make it smaller"));
+    }
+
+    /// <summary>The job from the options, or from a run log (the image checked against its SHA-256), with the stop point to resume from.</summary>
+    private static (JobSpec Spec, string? RepeatOf, RunStopPoint? ResumeFrom) BindJob(ParseResult result, EngraveOptions o)
+    {
+        var fromLog = result.GetValue(o.FromLog);
+        var resume = result.GetValue(o.Resume);
+        if (fromLog is null)
+        {
+            return resume
+                ? throw new UsageException("--resume needs --from-log: the log says where the run stopped")
+                : (o.Job.Bind(result), null, null);
+        }
+
+        if (result.GetValue(o.Job.Image) is { } image)
+        {
+            throw new UsageException($"give IMAGE ({image}) or --from-log, not both: a repeated run takes its image and parameters from the log");
+        }
+
+        var logged = RunLogStore.Read(fromLog);
+        var spec = RunReplay.ToJobSpec(logged);
+        if (!resume)
+        {
+            return (spec, Path.GetFullPath(fromLog), null);
+        }
+
+        var stop = logged.StoppedAt
+            ?? throw new UsageException($"{fromLog}: the run {logged.Outcome.ToString().ToLowerInvariant()} with no stop point, so there is nothing to resume; repeat it without --resume");
+        return (spec, Path.GetFullPath(fromLog), new RunStopPoint(stop.Row, stop.MoveIndex, stop.XMicrosteps, stop.YMicrosteps));
+    }
+
+    private static RunRecord Finish(RunRecord record, RunResult? run, Exception? error, MachineSession session, DateTimeOffset endedAt)
+    {
+        if (run is null)
+        {
+            var outcome = error switch
+            {
+                PreflightException => LogOutcome.Refused,
+                OperationCanceledException => LogOutcome.Aborted,
+                _ => LogOutcome.Failed,
+            };
+            return record with
+            {
+                EndedAt = endedAt,
+                ActualSeconds = (endedAt - record.StartedAt).TotalSeconds,
+                Outcome = outcome,
+                Fault = new RunFault(error?.Message.ReplaceLineEndings(" ") ?? "the run ended without a result", outcome == LogOutcome.Refused ? "preflight" : error?.GetType().Name),
+            };
+        }
+
+        return record with
+        {
+            EndedAt = endedAt,
+            Outcome = run.Outcome switch
+            {
+                RunOutcome.Completed => LogOutcome.Completed,
+                RunOutcome.Aborted => LogOutcome.Aborted,
+                _ => LogOutcome.Failed,
+            },
+            Fault = run.Outcome == RunOutcome.Completed
+                ? null
+                : new RunFault(run.FaultMessage ?? "no reason given", run.Outcome == RunOutcome.Aborted ? "aborted" : null, run.LaserOffConfirmed),
+            StoppedAt = run.StopPoint is { } stop ? new LogStopPoint(stop.Row, stop.MoveIndex, stop.XMicrosteps, stop.YMicrosteps) : null,
+            Devices = run.Machine is { } machine
+                ?
+                [
+                    new RunDevice("x axis", session.StagePort, string.Create(CultureInfo.InvariantCulture, $"device {machine.X.DeviceNumber}, ID {machine.X.DeviceId}"), machine.X.FirmwareText),
+                    new RunDevice("y axis", session.StagePort, string.Create(CultureInfo.InvariantCulture, $"device {machine.Y.DeviceNumber}, ID {machine.Y.DeviceId}"), machine.Y.FirmwareText),
+                    new RunDevice("laser gate", session.LaserPort, machine.Gate, GateFirmware(machine.Gate)),
+                ]
+                : [],
+            EstimatedSeconds = run.EstimatedSeconds,
+            ActualSeconds = run.Duration.TotalSeconds,
+            EngravingSeconds = run.EngravingDuration.TotalSeconds,
+            LaserOnSeconds = run.LaserOnSeconds,
+            RowsDone = run.RowsDone,
+            RowsTotal = run.RowsTotal,
+            RunsDone = run.RunsDone,
+            RunsTotal = run.RunsTotal,
+        };
+    }
+
+    /// <summary>The gate identifies itself as "NAME VERSION"; the last word is its firmware.</summary>
+    private static string GateFirmware(string identity)
+    {
+        var words = identity.Split(' ', StringSplitOptions.RemoveEmptyEntries);
+        return words.Length > 0 ? words[^1] : "unknown";
+    }
+
+    private static void WriteText(TextWriter output, EngraveSummary s)
+    {
+        var c = CultureInfo.InvariantCulture;
+        var clock = s.Simulated ? " (simulated time)" : string.Empty;
+        output.WriteLine(string.Create(c, $"Outcome:          {s.Outcome}{(s.Fault is null ? string.Empty : $": {s.Fault}")}"));
+        output.WriteLine(string.Create(c, $"Done:             {s.RowsDone} of {s.RowsTotal} rows, {s.RunsDone} of {s.RunsTotal} burn runs"));
+        output.WriteLine(string.Create(c, $"Duration:         {RunSummaryText.Duration(s.DurationSeconds)}{clock}; engraving {RunSummaryText.Duration(s.EngravingSeconds)}, estimated {RunSummaryText.Duration(s.EstimatedSeconds)}"));
+        output.WriteLine(string.Create(c, $"Laser on:         {RunSummaryText.Duration(s.LaserOnSeconds)}"));
+        if (s.MissingPixels is { } missing && s.ExtraPixels is { } extra)
+        {
+            output.WriteLine(string.Create(c, $"Burned vs mask:   {missing} pixels missing, {extra} extra, {s.LaserOnTravelCount} laser-on travels, {s.DwellCount} dwells"));
+        }
+
+        if (s.BurnedPath is not null)
+        {
+            output.WriteLine($"Burned image:     {s.BurnedPath}");
+        }
+
+        output.WriteLine($"Log:              {s.LogPath}");
+        output.WriteLine($"Summary:          {s.SummaryPath}");
+    }
+
+    /// <summary>The options of `engrave`: the job's, the machine's, and the run's own.</summary>
+    private sealed class EngraveOptions
+    {
+        public EngraveOptions()
+        {
+            // IMAGE may be left out when --from-log gives the job.
+            Job.Image.Arity = ArgumentArity.ZeroOrOne;
+        }
+
+        public JobOptions Job { get; } = new();
+
+        public MachineOptions Machine { get; } = new();
+
+        public Option<string?> LogDir { get; } = LogCommand.LogDirOption();
+
+        public Option<string?> Burned { get; } = new("--burned") { Description = "With --simulate: write what was burned as a PNG on the job's pixel grid (black = burned)" };
+
+        public Option<string?> Notes { get; } = new("--notes") { Description = "Notes for the run log (focus, material, anything to remember)" };
+
+        public Option<string?> Sample { get; } = new("--sample") { Description = "Sample ID for the run log; also part of the log's file name" };
+
+        public Option<bool> Json { get; } = new("--json") { Description = "Print one JSON object with the outcome, times, counts and the log's path" };
+
+        public Option<string?> FromLog { get; } = new("--from-log") { Description = "Repeat the run of this log (its image, unchanged, and all its parameters) instead of giving IMAGE" };
+
+        public Option<bool> Resume { get; } = new("--resume") { Description = "With --from-log: continue that run from where it stopped instead of starting over" };
+
+        public Option<bool> Home { get; } = new("--home") { Description = "Home both axes before the run even if they are homed" };
+
+        public void AddTo(Command command)
+        {
+            Job.AddTo(command);
+            Machine.AddTo(command);
+            foreach (var option in new Option[] { LogDir, Burned, Notes, Sample, Json, FromLog, Resume, Home })
+            {
+                command.Options.Add(option);
+            }
+        }
+    }
+}
+
+/// <summary>What `engrave --json` prints: the outcome, times, counts, the log's files and, on the simulator, the burn check.</summary>
+internal sealed record EngraveSummary(
+    string Outcome,
+    string? Fault,
+    long? StoppedAtMove,
+    bool Simulated,
+    double DurationSeconds,
+    double EngravingSeconds,
+    double EstimatedSeconds,
+    double LaserOnSeconds,
+    int RowsDone,
+    int RowsTotal,
+    long RunsDone,
+    long RunsTotal,
+    string LogPath,
+    string SummaryPath,
+    string? BurnedPath,
+    long? MissingPixels,
+    long? ExtraPixels,
+    int? LaserOnTravelCount,
+    int? DwellCount)
+{
+    public static EngraveSummary From(RunRecord record, RunLogFiles files, string? burnedPath, BurnReport? burn) => new(
+        record.Outcome.ToString().ToLowerInvariant(),
+        record.Fault?.Message,
+        record.StoppedAt?.MoveIndex,
+        record.Simulated,
+        record.ActualSeconds,
+        record.EngravingSeconds,
+        record.EstimatedSeconds,
+        record.LaserOnSeconds,
+        record.RowsDone,
+        record.RowsTotal,
+        record.RunsDone,
+        record.RunsTotal,
+        files.JsonPath,
+        files.TextPath,
+        burnedPath is null ? null : Path.GetFullPath(burnedPath),
+        burn?.MissingPixels,
+        burn?.ExtraPixels,
+        burn?.LaserOnTravelCount,
+        burn?.DwellCount);
+}

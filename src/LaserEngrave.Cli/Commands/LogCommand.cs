@@ -1,0 +1,73 @@
+using System.CommandLine;
+using System.Globalization;
+using LaserEngrave.Core.Logging;
+
+namespace LaserEngrave.Cli.Commands;
+
+/// <summary>`laserengrave log show FILE [--json]` and `laserengrave log list [--log-dir DIR]`: the run logs engrave writes.</summary>
+internal static class LogCommand
+{
+    public static Command Create()
+    {
+        var command = new Command("log", "Show one run log, or list the runs in a log folder");
+        command.Subcommands.Add(Show());
+        command.Subcommands.Add(List());
+        return command;
+    }
+
+    /// <summary>The --log-dir option of `log list` and `engrave`.</summary>
+    public static Option<string?> LogDirOption() => new("--log-dir")
+    {
+        Description = $"Folder of the run logs (default: {RunLogStore.DefaultFolder})",
+    };
+
+    private static Command Show()
+    {
+        var file = new Argument<string>("FILE") { Description = "A run log: the .json file (or the .txt summary beside it)" };
+        var json = new Option<bool>("--json") { Description = "Print the JSON record instead of the summary" };
+        var command = new Command("show", "Print a run's summary (or its JSON record)") { file, json };
+        command.SetAction(result =>
+        {
+            var record = RunLogStore.Read(result.GetRequiredValue(file));
+            var output = result.InvocationConfiguration.Output;
+            output.Write(result.GetValue(json) ? RunRecordJson.Serialize(record) + "\n" : RunSummaryText.Format(record));
+            return CliRunner.Ok;
+        });
+        return command;
+    }
+
+    private static Command List()
+    {
+        var logDir = LogDirOption();
+        var command = new Command("list", "List the runs in the log folder, newest first") { logDir };
+        command.SetAction(result =>
+        {
+            var store = new RunLogStore(result.GetValue(logDir) ?? RunLogStore.DefaultFolder);
+            var output = result.InvocationConfiguration.Output;
+            var entries = store.List();
+            if (entries.Count == 0)
+            {
+                output.WriteLine($"no run logs in {store.Folder}");
+                return CliRunner.Ok;
+            }
+
+            var c = CultureInfo.InvariantCulture;
+            foreach (var entry in entries)
+            {
+                if (entry.Record is not { } r)
+                {
+                    result.InvocationConfiguration.Error.WriteLine($"warning: {entry.Error}");
+                    continue;
+                }
+
+                var done = string.Create(c, $"{r.RunsDone}/{r.RunsTotal} runs");
+                output.WriteLine(string.Create(
+                    c,
+                    $"{r.StartedAt:yyyy-MM-dd HH:mm}  {r.Outcome.ToString().ToLowerInvariant(),-9}  {done,-16}  {RunSummaryText.Duration(r.ActualSeconds),-14}  {r.SampleId ?? "-",-12}  {Path.GetFileName(r.Image.Path)}  {entry.Path}"));
+            }
+
+            return CliRunner.Ok;
+        });
+        return command;
+    }
+}

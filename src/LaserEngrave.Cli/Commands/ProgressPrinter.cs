@@ -1,0 +1,72 @@
+using System.Diagnostics;
+using System.Globalization;
+using LaserEngrave.Core.Logging;
+using LaserEngrave.Devices.Execution;
+
+namespace LaserEngrave.Cli.Commands;
+
+/// <summary>Shows a run's progress: a redrawn bar (rows, percent, ETA) on a terminal, a plain line every 10 % when redirected.</summary>
+/// <remarks>Called after every move on the run's thread, so it only prints when something visible changed or time passed.</remarks>
+internal sealed class ProgressPrinter(TextWriter writer, bool terminal)
+{
+    private const int BarWidth = 30;
+    private static readonly TimeSpan RedrawInterval = TimeSpan.FromMilliseconds(100);
+    private static readonly TimeSpan PlainInterval = TimeSpan.FromSeconds(30);
+
+    private readonly Stopwatch _sinceLastPrint = Stopwatch.StartNew();
+    private int _lastDecile = -1;
+    private RunState? _lastState;
+    private bool _barShown;
+
+    public void Report(RunProgress progress)
+    {
+        ArgumentNullException.ThrowIfNull(progress);
+        var stateChanged = progress.State != _lastState;
+        _lastState = progress.State;
+        if (terminal)
+        {
+            if (stateChanged || _sinceLastPrint.Elapsed >= RedrawInterval)
+            {
+                writer.Write("\r" + Bar(progress));
+                writer.Flush();
+                _barShown = true;
+                _sinceLastPrint.Restart();
+            }
+
+            return;
+        }
+
+        var decile = (int)Math.Floor(Math.Clamp(progress.Percent, 0, 100) / 10);
+        if (decile != _lastDecile || stateChanged || _sinceLastPrint.Elapsed >= PlainInterval)
+        {
+            _lastDecile = decile;
+            writer.WriteLine(Line(progress));
+            _sinceLastPrint.Restart();
+        }
+    }
+
+    /// <summary>Ends the bar's line so what follows starts on a fresh one.</summary>
+    public void Finish()
+    {
+        if (_barShown)
+        {
+            writer.WriteLine();
+            _barShown = false;
+        }
+    }
+
+    internal static string Bar(RunProgress p)
+    {
+        var filled = (int)Math.Round(Math.Clamp(p.Percent, 0, 100) / 100 * BarWidth);
+        var state = p.State is RunState.Running ? string.Empty : $"  {p.State.ToString().ToLowerInvariant()}";
+        return string.Create(
+            CultureInfo.InvariantCulture,
+            $"[{new string('#', filled)}{new string('.', BarWidth - filled)}] {p.Percent,5:0.0} %  row {p.RowsDone}/{p.RowsTotal}  ETA {Eta(p)}{state}   ");
+    }
+
+    internal static string Line(RunProgress p) => string.Create(
+        CultureInfo.InvariantCulture,
+        $"{p.State.ToString().ToLowerInvariant()}: {p.Percent:0} %, row {p.RowsDone} of {p.RowsTotal}, {p.RunsDone} of {p.RunsTotal} burn runs, {Eta(p)} left");
+
+    private static string Eta(RunProgress p) => RunSummaryText.Duration(p.Remaining.TotalSeconds);
+}

@@ -1,0 +1,7 @@
+namespace LaserEngrave.Core.Logging;
+
+/// <summary>What stopped a run that did not complete, and whether the laser was confirmed off afterwards.</summary>
+/// <param name="Message">The one-line error, as the operator saw it.</param>
+/// <param name="Kind">The kind of fault, e.g. "timeout", "port lost", "gate silent", "aborted"; free text from the executor.</param>
+/// <param name="LaserOffConfirmed">Whether the gate acknowledged the laser switching off after the fault.</param>
+public sealed record RunFault(string Message, string? Kind = null, bool LaserOffConfirmed = true);

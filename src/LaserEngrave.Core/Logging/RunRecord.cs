@@ -1,0 +1,127 @@
+using System.Reflection;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Imaging;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Planning;
+
+namespace LaserEngrave.Core.Logging;
+
+/// <summary>One engraving run, completed or not: everything needed to cite it in a lab notebook and to repeat it.</summary>
+/// <remarks>
+/// Saved as JSON by <see cref="RunLogStore"/> with <see cref="SchemaVersion"/>; docs/run-log.md describes every field.
+/// Times are the wall clock with its offset, except that on the simulator the durations are virtual time.
+/// </remarks>
+public sealed record RunRecord
+{
+    /// <summary>The schema version this build writes; it reads this one and older.</summary>
+    public const int CurrentSchemaVersion = 1;
+
+    public int SchemaVersion { get; init; } = CurrentSchemaVersion;
+
+    /// <summary>LaserEngrave's version that ran the job.</summary>
+    public required string SoftwareVersion { get; init; }
+
+    /// <summary>When the run started (before preflight), with the local offset.</summary>
+    public required DateTimeOffset StartedAt { get; init; }
+
+    /// <summary>When the run ended, laser off, with the local offset.</summary>
+    public required DateTimeOffset EndedAt { get; init; }
+
+    public required RunOutcome Outcome { get; init; }
+
+    /// <summary>What stopped the run; null when it completed.</summary>
+    public RunFault? Fault { get; init; }
+
+    /// <summary>Where it stopped (the first move not completed); null when it completed.</summary>
+    public RunStopPoint? StoppedAt { get; init; }
+
+    public required RunImage Image { get; init; }
+
+    public required MaskOptions Mask { get; init; }
+
+    public required RunGeometry Geometry { get; init; }
+
+    /// <summary>Strategy, direction and overscan.</summary>
+    public required PlanOptions Plan { get; init; }
+
+    /// <summary>Burn and travel speeds, acceleration, laser frequency and baud rates.</summary>
+    public required ProcessSettings Process { get; init; }
+
+    public required MachineProfile Profile { get; init; }
+
+    /// <summary>Whether the run was on the built-in simulator (durations then are virtual time).</summary>
+    public bool Simulated { get; init; }
+
+    /// <summary>The devices as they identified themselves, with their firmware versions.</summary>
+    public IReadOnlyList<RunDevice> Devices { get; init; } = [];
+
+    /// <summary>The estimated duration of the moves this run was to execute (all of them, or those after a resume point), s.</summary>
+    public required double EstimatedSeconds { get; init; }
+
+    /// <summary>How long the run took from start to end, s (virtual when simulated).</summary>
+    public double ActualSeconds { get; init; }
+
+    /// <summary>The part of <see cref="ActualSeconds"/> the estimate models (from the first move of the plan to the end, pauses left out), s.</summary>
+    public double EngravingSeconds { get; init; }
+
+    /// <summary>How long the laser was on, s.</summary>
+    public double LaserOnSeconds { get; init; }
+
+    public int RowsDone { get; init; }
+
+    public required int RowsTotal { get; init; }
+
+    /// <summary>Burn runs completed.</summary>
+    public long RunsDone { get; init; }
+
+    /// <summary>Burn runs in the plan.</summary>
+    public required long RunsTotal { get; init; }
+
+    /// <summary>The operator's notes, as typed.</summary>
+    public string? Notes { get; init; }
+
+    /// <summary>The sample's ID, as typed; also part of the log's file name.</summary>
+    public string? SampleId { get; init; }
+
+    /// <summary>The run log this run repeated or resumed (`engrave --from-log`); null for a new job.</summary>
+    public string? RepeatOf { get; init; }
+
+    /// <summary>Whether this run resumed <see cref="RepeatOf"/> from its stop point rather than starting over.</summary>
+    public bool Resumed { get; init; }
+
+    /// <summary>The version of the LaserEngrave.Core assembly, as built (its informational version, with the source revision when known).</summary>
+    public static string CurrentSoftwareVersion { get; } = ReadSoftwareVersion();
+
+    /// <summary>
+    /// The record of a job about to run: its parameters filled in, started and ended at <paramref name="startedAt"/>,
+    /// outcome <see cref="RunOutcome.Failed"/> (what an unfinished record should say) until the caller sets the result.
+    /// </summary>
+    public static RunRecord ForJob(PreparedJob job, string imageSha256, DateTimeOffset startedAt)
+    {
+        ArgumentNullException.ThrowIfNull(job);
+        ArgumentException.ThrowIfNullOrWhiteSpace(imageSha256);
+        return new RunRecord
+        {
+            SoftwareVersion = CurrentSoftwareVersion,
+            StartedAt = startedAt,
+            EndedAt = startedAt,
+            Outcome = RunOutcome.Failed,
+            Image = new RunImage(Path.GetFullPath(job.Spec.ImagePath), imageSha256, job.Mask.Width, job.Mask.Height),
+            Mask = job.Spec.Mask,
+            Geometry = RunGeometry.From(job.Geometry, job.Spec.Origin),
+            Plan = job.Spec.Plan,
+            Process = job.Spec.Process,
+            Profile = job.Spec.Profile,
+            EstimatedSeconds = job.Statistics.EstimatedSeconds,
+            RowsTotal = job.Statistics.Rows,
+            RunsTotal = job.Statistics.BurnRuns,
+        };
+    }
+
+    private static string ReadSoftwareVersion()
+    {
+        var assembly = typeof(RunRecord).Assembly;
+        var informational = assembly.GetCustomAttribute<AssemblyInformationalVersionAttribute>()?.InformationalVersion;
+        return !string.IsNullOrEmpty(informational) ? informational : assembly.GetName().Version?.ToString() ?? "unknown";
+    }
+}

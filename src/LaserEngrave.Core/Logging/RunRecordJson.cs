@@ -1,0 +1,43 @@
+using System.Text.Json;
+
+namespace LaserEngrave.Core.Logging;
+
+/// <summary>Turns a <see cref="RunRecord"/> into its JSON text and back (the format of docs/run-log.md).</summary>
+public static class RunRecordJson
+{
+    public static string Serialize(RunRecord record)
+    {
+        ArgumentNullException.ThrowIfNull(record);
+        return JsonSerializer.Serialize(record, RunLogJsonContext.Default.RunRecord);
+    }
+
+    /// <summary>Parses a record; throws <see cref="RunLogException"/> with one line naming <paramref name="source"/> and the problem.</summary>
+    public static RunRecord Deserialize(string json, string source)
+    {
+        ArgumentNullException.ThrowIfNull(json);
+        RunRecord? record;
+        try
+        {
+            record = JsonSerializer.Deserialize(json, RunLogJsonContext.Default.RunRecord);
+        }
+        catch (JsonException ex)
+        {
+            throw new RunLogException($"{source}: not a run log: {FirstLine(ex.Message)}", ex);
+        }
+
+        if (record is null)
+        {
+            throw new RunLogException($"{source}: not a run log: it holds null");
+        }
+
+        if (record.SchemaVersion is < 1 or > RunRecord.CurrentSchemaVersion)
+        {
+            throw new RunLogException(
+                $"{source}: run log schema version {record.SchemaVersion} is not one this LaserEngrave reads (1..{RunRecord.CurrentSchemaVersion}); use a newer LaserEngrave");
+        }
+
+        return record;
+    }
+
+    private static string FirstLine(string message) => message.ReplaceLineEndings(" ");
+}

@@ -1,0 +1,92 @@
+using System.Globalization;
+using System.Text;
+using LaserEngrave.Core.Planning;
+
+namespace LaserEngrave.Core.Logging;
+
+/// <summary>The plain-text summary of a run that a person reads and copies into a lab notebook.</summary>
+public static class RunSummaryText
+{
+    public static string Format(RunRecord record)
+    {
+        ArgumentNullException.ThrowIfNull(record);
+        var c = CultureInfo.InvariantCulture;
+        var text = new StringBuilder();
+        void Line(string label, string value) => text.Append(c, $"{label + ":",-20}{value}").Append('\n');
+
+        text.Append("LaserEngrave run\n");
+        Line("Sample", record.SampleId ?? "(none)");
+        Line("Outcome", Outcome(record));
+        if (record.Fault is { } fault)
+        {
+            Line("Fault", fault.Message + (fault.Kind is null ? string.Empty : $" ({fault.Kind})"));
+            Line("Laser off confirmed", fault.LaserOffConfirmed ? "yes" : "NO: check the laser by hand");
+        }
+
+        if (record.StoppedAt is { } stop)
+        {
+            var position = stop.XMicrosteps is { } x && stop.YMicrosteps is { } y ? string.Create(c, $", stage at {x}, {y} microsteps") : string.Empty;
+            Line("Stopped at", string.Create(c, $"row {stop.Row}, move {stop.MoveIndex}{position}"));
+        }
+
+        Line("Started", record.StartedAt.ToString("yyyy-MM-dd HH:mm:ss zzz", c));
+        Line("Ended", record.EndedAt.ToString("yyyy-MM-dd HH:mm:ss zzz", c));
+        var clock = record.Simulated ? " (simulated time)" : string.Empty;
+        Line("Duration", string.Create(c, $"{Duration(record.ActualSeconds)}{clock}, estimated {Duration(record.EstimatedSeconds)}"));
+        Line("Laser on", Duration(record.LaserOnSeconds));
+        Line("Done", string.Create(c, $"{record.RowsDone} of {record.RowsTotal} rows, {record.RunsDone} of {record.RunsTotal} burn runs"));
+        Line("Image", string.Create(c, $"{record.Image.Path} ({record.Image.WidthPx} x {record.Image.HeightPx} px)"));
+        Line("Image SHA-256", record.Image.Sha256);
+        var m = record.Mask;
+        Line("Mask", string.Create(c, $"threshold {m.ThresholdPercent:0.##} %, dither {m.Dither.ToString().ToLowerInvariant()}{(m.Invert ? ", inverted" : string.Empty)}"));
+        var g = record.Geometry;
+        Line("Size on stage", string.Create(c, $"{g.WidthMm:0.####} x {g.HeightMm:0.####} mm (asked: {g.Size.ToSizeSpec().Describe()})"));
+        Line("Origin", string.Create(c, $"{g.OriginXMm:0.####}, {g.OriginYMm:0.####} mm"));
+        Line("Pitch", string.Create(c, $"{g.PitchUm:0.####} µm = {g.MicrostepsPerPixel:0.####} microsteps per pixel ({g.MicrostepUm} µm per microstep)"));
+        var p = record.Plan;
+        Line("Strategy", p.Strategy == PlanStrategy.Paper
+            ? "paper"
+            : string.Create(c, $"optimized, {(p.Bidirectional ? "bidirectional" : "unidirectional")}, overscan {p.OverscanMm:0.###} mm"));
+        var s = record.Process;
+        Line("Speeds", string.Create(c, $"burn {s.BurnSpeedMmPerS:0.###} mm/s, travel {s.TravelSpeedMmPerS:0.###} mm/s, acceleration {s.AccelerationMmPerS2:0.###} mm/s²"));
+        Line("Laser frequency", string.Create(c, $"{s.LaserFrequencyHz:0.###} Hz"));
+        Line("Machine", record.Profile.Name + (record.Simulated ? " (simulator)" : string.Empty));
+        foreach (var device in record.Devices)
+        {
+            Line("Device", $"{device.Role} on {device.Port}: {device.Identity}, firmware {device.Firmware}");
+        }
+
+        if (record.RepeatOf is { } repeated)
+        {
+            Line(record.Resumed ? "Resumes" : "Repeats", repeated + (record.Resumed ? " (from where it stopped)" : string.Empty));
+        }
+
+        Line("Software", "LaserEngrave " + record.SoftwareVersion);
+        Line("Notes", string.IsNullOrWhiteSpace(record.Notes) ? "(none)" : record.Notes.ReplaceLineEndings("\n" + new string(' ', 20)));
+        return text.ToString();
+    }
+
+    /// <summary>A duration as "1 h 02 min 03 s" or "2 min 03.4 s".</summary>
+    public static string Duration(double seconds)
+    {
+        var c = CultureInfo.InvariantCulture;
+        if (!double.IsFinite(seconds) || seconds < 0)
+        {
+            return "unknown";
+        }
+
+        var t = TimeSpan.FromSeconds(Math.Round(seconds, 1));
+        return t.TotalHours >= 1
+            ? string.Create(c, $"{(int)t.TotalHours} h {t.Minutes:00} min {t.Seconds:00} s")
+            : string.Create(c, $"{t.Minutes} min {t.Seconds + (t.Milliseconds / 1000.0):00.0} s");
+    }
+
+    private static string Outcome(RunRecord record) => record.Outcome switch
+    {
+        RunOutcome.Completed => "completed",
+        RunOutcome.Aborted => "aborted by the operator",
+        RunOutcome.Failed => "FAILED",
+        RunOutcome.Refused => "refused before starting",
+        _ => record.Outcome.ToString(),
+    };
+}

@@ -1,0 +1,270 @@
+using System.Text.Json;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Imaging;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Logging;
+
+namespace LaserEngrave.Cli.Tests;
+
+public sealed class EngraveCommandTests : IDisposable
+{
+    private static readonly string[] JsonFields =
+        ["outcome", "durationSeconds", "estimatedSeconds", "laserOnSeconds", "rowsDone", "runsDone", "logPath"];
+
+    private readonly string folder = Path.Combine(Path.GetTempPath(), $"le-cli-engrave-{Guid.NewGuid():N}");
+
+    public EngraveCommandTests() => Directory.CreateDirectory(folder);
+
+    private static string QrCode => Path.Combine(CliHarness.RepositoryRoot, "assets", "qr-code.bmp");
+
+    private string LogDir => Path.Combine(folder, "logs");
+
+    [Fact]
+    public async Task EngraveSimulate_QrCode_CompletesExit0WithConsistentJsonBurnedImageAndLog()
+    {
+        var burned = Path.Combine(folder, "burned.png");
+
+        var (exit, output, error) = await CliHarness.RunAsync(
+            "engrave", QrCode, "--width-mm", "5", "--simulate", "--json", "--log-dir", LogDir, "--burned", burned, "--sample", "QR-1", "--notes", "first");
+
+        Assert.True(exit == 0, error);
+        using var json = JsonDocument.Parse(output);
+        var root = json.RootElement;
+        foreach (var field in JsonFields)
+        {
+            Assert.True(root.TryGetProperty(field, out _), $"missing {field}");
+        }
+
+        using var plan = JsonDocument.Parse((await CliHarness.RunAsync("plan", QrCode, "--width-mm", "5", "--json")).Out);
+        Assert.Equal("completed", root.GetProperty("outcome").GetString());
+        Assert.Equal(plan.RootElement.GetProperty("rows").GetInt32(), root.GetProperty("rowsDone").GetInt32());
+        Assert.Equal(plan.RootElement.GetProperty("burnRuns").GetInt64(), root.GetProperty("runsDone").GetInt64());
+        Assert.Equal(root.GetProperty("runsTotal").GetInt64(), root.GetProperty("runsDone").GetInt64());
+        Assert.Equal(plan.RootElement.GetProperty("estimatedSeconds").GetDouble(), root.GetProperty("estimatedSeconds").GetDouble(), 6);
+        var duration = root.GetProperty("durationSeconds").GetDouble();
+        var laserOn = root.GetProperty("laserOnSeconds").GetDouble();
+        Assert.InRange(root.GetProperty("engravingSeconds").GetDouble(), 0.5 * root.GetProperty("estimatedSeconds").GetDouble(), duration);
+        Assert.InRange(laserOn, 0.001, duration);
+        Assert.Equal(0, root.GetProperty("missingPixels").GetInt64());
+        Assert.Equal(0, root.GetProperty("extraPixels").GetInt64());
+        Assert.Equal(0, root.GetProperty("laserOnTravelCount").GetInt32());
+        Assert.Equal(0, root.GetProperty("dwellCount").GetInt32());
+
+        var expected = MaskBuilder.FromFile(QrCode, MaskOptions.Default, out _);
+        var actual = MaskBuilder.FromFile(burned, MaskOptions.Default, out _);
+        Assert.True(expected.ContentEquals(actual), "the burned PNG differs from the mask");
+
+        var logPath = root.GetProperty("logPath").GetString()!;
+        Assert.StartsWith(Path.GetFullPath(LogDir), logPath, StringComparison.Ordinal);
+        Assert.EndsWith("_QR-1.json", logPath, StringComparison.Ordinal);
+        var record = RunLogStore.Read(logPath);
+        Assert.Equal(RunOutcome.Completed, record.Outcome);
+        Assert.Null(record.Fault);
+        Assert.True(record.Simulated);
+        Assert.Equal("first", record.Notes);
+        Assert.Equal(duration, record.ActualSeconds);
+        Assert.Equal(laserOn, record.LaserOnSeconds);
+        Assert.Equal(3, record.Devices.Count);
+        Assert.All(record.Devices, d => Assert.False(string.IsNullOrWhiteSpace(d.Firmware)));
+        var (showExit, shown, _) = await CliHarness.RunAsync("log", "show", logPath);
+        Assert.Equal(0, showExit);
+        Assert.Contains("Outcome:            completed", shown, StringComparison.Ordinal);
+        Assert.Contains("Sample:             QR-1", shown, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task EngraveSimulate_TextOutput_SaysCompletedAndWhereTheLogIs()
+    {
+        var (exit, output, error) = await CliHarness.RunAsync("engrave", QrCode, "--width-mm", "3", "--simulate", "--log-dir", LogDir);
+
+        Assert.True(exit == 0, error);
+        Assert.StartsWith("Outcome:          completed", output, StringComparison.Ordinal);
+        Assert.Contains("Burned vs mask:   0 pixels missing, 0 extra, 0 laser-on travels, 0 dwells", output, StringComparison.Ordinal);
+        Assert.Contains($"Log:              {Path.GetFullPath(LogDir)}", output, StringComparison.Ordinal);
+
+        // Output redirected (a StringWriter): plain progress lines, no carriage-return bar.
+        Assert.Contains("running: ", error, StringComparison.Ordinal);
+        Assert.DoesNotContain('\r', error);
+    }
+
+    [Fact]
+    public async Task Engrave_BadImage_Exit2WithOneLineAndNoLog()
+    {
+        var image = Path.Combine(folder, "not-an-image.bmp");
+        await File.WriteAllTextAsync(image, "hello", TestContext.Current.CancellationToken);
+
+        var (exit, _, error) = await CliHarness.RunAsync("engrave", image, "--width-mm", "5", "--simulate", "--log-dir", LogDir);
+
+        Assert.Equal(2, exit);
+        Assert.StartsWith($"laserengrave: {image}: ", error, StringComparison.Ordinal);
+        Assert.Single(error.TrimEnd().Split('\n'));
+        Assert.False(Directory.Exists(LogDir));
+    }
+
+    [Fact]
+    public async Task Engrave_JobOutsideTheTravel_RefusedExit2BeforeAnythingMoves()
+    {
+        var (exit, _, error) = await CliHarness.RunAsync("engrave", QrCode, "--width-mm", "20", "--origin-mm", "50,0", "--simulate", "--log-dir", LogDir);
+
+        Assert.Equal(2, exit);
+        Assert.Contains("does not fit the stage's travel (60 x 60 mm)", error, StringComparison.Ordinal);
+        Assert.Single(error.TrimEnd().Split('\n'));
+        Assert.False(Directory.Exists(LogDir));
+    }
+
+    [Theory]
+    [InlineData(new[] { "--width-mm", "5" }, "give the machine")]
+    [InlineData(new[] { "--width-mm", "5", "--simulate", "--stage-port", "/dev/ttyS0" }, "contradict")]
+    [InlineData(new[] { "--width-mm", "5", "--stage-port", "/dev/ttyS0" }, "--laser-port is missing")]
+    [InlineData(new[] { "--width-mm", "5", "--stage-port", "/dev/ttyS0", "--laser-port", "/dev/ttyS1", "--fault", "silent:stage" }, "--fault works only with --simulate")]
+    [InlineData(new[] { "--width-mm", "5", "--stage-port", "/dev/ttyS0", "--laser-port", "/dev/ttyS1", "--burned", "b.png" }, "--burned needs --simulate")]
+    [InlineData(new[] { "--width-mm", "5", "--simulate", "--resume" }, "--resume needs --from-log")]
+    [InlineData(new[] { "--width-mm", "5", "--simulate", "--speed-mm-s", "0" }, "burn speed 0 mm/s")]
+    [InlineData(new[] { "--width-mm", "5", "--simulate", "--frequency-hz", "-5" }, "laser frequency -5 Hz")]
+    [InlineData(new[] { "--width-mm", "5", "--simulate", "--fault", "melt:stage" }, "melt")]
+    public async Task Engrave_BadOptions_Exit2WithOneLine(string[] options, string expected)
+    {
+        var (exit, _, error) = await CliHarness.RunAsync(["engrave", QrCode, "--log-dir", LogDir, .. options]);
+
+        Assert.Equal(2, exit);
+        Assert.Contains(expected, error, StringComparison.Ordinal);
+        Assert.Single(error.TrimEnd().Split('\n'));
+        Assert.False(Directory.Exists(LogDir));
+    }
+
+    [Fact]
+    public async Task EngraveSimulate_InjectedFault_Exit1LogRecordsTheFaultAndResumeFinishes()
+    {
+        var (exit, output, error) = await CliHarness.RunAsync(
+            "engrave", QrCode, "--width-mm", "5", "--simulate", "--json", "--log-dir", LogDir, "--fault", "silent:stage:after=300");
+
+        Assert.Equal(1, exit);
+        using var json = JsonDocument.Parse(output);
+        Assert.Equal("failed", json.RootElement.GetProperty("outcome").GetString());
+        Assert.Equal(0, json.RootElement.GetProperty("laserOnTravelCount").GetInt32());
+        Assert.StartsWith("laserengrave: run failed: ", error.TrimEnd().Split('\n')[^1], StringComparison.Ordinal);
+        var logPath = json.RootElement.GetProperty("logPath").GetString()!;
+        var record = RunLogStore.Read(logPath);
+        Assert.Equal(RunOutcome.Failed, record.Outcome);
+        Assert.NotNull(record.Fault);
+        Assert.NotNull(record.StoppedAt);
+        Assert.InRange(record.RunsDone, 0, record.RunsTotal - 1);
+        Assert.Contains("FAILED", await File.ReadAllTextAsync(Path.ChangeExtension(logPath, ".txt"), TestContext.Current.CancellationToken), StringComparison.Ordinal);
+
+        var resumed = await CliHarness.RunAsync("engrave", "--from-log", logPath, "--resume", "--simulate", "--json", "--log-dir", LogDir);
+
+        Assert.True(resumed.Exit == 0, resumed.Err);
+        using var again = JsonDocument.Parse(resumed.Out);
+        Assert.Equal("completed", again.RootElement.GetProperty("outcome").GetString());
+        Assert.Equal(record.RunsTotal, again.RootElement.GetProperty("runsDone").GetInt64());
+        var resumedRecord = RunLogStore.Read(again.RootElement.GetProperty("logPath").GetString()!);
+        Assert.True(resumedRecord.Resumed);
+        Assert.Equal(Path.GetFullPath(logPath), resumedRecord.RepeatOf);
+    }
+
+    [Fact]
+    public async Task EngraveFromLog_CompletedRun_RepeatsWithTheSameParameters()
+    {
+        var first = await CliHarness.RunAsync(
+            "engrave", QrCode, "--width-mm", "4", "--origin-mm", "5,6", "--threshold", "40", "--unidirectional", "--overscan-mm", "0.1",
+            "--speed-mm-s", "2", "--travel-speed-mm-s", "3.5", "--frequency-hz", "1500", "--simulate", "--json", "--log-dir", LogDir);
+        Assert.True(first.Exit == 0, first.Err);
+        using var firstJson = JsonDocument.Parse(first.Out);
+        var firstLog = firstJson.RootElement.GetProperty("logPath").GetString()!;
+
+        var (exit, output, error) = await CliHarness.RunAsync("engrave", "--from-log", firstLog, "--simulate", "--json", "--log-dir", LogDir);
+
+        Assert.True(exit == 0, error);
+        using var json = JsonDocument.Parse(output);
+        var a = RunLogStore.Read(firstLog);
+        var b = RunLogStore.Read(json.RootElement.GetProperty("logPath").GetString()!);
+        Assert.NotEqual(firstLog, json.RootElement.GetProperty("logPath").GetString());
+        Assert.Equal(a.Image, b.Image);
+        Assert.Equal(a.Mask, b.Mask);
+        Assert.Equal(a.Geometry, b.Geometry);
+        Assert.Equal(a.Plan, b.Plan);
+        Assert.Equal(a.Process, b.Process);
+        Assert.Equal(a.Profile, b.Profile);
+        Assert.Equal(a.RunsDone, b.RunsDone);
+        Assert.Equal(Path.GetFullPath(firstLog), b.RepeatOf);
+        Assert.False(b.Resumed);
+        Assert.Equal(1500, b.Process.LaserFrequencyHz);
+        Assert.Equal(5, b.Geometry.OriginXMm);
+    }
+
+    [Fact]
+    public async Task EngraveFromLog_ImageChangedSinceTheRun_Exit2Refused()
+    {
+        var image = Path.Combine(folder, "qr.bmp");
+        File.Copy(QrCode, image);
+        var job = PreparedJob.Prepare(new JobSpec { ImagePath = image, Size = SizeSpec.Width(5) });
+        var files = new RunLogStore(LogDir).Write(RunRecord.ForJob(job, PreparedJob.HashFile(image), DateTimeOffset.Now) with { Outcome = RunOutcome.Completed });
+        await File.AppendAllTextAsync(image, "changed", TestContext.Current.CancellationToken);
+
+        var (exit, _, error) = await CliHarness.RunAsync("engrave", "--from-log", files.JsonPath, "--simulate", "--log-dir", LogDir);
+
+        Assert.Equal(2, exit);
+        Assert.Contains("the image has changed since the run", error, StringComparison.Ordinal);
+        Assert.Single(error.TrimEnd().Split('\n'));
+        Assert.Single(Directory.GetFiles(LogDir, "*.json"));
+    }
+
+    [Fact]
+    public async Task EngraveFromLog_WithImageToo_Exit2()
+    {
+        var (exit, _, error) = await CliHarness.RunAsync("engrave", QrCode, "--from-log", Path.Combine(folder, "x.json"), "--simulate");
+
+        Assert.Equal(2, exit);
+        Assert.Contains("or --from-log, not both", error, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task EngraveFromLog_ResumeACompletedRun_Exit2NothingToResume()
+    {
+        var job = PreparedJob.Prepare(new JobSpec { ImagePath = QrCode, Size = SizeSpec.Width(5) });
+        var files = new RunLogStore(LogDir).Write(RunRecord.ForJob(job, PreparedJob.HashFile(QrCode), DateTimeOffset.Now) with { Outcome = RunOutcome.Completed });
+
+        var (exit, _, error) = await CliHarness.RunAsync("engrave", "--from-log", files.JsonPath, "--resume", "--simulate", "--log-dir", LogDir);
+
+        Assert.Equal(2, exit);
+        Assert.Contains("nothing to resume", error, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task EngraveSimulate_Cancelled_AbortsExit1AndStillWritesTheLog()
+    {
+        using var cancel = CancellationTokenSource.CreateLinkedTokenSource(TestContext.Current.CancellationToken);
+        using var stdout = new StringWriter();
+        using var stderr = new CancelOnLine("running: ", cancel);
+
+        var exit = await CliRunner.InvokeAsync(
+            Program.BuildRoot(),
+            ["engrave", QrCode, "--width-mm", "5", "--simulate", "--json", "--log-dir", LogDir],
+            stdout,
+            stderr,
+            cancel.Token);
+
+        Assert.Equal(1, exit);
+        using var json = JsonDocument.Parse(stdout.ToString());
+        Assert.Equal("aborted", json.RootElement.GetProperty("outcome").GetString());
+        Assert.Equal(0, json.RootElement.GetProperty("laserOnTravelCount").GetInt32());
+        var record = RunLogStore.Read(json.RootElement.GetProperty("logPath").GetString()!);
+        Assert.Equal(RunOutcome.Aborted, record.Outcome);
+        Assert.True(record.RunsDone < record.RunsTotal);
+    }
+
+    public void Dispose() => Directory.Delete(folder, recursive: true);
+
+    /// <summary>A stderr that cancels the run the first time a line starting with a prefix is written (a test's Ctrl+C).</summary>
+    private sealed class CancelOnLine(string prefix, CancellationTokenSource cancel) : StringWriter
+    {
+        public override void WriteLine(string? value)
+        {
+            base.WriteLine(value);
+            if (value?.StartsWith(prefix, StringComparison.Ordinal) == true && !cancel.IsCancellationRequested)
+            {
+                cancel.Cancel();
+            }
+        }
+    }
+}

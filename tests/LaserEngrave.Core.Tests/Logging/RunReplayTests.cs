@@ -1,0 +1,72 @@
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Logging;
+
+namespace LaserEngrave.Core.Tests.Logging;
+
+public sealed class RunReplayTests : IDisposable
+{
+    private readonly TestRuns runs = new();
+
+    [Fact]
+    public void ToJobSpec_ImageUnchanged_GivesTheSameJobBack()
+    {
+        var logged = RunRecordJson.Deserialize(RunRecordJson.Serialize(runs.FailedRecord()), "test");
+
+        var spec = RunReplay.ToJobSpec(logged);
+
+        Assert.Equal(runs.Spec() with { ImagePath = Path.GetFullPath(runs.ImagePath) }, spec);
+        var again = PreparedJob.Prepare(spec);
+        var original = PreparedJob.Prepare(runs.Spec());
+        Assert.Equal(original.Statistics, again.Statistics);
+        Assert.Equal(original.Geometry.Geometry, again.Geometry.Geometry);
+    }
+
+    [Fact]
+    public void ToJobSpec_ImageChanged_RefusesNamingTheImage()
+    {
+        var record = runs.FailedRecord();
+        File.AppendAllText(runs.ImagePath, "x");
+
+        var ex = Assert.Throws<RunLogException>(() => RunReplay.ToJobSpec(record));
+
+        Assert.StartsWith($"{Path.GetFullPath(runs.ImagePath)}: the image has changed since the run", ex.Message, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void ToJobSpec_ImageMoved_RefusesSayingItIsNotThere()
+    {
+        var record = runs.FailedRecord();
+        File.Move(runs.ImagePath, runs.ImagePath + ".moved");
+
+        var ex = Assert.Throws<RunLogException>(() => RunReplay.ToJobSpec(record));
+
+        Assert.Contains("not there any more", ex.Message, StringComparison.Ordinal);
+    }
+
+    public static TheoryData<SizeSpec> Sizes() =>
+    [
+        SizeSpec.Width(5),
+        SizeSpec.Height(4.5),
+        SizeSpec.WidthAndHeight(5, 5),
+        SizeSpec.Pitch(40),
+        SizeSpec.Resolution(600),
+    ];
+
+    [Theory]
+    [MemberData(nameof(Sizes))]
+    public void RunSize_EveryKind_RoundTripsToTheSameSizeSpec(SizeSpec size)
+    {
+        Assert.Equal(size, RunSize.From(size).ToSizeSpec());
+    }
+
+    [Fact]
+    public void RunSize_ValueOfItsKindMissing_Throws()
+    {
+        var ex = Assert.Throws<RunLogException>(() => new RunSize(RunSizeKind.Pitch, WidthMm: 5).ToSizeSpec());
+
+        Assert.Contains("pitchUm is missing", ex.Message, StringComparison.Ordinal);
+    }
+
+    public void Dispose() => runs.Dispose();
+}

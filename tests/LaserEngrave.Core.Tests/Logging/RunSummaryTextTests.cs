@@ -1,0 +1,53 @@
+using LaserEngrave.Core.Logging;
+
+namespace LaserEngrave.Core.Tests.Logging;
+
+public sealed class RunSummaryTextTests : IDisposable
+{
+    private readonly TestRuns runs = new();
+
+    [Fact]
+    public void Format_FailedRun_SaysWhatFailedWhereAndTheParameters()
+    {
+        var record = runs.FailedRecord();
+
+        var text = RunSummaryText.Format(record);
+
+        Assert.Contains("Outcome:            FAILED", text, StringComparison.Ordinal);
+        Assert.Contains("Fault:              x axis: no reply within 500 ms (timeout)", text, StringComparison.Ordinal);
+        Assert.Contains("Stopped at:         row 12, move 40, stage at 123456, 98765 microsteps", text, StringComparison.Ordinal);
+        Assert.Contains("Started:            2026-11-23 14:30:05 +02:00", text, StringComparison.Ordinal);
+        Assert.Contains(record.Image.Sha256, text, StringComparison.Ordinal);
+        Assert.Contains("burn 0.8 mm/s, travel 3 mm/s, acceleration 40 mm/s²", text, StringComparison.Ordinal);
+        Assert.Contains("Laser frequency:    1500 Hz", text, StringComparison.Ordinal);
+        Assert.Contains("optimized, unidirectional, overscan 0.2 mm", text, StringComparison.Ordinal);
+        Assert.Contains("(simulated time)", text, StringComparison.Ordinal);
+        Assert.Contains("firmware 5.29", text, StringComparison.Ordinal);
+        Assert.Contains("Repeats:            /logs/2026-11-22_090000_S-16.json", text, StringComparison.Ordinal);
+        Assert.Contains("Notes:              first try\n                    focus 2 turns down", text, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void Format_CompletedRun_HasNoFaultOrStopLines()
+    {
+        var record = runs.FailedRecord() with { Outcome = RunOutcome.Completed, Fault = null, StoppedAt = null, Notes = null };
+
+        var text = RunSummaryText.Format(record);
+
+        Assert.Contains("Outcome:            completed", text, StringComparison.Ordinal);
+        Assert.DoesNotContain("Fault:", text, StringComparison.Ordinal);
+        Assert.DoesNotContain("Stopped at:", text, StringComparison.Ordinal);
+        Assert.Contains("Notes:              (none)", text, StringComparison.Ordinal);
+    }
+
+    [Theory]
+    [InlineData(61.5, "1 min 01.5 s")]
+    [InlineData(3723, "1 h 02 min 03 s")]
+    [InlineData(double.NaN, "unknown")]
+    public void Duration_Seconds_ReadsAsMinutesOrHours(double seconds, string expected)
+    {
+        Assert.Equal(expected, RunSummaryText.Duration(seconds));
+    }
+
+    public void Dispose() => runs.Dispose();
+}
