@@ -14,7 +14,7 @@ catch (ArgumentException ex)
     return 2;
 }
 
-var app = AppHost.Build([], options.Url, services =>
+var app = AppHost.Build([.. options.HostArgs], options.Url, services =>
 {
     if (options.DataFolder is { } folder)
     {

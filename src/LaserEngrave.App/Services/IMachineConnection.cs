@@ -11,6 +11,12 @@ public interface IMachineConnection : IAsyncDisposable
 
     MachineProfile Profile { get; }
 
+    /// <summary>The clock the machine lives on: the simulator's (possibly virtual) or the system's.</summary>
+    TimeProvider TimeProvider { get; }
+
+    /// <summary>Whether this is the built-in simulator.</summary>
+    bool IsSimulated { get; }
+
     IStage Stage { get; }
 
     ILaserGate Gate { get; }

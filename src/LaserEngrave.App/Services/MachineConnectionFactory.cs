@@ -52,6 +52,10 @@ public sealed class MachineConnectionFactory(SimulatorOptions? simulatorOptions 
 
         public MachineProfile Profile => profile;
 
+        public TimeProvider TimeProvider => machine?.TimeProvider ?? TimeProvider.System;
+
+        public bool IsSimulated => machine is not null;
+
         public IStage Stage => stage;
 
         public ILaserGate Gate => gate;

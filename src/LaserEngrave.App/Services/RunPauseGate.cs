@@ -6,6 +6,9 @@ public sealed class RunPauseGate
     private readonly Lock _lock = new();
     private TaskCompletionSource? _paused;
 
+    /// <summary>Raised on every pause (true) and resume (false), for an executor with its own pause.</summary>
+    public event EventHandler<bool>? Changed;
+
     public bool IsPaused
     {
         get
@@ -23,6 +26,8 @@ public sealed class RunPauseGate
         {
             _paused ??= new TaskCompletionSource(TaskCreationOptions.RunContinuationsAsynchronously);
         }
+
+        Changed?.Invoke(this, true);
     }
 
     public void Resume()
@@ -35,6 +40,7 @@ public sealed class RunPauseGate
         }
 
         paused?.TrySetResult();
+        Changed?.Invoke(this, false);
     }
 
     /// <summary>Completes at once when not paused, otherwise when resumed (or cancelled).</summary>

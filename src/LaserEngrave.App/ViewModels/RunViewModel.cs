@@ -152,20 +152,22 @@ public sealed partial class RunViewModel : ObservableObject
         _testMoves.RunActive = true;
         string outcome;
         string? error = null;
+        RunState final;
         try
         {
-            await _runs.RunAsync(new RunRequest(job, connection.Stage, connection.Gate, settings.Passes, _pause), new LatestProgress(this), cancellationToken).ConfigureAwait(false);
-            State = RunState.Completed;
+            var request = new RunRequest(job, connection.Stage, connection.Gate, settings.Passes, _pause) { TimeProvider = connection.TimeProvider };
+            await _runs.RunAsync(request, new LatestProgress(this), cancellationToken).ConfigureAwait(false);
+            final = RunState.Completed;
             outcome = "completed";
         }
         catch (OperationCanceledException)
         {
-            State = RunState.Aborted;
+            final = RunState.Aborted;
             outcome = "aborted";
         }
         catch (Exception ex) when (ex is DeviceException or IOException or InvalidOperationException or TimeoutException or ObjectDisposedException)
         {
-            State = RunState.Failed;
+            final = RunState.Failed;
             outcome = "failed";
             error = ex.Message;
             Error = ex.Message;
@@ -194,7 +196,7 @@ public sealed partial class RunViewModel : ObservableObject
             EstimatedSeconds = _estimatedSeconds,
             MovesDone = progress?.MovesDone ?? 0,
             MovesTotal = progress?.MovesTotal ?? 0,
-            PassesDone = State == RunState.Completed ? settings.Passes : Math.Max(0, (progress?.Pass ?? 1) - 1),
+            PassesDone = final == RunState.Completed ? settings.Passes : Math.Max(0, (progress?.Pass ?? 1) - 1),
         });
         try
         {
@@ -204,6 +206,9 @@ public sealed partial class RunViewModel : ObservableObject
         {
             _machine.Error = ex.Message;
         }
+
+        // The run counts as ended only once its log is written, so whoever waits for the end finds the log.
+        State = final;
     }
 
     private static string? HashOrNull(string path)

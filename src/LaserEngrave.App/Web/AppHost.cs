@@ -26,7 +26,7 @@ public static class AppHost
         services.AddSingleton(TimeProvider.System);
         services.AddSingleton<IImageService, ImageService>();
         services.AddSingleton<IMachineConnectionFactory>(new MachineConnectionFactory());
-        services.AddSingleton<IRunService, SequentialRunService>();
+        services.AddSingleton<IRunService, ExecutorRunService>();
         services.AddSingleton<IFileAccess>(sp => new Services.FileAccess(sp.GetRequiredService<AppFolders>()));
         services.AddSingleton<ISettingsStore>(sp => new JsonSettingsStore(sp.GetRequiredService<AppFolders>().SettingsFile));
         services.AddSingleton<IRunLogStore>(sp => new JsonRunLogStore(sp.GetRequiredService<AppFolders>().LogFolder));

@@ -6,6 +6,9 @@ namespace LaserEngrave.App.Web;
 /// <param name="DataFolder">Where settings, images and logs go (--data-folder); by default the user's application-data folder.</param>
 public sealed record AppOptions(bool OpenBrowser, string Url, string? DataFolder)
 {
+    /// <summary>Options in ASP.NET Core's --key=value form, passed on to the host (test hosts set the content root this way).</summary>
+    public IReadOnlyList<string> HostArgs { get; init; } = [];
+
     public const string DefaultUrl = "http://127.0.0.1:0";
 
     /// <summary>Reads --no-browser, --urls URL and --data-folder PATH; throws <see cref="ArgumentException"/> with one line for a bad value.</summary>
@@ -28,6 +31,9 @@ public sealed record AppOptions(bool OpenBrowser, string Url, string? DataFolder
                     break;
                 case "--help" or "-h":
                     throw new ArgumentException(Usage);
+                case var hostArg when hostArg.StartsWith("--", StringComparison.Ordinal) && hostArg.Contains('=', StringComparison.Ordinal):
+                    options = options with { HostArgs = [.. options.HostArgs, hostArg] };
+                    break;
                 default:
                     throw new ArgumentException($"unknown option '{args[i]}'\n{Usage}");
             }

@@ -46,6 +46,9 @@ document.addEventListener('drop', (e) => { e.preventDefault(); const f = e.dataT
 $('open-recent').addEventListener('click', () => { const p = $('recent').value; if (p) post('/api/image/open', { path: p }); });
 
 // ---- job fields: every change goes to the view-model, which re-plans ------------------------------------------------
+document.addEventListener('input', (e) => { e.target.dataset.dirty = '1'; });
+document.addEventListener('change', (e) => { delete e.target.dataset.dirty; });
+document.addEventListener('focusout', (e) => { delete e.target.dataset.dirty; });
 let sliderTimer = null;
 let sliderValue = null;
 document.querySelectorAll('[data-field]').forEach((input) => {
@@ -147,7 +150,8 @@ function escapeHtml(text) { return String(text ?? '').replace(/[&<>"']/g, (c) =>
 function meta(el, pairs) { el.innerHTML = pairs.map(([k, v]) => `<dt>${escapeHtml(k)}</dt><dd>${escapeHtml(v)}</dd>`).join(''); }
 function setValue(id, value) {
   const el = $(id);
-  if (!el || document.activeElement === el) return;
+  // A field the user is typing in keeps what they typed; one they only moved into shows the new value.
+  if (!el || (document.activeElement === el && el.dataset.dirty === '1')) return;
   if (el.type === 'checkbox') el.checked = !!value;
   else if (el.type === 'number') el.value = value === null || value === undefined ? '' : Number(Number(value).toPrecision(8));
   else el.value = value ?? '';
