@@ -1,4 +1,3 @@
-using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Execution;
 
 namespace LaserEngrave.App.Services;
@@ -6,11 +5,12 @@ namespace LaserEngrave.App.Services;
 /// <summary>Runs a job with the Devices <see cref="RunExecutor"/> (preflight, keepalive, pause, laser-off-first abort), one executor per pass.</summary>
 public sealed class ExecutorRunService : IRunService
 {
-    public async Task RunAsync(RunRequest request, IProgress<RunProgress> progress, CancellationToken cancellationToken)
+    public async Task<RunResult> RunAsync(RunRequest request, IProgress<RunProgress> progress, CancellationToken cancellationToken)
     {
         ArgumentNullException.ThrowIfNull(request);
         ArgumentNullException.ThrowIfNull(progress);
         var movesTotal = request.Job.Statistics.Moves;
+        RunResult? last = null;
         for (var pass = 1; pass <= Math.Max(1, request.Passes); pass++)
         {
             var executor = new RunExecutor(request.Stage, request.Gate, request.Job, request.TimeProvider);
@@ -54,13 +54,13 @@ public sealed class ExecutorRunService : IRunService
             }
 
             Report();
-            switch (result.Outcome)
+            last = result;
+            if (result.Outcome != RunOutcome.Completed)
             {
-                case RunOutcome.Aborted:
-                    throw new OperationCanceledException(result.FaultMessage);
-                case RunOutcome.Failed:
-                    throw new DeviceException(result.FaultMessage ?? "the run failed");
+                break;
             }
         }
+
+        return last!;
     }
 }

@@ -1,4 +1,6 @@
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
 
 namespace LaserEngrave.App.Services;
@@ -42,6 +44,39 @@ public sealed record JobSettings
     public double OverscanMm { get; init; }
 
     public int Passes { get; init; } = 1;
+
+    /// <summary>The values of a job (e.g. one a run log repeats), as the page shows them.</summary>
+    public static JobSettings From(JobSpec spec)
+    {
+        ArgumentNullException.ThrowIfNull(spec);
+        var settings = new JobSettings
+        {
+            ImagePath = spec.ImagePath,
+            ThresholdPercent = spec.Mask.ThresholdPercent,
+            Dither = spec.Mask.Dither,
+            Invert = spec.Mask.Invert,
+            OriginXMm = spec.Origin.X,
+            OriginYMm = spec.Origin.Y,
+            LaserFrequencyHz = spec.Process.LaserFrequencyHz,
+            BurnSpeedMmPerS = spec.Process.BurnSpeedMmPerS,
+            TravelSpeedMmPerS = spec.Process.TravelSpeedMmPerS,
+            AccelerationMmPerS2 = spec.Process.AccelerationMmPerS2,
+            Strategy = spec.Plan.Strategy,
+            Bidirectional = spec.Plan.Bidirectional,
+            OverscanMm = spec.Plan.OverscanMm,
+        };
+        return spec.Size switch
+        {
+            SizeSpec.ByWidth w => settings with { SizeMode = SizeMode.Width, WidthMm = w.WidthMm },
+            SizeSpec.ByHeight h => settings with { SizeMode = SizeMode.Height, HeightMm = h.HeightMm },
+            SizeSpec.ByWidthAndHeight b => settings with { SizeMode = SizeMode.WidthAndHeight, WidthMm = b.WidthMm, HeightMm = b.HeightMm },
+            SizeSpec.ByPitch p => settings with { SizeMode = SizeMode.Pitch, PitchUm = p.PitchUm },
+
+            // The page has no resolution field: the pitch the resolution gives is the same size.
+            SizeSpec.ByResolution r => settings with { SizeMode = SizeMode.Pitch, PitchUm = 25_400 / r.Dpi },
+            _ => settings,
+        };
+    }
 }
 
 /// <summary>Which size field the user set last, and so which one the others follow.</summary>

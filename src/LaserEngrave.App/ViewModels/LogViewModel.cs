@@ -1,10 +1,12 @@
 using CommunityToolkit.Mvvm.ComponentModel;
 using CommunityToolkit.Mvvm.Input;
 using LaserEngrave.App.Services;
+using LaserEngrave.Core.Logging;
 
 namespace LaserEngrave.App.ViewModels;
 
 /// <summary>The Log view: notes and sample ID for the next run, the last run's summary, and the history of past runs.</summary>
+/// <remarks>A run is named by its log file's path, which the history lists and the export and load take back.</remarks>
 public sealed partial class LogViewModel : ObservableObject
 {
     private readonly IRunLogStore _store;
@@ -27,30 +29,31 @@ public sealed partial class LogViewModel : ObservableObject
     [ObservableProperty]
     public partial string? SampleId { get; set; }
 
-    /// <summary>The run that ended last in this session.</summary>
+    /// <summary>The run that ended last in this session, with the path of its log (null when it could not be saved).</summary>
     [ObservableProperty]
-    public partial RunRecord? LastRun { get; private set; }
+    public partial RunLogEntry? LastRun { get; private set; }
 
     [ObservableProperty]
-    public partial IReadOnlyList<RunRecord> History { get; private set; } = [];
+    public partial IReadOnlyList<RunLogEntry> History { get; private set; } = [];
 
     [ObservableProperty]
     public partial string? Error { get; private set; }
 
     public string Folder => _store.Folder;
 
-    /// <summary>Keeps a finished run and shows it as the last one.</summary>
+    /// <summary>Saves a finished run's log and shows it as the last run.</summary>
     public void Record(RunRecord record)
     {
         ArgumentNullException.ThrowIfNull(record);
-        LastRun = record;
         try
         {
-            _store.Save(record);
+            var files = _store.Save(record);
+            LastRun = new RunLogEntry(files.JsonPath, record, null);
             Error = null;
         }
-        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
+        catch (Exception ex) when (ex is RunLogException or IOException or UnauthorizedAccessException)
         {
+            LastRun = new RunLogEntry(string.Empty, record, ex.Message);
             Error = $"the run log could not be saved in {_store.Folder}: {ex.Message}";
         }
 
@@ -64,35 +67,39 @@ public sealed partial class LogViewModel : ObservableObject
         {
             History = _store.History();
         }
-        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
+        catch (Exception ex) when (ex is RunLogException or IOException or UnauthorizedAccessException)
         {
             Error = $"the run history in {_store.Folder} cannot be read: {ex.Message}";
         }
     }
 
-    public RunRecord? Find(string id) => History.FirstOrDefault(r => r.Id == id) ?? (LastRun?.Id == id ? LastRun : null);
+    /// <summary>The logged run at <paramref name="path"/>, if the history or the last run has it.</summary>
+    public RunLogEntry? Find(string path) =>
+        History.FirstOrDefault(e => e.Path == path && e.Record is not null) ?? (LastRun?.Path == path && path.Length > 0 ? LastRun : null);
 
     /// <summary>Puts a past run's image and settings back into the Image, Size and Process views.</summary>
+    /// <remarks>The image must still be there, unchanged (its SHA-256 is checked), or nothing is loaded and the reason is shown.</remarks>
     [RelayCommand]
-    private void Load(string id)
+    private void Load(string path)
     {
         Error = null;
-        if (Find(id) is not { } record)
+        if (Find(path)?.Record is not { } record)
         {
-            Error = $"run {id} is not in the history";
+            Error = $"{path}: not a run in the history";
             return;
         }
 
-        if (record.Settings.ImagePath is { } path && !_files.Exists(path))
+        try
         {
-            Error = $"run {id}: its image {path} is no longer there; the settings were loaded without it";
-            _job.Apply(record.Settings with { ImagePath = null });
-            return;
+            var spec = RunReplay.ToJobSpec(record);
+            _job.Apply(JobSettings.From(spec) with { Passes = 1 });
+            Notes = record.Notes;
+            SampleId = record.SampleId;
         }
-
-        _job.Apply(record.Settings);
-        Notes = record.Notes;
-        SampleId = record.SampleId;
+        catch (RunLogException ex)
+        {
+            Error = ex.Message;
+        }
     }
 
     [RelayCommand]

@@ -2,7 +2,12 @@ using CommunityToolkit.Mvvm.ComponentModel;
 using CommunityToolkit.Mvvm.Input;
 using LaserEngrave.App.Services;
 using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Logging;
 using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Devices.Execution;
+using LogOutcome = LaserEngrave.Core.Logging.RunOutcome;
+using RunProgress = LaserEngrave.App.Services.RunProgress;
+using RunState = LaserEngrave.App.ViewModels.RunState;
 
 namespace LaserEngrave.App.ViewModels;
 
@@ -144,33 +149,28 @@ public sealed partial class RunViewModel : ObservableObject
         _pause = new RunPauseGate();
         _startedTicks = _time.GetTimestamp();
         _estimatedSeconds = _job.EstimatedSeconds ?? 0;
-        var started = _time.GetUtcNow();
-        var settings = _job.ToSettings();
+        var record = RunRecord.ForJob(job, HashOrMissing(job.Spec.ImagePath), _time.GetLocalNow()) with
+        {
+            Simulated = connection.IsSimulated,
+            Notes = _log.Notes,
+            SampleId = _log.SampleId,
+        };
+        var passes = _job.Passes;
         RunPlanVersion = _job.PlanVersion;
         Progress = new RunProgress(0, 0, 0, 0, 1, 0, 0, false);
         State = RunState.Running;
         _testMoves.RunActive = true;
-        string outcome;
-        string? error = null;
-        RunState final;
+        RunResult? result = null;
+        Exception? error = null;
         try
         {
-            var request = new RunRequest(job, connection.Stage, connection.Gate, settings.Passes, _pause) { TimeProvider = connection.TimeProvider };
-            await _runs.RunAsync(request, new LatestProgress(this), cancellationToken).ConfigureAwait(false);
-            final = RunState.Completed;
-            outcome = "completed";
+            var request = new RunRequest(job, connection.Stage, connection.Gate, passes, _pause) { TimeProvider = connection.TimeProvider };
+            result = await _runs.RunAsync(request, new LatestProgress(this), cancellationToken).ConfigureAwait(false);
         }
-        catch (OperationCanceledException)
+        catch (Exception ex) when (ex is DeviceException or OperationCanceledException or IOException or InvalidOperationException or TimeoutException or ObjectDisposedException)
         {
-            final = RunState.Aborted;
-            outcome = "aborted";
-        }
-        catch (Exception ex) when (ex is DeviceException or IOException or InvalidOperationException or TimeoutException or ObjectDisposedException)
-        {
-            final = RunState.Failed;
-            outcome = "failed";
-            error = ex.Message;
-            Error = ex.Message;
+            // Preflight refusals and anything the executor did not turn into a result; the log is written all the same.
+            error = ex;
         }
         finally
         {
@@ -178,26 +178,19 @@ public sealed partial class RunViewModel : ObservableObject
             _testMoves.RunActive = false;
         }
 
-        var progress = Progress;
-        _log.Record(new RunRecord
+        record = RunLogRecords.Finish(record, result, error, connection, _time.GetLocalNow());
+        var final = record.Outcome switch
         {
-            Id = started.ToString("yyyyMMdd-HHmmss-fff", System.Globalization.CultureInfo.InvariantCulture),
-            StartedUtc = started,
-            FinishedUtc = _time.GetUtcNow(),
-            Outcome = outcome,
-            Error = error,
-            SampleId = _log.SampleId,
-            Notes = _log.Notes,
-            Machine = connection.Description,
-            ImageSha256 = HashOrNull(job.Spec.ImagePath),
-            Settings = settings,
-            AchievedWidthMm = job.Geometry.AchievedWidthMm,
-            AchievedHeightMm = job.Geometry.AchievedHeightMm,
-            EstimatedSeconds = _estimatedSeconds,
-            MovesDone = progress?.MovesDone ?? 0,
-            MovesTotal = progress?.MovesTotal ?? 0,
-            PassesDone = final == RunState.Completed ? settings.Passes : Math.Max(0, (progress?.Pass ?? 1) - 1),
-        });
+            LogOutcome.Completed => RunState.Completed,
+            LogOutcome.Aborted => RunState.Aborted,
+            _ => RunState.Failed,
+        };
+        if (final == RunState.Failed)
+        {
+            Error = record.Fault?.Message ?? "the run failed";
+        }
+
+        _log.Record(record);
         try
         {
             await _machine.ReadPositionsAsync(CancellationToken.None).ConfigureAwait(false);
@@ -211,7 +204,7 @@ public sealed partial class RunViewModel : ObservableObject
         State = final;
     }
 
-    private static string? HashOrNull(string path)
+    private static string HashOrMissing(string path)
     {
         try
         {
@@ -219,7 +212,7 @@ public sealed partial class RunViewModel : ObservableObject
         }
         catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
         {
-            return null;
+            return "unreadable: " + ex.Message;
         }
     }
 

@@ -1,9 +1,9 @@
-using System.Globalization;
 using System.Text;
 using System.Text.Json;
 using LaserEngrave.App.Services;
 using LaserEngrave.App.ViewModels;
 using LaserEngrave.Core.Imaging;
+using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
 using Microsoft.AspNetCore.Http.HttpResults;
 
@@ -95,9 +95,9 @@ internal static class ApiEndpoints
         api.MapPost("/run/resume", (MainViewModel main) => Do(main, main.Run.ResumeCommand.Execute));
         api.MapPost("/run/abort", (MainViewModel main) => Do(main, main.Run.AbortCommand.Execute));
 
-        api.MapPost("/logs/{id}/load", (MainViewModel main, string id) => Do(main, _ => main.Log.LoadCommand.Execute(id)));
+        api.MapPost("/logs/load", (MainViewModel main, PathRequest request) => Do(main, _ => main.Log.LoadCommand.Execute(request.Path ?? string.Empty)));
         api.MapPost("/logs/open-folder", (MainViewModel main) => Do(main, main.Log.OpenFolderCommand.Execute));
-        api.MapGet("/logs/{id}/export", (MainViewModel main, string id, string? format) => Export(main, id, format));
+        api.MapGet("/logs/export", (MainViewModel main, string path, string? format) => Export(main, path, format));
 
         api.MapPost("/settings/theme", (MainViewModel main, ThemeRequest request) => Do(main, _ => main.SetTheme(request.Theme)));
     }
@@ -211,16 +211,19 @@ internal static class ApiEndpoints
         });
     }
 
-    private static IResult Export(MainViewModel main, string id, string? format)
+    /// <summary>A logged run's JSON or text file; only runs the history lists can be fetched, never any other file.</summary>
+    private static IResult Export(MainViewModel main, string path, string? format)
     {
-        if (main.Log.Find(id) is not { } record)
+        if (main.Log.Find(path) is not { Record: { } record })
         {
-            return Results.NotFound(new { error = $"run {id} is not in the history" });
+            return Results.NotFound(new { error = $"{path}: not a run in the history" });
         }
 
-        return string.Equals(format, "json", StringComparison.OrdinalIgnoreCase)
-            ? Results.File(Encoding.UTF8.GetBytes(JsonSerializer.Serialize(record, JsonRunLogStore.Options)), "application/json", $"run-{id}.json")
-            : Results.File(Encoding.UTF8.GetBytes(record.ToText()), "text/plain; charset=utf-8", string.Create(CultureInfo.InvariantCulture, $"run-{id}.txt"));
+        var json = string.Equals(format, "json", StringComparison.OrdinalIgnoreCase);
+        var name = Path.GetFileNameWithoutExtension(path) + (json ? ".json" : ".txt");
+        return json
+            ? Results.File(Encoding.UTF8.GetBytes(RunRecordJson.Serialize(record)), "application/json", name)
+            : Results.File(Encoding.UTF8.GetBytes(RunSummaryText.Format(record)), "text/plain; charset=utf-8", name);
     }
 
     internal sealed record PathRequest(string? Path);

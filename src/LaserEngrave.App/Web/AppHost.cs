@@ -29,7 +29,7 @@ public static class AppHost
         services.AddSingleton<IRunService, ExecutorRunService>();
         services.AddSingleton<IFileAccess>(sp => new Services.FileAccess(sp.GetRequiredService<AppFolders>()));
         services.AddSingleton<ISettingsStore>(sp => new JsonSettingsStore(sp.GetRequiredService<AppFolders>().SettingsFile));
-        services.AddSingleton<IRunLogStore>(sp => new JsonRunLogStore(sp.GetRequiredService<AppFolders>().LogFolder));
+        services.AddSingleton<IRunLogStore>(sp => new RunLogFolder(sp.GetRequiredService<AppFolders>().RunLogFolder));
         services.AddSingleton(sp =>
         {
             var main = ActivatorUtilities.CreateInstance<MainViewModel>(sp);

@@ -1,4 +1,4 @@
-using LaserEngrave.App.Services;
+using LaserEngrave.Core.Logging;
 using LaserEngrave.App.ViewModels;
 
 namespace LaserEngrave.App.Web;
@@ -142,18 +142,21 @@ internal static class StateSnapshot
         };
     }
 
-    private static object Summary(RunRecord r) => new
+    private static object Summary(RunLogEntry entry)
     {
-        r.Id,
-        r.StartedUtc,
-        r.Outcome,
-        r.SampleId,
-        r.Notes,
-        r.Error,
-        image = r.Settings.ImagePath is null ? null : Path.GetFileName(r.Settings.ImagePath),
-        elapsedSeconds = Math.Round(r.ElapsedSeconds, 1),
-        r.MovesDone,
-        r.MovesTotal,
-        text = r.ToText(),
-    };
+        var r = entry.Record;
+        return new
+        {
+            path = entry.Path,
+            startedAt = r?.StartedAt,
+            outcome = r?.Outcome.ToString().ToLowerInvariant() ?? "unreadable",
+            sampleId = r?.SampleId,
+            notes = r?.Notes,
+            error = r?.Fault?.Message ?? entry.Error,
+            image = r is null ? null : Path.GetFileName(r.Image.Path),
+            actualSeconds = r is null ? 0 : Math.Round(r.ActualSeconds, 1),
+            simulated = r?.Simulated,
+            text = r is null ? entry.Error : RunSummaryText.Format(r),
+        };
+    }
 }

@@ -121,7 +121,7 @@ $('abort-top').addEventListener('click', () => post('/api/run/abort'));
 $('open-log-folder').addEventListener('click', () => post('/api/logs/open-folder'));
 $('history').addEventListener('click', (e) => {
   const id = e.target.dataset?.load;
-  if (id) { post(`/api/logs/${encodeURIComponent(id)}/load`); showView('image'); }
+  if (id) { post('/api/logs/load', { path: id }); showView('image'); }
 });
 
 // ---- theme ---------------------------------------------------------------------------------------------------------
@@ -227,12 +227,13 @@ function apply(s) {
   setValue('sampleId', s.log.sampleId); setValue('notes', s.log.notes);
   const last = s.log.lastRun;
   $('last-run').textContent = last ? last.text : 'No run yet.';
+  const exportUrl = (path, format) => `/api/logs/export?format=${format}&path=${encodeURIComponent(path)}`;
   for (const [id, format] of [['export-txt', 'txt'], ['export-json', 'json']]) {
     const a = $(id);
-    if (last) { a.href = `/api/logs/${encodeURIComponent(last.id)}/export?format=${format}`; a.removeAttribute('aria-disabled'); } else { a.removeAttribute('href'); a.setAttribute('aria-disabled', 'true'); }
+    if (last && last.path) { a.href = exportUrl(last.path, format); a.removeAttribute('aria-disabled'); } else { a.removeAttribute('href'); a.setAttribute('aria-disabled', 'true'); }
   }
   $('log-error').textContent = s.log.error ?? '';
-  const rows = s.log.history.map((r) => `<tr><td>${escapeHtml(new Date(r.startedUtc).toLocaleString())}</td><td>${escapeHtml(r.sampleId ?? '')}</td><td>${escapeHtml(r.image ?? '')}</td><td>${escapeHtml(r.outcome)}${r.error ? ': ' + escapeHtml(r.error) : ''}</td><td>${duration(r.elapsedSeconds)}</td><td><button data-load="${escapeHtml(r.id)}">Load</button> <a href="/api/logs/${encodeURIComponent(r.id)}/export?format=txt" download>text</a> <a href="/api/logs/${encodeURIComponent(r.id)}/export?format=json" download>JSON</a></td></tr>`).join('');
+  const rows = s.log.history.map((r) => `<tr><td>${r.startedAt ? escapeHtml(new Date(r.startedAt).toLocaleString()) : ''}</td><td>${escapeHtml(r.sampleId ?? '')}</td><td>${escapeHtml(r.image ?? '')}</td><td>${escapeHtml(r.outcome)}${r.error ? ': ' + escapeHtml(r.error) : ''}${r.simulated ? ' (simulator)' : ''}</td><td>${duration(r.actualSeconds)}</td><td>${r.startedAt ? `<button data-load="${escapeHtml(r.path)}">Load</button> <a href="${exportUrl(r.path, 'txt')}" download>text</a> <a href="${exportUrl(r.path, 'json')}" download>JSON</a>` : ''}</td></tr>`).join('');
   if ($('history').innerHTML !== rows) $('history').innerHTML = rows || '<tr><td colspan="6" class="hint">No runs yet.</td></tr>';
 
   // preview

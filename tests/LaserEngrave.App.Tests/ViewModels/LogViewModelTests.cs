@@ -1,6 +1,8 @@
 using LaserEngrave.App.Services;
 using LaserEngrave.App.ViewModels;
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Logging;
 using NSubstitute;
 using NSubstitute.ExceptionExtensions;
 
@@ -19,64 +21,73 @@ public sealed class LogViewModelTests
         _store.Folder.Returns("/logs");
     }
 
-    private static RunRecord Record(string id, string? image) => new()
+    private static RunRecord Record(string image, string sha)
     {
-        Id = id,
-        StartedUtc = DateTimeOffset.UnixEpoch,
-        Outcome = "completed",
-        Machine = "fake",
-        SampleId = "S-" + id,
-        Settings = new JobSettings { ImagePath = image, WidthMm = 3, Passes = 2, BurnSpeedMmPerS = 2 },
-    };
+        var job = PreparedJob.Prepare(new JobSpec { ImagePath = image, Size = SizeSpec.Width(3), Origin = new OriginMm(2, 4) });
+        return RunRecord.ForJob(job, sha, DateTimeOffset.UnixEpoch) with { Outcome = RunOutcome.Completed, SampleId = "S-1", Notes = "n" };
+    }
 
     [Fact]
     public void Load_PastRun_SettingsAndImageBackInJob()
     {
         var image = TestFiles.Asset("qr-code.bmp");
-        _store.History().Returns([Record("a", image)]);
-        _files.Exists(image).Returns(true);
+        _store.History().Returns([new RunLogEntry("/logs/a.json", Record(image, PreparedJob.HashFile(image)), null)]);
         _log.RefreshCommand.Execute(null);
 
-        _log.LoadCommand.Execute("a");
+        _log.LoadCommand.Execute("/logs/a.json");
 
         Assert.Null(_log.Error);
         Assert.Equal(image, _job.ImagePath);
         Assert.Equal(3, _job.WidthMm, 6);
-        Assert.Equal(2, _job.Passes);
-        Assert.Equal("S-a", _log.SampleId);
+        Assert.Equal((2.0, 4.0), (_job.OriginXMm, _job.OriginYMm));
+        Assert.Equal("S-1", _log.SampleId);
     }
 
     [Fact]
-    public void Load_ImageGone_SettingsLoadedAndErrorNamesImage()
+    public void Load_ImageChanged_ErrorAndNothingLoaded()
     {
-        _store.History().Returns([Record("b", "/gone/x.png")]);
+        var image = TestFiles.Asset("qr-code.bmp");
+        _store.History().Returns([new RunLogEntry("/logs/b.json", Record(image, new string('0', 64)), null)]);
         _log.RefreshCommand.Execute(null);
 
-        _log.LoadCommand.Execute("b");
+        _log.LoadCommand.Execute("/logs/b.json");
 
-        Assert.Contains("/gone/x.png", _log.Error, StringComparison.Ordinal);
-        Assert.Equal(2, _job.Passes);
+        Assert.Contains("has changed", _log.Error, StringComparison.Ordinal);
+        Assert.Null(_job.ImagePath);
     }
 
     [Fact]
-    public void Load_UnknownId_Error()
+    public void Load_UnknownPath_Error()
     {
         _store.History().Returns([]);
 
-        _log.LoadCommand.Execute("nope");
+        _log.LoadCommand.Execute("/etc/passwd");
 
-        Assert.Equal("run nope is not in the history", _log.Error);
+        Assert.Equal("/etc/passwd: not a run in the history", _log.Error);
     }
 
     [Fact]
     public void Record_StoreFails_ErrorNamesFolderAndLastRunKept()
     {
-        _store.When(s => s.Save(Arg.Any<RunRecord>())).Throw(new IOException("disk full"));
+        var image = TestFiles.Asset("qr-code.bmp");
+        _store.Save(Arg.Any<RunRecord>()).Throws(new RunLogException("/logs: disk full"));
 
-        _log.Record(Record("c", null));
+        _log.Record(Record(image, "abc"));
 
         Assert.Contains("/logs", _log.Error, StringComparison.Ordinal);
-        Assert.Equal("c", _log.LastRun!.Id);
+        Assert.Equal("S-1", _log.LastRun!.Record!.SampleId);
+    }
+
+    [Fact]
+    public void Record_Saved_LastRunNamesItsFileAndHistoryRefreshed()
+    {
+        var image = TestFiles.Asset("qr-code.bmp");
+        _store.Save(Arg.Any<RunRecord>()).Returns(new RunLogFiles("/logs/c.json", "/logs/c.txt"));
+
+        _log.Record(Record(image, "abc"));
+
+        Assert.Equal("/logs/c.json", _log.LastRun!.Path);
+        _store.Received(1).History();
     }
 
     [Fact]
@@ -87,14 +98,5 @@ public sealed class LogViewModelTests
         _log.OpenFolderCommand.Execute(null);
 
         Assert.Contains("no file manager", _log.Error, StringComparison.Ordinal);
-    }
-
-    [Fact]
-    public void ToText_Record_NamesSampleAndOutcome()
-    {
-        var text = Record("d", "/img.png").ToText();
-
-        Assert.Contains("sample       S-d", text, StringComparison.Ordinal);
-        Assert.Contains("outcome      completed", text, StringComparison.Ordinal);
     }
 }

@@ -1,9 +1,15 @@
 using LaserEngrave.App.Services;
+using LaserEngrave.Core.Logging;
 using LaserEngrave.App.ViewModels;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Abstractions;
 using NSubstitute;
+using LaserEngrave.Devices.Execution;
 using NSubstitute.ExceptionExtensions;
+using LogOutcome = LaserEngrave.Core.Logging.RunOutcome;
+using RunOutcome = LaserEngrave.Devices.Execution.RunOutcome;
+using RunProgress = LaserEngrave.App.Services.RunProgress;
+using RunState = LaserEngrave.App.ViewModels.RunState;
 
 namespace LaserEngrave.App.Tests.ViewModels;
 
@@ -25,7 +31,24 @@ public sealed class RunViewModelTests
         _log = new LogViewModel(_store, Substitute.For<IFileAccess>(), _job);
         _run = new RunViewModel(_runs, _job, _machine, moves, _log, TimeProvider.System);
         _store.History().Returns([]);
+        _store.Save(Arg.Any<RunRecord>()).Returns(new RunLogFiles("/logs/run.json", "/logs/run.txt"));
     }
+
+    private static RunResult Result(RunOutcome outcome, string? fault = null) => new()
+    {
+        Outcome = outcome,
+        FaultMessage = fault,
+        LaserOffConfirmed = true,
+        StartedAt = DateTimeOffset.UnixEpoch,
+        EndedAt = DateTimeOffset.UnixEpoch.AddSeconds(12),
+        EngravingDuration = TimeSpan.FromSeconds(10),
+        EstimatedSeconds = 11,
+        LaserOnSeconds = 4,
+        RowsDone = 5,
+        RowsTotal = 5,
+        RunsDone = 7,
+        RunsTotal = 7,
+    };
 
     private async Task ReadyAsync()
     {
@@ -77,7 +100,7 @@ public sealed class RunViewModelTests
             .Returns(c =>
             {
                 c.Arg<IProgress<RunProgress>>().Report(new RunProgress(10, 10, 5, 5, 1, 123, 456, false));
-                return Task.CompletedTask;
+                return Task.FromResult(Result(RunOutcome.Completed));
             });
 
         await _run.StartCommand.ExecuteAsync(null);
@@ -85,8 +108,8 @@ public sealed class RunViewModelTests
         Assert.Equal(RunState.Completed, _run.State);
         Assert.Equal(1, _run.Fraction);
         Assert.Equal(123, _run.Progress!.XMicrosteps);
-        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == "completed" && r.SampleId == "S-17" && r.Notes == "first try" && r.MovesDone == 10 && r.ImageSha256 != null));
-        Assert.Equal("completed", _log.LastRun!.Outcome);
+        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == LogOutcome.Completed && r.SampleId == "S-17" && r.Notes == "first try" && r.RunsDone == 7 && r.Image.Sha256.Length == 64));
+        Assert.Equal(LogOutcome.Completed, _log.LastRun!.Record!.Outcome);
     }
 
     [Fact]
@@ -94,13 +117,27 @@ public sealed class RunViewModelTests
     {
         await ReadyAsync();
         _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
-            .ThrowsAsync(new DeviceTimeoutException("laser gate: no reply to FREQ 1000 within 500 ms"));
+            .Returns(Result(RunOutcome.Failed, "laser gate: no reply to FREQ 1000 within 500 ms"));
 
         await _run.StartCommand.ExecuteAsync(null);
 
         Assert.Equal(RunState.Failed, _run.State);
         Assert.Contains("no reply to FREQ", _run.Error, StringComparison.Ordinal);
-        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == "failed" && r.Error!.Contains("FREQ")));
+        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == LogOutcome.Failed && r.Fault!.Message.Contains("FREQ")));
+    }
+
+    [Fact]
+    public async Task Start_PreflightRefuses_RefusedWithReasonAndLogged()
+    {
+        await ReadyAsync();
+        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
+            .ThrowsAsync(new PreflightException("stage: device 1 (X) did not answer; check the cable"));
+
+        await _run.StartCommand.ExecuteAsync(null);
+
+        Assert.Equal(RunState.Failed, _run.State);
+        Assert.Contains("did not answer", _run.Error, StringComparison.Ordinal);
+        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == LogOutcome.Refused));
     }
 
     [Fact]
@@ -113,6 +150,7 @@ public sealed class RunViewModelTests
             {
                 started.SetResult();
                 await Task.Delay(Timeout.Infinite, c.Arg<CancellationToken>());
+                return Result(RunOutcome.Completed);
             });
         var run = _run.StartCommand.ExecuteAsync(null);
         await started.Task.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
@@ -122,7 +160,7 @@ public sealed class RunViewModelTests
         await run.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
 
         Assert.Equal(RunState.Aborted, _run.State);
-        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == "aborted"));
+        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == LogOutcome.Aborted));
     }
 
     [Fact]
@@ -136,6 +174,7 @@ public sealed class RunViewModelTests
             {
                 started.SetResult(c.Arg<RunRequest>());
                 await finish.Task;
+                return Result(RunOutcome.Completed);
             });
         var run = _run.StartCommand.ExecuteAsync(null);
         var request = await started.Task.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);

@@ -158,8 +158,12 @@ public sealed class ApiEndpointsTests : IDisposable
         Assert.Equal(run.GetProperty("movesTotal").GetInt64(), run.GetProperty("movesDone").GetInt64());
         var last = state.GetProperty("log").GetProperty("lastRun");
         Assert.Equal("T-1", last.GetProperty("sampleId").GetString());
-        var text = await _client.GetStringAsync($"/api/logs/{last.GetProperty("id").GetString()}/export?format=txt", Token);
-        Assert.Contains("completed", text, StringComparison.Ordinal);
+        var path = last.GetProperty("path").GetString()!;
+        Assert.StartsWith(_app.DataFolder, path, StringComparison.Ordinal);
+        var text = await _client.GetStringAsync($"/api/logs/export?format=txt&path={Uri.EscapeDataString(path)}", Token);
+        Assert.Contains("Sample:             T-1", text, StringComparison.Ordinal);
+        var json = await _client.GetFromJsonAsync<JsonElement>($"/api/logs/export?format=json&path={Uri.EscapeDataString(path)}", Token);
+        Assert.Equal("completed", json.GetProperty("outcome").GetString(), ignoreCase: true);
         Assert.Single(state.GetProperty("log").GetProperty("history").EnumerateArray());
     }
 
@@ -175,9 +179,9 @@ public sealed class ApiEndpointsTests : IDisposable
     }
 
     [Fact]
-    public async Task Export_UnknownRun_NotFound()
+    public async Task Export_FileNotInHistory_NotFound()
     {
-        using var response = await _client.GetAsync("/api/logs/nope/export?format=json", Token);
+        using var response = await _client.GetAsync("/api/logs/export?format=json&path=%2Fetc%2Fpasswd", Token);
 
         Assert.Equal(HttpStatusCode.NotFound, response.StatusCode);
     }

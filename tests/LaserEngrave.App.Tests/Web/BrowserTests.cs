@@ -167,7 +167,7 @@ public sealed class BrowserTests : IAsyncLifetime
         var screenshot = Screenshot("preview-after-run");
         Assert.True(new FileInfo(screenshot).Length > 10_000);
         Show("log");
-        Assert.Contains("sample       B-1", Id("last-run").Text, StringComparison.Ordinal);
+        WaitFor(() => Id("last-run").Text.Contains("B-1", StringComparison.Ordinal), "sample ID in the last run's summary");
         Screenshot("log");
     }
 
