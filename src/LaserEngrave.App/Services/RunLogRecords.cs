@@ -48,7 +48,7 @@ internal static class RunLogRecords
                 [
                     new RunDevice("x axis", port, string.Create(CultureInfo.InvariantCulture, $"device {machine.X.DeviceNumber}, ID {machine.X.DeviceId}"), machine.X.FirmwareText),
                     new RunDevice("y axis", port, string.Create(CultureInfo.InvariantCulture, $"device {machine.Y.DeviceNumber}, ID {machine.Y.DeviceId}"), machine.Y.FirmwareText),
-                    new RunDevice("laser gate", port, machine.Gate, machine.Gate),
+                    new RunDevice("laser gate", port, machine.Gate, machine.Gate.Split(' ', StringSplitOptions.RemoveEmptyEntries).LastOrDefault() ?? machine.Gate),
                 ]
                 : [],
             EstimatedSeconds = run.EstimatedSeconds,

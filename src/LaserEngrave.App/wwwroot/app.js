@@ -90,6 +90,8 @@ $('refresh-ports').addEventListener('click', async () => {
   $('machine-error').textContent = ports.length ? '' : 'no serial ports found; type a path instead';
 });
 
+document.querySelectorAll('[name="machine-kind"]').forEach((r) => r.addEventListener('change', () => { $('stagePort').disabled = $('laserPort').disabled = $('use-simulator').checked; }));
+
 // ---- test moves ----------------------------------------------------------------------------------------------------
 let stepUm = 100;
 function renderSteps(choices) {
@@ -148,10 +150,14 @@ function duration(seconds) {
 }
 function escapeHtml(text) { return String(text ?? '').replace(/[&<>"']/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;', "'": '&#39;' })[c]); }
 function meta(el, pairs) { el.innerHTML = pairs.map(([k, v]) => `<dt>${escapeHtml(k)}</dt><dd>${escapeHtml(v)}</dd>`).join(''); }
+const shownValues = new Map();
 function setValue(id, value) {
   const el = $(id);
-  // A field the user is typing in keeps what they typed; one they only moved into shows the new value.
-  if (!el || (document.activeElement === el && el.dataset.dirty === '1')) return;
+  // A field shows the server's value when that value changes; in between it keeps what the user typed (a port not yet
+  // connected, notes not yet sent). A field the user is typing in is never overwritten.
+  if (!el || (shownValues.has(id) && shownValues.get(id) === value)) return;
+  if (document.activeElement === el && el.dataset.dirty === '1') return;
+  shownValues.set(id, value);
   if (el.type === 'checkbox') el.checked = !!value;
   else if (el.type === 'number') el.value = value === null || value === undefined ? '' : Number(Number(value).toPrecision(8));
   else el.value = value ?? '';
@@ -197,7 +203,8 @@ function apply(s) {
   $('status-estimate').textContent = e ? `${fmt(e.achievedWidthMm, 3)} × ${fmt(e.achievedHeightMm, 3)} mm · est. ${duration(e.seconds)}` : 'no job';
 
   // machine
-  if (document.activeElement?.name !== 'machine-kind') { $('use-simulator').checked = m.useSimulator; $('use-ports').checked = !m.useSimulator; }
+  if (shownValues.get('machine-kind') !== m.useSimulator) { shownValues.set('machine-kind', m.useSimulator); $('use-simulator').checked = m.useSimulator; $('use-ports').checked = !m.useSimulator; }
+  $('stagePort').disabled = $('laserPort').disabled = $('use-simulator').checked;
   setValue('stagePort', m.stagePort); setValue('laserPort', m.laserPort);
   $('status-machine').textContent = m.connected ? `● ${m.description}` : '○ not connected';
   $('machine-error').textContent = m.error ?? '';
