@@ -9,4 +9,5 @@ namespace LaserEngrave.App.Services;
 /// <param name="XMicrosteps">Stage X at the end of the last completed move.</param>
 /// <param name="YMicrosteps">Stage Y at the end of the last completed move.</param>
 /// <param name="LaserOn">Whether the gate is firing.</param>
-public sealed record RunProgress(long MovesDone, long MovesTotal, int RowsDone, int RowsTotal, int Pass, long XMicrosteps, long YMicrosteps, bool LaserOn);
+/// <param name="Phase">What the executor is doing, e.g. "preflight" (checking and homing before the plan) or "running".</param>
+public sealed record RunProgress(long MovesDone, long MovesTotal, int RowsDone, int RowsTotal, int Pass, long XMicrosteps, long YMicrosteps, bool LaserOn, string Phase = "running");

@@ -157,7 +157,7 @@ public sealed partial class RunViewModel : ObservableObject
         };
         var passes = _job.Passes;
         RunPlanVersion = _job.PlanVersion;
-        Progress = new RunProgress(0, 0, 0, 0, 1, 0, 0, false);
+        Progress = new RunProgress(0, 0, 0, 0, 1, 0, 0, false, "preflight");
         State = RunState.Running;
         _testMoves.RunActive = true;
         RunResult? result = null;

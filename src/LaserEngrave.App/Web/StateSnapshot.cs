@@ -125,6 +125,7 @@ internal static class StateSnapshot
                 x = progress?.XMicrosteps,
                 y = progress?.YMicrosteps,
                 laserOn = progress?.LaserOn,
+                phase = progress?.Phase,
                 percent = Math.Round(run.Fraction * 100, 1),
                 elapsedSeconds = Math.Round(run.ElapsedSeconds, 1),
                 remainingSeconds = Math.Round(run.RemainingSeconds, 1),

@@ -228,7 +228,7 @@ function apply(s) {
   $('run-error').textContent = run.error ?? '';
   $('progress-bar').style.width = `${run.percent}%`;
   $('progress-text').textContent = `${fmt(run.percent, 1)} %`;
-  $('progress-figures').textContent = run.movesTotal ? `row ${fmt(run.rowsDone)} of ${fmt(run.rowsTotal)} · move ${fmt(run.movesDone)} of ${fmt(run.movesTotal)}${job.passes > 1 ? ` · pass ${run.pass} of ${job.passes}` : ''} · elapsed ${duration(run.elapsedSeconds)} · remaining ${duration(run.remainingSeconds)}${run.laserOn ? ' · laser ON' : ''}` : '';
+  $('progress-figures').textContent = run.active && run.phase === 'preflight' ? 'preflight: checking the machine and homing the axes before the first move…' : run.movesTotal ? `row ${fmt(run.rowsDone)} of ${fmt(run.rowsTotal)} · move ${fmt(run.movesDone)} of ${fmt(run.movesTotal)}${job.passes > 1 ? ` · pass ${run.pass} of ${job.passes}` : ''} · elapsed ${duration(run.elapsedSeconds)} · remaining ${duration(run.remainingSeconds)}${run.laserOn ? ' · laser ON' : ''}` : '';
 
   // log
   setValue('sampleId', s.log.sampleId); setValue('notes', s.log.notes);
