@@ -18,7 +18,10 @@ namespace LaserEngrave.Core.Planning;
 /// microstep distance at the quantised Zaber speed and acceleration; when both axes move, the longer of the two.</item>
 /// <item>End: the laser switched off if it is still on.</item>
 /// </list>
-/// Device and gate processing time and the time to reach the plan's first position are not modelled.
+/// The executor (Devices/Execution/RunExecutor) sends a switch-off before the speed changes and a switch-on after them,
+/// so the laser never stands still while a speed is set; the order does not change the time, which is a sum.
+/// Device and gate processing time, keepalives and the time to reach the plan's first position are not modelled
+/// (docs/execution.md compares the estimate with simulated runs: within 0.3 % on the samples).
 /// </remarks>
 public sealed class PlanEstimator
 {

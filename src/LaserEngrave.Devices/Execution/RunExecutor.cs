@@ -45,6 +45,7 @@ public sealed class RunExecutor
     private string? _laserOffProblem;
     private long _startTimestamp;
     private long _engravingStart;
+    private bool _engravingStarted;
     private TimeSpan _notEngraving;
     private long _x;
     private long _y;
@@ -280,7 +281,7 @@ public sealed class RunExecutor
         string gateIdentity;
         try
         {
-            gateIdentity = await Gate.IdentifyAsync(token).ConfigureAwait(false);
+            gateIdentity = await OnceMoreAfterTimeoutAsync(() => Gate.IdentifyAsync(token)).ConfigureAwait(false);
             await Gate.OffAsync(token).ConfigureAwait(false);
             await Gate.SetWatchdogAsync(_profile.Gate.WatchdogMs, token).ConfigureAwait(false);
         }
@@ -323,7 +324,7 @@ public sealed class RunExecutor
         AxisIdentity identity;
         try
         {
-            identity = await axis.IdentifyAsync(token).ConfigureAwait(false);
+            identity = await OnceMoreAfterTimeoutAsync(() => axis.IdentifyAsync(token)).ConfigureAwait(false);
             if (identity.AutoReplyDisabled)
             {
                 if (!Options.FixAutoReply || axis is not ZaberBinaryDevice zaber)
@@ -342,6 +343,19 @@ public sealed class RunExecutor
         }
 
         return identity;
+    }
+
+    /// <summary>Asks twice before giving up: the first line after a port opens can be lost (a device still waking, noise on the line).</summary>
+    private static async Task<T> OnceMoreAfterTimeoutAsync<T>(Func<Task<T>> ask)
+    {
+        try
+        {
+            return await ask().ConfigureAwait(false);
+        }
+        catch (DeviceTimeoutException)
+        {
+            return await ask().ConfigureAwait(false);
+        }
     }
 
     /// <summary>Refuses a job that leaves the travel or asks for speeds the stage cannot run.</summary>
@@ -409,6 +423,7 @@ public sealed class RunExecutor
 
         // The start the estimate models: acceleration and the travel speed on both axes.
         _engravingStart = TimeProvider.GetTimestamp();
+        _engravingStarted = true;
         foreach (var axis in new[] { Stage.X, Stage.Y })
         {
             await axis.SetAccelerationAsync(_accelerationData, token).ConfigureAwait(false);
@@ -838,7 +853,7 @@ public sealed class RunExecutor
         lock (_lock)
         {
             var fault = _laserOffProblem is null ? message : message is null ? _laserOffProblem : $"{message}; {_laserOffProblem}";
-            var engraving = _engravingStart == 0 ? TimeSpan.Zero : TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving;
+            var engraving = !_engravingStarted ? TimeSpan.Zero : TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving;
             result = new RunResult
             {
                 Outcome = outcome,
@@ -881,10 +896,10 @@ public sealed class RunExecutor
     private RunProgress Snapshot()
     {
         var elapsed = TimeProvider.GetElapsedTime(_startTimestamp);
-        var estimateDone = _estimator is null ? 0 : _estimator.ElapsedSeconds - _estimator.StartSeconds;
+        var estimateDone = !_engravingStarted || _estimator is null ? 0 : _estimator.ElapsedSeconds;
         var done = _estimateBefore + estimateDone;
         var percent = _estimateTotal > 0 ? Math.Clamp(100 * done / _estimateTotal, 0, 100) : 0;
-        var engraving = _engravingStart == 0 ? 0 : (TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving).TotalSeconds;
+        var engraving = !_engravingStarted ? 0 : (TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving).TotalSeconds;
         var ratio = estimateDone > 1 && engraving > 0 ? engraving / estimateDone : 1;
         var remaining = Math.Max(0, _estimateTotal - done) * ratio;
         return new RunProgress(_state, _rowsDone, Job.Statistics.Rows, _runsDone, Job.Statistics.BurnRuns, percent, elapsed, TimeSpan.FromSeconds(remaining), _x, _y, _laserOn);

@@ -254,8 +254,9 @@ public sealed class VirtualZaberDevice
         };
         if (value is { } v)
         {
-            // Return Setting answers with the setting's own command number.
-            Reply(setting, v);
+            // Return Setting answers with the setting's own command number, and answers even with auto-reply disabled
+            // (a Return command), so the reply is sent directly rather than through Reply's auto-reply check.
+            _chain.Send(this, new ZaberFrame(Number, (ZaberCommand)setting, v), solicited: true);
         }
         else
         {

@@ -29,4 +29,25 @@ public class RunExecutorTests
         Assert.Equal(job.Statistics.BurnRuns, result.RunsDone);
         Assert.Equal(job.Statistics.Rows, result.RowsDone);
     }
+
+    [Theory(Timeout = 300_000)]
+    [InlineData(PlanStrategy.Paper, false, 0.0)]
+    [InlineData(PlanStrategy.Optimized, false, 0.0)]
+    [InlineData(PlanStrategy.Optimized, true, 0.0)]
+    [InlineData(PlanStrategy.Optimized, true, 0.1)]
+    [InlineData(PlanStrategy.Optimized, false, 0.1)]
+    public async Task RunAsync_QrSampleFiveMillimetres_BurnsExactlyTheMask(PlanStrategy strategy, bool bidirectional, double overscanMm)
+    {
+        await using var run = SimulatedRun.Create();
+        var job = TestJobs.FromAsset("qr-code.bmp", 5, new PlanOptions { Strategy = strategy, Bidirectional = bidirectional, OverscanMm = overscanMm });
+
+        var result = await run.Executor(job).RunAsync(TestContext.Current.CancellationToken);
+        var report = run.Analyze(job);
+
+        Assert.Equal(RunOutcome.Completed, result.Outcome);
+        Assert.True(report.Burned.ContentEquals(job.Mask), $"burned differs: {report.ExtraPixels} extra, {report.MissingPixels} missing");
+        Assert.Equal(0, report.LaserOnTravelCount);
+        Assert.Equal(0, report.DwellCount);
+        Assert.Equal(0, report.RefusedMoves);
+    }
 }

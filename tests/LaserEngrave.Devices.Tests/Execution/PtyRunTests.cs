@@ -1,0 +1,36 @@
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Planning;
+using LaserEngrave.Devices.Execution;
+using LaserEngrave.Devices.LaserGate;
+using LaserEngrave.Devices.Serial;
+using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Simulator;
+using LaserEngrave.Testing;
+
+namespace LaserEngrave.Devices.Tests.Execution;
+
+/// <summary>A whole run through the real serial path: ZaberChain and PicLaserGate on socat ptys, the simulator on the other ends.</summary>
+[Collection(SimulatedRunCollection.Name)]
+public class PtyRunTests
+{
+    [Fact(Timeout = 120_000)]
+    public async Task RunAsync_ThroughSocatPtys_BurnsExactlyTheMask()
+    {
+        var ct = TestContext.Current.CancellationToken;
+        var profile = MachineProfile.Default;
+        await using var stagePair = await SocatPtyPair.StartAsync(ct);
+        await using var laserPair = await SocatPtyPair.StartAsync(ct);
+        await using var machine = SimulatedMachine.Attach(NativeSerialPort.Open(stagePair.A), NativeSerialPort.Open(laserPair.A), profile);
+        await using var stage = ZaberChain.Open(stagePair.B, profile);
+        await using var gate = PicLaserGate.Open(laserPair.B, profile.Gate);
+        var job = TestJobs.FromMask(TestJobs.Mask("#..##.", ".####.", "#....#"), 0.6, new PlanOptions { OverscanMm = 0.02 });
+
+        var result = await new RunExecutor(stage, gate, job).RunAsync(ct);
+        var report = machine.Recorder.Analyze(SimulatedRun.Grid(job), job.Mask);
+
+        Assert.Equal(RunOutcome.Completed, result.Outcome);
+        Assert.True(report.Burned.ContentEquals(job.Mask), $"burned differs: {report.ExtraPixels} extra, {report.MissingPixels} missing");
+        Assert.Equal(0, report.LaserOnTravelCount);
+        Assert.False(machine.Gate.IsFiring);
+    }
+}
