@@ -163,6 +163,37 @@ public sealed class EngraveCommandTests : IDisposable
     }
 
     [Fact]
+    public async Task EngraveSimulate_GateSilent_PreflightRefusesExit1AndTheLogSaysRefused()
+    {
+        var (exit, output, error) = await CliHarness.RunAsync(
+            "engrave", QrCode, "--width-mm", "2", "--simulate", "--json", "--log-dir", LogDir, "--fault", "silent:gate");
+
+        Assert.Equal(1, exit);
+        Assert.Contains("laser gate", error.TrimEnd().Split('\n')[^1], StringComparison.Ordinal);
+        using var json = JsonDocument.Parse(output);
+        Assert.Equal("refused", json.RootElement.GetProperty("outcome").GetString());
+        var record = RunLogStore.Read(json.RootElement.GetProperty("logPath").GetString()!);
+        Assert.Equal(RunOutcome.Refused, record.Outcome);
+        Assert.Equal("preflight", record.Fault?.Kind);
+        Assert.Equal(0, record.RunsDone);
+        Assert.Equal(0, record.LaserOnSeconds);
+    }
+
+    [Fact]
+    public async Task Engrave_LogFolderCannotBeCreated_Exit2BeforeTheRun()
+    {
+        var file = Path.Combine(folder, "a-file");
+        await File.WriteAllTextAsync(file, "x", TestContext.Current.CancellationToken);
+
+        var (exit, output, error) = await CliHarness.RunAsync("engrave", QrCode, "--width-mm", "2", "--simulate", "--log-dir", Path.Combine(file, "logs"));
+
+        Assert.Equal(2, exit);
+        Assert.Contains("cannot create the log folder", error, StringComparison.Ordinal);
+        Assert.Single(error.TrimEnd().Split('\n'));
+        Assert.Empty(output);
+    }
+
+    [Fact]
     public async Task EngraveFromLog_CompletedRun_RepeatsWithTheSameParameters()
     {
         var first = await CliHarness.RunAsync(

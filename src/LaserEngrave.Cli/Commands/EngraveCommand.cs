@@ -49,6 +49,9 @@ internal static class EngraveCommand
         }
 
         var store = new RunLogStore(result.GetValue(o.LogDir) ?? RunLogStore.DefaultFolder);
+
+        // A run must not start without a place for its log.
+        store.CreateFolder();
         var record = RunRecord.ForJob(prepared, PreparedJob.HashFile(spec.ImagePath), DateTimeOffset.Now) with
         {
             Simulated = simulate,
@@ -67,6 +70,7 @@ internal static class EngraveCommand
             var executor = new RunExecutor(session.Stage, session.Gate, prepared, session.TimeProvider, new RunOptions { Home = result.GetValue(o.Home), ResumeFrom = resumeFrom });
             var printer = new ProgressPrinter(stderr, terminal: ReferenceEquals(stderr, Console.Error) && !Console.IsErrorRedirected);
             executor.ProgressChanged += (_, progress) => printer.Report(progress);
+            var clockStart = session.TimeProvider.GetTimestamp();
             try
             {
                 run = await executor.RunAsync(cancellationToken).ConfigureAwait(false);
@@ -87,10 +91,21 @@ internal static class EngraveCommand
                 burn = simulator.Recorder.Analyze(new BurnGrid(g.OriginXMicrosteps, g.OriginYMicrosteps, g.PitchMicrosteps, g.WidthPx, g.HeightPx), prepared.Mask);
             }
 
-            record = Finish(record, run, error, session, DateTimeOffset.Now);
+            record = Finish(record, run, error, session, DateTimeOffset.Now, session.TimeProvider.GetElapsedTime(clockStart));
         }
 
-        var files = store.Write(record);
+        RunLogFiles files;
+        try
+        {
+            files = store.Write(record);
+        }
+        catch (RunLogException ex)
+        {
+            // The run happened: keep what the log would have said on stderr, and fail (not "bad input").
+            stderr.Write(RunSummaryText.Format(record));
+            throw new InvalidOperationException($"the run ended ({record.Outcome.ToString().ToLowerInvariant()}) but its log could not be written, so the summary is above: {ex.Message}", ex);
+        }
+
         if (burnedPath is not null && burn is not null)
         {
             burn.WritePng(burnedPath);
@@ -164,7 +179,8 @@ internal static class EngraveCommand
         return (spec, Path.GetFullPath(fromLog), new RunStopPoint(stop.Row, stop.MoveIndex, stop.XMicrosteps, stop.YMicrosteps));
     }
 
-    private static RunRecord Finish(RunRecord record, RunResult? run, Exception? error, MachineSession session, DateTimeOffset endedAt)
+    /// <param name="elapsed">The run's time on the machine's clock (virtual on the simulator), for a run that ended without a result.</param>
+    private static RunRecord Finish(RunRecord record, RunResult? run, Exception? error, MachineSession session, DateTimeOffset endedAt, TimeSpan elapsed)
     {
         if (run is null)
         {
@@ -177,7 +193,7 @@ internal static class EngraveCommand
             return record with
             {
                 EndedAt = endedAt,
-                ActualSeconds = (endedAt - record.StartedAt).TotalSeconds,
+                ActualSeconds = elapsed.TotalSeconds,
                 Outcome = outcome,
                 Fault = new RunFault(error?.Message.ReplaceLineEndings(" ") ?? "the run ended without a result", outcome == LogOutcome.Refused ? "preflight" : error?.GetType().Name),
             };

@@ -4,6 +4,7 @@ using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.LaserGate;
 using LaserEngrave.Devices.Zaber;
 using LaserEngrave.Simulator;
+using LaserEngrave.Simulator.Faults;
 
 namespace LaserEngrave.Cli.Commands;
 
@@ -60,6 +61,9 @@ internal sealed class MachineOptions
         {
             throw new UsageException("--fault works only with --simulate");
         }
+
+        // Parsed here only to refuse a bad spec before anything is created or opened.
+        FaultInjector.ParseRules(FaultSpec(result));
     }
 
     public string FaultSpec(ParseResult result) => string.Join(',', result.GetValue(Fault) ?? []);
@@ -87,34 +91,6 @@ internal sealed class MachineOptions
         {
             stage.DisposeAsync().AsTask().GetAwaiter().GetResult();
             throw;
-        }
-    }
-}
-
-/// <summary>An open machine: the stage, the gate, the clock they run on and, when simulated, the simulator behind them.</summary>
-internal sealed class MachineSession(ZaberChain stage, PicLaserGate gate, TimeProvider timeProvider, string stagePort, string laserPort, SimulatedMachine? simulator)
-    : IAsyncDisposable
-{
-    public ZaberChain Stage { get; } = stage;
-
-    public PicLaserGate Gate { get; } = gate;
-
-    public TimeProvider TimeProvider { get; } = timeProvider;
-
-    public string StagePort { get; } = stagePort;
-
-    public string LaserPort { get; } = laserPort;
-
-    /// <summary>The in-process simulator, or null on real ports.</summary>
-    public SimulatedMachine? Simulator { get; } = simulator;
-
-    public async ValueTask DisposeAsync()
-    {
-        await Gate.DisposeAsync().ConfigureAwait(false);
-        await Stage.DisposeAsync().ConfigureAwait(false);
-        if (Simulator is not null)
-        {
-            await Simulator.DisposeAsync().ConfigureAwait(false);
         }
     }
 }

@@ -58,15 +58,25 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal)
     internal static string Bar(RunProgress p)
     {
         var filled = (int)Math.Round(Math.Clamp(p.Percent, 0, 100) / 100 * BarWidth);
-        var state = p.State is RunState.Running ? string.Empty : $"  {p.State.ToString().ToLowerInvariant()}";
+        var state = p.State is RunState.Running ? string.Empty : $"  {StateLabel(p)}";
         return string.Create(
             CultureInfo.InvariantCulture,
             $"[{new string('#', filled)}{new string('.', BarWidth - filled)}] {p.Percent,5:0.0} %  row {p.RowsDone}/{p.RowsTotal}  ETA {Eta(p)}{state}   ");
     }
 
-    internal static string Line(RunProgress p) => string.Create(
-        CultureInfo.InvariantCulture,
-        $"{p.State.ToString().ToLowerInvariant()}: {p.Percent:0} %, row {p.RowsDone} of {p.RowsTotal}, {p.RunsDone} of {p.RunsTotal} burn runs, {Eta(p)} left");
+    internal static string Line(RunProgress p) => p.State == RunState.Preflight
+        ? "preflight: checking the machine and the job"
+        : string.Create(
+            CultureInfo.InvariantCulture,
+            $"{StateLabel(p)}: {p.Percent:0} %, row {p.RowsDone} of {p.RowsTotal}, {p.RunsDone} of {p.RunsTotal} burn runs, {Eta(p)} left");
+
+    /// <summary>The state as the operator reads it; the executor's Completed also ends an aborted run, which is not "done".</summary>
+    internal static string StateLabel(RunProgress p) => p.State switch
+    {
+        RunState.Completed when p.RunsDone == p.RunsTotal => "done",
+        RunState.Completed or RunState.Failed => "stopped",
+        _ => p.State.ToString().ToLowerInvariant(),
+    };
 
     private static string Eta(RunProgress p) => RunSummaryText.Duration(p.Remaining.TotalSeconds);
 }

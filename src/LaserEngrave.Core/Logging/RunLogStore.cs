@@ -48,10 +48,9 @@ public sealed class RunLogStore
             : Path.Combine(currentDirectory, FolderName);
     }
 
-    /// <summary>Writes the record and its summary as two new files; throws <see cref="RunLogException"/> when the folder cannot take them.</summary>
-    public RunLogFiles Write(RunRecord record)
+    /// <summary>Creates the folder if needed; throws <see cref="RunLogException"/> when it cannot be, so a run can refuse to start without a place for its log.</summary>
+    public void CreateFolder()
     {
-        ArgumentNullException.ThrowIfNull(record);
         try
         {
             Directory.CreateDirectory(Folder);
@@ -60,6 +59,13 @@ public sealed class RunLogStore
         {
             throw new RunLogException($"{Folder}: cannot create the log folder: {ex.Message}", ex);
         }
+    }
+
+    /// <summary>Writes the record and its summary as two new files; throws <see cref="RunLogException"/> when the folder cannot take them.</summary>
+    public RunLogFiles Write(RunRecord record)
+    {
+        ArgumentNullException.ThrowIfNull(record);
+        CreateFolder();
 
         var json = RunRecordJson.Serialize(record);
         var summary = RunSummaryText.Format(record);

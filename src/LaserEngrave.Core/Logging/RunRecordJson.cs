@@ -1,3 +1,4 @@
+using System.Text.Encodings.Web;
 using System.Text.Json;
 
 namespace LaserEngrave.Core.Logging;
@@ -5,10 +6,17 @@ namespace LaserEngrave.Core.Logging;
 /// <summary>Turns a <see cref="RunRecord"/> into its JSON text and back (the format of docs/run-log.md).</summary>
 public static class RunRecordJson
 {
+    // Relaxed escaping keeps '+', 'µ' and accented notes readable in the file; the text is never embedded in HTML.
+    private static readonly RunLogJsonContext Context = new(new JsonSerializerOptions(RunLogJsonContext.Default.Options)
+    {
+        Encoder = JavaScriptEncoder.UnsafeRelaxedJsonEscaping,
+        TypeInfoResolver = null,
+    });
+
     public static string Serialize(RunRecord record)
     {
         ArgumentNullException.ThrowIfNull(record);
-        return JsonSerializer.Serialize(record, RunLogJsonContext.Default.RunRecord);
+        return JsonSerializer.Serialize(record, Context.RunRecord);
     }
 
     /// <summary>Parses a record; throws <see cref="RunLogException"/> with one line naming <paramref name="source"/> and the problem.</summary>
@@ -18,7 +26,7 @@ public static class RunRecordJson
         RunRecord? record;
         try
         {
-            record = JsonSerializer.Deserialize(json, RunLogJsonContext.Default.RunRecord);
+            record = JsonSerializer.Deserialize(json, Context.RunRecord);
         }
         catch (JsonException ex)
         {

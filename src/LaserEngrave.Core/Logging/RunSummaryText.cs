@@ -20,7 +20,7 @@ public static class RunSummaryText
         if (record.Fault is { } fault)
         {
             Line("Fault", fault.Message + (fault.Kind is null ? string.Empty : $" ({fault.Kind})"));
-            Line("Laser off confirmed", fault.LaserOffConfirmed ? "yes" : "NO: check the laser by hand");
+            Line("Laser off", fault.LaserOffConfirmed ? "confirmed by the gate" : "NOT CONFIRMED: the gate did not answer; check the laser by hand");
         }
 
         if (record.StoppedAt is { } stop)
@@ -32,7 +32,7 @@ public static class RunSummaryText
         Line("Started", record.StartedAt.ToString("yyyy-MM-dd HH:mm:ss zzz", c));
         Line("Ended", record.EndedAt.ToString("yyyy-MM-dd HH:mm:ss zzz", c));
         var clock = record.Simulated ? " (simulated time)" : string.Empty;
-        Line("Duration", string.Create(c, $"{Duration(record.ActualSeconds)}{clock}, estimated {Duration(record.EstimatedSeconds)}"));
+        Line("Duration", string.Create(c, $"{Duration(record.ActualSeconds)}{clock}; engraving {Duration(record.EngravingSeconds)}, estimated {Duration(record.EstimatedSeconds)}"));
         Line("Laser on", Duration(record.LaserOnSeconds));
         Line("Done", string.Create(c, $"{record.RowsDone} of {record.RowsTotal} rows, {record.RunsDone} of {record.RunsTotal} burn runs"));
         Line("Image", string.Create(c, $"{record.Image.Path} ({record.Image.WidthPx} x {record.Image.HeightPx} px)"));

@@ -79,6 +79,18 @@ public sealed class RunLogStoreTests : IDisposable
     }
 
     [Fact]
+    public void Write_FolderUnderAFile_ThrowsOneLineNamingTheFolder()
+    {
+        var file = Path.Combine(runs.Folder, "a-file");
+        File.WriteAllText(file, "x");
+        var store = new RunLogStore(Path.Combine(file, "logs"));
+
+        var ex = Assert.Throws<RunLogException>(() => store.Write(runs.FailedRecord()));
+
+        Assert.StartsWith($"{store.Folder}: cannot create the log folder", ex.Message, StringComparison.Ordinal);
+    }
+
+    [Fact]
     public void List_FolderMissing_IsEmpty()
     {
         Assert.Empty(new RunLogStore(Path.Combine(runs.Folder, "nothing-here")).List());

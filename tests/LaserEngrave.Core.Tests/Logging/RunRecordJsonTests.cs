@@ -64,11 +64,21 @@ public sealed class RunRecordJsonTests : IDisposable
         Assert.Equal("5.29", root.GetProperty("devices")[0].GetProperty("firmware").GetString());
         Assert.Equal(record.EstimatedSeconds, root.GetProperty("estimatedSeconds").GetDouble());
         Assert.Equal(61.5, root.GetProperty("actualSeconds").GetDouble());
+        Assert.Equal(55.5, root.GetProperty("engravingSeconds").GetDouble());
         Assert.Equal(20.25, root.GetProperty("laserOnSeconds").GetDouble());
         Assert.Equal(11, root.GetProperty("rowsDone").GetInt32());
         Assert.Equal(40, root.GetProperty("runsDone").GetInt64());
         Assert.Equal("first try\nfocus 2 turns down", root.GetProperty("notes").GetString());
         Assert.Equal("S-17", root.GetProperty("sampleId").GetString());
+    }
+
+    [Fact]
+    public void Serialize_NotesWithAccentsAndAVersionWithPlus_WrittenAsTyped()
+    {
+        var json = RunRecordJson.Serialize(runs.FailedRecord() with { Notes = "Probe µ-3, réglage", SoftwareVersion = "0.1.0+abc" });
+
+        Assert.Contains("\"notes\": \"Probe µ-3, réglage\"", json, StringComparison.Ordinal);
+        Assert.Contains("\"softwareVersion\": \"0.1.0+abc\"", json, StringComparison.Ordinal);
     }
 
     [Theory]

@@ -15,13 +15,14 @@ public sealed class RunSummaryTextTests : IDisposable
 
         Assert.Contains("Outcome:            FAILED", text, StringComparison.Ordinal);
         Assert.Contains("Fault:              x axis: no reply within 500 ms (timeout)", text, StringComparison.Ordinal);
+        Assert.Contains("Laser off:          confirmed by the gate", text, StringComparison.Ordinal);
         Assert.Contains("Stopped at:         row 12, move 40, stage at 123456, 98765 microsteps", text, StringComparison.Ordinal);
         Assert.Contains("Started:            2026-11-23 14:30:05 +02:00", text, StringComparison.Ordinal);
         Assert.Contains(record.Image.Sha256, text, StringComparison.Ordinal);
         Assert.Contains("burn 0.8 mm/s, travel 3 mm/s, acceleration 40 mm/s²", text, StringComparison.Ordinal);
         Assert.Contains("Laser frequency:    1500 Hz", text, StringComparison.Ordinal);
         Assert.Contains("optimized, unidirectional, overscan 0.2 mm", text, StringComparison.Ordinal);
-        Assert.Contains("(simulated time)", text, StringComparison.Ordinal);
+        Assert.Contains("Duration:           1 min 01.5 s (simulated time); engraving 0 min 55.5 s, estimated ", text, StringComparison.Ordinal);
         Assert.Contains("firmware 5.29", text, StringComparison.Ordinal);
         Assert.Contains("Repeats:            /logs/2026-11-22_090000_S-16.json", text, StringComparison.Ordinal);
         Assert.Contains("Notes:              first try\n                    focus 2 turns down", text, StringComparison.Ordinal);

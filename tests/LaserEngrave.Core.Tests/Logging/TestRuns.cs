@@ -46,6 +46,7 @@ internal sealed class TestRuns : IDisposable
             Simulated = true,
             Devices = [new RunDevice("x axis", "simulator", "device 1, ID 6320", "5.29"), new RunDevice("laser gate", "simulator", "CEILAP PIC gate v1.2", "1.2")],
             ActualSeconds = 61.5,
+            EngravingSeconds = 55.5,
             LaserOnSeconds = 20.25,
             RowsDone = 11,
             RunsDone = 40,

@@ -1,0 +1,56 @@
+using LaserEngrave.Cli.Commands;
+using LaserEngrave.Devices.Execution;
+
+namespace LaserEngrave.Cli.Tests;
+
+public class ProgressPrinterTests
+{
+    private static RunProgress At(double percent, RunState state = RunState.Running, long runsDone = 50) =>
+        new(state, 10, 40, runsDone, 200, percent, TimeSpan.FromSeconds(30), TimeSpan.FromSeconds(95), 0, 0, false);
+
+    [Fact]
+    public void Bar_Running_ShowsFilledShareRowsPercentAndEta()
+    {
+        Assert.Equal("[########......................]  25.0 %  row 10/40  ETA 1 min 35.0 s   ", ProgressPrinter.Bar(At(25)));
+    }
+
+    [Fact]
+    public void Report_Redirected_OneLinePerTenPercentAndPerStateChange()
+    {
+        using var output = new StringWriter();
+        var printer = new ProgressPrinter(output, terminal: false);
+
+        foreach (var percent in new[] { 0.0, 1, 5, 9.9, 10, 11, 19, 25, 26 })
+        {
+            printer.Report(At(percent));
+        }
+
+        printer.Report(At(26, RunState.Pausing));
+
+        Assert.Equal(
+            ["running: 0 %", "running: 10 %", "running: 25 %", "pausing: 26 %"],
+            output.ToString().TrimEnd().Split('\n').Select(line => line[..line.IndexOf(',', StringComparison.Ordinal)]));
+    }
+
+    [Fact]
+    public void Report_Terminal_RedrawsOneLineWithCarriageReturnAndFinishEndsIt()
+    {
+        using var output = new StringWriter();
+        var printer = new ProgressPrinter(output, terminal: true);
+
+        printer.Report(At(50));
+        printer.Finish();
+
+        Assert.Equal("\r" + ProgressPrinter.Bar(At(50)) + Environment.NewLine, output.ToString());
+    }
+
+    [Theory]
+    [InlineData(RunState.Completed, 200, "done")]
+    [InlineData(RunState.Completed, 50, "stopped")]
+    [InlineData(RunState.Failed, 50, "stopped")]
+    [InlineData(RunState.Paused, 50, "paused")]
+    public void StateLabel_EndedRun_SaysDoneOnlyWhenEveryRunWasBurned(RunState state, long runsDone, string expected)
+    {
+        Assert.Equal(expected, ProgressPrinter.StateLabel(At(50, state, runsDone)));
+    }
+}
