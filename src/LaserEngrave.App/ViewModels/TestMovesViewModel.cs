@@ -1,13 +1,12 @@
 using System.Globalization;
 using CommunityToolkit.Mvvm.ComponentModel;
 using CommunityToolkit.Mvvm.Input;
-using LaserEngrave.Core.Geometry;
-using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Devices.Execution;
 
 namespace LaserEngrave.App.ViewModels;
 
 /// <summary>The Test moves view: jog, go to, go to the job's origin, trace its frame, fire a test burst, home.</summary>
-/// <remarks>Every move runs with the laser off; none is allowed while a run is under way.</remarks>
+/// <remarks>The moves are the Devices <see cref="StageTestMoves"/> (laser off, travel checked); none is allowed while a run is under way.</remarks>
 public sealed partial class TestMovesViewModel : ObservableObject
 {
     /// <summary>The jog step sizes offered, µm: 1 µm to 10 mm.</summary>
@@ -46,14 +45,14 @@ public sealed partial class TestMovesViewModel : ObservableObject
 
     /// <summary>Moves one axis by the step size; direction is "x+", "x-", "y+" or "y-".</summary>
     [RelayCommand(IncludeCancelCommand = true)]
-    private Task JogAsync(string direction, CancellationToken cancellationToken) => Move(async (connection, ct) =>
+    private Task JogAsync(string direction, CancellationToken cancellationToken) => Move((moves, ct) =>
     {
         var (axis, sign) = direction switch
         {
-            "x+" => (connection.Stage.X, 1),
-            "x-" => (connection.Stage.X, -1),
-            "y+" => (connection.Stage.Y, 1),
-            "y-" => (connection.Stage.Y, -1),
+            "x+" => (StageAxisName.X, 1),
+            "x-" => (StageAxisName.X, -1),
+            "y+" => (StageAxisName.Y, 1),
+            "y-" => (StageAxisName.Y, -1),
             _ => throw new ArgumentException($"jog direction '{direction}' is not one of x+, x-, y+, y-"),
         };
         if (!(StepUm > 0) || StepUm > 60000)
@@ -61,47 +60,25 @@ public sealed partial class TestMovesViewModel : ObservableObject
             throw new ArgumentException($"step {N(StepUm)} µm must be above 0 and at most 60000 µm");
         }
 
-        var current = await axis.GetPositionAsync(ct).ConfigureAwait(false);
-        var target = current + (sign * JobGeometry.Round(StageUnits.UmToMicrosteps(StepUm, _machine.Profile.X.MicrostepUm)));
-        var travel = axis == connection.Stage.X ? _machine.Profile.X.TravelMicrosteps : _machine.Profile.Y.TravelMicrosteps;
-        await axis.MoveAbsoluteAsync(Math.Clamp(target, 0, travel), ct).ConfigureAwait(false);
+        return moves.JogAsync(axis, sign * StepUm, ct);
     }, cancellationToken);
 
     [RelayCommand(IncludeCancelCommand = true)]
-    private Task GoToAsync(CancellationToken cancellationToken) => Move(
-        (connection, ct) => MoveBothAsync(connection.Stage, Microsteps(GoToXMm, _machine.Profile.X), Microsteps(GoToYMm, _machine.Profile.Y), ct),
-        cancellationToken);
+    private Task GoToAsync(CancellationToken cancellationToken) => Move((moves, ct) => moves.GoToAsync(GoToXMm, GoToYMm, ct), cancellationToken);
 
     /// <summary>Moves to the job's top-left corner, where the first pixel edge lies.</summary>
     [RelayCommand(IncludeCancelCommand = true)]
-    private Task GoToOriginAsync(CancellationToken cancellationToken) => Move(async (connection, ct) =>
-    {
-        var geometry = RequireJob().Geometry.Geometry;
-        await MoveBothAsync(connection.Stage, geometry.EdgeX(0), geometry.EdgeY(0), ct).ConfigureAwait(false);
-    }, cancellationToken);
+    private Task GoToOriginAsync(CancellationToken cancellationToken) =>
+        Move((moves, ct) => moves.GoToOriginAsync(RequireJob().Geometry.Geometry, ct), cancellationToken);
 
     /// <summary>Traces the job's outline with the laser off, so the user sees where it will land.</summary>
     [RelayCommand(IncludeCancelCommand = true)]
-    private Task FrameAsync(CancellationToken cancellationToken) => Move(async (connection, ct) =>
-    {
-        var job = RequireJob();
-        if (!job.Geometry.FitsTravel)
-        {
-            throw new ArgumentException("the job lies outside the stage's travel: move the origin or make it smaller");
-        }
-
-        var g = job.Geometry.Geometry;
-        long left = g.EdgeX(0), right = g.EdgeX(g.WidthPx), top = g.EdgeY(0), bottom = g.EdgeY(g.HeightPx);
-        await MoveBothAsync(connection.Stage, left, top, ct).ConfigureAwait(false);
-        await connection.Stage.X.MoveAbsoluteAsync(right, ct).ConfigureAwait(false);
-        await connection.Stage.Y.MoveAbsoluteAsync(bottom, ct).ConfigureAwait(false);
-        await connection.Stage.X.MoveAbsoluteAsync(left, ct).ConfigureAwait(false);
-        await connection.Stage.Y.MoveAbsoluteAsync(top, ct).ConfigureAwait(false);
-    }, cancellationToken);
+    private Task FrameAsync(CancellationToken cancellationToken) =>
+        Move((moves, ct) => moves.FrameAsync(RequireJob().Geometry.Geometry, visibleFrequencyHz: null, ct), cancellationToken);
 
     /// <summary>Fires a burst where the stage stands (the stage does not move), at the job's frequency.</summary>
     [RelayCommand(IncludeCancelCommand = true)]
-    private Task TestFireAsync(CancellationToken cancellationToken) => Run(async (connection, ct) =>
+    private Task TestFireAsync(CancellationToken cancellationToken) => Run(async (moves, ct) =>
     {
         if (TestFirePulses is < 1 or > 100000)
         {
@@ -114,34 +91,19 @@ public sealed partial class TestMovesViewModel : ObservableObject
             throw new ArgumentException($"laser frequency {N(_job.LaserFrequencyHz)} Hz must be at least 1 Hz");
         }
 
-        await connection.Gate.BurstAsync(TestFirePulses, frequency, ct).ConfigureAwait(false);
-        _machine.GateState = MachineViewModel.Describe(await connection.Gate.GetStateAsync(ct).ConfigureAwait(false));
+        await moves.FirePulsesAsync(TestFirePulses, frequency, ct).ConfigureAwait(false);
+        _machine.GateState = MachineViewModel.Describe(await moves.Gate.GetStateAsync(ct).ConfigureAwait(false));
     }, cancellationToken);
 
     private Core.Jobs.PreparedJob RequireJob() =>
         _job.Job ?? throw new ArgumentException("no job planned: open an image and give it a usable size first");
 
-    private static long Microsteps(double mm, AxisProfile axis)
+    /// <summary>A move (the Devices test moves switch the laser off first); the positions are read afterwards.</summary>
+    private Task Move(Func<StageTestMoves, CancellationToken, Task<StagePosition>> move, CancellationToken cancellationToken) => Run(async (moves, ct) =>
     {
-        var microsteps = JobGeometry.Round(StageUnits.MmToMicrosteps(mm, axis.MicrostepUm));
-        if (!double.IsFinite(mm) || microsteps < 0 || microsteps > axis.TravelMicrosteps)
-        {
-            throw new ArgumentException($"position {N(mm)} mm is outside the travel 0 to {N(axis.TravelMm)} mm");
-        }
-
-        return microsteps;
-    }
-
-    private static async Task MoveBothAsync(IStage stage, long x, long y, CancellationToken cancellationToken) =>
-        await Task.WhenAll(stage.X.MoveAbsoluteAsync(x, cancellationToken), stage.Y.MoveAbsoluteAsync(y, cancellationToken)).ConfigureAwait(false);
-
-    /// <summary>A move: the laser goes off first, and the positions are read afterwards.</summary>
-    private Task Move(Func<Services.IMachineConnection, CancellationToken, Task> move, CancellationToken cancellationToken) => Run(async (connection, ct) =>
-    {
-        await connection.Gate.OffAsync(ct).ConfigureAwait(false);
         try
         {
-            await move(connection, ct).ConfigureAwait(false);
+            await move(moves, ct).ConfigureAwait(false);
         }
         finally
         {
@@ -149,7 +111,7 @@ public sealed partial class TestMovesViewModel : ObservableObject
         }
     }, cancellationToken);
 
-    private async Task Run(Func<Services.IMachineConnection, CancellationToken, Task> action, CancellationToken cancellationToken)
+    private async Task Run(Func<StageTestMoves, CancellationToken, Task> action, CancellationToken cancellationToken)
     {
         Error = null;
         if (RunActive)
@@ -158,7 +120,12 @@ public sealed partial class TestMovesViewModel : ObservableObject
             return;
         }
 
-        await _machine.Guard(async () => await action(_machine.RequireConnection(), cancellationToken).ConfigureAwait(false)).ConfigureAwait(false);
+        await _machine.Guard(async () =>
+        {
+            var connection = _machine.RequireConnection();
+            var moves = new StageTestMoves(connection.Stage, connection.Gate, connection.Profile, timeProvider: connection.TimeProvider);
+            await action(moves, cancellationToken).ConfigureAwait(false);
+        }).ConfigureAwait(false);
         Error = _machine.Error;
     }
 

@@ -23,6 +23,7 @@ internal sealed class Fakes
         Connection.Gate.Returns(Gate);
         Connection.Profile.Returns(MachineProfile.Default);
         Connection.Description.Returns("fake machine");
+        Connection.TimeProvider.Returns(TimeProvider.System);
         Factory = Substitute.For<IMachineConnectionFactory>();
         Factory.ConnectAsync(Arg.Any<MachineChoice>(), Arg.Any<MachineProfile>(), Arg.Any<CancellationToken>()).Returns(Connection);
     }

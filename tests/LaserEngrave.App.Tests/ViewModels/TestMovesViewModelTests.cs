@@ -43,14 +43,15 @@ public sealed class TestMovesViewModelTests
     }
 
     [Fact]
-    public async Task Jog_BelowZero_ClampedAtZero()
+    public async Task Jog_BelowZero_RefusedWithoutMoving()
     {
         await ConnectAsync();
         _moves.StepUm = 10000;
 
         await _moves.JogCommand.ExecuteAsync("x-");
 
-        await _fakes.X.Received(1).MoveAbsoluteAsync(0, Arg.Any<CancellationToken>());
+        Assert.Contains("outside the stage travel", _moves.Error, StringComparison.Ordinal);
+        await _fakes.X.DidNotReceive().MoveAbsoluteAsync(Arg.Any<long>(), Arg.Any<CancellationToken>());
     }
 
     [Fact]
@@ -73,7 +74,7 @@ public sealed class TestMovesViewModelTests
     }
 
     [Fact]
-    public async Task GoTo_InsideTravel_BothAxesMoveLaserOffFirst()
+    public async Task GoTo_InsideTravel_BothAxesMoveLaserOffBeforeAndAfter()
     {
         await ConnectAsync();
         _moves.GoToXMm = 10;
@@ -85,6 +86,7 @@ public sealed class TestMovesViewModelTests
         {
             _fakes.Gate.OffAsync(Arg.Any<CancellationToken>());
             _fakes.X.MoveAbsoluteAsync(100787, Arg.Any<CancellationToken>());
+            _fakes.Gate.OffAsync(Arg.Any<CancellationToken>());
         });
         await _fakes.Y.Received(1).MoveAbsoluteAsync(50394, Arg.Any<CancellationToken>());
         Assert.Equal(100787, _machine.XMicrosteps);
@@ -98,7 +100,7 @@ public sealed class TestMovesViewModelTests
 
         await _moves.GoToCommand.ExecuteAsync(null);
 
-        Assert.Contains("61 mm is outside the travel", _moves.Error, StringComparison.Ordinal);
+        Assert.Contains("61 mm is outside the stage travel", _moves.Error, StringComparison.Ordinal);
         await _fakes.X.DidNotReceive().MoveAbsoluteAsync(Arg.Any<long>(), Arg.Any<CancellationToken>());
     }
 
@@ -137,7 +139,7 @@ public sealed class TestMovesViewModelTests
 
         await _moves.FrameCommand.ExecuteAsync(null);
 
-        Assert.Contains("outside the stage's travel", _moves.Error, StringComparison.Ordinal);
+        Assert.Contains("outside the stage travel", _moves.Error, StringComparison.Ordinal);
         await _fakes.X.DidNotReceive().MoveAbsoluteAsync(Arg.Any<long>(), Arg.Any<CancellationToken>());
     }
 
