@@ -18,7 +18,7 @@ public sealed class ExecutorRunService : IRunService
             var latest = executor.Progress;
             var currentPass = pass;
             void Report() => progress.Report(new RunProgress(
-                Interlocked.Read(ref movesDone), movesTotal, latest.RowsDone, latest.RowsTotal, currentPass, latest.XMicrosteps, latest.YMicrosteps, latest.LaserOn, latest.State.ToString().ToLowerInvariant()));
+                Interlocked.Read(ref movesDone), movesTotal, latest.RowsDone, latest.RowsTotal, currentPass, latest.XMicrosteps, latest.YMicrosteps, latest.LaserOn, latest.State.ToString().ToLowerInvariant(), latest.Remaining.TotalSeconds));
             executor.MoveCompleted += (_, e) => Interlocked.Exchange(ref movesDone, e.MoveIndex + 1);
             executor.ProgressChanged += (_, p) =>
             {

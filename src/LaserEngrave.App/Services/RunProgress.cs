@@ -10,4 +10,15 @@ namespace LaserEngrave.App.Services;
 /// <param name="YMicrosteps">Stage Y at the end of the last completed move.</param>
 /// <param name="LaserOn">Whether the gate is firing.</param>
 /// <param name="Phase">What the executor is doing, e.g. "preflight" (checking and homing before the plan) or "running".</param>
-public sealed record RunProgress(long MovesDone, long MovesTotal, int RowsDone, int RowsTotal, int Pass, long XMicrosteps, long YMicrosteps, bool LaserOn, string Phase = "running");
+/// <param name="PassRemainingSeconds">The executor's estimate of the time left in this pass (the plan's estimate scaled by the pace so far), s; null when unknown.</param>
+public sealed record RunProgress(
+    long MovesDone,
+    long MovesTotal,
+    int RowsDone,
+    int RowsTotal,
+    int Pass,
+    long XMicrosteps,
+    long YMicrosteps,
+    bool LaserOn,
+    string Phase = "running",
+    double? PassRemainingSeconds = null);

@@ -70,7 +70,7 @@ public sealed partial class RunViewModel : ObservableObject
 
     public double ElapsedSeconds => IsActive ? _time.GetElapsedTime(_startedTicks).TotalSeconds : ElapsedSecondsAtEnd;
 
-    /// <summary>Time left: from the pace so far once a little is done, from the estimate before that.</summary>
+    /// <summary>Time left: the executor's estimate once moves are done, the plan's estimate before that.</summary>
     public double RemainingSeconds
     {
         get
@@ -80,8 +80,14 @@ public sealed partial class RunViewModel : ObservableObject
                 return 0;
             }
 
-            var fraction = Fraction;
-            return fraction > 0.05 ? ElapsedSeconds * (1 - fraction) / fraction : Math.Max(0, _estimatedSeconds * (1 - fraction));
+            // The executor's figure for this pass, plus the estimate of the passes still to come.
+            var passes = Math.Max(1, _job.Passes);
+            if (Progress is { PassRemainingSeconds: { } passRemaining } p && p.MovesDone > 0)
+            {
+                return passRemaining + (Math.Max(0, passes - p.Pass) * _estimatedSeconds / passes);
+            }
+
+            return Math.Max(0, _estimatedSeconds * (1 - Fraction));
         }
     }
 

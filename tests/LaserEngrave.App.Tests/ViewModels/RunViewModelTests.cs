@@ -191,6 +191,34 @@ public sealed class RunViewModelTests
     }
 
     [Fact]
+    public async Task RemainingSeconds_TwoPassesFirstUnderWay_ExecutorFigurePlusNextPass()
+    {
+        await ReadyAsync();
+        _job.Passes = 2;
+        var perPass = _job.EstimatedSeconds!.Value / 2;
+        var reported = new TaskCompletionSource();
+        var finish = new TaskCompletionSource();
+        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(async c =>
+            {
+                c.Arg<IProgress<RunProgress>>().Report(new RunProgress(5, 10, 2, 4, 1, 0, 0, true, "running", PassRemainingSeconds: 30));
+                reported.SetResult();
+                await finish.Task;
+                return Result(RunOutcome.Completed);
+            });
+        var run = _run.StartCommand.ExecuteAsync(null);
+        await reported.Task.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+
+        var remaining = _run.RemainingSeconds;
+        var fraction = _run.Fraction;
+        finish.SetResult();
+        await run.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+
+        Assert.Equal(30 + perPass, remaining, 6);
+        Assert.Equal(0.25, fraction, 6);
+    }
+
+    [Fact]
     public void Abort_NothingRunning_Harmless()
     {
         _run.AbortCommand.Execute(null);
