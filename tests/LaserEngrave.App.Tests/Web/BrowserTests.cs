@@ -202,4 +202,29 @@ public sealed class BrowserTests : IAsyncLifetime
         Show("image");
         Screenshot("image-dark");
     }
+
+    [Fact]
+    public void Page_RunPausedMidway_LiveProgressThenResumesToCompletion()
+    {
+        Upload(TestFiles.Asset("qr-code.bmp"));
+        WaitFor(() => Id("status-estimate").Text.Contains("est.", StringComparison.Ordinal), "estimate in the top bar");
+        Show("size");
+        SetField("widthMm", "4");
+        Show("machine");
+        Id("connect").Click();
+        WaitFor(() => Id("status-machine").Text.Contains("simulator", StringComparison.Ordinal), "connected to the simulator");
+        Show("preview");
+        Id("start").Click();
+        WaitFor(() => double.Parse(Id("progress-text").Text.TrimEnd('%', ' '), System.Globalization.CultureInfo.InvariantCulture) >= 20, "a fifth done", 120);
+
+        Id("pause").Click();
+
+        WaitFor(() => Id("status-run").Text.StartsWith("paused", StringComparison.Ordinal), "paused");
+        Thread.Sleep(500);
+        Assert.Contains("row ", Id("progress-figures").Text, StringComparison.Ordinal);
+        Assert.True(Id("resume").Enabled && Id("abort").Enabled && !Id("start").Enabled);
+        Screenshot("preview-paused");
+        Id("resume").Click();
+        WaitFor(() => Id("status-run").Text == "completed", "run completed", 180);
+    }
 }
