@@ -3,6 +3,12 @@ using LaserEngrave.App.Web;
 using Microsoft.AspNetCore.Hosting.Server;
 using Microsoft.AspNetCore.Hosting.Server.Features;
 
+if (args.Any(a => a is "--help" or "-h"))
+{
+    Console.WriteLine(AppOptions.Usage);
+    return 0;
+}
+
 AppOptions options;
 try
 {
