@@ -1,0 +1,19 @@
+using LaserEngrave.Core.Logging;
+
+namespace LaserEngrave.App.Services;
+
+/// <summary>Where the app keeps its files: settings and uploaded images under one data folder, and the run logs.</summary>
+/// <param name="DataFolder">By default LaserEngrave in the user's application-data folder.</param>
+/// <param name="LogFolder">The run logs; by default the command line's folder (<see cref="RunLogStore.DefaultFolder"/>), otherwise logs/ in the data folder.</param>
+public sealed record AppFolders(string DataFolder, string? LogFolder = null)
+{
+    public static AppFolders Default { get; } = new(
+        Path.Combine(Environment.GetFolderPath(Environment.SpecialFolder.ApplicationData, Environment.SpecialFolderOption.Create), "LaserEngrave"),
+        RunLogStore.DefaultFolder);
+
+    public string SettingsFile => Path.Combine(DataFolder, "settings.json");
+
+    public string UploadFolder => Path.Combine(DataFolder, "images");
+
+    public string RunLogFolder => LogFolder ?? Path.Combine(DataFolder, "logs");
+}

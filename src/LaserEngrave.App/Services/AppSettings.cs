@@ -1,0 +1,22 @@
+namespace LaserEngrave.App.Services;
+
+/// <summary>What the app keeps between starts.</summary>
+public sealed record AppSettings
+{
+    public string? LastFolder { get; init; }
+
+    /// <summary>Most recent first.</summary>
+    public IReadOnlyList<string> RecentFiles { get; init; } = [];
+
+    public bool UseSimulator { get; init; } = true;
+
+    public string? StagePort { get; init; }
+
+    public string? LaserPort { get; init; }
+
+    /// <summary>A machine profile JSON file; null for the built-in profile.</summary>
+    public string? ProfilePath { get; init; }
+
+    /// <summary>"light" or "dark".</summary>
+    public string Theme { get; init; } = "light";
+}

@@ -1,0 +1,66 @@
+using LaserEngrave.Devices.Execution;
+
+namespace LaserEngrave.App.Services;
+
+/// <summary>Runs a job with the Devices <see cref="RunExecutor"/> (preflight, keepalive, pause, laser-off-first abort), one executor per pass.</summary>
+public sealed class ExecutorRunService : IRunService
+{
+    public async Task<RunResult> RunAsync(RunRequest request, IProgress<RunProgress> progress, CancellationToken cancellationToken)
+    {
+        ArgumentNullException.ThrowIfNull(request);
+        ArgumentNullException.ThrowIfNull(progress);
+        var movesTotal = request.Job.Statistics.Moves;
+        RunResult? last = null;
+        for (var pass = 1; pass <= Math.Max(1, request.Passes); pass++)
+        {
+            var executor = new RunExecutor(request.Stage, request.Gate, request.Job, request.TimeProvider);
+            var movesDone = 0L;
+            var latest = executor.Progress;
+            var currentPass = pass;
+            void Report() => progress.Report(new RunProgress(
+                Interlocked.Read(ref movesDone), movesTotal, latest.RowsDone, latest.RowsTotal, currentPass, latest.XMicrosteps, latest.YMicrosteps, latest.LaserOn, latest.State.ToString().ToLowerInvariant(), latest.Remaining.TotalSeconds));
+            executor.MoveCompleted += (_, e) => Interlocked.Exchange(ref movesDone, e.MoveIndex + 1);
+            executor.ProgressChanged += (_, p) =>
+            {
+                latest = p;
+                Report();
+            };
+            void OnPause(object? sender, bool paused)
+            {
+                if (paused)
+                {
+                    executor.Pause();
+                }
+                else
+                {
+                    executor.Resume();
+                }
+            }
+
+            request.Pause.Changed += OnPause;
+            RunResult result;
+            try
+            {
+                if (request.Pause.IsPaused)
+                {
+                    executor.Pause();
+                }
+
+                result = await executor.RunAsync(cancellationToken).ConfigureAwait(false);
+            }
+            finally
+            {
+                request.Pause.Changed -= OnPause;
+            }
+
+            Report();
+            last = result;
+            if (result.Outcome != RunOutcome.Completed)
+            {
+                break;
+            }
+        }
+
+        return last!;
+    }
+}

@@ -1,0 +1,96 @@
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Imaging;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Planning;
+
+namespace LaserEngrave.App.Services;
+
+/// <summary>Every value the user sets for a job, as the page shows it; a run log keeps it so the run can be loaded again.</summary>
+public sealed record JobSettings
+{
+    public string? ImagePath { get; init; }
+
+    public double ThresholdPercent { get; init; } = 50;
+
+    public DitherMethod Dither { get; init; } = DitherMethod.None;
+
+    public bool Invert { get; init; }
+
+    /// <summary>Which field decides the size: width, height, both or pitch.</summary>
+    public SizeMode SizeMode { get; init; } = SizeMode.Width;
+
+    public double WidthMm { get; init; } = 5;
+
+    public double HeightMm { get; init; } = 5;
+
+    public double PitchUm { get; init; } = 50;
+
+    public double OriginXMm { get; init; } = 1;
+
+    public double OriginYMm { get; init; } = 1;
+
+    public double LaserFrequencyHz { get; init; } = 1000;
+
+    public double BurnSpeedMmPerS { get; init; } = 1;
+
+    public double TravelSpeedMmPerS { get; init; } = 4;
+
+    public double AccelerationMmPerS2 { get; init; } = 50;
+
+    public PlanStrategy Strategy { get; init; } = PlanStrategy.Optimized;
+
+    public bool Bidirectional { get; init; } = true;
+
+    public double OverscanMm { get; init; }
+
+    public int Passes { get; init; } = 1;
+
+    /// <summary>The values of a job (e.g. one a run log repeats), as the page shows them.</summary>
+    public static JobSettings From(JobSpec spec)
+    {
+        ArgumentNullException.ThrowIfNull(spec);
+        var settings = new JobSettings
+        {
+            ImagePath = spec.ImagePath,
+            ThresholdPercent = spec.Mask.ThresholdPercent,
+            Dither = spec.Mask.Dither,
+            Invert = spec.Mask.Invert,
+            OriginXMm = spec.Origin.X,
+            OriginYMm = spec.Origin.Y,
+            LaserFrequencyHz = spec.Process.LaserFrequencyHz,
+            BurnSpeedMmPerS = spec.Process.BurnSpeedMmPerS,
+            TravelSpeedMmPerS = spec.Process.TravelSpeedMmPerS,
+            AccelerationMmPerS2 = spec.Process.AccelerationMmPerS2,
+            Strategy = spec.Plan.Strategy,
+            Bidirectional = spec.Plan.Bidirectional,
+            OverscanMm = spec.Plan.OverscanMm,
+        };
+        return spec.Size switch
+        {
+            SizeSpec.ByWidth w => settings with { SizeMode = SizeMode.Width, WidthMm = w.WidthMm },
+            SizeSpec.ByHeight h => settings with { SizeMode = SizeMode.Height, HeightMm = h.HeightMm },
+            SizeSpec.ByWidthAndHeight b => settings with { SizeMode = SizeMode.WidthAndHeight, WidthMm = b.WidthMm, HeightMm = b.HeightMm },
+            SizeSpec.ByPitch p => settings with { SizeMode = SizeMode.Pitch, PitchUm = p.PitchUm },
+
+            // The page has no resolution field: the pitch the resolution gives is the same size.
+            SizeSpec.ByResolution r => settings with { SizeMode = SizeMode.Pitch, PitchUm = 25_400 / r.Dpi },
+            _ => settings,
+        };
+    }
+}
+
+/// <summary>Which size field the user set last, and so which one the others follow.</summary>
+public enum SizeMode
+{
+    /// <summary>Width in mm; height follows the aspect.</summary>
+    Width,
+
+    /// <summary>Height in mm; width follows the aspect.</summary>
+    Height,
+
+    /// <summary>Both sides given, aspect unlocked.</summary>
+    WidthAndHeight,
+
+    /// <summary>Pixel pitch in µm (or microsteps per pixel).</summary>
+    Pitch,
+}

@@ -1,0 +1,510 @@
+using System.ComponentModel;
+using System.Globalization;
+using CommunityToolkit.Mvvm.ComponentModel;
+using LaserEngrave.App.Services;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Imaging;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Planning;
+
+namespace LaserEngrave.App.ViewModels;
+
+/// <summary>
+/// The Image, Size and Process views: the image and its mask, the job's size and place on the stage, the process
+/// values, and what follows from them (the plan, its estimate, warnings beside the fields that cause them).
+/// </summary>
+/// <remarks>Every change of an input re-plans at once; a change of threshold, dither or invert rebuilds the mask first.</remarks>
+public sealed partial class JobViewModel : ObservableObject
+{
+    /// <summary>Field names the page places messages beside.</summary>
+    public const string ImageField = "image";
+    public const string WidthField = "widthMm";
+    public const string HeightField = "heightMm";
+    public const string PitchField = "pitchUm";
+    public const string OriginField = "origin";
+    public const string FrequencyField = "laserFrequencyHz";
+    public const string BurnSpeedField = "burnSpeedMmPerS";
+    public const string TravelSpeedField = "travelSpeedMmPerS";
+    public const string AccelerationField = "accelerationMmPerS2";
+    public const string OverscanField = "overscanMm";
+    public const string PassesField = "passes";
+    public const string ThresholdField = "thresholdPercent";
+
+    private static readonly HashSet<string> MaskInputs = [nameof(ThresholdPercent), nameof(Dither), nameof(Invert)];
+
+    private static readonly HashSet<string> PlanInputs =
+    [
+        nameof(SizeMode), nameof(WidthMm), nameof(HeightMm), nameof(PitchUm), nameof(OriginXMm), nameof(OriginYMm),
+        nameof(LaserFrequencyHz), nameof(BurnSpeedMmPerS), nameof(TravelSpeedMmPerS), nameof(AccelerationMmPerS2),
+        nameof(Strategy), nameof(Bidirectional), nameof(OverscanMm), nameof(Passes),
+    ];
+
+    private readonly IImageService _images;
+    private readonly Lock _lock = new();
+    private MachineProfile _profile;
+    private LoadedImage? _image;
+    private int _suspended;
+
+    public JobViewModel(IImageService images, MachineProfile profile)
+    {
+        ArgumentNullException.ThrowIfNull(images);
+        ArgumentNullException.ThrowIfNull(profile);
+        _images = images;
+        _profile = profile;
+        Apply(FromProfile(profile));
+    }
+
+    [ObservableProperty]
+    public partial string? ImagePath { get; private set; }
+
+    [ObservableProperty]
+    public partial ImageInfo? ImageInfo { get; private set; }
+
+    [ObservableProperty]
+    public partial BitMask? Mask { get; private set; }
+
+    [ObservableProperty]
+    public partial double ThresholdPercent { get; set; }
+
+    [ObservableProperty]
+    public partial DitherMethod Dither { get; set; }
+
+    [ObservableProperty]
+    public partial bool Invert { get; set; }
+
+    [ObservableProperty]
+    public partial SizeMode SizeMode { get; set; }
+
+    [ObservableProperty]
+    public partial bool AspectLocked { get; set; } = true;
+
+    [ObservableProperty]
+    public partial double WidthMm { get; set; }
+
+    [ObservableProperty]
+    public partial double HeightMm { get; set; }
+
+    [ObservableProperty]
+    public partial double PitchUm { get; set; }
+
+    [ObservableProperty]
+    public partial double OriginXMm { get; set; }
+
+    [ObservableProperty]
+    public partial double OriginYMm { get; set; }
+
+    [ObservableProperty]
+    public partial double LaserFrequencyHz { get; set; }
+
+    [ObservableProperty]
+    public partial double BurnSpeedMmPerS { get; set; }
+
+    [ObservableProperty]
+    public partial double TravelSpeedMmPerS { get; set; }
+
+    [ObservableProperty]
+    public partial double AccelerationMmPerS2 { get; set; }
+
+    [ObservableProperty]
+    public partial PlanStrategy Strategy { get; set; }
+
+    [ObservableProperty]
+    public partial bool Bidirectional { get; set; }
+
+    [ObservableProperty]
+    public partial double OverscanMm { get; set; }
+
+    [ObservableProperty]
+    public partial int Passes { get; set; }
+
+    /// <summary>The planned job, or null without an image or with an unusable value.</summary>
+    [ObservableProperty]
+    public partial PreparedJob? Job { get; private set; }
+
+    /// <summary>Estimated duration of all passes, s.</summary>
+    [ObservableProperty]
+    public partial double? EstimatedSeconds { get; private set; }
+
+    /// <summary>Errors (which stop the plan) by field.</summary>
+    [ObservableProperty]
+    public partial IReadOnlyDictionary<string, string> Errors { get; private set; } = new Dictionary<string, string>();
+
+    /// <summary>Warnings (the job can still run) by field.</summary>
+    [ObservableProperty]
+    public partial IReadOnlyDictionary<string, string> Warnings { get; private set; } = new Dictionary<string, string>();
+
+    /// <summary>Goes up whenever the mask changes, so the page knows to fetch its picture again.</summary>
+    [ObservableProperty]
+    public partial int MaskVersion { get; private set; }
+
+    /// <summary>Goes up whenever the plan changes, so the page redraws its cached preview.</summary>
+    [ObservableProperty]
+    public partial int PlanVersion { get; private set; }
+
+    public MachineProfile Profile => _profile;
+
+    /// <summary>Microsteps per pixel of the current pitch (need not be whole).</summary>
+    public double MicrostepsPerPixel => PitchUm / _profile.X.MicrostepUm;
+
+    public LoadedImage? Image => _image;
+
+    /// <summary>The job's values as the profile suggests them.</summary>
+    public static JobSettings FromProfile(MachineProfile profile)
+    {
+        ArgumentNullException.ThrowIfNull(profile);
+        return new JobSettings
+        {
+            LaserFrequencyHz = profile.LaserFrequencyHz,
+            BurnSpeedMmPerS = profile.BurnSpeedMmPerS,
+            TravelSpeedMmPerS = profile.TravelSpeedMmPerS,
+            AccelerationMmPerS2 = profile.AccelerationMmPerS2,
+        };
+    }
+
+    /// <summary>Opens an image; a file that cannot be read leaves the previous image and shows the error beside the image.</summary>
+    public bool LoadImage(string path)
+    {
+        ArgumentException.ThrowIfNullOrWhiteSpace(path);
+        LoadedImage image;
+        try
+        {
+            image = _images.Load(path);
+        }
+        catch (ImageLoadException ex)
+        {
+            SetErrors(new Dictionary<string, string>(Errors) { [ImageField] = ex.Message });
+            return false;
+        }
+        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
+        {
+            SetErrors(new Dictionary<string, string>(Errors) { [ImageField] = $"{path}: {ex.Message}" });
+            return false;
+        }
+
+        lock (_lock)
+        {
+            _image = image;
+            ImagePath = path;
+            ImageInfo = image.Info;
+        }
+
+        RebuildMask();
+        return true;
+    }
+
+    /// <summary>The user typed a width: with the aspect locked the height follows; unlocked, both sides are kept.</summary>
+    public void EditWidth(double widthMm) => Batch(() =>
+    {
+        WidthMm = widthMm;
+        SizeMode = AspectLocked ? SizeMode.Width : SizeMode.WidthAndHeight;
+    });
+
+    public void EditHeight(double heightMm) => Batch(() =>
+    {
+        HeightMm = heightMm;
+        SizeMode = AspectLocked ? SizeMode.Height : SizeMode.WidthAndHeight;
+    });
+
+    public void EditPitch(double pitchUm) => Batch(() =>
+    {
+        PitchUm = pitchUm;
+        SizeMode = SizeMode.Pitch;
+    });
+
+    public void EditMicrostepsPerPixel(double microsteps) => EditPitch(microsteps * _profile.X.MicrostepUm);
+
+    /// <summary>Uses another machine profile (its travel and microstep) for the plan.</summary>
+    public void UseProfile(MachineProfile profile)
+    {
+        ArgumentNullException.ThrowIfNull(profile);
+        _profile = profile;
+        OnPropertyChanged(nameof(Profile));
+        Replan();
+    }
+
+    /// <summary>Sets every value at once (a history entry loaded again), then plans once.</summary>
+    public void Apply(JobSettings settings)
+    {
+        ArgumentNullException.ThrowIfNull(settings);
+        Batch(() =>
+        {
+            ThresholdPercent = settings.ThresholdPercent;
+            Dither = settings.Dither;
+            Invert = settings.Invert;
+            SizeMode = settings.SizeMode;
+            AspectLocked = settings.SizeMode != SizeMode.WidthAndHeight;
+            WidthMm = settings.WidthMm;
+            HeightMm = settings.HeightMm;
+            PitchUm = settings.PitchUm;
+            OriginXMm = settings.OriginXMm;
+            OriginYMm = settings.OriginYMm;
+            LaserFrequencyHz = settings.LaserFrequencyHz;
+            BurnSpeedMmPerS = settings.BurnSpeedMmPerS;
+            TravelSpeedMmPerS = settings.TravelSpeedMmPerS;
+            AccelerationMmPerS2 = settings.AccelerationMmPerS2;
+            Strategy = settings.Strategy;
+            Bidirectional = settings.Bidirectional;
+            OverscanMm = settings.OverscanMm;
+            Passes = settings.Passes;
+        });
+        if (settings.ImagePath is { } path && path != ImagePath)
+        {
+            LoadImage(path);
+        }
+    }
+
+    public JobSettings ToSettings() => new()
+    {
+        ImagePath = ImagePath,
+        ThresholdPercent = ThresholdPercent,
+        Dither = Dither,
+        Invert = Invert,
+        SizeMode = SizeMode,
+        WidthMm = WidthMm,
+        HeightMm = HeightMm,
+        PitchUm = PitchUm,
+        OriginXMm = OriginXMm,
+        OriginYMm = OriginYMm,
+        LaserFrequencyHz = LaserFrequencyHz,
+        BurnSpeedMmPerS = BurnSpeedMmPerS,
+        TravelSpeedMmPerS = TravelSpeedMmPerS,
+        AccelerationMmPerS2 = AccelerationMmPerS2,
+        Strategy = Strategy,
+        Bidirectional = Bidirectional,
+        OverscanMm = OverscanMm,
+        Passes = Passes,
+    };
+
+    /// <summary>Runs several changes and plans once at the end.</summary>
+    public void Batch(Action changes)
+    {
+        ArgumentNullException.ThrowIfNull(changes);
+        Interlocked.Increment(ref _suspended);
+        var maskChanged = false;
+        var planChanged = false;
+        void Watch(object? sender, PropertyChangedEventArgs e)
+        {
+            maskChanged |= MaskInputs.Contains(e.PropertyName!);
+            planChanged |= PlanInputs.Contains(e.PropertyName!);
+        }
+
+        PropertyChanged += Watch;
+        try
+        {
+            changes();
+        }
+        finally
+        {
+            PropertyChanged -= Watch;
+            Interlocked.Decrement(ref _suspended);
+        }
+
+        if (maskChanged)
+        {
+            RebuildMask();
+        }
+        else if (planChanged)
+        {
+            Replan();
+        }
+    }
+
+    protected override void OnPropertyChanged(PropertyChangedEventArgs e)
+    {
+        ArgumentNullException.ThrowIfNull(e);
+        base.OnPropertyChanged(e);
+        if (Volatile.Read(ref _suspended) > 0)
+        {
+            return;
+        }
+
+        if (MaskInputs.Contains(e.PropertyName!))
+        {
+            RebuildMask();
+        }
+        else if (PlanInputs.Contains(e.PropertyName!))
+        {
+            Replan();
+        }
+    }
+
+    private void RebuildMask()
+    {
+        lock (_lock)
+        {
+            if (_image is null)
+            {
+                return;
+            }
+
+            var errors = new Dictionary<string, string>(Errors);
+            errors.Remove(ImageField);
+            errors.Remove(ThresholdField);
+            try
+            {
+                Mask = _images.BuildMask(_image, new MaskOptions { ThresholdPercent = ThresholdPercent, Dither = Dither, Invert = Invert });
+                MaskVersion++;
+            }
+            catch (Exception ex) when (ex is ArgumentException or ImageLoadException or InvalidOperationException)
+            {
+                errors[ThresholdField] = ex.Message;
+                Mask = null;
+            }
+
+            SetErrors(errors);
+        }
+
+        Replan();
+    }
+
+    private void Replan()
+    {
+        lock (_lock)
+        {
+            var errors = FieldErrors();
+            foreach (var key in new[] { ImageField, ThresholdField })
+            {
+                if (Errors.TryGetValue(key, out var message))
+                {
+                    errors[key] = message;
+                }
+            }
+
+            var warnings = new Dictionary<string, string>();
+            PreparedJob? job = null;
+            if (Mask is { } mask && ImageInfo is { } info && errors.Count == 0)
+            {
+                try
+                {
+                    job = _images.Prepare(Spec(info.Path), info, mask);
+                }
+                catch (GeometryException ex)
+                {
+                    errors[SizeField()] = ex.Message;
+                }
+                catch (PlanException ex)
+                {
+                    errors[OverscanField] = ex.Message;
+                }
+            }
+
+            if (job is not null)
+            {
+                foreach (var warning in job.Warnings)
+                {
+                    var field = warning.Kind switch
+                    {
+                        JobWarningKind.OutsideTravel => OriginField,
+                        JobWarningKind.OverscanClamped => OverscanField,
+                        _ => PitchField,
+                    };
+                    warnings[field] = warnings.TryGetValue(field, out var before) ? before + "; " + warning.Message : warning.Message;
+                }
+
+                // The fields that follow show what the job will really be.
+                Interlocked.Increment(ref _suspended);
+                try
+                {
+                    if (SizeMode != SizeMode.Width)
+                    {
+                        WidthMm = Math.Round(job.Geometry.RequestedWidthMm, 4);
+                    }
+
+                    if (SizeMode != SizeMode.Height)
+                    {
+                        HeightMm = Math.Round(job.Geometry.RequestedHeightMm, 4);
+                    }
+
+                    if (SizeMode != SizeMode.Pitch)
+                    {
+                        PitchUm = Math.Round(job.Geometry.PitchUm, 4);
+                    }
+                }
+                finally
+                {
+                    Interlocked.Decrement(ref _suspended);
+                }
+            }
+
+            Job = job;
+            EstimatedSeconds = job is null ? null : job.Statistics.EstimatedSeconds * Passes;
+            SetErrors(errors);
+            Warnings = warnings;
+            OnPropertyChanged(nameof(MicrostepsPerPixel));
+            PlanVersion++;
+        }
+    }
+
+    private JobSpec Spec(string path) => new()
+    {
+        ImagePath = path,
+        Mask = new MaskOptions { ThresholdPercent = ThresholdPercent, Dither = Dither, Invert = Invert },
+        Size = SizeMode switch
+        {
+            SizeMode.Height => SizeSpec.Height(HeightMm),
+            SizeMode.WidthAndHeight => SizeSpec.WidthAndHeight(WidthMm, HeightMm),
+            SizeMode.Pitch => SizeSpec.Pitch(PitchUm),
+            _ => SizeSpec.Width(WidthMm),
+        },
+        Origin = new OriginMm(OriginXMm, OriginYMm),
+        Plan = new PlanOptions { Strategy = Strategy, Bidirectional = Bidirectional, OverscanMm = OverscanMm },
+        Process = ProcessSettings.FromProfile(_profile) with
+        {
+            LaserFrequencyHz = LaserFrequencyHz,
+            BurnSpeedMmPerS = BurnSpeedMmPerS,
+            TravelSpeedMmPerS = TravelSpeedMmPerS,
+            AccelerationMmPerS2 = AccelerationMmPerS2,
+        },
+        Profile = _profile,
+    };
+
+    private string SizeField() => SizeMode switch
+    {
+        SizeMode.Height => HeightField,
+        SizeMode.Pitch => PitchField,
+        _ => WidthField,
+    };
+
+    /// <summary>Each process value checked on its own, so its message stands beside it.</summary>
+    private Dictionary<string, string> FieldErrors()
+    {
+        var errors = new Dictionary<string, string>();
+        Positive(LaserFrequencyHz, FrequencyField, "laser frequency", "Hz", 1);
+        Positive(BurnSpeedMmPerS, BurnSpeedField, "burn speed", "mm/s", double.Epsilon);
+        Positive(TravelSpeedMmPerS, TravelSpeedField, "travel speed", "mm/s", double.Epsilon);
+        Positive(AccelerationMmPerS2, AccelerationField, "acceleration", "mm/s²", double.Epsilon);
+        if (BurnSpeedMmPerS > _profile.X.MaxSpeedMmPerS)
+        {
+            errors[BurnSpeedField] = $"burn speed {N(BurnSpeedMmPerS)} mm/s is above the stage's {N(_profile.X.MaxSpeedMmPerS)} mm/s";
+        }
+
+        if (TravelSpeedMmPerS > _profile.X.MaxSpeedMmPerS)
+        {
+            errors[TravelSpeedField] = $"travel speed {N(TravelSpeedMmPerS)} mm/s is above the stage's {N(_profile.X.MaxSpeedMmPerS)} mm/s";
+        }
+
+        if (!(OverscanMm >= 0) || double.IsInfinity(OverscanMm))
+        {
+            errors[OverscanField] = $"overscan {N(OverscanMm)} mm must be 0 or more";
+        }
+
+        if (Passes is < 1 or > 100)
+        {
+            errors[PassesField] = $"passes {Passes} must be 1 to 100";
+        }
+
+        return errors;
+
+        void Positive(double value, string field, string what, string unit, double least)
+        {
+            if (!(value >= least) || double.IsInfinity(value))
+            {
+                errors[field] = least >= 1 ? $"{what} {N(value)} {unit} must be at least {N(least)} {unit}" : $"{what} {N(value)} {unit} must be above 0";
+            }
+        }
+    }
+
+    private void SetErrors(Dictionary<string, string> errors) => Errors = errors;
+
+    private static string N(double value) => value.ToString("0.######", CultureInfo.InvariantCulture);
+}

@@ -1,0 +1,117 @@
+using CommunityToolkit.Mvvm.ComponentModel;
+using CommunityToolkit.Mvvm.Input;
+using LaserEngrave.App.Services;
+using LaserEngrave.Core.Logging;
+
+namespace LaserEngrave.App.ViewModels;
+
+/// <summary>The Log view: notes and sample ID for the next run, the last run's summary, and the history of past runs.</summary>
+/// <remarks>A run is named by its log file's path, which the history lists and the export and load take back.</remarks>
+public sealed partial class LogViewModel : ObservableObject
+{
+    private readonly IRunLogStore _store;
+    private readonly IFileAccess _files;
+    private readonly JobViewModel _job;
+
+    public LogViewModel(IRunLogStore store, IFileAccess files, JobViewModel job)
+    {
+        ArgumentNullException.ThrowIfNull(store);
+        ArgumentNullException.ThrowIfNull(files);
+        ArgumentNullException.ThrowIfNull(job);
+        _store = store;
+        _files = files;
+        _job = job;
+    }
+
+    [ObservableProperty]
+    public partial string? Notes { get; set; }
+
+    [ObservableProperty]
+    public partial string? SampleId { get; set; }
+
+    /// <summary>The run that ended last in this session, with the path of its log (null when it could not be saved).</summary>
+    [ObservableProperty]
+    public partial RunLogEntry? LastRun { get; private set; }
+
+    [ObservableProperty]
+    public partial IReadOnlyList<RunLogEntry> History { get; private set; } = [];
+
+    [ObservableProperty]
+    public partial string? Error { get; private set; }
+
+    public string Folder => _store.Folder;
+
+    /// <summary>Saves a finished run's log and shows it as the last run.</summary>
+    public void Record(RunRecord record)
+    {
+        ArgumentNullException.ThrowIfNull(record);
+        try
+        {
+            var files = _store.Save(record);
+            LastRun = new RunLogEntry(files.JsonPath, record, null);
+            Error = null;
+        }
+        catch (Exception ex) when (ex is RunLogException or IOException or UnauthorizedAccessException)
+        {
+            LastRun = new RunLogEntry(string.Empty, record, ex.Message);
+            Error = $"the run log could not be saved in {_store.Folder}: {ex.Message}";
+        }
+
+        Refresh();
+    }
+
+    [RelayCommand]
+    private void Refresh()
+    {
+        try
+        {
+            History = _store.History();
+        }
+        catch (Exception ex) when (ex is RunLogException or IOException or UnauthorizedAccessException)
+        {
+            Error = $"the run history in {_store.Folder} cannot be read: {ex.Message}";
+        }
+    }
+
+    /// <summary>The logged run at <paramref name="path"/>, if the history or the last run has it.</summary>
+    public RunLogEntry? Find(string path) =>
+        History.FirstOrDefault(e => e.Path == path && e.Record is not null) ?? (LastRun?.Path == path && path.Length > 0 ? LastRun : null);
+
+    /// <summary>Puts a past run's image and settings back into the Image, Size and Process views.</summary>
+    /// <remarks>The image must still be there, unchanged (its SHA-256 is checked), or nothing is loaded and the reason is shown.</remarks>
+    [RelayCommand]
+    private void Load(string path)
+    {
+        Error = null;
+        if (Find(path)?.Record is not { } record)
+        {
+            Error = $"{path}: not a run in the history";
+            return;
+        }
+
+        try
+        {
+            var spec = RunReplay.ToJobSpec(record);
+            _job.Apply(JobSettings.From(spec) with { Passes = 1 });
+            Notes = record.Notes;
+            SampleId = record.SampleId;
+        }
+        catch (RunLogException ex)
+        {
+            Error = ex.Message;
+        }
+    }
+
+    [RelayCommand]
+    private void OpenFolder()
+    {
+        try
+        {
+            _files.OpenFolder(_store.Folder);
+        }
+        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException or InvalidOperationException or System.ComponentModel.Win32Exception)
+        {
+            Error = $"cannot open {_store.Folder}: {ex.Message}";
+        }
+    }
+}

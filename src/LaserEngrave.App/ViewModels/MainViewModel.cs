@@ -1,0 +1,132 @@
+using System.ComponentModel;
+using CommunityToolkit.Mvvm.ComponentModel;
+using LaserEngrave.App.Services;
+using LaserEngrave.Core.Geometry;
+
+namespace LaserEngrave.App.ViewModels;
+
+/// <summary>The whole window: one view-model per view, and the settings kept between starts.</summary>
+public sealed partial class MainViewModel : ObservableObject
+{
+    private const int RecentFileCount = 8;
+
+    private readonly ISettingsStore _settingsStore;
+    private readonly IFileAccess _files;
+
+    public MainViewModel(
+        IImageService images,
+        IMachineConnectionFactory machines,
+        IRunService runs,
+        IRunLogStore logs,
+        ISettingsStore settings,
+        IFileAccess files,
+        TimeProvider time)
+    {
+        ArgumentNullException.ThrowIfNull(settings);
+        ArgumentNullException.ThrowIfNull(files);
+        _settingsStore = settings;
+        _files = files;
+        Settings = settings.Load();
+        var (profile, profileError) = LoadProfile(Settings.ProfilePath);
+        ProfileError = profileError;
+        Job = new JobViewModel(images, profile);
+        Machine = new MachineViewModel(machines, profile)
+        {
+            UseSimulator = Settings.UseSimulator,
+            StagePort = Settings.StagePort,
+            LaserPort = Settings.LaserPort,
+        };
+        TestMoves = new TestMovesViewModel(Machine, Job);
+        Log = new LogViewModel(logs, files, Job);
+        Run = new RunViewModel(runs, Job, Machine, TestMoves, Log, time);
+        Machine.PropertyChanged += OnMachineChanged;
+        Job.PropertyChanged += OnJobChanged;
+    }
+
+    public JobViewModel Job { get; }
+
+    public MachineViewModel Machine { get; }
+
+    public TestMovesViewModel TestMoves { get; }
+
+    public RunViewModel Run { get; }
+
+    public LogViewModel Log { get; }
+
+    [ObservableProperty]
+    public partial AppSettings Settings { get; private set; }
+
+    /// <summary>Why the saved machine profile was not used, if it was not.</summary>
+    [ObservableProperty]
+    public partial string? ProfileError { get; private set; }
+
+    /// <summary>Why the settings could not be saved, if they could not.</summary>
+    [ObservableProperty]
+    public partial string? SettingsError { get; private set; }
+
+    /// <summary>Opens the last image again, if it is still there.</summary>
+    public void Restore()
+    {
+        Log.RefreshCommand.Execute(null);
+        if (Settings.RecentFiles.FirstOrDefault() is { } last && _files.Exists(last))
+        {
+            Job.LoadImage(last);
+        }
+    }
+
+    public void SetTheme(string theme)
+    {
+        if (theme is "light" or "dark")
+        {
+            Save(Settings with { Theme = theme });
+        }
+    }
+
+    private static (MachineProfile Profile, string? Error) LoadProfile(string? path)
+    {
+        if (path is null)
+        {
+            return (MachineProfile.Default, null);
+        }
+
+        try
+        {
+            return (MachineProfile.Load(path), null);
+        }
+        catch (ProfileException ex)
+        {
+            return (MachineProfile.Default, ex.Message + "; using the built-in profile");
+        }
+    }
+
+    private void OnJobChanged(object? sender, PropertyChangedEventArgs e)
+    {
+        if (e.PropertyName == nameof(JobViewModel.ImagePath) && Job.ImagePath is { } path)
+        {
+            var recent = Settings.RecentFiles.Where(f => f != path).Prepend(path).Take(RecentFileCount).ToList();
+            Save(Settings with { RecentFiles = recent, LastFolder = Path.GetDirectoryName(path) });
+        }
+    }
+
+    private void OnMachineChanged(object? sender, PropertyChangedEventArgs e)
+    {
+        if (e.PropertyName == nameof(MachineViewModel.Connection) && Machine.Connection is not null)
+        {
+            Save(Settings with { UseSimulator = Machine.UseSimulator, StagePort = Machine.StagePort, LaserPort = Machine.LaserPort });
+        }
+    }
+
+    private void Save(AppSettings settings)
+    {
+        Settings = settings;
+        try
+        {
+            _settingsStore.Save(settings);
+            SettingsError = null;
+        }
+        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
+        {
+            SettingsError = $"settings not saved: {ex.Message}";
+        }
+    }
+}

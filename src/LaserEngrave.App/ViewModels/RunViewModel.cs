@@ -1,0 +1,235 @@
+using CommunityToolkit.Mvvm.ComponentModel;
+using CommunityToolkit.Mvvm.Input;
+using LaserEngrave.App.Services;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Logging;
+using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Devices.Execution;
+using LogOutcome = LaserEngrave.Core.Logging.RunOutcome;
+using RunProgress = LaserEngrave.App.Services.RunProgress;
+using RunState = LaserEngrave.App.ViewModels.RunState;
+
+namespace LaserEngrave.App.ViewModels;
+
+/// <summary>The Preview view's run: start, pause, resume, abort (always allowed), and live progress.</summary>
+/// <remarks>
+/// Progress is stored as the latest value only: the page samples it at its own pace, so a run of many short moves
+/// never floods it. Abort cancels the run, whose executor switches the laser off before it stops the axes.
+/// </remarks>
+public sealed partial class RunViewModel : ObservableObject
+{
+    private readonly IRunService _runs;
+    private readonly JobViewModel _job;
+    private readonly MachineViewModel _machine;
+    private readonly TestMovesViewModel _testMoves;
+    private readonly LogViewModel _log;
+    private readonly TimeProvider _time;
+    private RunPauseGate _pause = new();
+    private long _startedTicks;
+    private double _estimatedSeconds;
+
+    public RunViewModel(IRunService runs, JobViewModel job, MachineViewModel machine, TestMovesViewModel testMoves, LogViewModel log, TimeProvider time)
+    {
+        ArgumentNullException.ThrowIfNull(runs);
+        ArgumentNullException.ThrowIfNull(job);
+        ArgumentNullException.ThrowIfNull(machine);
+        ArgumentNullException.ThrowIfNull(testMoves);
+        ArgumentNullException.ThrowIfNull(log);
+        ArgumentNullException.ThrowIfNull(time);
+        _runs = runs;
+        _job = job;
+        _machine = machine;
+        _testMoves = testMoves;
+        _log = log;
+        _time = time;
+    }
+
+    [ObservableProperty]
+    public partial RunState State { get; private set; }
+
+    /// <summary>The latest progress of the run under way (or of the last one).</summary>
+    [ObservableProperty]
+    public partial RunProgress? Progress { get; private set; }
+
+    /// <summary>The plan version the run executes, so the page draws the burned part over the right plan.</summary>
+    [ObservableProperty]
+    public partial int RunPlanVersion { get; private set; }
+
+    [ObservableProperty]
+    public partial string? Error { get; private set; }
+
+    [ObservableProperty]
+    public partial double ElapsedSecondsAtEnd { get; private set; }
+
+    public bool IsActive => State is RunState.Running or RunState.Paused or RunState.Aborting;
+
+    /// <summary>Fraction of all passes done, 0..1.</summary>
+    public double Fraction => Progress is { } p && p.MovesTotal > 0
+        ? Math.Clamp((p.Pass - 1 + ((double)p.MovesDone / p.MovesTotal)) / Math.Max(1, _job.Passes), 0, 1)
+        : State == RunState.Completed ? 1 : 0;
+
+    public double ElapsedSeconds => IsActive ? _time.GetElapsedTime(_startedTicks).TotalSeconds : ElapsedSecondsAtEnd;
+
+    /// <summary>Time left: the executor's estimate once moves are done, the plan's estimate before that.</summary>
+    public double RemainingSeconds
+    {
+        get
+        {
+            if (!IsActive)
+            {
+                return 0;
+            }
+
+            // The executor's figure for this pass, plus the estimate of the passes still to come.
+            var passes = Math.Max(1, _job.Passes);
+            if (Progress is { PassRemainingSeconds: { } passRemaining } p && p.MovesDone > 0)
+            {
+                return passRemaining + (Math.Max(0, passes - p.Pass) * _estimatedSeconds / passes);
+            }
+
+            return Math.Max(0, _estimatedSeconds * (1 - Fraction));
+        }
+    }
+
+    /// <summary>Runs the planned job on the connected machine; its cancel command is the abort.</summary>
+    [RelayCommand(IncludeCancelCommand = true)]
+    private async Task StartAsync(CancellationToken cancellationToken)
+    {
+        Error = null;
+        if (IsActive)
+        {
+            Error = "a run is already under way";
+            return;
+        }
+
+        var job = _job.Job;
+        var connection = _machine.Connection;
+        var problem = job is null ? "no job planned: open an image and give it a usable size first"
+            : !job.Geometry.FitsTravel ? "the job lies outside the stage's travel: move the origin or make it smaller"
+            : job.Statistics.BurnRuns == 0 ? "the mask has no pixel to burn: change the threshold or invert it"
+            : connection is null ? "not connected: connect to the simulator or the machine first"
+            : null;
+        if (problem is not null)
+        {
+            Error = problem;
+            State = RunState.Failed;
+            return;
+        }
+
+        await RunAsync(job!, connection!, cancellationToken).ConfigureAwait(false);
+    }
+
+    [RelayCommand]
+    private void Pause()
+    {
+        if (State == RunState.Running)
+        {
+            _pause.Pause();
+            State = RunState.Paused;
+        }
+    }
+
+    [RelayCommand]
+    private void Resume()
+    {
+        if (State == RunState.Paused)
+        {
+            _pause.Resume();
+            State = RunState.Running;
+        }
+    }
+
+    /// <summary>Aborts the run; always allowed, harmless when nothing runs.</summary>
+    [RelayCommand]
+    private void Abort()
+    {
+        if (IsActive)
+        {
+            State = RunState.Aborting;
+            StartCancelCommand.Execute(null);
+        }
+    }
+
+    private async Task RunAsync(PreparedJob job, IMachineConnection connection, CancellationToken cancellationToken)
+    {
+        _pause = new RunPauseGate();
+        _startedTicks = _time.GetTimestamp();
+        _estimatedSeconds = _job.EstimatedSeconds ?? 0;
+        var record = RunRecord.ForJob(job, HashOrMissing(job.Spec.ImagePath), _time.GetLocalNow()) with
+        {
+            Simulated = connection.IsSimulated,
+            Notes = _log.Notes,
+            SampleId = _log.SampleId,
+        };
+        var passes = _job.Passes;
+        RunPlanVersion = _job.PlanVersion;
+        Progress = new RunProgress(0, 0, 0, 0, 1, 0, 0, false, "preflight");
+        State = RunState.Running;
+        _testMoves.RunActive = true;
+        RunResult? result = null;
+        Exception? error = null;
+        try
+        {
+            var request = new RunRequest(job, connection.Stage, connection.Gate, passes, _pause) { TimeProvider = connection.TimeProvider };
+            result = await _runs.RunAsync(request, new LatestProgress(this), cancellationToken).ConfigureAwait(false);
+        }
+        catch (Exception ex) when (ex is DeviceException or OperationCanceledException or IOException or InvalidOperationException or TimeoutException or ObjectDisposedException)
+        {
+            // Preflight refusals and anything the executor did not turn into a result; the log is written all the same.
+            error = ex;
+        }
+        finally
+        {
+            ElapsedSecondsAtEnd = _time.GetElapsedTime(_startedTicks).TotalSeconds;
+            _testMoves.RunActive = false;
+        }
+
+        record = RunLogRecords.Finish(record, result, error, connection, _time.GetLocalNow());
+        var final = record.Outcome switch
+        {
+            LogOutcome.Completed => RunState.Completed,
+            LogOutcome.Aborted => RunState.Aborted,
+            _ => RunState.Failed,
+        };
+        if (final == RunState.Failed)
+        {
+            Error = record.Fault?.Message ?? "the run failed";
+        }
+
+        _log.Record(record);
+        try
+        {
+            await _machine.ReadPositionsAsync(CancellationToken.None).ConfigureAwait(false);
+        }
+        catch (Exception ex) when (ex is DeviceException or InvalidOperationException or ObjectDisposedException)
+        {
+            _machine.Error = ex.Message;
+        }
+
+        // The run counts as ended only once its log is written, so whoever waits for the end finds the log.
+        State = final;
+    }
+
+    private static string HashOrMissing(string path)
+    {
+        try
+        {
+            return PreparedJob.HashFile(path);
+        }
+        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
+        {
+            return "unreadable: " + ex.Message;
+        }
+    }
+
+    /// <summary>Keeps only the newest report: assigning a reference is all a serial reply costs the UI.</summary>
+    private sealed class LatestProgress(RunViewModel owner) : IProgress<RunProgress>
+    {
+        public void Report(RunProgress value)
+        {
+            owner.Progress = value;
+            owner._machine.XMicrosteps = value.XMicrosteps;
+            owner._machine.YMicrosteps = value.YMicrosteps;
+        }
+    }
+}

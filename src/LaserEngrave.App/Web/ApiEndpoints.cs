@@ -1,0 +1,242 @@
+using System.Text;
+using System.Text.Json;
+using LaserEngrave.App.Services;
+using LaserEngrave.App.ViewModels;
+using LaserEngrave.Core.Imaging;
+using LaserEngrave.Core.Logging;
+using LaserEngrave.Core.Planning;
+using Microsoft.AspNetCore.Http.HttpResults;
+
+namespace LaserEngrave.App.Web;
+
+/// <summary>The page's JSON API: each request sets a view-model value or starts a command, and answers with the new state.</summary>
+/// <remarks>Machine commands are started, not awaited: the page follows them over the event stream, so no request waits on a port.</remarks>
+internal static class ApiEndpoints
+{
+    private const int MaxPreviewSidePx = 1024;
+    private const int MaxPlanMoves = 400_000;
+    private const long MaxUploadBytes = 512L * 1024 * 1024;
+
+    public static void Map(IEndpointRouteBuilder app)
+    {
+        var api = app.MapGroup("/api");
+        api.MapGet("/state", (MainViewModel main) => Results.Json(StateSnapshot.From(main)));
+        api.MapGet("/events", EventStream.SendAsync);
+
+        api.MapPost("/image", UploadAsync);
+        api.MapPost("/image/open", (MainViewModel main, PathRequest request) =>
+        {
+            main.Job.LoadImage(request.Path ?? string.Empty);
+            return State(main);
+        });
+        api.MapGet("/image/original.png", (MainViewModel main, IImageService images) =>
+            main.Job.Image is { } image ? Results.File(images.RenderOriginalPng(image, MaxPreviewSidePx), "image/png") : Results.NotFound());
+        api.MapGet("/image/mask.png", (MainViewModel main, IImageService images) =>
+            main.Job.Mask is { } mask ? Results.File(images.RenderMaskPng(mask, MaxPreviewSidePx), "image/png") : Results.NotFound());
+
+        api.MapPost("/job", (MainViewModel main, Dictionary<string, JsonElement> changes) => EditJob(main, changes));
+        api.MapGet("/plan", (MainViewModel main) => Plan(main));
+
+        api.MapGet("/ports", (MainViewModel main) =>
+        {
+            main.Machine.RefreshPorts();
+            return Results.Json(main.Machine.Ports);
+        });
+        api.MapPost("/machine/connect", (MainViewModel main, ConnectRequest request) =>
+        {
+            main.Machine.UseSimulator = request.UseSimulator;
+            main.Machine.StagePort = request.StagePort;
+            main.Machine.LaserPort = request.LaserPort;
+            return Start(main, main.Machine.ConnectCommand.ExecuteAsync(null));
+        });
+        api.MapPost("/machine/disconnect", (MainViewModel main) => Start(main, main.Machine.DisconnectCommand.ExecuteAsync(null)));
+        api.MapPost("/machine/identify", (MainViewModel main) => Start(main, main.Machine.IdentifyCommand.ExecuteAsync(null)));
+        api.MapPost("/machine/home", (MainViewModel main) => Start(main, main.Machine.HomeCommand.ExecuteAsync(null)));
+
+        api.MapPost("/moves/jog", (MainViewModel main, JogRequest request) =>
+        {
+            if (request.StepUm is { } step)
+            {
+                main.TestMoves.StepUm = step;
+            }
+
+            return Start(main, main.TestMoves.JogCommand.ExecuteAsync(request.Direction));
+        });
+        api.MapPost("/moves/goto", (MainViewModel main, GoToRequest request) =>
+        {
+            main.TestMoves.GoToXMm = request.XMm;
+            main.TestMoves.GoToYMm = request.YMm;
+            return Start(main, main.TestMoves.GoToCommand.ExecuteAsync(null));
+        });
+        api.MapPost("/moves/origin", (MainViewModel main) => Start(main, main.TestMoves.GoToOriginCommand.ExecuteAsync(null)));
+        api.MapPost("/moves/frame", (MainViewModel main) => Start(main, main.TestMoves.FrameCommand.ExecuteAsync(null)));
+        api.MapPost("/moves/fire", (MainViewModel main, FireRequest request) =>
+        {
+            main.TestMoves.TestFirePulses = request.Pulses;
+            return Start(main, main.TestMoves.TestFireCommand.ExecuteAsync(null));
+        });
+        api.MapPost("/moves/stop", (MainViewModel main) =>
+        {
+            foreach (var cancel in new[] { main.TestMoves.JogCancelCommand, main.TestMoves.GoToCancelCommand, main.TestMoves.GoToOriginCancelCommand, main.TestMoves.FrameCancelCommand, main.TestMoves.TestFireCancelCommand, main.Machine.HomeCancelCommand })
+            {
+                cancel.Execute(null);
+            }
+
+            return State(main);
+        });
+
+        api.MapPost("/run/start", (MainViewModel main, RunStartRequest request) =>
+        {
+            main.Log.Notes = request.Notes;
+            main.Log.SampleId = request.SampleId;
+            return Start(main, main.Run.StartCommand.ExecuteAsync(null));
+        });
+        api.MapPost("/run/pause", (MainViewModel main) => Do(main, main.Run.PauseCommand.Execute));
+        api.MapPost("/run/resume", (MainViewModel main) => Do(main, main.Run.ResumeCommand.Execute));
+        api.MapPost("/run/abort", (MainViewModel main) => Do(main, main.Run.AbortCommand.Execute));
+
+        api.MapPost("/logs/load", (MainViewModel main, PathRequest request) => Do(main, _ => main.Log.LoadCommand.Execute(request.Path ?? string.Empty)));
+        api.MapPost("/logs/open-folder", (MainViewModel main) => Do(main, main.Log.OpenFolderCommand.Execute));
+        api.MapGet("/logs/export", (MainViewModel main, string path, string? format) => Export(main, path, format));
+
+        api.MapPost("/settings/theme", (MainViewModel main, ThemeRequest request) => Do(main, _ => main.SetTheme(request.Theme)));
+    }
+
+    private static JsonHttpResult<object> State(MainViewModel main) => TypedResults.Json(StateSnapshot.From(main));
+
+    private static JsonHttpResult<object> Do(MainViewModel main, Action<object?> action)
+    {
+        action(null);
+        return State(main);
+    }
+
+    /// <summary>Answers once the command has started; its end shows in the state.</summary>
+    private static IResult Start(MainViewModel main, Task command)
+    {
+        // The command catches what the user can cause; anything else is still observed here, not lost.
+        _ = command.ContinueWith(t => _ = t.Exception, TaskScheduler.Default);
+        return TypedResults.Json(StateSnapshot.From(main), statusCode: StatusCodes.Status202Accepted);
+    }
+
+    private static async Task<IResult> UploadAsync(HttpRequest request, MainViewModel main, IFileAccess files, string? name)
+    {
+        if (request.ContentLength is > MaxUploadBytes)
+        {
+            return Results.Json(new { error = $"the file is larger than {MaxUploadBytes / (1024 * 1024)} MB" }, statusCode: 413);
+        }
+
+        var path = await files.SaveUploadAsync(name ?? "image", request.Body, request.HttpContext.RequestAborted).ConfigureAwait(false);
+        main.Job.LoadImage(path);
+        return State(main);
+    }
+
+    private static IResult EditJob(MainViewModel main, Dictionary<string, JsonElement> changes)
+    {
+        var job = main.Job;
+        var problems = new Dictionary<string, string>();
+        job.Batch(() =>
+        {
+            foreach (var (field, value) in changes)
+            {
+                try
+                {
+                    Set(job, field, value);
+                }
+                catch (Exception ex) when (ex is InvalidOperationException or FormatException or ArgumentException)
+                {
+                    problems[field] = $"{field}: '{value}' is not a usable value";
+                }
+            }
+        });
+        return problems.Count == 0 ? State(main) : Results.Json(new { errors = problems, state = StateSnapshot.From(main) }, statusCode: 400);
+    }
+
+    private static void Set(JobViewModel job, string field, JsonElement value)
+    {
+        switch (field)
+        {
+            case "thresholdPercent": job.ThresholdPercent = value.GetDouble(); break;
+            case "dither": job.Dither = Enum.Parse<DitherMethod>(value.GetString()!, ignoreCase: true); break;
+            case "invert": job.Invert = value.GetBoolean(); break;
+            case "aspectLocked": job.AspectLocked = value.GetBoolean(); break;
+            case "widthMm": job.EditWidth(value.GetDouble()); break;
+            case "heightMm": job.EditHeight(value.GetDouble()); break;
+            case "pitchUm": job.EditPitch(value.GetDouble()); break;
+            case "microstepsPerPixel": job.EditMicrostepsPerPixel(value.GetDouble()); break;
+            case "originXMm": job.OriginXMm = value.GetDouble(); break;
+            case "originYMm": job.OriginYMm = value.GetDouble(); break;
+            case "laserFrequencyHz": job.LaserFrequencyHz = value.GetDouble(); break;
+            case "burnSpeedMmPerS": job.BurnSpeedMmPerS = value.GetDouble(); break;
+            case "travelSpeedMmPerS": job.TravelSpeedMmPerS = value.GetDouble(); break;
+            case "accelerationMmPerS2": job.AccelerationMmPerS2 = value.GetDouble(); break;
+            case "strategy": job.Strategy = Enum.Parse<PlanStrategy>(value.GetString()!, ignoreCase: true); break;
+            case "bidirectional": job.Bidirectional = value.GetBoolean(); break;
+            case "overscanMm": job.OverscanMm = value.GetDouble(); break;
+            case "passes": job.Passes = value.GetInt32(); break;
+            default: throw new ArgumentException($"unknown field {field}");
+        }
+    }
+
+    /// <summary>The plan's moves as a flat list of numbers (kind, x0, y0, x1, y1 per move), for the page to draw once.</summary>
+    private static IResult Plan(MainViewModel main)
+    {
+        var job = main.Job.Job;
+        var profile = main.Job.Profile;
+        var moves = new List<long>();
+        var truncated = false;
+        if (job is not null)
+        {
+            foreach (var move in job.Plan.Moves())
+            {
+                if (moves.Count >= MaxPlanMoves * 5)
+                {
+                    truncated = true;
+                    break;
+                }
+
+                moves.AddRange([(long)move.Kind, move.X0, move.Y0, move.X1, move.Y1]);
+            }
+        }
+
+        var geometry = job?.Geometry.Geometry;
+        return Results.Json(new
+        {
+            version = main.Job.PlanVersion,
+            travelX = profile.X.TravelMicrosteps,
+            travelY = profile.Y.TravelMicrosteps,
+            microstepUm = profile.X.MicrostepUm,
+            job = geometry is null ? null : new { left = geometry.EdgeX(0), right = geometry.EdgeX(geometry.WidthPx), top = geometry.EdgeY(0), bottom = geometry.EdgeY(geometry.HeightPx) },
+            moves,
+            truncated,
+        });
+    }
+
+    /// <summary>A logged run's JSON or text file; only runs the history lists can be fetched, never any other file.</summary>
+    private static IResult Export(MainViewModel main, string path, string? format)
+    {
+        if (main.Log.Find(path) is not { Record: { } record })
+        {
+            return Results.NotFound(new { error = $"{path}: not a run in the history" });
+        }
+
+        var json = string.Equals(format, "json", StringComparison.OrdinalIgnoreCase);
+        var name = Path.GetFileNameWithoutExtension(path) + (json ? ".json" : ".txt");
+        return json
+            ? Results.File(Encoding.UTF8.GetBytes(RunRecordJson.Serialize(record)), "application/json", name)
+            : Results.File(Encoding.UTF8.GetBytes(RunSummaryText.Format(record)), "text/plain; charset=utf-8", name);
+    }
+
+    internal sealed record PathRequest(string? Path);
+
+    internal sealed record ConnectRequest(bool UseSimulator, string? StagePort, string? LaserPort);
+
+    internal sealed record JogRequest(string Direction, double? StepUm);
+
+    internal sealed record GoToRequest(double XMm, double YMm);
+
+    internal sealed record FireRequest(int Pulses);
+
+    internal sealed record RunStartRequest(string? Notes, string? SampleId);
+
+    internal sealed record ThemeRequest(string Theme);
+}

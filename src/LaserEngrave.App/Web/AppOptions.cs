@@ -1,0 +1,53 @@
+namespace LaserEngrave.App.Web;
+
+/// <summary>The app's own command-line options; everything else goes to ASP.NET Core.</summary>
+/// <param name="OpenBrowser">Open the page in the default browser (off with --no-browser).</param>
+/// <param name="Url">Where to listen (--urls); by default a free port on 127.0.0.1.</param>
+/// <param name="DataFolder">Where settings, images and logs go (--data-folder); by default the user's application-data folder.</param>
+public sealed record AppOptions(bool OpenBrowser, string Url, string? DataFolder)
+{
+    /// <summary>Options in ASP.NET Core's --key=value form, passed on to the host (test hosts set the content root this way).</summary>
+    public IReadOnlyList<string> HostArgs { get; init; } = [];
+
+    public const string DefaultUrl = "http://127.0.0.1:0";
+
+    /// <summary>Reads --no-browser, --urls URL and --data-folder PATH; throws <see cref="ArgumentException"/> with one line for a bad value.</summary>
+    public static AppOptions Parse(IReadOnlyList<string> args)
+    {
+        ArgumentNullException.ThrowIfNull(args);
+        var options = new AppOptions(true, DefaultUrl, null);
+        for (var i = 0; i < args.Count; i++)
+        {
+            switch (args[i])
+            {
+                case "--no-browser":
+                    options = options with { OpenBrowser = false };
+                    break;
+                case "--urls":
+                    options = options with { Url = Value(i++) };
+                    break;
+                case "--data-folder":
+                    options = options with { DataFolder = Value(i++) };
+                    break;
+                case "--help" or "-h":
+                    throw new ArgumentException(Usage);
+                case var hostArg when hostArg.StartsWith("--", StringComparison.Ordinal) && hostArg.Contains('=', StringComparison.Ordinal):
+                    options = options with { HostArgs = [.. options.HostArgs, hostArg] };
+                    break;
+                default:
+                    throw new ArgumentException($"unknown option '{args[i]}'\n{Usage}");
+            }
+        }
+
+        if (!options.Url.StartsWith("http://127.0.0.1:", StringComparison.Ordinal) && !options.Url.StartsWith("http://localhost:", StringComparison.Ordinal))
+        {
+            throw new ArgumentException($"--urls {options.Url}: the app listens on this computer only, e.g. http://127.0.0.1:5080");
+        }
+
+        return options;
+
+        string Value(int at) => at + 1 < args.Count ? args[at + 1] : throw new ArgumentException($"{args[at]} needs a value");
+    }
+
+    public const string Usage = "usage: LaserEngrave.App [--no-browser] [--urls http://127.0.0.1:PORT] [--data-folder PATH]";
+}

@@ -1,0 +1,163 @@
+using LaserEngrave.Core.Logging;
+using LaserEngrave.App.ViewModels;
+
+namespace LaserEngrave.App.Web;
+
+/// <summary>The page's whole view of the app at one moment, as JSON; sent on request and over the event stream.</summary>
+internal static class StateSnapshot
+{
+    public static object From(MainViewModel main)
+    {
+        var job = main.Job;
+        var machine = main.Machine;
+        var run = main.Run;
+        var log = main.Log;
+        var info = job.ImageInfo;
+        var prepared = job.Job;
+        var stats = prepared?.Statistics;
+        var geometry = prepared?.Geometry;
+        var progress = run.Progress;
+        return new
+        {
+            settings = new { theme = main.Settings.Theme, recentFiles = main.Settings.RecentFiles, lastFolder = main.Settings.LastFolder },
+            profileError = main.ProfileError,
+            settingsError = main.SettingsError,
+            image = new
+            {
+                path = job.ImagePath,
+                name = job.ImagePath is null ? null : Path.GetFileName(job.ImagePath),
+                info = info is null ? null : new
+                {
+                    format = info.Format.ToString(),
+                    info.Width,
+                    info.Height,
+                    info.BitsPerPixel,
+                    info.PaletteSize,
+                    info.FileSizeBytes,
+                    info.DpiX,
+                    info.DpiY,
+                    info.Compression,
+                    info.HasAlpha,
+                },
+                maskVersion = job.MaskVersion,
+                burnPixels = job.Mask?.CountSet(),
+            },
+            job = new
+            {
+                job.ThresholdPercent,
+                dither = job.Dither.ToString(),
+                job.Invert,
+                sizeMode = job.SizeMode.ToString(),
+                job.AspectLocked,
+                job.WidthMm,
+                job.HeightMm,
+                job.PitchUm,
+                job.MicrostepsPerPixel,
+                job.OriginXMm,
+                job.OriginYMm,
+                job.LaserFrequencyHz,
+                job.BurnSpeedMmPerS,
+                job.TravelSpeedMmPerS,
+                job.AccelerationMmPerS2,
+                strategy = job.Strategy.ToString(),
+                job.Bidirectional,
+                job.OverscanMm,
+                job.Passes,
+                errors = job.Errors,
+                warnings = job.Warnings,
+                planVersion = job.PlanVersion,
+            },
+            estimate = stats is null ? null : new
+            {
+                seconds = job.EstimatedSeconds,
+                stats.Rows,
+                stats.Moves,
+                stats.BurnRuns,
+                stats.BurnLengthMm,
+                stats.TravelLengthMm,
+                achievedWidthMm = geometry!.AchievedWidthMm,
+                achievedHeightMm = geometry.AchievedHeightMm,
+                geometry.ResidualScaleError,
+                geometry.FitsTravel,
+            },
+            machine = new
+            {
+                machine.UseSimulator,
+                machine.StagePort,
+                machine.LaserPort,
+                machine.Ports,
+                connected = machine.IsConnected,
+                description = machine.Connection?.Description,
+                profile = machine.Profile.Name,
+                travelXMm = machine.Profile.X.TravelMm,
+                travelYMm = machine.Profile.Y.TravelMm,
+                microstepUm = machine.Profile.X.MicrostepUm,
+                machine.Identity,
+                machine.XMicrosteps,
+                machine.YMicrosteps,
+                xMm = machine.XMicrosteps * machine.Profile.X.MicrostepUm / 1000,
+                yMm = machine.YMicrosteps * machine.Profile.Y.MicrostepUm / 1000,
+                machine.XHomed,
+                machine.YHomed,
+                machine.GateState,
+                machine.IsBusy,
+                machine.Error,
+            },
+            testMoves = new
+            {
+                main.TestMoves.StepUm,
+                stepChoicesUm = TestMovesViewModel.StepChoicesUm,
+                main.TestMoves.GoToXMm,
+                main.TestMoves.GoToYMm,
+                main.TestMoves.TestFirePulses,
+                main.TestMoves.Error,
+            },
+            run = new
+            {
+                state = run.State.ToString(),
+                active = run.IsActive,
+                run.RunPlanVersion,
+                movesDone = progress?.MovesDone,
+                movesTotal = progress?.MovesTotal,
+                rowsDone = progress?.RowsDone,
+                rowsTotal = progress?.RowsTotal,
+                pass = progress?.Pass,
+                x = progress?.XMicrosteps,
+                y = progress?.YMicrosteps,
+                laserOn = progress?.LaserOn,
+                phase = progress?.Phase,
+                percent = Math.Round(run.Fraction * 100, 1),
+                elapsedSeconds = Math.Round(run.ElapsedSeconds, 1),
+                remainingSeconds = Math.Round(run.RemainingSeconds, 1),
+                run.Error,
+            },
+            log = new
+            {
+                log.Notes,
+                log.SampleId,
+                log.Folder,
+                lastRun = log.LastRun is null ? null : Summary(log.LastRun),
+                history = log.History.Take(50).Select(Summary),
+                log.Error,
+            },
+        };
+    }
+
+    private static object Summary(RunLogEntry entry)
+    {
+        var r = entry.Record;
+        return new
+        {
+            path = entry.Path,
+            startedAt = r?.StartedAt,
+            outcome = r?.Outcome.ToString().ToLowerInvariant() ?? "unreadable",
+            sampleId = r?.SampleId,
+            notes = r?.Notes,
+            error = r?.Fault?.Message ?? entry.Error,
+            image = r is null ? null : Path.GetFileName(r.Image.Path),
+            actualSeconds = r is null ? 0 : Math.Round(r.ActualSeconds, 1),
+            simulated = r?.Simulated,
+            text = r is null ? entry.Error : RunSummaryText.Format(r),
+        };
+    }
+}

@@ -1,0 +1,188 @@
+using LaserEngrave.App.Services;
+using LaserEngrave.App.ViewModels;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Imaging;
+using NSubstitute;
+using NSubstitute.ExceptionExtensions;
+
+namespace LaserEngrave.App.Tests.ViewModels;
+
+public sealed class JobViewModelTests
+{
+    private static JobViewModel Loaded(string asset = "qr-code.bmp")
+    {
+        var job = new JobViewModel(new ImageService(), MachineProfile.Default);
+        Assert.True(job.LoadImage(TestFiles.Asset(asset)));
+        return job;
+    }
+
+    [Fact]
+    public void LoadImage_GoodFile_PlansWithEstimate()
+    {
+        var job = Loaded();
+
+        Assert.NotNull(job.Job);
+        Assert.Equal(41, job.ImageInfo!.Width);
+        Assert.True(job.EstimatedSeconds > 0);
+        Assert.Empty(job.Errors);
+    }
+
+    [Fact]
+    public void LoadImage_BadImage_ErrorBesideImageAndNoPlan()
+    {
+        var images = Substitute.For<IImageService>();
+        images.Load("broken.png").Throws(new ImageLoadException("broken.png", "the PNG signature is missing"));
+        var job = new JobViewModel(images, MachineProfile.Default);
+
+        var loaded = job.LoadImage("broken.png");
+
+        Assert.False(loaded);
+        Assert.Null(job.Job);
+        Assert.Equal("broken.png: the PNG signature is missing", job.Errors[JobViewModel.ImageField]);
+    }
+
+    [Fact]
+    public void LoadImage_BadImageAfterGoodOne_KeepsGoodImage()
+    {
+        var job = Loaded();
+        using var folder = TestFiles.NewFolder();
+        var bad = Path.Combine(folder.Path, "bad.png");
+        File.WriteAllText(bad, "not an image");
+
+        Assert.False(job.LoadImage(bad));
+
+        Assert.EndsWith("qr-code.bmp", job.ImagePath, StringComparison.Ordinal);
+        Assert.Contains("bad.png", job.Errors[JobViewModel.ImageField], StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void EditWidth_AspectLocked_HeightFollowsAndEstimateChanges()
+    {
+        var job = Loaded();
+        var before = job.EstimatedSeconds;
+
+        job.EditWidth(10);
+
+        Assert.Equal(10, job.HeightMm, 3);
+        Assert.Equal(10_000.0 / 41, job.PitchUm, 3);
+        Assert.NotEqual(before, job.EstimatedSeconds);
+    }
+
+    [Fact]
+    public void EditHeight_AspectUnlockedWrongAspect_ErrorBesideWidth()
+    {
+        var job = Loaded();
+        job.AspectLocked = false;
+
+        job.EditHeight(9);
+
+        Assert.Null(job.Job);
+        Assert.Contains("aspect", job.Errors[JobViewModel.WidthField], StringComparison.OrdinalIgnoreCase);
+    }
+
+    [Fact]
+    public void EditPitch_Microsteps_SizeFollowsPitch()
+    {
+        var job = Loaded();
+
+        job.EditMicrostepsPerPixel(100);
+
+        Assert.Equal(SizeMode.Pitch, job.SizeMode);
+        Assert.Equal(100, job.MicrostepsPerPixel, 9);
+        Assert.Equal(41 * 100 * MachineProfile.Default.X.MicrostepUm / 1000, job.WidthMm, 3);
+    }
+
+    [Fact]
+    public void OriginX_JobOutsideTravel_WarningBesideOrigin()
+    {
+        var job = Loaded();
+
+        job.OriginXMm = 58;
+
+        Assert.NotNull(job.Job);
+        Assert.False(job.Job!.Geometry.FitsTravel);
+        Assert.Contains("travel", job.Warnings[JobViewModel.OriginField], StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void EditPitch_BelowSpot_WarningBesidePitch()
+    {
+        var job = Loaded();
+
+        job.EditPitch(5);
+
+        Assert.True(job.Warnings.ContainsKey(JobViewModel.PitchField));
+    }
+
+    [Theory]
+    [InlineData(nameof(JobViewModel.BurnSpeedMmPerS), JobViewModel.BurnSpeedField)]
+    [InlineData(nameof(JobViewModel.TravelSpeedMmPerS), JobViewModel.TravelSpeedField)]
+    [InlineData(nameof(JobViewModel.AccelerationMmPerS2), JobViewModel.AccelerationField)]
+    [InlineData(nameof(JobViewModel.LaserFrequencyHz), JobViewModel.FrequencyField)]
+    public void ProcessValue_Zero_ErrorBesideItAndNoPlan(string property, string field)
+    {
+        var job = Loaded();
+
+        typeof(JobViewModel).GetProperty(property)!.SetValue(job, 0.0);
+
+        Assert.Null(job.Job);
+        Assert.Null(job.EstimatedSeconds);
+        Assert.Contains("0", job.Errors[field], StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void BurnSpeed_Higher_EstimateShorter()
+    {
+        var job = Loaded();
+        var slow = job.EstimatedSeconds!.Value;
+
+        job.BurnSpeedMmPerS = 3;
+
+        Assert.True(job.EstimatedSeconds < slow);
+    }
+
+    [Fact]
+    public void Passes_Two_EstimateDoubles()
+    {
+        var job = Loaded();
+        var one = job.EstimatedSeconds!.Value;
+
+        job.Passes = 2;
+
+        Assert.Equal(2 * one, job.EstimatedSeconds!.Value, 6);
+    }
+
+    [Fact]
+    public void Threshold_Changed_MaskRebuilt()
+    {
+        var job = Loaded("text-banner.png");
+        var version = job.MaskVersion;
+
+        job.ThresholdPercent = 1;
+
+        Assert.Equal(version + 1, job.MaskVersion);
+    }
+
+    [Fact]
+    public void Invert_Toggled_BurnsTheOtherPixels()
+    {
+        var job = Loaded();
+        var black = job.Mask!.CountSet();
+
+        job.Invert = true;
+
+        Assert.Equal((41L * 41) - black, job.Mask!.CountSet());
+    }
+
+    [Fact]
+    public void Apply_Settings_RoundTripsThroughToSettings()
+    {
+        var job = Loaded();
+        var settings = job.ToSettings() with { WidthMm = 7, OriginXMm = 3, Passes = 3, OverscanMm = 0.5, Dither = DitherMethod.Atkinson };
+
+        job.Apply(settings);
+
+        Assert.Equal(settings with { HeightMm = job.HeightMm, PitchUm = job.PitchUm }, job.ToSettings());
+        Assert.Equal(7, job.HeightMm, 3);
+    }
+}

@@ -1,0 +1,102 @@
+using LaserEngrave.App.Services;
+using LaserEngrave.App.ViewModels;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Logging;
+using NSubstitute;
+using NSubstitute.ExceptionExtensions;
+
+namespace LaserEngrave.App.Tests.ViewModels;
+
+public sealed class LogViewModelTests
+{
+    private readonly IRunLogStore _store = Substitute.For<IRunLogStore>();
+    private readonly IFileAccess _files = Substitute.For<IFileAccess>();
+    private readonly JobViewModel _job = new(new ImageService(), MachineProfile.Default);
+    private readonly LogViewModel _log;
+
+    public LogViewModelTests()
+    {
+        _log = new LogViewModel(_store, _files, _job);
+        _store.Folder.Returns("/logs");
+    }
+
+    private static RunRecord Record(string image, string sha)
+    {
+        var job = PreparedJob.Prepare(new JobSpec { ImagePath = image, Size = SizeSpec.Width(3), Origin = new OriginMm(2, 4) });
+        return RunRecord.ForJob(job, sha, DateTimeOffset.UnixEpoch) with { Outcome = RunOutcome.Completed, SampleId = "S-1", Notes = "n" };
+    }
+
+    [Fact]
+    public void Load_PastRun_SettingsAndImageBackInJob()
+    {
+        var image = TestFiles.Asset("qr-code.bmp");
+        _store.History().Returns([new RunLogEntry("/logs/a.json", Record(image, PreparedJob.HashFile(image)), null)]);
+        _log.RefreshCommand.Execute(null);
+
+        _log.LoadCommand.Execute("/logs/a.json");
+
+        Assert.Null(_log.Error);
+        Assert.Equal(image, _job.ImagePath);
+        Assert.Equal(3, _job.WidthMm, 6);
+        Assert.Equal((2.0, 4.0), (_job.OriginXMm, _job.OriginYMm));
+        Assert.Equal("S-1", _log.SampleId);
+    }
+
+    [Fact]
+    public void Load_ImageChanged_ErrorAndNothingLoaded()
+    {
+        var image = TestFiles.Asset("qr-code.bmp");
+        _store.History().Returns([new RunLogEntry("/logs/b.json", Record(image, new string('0', 64)), null)]);
+        _log.RefreshCommand.Execute(null);
+
+        _log.LoadCommand.Execute("/logs/b.json");
+
+        Assert.Contains("has changed", _log.Error, StringComparison.Ordinal);
+        Assert.Null(_job.ImagePath);
+    }
+
+    [Fact]
+    public void Load_UnknownPath_Error()
+    {
+        _store.History().Returns([]);
+
+        _log.LoadCommand.Execute("/etc/passwd");
+
+        Assert.Equal("/etc/passwd: not a run in the history", _log.Error);
+    }
+
+    [Fact]
+    public void Record_StoreFails_ErrorNamesFolderAndLastRunKept()
+    {
+        var image = TestFiles.Asset("qr-code.bmp");
+        _store.Save(Arg.Any<RunRecord>()).Throws(new RunLogException("/logs: disk full"));
+
+        _log.Record(Record(image, "abc"));
+
+        Assert.Contains("/logs", _log.Error, StringComparison.Ordinal);
+        Assert.Equal("S-1", _log.LastRun!.Record!.SampleId);
+    }
+
+    [Fact]
+    public void Record_Saved_LastRunNamesItsFileAndHistoryRefreshed()
+    {
+        var image = TestFiles.Asset("qr-code.bmp");
+        _store.Save(Arg.Any<RunRecord>()).Returns(new RunLogFiles("/logs/c.json", "/logs/c.txt"));
+
+        _log.Record(Record(image, "abc"));
+
+        Assert.Equal("/logs/c.json", _log.LastRun!.Path);
+        _store.Received(1).History();
+    }
+
+    [Fact]
+    public void OpenFolder_ShellFails_Error()
+    {
+        _files.When(f => f.OpenFolder("/logs")).Throw(new InvalidOperationException("no file manager"));
+
+        _log.OpenFolderCommand.Execute(null);
+
+        Assert.Contains("no file manager", _log.Error, StringComparison.Ordinal);
+    }
+}

@@ -1,0 +1,229 @@
+using LaserEngrave.App.Services;
+using LaserEngrave.Core.Logging;
+using LaserEngrave.App.ViewModels;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Devices.Abstractions;
+using NSubstitute;
+using LaserEngrave.Devices.Execution;
+using NSubstitute.ExceptionExtensions;
+using LogOutcome = LaserEngrave.Core.Logging.RunOutcome;
+using RunOutcome = LaserEngrave.Devices.Execution.RunOutcome;
+using RunProgress = LaserEngrave.App.Services.RunProgress;
+using RunState = LaserEngrave.App.ViewModels.RunState;
+
+namespace LaserEngrave.App.Tests.ViewModels;
+
+public sealed class RunViewModelTests
+{
+    private readonly Fakes _fakes = new();
+    private readonly IRunService _runs = Substitute.For<IRunService>();
+    private readonly IRunLogStore _store = Substitute.For<IRunLogStore>();
+    private readonly MachineViewModel _machine;
+    private readonly JobViewModel _job;
+    private readonly LogViewModel _log;
+    private readonly RunViewModel _run;
+
+    public RunViewModelTests()
+    {
+        _machine = new MachineViewModel(_fakes.Factory, MachineProfile.Default);
+        _job = new JobViewModel(new ImageService(), MachineProfile.Default);
+        var moves = new TestMovesViewModel(_machine, _job);
+        _log = new LogViewModel(_store, Substitute.For<IFileAccess>(), _job);
+        _run = new RunViewModel(_runs, _job, _machine, moves, _log, TimeProvider.System);
+        _store.History().Returns([]);
+        _store.Save(Arg.Any<RunRecord>()).Returns(new RunLogFiles("/logs/run.json", "/logs/run.txt"));
+    }
+
+    private static RunResult Result(RunOutcome outcome, string? fault = null) => new()
+    {
+        Outcome = outcome,
+        FaultMessage = fault,
+        LaserOffConfirmed = true,
+        StartedAt = DateTimeOffset.UnixEpoch,
+        EndedAt = DateTimeOffset.UnixEpoch.AddSeconds(12),
+        EngravingDuration = TimeSpan.FromSeconds(10),
+        EstimatedSeconds = 11,
+        LaserOnSeconds = 4,
+        RowsDone = 5,
+        RowsTotal = 5,
+        RunsDone = 7,
+        RunsTotal = 7,
+    };
+
+    private async Task ReadyAsync()
+    {
+        _job.LoadImage(TestFiles.Asset("qr-code.bmp"));
+        await _machine.ConnectCommand.ExecuteAsync(null);
+    }
+
+    [Fact]
+    public async Task Start_NoImage_ErrorAndNoRun()
+    {
+        await _machine.ConnectCommand.ExecuteAsync(null);
+
+        await _run.StartCommand.ExecuteAsync(null);
+
+        Assert.Contains("no job planned", _run.Error, StringComparison.Ordinal);
+        await _runs.DidNotReceive().RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>());
+    }
+
+    [Fact]
+    public async Task Start_NotConnected_ErrorAndNoRun()
+    {
+        _job.LoadImage(TestFiles.Asset("qr-code.bmp"));
+
+        await _run.StartCommand.ExecuteAsync(null);
+
+        Assert.Contains("not connected", _run.Error, StringComparison.Ordinal);
+        await _runs.DidNotReceive().RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>());
+    }
+
+    [Fact]
+    public async Task Start_JobOutsideTravel_ErrorAndNoRun()
+    {
+        await ReadyAsync();
+        _job.OriginYMm = 57;
+
+        await _run.StartCommand.ExecuteAsync(null);
+
+        Assert.Contains("outside the stage's travel", _run.Error, StringComparison.Ordinal);
+        await _runs.DidNotReceive().RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>());
+    }
+
+    [Fact]
+    public async Task Start_RunCompletes_CompletedAndLogged()
+    {
+        await ReadyAsync();
+        _log.SampleId = "S-17";
+        _log.Notes = "first try";
+        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(c =>
+            {
+                c.Arg<IProgress<RunProgress>>().Report(new RunProgress(10, 10, 5, 5, 1, 123, 456, false));
+                return Task.FromResult(Result(RunOutcome.Completed));
+            });
+
+        await _run.StartCommand.ExecuteAsync(null);
+
+        Assert.Equal(RunState.Completed, _run.State);
+        Assert.Equal(1, _run.Fraction);
+        Assert.Equal(123, _run.Progress!.XMicrosteps);
+        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == LogOutcome.Completed && r.SampleId == "S-17" && r.Notes == "first try" && r.RunsDone == 7 && r.Image.Sha256.Length == 64));
+        Assert.Equal(LogOutcome.Completed, _log.LastRun!.Record!.Outcome);
+    }
+
+    [Fact]
+    public async Task Start_GateSilentDuringRun_FailedWithErrorAndLogged()
+    {
+        await ReadyAsync();
+        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(Result(RunOutcome.Failed, "laser gate: no reply to FREQ 1000 within 500 ms"));
+
+        await _run.StartCommand.ExecuteAsync(null);
+
+        Assert.Equal(RunState.Failed, _run.State);
+        Assert.Contains("no reply to FREQ", _run.Error, StringComparison.Ordinal);
+        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == LogOutcome.Failed && r.Fault!.Message.Contains("FREQ")));
+    }
+
+    [Fact]
+    public async Task Start_PreflightRefuses_RefusedWithReasonAndLogged()
+    {
+        await ReadyAsync();
+        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
+            .ThrowsAsync(new PreflightException("stage: device 1 (X) did not answer; check the cable"));
+
+        await _run.StartCommand.ExecuteAsync(null);
+
+        Assert.Equal(RunState.Failed, _run.State);
+        Assert.Contains("did not answer", _run.Error, StringComparison.Ordinal);
+        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == LogOutcome.Refused));
+    }
+
+    [Fact]
+    public async Task Abort_WhileRunning_CancelsRunAndRecordsAborted()
+    {
+        await ReadyAsync();
+        var started = new TaskCompletionSource();
+        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(async c =>
+            {
+                started.SetResult();
+                await Task.Delay(Timeout.Infinite, c.Arg<CancellationToken>());
+                return Result(RunOutcome.Completed);
+            });
+        var run = _run.StartCommand.ExecuteAsync(null);
+        await started.Task.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+        Assert.Equal(RunState.Running, _run.State);
+
+        _run.AbortCommand.Execute(null);
+        await run.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+
+        Assert.Equal(RunState.Aborted, _run.State);
+        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == LogOutcome.Aborted));
+    }
+
+    [Fact]
+    public async Task PauseResume_WhileRunning_GateHeldThenReleased()
+    {
+        await ReadyAsync();
+        var started = new TaskCompletionSource<RunRequest>();
+        var finish = new TaskCompletionSource();
+        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(async c =>
+            {
+                started.SetResult(c.Arg<RunRequest>());
+                await finish.Task;
+                return Result(RunOutcome.Completed);
+            });
+        var run = _run.StartCommand.ExecuteAsync(null);
+        var request = await started.Task.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+
+        _run.PauseCommand.Execute(null);
+        var paused = (_run.State, request.Pause.IsPaused);
+        _run.ResumeCommand.Execute(null);
+        var resumed = (_run.State, request.Pause.IsPaused);
+        finish.SetResult();
+        await run.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+
+        Assert.Equal((RunState.Paused, true), paused);
+        Assert.Equal((RunState.Running, false), resumed);
+    }
+
+    [Fact]
+    public async Task RemainingSeconds_TwoPassesFirstUnderWay_ExecutorFigurePlusNextPass()
+    {
+        await ReadyAsync();
+        _job.Passes = 2;
+        var perPass = _job.EstimatedSeconds!.Value / 2;
+        var reported = new TaskCompletionSource();
+        var finish = new TaskCompletionSource();
+        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(async c =>
+            {
+                c.Arg<IProgress<RunProgress>>().Report(new RunProgress(5, 10, 2, 4, 1, 0, 0, true, "running", PassRemainingSeconds: 30));
+                reported.SetResult();
+                await finish.Task;
+                return Result(RunOutcome.Completed);
+            });
+        var run = _run.StartCommand.ExecuteAsync(null);
+        await reported.Task.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+
+        var remaining = _run.RemainingSeconds;
+        var fraction = _run.Fraction;
+        finish.SetResult();
+        await run.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+
+        Assert.Equal(30 + perPass, remaining, 6);
+        Assert.Equal(0.25, fraction, 6);
+    }
+
+    [Fact]
+    public void Abort_NothingRunning_Harmless()
+    {
+        _run.AbortCommand.Execute(null);
+
+        Assert.Equal(RunState.Idle, _run.State);
+        Assert.True(_run.AbortCommand.CanExecute(null));
+    }
+}

@@ -1,0 +1,188 @@
+using System.Net;
+using System.Net.Http.Json;
+using System.Text.Json;
+using LaserEngrave.App.Web;
+
+namespace LaserEngrave.App.Tests.Web;
+
+public sealed class ApiEndpointsTests : IDisposable
+{
+    private readonly AppFactory _app = new();
+    private readonly HttpClient _client;
+
+    public ApiEndpointsTests()
+    {
+        _client = _app.NewClient();
+    }
+
+    private static CancellationToken Token => TestContext.Current.CancellationToken;
+
+    public void Dispose()
+    {
+        _client.Dispose();
+        _app.Dispose();
+    }
+
+    private async Task<JsonElement> StateAsync() => await _client.GetFromJsonAsync<JsonElement>("/api/state", Token);
+
+    private async Task<JsonElement> UploadAsync(string path)
+    {
+        using var content = new ByteArrayContent(await File.ReadAllBytesAsync(path, Token));
+        using var response = await _client.PostAsync($"/api/image?name={Uri.EscapeDataString(Path.GetFileName(path))}", content, Token);
+        Assert.Equal(HttpStatusCode.OK, response.StatusCode);
+        return await response.Content.ReadFromJsonAsync<JsonElement>(Token);
+    }
+
+    private async Task<JsonElement> PostAsync(string path, object body, HttpStatusCode expected = HttpStatusCode.OK)
+    {
+        using var response = await _client.PostAsJsonAsync(path, body, Token);
+        Assert.Equal(expected, response.StatusCode);
+        return await response.Content.ReadFromJsonAsync<JsonElement>(Token);
+    }
+
+    private async Task<JsonElement> WaitForAsync(Func<JsonElement, bool> condition, TimeSpan timeout)
+    {
+        var end = DateTime.UtcNow + timeout;
+        while (true)
+        {
+            var state = await StateAsync();
+            if (condition(state) || DateTime.UtcNow > end)
+            {
+                return state;
+            }
+
+            await Task.Delay(50, Token);
+        }
+    }
+
+    [Fact]
+    public async Task Root_Get_ServesThePage()
+    {
+        var page = await _client.GetStringAsync("/", Token);
+        var script = await _client.GetStringAsync("/app.js", Token);
+
+        Assert.Contains("<title>LaserEngrave</title>", page, StringComparison.Ordinal);
+        Assert.Contains("EventSource", script, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task Post_WithoutAppHeader_Forbidden()
+    {
+        using var client = _app.CreateClient();
+
+        using var response = await client.PostAsync("/api/run/start", JsonContent.Create(new { }), Token);
+
+        Assert.Equal(HttpStatusCode.Forbidden, response.StatusCode);
+    }
+
+    [Fact]
+    public async Task Upload_Asset_StateHasImageMaskAndEstimate()
+    {
+        var state = await UploadAsync(TestFiles.Asset("qr-code.bmp"));
+
+        Assert.Equal(41, state.GetProperty("image").GetProperty("info").GetProperty("width").GetInt32());
+        Assert.True(state.GetProperty("estimate").GetProperty("seconds").GetDouble() > 0);
+        using var mask = await _client.GetAsync("/api/image/mask.png", Token);
+        Assert.Equal("image/png", mask.Content.Headers.ContentType!.MediaType);
+    }
+
+    [Fact]
+    public async Task Upload_NotAnImage_ErrorBesideImage()
+    {
+        using var folder = TestFiles.NewFolder();
+        var path = Path.Combine(folder.Path, "notes.png");
+        await File.WriteAllTextAsync(path, "hello", Token);
+
+        var state = await UploadAsync(path);
+
+        Assert.Contains("notes.png", state.GetProperty("job").GetProperty("errors").GetProperty("image").GetString(), StringComparison.Ordinal);
+        Assert.Equal(JsonValueKind.Null, state.GetProperty("estimate").ValueKind);
+    }
+
+    [Fact]
+    public async Task EditJob_Width_EstimateAndHeightFollow()
+    {
+        var before = (await UploadAsync(TestFiles.Asset("qr-code.bmp"))).GetProperty("estimate").GetProperty("seconds").GetDouble();
+
+        var state = await PostAsync("/api/job", new { widthMm = 2.5 });
+
+        Assert.Equal(2.5, state.GetProperty("job").GetProperty("heightMm").GetDouble(), 3);
+        Assert.NotEqual(before, state.GetProperty("estimate").GetProperty("seconds").GetDouble());
+    }
+
+    [Fact]
+    public async Task EditJob_TextForNumber_BadRequestNamingField()
+    {
+        await UploadAsync(TestFiles.Asset("qr-code.bmp"));
+
+        var answer = await PostAsync("/api/job", new { burnSpeedMmPerS = "fast" }, HttpStatusCode.BadRequest);
+
+        Assert.Contains("burnSpeedMmPerS", answer.GetProperty("errors").GetProperty("burnSpeedMmPerS").GetString(), StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task Plan_AfterUpload_MovesMatchTheEstimate()
+    {
+        var state = await UploadAsync(TestFiles.Asset("qr-code.bmp"));
+
+        var plan = await _client.GetFromJsonAsync<JsonElement>("/api/plan", Token);
+
+        Assert.Equal(state.GetProperty("estimate").GetProperty("moves").GetInt64() * 5, plan.GetProperty("moves").GetArrayLength());
+        Assert.False(plan.GetProperty("truncated").GetBoolean());
+    }
+
+    [Fact]
+    public async Task Connect_PortsWithoutNames_ErrorShown()
+    {
+        await PostAsync("/api/machine/connect", new { useSimulator = false }, HttpStatusCode.Accepted);
+
+        var state = await WaitForAsync(s => s.GetProperty("machine").GetProperty("error").ValueKind == JsonValueKind.String, TimeSpan.FromSeconds(10));
+
+        Assert.Equal("no port chosen for the stage", state.GetProperty("machine").GetProperty("error").GetString());
+    }
+
+    [Fact]
+    public async Task Run_SmallImageOnSimulator_CompletesLogsAndExports()
+    {
+        using var folder = TestFiles.NewFolder();
+        await UploadAsync(TestFiles.WriteChecker(folder.Path, 8, 6));
+        await PostAsync("/api/job", new { widthMm = 0.8, originXMm = 0, originYMm = 0 });
+        await PostAsync("/api/machine/connect", new { useSimulator = true }, HttpStatusCode.Accepted);
+        await WaitForAsync(s => s.GetProperty("machine").GetProperty("connected").GetBoolean(), TimeSpan.FromSeconds(20));
+
+        await PostAsync("/api/run/start", new { notes = "api test", sampleId = "T-1" }, HttpStatusCode.Accepted);
+        var state = await WaitForAsync(s => !s.GetProperty("run").GetProperty("active").GetBoolean() && s.GetProperty("run").GetProperty("state").GetString() != "Idle", TimeSpan.FromSeconds(120));
+
+        var run = state.GetProperty("run");
+        Assert.Equal("Completed", run.GetProperty("state").GetString());
+        Assert.Equal(run.GetProperty("movesTotal").GetInt64(), run.GetProperty("movesDone").GetInt64());
+        var last = state.GetProperty("log").GetProperty("lastRun");
+        Assert.Equal("T-1", last.GetProperty("sampleId").GetString());
+        var path = last.GetProperty("path").GetString()!;
+        Assert.StartsWith(_app.DataFolder, path, StringComparison.Ordinal);
+        var text = await _client.GetStringAsync($"/api/logs/export?format=txt&path={Uri.EscapeDataString(path)}", Token);
+        Assert.Contains("Sample:             T-1", text, StringComparison.Ordinal);
+        var json = await _client.GetFromJsonAsync<JsonElement>($"/api/logs/export?format=json&path={Uri.EscapeDataString(path)}", Token);
+        Assert.Equal("completed", json.GetProperty("outcome").GetString(), ignoreCase: true);
+        Assert.Single(state.GetProperty("log").GetProperty("history").EnumerateArray());
+    }
+
+    [Fact]
+    public async Task Events_Open_FirstMessageIsTheState()
+    {
+        using var stream = await _client.GetStreamAsync("/api/events", Token);
+        using var reader = new StreamReader(stream);
+
+        var line = await reader.ReadLineAsync(Token);
+
+        Assert.StartsWith("data: {\"settings\"", line, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task Export_FileNotInHistory_NotFound()
+    {
+        using var response = await _client.GetAsync("/api/logs/export?format=json&path=%2Fetc%2Fpasswd", Token);
+
+        Assert.Equal(HttpStatusCode.NotFound, response.StatusCode);
+    }
+}

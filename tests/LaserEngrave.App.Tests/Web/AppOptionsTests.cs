@@ -1,0 +1,37 @@
+using LaserEngrave.App.Web;
+
+namespace LaserEngrave.App.Tests.Web;
+
+public sealed class AppOptionsTests
+{
+    [Theory]
+    [InlineData(new[] { "--no-browser" }, false, AppOptions.DefaultUrl)]
+    [InlineData(new[] { "--urls", "http://127.0.0.1:5080" }, true, "http://127.0.0.1:5080")]
+    public void Parse_Options_Read(string[] args, bool openBrowser, string url)
+    {
+        var options = AppOptions.Parse(args);
+
+        Assert.Equal((openBrowser, url), (options.OpenBrowser, options.Url));
+    }
+
+    [Fact]
+    public void Parse_HostOption_PassedOn()
+    {
+        var options = AppOptions.Parse(["--environment=Development", "--no-browser"]);
+
+        Assert.Equal(["--environment=Development"], options.HostArgs);
+    }
+
+    [Theory]
+    [InlineData("--urls", "http://0.0.0.0:80", "this computer only")]
+    [InlineData("--bogus", null, "unknown option '--bogus'")]
+    [InlineData("--urls", null, "--urls needs a value")]
+    public void Parse_BadOption_OneLineNamingIt(string option, string? value, string expected)
+    {
+        string[] args = value is null ? [option] : [option, value];
+
+        var error = Assert.Throws<ArgumentException>(() => AppOptions.Parse(args));
+
+        Assert.Contains(expected, error.Message, StringComparison.Ordinal);
+    }
+}
