@@ -1,3 +1,4 @@
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Devices.Execution;
 
 namespace LaserEngrave.App.Services;

@@ -5,7 +5,6 @@ using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Execution;
-using LogOutcome = LaserEngrave.Core.Logging.RunOutcome;
 using RunProgress = LaserEngrave.App.Services.RunProgress;
 using RunState = LaserEngrave.App.ViewModels.RunState;
 
@@ -184,11 +183,12 @@ public sealed partial class RunViewModel : ObservableObject
             _testMoves.RunActive = false;
         }
 
-        record = RunLogRecords.Finish(record, result, error, connection, _time.GetLocalNow());
+        var endedAt = _time.GetLocalNow();
+        record = RunRecords.Complete(record, result, error, connection.Description, connection.Description, endedAt, endedAt - record.StartedAt);
         var final = record.Outcome switch
         {
-            LogOutcome.Completed => RunState.Completed,
-            LogOutcome.Aborted => RunState.Aborted,
+            RunOutcome.Completed => RunState.Completed,
+            RunOutcome.Aborted => RunState.Aborted,
             _ => RunState.Failed,
         };
         if (final == RunState.Failed)

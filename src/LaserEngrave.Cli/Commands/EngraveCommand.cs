@@ -5,10 +5,6 @@ using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Devices.Execution;
 using LaserEngrave.Simulator.Burn;
-using LogOutcome = LaserEngrave.Core.Logging.RunOutcome;
-using LogStopPoint = LaserEngrave.Core.Logging.RunStopPoint;
-using RunOutcome = LaserEngrave.Devices.Execution.RunOutcome;
-using RunStopPoint = LaserEngrave.Devices.Execution.RunStopPoint;
 
 namespace LaserEngrave.Cli.Commands;
 
@@ -91,7 +87,7 @@ internal static class EngraveCommand
                 burn = simulator.Recorder.Analyze(new BurnGrid(g.OriginXMicrosteps, g.OriginYMicrosteps, g.PitchMicrosteps, g.WidthPx, g.HeightPx), prepared.Mask);
             }
 
-            record = Finish(record, run, error, session, DateTimeOffset.Now, session.TimeProvider.GetElapsedTime(clockStart));
+            record = RunRecords.Complete(record, run, error, session.StagePort, session.LaserPort, DateTimeOffset.Now, session.TimeProvider.GetElapsedTime(clockStart));
         }
 
         RunLogFiles files;
@@ -126,7 +122,7 @@ internal static class EngraveCommand
             ExceptionDispatchInfo.Throw(error);
         }
 
-        if (record.Outcome != LogOutcome.Completed)
+        if (record.Outcome != RunOutcome.Completed)
         {
             stderr.WriteLine($"laserengrave: run {summary.Outcome}: {record.Fault?.Message ?? "no reason given"} (log: {files.JsonPath})");
             return CliRunner.Failure;
@@ -176,66 +172,7 @@ internal static class EngraveCommand
 
         var stop = logged.StoppedAt
             ?? throw new UsageException($"{fromLog}: the run {logged.Outcome.ToString().ToLowerInvariant()} with no stop point, so there is nothing to resume; repeat it without --resume");
-        return (spec, Path.GetFullPath(fromLog), new RunStopPoint(stop.Row, stop.MoveIndex, stop.XMicrosteps, stop.YMicrosteps));
-    }
-
-    /// <param name="elapsed">The run's time on the machine's clock (virtual on the simulator), for a run that ended without a result.</param>
-    private static RunRecord Finish(RunRecord record, RunResult? run, Exception? error, MachineSession session, DateTimeOffset endedAt, TimeSpan elapsed)
-    {
-        if (run is null)
-        {
-            var outcome = error switch
-            {
-                PreflightException => LogOutcome.Refused,
-                OperationCanceledException => LogOutcome.Aborted,
-                _ => LogOutcome.Failed,
-            };
-            return record with
-            {
-                EndedAt = endedAt,
-                ActualSeconds = elapsed.TotalSeconds,
-                Outcome = outcome,
-                Fault = new RunFault(error?.Message.ReplaceLineEndings(" ") ?? "the run ended without a result", outcome == LogOutcome.Refused ? "preflight" : error?.GetType().Name),
-            };
-        }
-
-        return record with
-        {
-            EndedAt = endedAt,
-            Outcome = run.Outcome switch
-            {
-                RunOutcome.Completed => LogOutcome.Completed,
-                RunOutcome.Aborted => LogOutcome.Aborted,
-                _ => LogOutcome.Failed,
-            },
-            Fault = run.Outcome == RunOutcome.Completed
-                ? null
-                : new RunFault(run.FaultMessage ?? "no reason given", run.Outcome == RunOutcome.Aborted ? "aborted" : null, run.LaserOffConfirmed),
-            StoppedAt = run.StopPoint is { } stop ? new LogStopPoint(stop.Row, stop.MoveIndex, stop.XMicrosteps, stop.YMicrosteps) : null,
-            Devices = run.Machine is { } machine
-                ?
-                [
-                    new RunDevice("x axis", session.StagePort, string.Create(CultureInfo.InvariantCulture, $"device {machine.X.DeviceNumber}, ID {machine.X.DeviceId}"), machine.X.FirmwareText),
-                    new RunDevice("y axis", session.StagePort, string.Create(CultureInfo.InvariantCulture, $"device {machine.Y.DeviceNumber}, ID {machine.Y.DeviceId}"), machine.Y.FirmwareText),
-                    new RunDevice("laser gate", session.LaserPort, machine.Gate, GateFirmware(machine.Gate)),
-                ]
-                : [],
-            EstimatedSeconds = run.EstimatedSeconds,
-            ActualSeconds = run.Duration.TotalSeconds,
-            EngravingSeconds = run.EngravingDuration.TotalSeconds,
-            LaserOnSeconds = run.LaserOnSeconds,
-            RowsDone = run.RowsDone,
-            RowsTotal = run.RowsTotal,
-            RunsDone = run.RunsDone,
-            RunsTotal = run.RunsTotal,
-        };
-    }
-
-    /// <summary>The gate identifies itself as "NAME VERSION"; the last word is its firmware.</summary>
-    private static string GateFirmware(string identity)
-    {
-        var words = identity.Split(' ', StringSplitOptions.RemoveEmptyEntries);
-        return words.Length > 0 ? words[^1] : "unknown";
+        return (spec, Path.GetFullPath(fromLog), stop);
     }
 
     private static void WriteText(TextWriter output, EngraveSummary s)

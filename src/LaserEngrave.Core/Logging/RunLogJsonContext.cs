@@ -1,6 +1,7 @@
 using System.Text.Json;
 using System.Text.Json.Serialization;
 using LaserEngrave.Core.Imaging;
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
 
 namespace LaserEngrave.Core.Logging;

@@ -1,5 +1,6 @@
 using System.Globalization;
 using System.Text;
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
 
 namespace LaserEngrave.Core.Logging;

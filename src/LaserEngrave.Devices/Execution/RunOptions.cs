@@ -1,3 +1,5 @@
+using LaserEngrave.Core.Jobs;
+
 namespace LaserEngrave.Devices.Execution;
 
 /// <summary>How a run starts and how hard it tries when things go wrong.</summary>

@@ -27,11 +27,3 @@ public enum RunState
     /// <summary>Ended by a fault or a preflight refusal.</summary>
     Failed,
 }
-
-/// <summary>How a run ended.</summary>
-public enum RunOutcome
-{
-    Completed,
-    Aborted,
-    Failed,
-}

@@ -1,4 +1,5 @@
 using LaserEngrave.App.Services;
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.App.ViewModels;
 using LaserEngrave.Core.Geometry;
@@ -6,8 +7,6 @@ using LaserEngrave.Devices.Abstractions;
 using NSubstitute;
 using LaserEngrave.Devices.Execution;
 using NSubstitute.ExceptionExtensions;
-using LogOutcome = LaserEngrave.Core.Logging.RunOutcome;
-using RunOutcome = LaserEngrave.Devices.Execution.RunOutcome;
 using RunProgress = LaserEngrave.App.Services.RunProgress;
 using RunState = LaserEngrave.App.ViewModels.RunState;
 
@@ -108,8 +107,8 @@ public sealed class RunViewModelTests
         Assert.Equal(RunState.Completed, _run.State);
         Assert.Equal(1, _run.Fraction);
         Assert.Equal(123, _run.Progress!.XMicrosteps);
-        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == LogOutcome.Completed && r.SampleId == "S-17" && r.Notes == "first try" && r.RunsDone == 7 && r.Image.Sha256.Length == 64));
-        Assert.Equal(LogOutcome.Completed, _log.LastRun!.Record!.Outcome);
+        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == RunOutcome.Completed && r.SampleId == "S-17" && r.Notes == "first try" && r.RunsDone == 7 && r.Image.Sha256.Length == 64));
+        Assert.Equal(RunOutcome.Completed, _log.LastRun!.Record!.Outcome);
     }
 
     [Fact]
@@ -123,7 +122,7 @@ public sealed class RunViewModelTests
 
         Assert.Equal(RunState.Failed, _run.State);
         Assert.Contains("no reply to FREQ", _run.Error, StringComparison.Ordinal);
-        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == LogOutcome.Failed && r.Fault!.Message.Contains("FREQ")));
+        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == RunOutcome.Failed && r.Fault!.Message.Contains("FREQ")));
     }
 
     [Fact]
@@ -137,7 +136,7 @@ public sealed class RunViewModelTests
 
         Assert.Equal(RunState.Failed, _run.State);
         Assert.Contains("did not answer", _run.Error, StringComparison.Ordinal);
-        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == LogOutcome.Refused));
+        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == RunOutcome.Refused));
     }
 
     [Fact]
@@ -160,7 +159,7 @@ public sealed class RunViewModelTests
         await run.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
 
         Assert.Equal(RunState.Aborted, _run.State);
-        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == LogOutcome.Aborted));
+        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == RunOutcome.Aborted));
     }
 
     [Fact]

@@ -1,3 +1,4 @@
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 
 namespace LaserEngrave.Core.Tests.Logging;

@@ -1,4 +1,5 @@
 using System.Globalization;
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Execution;
 

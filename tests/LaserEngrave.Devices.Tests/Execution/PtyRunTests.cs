@@ -1,4 +1,5 @@
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Execution;
 using LaserEngrave.Devices.LaserGate;
@@ -20,7 +21,7 @@ public class PtyRunTests
         var profile = MachineProfile.Default;
         await using var stagePair = await SocatPtyPair.StartAsync(ct);
         await using var laserPair = await SocatPtyPair.StartAsync(ct);
-        await using var machine = SimulatedMachine.Attach(NativeSerialPort.Open(stagePair.A), NativeSerialPort.Open(laserPair.A), profile);
+        await using var machine = SimulatedMachine.Attach(SerialPortLink.Open(stagePair.A), SerialPortLink.Open(laserPair.A), profile);
         await using var stage = ZaberChain.Open(stagePair.B, profile);
         await using var gate = PicLaserGate.Open(laserPair.B, profile.Gate);
         var job = TestJobs.FromMask(TestJobs.Mask("#..##.", ".####.", "#....#"), 0.6, new PlanOptions { OverscanMm = 0.02 });

@@ -1,3 +1,4 @@
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Execution;
 using LaserEngrave.Simulator;

@@ -1,4 +1,4 @@
-namespace LaserEngrave.Core.Logging;
+namespace LaserEngrave.Core.Jobs;
 
 /// <summary>How a run ended.</summary>
 public enum RunOutcome
