@@ -52,7 +52,7 @@ public sealed class SimulatedMachine : IAsyncDisposable
         }
         else
         {
-            _ownedClock = new VirtualTimeProvider(quietPeriod: options.QuietPeriod);
+            _ownedClock = new VirtualTimeProvider(quietPeriod: options.QuietPeriod, waitForRunnableThreads: inProcess);
             TimeProvider = _ownedClock;
         }
 

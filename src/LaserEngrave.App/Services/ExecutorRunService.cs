@@ -55,7 +55,14 @@ public sealed class ExecutorRunService : IRunService
             }
 
             Report();
-            last = result;
+            // The log speaks for the whole job: times and laser-on add up over the passes, the counts are the last pass's.
+            last = last is null ? result : result with
+            {
+                StartedAt = last.StartedAt,
+                EngravingDuration = last.EngravingDuration + result.EngravingDuration,
+                EstimatedSeconds = last.EstimatedSeconds + result.EstimatedSeconds,
+                LaserOnSeconds = last.LaserOnSeconds + result.LaserOnSeconds,
+            };
             if (result.Outcome != RunOutcome.Completed)
             {
                 break;

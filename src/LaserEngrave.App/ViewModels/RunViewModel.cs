@@ -184,7 +184,11 @@ public sealed partial class RunViewModel : ObservableObject
         }
 
         var endedAt = _time.GetLocalNow();
-        record = RunRecords.Complete(record, result, error, connection.Description, connection.Description, endedAt, endedAt - record.StartedAt);
+        record = RunRecords.Complete(record, result, error, connection.Description, connection.Description, endedAt, endedAt - record.StartedAt) with
+        {
+            Passes = Math.Max(1, passes),
+            PassesDone = passes > 1 ? (result?.Outcome == RunOutcome.Completed ? passes : Math.Max(0, (Progress?.Pass ?? 1) - 1)) : null,
+        };
         var final = record.Outcome switch
         {
             RunOutcome.Completed => RunState.Completed,

@@ -77,6 +77,12 @@ public sealed record RunRecord
     /// <summary>Burn runs in the plan.</summary>
     public required long RunsTotal { get; init; }
 
+    /// <summary>How many times the plan was to be burned over the same place (the app's passes); 1 for a single run.</summary>
+    public int Passes { get; init; } = 1;
+
+    /// <summary>Passes completed, when <see cref="Passes"/> is above 1; the row and run counts are the last pass's.</summary>
+    public int? PassesDone { get; init; }
+
     /// <summary>The operator's notes, as typed.</summary>
     public string? Notes { get; init; }
 

@@ -36,6 +36,11 @@ public static class RunSummaryText
         Line("Duration", string.Create(c, $"{Duration(record.ActualSeconds)}{clock}; engraving {Duration(record.EngravingSeconds)}, estimated {Duration(record.EstimatedSeconds)}"));
         Line("Laser on", Duration(record.LaserOnSeconds));
         Line("Done", string.Create(c, $"{record.RowsDone} of {record.RowsTotal} rows, {record.RunsDone} of {record.RunsTotal} burn runs"));
+        if (record.Passes > 1)
+        {
+            Line("Passes", string.Create(c, $"{record.PassesDone ?? 0} of {record.Passes} done (rows and runs above: the last pass)"));
+        }
+
         Line("Image", string.Create(c, $"{record.Image.Path} ({record.Image.WidthPx} x {record.Image.HeightPx} px)"));
         Line("Image SHA-256", record.Image.Sha256);
         var m = record.Mask;

@@ -16,8 +16,8 @@ namespace LaserEngrave.Simulator.Timing;
 /// still running and no <see cref="Hold"/> taken during the quiet period, and no work item waiting in the thread pool
 /// at its end. The last condition keeps the clock still while a continuation (a reply being parsed, the next command
 /// being sent) is queued but has not run yet; holds cover code that is running but slow (a loaded machine, the JIT),
-/// which would otherwise let the clock jump past its own next step and fire a spurious timeout. On Linux, no other thread
-/// of the process may be running or waiting for a CPU either (<see cref="RunnableThreads"/>): that covers a host thread
+/// which would otherwise let the clock jump past its own next step and fire a spurious timeout. On Linux, when the host
+/// shares the process, no other thread of the process may be running or waiting for a CPU either (<see cref="RunnableThreads"/>): that covers a host thread
 /// descheduled between reading a reply and sending its next command, which no hold marks. A callback or hold
 /// older than <see cref="BlockedCallbackLimit"/> stops holding the clock, so nothing can freeze time for good.
 /// </para>
@@ -36,6 +36,7 @@ public sealed class VirtualTimeProvider : TimeProvider, IDisposable
     // Running timer callbacks and holds, by id: the wall-clock timestamp when they began and how long they may hold.
     private readonly Dictionary<long, (long Started, TimeSpan Limit)> _holds = [];
     private readonly DateTimeOffset _start;
+    private readonly bool _waitForRunnableThreads;
     private readonly Thread _advancer;
     private long _nowTicks;
     private long _activity;
@@ -46,7 +47,11 @@ public sealed class VirtualTimeProvider : TimeProvider, IDisposable
 
     /// <param name="start">Wall-clock time at virtual time zero; now by default.</param>
     /// <param name="quietPeriod">How long the system must be quiet before the clock jumps; <see cref="DefaultQuietPeriod"/> by default.</param>
-    public VirtualTimeProvider(DateTimeOffset? start = null, TimeSpan? quietPeriod = null)
+    /// <param name="waitForRunnableThreads">
+    /// Also wait while another thread of this process is runnable (Linux). Right when the host shares the process; wrong when
+    /// it does not (the simulator on real ports), where the serial library's polling threads would only slow the clock.
+    /// </param>
+    public VirtualTimeProvider(DateTimeOffset? start = null, TimeSpan? quietPeriod = null, bool waitForRunnableThreads = true)
     {
         var quiet = quietPeriod ?? DefaultQuietPeriod;
         if (quiet <= TimeSpan.Zero)
@@ -56,6 +61,7 @@ public sealed class VirtualTimeProvider : TimeProvider, IDisposable
 
         _start = start ?? System.GetUtcNow();
         QuietPeriod = quiet;
+        _waitForRunnableThreads = waitForRunnableThreads;
         _advancer = new Thread(Advance) { IsBackground = true, Name = "virtual time" };
         _advancer.Start();
     }
@@ -291,7 +297,7 @@ public sealed class VirtualTimeProvider : TimeProvider, IDisposable
             Thread.Sleep(QuietPeriod);
 
             // Looked at outside the lock: reading /proc must not keep other threads from arming timers.
-            var runnable = RunnableThreads.AnyOtherRunnable();
+            var runnable = _waitForRunnableThreads && RunnableThreads.AnyOtherRunnable();
             lock (_gate)
             {
                 if (_disposed)

@@ -51,6 +51,19 @@ public sealed class ExecutorRunServiceTests
     }
 
     [Fact]
+    public async Task RunAsync_TwoPasses_TimesAndLaserOnAddUp()
+    {
+        var (single, _, first) = await RunAsync(passes: 1);
+        await using var __ = first;
+        var (twice, _, second) = await RunAsync(passes: 2);
+        await using var _ = second;
+
+        Assert.Equal(2 * single.EstimatedSeconds, twice.EstimatedSeconds, 6);
+        Assert.InRange(twice.LaserOnSeconds, 1.9 * single.LaserOnSeconds, 2.1 * single.LaserOnSeconds);
+        Assert.InRange(twice.EngravingDuration.TotalSeconds, 1.9 * single.EngravingDuration.TotalSeconds, 2.1 * single.EngravingDuration.TotalSeconds);
+    }
+
+    [Fact]
     public async Task RunAsync_Aborted_AbortedResultLaserOff()
     {
         var (result, _, machine) = await RunAsync(passes: 1, abortAfterFirstMove: true);

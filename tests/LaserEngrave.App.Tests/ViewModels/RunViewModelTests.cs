@@ -112,6 +112,19 @@ public sealed class RunViewModelTests
     }
 
     [Fact]
+    public async Task Start_TwoPassesCompleted_LogSaysBothPassesDone()
+    {
+        await ReadyAsync();
+        _job.Passes = 2;
+        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(Task.FromResult(Result(RunOutcome.Completed)));
+
+        await _run.StartCommand.ExecuteAsync(null);
+
+        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Passes == 2 && r.PassesDone == 2));
+    }
+
+    [Fact]
     public async Task Start_GateSilentDuringRun_FailedWithErrorAndLogged()
     {
         await ReadyAsync();

@@ -42,6 +42,24 @@ public sealed class RunSummaryTextTests : IDisposable
         Assert.Contains("Notes:              (none)", text, StringComparison.Ordinal);
     }
 
+    [Fact]
+    public void Format_TwoPassesOneDone_SaysSo()
+    {
+        var record = runs.FailedRecord() with { Passes = 2, PassesDone = 1 };
+
+        var text = RunSummaryText.Format(record);
+
+        Assert.Contains("Passes:             1 of 2 done", text, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void Format_SinglePass_HasNoPassesLine()
+    {
+        var text = RunSummaryText.Format(runs.FailedRecord());
+
+        Assert.DoesNotContain("Passes:", text, StringComparison.Ordinal);
+    }
+
     [Theory]
     [InlineData(61.5, "1 min 01.5 s")]
     [InlineData(3723, "1 h 02 min 03 s")]
