@@ -16,4 +16,7 @@ public sealed record AppFolders(string DataFolder, string? LogFolder = null)
     public string UploadFolder => Path.Combine(DataFolder, "images");
 
     public string RunLogFolder => LogFolder ?? Path.Combine(DataFolder, "logs");
+
+    /// <summary>The sample images copied beside the program at build and publish (the repository's assets/).</summary>
+    public string SamplesFolder { get; init; } = Path.Combine(AppContext.BaseDirectory, "samples");
 }

@@ -29,6 +29,11 @@ public sealed class FileAccess(AppFolders folders) : IFileAccess
 
     public bool Exists(string path) => File.Exists(path);
 
+    public IReadOnlyList<string> SampleImages() =>
+        Directory.Exists(folders.SamplesFolder)
+            ? [.. Directory.EnumerateFiles(folders.SamplesFolder).Order(StringComparer.OrdinalIgnoreCase)]
+            : [];
+
     public void OpenFolder(string path)
     {
         Directory.CreateDirectory(path);

@@ -8,6 +8,9 @@ public interface IFileAccess
 
     bool Exists(string path);
 
+    /// <summary>The sample images shipped with the app (assets/ of the repository), full paths, by name.</summary>
+    IReadOnlyList<string> SampleImages();
+
     /// <summary>Opens a folder in the system's file manager.</summary>
     void OpenFolder(string path);
 }

@@ -27,6 +27,7 @@ public sealed partial class MainViewModel : ObservableObject
         _settingsStore = settings;
         _files = files;
         Settings = settings.Load();
+        SampleImages = files.SampleImages();
         var (profile, profileError) = LoadProfile(Settings.ProfilePath);
         ProfileError = profileError;
         Job = new JobViewModel(images, profile);
@@ -42,6 +43,9 @@ public sealed partial class MainViewModel : ObservableObject
         Machine.PropertyChanged += OnMachineChanged;
         Job.PropertyChanged += OnJobChanged;
     }
+
+    /// <summary>Images to start with, shipped with the app, so a newcomer can engrave at once.</summary>
+    public IReadOnlyList<string> SampleImages { get; }
 
     public JobViewModel Job { get; }
 

@@ -20,6 +20,7 @@ internal static class StateSnapshot
         return new
         {
             settings = new { theme = main.Settings.Theme, recentFiles = main.Settings.RecentFiles, lastFolder = main.Settings.LastFolder },
+            samples = main.SampleImages,
             profileError = main.ProfileError,
             settingsError = main.SettingsError,
             image = new

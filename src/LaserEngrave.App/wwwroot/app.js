@@ -178,8 +178,14 @@ function apply(s) {
   meta($('image-meta'), i ? [['File', img.name], ['Format', `${i.format}, ${i.bitsPerPixel} bits per pixel${i.paletteSize ? `, ${i.paletteSize} colours` : ''}`],
     ['Pixels', `${i.width} × ${i.height}`], ['Resolution', i.dpiX ? `${fmt(i.dpiX, 1)} × ${fmt(i.dpiY, 1)} dpi` : 'not stated'],
     ['File size', `${fmt(i.fileSizeBytes / 1024, 1)} KiB`], ['Compression', i.compression], ['Transparency', i.hasAlpha ? 'yes' : 'no']] : [['File', 'none open']]);
+  $('image-pair').hidden = !img.path;
+  $('no-image').hidden = !!img.path;
   const recent = s.settings.recentFiles || [];
-  const options = '<option value="">—</option>' + recent.map((p) => `<option value="${escapeHtml(p)}">${escapeHtml(p.split(/[\\/]/).pop())}</option>`).join('');
+  const samples = s.samples || [];
+  const option = (p) => `<option value="${escapeHtml(p)}">${escapeHtml(p.split(/[\\/]/).pop())}</option>`;
+  const options = '<option value="">—</option>'
+    + (recent.length ? `<optgroup label="Recent">${recent.map(option).join('')}</optgroup>` : '')
+    + (samples.length ? `<optgroup label="Samples">${samples.map(option).join('')}</optgroup>` : '');
   if ($('recent').innerHTML !== options && document.activeElement !== $('recent')) $('recent').innerHTML = options;
 
   // job fields

@@ -66,6 +66,19 @@ public sealed class ApiEndpointsTests : IDisposable
     }
 
     [Fact]
+    public async Task State_Samples_ListsTheShippedImagesAndOneOpens()
+    {
+        var samples = (await StateAsync()).GetProperty("samples").EnumerateArray().Select(e => e.GetString()!).ToList();
+        var qr = Assert.Single(samples, p => Path.GetFileName(p) == "qr-code.bmp");
+        Assert.Contains(samples, p => Path.GetFileName(p) == "text-banner.png");
+
+        await PostAsync("/api/image/open", new { path = qr });
+
+        var state = await WaitForAsync(s => s.GetProperty("image").GetProperty("path").GetString() == qr, TimeSpan.FromSeconds(10));
+        Assert.Equal(41, state.GetProperty("image").GetProperty("info").GetProperty("width").GetInt32());
+    }
+
+    [Fact]
     public async Task Post_WithoutAppHeader_Forbidden()
     {
         using var client = _app.CreateClient();

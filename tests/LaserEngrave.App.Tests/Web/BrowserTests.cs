@@ -109,6 +109,22 @@ public sealed class BrowserTests : IAsyncLifetime
     }
 
     [Fact]
+    public void Page_NoImageYet_HintShownAndASampleOpens()
+    {
+        WaitFor(() => Driver.FindElements(By.CssSelector("#recent optgroup[label='Samples'] option")).Count == 3, "three samples offered");
+        Assert.True(Id("no-image").Displayed);
+        Assert.False(Id("image-pair").Displayed);
+
+        Driver.ExecuteScript("const s = document.getElementById('recent'); s.value = [...s.options].find((o) => o.text === 'text-banner.png').value;");
+        Id("open-recent").Click();
+
+        WaitFor(() => Id("image-pair").Displayed, "original and mask shown");
+        Assert.False(Id("no-image").Displayed);
+        Assert.Contains("308 × 60", Id("image-meta").Text, StringComparison.Ordinal);
+        Screenshot("image-sample");
+    }
+
+    [Fact]
     public void Page_SizeChange_EstimateUpdates()
     {
         Upload(TestFiles.Asset("qr-code.bmp"));
