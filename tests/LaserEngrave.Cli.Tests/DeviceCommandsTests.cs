@@ -4,40 +4,24 @@ using LaserEngrave.Testing;
 namespace LaserEngrave.Cli.Tests;
 
 /// <summary>The wiring-check commands through real ptys (socat) with `laserengrave simulator` on the other ends, as a technician would use them.</summary>
-/// <remarks>The simulator runs in a process of its own, as it does in use; sharing the test's thread pool would make its virtual clock stall.</remarks>
 public sealed class DeviceCommandsTests : IAsyncLifetime
 {
-    private SocatPtyPair? _stage;
-    private SocatPtyPair? _laser;
-    private SimulatorProcess? _simulator;
+    private SimulatedPorts? _ports;
 
-    private string StagePort => _stage!.B;
+    private string StagePort => _ports!.StagePort;
 
-    private string LaserPort => _laser!.B;
+    private string LaserPort => _ports!.LaserPort;
 
     public async ValueTask InitializeAsync()
     {
-        var ct = TestContext.Current.CancellationToken;
-        _stage = await SocatPtyPair.StartAsync(ct);
-        _laser = await SocatPtyPair.StartAsync(ct);
-        _simulator = await SimulatorProcess.StartAsync(_stage, _laser, ct);
+        _ports = await SimulatedPorts.StartAsync(TestContext.Current.CancellationToken);
     }
 
     public async ValueTask DisposeAsync()
     {
-        if (_simulator is not null)
+        if (_ports is not null)
         {
-            await _simulator.DisposeAsync();
-        }
-
-        if (_stage is not null)
-        {
-            await _stage.DisposeAsync();
-        }
-
-        if (_laser is not null)
-        {
-            await _laser.DisposeAsync();
+            await _ports.DisposeAsync();
         }
     }
 
@@ -112,10 +96,10 @@ public sealed class DeviceCommandsTests : IAsyncLifetime
     public async Task Stage_PortHeldByTheSimulator_Exit1SaysInUse()
     {
         // The simulator process holds the A end; opening it again from here must be refused, not share the line.
-        var (exit, _, error) = await CliHarness.RunAsync("stage", "--port", _stage!.A, "identify");
+        var (exit, _, error) = await CliHarness.RunAsync("stage", "--port", _ports!.SimulatorStagePort, "identify");
 
         Assert.Equal(1, exit);
-        Assert.Equal($"laserengrave: {_stage.A}: port is in use by another program", error.TrimEnd());
+        Assert.Equal($"laserengrave: {_ports.SimulatorStagePort}: port is in use by another program", error.TrimEnd());
     }
 
     [Fact(Timeout = 60_000)]

@@ -1,45 +1,28 @@
 using System.Text.Json;
 using LaserEngrave.Core.Logging;
-using LaserEngrave.Testing;
 
 namespace LaserEngrave.Cli.Tests;
 
 /// <summary>`engrave` and the test moves on real ports: socat ptys with `laserengrave simulator` on the other ends.</summary>
-/// <remarks>The simulator runs in a process of its own, as it does in use; sharing the test's thread pool would make its virtual clock stall.</remarks>
 public sealed class EngraveOnPortsTests : IAsyncLifetime
 {
     private readonly string _logDir = Path.Combine(Path.GetTempPath(), $"le-cli-ports-{Guid.NewGuid():N}");
-    private SocatPtyPair? _stage;
-    private SocatPtyPair? _laser;
-    private SimulatorProcess? _simulator;
+    private SimulatedPorts? _ports;
 
-    private string StagePort => _stage!.B;
+    private string StagePort => _ports!.StagePort;
 
-    private string LaserPort => _laser!.B;
+    private string LaserPort => _ports!.LaserPort;
 
     public async ValueTask InitializeAsync()
     {
-        var ct = TestContext.Current.CancellationToken;
-        _stage = await SocatPtyPair.StartAsync(ct);
-        _laser = await SocatPtyPair.StartAsync(ct);
-        _simulator = await SimulatorProcess.StartAsync(_stage, _laser, ct);
+        _ports = await SimulatedPorts.StartAsync(TestContext.Current.CancellationToken);
     }
 
     public async ValueTask DisposeAsync()
     {
-        if (_simulator is not null)
+        if (_ports is not null)
         {
-            await _simulator.DisposeAsync();
-        }
-
-        if (_stage is not null)
-        {
-            await _stage.DisposeAsync();
-        }
-
-        if (_laser is not null)
-        {
-            await _laser.DisposeAsync();
+            await _ports.DisposeAsync();
         }
 
         if (Directory.Exists(_logDir))
