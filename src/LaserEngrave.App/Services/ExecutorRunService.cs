@@ -12,9 +12,12 @@ public sealed class ExecutorRunService : IRunService
         ArgumentNullException.ThrowIfNull(progress);
         var movesTotal = request.Job.Statistics.Moves;
         RunResult? last = null;
-        for (var pass = 1; pass <= Math.Max(1, request.Passes); pass++)
+        // Continuing a stopped run finishes the pass that stopped, and only that.
+        var passes = request.ResumeFrom is null ? Math.Max(1, request.Passes) : 1;
+        for (var pass = 1; pass <= passes; pass++)
         {
-            var executor = new RunExecutor(request.Stage, request.Gate, request.Job, request.TimeProvider);
+            var options = new RunOptions { ResumeFrom = pass == 1 ? request.ResumeFrom : null };
+            var executor = new RunExecutor(request.Stage, request.Gate, request.Job, request.TimeProvider, options);
             var movesDone = 0L;
             var latest = executor.Progress;
             var currentPass = pass;

@@ -8,4 +8,7 @@ public sealed record RunRequest(PreparedJob Job, IStage Stage, ILaserGate Gate, 
 {
     /// <summary>The clock every wait of the run uses (the simulator's, in virtual time, in tests).</summary>
     public TimeProvider TimeProvider { get; init; } = TimeProvider.System;
+
+    /// <summary>Where a stopped run left off: only the rest of that pass is run, from the first burn run not completed.</summary>
+    public RunStopPoint? ResumeFrom { get; init; }
 }

@@ -60,6 +60,13 @@ public sealed partial class RunViewModel : ObservableObject
     [ObservableProperty]
     public partial double ElapsedSecondsAtEnd { get; private set; }
 
+    /// <summary>Where the last run stopped (failed or aborted), while the plan it ran is still the one planned; null otherwise.</summary>
+    [ObservableProperty]
+    public partial RunStopPoint? StoppedAt { get; private set; }
+
+    /// <summary>Whether <see cref="ContinueCommand"/> can pick the stopped run up: same plan, nothing under way.</summary>
+    public bool CanContinue => !IsActive && StoppedAt is not null && RunPlanVersion == _job.PlanVersion && _machine.Connection is not null;
+
     public bool IsActive => State is RunState.Running or RunState.Paused or RunState.Aborting;
 
     /// <summary>Fraction of all passes done, 0..1.</summary>
@@ -115,7 +122,31 @@ public sealed partial class RunViewModel : ObservableObject
             return;
         }
 
-        await RunAsync(job!, connection!, cancellationToken).ConfigureAwait(false);
+        await RunAsync(job!, connection!, resumeFrom: null, cancellationToken).ConfigureAwait(false);
+    }
+
+    /// <summary>
+    /// Continues the run that stopped (a fault or an abort) from its first burn run not completed, laser off on the way
+    /// there, so the sample ends with no gap and nothing burned twice. Only while the plan is the one that stopped.
+    /// </summary>
+    [RelayCommand(IncludeCancelCommand = true)]
+    private async Task ContinueAsync(CancellationToken cancellationToken)
+    {
+        Error = null;
+        var job = _job.Job;
+        var connection = _machine.Connection;
+        var problem = IsActive ? "a run is already under way"
+            : StoppedAt is null ? "no stopped run to continue: the last run completed, or none ran"
+            : job is null || RunPlanVersion != _job.PlanVersion ? "the job changed since the run stopped: continuing would not match what is burned; start it again instead"
+            : connection is null ? "not connected: connect to the machine the run stopped on first"
+            : null;
+        if (problem is not null)
+        {
+            Error = problem;
+            return;
+        }
+
+        await RunAsync(job!, connection!, StoppedAt, cancellationToken).ConfigureAwait(false);
     }
 
     [RelayCommand]
@@ -149,8 +180,9 @@ public sealed partial class RunViewModel : ObservableObject
         }
     }
 
-    private async Task RunAsync(PreparedJob job, IMachineConnection connection, CancellationToken cancellationToken)
+    private async Task RunAsync(PreparedJob job, IMachineConnection connection, RunStopPoint? resumeFrom, CancellationToken cancellationToken)
     {
+        var continuedFrom = resumeFrom is null ? null : _log.LastRun?.Path;
         _pause = new RunPauseGate();
         _startedTicks = _time.GetTimestamp();
         _estimatedSeconds = _job.EstimatedSeconds ?? 0;
@@ -159,8 +191,11 @@ public sealed partial class RunViewModel : ObservableObject
             Simulated = connection.IsSimulated,
             Notes = _log.Notes,
             SampleId = _log.SampleId,
+            RepeatOf = string.IsNullOrEmpty(continuedFrom) ? null : continuedFrom,
+            Resumed = resumeFrom is not null,
         };
-        var passes = _job.Passes;
+        var passes = resumeFrom is null ? _job.Passes : 1;
+        StoppedAt = null;
         RunPlanVersion = _job.PlanVersion;
         Progress = new RunProgress(0, 0, 0, 0, 1, 0, 0, false, "preflight");
         State = RunState.Running;
@@ -169,7 +204,7 @@ public sealed partial class RunViewModel : ObservableObject
         Exception? error = null;
         try
         {
-            var request = new RunRequest(job, connection.Stage, connection.Gate, passes, _pause) { TimeProvider = connection.TimeProvider };
+            var request = new RunRequest(job, connection.Stage, connection.Gate, passes, _pause) { TimeProvider = connection.TimeProvider, ResumeFrom = resumeFrom };
             result = await _runs.RunAsync(request, new LatestProgress(this), cancellationToken).ConfigureAwait(false);
         }
         catch (Exception ex) when (ex is DeviceException or OperationCanceledException or IOException or InvalidOperationException or TimeoutException or ObjectDisposedException)
@@ -200,6 +235,7 @@ public sealed partial class RunViewModel : ObservableObject
             Error = record.Fault?.Message ?? "the run failed";
         }
 
+        StoppedAt = record.Outcome is RunOutcome.Failed or RunOutcome.Aborted ? record.StoppedAt : null;
         _log.Record(record);
         try
         {

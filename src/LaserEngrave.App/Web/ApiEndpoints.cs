@@ -91,6 +91,7 @@ internal static class ApiEndpoints
             main.Log.SampleId = request.SampleId;
             return Start(main, main.Run.StartCommand.ExecuteAsync(null));
         });
+        api.MapPost("/run/continue", (MainViewModel main) => Start(main, main.Run.ContinueCommand.ExecuteAsync(null)));
         api.MapPost("/run/pause", (MainViewModel main) => Do(main, main.Run.PauseCommand.Execute));
         api.MapPost("/run/resume", (MainViewModel main) => Do(main, main.Run.ResumeCommand.Execute));
         api.MapPost("/run/abort", (MainViewModel main) => Do(main, main.Run.AbortCommand.Execute));

@@ -131,6 +131,8 @@ internal static class StateSnapshot
                 elapsedSeconds = Math.Round(run.ElapsedSeconds, 1),
                 remainingSeconds = Math.Round(run.RemainingSeconds, 1),
                 run.Error,
+                canContinue = run.CanContinue,
+                stoppedAtRow = run.StoppedAt?.Row,
             },
             log = new
             {

@@ -116,6 +116,7 @@ $('fire').addEventListener('click', () => post('/api/moves/fire', { pulses: Numb
 $('start').addEventListener('click', () => post('/api/run/start', { notes: $('notes').value || null, sampleId: $('sampleId').value || null }));
 $('pause').addEventListener('click', () => post('/api/run/pause'));
 $('resume').addEventListener('click', () => post('/api/run/resume'));
+$('continue').addEventListener('click', () => post('/api/run/continue'));
 $('abort').addEventListener('click', () => post('/api/run/abort'));
 $('abort-top').addEventListener('click', () => post('/api/run/abort'));
 
@@ -230,6 +231,8 @@ function apply(s) {
   $('status-run').textContent = run.active ? `${run.state.toLowerCase()} · ${fmt(run.percent, 1)} %` : run.state.toLowerCase();
   $('start').disabled = run.active || !s.estimate || !m.connected;
   $('pause').disabled = run.state !== 'Running';
+  $('continue').disabled = !run.canContinue;
+  $('continue').hidden = !run.canContinue;
   $('resume').disabled = run.state !== 'Paused';
   $('run-error').textContent = run.error ?? '';
   $('progress-bar').style.width = `${run.percent}%`;

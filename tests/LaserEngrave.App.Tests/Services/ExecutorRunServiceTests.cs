@@ -75,6 +75,37 @@ public sealed class ExecutorRunServiceTests
         Assert.False((await machine.Gate.GetStateAsync(Token)).Firing);
     }
 
+    [Fact]
+    public async Task RunAsync_ResumeFromAnAbortedRun_FinishesOnlyThatPassFromItsStopPoint()
+    {
+        using var folder = TestFiles.NewFolder();
+        var job = PreparedJob.Prepare(new JobSpec { ImagePath = TestFiles.WriteChecker(folder.Path, 8, 4), Size = SizeSpec.Width(0.8), Origin = new OriginMm(0.5, 0.5) });
+        await using var machine = await new MachineConnectionFactory(new SimulatorOptions()).ConnectAsync(MachineChoice.Simulator, MachineProfile.Default, Token);
+        using var abort = CancellationTokenSource.CreateLinkedTokenSource(Token);
+        var first = new RunRequest(job, machine.Stage, machine.Gate, 1, new RunPauseGate()) { TimeProvider = machine.TimeProvider };
+        var aborted = await new ExecutorRunService().RunAsync(first, new SynchronousProgress(p =>
+        {
+            if (p.MovesDone > 2)
+            {
+                abort.Cancel();
+            }
+        }), abort.Token).WaitAsync(TimeSpan.FromSeconds(60), Token);
+        var stop = Assert.IsType<RunStopPoint>(aborted.StopPoint);
+        var reports = new List<RunProgress>();
+
+        var resumed = await new ExecutorRunService().RunAsync(
+            first with { Passes = 2, ResumeFrom = stop },
+            new SynchronousProgress(p => { lock (reports) { reports.Add(p); } }),
+            Token).WaitAsync(TimeSpan.FromSeconds(60), Token);
+
+        Assert.Equal(RunOutcome.Aborted, aborted.Outcome);
+        Assert.Equal(RunOutcome.Completed, resumed.Outcome);
+        Assert.All(reports, p => Assert.Equal(1, p.Pass));
+        Assert.True(stop.MoveIndex > 0);
+        Assert.True(reports.Where(p => p.MovesDone > 0).Min(p => p.MovesDone) > stop.MoveIndex, "the resumed pass starts at the stop point, not at the first move");
+        Assert.False((await machine.Gate.GetStateAsync(Token)).Firing);
+    }
+
     private sealed class SynchronousProgress(Action<RunProgress> report) : IProgress<RunProgress>
     {
         public void Report(RunProgress value) => report(value);

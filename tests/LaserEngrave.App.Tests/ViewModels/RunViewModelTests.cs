@@ -125,6 +125,43 @@ public sealed class RunViewModelTests
     }
 
     [Fact]
+    public async Task Continue_AfterAFault_RunsTheRestFromTheStopPointAndLogsItAsResumed()
+    {
+        await ReadyAsync();
+        _job.Passes = 2;
+        var stop = new RunStopPoint(12, 140, 5000, 6000);
+        var requests = new List<RunRequest>();
+        _runs.RunAsync(Arg.Do<RunRequest>(requests.Add), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(Result(RunOutcome.Failed, "x axis: no reply") with { StopPoint = stop }, Result(RunOutcome.Completed));
+        await _run.StartCommand.ExecuteAsync(null);
+        Assert.True(_run.CanContinue);
+
+        await _run.ContinueCommand.ExecuteAsync(null);
+
+        Assert.Equal(RunState.Completed, _run.State);
+        Assert.Equal([null, stop], requests.Select(r => r.ResumeFrom));
+        Assert.Equal(1, requests[1].Passes);
+        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Resumed && r.Outcome == RunOutcome.Completed));
+        Assert.False(_run.CanContinue);
+    }
+
+    [Fact]
+    public async Task Continue_JobChangedSinceTheStop_RefusedAndNothingRuns()
+    {
+        await ReadyAsync();
+        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(Result(RunOutcome.Failed, "x axis: no reply") with { StopPoint = new RunStopPoint(3, 20, null, null) });
+        await _run.StartCommand.ExecuteAsync(null);
+        _job.OriginXMm = 7;
+
+        await _run.ContinueCommand.ExecuteAsync(null);
+
+        Assert.Contains("the job changed", _run.Error, StringComparison.Ordinal);
+        Assert.False(_run.CanContinue);
+        await _runs.Received(1).RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>());
+    }
+
+    [Fact]
     public async Task Start_GateSilentDuringRun_FailedWithErrorAndLogged()
     {
         await ReadyAsync();
