@@ -39,6 +39,10 @@ public sealed partial class LogViewModel : ObservableObject
     [ObservableProperty]
     public partial string? Error { get; private set; }
 
+    /// <summary>What to know about a past run just loaded, e.g. that it ran with another machine profile.</summary>
+    [ObservableProperty]
+    public partial string? Notice { get; private set; }
+
     public string Folder => _store.Folder;
 
     /// <summary>Saves a finished run's log and shows it as the last run.</summary>
@@ -83,6 +87,7 @@ public sealed partial class LogViewModel : ObservableObject
     private void Load(string path)
     {
         Error = null;
+        Notice = null;
         if (Find(path)?.Record is not { } record)
         {
             Error = $"{path}: not a run in the history";
@@ -93,6 +98,11 @@ public sealed partial class LogViewModel : ObservableObject
         {
             var spec = RunReplay.ToJobSpec(record);
             _job.Apply(JobSettings.From(spec) with { Passes = 1 });
+            // The app plans with its own profile (the one its machine connection uses); a run made with another one
+            // would not be repeated exactly, so say so rather than switch the machine's profile behind the user's back.
+            Notice = spec.Profile == _job.Profile
+                ? null
+                : $"this run used the machine profile \"{spec.Profile.Name}\"; the app plans with \"{_job.Profile.Name}\", so the repeat may differ (the command line's engrave --from-log uses the logged profile)";
             Notes = record.Notes;
             SampleId = record.SampleId;
         }

@@ -142,6 +142,7 @@ internal static class StateSnapshot
                 lastRun = log.LastRun is null ? null : Summary(log.LastRun),
                 history = log.History.Take(50).Select(Summary),
                 log.Error,
+                log.Notice,
             },
         };
     }

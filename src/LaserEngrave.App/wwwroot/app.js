@@ -249,6 +249,7 @@ function apply(s) {
     if (last && last.path) { a.href = exportUrl(last.path, format); a.removeAttribute('aria-disabled'); } else { a.removeAttribute('href'); a.setAttribute('aria-disabled', 'true'); }
   }
   $('log-error').textContent = s.log.error ?? '';
+  $('log-notice').textContent = s.log.notice ?? '';
   const rows = s.log.history.map((r) => `<tr><td>${r.startedAt ? escapeHtml(new Date(r.startedAt).toLocaleString()) : ''}</td><td>${escapeHtml(r.sampleId ?? '')}</td><td>${escapeHtml(r.image ?? '')}</td><td>${escapeHtml(r.outcome)}${r.error ? ': ' + escapeHtml(r.error) : ''}${r.simulated ? ' (simulator)' : ''}</td><td>${duration(r.actualSeconds)}</td><td>${r.startedAt ? `<button data-load="${escapeHtml(r.path)}">Load</button> <a href="${exportUrl(r.path, 'txt')}" download>text</a> <a href="${exportUrl(r.path, 'json')}" download>JSON</a>` : ''}</td></tr>`).join('');
   if ($('history').innerHTML !== rows) $('history').innerHTML = rows || '<tr><td colspan="6" class="hint">No runs yet.</td></tr>';
 

@@ -41,6 +41,23 @@ public sealed class LogViewModelTests
         Assert.Equal(3, _job.WidthMm, 6);
         Assert.Equal((2.0, 4.0), (_job.OriginXMm, _job.OriginYMm));
         Assert.Equal("S-1", _log.SampleId);
+        Assert.Null(_log.Notice);
+    }
+
+    [Fact]
+    public void Load_PastRunWithAnotherProfile_NoticeNamesBothProfiles()
+    {
+        var image = TestFiles.Asset("qr-code.bmp");
+        var record = Record(image, PreparedJob.HashFile(image));
+        record = record with { Profile = record.Profile with { Name = "Lab B stage" } };
+        _store.History().Returns([new RunLogEntry("/logs/d.json", record, null)]);
+        _log.RefreshCommand.Execute(null);
+
+        _log.LoadCommand.Execute("/logs/d.json");
+
+        Assert.Null(_log.Error);
+        Assert.Contains("\"Lab B stage\"", _log.Notice, StringComparison.Ordinal);
+        Assert.Contains(_job.Profile.Name, _log.Notice, StringComparison.Ordinal);
     }
 
     [Fact]
