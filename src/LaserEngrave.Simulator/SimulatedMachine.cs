@@ -1,4 +1,5 @@
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Devices.Machine;
 using LaserEngrave.Devices.Serial;
 using LaserEngrave.Simulator.Burn;
 using LaserEngrave.Simulator.Faults;
@@ -112,6 +113,13 @@ public sealed class SimulatedMachine : IAsyncDisposable
     public static SimulatedMachine CreateInProcess(MachineProfile profile, SimulatorOptions? options = null)
     {
         return new SimulatedMachine(profile, options ?? new SimulatorOptions(), inProcess: true);
+    }
+
+    /// <summary>A machine on in-memory links with the host's stage and gate already on them; the session's <see cref="MachineSession.Owner"/> is the machine, disposed with it.</summary>
+    public static MachineSession OpenInProcess(MachineProfile profile, SimulatorOptions? options = null)
+    {
+        var machine = CreateInProcess(profile, options);
+        return MachineSession.OverLinks(machine.StageLink, machine.LaserLink, profile, machine.TimeProvider, "simulator", owner: machine);
     }
 
     /// <summary>A machine serving the device ends of two links, e.g. ptys made by socat or real serial ports.</summary>

@@ -109,6 +109,21 @@ public class SimulatedMachineTests
     }
 
     [Fact(Timeout = 20_000)]
+    public async Task OpenInProcess_Session_TalksToTheMachineItOwnsAndClosesIt()
+    {
+        var ct = TestContext.Current.CancellationToken;
+        var session = SimulatedMachine.OpenInProcess(MachineProfile.Default);
+        var machine = Assert.IsType<SimulatedMachine>(session.Owner);
+
+        var identity = await session.Stage.X.IdentifyAsync(ct);
+        await session.DisposeAsync();
+
+        Assert.Equal(1, identity.DeviceNumber);
+        Assert.Same(machine.TimeProvider, session.TimeProvider);
+        await machine.StageServed.WaitAsync(TimeSpan.FromSeconds(10), ct);
+    }
+
+    [Fact(Timeout = 20_000)]
     public async Task Attach_HostEndLinks_AreNotAvailable()
     {
         var (_, stage) = LaserEngrave.Devices.Serial.InMemorySerialLink.CreatePair();

@@ -1,5 +1,3 @@
-using System.Diagnostics;
-
 namespace LaserEngrave.App.Services;
 
 /// <summary>The real <see cref="IFileAccess"/>: uploads under <see cref="AppFolders.UploadFolder"/>, folders opened by the shell.</summary>
@@ -37,6 +35,6 @@ public sealed class FileAccess(AppFolders folders) : IFileAccess
     public void OpenFolder(string path)
     {
         Directory.CreateDirectory(path);
-        using var process = Process.Start(new ProcessStartInfo(path) { UseShellExecute = true });
+        SystemShell.Open(path);
     }
 }

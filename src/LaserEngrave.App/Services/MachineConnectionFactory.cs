@@ -1,8 +1,7 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Abstractions;
-using LaserEngrave.Devices.LaserGate;
+using LaserEngrave.Devices.Machine;
 using LaserEngrave.Devices.Serial;
-using LaserEngrave.Devices.Zaber;
 using LaserEngrave.Simulator;
 
 namespace LaserEngrave.App.Services;
@@ -20,25 +19,13 @@ public sealed class MachineConnectionFactory(SimulatorOptions? simulatorOptions 
         cancellationToken.ThrowIfCancellationRequested();
         if (choice.UseSimulator)
         {
-            var machine = SimulatedMachine.CreateInProcess(profile, _simulatorOptions);
-            var chain = new ZaberChain(new ZaberConnection(machine.StageLink, machine.TimeProvider), profile);
-            var gate = new PicLaserGate(machine.LaserLink, profile.Gate, machine.TimeProvider);
-            return Task.FromResult<IMachineConnection>(new Connection(_simulatorOptions.RealTime ? "simulator (in-process, real time)" : "simulator (in-process, virtual time)", profile, chain, gate, machine));
+            var description = _simulatorOptions.RealTime ? "simulator (in-process, real time)" : "simulator (in-process, virtual time)";
+            return Task.FromResult<IMachineConnection>(new Connection(description, profile, SimulatedMachine.OpenInProcess(profile, _simulatorOptions)));
         }
 
         var stagePort = Required(choice.StagePort, "stage");
         var laserPort = Required(choice.LaserPort, "laser gate");
-        var stage = ZaberChain.Open(stagePort, profile);
-        try
-        {
-            var gate = PicLaserGate.Open(laserPort, profile.Gate);
-            return Task.FromResult<IMachineConnection>(new Connection($"stage {stagePort}, laser {laserPort}", profile, stage, gate, null));
-        }
-        catch
-        {
-            stage.DisposeAsync().AsTask().GetAwaiter().GetResult();
-            throw;
-        }
+        return Task.FromResult<IMachineConnection>(new Connection($"stage {stagePort}, laser {laserPort}", profile, MachineSession.OpenPorts(stagePort, laserPort, profile)));
     }
 
     public IReadOnlyList<string> ListPorts() => SerialPortNames.List();
@@ -46,28 +33,20 @@ public sealed class MachineConnectionFactory(SimulatorOptions? simulatorOptions 
     private static string Required(string? port, string what) =>
         string.IsNullOrWhiteSpace(port) ? throw new DeviceException($"no port chosen for the {what}") : port.Trim();
 
-    private sealed class Connection(string description, MachineProfile profile, ZaberChain stage, PicLaserGate gate, SimulatedMachine? machine) : IMachineConnection
+    private sealed class Connection(string description, MachineProfile profile, MachineSession session) : IMachineConnection
     {
         public string Description => description;
 
         public MachineProfile Profile => profile;
 
-        public TimeProvider TimeProvider => machine?.TimeProvider ?? TimeProvider.System;
+        public TimeProvider TimeProvider => session.TimeProvider;
 
-        public bool IsSimulated => machine is not null;
+        public bool IsSimulated => session.Owner is SimulatedMachine;
 
-        public IStage Stage => stage;
+        public IStage Stage => session.Stage;
 
-        public ILaserGate Gate => gate;
+        public ILaserGate Gate => session.Gate;
 
-        public async ValueTask DisposeAsync()
-        {
-            await gate.DisposeAsync().ConfigureAwait(false);
-            await stage.DisposeAsync().ConfigureAwait(false);
-            if (machine is not null)
-            {
-                await machine.DisposeAsync().ConfigureAwait(false);
-            }
-        }
+        public ValueTask DisposeAsync() => session.DisposeAsync();
     }
 }

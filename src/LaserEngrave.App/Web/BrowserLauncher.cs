@@ -1,5 +1,5 @@
 using System.ComponentModel;
-using System.Diagnostics;
+using LaserEngrave.App.Services;
 
 namespace LaserEngrave.App.Web;
 
@@ -10,11 +10,8 @@ internal static class BrowserLauncher
     {
         try
         {
-            var start = OperatingSystem.IsWindows() ? new ProcessStartInfo(url) { UseShellExecute = true }
-                : OperatingSystem.IsMacOS() ? new ProcessStartInfo("open", url)
-                : new ProcessStartInfo("xdg-open", url);
-            using var process = Process.Start(start);
-            return process is not null || OperatingSystem.IsWindows();
+            SystemShell.Open(url);
+            return true;
         }
         catch (Exception ex) when (ex is Win32Exception or InvalidOperationException)
         {

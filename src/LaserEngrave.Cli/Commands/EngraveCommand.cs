@@ -4,6 +4,7 @@ using System.Runtime.ExceptionServices;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Devices.Execution;
+using LaserEngrave.Simulator;
 using LaserEngrave.Simulator.Burn;
 
 namespace LaserEngrave.Cli.Commands;
@@ -81,7 +82,7 @@ internal static class EngraveCommand
                 printer.Finish();
             }
 
-            if (session.Simulator is { } simulator)
+            if (session.Owner is SimulatedMachine simulator)
             {
                 var g = prepared.Geometry.Geometry;
                 burn = simulator.Recorder.Analyze(new BurnGrid(g.OriginXMicrosteps, g.OriginYMicrosteps, g.PitchMicrosteps, g.WidthPx, g.HeightPx), prepared.Mask);

@@ -1,8 +1,7 @@
 using System.CommandLine;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Abstractions;
-using LaserEngrave.Devices.LaserGate;
-using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Devices.Machine;
 using LaserEngrave.Simulator;
 using LaserEngrave.Simulator.Faults;
 
@@ -72,25 +71,8 @@ internal sealed class MachineOptions
     public MachineSession Open(ParseResult result, MachineProfile profile)
     {
         Validate(result);
-        if (result.GetValue(Simulate))
-        {
-            var simulator = SimulatedMachine.CreateInProcess(profile, new SimulatorOptions { FaultSpec = FaultSpec(result) });
-            var chain = new ZaberChain(new ZaberConnection(simulator.StageLink, simulator.TimeProvider), profile);
-            var gate = new PicLaserGate(simulator.LaserLink, profile.Gate, simulator.TimeProvider);
-            return new MachineSession(chain, gate, simulator.TimeProvider, "simulator", "simulator", simulator);
-        }
-
-        var stagePort = result.GetValue(StagePort)!;
-        var laserPort = result.GetValue(LaserPort)!;
-        var stage = ZaberChain.Open(stagePort, profile);
-        try
-        {
-            return new MachineSession(stage, PicLaserGate.Open(laserPort, profile.Gate), TimeProvider.System, stagePort, laserPort, null);
-        }
-        catch
-        {
-            stage.DisposeAsync().AsTask().GetAwaiter().GetResult();
-            throw;
-        }
+        return result.GetValue(Simulate)
+            ? SimulatedMachine.OpenInProcess(profile, new SimulatorOptions { FaultSpec = FaultSpec(result) })
+            : MachineSession.OpenPorts(result.GetValue(StagePort)!, result.GetValue(LaserPort)!, profile);
     }
 }

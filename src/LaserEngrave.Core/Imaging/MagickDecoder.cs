@@ -301,18 +301,7 @@ internal static partial class MagickDecoder
     private static LoadedImage ToGrey(ImageReader reader, ImageInfo info, MagickImage image, IUnsafePixelCollection<byte> pixels)
     {
         int width = (int)image.Width, height = (int)image.Height, channels = (int)image.ChannelCount;
-        var grey = GreyChannel(pixels);
-        ImageLimits.CheckIndexed(reader.Path, width, height, 8);
-        var indices = new byte[(long)width * height];
-        for (var y = 0; y < height; y++)
-        {
-            var source = pixels.GetReadOnlyArea(0, y, (uint)width, 1);
-            var target = indices.AsSpan((int)((long)y * width), width);
-            for (var x = 0; x < width; x++)
-            {
-                target[x] = source[(x * channels) + grey];
-            }
-        }
+        var indices = OneChannel(reader, pixels, width, height, channels, GreyChannel(pixels));
 
         var ramp = new Rgba32[256];
         for (var i = 0; i < ramp.Length; i++)
@@ -334,17 +323,10 @@ internal static partial class MagickDecoder
             palette[i] = new Rgba32(colour.R, colour.G, colour.B);
         }
 
-        ImageLimits.CheckIndexed(reader.Path, width, height, 8);
-        var indices = new byte[(long)width * height];
+        var indices = OneChannel(reader, pixels, width, height, channels, indexChannel);
         for (var y = 0; y < height; y++)
         {
-            var source = pixels.GetReadOnlyArea(0, y, (uint)width, 1);
             var target = indices.AsSpan((int)((long)y * width), width);
-            for (var x = 0; x < width; x++)
-            {
-                target[x] = source[(x * channels) + indexChannel];
-            }
-
             var bad = IndexedPixels.FindIndexOutside(target, width, 8, palette.Length);
             if (bad >= 0)
             {
@@ -353,6 +335,24 @@ internal static partial class MagickDecoder
         }
 
         return LoadedImage.Indexed(info, width, height, 8, palette, indices);
+    }
+
+    /// <summary>One 8-bit channel of every pixel (grey level or palette index), row after row.</summary>
+    private static byte[] OneChannel(ImageReader reader, IUnsafePixelCollection<byte> pixels, int width, int height, int channels, int channel)
+    {
+        ImageLimits.CheckIndexed(reader.Path, width, height, 8);
+        var values = new byte[(long)width * height];
+        for (var y = 0; y < height; y++)
+        {
+            var source = pixels.GetReadOnlyArea(0, y, (uint)width, 1);
+            var target = values.AsSpan((int)((long)y * width), width);
+            for (var x = 0; x < width; x++)
+            {
+                target[x] = source[(x * channels) + channel];
+            }
+        }
+
+        return values;
     }
 
     private static LoadedImage ToRgba(ImageReader reader, ImageInfo info, MagickImage image, IUnsafePixelCollection<byte> pixels)

@@ -1,0 +1,72 @@
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Devices.LaserGate;
+using LaserEngrave.Devices.Serial;
+using LaserEngrave.Devices.Zaber;
+
+namespace LaserEngrave.Devices.Machine;
+
+/// <summary>An open machine: the Zaber chain and the laser gate, the clock they wait on, and what owns their links.</summary>
+/// <remarks>Disposing closes the gate, then the stage, then the owner (the simulator behind in-process links).</remarks>
+public sealed class MachineSession : IAsyncDisposable
+{
+    private MachineSession(ZaberChain stage, PicLaserGate gate, TimeProvider timeProvider, string stagePort, string laserPort, IAsyncDisposable? owner)
+    {
+        Stage = stage;
+        Gate = gate;
+        TimeProvider = timeProvider;
+        StagePort = stagePort;
+        LaserPort = laserPort;
+        Owner = owner;
+    }
+
+    public ZaberChain Stage { get; }
+
+    public PicLaserGate Gate { get; }
+
+    /// <summary>The clock every wait uses: the system's on real ports, the simulator's (possibly virtual) in-process.</summary>
+    public TimeProvider TimeProvider { get; }
+
+    /// <summary>The stage's port, as logs and messages name it.</summary>
+    public string StagePort { get; }
+
+    /// <summary>The laser gate's port, as logs and messages name it.</summary>
+    public string LaserPort { get; }
+
+    /// <summary>What the links belong to and is closed last (the in-process simulator); null on real ports.</summary>
+    public IAsyncDisposable? Owner { get; }
+
+    /// <summary>Opens two serial ports at the profile's baud rates; the stage's port is closed again if the gate's cannot be opened.</summary>
+    public static MachineSession OpenPorts(string stagePort, string laserPort, MachineProfile profile)
+    {
+        ArgumentNullException.ThrowIfNull(profile);
+        var stage = ZaberChain.Open(stagePort, profile);
+        try
+        {
+            return new MachineSession(stage, PicLaserGate.Open(laserPort, profile.Gate), TimeProvider.System, stagePort, laserPort, null);
+        }
+        catch
+        {
+            stage.DisposeAsync().AsTask().GetAwaiter().GetResult();
+            throw;
+        }
+    }
+
+    /// <summary>The machine on two links already open (in-process links to the simulator), named <paramref name="name"/>.</summary>
+    public static MachineSession OverLinks(ISerialLink stageLink, ISerialLink laserLink, MachineProfile profile, TimeProvider timeProvider, string name, IAsyncDisposable? owner)
+    {
+        ArgumentNullException.ThrowIfNull(profile);
+        var stage = new ZaberChain(new ZaberConnection(stageLink, timeProvider), profile);
+        var gate = new PicLaserGate(laserLink, profile.Gate, timeProvider);
+        return new MachineSession(stage, gate, timeProvider, name, name, owner);
+    }
+
+    public async ValueTask DisposeAsync()
+    {
+        await Gate.DisposeAsync().ConfigureAwait(false);
+        await Stage.DisposeAsync().ConfigureAwait(false);
+        if (Owner is not null)
+        {
+            await Owner.DisposeAsync().ConfigureAwait(false);
+        }
+    }
+}
