@@ -84,8 +84,7 @@ internal static class EngraveCommand
 
             if (session.Owner is SimulatedMachine simulator)
             {
-                var g = prepared.Geometry.Geometry;
-                burn = simulator.Recorder.Analyze(new BurnGrid(g.OriginXMicrosteps, g.OriginYMicrosteps, g.PitchMicrosteps, g.WidthPx, g.HeightPx), prepared.Mask);
+                burn = simulator.Recorder.Analyze(BurnGrid.For(prepared.Plan.Geometry), prepared.Mask);
             }
 
             record = RunRecords.Complete(record, run, error, session.StagePort, session.LaserPort, DateTimeOffset.Now, session.TimeProvider.GetElapsedTime(clockStart));

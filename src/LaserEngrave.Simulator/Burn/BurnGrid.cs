@@ -1,3 +1,5 @@
+using LaserEngrave.Core.Geometry;
+
 namespace LaserEngrave.Simulator.Burn;
 
 /// <summary>A job's pixel grid on the stage, in microsteps, as the burn recorder reads it.</summary>
@@ -25,6 +27,13 @@ public sealed record BurnGrid
         PitchMicrosteps = pitchMicrosteps;
         WidthPx = widthPx;
         HeightPx = heightPx;
+    }
+
+    /// <summary>The grid a job's geometry puts on the stage.</summary>
+    public static BurnGrid For(JobGeometry geometry)
+    {
+        ArgumentNullException.ThrowIfNull(geometry);
+        return new BurnGrid(geometry.OriginXMicrosteps, geometry.OriginYMicrosteps, geometry.PitchMicrosteps, geometry.WidthPx, geometry.HeightPx);
     }
 
     /// <summary>x of the left edge of column 0, unrounded.</summary>

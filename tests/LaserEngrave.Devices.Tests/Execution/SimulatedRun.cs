@@ -46,11 +46,7 @@ internal sealed class SimulatedRun : IAsyncDisposable
 
     public BurnReport Analyze(PreparedJob job) => Machine.Recorder.Analyze(Grid(job), job.Mask);
 
-    public static BurnGrid Grid(PreparedJob job)
-    {
-        var g = job.Plan.Geometry;
-        return new BurnGrid(g.OriginXMicrosteps, g.OriginYMicrosteps, g.PitchMicrosteps, g.WidthPx, g.HeightPx);
-    }
+    public static BurnGrid Grid(PreparedJob job) => BurnGrid.For(job.Plan.Geometry);
 
     public async ValueTask DisposeAsync()
     {
