@@ -24,6 +24,7 @@ public sealed partial class RunViewModel : ObservableObject
     private readonly LogViewModel _log;
     private readonly TimeProvider _time;
     private RunPauseGate _pause = new();
+    private CancellationTokenSource? _abort;
     private long _startedTicks;
     private double _estimatedSeconds;
 
@@ -97,8 +98,8 @@ public sealed partial class RunViewModel : ObservableObject
         }
     }
 
-    /// <summary>Runs the planned job on the connected machine; its cancel command is the abort.</summary>
-    [RelayCommand(IncludeCancelCommand = true)]
+    /// <summary>Runs the planned job on the connected machine; <see cref="AbortCommand"/> stops it.</summary>
+    [RelayCommand]
     private async Task StartAsync(CancellationToken cancellationToken)
     {
         Error = null;
@@ -129,7 +130,7 @@ public sealed partial class RunViewModel : ObservableObject
     /// Continues the run that stopped (a fault or an abort) from its first burn run not completed, laser off on the way
     /// there, so the sample ends with no gap and nothing burned twice. Only while the plan is the one that stopped.
     /// </summary>
-    [RelayCommand(IncludeCancelCommand = true)]
+    [RelayCommand]
     private async Task ContinueAsync(CancellationToken cancellationToken)
     {
         Error = null;
@@ -176,7 +177,7 @@ public sealed partial class RunViewModel : ObservableObject
         if (IsActive)
         {
             State = RunState.Aborting;
-            StartCancelCommand.Execute(null);
+            _abort?.Cancel();
         }
     }
 
@@ -202,10 +203,13 @@ public sealed partial class RunViewModel : ObservableObject
         _testMoves.RunActive = true;
         RunResult? result = null;
         Exception? error = null;
+        // Whichever command started the run, Abort cancels this.
+        using var abort = CancellationTokenSource.CreateLinkedTokenSource(cancellationToken);
+        _abort = abort;
         try
         {
             var request = new RunRequest(job, connection.Stage, connection.Gate, passes, _pause) { TimeProvider = connection.TimeProvider, ResumeFrom = resumeFrom };
-            result = await _runs.RunAsync(request, new LatestProgress(this), cancellationToken).ConfigureAwait(false);
+            result = await _runs.RunAsync(request, new LatestProgress(this), abort.Token).ConfigureAwait(false);
         }
         catch (Exception ex) when (ex is DeviceException or OperationCanceledException or IOException or InvalidOperationException or TimeoutException or ObjectDisposedException)
         {
@@ -214,6 +218,7 @@ public sealed partial class RunViewModel : ObservableObject
         }
         finally
         {
+            _abort = null;
             ElapsedSecondsAtEnd = _time.GetElapsedTime(_startedTicks).TotalSeconds;
             _testMoves.RunActive = false;
         }

@@ -268,6 +268,31 @@ public sealed class RunViewModelTests
     }
 
     [Fact]
+    public async Task Abort_WhileAContinuedRunRuns_CancelsItAndRecordsAborted()
+    {
+        await ReadyAsync();
+        var continued = new TaskCompletionSource();
+        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(
+                _ => Task.FromResult(Result(RunOutcome.Failed, "x axis: no reply") with { StopPoint = new RunStopPoint(3, 20, null, null) }),
+                async c =>
+                {
+                    continued.SetResult();
+                    await Task.Delay(Timeout.Infinite, c.Arg<CancellationToken>());
+                    return Result(RunOutcome.Completed);
+                });
+        await _run.StartCommand.ExecuteAsync(null);
+        var run = _run.ContinueCommand.ExecuteAsync(null);
+        await continued.Task.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+
+        _run.AbortCommand.Execute(null);
+        await run.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+
+        Assert.Equal(RunState.Aborted, _run.State);
+        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == RunOutcome.Aborted && r.Resumed));
+    }
+
+    [Fact]
     public void Abort_NothingRunning_Harmless()
     {
         _run.AbortCommand.Execute(null);
