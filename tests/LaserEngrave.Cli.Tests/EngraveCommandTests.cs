@@ -159,7 +159,10 @@ public sealed class EngraveCommandTests : IDisposable
         Assert.Equal(record.RunsTotal, again.RootElement.GetProperty("runsDone").GetInt64());
         var resumedRecord = RunLogStore.Read(again.RootElement.GetProperty("logPath").GetString()!);
         Assert.True(resumedRecord.Resumed);
+        Assert.True(again.RootElement.GetProperty("resumed").GetBoolean());
         Assert.Equal(Path.GetFullPath(logPath), resumedRecord.RepeatOf);
+        var text = await CliHarness.RunAsync("engrave", "--from-log", logPath, "--resume", "--simulate", "--log-dir", LogDir);
+        Assert.Contains("(this run resumed another: the pixels that run burned count as missing here)", text.Out, StringComparison.Ordinal);
     }
 
     [Fact]

@@ -186,6 +186,11 @@ internal static class EngraveCommand
         if (s.MissingPixels is { } missing && s.ExtraPixels is { } extra)
         {
             output.WriteLine(string.Create(c, $"Burned vs mask:   {missing} pixels missing, {extra} extra, {s.LaserOnTravelCount} laser-on travels, {s.DwellCount} dwells"));
+            if (s.Resumed)
+            {
+                // Each --simulate starts a fresh simulator, so what the resumed run burned is not on this one.
+                output.WriteLine("                  (this run resumed another: the pixels that run burned count as missing here)");
+            }
         }
 
         if (s.BurnedPath is not null)
@@ -244,6 +249,7 @@ internal sealed record EngraveSummary(
     string? Fault,
     long? StoppedAtMove,
     bool Simulated,
+    bool Resumed,
     double DurationSeconds,
     double EngravingSeconds,
     double EstimatedSeconds,
@@ -265,6 +271,7 @@ internal sealed record EngraveSummary(
         record.Fault?.Message,
         record.StoppedAt?.MoveIndex,
         record.Simulated,
+        record.Resumed,
         record.ActualSeconds,
         record.EngravingSeconds,
         record.EstimatedSeconds,
