@@ -5,7 +5,8 @@ namespace LaserEngrave.Simulator.Burn;
 /// <summary>A job's pixel grid on the stage, in microsteps, as the burn recorder reads it.</summary>
 /// <remarks>
 /// Pixel <c>c</c> of a row spans x in [<see cref="ColumnEdge"/>(c), <see cref="ColumnEdge"/>(c + 1)); row <c>r</c> is burned
-/// along y = <see cref="RowLine"/>(r). Every edge is computed from the unrounded origin and pitch and rounded once, half
+/// along y = <see cref="RowLine"/>(r), and its cell spans y in [<see cref="RowEdge"/>(r), <see cref="RowEdge"/>(r + 1)) (where a
+/// pulse lands on the row). Every edge is computed from the unrounded origin and pitch and rounded once, half
 /// away from zero, the same rule as the planner's job geometry.
 /// </remarks>
 public sealed record BurnGrid
@@ -58,6 +59,12 @@ public sealed record BurnGrid
     /// <summary>y of the centre line along which row <paramref name="row"/> is burned.</summary>
     public long RowLine(int row) => Round(Math.FusedMultiplyAdd(row + 0.5, PitchMicrosteps, OriginYMicrosteps));
 
+    /// <summary>y of the top edge of row <paramref name="row"/>'s cell (the bottom edge of the previous one).</summary>
+    public long RowEdge(int row) => Round(Math.FusedMultiplyAdd(row, PitchMicrosteps, OriginYMicrosteps));
+
+    /// <summary>The row whose cell holds <paramref name="y"/>: -1 above the grid, <see cref="HeightPx"/> below it.</summary>
+    public int RowCellAt(double y) => CellAt(y, OriginYMicrosteps, HeightPx, columns: false);
+
     /// <summary>The row whose centre line is <paramref name="y"/>, or -1.</summary>
     public int RowAt(long y)
     {
@@ -74,29 +81,34 @@ public sealed record BurnGrid
     }
 
     /// <summary>The column whose span holds <paramref name="x"/>: -1 left of the grid, <see cref="WidthPx"/> right of it.</summary>
-    public int ColumnAt(double x)
+    public int ColumnAt(double x) => CellAt(x, OriginXMicrosteps, WidthPx, columns: true);
+
+    // The column (or row) whose [edge(i), edge(i + 1)) holds `at`: -1 before the first, `count` after the last.
+    private int CellAt(double at, double origin, int count, bool columns)
     {
-        if (x < ColumnEdge(0))
+        if (at < Edge(0))
         {
             return -1;
         }
 
-        if (x >= ColumnEdge(WidthPx))
+        if (at >= Edge(count))
         {
-            return WidthPx;
+            return count;
         }
 
-        var column = (int)Math.Clamp(Math.Floor((x - OriginXMicrosteps) / PitchMicrosteps), 0, WidthPx - 1);
-        while (column > 0 && x < ColumnEdge(column))
+        var cell = (int)Math.Clamp(Math.Floor((at - origin) / PitchMicrosteps), 0, count - 1);
+        while (cell > 0 && at < Edge(cell))
         {
-            column--;
+            cell--;
         }
 
-        while (column < WidthPx - 1 && x >= ColumnEdge(column + 1))
+        while (cell < count - 1 && at >= Edge(cell + 1))
         {
-            column++;
+            cell++;
         }
 
-        return column;
+        return cell;
+
+        long Edge(int i) => columns ? ColumnEdge(i) : RowEdge(i);
     }
 }

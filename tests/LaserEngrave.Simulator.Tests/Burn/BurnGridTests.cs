@@ -45,6 +45,28 @@ public class BurnGridTests
     }
 
     [Fact]
+    public void RowEdge_IsRoundedOnceFromTheUnroundedPitch()
+    {
+        // 2000.7 + 89 x 559.93 = 51834.47.
+        Assert.Equal(51_834, Grid.RowEdge(89));
+        Assert.Equal(2001, Grid.RowEdge(0));
+    }
+
+    [Fact]
+    public void RowCellAt_RowLinesAndEdges_FallInTheirCells()
+    {
+        for (var row = 0; row < Grid.HeightPx; row++)
+        {
+            Assert.Equal(row, Grid.RowCellAt(Grid.RowLine(row)));
+            Assert.Equal(row, Grid.RowCellAt(Grid.RowEdge(row)));
+            Assert.Equal(row, Grid.RowCellAt(Grid.RowEdge(row + 1) - 0.001));
+        }
+
+        Assert.Equal(-1, Grid.RowCellAt(2000.9));
+        Assert.Equal(Grid.HeightPx, Grid.RowCellAt(Grid.RowEdge(Grid.HeightPx)));
+    }
+
+    [Fact]
     public void Round_HalfMicrostep_GoesAwayFromZero()
     {
         Assert.Equal(3, BurnGrid.Round(2.5));
