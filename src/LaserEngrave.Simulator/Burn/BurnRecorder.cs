@@ -10,24 +10,18 @@ namespace LaserEngrave.Simulator.Burn;
 /// <param name="ErrorCode">The error code replied.</param>
 public readonly record struct RefusedMove(double AtSeconds, AxisName Axis, int Command, int ErrorCode);
 
-/// <summary>Records when the laser fired and, with the axes' trajectories, works out what was burned.</summary>
+/// <summary>Records when the laser fired and, with the axes' trajectories, works out what its pulses burned.</summary>
 /// <remarks>
-/// Times are seconds of simulation time, positions microsteps. The analysis cuts every laser-on interval at each
-/// change of either axis' motion segment, so within a piece each axis moves one way at most:
-/// <list type="bullet">
-/// <item>X moving, Y standing on a row's centre line: the row is covered over that x span; any part of it over a pixel
-/// the expected image has white, or outside the grid, is laser-on travel.</item>
-/// <item>X moving with Y anywhere else, or Y moving: all of it is laser-on travel.</item>
-/// <item>Both still: dwell; a stand counts once it lasts longer than the dwell tolerance, because completion-based
-/// replies leave the laser standing at both ends of every burn run for a reply and a gate command (see
-/// <see cref="SimulatorOptions.DwellTolerance"/>).</item>
-/// </list>
-/// Thread-safe.
+/// Times are seconds of simulation time, positions microsteps. The recorder keeps the laser's on/off changes and their
+/// frequency; <see cref="Analyze"/> turns them into the Q-switch's pulse train (one pulse every 1 / f s from the instant
+/// the laser switched on), lands each pulse at the stage's position at its instant, and reports what that burned
+/// (docs/simulator.md, "The burn recorder"). It also keeps today's time-based stand counters: a laser-on stand (both
+/// axes still) counts as a dwell once it lasts longer than the dwell tolerance, because completion-based replies leave
+/// the laser standing at both ends of every burn run for a reply and a gate command (see
+/// <see cref="SimulatorOptions.DwellTolerance"/>). Thread-safe.
 /// </remarks>
 public sealed class BurnRecorder
 {
-    private const double Epsilon = 1e-6;
-
     private readonly Lock _lock = new();
     private readonly List<(double AtSeconds, double FrequencyHz)> _laser = [];
     private readonly List<RefusedMove> _refused = [];
@@ -87,8 +81,14 @@ public sealed class BurnRecorder
     }
 
     /// <summary>The laser's frequency changed at <paramref name="atSeconds"/> (0 = off).</summary>
+    /// <remarks>Only switching on and off is kept: a new frequency while the laser fires does not change its pulse train.</remarks>
     public void RecordLaser(double atSeconds, double frequencyHz)
     {
+        if (!(frequencyHz >= 0 && double.IsFinite(frequencyHz)))
+        {
+            throw new ArgumentOutOfRangeException(nameof(frequencyHz), frequencyHz, "a laser frequency is 0 (off) or a finite number of Hz");
+        }
+
         lock (_lock)
         {
             var on = frequencyHz > 0;
@@ -120,21 +120,52 @@ public sealed class BurnRecorder
     }
 
     /// <summary>The laser-on intervals, ended at <paramref name="untilSeconds"/> when still open.</summary>
-    public IReadOnlyList<(double From, double To)> LaserOnIntervals(double untilSeconds)
+    public IReadOnlyList<(double From, double To)> LaserOnIntervals(double untilSeconds) =>
+        [.. LaserPeriods(untilSeconds).Select(p => (p.FromSeconds, p.ToSeconds))];
+
+    /// <summary>Works out the burned image and the figures on <paramref name="grid"/>.</summary>
+    /// <param name="grid">The job's pixel grid.</param>
+    /// <param name="expected">The image that should have been burned (same size as the grid): white pixels make laser-on
+    /// travel and extra pixels, its burn runs are where edges are measured.</param>
+    /// <param name="burnSpeedMmPerS">The process' burn speed, mm/s: the pulse spacing at frequency f is this / f, and a pulse
+    /// fired below a tenth of it is a dwell. Without it <see cref="BurnReport.Edges"/> and <see cref="BurnReport.Dwells"/> are null.</param>
+    public BurnReport Analyze(BurnGrid grid, BitMask? expected = null, double? burnSpeedMmPerS = null)
+    {
+        ArgumentNullException.ThrowIfNull(grid);
+        if (expected is not null && (expected.Width != grid.WidthPx || expected.Height != grid.HeightPx))
+        {
+            throw new ArgumentException($"the expected image is {expected.Width} x {expected.Height} px, the grid {grid.WidthPx} x {grid.HeightPx}", nameof(expected));
+        }
+
+        if (burnSpeedMmPerS is { } speed && !(speed > 0 && double.IsFinite(speed)))
+        {
+            throw new ArgumentOutOfRangeException(nameof(burnSpeedMmPerS), speed, "the burn speed must be above 0 mm/s");
+        }
+
+        MotionSegment[] xs = [.. X.Segments];
+        MotionSegment[] ys = [.. Y.Segments];
+        var until = _now?.Invoke() ?? LastInstant(xs, ys);
+        var analysis = new PulseAnalysis(grid, expected, XMicrostepUm, YMicrostepUm, DwellTolerance.TotalSeconds, burnSpeedMmPerS);
+        analysis.Walk(LaserPeriods(until), xs, ys);
+        return analysis.Report(RefusedMoves.Count);
+    }
+
+    // The laser-on periods inside the window, in time order, the last one ended at untilSeconds when still open.
+    private List<LaserPeriod> LaserPeriods(double untilSeconds)
     {
         lock (_lock)
         {
-            var intervals = new List<(double, double)>();
-            double? on = null;
+            var periods = new List<LaserPeriod>();
+            (double At, double Hz)? on = null;
             foreach (var (at, hz) in _laser.OrderBy(c => c.AtSeconds))
             {
                 if (hz > 0)
                 {
-                    on ??= at;
+                    on ??= (at, hz);
                 }
-                else if (on is { } from)
+                else if (on is { } start)
                 {
-                    Add(from, at);
+                    Add(start, at);
                     on = null;
                 }
             }
@@ -144,280 +175,26 @@ public sealed class BurnRecorder
                 Add(open, untilSeconds);
             }
 
-            return intervals;
+            return periods;
 
-            void Add(double from, double to)
+            void Add((double At, double Hz) start, double off)
             {
-                from = Math.Max(from, _windowStart);
-                to = Math.Min(to, untilSeconds);
+                var from = Math.Max(start.At, _windowStart);
+                var to = Math.Min(off, untilSeconds);
                 if (to > from)
                 {
-                    intervals.Add((from, to));
+                    periods.Add(new LaserPeriod(start.At, from, to, start.Hz));
                 }
             }
         }
     }
 
-    /// <summary>Works out the burned image and the counters on <paramref name="grid"/>.</summary>
-    /// <param name="grid">The job's pixel grid.</param>
-    /// <param name="expected">The image that should have been burned (same size as the grid), to find laser-on travel over white.</param>
-    public BurnReport Analyze(BurnGrid grid, BitMask? expected = null)
-    {
-        ArgumentNullException.ThrowIfNull(grid);
-        if (expected is not null && (expected.Width != grid.WidthPx || expected.Height != grid.HeightPx))
-        {
-            throw new ArgumentException($"the expected image is {expected.Width} x {expected.Height} px, the grid {grid.WidthPx} x {grid.HeightPx}", nameof(expected));
-        }
-
-        var xs = X.Segments;
-        var ys = Y.Segments;
-        var until = _now?.Invoke() ?? LastInstant(xs, ys);
-        var analysis = new Analysis(grid, expected, XMicrostepUm, YMicrostepUm, DwellTolerance.TotalSeconds);
-        foreach (var (from, to) in LaserOnIntervals(until))
-        {
-            analysis.LaserOnSeconds += to - from;
-            var cuts = new SortedSet<double> { from, to };
-            AddCuts(cuts, xs, from, to);
-            AddCuts(cuts, ys, from, to);
-            var times = cuts.ToArray();
-            for (var i = 0; i + 1 < times.Length; i++)
-            {
-                var (t0, t1) = (times[i], times[i + 1]);
-                analysis.Piece(t1 - t0, PositionAt(xs, t0), PositionAt(xs, t1), PositionAt(ys, t0), PositionAt(ys, t1));
-            }
-
-            analysis.EndInterval();
-        }
-
-        var burned = analysis.Burned();
-        long extra = 0, missing = 0;
-        if (expected is not null)
-        {
-            for (var row = 0; row < grid.HeightPx; row++)
-            {
-                for (var column = 0; column < grid.WidthPx; column++)
-                {
-                    extra += burned[column, row] && !expected[column, row] ? 1 : 0;
-                    missing += !burned[column, row] && expected[column, row] ? 1 : 0;
-                }
-            }
-        }
-
-        return new BurnReport
-        {
-            Burned = burned,
-            LaserOnTravelUm = analysis.TravelUm,
-            LaserOnTravelCount = analysis.TravelCount,
-            DwellCount = analysis.DwellCount,
-            DwellSeconds = analysis.DwellSeconds,
-            LongestDwellSeconds = analysis.LongestDwellSeconds,
-            RefusedMoves = RefusedMoves.Count,
-            LaserOnSeconds = analysis.LaserOnSeconds,
-            ExtraPixels = extra,
-            MissingPixels = missing,
-        };
-    }
-
-    private double LastInstant(IReadOnlyList<MotionSegment> xs, IReadOnlyList<MotionSegment> ys)
+    private double LastInstant(MotionSegment[] xs, MotionSegment[] ys)
     {
         lock (_lock)
         {
             var last = Math.Max(xs[^1].EndSeconds, ys[^1].EndSeconds);
             return _laser.Count > 0 ? Math.Max(last, _laser.Max(c => c.AtSeconds)) : last;
-        }
-    }
-
-    // Adds the starts and ends of the segments that change motion strictly inside (from, to).
-    private static void AddCuts(SortedSet<double> cuts, IReadOnlyList<MotionSegment> segments, double from, double to)
-    {
-        for (var i = IndexAt(segments, from); i < segments.Count && segments[i].StartSeconds < to; i++)
-        {
-            foreach (var t in (ReadOnlySpan<double>)[segments[i].StartSeconds, segments[i].EndSeconds])
-            {
-                if (t > from && t < to)
-                {
-                    cuts.Add(t);
-                }
-            }
-        }
-    }
-
-    private static double PositionAt(IReadOnlyList<MotionSegment> segments, double t) => segments[IndexAt(segments, t)].PositionAt(t);
-
-    // The last segment started by t (the first for earlier t); segments are in start order.
-    private static int IndexAt(IReadOnlyList<MotionSegment> segments, double t)
-    {
-        int lo = 0, hi = segments.Count - 1;
-        while (lo < hi)
-        {
-            var mid = (lo + hi + 1) / 2;
-            if (segments[mid].StartSeconds <= t)
-            {
-                lo = mid;
-            }
-            else
-            {
-                hi = mid - 1;
-            }
-        }
-
-        return lo;
-    }
-
-    /// <summary>The running sums of one analysis.</summary>
-    private sealed class Analysis(BurnGrid grid, BitMask? expected, double xUm, double yUm, double dwellTolerance)
-    {
-        private readonly List<(double Lo, double Hi)>[] _cover = new List<(double, double)>[grid.HeightPx];
-        private double _stand;
-        private bool _travelling;
-
-        public double TravelUm { get; private set; }
-
-        public int TravelCount { get; private set; }
-
-        public int DwellCount { get; private set; }
-
-        public double DwellSeconds { get; private set; }
-
-        public double LongestDwellSeconds { get; private set; }
-
-        public double LaserOnSeconds { get; set; }
-
-        public void Piece(double seconds, double x0, double x1, double y0, double y1)
-        {
-            var xMoves = Math.Abs(x1 - x0) > Epsilon;
-            var yMoves = Math.Abs(y1 - y0) > Epsilon;
-            if (!xMoves && !yMoves)
-            {
-                _stand += seconds;
-                return;
-            }
-
-            EndStand();
-            double travel;
-            if (yMoves)
-            {
-                travel = Math.Sqrt(Square((x1 - x0) * xUm) + Square((y1 - y0) * yUm));
-            }
-            else
-            {
-                var (lo, hi) = x0 < x1 ? (x0, x1) : (x1, x0);
-                var line = Math.Round(y0);
-                var row = Math.Abs(y0 - line) <= Epsilon ? grid.RowAt((long)line) : -1;
-                if (row < 0)
-                {
-                    travel = (hi - lo) * xUm;
-                }
-                else
-                {
-                    (_cover[row] ??= []).Add((lo, hi));
-                    travel = OverWhite(row, lo, hi) * xUm;
-                }
-            }
-
-            var travelling = travel > Epsilon;
-            if (travelling)
-            {
-                TravelUm += travel;
-                TravelCount += _travelling ? 0 : 1;
-            }
-
-            _travelling = travelling;
-        }
-
-        public void EndInterval()
-        {
-            EndStand();
-            _travelling = false;
-        }
-
-        public BitMask Burned()
-        {
-            var mask = new BitMask(grid.WidthPx, grid.HeightPx);
-            var covered = new double[grid.WidthPx];
-            for (var row = 0; row < grid.HeightPx; row++)
-            {
-                if (_cover[row] is not { } spans)
-                {
-                    continue;
-                }
-
-                Array.Clear(covered);
-                foreach (var (lo, hi) in Merge(spans))
-                {
-                    for (var column = Math.Max(0, grid.ColumnAt(lo)); column < grid.WidthPx && grid.ColumnEdge(column) < hi; column++)
-                    {
-                        covered[column] += Overlap(lo, hi, grid.ColumnEdge(column), grid.ColumnEdge(column + 1));
-                    }
-                }
-
-                for (var column = 0; column < grid.WidthPx; column++)
-                {
-                    var width = grid.ColumnEdge(column + 1) - grid.ColumnEdge(column);
-                    mask[column, row] = width > 0 && covered[column] >= (width / 2.0) - Epsilon;
-                }
-            }
-
-            return mask;
-        }
-
-        private static double Square(double v) => v * v;
-
-        private static double Overlap(double lo, double hi, double from, double to) => Math.Max(0, Math.Min(hi, to) - Math.Max(lo, from));
-
-        private static List<(double Lo, double Hi)> Merge(List<(double Lo, double Hi)> spans)
-        {
-            spans.Sort();
-            var merged = new List<(double Lo, double Hi)>();
-            foreach (var span in spans)
-            {
-                if (merged.Count > 0 && span.Lo <= merged[^1].Hi)
-                {
-                    merged[^1] = (merged[^1].Lo, Math.Max(merged[^1].Hi, span.Hi));
-                }
-                else
-                {
-                    merged.Add(span);
-                }
-            }
-
-            return merged;
-        }
-
-        // Length of [lo, hi] outside the grid or over pixels the expected image has white.
-        private double OverWhite(int row, double lo, double hi)
-        {
-            double left = grid.ColumnEdge(0), right = grid.ColumnEdge(grid.WidthPx);
-            var white = Overlap(lo, hi, double.NegativeInfinity, left) + Overlap(lo, hi, right, double.PositiveInfinity);
-            if (expected is null)
-            {
-                return white;
-            }
-
-            for (var column = Math.Max(0, grid.ColumnAt(lo)); column < grid.WidthPx && grid.ColumnEdge(column) < hi; column++)
-            {
-                if (!expected[column, row])
-                {
-                    white += Overlap(lo, hi, grid.ColumnEdge(column), grid.ColumnEdge(column + 1));
-                }
-            }
-
-            return white;
-        }
-
-        private void EndStand()
-        {
-            if (_stand > 0)
-            {
-                LongestDwellSeconds = Math.Max(LongestDwellSeconds, _stand);
-                if (_stand > dwellTolerance)
-                {
-                    DwellCount++;
-                    DwellSeconds += _stand;
-                }
-            }
-
-            _stand = 0;
         }
     }
 }

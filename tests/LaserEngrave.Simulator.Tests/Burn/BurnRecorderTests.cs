@@ -5,6 +5,7 @@ using LaserEngrave.Simulator.Motion;
 namespace LaserEngrave.Simulator.Tests.Burn;
 
 /// <summary>The burn recorder on hand-made trajectories: constant-speed moves with the laser switched on and off by hand.</summary>
+/// <remarks>At 1 kHz one pulse lands every millisecond from the instant the laser switched on (BurnRecorderPulseTests for the pulse figures).</remarks>
 public class BurnRecorderTests
 {
     private const double MicrostepUm = 0.09921875;
@@ -20,67 +21,59 @@ public class BurnRecorderTests
         recorder.RecordLaser(2.0, 1000);
         MoveAt(x, 2.01, Grid.ColumnEdge(2), Grid.ColumnEdge(6), 1000);
         recorder.RecordLaser(2.01 + (Grid.ColumnEdge(6) - Grid.ColumnEdge(2)) / 1000.0 + 0.01, 0);
+        var expected = Mask(Grid, (1, [2, 3, 4, 5]));
 
-        var report = recorder.Analyze(Grid);
+        // The 10 ms stand on the run's right edge lands on column 6's left edge: the expected image says that is column 5's.
+        var report = recorder.Analyze(Grid, expected);
 
-        Assert.Equal(Mask(Grid, (1, [2, 3, 4, 5])), report.Burned, MaskComparer.Instance);
+        Assert.Equal(expected, report.Burned, MaskComparer.Instance);
         Assert.Equal(0, report.LaserOnTravelUm);
         Assert.Equal(0, report.DwellCount);
         Assert.Equal(0.01, report.LongestDwellSeconds, 9);
     }
 
     [Fact]
-    public void Analyze_LaserOnWhileYMoves_CountsTravelAndBurnsNothing()
+    public void Analyze_LaserOnWhileYMovesOverWhite_EveryPulseIsTravel()
     {
         var (_, y, recorder) = Machine(Grid.ColumnEdge(0), Grid.RowLine(0));
         recorder.RecordLaser(0.5, 1000);
         MoveAt(y, 1.0, Grid.RowLine(0), Grid.RowLine(2), 2000);
         recorder.RecordLaser(10, 0);
 
+        var report = recorder.Analyze(Grid, new BitMask(Grid.WidthPx, Grid.HeightPx));
+
+        // 9.5 s at 1 kHz, every pulse on column 0 of the row the stage is over.
+        Assert.Equal(9500, report.LaserOnTravelCount);
+        Assert.Equal((Grid.RowLine(2) - Grid.RowLine(0)) * MicrostepUm, report.LaserOnTravelUm, 6);
+        Assert.Equal(Mask(Grid, (0, [0]), (1, [0]), (2, [0])), report.Burned, MaskComparer.Instance);
+        Assert.Equal(3, report.ExtraPixels);
+    }
+
+    [Fact]
+    public void Analyze_OnePulseOnAPixel_BurnsIt()
+    {
+        var (_, _, recorder) = Machine((Grid.ColumnEdge(4) + Grid.ColumnEdge(5)) / 2, Grid.RowLine(2));
+        recorder.RecordLaser(0, 1000);
+        recorder.RecordLaser(0.0005, 0);
+
         var report = recorder.Analyze(Grid);
 
-        Assert.Equal(0, report.Burned.CountSet());
-        Assert.Equal(1, report.LaserOnTravelCount);
-        Assert.Equal((Grid.RowLine(2) - Grid.RowLine(0)) * MicrostepUm, report.LaserOnTravelUm, 6);
+        Assert.Equal(1, report.Pulses);
+        Assert.Equal(Mask(Grid, (2, [4])), report.Burned, MaskComparer.Instance);
     }
 
     [Fact]
-    public void Analyze_LaserOnOverExactlyHalfAPixel_BurnsIt()
+    public void Analyze_PulsesFurtherApartThanAPixel_LeaveThePixelsBetweenWhite()
     {
-        var (x, _, recorder) = Machine(Grid.ColumnEdge(4), Grid.RowLine(2));
-        var width = Grid.ColumnEdge(5) - Grid.ColumnEdge(4);
-        MoveAt(x, 0, Grid.ColumnEdge(4), Grid.ColumnEdge(4) + 1000, 1000);
+        var (x, _, recorder) = Machine(Grid.ColumnEdge(0), Grid.RowLine(0));
+        MoveAt(x, 0, Grid.ColumnEdge(0), Grid.ColumnEdge(10), 1_000_000);
         recorder.RecordLaser(0, 1000);
-        recorder.RecordLaser(width / 2.0 / 1000.0, 0);
+        recorder.RecordLaser(0.0045, 0);
 
-        Assert.True(recorder.Analyze(Grid).Burned[4, 2]);
-    }
+        // A pulse every 1000 microsteps from 1000: at 1000, 2000, 3000, 4000 and 5000, in columns 0, 1, 3, 5 and 7.
+        var report = recorder.Analyze(Grid);
 
-    [Fact]
-    public void Analyze_LaserOnOverJustUnderHalfAPixel_LeavesItWhite()
-    {
-        var (x, _, recorder) = Machine(Grid.ColumnEdge(4), Grid.RowLine(2));
-        var width = Grid.ColumnEdge(5) - Grid.ColumnEdge(4);
-        MoveAt(x, 0, Grid.ColumnEdge(4), Grid.ColumnEdge(4) + 1000, 1000);
-        recorder.RecordLaser(0, 1000);
-        recorder.RecordLaser(((width / 2.0) - 0.01) / 1000.0, 0);
-
-        Assert.False(recorder.Analyze(Grid).Burned[4, 2]);
-    }
-
-    [Fact]
-    public void Analyze_HalvesOfAPixelFromTwoPasses_AddUp()
-    {
-        var (x, _, recorder) = Machine(Grid.ColumnEdge(7), Grid.RowLine(0));
-        var half = (Grid.ColumnEdge(8) - Grid.ColumnEdge(7)) / 2.0;
-        MoveAt(x, 0, Grid.ColumnEdge(7), Grid.ColumnEdge(8), 100);
-        recorder.RecordLaser(0, 1000);
-        recorder.RecordLaser(0.25 * half / 100, 0);
-        recorder.RecordLaser(0.75 * half / 100, 1000);
-        recorder.RecordLaser(1.5 * half / 100, 0);
-
-        // Covered: the first quarter, then from three eighths to three quarters: 5/8 of the pixel.
-        Assert.True(recorder.Analyze(Grid).Burned[7, 0]);
+        Assert.Equal(Mask(Grid, (0, [0, 1, 3, 5, 7])), report.Burned, MaskComparer.Instance);
     }
 
     [Fact]
@@ -94,8 +87,15 @@ public class BurnRecorderTests
 
         var report = recorder.Analyze(Grid, expected);
 
-        Assert.Equal(1, report.LaserOnTravelCount);
-        Assert.Equal((Grid.ColumnEdge(4) - Grid.ColumnEdge(3)) * MicrostepUm, report.LaserOnTravelUm, 6);
+        // Pulses 2 microsteps apart from column 1's edge; those more than half a microstep inside white column 3 are travel.
+        var travel = 0;
+        for (var at = Grid.ColumnEdge(1); at <= Grid.ColumnEdge(5); at += 2)
+        {
+            travel += at > Grid.ColumnEdge(3) + 0.5 && at < Grid.ColumnEdge(4) - 0.5 ? 1 : 0;
+        }
+
+        Assert.Equal(travel, report.LaserOnTravelCount);
+        Assert.Equal(travel * 2 * MicrostepUm, report.LaserOnTravelUm, 6);
         Assert.Equal(1, report.ExtraPixels);
         Assert.Equal(0, report.MissingPixels);
     }
@@ -117,9 +117,24 @@ public class BurnRecorderTests
     }
 
     [Fact]
-    public void Analyze_XMoveOffTheRowLines_IsTravel()
+    public void Analyze_XMoveOffTheRowLineWithinItsCell_BurnsThatRow()
     {
+        var expected = Mask(Grid, (0, [0, 1]));
         var (x, _, recorder) = Machine(Grid.ColumnEdge(0), Grid.RowLine(0) + 3);
+        recorder.RecordLaser(0, 1000);
+        MoveAt(x, 0, Grid.ColumnEdge(0), Grid.ColumnEdge(2), 1000);
+        recorder.RecordLaser(5, 0);
+
+        var report = recorder.Analyze(Grid, expected);
+
+        Assert.Equal(expected, report.Burned, MaskComparer.Instance);
+        Assert.Equal(0, report.LaserOnTravelCount);
+    }
+
+    [Fact]
+    public void Analyze_XMoveAboveTheGrid_EveryPulseIsTravel()
+    {
+        var (x, _, recorder) = Machine(Grid.ColumnEdge(0), Grid.RowEdge(0) - 1);
         recorder.RecordLaser(0, 1000);
         MoveAt(x, 0, Grid.ColumnEdge(0), Grid.ColumnEdge(2), 1000);
         recorder.RecordLaser(5, 0);
@@ -127,6 +142,7 @@ public class BurnRecorderTests
         var report = recorder.Analyze(Grid);
 
         Assert.Equal(0, report.Burned.CountSet());
+        Assert.Equal(5000, report.LaserOnTravelCount);
         Assert.Equal((Grid.ColumnEdge(2) - Grid.ColumnEdge(0)) * MicrostepUm, report.LaserOnTravelUm, 6);
     }
 
@@ -140,12 +156,16 @@ public class BurnRecorderTests
 
         var report = recorder.Analyze(Grid);
 
+        // Pulse k lands at column 8's edge + k (1 microstep a millisecond) until the stop: outside from the first one past
+        // the grid's edge (the one on it lands on column 9) to the last before the switch-off at k = 5000.
+        var firstOutside = Grid.ColumnEdge(10) + 1 - Grid.ColumnEdge(8);
         Assert.Equal(Mask(Grid, (1, [8, 9])), report.Burned, MaskComparer.Instance);
+        Assert.Equal(5000 - firstOutside, report.LaserOnTravelCount);
         Assert.Equal(500 * MicrostepUm, report.LaserOnTravelUm, 6);
     }
 
     [Fact]
-    public void Analyze_TwoSeparateTravels_CountTwice()
+    public void Analyze_TwoLaserOnPeriodsOffTheGrid_CountEveryPulse()
     {
         var (_, y, recorder) = Machine(0, 0);
         recorder.RecordLaser(0, 1000);
@@ -155,7 +175,7 @@ public class BurnRecorderTests
         MoveAt(y, 2, 100, 200, 1000);
         recorder.RecordLaser(3, 0);
 
-        Assert.Equal(2, recorder.Analyze(Grid).LaserOnTravelCount);
+        Assert.Equal(2000, recorder.Analyze(Grid).LaserOnTravelCount);
     }
 
     [Fact]
@@ -216,7 +236,7 @@ public class BurnRecorderTests
         MoveAt(x, 5, Grid.ColumnEdge(3), Grid.ColumnEdge(4), 1000);
         recorder.RecordLaser(7, 0);
 
-        var report = recorder.Analyze(Grid);
+        var report = recorder.Analyze(Grid, Mask(Grid, (0, [3])));
         Assert.Equal(Mask(Grid, (0, [3])), report.Burned, MaskComparer.Instance);
         Assert.Equal(0, report.RefusedMoves);
     }
