@@ -288,6 +288,58 @@ public class BurnRecorderPulseTests
         Assert.True(report.Burned.ContentEquals(expected));
     }
 
+    [Fact]
+    public void Analyze_StopGoRunsAtOneKilohertzAndOneMmPerS_BurnExactlyTheImage()
+    {
+        // 55 µm pixels, 1 mm/s, 50 mm/s² ramps, as today's executor: the laser switched on 20 ms before each run's move
+        // (standing on its first edge) and off 10 ms after it stops (on its last edge); the travel between runs dark.
+        const double pitch = 55 / MicrostepUm, speed = 1000 / MicrostepUm, acceleration = 50_000 / MicrostepUm;
+        var image = new BitMask(8, 3);
+        string[] rows = ["..##..#.", "#......#", ".######."];
+        var grid = new BurnGrid(20_000.4, 30_000.6, pitch, 8, 3);
+        var (x, y, recorder) = Machine(0, grid.RowLine(0));
+        var t = 0.0;
+        var runs = 0;
+        for (var row = 0; row < rows.Length; row++)
+        {
+            MoveAt(y, t, y.PositionAt(t), grid.RowLine(row), speed);
+            t = y.EndSeconds + 0.01;
+            for (var column = 0; column < rows[row].Length; column++)
+            {
+                if (rows[row][column] != '#' || (column > 0 && rows[row][column - 1] == '#'))
+                {
+                    continue;
+                }
+
+                var end = column;
+                while (end + 1 < rows[row].Length && rows[row][end + 1] == '#')
+                {
+                    end++;
+                }
+
+                for (var c = column; c <= end; c++)
+                {
+                    image[c, row] = true;
+                }
+
+                MoveAt(x, t, x.PositionAt(t), grid.ColumnEdge(column), 4 * speed);
+                t = x.EndSeconds + 0.01;
+                recorder.RecordLaser(t, Hz);
+                Trapezoid(x, t + 0.02, grid.ColumnEdge(column), grid.ColumnEdge(end + 1), speed, acceleration);
+                t = x.EndSeconds + 0.01;
+                recorder.RecordLaser(t, 0);
+                runs++;
+            }
+        }
+
+        var report = recorder.Analyze(grid, image, 1);
+
+        Assert.True(report.Burned.ContentEquals(image), $"{report.ExtraPixels} extra, {report.MissingPixels} missing");
+        Assert.Equal(0, report.LaserOnTravelCount);
+        Assert.Equal(2 * runs, report.Dwells!.Count);
+        Assert.Equal(2 * runs, report.Edges!.Count);
+    }
+
     // A run over columns 2 and 3 of row 1 at `speed`, switched on at 2000 + D/2 and off after 1000 microsteps of travel.
     private static BurnRecorder PerfectRun(double speed, out BitMask expected)
     {
@@ -318,6 +370,21 @@ public class BurnRecorderPulseTests
     {
         var duration = Math.Abs(to - from) / speed;
         axis.Replace(start, [new MotionSegment(start, from, Math.Sign(to - from) * speed, 0, duration), MotionSegment.Hold(start + duration, to)]);
+    }
+
+    // A trapezoidal move from rest to rest: ramps at `acceleration`, cruising at `speed` (the distance allows it).
+    private static void Trapezoid(AxisTrajectory axis, double start, double from, double to, double speed, double acceleration)
+    {
+        var sign = Math.Sign(to - from);
+        var ramp = speed / acceleration;
+        var cruise = (Math.Abs(to - from) - (speed * ramp)) / speed;
+        var cruiseFrom = from + (sign * speed * ramp / 2);
+        var decelerateFrom = cruiseFrom + (sign * speed * cruise);
+        axis.Replace(start, [
+            new MotionSegment(start, from, 0, sign * acceleration, ramp),
+            new MotionSegment(start + ramp, cruiseFrom, sign * speed, 0, cruise),
+            new MotionSegment(start + ramp + cruise, decelerateFrom, sign * speed, -sign * acceleration, ramp),
+            MotionSegment.Hold(start + ramp + cruise + ramp, to)]);
     }
 
     private static BitMask Mask(params (int Row, int[] Columns)[] set)
