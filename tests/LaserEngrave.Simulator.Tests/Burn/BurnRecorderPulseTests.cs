@@ -88,6 +88,25 @@ public class BurnRecorderPulseTests
     }
 
     [Fact]
+    public void WriteDosePng_TheMostPulsesAreBlackNoneWhite()
+    {
+        var (x, _, recorder) = Machine(2000, Grid.RowLine(1));
+        recorder.RecordLaser(1.0, Hz);
+        MoveAt(x, 1.005, 2000, 3000, Speed);
+        recorder.RecordLaser(1.1, 0);
+        using var png = new MemoryStream();
+
+        recorder.Analyze(Grid, Run).WriteDosePng(png);
+        png.Position = 0;
+        var image = ImageLoader.Load(png, "dose.png");
+
+        // 18 pulses (the most), 12 of 18 (255 - 255 x 12 / 18 = 85), none.
+        Assert.Equal(Rgba32.Black, image.GetPixel(2 * 4, (1 * 4) + 2));
+        Assert.Equal(new Rgba32(85, 85, 85), image.GetPixel((2 * 4) + 1, (1 * 4) + 2));
+        Assert.Equal(Rgba32.White, image.GetPixel(0, 0));
+    }
+
+    [Fact]
     public void Analyze_PerfectlyTimedReverseRun_HasNoEdgeError()
     {
         var (x, _, recorder) = Machine(5000, Grid.RowLine(1));
