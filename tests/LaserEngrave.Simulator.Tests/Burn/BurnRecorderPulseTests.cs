@@ -177,6 +177,46 @@ public class BurnRecorderPulseTests
     }
 
     [Fact]
+    public void Analyze_PulsesInTheGapBetweenTwoRuns_CountForTheNearerRun()
+    {
+        // Runs at columns 2-3 (2000..3000) and 6-7 (4000..5000) of row 1: the gap splits at 3500. One pass at 10
+        // microsteps a pulse: the first run's laser stays on to 3395, the second's comes on at 3605, both 400 microsteps
+        // beyond their runs; the other two ends are exact (2005 and 4995).
+        var (x, _, recorder) = Machine(1000, Grid.RowLine(1));
+        MoveAt(x, 0, 1000, 6000, Speed);
+        recorder.RecordLaser(0.1005, Hz);
+        recorder.RecordLaser(0.2405, 0);
+        recorder.RecordLaser(0.2605, Hz);
+        recorder.RecordLaser(0.4005, 0);
+
+        var report = recorder.Analyze(Grid, Mask((1, [2, 3, 6, 7])), BurnSpeedMmPerS);
+
+        var off = 400 * MicrostepUm;
+        Assert.Equal(new EdgeFigures(4, Round(2 * off / 4), Round(off), 0), Rounded(report.Edges));
+
+        // On white columns 4 and 5: 3005 to 3395 and 3605 to 3995, 40 pulses each.
+        Assert.Equal(80, report.LaserOnTravelCount);
+    }
+
+    [Theory]
+    [InlineData(600, 1)]
+    [InlineData(400, 0)]
+    public void Analyze_PulsesLeftOfTheGrid_CountForTheBorderRunUpToAPixelBeyond(double at, int caught)
+    {
+        // Run: columns 0 and 1 of row 1 (1000..2000); the grid's border is at 1000, one pixel beyond it at 500.
+        var (_, _, recorder) = Machine(at, Grid.RowLine(1));
+        recorder.RecordLaser(0, Hz);
+        recorder.RecordLaser(0.003, 0);
+
+        var edges = recorder.Analyze(Grid, Mask((1, [0, 1])), BurnSpeedMmPerS).Edges!;
+
+        var left = (1000 + (Spacing / 2) - at) * MicrostepUm;
+        var right = (2000 - (Spacing / 2) - at) * MicrostepUm;
+        var expected = caught == 1 ? new EdgeFigures(2, Round((left + right) / 2), Round(right), 0) : new EdgeFigures(0, 0, 0, 1);
+        Assert.Equal(expected, Rounded(edges));
+    }
+
+    [Fact]
     public void Analyze_CrawlUnderATenthOfTheBurnSpeed_IsDwell()
     {
         var (x, _, recorder) = Machine(2000, Grid.RowLine(1));
