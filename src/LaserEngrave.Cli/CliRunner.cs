@@ -57,7 +57,7 @@ internal static class CliRunner
 
     public static int ExitCodeFor(Exception ex) => ex switch
     {
-        UsageException or ProfileException or RunLogException or GeometryException or PlanException or ArgumentException or FormatException => BadInput,
+        UsageException or InvalidDataException or ProfileException or RunLogException or GeometryException or PlanException or ArgumentException or FormatException => BadInput,
         _ when ex.GetType().Name == "ImageLoadException" => BadInput,
         TestMoveException => BadInput,
         DeviceException => Failure,

@@ -1,9 +1,11 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Machine;
+using LaserEngrave.Devices.Scheduling;
 using LaserEngrave.Devices.Serial;
 using LaserEngrave.Simulator.Burn;
 using LaserEngrave.Simulator.Faults;
 using LaserEngrave.Simulator.LaserGate;
+using LaserEngrave.Simulator.Serial;
 using LaserEngrave.Simulator.Timing;
 using LaserEngrave.Simulator.Zaber;
 
@@ -11,11 +13,12 @@ namespace LaserEngrave.Simulator;
 
 /// <summary>The whole machine in software: the Zaber chain on one link, the laser gate on another, a burn recorder and faults.</summary>
 /// <remarks>
-/// In-process (<see cref="CreateInProcess"/>) the host talks to <see cref="StageLink"/> and <see cref="LaserLink"/>
-/// and must use <see cref="TimeProvider"/> for every wait. Attached (<see cref="Attach"/>) the simulator serves the
-/// device ends of real ports or ptys for a host in another process, living in real time: in virtual time the devices'
-/// own waiting (motion, bytes on the wire) is fast-forwarded, while what measures the host (the gate's watchdog, the
-/// 10 ms gap that drops a partial Zaber frame) runs on the wall clock. Runs until disposed.
+/// In-process (<see cref="CreateInProcess"/>) the host talks to <see cref="StageLink"/> and <see cref="LaserLink"/>; in
+/// virtual time (the default) host and devices run on one <see cref="SimulationLoop"/>, and every operation of the host
+/// goes through <see cref="RunAsync{T}"/> (or <see cref="Devices.Scheduling.TaskRunner.For"/> with <see cref="TimeProvider"/>),
+/// so the run is deterministic and as fast as the machine can compute it. With <see cref="SimulatorOptions.RealTime"/>
+/// it runs on the wall clock. Attached (<see cref="Attach"/>) it serves the device ends of real ports or ptys for a host
+/// in another process, always on the wall clock. Runs until disposed.
 /// </remarks>
 public sealed class SimulatedMachine : IAsyncDisposable
 {
@@ -27,14 +30,17 @@ public sealed class SimulatedMachine : IAsyncDisposable
 
     private readonly CancellationTokenSource _stop = new();
     private readonly SimulationClock _clock;
-    private readonly VirtualTimeProvider? _ownedClock;
+    private readonly VirtualTimeProvider? _virtual;
+    private readonly ITaskRunner _runner;
     private readonly bool _inProcess;
+    private readonly Random _random;
     private ISerialLink? _stageHost;
     private ISerialLink? _laserHost;
     private readonly Lock _tasksLock = new();
     private readonly List<Task> _tasks = [];
     private Task _stageServed = Task.CompletedTask;
     private Task _laserServed = Task.CompletedTask;
+    private int _disposed;
 
     private SimulatedMachine(MachineProfile profile, SimulatorOptions options, bool inProcess)
     {
@@ -43,22 +49,19 @@ public sealed class SimulatedMachine : IAsyncDisposable
         profile.Validate();
         Profile = profile;
         Options = options;
-        if (options.TimeProvider is { } shared)
+        if (inProcess && !options.RealTime)
         {
-            TimeProvider = shared;
-        }
-        else if (options.RealTime)
-        {
-            TimeProvider = TimeProvider.System;
+            _virtual = new VirtualTimeProvider(options.VirtualStart);
+            TimeProvider = _virtual;
         }
         else
         {
-            _ownedClock = new VirtualTimeProvider(quietPeriod: options.QuietPeriod, waitForRunnableThreads: inProcess);
-            TimeProvider = _ownedClock;
+            TimeProvider = TimeProvider.System;
         }
 
-        // In-process the host shares the clock; attached, the host is another process on the wall clock.
-        _clock = new SimulationClock(TimeProvider, inProcess ? TimeProvider : System.TimeProvider.System);
+        _runner = TaskRunner.For(TimeProvider);
+        _random = new Random(options.Seed);
+        _clock = new SimulationClock(TimeProvider);
         Faults = FaultInjector.Parse(options.FaultSpec);
         Faults.Triggered += (_, rule) => Raise(rule.Target == FaultTarget.Stage ? StagePort : LaserPort, $"fault injected: {rule}");
         var x = new Motion.AxisTrajectory(profile.X.TravelMicrosteps);
@@ -84,6 +87,12 @@ public sealed class SimulatedMachine : IAsyncDisposable
     /// <summary>The clock the simulator runs on; give it to the host code under test.</summary>
     public TimeProvider TimeProvider { get; }
 
+    /// <summary>The loop that runs host and devices in virtual time; null on the wall clock.</summary>
+    public SimulationLoop? Loop => _virtual?.Loop;
+
+    /// <summary>Whether time is virtual (deterministic, as fast as it can be computed) rather than the wall clock.</summary>
+    public bool IsVirtualTime => _virtual is not null;
+
     /// <summary>The Zaber chain (X, Y).</summary>
     public VirtualZaberChain Stage { get; }
 
@@ -108,6 +117,12 @@ public sealed class SimulatedMachine : IAsyncDisposable
 
     /// <summary>Completes when the laser link in use has closed.</summary>
     public Task LaserServed => _laserServed;
+
+    /// <summary>Runs an operation of the host (a run, a test move, a test's steps) on the simulation: in virtual time on its loop, where time moves while the operation waits.</summary>
+    public Task<T> RunAsync<T>(Func<Task<T>> operation) => _runner.Run(operation);
+
+    /// <summary>Runs an operation of the host that returns nothing; see <see cref="RunAsync{T}"/>.</summary>
+    public Task RunAsync(Func<Task> operation) => TaskRunner.Run(TimeProvider, operation);
 
     /// <summary>A machine on in-memory links, for tests and the app: the host uses <see cref="StageLink"/> and <see cref="LaserLink"/>.</summary>
     public static SimulatedMachine CreateInProcess(MachineProfile profile, SimulatorOptions? options = null)
@@ -137,14 +152,14 @@ public sealed class SimulatedMachine : IAsyncDisposable
     public void ServeStage(ISerialLink deviceEnd)
     {
         ArgumentNullException.ThrowIfNull(deviceEnd);
-        _stageServed = Track(StagePort, deviceEnd, (log, starting) => Stage.RunAsync(deviceEnd, log, starting, _stop.Token));
+        _stageServed = Track(StagePort, deviceEnd, log => Stage.RunAsync(deviceEnd, log, NewLatency(), _stop.Token));
     }
 
     /// <summary>Serves a new laser gate link; the gate keeps its state.</summary>
     public void ServeLaser(ISerialLink deviceEnd)
     {
         ArgumentNullException.ThrowIfNull(deviceEnd);
-        _laserServed = Track(LaserPort, deviceEnd, (log, starting) => Gate.RunAsync(deviceEnd, log, starting, _stop.Token));
+        _laserServed = Track(LaserPort, deviceEnd, log => Gate.RunAsync(deviceEnd, log, NewLatency(Options.GateProcessing), _stop.Token));
     }
 
     /// <summary>
@@ -158,76 +173,98 @@ public sealed class SimulatedMachine : IAsyncDisposable
             throw new InvalidOperationException("an attached simulator is reconnected by serving new device ends (ServeStage, ServeLaser)");
         }
 
-        await _stageHost!.DisposeAsync().ConfigureAwait(false);
-        await _laserHost!.DisposeAsync().ConfigureAwait(false);
-        await _stageServed.ConfigureAwait(false);
-        await _laserServed.ConfigureAwait(false);
+        await _stageHost!.DisposeAsync();
+        await _laserHost!.DisposeAsync();
+        await _stageServed;
+        await _laserServed;
         _stageHost = ServeInProcessStage();
         _laserHost = ServeInProcessLaser();
     }
 
-    /// <summary>Stops serving, closes the links and, in virtual time, stops the clock.</summary>
+    /// <summary>Stops serving, closes the links and, in virtual time, stops the loop.</summary>
     public async ValueTask DisposeAsync()
     {
-        if (_stop.IsCancellationRequested)
+        if (Interlocked.Exchange(ref _disposed, 1) != 0)
         {
             return;
         }
 
-        await _stop.CancelAsync().ConfigureAwait(false);
+        if (_virtual is not null)
+        {
+            // On the loop, so the sessions wind down in the same order every time; nothing there waits on the wall clock.
+            await _virtual.Run(async () =>
+            {
+                await StopServingAsync();
+                return true;
+            });
+            _virtual.Dispose();
+        }
+        else
+        {
+            await StopServingAsync();
+        }
+
+        _stop.Dispose();
+    }
+
+    private async Task StopServingAsync()
+    {
+        _stop.Cancel();
         Task[] tasks;
         lock (_tasksLock)
         {
             tasks = [.. _tasks];
         }
 
-        // A blocking stream (a pty file) may not notice the cancellation until its peer goes away: do not wait for ever.
-        await Task.WhenAny(Task.WhenAll(tasks), Task.Delay(TimeSpan.FromSeconds(1), TimeProvider.System)).ConfigureAwait(false);
+        if (_virtual is not null)
+        {
+            await Task.WhenAll(tasks);
+        }
+        else
+        {
+            // A blocking stream (a pty file) may not notice the cancellation until its peer goes away: do not wait for ever.
+            await Task.WhenAny(Task.WhenAll(tasks), Task.Delay(TimeSpan.FromSeconds(1), TimeProvider.System));
+        }
+
         foreach (var link in new[] { _stageHost, _laserHost })
         {
             if (link is not null)
             {
-                await link.DisposeAsync().ConfigureAwait(false);
+                await link.DisposeAsync();
             }
         }
-
-        _ownedClock?.Dispose();
-        _stop.Dispose();
     }
+
+    // Each link draws its latencies from its own seeded source, so the stage's traffic does not shift the gate's draws.
+    private LinkLatency NewLatency(Jitter processing = default) =>
+        new(Options.AdapterLatency, processing, new Random(_random.Next()));
 
     private ISerialLink ServeInProcessStage()
     {
         var (host, device) = InMemorySerialLink.CreatePair("simulated stage");
-        var (wrappedHost, wrappedDevice) = ActivityLink.WrapPair(host, device, _clock);
-        ServeStage(wrappedDevice);
-        return wrappedHost;
+        ServeStage(device);
+        return host;
     }
 
     private ISerialLink ServeInProcessLaser()
     {
         var (host, device) = InMemorySerialLink.CreatePair("simulated laser gate");
-        var (wrappedHost, wrappedDevice) = ActivityLink.WrapPair(host, device, _clock);
-        ServeLaser(wrappedDevice);
-        return wrappedHost;
+        ServeLaser(device);
+        return host;
     }
 
-    private Task Track(string port, ISerialLink link, Func<Action<string>, ClockHold, Task> serve)
+    private Task Track(string port, ISerialLink link, Func<Action<string>, Task> serve)
     {
         Raise(port, $"serving {link.Name}");
-
-        // Virtual time must not move while the session is still starting (queued, or being compiled): the host may
-        // already have written a command and set a timeout, which would otherwise be the only timer to jump to.
-        var starting = _clock.Hold();
-        var task = Task.Run(async () =>
+        var task = _runner.Start(async () =>
         {
             try
             {
-                await serve(message => Raise(port, message), starting).ConfigureAwait(false);
+                await serve(message => Raise(port, message));
             }
             finally
             {
-                starting.Dispose();
-                await link.DisposeAsync().ConfigureAwait(false);
+                await link.DisposeAsync();
             }
         });
         lock (_tasksLock)

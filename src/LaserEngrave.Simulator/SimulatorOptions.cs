@@ -1,16 +1,25 @@
+using LaserEngrave.Simulator.Timing;
+
 namespace LaserEngrave.Simulator;
 
 /// <summary>How the simulated machine behaves where the hardware leaves a choice or the documentation is silent.</summary>
 public sealed record SimulatorOptions
 {
     /// <summary>Run on the wall clock (<see cref="TimeProvider.System"/>) instead of virtual time, e.g. for the app's live view.</summary>
+    /// <remarks>A simulator attached to ports always runs on the wall clock: its host lives in real time in another process.</remarks>
     public bool RealTime { get; init; }
 
-    /// <summary>A clock to share instead of making one (e.g. one virtual clock for several machines); overrides <see cref="RealTime"/>.</summary>
-    public TimeProvider? TimeProvider { get; init; }
+    /// <summary>Wall-clock time at which virtual time starts (what logs show as a run's start); now when not given.</summary>
+    public DateTimeOffset? VirtualStart { get; init; }
 
-    /// <summary>Wall-clock quiet time after which a virtual clock made by the machine jumps to its next timer.</summary>
-    public TimeSpan QuietPeriod { get; init; } = Timing.VirtualTimeProvider.DefaultQuietPeriod;
+    /// <summary>Seed of every random draw of the simulation (latency jitter): same seed, same run.</summary>
+    public int Seed { get; init; } = 1;
+
+    /// <summary>Latency of each USB-serial adapter, per transfer and direction, on top of the wire time.</summary>
+    public Jitter AdapterLatency { get; init; } = new(1.0, 0.5);
+
+    /// <summary>The laser gate's time from a command's last byte to the Q-switch changing (and its reply leaving).</summary>
+    public Jitter GateProcessing { get; init; } = new(0.5, 0.2);
 
     /// <summary>Faults to inject from the start, in the grammar of <see cref="Faults.FaultInjector.Parse"/>.</summary>
     public string? FaultSpec { get; init; }

@@ -9,7 +9,10 @@ namespace LaserEngrave.Cli.Tests;
 public sealed class EngraveCommandTests : IDisposable
 {
     private static readonly string[] JsonFields =
-        ["outcome", "durationSeconds", "estimatedSeconds", "laserOnSeconds", "rowsDone", "runsDone", "logPath"];
+        ["outcome", "durationSeconds", "wallSeconds", "estimatedSeconds", "laserOnSeconds", "rowsDone", "runsDone", "logPath", "edges", "dwells", "pulsesPerPixel"];
+
+    // What may differ between two runs of one job with one seed: where the files went, and how long the computer took.
+    private static readonly string[] WallFields = ["wallSeconds", "logPath", "summaryPath", "burnedPath", "dosePath"];
 
     private readonly string folder = Path.Combine(Path.GetTempPath(), $"le-cli-engrave-{Guid.NewGuid():N}");
 
@@ -48,7 +51,10 @@ public sealed class EngraveCommandTests : IDisposable
         Assert.Equal(0, root.GetProperty("missingPixels").GetInt64());
         Assert.Equal(0, root.GetProperty("extraPixels").GetInt64());
         Assert.Equal(0, root.GetProperty("laserOnTravelCount").GetInt32());
-        Assert.Equal(0, root.GetProperty("dwellCount").GetInt32());
+        // Today's executor switches the laser on before the stage moves: the twin must show those dwells (issue "laser and motion in step").
+        Assert.True(root.GetProperty("dwells").GetProperty("pulses").GetInt64() > 0);
+        Assert.Equal(1, root.GetProperty("simSeed").GetInt32());
+        Assert.True(root.GetProperty("wallSeconds").GetDouble() > 0);
 
         var expected = MaskBuilder.FromFile(QrCode, MaskOptions.Default, out _);
         var actual = MaskBuilder.FromFile(burned, MaskOptions.Default, out _);
@@ -65,11 +71,82 @@ public sealed class EngraveCommandTests : IDisposable
         Assert.Equal(duration, record.ActualSeconds);
         Assert.Equal(laserOn, record.LaserOnSeconds);
         Assert.Equal(3, record.Devices.Count);
+        Assert.Equal(root.GetProperty("pulses").GetInt64(), record.Simulation!.Pulses);
+        Assert.Equal(root.GetProperty("edges").GetProperty("maxErrorUm").GetDouble(), record.Simulation.Edges!.MaxErrorUm);
         Assert.All(record.Devices, d => Assert.False(string.IsNullOrWhiteSpace(d.Firmware)));
         var (showExit, shown, _) = await CliHarness.RunAsync("log", "show", logPath);
         Assert.Equal(0, showExit);
         Assert.Contains("Outcome:            completed", shown, StringComparison.Ordinal);
         Assert.Contains("Sample:             QR-1", shown, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task EngraveSimulate_SameSeedTwice_GivesTheSameFiguresAndImages()
+    {
+        var first = await RunSeededAsync("a", seed: 5);
+        var second = await RunSeededAsync("b", seed: 5);
+        var other = await RunSeededAsync("c", seed: 6);
+
+        Assert.Equal(first.Figures, second.Figures);
+        Assert.Equal(first.Burned, second.Burned);
+        Assert.Equal(first.Dose, second.Dose);
+        Assert.Equal(first.Summary, second.Summary);
+        Assert.NotEqual(first.Figures, other.Figures);
+    }
+
+    [Fact]
+    public async Task EngraveSimulate_SimOptionsFile_SetsTheSeedAndTheLatency()
+    {
+        var options = Path.Combine(folder, "sim.json");
+        await File.WriteAllTextAsync(options, """{ "seed": 42, "adapterLatency": { "meanMs": 0, "spreadMs": 0 }, "gateProcessing": { "meanMs": 0, "spreadMs": 0 } }""", TestContext.Current.CancellationToken);
+
+        var (exit, output, error) = await CliHarness.RunAsync("engrave", QrCode, "--width-mm", "2", "--simulate", "--sim-options", options, "--json", "--log-dir", LogDir);
+        var (slowExit, slowOutput, _) = await CliHarness.RunAsync("engrave", QrCode, "--width-mm", "2", "--simulate", "--sim-seed", "42", "--json", "--log-dir", LogDir);
+
+        Assert.True(exit == 0, error);
+        Assert.Equal(0, slowExit);
+        using var fast = JsonDocument.Parse(output);
+        using var slow = JsonDocument.Parse(slowOutput);
+        Assert.Equal(42, fast.RootElement.GetProperty("simSeed").GetInt32());
+        Assert.True(
+            fast.RootElement.GetProperty("durationSeconds").GetDouble() < slow.RootElement.GetProperty("durationSeconds").GetDouble(),
+            "without adapter latency and gate processing the run must be shorter");
+    }
+
+    [Theory]
+    [InlineData("""{ "seed": "x" }""", "sim.json")]
+    [InlineData("""{ "adapterLatency": { "meanMs": -1, "spreadMs": 0 } }""", "adapterLatency")]
+    [InlineData("""{ "latency": 1 }""", "latency")]
+    public async Task EngraveSimulate_BadSimOptions_Exit2NamingTheFile(string json, string fragment)
+    {
+        var options = Path.Combine(folder, "sim.json");
+        await File.WriteAllTextAsync(options, json, TestContext.Current.CancellationToken);
+
+        var (exit, _, error) = await CliHarness.RunAsync("engrave", QrCode, "--width-mm", "2", "--simulate", "--sim-options", options, "--log-dir", LogDir);
+
+        Assert.Equal(2, exit);
+        Assert.Contains(fragment, error, StringComparison.Ordinal);
+        Assert.Single(error.Trim().Split('\n'));
+    }
+
+    private async Task<(string Figures, byte[] Burned, byte[] Dose, string Summary)> RunSeededAsync(string name, int seed)
+    {
+        var burned = Path.Combine(folder, name + "-burned.png");
+        var dose = Path.Combine(folder, name + "-dose.png");
+        var (exit, output, error) = await CliHarness.RunAsync(
+            "engrave", QrCode, "--width-mm", "3", "--simulate", "--sim-seed", seed.ToString(System.Globalization.CultureInfo.InvariantCulture),
+            "--json", "--log-dir", Path.Combine(LogDir, name), "--burned", burned, "--dose", dose);
+        Assert.True(exit == 0, error);
+        var node = System.Text.Json.Nodes.JsonNode.Parse(output)!.AsObject();
+        foreach (var field in WallFields)
+        {
+            Assert.True(node.Remove(field), $"missing {field}");
+        }
+
+        // The run log's summary, less the lines that hold wall-clock dates.
+        var summaryPath = JsonDocument.Parse(output).RootElement.GetProperty("summaryPath").GetString()!;
+        var summary = string.Join('\n', File.ReadAllLines(summaryPath).Where(l => !l.StartsWith("Started", StringComparison.Ordinal) && !l.StartsWith("Ended", StringComparison.Ordinal)));
+        return (node.ToJsonString(), File.ReadAllBytes(burned), File.ReadAllBytes(dose), summary);
     }
 
     [Fact]
@@ -79,7 +156,9 @@ public sealed class EngraveCommandTests : IDisposable
 
         Assert.True(exit == 0, error);
         Assert.StartsWith("Outcome:          completed", output, StringComparison.Ordinal);
-        Assert.Contains("Burned vs mask:   0 pixels missing, 0 extra, 0 laser-on travels, 0 dwells", output, StringComparison.Ordinal);
+        Assert.Contains("Burned vs mask:   0 pixels missing, 0 extra, 0 pulses off the black", output, StringComparison.Ordinal);
+        Assert.Contains("Edges:            ", output, StringComparison.Ordinal);
+        Assert.Contains("x real time)", output, StringComparison.Ordinal);
         Assert.Contains($"Log:              {Path.GetFullPath(LogDir)}", output, StringComparison.Ordinal);
 
         // Output redirected (a StringWriter): plain progress lines, no carriage-return bar.

@@ -32,12 +32,15 @@ public sealed class EngraveOnPortsTests : IAsyncLifetime
     }
 
     [Fact(Timeout = 120_000)]
-    public async Task EngraveOnPorts_QrCode_CompletesAndLogsThePortsAndFirmware()
+    public async Task EngraveOnPorts_SmallImage_CompletesAndLogsThePortsAndFirmware()
     {
-        var image = Path.Combine(CliHarness.RepositoryRoot, "assets", "qr-code.bmp");
+        // Small: on ports the simulator runs on the wall clock, so a job takes its real time.
+        Directory.CreateDirectory(_logDir);
+        var image = Path.Combine(_logDir, "small.pbm");
+        await File.WriteAllTextAsync(image, "P1\n6 3\n1 1 0 0 1 1\n0 1 1 1 1 0\n1 0 1 0 1 0\n", TestContext.Current.CancellationToken);
 
         var (exit, output, error) = await CliHarness.RunAsync(
-            "engrave", image, "--width-mm", "2", "--origin-mm", "1,1", "--stage-port", StagePort, "--laser-port", LaserPort, "--json", "--log-dir", _logDir);
+            "engrave", image, "--width-mm", "0.6", "--origin-mm", "1,1", "--stage-port", StagePort, "--laser-port", LaserPort, "--json", "--log-dir", _logDir);
 
         Assert.True(exit == 0, error);
         using var json = JsonDocument.Parse(output);
@@ -53,9 +56,9 @@ public sealed class EngraveOnPortsTests : IAsyncLifetime
     [Fact(Timeout = 60_000)]
     public async Task GotoOnPorts_Position_ArrivesWithTheLaserOff()
     {
-        var (exit, output, error) = await CliHarness.RunAsync("goto", "2", "3", "--stage-port", StagePort, "--laser-port", LaserPort);
+        var (exit, output, error) = await CliHarness.RunAsync("goto", "59", "58", "--stage-port", StagePort, "--laser-port", LaserPort);
 
         Assert.True(exit == 0, error);
-        Assert.EndsWith("= 2, 3 mm; laser off", output.TrimEnd(), StringComparison.Ordinal);
+        Assert.EndsWith("= 59, 58 mm; laser off", output.TrimEnd(), StringComparison.Ordinal);
     }
 }

@@ -7,6 +7,7 @@ using LaserEngrave.Devices.Zaber;
 namespace LaserEngrave.Simulator.Tests;
 
 /// <summary>An in-process simulated machine driven with raw bytes: what a host would write, and what it reads back, with virtual arrival times.</summary>
+/// <remarks>Each call is one operation on the simulation's loop: virtual time moves while a call waits and stands still between calls.</remarks>
 internal sealed class MachineBench : IAsyncDisposable
 {
     /// <summary>Time on the wire of one 6-byte frame at 9600 baud 8N1.</summary>
@@ -23,8 +24,8 @@ internal sealed class MachineBench : IAsyncDisposable
     {
         Machine = machine;
         _origin = machine.TimeProvider.GetTimestamp();
-        _stagePump = PumpFramesAsync(machine.StageLink);
-        _laserPump = PumpLinesAsync(machine.LaserLink);
+        _stagePump = machine.Loop!.Start(() => PumpFramesAsync(machine.StageLink));
+        _laserPump = machine.Loop!.Start(() => PumpLinesAsync(machine.LaserLink));
     }
 
     public SimulatedMachine Machine { get; }
@@ -34,15 +35,19 @@ internal sealed class MachineBench : IAsyncDisposable
     /// <summary>Virtual time since the bench started.</summary>
     public TimeSpan Now => Time.GetElapsedTime(_origin);
 
+    /// <summary>A bench whose links take the wire time only (no adapter latency, no gate processing), unless <paramref name="options"/> say otherwise.</summary>
     public static MachineBench Create(SimulatorOptions? options = null, MachineProfile? profile = null) =>
-        new(SimulatedMachine.CreateInProcess(profile ?? MachineProfile.Default, options));
+        new(SimulatedMachine.CreateInProcess(profile ?? MachineProfile.Default, options ?? WireOnly));
+
+    /// <summary>Simulator options with the latency model switched off, so that times are whole frames on the wire.</summary>
+    public static SimulatorOptions WireOnly { get; } = new() { AdapterLatency = LaserEngrave.Simulator.Timing.Jitter.None, GateProcessing = LaserEngrave.Simulator.Timing.Jitter.None };
 
     public Task SendAsync(byte device, int command, int data) =>
         SendRawAsync(new ZaberFrame(device, (ZaberCommand)command, data).ToBytes());
 
     public Task SendAsync(byte device, ZaberCommand command, int data) => SendAsync(device, (int)command, data);
 
-    public async Task SendRawAsync(byte[] bytes) => await Machine.StageLink.WriteAsync(bytes, CancellationToken.None);
+    public Task SendRawAsync(byte[] bytes) => Machine.RunAsync(async () => await Machine.StageLink.WriteAsync(bytes, CancellationToken.None));
 
     /// <summary>The next stage frame and when it arrived; throws <see cref="TimeoutException"/> after <paramref name="within"/> of virtual time.</summary>
     public async Task<(ZaberFrame Frame, TimeSpan At)> ReceiveAsync(TimeSpan? within = null)
@@ -74,7 +79,7 @@ internal sealed class MachineBench : IAsyncDisposable
         return (await ReceiveAsync(TimeSpan.FromMinutes(10))).Frame;
     }
 
-    public async Task SendLineAsync(string line) => await Machine.LaserLink.WriteAsync(Encoding.ASCII.GetBytes(line + "\n"), CancellationToken.None);
+    public Task SendLineAsync(string line) => Machine.RunAsync(async () => await Machine.LaserLink.WriteAsync(Encoding.ASCII.GetBytes(line + "\n"), CancellationToken.None));
 
     /// <summary>The next gate reply line (without its "\n") and when it arrived.</summary>
     public Task<(string Line, TimeSpan At)> ReceiveLineAsync(TimeSpan? within = null) => ReadAsync(_lines, within ?? TimeSpan.FromSeconds(10));
@@ -98,17 +103,23 @@ internal sealed class MachineBench : IAsyncDisposable
     }
 
     /// <summary>Lets <paramref name="span"/> of virtual time pass.</summary>
-    public Task WaitAsync(TimeSpan span) => Task.Delay(span, Time);
+    public Task WaitAsync(TimeSpan span) => Machine.RunAsync(() => Task.Delay(span, Time));
 
     public async ValueTask DisposeAsync()
     {
-        await _stop.CancelAsync();
+        await Machine.RunAsync(() =>
+        {
+            _stop.Cancel();
+            return Task.CompletedTask;
+        });
         await Machine.DisposeAsync();
         await Task.WhenAll(_stagePump, _laserPump).WaitAsync(TimeSpan.FromSeconds(5));
         _stop.Dispose();
     }
 
-    private async Task<T> ReadAsync<T>(Channel<T> channel, TimeSpan within)
+    private Task<T> ReadAsync<T>(Channel<T> channel, TimeSpan within) => Machine.RunAsync(() => ReadOnLoopAsync(channel, within));
+
+    private async Task<T> ReadOnLoopAsync<T>(Channel<T> channel, TimeSpan within)
     {
         using var timeout = new CancellationTokenSource(within, Time);
         try

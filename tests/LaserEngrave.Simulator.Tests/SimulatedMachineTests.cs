@@ -100,22 +100,13 @@ public class SimulatedMachineTests
     }
 
     [Fact(Timeout = 20_000)]
-    public async Task CreateInProcess_SharedClock_IsUsed()
-    {
-        using var clock = new VirtualTimeProvider();
-        await using var machine = SimulatedMachine.CreateInProcess(MachineProfile.Default, new SimulatorOptions { TimeProvider = clock });
-
-        Assert.Same(clock, machine.TimeProvider);
-    }
-
-    [Fact(Timeout = 20_000)]
     public async Task OpenInProcess_Session_TalksToTheMachineItOwnsAndClosesIt()
     {
         var ct = TestContext.Current.CancellationToken;
         var session = SimulatedMachine.OpenInProcess(MachineProfile.Default);
         var machine = Assert.IsType<SimulatedMachine>(session.Owner);
 
-        var identity = await session.Stage.X.IdentifyAsync(ct);
+        var identity = await session.RunAsync(() => session.Stage.X.IdentifyAsync(ct));
         await session.DisposeAsync();
 
         Assert.Equal(1, identity.DeviceNumber);
@@ -140,17 +131,24 @@ public class SimulatedMachineTests
         var ct = TestContext.Current.CancellationToken;
         await using var machine = SimulatedMachine.CreateInProcess(MachineProfile.Default, new SimulatorOptions { FaultSpec = "disconnect:stage:after=1" });
         var old = machine.StageLink;
-        await old.WriteAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 5000).ToBytes(), ct);
-        await ReadFrameAsync(old, ct);
-        await old.WriteAsync(new ZaberFrame(1, ZaberCommand.EchoData, 1).ToBytes(), ct);
-        Assert.Equal(0, await old.ReadAsync(new byte[6], ct));
+        await machine.RunAsync(async () =>
+        {
+            await old.WriteAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 5000).ToBytes(), ct);
+            await ReadFrameAsync(old, ct);
+            await old.WriteAsync(new ZaberFrame(1, ZaberCommand.EchoData, 1).ToBytes(), ct);
+            Assert.Equal(0, await old.ReadAsync(new byte[6], ct));
+        });
 
         machine.Faults.Clear();
-        await machine.ReconnectAsync();
-        await machine.StageLink.WriteAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 0).ToBytes(), ct);
+        await machine.RunAsync(machine.ReconnectAsync);
+        var position = await machine.RunAsync(async () =>
+        {
+            await machine.StageLink.WriteAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 0).ToBytes(), ct);
+            return await ReadFrameAsync(machine.StageLink, ct);
+        });
 
         Assert.NotSame(old, machine.StageLink);
-        Assert.Equal(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 5000), await ReadFrameAsync(machine.StageLink, ct));
+        Assert.Equal(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 5000), position);
     }
 
     private static async Task<ZaberFrame> ReadFrameAsync(LaserEngrave.Devices.Serial.ISerialLink link, CancellationToken ct)

@@ -1,3 +1,4 @@
+using LaserEngrave.Devices.Scheduling;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Devices.Execution;
 
@@ -50,7 +51,7 @@ public sealed class ExecutorRunService : IRunService
                     executor.Pause();
                 }
 
-                result = await executor.RunAsync(cancellationToken).ConfigureAwait(false);
+                result = await TaskRunner.For(request.TimeProvider).Run(() => executor.RunAsync(cancellationToken));
             }
             finally
             {

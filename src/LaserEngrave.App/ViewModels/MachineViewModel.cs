@@ -1,3 +1,4 @@
+using LaserEngrave.Devices.Scheduling;
 using CommunityToolkit.Mvvm.ComponentModel;
 using CommunityToolkit.Mvvm.Input;
 using LaserEngrave.App.Services;
@@ -80,23 +81,23 @@ public sealed partial class MachineViewModel : ObservableObject
     [RelayCommand(IncludeCancelCommand = true)]
     private async Task ConnectAsync(CancellationToken cancellationToken)
     {
-        await DisconnectAsync().ConfigureAwait(false);
+        await DisconnectAsync();
         await Guard(async () =>
         {
-            var connection = await _factory.ConnectAsync(new MachineChoice(UseSimulator, StagePort, LaserPort), Profile, cancellationToken).ConfigureAwait(false);
+            var connection = await _factory.ConnectAsync(new MachineChoice(UseSimulator, StagePort, LaserPort), Profile, cancellationToken);
             Connection = connection;
             OnPropertyChanged(nameof(IsConnected));
             try
             {
-                await ReadStateAsync(connection, cancellationToken).ConfigureAwait(false);
+                await TaskRunner.Run(connection.TimeProvider, () => ReadStateAsync(connection, cancellationToken));
             }
             catch
             {
                 // A machine that does not answer is closed again, so the next connect starts clean.
-                await DisconnectAsync().ConfigureAwait(false);
+                await DisconnectAsync();
                 throw;
             }
-        }).ConfigureAwait(false);
+        });
     }
 
     [RelayCommand]
@@ -111,7 +112,7 @@ public sealed partial class MachineViewModel : ObservableObject
         GateState = null;
         if (connection is not null)
         {
-            await connection.DisposeAsync().ConfigureAwait(false);
+            await connection.DisposeAsync();
         }
     }
 
@@ -124,17 +125,20 @@ public sealed partial class MachineViewModel : ObservableObject
     private Task HomeAsync(CancellationToken cancellationToken) => Guard(async () =>
     {
         var connection = RequireConnection();
-        await connection.Gate.OffAsync(cancellationToken).ConfigureAwait(false);
-        await Task.WhenAll(connection.Stage.X.HomeAsync(cancellationToken), connection.Stage.Y.HomeAsync(cancellationToken)).ConfigureAwait(false);
-        await ReadStateAsync(connection, cancellationToken).ConfigureAwait(false);
+        await connection.Gate.OffAsync(cancellationToken);
+        await Task.WhenAll(connection.Stage.X.HomeAsync(cancellationToken), connection.Stage.Y.HomeAsync(cancellationToken));
+        await ReadStateAsync(connection, cancellationToken);
     });
 
     /// <summary>Reads both positions and the gate's state again.</summary>
-    public async Task ReadPositionsAsync(CancellationToken cancellationToken)
+    public Task ReadPositionsAsync(CancellationToken cancellationToken)
     {
         var connection = RequireConnection();
-        XMicrosteps = await connection.Stage.X.GetPositionAsync(cancellationToken).ConfigureAwait(false);
-        YMicrosteps = await connection.Stage.Y.GetPositionAsync(cancellationToken).ConfigureAwait(false);
+        return TaskRunner.Run(connection.TimeProvider, async () =>
+        {
+            XMicrosteps = await connection.Stage.X.GetPositionAsync(cancellationToken);
+            YMicrosteps = await connection.Stage.Y.GetPositionAsync(cancellationToken);
+        });
     }
 
     internal IMachineConnection RequireConnection() => Connection ?? throw new DeviceException("not connected: connect to the simulator or the machine first");
@@ -146,7 +150,8 @@ public sealed partial class MachineViewModel : ObservableObject
         Error = null;
         try
         {
-            await action().ConfigureAwait(false);
+            // Where the machine's clock says: on the simulation's loop in virtual time.
+            await TaskRunner.Run(Connection?.TimeProvider ?? TimeProvider.System, action);
         }
         catch (OperationCanceledException)
         {
@@ -164,15 +169,15 @@ public sealed partial class MachineViewModel : ObservableObject
 
     private async Task ReadStateAsync(IMachineConnection connection, CancellationToken cancellationToken)
     {
-        var x = await connection.Stage.X.IdentifyAsync(cancellationToken).ConfigureAwait(false);
-        var y = await connection.Stage.Y.IdentifyAsync(cancellationToken).ConfigureAwait(false);
-        var gate = await connection.Gate.IdentifyAsync(cancellationToken).ConfigureAwait(false);
-        var state = await connection.Gate.GetStateAsync(cancellationToken).ConfigureAwait(false);
+        var x = await connection.Stage.X.IdentifyAsync(cancellationToken);
+        var y = await connection.Stage.Y.IdentifyAsync(cancellationToken);
+        var gate = await connection.Gate.IdentifyAsync(cancellationToken);
+        var state = await connection.Gate.GetStateAsync(cancellationToken);
         Identity = $"X: device {x.DeviceNumber}, id {x.DeviceId}, firmware {x.FirmwareText}; Y: device {y.DeviceNumber}, id {y.DeviceId}, firmware {y.FirmwareText}; gate: {gate}";
         XHomed = x.IsHomed;
         YHomed = y.IsHomed;
         GateState = Describe(state);
-        await ReadPositionsAsync(cancellationToken).ConfigureAwait(false);
+        await ReadPositionsAsync(cancellationToken);
     }
 
     internal static string Describe(LaserGateState state) =>

@@ -91,8 +91,8 @@ public sealed partial class TestMovesViewModel : ObservableObject
             throw new ArgumentException($"laser frequency {N(_job.LaserFrequencyHz)} Hz must be at least 1 Hz");
         }
 
-        await moves.FirePulsesAsync(TestFirePulses, frequency, ct).ConfigureAwait(false);
-        _machine.GateState = MachineViewModel.Describe(await moves.Gate.GetStateAsync(ct).ConfigureAwait(false));
+        await moves.FirePulsesAsync(TestFirePulses, frequency, ct);
+        _machine.GateState = MachineViewModel.Describe(await moves.Gate.GetStateAsync(ct));
     }, cancellationToken);
 
     private Core.Jobs.PreparedJob RequireJob() =>
@@ -103,11 +103,11 @@ public sealed partial class TestMovesViewModel : ObservableObject
     {
         try
         {
-            await move(moves, ct).ConfigureAwait(false);
+            await move(moves, ct);
         }
         finally
         {
-            await _machine.ReadPositionsAsync(CancellationToken.None).ConfigureAwait(false);
+            await _machine.ReadPositionsAsync(CancellationToken.None);
         }
     }, cancellationToken);
 
@@ -124,8 +124,8 @@ public sealed partial class TestMovesViewModel : ObservableObject
         {
             var connection = _machine.RequireConnection();
             var moves = new StageTestMoves(connection.Stage, connection.Gate, connection.Profile, timeProvider: connection.TimeProvider);
-            await action(moves, cancellationToken).ConfigureAwait(false);
-        }).ConfigureAwait(false);
+            await action(moves, cancellationToken);
+        });
         Error = _machine.Error;
     }
 

@@ -1,3 +1,4 @@
+using System.Diagnostics;
 using System.CommandLine;
 using System.Globalization;
 using System.Runtime.ExceptionServices;
@@ -32,6 +33,7 @@ internal static class EngraveCommand
         o.Machine.Validate(result);
         var simulate = result.GetValue(o.Machine.Simulate);
         var burnedPath = result.GetValue(o.Burned);
+        var dosePath = result.GetValue(o.Dose);
         if (burnedPath is not null && !simulate)
         {
             throw new UsageException("--burned needs --simulate: only the simulator knows what was burned");
@@ -60,6 +62,7 @@ internal static class EngraveCommand
 
         RunResult? run = null;
         Exception? error = null;
+        double? wallSeconds = null;
         BurnReport? burn = null;
         var session = o.Machine.Open(result, spec.Profile);
         await using (session.ConfigureAwait(false))
@@ -68,9 +71,10 @@ internal static class EngraveCommand
             var printer = new ProgressPrinter(stderr, terminal: ReferenceEquals(stderr, Console.Error) && !Console.IsErrorRedirected);
             executor.ProgressChanged += (_, progress) => printer.Report(progress);
             var clockStart = session.TimeProvider.GetTimestamp();
+            var wall = Stopwatch.StartNew();
             try
             {
-                run = await executor.RunAsync(cancellationToken).ConfigureAwait(false);
+                run = await session.RunAsync(() => executor.RunAsync(cancellationToken)).ConfigureAwait(false);
             }
             catch (Exception ex) when (ex is not OutOfMemoryException)
             {
@@ -80,11 +84,13 @@ internal static class EngraveCommand
             finally
             {
                 printer.Finish();
+                wallSeconds = wall.Elapsed.TotalSeconds;
             }
 
             if (session.Owner is SimulatedMachine simulator)
             {
-                burn = simulator.Recorder.Analyze(BurnGrid.For(prepared.Plan.Geometry), prepared.Mask);
+                burn = simulator.Recorder.Analyze(BurnGrid.For(prepared.Plan.Geometry), prepared.Mask, prepared.Spec.Process.BurnSpeedMmPerS);
+                record = record with { Simulation = Twin(simulator.Options.Seed, burn) };
             }
 
             record = RunRecords.Complete(record, run, error, session.StagePort, session.LaserPort, DateTimeOffset.Now, session.TimeProvider.GetElapsedTime(clockStart));
@@ -107,7 +113,12 @@ internal static class EngraveCommand
             burn.WritePng(burnedPath);
         }
 
-        var summary = EngraveSummary.From(record, files, burnedPath, burn);
+        if (dosePath is not null && burn is not null)
+        {
+            burn.WriteDosePng(dosePath);
+        }
+
+        var summary = EngraveSummary.From(record, files, burnedPath, burn is null ? null : dosePath, wallSeconds);
         if (result.GetValue(o.Json))
         {
             CliJson.Write(stdout, summary);
@@ -175,6 +186,16 @@ internal static class EngraveCommand
         return (spec, Path.GetFullPath(fromLog), stop);
     }
 
+    private static RunSimulation Twin(int seed, BurnReport burn) => new(
+        seed,
+        burn.Pulses,
+        burn.Edges is { } e ? new EdgeErrors(e.Count, e.MeanErrorUm, e.MaxErrorUm) : null,
+        burn.Dwells is { } d ? new DwellCounts(d.Count, d.Pulses) : null,
+        new PulseCountRange(burn.PulsesPerPixel.Min, burn.PulsesPerPixel.Mean, burn.PulsesPerPixel.Max),
+        burn.LaserOnTravelCount,
+        burn.MissingPixels,
+        burn.ExtraPixels);
+
     private static void WriteText(TextWriter output, EngraveSummary s)
     {
         var c = CultureInfo.InvariantCulture;
@@ -185,7 +206,26 @@ internal static class EngraveCommand
         output.WriteLine(string.Create(c, $"Laser on:         {RunSummaryText.Duration(s.LaserOnSeconds)}"));
         if (s.MissingPixels is { } missing && s.ExtraPixels is { } extra)
         {
-            output.WriteLine(string.Create(c, $"Burned vs mask:   {missing} pixels missing, {extra} extra, {s.LaserOnTravelCount} laser-on travels, {s.DwellCount} dwells"));
+            output.WriteLine(string.Create(c, $"Burned vs mask:   {missing} pixels missing, {extra} extra, {s.LaserOnTravelCount} pulses off the black"));
+            if (s.Edges is { } edges)
+            {
+                output.WriteLine(string.Create(c, $"Edges:            {edges.Count}, mean error {edges.MeanErrorUm:0.##} µm, largest {edges.MaxErrorUm:0.##} µm"));
+            }
+
+            if (s.Dwells is { } dwells)
+            {
+                output.WriteLine(string.Create(c, $"Dwells:           {dwells.Count} ({dwells.Pulses} pulses with the stage still)"));
+            }
+
+            if (s.PulsesPerPixel is { } ppp)
+            {
+                output.WriteLine(string.Create(c, $"Pulses per pixel: min {ppp.Min}, mean {ppp.Mean:0.#}, max {ppp.Max} ({s.Pulses} pulses, seed {s.SimSeed})"));
+            }
+
+            if (s.WallSeconds is { } wall && wall > 0)
+            {
+                output.WriteLine(string.Create(c, $"Simulated in:     {wall:0.###} s of wall time ({s.DurationSeconds / wall:0} x real time)"));
+            }
             if (s.Resumed)
             {
                 // Each --simulate starts a fresh simulator, so what the resumed run burned is not on this one.
@@ -196,6 +236,11 @@ internal static class EngraveCommand
         if (s.BurnedPath is not null)
         {
             output.WriteLine($"Burned image:     {s.BurnedPath}");
+        }
+
+        if (s.DosePath is not null)
+        {
+            output.WriteLine($"Pulse map:        {s.DosePath}");
         }
 
         output.WriteLine($"Log:              {s.LogPath}");
@@ -219,6 +264,8 @@ internal static class EngraveCommand
 
         public Option<string?> Burned { get; } = new("--burned") { Description = "With --simulate: write what was burned as a PNG on the job's pixel grid (black = burned)" };
 
+        public Option<string?> Dose { get; } = new("--dose") { Description = "With --simulate: write the pulse map as a PNG, 4 x 4 cells a pixel, grey = pulses (black = the most), to see overburn" };
+
         public Option<string?> Notes { get; } = new("--notes") { Description = "Notes for the run log (focus, material, anything to remember)" };
 
         public Option<string?> Sample { get; } = new("--sample") { Description = "Sample ID for the run log; also part of the log's file name" };
@@ -235,7 +282,7 @@ internal static class EngraveCommand
         {
             Job.AddTo(command);
             Machine.AddTo(command);
-            foreach (var option in new Option[] { LogDir, Burned, Notes, Sample, Json, FromLog, Resume, Home })
+            foreach (var option in new Option[] { LogDir, Burned, Dose, Notes, Sample, Json, FromLog, Resume, Home })
             {
                 command.Options.Add(option);
             }
@@ -251,6 +298,7 @@ internal sealed record EngraveSummary(
     bool Simulated,
     bool Resumed,
     double DurationSeconds,
+    double? WallSeconds,
     double EngravingSeconds,
     double EstimatedSeconds,
     double LaserOnSeconds,
@@ -261,18 +309,24 @@ internal sealed record EngraveSummary(
     string LogPath,
     string SummaryPath,
     string? BurnedPath,
+    string? DosePath,
+    int? SimSeed,
+    long? Pulses,
     long? MissingPixels,
     long? ExtraPixels,
-    int? LaserOnTravelCount,
-    int? DwellCount)
+    long? LaserOnTravelCount,
+    EdgeErrors? Edges,
+    DwellCounts? Dwells,
+    PulseCountRange? PulsesPerPixel)
 {
-    public static EngraveSummary From(RunRecord record, RunLogFiles files, string? burnedPath, BurnReport? burn) => new(
+    public static EngraveSummary From(RunRecord record, RunLogFiles files, string? burnedPath, string? dosePath, double? wallSeconds) => new(
         record.Outcome.ToString().ToLowerInvariant(),
         record.Fault?.Message,
         record.StoppedAt?.MoveIndex,
         record.Simulated,
         record.Resumed,
         record.ActualSeconds,
+        wallSeconds,
         record.EngravingSeconds,
         record.EstimatedSeconds,
         record.LaserOnSeconds,
@@ -283,8 +337,13 @@ internal sealed record EngraveSummary(
         files.JsonPath,
         files.TextPath,
         burnedPath is null ? null : Path.GetFullPath(burnedPath),
-        burn?.MissingPixels,
-        burn?.ExtraPixels,
-        burn?.LaserOnTravelCount,
-        burn?.DwellCount);
+        dosePath is null ? null : Path.GetFullPath(dosePath),
+        record.Simulation?.Seed,
+        record.Simulation?.Pulses,
+        record.Simulation?.MissingPixels,
+        record.Simulation?.ExtraPixels,
+        record.Simulation?.LaserOnTravelCount,
+        record.Simulation?.Edges,
+        record.Simulation?.Dwells,
+        record.Simulation?.PulsesPerPixel);
 }

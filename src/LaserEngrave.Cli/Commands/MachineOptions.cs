@@ -30,13 +30,49 @@ internal sealed class MachineOptions
         Description = "With --simulate: inject faults, e.g. silent:stage:after=200 or no-ack:gate:after=30 (see docs/simulator.md)",
     };
 
+    public Option<string?> SimOptions { get; } = SimOptionsOption();
+
+    public Option<int?> SimSeed { get; } = SimSeedOption();
+
     public void AddTo(Command command)
     {
         command.Options.Add(Simulate);
         command.Options.Add(StagePort);
         command.Options.Add(LaserPort);
         command.Options.Add(Fault);
+        command.Options.Add(SimOptions);
+        command.Options.Add(SimSeed);
     }
+
+    internal static Option<string?> SimOptionsOption() => new("--sim-options")
+    {
+        Description = "With the simulator: a JSON file of simulator options (latency model, seed, faults; see docs/simulator.md)",
+    };
+
+    internal static Option<int?> SimSeedOption() => new("--sim-seed")
+    {
+        Description = "With the simulator: the seed of its random draws (latency jitter); the same seed repeats a run exactly (default 1)",
+    };
+
+    /// <summary>The simulator options the command line gives: the options file, then the seed and the faults over it.</summary>
+    internal static SimulatorOptions SimulatorOptions(ParseResult result, Option<string?> file, Option<int?> seed, string faultSpec)
+    {
+        var options = new SimulatorOptions();
+        if (result.GetValue(file) is { } path)
+        {
+            options = SimulatorOptionsFile.Load(path, options);
+        }
+
+        if (result.GetValue(seed) is { } s)
+        {
+            options = options with { Seed = s };
+        }
+
+        return faultSpec.Length > 0 ? options with { FaultSpec = faultSpec } : options;
+    }
+
+    /// <summary>The simulator options of a simulated machine (for the run log: the seed).</summary>
+    public SimulatorOptions SimulatorOptionsFor(ParseResult result) => SimulatorOptions(result, SimOptions, SimSeed, FaultSpec(result));
 
     /// <summary>Checks the options agree (one machine, both ports, faults only on the simulator) before anything opens.</summary>
     public void Validate(ParseResult result)
@@ -61,6 +97,17 @@ internal sealed class MachineOptions
             throw new UsageException("--fault works only with --simulate");
         }
 
+        if (!simulate && (result.GetValue(SimOptions) is not null || result.GetValue(SimSeed) is not null))
+        {
+            throw new UsageException("--sim-options and --sim-seed work only with --simulate");
+        }
+
+        if (simulate)
+        {
+            // Read here so that a bad file is refused before anything is created or opened.
+            SimulatorOptionsFor(result);
+        }
+
         // Parsed here only to refuse a bad spec before anything is created or opened.
         FaultInjector.ParseRules(FaultSpec(result));
     }
@@ -72,7 +119,7 @@ internal sealed class MachineOptions
     {
         Validate(result);
         return result.GetValue(Simulate)
-            ? SimulatedMachine.OpenInProcess(profile, new SimulatorOptions { FaultSpec = FaultSpec(result) })
+            ? SimulatedMachine.OpenInProcess(profile, SimulatorOptionsFor(result))
             : MachineSession.OpenPorts(result.GetValue(StagePort)!, result.GetValue(LaserPort)!, profile);
     }
 }

@@ -7,7 +7,7 @@ using LaserEngrave.Simulator.Faults;
 
 namespace LaserEngrave.Cli.Commands;
 
-/// <summary>`laserengrave simulator --stage-port PATH --laser-port PATH [--realtime] [--fault SPEC]`: the machine in software on two ports.</summary>
+/// <summary>`laserengrave simulator --stage-port PATH --laser-port PATH [--fault SPEC] [--sim-options FILE]`: the machine in software on two ports, on the wall clock.</summary>
 /// <remarks>
 /// Typically on ptys made by socat, whose other ends the host opens as if they were the real ports. Stays up until
 /// Ctrl+C, printing one line per connection event; when a port goes away (socat stopped) it is reopened once it is back.
@@ -31,10 +31,8 @@ internal static class SimulatorCommand
             Description = "Port the laser gate answers on, e.g. /tmp/le-laser",
             Required = true,
         };
-        var realTime = new Option<bool>("--realtime")
-        {
-            Description = "Let moves take their real time; by default the devices' own waiting (motion, wire time) is fast-forwarded",
-        };
+        var simOptions = MachineOptions.SimOptionsOption();
+        var simSeed = MachineOptions.SimSeedOption();
         var fault = new Option<string[]>("--fault")
         {
             Description = "Inject faults, e.g. drop-reply:stage:after=10,no-ack:gate:after=4 (kinds: drop-reply, corrupt, delay, error, silent, disconnect, no-ack; see docs/simulator.md)",
@@ -45,14 +43,13 @@ internal static class SimulatorCommand
         };
         var command = new Command("simulator", "Run two Zaber T-LA60A and the laser gate in software on two ports, until Ctrl+C")
         {
-            stagePort, laserPort, realTime, fault, profile,
+            stagePort, laserPort, fault, profile, simOptions, simSeed,
         };
         command.SetAction((result, ct) => RunAsync(
             open,
             result.GetRequiredValue(stagePort),
             result.GetRequiredValue(laserPort),
-            result.GetValue(realTime),
-            string.Join(',', result.GetValue(fault) ?? []),
+            MachineOptions.SimulatorOptions(result, simOptions, simSeed, string.Join(',', result.GetValue(fault) ?? [])),
             result.GetValue(profile),
             result.InvocationConfiguration.Output,
             ct));
@@ -60,10 +57,10 @@ internal static class SimulatorCommand
     }
 
     private static async Task<int> RunAsync(
-        Func<string, int, ISerialLink> open, string stagePath, string laserPath, bool realTime, string faultSpec, string? profilePath, TextWriter output, CancellationToken cancellationToken)
+        Func<string, int, ISerialLink> open, string stagePath, string laserPath, SimulatorOptions options, string? profilePath, TextWriter output, CancellationToken cancellationToken)
     {
         var profile = profilePath is null ? MachineProfile.Default : MachineProfile.Load(profilePath);
-        var faults = FaultInjector.ParseRules(faultSpec);
+        var faults = FaultInjector.ParseRules(options.FaultSpec);
         var stage = open(stagePath, profile.StageBaudRate);
         ISerialLink laser;
         try
@@ -85,10 +82,10 @@ internal static class SimulatorCommand
             }
         }
 
-        await using var machine = SimulatedMachine.Attach(stage, laser, profile, new SimulatorOptions { RealTime = realTime, FaultSpec = faultSpec });
+        await using var machine = SimulatedMachine.Attach(stage, laser, profile, options);
         machine.EventRaised += (_, e) => Print($"{e.Port}: {e.Message}");
         Print($"simulator: stage (X = device {profile.X.DeviceNumber}, Y = device {profile.Y.DeviceNumber}) on {stagePath}, laser gate on {laserPath}, "
-            + $"{(realTime ? "real time" : "virtual time")}{(faults.Count > 0 ? $", faults {string.Join(',', faults)}" : string.Empty)}; Ctrl+C to stop");
+            + $"on the wall clock (a host in another process lives in real time), seed {options.Seed}{(faults.Count > 0 ? $", faults {string.Join(',', faults)}" : string.Empty)}; Ctrl+C to stop");
 
         try
         {

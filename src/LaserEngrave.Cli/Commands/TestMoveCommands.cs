@@ -36,7 +36,7 @@ internal static class TestMoveCommands
             }
 
             return await WithMovesAsync(result, machine, prepared.Spec.Profile, prepared.Spec.Process, async moves =>
-                Describe(await moves.FrameAsync(prepared.Geometry.Geometry, result.GetValue(visibleHz), ct).ConfigureAwait(false), prepared.Spec.Profile)).ConfigureAwait(false);
+                Describe(await moves.FrameAsync(prepared.Geometry.Geometry, result.GetValue(visibleHz), ct), prepared.Spec.Profile));
         });
         return command;
     }
@@ -64,7 +64,7 @@ internal static class TestMoveCommands
 
             var machineProfile = LoadProfile(result, profile);
             return await WithMovesAsync(result, machine, machineProfile, null, async moves =>
-                Describe(await moves.JogAsync(name, stepUm, ct).ConfigureAwait(false), machineProfile)).ConfigureAwait(false);
+                Describe(await moves.JogAsync(name, stepUm, ct), machineProfile));
         });
         return command;
     }
@@ -83,7 +83,7 @@ internal static class TestMoveCommands
             WithinTravel(xMm, machineProfile.X.TravelMm, "X_MM");
             WithinTravel(yMm, machineProfile.Y.TravelMm, "Y_MM");
             return await WithMovesAsync(result, machine, machineProfile, null, async moves =>
-                Describe(await moves.GoToAsync(xMm, yMm, ct).ConfigureAwait(false), machineProfile)).ConfigureAwait(false);
+                Describe(await moves.GoToAsync(xMm, yMm, ct), machineProfile));
         });
         return command;
     }
@@ -120,13 +120,13 @@ internal static class TestMoveCommands
             {
                 if (count is { } n)
                 {
-                    await moves.FirePulsesAsync(n, hz, ct).ConfigureAwait(false);
+                    await moves.FirePulsesAsync(n, hz, ct);
                     return string.Create(CultureInfo.InvariantCulture, $"fired {n} pulses at {hz} Hz; laser off");
                 }
 
-                await moves.FireForAsync(TimeSpan.FromMilliseconds(duration!.Value), hz, ct).ConfigureAwait(false);
+                await moves.FireForAsync(TimeSpan.FromMilliseconds(duration!.Value), hz, ct);
                 return string.Create(CultureInfo.InvariantCulture, $"fired for {duration} ms at {hz} Hz; laser off");
-            }).ConfigureAwait(false);
+            });
         });
         return command;
     }
@@ -148,10 +148,10 @@ internal static class TestMoveCommands
     private static async Task<int> WithMovesAsync(ParseResult result, MachineOptions machine, MachineProfile profile, Core.Planning.ProcessSettings? process, Func<StageTestMoves, Task<string>> move)
     {
         var session = machine.Open(result, profile);
-        await using (session.ConfigureAwait(false))
+        await using (session)
         {
             var moves = new StageTestMoves(session.Stage, session.Gate, profile, process, session.TimeProvider);
-            result.InvocationConfiguration.Output.WriteLine(await move(moves).ConfigureAwait(false));
+            result.InvocationConfiguration.Output.WriteLine(await session.RunAsync(() => move(moves)));
         }
 
         return CliRunner.Ok;

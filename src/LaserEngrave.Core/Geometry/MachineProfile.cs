@@ -48,6 +48,27 @@ public sealed record LaserGateProfile
     /// <summary>Fires a burst; {0} is the pulse count, {1} the frequency in Hz.</summary>
     public string BurstCommand { get; init; } = "BURST {0} {1}";
 
+    /// <summary>What acknowledges <see cref="IdentifyCommand"/> after the prefix; empty: any acknowledgement.</summary>
+    public string IdentifyReply { get; init; } = string.Empty;
+
+    /// <summary>What acknowledges <see cref="FrequencyCommand"/> after the prefix; {0} as in the command.</summary>
+    public string FrequencyReply { get; init; } = "FREQ {0}";
+
+    /// <summary>What acknowledges <see cref="OffCommand"/> after the prefix.</summary>
+    public string OffReply { get; init; } = "FREQ 0";
+
+    /// <summary>The first word of the reply to <see cref="StatusCommand"/> after the prefix.</summary>
+    public string StatusReply { get; init; } = "STATE";
+
+    /// <summary>What acknowledges <see cref="KeepAliveCommand"/> after the prefix.</summary>
+    public string KeepAliveReply { get; init; } = "PONG";
+
+    /// <summary>What acknowledges <see cref="WatchdogCommand"/> after the prefix; {0} as in the command.</summary>
+    public string WatchdogReply { get; init; } = "WDOG {0}";
+
+    /// <summary>What acknowledges <see cref="BurstCommand"/> after the prefix; {0} and {1} as in the command.</summary>
+    public string BurstReply { get; init; } = "BURST {0}";
+
     /// <summary>Every successful reply starts with this.</summary>
     public string AckPrefix { get; init; } = "OK";
 

@@ -95,6 +95,9 @@ public sealed record RunRecord
     /// <summary>Whether this run resumed <see cref="RepeatOf"/> from its stop point rather than starting over.</summary>
     public bool Resumed { get; init; }
 
+    /// <summary>On the simulator: what the twin measured of the edges and pulses (null on the machine).</summary>
+    public RunSimulation? Simulation { get; init; }
+
     /// <summary>The version of the LaserEngrave.Core assembly, as built (its informational version, with the source revision when known).</summary>
     public static string CurrentSoftwareVersion { get; } = ReadSoftwareVersion();
 

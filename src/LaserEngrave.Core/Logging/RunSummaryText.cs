@@ -62,6 +62,22 @@ public static class RunSummaryText
             Line("Device", $"{device.Role} on {device.Port}: {device.Identity}, firmware {device.Firmware}");
         }
 
+        if (record.Simulation is { } sim)
+        {
+            Line("Twin", string.Create(c, $"seed {sim.Seed}, {sim.Pulses} pulses, {sim.MissingPixels} pixels missing, {sim.ExtraPixels} extra, {sim.LaserOnTravelCount} pulses off the black"));
+            if (sim.Edges is { } edges)
+            {
+                Line("Edges", string.Create(c, $"{edges.Count}: mean error {edges.MeanErrorUm:0.##} µm, largest {edges.MaxErrorUm:0.##} µm"));
+            }
+
+            if (sim.Dwells is { } dwells)
+            {
+                Line("Dwells", string.Create(c, $"{dwells.Count} ({dwells.Pulses} pulses with the stage still)"));
+            }
+
+            Line("Pulses per pixel", string.Create(c, $"min {sim.PulsesPerPixel.Min}, mean {sim.PulsesPerPixel.Mean:0.#}, max {sim.PulsesPerPixel.Max}"));
+        }
+
         if (record.RepeatOf is { } repeated)
         {
             Line(record.Resumed ? "Resumes" : "Repeats", repeated + (record.Resumed ? " (from where it stopped)" : string.Empty));

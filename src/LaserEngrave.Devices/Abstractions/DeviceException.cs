@@ -21,6 +21,11 @@ public class DeviceTimeoutException : DeviceException
         : base(message)
     {
     }
+
+    public DeviceTimeoutException(string message, Exception inner)
+        : base(message, inner)
+    {
+    }
 }
 
 /// <summary>The port closed or vanished under us.</summary>

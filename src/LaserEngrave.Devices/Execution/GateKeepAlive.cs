@@ -1,4 +1,5 @@
 using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Devices.Scheduling;
 
 namespace LaserEngrave.Devices.Execution;
 
@@ -28,7 +29,7 @@ internal sealed class GateKeepAlive : IAsyncDisposable
         _period = period;
         _time = time;
         _failed = failed;
-        _loop = period > TimeSpan.Zero ? Task.Run(LoopAsync) : Task.CompletedTask;
+        _loop = period > TimeSpan.Zero ? TaskRunner.For(time).Start(LoopAsync) : Task.CompletedTask;
     }
 
     /// <summary>Whether keepalives are sent (set while the laser is on).</summary>
@@ -56,10 +57,10 @@ internal sealed class GateKeepAlive : IAsyncDisposable
 
     public async ValueTask DisposeAsync()
     {
-        await _stop.CancelAsync().ConfigureAwait(false);
+        _stop.Cancel();
         try
         {
-            await _loop.ConfigureAwait(false);
+            await _loop;
         }
         catch (OperationCanceledException)
         {
@@ -74,7 +75,7 @@ internal sealed class GateKeepAlive : IAsyncDisposable
         var token = _stop.Token;
         while (!token.IsCancellationRequested)
         {
-            await Task.Delay(_period, _time, token).ConfigureAwait(false);
+            await Task.Delay(_period, _time, token);
             if (!_active || _time.GetTimestamp() >= QuietFrom)
             {
                 continue;
@@ -82,7 +83,7 @@ internal sealed class GateKeepAlive : IAsyncDisposable
 
             try
             {
-                await _gate.KeepAliveAsync(token).ConfigureAwait(false);
+                await _gate.KeepAliveAsync(token);
             }
             catch (OperationCanceledException) when (token.IsCancellationRequested)
             {

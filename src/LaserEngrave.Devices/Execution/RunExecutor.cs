@@ -6,6 +6,8 @@ using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Zaber;
 
+using LaserEngrave.Devices.Scheduling;
+
 namespace LaserEngrave.Devices.Execution;
 
 /// <summary>Executes a <see cref="PreparedJob"/>'s plan on a stage and a laser gate, safely, waiting only on a <see cref="TimeProvider"/>.</summary>
@@ -26,7 +28,7 @@ public sealed class RunExecutor
 
     // Every laser command goes under this lock, and a switch-on checks for an abort inside it: so once Abort has sent
     // its switch-off, no switch-on can follow it on the wire.
-    private readonly SemaphoreSlim _laserLock = new(1, 1);
+    private readonly AsyncLock _laserLock = new();
     private readonly CancellationTokenSource _abortDone = new();
     private readonly CancellationTokenSource _fault = new();
     private readonly ProcessSettings _process;
@@ -143,24 +145,24 @@ public sealed class RunExecutor
 
         var startedAt = TimeProvider.GetUtcNow();
         _startTimestamp = TimeProvider.GetTimestamp();
-        await using var registration = cancellationToken.Register(Abort).ConfigureAwait(false);
+        await using var registration = cancellationToken.Register(Abort);
         var token = _abortDone.Token;
         MachineIdentity? identity = null;
         try
         {
             SetState(RunState.Preflight);
-            identity = await PreflightAsync(token).ConfigureAwait(false);
+            identity = await PreflightAsync(token);
             var (moves, firstIndex) = Prepare();
             SetState(RunState.Running);
             _keepAlive = new GateKeepAlive(Gate, GateKeepAlive.PeriodFor(_profile.Gate.WatchdogMs, Options.KeepAliveFraction), TimeProvider, OnKeepAliveFailed);
             using var linked = CancellationTokenSource.CreateLinkedTokenSource(token, _fault.Token);
-            await ExecuteAsync(moves, firstIndex, linked.Token).ConfigureAwait(false);
-            await SwitchLaserAsync(on: false).ConfigureAwait(false);
-            return await FinishAsync(RunOutcome.Completed, null, identity, startedAt).ConfigureAwait(false);
+            await ExecuteAsync(moves, firstIndex, linked.Token);
+            await SwitchLaserAsync(on: false);
+            return await FinishAsync(RunOutcome.Completed, null, identity, startedAt);
         }
         catch (PreflightException) when (!IsAbortRequested)
         {
-            await LaserOffSafelyAsync().ConfigureAwait(false);
+            await LaserOffSafelyAsync();
             SetState(RunState.Failed);
             throw;
         }
@@ -169,17 +171,17 @@ public sealed class RunExecutor
             // Whatever went wrong (a device, or a bug), the laser goes off and the stage stops before anything else.
             if (IsAbortRequested)
             {
-                return await FinishAsync(RunOutcome.Aborted, AbortedMessage, identity, startedAt).ConfigureAwait(false);
+                return await FinishAsync(RunOutcome.Aborted, AbortedMessage, identity, startedAt);
             }
 
             var reason = _keepAlive?.Fault is { } keepAliveFault ? $"the laser gate did not answer the keepalive: {keepAliveFault.Message}" : ex.Message;
-            return await FailAsync(reason, identity, startedAt).ConfigureAwait(false);
+            return await FailAsync(reason, identity, startedAt);
         }
         finally
         {
             if (_keepAlive is not null)
             {
-                await _keepAlive.DisposeAsync().ConfigureAwait(false);
+                await _keepAlive.DisposeAsync();
             }
         }
     }
@@ -240,7 +242,7 @@ public sealed class RunExecutor
 
             _abortRequested = true;
             resumed = _resumed;
-            _abortSequence = Task.Run(AbortSequenceAsync);
+            _abortSequence = TaskRunner.For(TimeProvider).Start(AbortSequenceAsync);
         }
 
         SetState(RunState.Aborting);
@@ -266,13 +268,13 @@ public sealed class RunExecutor
     {
         try
         {
-            await LaserOffSafelyAsync().ConfigureAwait(false);
-            await StopAxesAsync().ConfigureAwait(false);
+            await LaserOffSafelyAsync();
+            await StopAxesAsync();
         }
         finally
         {
             // Releases whatever the run is waiting for (a move the stop did not interrupt, a pause).
-            await _abortDone.CancelAsync().ConfigureAwait(false);
+            _abortDone.Cancel();
         }
     }
 
@@ -286,17 +288,17 @@ public sealed class RunExecutor
         string gateIdentity;
         try
         {
-            gateIdentity = await OnceMoreAfterTimeoutAsync(() => Gate.IdentifyAsync(token)).ConfigureAwait(false);
-            await Gate.OffAsync(token).ConfigureAwait(false);
-            await Gate.SetWatchdogAsync(_profile.Gate.WatchdogMs, token).ConfigureAwait(false);
+            gateIdentity = await OnceMoreAfterTimeoutAsync(() => Gate.IdentifyAsync(token));
+            await Gate.OffAsync(token);
+            await Gate.SetWatchdogAsync(_profile.Gate.WatchdogMs, token);
         }
         catch (DeviceException ex)
         {
             throw new PreflightException($"the laser gate does not answer as it should: {ex.Message}", ex);
         }
 
-        var x = await IdentifyAxisAsync(Stage.X, "X", token).ConfigureAwait(false);
-        var y = await IdentifyAxisAsync(Stage.Y, "Y", token).ConfigureAwait(false);
+        var x = await IdentifyAxisAsync(Stage.X, "X", token);
+        var y = await IdentifyAxisAsync(Stage.Y, "Y", token);
         CheckReach(x, y);
 
         var homing = new List<Task<long>>();
@@ -312,9 +314,9 @@ public sealed class RunExecutor
 
         try
         {
-            await Task.WhenAll(homing).ConfigureAwait(false);
-            _x = await Stage.X.GetPositionAsync(token).ConfigureAwait(false);
-            _y = await Stage.Y.GetPositionAsync(token).ConfigureAwait(false);
+            await Task.WhenAll(homing);
+            _x = await Stage.X.GetPositionAsync(token);
+            _y = await Stage.Y.GetPositionAsync(token);
         }
         catch (DeviceException ex)
         {
@@ -329,7 +331,7 @@ public sealed class RunExecutor
         AxisIdentity identity;
         try
         {
-            identity = await OnceMoreAfterTimeoutAsync(() => axis.IdentifyAsync(token)).ConfigureAwait(false);
+            identity = await OnceMoreAfterTimeoutAsync(() => axis.IdentifyAsync(token));
             if (identity.AutoReplyDisabled)
             {
                 if (!Options.FixAutoReply || axis is not ZaberBinaryDevice zaber)
@@ -338,8 +340,8 @@ public sealed class RunExecutor
                         $"the {name} axis (device {axis.DeviceNumber}) has auto-reply disabled (Device Mode bit 0), so it would never confirm a move; clear bit 0 first");
                 }
 
-                await zaber.SetDeviceModeAsync(0, ZaberBinaryDevice.AutoReplyDisabledBit, token).ConfigureAwait(false);
-                identity = await axis.IdentifyAsync(token).ConfigureAwait(false);
+                await zaber.SetDeviceModeAsync(0, ZaberBinaryDevice.AutoReplyDisabledBit, token);
+                identity = await axis.IdentifyAsync(token);
             }
         }
         catch (DeviceException ex) when (ex is not PreflightException)
@@ -355,11 +357,11 @@ public sealed class RunExecutor
     {
         try
         {
-            return await ask().ConfigureAwait(false);
+            return await ask();
         }
         catch (DeviceTimeoutException)
         {
-            return await ask().ConfigureAwait(false);
+            return await ask();
         }
     }
 
@@ -431,8 +433,8 @@ public sealed class RunExecutor
         _engravingStarted = true;
         foreach (var axis in new[] { Stage.X, Stage.Y })
         {
-            await axis.SetAccelerationAsync(_accelerationData, token).ConfigureAwait(false);
-            await axis.SetTargetSpeedAsync(_travelSpeedData, token).ConfigureAwait(false);
+            await axis.SetAccelerationAsync(_accelerationData, token);
+            await axis.SetTargetSpeedAsync(_travelSpeedData, token);
         }
 
         (_xSpeedData, _ySpeedData) = (_travelSpeedData, _travelSpeedData);
@@ -444,7 +446,7 @@ public sealed class RunExecutor
             {
                 // Reaching the plan's (or the resume point's) first position is not part of the estimate.
                 var positioning = TimeProvider.GetTimestamp();
-                await MoveToAsync(move.X0, move.Y0, _travelSpeedData, token).ConfigureAwait(false);
+                await MoveToAsync(move.X0, move.Y0, _travelSpeedData, token);
                 _notEngraving += TimeProvider.GetElapsedTime(positioning);
                 first = false;
             }
@@ -457,8 +459,8 @@ public sealed class RunExecutor
                 _currentMove = move;
             }
 
-            await PauseIfAskedAsync(token).ConfigureAwait(false);
-            await ExecuteMoveAsync(move, token).ConfigureAwait(false);
+            await PauseIfAskedAsync(token);
+            await ExecuteMoveAsync(move, token);
             Completed(move, index);
             index++;
         }
@@ -558,15 +560,15 @@ public sealed class RunExecutor
         // Off before anything else, so the laser never stands still on while speeds are set.
         if (!burn && _laserOn)
         {
-            await SwitchLaserAsync(on: false).ConfigureAwait(false);
+            await SwitchLaserAsync(on: false);
         }
 
         // Speeds before switching on, for the same reason (docs/simulator.md: dwell).
         var speedData = burn || move.Kind == MoveKind.Overscan ? _burnSpeedData : _travelSpeedData;
-        await SetSpeedsAsync(move.LengthX != 0, move.LengthY != 0, speedData, token).ConfigureAwait(false);
+        await SetSpeedsAsync(move.LengthX != 0, move.LengthY != 0, speedData, token);
         if (burn && !_laserOn)
         {
-            await SwitchLaserAsync(on: true).ConfigureAwait(false);
+            await SwitchLaserAsync(on: true);
         }
 
         if (burn)
@@ -577,31 +579,31 @@ public sealed class RunExecutor
             _keepAlive!.QuietFrom = TimeProvider.GetTimestamp() + (long)(quietAfterSeconds * TimeProvider.TimestampFrequency);
         }
 
-        await MoveAxesAsync(move.LengthX != 0 ? move.X1 : null, move.LengthY != 0 ? move.Y1 : null, token).ConfigureAwait(false);
+        await MoveAxesAsync(move.LengthX != 0 ? move.X1 : null, move.LengthY != 0 ? move.Y1 : null, token);
     }
 
     private async Task MoveToAsync(long x, long y, int speedData, CancellationToken token)
     {
         if (_laserOn)
         {
-            await SwitchLaserAsync(on: false).ConfigureAwait(false);
+            await SwitchLaserAsync(on: false);
         }
 
-        await SetSpeedsAsync(x != _x, y != _y, speedData, token).ConfigureAwait(false);
-        await MoveAxesAsync(x != _x ? x : null, y != _y ? y : null, token).ConfigureAwait(false);
+        await SetSpeedsAsync(x != _x, y != _y, speedData, token);
+        await MoveAxesAsync(x != _x ? x : null, y != _y ? y : null, token);
     }
 
     private async Task SetSpeedsAsync(bool x, bool y, int speedData, CancellationToken token)
     {
         if (x && _xSpeedData != speedData)
         {
-            await Stage.X.SetTargetSpeedAsync(speedData, token).ConfigureAwait(false);
+            await Stage.X.SetTargetSpeedAsync(speedData, token);
             _xSpeedData = speedData;
         }
 
         if (y && _ySpeedData != speedData)
         {
-            await Stage.Y.SetTargetSpeedAsync(speedData, token).ConfigureAwait(false);
+            await Stage.Y.SetTargetSpeedAsync(speedData, token);
             _ySpeedData = speedData;
         }
     }
@@ -615,12 +617,12 @@ public sealed class RunExecutor
         {
             if (xMove is not null)
             {
-                _x = Arrived("X", await xMove.ConfigureAwait(false), x!.Value);
+                _x = Arrived("X", await xMove, x!.Value);
             }
 
             if (yMove is not null)
             {
-                _y = Arrived("Y", await yMove.ConfigureAwait(false), y!.Value);
+                _y = Arrived("Y", await yMove, y!.Value);
             }
         }
         catch
@@ -666,12 +668,12 @@ public sealed class RunExecutor
 
         if (_laserOn)
         {
-            await SwitchLaserAsync(on: false).ConfigureAwait(false);
+            await SwitchLaserAsync(on: false);
         }
 
         var pausedAt = TimeProvider.GetTimestamp();
         SetState(RunState.Paused);
-        await resumed.Task.WaitAsync(token).ConfigureAwait(false);
+        await Signals.WaitAsync(resumed, token);
         _notEngraving += TimeProvider.GetElapsedTime(pausedAt);
         ThrowIfAborted();
         SetState(RunState.Running);
@@ -707,7 +709,7 @@ public sealed class RunExecutor
 
     private async Task SwitchLaserAsync(bool on)
     {
-        await _laserLock.WaitAsync().ConfigureAwait(false);
+        await _laserLock.WaitAsync();
         try
         {
             if (on)
@@ -716,7 +718,7 @@ public sealed class RunExecutor
                 ThrowIfAborted();
 
                 // Gate commands are not cancelled: a reply arriving after a cancelled command would be taken for the next one's.
-                await Gate.SetFrequencyAsync(_process.LaserFrequencyWholeHz, CancellationToken.None).ConfigureAwait(false);
+                await Gate.SetFrequencyAsync(_process.LaserFrequencyWholeHz, CancellationToken.None);
                 lock (_lock)
                 {
                     _laserOn = true;
@@ -732,7 +734,7 @@ public sealed class RunExecutor
                     _keepAlive.Active = false;
                 }
 
-                await Gate.OffAsync(CancellationToken.None).ConfigureAwait(false);
+                await Gate.OffAsync(CancellationToken.None);
                 MarkLaserOff();
             }
         }
@@ -757,7 +759,7 @@ public sealed class RunExecutor
     /// <summary>Switches the laser off, trying <see cref="RunOptions.LaserOffAttempts"/> times; records when the gate cannot be reached.</summary>
     private async Task LaserOffSafelyAsync()
     {
-        await _laserLock.WaitAsync().ConfigureAwait(false);
+        await _laserLock.WaitAsync();
         try
         {
             if (_keepAlive is not null)
@@ -770,7 +772,7 @@ public sealed class RunExecutor
             {
                 try
                 {
-                    await Gate.OffAsync(CancellationToken.None).ConfigureAwait(false);
+                    await Gate.OffAsync(CancellationToken.None);
                     MarkLaserOff();
                     lock (_lock)
                     {
@@ -808,7 +810,7 @@ public sealed class RunExecutor
         {
             try
             {
-                var position = await axis.StopAsync(CancellationToken.None).ConfigureAwait(false);
+                var position = await axis.StopAsync(CancellationToken.None);
                 lock (_lock)
                 {
                     if (axis == Stage.X)
@@ -836,24 +838,24 @@ public sealed class RunExecutor
 
     private async Task<RunResult> FailAsync(string reason, MachineIdentity? identity, DateTimeOffset startedAt)
     {
-        await LaserOffSafelyAsync().ConfigureAwait(false);
-        await StopAxesAsync().ConfigureAwait(false);
+        await LaserOffSafelyAsync();
+        await StopAxesAsync();
         if (IsAbortRequested)
         {
-            return await FinishAsync(RunOutcome.Aborted, AbortedMessage, identity, startedAt).ConfigureAwait(false);
+            return await FinishAsync(RunOutcome.Aborted, AbortedMessage, identity, startedAt);
         }
 
-        return await FinishAsync(RunOutcome.Failed, reason, identity, startedAt).ConfigureAwait(false);
+        return await FinishAsync(RunOutcome.Failed, reason, identity, startedAt);
     }
 
     private async Task<RunResult> FinishAsync(RunOutcome outcome, string? message, MachineIdentity? identity, DateTimeOffset startedAt)
     {
         if (outcome == RunOutcome.Aborted)
         {
-            await _abortSequence.ConfigureAwait(false);
+            await _abortSequence;
 
             // A move may have been sent in the moment between the abort and the run noticing it: stop again.
-            await StopAxesAsync().ConfigureAwait(false);
+            await StopAxesAsync();
         }
 
         if (outcome == RunOutcome.Completed)

@@ -56,8 +56,8 @@ public sealed class StageTestMoves
     /// <summary>Reads both axes' positions.</summary>
     public async Task<StagePosition> GetPositionAsync(CancellationToken cancellationToken)
     {
-        var x = await Stage.X.GetPositionAsync(cancellationToken).ConfigureAwait(false);
-        var y = await Stage.Y.GetPositionAsync(cancellationToken).ConfigureAwait(false);
+        var x = await Stage.X.GetPositionAsync(cancellationToken);
+        var y = await Stage.Y.GetPositionAsync(cancellationToken);
         return new StagePosition(x, y);
     }
 
@@ -70,14 +70,14 @@ public sealed class StageTestMoves
             throw new TestMoveException($"jog step {stepUm.ToString(CultureInfo.InvariantCulture)} µm is not a number");
         }
 
-        var current = await GetPositionAsync(cancellationToken).ConfigureAwait(false);
+        var current = await GetPositionAsync(cancellationToken);
         var step = axis == StageAxisName.X
             ? StageUnits.UmToMicrosteps(stepUm, Profile.X.MicrostepUm)
             : StageUnits.UmToMicrosteps(stepUm, Profile.Y.MicrostepUm);
         var target = axis == StageAxisName.X
             ? current with { XMicrosteps = JobGeometry.Round(current.XMicrosteps + step) }
             : current with { YMicrosteps = JobGeometry.Round(current.YMicrosteps + step) };
-        return await MoveAsync(target, cancellationToken).ConfigureAwait(false);
+        return await MoveAsync(target, cancellationToken);
     }
 
     /// <summary>Moves to (<paramref name="xMm"/>, <paramref name="yMm"/>) mm, laser off.</summary>
@@ -92,14 +92,14 @@ public sealed class StageTestMoves
         var target = new StagePosition(
             JobGeometry.Round(StageUnits.MmToMicrosteps(xMm, Profile.X.MicrostepUm)),
             JobGeometry.Round(StageUnits.MmToMicrosteps(yMm, Profile.Y.MicrostepUm)));
-        return await MoveAsync(target, cancellationToken).ConfigureAwait(false);
+        return await MoveAsync(target, cancellationToken);
     }
 
     /// <summary>Moves to the job's origin (the top-left corner of the image on the stage), laser off.</summary>
     public async Task<StagePosition> GoToOriginAsync(JobGeometry geometry, CancellationToken cancellationToken)
     {
         ArgumentNullException.ThrowIfNull(geometry);
-        return await MoveAsync(new StagePosition(geometry.EdgeX(0), geometry.EdgeY(0)), cancellationToken).ConfigureAwait(false);
+        return await MoveAsync(new StagePosition(geometry.EdgeX(0), geometry.EdgeY(0)), cancellationToken);
     }
 
     /// <summary>Homes both axes, laser off.</summary>
@@ -108,10 +108,10 @@ public sealed class StageTestMoves
         await SafelyAsync(
             async () =>
             {
-                await Task.WhenAll(Stage.X.HomeAsync(cancellationToken), Stage.Y.HomeAsync(cancellationToken)).ConfigureAwait(false);
+                await Task.WhenAll(Stage.X.HomeAsync(cancellationToken), Stage.Y.HomeAsync(cancellationToken));
             },
-            cancellationToken).ConfigureAwait(false);
-        return await GetPositionAsync(cancellationToken).ConfigureAwait(false);
+            cancellationToken);
+        return await GetPositionAsync(cancellationToken);
     }
 
     /// <summary>Traces the job's bounding rectangle (top-left, top-right, bottom-right, bottom-left, back), laser off,
@@ -132,24 +132,24 @@ public sealed class StageTestMoves
             CheckTravel(corner);
         }
 
-        await MoveAsync(corners[0], cancellationToken).ConfigureAwait(false);
+        await MoveAsync(corners[0], cancellationToken);
         await SafelyAsync(
             async () =>
             {
                 if (visibleFrequencyHz is { } hz)
                 {
-                    await Gate.SetFrequencyAsync(hz, cancellationToken).ConfigureAwait(false);
+                    await Gate.SetFrequencyAsync(hz, cancellationToken);
                 }
 
                 var at = corners[0];
                 foreach (var corner in corners.Skip(1))
                 {
-                    await MoveAxesAsync(at, corner, cancellationToken).ConfigureAwait(false);
+                    await MoveAxesAsync(at, corner, cancellationToken);
                     at = corner;
                 }
             },
             cancellationToken,
-            keepAlive: visibleFrequencyHz is not null).ConfigureAwait(false);
+            keepAlive: visibleFrequencyHz is not null);
         return corners[^1];
     }
 
@@ -164,12 +164,12 @@ public sealed class StageTestMoves
         await SafelyAsync(
             async () =>
             {
-                await Gate.BurstAsync(pulses, frequencyHz, cancellationToken).ConfigureAwait(false);
+                await Gate.BurstAsync(pulses, frequencyHz, cancellationToken);
 
                 // The burst runs on its own; wait it out so the switch-off at the end does not cut it short.
-                await Task.Delay(TimeSpan.FromSeconds((double)pulses / frequencyHz), TimeProvider, cancellationToken).ConfigureAwait(false);
+                await Task.Delay(TimeSpan.FromSeconds((double)pulses / frequencyHz), TimeProvider, cancellationToken);
             },
-            cancellationToken).ConfigureAwait(false);
+            cancellationToken);
     }
 
     /// <summary>Fires at <paramref name="frequencyHz"/> for <paramref name="duration"/> at the current position, then off.</summary>
@@ -183,11 +183,11 @@ public sealed class StageTestMoves
         await SafelyAsync(
             async () =>
             {
-                await Gate.SetFrequencyAsync(frequencyHz, cancellationToken).ConfigureAwait(false);
-                await Task.Delay(duration, TimeProvider, cancellationToken).ConfigureAwait(false);
+                await Gate.SetFrequencyAsync(frequencyHz, cancellationToken);
+                await Task.Delay(duration, TimeProvider, cancellationToken);
             },
             cancellationToken,
-            keepAlive: true).ConfigureAwait(false);
+            keepAlive: true);
     }
 
     private static string N(double value) => value.ToString("0.####", CultureInfo.InvariantCulture);
@@ -198,11 +198,11 @@ public sealed class StageTestMoves
         await SafelyAsync(
             async () =>
             {
-                await Gate.OffAsync(cancellationToken).ConfigureAwait(false);
-                var current = await GetPositionAsync(cancellationToken).ConfigureAwait(false);
-                await MoveAxesAsync(current, target, cancellationToken).ConfigureAwait(false);
+                await Gate.OffAsync(cancellationToken);
+                var current = await GetPositionAsync(cancellationToken);
+                await MoveAxesAsync(current, target, cancellationToken);
             },
-            cancellationToken).ConfigureAwait(false);
+            cancellationToken);
         return target;
     }
 
@@ -219,7 +219,7 @@ public sealed class StageTestMoves
             moves.Add(Stage.Y.MoveAbsoluteAsync(to.YMicrosteps, cancellationToken));
         }
 
-        await Task.WhenAll(moves).ConfigureAwait(false);
+        await Task.WhenAll(moves);
     }
 
     private void CheckTravel(StagePosition target)
@@ -250,15 +250,15 @@ public sealed class StageTestMoves
         };
         try
         {
-            await using (feeder.ConfigureAwait(false))
+            await using (feeder)
             {
                 foreach (var axis in new[] { Stage.X, Stage.Y })
                 {
-                    await axis.SetAccelerationAsync(StageUnits.AccelerationData(Process.AccelerationMmPerS2, Profile.X.MicrostepUm), cancellationToken).ConfigureAwait(false);
-                    await axis.SetTargetSpeedAsync(StageUnits.SpeedData(Process.TravelSpeedMmPerS, Profile.X.MicrostepUm), cancellationToken).ConfigureAwait(false);
+                    await axis.SetAccelerationAsync(StageUnits.AccelerationData(Process.AccelerationMmPerS2, Profile.X.MicrostepUm), cancellationToken);
+                    await axis.SetTargetSpeedAsync(StageUnits.SpeedData(Process.TravelSpeedMmPerS, Profile.X.MicrostepUm), cancellationToken);
                 }
 
-                await action().WaitAsync(failed.Token).ConfigureAwait(false);
+                await action().WaitAsync(failed.Token);
             }
         }
         catch (OperationCanceledException) when (keepAliveFault is not null)
@@ -268,7 +268,7 @@ public sealed class StageTestMoves
         finally
         {
             // Not cancellable: the laser goes off even when the operation was cancelled.
-            await Gate.OffAsync(CancellationToken.None).ConfigureAwait(false);
+            await Gate.OffAsync(CancellationToken.None);
         }
     }
 }

@@ -1,5 +1,6 @@
 using System.Globalization;
 using System.Text;
+using LaserEngrave.Devices.Scheduling;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Serial;
@@ -19,10 +20,11 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
     private readonly ISerialLink _link;
     private readonly TimeProvider _time;
     private readonly Lock _gate = new();
-    private readonly SemaphoreSlim _sendLock = new(1, 1);
+    private readonly AsyncLock _sendLock = new();
     private readonly CancellationTokenSource _stop = new();
     private readonly Task _readLoop;
-    private (string Command, TaskCompletionSource<string> Reply)? _pending;
+    private (string Command, string Expected, TaskCompletionSource<string> Reply)? _pending;
+    private bool _resynchronise;
     private bool _closed;
     private bool _disposing;
     private Exception? _closeReason;
@@ -35,7 +37,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
         _link = link;
         Profile = profile;
         _time = timeProvider ?? TimeProvider.System;
-        _readLoop = Task.Run(ReadLoopAsync);
+        _readLoop = TaskRunner.For(_time).Start(ReadLoopAsync);
     }
 
     /// <summary>A line arrived while no command was waiting; raised on the reader loop.</summary>
@@ -66,107 +68,164 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
         return new PicLaserGate(port, profile, timeProvider);
     }
 
-    public Task<string> IdentifyAsync(CancellationToken cancellationToken) => SendAsync(Profile.IdentifyCommand, cancellationToken);
+    public Task<string> IdentifyAsync(CancellationToken cancellationToken) => SendAsync(Profile.IdentifyCommand, Profile.IdentifyReply, cancellationToken);
 
     public async Task SetFrequencyAsync(int frequencyHz, CancellationToken cancellationToken)
     {
         ArgumentOutOfRangeException.ThrowIfNegative(frequencyHz);
-        await SendAsync(Format(Profile.FrequencyCommand, frequencyHz), cancellationToken).ConfigureAwait(false);
+        await SendAsync(Format(Profile.FrequencyCommand, frequencyHz), Format(Profile.FrequencyReply, frequencyHz), cancellationToken);
     }
 
     public async Task OffAsync(CancellationToken cancellationToken) =>
-        await SendAsync(Profile.OffCommand, cancellationToken).ConfigureAwait(false);
+        await SendAsync(Profile.OffCommand, Profile.OffReply, cancellationToken);
 
     /// <summary>Asks for the state; the reply must read "STATE &lt;hz&gt; ON|OFF WDOG &lt;ms&gt; [TRIPPED]" after the acknowledgement prefix.</summary>
     public async Task<LaserGateState> GetStateAsync(CancellationToken cancellationToken)
     {
-        var text = await SendAsync(Profile.StatusCommand, cancellationToken).ConfigureAwait(false);
+        var text = await SendAsync(Profile.StatusCommand, Profile.StatusReply, cancellationToken);
         return ParseState(text) ?? throw new LaserGateException(
             PortName, Profile.StatusCommand, text, $"laser gate on {PortName}: cannot read the state from '{text}' (expected 'STATE <hz> ON|OFF WDOG <ms> [TRIPPED]')");
     }
 
     public async Task KeepAliveAsync(CancellationToken cancellationToken) =>
-        await SendAsync(Profile.KeepAliveCommand, cancellationToken).ConfigureAwait(false);
+        await SendAsync(Profile.KeepAliveCommand, Profile.KeepAliveReply, cancellationToken);
 
     public async Task SetWatchdogAsync(int milliseconds, CancellationToken cancellationToken)
     {
         ArgumentOutOfRangeException.ThrowIfNegative(milliseconds);
-        await SendAsync(Format(Profile.WatchdogCommand, milliseconds), cancellationToken).ConfigureAwait(false);
+        await SendAsync(Format(Profile.WatchdogCommand, milliseconds), Format(Profile.WatchdogReply, milliseconds), cancellationToken);
     }
 
     public async Task BurstAsync(int pulses, int frequencyHz, CancellationToken cancellationToken)
     {
         ArgumentOutOfRangeException.ThrowIfNegativeOrZero(pulses);
         ArgumentOutOfRangeException.ThrowIfNegativeOrZero(frequencyHz);
-        await SendAsync(Format(Profile.BurstCommand, pulses, frequencyHz), cancellationToken).ConfigureAwait(false);
+        await SendAsync(Format(Profile.BurstCommand, pulses, frequencyHz), Format(Profile.BurstReply, pulses, frequencyHz), cancellationToken);
     }
 
-    /// <summary>Sends one command line and waits for its reply line.</summary>
+    /// <summary>Sends one command line and waits for its reply line (any acknowledgement or refusal answers it).</summary>
     /// <returns>The reply after the acknowledgement prefix, trimmed ("PICGATE 1.2" for "OK PICGATE 1.2").</returns>
     /// <exception cref="LaserGateException">The gate answered with the error prefix, or with neither prefix.</exception>
     /// <exception cref="DeviceTimeoutException">No reply line within the profile's timeout.</exception>
     /// <exception cref="LinkLostException">The link closed.</exception>
-    public async Task<string> SendAsync(string command, CancellationToken cancellationToken)
+    public Task<string> SendAsync(string command, CancellationToken cancellationToken) => SendAsync(command, string.Empty, cancellationToken);
+
+    /// <summary>Sends one command line and waits for the reply that answers it.</summary>
+    /// <param name="command">The line, without its terminator.</param>
+    /// <param name="expected">
+    /// What the acknowledgement says after the prefix (the reply "OK FREQ 1000" answers "FREQ 1000"), or its first words; empty:
+    /// any. A refusal always answers. Any other line is reported as unexpected and ignored: a late reply to an earlier command
+    /// never acknowledges this one.
+    /// </param>
+    /// <param name="cancellationToken">Cancels the wait.</param>
+    public async Task<string> SendAsync(string command, string expected, CancellationToken cancellationToken)
     {
         ArgumentNullException.ThrowIfNull(command);
-        await _sendLock.WaitAsync(cancellationToken).ConfigureAwait(false);
+        ArgumentNullException.ThrowIfNull(expected);
+        await _sendLock.WaitAsync(cancellationToken);
         try
         {
-            var reply = new TaskCompletionSource<string>(TaskCreationOptions.RunContinuationsAsynchronously);
+            bool resynchronise;
             lock (_gate)
             {
-                if (_closed)
+                resynchronise = _resynchronise;
+            }
+
+            if (resynchronise)
+            {
+                // After a timeout a late reply may still be on its way: a keepalive answered by its own reply proves the line is in step.
+                try
                 {
-                    throw LinkLost(command, waiting: false);
+                    await ExchangeAsync(Profile.KeepAliveCommand, Profile.KeepAliveReply, cancellationToken);
                 }
-
-                _pending = (command, reply);
-            }
-
-            try
-            {
-                await _link.WriteAsync(Encoding.ASCII.GetBytes(command + Profile.LineTerminator), cancellationToken).ConfigureAwait(false);
-            }
-            catch (Exception ex) when (ex is IOException or ObjectDisposedException or InvalidOperationException)
-            {
-                ClearPending(reply);
-                throw new LinkLostException($"laser gate on {PortName}: cannot send '{command}': {ex.Message}", ex);
-            }
-            catch
-            {
-                ClearPending(reply);
-                throw;
-            }
-
-            string line;
-            try
-            {
-                line = await reply.Task.WaitAsync(Timeout, _time, cancellationToken).ConfigureAwait(false);
-            }
-            catch (TimeoutException)
-            {
-                ClearPending(reply);
-                if (reply.Task.IsCompletedSuccessfully)
+                catch (DeviceTimeoutException ex)
                 {
-                    line = reply.Task.Result;
+                    throw new DeviceTimeoutException($"laser gate on {PortName} did not acknowledge '{command}': it did not answer the '{Profile.KeepAliveCommand}' sent first to get back in step within {Profile.TimeoutMs} ms", ex);
                 }
-                else
+                lock (_gate)
                 {
-                    throw new DeviceTimeoutException($"laser gate on {PortName} did not acknowledge '{command}' within {Profile.TimeoutMs} ms");
+                    _resynchronise = false;
                 }
             }
-            catch (OperationCanceledException)
-            {
-                ClearPending(reply);
-                throw;
-            }
 
-            return Interpret(command, line);
+            return await ExchangeAsync(command, expected, cancellationToken);
         }
         finally
         {
             _sendLock.Release();
         }
+    }
+
+    private async Task<string> ExchangeAsync(string command, string expected, CancellationToken cancellationToken)
+    {
+        var reply = new TaskCompletionSource<string>(TaskCreationOptions.RunContinuationsAsynchronously);
+        lock (_gate)
+        {
+            if (_closed)
+            {
+                throw LinkLost(command, waiting: false);
+            }
+
+            _pending = (command, expected, reply);
+        }
+
+        try
+        {
+            await _link.WriteAsync(Encoding.ASCII.GetBytes(command + Profile.LineTerminator), cancellationToken);
+        }
+        catch (Exception ex) when (ex is IOException or ObjectDisposedException or InvalidOperationException)
+        {
+            ClearPending(reply);
+            throw new LinkLostException($"laser gate on {PortName}: cannot send '{command}': {ex.Message}", ex);
+        }
+        catch
+        {
+            ClearPending(reply);
+            throw;
+        }
+
+        string line;
+        try
+        {
+            line = await Signals.WaitAsync(reply, Timeout, _time, cancellationToken);
+        }
+        catch (TimeoutException)
+        {
+            ClearPending(reply);
+            lock (_gate)
+            {
+                _resynchronise = true;
+            }
+
+            throw new DeviceTimeoutException($"laser gate on {PortName} did not acknowledge '{command}' within {Profile.TimeoutMs} ms");
+        }
+        catch (OperationCanceledException)
+        {
+            ClearPending(reply);
+            lock (_gate)
+            {
+                _resynchronise = true;
+            }
+
+            throw;
+        }
+
+        return Interpret(command, line);
+    }
+
+    // Whether the line answers the command waiting: a refusal, an acknowledgement that says what is expected, or any line that is neither.
+    private bool Answers(string line, string expected)
+    {
+        if ((Profile.ErrorPrefix.Length > 0 && line.StartsWith(Profile.ErrorPrefix, StringComparison.Ordinal)) || !line.StartsWith(Profile.AckPrefix, StringComparison.Ordinal))
+        {
+            return true;
+        }
+
+        // A bare acknowledgement says nothing to match, so it answers whatever waits.
+        var body = line[Profile.AckPrefix.Length..].Trim();
+        return expected.Length == 0 || body.Length == 0
+            || body.Equals(expected, StringComparison.OrdinalIgnoreCase)
+            || body.StartsWith(expected + " ", StringComparison.OrdinalIgnoreCase);
     }
 
     public async ValueTask DisposeAsync()
@@ -181,9 +240,9 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
             _disposing = true;
         }
 
-        await _stop.CancelAsync().ConfigureAwait(false);
-        await _link.DisposeAsync().ConfigureAwait(false);
-        await _readLoop.ConfigureAwait(false);
+        _stop.Cancel();
+        await _link.DisposeAsync();
+        await _readLoop;
         Close(null);
         _stop.Dispose();
     }
@@ -273,7 +332,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
         {
             while (true)
             {
-                var n = await _link.ReadAsync(buffer, _stop.Token).ConfigureAwait(false);
+                var n = await _link.ReadAsync(buffer, _stop.Token);
                 if (n == 0)
                 {
                     break;
@@ -316,7 +375,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
         TaskCompletionSource<string>? waiter = null;
         lock (_gate)
         {
-            if (_pending is { } pending)
+            if (_pending is { } pending && Answers(line, pending.Expected))
             {
                 waiter = pending.Reply;
                 _pending = null;
@@ -335,7 +394,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
 
     private void Close(Exception? reason)
     {
-        (string Command, TaskCompletionSource<string> Reply)? pending;
+        (string Command, string Expected, TaskCompletionSource<string> Reply)? pending;
         LinkLostException? error = null;
         lock (_gate)
         {

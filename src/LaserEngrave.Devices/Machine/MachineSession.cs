@@ -1,5 +1,6 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.LaserGate;
+using LaserEngrave.Devices.Scheduling;
 using LaserEngrave.Devices.Serial;
 using LaserEngrave.Devices.Zaber;
 
@@ -60,13 +61,23 @@ public sealed class MachineSession : IAsyncDisposable
         return new MachineSession(stage, gate, timeProvider, name, name, owner);
     }
 
+    /// <summary>Runs an operation on the machine (a run, a test move) where its clock says: on the simulation's loop in virtual time, else as it is.</summary>
+    public Task<T> RunAsync<T>(Func<Task<T>> operation) => TaskRunner.For(TimeProvider).Run(operation);
+
+    /// <summary>Runs an operation that returns nothing; see <see cref="RunAsync{T}"/>.</summary>
+    public Task RunAsync(Func<Task> operation) => TaskRunner.Run(TimeProvider, operation);
+
     public async ValueTask DisposeAsync()
     {
-        await Gate.DisposeAsync().ConfigureAwait(false);
-        await Stage.DisposeAsync().ConfigureAwait(false);
+        // Through the runner: in virtual time, closing may wait on the clock (a resynchronisation's quiet period).
+        await RunAsync(async () =>
+        {
+            await Gate.DisposeAsync();
+            await Stage.DisposeAsync();
+        });
         if (Owner is not null)
         {
-            await Owner.DisposeAsync().ConfigureAwait(false);
+            await Owner.DisposeAsync();
         }
     }
 }

@@ -33,7 +33,7 @@ public sealed class InMemorySerialLink : ISerialLink
         {
             try
             {
-                if (!await _incoming.Reader.WaitToReadAsync(cancellationToken).ConfigureAwait(false))
+                if (!await _incoming.Reader.WaitToReadAsync(cancellationToken))
                 {
                     return 0;
                 }

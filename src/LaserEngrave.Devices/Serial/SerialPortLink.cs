@@ -77,7 +77,7 @@ public sealed class SerialPortLink : ISerialLink
 
         try
         {
-            return await _stream.ReadAsync(buffer, cancellationToken).ConfigureAwait(false);
+            return await _stream.ReadAsync(buffer, cancellationToken);
         }
         catch (Exception ex) when (IsDisposed && ex is ObjectDisposedException or IOException or OperationCanceledException)
         {
@@ -106,7 +106,7 @@ public sealed class SerialPortLink : ISerialLink
         deadline.CancelAfter(WriteTimeout);
         try
         {
-            await _stream.WriteAsync(data, deadline.Token).ConfigureAwait(false);
+            await _stream.WriteAsync(data, deadline.Token);
         }
         catch (Exception ex) when (ex is OperationCanceledException or TimeoutException && !cancellationToken.IsCancellationRequested)
         {

@@ -72,12 +72,12 @@ public sealed class ZaberBinaryDevice : IStageAxis
 
     public async Task<long> HomeAsync(CancellationToken cancellationToken)
     {
-        await EnsureMotionSettingsAsync(cancellationToken).ConfigureAwait(false);
+        await EnsureMotionSettingsAsync(cancellationToken);
         var (speed, homeSpeed, acceleration, maximum) = Read(() => (_speedData!.Value, _homeSpeedData, _accelerationData!.Value, _maximumPosition!.Value));
 
         // Homing may cross the whole travel and back off the sensor, at the home speed where the firmware has one.
         var slowest = homeSpeed is { } h && h > 0 ? Math.Min(h, speed) : speed;
-        var reply = await RequestAsync(ZaberCommand.Home, 0, MoveTimeout(maximum + 1, slowest, acceleration), cancellationToken).ConfigureAwait(false);
+        var reply = await RequestAsync(ZaberCommand.Home, 0, MoveTimeout(maximum + 1, slowest, acceleration), cancellationToken);
         Write(() =>
         {
             _position = reply.Data;
@@ -89,18 +89,18 @@ public sealed class ZaberBinaryDevice : IStageAxis
     public async Task<long> MoveAbsoluteAsync(long position, CancellationToken cancellationToken)
     {
         var target = ToData(position, nameof(position));
-        await EnsureMotionSettingsAsync(cancellationToken).ConfigureAwait(false);
+        await EnsureMotionSettingsAsync(cancellationToken);
         var (speed, acceleration, maximum, from) = Read(() => (_speedData!.Value, _accelerationData!.Value, _maximumPosition!.Value, _position));
         var distance = from is { } start ? Math.Abs(position - start) : Math.Max(Math.Abs(position), Math.Abs(maximum - position));
-        return await MoveAsync(ZaberCommand.MoveAbsolute, target, MoveTimeout(distance, speed, acceleration), cancellationToken).ConfigureAwait(false);
+        return await MoveAsync(ZaberCommand.MoveAbsolute, target, MoveTimeout(distance, speed, acceleration), cancellationToken);
     }
 
     public async Task<long> MoveRelativeAsync(long distance, CancellationToken cancellationToken)
     {
         var data = ToData(distance, nameof(distance));
-        await EnsureMotionSettingsAsync(cancellationToken).ConfigureAwait(false);
+        await EnsureMotionSettingsAsync(cancellationToken);
         var (speed, acceleration) = Read(() => (_speedData!.Value, _accelerationData!.Value));
-        return await MoveAsync(ZaberCommand.MoveRelative, data, MoveTimeout(Math.Abs(distance), speed, acceleration), cancellationToken).ConfigureAwait(false);
+        return await MoveAsync(ZaberCommand.MoveRelative, data, MoveTimeout(Math.Abs(distance), speed, acceleration), cancellationToken);
     }
 
     /// <summary>Starts moving at a signed speed (data x 9.375 microsteps/s); replies at once with the speed.</summary>
@@ -108,7 +108,7 @@ public sealed class ZaberBinaryDevice : IStageAxis
     public async Task<int> MoveAtConstantSpeedAsync(int speedData, CancellationToken cancellationToken)
     {
         Write(() => _position = null);
-        var reply = await RequestAsync(ZaberCommand.MoveAtConstantSpeed, speedData, Connection.Options.CommandTimeout, cancellationToken).ConfigureAwait(false);
+        var reply = await RequestAsync(ZaberCommand.MoveAtConstantSpeed, speedData, Connection.Options.CommandTimeout, cancellationToken);
         return reply.Data;
     }
 
@@ -119,7 +119,7 @@ public sealed class ZaberBinaryDevice : IStageAxis
         // Stop replies after decelerating from at most the target speed (or a constant speed up to the maximum).
         var decelerationS = StageUnits.SpeedMicrostepsPerS(Math.Max(speed, 1)) / StageUnits.AccelerationMicrostepsPerS2(acceleration);
         var timeout = Connection.Options.CommandTimeout + (TimeSpan.FromSeconds(decelerationS * Connection.Options.MoveTimeoutFactor) + Connection.Options.MoveTimeoutMargin);
-        var reply = await RequestAsync(ZaberCommand.Stop, 0, timeout, cancellationToken).ConfigureAwait(false);
+        var reply = await RequestAsync(ZaberCommand.Stop, 0, timeout, cancellationToken);
         Write(() => _position = reply.Data);
         return reply.Data;
     }
@@ -127,27 +127,27 @@ public sealed class ZaberBinaryDevice : IStageAxis
     /// <summary>Return Current Position.</summary>
     public async Task<long> GetPositionAsync(CancellationToken cancellationToken)
     {
-        var reply = await RequestAsync(ZaberCommand.ReturnCurrentPosition, 0, cancellationToken).ConfigureAwait(false);
+        var reply = await RequestAsync(ZaberCommand.ReturnCurrentPosition, 0, cancellationToken);
         Write(() => _position = reply.Data);
         return reply.Data;
     }
 
     public async Task SetTargetSpeedAsync(int speedData, CancellationToken cancellationToken)
     {
-        var reply = await RequestAsync(ZaberCommand.SetTargetSpeed, speedData, cancellationToken).ConfigureAwait(false);
+        var reply = await RequestAsync(ZaberCommand.SetTargetSpeed, speedData, cancellationToken);
         Write(() => _speedData = reply.Data);
     }
 
     public async Task SetAccelerationAsync(int accelerationData, CancellationToken cancellationToken)
     {
-        var reply = await RequestAsync(ZaberCommand.SetAcceleration, accelerationData, cancellationToken).ConfigureAwait(false);
+        var reply = await RequestAsync(ZaberCommand.SetAcceleration, accelerationData, cancellationToken);
         Write(() => _accelerationData = reply.Data);
     }
 
     /// <summary>Sets the Maximum Position (travel limit) in microsteps; returns the value the device took.</summary>
     public async Task<long> SetMaximumPositionAsync(long maximumPosition, CancellationToken cancellationToken)
     {
-        var reply = await RequestAsync(ZaberCommand.SetMaximumPosition, ToData(maximumPosition, nameof(maximumPosition)), cancellationToken).ConfigureAwait(false);
+        var reply = await RequestAsync(ZaberCommand.SetMaximumPosition, ToData(maximumPosition, nameof(maximumPosition)), cancellationToken);
         Write(() => _maximumPosition = reply.Data);
         return reply.Data;
     }
@@ -155,7 +155,7 @@ public sealed class ZaberBinaryDevice : IStageAxis
     /// <summary>Overwrites the position counter without moving (the device then counts as homed).</summary>
     public async Task<long> SetCurrentPositionAsync(long position, CancellationToken cancellationToken)
     {
-        var reply = await RequestAsync(ZaberCommand.SetCurrentPosition, ToData(position, nameof(position)), cancellationToken).ConfigureAwait(false);
+        var reply = await RequestAsync(ZaberCommand.SetCurrentPosition, ToData(position, nameof(position)), cancellationToken);
         Write(() =>
         {
             _position = reply.Data;
@@ -169,7 +169,7 @@ public sealed class ZaberBinaryDevice : IStageAxis
     /// <returns>The Device Mode the device holds afterwards.</returns>
     public async Task<int> SetDeviceModeAsync(int setBits, int clearBits, CancellationToken cancellationToken)
     {
-        var current = await ReturnSettingAsync(ZaberCommand.SetDeviceMode, cancellationToken).ConfigureAwait(false);
+        var current = await ReturnSettingAsync(ZaberCommand.SetDeviceMode, cancellationToken);
         var wanted = (current | setBits) & ~clearBits;
         if (wanted == current)
         {
@@ -181,14 +181,14 @@ public sealed class ZaberBinaryDevice : IStageAxis
         {
             // Whether a device with auto-reply disabled (before or after) answers Set Device Mode is not documented:
             // send it, then read the word back, which such a device always answers.
-            await Connection.SendAsync(set, cancellationToken).ConfigureAwait(false);
+            await Connection.SendAsync(set, cancellationToken);
         }
         else
         {
-            await Connection.RequestAsync(set, cancellationToken).ConfigureAwait(false);
+            await Connection.RequestAsync(set, cancellationToken);
         }
 
-        var now = await ReturnSettingAsync(ZaberCommand.SetDeviceMode, cancellationToken).ConfigureAwait(false);
+        var now = await ReturnSettingAsync(ZaberCommand.SetDeviceMode, cancellationToken);
         if (now != wanted)
         {
             throw new DeviceException(
@@ -201,21 +201,21 @@ public sealed class ZaberBinaryDevice : IStageAxis
     /// <summary>Return Setting: the value of a "Set ..." command's setting (the reply carries the setting's number).</summary>
     public async Task<int> ReturnSettingAsync(ZaberCommand setting, CancellationToken cancellationToken)
     {
-        var reply = await RequestAsync(ZaberCommand.ReturnSetting, (byte)setting, cancellationToken).ConfigureAwait(false);
+        var reply = await RequestAsync(ZaberCommand.ReturnSetting, (byte)setting, cancellationToken);
         Remember(setting, reply.Data);
         return reply.Data;
     }
 
     public async Task<int> ReturnDeviceIdAsync(CancellationToken cancellationToken) =>
-        (await RequestAsync(ZaberCommand.ReturnDeviceId, 0, cancellationToken).ConfigureAwait(false)).Data;
+        (await RequestAsync(ZaberCommand.ReturnDeviceId, 0, cancellationToken)).Data;
 
     /// <summary>Firmware version x 100 (502 = 5.02).</summary>
     public async Task<int> ReturnFirmwareVersionAsync(CancellationToken cancellationToken) =>
-        (await RequestAsync(ZaberCommand.ReturnFirmwareVersion, 0, cancellationToken).ConfigureAwait(false)).Data;
+        (await RequestAsync(ZaberCommand.ReturnFirmwareVersion, 0, cancellationToken)).Data;
 
     /// <summary>Echo Data: the device sends <paramref name="data"/> back.</summary>
     public async Task<int> EchoAsync(int data, CancellationToken cancellationToken) =>
-        (await RequestAsync(ZaberCommand.EchoData, data, cancellationToken).ConfigureAwait(false)).Data;
+        (await RequestAsync(ZaberCommand.EchoData, data, cancellationToken)).Data;
 
     /// <summary>Gives this device a new number (1..254, stored in the device); nothing else is sent until it replies.</summary>
     public async Task RenumberAsync(byte newNumber, CancellationToken cancellationToken)
@@ -226,7 +226,7 @@ public sealed class ZaberBinaryDevice : IStageAxis
         }
 
         var request = new ZaberFrame(DeviceNumber, ZaberCommand.Renumber, newNumber);
-        await Connection.RequestCoreAsync(request, Connection.Options.RenumberTimeout, holdLine: true, resynchroniseOnTimeout: true, cancellationToken).ConfigureAwait(false);
+        await Connection.RequestCoreAsync(request, Connection.Options.RenumberTimeout, holdLine: true, resynchroniseOnTimeout: true, cancellationToken);
         DeviceNumber = newNumber;
         Connection.SetDeviceLabel(newNumber, Label);
     }
@@ -234,7 +234,7 @@ public sealed class ZaberBinaryDevice : IStageAxis
     /// <summary>Reset: like a power cycle (no reply); the position is lost and the device is no longer homed.</summary>
     public async Task ResetAsync(CancellationToken cancellationToken)
     {
-        await Connection.SendAsync(new ZaberFrame(DeviceNumber, ZaberCommand.Reset, 0), cancellationToken).ConfigureAwait(false);
+        await Connection.SendAsync(new ZaberFrame(DeviceNumber, ZaberCommand.Reset, 0), cancellationToken);
         Write(() =>
         {
             _position = null;
@@ -245,11 +245,11 @@ public sealed class ZaberBinaryDevice : IStageAxis
     /// <summary>Reads device ID, firmware, Device Mode, Maximum Position, speed, acceleration, home speed and position.</summary>
     public async Task<AxisIdentity> IdentifyAsync(CancellationToken cancellationToken)
     {
-        var deviceId = await ReturnDeviceIdAsync(cancellationToken).ConfigureAwait(false);
-        var firmware = await ReturnFirmwareVersionAsync(cancellationToken).ConfigureAwait(false);
-        var mode = await ReturnSettingAsync(ZaberCommand.SetDeviceMode, cancellationToken).ConfigureAwait(false);
-        await ReadMotionSettingsAsync(cancellationToken).ConfigureAwait(false);
-        await GetPositionAsync(cancellationToken).ConfigureAwait(false);
+        var deviceId = await ReturnDeviceIdAsync(cancellationToken);
+        var firmware = await ReturnFirmwareVersionAsync(cancellationToken);
+        var mode = await ReturnSettingAsync(ZaberCommand.SetDeviceMode, cancellationToken);
+        await ReadMotionSettingsAsync(cancellationToken);
+        await GetPositionAsync(cancellationToken);
         return new AxisIdentity(DeviceNumber, deviceId, firmware, mode, MaximumPosition ?? 0);
     }
 
@@ -274,12 +274,12 @@ public sealed class ZaberBinaryDevice : IStageAxis
 
     private async Task ReadMotionSettingsAsync(CancellationToken cancellationToken)
     {
-        await ReturnSettingAsync(ZaberCommand.SetTargetSpeed, cancellationToken).ConfigureAwait(false);
-        await ReturnSettingAsync(ZaberCommand.SetAcceleration, cancellationToken).ConfigureAwait(false);
-        await ReturnSettingAsync(ZaberCommand.SetMaximumPosition, cancellationToken).ConfigureAwait(false);
+        await ReturnSettingAsync(ZaberCommand.SetTargetSpeed, cancellationToken);
+        await ReturnSettingAsync(ZaberCommand.SetAcceleration, cancellationToken);
+        await ReturnSettingAsync(ZaberCommand.SetMaximumPosition, cancellationToken);
         try
         {
-            await ReturnSettingAsync(ZaberCommand.SetHomeSpeed, cancellationToken).ConfigureAwait(false);
+            await ReturnSettingAsync(ZaberCommand.SetHomeSpeed, cancellationToken);
         }
         catch (ZaberException)
         {
@@ -292,7 +292,7 @@ public sealed class ZaberBinaryDevice : IStageAxis
     {
         if (Read(() => _speedData is null || _accelerationData is null || _maximumPosition is null))
         {
-            await ReadMotionSettingsAsync(cancellationToken).ConfigureAwait(false);
+            await ReadMotionSettingsAsync(cancellationToken);
         }
     }
 
@@ -300,7 +300,7 @@ public sealed class ZaberBinaryDevice : IStageAxis
     {
         try
         {
-            var reply = await RequestAsync(command, data, timeout, cancellationToken).ConfigureAwait(false);
+            var reply = await RequestAsync(command, data, timeout, cancellationToken);
             Write(() => _position = reply.Data);
             return reply.Data;
         }

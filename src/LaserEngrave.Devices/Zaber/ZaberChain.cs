@@ -43,7 +43,7 @@ public sealed class ZaberChain : IStage, IAsyncDisposable
     /// <param name="cancellationToken">Cancels discovery.</param>
     public async Task<ZaberDiscovery> DiscoverAsync(bool fixAutoReply, CancellationToken cancellationToken)
     {
-        var replies = await Connection.BroadcastAsync(ZaberCommand.ReturnDeviceId, 0, Connection.Options.CommandTimeout, cancellationToken).ConfigureAwait(false);
+        var replies = await Connection.BroadcastAsync(ZaberCommand.ReturnDeviceId, 0, Connection.Options.CommandTimeout, cancellationToken);
         var notes = new List<string>();
         var ids = new SortedDictionary<byte, int>();
         foreach (var reply in replies)
@@ -62,7 +62,7 @@ public sealed class ZaberChain : IStage, IAsyncDisposable
         foreach (var (number, deviceId) in ids)
         {
             var axis = number == X.DeviceNumber ? X : number == Y.DeviceNumber ? Y : new ZaberBinaryDevice(Connection, number);
-            devices.Add(await InspectAsync(axis, deviceId, fixAutoReply, notes, cancellationToken).ConfigureAwait(false));
+            devices.Add(await InspectAsync(axis, deviceId, fixAutoReply, notes, cancellationToken));
         }
 
         foreach (var axis in new[] { X, Y })
@@ -82,17 +82,17 @@ public sealed class ZaberChain : IStage, IAsyncDisposable
     private static async Task<ZaberDeviceInfo> InspectAsync(ZaberBinaryDevice axis, int deviceId, bool fixAutoReply, List<string> notes, CancellationToken cancellationToken)
     {
         // Auto-reply disabled devices still answer Return commands, so everything here works before the fix.
-        var firmware = await axis.ReturnFirmwareVersionAsync(cancellationToken).ConfigureAwait(false);
-        var mode = await axis.ReturnSettingAsync(ZaberCommand.SetDeviceMode, cancellationToken).ConfigureAwait(false);
-        var speed = await axis.ReturnSettingAsync(ZaberCommand.SetTargetSpeed, cancellationToken).ConfigureAwait(false);
-        var acceleration = await axis.ReturnSettingAsync(ZaberCommand.SetAcceleration, cancellationToken).ConfigureAwait(false);
-        var maximum = await axis.ReturnSettingAsync(ZaberCommand.SetMaximumPosition, cancellationToken).ConfigureAwait(false);
-        var position = await axis.GetPositionAsync(cancellationToken).ConfigureAwait(false);
+        var firmware = await axis.ReturnFirmwareVersionAsync(cancellationToken);
+        var mode = await axis.ReturnSettingAsync(ZaberCommand.SetDeviceMode, cancellationToken);
+        var speed = await axis.ReturnSettingAsync(ZaberCommand.SetTargetSpeed, cancellationToken);
+        var acceleration = await axis.ReturnSettingAsync(ZaberCommand.SetAcceleration, cancellationToken);
+        var maximum = await axis.ReturnSettingAsync(ZaberCommand.SetMaximumPosition, cancellationToken);
+        var position = await axis.GetPositionAsync(cancellationToken);
         var disabled = (mode & ZaberBinaryDevice.AutoReplyDisabledBit) != 0;
         var fixedNow = false;
         if (disabled && fixAutoReply)
         {
-            mode = await axis.SetDeviceModeAsync(0, ZaberBinaryDevice.AutoReplyDisabledBit, cancellationToken).ConfigureAwait(false);
+            mode = await axis.SetDeviceModeAsync(0, ZaberBinaryDevice.AutoReplyDisabledBit, cancellationToken);
             fixedNow = true;
             notes.Add($"{axis.Connection.PortName}: {axis.Description} had auto-reply disabled (Device Mode bit 0), so it would never confirm a move; re-enabled it");
         }

@@ -1,5 +1,6 @@
 using System.Globalization;
 using System.Threading.Channels;
+using LaserEngrave.Devices.Scheduling;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Serial;
 
@@ -27,7 +28,7 @@ public sealed class ZaberConnection : IAsyncDisposable
     private readonly ISerialLink _link;
     private readonly TimeProvider _time;
     private readonly Lock _gate = new();
-    private readonly SemaphoreSlim _sendLock = new(1, 1);
+    private readonly AsyncLock _sendLock = new();
     private readonly CancellationTokenSource _stop = new();
     private readonly List<PendingRequest> _pending = [];
     private readonly List<PendingBroadcast> _broadcasts = [];
@@ -56,7 +57,7 @@ public sealed class ZaberConnection : IAsyncDisposable
         _link = link;
         _time = timeProvider ?? TimeProvider.System;
         Options = options ?? new ZaberConnectionOptions();
-        _readLoop = Task.Run(ReadLoopAsync);
+        _readLoop = TaskRunner.For(_time).Start(ReadLoopAsync);
     }
 
     /// <summary>Reply-only frames (Move Tracking, Limit Active, Manual Move Tracking) and errors no request is waiting for.</summary>
@@ -128,7 +129,7 @@ public sealed class ZaberConnection : IAsyncDisposable
     /// <summary>Sends a command that gets no reply (Reset).</summary>
     public async Task SendAsync(ZaberFrame command, CancellationToken cancellationToken)
     {
-        await _sendLock.WaitAsync(cancellationToken).ConfigureAwait(false);
+        await _sendLock.WaitAsync(cancellationToken);
         try
         {
             lock (_gate)
@@ -136,7 +137,7 @@ public sealed class ZaberConnection : IAsyncDisposable
                 ThrowIfClosed(command);
             }
 
-            await WriteFrameAsync(command, cancellationToken).ConfigureAwait(false);
+            await WriteFrameAsync(command, cancellationToken);
         }
         finally
         {
@@ -155,7 +156,7 @@ public sealed class ZaberConnection : IAsyncDisposable
         var frame = new ZaberFrame(0, command, data);
         var replyCommand = command == ZaberCommand.ReturnSetting ? (byte)data : (byte)command;
         var broadcast = new PendingBroadcast(replyCommand);
-        await _sendLock.WaitAsync(cancellationToken).ConfigureAwait(false);
+        await _sendLock.WaitAsync(cancellationToken);
         try
         {
             lock (_gate)
@@ -164,7 +165,7 @@ public sealed class ZaberConnection : IAsyncDisposable
                 _broadcasts.Add(broadcast);
             }
 
-            await WriteFrameAsync(frame, cancellationToken).ConfigureAwait(false);
+            await WriteFrameAsync(frame, cancellationToken);
         }
         catch
         {
@@ -187,11 +188,13 @@ public sealed class ZaberConnection : IAsyncDisposable
             while (replies.Count < 254)
             {
                 bool more;
+                using var quiet = new CancellationTokenSource(wait, _time);
+                using var either = CancellationTokenSource.CreateLinkedTokenSource(cancellationToken, quiet.Token);
                 try
                 {
-                    more = await broadcast.Replies.Reader.WaitToReadAsync(cancellationToken).AsTask().WaitAsync(wait, _time, cancellationToken).ConfigureAwait(false);
+                    more = await broadcast.Replies.Reader.WaitToReadAsync(either.Token);
                 }
-                catch (TimeoutException)
+                catch (OperationCanceledException) when (quiet.IsCancellationRequested && !cancellationToken.IsCancellationRequested)
                 {
                     break;
                 }
@@ -245,13 +248,13 @@ public sealed class ZaberConnection : IAsyncDisposable
             _disposing = true;
         }
 
-        await _stop.CancelAsync().ConfigureAwait(false);
-        await _link.DisposeAsync().ConfigureAwait(false);
-        await _readLoop.ConfigureAwait(false);
+        _stop.Cancel();
+        await _link.DisposeAsync();
+        await _readLoop;
         Close(null);
         try
         {
-            await _resync.ConfigureAwait(false);
+            await _resync;
         }
         catch (OperationCanceledException)
         {
@@ -283,7 +286,7 @@ public sealed class ZaberConnection : IAsyncDisposable
 
         var pending = new PendingRequest(request);
         List<PendingRequest>? interrupted = null;
-        await _sendLock.WaitAsync(cancellationToken).ConfigureAwait(false);
+        await _sendLock.WaitAsync(cancellationToken);
         var lineHeld = true;
         try
         {
@@ -305,7 +308,7 @@ public sealed class ZaberConnection : IAsyncDisposable
             FailInterrupted(interrupted, request);
             try
             {
-                await WriteFrameAsync(request, cancellationToken).ConfigureAwait(false);
+                await WriteFrameAsync(request, cancellationToken);
             }
             catch
             {
@@ -321,16 +324,12 @@ public sealed class ZaberConnection : IAsyncDisposable
 
             try
             {
-                return await pending.Completion.Task.WaitAsync(timeout, _time, cancellationToken).ConfigureAwait(false);
+                return await Signals.WaitAsync(pending.Completion, timeout, _time, cancellationToken);
             }
             catch (TimeoutException)
             {
-                if (!Remove(pending) && pending.Completion.Task.IsCompleted)
-                {
-                    // The reply (or error) arrived just as the timeout fired.
-                    return await pending.Completion.Task.ConfigureAwait(false);
-                }
-
+                // The timer completed the request before any reply did: it is over, whatever comes later.
+                Remove(pending);
                 if (resynchroniseOnTimeout)
                 {
                     StartResynchronising(request.Device);
@@ -373,7 +372,7 @@ public sealed class ZaberConnection : IAsyncDisposable
     {
         try
         {
-            await _link.WriteAsync(frame.ToBytes(), cancellationToken).ConfigureAwait(false);
+            await _link.WriteAsync(frame.ToBytes(), cancellationToken);
         }
         catch (Exception ex) when (ex is IOException or ObjectDisposedException or InvalidOperationException)
         {
@@ -443,7 +442,7 @@ public sealed class ZaberConnection : IAsyncDisposable
         {
             while (true)
             {
-                var n = await _link.ReadAsync(buffer, _stop.Token).ConfigureAwait(false);
+                var n = await _link.ReadAsync(buffer, _stop.Token);
                 if (n == 0)
                 {
                     break;
@@ -714,11 +713,11 @@ public sealed class ZaberConnection : IAsyncDisposable
             }
 
             _resyncRunning = true;
-            _resync = Task.Run(async () =>
+            _resync = TaskRunner.For(_time).Start(async () =>
             {
                 try
                 {
-                    await ResynchroniseCoreAsync(device, _stop.Token).ConfigureAwait(false);
+                    await ResynchroniseCoreAsync(device, _stop.Token);
                 }
                 catch (Exception ex) when (ex is OperationCanceledException or DeviceException)
                 {
@@ -740,7 +739,7 @@ public sealed class ZaberConnection : IAsyncDisposable
         // Wait until nothing has arrived for a whole partial-frame timeout: then both ends have dropped partial bytes.
         for (var attempt = 0; attempt < 100; attempt++)
         {
-            await Task.Delay(Options.PartialFrameTimeout, _time, cancellationToken).ConfigureAwait(false);
+            await Task.Delay(Options.PartialFrameTimeout, _time, cancellationToken);
             lock (_gate)
             {
                 if (!_anyByte || _time.GetElapsedTime(_lastByteTimestamp) >= Options.PartialFrameTimeout)
@@ -762,7 +761,7 @@ public sealed class ZaberConnection : IAsyncDisposable
         bool aligned;
         try
         {
-            await RequestCoreAsync(echo, Options.CommandTimeout, holdLine: false, resynchroniseOnTimeout: false, cancellationToken).ConfigureAwait(false);
+            await RequestCoreAsync(echo, Options.CommandTimeout, holdLine: false, resynchroniseOnTimeout: false, cancellationToken);
             aligned = true;
         }
         catch (ZaberException)

@@ -69,9 +69,9 @@ public sealed class VirtualLaserGate
     public bool Tripped { get; private set; }
 
     /// <summary>Serves <paramref name="link"/> until it closes, the token is cancelled, or a Disconnect fault strikes.</summary>
-    internal async Task RunAsync(ISerialLink link, Action<string> log, ClockHold starting, CancellationToken cancellationToken)
+    internal async Task RunAsync(ISerialLink link, Action<string> log, LinkLatency latency, CancellationToken cancellationToken)
     {
-        var session = new LinkSession(link, _clock, BaudRate, _options.BitsPerByte, log);
+        var session = new LinkSession(link, _clock, BaudRate, _options.BitsPerByte, latency, log);
         lock (_lock)
         {
             _session = session;
@@ -82,7 +82,7 @@ public sealed class VirtualLaserGate
 
         try
         {
-            await session.RunAsync(OnByte, starting, cancellationToken).ConfigureAwait(false);
+            await session.RunAsync(OnByte, cancellationToken);
         }
         finally
         {
@@ -131,7 +131,7 @@ public sealed class VirtualLaserGate
             disconnect = fault.Disconnect;
             if (!fault.Ignore && !fault.Disconnect)
             {
-                _lastHeard = _clock.Host.NowSeconds;
+                _lastHeard = _clock.NowSeconds;
                 ArmWatchdog();
                 if (fault.RefuseCode is { } code)
                 {
@@ -170,16 +170,16 @@ public sealed class VirtualLaserGate
                 }
 
                 SetFrequency(hz, now);
-                return $"{ok} FREQ {hz}";
+                return Ack(_profile.FrequencyReply, hz);
             case GateCommand.Off:
                 SetFrequency(0, now);
-                return $"{ok} FREQ 0";
+                return Ack(_profile.OffReply);
             case GateCommand.State:
                 var state = $"{ok} STATE {FrequencyHz} {(IsFiring ? "ON" : "OFF")} WDOG {WatchdogMs}{(Tripped ? " TRIPPED" : string.Empty)}";
                 Tripped = false;
                 return state;
             case GateCommand.KeepAlive:
-                return $"{ok} PONG";
+                return Ack(_profile.KeepAliveReply);
             case GateCommand.Watchdog:
                 if (!TryNumber(args[0], out var ms))
                 {
@@ -193,7 +193,7 @@ public sealed class VirtualLaserGate
 
                 WatchdogMs = ms;
                 ArmWatchdog();
-                return $"{ok} WDOG {ms}";
+                return Ack(_profile.WatchdogReply, ms);
             case GateCommand.Burst:
                 if (!TryNumber(args[0], out var pulses) || !TryNumber(args[1], out var burstHz))
                 {
@@ -217,12 +217,14 @@ public sealed class VirtualLaserGate
                         }
                     }
                 });
-                return $"{ok} BURST {pulses}";
+                return Ack(_profile.BurstReply, pulses, burstHz);
             case GateCommand.Malformed:
                 return Syntax();
             default:
                 return $"{_profile.ErrorPrefix} 1 UNKNOWN";
         }
+
+        string Ack(string format, params object[] values) => $"{ok} {string.Format(CultureInfo.InvariantCulture, format, values)}";
 
         string Syntax() => $"{_profile.ErrorPrefix} 3 SYNTAX";
 
@@ -256,7 +258,7 @@ public sealed class VirtualLaserGate
 
         var generation = _generation;
         var heard = _lastHeard;
-        _watchdog = _clock.Host.At(heard + (WatchdogMs / 1000.0), () =>
+        _watchdog = _clock.At(heard + (WatchdogMs / 1000.0), () =>
         {
             lock (_lock)
             {

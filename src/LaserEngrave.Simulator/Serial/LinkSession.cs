@@ -6,30 +6,41 @@ namespace LaserEngrave.Simulator.Serial;
 
 /// <summary>One attachment of a simulated device to a link: bytes in and out, each taking its time on the wire.</summary>
 /// <remarks>
-/// A byte occupies the wire for <c>bitsPerByte / baud</c> seconds in each direction: a received byte is handed on at
-/// the moment its last bit arrives, and a reply is written to the link when its last byte would have left.
-/// Replies leave in the order they were sent, one after the other.
+/// <para>
+/// Host to device: each write the host makes crosses its USB-serial adapter (the adapter's latency, drawn once per write),
+/// then goes out at the baud rate, <c>bitsPerByte / baud</c> seconds a byte, behind whatever is still on the wire. A byte is
+/// handed to the device when its last bit has arrived; the action a byte completes (a frame, a line) runs then, plus the
+/// device's processing time.
+/// </para>
+/// <para>
+/// Device to host: a reply leaves byte by byte behind the replies before it, and reaches the host when its last byte has
+/// left plus the adapter's latency (drawn once per reply), never before an earlier reply.
+/// </para>
+/// Reads never wait for virtual time, so every write is seen at the instant the host made it.
 /// </remarks>
 internal sealed class LinkSession
 {
     private readonly ISerialLink _link;
     private readonly SimulationClock _clock;
     private readonly double _secondsPerByte;
+    private readonly LinkLatency _latency;
     private readonly Action<string> _log;
-    private readonly Channel<(byte[] Data, double AtSeconds, ClockHold Hold)> _outgoing = Channel.CreateUnbounded<(byte[], double, ClockHold)>(new() { SingleReader = true });
+    private readonly Channel<(byte[] Data, double AtSeconds)> _outgoing = Channel.CreateUnbounded<(byte[], double)>(new() { SingleReader = true });
     private readonly Lock _sendLock = new();
+    private readonly Channel<(double AtSeconds, Action Action)> _actions = Channel.CreateUnbounded<(double, Action)>(new() { SingleReader = true });
     private readonly CancellationTokenSource _stop = new();
     private double _outBusyUntil;
+    private double _lastDelivery;
     private double _inBusyUntil;
-    private double _hostBusyUntil;
-    private double _hostLastArrival = double.NegativeInfinity;
+    private double _lastArrival = double.NegativeInfinity;
     private int _closed;
 
-    public LinkSession(ISerialLink link, SimulationClock clock, int baudRate, int bitsPerByte, Action<string> log)
+    public LinkSession(ISerialLink link, SimulationClock clock, int baudRate, int bitsPerByte, LinkLatency latency, Action<string> log)
     {
         _link = link;
         _clock = clock;
         _secondsPerByte = (double)bitsPerByte / baudRate;
+        _latency = latency;
         _log = log;
     }
 
@@ -42,15 +53,9 @@ internal sealed class LinkSession
         {
             var start = Math.Max(_clock.NowSeconds + extraDelay.TotalSeconds, _outBusyUntil);
             _outBusyUntil = start + (data.Length * _secondsPerByte);
-            // Held until the writer has set its timer, so the clock cannot pass the moment the bytes are due.
-            var hold = _clock.Hold();
-            if (!_outgoing.Writer.TryWrite((data, _outBusyUntil, hold)))
-            {
-                hold.Dispose();
-            }
+            _lastDelivery = Math.Max(_outBusyUntil + _latency.ToHostSeconds(), _lastDelivery);
+            _outgoing.Writer.TryWrite((data, _lastDelivery));
         }
-
-        _clock.Signal();
     }
 
     /// <summary>Closes the link (a Disconnect fault); the session then ends.</summary>
@@ -65,31 +70,28 @@ internal sealed class LinkSession
     }
 
     /// <summary>
-    /// Serves the link until it closes: every received byte goes to <paramref name="onByte"/> with its arrival time;
-    /// an action it returns runs at that time, before later bytes are looked at.
+    /// Serves the link until it closes: every received byte goes to <paramref name="onByte"/> with its arrival time; an
+    /// action it returns runs at that time plus the device's processing time, in the order the bytes came.
     /// </summary>
-    /// <param name="onByte">Takes each byte, its arrival time, and the gap since the previous byte on the host's clock (seconds).</param>
-    /// <param name="starting">A hold on the clock taken when the session was started, released once the reader waits for bytes.</param>
+    /// <param name="onByte">Takes each byte, its arrival time, and the gap since the previous byte's arrival (seconds).</param>
     /// <param name="cancellationToken">Ends the session.</param>
-    public async Task RunAsync(Func<byte, double, double, Action?> onByte, ClockHold starting, CancellationToken cancellationToken)
+    public async Task RunAsync(Func<byte, double, double, Action?> onByte, CancellationToken cancellationToken)
     {
         using var linked = CancellationTokenSource.CreateLinkedTokenSource(cancellationToken, _stop.Token);
         var writer = WriteLoopAsync(linked.Token);
+        var actions = ActionLoopAsync(linked.Token);
         var why = "closed";
         try
         {
-            why = await ReadLoopAsync(onByte, starting, linked.Token).ConfigureAwait(false);
+            why = await ReadLoopAsync(onByte, linked.Token);
         }
         finally
         {
             _outgoing.Writer.TryComplete();
-            await linked.CancelAsync().ConfigureAwait(false);
-            var writeFailure = await writer.ConfigureAwait(false);
-            while (_outgoing.Reader.TryRead(out var unsent))
-            {
-                unsent.Hold.Dispose();
-            }
-
+            _actions.Writer.TryComplete();
+            linked.Cancel();
+            await actions;
+            var writeFailure = await writer;
             if (Volatile.Read(ref _closed) == 0 && !cancellationToken.IsCancellationRequested)
             {
                 _log(writeFailure ?? why);
@@ -99,19 +101,17 @@ internal sealed class LinkSession
         }
     }
 
-    private async Task<string> ReadLoopAsync(Func<byte, double, double, Action?> onByte, ClockHold starting, CancellationToken cancellationToken)
+    private async Task<string> ReadLoopAsync(Func<byte, double, double, Action?> onByte, CancellationToken cancellationToken)
     {
         var buffer = new byte[256];
         var first = true;
+        var lastAction = 0.0;
         while (true)
         {
             int n;
             try
             {
-                var read = _link.ReadAsync(buffer, cancellationToken);
-                starting.Dispose();
-                starting = default;
-                n = await read.ConfigureAwait(false);
+                n = await _link.ReadAsync(buffer, cancellationToken);
             }
             catch (OperationCanceledException)
             {
@@ -127,50 +127,50 @@ internal sealed class LinkSession
                 return "link closed by the other end";
             }
 
-            _clock.Signal();
-            var hold = _clock.Hold();
-            try
+            if (first)
             {
-                if (first)
+                first = false;
+                _log("first bytes from the host");
+            }
+
+            // The adapter holds the whole write for its latency; then the bytes go out one after the other.
+            var start = Math.Max(_clock.NowSeconds + _latency.ToDeviceSeconds(), _inBusyUntil);
+            for (var i = 0; i < n; i++)
+            {
+                _inBusyUntil = start + _secondsPerByte;
+                start = _inBusyUntil;
+                var gap = _inBusyUntil - _lastArrival;
+                _lastArrival = _inBusyUntil;
+                var action = onByte(buffer[i], _inBusyUntil, gap);
+                if (action is null)
                 {
-                    first = false;
-                    _log("first bytes from the host");
+                    continue;
                 }
 
-                var receivedAt = _clock.NowSeconds;
-                var hostReceivedAt = _clock.Host.NowSeconds;
-                for (var i = 0; i < n; i++)
+                // Actions keep their order even when a later one draws a shorter processing time.
+                lastAction = Math.Max(_inBusyUntil + _latency.ProcessingSeconds(), lastAction);
+                _actions.Writer.TryWrite((lastAction, action));
+            }
+        }
+    }
+
+    // One after the other, each at its time: the order of the bytes is the order of what they do.
+    private async Task ActionLoopAsync(CancellationToken cancellationToken)
+    {
+        try
+        {
+            while (await _actions.Reader.WaitToReadAsync(cancellationToken))
+            {
+                while (_actions.Reader.TryRead(out var item))
                 {
-                    // A byte cannot arrive before it was written, nor before the previous byte has finished arriving.
-                    _inBusyUntil = Math.Max(receivedAt, _inBusyUntil) + _secondsPerByte;
-                    _hostBusyUntil = Math.Max(hostReceivedAt, _hostBusyUntil) + _secondsPerByte;
-                    var gap = _hostBusyUntil - _hostLastArrival;
-                    _hostLastArrival = _hostBusyUntil;
-                    var action = onByte(buffer[i], _inBusyUntil, gap);
-                    if (action is null)
-                    {
-                        continue;
-                    }
-
-                    var arrival = _clock.DelayUntil(_inBusyUntil, cancellationToken);
-                    hold.Dispose();
-                    try
-                    {
-                        await arrival.ConfigureAwait(false);
-                    }
-                    catch (OperationCanceledException)
-                    {
-                        return "stopped";
-                    }
-
-                    hold = _clock.Hold();
-                    action();
+                    await _clock.DelayUntil(item.AtSeconds, cancellationToken);
+                    item.Action();
                 }
             }
-            finally
-            {
-                hold.Dispose();
-            }
+        }
+        catch (OperationCanceledException)
+        {
+            // The session ended; what had not happened yet never will.
         }
     }
 
@@ -179,13 +179,14 @@ internal sealed class LinkSession
     {
         try
         {
-            await foreach (var (data, at, hold) in _outgoing.Reader.ReadAllAsync(cancellationToken).ConfigureAwait(false))
+            // Not ReadAllAsync: it awaits with ConfigureAwait(false) inside, which would leave the simulation's loop.
+            while (await _outgoing.Reader.WaitToReadAsync(cancellationToken))
             {
-                var due = _clock.DelayUntil(at, cancellationToken);
-                hold.Dispose();
-                await due.ConfigureAwait(false);
-                _clock.Signal();
-                await _link.WriteAsync(data, cancellationToken).ConfigureAwait(false);
+                while (_outgoing.Reader.TryRead(out var item))
+                {
+                    await _clock.DelayUntil(item.AtSeconds, cancellationToken);
+                    await _link.WriteAsync(item.Data, cancellationToken);
+                }
             }
 
             return null;
@@ -197,7 +198,7 @@ internal sealed class LinkSession
         catch (IOException ex)
         {
             var why = $"link failed: {ex.Message}";
-            await _link.DisposeAsync().ConfigureAwait(false);
+            await _link.DisposeAsync();
             return why;
         }
     }

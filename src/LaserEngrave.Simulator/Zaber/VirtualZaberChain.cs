@@ -54,9 +54,9 @@ public sealed class VirtualZaberChain
     internal Lock Lock { get; } = new();
 
     /// <summary>Serves <paramref name="link"/> until it closes, the token is cancelled, or a Disconnect fault strikes.</summary>
-    internal async Task RunAsync(ISerialLink link, Action<string> log, ClockHold starting, CancellationToken cancellationToken)
+    internal async Task RunAsync(ISerialLink link, Action<string> log, LinkLatency latency, CancellationToken cancellationToken)
     {
-        var session = new LinkSession(link, Clock, BaudRate, _options.BitsPerByte, log);
+        var session = new LinkSession(link, Clock, BaudRate, _options.BitsPerByte, latency, log);
         lock (Lock)
         {
             _session = session;
@@ -65,7 +65,7 @@ public sealed class VirtualZaberChain
 
         try
         {
-            await session.RunAsync(OnByte, starting, cancellationToken).ConfigureAwait(false);
+            await session.RunAsync(OnByte, cancellationToken);
         }
         finally
         {

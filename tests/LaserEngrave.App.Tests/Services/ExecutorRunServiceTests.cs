@@ -1,3 +1,4 @@
+using LaserEngrave.Devices.Scheduling;
 using LaserEngrave.App.Services;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
@@ -47,7 +48,7 @@ public sealed class ExecutorRunServiceTests
         var last = progress[^1];
         Assert.Equal((2, last.MovesTotal), (last.Pass, last.MovesDone));
         Assert.Contains(progress, p => p.Pass == 1 && p.MovesDone == p.MovesTotal);
-        Assert.False((await machine.Gate.GetStateAsync(Token)).Firing);
+        Assert.False((await TaskRunner.For(machine.TimeProvider).Run(() => machine.Gate.GetStateAsync(Token))).Firing);
     }
 
     [Fact]
@@ -72,7 +73,7 @@ public sealed class ExecutorRunServiceTests
         Assert.Equal(RunOutcome.Aborted, result.Outcome);
         Assert.True(result.RunsDone < result.RunsTotal);
         Assert.True(result.LaserOffConfirmed);
-        Assert.False((await machine.Gate.GetStateAsync(Token)).Firing);
+        Assert.False((await TaskRunner.For(machine.TimeProvider).Run(() => machine.Gate.GetStateAsync(Token))).Firing);
     }
 
     [Fact]
@@ -103,7 +104,7 @@ public sealed class ExecutorRunServiceTests
         Assert.All(reports, p => Assert.Equal(1, p.Pass));
         Assert.True(stop.MoveIndex > 0);
         Assert.True(reports.Where(p => p.MovesDone > 0).Min(p => p.MovesDone) > stop.MoveIndex, "the resumed pass starts at the stop point, not at the first move");
-        Assert.False((await machine.Gate.GetStateAsync(Token)).Firing);
+        Assert.False((await TaskRunner.For(machine.TimeProvider).Run(() => machine.Gate.GetStateAsync(Token))).Firing);
     }
 
     private sealed class SynchronousProgress(Action<RunProgress> report) : IProgress<RunProgress>

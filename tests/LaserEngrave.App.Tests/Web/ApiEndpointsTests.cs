@@ -167,7 +167,7 @@ public sealed class ApiEndpointsTests : IDisposable
         var state = await WaitForAsync(s => !s.GetProperty("run").GetProperty("active").GetBoolean() && s.GetProperty("run").GetProperty("state").GetString() != "Idle", TimeSpan.FromSeconds(120));
 
         var run = state.GetProperty("run");
-        Assert.Equal("Completed", run.GetProperty("state").GetString());
+        Assert.True("Completed" == run.GetProperty("state").GetString(), run.ToString());
         Assert.Equal(run.GetProperty("movesTotal").GetInt64(), run.GetProperty("movesDone").GetInt64());
         var last = state.GetProperty("log").GetProperty("lastRun");
         Assert.Equal("T-1", last.GetProperty("sampleId").GetString());

@@ -11,7 +11,6 @@ namespace LaserEngrave.Devices.Tests.Execution;
 /// <c>dotnet test tests/LaserEngrave.Devices.Tests --filter Category=Figures --logger "console;verbosity=detailed"</c>;
 /// the table is also written to execution-figures.md in the test output folder.
 /// </summary>
-[Collection(SimulatedRunCollection.Name)]
 [Trait("Category", "Figures")]
 public class ExecutionFigures
 {
@@ -35,7 +34,7 @@ public class ExecutionFigures
         {
             var job = TestJobs.FromAsset(sample, WidthMm, new PlanOptions { Strategy = strategy });
             await using var run = SimulatedRun.Create();
-            var result = await run.Executor(job).RunAsync(TestContext.Current.CancellationToken);
+            var result = await run.Do(() => run.Executor(job).RunAsync(TestContext.Current.CancellationToken));
             var report = run.Analyze(job);
             var seconds = result.EngravingDuration.TotalSeconds;
             var difference = (result.EstimatedSeconds / seconds) - 1;

@@ -10,7 +10,6 @@ using NSubstitute.ExceptionExtensions;
 namespace LaserEngrave.Devices.Tests.Execution;
 
 /// <summary>Preflight: what it checks, fixes and refuses, on the simulator and with fakes.</summary>
-[Collection(SimulatedRunCollection.Name)]
 public class PreflightTests
 {
     private static readonly AxisIdentity Homed = new(1, 4212, 502, 0x80, 604_724);
@@ -56,7 +55,7 @@ public class PreflightTests
         await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = "silent:gate" });
         var job = TestJobs.FromMask(TestJobs.RandomMask(1, 8, 4), 1, new PlanOptions());
 
-        var ex = await Assert.ThrowsAsync<PreflightException>(() => run.Executor(job).RunAsync(TestContext.Current.CancellationToken));
+        var ex = await Assert.ThrowsAsync<PreflightException>(() => run.Do(() => run.Executor(job).RunAsync(TestContext.Current.CancellationToken)));
 
         Assert.StartsWith("the laser gate does not answer as it should: ", ex.Message, StringComparison.Ordinal);
         Assert.Contains("did not acknowledge '*IDN?'", ex.Message, StringComparison.Ordinal);
@@ -69,7 +68,7 @@ public class PreflightTests
         await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = "silent:stage:device=2" });
         var job = TestJobs.FromMask(TestJobs.RandomMask(1, 8, 4), 1, new PlanOptions());
 
-        var ex = await Assert.ThrowsAsync<PreflightException>(() => run.Executor(job).RunAsync(TestContext.Current.CancellationToken));
+        var ex = await Assert.ThrowsAsync<PreflightException>(() => run.Do(() => run.Executor(job).RunAsync(TestContext.Current.CancellationToken)));
 
         Assert.StartsWith("the Y axis (device 2) does not answer as it should: ", ex.Message, StringComparison.Ordinal);
         Assert.False(run.Machine.Gate.IsFiring);
@@ -81,7 +80,7 @@ public class PreflightTests
         await using var run = SimulatedRun.Create(new SimulatorOptions { DeviceMode = 1 });
         var job = TestJobs.FromMask(TestJobs.RandomMask(2, 8, 4), 1, new PlanOptions());
 
-        var result = await run.Executor(job).RunAsync(TestContext.Current.CancellationToken);
+        var result = await run.Do(() => run.Executor(job).RunAsync(TestContext.Current.CancellationToken));
 
         Assert.Equal(RunOutcome.Completed, result.Outcome);
         Assert.Equal(0, run.Machine.Stage.X.DeviceMode & 1);
@@ -96,7 +95,7 @@ public class PreflightTests
         await using var run = SimulatedRun.Create(new SimulatorOptions { DeviceMode = 1 });
         var job = TestJobs.FromMask(TestJobs.RandomMask(2, 8, 4), 1, new PlanOptions());
 
-        var ex = await Assert.ThrowsAsync<PreflightException>(() => run.Executor(job, new RunOptions { FixAutoReply = false }).RunAsync(TestContext.Current.CancellationToken));
+        var ex = await Assert.ThrowsAsync<PreflightException>(() => run.Do(() => run.Executor(job, new RunOptions { FixAutoReply = false }).RunAsync(TestContext.Current.CancellationToken)));
 
         Assert.Contains("the X axis (device 1) has auto-reply disabled", ex.Message, StringComparison.Ordinal);
     }
@@ -108,7 +107,7 @@ public class PreflightTests
         var devices = new RecordingDevices(run.Stage, run.Gate);
         var job = TestJobs.FromMask(TestJobs.RandomMask(2, 8, 4), 1, new PlanOptions());
 
-        var result = await new RunExecutor(devices.Stage, devices.Gate, job, run.Time).RunAsync(TestContext.Current.CancellationToken);
+        var result = await run.Do(() => new RunExecutor(devices.Stage, devices.Gate, job, run.Time).RunAsync(TestContext.Current.CancellationToken));
         var log = devices.Log.ToList();
 
         Assert.Equal(RunOutcome.Completed, result.Outcome);

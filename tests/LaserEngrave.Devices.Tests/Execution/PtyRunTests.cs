@@ -11,7 +11,6 @@ using LaserEngrave.Testing;
 namespace LaserEngrave.Devices.Tests.Execution;
 
 /// <summary>A whole run through the real serial path: ZaberChain and PicLaserGate on socat ptys, the simulator on the other ends.</summary>
-[Collection(SimulatedRunCollection.Name)]
 public class PtyRunTests
 {
     [Fact(Timeout = 120_000)]

@@ -5,7 +5,6 @@ using LaserEngrave.Devices.Execution;
 namespace LaserEngrave.Devices.Tests.Execution;
 
 /// <summary>Pause, resume, abort and progress of a run on the in-process simulator.</summary>
-[Collection(SimulatedRunCollection.Name)]
 public class RunControlTests
 {
     [Fact(Timeout = 120_000)]
@@ -36,11 +35,11 @@ public class RunControlTests
             if (e.State == RunState.Paused)
             {
                 firingWhilePaused = run.Machine.Gate.IsFiring;
-                _ = Task.Delay(TimeSpan.FromSeconds(5), run.Time).ContinueWith(_ => executor.Resume(), TaskScheduler.Default);
+                _ = Task.Delay(TimeSpan.FromSeconds(5), run.Time).ContinueWith(_ => executor.Resume(), run.Loop);
             }
         };
 
-        var result = await executor.RunAsync(TestContext.Current.CancellationToken);
+        var result = await run.Do(() => executor.RunAsync(TestContext.Current.CancellationToken));
 
         Assert.Equal(RunOutcome.Completed, result.Outcome);
         Assert.Equal([RunState.Preflight, RunState.Running, RunState.Pausing, RunState.Paused, RunState.Running, RunState.Completed], states);
@@ -63,11 +62,11 @@ public class RunControlTests
             if (p.LaserOn && p.State == RunState.Running && Interlocked.Exchange(ref aborted, 1) == 0)
             {
                 // From another thread, part-way into the burn.
-                _ = Task.Delay(TimeSpan.FromSeconds(1), run.Time).ContinueWith(_ => executor.Abort(), TaskScheduler.Default);
+                _ = Task.Delay(TimeSpan.FromSeconds(1), run.Time).ContinueWith(_ => executor.Abort(), run.Loop);
             }
         };
 
-        var result = await executor.RunAsync(TestContext.Current.CancellationToken);
+        var result = await run.Do(() => executor.RunAsync(TestContext.Current.CancellationToken));
         var log = devices.Log.ToList();
 
         Assert.Equal(RunOutcome.Aborted, result.Outcome);
@@ -103,11 +102,11 @@ public class RunControlTests
             if (e.State == RunState.Paused)
             {
                 movesWhenPaused = moves;
-                _ = Task.Delay(TimeSpan.FromSeconds(2), run.Time).ContinueWith(_ => executor.Abort(), TaskScheduler.Default);
+                _ = Task.Delay(TimeSpan.FromSeconds(2), run.Time).ContinueWith(_ => executor.Abort(), run.Loop);
             }
         };
 
-        var result = await executor.RunAsync(TestContext.Current.CancellationToken);
+        var result = await run.Do(() => executor.RunAsync(TestContext.Current.CancellationToken));
 
         Assert.Equal(RunOutcome.Aborted, result.Outcome);
         Assert.Equal(movesWhenPaused, moves);
@@ -129,7 +128,7 @@ public class RunControlTests
             }
         };
 
-        var result = await executor.RunAsync(TestContext.Current.CancellationToken);
+        var result = await run.Do(() => executor.RunAsync(TestContext.Current.CancellationToken));
 
         Assert.Equal(RunOutcome.Aborted, result.Outcome);
         Assert.Equal(0, result.RunsDone);
@@ -152,7 +151,7 @@ public class RunControlTests
             }
         };
 
-        var result = await executor.RunAsync(cancel.Token);
+        var result = await run.Do(() => executor.RunAsync(cancel.Token));
 
         Assert.Equal(RunOutcome.Aborted, result.Outcome);
         Assert.Equal("aborted by the operator", result.FaultMessage);
@@ -170,7 +169,7 @@ public class RunControlTests
         executor.ProgressChanged += (_, p) => progress.Add(p);
         executor.MoveCompleted += (_, e) => completedMoves.Add(e.Move);
 
-        var result = await executor.RunAsync(TestContext.Current.CancellationToken);
+        var result = await run.Do(() => executor.RunAsync(TestContext.Current.CancellationToken));
 
         Assert.Equal(job.Plan.Moves(), completedMoves);
         for (var i = 1; i < progress.Count; i++)

@@ -5,7 +5,6 @@ using LaserEngrave.Devices.Execution;
 namespace LaserEngrave.Devices.Tests.Execution;
 
 /// <summary>Whole runs on the in-process simulator in virtual time: the burned image, the laser, progress and the result.</summary>
-[Collection(SimulatedRunCollection.Name)]
 public class RunExecutorTests
 {
     [Theory(Timeout = 120_000)]
@@ -19,7 +18,7 @@ public class RunExecutorTests
         await using var run = SimulatedRun.Create();
         var job = TestJobs.FromMask(TestJobs.RandomMask(seed: 7, 24, 12), 1.2, new PlanOptions { Strategy = strategy, Bidirectional = bidirectional, OverscanMm = overscanMm });
 
-        var result = await run.Executor(job).RunAsync(TestContext.Current.CancellationToken);
+        var result = await run.Do(() => run.Executor(job).RunAsync(TestContext.Current.CancellationToken));
         var report = run.Analyze(job);
 
         Assert.Equal(RunOutcome.Completed, result.Outcome);
@@ -42,7 +41,7 @@ public class RunExecutorTests
         await using var run = SimulatedRun.Create();
         var job = TestJobs.FromAsset("qr-code.bmp", 5, new PlanOptions { Strategy = strategy, Bidirectional = bidirectional, OverscanMm = overscanMm });
 
-        var result = await run.Executor(job).RunAsync(TestContext.Current.CancellationToken);
+        var result = await run.Do(() => run.Executor(job).RunAsync(TestContext.Current.CancellationToken));
         var report = run.Analyze(job);
 
         Assert.Equal(RunOutcome.Completed, result.Outcome);

@@ -6,7 +6,6 @@ using LaserEngrave.Simulator;
 namespace LaserEngrave.Devices.Tests.Execution;
 
 /// <summary>Every fault the simulator injects, in the middle of a run: the run fails safely, and a resumed run finishes the image exactly.</summary>
-[Collection(SimulatedRunCollection.Name)]
 public class RunFaultTests
 {
     // Preflight takes about 20 stage commands and 3 gate lines; these land in the middle of the plan.
@@ -30,11 +29,11 @@ public class RunFaultTests
         await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = fault });
         var job = TestJobs.FromMask(TestJobs.RandomMask(seed: 11, 16, 10), 1.2, new PlanOptions { OverscanMm = 0.05 });
 
-        var failed = await run.Executor(job).RunAsync(ct);
+        var failed = await run.Do(() => run.Executor(job).RunAsync(ct));
         if (!failed.LaserOffConfirmed)
         {
             // The gate could not be told: its own watchdog is what switches the laser off.
-            await Task.Delay(TimeSpan.FromMilliseconds(run.Machine.Profile.Gate.WatchdogMs * 2), run.Time, ct);
+            await run.Do(() => Task.Delay(TimeSpan.FromMilliseconds(run.Machine.Profile.Gate.WatchdogMs * 2), run.Time, ct));
         }
 
         Assert.Equal(RunOutcome.Failed, failed.Outcome);
@@ -46,7 +45,7 @@ public class RunFaultTests
         Assert.True(failed.RunsDone < job.Statistics.BurnRuns, "the fault struck after the last run");
 
         await run.RecoverAsync();
-        var resumed = await run.Executor(job, new RunOptions { ResumeFrom = stop }).RunAsync(ct);
+        var resumed = await run.Do(() => run.Executor(job, new RunOptions { ResumeFrom = stop }).RunAsync(ct));
         var report = run.Analyze(job);
 
         Assert.Equal(RunOutcome.Completed, resumed.Outcome);

@@ -34,13 +34,25 @@ internal sealed class SimulatedRun : IAsyncDisposable
 
     public StageTestMoves TestMoves() => new(Stage, Gate, Machine.Profile, timeProvider: Time);
 
+    /// <summary>The simulation's loop, for continuations that must run there (as the host's own code does).</summary>
+    public TaskScheduler Loop => Machine.Loop!.Scheduler;
+
+    /// <summary>Runs an operation of the host on the simulation (virtual time moves while it waits).</summary>
+    public Task<T> Do<T>(Func<Task<T>> operation) => Machine.RunAsync(operation);
+
+    /// <summary>Runs an operation that returns nothing on the simulation.</summary>
+    public Task Do(Func<Task> operation) => Machine.RunAsync(operation);
+
     /// <summary>Clears every fault and plugs fresh links in (the machine keeps its state), as a technician would after a fault.</summary>
     public async Task RecoverAsync()
     {
         Machine.Faults.Clear();
-        await Stage.DisposeAsync();
-        await Gate.DisposeAsync();
-        await Machine.ReconnectAsync();
+        await Do(async () =>
+        {
+            await Stage.DisposeAsync();
+            await Gate.DisposeAsync();
+            await Machine.ReconnectAsync();
+        });
         Connect();
     }
 
@@ -50,8 +62,11 @@ internal sealed class SimulatedRun : IAsyncDisposable
 
     public async ValueTask DisposeAsync()
     {
-        await Stage.DisposeAsync();
-        await Gate.DisposeAsync();
+        await Do(async () =>
+        {
+            await Stage.DisposeAsync();
+            await Gate.DisposeAsync();
+        });
         await Machine.DisposeAsync();
     }
 

@@ -5,7 +5,6 @@ using LaserEngrave.Simulator.Burn;
 namespace LaserEngrave.Devices.Tests.Execution;
 
 /// <summary>Jog, go to, origin, home, frame and test fire on the in-process simulator.</summary>
-[Collection(SimulatedRunCollection.Name)]
 public class StageTestMovesTests
 {
     private static readonly BurnGrid AnyGrid = new(0, 0, 100, 1, 1);
@@ -16,12 +15,12 @@ public class StageTestMovesTests
         await using var run = SimulatedRun.Create();
         var moves = run.TestMoves();
         var ct = TestContext.Current.CancellationToken;
-        await moves.GoToAsync(10, 20, ct);
+        await run.Do(() => moves.GoToAsync(10, 20, ct));
 
-        var after = await moves.JogAsync(StageAxisName.X, 100, ct);
+        var after = await run.Do(() => moves.JogAsync(StageAxisName.X, 100, ct));
 
         Assert.Equal(new StagePosition(100_787 + 1008, 201_575), after);
-        Assert.Equal(after, await moves.GetPositionAsync(ct));
+        Assert.Equal(after, await run.Do(() => moves.GetPositionAsync(ct)));
         Assert.Equal(0, run.Machine.Recorder.Analyze(AnyGrid).LaserOnSeconds);
     }
 
@@ -31,12 +30,12 @@ public class StageTestMovesTests
         await using var run = SimulatedRun.Create();
         var moves = run.TestMoves();
         var ct = TestContext.Current.CancellationToken;
-        var before = await moves.HomeAsync(ct);
+        var before = await run.Do(() => moves.HomeAsync(ct));
 
-        var ex = await Assert.ThrowsAsync<TestMoveException>(() => moves.JogAsync(StageAxisName.Y, -100, ct));
+        var ex = await Assert.ThrowsAsync<TestMoveException>(() => run.Do(() => moves.JogAsync(StageAxisName.Y, -100, ct)));
 
         Assert.Equal("y -0.1 mm is outside the stage travel 0..60 mm", ex.Message);
-        Assert.Equal(before, await moves.GetPositionAsync(ct));
+        Assert.Equal(before, await run.Do(() => moves.GetPositionAsync(ct)));
     }
 
     [Theory(Timeout = 60_000)]
@@ -47,7 +46,7 @@ public class StageTestMovesTests
     {
         await using var run = SimulatedRun.Create();
 
-        var ex = await Assert.ThrowsAsync<TestMoveException>(() => run.TestMoves().GoToAsync(xMm, yMm, TestContext.Current.CancellationToken));
+        var ex = await Assert.ThrowsAsync<TestMoveException>(() => run.Do(() => run.TestMoves().GoToAsync(xMm, yMm, TestContext.Current.CancellationToken)));
 
         Assert.Equal(expected, ex.Message);
         Assert.False(run.Machine.Stage.X.IsMoving);
@@ -59,7 +58,7 @@ public class StageTestMovesTests
         await using var run = SimulatedRun.Create();
         var job = TestJobs.FromMask(TestJobs.RandomMask(1, 8, 4), 2, new PlanOptions());
 
-        var at = await run.TestMoves().GoToOriginAsync(job.Plan.Geometry, TestContext.Current.CancellationToken);
+        var at = await run.Do(() => run.TestMoves().GoToOriginAsync(job.Plan.Geometry, TestContext.Current.CancellationToken));
 
         Assert.Equal(new StagePosition(job.Plan.Geometry.EdgeX(0), job.Plan.Geometry.EdgeY(0)), at);
         Assert.Equal((at.XMicrosteps, at.YMicrosteps), (run.Machine.Stage.X.Position, run.Machine.Stage.Y.Position));
@@ -71,9 +70,9 @@ public class StageTestMovesTests
         await using var run = SimulatedRun.Create();
         var moves = run.TestMoves();
         var ct = TestContext.Current.CancellationToken;
-        await moves.GoToAsync(5, 5, ct);
+        await run.Do(() => moves.GoToAsync(5, 5, ct));
 
-        var at = await moves.HomeAsync(ct);
+        var at = await run.Do(() => moves.HomeAsync(ct));
 
         Assert.Equal(new StagePosition(0, 0), at);
         Assert.True(run.Machine.Stage.X.IsHomed && run.Machine.Stage.Y.IsHomed);
@@ -88,7 +87,7 @@ public class StageTestMovesTests
         var job = TestJobs.FromMask(TestJobs.RandomMask(1, 8, 4), 2, new PlanOptions());
         var g = job.Plan.Geometry;
 
-        var end = await moves.FrameAsync(g, visibleFrequencyHz: null, TestContext.Current.CancellationToken);
+        var end = await run.Do(() => moves.FrameAsync(g, visibleFrequencyHz: null, TestContext.Current.CancellationToken));
 
         Assert.Equal(new StagePosition(g.EdgeX(0), g.EdgeY(0)), end);
         Assert.Equal(
@@ -104,7 +103,7 @@ public class StageTestMovesTests
         await using var run = SimulatedRun.Create();
         var job = TestJobs.FromMask(TestJobs.RandomMask(1, 8, 4), 4, new PlanOptions());
 
-        await run.TestMoves().FrameAsync(job.Plan.Geometry, visibleFrequencyHz: 20, TestContext.Current.CancellationToken);
+        await run.Do(() => run.TestMoves().FrameAsync(job.Plan.Geometry, visibleFrequencyHz: 20, TestContext.Current.CancellationToken));
 
         // 4 + 2 + 4 + 2 mm at 4 mm/s: about 3 s with the laser on, longer than the watchdog, so the keepalive works.
         Assert.InRange(run.Machine.Recorder.Analyze(AnyGrid).LaserOnSeconds, 3, 4);
@@ -117,7 +116,7 @@ public class StageTestMovesTests
     {
         await using var run = SimulatedRun.Create();
 
-        await run.TestMoves().FirePulsesAsync(50, 1000, TestContext.Current.CancellationToken);
+        await run.Do(() => run.TestMoves().FirePulsesAsync(50, 1000, TestContext.Current.CancellationToken));
 
         Assert.InRange(run.Machine.Recorder.Analyze(AnyGrid).LaserOnSeconds, 0.049, 0.052);
         Assert.False(run.Machine.Gate.IsFiring);
@@ -128,7 +127,7 @@ public class StageTestMovesTests
     {
         await using var run = SimulatedRun.Create();
 
-        await run.TestMoves().FireForAsync(TimeSpan.FromSeconds(3), 1000, TestContext.Current.CancellationToken);
+        await run.Do(() => run.TestMoves().FireForAsync(TimeSpan.FromSeconds(3), 1000, TestContext.Current.CancellationToken));
 
         Assert.InRange(run.Machine.Recorder.Analyze(AnyGrid).LaserOnSeconds, 3, 3.05);
         Assert.False(run.Machine.Gate.IsFiring);
@@ -142,7 +141,7 @@ public class StageTestMovesTests
     {
         await using var run = SimulatedRun.Create();
 
-        var ex = await Assert.ThrowsAsync<TestMoveException>(() => run.TestMoves().FirePulsesAsync(pulses, frequencyHz, TestContext.Current.CancellationToken));
+        var ex = await Assert.ThrowsAsync<TestMoveException>(() => run.Do(() => run.TestMoves().FirePulsesAsync(pulses, frequencyHz, TestContext.Current.CancellationToken)));
 
         Assert.Equal($"test fire of {pulses} pulses at {frequencyHz} Hz: both must be above 0", ex.Message);
     }

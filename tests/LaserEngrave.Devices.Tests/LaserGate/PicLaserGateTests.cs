@@ -69,7 +69,6 @@ public class PicLaserGateTests
     [Theory]
     [InlineData("OK STATE 1000 MAYBE WDOG 800")]
     [InlineData("OK STATE fast ON WDOG 800")]
-    [InlineData("OK 1000 ON")]
     public async Task GetStateAsync_UnreadableState_ThrowsNamingTheReply(string reply)
     {
         await using var rig = new GateRig();
@@ -79,6 +78,24 @@ public class PicLaserGateTests
 
         Assert.Contains($"laser gate on {Port}: cannot read the state", error.Message, StringComparison.Ordinal);
         Assert.Contains(reply[3..], error.Message, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task GetStateAsync_ReplyToAnotherCommand_IsReportedAndDoesNotAnswer()
+    {
+        await using var rig = new GateRig();
+        var unexpected = new List<string>();
+        rig.Gate.UnexpectedLine += (_, e) => unexpected.Add(e.Line);
+        rig.Fake.Intercept = _ => "OK 1000 ON\n";
+
+        var state = rig.Gate.GetStateAsync(None);
+        await rig.Clock.WaitForTimerAsync(TimeSpan.FromMilliseconds(500), TimeSpan.FromMilliseconds(500));
+        await Eventually.TrueAsync(() => unexpected.Count > 0, "the reply that answers nothing");
+        rig.Clock.Advance(TimeSpan.FromMilliseconds(500));
+
+        await Assert.ThrowsAsync<DeviceTimeoutException>(() => state.Within());
+
+        Assert.Equal(["OK 1000 ON"], unexpected);
     }
 
     [Fact]

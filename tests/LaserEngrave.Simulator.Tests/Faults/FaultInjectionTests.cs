@@ -9,7 +9,7 @@ public class FaultInjectionTests
     [Fact(Timeout = 20_000)]
     public async Task DropReply_AfterTwo_TheThirdReplyIsMissingAndTheRestArrive()
     {
-        await using var bench = MachineBench.Create(new SimulatorOptions { FaultSpec = "drop-reply:stage:after=2" });
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { FaultSpec = "drop-reply:stage:after=2" });
 
         for (var i = 1; i <= 4; i++)
         {
@@ -25,7 +25,7 @@ public class FaultInjectionTests
     [Fact(Timeout = 20_000)]
     public async Task DropReply_OnAMove_TheMoveStillHappens()
     {
-        await using var bench = MachineBench.Create(new SimulatorOptions { FaultSpec = "drop-reply:stage" });
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { FaultSpec = "drop-reply:stage" });
 
         await bench.SendAsync(1, ZaberCommand.MoveAbsolute, 1000);
         Assert.Null(await bench.TryReceiveAsync(TimeSpan.FromMinutes(2)));
@@ -37,7 +37,7 @@ public class FaultInjectionTests
     [Fact(Timeout = 20_000)]
     public async Task Corrupt_CommandByte_ArrivesInverted()
     {
-        await using var bench = MachineBench.Create(new SimulatorOptions { FaultSpec = "corrupt:stage:byte=1" });
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { FaultSpec = "corrupt:stage:byte=1" });
 
         await bench.SendAsync(2, ZaberCommand.EchoData, 42);
         var raw = await bench.ReceiveRawAsync();
@@ -48,7 +48,7 @@ public class FaultInjectionTests
     [Fact(Timeout = 20_000)]
     public async Task Delay_Ms_TheReplyComesThatMuchLater()
     {
-        await using var bench = MachineBench.Create(new SimulatorOptions { FaultSpec = "delay:stage:ms=500" });
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { FaultSpec = "delay:stage:ms=500" });
         var sent = bench.Now;
 
         await bench.SendAsync(1, ZaberCommand.EchoData, 1);
@@ -61,7 +61,7 @@ public class FaultInjectionTests
     [Fact(Timeout = 20_000)]
     public async Task Error_OnAMove_RefusedWithTheCodeNothingMovesAndTheRecorderCountsIt()
     {
-        await using var bench = MachineBench.Create(new SimulatorOptions { FaultSpec = "error:stage:code=20:after=1" });
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { FaultSpec = "error:stage:code=20:after=1" });
         await bench.RequestAsync(1, ZaberCommand.EchoData, 0);
 
         var reply = await bench.RequestAsync(1, ZaberCommand.MoveAbsolute, 1000);
@@ -76,7 +76,7 @@ public class FaultInjectionTests
     [Fact(Timeout = 20_000)]
     public async Task Silent_AfterOne_NothingMoreIsAnsweredOrDone()
     {
-        await using var bench = MachineBench.Create(new SimulatorOptions { FaultSpec = "silent:stage:after=1" });
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { FaultSpec = "silent:stage:after=1" });
         await bench.RequestAsync(1, ZaberCommand.EchoData, 0);
 
         await bench.SendAsync(1, ZaberCommand.MoveAbsolute, 1000);
@@ -103,7 +103,7 @@ public class FaultInjectionTests
     [Fact(Timeout = 20_000)]
     public async Task Silent_OneDevice_TheOtherStillAnswers()
     {
-        await using var bench = MachineBench.Create(new SimulatorOptions { FaultSpec = "silent:stage:device=2" });
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { FaultSpec = "silent:stage:device=2" });
 
         await bench.SendAsync(0, ZaberCommand.EchoData, 9);
 
@@ -114,7 +114,7 @@ public class FaultInjectionTests
     [Fact(Timeout = 20_000)]
     public async Task Disconnect_AfterOne_TheHostSeesTheLinkClose()
     {
-        await using var bench = MachineBench.Create(new SimulatorOptions { FaultSpec = "disconnect:stage:after=1" });
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { FaultSpec = "disconnect:stage:after=1" });
         var events = new List<SimulatorEvent>();
         bench.Machine.EventRaised += (_, e) =>
         {
@@ -140,7 +140,7 @@ public class FaultInjectionTests
     [Fact(Timeout = 20_000)]
     public async Task NoAck_AfterOne_CommandsRunButAreNotAcknowledged()
     {
-        await using var bench = MachineBench.Create(new SimulatorOptions { FaultSpec = "no-ack:gate:after=1" });
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { FaultSpec = "no-ack:gate:after=1" });
         Assert.Equal("OK PONG", await bench.AskAsync("PING"));
 
         await bench.SendLineAsync("FREQ 1000");
@@ -155,7 +155,7 @@ public class FaultInjectionTests
     [Fact(Timeout = 20_000)]
     public async Task Error_OnTheGate_RefusesAndDoesNotFire()
     {
-        await using var bench = MachineBench.Create(new SimulatorOptions { FaultSpec = "error:gate:code=7" });
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { FaultSpec = "error:gate:code=7" });
 
         Assert.Equal("ERR 7 INJECTED", await bench.AskAsync("FREQ 1000"));
         Assert.False(bench.Machine.Gate.IsFiring);
@@ -183,7 +183,7 @@ public class FaultInjectionTests
     [Fact(Timeout = 20_000)]
     public async Task Corrupt_GateReply_ByteIsInverted()
     {
-        await using var bench = MachineBench.Create(new SimulatorOptions { FaultSpec = "corrupt:gate:byte=0" });
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { FaultSpec = "corrupt:gate:byte=0" });
 
         var line = await bench.AskAsync("PING");
 
@@ -193,7 +193,7 @@ public class FaultInjectionTests
     [Fact(Timeout = 20_000)]
     public async Task Delay_GateReply_ComesLater()
     {
-        await using var bench = MachineBench.Create(new SimulatorOptions { FaultSpec = "delay:gate:ms=2000" });
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { FaultSpec = "delay:gate:ms=2000" });
         var sent = bench.Now;
 
         await bench.SendLineAsync("PING");
@@ -205,7 +205,7 @@ public class FaultInjectionTests
     [Fact(Timeout = 20_000)]
     public async Task DropReply_CountTwo_DropsTwoThenStops()
     {
-        await using var bench = MachineBench.Create(new SimulatorOptions { FaultSpec = "drop-reply:gate:count=2" });
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { FaultSpec = "drop-reply:gate:count=2" });
 
         for (var i = 0; i < 3; i++)
         {
@@ -220,7 +220,7 @@ public class FaultInjectionTests
     [Fact(Timeout = 20_000)]
     public async Task Clear_AtRunTime_LiftsSilence()
     {
-        await using var bench = MachineBench.Create(new SimulatorOptions { FaultSpec = "silent:stage" });
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { FaultSpec = "silent:stage" });
         await bench.SendAsync(1, ZaberCommand.EchoData, 1);
         Assert.Null(await bench.TryReceiveAsync(TimeSpan.FromSeconds(1)));
 

@@ -11,7 +11,7 @@ public class VirtualLaserGateTests
     [Fact(Timeout = 20_000)]
     public async Task Identify_RepliesPicGateAndFirmware()
     {
-        await using var bench = MachineBench.Create(new SimulatorOptions { GateFirmware = "7.3" });
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { GateFirmware = "7.3" });
 
         Assert.Equal("OK PICGATE 7.3", await bench.AskAsync("*IDN?"));
     }

@@ -60,7 +60,7 @@ public class VirtualZaberProtocolTests
     [Fact(Timeout = 20_000)]
     public async Task Broadcast_ReturnDeviceId_EveryDeviceAnswersWithItsOwnNumber()
     {
-        await using var bench = MachineBench.Create(new SimulatorOptions { DeviceId = 4321 });
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { DeviceId = 4321 });
 
         await bench.SendAsync(0, ZaberCommand.ReturnDeviceId, 0);
         var first = (await bench.ReceiveAsync()).Frame;
@@ -346,7 +346,7 @@ public class VirtualZaberProtocolTests
     [Fact(Timeout = 20_000)]
     public async Task MoveAbsolute_PreemptedWithReplyOption_OldMoveRepliesWhereItWas()
     {
-        await using var bench = MachineBench.Create(new SimulatorOptions { ReplyToPreemptedMoves = true });
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { ReplyToPreemptedMoves = true });
         await bench.SendAsync(1, ZaberCommand.MoveAbsolute, 0);
         await bench.WaitAsync(TimeSpan.FromSeconds(1));
 
@@ -433,7 +433,7 @@ public class VirtualZaberProtocolTests
     [Fact(Timeout = 20_000)]
     public async Task ReturnSetting_TargetSpeed_ReplyCommandIsTheSettingNumber()
     {
-        await using var bench = MachineBench.Create(new SimulatorOptions { TargetSpeedData = 1234 });
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { TargetSpeedData = 1234 });
 
         var reply = await bench.RequestAsync(1, ZaberCommand.ReturnSetting, 42);
 

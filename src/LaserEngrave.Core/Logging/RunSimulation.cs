@@ -1,0 +1,29 @@
+namespace LaserEngrave.Core.Logging;
+
+/// <summary>What the simulator (the twin) measured of a simulated run: the physics of its edges.</summary>
+/// <param name="Seed">The seed of the simulation's random draws; the same seed repeats the run exactly.</param>
+/// <param name="Pulses">Q-switch pulses fired.</param>
+/// <param name="Edges">Distance of each burn run's first and last pulse from where its pixel edge says, half a pulse spacing inside.</param>
+/// <param name="Dwells">Pulses fired with the stage still or below a tenth of the burn speed, and the stretches of them.</param>
+/// <param name="PulsesPerPixel">Pulses per pixel over the pixels the mask has black.</param>
+/// <param name="LaserOnTravelCount">Pulses that landed on a white pixel or off the job.</param>
+/// <param name="MissingPixels">Black pixels of the mask that got no pulse.</param>
+/// <param name="ExtraPixels">White pixels of the mask that got a pulse.</param>
+public sealed record RunSimulation(
+    int Seed,
+    long Pulses,
+    EdgeErrors? Edges,
+    DwellCounts? Dwells,
+    PulseCountRange PulsesPerPixel,
+    long LaserOnTravelCount,
+    long MissingPixels,
+    long ExtraPixels);
+
+/// <summary>Edge placement over the burn runs: how many edges, their mean and largest error, µm.</summary>
+public sealed record EdgeErrors(int Count, double MeanErrorUm, double MaxErrorUm);
+
+/// <summary>Dwell: how many stretches, how many pulses in them.</summary>
+public sealed record DwellCounts(int Count, long Pulses);
+
+/// <summary>Smallest, mean and largest pulse count.</summary>
+public sealed record PulseCountRange(int Min, double Mean, int Max);

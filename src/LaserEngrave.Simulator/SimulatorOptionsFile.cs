@@ -1,0 +1,107 @@
+using System.Text.Json;
+using System.Text.Json.Serialization;
+using LaserEngrave.Simulator.Timing;
+
+namespace LaserEngrave.Simulator;
+
+/// <summary>Reads a simulator options file (<c>--sim-options FILE.json</c>, docs/simulator.md): every field optional, unknown fields refused.</summary>
+public static class SimulatorOptionsFile
+{
+    private static readonly JsonSerializerOptions Json = new()
+    {
+        PropertyNamingPolicy = JsonNamingPolicy.CamelCase,
+        ReadCommentHandling = JsonCommentHandling.Skip,
+        AllowTrailingCommas = true,
+        UnmappedMemberHandling = JsonUnmappedMemberHandling.Disallow,
+    };
+
+    /// <summary>The options of <paramref name="path"/> applied over <paramref name="baseOptions"/>.</summary>
+    /// <exception cref="InvalidDataException">The file cannot be read, or a field is wrong; one line naming the file and the field.</exception>
+    public static SimulatorOptions Load(string path, SimulatorOptions baseOptions)
+    {
+        ArgumentNullException.ThrowIfNull(path);
+        ArgumentNullException.ThrowIfNull(baseOptions);
+        Fields? fields;
+        try
+        {
+            fields = JsonSerializer.Deserialize<Fields>(File.ReadAllText(path), Json);
+        }
+        catch (JsonException ex)
+        {
+            throw new InvalidDataException($"{path}: {ex.Message.Split('\n')[0].Trim()}", ex);
+        }
+        catch (IOException ex)
+        {
+            throw new InvalidDataException($"{path}: cannot read the simulator options: {ex.Message}", ex);
+        }
+        catch (UnauthorizedAccessException ex)
+        {
+            throw new InvalidDataException($"{path}: cannot read the simulator options: {ex.Message}", ex);
+        }
+
+        if (fields is null)
+        {
+            throw new InvalidDataException($"{path}: the simulator options must be a JSON object");
+        }
+
+        var options = baseOptions with
+        {
+            Seed = fields.Seed ?? baseOptions.Seed,
+            AdapterLatency = Checked(path, "adapterLatency", fields.AdapterLatency) ?? baseOptions.AdapterLatency,
+            GateProcessing = Checked(path, "gateProcessing", fields.GateProcessing) ?? baseOptions.GateProcessing,
+            TargetSpeedData = InRange(path, "targetSpeedData", fields.TargetSpeedData, 1, 32767) ?? baseOptions.TargetSpeedData,
+            HomeSpeedData = InRange(path, "homeSpeedData", fields.HomeSpeedData, 1, 32767) ?? baseOptions.HomeSpeedData,
+            AccelerationData = InRange(path, "accelerationData", fields.AccelerationData, 0, 32767) ?? baseOptions.AccelerationData,
+            FaultSpec = fields.Faults ?? baseOptions.FaultSpec,
+        };
+        if (fields.JitterScale is { } scale)
+        {
+            if (!double.IsFinite(scale) || scale < 0 || scale > 100)
+            {
+                throw new InvalidDataException($"{path}: jitterScale {scale} must be 0 to 100");
+            }
+
+            options = options with
+            {
+                AdapterLatency = options.AdapterLatency.WithSpreadScaled(scale),
+                GateProcessing = options.GateProcessing.WithSpreadScaled(scale),
+            };
+        }
+
+        return options;
+    }
+
+    private static Jitter? Checked(string path, string name, Jitter? jitter)
+    {
+        if (jitter is { } j && (!double.IsFinite(j.MeanMs) || !double.IsFinite(j.SpreadMs) || j.MeanMs < 0 || j.SpreadMs < 0 || j.MeanMs > 1000 || j.SpreadMs > 1000))
+        {
+            throw new InvalidDataException($"{path}: {name} must have meanMs and spreadMs from 0 to 1000 ms");
+        }
+
+        return jitter;
+    }
+
+    private static int? InRange(string path, string name, int? value, int min, int max) =>
+        value is { } v && (v < min || v > max)
+            ? throw new InvalidDataException($"{path}: {name} {v} must be {min} to {max}")
+            : value;
+
+    private sealed record Fields
+    {
+        public int? Seed { get; init; }
+
+        public Jitter? AdapterLatency { get; init; }
+
+        public Jitter? GateProcessing { get; init; }
+
+        public double? JitterScale { get; init; }
+
+        public int? TargetSpeedData { get; init; }
+
+        public int? HomeSpeedData { get; init; }
+
+        public int? AccelerationData { get; init; }
+
+        public string? Faults { get; init; }
+    }
+}

@@ -1,0 +1,166 @@
+using LaserEngrave.Simulator.Timing;
+
+namespace LaserEngrave.Simulator.Tests.Timing;
+
+public class SimulationLoopTests
+{
+    [Fact(Timeout = 20_000)]
+    public async Task Run_Delays_ResumeAtTheirVirtualTimesInOrder()
+    {
+        using var time = new VirtualTimeProvider();
+        var log = new List<string>();
+
+        await time.Run(async () =>
+        {
+            var slow = Step("slow", 30);
+            var fast = Step("fast", 5);
+            await Task.WhenAll(slow, fast);
+            return true;
+        });
+
+        Assert.Equal(["fast at 5 ms", "slow at 30 ms"], log);
+
+        async Task Step(string name, int ms)
+        {
+            await Task.Delay(TimeSpan.FromMilliseconds(ms), time);
+            log.Add($"{name} at {time.Elapsed.TotalMilliseconds} ms");
+        }
+    }
+
+    [Fact(Timeout = 20_000)]
+    public async Task CreateTimer_KeepsWholeTicks_NotWholeMilliseconds()
+    {
+        using var time = new VirtualTimeProvider();
+
+        var firedAt = await time.Run(async () =>
+        {
+            var fired = new TaskCompletionSource<TimeSpan>();
+            using var timer = time.CreateTimer(_ => fired.TrySetResult(time.Elapsed), null, TimeSpan.FromTicks(62_500), Timeout.InfiniteTimeSpan);
+            return await fired.Task;
+        });
+
+        Assert.Equal(TimeSpan.FromTicks(62_500), firedAt);
+    }
+
+    [Fact(Timeout = 20_000)]
+    public async Task Run_CancellationAfterATimeout_FiresOnTheVirtualClock()
+    {
+        using var time = new VirtualTimeProvider();
+
+        var (cancelledAt, onLoop) = await time.Run(async () =>
+        {
+            using var cts = new CancellationTokenSource(TimeSpan.FromSeconds(2), time);
+            try
+            {
+                await Task.Delay(Timeout.InfiniteTimeSpan, time, cts.Token);
+            }
+            catch (OperationCanceledException)
+            {
+            }
+
+            return (time.Elapsed, time.Loop.IsOnLoop);
+        });
+
+        Assert.Equal(TimeSpan.FromSeconds(2), cancelledAt);
+        Assert.True(onLoop, "the continuation left the loop");
+    }
+
+    [Fact(Timeout = 20_000)]
+    public async Task Run_NothingLeftToWaitFor_ReportsADeadlockNamingTheOperation()
+    {
+        using var time = new VirtualTimeProvider();
+
+        var error = await Assert.ThrowsAsync<SimulationDeadlockException>(() => time.Loop.Run(
+            async () =>
+            {
+                await Task.Delay(TimeSpan.FromMilliseconds(40), time);
+                return await new TaskCompletionSource<int>().Task;
+            },
+            "the reply nobody sends"));
+
+        Assert.Equal("simulation deadlock at t = 0.04 s: no work and no timer left while waiting for: the reply nobody sends", error.Message);
+    }
+
+    [Fact(Timeout = 20_000)]
+    public async Task Time_BetweenOperations_StandsStill()
+    {
+        using var time = new VirtualTimeProvider();
+        var ticks = 0;
+        await time.Run(() =>
+        {
+            // A periodic timer that would run for ever if time moved on its own.
+            time.CreateTimer(_ => ticks++, null, TimeSpan.FromMilliseconds(10), TimeSpan.FromMilliseconds(10));
+            return Task.FromResult(true);
+        });
+        var after = time.Elapsed;
+
+        await Task.Delay(50, TestContext.Current.CancellationToken);
+        var during = await time.Run(async () =>
+        {
+            // 105 ms: the tenth tick (due at 100 ms) is behind the delay if both are due at the same instant.
+            await Task.Delay(TimeSpan.FromMilliseconds(105), time);
+            return ticks;
+        });
+
+        Assert.Equal(TimeSpan.Zero, after);
+        Assert.Equal(10, during);
+    }
+
+    [Fact(Timeout = 20_000)]
+    public async Task Run_FinishedOperation_IsHandedOutOnlyOnceTheInstantIsQuiet()
+    {
+        using var time = new VirtualTimeProvider();
+        var late = false;
+
+        await time.Run(async () =>
+        {
+            await Task.Delay(TimeSpan.FromMilliseconds(10), time);
+            // Due at the same instant the operation ends: it runs before the caller sees the result.
+            time.CreateTimer(_ => late = true, null, TimeSpan.Zero, Timeout.InfiniteTimeSpan);
+            return true;
+        });
+
+        Assert.True(late);
+    }
+
+    [Fact(Timeout = 20_000)]
+    public void CreateTimer_OffTheLoop_IsRefused()
+    {
+        using var time = new VirtualTimeProvider();
+
+        var error = Assert.Throws<InvalidOperationException>(() => time.CreateTimer(_ => { }, null, TimeSpan.FromSeconds(1), Timeout.InfiniteTimeSpan));
+
+        Assert.Contains("off its loop", error.Message, StringComparison.Ordinal);
+    }
+
+    [Fact(Timeout = 20_000)]
+    public async Task Run_SameWork_TakesTheSameStepsAtTheSameTimes()
+    {
+        var first = await Trace(seed: 7);
+        var second = await Trace(seed: 7);
+
+        Assert.Equal(first, second);
+        Assert.Contains("steps", first, StringComparison.Ordinal);
+
+        static async Task<string> Trace(int seed)
+        {
+            using var time = new VirtualTimeProvider();
+            var random = new Random(seed);
+            var log = new List<string>();
+            await time.Run(async () =>
+            {
+                var workers = Enumerable.Range(0, 20).Select(async i =>
+                {
+                    for (var k = 0; k < 50; k++)
+                    {
+                        await Task.Delay(TimeSpan.FromMilliseconds(random.Next(1, 20)), time);
+                        log.Add($"{i}@{time.Elapsed.Ticks}");
+                    }
+                });
+                await Task.WhenAll(workers);
+                return true;
+            });
+            return $"{string.Join(",", log)} steps {time.Loop.Steps}";
+        }
+    }
+}
