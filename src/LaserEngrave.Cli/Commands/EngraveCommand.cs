@@ -38,6 +38,8 @@ internal static class EngraveCommand
             throw new UsageException("--burned needs --simulate: only the simulator knows what was burned");
         }
 
+        OptionChecks.OutputFile(burnedPath, "--burned");
+
         var (spec, repeatOf, resumeFrom) = BindJob(result, o);
         var prepared = PreparedJob.Prepare(spec);
         RefuseOutsideTravel(prepared);

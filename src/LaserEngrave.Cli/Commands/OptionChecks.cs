@@ -36,6 +36,15 @@ internal static class OptionChecks
         }
     }
 
+    /// <summary>Refuses an output path that exists but is not a regular file: writing to a named pipe would block until something reads it.</summary>
+    public static void OutputFile(string? path, string name)
+    {
+        if (path is not null && Core.IO.RegularFile.Problem(path) is { } problem)
+        {
+            throw new UsageException($"{name} {path}: {problem}");
+        }
+    }
+
     /// <summary>A number as messages show it: invariant, short, exponent form when huge or tiny.</summary>
     public static string N(double value) =>
         value != 0 && double.IsFinite(value) && (Math.Abs(value) >= 1e9 || Math.Abs(value) < 1e-5)
