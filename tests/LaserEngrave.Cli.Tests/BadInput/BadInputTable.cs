@@ -296,6 +296,13 @@ public static class BadInputTable
         Add("--speed-mm-s 100: outside what the stage takes", "preview", "@qr", "--width-mm", "1", "--out", "@out", "--speed-mm-s", "100");
         Add("--size 10: must be between 64 and 60000", "bench", "--size", "10");
         Add("--size 1000000: must be between 64 and 60000", "bench", "--size", "1000000");
+        Add("--out @fifo: is a named pipe (FIFO)", "mask", "@qr", "--out", "@fifo");
+        Add("--out @dir: is a folder", "mask", "@qr", "--out", "@dir");
+        Add("--out @fifo: is a named pipe (FIFO)", "preview", "@qr", "--width-mm", "1", "--out", "@fifo");
+        Add("--mask-out @dev: is a character device", "preview", "@qr", "--width-mm", "1", "--out", "@out", "--mask-out", "@dev");
+        Add("--segments @fifo: is a named pipe (FIFO)", "plan", "@qr", "--width-mm", "1", "--segments", "@fifo");
+        Add("--burned @fifo: is a named pipe (FIFO)", "engrave", "@qr", "--width-mm", "1", "--simulate", "--log-dir", "@logdir", "--burned", "@fifo");
+        Add("named pipe (FIFO)", "bench", "--image", "@fifo");
         Add("Unrecognized command or argument 'frobnicate'", "frobnicate");
         Add("--bogus", "plan", "@qr", "--width-mm", "1", "--bogus");
         return rows;
