@@ -4,6 +4,8 @@ namespace LaserEngrave.Cli.Tests.BadInput;
 /// Counts how many of the table's bad command lines are refused cleanly: exit code 2, one line on stderr, nothing on
 /// stdout, within 30 s. Needs nothing but the table and the CLI, so it runs on older commits too (the figure before a
 /// change): `dotnet test tests/LaserEngrave.Cli.Tests --filter FullyQualifiedName~BadInputCensus`.
+/// With this table copied onto main at 6665baa, 146 of 262 were refused cleanly (9 blocked on a FIFO or ran a simulated
+/// job past 30 s; the rest exited 0 or 1, or printed more than one line); after the validation work all 262 are.
 /// </summary>
 public class BadInputCensus
 {
