@@ -24,7 +24,9 @@ internal static class CliRunner
         var parse = root.Parse(args);
         if (parse.Errors.Count > 0)
         {
-            stderr.WriteLine($"laserengrave: {parse.Errors[0].Message} (see --help)");
+            // An unknown word says more than the "required command was not provided" that comes with it.
+            var error = parse.Errors.FirstOrDefault(e => e.Message.StartsWith("Unrecognized", StringComparison.Ordinal)) ?? parse.Errors[0];
+            stderr.WriteLine($"laserengrave: {error.Message} (see --help)");
             return BadInput;
         }
 

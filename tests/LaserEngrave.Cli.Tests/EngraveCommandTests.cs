@@ -198,8 +198,8 @@ public sealed class EngraveCommandTests : IDisposable
     [InlineData(new[] { "--width-mm", "5", "--stage-port", "/dev/ttyS0", "--laser-port", "/dev/ttyS1", "--fault", "silent:stage" }, "--fault works only with --simulate")]
     [InlineData(new[] { "--width-mm", "5", "--stage-port", "/dev/ttyS0", "--laser-port", "/dev/ttyS1", "--burned", "b.png" }, "--burned needs --simulate")]
     [InlineData(new[] { "--width-mm", "5", "--simulate", "--resume" }, "--resume needs --from-log")]
-    [InlineData(new[] { "--width-mm", "5", "--simulate", "--speed-mm-s", "0" }, "burn speed 0 mm/s")]
-    [InlineData(new[] { "--width-mm", "5", "--simulate", "--frequency-hz", "-5" }, "laser frequency -5 Hz")]
+    [InlineData(new[] { "--width-mm", "5", "--simulate", "--speed-mm-s", "0" }, "--speed-mm-s 0: outside what the stage takes")]
+    [InlineData(new[] { "--width-mm", "5", "--simulate", "--frequency-hz", "-5" }, "--frequency-hz -5: outside what the laser gate takes")]
     [InlineData(new[] { "--width-mm", "5", "--simulate", "--fault", "melt:stage" }, "melt")]
     public async Task Engrave_BadOptions_Exit2WithOneLine(string[] options, string expected)
     {

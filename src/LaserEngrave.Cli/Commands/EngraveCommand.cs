@@ -2,6 +2,7 @@ using System.Diagnostics;
 using System.CommandLine;
 using System.Globalization;
 using System.Runtime.ExceptionServices;
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Devices.Execution;
@@ -38,6 +39,8 @@ internal static class EngraveCommand
         {
             throw new UsageException("--burned needs --simulate: only the simulator knows what was burned");
         }
+
+        OptionChecks.OutputFile(burnedPath, "--burned");
 
         var (spec, repeatOf, resumeFrom) = BindJob(result, o);
         var prepared = PreparedJob.Prepare(spec);
@@ -174,8 +177,21 @@ internal static class EngraveCommand
             throw new UsageException($"give IMAGE ({image}) or --from-log, not both: a repeated run takes its image and parameters from the log");
         }
 
+        if (o.Job.Given(result).FirstOrDefault() is { } ignored)
+        {
+            throw new UsageException($"{ignored} with --from-log: a repeated run takes every parameter from its log, so {ignored} would be ignored; leave it out, or give IMAGE instead of --from-log");
+        }
+
         var logged = RunLogStore.Read(fromLog);
         var spec = RunReplay.ToJobSpec(logged);
+
+        // A log is a file anyone can edit: its profile and process get the same checks as the command line's.
+        MachineProfileValidator.Validate(spec.Profile, $"{fromLog}: profile");
+        if (MachineProfileValidator.ProcessProblem(spec.Profile, spec.Process) is { } problem)
+        {
+            throw new UsageException($"{fromLog}: the logged {problem}");
+        }
+
         if (!resume)
         {
             return (spec, Path.GetFullPath(fromLog), null);

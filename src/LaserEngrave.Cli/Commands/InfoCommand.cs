@@ -4,7 +4,7 @@ using LaserEngrave.Core.Imaging;
 
 namespace LaserEngrave.Cli.Commands;
 
-/// <summary>`laserengrave info IMAGE [--json]`: what the image's header says, as the paper's tool showed it.</summary>
+/// <summary>`laserengrave info IMAGE [--json]`: what the image's header says, as the paper's tool showed it, once every pixel has been read.</summary>
 internal static class InfoCommand
 {
     public static Command Create()
@@ -14,7 +14,7 @@ internal static class InfoCommand
         var command = new Command("info", "Show an image's format, size, bits per pixel, palette and resolution") { image, json };
         command.SetAction(result =>
         {
-            var info = ImageLoader.ReadInfo(result.GetValue(image)!);
+            var info = ImageLoader.ReadInfoVerified(result.GetValue(image)!);
             var output = result.InvocationConfiguration.Output;
             if (result.GetValue(json))
             {

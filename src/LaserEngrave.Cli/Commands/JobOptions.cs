@@ -61,30 +61,81 @@ internal sealed class JobOptions
     }
 
     /// <summary>Reads the options into a job spec; throws <see cref="UsageException"/> naming the bad value.</summary>
+    /// <remarks>Every number is checked against the machine profile's limits here, before any port opens.</remarks>
     public JobSpec Bind(ParseResult result)
     {
         var profile = result.GetValue(Profile) is { } path ? MachineProfile.Load(path) : MachineProfile.Default;
         var image = result.GetValue(Image) ?? throw new UsageException("IMAGE is required");
+        var limits = MachineLimits.Of(profile);
         var process = ProcessSettings.FromProfile(profile) with
         {
-            BurnSpeedMmPerS = result.GetValue(SpeedMmS) ?? profile.BurnSpeedMmPerS,
-            TravelSpeedMmPerS = result.GetValue(TravelSpeedMmS) ?? profile.TravelSpeedMmPerS,
-            AccelerationMmPerS2 = result.GetValue(AccelerationMmS2) ?? profile.AccelerationMmPerS2,
-            LaserFrequencyHz = result.GetValue(FrequencyHz) ?? profile.LaserFrequencyHz,
+            BurnSpeedMmPerS = Speed(result.GetValue(SpeedMmS), "--speed-mm-s", limits) ?? profile.BurnSpeedMmPerS,
+            TravelSpeedMmPerS = Speed(result.GetValue(TravelSpeedMmS), "--travel-speed-mm-s", limits) ?? profile.TravelSpeedMmPerS,
+            AccelerationMmPerS2 = Acceleration(result.GetValue(AccelerationMmS2), limits) ?? profile.AccelerationMmPerS2,
+            LaserFrequencyHz = Frequency(result.GetValue(FrequencyHz), limits) ?? profile.LaserFrequencyHz,
         };
+        var origin = ParseOrigin(result.GetValue(OriginMm));
+        OptionChecks.WithinTravel(origin.X, limits.TravelXMm, "--origin-mm", "X");
+        OptionChecks.WithinTravel(origin.Y, limits.TravelYMm, "--origin-mm", "Y");
+        var size = BindSize(result, image, profile);
+        RefusePitchBelowMicrostep(size, image, origin, profile);
         return new JobSpec
         {
             ImagePath = image,
             Mask = Mask.Bind(result),
-            Size = BindSize(result, image),
-            Origin = ParseOrigin(result.GetValue(OriginMm)),
-            Plan = BindPlan(result),
+            Size = size,
+            Origin = origin,
+            Plan = BindPlan(result, limits),
             Process = process,
             Profile = profile,
         };
     }
 
-    private SizeSpec BindSize(ParseResult result, string image)
+    /// <summary>Refuses a size whose pixels would be smaller than one microstep, the smallest step the stage makes (whole pixels would vanish).</summary>
+    private static void RefusePitchBelowMicrostep(SizeSpec size, string image, OriginMm origin, MachineProfile profile)
+    {
+        var info = ImageLoader.ReadInfo(image);
+        var pitch = GeometryResolver.Resolve(size, info.Width, info.Height, origin, profile).PitchUm;
+        var microstep = Math.Max(profile.X.MicrostepUm, profile.Y.MicrostepUm);
+        if (!(pitch >= microstep))
+        {
+            var given = size switch
+            {
+                SizeSpec.ByWidth w => $"--width-mm {OptionChecks.N(w.WidthMm)}",
+                SizeSpec.ByHeight h => $"--height-mm {OptionChecks.N(h.HeightMm)}",
+                SizeSpec.ByWidthAndHeight wh => $"--width-mm {OptionChecks.N(wh.WidthMm)} --height-mm {OptionChecks.N(wh.HeightMm)}",
+                SizeSpec.ByResolution r => $"--image-dpi ({OptionChecks.N(r.Dpi)} dpi)",
+                _ => size.Describe(),
+            };
+            throw new UsageException(
+                $"{given} for {info.Width} x {info.Height} px gives pixels of {OptionChecks.N(pitch)} µm, below one microstep ({OptionChecks.N(microstep)} µm), the smallest step the stage makes; make the job larger");
+        }
+    }
+
+    /// <summary>The options given on the command line that set part of the job (a run repeated from its log takes them all from the log).</summary>
+    public IEnumerable<string> Given(ParseResult result) =>
+        new Option[]
+        {
+            Mask.Threshold, Mask.Dither, Mask.Invert, WidthMm, HeightMm, PitchUm, ImageDpi, OriginMm, Strategy, Bidirectional, Unidirectional,
+            OverscanMm, Profile, FrequencyHz, SpeedMmS, TravelSpeedMmS, AccelerationMmS2,
+        }.Where(option => OptionChecks.IsGiven(result, option)).Select(option => option.Name);
+
+    private static double? Speed(double? value, string name, MachineLimits limits) =>
+        value is { } v && !limits.SpeedAllowed(v)
+            ? throw new UsageException($"{name} {OptionChecks.N(v)}: outside what the stage takes, {limits.SpeedRange} (the profile's maxSpeedMmPerS)")
+            : value;
+
+    private static double? Acceleration(double? value, MachineLimits limits) =>
+        value is { } v && !limits.AccelerationAllowed(v)
+            ? throw new UsageException($"--acceleration-mm-s2 {OptionChecks.N(v)}: outside what the stage takes, {limits.AccelerationRange} (the profile's maxAccelerationMmPerS2)")
+            : value;
+
+    private static double? Frequency(double? value, MachineLimits limits) =>
+        value is { } v && !limits.FrequencyAllowed(v)
+            ? throw new UsageException($"--frequency-hz {OptionChecks.N(v)}: outside what the laser gate takes, 1..{limits.MaxFrequencyHz} Hz (the profile's gate.maxFrequencyHz)")
+            : value;
+
+    private SizeSpec BindSize(ParseResult result, string image, MachineProfile profile)
     {
         var width = result.GetValue(WidthMm);
         var height = result.GetValue(HeightMm);
@@ -104,6 +155,14 @@ internal sealed class JobOptions
         Positive(width, "--width-mm");
         Positive(height, "--height-mm");
         Positive(pitch, "--pitch-um");
+        OptionChecks.AtMost(width, profile.X.TravelMm, "--width-mm", "mm, the X travel");
+        OptionChecks.AtMost(height, profile.Y.TravelMm, "--height-mm", "mm, the Y travel");
+        OptionChecks.AtMost(pitch, Math.Min(profile.X.TravelMm, profile.Y.TravelMm) * 1000, "--pitch-um", "µm, the travel");
+        if (pitch is { } p && p < Math.Max(profile.X.MicrostepUm, profile.Y.MicrostepUm))
+        {
+            throw new UsageException($"--pitch-um {OptionChecks.N(p)}: below one microstep ({OptionChecks.N(Math.Max(profile.X.MicrostepUm, profile.Y.MicrostepUm))} µm), the smallest step the stage makes");
+        }
+
         if (dpi)
         {
             var info = ImageLoader.ReadInfo(image);
@@ -121,7 +180,7 @@ internal sealed class JobOptions
         };
     }
 
-    private PlanOptions BindPlan(ParseResult result)
+    private PlanOptions BindPlan(ParseResult result, MachineLimits limits)
     {
         var strategy = result.GetValue(Strategy)?.Trim().ToLowerInvariant() switch
         {
@@ -135,9 +194,9 @@ internal sealed class JobOptions
         }
 
         var overscan = result.GetValue(OverscanMm);
-        if (!(overscan >= 0))
+        if (!(overscan >= 0 && overscan <= limits.TravelXMm))
         {
-            throw new UsageException($"--overscan-mm {overscan}: must be 0 or more");
+            throw new UsageException($"--overscan-mm {OptionChecks.N(overscan)}: must be 0..{OptionChecks.N(limits.TravelXMm)} mm (the X travel)");
         }
 
         return new PlanOptions { Strategy = strategy, Bidirectional = !result.GetValue(Unidirectional), OverscanMm = overscan };
@@ -166,7 +225,7 @@ internal sealed class JobOptions
     {
         if (value is { } v && !(v > 0 && double.IsFinite(v)))
         {
-            throw new UsageException($"{name} {v.ToString(CultureInfo.InvariantCulture)}: must be above 0");
+            throw new UsageException($"{name} {OptionChecks.N(v)}: must be a finite number above 0");
         }
     }
 }

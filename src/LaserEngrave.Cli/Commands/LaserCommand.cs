@@ -8,6 +8,9 @@ namespace LaserEngrave.Cli.Commands;
 /// <summary>`laserengrave laser --port P (identify | on HZ | off | status)`: check the laser gate's wiring.</summary>
 internal static class LaserCommand
 {
+    /// <summary>Longest timed `laser on`, s (a day); longer is a typo, and Ctrl+C ends an untimed one.</summary>
+    private const int MaxOnSeconds = 86_400;
+
     public static Command Create()
     {
         var options = new DeviceOptions();
@@ -21,7 +24,12 @@ internal static class LaserCommand
         var hz = new Argument<int>("HZ") { Description = "Q-switch frequency in Hz (pulses per second)" };
         var seconds = new Option<double?>("--seconds") { Description = "Switch off after this many seconds (default: at Ctrl+C)" };
         var on = new Command("on", "Fire at HZ while this command runs (watchdog fed), and switch off at Ctrl+C, after --seconds, or on any fault") { hz, seconds };
-        on.SetAction((result, ct) => RunAsync(options, result, (gate, output, token) => FireAsync(gate, output, result.GetValue(hz), result.GetValue(seconds), token), ct));
+        on.SetAction((result, ct) =>
+        {
+            // Checked before the port opens: a bad number must never reach the gate.
+            CheckFire(options.LoadProfile(result), result.GetValue(hz), result.GetValue(seconds));
+            return RunAsync(options, result, (gate, output, token) => FireAsync(gate, output, result.GetValue(hz), result.GetValue(seconds), token), ct);
+        });
 
         var off = new Command("off", "Stop firing");
         off.SetAction((result, ct) => RunAsync(options, result, async (gate, output, token) =>
@@ -55,17 +63,22 @@ internal static class LaserCommand
         return 0;
     }
 
-    private static async Task FireAsync(PicLaserGate gate, TextWriter output, int frequencyHz, double? seconds, CancellationToken cancellationToken)
+    private static void CheckFire(Core.Geometry.MachineProfile profile, int frequencyHz, double? seconds)
     {
         if (frequencyHz <= 0)
         {
             throw new UsageException($"HZ must be above 0 (got {frequencyHz}); use `laser off` to stop");
         }
 
-        if (seconds is <= 0 or double.NaN or double.PositiveInfinity)
+        OptionChecks.InRange(frequencyHz, 1, profile.Gate.MaxFrequencyHz, "HZ", " Hz", "the profile's gate.maxFrequencyHz");
+        if (seconds is { } s && !(s > 0 && s <= MaxOnSeconds))
         {
-            throw new UsageException($"--seconds must be above 0 (got {seconds})");
+            throw new UsageException($"--seconds {OptionChecks.N(s)}: must be above 0 and at most {MaxOnSeconds} (leave it out to fire until Ctrl+C)");
         }
+    }
+
+    private static async Task FireAsync(PicLaserGate gate, TextWriter output, int frequencyHz, double? seconds, CancellationToken cancellationToken)
+    {
 
         var watchdogMs = gate.Profile.WatchdogMs;
         if (watchdogMs > 0)

@@ -114,10 +114,15 @@ internal sealed class MachineOptions
 
     public string FaultSpec(ParseResult result) => string.Join(',', result.GetValue(Fault) ?? []);
 
+    /// <summary>Called, on the async flow that set it, just before a machine (ports or simulator) is opened.</summary>
+    /// <remarks>The seam through which tests prove that bad input is refused before anything opens, so nothing can move.</remarks>
+    internal static AsyncLocal<Action?> Opening { get; } = new();
+
     /// <summary>Opens the machine the options name; the caller disposes it (devices first, then the simulator).</summary>
     public MachineSession Open(ParseResult result, MachineProfile profile)
     {
         Validate(result);
+        Opening.Value?.Invoke();
         return result.GetValue(Simulate)
             ? SimulatedMachine.OpenInProcess(profile, SimulatorOptionsFor(result))
             : MachineSession.OpenPorts(result.GetValue(StagePort)!, result.GetValue(LaserPort)!, profile);

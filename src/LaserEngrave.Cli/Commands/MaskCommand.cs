@@ -17,6 +17,7 @@ internal static class MaskCommand
         command.SetAction(result =>
         {
             var options = mask.Bind(result);
+            OptionChecks.OutputFile(result.GetValue(output), "--out");
             var bits = MaskBuilder.FromFile(result.GetValue(image)!, options, out var info);
             if (info.HasMoreFrames)
             {

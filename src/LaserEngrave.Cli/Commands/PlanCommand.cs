@@ -19,6 +19,7 @@ internal static class PlanCommand
         command.Options.Add(segments);
         command.SetAction(result =>
         {
+            OptionChecks.OutputFile(result.GetValue(segments), "--segments");
             var prepared = PreparedJob.Prepare(job.Bind(result));
             if (result.GetValue(segments) is { } csv)
             {

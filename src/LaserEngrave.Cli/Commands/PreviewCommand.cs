@@ -27,6 +27,8 @@ internal static class PreviewCommand
                 throw new UsageException($"--max-px {maxPx}: must be between 16 and 4096");
             }
 
+            OptionChecks.OutputFile(result.GetValue(output), "--out");
+            OptionChecks.OutputFile(result.GetValue(maskOut), "--mask-out");
             var prepared = PreparedJob.Prepare(job.Bind(result));
             var path = result.GetValue(output)!;
             PlanPreview.Render(prepared.Plan, path, maxPx);

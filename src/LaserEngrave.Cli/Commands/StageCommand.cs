@@ -29,8 +29,14 @@ internal static class StageCommand
         var xUm = new Argument<double>("X_UM") { Description = "X target in µm from home" };
         var yUm = new Argument<double>("Y_UM") { Description = "Y target in µm from home" };
         var moveAbs = new Command("move-abs", "Move both axes to an absolute position in µm (rounded once to whole microsteps)") { xUm, yUm };
-        moveAbs.SetAction((result, ct) => RunAsync(
-            options, result, (chain, output, token) => MoveAbsoluteAsync(chain, output, result.GetValue(xUm), result.GetValue(yUm), token), ct));
+        moveAbs.SetAction((result, ct) =>
+        {
+            // Checked before the port opens, so a target off the axis never reaches the stage.
+            var profile = options.LoadProfile(result);
+            ToMicrosteps("X", result.GetValue(xUm), profile.X);
+            ToMicrosteps("Y", result.GetValue(yUm), profile.Y);
+            return RunAsync(options, result, (chain, output, token) => MoveAbsoluteAsync(chain, output, result.GetValue(xUm), result.GetValue(yUm), token), ct);
+        });
 
         command.Subcommands.Add(identify);
         command.Subcommands.Add(home);
@@ -115,8 +121,13 @@ internal static class StageCommand
     /// <summary>Whole microsteps from an absolute position in µm, rounded once, inside the travel.</summary>
     private static long ToMicrosteps(string axisName, double um, AxisProfile axis)
     {
+        if (!(um >= 0 && um <= axis.TravelMm * 1000))
+        {
+            throw new UsageException(string.Create(C, $"{axisName} {um} µm is outside the travel 0..{axis.TravelMm * 1000:0} µm"));
+        }
+
         var microsteps = (long)Math.Round(StageUnits.UmToMicrosteps(um, axis.MicrostepUm), MidpointRounding.AwayFromZero);
-        if (!double.IsFinite(um) || microsteps < 0 || microsteps > axis.TravelMicrosteps)
+        if (microsteps < 0 || microsteps > axis.TravelMicrosteps)
         {
             throw new UsageException(string.Create(C, $"{axisName} {um} µm is outside the travel 0..{axis.TravelMm * 1000:0} µm"));
         }

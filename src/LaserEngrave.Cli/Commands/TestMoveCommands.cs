@@ -9,6 +9,12 @@ namespace LaserEngrave.Cli.Commands;
 /// <summary>`laserengrave frame | jog | goto | fire`: the test moves a technician makes before a run; the laser is off at the end of each.</summary>
 internal static class TestMoveCommands
 {
+    /// <summary>Most pulses one test fire may ask for (10 s at the gate's 100 kHz).</summary>
+    internal const int MaxTestPulses = 1_000_000;
+
+    /// <summary>Longest test fire, ms.</summary>
+    internal const int MaxTestFireMs = 60_000;
+
     public static IEnumerable<Command> All()
     {
         yield return Frame();
@@ -28,12 +34,12 @@ internal static class TestMoveCommands
         command.Options.Add(visibleHz);
         command.SetAction(async (result, ct) =>
         {
-            var prepared = PreparedJob.Prepare(job.Bind(result));
+            var spec = job.Bind(result);
+
+            // The laser is on around the whole frame: only a low frequency, to see the outline without burning it.
+            OptionChecks.InRange(result.GetValue(visibleHz), 1, spec.Profile.MaxFrameFrequencyHz, "--visible-hz", " Hz", "the profile's maxFrameFrequencyHz");
+            var prepared = PreparedJob.Prepare(spec);
             EngraveCommand.RefuseOutsideTravel(prepared);
-            if (result.GetValue(visibleHz) is { } hz && hz <= 0)
-            {
-                throw new UsageException($"--visible-hz {hz}: must be above 0");
-            }
 
             return await WithMovesAsync(result, machine, prepared.Spec.Profile, prepared.Spec.Process, async moves =>
                 Describe(await moves.FrameAsync(prepared.Geometry.Geometry, result.GetValue(visibleHz), ct), prepared.Spec.Profile));
@@ -63,6 +69,12 @@ internal static class TestMoveCommands
             }
 
             var machineProfile = LoadProfile(result, profile);
+            var travelUm = (name == StageAxisName.X ? machineProfile.X : machineProfile.Y).TravelMm * 1000;
+            if (Math.Abs(stepUm) > travelUm)
+            {
+                throw new UsageException($"STEP_UM {OptionChecks.N(stepUm)}: longer than the {name} travel ({OptionChecks.N(travelUm)} µm)");
+            }
+
             return await WithMovesAsync(result, machine, machineProfile, null, async moves =>
                 Describe(await moves.JogAsync(name, stepUm, ct), machineProfile));
         });
@@ -104,17 +116,11 @@ internal static class TestMoveCommands
                 throw new UsageException("give one of --pulses N or --ms T");
             }
 
-            if (count <= 0 || duration <= 0)
-            {
-                throw new UsageException($"{(count.HasValue ? $"--pulses {count}" : $"--ms {duration}")}: must be above 0");
-            }
-
+            OptionChecks.InRange(count, 1, MaxTestPulses, "--pulses", string.Empty, "a test fire");
+            OptionChecks.InRange(duration, 1, MaxTestFireMs, "--ms", " ms", "a test fire");
             var machineProfile = LoadProfile(result, profile);
+            OptionChecks.InRange(result.GetValue(frequency), 1, machineProfile.Gate.MaxFrequencyHz, "--frequency-hz", " Hz", "the profile's gate.maxFrequencyHz");
             var hz = result.GetValue(frequency) ?? (int)Math.Round(machineProfile.LaserFrequencyHz, MidpointRounding.AwayFromZero);
-            if (hz <= 0)
-            {
-                throw new UsageException($"--frequency-hz {hz}: must be above 0");
-            }
 
             return await WithMovesAsync(result, machine, machineProfile, null, async moves =>
             {

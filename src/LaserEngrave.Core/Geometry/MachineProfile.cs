@@ -1,5 +1,6 @@
 using System.Text.Json;
 using System.Text.Json.Serialization;
+using LaserEngrave.Core.IO;
 
 namespace LaserEngrave.Core.Geometry;
 
@@ -80,8 +81,11 @@ public sealed record LaserGateProfile
     /// <summary>How long to wait for an acknowledgement before the gate counts as silent.</summary>
     public int TimeoutMs { get; init; } = 500;
 
-    /// <summary>Watchdog time programmed into the gate: it switches the laser off after this long without a command.</summary>
+    /// <summary>Watchdog time programmed into the gate: it switches the laser off after this long without a command (50..60000).</summary>
     public int WatchdogMs { get; init; } = 1000;
+
+    /// <summary>Highest Q-switch frequency the gate takes, whole Hz (the default protocol's FREQ range is 0..100000).</summary>
+    public int MaxFrequencyHz { get; init; } = 100000;
 }
 
 /// <summary>The machine: two Zaber axes, the laser gate, the spot and the default process settings.</summary>
@@ -93,6 +97,9 @@ public sealed record MachineProfile
         PropertyNamingPolicy = JsonNamingPolicy.CamelCase,
         ReadCommentHandling = JsonCommentHandling.Skip,
         AllowTrailingCommas = true,
+
+        // A misspelt field ("watchdogMS") would otherwise leave the default in force without a word.
+        UnmappedMemberHandling = JsonUnmappedMemberHandling.Disallow,
     };
 
     public string Name { get; init; } = "Two Zaber T-LA60A (default)";
@@ -119,13 +126,23 @@ public sealed record MachineProfile
     /// <summary>Default Q-switch frequency while burning, Hz (seed 000 used 1 kHz).</summary>
     public double LaserFrequencyHz { get; init; } = 1000;
 
+    /// <summary>Highest frequency `frame --visible-hz` may fire at while tracing the outline, Hz: low, to see the frame, not to burn it.</summary>
+    public int MaxFrameFrequencyHz { get; init; } = 100;
+
     public LaserGateProfile Gate { get; init; } = new();
 
     /// <summary>The built-in profile: two Zaber T-LA60A, device 1 = X, device 2 = Y.</summary>
     public static MachineProfile Default { get; } = new();
 
+    /// <summary>Reads and checks a profile; throws a <see cref="ProfileException"/> of one line naming the file and the field.</summary>
     public static MachineProfile Load(string path)
     {
+        ArgumentException.ThrowIfNullOrEmpty(path);
+        if (RegularFile.Problem(path) is { } problem)
+        {
+            throw new ProfileException($"{path}: {problem}");
+        }
+
         string text;
         try
         {
@@ -136,17 +153,23 @@ public sealed record MachineProfile
             throw new ProfileException($"{path}: cannot read the machine profile: {ex.Message}", ex);
         }
 
+        MachineProfile? profile;
         try
         {
-            var profile = JsonSerializer.Deserialize<MachineProfile>(text, JsonOptions)
-                ?? throw new ProfileException($"{path}: the machine profile is empty");
-            profile.Validate(path);
-            return profile;
+            profile = JsonSerializer.Deserialize<MachineProfile>(text, JsonOptions);
         }
         catch (JsonException ex)
         {
-            throw new ProfileException($"{path}: not a valid machine profile: {ex.Message}", ex);
+            throw new ProfileException($"{path}: {MachineProfileValidator.DescribeJsonError(ex)}", ex);
         }
+
+        if (profile is null)
+        {
+            throw new ProfileException($"{path}: the machine profile is empty");
+        }
+
+        profile.Validate(path);
+        return profile;
     }
 
     public string ToJson() => JsonSerializer.Serialize(this, JsonOptions);
@@ -154,34 +177,8 @@ public sealed record MachineProfile
     public void Save(string path) => File.WriteAllText(path, ToJson());
 
     /// <summary>Checks every value is usable; throws a <see cref="ProfileException"/> naming the first that is not.</summary>
-    public void Validate(string source = "profile")
-    {
-        foreach (var (axisName, axis) in new[] { ("x", X), ("y", Y) })
-        {
-            Require(axis.MicrostepUm > 0, $"{axisName}.microstepUm must be above 0 (got {axis.MicrostepUm})");
-            Require(axis.TravelMm > 0, $"{axisName}.travelMm must be above 0 (got {axis.TravelMm})");
-            Require(axis.MaxSpeedMmPerS > 0, $"{axisName}.maxSpeedMmPerS must be above 0 (got {axis.MaxSpeedMmPerS})");
-            Require(axis.MaxAccelerationMmPerS2 > 0, $"{axisName}.maxAccelerationMmPerS2 must be above 0 (got {axis.MaxAccelerationMmPerS2})");
-            Require(axis.DeviceNumber is >= 1 and <= 254, $"{axisName}.deviceNumber must be 1..254 (got {axis.DeviceNumber})");
-        }
-
-        Require(X.DeviceNumber != Y.DeviceNumber, $"x and y cannot both be device {X.DeviceNumber}");
-        Require(SpotDiameterUm > 0, $"spotDiameterUm must be above 0 (got {SpotDiameterUm})");
-        Require(BurnSpeedMmPerS > 0, $"burnSpeedMmPerS must be above 0 (got {BurnSpeedMmPerS})");
-        Require(TravelSpeedMmPerS > 0, $"travelSpeedMmPerS must be above 0 (got {TravelSpeedMmPerS})");
-        Require(AccelerationMmPerS2 > 0, $"accelerationMmPerS2 must be above 0 (got {AccelerationMmPerS2})");
-        Require(LaserFrequencyHz > 0, $"laserFrequencyHz must be above 0 (got {LaserFrequencyHz})");
-        Require(StageBaudRate > 0 && Gate.BaudRate > 0, "baud rates must be above 0");
-        Require(Gate.TimeoutMs > 0, $"gate.timeoutMs must be above 0 (got {Gate.TimeoutMs})");
-
-        void Require(bool ok, string what)
-        {
-            if (!ok)
-            {
-                throw new ProfileException($"{source}: {what}");
-            }
-        }
-    }
+    /// <remarks>The rules are <see cref="MachineProfileValidator"/>'s.</remarks>
+    public void Validate(string source = "profile") => MachineProfileValidator.Validate(this, source);
 }
 
 /// <summary>A machine profile that cannot be read or holds an unusable value.</summary>

@@ -12,6 +12,18 @@ public static class ImageLoader
     /// <exception cref="ImageLoadException">The file cannot be read or its headers are bad.</exception>
     public static ImageInfo ReadInfo(string path) => WithFile(path, ReadInfo);
 
+    /// <summary>
+    /// What the file's headers say, after reading every pixel once: a file whose pixel data is cut short or corrupt is
+    /// refused here, as building its mask would refuse it, and not passed as if it were whole.
+    /// </summary>
+    /// <exception cref="ImageLoadException">The file cannot be read, its headers are bad or its pixel data is.</exception>
+    public static ImageInfo ReadInfoVerified(string path)
+    {
+        var info = ReadInfo(path);
+        _ = MaskBuilder.FromFile(path, MaskOptions.Default, out _);
+        return info;
+    }
+
     /// <summary>What a seekable stream's headers say; <paramref name="name"/> names it in errors.</summary>
     public static ImageInfo ReadInfo(Stream stream, string name) => WithStream(stream, name, ReadInfo);
 

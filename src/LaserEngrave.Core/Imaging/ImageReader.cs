@@ -37,6 +37,12 @@ internal sealed class ImageReader : IDisposable
 
     public static ImageReader Open(string path)
     {
+        // Opening a FIFO would block until something writes to it; a folder or a device is never an image.
+        if (IO.RegularFile.Problem(path) is { } problem)
+        {
+            throw new ImageLoadException(path, problem);
+        }
+
         var stream = new FileStream(path, FileMode.Open, FileAccess.Read, FileShare.Read, bufferSize: 1 << 16, FileOptions.SequentialScan);
         return new ImageReader(stream, path, ownsStream: true);
     }

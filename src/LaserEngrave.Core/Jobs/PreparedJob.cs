@@ -58,6 +58,11 @@ public sealed class PreparedJob
     /// <summary>SHA-256 of the image file, lower-case hex, for the run log.</summary>
     public static string HashFile(string path)
     {
+        if (Core.IO.RegularFile.Problem(path) is { } problem)
+        {
+            throw new ImageLoadException(path, problem);
+        }
+
         using var stream = File.OpenRead(path);
         return Convert.ToHexStringLower(SHA256.HashData(stream));
     }

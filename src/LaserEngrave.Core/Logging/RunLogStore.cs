@@ -134,6 +134,11 @@ public sealed class RunLogStore
             path = Path.ChangeExtension(path, ".json");
         }
 
+        if (IO.RegularFile.Problem(path) is { } problem)
+        {
+            throw new RunLogException($"{path}: {problem}");
+        }
+
         string text;
         try
         {

@@ -1,0 +1,53 @@
+using System.CommandLine;
+using System.Globalization;
+
+namespace LaserEngrave.Cli.Commands;
+
+/// <summary>Range checks for numbers on the command line, each refusing with one line naming the option and the allowed range.</summary>
+internal static class OptionChecks
+{
+    /// <summary>Whether <paramref name="option"/> was typed on the command line (not just its default).</summary>
+    public static bool IsGiven(ParseResult result, Option option) => result.GetResult(option) is { Implicit: false };
+
+    /// <summary>Refuses a position outside 0..<paramref name="travelMm"/>, NaN included.</summary>
+    public static void WithinTravel(double mm, double travelMm, string name, string axis)
+    {
+        if (!(mm >= 0 && mm <= travelMm))
+        {
+            throw new UsageException($"{name}: {axis} {N(mm)} mm is outside the travel 0..{N(travelMm)} mm");
+        }
+    }
+
+    /// <summary>Refuses a value above <paramref name="max"/>; <paramref name="what"/> is the unit and what the maximum is.</summary>
+    public static void AtMost(double? value, double max, string name, string what)
+    {
+        if (value is { } v && v > max)
+        {
+            throw new UsageException($"{name} {N(v)}: at most {N(max)} {what}");
+        }
+    }
+
+    /// <summary>Refuses a whole number outside <paramref name="min"/>..<paramref name="max"/>; <paramref name="why"/> says where the bound comes from.</summary>
+    public static void InRange(long? value, long min, long max, string name, string unit, string why)
+    {
+        if (value is { } v && (v < min || v > max))
+        {
+            throw new UsageException($"{name} {v}: must be {min}..{max}{unit} ({why})");
+        }
+    }
+
+    /// <summary>Refuses an output path that exists but is not a regular file: writing to a named pipe would block until something reads it.</summary>
+    public static void OutputFile(string? path, string name)
+    {
+        if (path is not null && Core.IO.RegularFile.Problem(path) is { } problem)
+        {
+            throw new UsageException($"{name} {path}: {problem}");
+        }
+    }
+
+    /// <summary>A number as messages show it: invariant, short, exponent form when huge or tiny.</summary>
+    public static string N(double value) =>
+        value != 0 && double.IsFinite(value) && (Math.Abs(value) >= 1e9 || Math.Abs(value) < 1e-5)
+            ? value.ToString("G6", CultureInfo.InvariantCulture)
+            : value.ToString("0.#####", CultureInfo.InvariantCulture);
+}

@@ -1,0 +1,257 @@
+using System.Globalization;
+using System.Text.Json;
+
+namespace LaserEngrave.Core.Geometry;
+
+/// <summary>The rules a machine profile must meet before anything is opened with it: each value within what the devices take.</summary>
+/// <remarks>
+/// Zaber T-series firmware 5.xx (docs/zaber-protocol.md): speed data 1..32767 x 9.375 microsteps/s, acceleration data
+/// 1..32767 x 11250 microsteps/s² (0 would mean "no ramp"), positions 0..16 777 215 microsteps, 9600 baud only. The laser
+/// gate (docs/laser-gate-protocol.md): frequency 0..100000 whole Hz, watchdog 50..60000 ms. Used by the CLI and the app.
+/// </remarks>
+public static class MachineProfileValidator
+{
+    /// <summary>Watchdog time the gate takes, ms; 0 (no watchdog) is refused: a burning laser must stop on its own when the host falls silent.</summary>
+    public const int MinWatchdogMs = 50;
+
+    public const int MaxWatchdogMs = 60000;
+
+    /// <summary>Highest frequency the default gate protocol takes (FREQ 0..100000).</summary>
+    public const int GateFrequencyLimitHz = 100000;
+
+    /// <summary>Largest Maximum Position a Zaber device takes (Set Maximum Position data).</summary>
+    public const long MaxPositionMicrosteps = 16_777_215;
+
+    /// <summary>Longest gate reply wait accepted, ms.</summary>
+    public const int MaxTimeoutMs = 60000;
+
+    private static readonly int[] BaudRates = [300, 600, 1200, 2400, 4800, 9600, 14400, 19200, 38400, 57600, 115200];
+
+    /// <summary>Throws a <see cref="ProfileException"/> "SOURCE: FIELD ..." naming the first unusable field.</summary>
+    public static void Validate(MachineProfile profile, string source = "profile")
+    {
+        ArgumentNullException.ThrowIfNull(profile);
+        var problems = Problems(profile);
+        if (problems.Count > 0)
+        {
+            throw new ProfileException($"{source}: {problems[0]}");
+        }
+    }
+
+    /// <summary>Every problem of <paramref name="profile"/>, each "field: what is wrong (got value)", in the order of the file.</summary>
+    public static IReadOnlyList<string> Problems(MachineProfile profile)
+    {
+        ArgumentNullException.ThrowIfNull(profile);
+        var problems = new List<string>();
+        void Require(bool ok, string what)
+        {
+            if (!ok)
+            {
+                problems.Add(what);
+            }
+        }
+
+        // A section given as null in the JSON ("gate": null) arrives here as null despite the type.
+        Require(!string.IsNullOrWhiteSpace(profile.Name), "name must not be empty");
+        var sections = new (string Name, object? Value)[] { ("x", profile.X), ("y", profile.Y), ("gate", profile.Gate) };
+        foreach (var (name, value) in sections.Where(s => s.Value is null))
+        {
+            problems.Add($"{name} must not be null: give the section or leave it out for the defaults");
+        }
+
+        if (problems.Count > 0)
+        {
+            return problems;
+        }
+
+        foreach (var (name, axis) in new[] { ("x", profile.X), ("y", profile.Y) })
+        {
+            Require(axis.DeviceNumber is >= 1 and <= 254, $"{name}.deviceNumber must be 1..254 (got {axis.DeviceNumber})");
+            Require(axis.MicrostepUm is > 0 and <= 100, $"{name}.microstepUm must be above 0 and at most 100 µm (got {N(axis.MicrostepUm)})");
+            if (!(axis.MicrostepUm is > 0 and <= 100))
+            {
+                continue;
+            }
+
+            Require(
+                axis.TravelMm > 0 && double.IsFinite(axis.TravelMm) && axis.TravelMicrosteps <= MaxPositionMicrosteps,
+                $"{name}.travelMm must be above 0 and at most {N(StageUnits.MicrostepsToMm(MaxPositionMicrosteps, axis.MicrostepUm))} mm, the largest Maximum Position a Zaber device takes (got {N(axis.TravelMm)})");
+            var minSpeed = StageUnits.MicrostepsToMm(StageUnits.SpeedUnitMicrostepsPerS, axis.MicrostepUm);
+            var maxSpeed = minSpeed * StageUnits.MaxSettingData;
+            Require(
+                axis.MaxSpeedMmPerS >= minSpeed && axis.MaxSpeedMmPerS <= maxSpeed,
+                $"{name}.maxSpeedMmPerS must be {N(minSpeed)}..{N(maxSpeed)} mm/s, the device's target speed range (got {N(axis.MaxSpeedMmPerS)})");
+            var minAcceleration = StageUnits.MicrostepsToMm(StageUnits.AccelerationUnitMicrostepsPerS2, axis.MicrostepUm);
+            var maxAcceleration = minAcceleration * StageUnits.MaxSettingData;
+            Require(
+                axis.MaxAccelerationMmPerS2 >= minAcceleration && axis.MaxAccelerationMmPerS2 <= maxAcceleration,
+                $"{name}.maxAccelerationMmPerS2 must be {N(minAcceleration)}..{N(maxAcceleration)} mm/s², the device's acceleration range (got {N(axis.MaxAccelerationMmPerS2)})");
+        }
+
+        Require(profile.X.DeviceNumber != profile.Y.DeviceNumber, $"x.deviceNumber and y.deviceNumber cannot both be {profile.X.DeviceNumber}");
+        Require(profile.StageBaudRate == 9600, $"stageBaudRate must be 9600: Zaber T-series devices speak only 9600 baud (got {profile.StageBaudRate})");
+        Require(profile.SpotDiameterUm > 0 && double.IsFinite(profile.SpotDiameterUm), $"spotDiameterUm must be a finite number above 0 (got {N(profile.SpotDiameterUm)})");
+
+        var gate = profile.Gate;
+        Require(gate.MaxFrequencyHz is >= 1 and <= GateFrequencyLimitHz, $"gate.maxFrequencyHz must be 1..{GateFrequencyLimitHz} Hz, the gate's FREQ range (got {gate.MaxFrequencyHz})");
+        if (problems.Count == 0)
+        {
+            var limits = MachineLimits.Of(profile);
+            Require(limits.SpeedAllowed(profile.BurnSpeedMmPerS), $"burnSpeedMmPerS must be {limits.SpeedRange} (got {N(profile.BurnSpeedMmPerS)})");
+            Require(limits.SpeedAllowed(profile.TravelSpeedMmPerS), $"travelSpeedMmPerS must be {limits.SpeedRange} (got {N(profile.TravelSpeedMmPerS)})");
+            Require(limits.AccelerationAllowed(profile.AccelerationMmPerS2), $"accelerationMmPerS2 must be {limits.AccelerationRange} (got {N(profile.AccelerationMmPerS2)})");
+            Require(limits.FrequencyAllowed(profile.LaserFrequencyHz), $"laserFrequencyHz must be 1..{gate.MaxFrequencyHz} Hz, up to gate.maxFrequencyHz (got {N(profile.LaserFrequencyHz)})");
+            Require(
+                profile.MaxFrameFrequencyHz >= 1 && profile.MaxFrameFrequencyHz <= gate.MaxFrequencyHz,
+                $"maxFrameFrequencyHz must be 1..{gate.MaxFrequencyHz} Hz, up to gate.maxFrequencyHz (got {profile.MaxFrameFrequencyHz})");
+        }
+
+        Require(BaudRates.Contains(gate.BaudRate), $"gate.baudRate must be one of {string.Join(", ", BaudRates)} (got {gate.BaudRate})");
+        Require(gate.TimeoutMs is >= 1 and <= MaxTimeoutMs, $"gate.timeoutMs must be 1..{MaxTimeoutMs} ms (got {gate.TimeoutMs})");
+        Require(
+            gate.WatchdogMs is >= MinWatchdogMs and <= MaxWatchdogMs,
+            $"gate.watchdogMs must be {MinWatchdogMs}..{MaxWatchdogMs} ms: the watchdog switches the laser off when the host falls silent, and a run never burns without it (got {gate.WatchdogMs})");
+        CheckGateStrings(gate, problems);
+        return problems;
+    }
+
+    /// <summary>
+    /// Null when a job's process settings are within <paramref name="profile"/>'s limits (a run repeated from a log brings
+    /// its own); otherwise what is out of range.
+    /// </summary>
+    public static string? ProcessProblem(MachineProfile profile, Planning.ProcessSettings process)
+    {
+        ArgumentNullException.ThrowIfNull(profile);
+        ArgumentNullException.ThrowIfNull(process);
+        var limits = MachineLimits.Of(profile);
+        return !limits.SpeedAllowed(process.BurnSpeedMmPerS) ? $"burn speed {N(process.BurnSpeedMmPerS)} mm/s is outside {limits.SpeedRange}"
+            : !limits.SpeedAllowed(process.TravelSpeedMmPerS) ? $"travel speed {N(process.TravelSpeedMmPerS)} mm/s is outside {limits.SpeedRange}"
+            : !limits.AccelerationAllowed(process.AccelerationMmPerS2) ? $"acceleration {N(process.AccelerationMmPerS2)} mm/s² is outside {limits.AccelerationRange}"
+            : !limits.FrequencyAllowed(process.LaserFrequencyHz) ? $"laser frequency {N(process.LaserFrequencyHz)} Hz is outside 1..{limits.MaxFrequencyHz} Hz"
+            : null;
+    }
+
+    /// <summary>One line for a profile the JSON reader refused: the field (from the JSON path) and what is wrong there.</summary>
+    public static string DescribeJsonError(JsonException ex)
+    {
+        ArgumentNullException.ThrowIfNull(ex);
+        var field = ex.Path is { Length: > 0 } path ? path.TrimStart('$').TrimStart('.') : string.Empty;
+        var line = ex.LineNumber is { } n ? $" (line {n + 1})" : string.Empty;
+        if (ex.Message.Contains("could not be mapped", StringComparison.Ordinal))
+        {
+            var name = ex.Message.Split('\'') is { Length: > 2 } parts ? parts[1] : "?";
+            var where = field.Length == 0 ? name : field.EndsWith(name, StringComparison.Ordinal) ? field : $"{field}.{name}";
+            return $"{where} is not a field of the machine profile{line}: check its spelling (names are camelCase, e.g. watchdogMs); docs/machine-profile.md lists them";
+        }
+
+        return field.Length == 0
+            ? $"not a valid machine profile{line}: expected a JSON object"
+            : $"{field} has a value of the wrong type or out of range for it{line}";
+    }
+
+    private static void CheckGateStrings(LaserGateProfile gate, List<string> problems)
+    {
+        // Every command is told from the others by how it begins (replies echo it), so none may equal another or begin with it.
+        var commands = new (string Field, string? Value, int Placeholders)[]
+        {
+            ("identifyCommand", gate.IdentifyCommand, 0),
+            ("frequencyCommand", gate.FrequencyCommand, 1),
+            ("offCommand", gate.OffCommand, 0),
+            ("statusCommand", gate.StatusCommand, 0),
+            ("keepAliveCommand", gate.KeepAliveCommand, 0),
+            ("watchdogCommand", gate.WatchdogCommand, 1),
+            ("burstCommand", gate.BurstCommand, 2),
+        };
+        var heads = new List<(string Field, string Value, string Head)>();
+        foreach (var (field, value, placeholders) in commands)
+        {
+            if (string.IsNullOrWhiteSpace(value))
+            {
+                problems.Add($"gate.{field} must not be empty");
+                continue;
+            }
+
+            if (value.AsSpan().IndexOfAny('\r', '\n') >= 0)
+            {
+                problems.Add($"gate.{field} must be one line (got a line break in it)");
+                continue;
+            }
+
+            var head = value;
+            if (placeholders > 0)
+            {
+                if (FormatProblem(value, placeholders) is { } bad)
+                {
+                    problems.Add($"gate.{field} \"{value}\" {bad}");
+                    continue;
+                }
+
+                head = value[..value.IndexOf('{', StringComparison.Ordinal)];
+                if (string.IsNullOrWhiteSpace(head))
+                {
+                    problems.Add($"gate.{field} \"{value}\" must begin with a command word, not with a value");
+                    continue;
+                }
+            }
+
+            heads.Add(($"gate.{field}", value, head));
+        }
+
+        for (var i = 0; i < heads.Count; i++)
+        {
+            for (var j = i + 1; j < heads.Count; j++)
+            {
+                var (a, b) = (heads[i], heads[j]);
+                if (a.Head.StartsWith(b.Head, StringComparison.OrdinalIgnoreCase) || b.Head.StartsWith(a.Head, StringComparison.OrdinalIgnoreCase))
+                {
+                    var relation = string.Equals(a.Value, b.Value, StringComparison.OrdinalIgnoreCase) ? "is the same as" : "begins like";
+                    problems.Add($"{b.Field} \"{b.Value}\" {relation} {a.Field} \"{a.Value}\": each gate command must differ from the others and not begin with another");
+                }
+            }
+        }
+
+        var prefixes = new (string Field, string? Value)[] { ("ackPrefix", gate.AckPrefix), ("errorPrefix", gate.ErrorPrefix) };
+        foreach (var (field, value) in prefixes.Where(p => string.IsNullOrWhiteSpace(p.Value)))
+        {
+            problems.Add($"gate.{field} must not be empty");
+        }
+
+        if (!string.IsNullOrWhiteSpace(gate.AckPrefix) && !string.IsNullOrWhiteSpace(gate.ErrorPrefix)
+            && (gate.AckPrefix.StartsWith(gate.ErrorPrefix, StringComparison.OrdinalIgnoreCase) || gate.ErrorPrefix.StartsWith(gate.AckPrefix, StringComparison.OrdinalIgnoreCase)))
+        {
+            problems.Add($"gate.errorPrefix \"{gate.ErrorPrefix}\" and gate.ackPrefix \"{gate.AckPrefix}\" must differ and neither begin with the other");
+        }
+
+        if (gate.LineTerminator is not ("\n" or "\r\n" or "\r"))
+        {
+            problems.Add($"gate.lineTerminator must be \"\\n\", \"\\r\\n\" or \"\\r\" (got {(gate.LineTerminator is null ? "null" : JsonSerializer.Serialize(gate.LineTerminator))})");
+        }
+    }
+
+    /// <summary>Null when <paramref name="format"/> formats with <paramref name="count"/> numbers and uses each of them.</summary>
+    private static string? FormatProblem(string format, int count)
+    {
+        var values = Enumerable.Range(0, count).Select(i => (object)(1000 + i)).ToArray();
+        string formatted;
+        try
+        {
+            formatted = string.Format(CultureInfo.InvariantCulture, format, values);
+        }
+        catch (FormatException)
+        {
+            return $"is not a valid template: use {{0}}{(count > 1 ? " and {1}" : string.Empty)} for the value{(count > 1 ? "s" : string.Empty)} and double any other brace";
+        }
+
+        for (var i = 0; i < count; i++)
+        {
+            if (!format.Contains($"{{{i}", StringComparison.Ordinal))
+            {
+                return $"must hold {{{i}}} where the value goes";
+            }
+        }
+
+        return formatted.Length > 0 ? null : "formats to nothing";
+    }
+
+    private static string N(double value) => MachineLimits.Text.N(value);
+}

@@ -1,0 +1,128 @@
+using LaserEngrave.Core.Geometry;
+
+namespace LaserEngrave.Core.Tests.Geometry;
+
+public class MachineProfileValidatorTests
+{
+    /// <summary>A profile file with one field set badly, and the field the one-line error must name.</summary>
+    public static TheoryData<string, string> BadProfiles => new()
+    {
+        { """{ "gate": null }""", "gate must not be null" },
+        { """{ "x": null }""", "x must not be null" },
+        { """{ "y": null }""", "y must not be null" },
+        { """{ "name": null }""", "name must not be empty" },
+        { """{ "gate": { "watchdogMs": 0 } }""", "gate.watchdogMs must be 50..60000 ms" },
+        { """{ "gate": { "watchdogMs": 49 } }""", "gate.watchdogMs must be 50..60000 ms" },
+        { """{ "gate": { "watchdogMs": 60001 } }""", "gate.watchdogMs must be 50..60000 ms" },
+        { """{ "gate": { "offCommand": "PING" } }""", "gate.keepAliveCommand \"PING\" is the same as gate.offCommand \"PING\"" },
+        { """{ "gate": { "keepAliveCommand": "OFF" } }""", "gate.keepAliveCommand \"OFF\" is the same as gate.offCommand" },
+        { """{ "gate": { "offCommand": "FREQ 0" } }""", "gate.offCommand \"FREQ 0\" begins like gate.frequencyCommand" },
+        { """{ "gate": { "statusCommand": "STATE" , "offCommand": "STATE?OFF" } }""", "begins like" },
+        { """{ "gate": { "offCommand": "" } }""", "gate.offCommand must not be empty" },
+        { """{ "gate": { "identifyCommand": null } }""", "gate.identifyCommand must not be empty" },
+        { """{ "gate": { "frequencyCommand": "FREQ" } }""", "gate.frequencyCommand \"FREQ\" must hold {0}" },
+        { """{ "gate": { "frequencyCommand": "FREQ {1}" } }""", "gate.frequencyCommand \"FREQ {1}\" is not a valid template" },
+        { """{ "gate": { "burstCommand": "BURST {0}" } }""", "gate.burstCommand \"BURST {0}\" must hold {1}" },
+        { """{ "gate": { "watchdogCommand": "{0} WDOG" } }""", "gate.watchdogCommand \"{0} WDOG\" must begin with a command word" },
+        { """{ "gate": { "offCommand": "OFF\nNOW" } }""", "gate.offCommand must be one line" },
+        { """{ "gate": { "ackPrefix": "" } }""", "gate.ackPrefix must not be empty" },
+        { """{ "gate": { "errorPrefix": "OK" } }""", "gate.errorPrefix \"OK\" and gate.ackPrefix \"OK\" must differ" },
+        { """{ "gate": { "lineTerminator": ";" } }""", "gate.lineTerminator must be" },
+        { """{ "gate": { "timeoutMs": 0 } }""", "gate.timeoutMs must be 1..60000 ms" },
+        { """{ "gate": { "baudRate": 12345 } }""", "gate.baudRate must be one of" },
+        { """{ "gate": { "maxFrequencyHz": 200000 } }""", "gate.maxFrequencyHz must be 1..100000 Hz" },
+        { """{ "gate": { "maxFrequencyHz": 500 } }""", "laserFrequencyHz must be 1..500 Hz" },
+        { """{ "laserFrequencyHz": 0.2 }""", "laserFrequencyHz must be 1..100000 Hz" },
+        { """{ "laserFrequencyHz": 1e12 }""", "laserFrequencyHz must be 1..100000 Hz" },
+        { """{ "maxFrameFrequencyHz": 0 }""", "maxFrameFrequencyHz must be 1..100000 Hz" },
+        { """{ "burnSpeedMmPerS": 5 }""", "burnSpeedMmPerS must be 0.00093..4 mm/s" },
+        { """{ "travelSpeedMmPerS": 0 }""", "travelSpeedMmPerS must be 0.00093..4 mm/s" },
+        { """{ "accelerationMmPerS2": 1 }""", "accelerationMmPerS2 must be 1.11621..200 mm/s²" },
+        { """{ "accelerationMmPerS2": 500 }""", "accelerationMmPerS2 must be 1.11621..200 mm/s²" },
+        { """{ "x": { "deviceNumber": 1, "maxSpeedMmPerS": 40 } }""", "x.maxSpeedMmPerS must be 0.00093..30.47907 mm/s" },
+        { """{ "y": { "deviceNumber": 2, "maxAccelerationMmPerS2": 0 } }""", "y.maxAccelerationMmPerS2 must be 1.11621..36574.88379 mm/s²" },
+        { """{ "x": { "deviceNumber": 1, "travelMm": 2000 } }""", "x.travelMm must be above 0 and at most 1664.6143 mm" },
+        { """{ "x": { "deviceNumber": 1, "travelMm": 0 } }""", "x.travelMm must be above 0" },
+        { """{ "x": { "deviceNumber": 0 } }""", "x.deviceNumber must be 1..254" },
+        { """{ "y": { "deviceNumber": 1 } }""", "x.deviceNumber and y.deviceNumber cannot both be 1" },
+        { """{ "x": { "deviceNumber": 1, "microstepUm": 0 } }""", "x.microstepUm must be above 0" },
+        { """{ "stageBaudRate": 115200 }""", "stageBaudRate must be 9600" },
+        { """{ "spotDiameterUm": -1 }""", "spotDiameterUm must be a finite number above 0" },
+        { """{ "gate": { "watchdogMs": 1e12 } }""", "gate.watchdogMs has a value of the wrong type or out of range for it (line 1)" },
+        { """{ "gate": { "watchdogMs": "soon" } }""", "gate.watchdogMs has a value of the wrong type" },
+        { """{ "gate": { "WatchdogMs": 0 } }""", ": gate.WatchdogMs is not a field of the machine profile (line 1)" },
+        { """{ "watchdogMs": 100 }""", ": watchdogMs is not a field of the machine profile (line 1)" },
+        { """[1, 2]""", "not a valid machine profile (line 1): expected a JSON object" },
+        { """null""", "the machine profile is empty" },
+        { "", "not a valid machine profile" },
+    };
+
+    [Fact]
+    public void Problems_TheDefaultProfile_HasNone()
+    {
+        Assert.Empty(MachineProfileValidator.Problems(MachineProfile.Default));
+        MachineProfile.Default.Validate();
+    }
+
+    [Theory]
+    [MemberData(nameof(BadProfiles))]
+    public void Load_BadField_OneLineNamingTheFileAndTheField(string json, string expected)
+    {
+        var path = Path.Combine(Path.GetTempPath(), $"profile-{Guid.NewGuid():N}.json");
+        try
+        {
+            File.WriteAllText(path, json);
+            var ex = Assert.Throws<ProfileException>(() => MachineProfile.Load(path));
+            Assert.StartsWith($"{path}: ", ex.Message, StringComparison.Ordinal);
+            Assert.Contains(expected, ex.Message, StringComparison.Ordinal);
+            Assert.DoesNotContain('\n', ex.Message);
+        }
+        finally
+        {
+            File.Delete(path);
+        }
+    }
+
+    [Fact]
+    public void Load_ProfileWithEveryFieldSaved_LoadsBack()
+    {
+        var path = Path.Combine(Path.GetTempPath(), $"profile-{Guid.NewGuid():N}.json");
+        try
+        {
+            var profile = MachineProfile.Default with { MaxFrameFrequencyHz = 20, Gate = new LaserGateProfile { MaxFrequencyHz = 50000, WatchdogMs = 500 } };
+            profile.Save(path);
+            Assert.Equal(profile with { X = MachineProfile.Default.X, Y = MachineProfile.Default.Y, Gate = profile.Gate }, MachineProfile.Load(path) with { X = MachineProfile.Default.X, Y = MachineProfile.Default.Y, Gate = profile.Gate });
+            Assert.Equal(500, MachineProfile.Load(path).Gate.WatchdogMs);
+            Assert.Equal(20, MachineProfile.Load(path).MaxFrameFrequencyHz);
+        }
+        finally
+        {
+            File.Delete(path);
+        }
+    }
+
+    [Fact]
+    public void Validate_ProfileBuiltInCode_RefusesANullSection()
+    {
+        var profile = MachineProfile.Default with { Gate = null! };
+
+        var ex = Assert.Throws<ProfileException>(() => profile.Validate("app"));
+
+        Assert.Equal("app: gate must not be null: give the section or leave it out for the defaults", ex.Message);
+    }
+
+    [Fact]
+    public void Limits_TheDefaultProfile_AreTheDevicesAndTheProfilesBounds()
+    {
+        var limits = MachineLimits.Of(MachineProfile.Default);
+
+        Assert.Equal(4, limits.MaxSpeedMmPerS);
+        Assert.Equal(200, limits.MaxAccelerationMmPerS2);
+        Assert.Equal(100000, limits.MaxFrequencyHz);
+        Assert.Equal(100, limits.MaxFrameFrequencyHz);
+        Assert.Equal(9.375 * 0.09921875 / 1000, limits.MinSpeedMmPerS, 12);
+        Assert.False(limits.SpeedAllowed(double.NaN));
+        Assert.False(limits.FrequencyAllowed(0.4));
+        Assert.True(limits.FrequencyAllowed(0.5));
+    }
+}
