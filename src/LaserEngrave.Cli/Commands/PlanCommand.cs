@@ -69,7 +69,10 @@ internal sealed record JobSummary(
     double TravelLengthMm,
     long LaserSwitches,
     double EstimatedSeconds,
-    IReadOnlyList<string> Warnings)
+    IReadOnlyList<string> Warnings,
+    double PulseSpacingUm,
+    double OverlapPercent,
+    double PulsesPerPixel)
 {
     public static JobSummary From(PreparedJob job)
     {
@@ -97,7 +100,10 @@ internal sealed record JobSummary(
             s.TravelLengthMm,
             s.LaserSwitches,
             s.EstimatedSeconds,
-            [.. job.Warnings.Select(w => w.Message)]);
+            [.. job.Warnings.Select(w => w.Message)],
+            job.Pulses.PulseSpacingUm,
+            job.Pulses.OverlapPercent,
+            job.Pulses.PulsesPerPixel ?? 0);
     }
 
     public static void WriteText(TextWriter output, PreparedJob job)
@@ -115,6 +121,7 @@ internal sealed record JobSummary(
         output.WriteLine(string.Create(c, $"Burn runs:        {s.BurnRuns} ({s.BurnLengthMm:0.###} mm)"));
         output.WriteLine(string.Create(c, $"Travel:           {s.TravelLengthMm:0.###} mm"));
         output.WriteLine(string.Create(c, $"Laser switches:   {s.LaserSwitches}"));
+        output.WriteLine(string.Create(c, $"Pulses:           {s.PulseSpacingUm:0.###} µm apart, {s.OverlapPercent:0.#} % overlap, {s.PulsesPerPixel:0.##} per pixel"));
         output.WriteLine(string.Create(c, $"Estimated time:   {Duration(s.EstimatedSeconds)}"));
     }
 
