@@ -1,5 +1,6 @@
 using System.Text.Json;
 using System.Text.Json.Serialization;
+using LaserEngrave.Core.Calibration;
 
 namespace LaserEngrave.Core.Geometry;
 
@@ -100,6 +101,10 @@ public sealed record MachineProfile
 
     public LaserGateProfile Gate { get; init; } = new();
 
+    /// <summary>The stage's squareness and scale errors from `laserengrave calibrate solve`; null (absent from the file) means uncalibrated.</summary>
+    [JsonIgnore(Condition = JsonIgnoreCondition.WhenWritingNull)]
+    public AxisCalibration? Calibration { get; init; }
+
     /// <summary>The built-in profile: two Zaber T-LA60A, device 1 = X, device 2 = Y.</summary>
     public static MachineProfile Default { get; } = new();
 
@@ -152,6 +157,14 @@ public sealed record MachineProfile
         Require(LaserFrequencyHz > 0, $"laserFrequencyHz must be above 0 (got {LaserFrequencyHz})");
         Require(StageBaudRate > 0 && Gate.BaudRate > 0, "baud rates must be above 0");
         Require(Gate.TimeoutMs > 0, $"gate.timeoutMs must be above 0 (got {Gate.TimeoutMs})");
+        try
+        {
+            Calibration?.Validate("calibration");
+        }
+        catch (CalibrationException ex)
+        {
+            throw new ProfileException($"{source}: {ex.Message}", ex);
+        }
 
         void Require(bool ok, string what)
         {
