@@ -13,6 +13,7 @@ internal static class CommandRegistry
         yield return PlanCommand.Create();
         yield return PreviewCommand.Create();
         yield return ProcessCommand.Create();
+        yield return CalibrateCommand.Create();
         yield return BenchCommand.Create();
         yield return PortsCommand.Create();
         yield return StageCommand.Create();
