@@ -115,6 +115,11 @@ internal sealed record JobSummary(
         output.WriteLine(string.Create(c, $"Pitch:            {s.PitchUm:0.####} µm = {s.MicrostepsPerPixel:0.####} microsteps per pixel"));
         output.WriteLine(string.Create(c, $"Scale error:      {s.ResidualScaleError * 1e6:0.##} ppm after rounding to microsteps"));
         output.WriteLine(string.Create(c, $"Fits the travel:  {(s.FitsTravel ? "yes" : "NO")}"));
+        if (job.Spec.Profile.Calibration is { } calibration)
+        {
+            output.WriteLine($"Compensated:      {calibration.Describe()} (the profile's calibration)");
+        }
+
         output.WriteLine(string.Create(c, $"Strategy:         {s.Strategy}{(s.Strategy == "optimized" ? $", {(s.Bidirectional ? "bidirectional" : "unidirectional")}, overscan {s.OverscanMm:0.###} mm" : string.Empty)}"));
         output.WriteLine(string.Create(c, $"Rows:             {s.Rows}"));
         output.WriteLine(string.Create(c, $"Moves:            {s.Moves}"));

@@ -30,8 +30,8 @@ internal static class ProcessCommand
 
         command.SetAction(result =>
         {
-            var spotUm = result.GetValue(spot)
-                ?? (result.GetValue(profile) is { } path ? MachineProfile.Load(path) : MachineProfile.Default).SpotDiameterUm;
+            var machine = result.GetValue(profile) is { } path ? MachineProfile.Load(path) : MachineProfile.Default;
+            var spotUm = result.GetValue(spot) ?? machine.SpotDiameterUm;
             var query = new ProcessQuery
             {
                 SpeedMmPerS = result.GetValue(speed),
@@ -66,6 +66,14 @@ internal static class ProcessCommand
             foreach (var warning in solution.Figures.Warnings)
             {
                 result.InvocationConfiguration.Error.WriteLine($"warning: {warning.Message}");
+            }
+
+            var limit = Math.Min(machine.X.MaxSpeedMmPerS, machine.Y.MaxSpeedMmPerS);
+            if (solution.Figures.SpeedMmPerS > limit)
+            {
+                result.InvocationConfiguration.Error.WriteLine(string.Create(
+                    CultureInfo.InvariantCulture,
+                    $"warning: {solution.Figures.SpeedMmPerS:0.###} mm/s is above this stage's {limit:0.###} mm/s ({machine.Name})"));
             }
 
             return 0;
