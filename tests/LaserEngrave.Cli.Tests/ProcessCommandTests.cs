@@ -66,4 +66,37 @@ public class ProcessCommandTests
         Assert.Equal(80, json.RootElement.GetProperty("overlapPercent").GetDouble(), 9);
         Assert.Equal(12.5, json.RootElement.GetProperty("pulsesPerPixel").GetDouble(), 9);
     }
+
+    [Fact]
+    public async Task Process_SpeedBeyondTheStage_WarnsWithTheLimit()
+    {
+        // 100 µm x 60 kHz = 6000 mm/s; the default T-LA60A axes are limited to 4 mm/s.
+        var (exit, _, error) = await CliHarness.RunAsync("process", "--spacing-um", "100", "--frequency-hz", "60000");
+
+        Assert.Equal(0, exit);
+        Assert.Contains("warning: 6000 mm/s is above this stage's 4 mm/s", error, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task PlanText_CalibratedProfile_SaysTheJobIsCompensated()
+    {
+        var profile = CliHarness.TempFile(".json");
+        try
+        {
+            var calibrated = LaserEngrave.Core.Geometry.MachineProfile.Default with
+            {
+                Calibration = new LaserEngrave.Core.Calibration.AxisCalibration { SquarenessDegrees = 0.25, ScaleXPpm = 100 },
+            };
+            calibrated.Save(profile);
+
+            var (exit, output, _) = await CliHarness.RunAsync("plan", CliHarness.BmpSuite("g/pal1.bmp"), "--width-mm", "5", "--origin-mm", "5,5", "--profile", profile);
+
+            Assert.Equal(0, exit);
+            Assert.Contains("Compensated:      squareness +0.2500°, scale X +100.0 ppm, scale Y 0 ppm", output, StringComparison.Ordinal);
+        }
+        finally
+        {
+            File.Delete(profile);
+        }
+    }
 }

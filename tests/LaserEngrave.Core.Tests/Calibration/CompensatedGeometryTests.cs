@@ -72,4 +72,19 @@ public class CompensatedGeometryTests
         Assert.Equal(5, report.AchievedHeightMm, 3);
         Assert.False(report.Geometry.Compensation.IsIdentity);
     }
+
+    [Fact]
+    public void Resolve_ShearPastTheStageZero_DoesNotFitTheTravel()
+    {
+        // At -0.5° each row shifts left by its depth x tan 0.5°: a 10 mm tall job at x = 0.05 mm reaches x = -0.037 mm.
+        var profile = MachineProfile.Default with { Calibration = new AxisCalibration { SquarenessDegrees = -0.5 } };
+
+        var sheared = GeometryResolver.Resolve(SizeSpec.Width(10), 1000, 1000, new OriginMm(0.05, 5), profile);
+        var square = GeometryResolver.Resolve(SizeSpec.Width(10), 1000, 1000, new OriginMm(0.05, 5), MachineProfile.Default);
+
+        Assert.True(square.FitsTravel);
+        Assert.False(sheared.FitsTravel);
+        var left = sheared.Geometry.StageBounds().Left * sheared.Geometry.MicrostepUm / 1000;
+        Assert.Equal(0.05 - (10 * Math.Tan(0.5 * Math.PI / 180)), left, 4);
+    }
 }
