@@ -12,6 +12,9 @@ internal static class CommandRegistry
         yield return MaskCommand.Create();
         yield return PlanCommand.Create();
         yield return PreviewCommand.Create();
+        yield return ProcessCommand.Create();
+        yield return CalibrateCommand.Create();
+        yield return AlignCommand.Create();
         yield return BenchCommand.Create();
         yield return PortsCommand.Create();
         yield return StageCommand.Create();

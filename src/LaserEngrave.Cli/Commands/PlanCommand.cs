@@ -70,7 +70,10 @@ internal sealed record JobSummary(
     double TravelLengthMm,
     long LaserSwitches,
     double EstimatedSeconds,
-    IReadOnlyList<string> Warnings)
+    IReadOnlyList<string> Warnings,
+    double PulseSpacingUm,
+    double OverlapPercent,
+    double PulsesPerPixel)
 {
     public static JobSummary From(PreparedJob job)
     {
@@ -98,7 +101,10 @@ internal sealed record JobSummary(
             s.TravelLengthMm,
             s.LaserSwitches,
             s.EstimatedSeconds,
-            [.. job.Warnings.Select(w => w.Message)]);
+            [.. job.Warnings.Select(w => w.Message)],
+            job.Pulses.PulseSpacingUm,
+            job.Pulses.OverlapPercent,
+            job.Pulses.PulsesPerPixel ?? 0);
     }
 
     public static void WriteText(TextWriter output, PreparedJob job)
@@ -110,12 +116,18 @@ internal sealed record JobSummary(
         output.WriteLine(string.Create(c, $"Pitch:            {s.PitchUm:0.####} µm = {s.MicrostepsPerPixel:0.####} microsteps per pixel"));
         output.WriteLine(string.Create(c, $"Scale error:      {s.ResidualScaleError * 1e6:0.##} ppm after rounding to microsteps"));
         output.WriteLine(string.Create(c, $"Fits the travel:  {(s.FitsTravel ? "yes" : "NO")}"));
+        if (job.Spec.Profile.Calibration is { } calibration)
+        {
+            output.WriteLine($"Compensated:      {calibration.Describe()} (the profile's calibration)");
+        }
+
         output.WriteLine(string.Create(c, $"Strategy:         {s.Strategy}{(s.Strategy == "optimized" ? $", {(s.Bidirectional ? "bidirectional" : "unidirectional")}, overscan {s.OverscanMm:0.###} mm" : string.Empty)}"));
         output.WriteLine(string.Create(c, $"Rows:             {s.Rows}"));
         output.WriteLine(string.Create(c, $"Moves:            {s.Moves}"));
         output.WriteLine(string.Create(c, $"Burn runs:        {s.BurnRuns} ({s.BurnLengthMm:0.###} mm)"));
         output.WriteLine(string.Create(c, $"Travel:           {s.TravelLengthMm:0.###} mm"));
         output.WriteLine(string.Create(c, $"Laser switches:   {s.LaserSwitches}"));
+        output.WriteLine(string.Create(c, $"Pulses:           {s.PulseSpacingUm:0.###} µm apart, {s.OverlapPercent:0.#} % overlap, {s.PulsesPerPixel:0.##} per pixel"));
         output.WriteLine(string.Create(c, $"Estimated time:   {Duration(s.EstimatedSeconds)}"));
     }
 

@@ -1,4 +1,5 @@
 using System.Globalization;
+using LaserEngrave.Core.Calibration;
 
 namespace LaserEngrave.Core.Geometry;
 
@@ -42,9 +43,10 @@ public static class GeometryResolver
             StageUnits.MmToMicrosteps(origin.Y, microstepUm),
             microstepUm,
             profile.X.TravelMicrosteps,
-            profile.Y.TravelMicrosteps);
+            profile.Y.TravelMicrosteps,
+            profile.Calibration is { } calibration ? new StageCompensation(calibration) : null);
 
-        long left = geometry.EdgeX(0), right = geometry.EdgeX(widthPx), top = geometry.EdgeY(0), bottom = geometry.EdgeY(heightPx);
+        var (left, top, right, bottom) = geometry.StageBounds();
         var fits = left >= 0 && right <= geometry.TravelXMicrosteps && top >= 0 && bottom <= geometry.TravelYMicrosteps;
 
         var warnings = new List<JobWarning>();
@@ -75,8 +77,9 @@ public static class GeometryResolver
             Geometry = geometry,
             RequestedWidthMm = requestedWidthMm,
             RequestedHeightMm = requestedHeightMm,
-            AchievedWidthMm = StageUnits.MicrostepsToMm(right - left, microstepUm),
-            AchievedHeightMm = StageUnits.MicrostepsToMm(bottom - top, microstepUm),
+            // On a calibrated machine the stage extents are mapped back to true lengths (the scale errors cancel).
+            AchievedWidthMm = StageUnits.MicrostepsToMm(geometry.EdgeX(widthPx) - geometry.EdgeX(0), microstepUm) / geometry.Compensation.XPerX,
+            AchievedHeightMm = StageUnits.MicrostepsToMm(bottom - top, microstepUm) / geometry.Compensation.YPerY,
             FitsTravel = fits,
             Warnings = warnings,
         };

@@ -1,3 +1,5 @@
+using LaserEngrave.Core.Calibration;
+
 namespace LaserEngrave.Core.Geometry;
 
 /// <summary>Where each pixel of a job lands on the stage: the unrounded pitch and origin in microsteps, and the one rounding rule.</summary>
@@ -7,6 +9,13 @@ namespace LaserEngrave.Core.Geometry;
 /// from x = round(ox + c0 p) to x = round(ox + c1 p). Every position is computed from these absolute values and
 /// rounded once, half away from zero (<see cref="MidpointRounding.AwayFromZero"/>); rounded steps are never added
 /// up, so the error of any edge is at most half a microstep however many runs precede it (seed 001's lesson).
+/// <para>
+/// With a <see cref="Compensation"/> (a calibrated machine, docs/calibration.md) the pixel grid is laid out in true
+/// coordinates and mapped to stage coordinates before the one rounding: edge x of column c on row r is
+/// round(ox + c p / ax + (r + 0.5) p tan g / ax) and the row's y is round(oy + (r + 0.5) p / (by cos g)). The job's
+/// origin is the fixed point, so it stays where it was asked for. Without a calibration the factors are exactly 1 and 0
+/// and every position is the same as above, bit for bit.
+/// </para>
 /// </remarks>
 public sealed record JobGeometry
 {
@@ -18,7 +27,8 @@ public sealed record JobGeometry
         double originYMicrosteps,
         double microstepUm,
         long travelXMicrosteps,
-        long travelYMicrosteps)
+        long travelYMicrosteps,
+        StageCompensation? compensation = null)
     {
         if (widthPx <= 0 || heightPx <= 0)
         {
@@ -61,6 +71,10 @@ public sealed record JobGeometry
         MicrostepUm = microstepUm;
         TravelXMicrosteps = travelXMicrosteps;
         TravelYMicrosteps = travelYMicrosteps;
+        Compensation = compensation ?? StageCompensation.Identity;
+        PitchXMicrosteps = pitchMicrosteps * Compensation.XPerX;
+        ShearXMicrosteps = pitchMicrosteps * Compensation.XPerY;
+        PitchYMicrosteps = pitchMicrosteps * Compensation.YPerY;
     }
 
     public int WidthPx { get; }
@@ -85,6 +99,18 @@ public sealed record JobGeometry
     /// <summary>Highest Y position the stage accepts, microsteps (positions run 0..this).</summary>
     public long TravelYMicrosteps { get; }
 
+    /// <summary>The machine's squareness and scale compensation (identity when the profile is not calibrated).</summary>
+    public StageCompensation Compensation { get; }
+
+    /// <summary>Stage X per pixel column, microsteps: the pitch over the X scale.</summary>
+    public double PitchXMicrosteps { get; }
+
+    /// <summary>Stage X shift per pixel row, microsteps: the pitch times tan(squareness) over the X scale (0 when square).</summary>
+    public double ShearXMicrosteps { get; }
+
+    /// <summary>Stage Y per pixel row, microsteps: the pitch over the Y scale and cos(squareness).</summary>
+    public double PitchYMicrosteps { get; }
+
     public double PitchUm => PitchMicrosteps * MicrostepUm;
 
     /// <summary>Rounds a position in microsteps to the whole microstep the stage is sent: half away from zero.</summary>
@@ -92,11 +118,27 @@ public sealed record JobGeometry
 
     /// <summary>Stage X of the left edge of pixel column <paramref name="column"/> (0..WidthPx; WidthPx is the right edge of the image).</summary>
     /// <remarks>A fused multiply-add rounds ox + c p once instead of twice, so the edge is as exact as a double allows.</remarks>
-    public long EdgeX(long column) => Round(Math.FusedMultiplyAdd(column, PitchMicrosteps, OriginXMicrosteps));
+    /// <remarks>On a calibrated machine this is the column's edge on the image's top edge; rows below are shifted by the shear (<see cref="RunEdgeX"/>).</remarks>
+    public long EdgeX(long column) => Round(Math.FusedMultiplyAdd(column, PitchXMicrosteps, OriginXMicrosteps));
+
+    /// <summary>Stage X of the left edge of column <paramref name="column"/> at the top edge of row <paramref name="rowEdge"/> (a corner of the pixel grid).</summary>
+    public long EdgeX(long column, long rowEdge) =>
+        Round(Math.FusedMultiplyAdd(column, PitchXMicrosteps, Math.FusedMultiplyAdd(rowEdge, ShearXMicrosteps, OriginXMicrosteps)));
+
+    /// <summary>Stage X of the left edge of column <paramref name="column"/> on row <paramref name="row"/>'s centre line: where the planner starts and ends runs.</summary>
+    public long RunEdgeX(long column, int row) =>
+        Round(Math.FusedMultiplyAdd(column, PitchXMicrosteps, Math.FusedMultiplyAdd(row + 0.5, ShearXMicrosteps, OriginXMicrosteps)));
 
     /// <summary>Stage Y of the top edge of pixel row <paramref name="rowEdge"/> (0..HeightPx; HeightPx is the bottom edge of the image).</summary>
-    public long EdgeY(long rowEdge) => Round(Math.FusedMultiplyAdd(rowEdge, PitchMicrosteps, OriginYMicrosteps));
+    public long EdgeY(long rowEdge) => Round(Math.FusedMultiplyAdd(rowEdge, PitchYMicrosteps, OriginYMicrosteps));
 
     /// <summary>Stage Y along which row <paramref name="row"/> burns: the row's centre line.</summary>
-    public long RowY(int row) => Round(Math.FusedMultiplyAdd(row + 0.5, PitchMicrosteps, OriginYMicrosteps));
+    public long RowY(int row) => Round(Math.FusedMultiplyAdd(row + 0.5, PitchYMicrosteps, OriginYMicrosteps));
+
+    /// <summary>The smallest stage rectangle holding the whole pixel grid: with a shear the grid is a parallelogram.</summary>
+    public (long Left, long Top, long Right, long Bottom) StageBounds()
+    {
+        long l0 = EdgeX(0, 0), l1 = EdgeX(0, HeightPx), r0 = EdgeX(WidthPx, 0), r1 = EdgeX(WidthPx, HeightPx);
+        return (Math.Min(l0, l1), EdgeY(0), Math.Max(r0, r1), EdgeY(HeightPx));
+    }
 }

@@ -14,6 +14,15 @@ public enum JobWarningKind
 
     /// <summary>The overscan run-up or run-out reaches past the stage's travel and is shortened there.</summary>
     OverscanClamped,
+
+    /// <summary>The pulse spacing is above the spot diameter: the pulses leave gaps along a line.</summary>
+    PulseGaps,
+
+    /// <summary>A pixel gets less than one pulse on average: some pixels get none.</summary>
+    PixelUnderOnePulse,
+
+    /// <summary>A solved laser frequency is not whole Hz; the gate is sent the nearest whole number.</summary>
+    FrequencyNotWhole,
 }
 
 /// <summary>A condition the job can run with but the user should know about.</summary>

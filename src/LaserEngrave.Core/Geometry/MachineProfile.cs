@@ -1,5 +1,6 @@
 using System.Text.Json;
 using System.Text.Json.Serialization;
+using LaserEngrave.Core.Calibration;
 using LaserEngrave.Core.IO;
 
 namespace LaserEngrave.Core.Geometry;
@@ -130,6 +131,10 @@ public sealed record MachineProfile
     public int MaxFrameFrequencyHz { get; init; } = 100;
 
     public LaserGateProfile Gate { get; init; } = new();
+
+    /// <summary>The stage's squareness and scale errors from `laserengrave calibrate solve`; null (absent from the file) means uncalibrated.</summary>
+    [JsonIgnore(Condition = JsonIgnoreCondition.WhenWritingNull)]
+    public AxisCalibration? Calibration { get; init; }
 
     /// <summary>The built-in profile: two Zaber T-LA60A, device 1 = X, device 2 = Y.</summary>
     public static MachineProfile Default { get; } = new();

@@ -112,6 +112,15 @@ public static class MachineProfileValidator
             gate.WatchdogMs is >= MinWatchdogMs and <= MaxWatchdogMs,
             $"gate.watchdogMs must be {MinWatchdogMs}..{MaxWatchdogMs} ms: the watchdog switches the laser off when the host falls silent, and a run never burns without it (got {gate.WatchdogMs})");
         CheckGateStrings(gate, problems);
+        try
+        {
+            profile.Calibration?.Validate("calibration");
+        }
+        catch (Calibration.CalibrationException ex)
+        {
+            problems.Add(ex.Message);
+        }
+
         return problems;
     }
 

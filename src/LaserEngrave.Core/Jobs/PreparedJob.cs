@@ -2,6 +2,7 @@ using System.Security.Cryptography;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
 using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Process;
 
 namespace LaserEngrave.Core.Jobs;
 
@@ -10,6 +11,7 @@ public sealed class PreparedJob
 {
     private PreparedJob(JobSpec spec, ImageInfo image, BitMask mask, GeometryReport geometry, RasterPlan plan, PlanStatistics statistics)
     {
+        Pulses = PulseFigures.For(spec.Process, spec.Profile.SpotDiameterUm, geometry.PitchUm);
         Spec = spec;
         Image = image;
         Mask = mask;
@@ -30,8 +32,11 @@ public sealed class PreparedJob
 
     public PlanStatistics Statistics { get; }
 
-    /// <summary>Warnings of the geometry and of the plan, in that order.</summary>
-    public IReadOnlyList<JobWarning> Warnings => [.. Geometry.Warnings, .. Plan.Warnings];
+    /// <summary>What the process does per pulse and per pixel at this pitch and the profile's spot (seed 004).</summary>
+    public PulseFigures Pulses { get; }
+
+    /// <summary>Warnings of the geometry, of the plan and of the pulses, in that order.</summary>
+    public IReadOnlyList<JobWarning> Warnings => [.. Geometry.Warnings, .. Plan.Warnings, .. Pulses.Warnings];
 
     /// <summary>Loads the image, builds the mask, resolves the geometry and plans; throws one-line typed errors.</summary>
     public static PreparedJob Prepare(JobSpec spec)

@@ -25,6 +25,7 @@ namespace LaserEngrave.Core.Logging;
         typeof(CamelCaseEnumConverter<RunSizeKind>),
         typeof(CamelCaseEnumConverter<DitherMethod>),
         typeof(CamelCaseEnumConverter<PlanStrategy>),
+        typeof(CamelCaseEnumConverter<PlanMode>),
     ])]
 [JsonSerializable(typeof(RunRecord))]
 internal sealed partial class RunLogJsonContext : JsonSerializerContext;

@@ -21,6 +21,18 @@ public sealed record ProcessSettings
     /// <summary>Q-switch frequency while burning, Hz (sent to the gate in whole Hz).</summary>
     public double LaserFrequencyHz { get; init; } = 1000;
 
+    /// <summary>Energy of one laser pulse, µJ, when known (for the energy per pixel; nothing else uses it).</summary>
+    public double? PulseEnergyUj { get; init; }
+
+    /// <summary>Raster (burn while moving) or dots (stop and fire a burst at each dot).</summary>
+    public PlanMode Mode { get; init; } = PlanMode.Raster;
+
+    /// <summary>Pulses fired at each dot in <see cref="PlanMode.Dots"/> (1 in raster mode).</summary>
+    public int PulsesPerDot { get; init; } = 1;
+
+    /// <summary>Time the stage is given to settle at a dot before the burst, ms (<see cref="PlanMode.Dots"/> only).</summary>
+    public double DotSettleMs { get; init; }
+
     /// <summary>Baud rate of the Zaber chain.</summary>
     public int StageBaudRate { get; init; } = 9600;
 
@@ -59,6 +71,21 @@ public sealed record ProcessSettings
         if (LaserFrequencyWholeHz < 1)
         {
             throw new PlanException($"laser frequency {N(LaserFrequencyHz)} Hz rounds to 0 Hz, which is off");
+        }
+
+        if (PulsesPerDot < 1)
+        {
+            throw new PlanException($"pulses per dot {PulsesPerDot} must be 1 or more");
+        }
+
+        if (PulseEnergyUj is { } energy)
+        {
+            Positive(energy, "pulse energy", "µJ");
+        }
+
+        if (!(DotSettleMs >= 0) || double.IsInfinity(DotSettleMs))
+        {
+            throw new PlanException($"dot settle time {N(DotSettleMs)} ms must be 0 or more");
         }
 
         if (StageBaudRate <= 0 || GateBaudRate <= 0)

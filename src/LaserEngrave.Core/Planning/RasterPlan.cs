@@ -136,8 +136,9 @@ public sealed class RasterPlan
             return warnings;
         }
 
-        var left = Geometry.EdgeX(0) - OverscanMicrosteps;
-        var right = Geometry.EdgeX(Geometry.WidthPx) + OverscanMicrosteps;
+        var bounds = Geometry.StageBounds();
+        var left = bounds.Left - OverscanMicrosteps;
+        var right = bounds.Right + OverscanMicrosteps;
         if (left < 0 || right > Geometry.TravelXMicrosteps)
         {
             var side = left < 0 && right > Geometry.TravelXMicrosteps ? "both edges" : left < 0 ? "the left edge" : "the right edge";

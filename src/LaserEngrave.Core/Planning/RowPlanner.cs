@@ -72,7 +72,7 @@ internal sealed class RowPlanner
     {
         LastRowLeftToRight = true;
         var y = _geometry.RowY(row);
-        var x = _geometry.EdgeX(0);
+        var x = _geometry.RunEdgeX(0, row);
         if (_hasPosition)
         {
             Emit(ref sink, MoveKind.Travel, _x, _y, x, y, row);
@@ -84,12 +84,12 @@ internal sealed class RowPlanner
             int start = _runs[2 * i], end = _runs[(2 * i) + 1];
             if (start > column)
             {
-                var whiteEnd = _geometry.EdgeX(start);
+                var whiteEnd = _geometry.RunEdgeX(start, row);
                 Emit(ref sink, MoveKind.Travel, x, y, whiteEnd, y, row);
                 x = whiteEnd;
             }
 
-            var burnEnd = _geometry.EdgeX(end);
+            var burnEnd = _geometry.RunEdgeX(end, row);
             Emit(ref sink, MoveKind.Burn, x, y, burnEnd, y, row);
             x = burnEnd;
             column = end;
@@ -97,7 +97,7 @@ internal sealed class RowPlanner
 
         if (column < _geometry.WidthPx)
         {
-            var rowEnd = _geometry.EdgeX(_geometry.WidthPx);
+            var rowEnd = _geometry.RunEdgeX(_geometry.WidthPx, row);
             Emit(ref sink, MoveKind.Travel, x, y, rowEnd, y, row);
             x = rowEnd;
         }
@@ -117,7 +117,7 @@ internal sealed class RowPlanner
 
         for (var i = 0; i < 2 * runCount; i++)
         {
-            _edges[i] = _geometry.EdgeX(_runs[i]);
+            _edges[i] = _geometry.RunEdgeX(_runs[i], row);
         }
 
         var y = _geometry.RowY(row);

@@ -59,7 +59,8 @@ public static class PlanPreview
         ArgumentOutOfRangeException.ThrowIfGreaterThan(maxSidePx, MaxSidePx);
 
         var g = plan.Geometry;
-        long jobLeft = g.EdgeX(0), jobRight = g.EdgeX(g.WidthPx), jobTop = g.EdgeY(0), jobBottom = g.EdgeY(g.HeightPx);
+        // The bounds hold the whole grid also when a calibration shears it into a parallelogram.
+        var (jobLeft, jobTop, jobRight, jobBottom) = g.StageBounds();
         var o = plan.OverscanMicrosteps;
         var left = Math.Min(jobLeft, Math.Max(Math.Min(0, jobLeft), jobLeft - o));
         var right = Math.Max(jobRight, Math.Min(Math.Max(g.TravelXMicrosteps, jobRight), jobRight + o));
