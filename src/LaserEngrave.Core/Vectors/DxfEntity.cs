@@ -21,6 +21,9 @@ internal sealed class DxfEntity(string file, string type, int line, List<(int Co
     /// <summary>How messages name it: type, handle and line.</summary>
     public string Id => Handle is { } h ? $"{Type} (handle {h}, line {Line})" : $"{Type} (line {Line})";
 
+    /// <summary>How warnings name it: its handle, or its line when it has none.</summary>
+    public string ShortId => Handle is { } h ? $"handle {h}" : $"line {Line}";
+
     public string? Text(int code)
     {
         foreach (var g in Groups)

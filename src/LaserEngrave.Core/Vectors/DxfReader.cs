@@ -245,13 +245,13 @@ public static class DxfReader
             var layer = e.Layer == "0" && inheritedLayer is not null ? inheritedLayer : e.Layer;
             if (e.Integer(67, 0) == 1)
             {
-                warnings.Skipped(e.Type, e.Handle, "in paper space (only model space is engraved)");
+                warnings.Skipped(e.Type, e.ShortId, "in paper space (only model space is engraved)");
                 return;
             }
 
             if (file.Layers.TryGetValue(layer, out var hidden) && hidden)
             {
-                warnings.Skipped(e.Type, e.Handle, $"on layer \"{layer}\", which is off or frozen");
+                warnings.Skipped(e.Type, e.ShortId, $"on layer \"{layer}\", which is off or frozen");
                 return;
             }
 
@@ -266,7 +266,7 @@ public static class DxfReader
             {
                 if (!InPlane(e, out var mirror))
                 {
-                    warnings.Skipped(e.Type, e.Handle, "not in the XY plane (extrusion direction is not ±Z)");
+                    warnings.Skipped(e.Type, e.ShortId, "not in the XY plane (extrusion direction is not ±Z)");
                     return;
                 }
 
@@ -292,7 +292,7 @@ public static class DxfReader
                 "VIEWPORT" => "viewports are not geometry",
                 _ => "not a supported entity type",
             };
-            warnings.Skipped(e.Type, e.Handle, why);
+            warnings.Skipped(e.Type, e.ShortId, why);
         }
 
         private static bool InPlane(DxfEntity e, out bool mirror)
@@ -408,7 +408,7 @@ public static class DxfReader
             var ys = e.Numbers(20);
             if (xs.Count == 0)
             {
-                warnings.Skipped("SPLINE", e.Handle, "defined by fit points only (no control points); save it with control points or as a polyline");
+                warnings.Skipped("SPLINE", e.ShortId, "defined by fit points only (no control points); save it with control points or as a polyline");
                 return null;
             }
 
@@ -465,7 +465,7 @@ public static class DxfReader
             var flags = e.Integer(70, 0);
             if ((flags & (16 | 64)) != 0)
             {
-                warnings.Skipped("POLYLINE", e.Handle, "polygon and polyface meshes are 3D surfaces, not paths");
+                warnings.Skipped("POLYLINE", e.ShortId, "polygon and polyface meshes are 3D surfaces, not paths");
                 return null;
             }
 
