@@ -31,7 +31,9 @@ internal static class PreviewCommand
 
             if (VectorCommands.IsDrawing(result, job))
             {
-                return VectorCommands.Preview(result, job, vector, result.GetValue(output)!, maxPx);
+                return result.GetValue(maskOut) is null
+                    ? VectorCommands.Preview(result, job, vector, result.GetValue(output)!, maxPx)
+                    : throw new UsageException("--mask-out is for images: a drawing has no mask");
             }
 
             var prepared = PreparedJob.Prepare(job.Bind(result));
