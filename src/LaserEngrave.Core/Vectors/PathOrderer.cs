@@ -6,7 +6,8 @@ namespace LaserEngrave.Core.Vectors;
 /// <summary>Orders paths for burning: whatever lies inside a closed contour before the contour, then the shortest travel.</summary>
 /// <remarks>
 /// Seed 001: a part must not move before its holes are cut, so a path inside a closed contour (a hole, an engraving on
-/// the part) always comes before it. Within that rule: nearest neighbour from the start, improved by 2-opt (reversing a
+/// the part) always comes before it. Within that rule: nearest neighbour from the start, improved by 2-opt over each path's
+/// twelve nearest neighbours (reversing a
 /// stretch of the order also reverses its open paths; a reversal that would put a contour before something inside it is
 /// not taken), then each closed path is started at the vertex that makes its travel shortest and each open path burned
 /// in the direction that does. 2-opt and the choice of starts repeat while they shorten the travel.
@@ -14,10 +15,13 @@ namespace LaserEngrave.Core.Vectors;
 /// </remarks>
 public static class PathOrderer
 {
-    /// <summary>Above this many paths 2-opt is left out (its passes grow with the square of the count); nearest neighbour and the starts still apply.</summary>
+    /// <summary>Above this many paths 2-opt is left out (finding each path's neighbours grows with the square of the count); nearest neighbour and the starts still apply.</summary>
     public const int MaxTwoOptPaths = 4000;
 
     private const int MaxRounds = 10;
+
+    /// <summary>How many nearest paths 2-opt considers as the new neighbour of each path.</summary>
+    private const int NeighbourCount = 12;
 
     /// <summary>Travel with the laser off from <paramref name="start"/> through the paths in the given order, microsteps.</summary>
     public static double Travel(IEnumerable<StagePath> paths, StagePoint start)
@@ -129,6 +133,13 @@ public static class PathOrderer
         return strictly;
     }
 
+    private static double DistanceTo(Envelope e, StagePoint p)
+    {
+        var dx = Math.Max(0, Math.Max(e.MinX - p.X, p.X - e.MaxX));
+        var dy = Math.Max(0, Math.Max(e.MinY - p.Y, p.Y - e.MaxY));
+        return Math.Sqrt((dx * dx) + (dy * dy));
+    }
+
     private static Envelope Envelope(IReadOnlyList<StagePoint> points)
     {
         var e = new Envelope();
@@ -166,7 +177,7 @@ public static class PathOrderer
             for (var slot = 0; slot < available.Count; slot++)
             {
                 var i = available[slot];
-                if (envelopes[i].Distance(new Envelope(at.X, at.X, at.Y, at.Y)) >= bestDistance)
+                if (DistanceTo(envelopes[i], at) >= bestDistance)
                 {
                     continue;
                 }
@@ -221,8 +232,59 @@ public static class PathOrderer
         return (bestDistance, path.StartingAt(best));
     }
 
+    /// <summary>For each path, its nearest paths by the centres of their boxes: the only candidates 2-opt tries to put next to it.</summary>
+    private static int[][] Neighbours(List<(int Index, StagePath Path)> order)
+    {
+        var centres = new (double X, double Y)[order.Count];
+        foreach (var (index, path) in order)
+        {
+            var e = Envelope(path.Points);
+            centres[index] = ((e.MinX + e.MaxX) / 2, (e.MinY + e.MaxY) / 2);
+        }
+
+        var neighbours = new int[order.Count][];
+        var k = Math.Min(NeighbourCount, order.Count - 1);
+        var best = new double[k];
+        for (var a = 0; a < order.Count; a++)
+        {
+            // The k nearest by insertion into a short sorted list: one pass over the others.
+            var nearest = new int[k];
+            Array.Fill(best, double.PositiveInfinity);
+            for (var b = 0; b < order.Count; b++)
+            {
+                double dx = centres[a].X - centres[b].X, dy = centres[a].Y - centres[b].Y;
+                var d = (dx * dx) + (dy * dy);
+                if (b == a || d >= best[k - 1])
+                {
+                    continue;
+                }
+
+                var slot = k - 1;
+                while (slot > 0 && best[slot - 1] > d)
+                {
+                    best[slot] = best[slot - 1];
+                    nearest[slot] = nearest[slot - 1];
+                    slot--;
+                }
+
+                best[slot] = d;
+                nearest[slot] = b;
+            }
+
+            neighbours[a] = nearest;
+        }
+
+        return neighbours;
+    }
+
     private static void TwoOpt(List<(int Index, StagePath Path)> order, List<int>[] containers, StagePoint start)
     {
+        if (order.Count < 2)
+        {
+            return;
+        }
+
+        var neighbours = Neighbours(order);
         var position = new int[order.Count];
         var improved = true;
         for (var pass = 0; improved && pass < 50; pass++)
@@ -236,7 +298,10 @@ public static class PathOrderer
             for (var i = 0; i < order.Count - 1; i++)
             {
                 var before = i == 0 ? start : order[i - 1].Path.End;
-                for (var j = i + 1; j < order.Count; j++)
+
+                // After the start every stretch end is tried; after a path only those that end near it.
+                var candidates = i == 0 ? Enumerable.Range(1, order.Count - 1) : neighbours[order[i - 1].Index].Select(n => position[n]).Where(j => j > i).ToList();
+                foreach (var j in candidates)
                 {
                     // Reversing i..j: enter at j's exit, leave from i's entry; the travel inside the stretch is unchanged.
                     var last = j + 1 == order.Count;
