@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Makes the test drawings in assets/drawings/ and their exact figures in assets/drawings/expected.json.
 
-DXF files are written with ezdxf (Debian: apt-get install python3-ezdxf); the SVG is written as text. Every shape's
+DXF files are written with ezdxf (Debian: apt-get install python3-ezdxf); the SVGs are written as text, and
+text-as-paths.svg is text.svg with its text converted to paths by Inkscape (apt-get install inkscape). Every shape's
 exact length is computed here from the shape's own definition (closed forms for lines and circles, a polyline of
 200,000 points per curve for ellipses, Beziers and splines, through ezdxf's own B-spline evaluator), so the tests
 compare LaserEngrave's readers against figures that do not come from LaserEngrave.
@@ -12,6 +13,8 @@ import json
 import math
 import os
 import random
+import shutil
+import subprocess
 
 import ezdxf
 import numpy as np
@@ -371,6 +374,21 @@ def svg():
     fig.save("every-command.svg", None, yUp=False, warnings=["<text>", "<g>"])
 
 
+def text():
+    """Text as typed (only warned about) and the same converted to paths by Inkscape (engraved)."""
+    source = os.path.join(OUT, "text.svg")
+    with open(source, "w") as f:
+        f.write('<?xml version="1.0" encoding="UTF-8"?>\n'
+                '<svg xmlns="http://www.w3.org/2000/svg" width="40mm" height="10mm" viewBox="0 0 40 10">\n'
+                '  <text id="mark" x="1" y="8" font-family="DejaVu Sans" font-size="8">LE-14</text>\n</svg>\n')
+    if shutil.which("inkscape") is None:
+        print("inkscape not found: text-as-paths.svg not remade")
+        return
+    subprocess.run(["inkscape", "--export-text-to-path", "--export-plain-svg",
+                    "--export-filename=" + os.path.join(OUT, "text-as-paths.svg"), source],
+                   check=True, stderr=subprocess.DEVNULL)
+
+
 if __name__ == "__main__":
     os.makedirs(OUT, exist_ok=True)
     hexagons()
@@ -379,6 +397,7 @@ if __name__ == "__main__":
     curves("R12")
     blocks()
     svg()
+    text()
     with open(os.path.join(OUT, "expected.json"), "w") as f:
         json.dump(expected, f, indent=1)
         f.write("\n")

@@ -21,6 +21,12 @@ public static class VectorPlanner
         }
 
         var microstepUm = profile.X.MicrostepUm;
+        if (drawing.Paths.Count == 0)
+        {
+            var skipped = drawing.Warnings.Count == 0 ? string.Empty : $" ({string.Join("; ", drawing.Warnings)})";
+            throw new DrawingException($"{drawing.Path}: the drawing has nothing to burn{skipped}");
+        }
+
         var (min, max) = drawing.Bounds();
         double width = max.X - min.X, height = max.Y - min.Y;
         double scale = 1;

@@ -259,6 +259,28 @@ public class SvgReaderTests
     }
 
     [Fact]
+    public void Plan_TextNotConvertedToPaths_ThrowsNamingTheTextElement()
+    {
+        var ex = Assert.Throws<DrawingException>(() => VectorPlanner.Plan(File("text.svg"), VectorOptions.Default, Core.Geometry.MachineProfile.Default));
+
+        Assert.Contains("nothing to burn", ex.Message, StringComparison.Ordinal);
+        Assert.Contains("<text> (#mark)", ex.Message, StringComparison.Ordinal);
+        Assert.Contains("Object to Path", ex.Message, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void Read_TextConvertedToPathsByInkscape_ReadsEveryGlyphOutline()
+    {
+        var drawing = SvgReader.Read(File("text-as-paths.svg"));
+
+        // L, E, -, 1 and the 4 with its hole; Inkscape's own metadata and defs give no warning.
+        Assert.Equal(6, drawing.Paths.Count);
+        Assert.All(drawing.Paths, p => Assert.True(p.Closed));
+        Assert.Empty(drawing.Warnings);
+        Assert.True(drawing.UnitsStated);
+    }
+
+    [Fact]
     public void Read_EveryCommandDrawing_WarnsAboutTextAndHiddenGroup()
     {
         var drawing = SvgReader.Read(File("every-command.svg"));
