@@ -10,26 +10,30 @@ public static class ScanlineFill
 {
     /// <param name="contours">Closed polylines in unrounded microsteps (last point = first).</param>
     /// <param name="pitchMicrosteps">Distance between scan lines, microsteps (unrounded).</param>
-    public static List<FillRow> Rows(IReadOnlyList<IReadOnlyList<DrawingPoint>> contours, double pitchMicrosteps)
+    /// <param name="top">Where scan line 0 is counted from (its y is top + pitch / 2); default the contours' top, so
+    /// several areas filled apart can share one set of scan lines.</param>
+    public static List<FillRow> Rows(IReadOnlyList<IReadOnlyList<DrawingPoint>> contours, double pitchMicrosteps, double? top = null)
     {
         ArgumentNullException.ThrowIfNull(contours);
         ArgumentOutOfRangeException.ThrowIfLessThanOrEqual(pitchMicrosteps, 0);
-        double top = double.PositiveInfinity, bottom = double.NegativeInfinity;
+        double highest = double.PositiveInfinity, bottom = double.NegativeInfinity;
         foreach (var c in contours)
         {
             foreach (var p in c)
             {
-                top = Math.Min(top, p.Y);
+                highest = Math.Min(highest, p.Y);
                 bottom = Math.Max(bottom, p.Y);
             }
         }
 
-        if (!(bottom > top))
+        if (!(bottom > highest))
         {
             return [];
         }
 
-        var count = (int)Math.Min(10_000_000, Math.Ceiling(((bottom - top) / pitchMicrosteps) - 0.5));
+        var origin = top ?? highest;
+        var skipped = Math.Max(0, (int)Math.Floor(((highest - origin) / pitchMicrosteps) - 0.5));
+        var count = (int)Math.Min(10_000_000, Math.Ceiling(((bottom - origin) / pitchMicrosteps) - 0.5)) - skipped;
         var crossings = new List<double>[Math.Max(0, count)];
         foreach (var c in contours)
         {
@@ -43,10 +47,10 @@ public static class ScanlineFill
 
                 // Rows k with y_k in [min y, max y) of the edge.
                 double low = Math.Min(p.Y, q.Y), high = Math.Max(p.Y, q.Y);
-                var first = Math.Max(0, (int)Math.Ceiling(((low - top) / pitchMicrosteps) - 0.5));
+                var first = Math.Max(0, (int)Math.Ceiling(((low - origin) / pitchMicrosteps) - 0.5) - skipped);
                 for (var k = first; k < count; k++)
                 {
-                    var y = top + ((k + 0.5) * pitchMicrosteps);
+                    var y = origin + ((k + skipped + 0.5) * pitchMicrosteps);
                     if (y >= high)
                     {
                         break;
@@ -83,11 +87,44 @@ public static class ScanlineFill
 
             if (segments.Count > 0)
             {
-                rows.Add(new FillRow(Round(top + ((k + 0.5) * pitchMicrosteps)), segments));
+                rows.Add(new FillRow(Round(origin + ((k + skipped + 0.5) * pitchMicrosteps)), segments));
             }
         }
 
         return rows;
+    }
+
+    /// <summary>
+    /// Splits contours into areas that can be filled one after the other: contours whose boxes overlap, directly or
+    /// through others, stay together, so the even-odd rule gives the same rows as over all contours at once.
+    /// </summary>
+    public static List<List<IReadOnlyList<DrawingPoint>>> Regions(IReadOnlyList<IReadOnlyList<DrawingPoint>> contours)
+    {
+        ArgumentNullException.ThrowIfNull(contours);
+        var boxes = contours.Select(c => (MinX: c.Min(p => p.X), MinY: c.Min(p => p.Y), MaxX: c.Max(p => p.X), MaxY: c.Max(p => p.Y))).ToArray();
+        var parent = Enumerable.Range(0, contours.Count).ToArray();
+        for (var a = 0; a < contours.Count; a++)
+        {
+            for (var b = a + 1; b < contours.Count; b++)
+            {
+                if (boxes[a].MinX <= boxes[b].MaxX && boxes[b].MinX <= boxes[a].MaxX && boxes[a].MinY <= boxes[b].MaxY && boxes[b].MinY <= boxes[a].MaxY)
+                {
+                    parent[Find(a)] = Find(b);
+                }
+            }
+        }
+
+        return [.. Enumerable.Range(0, contours.Count).GroupBy(Find).Select(g => g.Select(i => contours[i]).ToList())];
+
+        int Find(int i)
+        {
+            while (parent[i] != i)
+            {
+                i = parent[i] = parent[parent[i]];
+            }
+
+            return i;
+        }
     }
 
     private static long Round(double microsteps) => Geometry.JobGeometry.Round(microsteps);

@@ -58,19 +58,33 @@ public static class VectorPlanner
         flat = PathJoiner.Join(flat);
         var paths = new List<StagePath>();
         var rows = new List<FillRow>();
+        var start = new StagePoint(
+            JobGeometry.Round(StageUnits.MmToMicrosteps(options.Origin.X, microstepUm)),
+            JobGeometry.Round(StageUnits.MmToMicrosteps(options.Origin.Y, microstepUm)));
         if (options.Fill is VectorFillMode.Fill or VectorFillMode.Both)
         {
             var contours = flat.Where(f => f.Closed).Select(f => (IReadOnlyList<DrawingPoint>)f.Microsteps).ToList();
-            rows = ScanlineFill.Rows(contours, StageUnits.UmToMicrosteps(options.FillPitchUm, microstepUm));
-            paths.AddRange(Serpentine(rows));
+            if (contours.Count > 0)
+            {
+                // Each separate area is filled on its own, serpentine, nearest area next; all on one set of scan lines.
+                var top = contours.Min(c => c.Min(p => p.Y));
+                var pitch = StageUnits.UmToMicrosteps(options.FillPitchUm, microstepUm);
+                var areas = ScanlineFill.Regions(contours).Select(r => ScanlineFill.Rows(r, pitch, top)).Where(r => r.Count > 0).ToList();
+                var at = start;
+                while (areas.Count > 0)
+                {
+                    var next = areas.MinBy(a => StagePoint.Distance(at, new StagePoint(a[0].Segments[0].X0, a[0].Y)))!;
+                    areas.Remove(next);
+                    rows.AddRange(next);
+                    paths.AddRange(Serpentine(next));
+                    at = paths[^1].End;
+                }
+            }
         }
 
         var outlines = options.Fill == VectorFillMode.Fill
             ? flat.Where(f => !f.Closed).Select(f => f.ToStagePath(VectorPathKind.Outline)).ToList()
             : flat.ConvertAll(f => f.ToStagePath(VectorPathKind.Outline));
-        var start = new StagePoint(
-            JobGeometry.Round(StageUnits.MmToMicrosteps(options.Origin.X, microstepUm)),
-            JobGeometry.Round(StageUnits.MmToMicrosteps(options.Origin.Y, microstepUm)));
         var fillEnd = paths.Count > 0 ? paths[^1].End : start;
         var ordered = options.Optimize ? PathOrderer.Order(outlines, fillEnd) : outlines;
 

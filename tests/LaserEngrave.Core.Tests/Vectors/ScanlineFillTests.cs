@@ -71,6 +71,33 @@ public class ScanlineFillTests
     }
 
     [Fact]
+    public void Plan_FillOfSeparateShapes_FillsOneAreaAfterTheOtherOnSharedScanLines()
+    {
+        // Two 1 mm squares 5 mm apart, the right one 0.013 mm lower: one fill after the other, not rows across both.
+        var drawing = SvgReader.Parse(Svg("<rect x=\"10\" y=\"10\" width=\"1\" height=\"1\"/><rect x=\"16\" y=\"10.013\" width=\"1\" height=\"1\"/>"), "two.svg");
+
+        var plan = VectorPlanner.Plan(drawing, new VectorOptions { Fill = VectorFillMode.Fill, FillPitchUm = 100, Origin = new OriginMm(1, 1) }, MachineProfile.Default);
+
+        var fills = plan.Paths.Where(p => p.Kind == VectorPathKind.Fill).ToList();
+        var left = fills.TakeWhile(p => p.Start.X < Microsteps(4)).Count();
+        Assert.Equal(10, left);
+        Assert.All(fills.Skip(left), p => Assert.True(p.Start.X > Microsteps(6)));
+
+        // Both on the scan lines of the drawing's top: y = 1 mm + (k + 1/2) 0.1 mm, rounded once.
+        var lines = Enumerable.Range(0, 11).Select(k => Microsteps(1 + ((k + 0.5) * 0.1))).ToHashSet();
+        Assert.All(fills, p => Assert.Contains(p.Start.Y, lines));
+        Assert.Equal(20, fills.Count);
+    }
+
+    [Fact]
+    public void Regions_OverlappingBoxes_StayTogether()
+    {
+        var regions = ScanlineFill.Regions([Square(0, 0, 10), Square(100, 0, 10), Square(5, 5, 10), Square(14, 14, 3)]);
+
+        Assert.Equal([3, 1], regions.Select(r => r.Count).OrderDescending());
+    }
+
+    [Fact]
     public void Draw_Plan_BurnsBlackTravelsInTravelColoursStartGreen()
     {
         var plan = VectorPlanner.Plan(File("hexagons.dxf"), new VectorOptions { Origin = new OriginMm(2, 2) }, MachineProfile.Default);
