@@ -307,7 +307,8 @@ public static class SvgReader
                         return [];
                     }
 
-                    return SvgPathData.Parse(d, id);
+                    var subpaths = SvgPathData.Parse(d, id);
+                    return subpaths.Count > 0 ? subpaths : Empty("its path data draws nothing (only movetos)");
                 case "line":
                     var p0 = new DrawingPoint(L("x1"), L("y1"));
                     var p1 = new DrawingPoint(L("x2"), L("y2"));
