@@ -114,6 +114,15 @@ public class VectorCommandsTests
         }
     }
 
+    [Fact]
+    public async Task Engrave_Drawing_Exit2SayingDrawingsAreNotEngravedYet()
+    {
+        var (exit, _, error) = await CliHarness.RunAsync("engrave", Drawing("hexagons.dxf"), "--width-mm", "5", "--simulate");
+
+        Assert.Equal(2, exit);
+        Assert.Contains("hexagons.dxf: drawings can be planned and previewed", error, StringComparison.Ordinal);
+    }
+
     [Theory]
     [InlineData(new[] { "--height-mm", "5" }, "sized by --width-mm")]
     [InlineData(new[] { "--fill", "hatch" }, "--fill hatch")]
