@@ -30,6 +30,11 @@ public static class DxfReader
         [12] = (1e-6, "nanometres"),
         [13] = (1e-3, "microns"),
         [14] = (100, "decimetres"),
+        [15] = (10_000, "decametres"),
+        [16] = (100_000, "hectometres"),
+        [21] = (1_200_000 / 3937.0, "US survey feet"),
+        [22] = (100_000 / 3937.0, "US survey inches"),
+        [23] = (3_600_000 / 3937.0, "US survey yards"),
     };
 
     public static Drawing Read(string path)
@@ -69,7 +74,7 @@ public static class DxfReader
         }
         else
         {
-            throw new DrawingException($"{path}: $INSUNITS {file.InsUnits} is not a unit of length");
+            throw new DrawingException($"{path}: $INSUNITS {file.InsUnits} is not a unit of length LaserEngrave knows");
         }
 
         // DXF's y grows up; the stage's and LaserEngrave's grow down.

@@ -22,11 +22,20 @@ public class DxfReaderTests
     [InlineData(1, 25.4)]
     [InlineData(5, 10)]
     [InlineData(13, 0.001)]
+    [InlineData(21, 304.80060960121924)]
     public void Parse_InsUnits_ScalesToMillimetres(int units, double mmPerUnit)
     {
         var drawing = DxfReader.Parse(Dxf(Entity("LINE", (10, 0), (20, 0), (11, 2), (21, 0)), insUnits: units), "t.dxf");
 
         Assert.Equal(2 * mmPerUnit, Assert.Single(drawing.Paths).End.X, 12);
+    }
+
+    [Fact]
+    public void Parse_InsUnitsNotALength_ThrowsNamingIt()
+    {
+        var ex = Assert.Throws<DrawingException>(() => DxfReader.Parse(Dxf(Entity("LINE", (10, 0), (20, 0), (11, 2), (21, 0)), insUnits: 19), "ly.dxf"));
+
+        Assert.Equal("ly.dxf: $INSUNITS 19 is not a unit of length LaserEngrave knows", ex.Message);
     }
 
     [Fact]
