@@ -13,12 +13,19 @@ internal static class PlanCommand
         var job = new JobOptions();
         var json = new Option<bool>("--json") { Description = "Print one JSON object" };
         var segments = new Option<string?>("--segments") { Description = "Write every move in order as CSV (kind,x0,y0,x1,y1 in microsteps)" };
-        var command = new Command("plan", "Size an image on the stage and plan the raster: runs, lengths, laser switches, estimated time");
+        var vector = new VectorOptionSet();
+        var command = new Command("plan", "Size an image on the stage and plan the raster: runs, lengths, laser switches, estimated time; or a drawing (.dxf, .svg): paths, lengths, travel");
         job.AddTo(command);
+        vector.AddTo(command);
         command.Options.Add(json);
         command.Options.Add(segments);
         command.SetAction(result =>
         {
+            if (VectorCommands.IsDrawing(result, job))
+            {
+                return VectorCommands.Plan(result, job, vector, result.GetValue(json), result.GetValue(segments));
+            }
+
             OptionChecks.OutputFile(result.GetValue(segments), "--segments");
             var prepared = PreparedJob.Prepare(job.Bind(result));
             if (result.GetValue(segments) is { } csv)

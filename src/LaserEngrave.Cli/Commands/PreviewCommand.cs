@@ -14,8 +14,10 @@ internal static class PreviewCommand
         var output = new Option<string>("--out") { Description = "PNG of the plan: burns black, travels blue to purple in path order", Required = true };
         var maskOut = new Option<string?>("--mask-out") { Description = "Also write the mask as it will be burned (black = burn)" };
         var size = new Option<int>("--max-px") { Description = "Longest side of the preview in pixels", DefaultValueFactory = _ => 1200 };
-        var command = new Command("preview", "Draw the plan (and optionally the mask) to PNG");
+        var vector = new VectorOptionSet();
+        var command = new Command("preview", "Draw the plan (and optionally the mask) to PNG; for a drawing (.dxf, .svg), its paths and travel");
         job.AddTo(command);
+        vector.AddTo(command);
         command.Options.Add(output);
         command.Options.Add(maskOut);
         command.Options.Add(size);
@@ -25,6 +27,13 @@ internal static class PreviewCommand
             if (maxPx is < 16 or > 4096)
             {
                 throw new UsageException($"--max-px {maxPx}: must be between 16 and 4096");
+            }
+
+            if (VectorCommands.IsDrawing(result, job))
+            {
+                return result.GetValue(maskOut) is null
+                    ? VectorCommands.Preview(result, job, vector, result.GetValue(output)!, maxPx)
+                    : throw new UsageException("--mask-out is for images: a drawing has no mask");
             }
 
             OptionChecks.OutputFile(result.GetValue(output), "--out");

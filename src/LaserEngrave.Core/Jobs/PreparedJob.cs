@@ -42,6 +42,12 @@ public sealed class PreparedJob
     public static PreparedJob Prepare(JobSpec spec)
     {
         ArgumentNullException.ThrowIfNull(spec);
+        if (Vectors.DrawingReader.IsDrawing(spec.ImagePath))
+        {
+            // Without this a drawing would be refused as "not an image", which sends the user looking in the wrong place.
+            throw new Vectors.DrawingException($"{spec.ImagePath}: drawings can be planned and previewed (laserengrave plan, preview) but not yet engraved or framed");
+        }
+
         spec.Mask.Validate();
         spec.Process.Validate();
         var mask = MaskBuilder.FromFile(spec.ImagePath, spec.Mask, out var info);

@@ -53,7 +53,7 @@ public class RegularFileTests
     internal static string MakeFifo()
     {
         var path = Path.Combine(Path.GetTempPath(), $"le-fifo-{Guid.NewGuid():N}");
-        using var mkfifo = Process.Start(new ProcessStartInfo("mkfifo", path) { UseShellExecute = false })!;
+        using var mkfifo = System.Diagnostics.Process.Start(new ProcessStartInfo("mkfifo", path) { UseShellExecute = false })!;
         mkfifo.WaitForExit();
         Assert.Equal(0, mkfifo.ExitCode);
         return path;

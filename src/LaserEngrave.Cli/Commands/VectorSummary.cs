@@ -1,0 +1,51 @@
+using System.Globalization;
+using LaserEngrave.Core.Vectors;
+
+namespace LaserEngrave.Cli.Commands;
+
+/// <summary>The figures of a vector plan, as `plan --json` prints them for a drawing.</summary>
+internal sealed record VectorSummary(
+    string Drawing,
+    double WidthMm,
+    double HeightMm,
+    double Scale,
+    double ToleranceUm,
+    int PathCount,
+    int OutlineCount,
+    int FillRows,
+    long Vertices,
+    double BurnLengthMm,
+    double TravelMm,
+    double TravelDrawingOrderMm,
+    double TravelSavedPercent,
+    bool FitsTravel,
+    IReadOnlyList<string> Warnings)
+{
+    public static VectorSummary From(VectorPlan plan) => new(
+        plan.DrawingPath,
+        plan.WidthMm,
+        plan.HeightMm,
+        plan.Scale,
+        plan.ToleranceUm,
+        plan.Paths.Count,
+        plan.OutlineCount,
+        plan.FillRows.Count,
+        plan.Paths.Sum(p => (long)p.Points.Count),
+        plan.BurnLengthMm,
+        plan.TravelMm,
+        plan.TravelDrawingOrderMm,
+        plan.TravelSavedPercent,
+        plan.FitsTravel,
+        plan.Warnings);
+
+    public void WriteText(TextWriter output)
+    {
+        var c = CultureInfo.InvariantCulture;
+        output.WriteLine(string.Create(c, $"Drawing:          {Drawing}"));
+        output.WriteLine(string.Create(c, $"Size on stage:    {WidthMm:0.####} x {HeightMm:0.####} mm (scale {Scale:0.######})"));
+        output.WriteLine(string.Create(c, $"Paths:            {PathCount} ({OutlineCount} outlines, {FillRows} fill rows), {Vertices} vertices within {ToleranceUm:0.###} µm"));
+        output.WriteLine(string.Create(c, $"Burn length:      {BurnLengthMm:0.###} mm"));
+        output.WriteLine(string.Create(c, $"Travel:           {TravelMm:0.###} mm ({TravelDrawingOrderMm:0.###} mm in drawing order, {TravelSavedPercent:0.#} % saved)"));
+        output.WriteLine(string.Create(c, $"Fits the travel:  {(FitsTravel ? "yes" : "NO")}"));
+    }
+}

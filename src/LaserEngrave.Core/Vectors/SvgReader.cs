@@ -1,0 +1,429 @@
+using System.Globalization;
+using System.Xml;
+using System.Xml.Linq;
+
+namespace LaserEngrave.Core.Vectors;
+
+/// <summary>Reads the geometry of an SVG 1.1 file into millimetre paths, y down.</summary>
+/// <remarks>
+/// Written here on System.Xml.Linq because no SVG library restores from this machine's package source (Svg,
+/// SharpVectors and VectSharp were probed, see docs/dependencies.md), and an engraver needs only the outlines:
+/// path, rect, circle, ellipse, line, polyline, polygon, g, use and nested svg, with transforms, viewBox and
+/// physical units. Styles are not read except display and visibility: every visible outline is engraved whatever
+/// its stroke or fill. Text is engraved only once converted to paths; &lt;text&gt;, &lt;image&gt; and the like are named in the warnings.
+/// </remarks>
+public static class SvgReader
+{
+    private const int MaxUseDepth = 32;
+
+    private static readonly XNamespace Svg = "http://www.w3.org/2000/svg";
+    private static readonly XNamespace XLink = "http://www.w3.org/1999/xlink";
+    private static readonly XNamespace Inkscape = "http://www.inkscape.org/namespaces/inkscape";
+
+    /// <summary>Elements that only define things other elements use or describe the file: not drawn where they stand.</summary>
+    private static readonly HashSet<string> NotDrawn =
+    [
+        "defs", "symbol", "title", "desc", "metadata", "style", "script", "linearGradient", "radialGradient", "pattern",
+        "marker", "clipPath", "mask", "filter", "font", "font-face", "color-profile", "cursor", "view",
+    ];
+
+    public static Drawing Read(string path)
+    {
+        XDocument document;
+        try
+        {
+            using var stream = File.OpenRead(path);
+            using var xml = XmlReader.Create(stream, new XmlReaderSettings { DtdProcessing = DtdProcessing.Ignore, XmlResolver = null });
+            document = XDocument.Load(xml, LoadOptions.SetLineInfo);
+        }
+        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
+        {
+            throw new DrawingException($"{path}: cannot read the drawing: {ex.Message}", ex);
+        }
+        catch (XmlException ex)
+        {
+            throw new DrawingException($"{path}: not well-formed XML: {ex.Message}", ex);
+        }
+
+        return Read(document, path);
+    }
+
+    public static Drawing Parse(string text, string path)
+    {
+        try
+        {
+            return Read(XDocument.Parse(text, LoadOptions.SetLineInfo), path);
+        }
+        catch (XmlException ex)
+        {
+            throw new DrawingException($"{path}: not well-formed XML: {ex.Message}", ex);
+        }
+    }
+
+    private static Drawing Read(XDocument document, string path)
+    {
+        var root = document.Root;
+        if (root is null || root.Name.LocalName != "svg")
+        {
+            throw new DrawingException($"{path}: the root element is <{root?.Name.LocalName}>, not <svg>");
+        }
+
+        var warnings = new DrawingWarnings();
+        var (toMm, stated) = RootTransform(root, path, warnings);
+        var walker = new Walker(path, warnings, document);
+        walker.Children(root, toMm, string.Empty, 0);
+        return new Drawing(path, walker.Paths, warnings.ToList(), stated);
+    }
+
+    /// <summary>From the root's user units to millimetres: width and height give the size, viewBox and preserveAspectRatio map user units into it.</summary>
+    private static (Affine Transform, bool Stated) RootTransform(XElement root, string path, DrawingWarnings warnings)
+    {
+        var id = Describe(root, path);
+        double? width = Size(root, "width"), height = Size(root, "height");
+        var stated = IsPhysical(root.Attribute("width")?.Value) || IsPhysical(root.Attribute("height")?.Value);
+        if (!stated)
+        {
+            warnings.Note("the drawing's width and height are not in physical units: user units read as CSS pixels (96 per inch); give --width-mm to size it");
+        }
+
+        var viewBox = root.Attribute("viewBox")?.Value;
+        if (viewBox is null)
+        {
+            return (Affine.Scale(SvgLength.MmPerPx, SvgLength.MmPerPx), stated);
+        }
+
+        var box = viewBox.Split([' ', ',', '\t', '\n', '\r'], StringSplitOptions.RemoveEmptyEntries)
+            .Select(v => double.TryParse(v, NumberStyles.Float, CultureInfo.InvariantCulture, out var d) ? d : double.NaN)
+            .ToArray();
+        if (box.Length != 4 || box.Any(v => !double.IsFinite(v)) || !(box[2] > 0) || !(box[3] > 0))
+        {
+            throw new DrawingException($"{id}: viewBox=\"{viewBox}\" is not four numbers with a width and height above 0");
+        }
+
+        // Missing sizes follow the viewBox's aspect; both missing means one user unit per CSS pixel.
+        var w = width ?? (height is { } h0 ? h0 * box[2] / box[3] : box[2] * SvgLength.MmPerPx);
+        var h = height ?? (width is { } w0 ? w0 * box[3] / box[2] : box[3] * SvgLength.MmPerPx);
+        double sx = w / box[2], sy = h / box[3], tx = 0, ty = 0;
+        var aspect = (root.Attribute("preserveAspectRatio")?.Value ?? "xMidYMid meet").Split(' ', StringSplitOptions.RemoveEmptyEntries);
+        var align = aspect.FirstOrDefault(a => a != "defer") ?? "xMidYMid";
+        if (align != "none")
+        {
+            var s = aspect.Contains("slice") ? Math.Max(sx, sy) : Math.Min(sx, sy);
+            var x = align.Length >= 4 ? align[..4] : "xMid";
+            var y = align.Length >= 8 ? align[4..8] : "YMid";
+            tx = x switch { "xMin" => 0, "xMax" => w - (box[2] * s), _ => (w - (box[2] * s)) / 2 };
+            ty = y switch { "YMin" => 0, "YMax" => h - (box[3] * s), _ => (h - (box[3] * s)) / 2 };
+            sx = sy = s;
+        }
+
+        var m = Affine.Compose(Affine.Translate(-box[0], -box[1]), Affine.Scale(sx, sy));
+        return (Affine.Compose(m, Affine.Translate(tx, ty)), stated);
+
+        double? Size(XElement e, string attribute)
+        {
+            var text = e.Attribute(attribute)?.Value;
+            if (text is null || text.TrimEnd().EndsWith('%'))
+            {
+                return null;
+            }
+
+            var px = SvgLength.UserUnits(text, 0, id, attribute);
+            return px > 0 ? px * SvgLength.MmPerPx : throw new DrawingException($"{id}: {attribute}=\"{text}\" must be above 0");
+        }
+
+        static bool IsPhysical(string? text) =>
+            SvgLength.TrySplit(text, out _, out var unit) && unit is "mm" or "cm" or "in" or "pt" or "pc" or "q";
+    }
+
+    private static string Describe(XElement e, string path)
+    {
+        var line = ((IXmlLineInfo)e).HasLineInfo() ? $" (line {((IXmlLineInfo)e).LineNumber})" : string.Empty;
+        var id = e.Attribute("id")?.Value;
+        return $"{path}: <{e.Name.LocalName}>{(id is null ? string.Empty : $" id \"{id}\"")}{line}";
+    }
+
+    private static string ShortName(XElement e)
+    {
+        var id = e.Attribute("id")?.Value;
+        var line = ((IXmlLineInfo)e).HasLineInfo() ? ((IXmlLineInfo)e).LineNumber : 0;
+        return id is null ? $"line {line}" : $"#{id}";
+    }
+
+    private sealed class Walker(string path, DrawingWarnings warnings, XDocument document)
+    {
+        private Dictionary<string, XElement>? _ids;
+
+        public List<DrawingPath> Paths { get; } = [];
+
+        public void Children(XElement parent, Affine transform, string layer, int depth)
+        {
+            foreach (var child in parent.Elements())
+            {
+                Element(child, transform, layer, depth);
+            }
+        }
+
+        private void Element(XElement e, Affine parent, string layer, int depth)
+        {
+            if (e.Name.Namespace != Svg && e.Name.Namespace != XNamespace.None)
+            {
+                // Editor data (sodipodi:namedview, inkscape:*) and foreign objects hold no SVG geometry.
+                return;
+            }
+
+            var name = e.Name.LocalName;
+            if (NotDrawn.Contains(name))
+            {
+                return;
+            }
+
+            var id = Describe(e, path);
+            if (Hidden(e))
+            {
+                warnings.Skipped($"<{name}>", ShortName(e), "hidden (display:none or visibility:hidden)");
+                return;
+            }
+
+            if (e.Attribute("clip-path") is not null || e.Attribute("mask") is not null)
+            {
+                warnings.Note($"clip paths and masks are ignored: {id} is engraved unclipped");
+            }
+
+            var transform = e.Attribute("transform")?.Value is { } t ? Affine.Compose(SvgTransformList.Parse(t, id), parent) : parent;
+            switch (name)
+            {
+                case "g" or "a" or "switch":
+                    var label = e.Attribute(Inkscape + "groupmode")?.Value == "layer"
+                        ? e.Attribute(Inkscape + "label")?.Value ?? e.Attribute("id")?.Value ?? layer
+                        : layer;
+                    Children(e, transform, label, depth);
+                    return;
+                case "svg":
+                    var x = SvgLength.UserUnits(e.Attribute("x")?.Value, 0, id, "x");
+                    var y = SvgLength.UserUnits(e.Attribute("y")?.Value, 0, id, "y");
+                    if (e.Attribute("viewBox") is not null)
+                    {
+                        warnings.Note($"{id}: the viewBox of a nested <svg> is ignored; its contents are placed at its x and y in its parent's units");
+                    }
+
+                    Children(e, Affine.Compose(Affine.Translate(x, y), transform), layer, depth);
+                    return;
+                case "use":
+                    Use(e, transform, layer, depth, id);
+                    return;
+                case "text" or "flowRoot" or "textPath" or "tspan":
+                    warnings.Skipped($"<{name}>", ShortName(e), "text is not engraved; convert it to paths first (Inkscape: Path > Object to Path)");
+                    return;
+                case "image":
+                    warnings.Skipped("<image>", ShortName(e), "bitmaps inside an SVG are not engraved; engrave the image file itself");
+                    return;
+            }
+
+            var shapes = Shape(e, name, id);
+            if (shapes is null)
+            {
+                warnings.Skipped($"<{name}>", ShortName(e), "not a supported element");
+                return;
+            }
+
+            foreach (var (curves, closed) in shapes)
+            {
+                Paths.Add(new DrawingPath(curves, closed, layer, id[(path.Length + 2)..]).Transform(transform));
+            }
+        }
+
+        private void Use(XElement e, Affine transform, string layer, int depth, string id)
+        {
+            var href = (e.Attribute(XLink + "href") ?? e.Attribute("href"))?.Value;
+            if (href is null || !href.StartsWith('#'))
+            {
+                throw new DrawingException($"{id}: href \"{href}\" does not name an element of this file (#id)");
+            }
+
+            _ids ??= document.Descendants().Where(d => d.Attribute("id") is not null).GroupBy(d => d.Attribute("id")!.Value).ToDictionary(g => g.Key, g => g.First());
+            if (!_ids.TryGetValue(href[1..], out var target))
+            {
+                throw new DrawingException($"{id}: href \"{href}\" names no element of this file");
+            }
+
+            if (depth >= MaxUseDepth)
+            {
+                throw new DrawingException($"{id}: <use> nested more than {MaxUseDepth} deep (does {href} use itself?)");
+            }
+
+            var x = SvgLength.UserUnits(e.Attribute("x")?.Value, 0, id, "x");
+            var y = SvgLength.UserUnits(e.Attribute("y")?.Value, 0, id, "y");
+            var placed = Affine.Compose(Affine.Translate(x, y), transform);
+            if (target.Name.LocalName == "symbol")
+            {
+                Children(target, placed, layer, depth + 1);
+            }
+            else
+            {
+                Element(target, placed, layer, depth + 1);
+            }
+        }
+
+        private static bool Hidden(XElement e)
+        {
+            if (e.Attribute("display")?.Value.Trim() == "none" || e.Attribute("visibility")?.Value.Trim() is "hidden" or "collapse")
+            {
+                return true;
+            }
+
+            var style = e.Attribute("style")?.Value;
+            if (style is null)
+            {
+                return false;
+            }
+
+            foreach (var declaration in style.Split(';'))
+            {
+                var parts = declaration.Split(':', 2);
+                if (parts.Length == 2)
+                {
+                    var (property, value) = (parts[0].Trim(), parts[1].Trim());
+                    if ((property == "display" && value == "none") || (property == "visibility" && value is "hidden" or "collapse"))
+                    {
+                        return true;
+                    }
+                }
+            }
+
+            return false;
+        }
+
+        private List<(List<IDrawingCurve>, bool)>? Shape(XElement e, string name, string id)
+        {
+            double L(string attribute, double fallback = 0) => SvgLength.UserUnits(e.Attribute(attribute)?.Value, fallback, id, attribute);
+
+            switch (name)
+            {
+                case "path":
+                    var d = e.Attribute("d")?.Value;
+                    if (string.IsNullOrWhiteSpace(d))
+                    {
+                        warnings.Skipped("<path>", ShortName(e), "no path data (d)");
+                        return [];
+                    }
+
+                    var subpaths = SvgPathData.Parse(d, id);
+                    return subpaths.Count > 0 ? subpaths : Empty("its path data draws nothing (only movetos)");
+                case "line":
+                    var p0 = new DrawingPoint(L("x1"), L("y1"));
+                    var p1 = new DrawingPoint(L("x2"), L("y2"));
+                    return p0 == p1 ? Empty("the line has no length") : [([new LineCurve(p0, p1)], false)];
+                case "polyline" or "polygon":
+                    return Poly(e, name == "polygon", id);
+                case "circle":
+                    var r = L("r");
+                    return r > 0 ? [([EllipticalArcCurve.Circular(new(L("cx"), L("cy")), r, 0, 360)], true)] : Empty("radius is not above 0");
+                case "ellipse":
+                    double rx = L("rx"), ry = L("ry");
+                    return rx > 0 && ry > 0
+                        ? [([new EllipticalArcCurve(new(L("cx"), L("cy")), new(rx, 0), new(0, ry), 0, 2 * Math.PI)], true)]
+                        : Empty("a radius is not above 0");
+                case "rect":
+                    return Rect(L("x"), L("y"), L("width"), L("height"), e.Attribute("rx")?.Value is null ? null : L("rx"), e.Attribute("ry")?.Value is null ? null : L("ry"));
+                default:
+                    return null;
+            }
+
+            List<(List<IDrawingCurve>, bool)> Empty(string why)
+            {
+                warnings.Skipped($"<{name}>", ShortName(e), why);
+                return [];
+            }
+
+            List<(List<IDrawingCurve>, bool)> Rect(double x, double y, double w, double h, double? rxGiven, double? ryGiven)
+            {
+                if (w < 0 || h < 0)
+                {
+                    throw new DrawingException($"{id}: width {w} and height {h} must not be negative");
+                }
+
+                if (w == 0 || h == 0)
+                {
+                    return Empty("width or height is 0");
+                }
+
+                var rxr = Math.Min(Math.Abs(rxGiven ?? ryGiven ?? 0), w / 2);
+                var ryr = Math.Min(Math.Abs(ryGiven ?? rxGiven ?? 0), h / 2);
+                if (rxr == 0 || ryr == 0)
+                {
+                    DrawingPoint a = new(x, y), b = new(x + w, y), c = new(x + w, y + h), dd = new(x, y + h);
+                    return [([new LineCurve(a, b), new LineCurve(b, c), new LineCurve(c, dd), new LineCurve(dd, a)], true)];
+                }
+
+                // Clockwise on screen from the end of the top-left corner, each corner a quarter ellipse.
+                var curves = new List<IDrawingCurve>();
+                var corners = new[]
+                {
+                    (new DrawingPoint(x + w - rxr, y + ryr), -Math.PI / 2),
+                    (new DrawingPoint(x + w - rxr, y + h - ryr), 0.0),
+                    (new DrawingPoint(x + rxr, y + h - ryr), Math.PI / 2),
+                    (new DrawingPoint(x + rxr, y + ryr), Math.PI),
+                };
+                DrawingPoint? last = null;
+                foreach (var (center, t0) in corners)
+                {
+                    var arc = new EllipticalArcCurve(center, new(rxr, 0), new(0, ryr), t0, Math.PI / 2);
+                    if (last is { } l && l != arc.Start)
+                    {
+                        curves.Add(new LineCurve(l, arc.Start));
+                    }
+
+                    curves.Add(arc);
+                    last = arc.End;
+                }
+
+                if (last!.Value != curves[0].Start)
+                {
+                    curves.Add(new LineCurve(last.Value, curves[0].Start));
+                }
+
+                return [(curves, true)];
+            }
+        }
+
+        private List<(List<IDrawingCurve>, bool)> Poly(XElement e, bool closed, string id)
+        {
+            var text = e.Attribute("points")?.Value ?? string.Empty;
+            var values = new List<double>();
+            foreach (var token in text.Split([' ', ',', '\t', '\n', '\r'], StringSplitOptions.RemoveEmptyEntries))
+            {
+                values.Add(double.TryParse(token, NumberStyles.Float, CultureInfo.InvariantCulture, out var v) && double.IsFinite(v)
+                    ? v
+                    : throw new DrawingException($"{id}: points: \"{token}\" is not a number"));
+            }
+
+            if (values.Count % 2 != 0)
+            {
+                throw new DrawingException($"{id}: points holds {values.Count} numbers, not x,y pairs");
+            }
+
+            var points = Enumerable.Range(0, values.Count / 2).Select(i => new DrawingPoint(values[2 * i], values[(2 * i) + 1])).ToList();
+            if (closed && points.Count > 1 && points[0] != points[^1])
+            {
+                points.Add(points[0]);
+            }
+
+            var curves = new List<IDrawingCurve>();
+            for (var i = 1; i < points.Count; i++)
+            {
+                if (points[i] != points[i - 1])
+                {
+                    curves.Add(new LineCurve(points[i - 1], points[i]));
+                }
+            }
+
+            if (curves.Count == 0)
+            {
+                warnings.Skipped($"<{e.Name.LocalName}>", ShortName(e), "fewer than two distinct points");
+                return [];
+            }
+
+            return [(curves, closed || curves[0].Start == curves[^1].End)];
+        }
+    }
+}

@@ -1,0 +1,53 @@
+using System.Globalization;
+using LaserEngrave.Core.Geometry;
+
+namespace LaserEngrave.Core.Vectors;
+
+/// <summary>How a drawing becomes a vector job: size, place, chord tolerance, fill and path order.</summary>
+public sealed record VectorOptions
+{
+    public static VectorOptions Default { get; } = new();
+
+    /// <summary>Width of the drawing on the stage, mm (aspect kept); null keeps the drawing's own units.</summary>
+    public double? WidthMm { get; init; }
+
+    /// <summary>Where the top-left corner of the drawing's bounding box sits on the stage.</summary>
+    public OriginMm Origin { get; init; } = OriginMm.Zero;
+
+    /// <summary>Largest distance between a curve and the straight segments that replace it, µm.</summary>
+    public double ToleranceUm { get; init; } = 1;
+
+    public VectorFillMode Fill { get; init; } = VectorFillMode.Outline;
+
+    /// <summary>Distance between the scan lines of a fill, µm.</summary>
+    public double FillPitchUm { get; init; } = 20;
+
+    /// <summary>Whether to order the paths (inner first, then shortest travel); false burns them in drawing order.</summary>
+    public bool Optimize { get; init; } = true;
+
+    /// <summary>Throws a <see cref="GeometryException"/> naming the first unusable value.</summary>
+    public void Validate()
+    {
+        if (WidthMm is { } w && !(w > 0 && double.IsFinite(w)))
+        {
+            throw new GeometryException($"width {Text(w)} mm must be above 0");
+        }
+
+        if (!(ToleranceUm >= 0.01 && ToleranceUm <= 1000))
+        {
+            throw new GeometryException($"chord tolerance {Text(ToleranceUm)} µm must be between 0.01 and 1000 µm");
+        }
+
+        if (!(FillPitchUm >= 0.1 && FillPitchUm <= 10_000))
+        {
+            throw new GeometryException($"fill pitch {Text(FillPitchUm)} µm must be between 0.1 and 10000 µm");
+        }
+
+        if (!double.IsFinite(Origin.X) || !double.IsFinite(Origin.Y))
+        {
+            throw new GeometryException($"origin {Text(Origin.X)}, {Text(Origin.Y)} mm must be finite");
+        }
+
+        static string Text(double v) => v.ToString(CultureInfo.InvariantCulture);
+    }
+}
