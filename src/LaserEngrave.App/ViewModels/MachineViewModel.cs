@@ -11,13 +11,29 @@ public sealed partial class MachineViewModel : ObservableObject
 {
     private readonly IMachineConnectionFactory _factory;
 
-    public MachineViewModel(IMachineConnectionFactory factory, MachineProfile profile)
+    /// <param name="activity">The app's one record of what holds the machine; a new one when not shared (tests).</param>
+    public MachineViewModel(IMachineConnectionFactory factory, MachineProfile profile, MachineActivity? activity = null)
     {
         ArgumentNullException.ThrowIfNull(factory);
         ArgumentNullException.ThrowIfNull(profile);
         _factory = factory;
         Profile = profile;
+        Activity = activity ?? new MachineActivity();
+        Activity.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName == nameof(MachineActivity.Current))
+            {
+                OnPropertyChanged(nameof(IsBusy));
+                foreach (var command in new IRelayCommand[] { ConnectCommand, DisconnectCommand, IdentifyCommand, HomeCommand })
+                {
+                    command.NotifyCanExecuteChanged();
+                }
+            }
+        };
     }
+
+    /// <summary>What holds the machine now; shared by every view-model that drives it.</summary>
+    public MachineActivity Activity { get; }
 
     [ObservableProperty]
     public partial bool UseSimulator { get; set; } = true;
@@ -59,8 +75,8 @@ public sealed partial class MachineViewModel : ObservableObject
     [ObservableProperty]
     public partial string? Error { get; set; }
 
-    [ObservableProperty]
-    public partial bool IsBusy { get; private set; }
+    /// <summary>Whether any operation holds the machine (then the machine commands are disabled).</summary>
+    public bool IsBusy => Activity.IsBusy;
 
     public bool IsConnected => Connection is not null;
 
@@ -77,30 +93,46 @@ public sealed partial class MachineViewModel : ObservableObject
     }
 
     /// <summary>Opens the machine and reads its state; any failure leaves it disconnected with the reason shown.</summary>
-    [RelayCommand(IncludeCancelCommand = true)]
-    private async Task ConnectAsync(CancellationToken cancellationToken)
+    [RelayCommand(CanExecute = nameof(CanUseMachine))]
+    private Task ConnectAsync() => Guard(MachineOperation.Connecting, async cancellationToken =>
     {
-        await DisconnectAsync().ConfigureAwait(false);
-        await Guard(async () =>
+        await CloseAsync().ConfigureAwait(false);
+        var connection = await _factory.ConnectAsync(new MachineChoice(UseSimulator, StagePort, LaserPort), Profile, cancellationToken).ConfigureAwait(false);
+        Connection = connection;
+        OnPropertyChanged(nameof(IsConnected));
+        try
         {
-            var connection = await _factory.ConnectAsync(new MachineChoice(UseSimulator, StagePort, LaserPort), Profile, cancellationToken).ConfigureAwait(false);
-            Connection = connection;
-            OnPropertyChanged(nameof(IsConnected));
-            try
-            {
-                await ReadStateAsync(connection, cancellationToken).ConfigureAwait(false);
-            }
-            catch
-            {
-                // A machine that does not answer is closed again, so the next connect starts clean.
-                await DisconnectAsync().ConfigureAwait(false);
-                throw;
-            }
-        }).ConfigureAwait(false);
-    }
+            await ReadStateAsync(connection, cancellationToken).ConfigureAwait(false);
+        }
+        catch
+        {
+            // A machine that does not answer is closed again, so the next connect starts clean.
+            await CloseAsync().ConfigureAwait(false);
+            throw;
+        }
+    });
 
-    [RelayCommand]
-    private async Task DisconnectAsync()
+    [RelayCommand(CanExecute = nameof(CanUseMachine))]
+    private Task DisconnectAsync() => Guard(MachineOperation.Disconnecting, _ => CloseAsync());
+
+    [RelayCommand(CanExecute = nameof(CanUseMachine))]
+    private Task IdentifyAsync() =>
+        Guard(MachineOperation.Identifying, cancellationToken => ReadStateAsync(RequireConnection(), cancellationToken));
+
+    /// <summary>Homes both axes together, the laser switched off first.</summary>
+    [RelayCommand(CanExecute = nameof(CanUseMachine))]
+    private Task HomeAsync() => Guard(MachineOperation.Homing, async cancellationToken =>
+    {
+        var connection = RequireConnection();
+        await connection.Gate.OffAsync(cancellationToken).ConfigureAwait(false);
+        await Task.WhenAll(connection.Stage.X.HomeAsync(cancellationToken), connection.Stage.Y.HomeAsync(cancellationToken)).ConfigureAwait(false);
+        await ReadStateAsync(connection, cancellationToken).ConfigureAwait(false);
+    });
+
+    private bool CanUseMachine() => !Activity.IsBusy;
+
+    /// <summary>Closes the connection whatever holds the machine: for the app's exit, after the run was aborted.</summary>
+    internal async Task CloseAsync()
     {
         var connection = Connection;
         Connection = null;
@@ -115,20 +147,6 @@ public sealed partial class MachineViewModel : ObservableObject
         }
     }
 
-    [RelayCommand(IncludeCancelCommand = true)]
-    private Task IdentifyAsync(CancellationToken cancellationToken) =>
-        Guard(() => ReadStateAsync(RequireConnection(), cancellationToken));
-
-    /// <summary>Homes both axes together, the laser switched off first.</summary>
-    [RelayCommand(IncludeCancelCommand = true)]
-    private Task HomeAsync(CancellationToken cancellationToken) => Guard(async () =>
-    {
-        var connection = RequireConnection();
-        await connection.Gate.OffAsync(cancellationToken).ConfigureAwait(false);
-        await Task.WhenAll(connection.Stage.X.HomeAsync(cancellationToken), connection.Stage.Y.HomeAsync(cancellationToken)).ConfigureAwait(false);
-        await ReadStateAsync(connection, cancellationToken).ConfigureAwait(false);
-    });
-
     /// <summary>Reads both positions and the gate's state again.</summary>
     public async Task ReadPositionsAsync(CancellationToken cancellationToken)
     {
@@ -139,27 +157,37 @@ public sealed partial class MachineViewModel : ObservableObject
 
     internal IMachineConnection RequireConnection() => Connection ?? throw new DeviceException("not connected: connect to the simulator or the machine first");
 
-    /// <summary>Runs a machine command, showing its failure as <see cref="Error"/>; never throws what the user caused.</summary>
-    internal async Task Guard(Func<Task> action)
+    /// <summary>
+    /// Runs a machine command holding the machine for <paramref name="operation"/>, showing its failure as <see cref="Error"/>;
+    /// refused with one line when another operation holds the machine; never throws what the user caused.
+    /// </summary>
+    /// <returns>False when refused because the machine is busy.</returns>
+    internal async Task<bool> Guard(MachineOperation operation, Func<CancellationToken, Task> action)
     {
-        IsBusy = true;
-        Error = null;
-        try
+        if (!Activity.TryBegin(operation, out var lease, out var refusal))
         {
-            await action().ConfigureAwait(false);
+            Error = refusal;
+            return false;
         }
-        catch (OperationCanceledException)
+
+        using (lease)
         {
-            Error = "cancelled";
+            Error = null;
+            try
+            {
+                await action(lease.CancellationToken).ConfigureAwait(false);
+            }
+            catch (OperationCanceledException)
+            {
+                Error = "cancelled";
+            }
+            catch (Exception ex) when (ex is DeviceException or IOException or UnauthorizedAccessException or InvalidOperationException or ArgumentException or TimeoutException)
+            {
+                Error = ex.Message;
+            }
         }
-        catch (Exception ex) when (ex is DeviceException or IOException or UnauthorizedAccessException or InvalidOperationException or ArgumentException or TimeoutException)
-        {
-            Error = ex.Message;
-        }
-        finally
-        {
-            IsBusy = false;
-        }
+
+        return true;
     }
 
     private async Task ReadStateAsync(IMachineConnection connection, CancellationToken cancellationToken)

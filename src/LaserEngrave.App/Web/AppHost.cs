@@ -24,6 +24,7 @@ public static class AppHost
         var services = builder.Services;
         services.AddSingleton(AppFolders.Default);
         services.AddSingleton(TimeProvider.System);
+        services.AddSingleton<MachineActivity>();
         services.AddSingleton<IImageService, ImageService>();
         services.AddSingleton<IMachineConnectionFactory>(new MachineConnectionFactory());
         services.AddSingleton<IRunService, ExecutorRunService>();
@@ -67,23 +68,29 @@ public static class AppHost
         return next(context);
     }
 
-    /// <summary>On exit the laser goes off and the ports close, whatever was running.</summary>
+    /// <summary>How long the exit waits for an aborted run to write its log before the ports are closed regardless.</summary>
+    internal static readonly TimeSpan RunEndWait = TimeSpan.FromMilliseconds(1000);
+
+    /// <summary>On exit the laser goes off and the ports close, whatever was running; an aborted run writes its log first.</summary>
     private static void Shutdown(IServiceProvider services)
     {
         var main = services.GetRequiredService<MainViewModel>();
         main.Run.AbortCommand.Execute(null);
+        main.Activity.CancelCurrent();
+        // The run's abort switches the laser off first, then the run writes its log; wait for that, but not for ever.
+        _ = main.Activity.WhenIdleAsync().Wait(RunEndWait);
         if (main.Machine.Connection is { } connection)
         {
             try
             {
-                connection.Gate.OffAsync(CancellationToken.None).WaitAsync(TimeSpan.FromSeconds(2)).GetAwaiter().GetResult();
+                connection.Gate.OffAsync(CancellationToken.None).WaitAsync(TimeSpan.FromMilliseconds(500)).GetAwaiter().GetResult();
             }
             catch (Exception ex) when (ex is TimeoutException or Devices.Abstractions.DeviceException or ObjectDisposedException or InvalidOperationException)
             {
                 // Nothing more can be done at exit; the gate's watchdog switches the laser off by itself.
             }
 
-            main.Machine.DisconnectCommand.ExecuteAsync(null).WaitAsync(TimeSpan.FromSeconds(3)).ContinueWith(_ => { }, TaskScheduler.Default).GetAwaiter().GetResult();
+            _ = main.Machine.CloseAsync().Wait(TimeSpan.FromMilliseconds(300));
         }
     }
 }

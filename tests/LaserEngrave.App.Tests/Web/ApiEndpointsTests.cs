@@ -161,7 +161,7 @@ public sealed class ApiEndpointsTests : IDisposable
         await UploadAsync(TestFiles.WriteChecker(folder.Path, 8, 6));
         await PostAsync("/api/job", new { widthMm = 0.8, originXMm = 0, originYMm = 0 });
         await PostAsync("/api/machine/connect", new { useSimulator = true }, HttpStatusCode.Accepted);
-        await WaitForAsync(s => s.GetProperty("machine").GetProperty("connected").GetBoolean(), TimeSpan.FromSeconds(20));
+        await WaitForAsync(s => s.GetProperty("machine").GetProperty("connected").GetBoolean() && !s.GetProperty("activity").GetProperty("busy").GetBoolean(), TimeSpan.FromSeconds(20));
 
         await PostAsync("/api/run/start", new { notes = "api test", sampleId = "T-1" }, HttpStatusCode.Accepted);
         var state = await WaitForAsync(s => !s.GetProperty("run").GetProperty("active").GetBoolean() && s.GetProperty("run").GetProperty("state").GetString() != "Idle", TimeSpan.FromSeconds(120));
