@@ -78,15 +78,6 @@ public sealed class ApiEndpointsTests : IDisposable
         Assert.Equal(41, state.GetProperty("image").GetProperty("info").GetProperty("width").GetInt32());
     }
 
-    [Fact]
-    public async Task Post_WithoutAppHeader_Forbidden()
-    {
-        using var client = _app.CreateClient();
-
-        using var response = await client.PostAsync("/api/run/start", JsonContent.Create(new { }), Token);
-
-        Assert.Equal(HttpStatusCode.Forbidden, response.StatusCode);
-    }
 
     [Fact]
     public async Task Upload_Asset_StateHasImageMaskAndEstimate()

@@ -18,7 +18,7 @@ internal sealed class AppFactory(Action<IServiceCollection>? configure = null) :
     public HttpClient NewClient()
     {
         var client = CreateClient();
-        client.DefaultRequestHeaders.Add(AppHost.RequestHeader, "1");
+        client.DefaultRequestHeaders.Authorization = new("Bearer", Services.GetRequiredService<AccessToken>().Value);
         return client;
     }
 
