@@ -6,6 +6,7 @@ using LaserEngrave.Core.Imaging;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
 using CommunityToolkit.Mvvm.Input;
+using Microsoft.AspNetCore.Http.Features;
 using Microsoft.AspNetCore.Http.HttpResults;
 
 namespace LaserEngrave.App.Web;
@@ -16,7 +17,6 @@ internal static class ApiEndpoints
 {
     private const int MaxPreviewSidePx = 1024;
     private const int MaxPlanMoves = 400_000;
-    private const long MaxUploadBytes = 512L * 1024 * 1024;
 
     public static void Map(IEndpointRouteBuilder app)
     {
@@ -188,18 +188,39 @@ internal static class ApiEndpoints
         return State(main);
     }
 
+    /// <summary>Keeps the page's file under the app's image folder and opens it; one limit, the app's, with its own message.</summary>
     private static async Task<IResult> UploadAsync(HttpRequest request, MainViewModel main, IFileAccess files, string? name)
     {
         main.Activity.ThrowIfJobLocked();
-        if (request.ContentLength is > MaxUploadBytes)
+        var fileName = Path.GetFileName(name ?? "image");
+        if (request.ContentLength is > IFileAccess.MaxUploadBytes)
         {
-            return Results.Json(new { error = $"the file is larger than {MaxUploadBytes / (1024 * 1024)} MB" }, statusCode: 413);
+            return TooLarge(new UploadException(fileName, Services.FileAccess.TooLarge).Message);
         }
 
-        var path = await files.SaveUploadAsync(name ?? "image", request.Body, request.HttpContext.RequestAborted).ConfigureAwait(false);
+        // Above Kestrel's limit by one byte, so the app's own rule, not the server's empty 413, answers a larger body.
+        if (request.HttpContext.Features.Get<IHttpMaxRequestBodySizeFeature>() is { IsReadOnly: false } limit)
+        {
+            limit.MaxRequestBodySize = IFileAccess.MaxUploadBytes + 1;
+        }
+
+        string path;
+        try
+        {
+            path = await files.SaveUploadAsync(fileName, request.Body, request.HttpContext.RequestAborted).ConfigureAwait(false);
+        }
+        catch (UploadException ex)
+        {
+            return ex.Message.EndsWith(Services.FileAccess.TooLarge, StringComparison.Ordinal)
+                ? TooLarge(ex.Message)
+                : Results.Json(new { error = ex.Message }, statusCode: StatusCodes.Status400BadRequest);
+        }
+
         main.Job.LoadImage(path);
         return State(main);
     }
+
+    private static IResult TooLarge(string message) => Results.Json(new { error = message }, statusCode: StatusCodes.Status413PayloadTooLarge);
 
     private static IResult EditJob(MainViewModel main, Dictionary<string, JsonElement> changes)
     {

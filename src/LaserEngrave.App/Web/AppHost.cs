@@ -31,6 +31,10 @@ public static class AppHost
         builder.WebHost.UseUrls(urls);
         builder.Services.Configure<HostOptions>(o => o.ShutdownTimeout = ShutdownTimeout);
 
+        // One upload limit, the app's: the server's and the form's limits are the same number, so no upload meets another.
+        builder.WebHost.ConfigureKestrel(k => k.Limits.MaxRequestBodySize = IFileAccess.MaxUploadBytes + 1);
+        builder.Services.Configure<Microsoft.AspNetCore.Http.Features.FormOptions>(o => o.MultipartBodyLengthLimit = IFileAccess.MaxUploadBytes);
+
         var services = builder.Services;
         services.AddSingleton<AccessToken>();
         services.AddSingleton(AppFolders.Default);

@@ -189,4 +189,21 @@ public sealed class ApiEndpointsTests : IDisposable
 
         Assert.Equal(HttpStatusCode.NotFound, response.StatusCode);
     }
+
+    [Fact]
+    public async Task OpenImage_Fifo_RefusedAtOnceNotARegularFile()
+    {
+        using var folder = TestFiles.NewFolder();
+        var fifo = Path.Combine(folder.Path, "image.png");
+        using (var mkfifo = System.Diagnostics.Process.Start("mkfifo", [fifo]))
+        {
+            await mkfifo.WaitForExitAsync(Token);
+        }
+
+        // Before, opening the FIFO blocked the request for ever; the bound only keeps a broken test from hanging.
+        var state = await PostAsync("/api/image/open", new { path = fifo }).WaitAsync(TimeSpan.FromSeconds(60), Token);
+
+        Assert.Equal($"{fifo}: is not a regular file (a pipe, device or socket): only image files are opened", state.GetProperty("job").GetProperty("errors").GetProperty("image").GetString());
+        Assert.Equal(JsonValueKind.Null, state.GetProperty("image").GetProperty("path").ValueKind);
+    }
 }

@@ -166,4 +166,57 @@ public sealed partial class AppProcessTests : IDisposable
 
         throw new TimeoutException("the app never reached the state");
     }
+
+    [Fact]
+    public async Task Upload_OverTheAppsLimitWithoutLength_AppsMessageNamingTheFileAndNothingLeft()
+    {
+        var process = Start(["--urls", "http://127.0.0.1:0"]);
+        var (address, secret) = await ReadStartLineAsync(process);
+        using var client = new HttpClient { BaseAddress = new Uri(address), Timeout = Bound };
+        client.DefaultRequestHeaders.Authorization = new("Bearer", secret);
+        using var content = new StreamContent(new ZeroStream((512L << 20) + 1));
+        content.Headers.ContentLength = null;
+
+        using var response = await client.PostAsync("/api/image?name=huge.png", content, Token);
+
+        Assert.Equal(HttpStatusCode.RequestEntityTooLarge, response.StatusCode);
+        var body = await response.Content.ReadFromJsonAsync<JsonElement>(Token);
+        Assert.Equal("huge.png: the file is larger than 512 MB, the most the app takes", body.GetProperty("error").GetString());
+        var images = Path.Combine(_data.Path, "images");
+        Assert.Empty(Directory.Exists(images) ? Directory.GetFiles(images) : []);
+    }
+
+    /// <summary>A body of zeros of a given length, made as it is read (sent chunked: no length header to refuse early).</summary>
+    private sealed class ZeroStream(long length) : Stream
+    {
+        private long _left = length;
+
+        public override bool CanRead => true;
+
+        public override bool CanSeek => false;
+
+        public override bool CanWrite => false;
+
+        public override long Length => throw new NotSupportedException();
+
+        public override long Position { get => throw new NotSupportedException(); set => throw new NotSupportedException(); }
+
+        public override int Read(byte[] buffer, int offset, int count)
+        {
+            var n = (int)Math.Min(count, _left);
+            Array.Clear(buffer, offset, n);
+            _left -= n;
+            return n;
+        }
+
+        public override void Flush()
+        {
+        }
+
+        public override long Seek(long offset, SeekOrigin origin) => throw new NotSupportedException();
+
+        public override void SetLength(long value) => throw new NotSupportedException();
+
+        public override void Write(byte[] buffer, int offset, int count) => throw new NotSupportedException();
+    }
 }
