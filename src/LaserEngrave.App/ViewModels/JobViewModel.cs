@@ -192,6 +192,18 @@ public sealed partial class JobViewModel : ObservableObject
     {
         ArgumentException.ThrowIfNullOrWhiteSpace(path);
         _activity.ThrowIfJobLocked();
+        if (!Open(path))
+        {
+            return false;
+        }
+
+        RebuildMask();
+        return true;
+    }
+
+    /// <summary>Decodes the image and its preview into the fields; a method of its own so no caller's frame keeps the pixels alive.</summary>
+    private bool Open(string path)
+    {
         LoadedImage image;
         try
         {
@@ -227,7 +239,6 @@ public sealed partial class JobViewModel : ObservableObject
             ImageInfo = image.Info;
         }
 
-        RebuildMask();
         return true;
     }
 
@@ -384,12 +395,30 @@ public sealed partial class JobViewModel : ObservableObject
 
     private void RebuildMask()
     {
+        if (BuildMask() is not { } released)
+        {
+            return;
+        }
+
+        if (released)
+        {
+            // Give the decoded pixels back to the system now, not at some later collection, so the app's size stays the mask's.
+            GC.Collect(GC.MaxGeneration, GCCollectionMode.Aggressive, blocking: true, compacting: true);
+        }
+
+        Replan();
+    }
+
+    /// <summary>Builds the mask; true when a large image's pixels were dropped, null without an image.</summary>
+    /// <remarks>A method of its own: the caller collects once this frame, which held the pixels, is gone.</remarks>
+    private bool? BuildMask()
+    {
         var released = false;
         lock (_lock)
         {
             if (ImagePath is not { } path || ImageInfo is null)
             {
-                return;
+                return null;
             }
 
             var errors = new Dictionary<string, string>(Errors);
@@ -422,13 +451,7 @@ public sealed partial class JobViewModel : ObservableObject
             SetErrors(errors);
         }
 
-        if (released)
-        {
-            // Give the decoded pixels back to the system now, not at some later collection, so the app's size stays the mask's.
-            GC.Collect(GC.MaxGeneration, GCCollectionMode.Aggressive, blocking: true, compacting: true);
-        }
-
-        Replan();
+        return released;
     }
 
     private void Replan()
