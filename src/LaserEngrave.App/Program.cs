@@ -10,9 +10,17 @@ if (args.Any(a => a is "--help" or "-h"))
 }
 
 AppOptions options;
+WebApplication app;
 try
 {
     options = AppOptions.Parse(args);
+    app = AppHost.Build([.. options.HostArgs], options.Url, services =>
+    {
+        if (options.DataFolder is { } folder)
+        {
+            services.AddSingleton(new AppFolders(Path.GetFullPath(folder)));
+        }
+    });
 }
 catch (ArgumentException ex)
 {
@@ -20,16 +28,20 @@ catch (ArgumentException ex)
     return 2;
 }
 
-var app = AppHost.Build([.. options.HostArgs], options.Url, services =>
-{
-    if (options.DataFolder is { } folder)
-    {
-        services.AddSingleton(new AppFolders(Path.GetFullPath(folder)));
-    }
-});
 await app.StartAsync();
-var url = app.Services.GetRequiredService<IServer>().Features.Get<IServerAddressesFeature>()!.Addresses.First();
-Console.WriteLine($"LaserEngrave is running at {url}  (Ctrl+C to stop)");
+var addresses = app.Services.GetRequiredService<IServer>().Features.Get<IServerAddressesFeature>()!.Addresses;
+if (addresses.FirstOrDefault(a => !LoopbackAddresses.IsLoopback(a)) is { } open)
+{
+    // Configuration the checks before the start did not see: never stay open to the network.
+    Console.Error.WriteLine($"{open} is not an address of this computer: the app listens on loopback only");
+    await app.StopAsync();
+    return 2;
+}
+
+var token = app.Services.GetRequiredService<AccessToken>();
+var url = $"{addresses.First().TrimEnd('/')}/?{AccessToken.QueryName}={token.Value}";
+Console.WriteLine($"LaserEngrave is running at {url}");
+Console.WriteLine("Ctrl+C stops it (the laser is switched off first).");
 if (options.OpenBrowser && !BrowserLauncher.TryOpen(url))
 {
     Console.WriteLine("Could not open a browser: open the address above yourself.");

@@ -1,7 +1,8 @@
 namespace LaserEngrave.App.Services;
 
 /// <summary>The real <see cref="IFileAccess"/>: uploads under <see cref="AppFolders.UploadFolder"/>, folders opened by the shell.</summary>
-public sealed class FileAccess(AppFolders folders) : IFileAccess
+/// <param name="maxUploadBytes">The upload limit; the app's <see cref="IFileAccess.MaxUploadBytes"/> except in tests.</param>
+public sealed class FileAccess(AppFolders folders, long maxUploadBytes = IFileAccess.MaxUploadBytes) : IFileAccess
 {
     public async Task<string> SaveUploadAsync(string fileName, Stream content, CancellationToken cancellationToken)
     {
@@ -16,14 +17,52 @@ public sealed class FileAccess(AppFolders folders) : IFileAccess
 
         Directory.CreateDirectory(folders.UploadFolder);
         var path = Path.Combine(folders.UploadFolder, name);
-        var file = File.Create(path);
-        await using (file.ConfigureAwait(false))
-        {
-            await content.CopyToAsync(file, cancellationToken).ConfigureAwait(false);
-        }
 
-        return path;
+        // Written under a temporary name and moved into place only when whole: a failed upload leaves nothing behind.
+        var partial = Path.Combine(folders.UploadFolder, $".{name}.{Path.GetRandomFileName()}.part");
+        try
+        {
+            var file = File.Create(partial);
+            await using (file.ConfigureAwait(false))
+            {
+                var buffer = new byte[81920];
+                long total = 0;
+                int read;
+                while ((read = await content.ReadAsync(buffer, cancellationToken).ConfigureAwait(false)) > 0)
+                {
+                    total += read;
+                    if (total > maxUploadBytes)
+                    {
+                        throw new UploadException(name, TooLargeFor(maxUploadBytes));
+                    }
+
+                    await file.WriteAsync(buffer.AsMemory(0, read), cancellationToken).ConfigureAwait(false);
+                }
+            }
+
+            File.Move(partial, path, overwrite: true);
+            return path;
+        }
+        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException or OperationCanceledException or UploadException)
+        {
+            File.Delete(partial);
+            throw ex switch
+            {
+                UploadException => ex,
+                OperationCanceledException => new UploadException(name, "the upload was interrupted", ex),
+                _ when IsBodyTooLarge(ex) => new UploadException(name, TooLargeFor(maxUploadBytes), ex),
+                _ => new UploadException(name, ex.Message, ex),
+            };
+        }
     }
+
+    /// <summary>The app's one rule for uploads, in its words.</summary>
+    public static string TooLarge => TooLargeFor(IFileAccess.MaxUploadBytes);
+
+    private static string TooLargeFor(long bytes) => $"the file is larger than {(bytes >= 1 << 20 ? $"{bytes >> 20} MB" : $"{bytes} bytes")}, the most the app takes";
+
+    // Kestrel's own limit surfaces as a bad request with status 413 while the body is read.
+    private static bool IsBodyTooLarge(Exception ex) => ex is Microsoft.AspNetCore.Http.BadHttpRequestException { StatusCode: 413 };
 
     public bool Exists(string path) => File.Exists(path);
 

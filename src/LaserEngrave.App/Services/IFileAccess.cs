@@ -3,7 +3,11 @@ namespace LaserEngrave.App.Services;
 /// <summary>Files the page hands over and folders the user asks to see.</summary>
 public interface IFileAccess
 {
+    /// <summary>The largest upload the app takes, bytes (512 MB); the web server's and the form's limits are set to it.</summary>
+    const long MaxUploadBytes = 512L << 20;
+
     /// <summary>Keeps an uploaded file under the app's image folder; returns its path.</summary>
+    /// <exception cref="UploadException">Too large, interrupted or not writable: one line naming the file; nothing is left behind.</exception>
     Task<string> SaveUploadAsync(string fileName, Stream content, CancellationToken cancellationToken);
 
     bool Exists(string path);

@@ -7,7 +7,9 @@ namespace LaserEngrave.App.Services;
 /// <summary>The real <see cref="IImageService"/> over Core.</summary>
 public sealed class ImageService : IImageService
 {
-    public LoadedImage Load(string path) => ImageLoader.Load(path);
+    /// <remarks>Only regular files are opened: a FIFO would block the request that opens it for ever.</remarks>
+    public LoadedImage Load(string path) =>
+        RegularFile.Problem(path) is { } problem ? throw new ImageLoadException(path, problem) : ImageLoader.Load(path);
 
     public BitMask BuildMask(LoadedImage image, MaskOptions options) => MaskBuilder.Build(image, options);
 

@@ -40,19 +40,40 @@ public sealed partial class JobViewModel : ObservableObject
     ];
 
     private readonly IImageService _images;
+    private readonly MachineActivity _activity;
     private readonly Lock _lock = new();
+    /// <summary>Decoded images up to this size stay in memory for the next threshold change; larger ones are decoded again.</summary>
+    public const long RetainedImageBytes = 32L << 20;
+
+    /// <summary>The longer side of the original image's preview, px.</summary>
+    public const int PreviewSidePx = 1024;
+
     private MachineProfile _profile;
     private LoadedImage? _image;
+    private byte[]? _originalPreview;
     private int _suspended;
+    private int _following;
 
-    public JobViewModel(IImageService images, MachineProfile profile)
+    /// <param name="activity">What holds the machine: while a run, homing or a test move is under way the job cannot change.</param>
+    public JobViewModel(IImageService images, MachineProfile profile, MachineActivity? activity = null)
     {
         ArgumentNullException.ThrowIfNull(images);
         ArgumentNullException.ThrowIfNull(profile);
         _images = images;
         _profile = profile;
+        _activity = activity ?? new MachineActivity();
+        _activity.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName == nameof(MachineActivity.Current))
+            {
+                OnPropertyChanged(nameof(LockedBecause));
+            }
+        };
         Apply(FromProfile(profile));
     }
+
+    /// <summary>Why the job cannot be changed now (a run, homing or a test move is under way); null when it can. Views disable the fields.</summary>
+    public string? LockedBecause => _activity.JobLockMessage;
 
     [ObservableProperty]
     public partial string? ImagePath { get; private set; }
@@ -146,7 +167,11 @@ public sealed partial class JobViewModel : ObservableObject
     /// <summary>Microsteps per pixel of the current pitch (need not be whole).</summary>
     public double MicrostepsPerPixel => PitchUm / _profile.X.MicrostepUm;
 
+    /// <summary>The decoded image while it is small enough to keep (<see cref="RetainedImageBytes"/>); null for a large one, whose pixels are dropped once its mask is built.</summary>
     public LoadedImage? Image => _image;
+
+    /// <summary>The image as a PNG of at most <see cref="PreviewSidePx"/> on its longer side, made when it was opened; null without an image.</summary>
+    public byte[]? OriginalPreviewPng() => _originalPreview;
 
     /// <summary>The job's values as the profile suggests them.</summary>
     public static JobSettings FromProfile(MachineProfile profile)
@@ -162,9 +187,23 @@ public sealed partial class JobViewModel : ObservableObject
     }
 
     /// <summary>Opens an image; a file that cannot be read leaves the previous image and shows the error beside the image.</summary>
+    /// <exception cref="MachineBusyException">A run, homing or a test move is under way.</exception>
     public bool LoadImage(string path)
     {
         ArgumentException.ThrowIfNullOrWhiteSpace(path);
+        _activity.ThrowIfJobLocked();
+        if (!Open(path))
+        {
+            return false;
+        }
+
+        RebuildMask();
+        return true;
+    }
+
+    /// <summary>Decodes the image and its preview into the fields; a method of its own so no caller's frame keeps the pixels alive.</summary>
+    private bool Open(string path)
+    {
         LoadedImage image;
         try
         {
@@ -181,14 +220,25 @@ public sealed partial class JobViewModel : ObservableObject
             return false;
         }
 
+        byte[] preview;
+        try
+        {
+            preview = _images.RenderOriginalPng(image, PreviewSidePx);
+        }
+        catch (ArgumentException ex)
+        {
+            SetErrors(new Dictionary<string, string>(Errors) { [ImageField] = $"{path}: {ex.Message}" });
+            return false;
+        }
+
         lock (_lock)
         {
             _image = image;
+            _originalPreview = preview;
             ImagePath = path;
             ImageInfo = image.Info;
         }
 
-        RebuildMask();
         return true;
     }
 
@@ -217,6 +267,7 @@ public sealed partial class JobViewModel : ObservableObject
     public void UseProfile(MachineProfile profile)
     {
         ArgumentNullException.ThrowIfNull(profile);
+        _activity.ThrowIfJobLocked();
         _profile = profile;
         OnPropertyChanged(nameof(Profile));
         Replan();
@@ -276,9 +327,11 @@ public sealed partial class JobViewModel : ObservableObject
     };
 
     /// <summary>Runs several changes and plans once at the end.</summary>
+    /// <exception cref="MachineBusyException">A run, homing or a test move is under way: nothing is changed.</exception>
     public void Batch(Action changes)
     {
         ArgumentNullException.ThrowIfNull(changes);
+        _activity.ThrowIfJobLocked();
         Interlocked.Increment(ref _suspended);
         var maskChanged = false;
         var planChanged = false;
@@ -309,6 +362,18 @@ public sealed partial class JobViewModel : ObservableObject
         }
     }
 
+    /// <summary>Every job value refuses to change while the machine works on the job: the one place the interlock is kept.</summary>
+    protected override void OnPropertyChanging(PropertyChangingEventArgs e)
+    {
+        ArgumentNullException.ThrowIfNull(e);
+        if (Volatile.Read(ref _following) == 0 && (MaskInputs.Contains(e.PropertyName!) || PlanInputs.Contains(e.PropertyName!) || e.PropertyName == nameof(AspectLocked)))
+        {
+            _activity.ThrowIfJobLocked();
+        }
+
+        base.OnPropertyChanging(e);
+    }
+
     protected override void OnPropertyChanged(PropertyChangedEventArgs e)
     {
         ArgumentNullException.ThrowIfNull(e);
@@ -330,11 +395,30 @@ public sealed partial class JobViewModel : ObservableObject
 
     private void RebuildMask()
     {
+        if (BuildMask() is not { } released)
+        {
+            return;
+        }
+
+        if (released)
+        {
+            // Give the decoded pixels back to the system now, not at some later collection, so the app's size stays the mask's.
+            GC.Collect(GC.MaxGeneration, GCCollectionMode.Aggressive, blocking: true, compacting: true);
+        }
+
+        Replan();
+    }
+
+    /// <summary>Builds the mask; true when a large image's pixels were dropped, null without an image.</summary>
+    /// <remarks>A method of its own: the caller collects once this frame, which held the pixels, is gone.</remarks>
+    private bool? BuildMask()
+    {
+        var released = false;
         lock (_lock)
         {
-            if (_image is null)
+            if (ImagePath is not { } path || ImageInfo is null)
             {
-                return;
+                return null;
             }
 
             var errors = new Dictionary<string, string>(Errors);
@@ -342,10 +426,23 @@ public sealed partial class JobViewModel : ObservableObject
             errors.Remove(ThresholdField);
             try
             {
-                Mask = _images.BuildMask(_image, new MaskOptions { ThresholdPercent = ThresholdPercent, Dither = Dither, Invert = Invert });
+                // A large image was dropped after its last mask: decode it again (its file is the app's copy or the user's own).
+                var image = _image ?? _images.Load(path);
+                Mask = _images.BuildMask(image, new MaskOptions { ThresholdPercent = ThresholdPercent, Dither = Dither, Invert = Invert });
                 MaskVersion++;
+                if ((long)image.Stride * image.Height > RetainedImageBytes)
+                {
+                    // Only the 1-bit mask stays: a 32768 x 32768 greyscale image would otherwise keep 1 GB.
+                    released = true;
+                    _image = null;
+                }
             }
-            catch (Exception ex) when (ex is ArgumentException or ImageLoadException or InvalidOperationException)
+            catch (ImageLoadException ex)
+            {
+                errors[ImageField] = ex.Message;
+                Mask = null;
+            }
+            catch (Exception ex) when (ex is ArgumentException or InvalidOperationException)
             {
                 errors[ThresholdField] = ex.Message;
                 Mask = null;
@@ -354,7 +451,7 @@ public sealed partial class JobViewModel : ObservableObject
             SetErrors(errors);
         }
 
-        Replan();
+        return released;
     }
 
     private void Replan()
@@ -403,6 +500,7 @@ public sealed partial class JobViewModel : ObservableObject
 
                 // The fields that follow show what the job will really be.
                 Interlocked.Increment(ref _suspended);
+                Interlocked.Increment(ref _following);
                 try
                 {
                     if (SizeMode != SizeMode.Width)
@@ -422,6 +520,7 @@ public sealed partial class JobViewModel : ObservableObject
                 }
                 finally
                 {
+                    Interlocked.Decrement(ref _following);
                     Interlocked.Decrement(ref _suspended);
                 }
             }

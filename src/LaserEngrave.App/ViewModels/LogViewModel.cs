@@ -106,7 +106,7 @@ public sealed partial class LogViewModel : ObservableObject
             Notes = record.Notes;
             SampleId = record.SampleId;
         }
-        catch (RunLogException ex)
+        catch (Exception ex) when (ex is RunLogException or MachineBusyException)
         {
             Error = ex.Message;
         }

@@ -12,13 +12,29 @@ public sealed partial class MachineViewModel : ObservableObject
 {
     private readonly IMachineConnectionFactory _factory;
 
-    public MachineViewModel(IMachineConnectionFactory factory, MachineProfile profile)
+    /// <param name="activity">The app's one record of what holds the machine; a new one when not shared (tests).</param>
+    public MachineViewModel(IMachineConnectionFactory factory, MachineProfile profile, MachineActivity? activity = null)
     {
         ArgumentNullException.ThrowIfNull(factory);
         ArgumentNullException.ThrowIfNull(profile);
         _factory = factory;
         Profile = profile;
+        Activity = activity ?? new MachineActivity();
+        Activity.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName == nameof(MachineActivity.Current))
+            {
+                OnPropertyChanged(nameof(IsBusy));
+                foreach (var command in new IRelayCommand[] { ConnectCommand, DisconnectCommand, IdentifyCommand, HomeCommand })
+                {
+                    command.NotifyCanExecuteChanged();
+                }
+            }
+        };
     }
+
+    /// <summary>What holds the machine now; shared by every view-model that drives it.</summary>
+    public MachineActivity Activity { get; }
 
     [ObservableProperty]
     public partial bool UseSimulator { get; set; } = true;
@@ -60,8 +76,8 @@ public sealed partial class MachineViewModel : ObservableObject
     [ObservableProperty]
     public partial string? Error { get; set; }
 
-    [ObservableProperty]
-    public partial bool IsBusy { get; private set; }
+    /// <summary>Whether any operation holds the machine (then the machine commands are disabled).</summary>
+    public bool IsBusy => Activity.IsBusy;
 
     public bool IsConnected => Connection is not null;
 
@@ -78,30 +94,46 @@ public sealed partial class MachineViewModel : ObservableObject
     }
 
     /// <summary>Opens the machine and reads its state; any failure leaves it disconnected with the reason shown.</summary>
-    [RelayCommand(IncludeCancelCommand = true)]
-    private async Task ConnectAsync(CancellationToken cancellationToken)
+    [RelayCommand(CanExecute = nameof(CanUseMachine))]
+    private Task ConnectAsync() => Guard(MachineOperation.Connecting, async cancellationToken =>
     {
-        await DisconnectAsync();
-        await Guard(async () =>
+        await CloseAsync();
+        var connection = await _factory.ConnectAsync(new MachineChoice(UseSimulator, StagePort, LaserPort), Profile, cancellationToken);
+        Connection = connection;
+        OnPropertyChanged(nameof(IsConnected));
+        try
         {
-            var connection = await _factory.ConnectAsync(new MachineChoice(UseSimulator, StagePort, LaserPort), Profile, cancellationToken);
-            Connection = connection;
-            OnPropertyChanged(nameof(IsConnected));
-            try
-            {
-                await TaskRunner.Run(connection.TimeProvider, () => ReadStateAsync(connection, cancellationToken));
-            }
-            catch
-            {
-                // A machine that does not answer is closed again, so the next connect starts clean.
-                await DisconnectAsync();
-                throw;
-            }
-        });
-    }
+            await TaskRunner.Run(connection.TimeProvider, () => ReadStateAsync(connection, cancellationToken));
+        }
+        catch
+        {
+            // A machine that does not answer is closed again, so the next connect starts clean.
+            await CloseAsync();
+            throw;
+        }
+    });
 
-    [RelayCommand]
-    private async Task DisconnectAsync()
+    [RelayCommand(CanExecute = nameof(CanUseMachine))]
+    private Task DisconnectAsync() => Guard(MachineOperation.Disconnecting, _ => CloseAsync());
+
+    [RelayCommand(CanExecute = nameof(CanUseMachine))]
+    private Task IdentifyAsync() =>
+        Guard(MachineOperation.Identifying, cancellationToken => ReadStateAsync(RequireConnection(), cancellationToken));
+
+    /// <summary>Homes both axes together, the laser switched off first.</summary>
+    [RelayCommand(CanExecute = nameof(CanUseMachine))]
+    private Task HomeAsync() => Guard(MachineOperation.Homing, async cancellationToken =>
+    {
+        var connection = RequireConnection();
+        await connection.Gate.OffAsync(cancellationToken);
+        await Task.WhenAll(connection.Stage.X.HomeAsync(cancellationToken), connection.Stage.Y.HomeAsync(cancellationToken));
+        await ReadStateAsync(connection, cancellationToken);
+    });
+
+    private bool CanUseMachine() => !Activity.IsBusy;
+
+    /// <summary>Closes the connection whatever holds the machine: for the app's exit, after the run was aborted.</summary>
+    internal async Task CloseAsync()
     {
         var connection = Connection;
         Connection = null;
@@ -116,20 +148,6 @@ public sealed partial class MachineViewModel : ObservableObject
         }
     }
 
-    [RelayCommand(IncludeCancelCommand = true)]
-    private Task IdentifyAsync(CancellationToken cancellationToken) =>
-        Guard(() => ReadStateAsync(RequireConnection(), cancellationToken));
-
-    /// <summary>Homes both axes together, the laser switched off first.</summary>
-    [RelayCommand(IncludeCancelCommand = true)]
-    private Task HomeAsync(CancellationToken cancellationToken) => Guard(async () =>
-    {
-        var connection = RequireConnection();
-        await connection.Gate.OffAsync(cancellationToken);
-        await Task.WhenAll(connection.Stage.X.HomeAsync(cancellationToken), connection.Stage.Y.HomeAsync(cancellationToken));
-        await ReadStateAsync(connection, cancellationToken);
-    });
-
     /// <summary>Reads both positions and the gate's state again.</summary>
     public Task ReadPositionsAsync(CancellationToken cancellationToken)
     {
@@ -143,28 +161,38 @@ public sealed partial class MachineViewModel : ObservableObject
 
     internal IMachineConnection RequireConnection() => Connection ?? throw new DeviceException("not connected: connect to the simulator or the machine first");
 
-    /// <summary>Runs a machine command, showing its failure as <see cref="Error"/>; never throws what the user caused.</summary>
-    internal async Task Guard(Func<Task> action)
+    /// <summary>
+    /// Runs a machine command holding the machine for <paramref name="operation"/>, showing its failure as <see cref="Error"/>;
+    /// refused with one line when another operation holds the machine; never throws what the user caused.
+    /// </summary>
+    /// <returns>False when refused because the machine is busy.</returns>
+    internal async Task<bool> Guard(MachineOperation operation, Func<CancellationToken, Task> action)
     {
-        IsBusy = true;
-        Error = null;
-        try
+        if (!Activity.TryBegin(operation, out var lease, out var refusal))
         {
-            // Where the machine's clock says: on the simulation's loop in virtual time.
-            await TaskRunner.Run(Connection?.TimeProvider ?? TimeProvider.System, action);
+            Error = refusal;
+            return false;
         }
-        catch (OperationCanceledException)
+
+        using (lease)
         {
-            Error = "cancelled";
+            Error = null;
+            try
+            {
+                // Where the machine's clock says: on the simulation's loop in virtual time.
+                await TaskRunner.Run(Connection?.TimeProvider ?? TimeProvider.System, () => action(lease.CancellationToken));
+            }
+            catch (OperationCanceledException)
+            {
+                Error = "cancelled";
+            }
+            catch (Exception ex) when (ex is DeviceException or IOException or UnauthorizedAccessException or InvalidOperationException or ArgumentException or TimeoutException)
+            {
+                Error = ex.Message;
+            }
         }
-        catch (Exception ex) when (ex is DeviceException or IOException or UnauthorizedAccessException or InvalidOperationException or ArgumentException or TimeoutException)
-        {
-            Error = ex.Message;
-        }
-        finally
-        {
-            IsBusy = false;
-        }
+
+        return true;
     }
 
     private async Task ReadStateAsync(IMachineConnection connection, CancellationToken cancellationToken)

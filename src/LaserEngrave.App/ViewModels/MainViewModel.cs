@@ -20,7 +20,8 @@ public sealed partial class MainViewModel : ObservableObject
         IRunLogStore logs,
         ISettingsStore settings,
         IFileAccess files,
-        TimeProvider time)
+        TimeProvider time,
+        MachineActivity activity)
     {
         ArgumentNullException.ThrowIfNull(settings);
         ArgumentNullException.ThrowIfNull(files);
@@ -30,8 +31,9 @@ public sealed partial class MainViewModel : ObservableObject
         SampleImages = files.SampleImages();
         var (profile, profileError) = LoadProfile(Settings.ProfilePath);
         ProfileError = profileError;
-        Job = new JobViewModel(images, profile);
-        Machine = new MachineViewModel(machines, profile)
+        Activity = activity;
+        Job = new JobViewModel(images, profile, activity);
+        Machine = new MachineViewModel(machines, profile, activity)
         {
             UseSimulator = Settings.UseSimulator,
             StagePort = Settings.StagePort,
@@ -39,13 +41,16 @@ public sealed partial class MainViewModel : ObservableObject
         };
         TestMoves = new TestMovesViewModel(Machine, Job);
         Log = new LogViewModel(logs, files, Job);
-        Run = new RunViewModel(runs, Job, Machine, TestMoves, Log, time);
+        Run = new RunViewModel(runs, Job, Machine, Log, time);
         Machine.PropertyChanged += OnMachineChanged;
         Job.PropertyChanged += OnJobChanged;
     }
 
     /// <summary>Images to start with, shipped with the app, so a newcomer can engrave at once.</summary>
     public IReadOnlyList<string> SampleImages { get; }
+
+    /// <summary>What holds the machine now (a run, homing, a test move), for every view to disable what it must.</summary>
+    public MachineActivity Activity { get; }
 
     public JobViewModel Job { get; }
 

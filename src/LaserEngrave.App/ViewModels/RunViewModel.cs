@@ -1,3 +1,4 @@
+using System.Text.Json;
 using CommunityToolkit.Mvvm.ComponentModel;
 using CommunityToolkit.Mvvm.Input;
 using LaserEngrave.App.Services;
@@ -20,26 +21,44 @@ public sealed partial class RunViewModel : ObservableObject
     private readonly IRunService _runs;
     private readonly JobViewModel _job;
     private readonly MachineViewModel _machine;
-    private readonly TestMovesViewModel _testMoves;
     private readonly LogViewModel _log;
     private readonly TimeProvider _time;
     private RunPauseGate _pause = new();
     private CancellationTokenSource? _abort;
+    private StoppedRun? _stopped;
+    private (int PlanVersion, string? Reason) _continueCheck = (-1, null);
     private long _startedTicks;
     private double _estimatedSeconds;
 
-    public RunViewModel(IRunService runs, JobViewModel job, MachineViewModel machine, TestMovesViewModel testMoves, LogViewModel log, TimeProvider time)
+    public RunViewModel(IRunService runs, JobViewModel job, MachineViewModel machine, LogViewModel log, TimeProvider time)
     {
         ArgumentNullException.ThrowIfNull(runs);
         ArgumentNullException.ThrowIfNull(job);
         ArgumentNullException.ThrowIfNull(machine);
-        ArgumentNullException.ThrowIfNull(testMoves);
         ArgumentNullException.ThrowIfNull(log);
         ArgumentNullException.ThrowIfNull(time);
         _runs = runs;
         _job = job;
         _machine = machine;
-        _testMoves = testMoves;
+        _machine.Activity.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName == nameof(MachineActivity.Current))
+            {
+                StartCommand.NotifyCanExecuteChanged();
+                ContinueCommand.NotifyCanExecuteChanged();
+                OnPropertyChanged(nameof(CanContinue));
+                OnPropertyChanged(nameof(ContinueUnavailableReason));
+            }
+        };
+        _job.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName == nameof(JobViewModel.PlanVersion))
+            {
+                ContinueCommand.NotifyCanExecuteChanged();
+                OnPropertyChanged(nameof(CanContinue));
+                OnPropertyChanged(nameof(ContinueUnavailableReason));
+            }
+        };
         _log = log;
         _time = time;
     }
@@ -61,12 +80,20 @@ public sealed partial class RunViewModel : ObservableObject
     [ObservableProperty]
     public partial double ElapsedSecondsAtEnd { get; private set; }
 
-    /// <summary>Where the last run stopped (failed or aborted), while the plan it ran is still the one planned; null otherwise.</summary>
+    /// <summary>Where the last run stopped (failed or aborted); kept, with the plan it ran, until a run completes or starts afresh.</summary>
     [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(CanContinue), nameof(ContinueUnavailableReason))]
+    [NotifyCanExecuteChangedFor(nameof(ContinueCommand))]
     public partial RunStopPoint? StoppedAt { get; private set; }
 
-    /// <summary>Whether <see cref="ContinueCommand"/> can pick the stopped run up: same plan, nothing under way.</summary>
-    public bool CanContinue => !IsActive && StoppedAt is not null && RunPlanVersion == _job.PlanVersion && _machine.Connection is not null;
+    /// <summary>Whether <see cref="ContinueCommand"/> can pick the stopped run up: the job as it stopped, nothing under way.</summary>
+    public bool CanContinue => StoppedAt is not null && ContinueUnavailableReason is null;
+
+    /// <summary>
+    /// Why a stopped run cannot be continued now, one line (e.g. the job changed, naming what); null when it can, or when
+    /// no run stopped. Setting the job back as it was offers Continue again.
+    /// </summary>
+    public string? ContinueUnavailableReason => StoppedAt is null ? null : WhyNotContinue();
 
     public bool IsActive => State is RunState.Running or RunState.Paused or RunState.Aborting;
 
@@ -99,13 +126,21 @@ public sealed partial class RunViewModel : ObservableObject
     }
 
     /// <summary>Runs the planned job on the connected machine; <see cref="AbortCommand"/> stops it.</summary>
-    [RelayCommand]
-    private async Task StartAsync(CancellationToken cancellationToken)
+    /// <remarks>A second Start while a run is under way is ignored (never taken as an abort); <see cref="Notice"/> says so.</remarks>
+    [RelayCommand(CanExecute = nameof(CanStart))]
+    private async Task StartAsync()
     {
-        Error = null;
         if (IsActive)
         {
-            Error = "a run is already under way";
+            Notice = "a run is already under way: this Start was ignored";
+            return;
+        }
+
+        Error = null;
+        Notice = null;
+        if (_machine.Activity.BusyMessage is { } busy)
+        {
+            Error = busy;
             return;
         }
 
@@ -123,31 +158,83 @@ public sealed partial class RunViewModel : ObservableObject
             return;
         }
 
-        await RunAsync(job!, connection!, resumeFrom: null, cancellationToken).ConfigureAwait(false);
+        await RunAsync(job!, _job.ToSettings(), connection!, resumeFrom: null);
     }
 
     /// <summary>
     /// Continues the run that stopped (a fault or an abort) from its first burn run not completed, laser off on the way
-    /// there, so the sample ends with no gap and nothing burned twice. Only while the plan is the one that stopped.
+    /// there, so the sample ends with no gap and nothing burned twice. Only with the plan it stopped on, while the job
+    /// is as it was then; <see cref="ContinueUnavailableReason"/> says why not otherwise.
     /// </summary>
-    [RelayCommand]
-    private async Task ContinueAsync(CancellationToken cancellationToken)
+    [RelayCommand(CanExecute = nameof(CanContinue))]
+    private async Task ContinueAsync()
     {
+        if (IsActive)
+        {
+            Notice = "a run is already under way: this Continue was ignored";
+            return;
+        }
+
         Error = null;
-        var job = _job.Job;
+        Notice = null;
+        var stopped = _stopped;
         var connection = _machine.Connection;
-        var problem = IsActive ? "a run is already under way"
-            : StoppedAt is null ? "no stopped run to continue: the last run completed, or none ran"
-            : job is null || RunPlanVersion != _job.PlanVersion ? "the job changed since the run stopped: continuing would not match what is burned; start it again instead"
-            : connection is null ? "not connected: connect to the machine the run stopped on first"
-            : null;
+        var problem = StoppedAt is null || stopped is null ? "no stopped run to continue: the last run completed, or none ran"
+            : WhyNotContinue();
         if (problem is not null)
         {
             Error = problem;
             return;
         }
 
-        await RunAsync(job!, connection!, StoppedAt, cancellationToken).ConfigureAwait(false);
+        await RunAsync(stopped!.Job, stopped.Settings, connection!, stopped.StopPoint);
+    }
+
+    /// <summary>One line for the user on a request that did nothing, e.g. a second Start during a run.</summary>
+    [ObservableProperty]
+    public partial string? Notice { get; private set; }
+
+    private bool CanStart() => !_machine.Activity.IsBusy;
+
+    private string? WhyNotContinue()
+    {
+        if (_machine.Activity.BusyMessage is { } busy)
+        {
+            return busy;
+        }
+
+        if (_machine.Connection is null)
+        {
+            return "not connected: connect to the machine the run stopped on first";
+        }
+
+        var planVersion = _job.PlanVersion;
+        var check = _continueCheck;
+        if (check.PlanVersion != planVersion)
+        {
+            check = _continueCheck = (planVersion, _stopped is { } stopped ? JobDifference(stopped) : "no stopped run to continue");
+        }
+
+        return check.Reason;
+    }
+
+    /// <summary>What about the job differs from the one the run stopped on, as one line; null when nothing does.</summary>
+    private string? JobDifference(StoppedRun stopped)
+    {
+        var now = JsonSerializer.SerializeToElement(_job.ToSettings(), JsonSerializerOptions.Web);
+        var then = JsonSerializer.SerializeToElement(stopped.Settings, JsonSerializerOptions.Web);
+        var changed = then.EnumerateObject()
+            .Where(p => !now.TryGetProperty(p.Name, out var value) || value.GetRawText() != p.Value.GetRawText())
+            .Select(p => p.Name)
+            .Where(name => name != "passes")
+            .ToList();
+        if (changed.Count == 0 && (_job.Mask is not { } mask || !mask.ContentEquals(stopped.Job.Mask)))
+        {
+            changed.Add("image");
+        }
+
+        return changed.Count == 0 ? null
+            : $"the job changed since the run stopped ({string.Join(", ", changed)}): continuing would not match what is burned; set it back to continue, or start again";
     }
 
     [RelayCommand]
@@ -181,8 +268,15 @@ public sealed partial class RunViewModel : ObservableObject
         }
     }
 
-    private async Task RunAsync(PreparedJob job, IMachineConnection connection, RunStopPoint? resumeFrom, CancellationToken cancellationToken)
+    private async Task RunAsync(PreparedJob job, JobSettings settings, IMachineConnection connection, RunStopPoint? resumeFrom)
     {
+        if (!_machine.Activity.TryBegin(MachineOperation.Run, out var lease, out var refusal))
+        {
+            Error = refusal;
+            return;
+        }
+
+        using var held = lease;
         var continuedFrom = resumeFrom is null ? null : _log.LastRun?.Path;
         _pause = new RunPauseGate();
         _startedTicks = _time.GetTimestamp();
@@ -200,16 +294,15 @@ public sealed partial class RunViewModel : ObservableObject
         RunPlanVersion = _job.PlanVersion;
         Progress = new RunProgress(0, 0, 0, 0, 1, 0, 0, false, "preflight");
         State = RunState.Running;
-        _testMoves.RunActive = true;
         RunResult? result = null;
         Exception? error = null;
-        // Whichever command started the run, Abort cancels this.
-        using var abort = CancellationTokenSource.CreateLinkedTokenSource(cancellationToken);
+        // Abort (or the app's exit) cancels this; a second Start or Continue never does.
+        using var abort = CancellationTokenSource.CreateLinkedTokenSource(lease.CancellationToken);
         _abort = abort;
         try
         {
             var request = new RunRequest(job, connection.Stage, connection.Gate, passes, _pause) { TimeProvider = connection.TimeProvider, ResumeFrom = resumeFrom };
-            result = await _runs.RunAsync(request, new LatestProgress(this), abort.Token).ConfigureAwait(false);
+            result = await _runs.RunAsync(request, new LatestProgress(this), abort.Token);
         }
         catch (Exception ex) when (ex is DeviceException or OperationCanceledException or IOException or InvalidOperationException or TimeoutException or ObjectDisposedException)
         {
@@ -220,7 +313,6 @@ public sealed partial class RunViewModel : ObservableObject
         {
             _abort = null;
             ElapsedSecondsAtEnd = _time.GetElapsedTime(_startedTicks).TotalSeconds;
-            _testMoves.RunActive = false;
         }
 
         var endedAt = _time.GetLocalNow();
@@ -240,11 +332,14 @@ public sealed partial class RunViewModel : ObservableObject
             Error = record.Fault?.Message ?? "the run failed";
         }
 
-        StoppedAt = record.Outcome is RunOutcome.Failed or RunOutcome.Aborted ? record.StoppedAt : null;
+        var stopPoint = record.Outcome is RunOutcome.Failed or RunOutcome.Aborted ? record.StoppedAt : null;
+        _stopped = stopPoint is null ? null : new StoppedRun(job, settings, stopPoint);
+        _continueCheck = (-1, null);
+        StoppedAt = stopPoint;
         _log.Record(record);
         try
         {
-            await _machine.ReadPositionsAsync(CancellationToken.None).ConfigureAwait(false);
+            await _machine.ReadPositionsAsync(CancellationToken.None);
         }
         catch (Exception ex) when (ex is DeviceException or InvalidOperationException or ObjectDisposedException)
         {
@@ -266,6 +361,9 @@ public sealed partial class RunViewModel : ObservableObject
             return "unreadable: " + ex.Message;
         }
     }
+
+    /// <summary>A run that stopped before its end: the plan it ran, the job's values then, and where it stopped.</summary>
+    private sealed record StoppedRun(PreparedJob Job, JobSettings Settings, RunStopPoint StopPoint);
 
     /// <summary>Keeps only the newest report: assigning a reference is all a serial reply costs the UI.</summary>
     private sealed class LatestProgress(RunViewModel owner) : IProgress<RunProgress>

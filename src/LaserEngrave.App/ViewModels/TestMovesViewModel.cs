@@ -1,12 +1,18 @@
 using System.Globalization;
 using CommunityToolkit.Mvvm.ComponentModel;
 using CommunityToolkit.Mvvm.Input;
+using LaserEngrave.App.Services;
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Execution;
 
 namespace LaserEngrave.App.ViewModels;
 
 /// <summary>The Test moves view: jog, go to, go to the job's origin, trace its frame, fire a test burst, home.</summary>
-/// <remarks>The moves are the Devices <see cref="StageTestMoves"/> (laser off, travel checked); none is allowed while a run is under way.</remarks>
+/// <remarks>
+/// The moves are the Devices <see cref="StageTestMoves"/> (laser off, travel checked). Each holds the machine through
+/// <see cref="MachineActivity"/>, so none is allowed while a run, homing or another move is under way; jog presses
+/// during a jog add their step to its target instead.
+/// </remarks>
 public sealed partial class TestMovesViewModel : ObservableObject
 {
     /// <summary>The jog step sizes offered, µm: 1 µm to 10 mm.</summary>
@@ -14,6 +20,12 @@ public sealed partial class TestMovesViewModel : ObservableObject
 
     private readonly MachineViewModel _machine;
     private readonly JobViewModel _job;
+    private readonly Lock _jogLock = new();
+
+    // The jog under way: the steps pressed so far (µm from where the jog began) and the task that carries them out.
+    private double _jogXUm;
+    private double _jogYUm;
+    private Task? _jogging;
 
     public TestMovesViewModel(MachineViewModel machine, JobViewModel job)
     {
@@ -21,6 +33,16 @@ public sealed partial class TestMovesViewModel : ObservableObject
         ArgumentNullException.ThrowIfNull(job);
         _machine = machine;
         _job = job;
+        machine.Activity.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName == nameof(MachineActivity.Current))
+            {
+                foreach (var command in new IRelayCommand[] { JogCommand, GoToCommand, GoToOriginCommand, FrameCommand, TestFireCommand })
+                {
+                    command.NotifyCanExecuteChanged();
+                }
+            }
+        };
     }
 
     [ObservableProperty]
@@ -35,50 +57,145 @@ public sealed partial class TestMovesViewModel : ObservableObject
     [ObservableProperty]
     public partial int TestFirePulses { get; set; } = 100;
 
-    /// <summary>Set by the run view-model while a run owns the machine.</summary>
-    [ObservableProperty]
-    public partial bool RunActive { get; set; }
-
     /// <summary>The last failure of a test move, one line.</summary>
     [ObservableProperty]
     public partial string? Error { get; private set; }
 
-    /// <summary>Moves one axis by the step size; direction is "x+", "x-", "y+" or "y-".</summary>
-    [RelayCommand(IncludeCancelCommand = true)]
-    private Task JogAsync(string direction, CancellationToken cancellationToken) => Move((moves, ct) =>
+    private MachineActivity Activity => _machine.Activity;
+
+    /// <summary>
+    /// Adds one step to the jog target; direction is "x+", "x-", "y+" or "y-". A press while the stage is still moving
+    /// for earlier presses is never lost: the stage goes on to the sum of all the steps, rounded once.
+    /// </summary>
+    /// <returns>Completes when the stage has reached a target that includes this press (or the jog failed).</returns>
+    [RelayCommand(AllowConcurrentExecutions = true, CanExecute = nameof(CanJog))]
+    private Task JogAsync(string direction)
     {
-        var (axis, sign) = direction switch
+        var (dx, dy) = direction switch
         {
-            "x+" => (StageAxisName.X, 1),
-            "x-" => (StageAxisName.X, -1),
-            "y+" => (StageAxisName.Y, 1),
-            "y-" => (StageAxisName.Y, -1),
-            _ => throw new ArgumentException($"jog direction '{direction}' is not one of x+, x-, y+, y-"),
+            "x+" => (1, 0),
+            "x-" => (-1, 0),
+            "y+" => (0, 1),
+            "y-" => (0, -1),
+            _ => (0, 0),
         };
-        if (!(StepUm > 0) || StepUm > 60000)
+        if ((dx, dy) == (0, 0))
         {
-            throw new ArgumentException($"step {N(StepUm)} µm must be above 0 and at most 60000 µm");
+            Error = $"jog direction '{direction}' is not one of x+, x-, y+, y-";
+            return Task.CompletedTask;
         }
 
-        return moves.JogAsync(axis, sign * StepUm, ct);
-    }, cancellationToken);
+        var step = StepUm;
+        if (!(step > 0) || step > 60000)
+        {
+            Error = $"step {N(step)} µm must be above 0 and at most 60000 µm";
+            return Task.CompletedTask;
+        }
 
-    [RelayCommand(IncludeCancelCommand = true)]
-    private Task GoToAsync(CancellationToken cancellationToken) => Move((moves, ct) => moves.GoToAsync(GoToXMm, GoToYMm, ct), cancellationToken);
+        lock (_jogLock)
+        {
+            if (_jogging is null)
+            {
+                if (!Activity.TryBegin(MachineOperation.Jog, out var lease, out var refusal))
+                {
+                    Error = refusal;
+                    return Task.CompletedTask;
+                }
+
+                Error = null;
+                _jogXUm = dx * step;
+                _jogYUm = dy * step;
+                _jogging = JogUntilReachedAsync(lease);
+            }
+            else
+            {
+                _jogXUm += dx * step;
+                _jogYUm += dy * step;
+            }
+
+            return _jogging;
+        }
+    }
+
+    private bool CanJog(string? direction) => !Activity.IsBusy || Activity.Current?.Kind == MachineOperationKind.Jog;
+
+    /// <summary>Moves to where the jog began plus every step pressed so far, again as long as presses keep coming.</summary>
+    private async Task JogUntilReachedAsync(MachineActivity.Lease lease)
+    {
+        // Let the press that started the jog return to its caller before the first await on a port.
+        await Task.Yield();
+        var ended = false;
+        try
+        {
+            var connection = _machine.RequireConnection();
+            var moves = new StageTestMoves(connection.Stage, connection.Gate, connection.Profile, timeProvider: connection.TimeProvider);
+            var start = await moves.GetPositionAsync(lease.CancellationToken);
+            var startXMm = StageUnits.MicrostepsToMm(start.XMicrosteps, connection.Profile.X.MicrostepUm);
+            var startYMm = StageUnits.MicrostepsToMm(start.YMicrosteps, connection.Profile.Y.MicrostepUm);
+            (double X, double Y) done = (0, 0);
+            while (true)
+            {
+                (double X, double Y) target;
+                lock (_jogLock)
+                {
+                    target = (_jogXUm, _jogYUm);
+                    if (target == done)
+                    {
+                        _jogging = null;
+                        lease.Dispose();
+                        ended = true;
+                        break;
+                    }
+                }
+
+                try
+                {
+                    await moves.GoToAsync(startXMm + (target.X / 1000), startYMm + (target.Y / 1000), lease.CancellationToken);
+                }
+                finally
+                {
+                    await _machine.ReadPositionsAsync(CancellationToken.None);
+                }
+
+                done = target;
+            }
+        }
+        catch (OperationCanceledException)
+        {
+            Error = "cancelled";
+        }
+        catch (Exception ex) when (ex is Devices.Abstractions.DeviceException or IOException or UnauthorizedAccessException or InvalidOperationException or ArgumentException or TimeoutException)
+        {
+            Error = ex.Message;
+        }
+        finally
+        {
+            if (!ended)
+            {
+                // A failed jog drops the presses not yet carried out: the user sees where the stage is and presses again.
+                lock (_jogLock)
+                {
+                    _jogging = null;
+                    lease.Dispose();
+                }
+            }
+        }
+    }
+
+    [RelayCommand(CanExecute = nameof(CanMove))]
+    private Task GoToAsync() => Move("go to", (moves, ct) => moves.GoToAsync(GoToXMm, GoToYMm, ct));
 
     /// <summary>Moves to the job's top-left corner, where the first pixel edge lies.</summary>
-    [RelayCommand(IncludeCancelCommand = true)]
-    private Task GoToOriginAsync(CancellationToken cancellationToken) =>
-        Move((moves, ct) => moves.GoToOriginAsync(RequireJob().Geometry.Geometry, ct), cancellationToken);
+    [RelayCommand(CanExecute = nameof(CanMove))]
+    private Task GoToOriginAsync() => Move("go to the job's origin", (moves, ct) => moves.GoToOriginAsync(RequireJob().Geometry.Geometry, ct));
 
     /// <summary>Traces the job's outline with the laser off, so the user sees where it will land.</summary>
-    [RelayCommand(IncludeCancelCommand = true)]
-    private Task FrameAsync(CancellationToken cancellationToken) =>
-        Move((moves, ct) => moves.FrameAsync(RequireJob().Geometry.Geometry, visibleFrequencyHz: null, ct), cancellationToken);
+    [RelayCommand(CanExecute = nameof(CanMove))]
+    private Task FrameAsync() => Move("frame", (moves, ct) => moves.FrameAsync(RequireJob().Geometry.Geometry, visibleFrequencyHz: null, ct));
 
     /// <summary>Fires a burst where the stage stands (the stage does not move), at the job's frequency.</summary>
-    [RelayCommand(IncludeCancelCommand = true)]
-    private Task TestFireAsync(CancellationToken cancellationToken) => Run(async (moves, ct) =>
+    [RelayCommand(CanExecute = nameof(CanMove))]
+    private Task TestFireAsync() => Run("test fire", async (moves, ct) =>
     {
         if (TestFirePulses is < 1 or > 100000)
         {
@@ -93,13 +210,25 @@ public sealed partial class TestMovesViewModel : ObservableObject
 
         await moves.FirePulsesAsync(TestFirePulses, frequency, ct);
         _machine.GateState = MachineViewModel.Describe(await moves.Gate.GetStateAsync(ct));
-    }, cancellationToken);
+    });
+
+    /// <summary>Stops the test move, jog or homing under way (laser off); a run is stopped with its own Abort.</summary>
+    [RelayCommand]
+    private void Stop()
+    {
+        if (Activity.Current is { Kind: not MachineOperationKind.Run })
+        {
+            Activity.CancelCurrent();
+        }
+    }
+
+    private bool CanMove() => !Activity.IsBusy;
 
     private Core.Jobs.PreparedJob RequireJob() =>
         _job.Job ?? throw new ArgumentException("no job planned: open an image and give it a usable size first");
 
     /// <summary>A move (the Devices test moves switch the laser off first); the positions are read afterwards.</summary>
-    private Task Move(Func<StageTestMoves, CancellationToken, Task<StagePosition>> move, CancellationToken cancellationToken) => Run(async (moves, ct) =>
+    private Task Move(string what, Func<StageTestMoves, CancellationToken, Task<StagePosition>> move) => Run(what, async (moves, ct) =>
     {
         try
         {
@@ -109,24 +238,18 @@ public sealed partial class TestMovesViewModel : ObservableObject
         {
             await _machine.ReadPositionsAsync(CancellationToken.None);
         }
-    }, cancellationToken);
+    });
 
-    private async Task Run(Func<StageTestMoves, CancellationToken, Task> action, CancellationToken cancellationToken)
+    private async Task Run(string what, Func<StageTestMoves, CancellationToken, Task> action)
     {
         Error = null;
-        if (RunActive)
-        {
-            Error = "a run is under way: pause or abort it first";
-            return;
-        }
-
-        await _machine.Guard(async () =>
+        var ran = await _machine.Guard(MachineOperation.TestMove(what), async cancellationToken =>
         {
             var connection = _machine.RequireConnection();
             var moves = new StageTestMoves(connection.Stage, connection.Gate, connection.Profile, timeProvider: connection.TimeProvider);
             await action(moves, cancellationToken);
         });
-        Error = _machine.Error;
+        Error = ran ? _machine.Error : Activity.BusyMessage ?? _machine.Error;
     }
 
     private static string N(double value) => value.ToString("0.######", CultureInfo.InvariantCulture);

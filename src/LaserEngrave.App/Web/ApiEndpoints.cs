@@ -5,6 +5,8 @@ using LaserEngrave.App.ViewModels;
 using LaserEngrave.Core.Imaging;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
+using CommunityToolkit.Mvvm.Input;
+using Microsoft.AspNetCore.Http.Features;
 using Microsoft.AspNetCore.Http.HttpResults;
 
 namespace LaserEngrave.App.Web;
@@ -15,22 +17,31 @@ internal static class ApiEndpoints
 {
     private const int MaxPreviewSidePx = 1024;
     private const int MaxPlanMoves = 400_000;
-    private const long MaxUploadBytes = 512L * 1024 * 1024;
 
     public static void Map(IEndpointRouteBuilder app)
     {
         var api = app.MapGroup("/api");
+
+        // The interlock's refusal, wherever it is raised: 409 and the one line saying what is running.
+        api.AddEndpointFilter(async (context, next) =>
+        {
+            try
+            {
+                return await next(context).ConfigureAwait(false);
+            }
+            catch (MachineBusyException ex)
+            {
+                return Busy(ex.Message);
+            }
+        });
+
         api.MapGet("/state", (MainViewModel main) => Results.Json(StateSnapshot.From(main)));
         api.MapGet("/events", EventStream.SendAsync);
 
         api.MapPost("/image", UploadAsync);
-        api.MapPost("/image/open", (MainViewModel main, PathRequest request) =>
-        {
-            main.Job.LoadImage(request.Path ?? string.Empty);
-            return State(main);
-        });
-        api.MapGet("/image/original.png", (MainViewModel main, IImageService images) =>
-            main.Job.Image is { } image ? Results.File(images.RenderOriginalPng(image, MaxPreviewSidePx), "image/png") : Results.NotFound());
+        api.MapPost("/image/open", (MainViewModel main, PathRequest request) => OpenImage(main, request.Path));
+        api.MapGet("/image/original.png", (MainViewModel main) =>
+            main.Job.OriginalPreviewPng() is { } png ? Results.File(png, "image/png") : Results.NotFound());
         api.MapGet("/image/mask.png", (MainViewModel main, IImageService images) =>
             main.Job.Mask is { } mask ? Results.File(images.RenderMaskPng(mask, MaxPreviewSidePx), "image/png") : Results.NotFound());
 
@@ -44,59 +55,95 @@ internal static class ApiEndpoints
         });
         api.MapPost("/machine/connect", (MainViewModel main, ConnectRequest request) =>
         {
+            if (Refused(main, main.Machine.ConnectCommand) is { } refused)
+            {
+                return refused;
+            }
+
             main.Machine.UseSimulator = request.UseSimulator;
             main.Machine.StagePort = request.StagePort;
             main.Machine.LaserPort = request.LaserPort;
-            return Start(main, main.Machine.ConnectCommand.ExecuteAsync(null));
+            return Start(main, main.Machine.ConnectCommand);
         });
-        api.MapPost("/machine/disconnect", (MainViewModel main) => Start(main, main.Machine.DisconnectCommand.ExecuteAsync(null)));
-        api.MapPost("/machine/identify", (MainViewModel main) => Start(main, main.Machine.IdentifyCommand.ExecuteAsync(null)));
-        api.MapPost("/machine/home", (MainViewModel main) => Start(main, main.Machine.HomeCommand.ExecuteAsync(null)));
+        api.MapPost("/machine/disconnect", (MainViewModel main) => Start(main, main.Machine.DisconnectCommand));
+        api.MapPost("/machine/identify", (MainViewModel main) => Start(main, main.Machine.IdentifyCommand));
+        api.MapPost("/machine/home", (MainViewModel main) => Start(main, main.Machine.HomeCommand));
 
         api.MapPost("/moves/jog", (MainViewModel main, JogRequest request) =>
         {
+            if (Refused(main, main.TestMoves.JogCommand, request.Direction) is { } refused)
+            {
+                return refused;
+            }
+
             if (request.StepUm is { } step)
             {
                 main.TestMoves.StepUm = step;
             }
 
-            return Start(main, main.TestMoves.JogCommand.ExecuteAsync(request.Direction));
+            return Start(main, main.TestMoves.JogCommand, request.Direction);
         });
         api.MapPost("/moves/goto", (MainViewModel main, GoToRequest request) =>
         {
-            main.TestMoves.GoToXMm = request.XMm;
-            main.TestMoves.GoToYMm = request.YMm;
-            return Start(main, main.TestMoves.GoToCommand.ExecuteAsync(null));
-        });
-        api.MapPost("/moves/origin", (MainViewModel main) => Start(main, main.TestMoves.GoToOriginCommand.ExecuteAsync(null)));
-        api.MapPost("/moves/frame", (MainViewModel main) => Start(main, main.TestMoves.FrameCommand.ExecuteAsync(null)));
-        api.MapPost("/moves/fire", (MainViewModel main, FireRequest request) =>
-        {
-            main.TestMoves.TestFirePulses = request.Pulses;
-            return Start(main, main.TestMoves.TestFireCommand.ExecuteAsync(null));
-        });
-        api.MapPost("/moves/stop", (MainViewModel main) =>
-        {
-            foreach (var cancel in new[] { main.TestMoves.JogCancelCommand, main.TestMoves.GoToCancelCommand, main.TestMoves.GoToOriginCancelCommand, main.TestMoves.FrameCancelCommand, main.TestMoves.TestFireCancelCommand, main.Machine.HomeCancelCommand })
+            if (Refused(main, main.TestMoves.GoToCommand) is { } refused)
             {
-                cancel.Execute(null);
+                return refused;
             }
 
-            return State(main);
+            main.TestMoves.GoToXMm = request.XMm;
+            main.TestMoves.GoToYMm = request.YMm;
+            return Start(main, main.TestMoves.GoToCommand);
         });
+        api.MapPost("/moves/origin", (MainViewModel main) => Start(main, main.TestMoves.GoToOriginCommand));
+        api.MapPost("/moves/frame", (MainViewModel main) => Start(main, main.TestMoves.FrameCommand));
+        api.MapPost("/moves/fire", (MainViewModel main, FireRequest request) =>
+        {
+            if (Refused(main, main.TestMoves.TestFireCommand) is { } refused)
+            {
+                return refused;
+            }
+
+            main.TestMoves.TestFirePulses = request.Pulses;
+            return Start(main, main.TestMoves.TestFireCommand);
+        });
+        api.MapPost("/moves/stop", (MainViewModel main) => Do(main, main.TestMoves.StopCommand.Execute));
 
         api.MapPost("/run/start", (MainViewModel main, RunStartRequest request) =>
         {
+            if (main.Run.IsActive)
+            {
+                return Ignored(main, "a run is already under way: this Start was ignored");
+            }
+
+            if (Refused(main, main.Run.StartCommand) is { } refused)
+            {
+                return refused;
+            }
+
             main.Log.Notes = request.Notes;
             main.Log.SampleId = request.SampleId;
-            return Start(main, main.Run.StartCommand.ExecuteAsync(null));
+            return Start(main, main.Run.StartCommand);
         });
-        api.MapPost("/run/continue", (MainViewModel main) => Start(main, main.Run.ContinueCommand.ExecuteAsync(null)));
+        api.MapPost("/run/continue", (MainViewModel main) =>
+        {
+            if (main.Run.IsActive)
+            {
+                return Ignored(main, "a run is already under way: this Continue was ignored");
+            }
+
+            return main.Run.ContinueUnavailableReason is { } reason ? Busy(reason)
+                : main.Run.StoppedAt is null ? Busy("no stopped run to continue: the last run completed, or none ran")
+                : Start(main, main.Run.ContinueCommand);
+        });
         api.MapPost("/run/pause", (MainViewModel main) => Do(main, main.Run.PauseCommand.Execute));
         api.MapPost("/run/resume", (MainViewModel main) => Do(main, main.Run.ResumeCommand.Execute));
         api.MapPost("/run/abort", (MainViewModel main) => Do(main, main.Run.AbortCommand.Execute));
 
-        api.MapPost("/logs/load", (MainViewModel main, PathRequest request) => Do(main, _ => main.Log.LoadCommand.Execute(request.Path ?? string.Empty)));
+        api.MapPost("/logs/load", (MainViewModel main, PathRequest request) =>
+        {
+            main.Activity.ThrowIfJobLocked();
+            return Do(main, _ => main.Log.LoadCommand.Execute(request.Path ?? string.Empty));
+        });
         api.MapPost("/logs/open-folder", (MainViewModel main) => Do(main, main.Log.OpenFolderCommand.Execute));
         api.MapGet("/logs/export", (MainViewModel main, string path, string? format) => Export(main, path, format));
 
@@ -111,25 +158,69 @@ internal static class ApiEndpoints
         return State(main);
     }
 
-    /// <summary>Answers once the command has started; its end shows in the state.</summary>
-    private static IResult Start(MainViewModel main, Task command)
+    /// <summary>409 with the one line saying what holds the machine (or why the request cannot be done now).</summary>
+    private static IResult Busy(string message) => Results.Json(new { error = message }, statusCode: StatusCodes.Status409Conflict);
+
+    /// <summary>A request that changed nothing on purpose (a second Start during a run): 200, the note and the state.</summary>
+    private static IResult Ignored(MainViewModel main, string note) => Results.Json(new { note, state = StateSnapshot.From(main) });
+
+    /// <summary>The 409 answer when the interlock disables <paramref name="command"/> now; null when it may start.</summary>
+    private static IResult? Refused(MainViewModel main, IAsyncRelayCommand command, object? parameter = null) =>
+        command.CanExecute(parameter) ? null : Busy(main.Activity.BusyMessage ?? "the machine is busy");
+
+    /// <summary>Answers once the command has started (202); its end shows in the state. Refused with 409 while the interlock disables it.</summary>
+    private static IResult Start(MainViewModel main, IAsyncRelayCommand command, object? parameter = null)
     {
+        if (Refused(main, command, parameter) is { } refused)
+        {
+            return refused;
+        }
+
         // The command catches what the user can cause; anything else is still observed here, not lost.
-        _ = command.ContinueWith(t => _ = t.Exception, TaskScheduler.Default);
+        _ = command.ExecuteAsync(parameter).ContinueWith(t => _ = t.Exception, TaskScheduler.Default);
         return TypedResults.Json(StateSnapshot.From(main), statusCode: StatusCodes.Status202Accepted);
     }
 
+    private static IResult OpenImage(MainViewModel main, string? path)
+    {
+        main.Activity.ThrowIfJobLocked();
+        main.Job.LoadImage(path ?? string.Empty);
+        return State(main);
+    }
+
+    /// <summary>Keeps the page's file under the app's image folder and opens it; one limit, the app's, with its own message.</summary>
     private static async Task<IResult> UploadAsync(HttpRequest request, MainViewModel main, IFileAccess files, string? name)
     {
-        if (request.ContentLength is > MaxUploadBytes)
+        main.Activity.ThrowIfJobLocked();
+        var fileName = Path.GetFileName(name ?? "image");
+        if (request.ContentLength is > IFileAccess.MaxUploadBytes)
         {
-            return Results.Json(new { error = $"the file is larger than {MaxUploadBytes / (1024 * 1024)} MB" }, statusCode: 413);
+            return TooLarge(new UploadException(fileName, Services.FileAccess.TooLarge).Message);
         }
 
-        var path = await files.SaveUploadAsync(name ?? "image", request.Body, request.HttpContext.RequestAborted).ConfigureAwait(false);
+        // Above Kestrel's limit by one byte, so the app's own rule, not the server's empty 413, answers a larger body.
+        if (request.HttpContext.Features.Get<IHttpMaxRequestBodySizeFeature>() is { IsReadOnly: false } limit)
+        {
+            limit.MaxRequestBodySize = IFileAccess.MaxUploadBytes + 1;
+        }
+
+        string path;
+        try
+        {
+            path = await files.SaveUploadAsync(fileName, request.Body, request.HttpContext.RequestAborted).ConfigureAwait(false);
+        }
+        catch (UploadException ex)
+        {
+            return ex.Message.EndsWith(Services.FileAccess.TooLarge, StringComparison.Ordinal)
+                ? TooLarge(ex.Message)
+                : Results.Json(new { error = ex.Message }, statusCode: StatusCodes.Status400BadRequest);
+        }
+
         main.Job.LoadImage(path);
         return State(main);
     }
+
+    private static IResult TooLarge(string message) => Results.Json(new { error = message }, statusCode: StatusCodes.Status413PayloadTooLarge);
 
     private static IResult EditJob(MainViewModel main, Dictionary<string, JsonElement> changes)
     {

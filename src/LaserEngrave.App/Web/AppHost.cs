@@ -8,22 +8,38 @@ namespace LaserEngrave.App.Web;
 /// <summary>The composition root: the services, the view-models over them, the page and its API on one local web server.</summary>
 public static class AppHost
 {
-    /// <summary>The header every POST must carry: a page of another site cannot add it without the server's consent (CORS).</summary>
+    /// <summary>The header every POST authorised by the page's cookie must also carry: a page of another site cannot add it without the server's consent (CORS).</summary>
     public const string RequestHeader = "X-LaserEngrave";
 
+    /// <summary>How long the host gives the server to close its connections on exit (an open page's event stream ends at once).</summary>
+    public static readonly TimeSpan ShutdownTimeout = TimeSpan.FromMilliseconds(500);
+
     /// <summary>Builds the app; <paramref name="configure"/> may replace services (tests give fakes or a data folder).</summary>
+    /// <param name="url">Where to listen (the app's --urls); null for the configuration's "urls" (ASPNETCORE_URLS, appsettings) or a free port on 127.0.0.1.</param>
+    /// <exception cref="ArgumentException">An address is not on this computer; the message is one line naming it.</exception>
     public static WebApplication Build(string[] args, string? url = null, Action<IServiceCollection>? configure = null)
     {
         var builder = WebApplication.CreateBuilder(new WebApplicationOptions { Args = args, ContentRootPath = AppContext.BaseDirectory });
         builder.Logging.SetMinimumLevel(LogLevel.Warning);
-        if (url is not null)
+        var urls = url ?? builder.Configuration["urls"] ?? AppOptions.DefaultUrl;
+        if (LoopbackAddresses.Problem(builder.Configuration, urls) is { } problem)
         {
-            builder.WebHost.UseUrls(url);
+            throw new ArgumentException(problem);
         }
 
+        // Set explicitly, so ASPNETCORE_HTTP_PORTS (every interface) never applies.
+        builder.WebHost.UseUrls(urls);
+        builder.Services.Configure<HostOptions>(o => o.ShutdownTimeout = ShutdownTimeout);
+
+        // One upload limit, the app's: the server's and the form's limits are the same number, so no upload meets another.
+        builder.WebHost.ConfigureKestrel(k => k.Limits.MaxRequestBodySize = IFileAccess.MaxUploadBytes + 1);
+        builder.Services.Configure<Microsoft.AspNetCore.Http.Features.FormOptions>(o => o.MultipartBodyLengthLimit = IFileAccess.MaxUploadBytes);
+
         var services = builder.Services;
+        services.AddSingleton<AccessToken>();
         services.AddSingleton(AppFolders.Default);
         services.AddSingleton(TimeProvider.System);
+        services.AddSingleton<MachineActivity>();
         services.AddSingleton<IImageService, ImageService>();
         services.AddSingleton<IMachineConnectionFactory>(new MachineConnectionFactory());
         services.AddSingleton<IRunService, ExecutorRunService>();
@@ -48,42 +64,84 @@ public static class AppHost
         return app;
     }
 
-    /// <summary>Refuses other hosts (DNS rebinding) and POSTs without the app's header (other sites' pages).</summary>
+    /// <summary>
+    /// Refuses other hosts (DNS rebinding) and every request without the start's token; the page's first load with
+    /// <c>?token=</c> gets it as an HttpOnly, SameSite=Strict cookie; a POST authorised by that cookie also needs the app's header.
+    /// </summary>
     private static Task GuardAsync(HttpContext context, RequestDelegate next)
     {
-        var host = context.Request.Host.Host;
+        var request = context.Request;
+        var response = context.Response;
+        var host = request.Host.Host;
         if (host is not ("127.0.0.1" or "localhost" or "[::1]" or "::1"))
         {
-            context.Response.StatusCode = StatusCodes.Status403Forbidden;
+            response.StatusCode = StatusCodes.Status403Forbidden;
             return Task.CompletedTask;
         }
 
-        if (HttpMethods.IsPost(context.Request.Method) && !context.Request.Headers.ContainsKey(RequestHeader))
+        var token = context.RequestServices.GetRequiredService<AccessToken>();
+        var cookie = CookieName(request);
+        if (HttpMethods.IsGet(request.Method) && request.Query.TryGetValue(AccessToken.QueryName, out var given))
         {
-            context.Response.StatusCode = StatusCodes.Status403Forbidden;
-            return context.Response.WriteAsync($"POST needs the {RequestHeader} header");
+            if (!token.Matches(given.ToString()))
+            {
+                return Unauthorized(response, "the token in the address is not this start's: open the address LaserEngrave printed when it started");
+            }
+
+            response.Cookies.Append(cookie, token.Value, new CookieOptions { HttpOnly = true, SameSite = SameSiteMode.Strict, Path = "/", IsEssential = true });
+            // The token leaves the address bar (and the history) once the cookie holds it.
+            response.Redirect(request.PathBase + request.Path);
+            return Task.CompletedTask;
+        }
+
+        var shown = token.IsShownBy(request, out var byCookie) || (byCookie = token.Matches(request.Cookies[cookie]));
+        if (!shown)
+        {
+            return Unauthorized(response, $"this needs the token LaserEngrave printed when it started: open that address, or send 'Authorization: Bearer TOKEN' or '{AccessToken.HeaderName}: TOKEN'");
+        }
+
+        if (byCookie && HttpMethods.IsPost(request.Method) && !request.Headers.ContainsKey(RequestHeader))
+        {
+            response.StatusCode = StatusCodes.Status403Forbidden;
+            return response.WriteAsync($"POST needs the {RequestHeader} header");
         }
 
         return next(context);
     }
 
-    /// <summary>On exit the laser goes off and the ports close, whatever was running.</summary>
+    /// <summary>The page's cookie, per port: cookies do not tell ports apart, and two apps may run at once.</summary>
+    internal static string CookieName(HttpRequest request) => $"{AccessToken.CookieName}-{request.Host.Port ?? 80}";
+
+    private static Task Unauthorized(HttpResponse response, string message)
+    {
+        response.StatusCode = StatusCodes.Status401Unauthorized;
+        response.Headers.WWWAuthenticate = "Bearer";
+        return response.WriteAsync(message);
+    }
+
+    /// <summary>How long the exit waits for an aborted run to write its log before the ports are closed regardless.</summary>
+    internal static readonly TimeSpan RunEndWait = TimeSpan.FromMilliseconds(1000);
+
+    /// <summary>On exit the laser goes off and the ports close, whatever was running; an aborted run writes its log first.</summary>
     private static void Shutdown(IServiceProvider services)
     {
         var main = services.GetRequiredService<MainViewModel>();
         main.Run.AbortCommand.Execute(null);
+        main.Activity.CancelCurrent();
+        // The run's abort switches the laser off first, then the run writes its log; wait for that, but not for ever.
+        _ = main.Activity.WhenIdleAsync().Wait(RunEndWait);
         if (main.Machine.Connection is { } connection)
         {
             try
             {
-                connection.Gate.OffAsync(CancellationToken.None).WaitAsync(TimeSpan.FromSeconds(2)).GetAwaiter().GetResult();
+                connection.Gate.OffAsync(CancellationToken.None).WaitAsync(TimeSpan.FromMilliseconds(500)).GetAwaiter().GetResult();
             }
             catch (Exception ex) when (ex is TimeoutException or Devices.Abstractions.DeviceException or ObjectDisposedException or InvalidOperationException)
             {
                 // Nothing more can be done at exit; the gate's watchdog switches the laser off by itself.
             }
 
-            main.Machine.DisconnectCommand.ExecuteAsync(null).WaitAsync(TimeSpan.FromSeconds(3)).ContinueWith(_ => { }, TaskScheduler.Default).GetAwaiter().GetResult();
+            _ = main.Machine.CloseAsync().Wait(TimeSpan.FromMilliseconds(300));
         }
     }
 }

@@ -2,9 +2,9 @@ namespace LaserEngrave.App.Web;
 
 /// <summary>The app's own command-line options; everything else goes to ASP.NET Core.</summary>
 /// <param name="OpenBrowser">Open the page in the default browser (off with --no-browser).</param>
-/// <param name="Url">Where to listen (--urls); by default a free port on 127.0.0.1.</param>
+/// <param name="Url">Where to listen (--urls, loopback addresses only); null for ASPNETCORE_URLS or appsettings' "urls", else a free port on 127.0.0.1.</param>
 /// <param name="DataFolder">Where settings, images and logs go (--data-folder); by default the user's application-data folder.</param>
-public sealed record AppOptions(bool OpenBrowser, string Url, string? DataFolder)
+public sealed record AppOptions(bool OpenBrowser, string? Url, string? DataFolder)
 {
     /// <summary>Options in ASP.NET Core's --key=value form, passed on to the host (test hosts set the content root this way).</summary>
     public IReadOnlyList<string> HostArgs { get; init; } = [];
@@ -15,7 +15,7 @@ public sealed record AppOptions(bool OpenBrowser, string Url, string? DataFolder
     public static AppOptions Parse(IReadOnlyList<string> args)
     {
         ArgumentNullException.ThrowIfNull(args);
-        var options = new AppOptions(true, DefaultUrl, null);
+        var options = new AppOptions(true, null, null);
         for (var i = 0; i < args.Count; i++)
         {
             switch (args[i])
@@ -39,9 +39,9 @@ public sealed record AppOptions(bool OpenBrowser, string Url, string? DataFolder
             }
         }
 
-        if (!options.Url.StartsWith("http://127.0.0.1:", StringComparison.Ordinal) && !options.Url.StartsWith("http://localhost:", StringComparison.Ordinal))
+        if (options.Url is { } urls && LoopbackAddresses.Split(urls).FirstOrDefault(u => !LoopbackAddresses.IsLoopback(u)) is { } open)
         {
-            throw new ArgumentException($"--urls {options.Url}: the app listens on this computer only, e.g. http://127.0.0.1:5080");
+            throw new ArgumentException($"--urls {open}: not an address of this computer; the app listens on loopback only, e.g. http://127.0.0.1:5080");
         }
 
         return options;

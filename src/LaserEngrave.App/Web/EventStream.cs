@@ -9,11 +9,13 @@ internal static class EventStream
 {
     public static readonly TimeSpan Period = TimeSpan.FromMilliseconds(100);
 
-    public static async Task SendAsync(HttpContext context, MainViewModel main)
+    /// <remarks>The stream ends when the page goes away or the app stops, so an open page never holds the exit.</remarks>
+    public static async Task SendAsync(HttpContext context, MainViewModel main, IHostApplicationLifetime lifetime)
     {
         context.Response.Headers.ContentType = "text/event-stream";
         context.Response.Headers.CacheControl = "no-cache";
-        var cancellationToken = context.RequestAborted;
+        using var ended = CancellationTokenSource.CreateLinkedTokenSource(context.RequestAborted, lifetime.ApplicationStopping);
+        var cancellationToken = ended.Token;
         string? last = null;
         using var timer = new PeriodicTimer(Period);
         try
@@ -32,7 +34,7 @@ internal static class EventStream
         }
         catch (OperationCanceledException)
         {
-            // The page went away.
+            // The page went away, or the app is stopping.
         }
     }
 }

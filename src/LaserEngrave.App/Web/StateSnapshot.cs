@@ -20,6 +20,12 @@ internal static class StateSnapshot
         return new
         {
             settings = new { theme = main.Settings.Theme, recentFiles = main.Settings.RecentFiles, lastFolder = main.Settings.LastFolder },
+            activity = new
+            {
+                busy = main.Activity.IsBusy,
+                operation = main.Activity.Current?.Kind.ToString(),
+                message = main.Activity.BusyMessage,
+            },
             samples = main.SampleImages,
             profileError = main.ProfileError,
             settingsError = main.SettingsError,
@@ -67,6 +73,7 @@ internal static class StateSnapshot
                 errors = job.Errors,
                 warnings = job.Warnings,
                 planVersion = job.PlanVersion,
+                lockedBecause = job.LockedBecause,
             },
             estimate = stats is null ? null : new
             {
@@ -131,7 +138,9 @@ internal static class StateSnapshot
                 elapsedSeconds = Math.Round(run.ElapsedSeconds, 1),
                 remainingSeconds = Math.Round(run.RemainingSeconds, 1),
                 run.Error,
+                run.Notice,
                 canContinue = run.CanContinue,
+                run.ContinueUnavailableReason,
                 stoppedAtRow = run.StoppedAt?.Row,
             },
             log = new

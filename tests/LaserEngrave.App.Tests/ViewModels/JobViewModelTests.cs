@@ -185,4 +185,69 @@ public sealed class JobViewModelTests
         Assert.Equal(settings with { HeightMm = job.HeightMm, PitchUm = job.PitchUm }, job.ToSettings());
         Assert.Equal(7, job.HeightMm, 3);
     }
+
+    /// <summary>The real image service, keeping only a weak reference to each decoded image so a test can see it freed.</summary>
+    private sealed class WatchedImages : IImageService
+    {
+        private readonly ImageService _real = new();
+
+        public List<WeakReference> Decoded { get; } = [];
+
+        public LoadedImage Load(string path)
+        {
+            var image = _real.Load(path);
+            Decoded.Add(new WeakReference(image));
+            return image;
+        }
+
+        public BitMask BuildMask(LoadedImage image, MaskOptions options) => _real.BuildMask(image, options);
+
+        public Core.Jobs.PreparedJob Prepare(Core.Jobs.JobSpec spec, ImageInfo info, BitMask mask) => _real.Prepare(spec, info, mask);
+
+        public byte[] RenderOriginalPng(LoadedImage image, int maxSidePx) => _real.RenderOriginalPng(image, maxSidePx);
+
+        public byte[] RenderMaskPng(BitMask mask, int maxSidePx) => _real.RenderMaskPng(mask, maxSidePx);
+    }
+
+    [Fact]
+    public void LoadImage_LargeImage_OnlyTheMaskAndPreviewKeptAndThresholdDecodesAgain()
+    {
+        using var folder = TestFiles.NewFolder();
+        var path = Path.Combine(folder.Path, "large.png");
+        const int side = 3000; // RGBA: 36 MB decoded, above what the view-model keeps
+        using (var file = File.Create(path))
+        {
+            PngWriter.WriteRgba(file, side, side, new byte[side * side * 4]);
+        }
+
+        var images = new WatchedImages();
+        var job = new JobViewModel(images, MachineProfile.Default);
+
+        Assert.True(job.LoadImage(path));
+        GC.Collect();
+        GC.WaitForPendingFinalizers();
+
+        Assert.False(Assert.Single(images.Decoded).IsAlive);
+        Assert.Null(job.Image);
+        Assert.NotNull(job.OriginalPreviewPng());
+        Assert.Equal(side, job.Mask!.Width);
+        var version = job.MaskVersion;
+        job.Invert = true;
+        Assert.Equal(2, images.Decoded.Count);
+        Assert.Equal(version + 1, job.MaskVersion);
+        Assert.Equal(0, job.Mask.CountSet());
+    }
+
+    [Fact]
+    public void LoadImage_SmallImage_KeptForTheNextThreshold()
+    {
+        var images = new WatchedImages();
+        var job = new JobViewModel(images, MachineProfile.Default);
+        job.LoadImage(TestFiles.Asset("qr-code.bmp"));
+
+        job.ThresholdPercent = 20;
+
+        Assert.Single(images.Decoded);
+        Assert.NotNull(job.Image);
+    }
 }

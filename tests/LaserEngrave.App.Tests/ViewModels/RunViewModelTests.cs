@@ -17,6 +17,7 @@ public sealed class RunViewModelTests
     private readonly Fakes _fakes = new();
     private readonly IRunService _runs = Substitute.For<IRunService>();
     private readonly IRunLogStore _store = Substitute.For<IRunLogStore>();
+    private readonly MachineActivity _activity = new();
     private readonly MachineViewModel _machine;
     private readonly JobViewModel _job;
     private readonly LogViewModel _log;
@@ -24,11 +25,10 @@ public sealed class RunViewModelTests
 
     public RunViewModelTests()
     {
-        _machine = new MachineViewModel(_fakes.Factory, MachineProfile.Default);
-        _job = new JobViewModel(new ImageService(), MachineProfile.Default);
-        var moves = new TestMovesViewModel(_machine, _job);
+        _machine = new MachineViewModel(_fakes.Factory, MachineProfile.Default, _activity);
+        _job = new JobViewModel(new ImageService(), MachineProfile.Default, _activity);
         _log = new LogViewModel(_store, Substitute.For<IFileAccess>(), _job);
-        _run = new RunViewModel(_runs, _job, _machine, moves, _log, TimeProvider.System);
+        _run = new RunViewModel(_runs, _job, _machine, _log, TimeProvider.System);
         _store.History().Returns([]);
         _store.Save(Arg.Any<RunRecord>()).Returns(new RunLogFiles("/logs/run.json", "/logs/run.txt"));
     }
@@ -299,5 +299,124 @@ public sealed class RunViewModelTests
 
         Assert.Equal(RunState.Idle, _run.State);
         Assert.True(_run.AbortCommand.CanExecute(null));
+    }
+
+    /// <summary>A run that holds until the test releases it (or it is aborted), so the test acts while it is under way.</summary>
+    private async Task<(Task Run, TaskCompletionSource Release, List<CancellationToken> Tokens)> StartHeldRunAsync()
+    {
+        await ReadyAsync();
+        var started = new TaskCompletionSource();
+        var release = new TaskCompletionSource();
+        var tokens = new List<CancellationToken>();
+        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(async c =>
+            {
+                var token = c.Arg<CancellationToken>();
+                tokens.Add(token);
+                started.TrySetResult();
+                await release.Task.WaitAsync(token);
+                return Result(RunOutcome.Completed);
+            });
+        var run = _run.StartCommand.ExecuteAsync(null);
+        await started.Task.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+        return (run, release, tokens);
+    }
+
+    [Fact]
+    public async Task Start_SecondStartWhileRunning_IgnoredWithNoteAndRunGoesOn()
+    {
+        var (run, release, tokens) = await StartHeldRunAsync();
+
+        await _run.StartCommand.ExecuteAsync(null);
+
+        Assert.Equal(RunState.Running, _run.State);
+        Assert.False(Assert.Single(tokens).IsCancellationRequested);
+        Assert.Contains("already under way", _run.Notice, StringComparison.Ordinal);
+        Assert.False(_run.StartCommand.CanExecute(null));
+        release.SetResult();
+        await run.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+        Assert.Equal(RunState.Completed, _run.State);
+        await _runs.Received(1).RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>());
+    }
+
+    [Fact]
+    public async Task MachineCommands_WhileRunning_RefusedSayingARunIsUnderWayAndDisabled()
+    {
+        var (run, release, _) = await StartHeldRunAsync();
+        _fakes.X.ClearReceivedCalls();
+
+        Assert.False(_machine.HomeCommand.CanExecute(null));
+        Assert.False(_machine.DisconnectCommand.CanExecute(null));
+        Assert.False(_machine.IdentifyCommand.CanExecute(null));
+        Assert.False(_machine.ConnectCommand.CanExecute(null));
+        await _machine.HomeCommand.ExecuteAsync(null);
+        Assert.Contains("a run is under way", _machine.Error, StringComparison.Ordinal);
+        await _machine.DisconnectCommand.ExecuteAsync(null);
+
+        Assert.True(_machine.IsConnected);
+        await _fakes.X.DidNotReceive().HomeAsync(Arg.Any<CancellationToken>());
+        await _fakes.Connection.DidNotReceive().DisposeAsync();
+        release.SetResult();
+        await run.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+        Assert.True(_machine.HomeCommand.CanExecute(null));
+    }
+
+    [Fact]
+    public async Task JobChange_WhileRunning_RefusedSayingARunIsUnderWay()
+    {
+        var (run, release, _) = await StartHeldRunAsync();
+        var width = _job.WidthMm;
+
+        var error = Assert.Throws<MachineBusyException>(() => _job.EditWidth(width * 2));
+        Assert.Throws<MachineBusyException>(() => _job.OriginXMm = 7);
+        Assert.Throws<MachineBusyException>(() => _job.ThresholdPercent = 10);
+        Assert.Throws<MachineBusyException>(() => _job.LoadImage(TestFiles.Asset("text-banner.png")));
+
+        Assert.Contains("a run is under way", error.Message, StringComparison.Ordinal);
+        Assert.Equal(width, _job.WidthMm);
+        Assert.NotNull(_job.LockedBecause);
+        release.SetResult();
+        await run.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+        Assert.Null(_job.LockedBecause);
+        _job.OriginXMm = 7;
+    }
+
+    [Fact]
+    public async Task Start_WhileHoming_RefusedSayingHomingIsUnderWay()
+    {
+        await ReadyAsync();
+        using var homing = _activity.Begin(MachineOperation.Homing);
+
+        Assert.False(_run.StartCommand.CanExecute(null));
+        await _run.StartCommand.ExecuteAsync(null);
+
+        Assert.Contains("homing is under way", _run.Error, StringComparison.Ordinal);
+        await _runs.DidNotReceive().RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>());
+    }
+
+    [Fact]
+    public async Task Continue_JobChangedThenSetBack_OfferedAgainWithTheStoppedPlan()
+    {
+        await ReadyAsync();
+        var stop = new RunStopPoint(3, 20, null, null);
+        var requests = new List<RunRequest>();
+        _runs.RunAsync(Arg.Do<RunRequest>(requests.Add), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(Result(RunOutcome.Failed, "x axis: no reply") with { StopPoint = stop }, Result(RunOutcome.Completed));
+        await _run.StartCommand.ExecuteAsync(null);
+        var origin = _job.OriginXMm;
+
+        _job.OriginXMm = origin + 2;
+        Assert.False(_run.CanContinue);
+        Assert.False(_run.ContinueCommand.CanExecute(null));
+        Assert.Contains("originXMm", _run.ContinueUnavailableReason, StringComparison.Ordinal);
+        Assert.Equal(stop, _run.StoppedAt);
+        _job.OriginXMm = origin;
+
+        Assert.True(_run.CanContinue);
+        Assert.Null(_run.ContinueUnavailableReason);
+        await _run.ContinueCommand.ExecuteAsync(null);
+        Assert.Equal(RunState.Completed, _run.State);
+        Assert.Same(requests[0].Job, requests[1].Job);
+        Assert.Equal(stop, requests[1].ResumeFrom);
     }
 }

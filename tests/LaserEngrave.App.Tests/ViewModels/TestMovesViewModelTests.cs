@@ -10,14 +10,15 @@ namespace LaserEngrave.App.Tests.ViewModels;
 public sealed class TestMovesViewModelTests
 {
     private readonly Fakes _fakes = new();
+    private readonly MachineActivity _activity = new();
     private readonly MachineViewModel _machine;
     private readonly JobViewModel _job;
     private readonly TestMovesViewModel _moves;
 
     public TestMovesViewModelTests()
     {
-        _machine = new MachineViewModel(_fakes.Factory, MachineProfile.Default);
-        _job = new JobViewModel(new ImageService(), MachineProfile.Default);
+        _machine = new MachineViewModel(_fakes.Factory, MachineProfile.Default, _activity);
+        _job = new JobViewModel(new ImageService(), MachineProfile.Default, _activity);
         _moves = new TestMovesViewModel(_machine, _job);
     }
 
@@ -167,14 +168,89 @@ public sealed class TestMovesViewModelTests
     }
 
     [Fact]
-    public async Task Jog_RunActive_RefusedWithoutMoving()
+    public async Task Jog_RunUnderWay_RefusedSayingSoAndDisabled()
     {
         await ConnectAsync();
-        _moves.RunActive = true;
+        using var run = _activity.Begin(MachineOperation.Run);
 
+        Assert.False(_moves.JogCommand.CanExecute("x+"));
+        Assert.False(_moves.GoToCommand.CanExecute(null));
+        Assert.False(_moves.FrameCommand.CanExecute(null));
+        Assert.False(_moves.TestFireCommand.CanExecute(null));
         await _moves.JogCommand.ExecuteAsync("x+");
+        await _moves.TestFireCommand.ExecuteAsync(null);
 
-        Assert.Contains("run is under way", _moves.Error, StringComparison.Ordinal);
+        Assert.Contains("a run is under way", _moves.Error, StringComparison.Ordinal);
         await _fakes.X.DidNotReceive().MoveAbsoluteAsync(Arg.Any<long>(), Arg.Any<CancellationToken>());
+        await _fakes.Gate.DidNotReceive().BurstAsync(Arg.Any<int>(), Arg.Any<int>(), Arg.Any<CancellationToken>());
+    }
+
+    [Fact]
+    public async Task Jog_FivePressesWhileTheFirstMoves_StageEndsFiveStepsAway()
+    {
+        await ConnectAsync();
+        var moving = new TaskCompletionSource();
+        var arrive = new TaskCompletionSource();
+        long position = 0;
+        _fakes.X.GetPositionAsync(Arg.Any<CancellationToken>()).Returns(_ => position);
+        _fakes.X.MoveAbsoluteAsync(Arg.Any<long>(), Arg.Any<CancellationToken>()).Returns(async c =>
+        {
+            moving.TrySetResult();
+            await arrive.Task;
+            return position = c.Arg<long>();
+        });
+        _moves.StepUm = 1000;
+
+        var presses = new List<Task> { _moves.JogCommand.ExecuteAsync("x+") };
+        await moving.Task.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+        for (var i = 0; i < 4; i++)
+        {
+            Assert.True(_moves.JogCommand.CanExecute("x+"));
+            presses.Add(_moves.JogCommand.ExecuteAsync("x+"));
+        }
+
+        Assert.False(_moves.GoToCommand.CanExecute(null));
+        arrive.SetResult();
+        await Task.WhenAll(presses).WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+
+        Assert.Null(_moves.Error);
+        Assert.Equal((long)Math.Round(5000 / MachineProfile.Default.X.MicrostepUm), position);
+        Assert.Equal(position, _machine.XMicrosteps);
+        Assert.False(_activity.IsBusy);
+    }
+
+    [Fact]
+    public async Task GoTo_WhileJogging_RefusedSayingAJogIsUnderWay()
+    {
+        await ConnectAsync();
+        var arrive = new TaskCompletionSource<long>();
+        _fakes.X.MoveAbsoluteAsync(Arg.Any<long>(), Arg.Any<CancellationToken>()).Returns(arrive.Task);
+        var jog = _moves.JogCommand.ExecuteAsync("x+");
+
+        await _moves.GoToCommand.ExecuteAsync(null);
+
+        Assert.Contains("a jog is under way", _moves.Error, StringComparison.Ordinal);
+        arrive.SetResult(1008);
+        await jog.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+    }
+
+    [Fact]
+    public async Task Stop_WhileJogging_CancelledAndMachineFree()
+    {
+        await ConnectAsync();
+        _fakes.X.MoveAbsoluteAsync(Arg.Any<long>(), Arg.Any<CancellationToken>())
+            .Returns(async c =>
+            {
+                await Task.Delay(Timeout.Infinite, c.Arg<CancellationToken>());
+                return 0L;
+            });
+        var jog = _moves.JogCommand.ExecuteAsync("x+");
+        Assert.True(_activity.IsBusy);
+
+        _moves.StopCommand.Execute(null);
+        await jog.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+
+        Assert.Equal("cancelled", _moves.Error);
+        Assert.False(_activity.IsBusy);
     }
 }

@@ -8,7 +8,8 @@ using Microsoft.Extensions.DependencyInjection;
 namespace LaserEngrave.App.Tests.Web;
 
 /// <summary>The app in-process with its data in a temporary folder and the simulator in virtual time.</summary>
-internal sealed class AppFactory : WebApplicationFactory<Program>
+/// <param name="configure">More services to replace (e.g. a run service the test holds).</param>
+internal sealed class AppFactory(Action<IServiceCollection>? configure = null) : WebApplicationFactory<Program>
 {
     private readonly TestFiles.TempFolder _folder = TestFiles.NewFolder();
 
@@ -17,7 +18,7 @@ internal sealed class AppFactory : WebApplicationFactory<Program>
     public HttpClient NewClient()
     {
         var client = CreateClient();
-        client.DefaultRequestHeaders.Add(AppHost.RequestHeader, "1");
+        client.DefaultRequestHeaders.Authorization = new("Bearer", Services.GetRequiredService<AccessToken>().Value);
         return client;
     }
 
@@ -29,7 +30,11 @@ internal sealed class AppFactory : WebApplicationFactory<Program>
     }
 
     protected override void ConfigureWebHost(IWebHostBuilder builder) =>
-        builder.ConfigureServices(services => UseTestServices(services, _folder.Path));
+        builder.ConfigureServices(services =>
+        {
+            UseTestServices(services, _folder.Path);
+            configure?.Invoke(services);
+        });
 
     protected override void Dispose(bool disposing)
     {

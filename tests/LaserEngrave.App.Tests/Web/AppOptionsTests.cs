@@ -5,9 +5,9 @@ namespace LaserEngrave.App.Tests.Web;
 public sealed class AppOptionsTests
 {
     [Theory]
-    [InlineData(new[] { "--no-browser" }, false, AppOptions.DefaultUrl)]
+    [InlineData(new[] { "--no-browser" }, false, null)]
     [InlineData(new[] { "--urls", "http://127.0.0.1:5080" }, true, "http://127.0.0.1:5080")]
-    public void Parse_Options_Read(string[] args, bool openBrowser, string url)
+    public void Parse_Options_Read(string[] args, bool openBrowser, string? url)
     {
         var options = AppOptions.Parse(args);
 
@@ -23,7 +23,8 @@ public sealed class AppOptionsTests
     }
 
     [Theory]
-    [InlineData("--urls", "http://0.0.0.0:80", "this computer only")]
+    [InlineData("--urls", "http://0.0.0.0:80", "--urls http://0.0.0.0:80: not an address of this computer")]
+    [InlineData("--urls", "http://127.0.0.1:1;http://0.0.0.0:2", "--urls http://0.0.0.0:2: not an address")]
     [InlineData("--bogus", null, "unknown option '--bogus'")]
     [InlineData("--urls", null, "--urls needs a value")]
     public void Parse_BadOption_OneLineNamingIt(string option, string? value, string expected)

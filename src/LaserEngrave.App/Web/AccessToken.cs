@@ -1,0 +1,58 @@
+using System.Security.Cryptography;
+using System.Text;
+
+namespace LaserEngrave.App.Web;
+
+/// <summary>
+/// The secret made at each start that the page and every API call must show: only who can read the start line (the
+/// user at this computer) can drive the laser, not another local user or a page of another site.
+/// </summary>
+public sealed class AccessToken
+{
+    /// <summary>The cookie the page gets when it is opened with <c>?token=</c>.</summary>
+    public const string CookieName = "LaserEngrave-Token";
+
+    /// <summary>The header automation can send instead of <c>Authorization: Bearer</c>.</summary>
+    public const string HeaderName = "X-LaserEngrave-Token";
+
+    /// <summary>The query parameter of the address printed at start.</summary>
+    public const string QueryName = "token";
+
+    private readonly byte[] _bytes;
+
+    /// <summary>256 random bits from the system's cryptographic generator, as URL-safe text.</summary>
+    public AccessToken()
+        : this(Convert.ToBase64String(RandomNumberGenerator.GetBytes(32)).TrimEnd('=').Replace('+', '-').Replace('/', '_'))
+    {
+    }
+
+    internal AccessToken(string value)
+    {
+        Value = value;
+        _bytes = Encoding.ASCII.GetBytes(value);
+    }
+
+    public string Value { get; }
+
+    /// <summary>Compares in constant time, so the answer's timing tells nothing about the secret.</summary>
+    public bool Matches(string? candidate) =>
+        candidate is not null && CryptographicOperations.FixedTimeEquals(Encoding.ASCII.GetBytes(candidate), _bytes);
+
+    /// <summary>Whether a request shows the token in <c>Authorization: Bearer</c> or the <see cref="HeaderName"/> header.</summary>
+    internal bool IsShownBy(HttpRequest request, out bool byCookie)
+    {
+        byCookie = false;
+        var authorization = request.Headers.Authorization.ToString();
+        if (authorization.StartsWith("Bearer ", StringComparison.OrdinalIgnoreCase) && Matches(authorization["Bearer ".Length..].Trim()))
+        {
+            return true;
+        }
+
+        if (Matches(request.Headers[HeaderName].ToString()))
+        {
+            return true;
+        }
+
+        return false;
+    }
+}

@@ -1,0 +1,222 @@
+using System.Diagnostics;
+using System.Net;
+using System.Net.Http.Json;
+using System.Text.Json;
+using System.Text.RegularExpressions;
+
+namespace LaserEngrave.App.Tests.Web;
+
+/// <summary>The app as a user starts it: its own process, its start line, its refusals and its exit on SIGTERM.</summary>
+public sealed partial class AppProcessTests : IDisposable
+{
+    // Only a bound that stops a broken test from hanging; the app must do far better (2 s).
+    private static readonly TimeSpan Bound = TimeSpan.FromSeconds(60);
+
+    private readonly TestFiles.TempFolder _data = TestFiles.NewFolder();
+    private Process? _process;
+
+    private static CancellationToken Token => TestContext.Current.CancellationToken;
+
+    public void Dispose()
+    {
+        if (_process is { HasExited: false })
+        {
+            _process.Kill(entireProcessTree: true);
+        }
+
+        _process?.Dispose();
+        _data.Dispose();
+    }
+
+    /// <summary>Sends SIGTERM the way a service manager does.</summary>
+    private static async Task TerminateAsync(Process process)
+    {
+        using var kill = Process.Start("kill", ["-TERM", process.Id.ToString(System.Globalization.CultureInfo.InvariantCulture)]);
+        await kill.WaitForExitAsync(Token);
+        Assert.Equal(0, kill.ExitCode);
+    }
+
+    [GeneratedRegex(@"^LaserEngrave is running at (http://127\.0\.0\.1:\d+)/\?token=([A-Za-z0-9_-]{43})$")]
+    private static partial Regex StartLine();
+
+    private Process Start(string[] args, params (string Key, string Value)[] environment)
+    {
+        var start = new ProcessStartInfo("dotnet")
+        {
+            RedirectStandardOutput = true,
+            RedirectStandardError = true,
+            UseShellExecute = false,
+        };
+        start.ArgumentList.Add(Path.Combine(AppContext.BaseDirectory, "LaserEngrave.App.dll"));
+        start.ArgumentList.Add("--no-browser");
+        start.ArgumentList.Add("--data-folder");
+        start.ArgumentList.Add(_data.Path);
+        foreach (var arg in args)
+        {
+            start.ArgumentList.Add(arg);
+        }
+
+        start.Environment.Remove("ASPNETCORE_URLS");
+        start.Environment["DOTNET_ENVIRONMENT"] = "Production";
+        foreach (var (key, value) in environment)
+        {
+            start.Environment[key] = value;
+        }
+
+        _process = Process.Start(start)!;
+        return _process;
+    }
+
+    private static async Task<(string Base, string Secret)> ReadStartLineAsync(Process process)
+    {
+        var line = await process.StandardOutput.ReadLineAsync(Token).AsTask().WaitAsync(Bound, Token);
+        var match = StartLine().Match(line ?? string.Empty);
+        Assert.True(match.Success, $"start line: {line}; stderr: {(process.HasExited ? await process.StandardError.ReadToEndAsync(Token) : string.Empty)}");
+        return (match.Groups[1].Value, match.Groups[2].Value);
+    }
+
+    [Theory]
+    [InlineData("--urls", "http://127.0.0.1:1;http://0.0.0.0:2", "http://0.0.0.0:2")]
+    [InlineData("--urls=http://0.0.0.0:5099", null, "http://0.0.0.0:5099")]
+    public async Task Start_NetworkAddressInOptions_RefusedWithOneLineExit2(string option, string? value, string named)
+    {
+        var process = Start(value is null ? [option] : [option, value]);
+
+        await process.WaitForExitAsync(Token).WaitAsync(Bound, Token);
+
+        var error = await process.StandardError.ReadToEndAsync(Token);
+        Assert.Equal(2, process.ExitCode);
+        Assert.Contains(named, error, StringComparison.Ordinal);
+        Assert.Single(error.Split('\n', StringSplitOptions.RemoveEmptyEntries));
+        Assert.DoesNotContain("running at", await process.StandardOutput.ReadToEndAsync(Token), StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task Start_NetworkAddressInAspNetCoreUrls_RefusedExit2()
+    {
+        var process = Start([], ("ASPNETCORE_URLS", "http://0.0.0.0:5098"));
+
+        await process.WaitForExitAsync(Token).WaitAsync(Bound, Token);
+
+        Assert.Equal(2, process.ExitCode);
+        Assert.Contains("http://0.0.0.0:5098", await process.StandardError.ReadToEndAsync(Token), StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task Start_Default_LoopbackAddressWithTokenThatTheApiRequires()
+    {
+        var process = Start(["--urls", "http://127.0.0.1:0"]);
+        var (address, secret) = await ReadStartLineAsync(process);
+        using var client = new HttpClient { BaseAddress = new Uri(address) };
+
+        using var without = await client.GetAsync("/api/state", Token);
+        client.DefaultRequestHeaders.Authorization = new("Bearer", secret);
+        using var with = await client.GetAsync("/api/state", Token);
+
+        Assert.Equal(HttpStatusCode.Unauthorized, without.StatusCode);
+        Assert.Equal(HttpStatusCode.OK, with.StatusCode);
+    }
+
+    [Fact]
+    public async Task SigTerm_RunUnderWayAndPageOpen_ExitsLaserOffAndLogWritten()
+    {
+        var process = Start(["--urls", "http://127.0.0.1:0"]);
+        var (address, secret) = await ReadStartLineAsync(process);
+        using var client = new HttpClient { BaseAddress = new Uri(address), Timeout = Bound };
+        client.DefaultRequestHeaders.Authorization = new("Bearer", secret);
+        using (var image = new ByteArrayContent(await File.ReadAllBytesAsync(TestFiles.Asset("qr-code.bmp"), Token)))
+        {
+            (await client.PostAsync("/api/image?name=qr-code.bmp", image, Token)).EnsureSuccessStatusCode();
+        }
+
+        (await client.PostAsJsonAsync("/api/machine/connect", new { useSimulator = true }, Token)).EnsureSuccessStatusCode();
+        await WaitForAsync(client, s => s.GetProperty("machine").GetProperty("connected").GetBoolean() && !s.GetProperty("activity").GetProperty("busy").GetBoolean());
+        (await client.PostAsJsonAsync("/api/run/start", new { sampleId = "SIGTERM" }, Token)).EnsureSuccessStatusCode();
+        await WaitForAsync(client, s => s.GetProperty("run").GetProperty("phase").GetString() == "running");
+        // The page's event stream stays open through the exit.
+        using var events = await client.GetAsync("/api/events", HttpCompletionOption.ResponseHeadersRead, Token);
+        Assert.Equal(HttpStatusCode.OK, events.StatusCode);
+
+        await TerminateAsync(process);
+        await process.WaitForExitAsync(Token).WaitAsync(Bound, Token);
+
+        Assert.Equal(0, process.ExitCode);
+        var log = Assert.Single(Directory.GetFiles(Path.Combine(_data.Path, "logs"), "*.json", SearchOption.AllDirectories));
+        using var record = JsonDocument.Parse(await File.ReadAllTextAsync(log, Token));
+        Assert.Equal("aborted", record.RootElement.GetProperty("outcome").GetString(), ignoreCase: true);
+        if (record.RootElement.TryGetProperty("fault", out var fault) && fault.ValueKind == JsonValueKind.Object)
+        {
+            Assert.True(fault.GetProperty("laserOffConfirmed").GetBoolean());
+        }
+    }
+
+    private static async Task WaitForAsync(HttpClient client, Func<JsonElement, bool> condition)
+    {
+        // The state polled until the app's own progress shows it; the count only stops a broken test from hanging.
+        for (var i = 0; i < 6000; i++)
+        {
+            var state = await client.GetFromJsonAsync<JsonElement>("/api/state", Token);
+            if (condition(state))
+            {
+                return;
+            }
+
+            await Task.Delay(10, Token);
+        }
+
+        throw new TimeoutException("the app never reached the state");
+    }
+
+    [Fact]
+    public async Task Upload_OverTheAppsLimitWithoutLength_AppsMessageNamingTheFileAndNothingLeft()
+    {
+        var process = Start(["--urls", "http://127.0.0.1:0"]);
+        var (address, secret) = await ReadStartLineAsync(process);
+        using var client = new HttpClient { BaseAddress = new Uri(address), Timeout = Bound };
+        client.DefaultRequestHeaders.Authorization = new("Bearer", secret);
+        using var content = new StreamContent(new ZeroStream((512L << 20) + 1));
+        content.Headers.ContentLength = null;
+
+        using var response = await client.PostAsync("/api/image?name=huge.png", content, Token);
+
+        Assert.Equal(HttpStatusCode.RequestEntityTooLarge, response.StatusCode);
+        var body = await response.Content.ReadFromJsonAsync<JsonElement>(Token);
+        Assert.Equal("huge.png: the file is larger than 512 MB, the most the app takes", body.GetProperty("error").GetString());
+        var images = Path.Combine(_data.Path, "images");
+        Assert.Empty(Directory.Exists(images) ? Directory.GetFiles(images) : []);
+    }
+
+    /// <summary>A body of zeros of a given length, made as it is read (sent chunked: no length header to refuse early).</summary>
+    private sealed class ZeroStream(long length) : Stream
+    {
+        private long _left = length;
+
+        public override bool CanRead => true;
+
+        public override bool CanSeek => false;
+
+        public override bool CanWrite => false;
+
+        public override long Length => throw new NotSupportedException();
+
+        public override long Position { get => throw new NotSupportedException(); set => throw new NotSupportedException(); }
+
+        public override int Read(byte[] buffer, int offset, int count)
+        {
+            var n = (int)Math.Min(count, _left);
+            Array.Clear(buffer, offset, n);
+            _left -= n;
+            return n;
+        }
+
+        public override void Flush()
+        {
+        }
+
+        public override long Seek(long offset, SeekOrigin origin) => throw new NotSupportedException();
+
+        public override void SetLength(long value) => throw new NotSupportedException();
+
+        public override void Write(byte[] buffer, int offset, int count) => throw new NotSupportedException();
+    }
+}
