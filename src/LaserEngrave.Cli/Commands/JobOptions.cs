@@ -94,6 +94,7 @@ internal sealed class JobOptions
     /// <summary>Refuses a size whose pixels would be smaller than one microstep, the smallest step the stage makes (whole pixels would vanish).</summary>
     private static void RefusePitchBelowMicrostep(SizeSpec size, string image, OriginMm origin, MachineProfile profile)
     {
+        PreparedJob.RefuseDrawing(image);
         var info = ImageLoader.ReadInfo(image);
         var pitch = GeometryResolver.Resolve(size, info.Width, info.Height, origin, profile).PitchUm;
         var microstep = Math.Max(profile.X.MicrostepUm, profile.Y.MicrostepUm);

@@ -38,15 +38,21 @@ public sealed class PreparedJob
     /// <summary>Warnings of the geometry, of the plan and of the pulses, in that order.</summary>
     public IReadOnlyList<JobWarning> Warnings => [.. Geometry.Warnings, .. Plan.Warnings, .. Pulses.Warnings];
 
+    /// <summary>Refuses a drawing where only images are run yet.</summary>
+    /// <remarks>Without this a drawing would be refused as "not an image", which sends the user looking in the wrong place.</remarks>
+    public static void RefuseDrawing(string path)
+    {
+        if (Vectors.DrawingReader.IsDrawing(path))
+        {
+            throw new Vectors.DrawingException($"{path}: drawings can be planned and previewed (laserengrave plan, preview) but not yet engraved or framed");
+        }
+    }
+
     /// <summary>Loads the image, builds the mask, resolves the geometry and plans; throws one-line typed errors.</summary>
     public static PreparedJob Prepare(JobSpec spec)
     {
         ArgumentNullException.ThrowIfNull(spec);
-        if (Vectors.DrawingReader.IsDrawing(spec.ImagePath))
-        {
-            // Without this a drawing would be refused as "not an image", which sends the user looking in the wrong place.
-            throw new Vectors.DrawingException($"{spec.ImagePath}: drawings can be planned and previewed (laserengrave plan, preview) but not yet engraved or framed");
-        }
+        RefuseDrawing(spec.ImagePath);
 
         spec.Mask.Validate();
         spec.Process.Validate();
