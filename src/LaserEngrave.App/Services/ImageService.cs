@@ -1,4 +1,5 @@
 using LaserEngrave.Core.Imaging;
+using LaserEngrave.Core.IO;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Preview;
 

@@ -203,7 +203,7 @@ public sealed class ApiEndpointsTests : IDisposable
         // Before, opening the FIFO blocked the request for ever; the bound only keeps a broken test from hanging.
         var state = await PostAsync("/api/image/open", new { path = fifo }).WaitAsync(TimeSpan.FromSeconds(60), Token);
 
-        Assert.Equal($"{fifo}: is not a regular file (a pipe, device or socket): only image files are opened", state.GetProperty("job").GetProperty("errors").GetProperty("image").GetString());
+        Assert.Equal($"{fifo}: is a named pipe (FIFO), not a regular file", state.GetProperty("job").GetProperty("errors").GetProperty("image").GetString());
         Assert.Equal(JsonValueKind.Null, state.GetProperty("image").GetProperty("path").ValueKind);
     }
 }
