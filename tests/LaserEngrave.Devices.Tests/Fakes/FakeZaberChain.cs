@@ -1,8 +1,8 @@
 using System.Threading.Channels;
 using LaserEngrave.Devices.Scheduling;
 using LaserEngrave.Devices.Serial;
-using LaserEngrave.Simulator.Timing;
 using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Simulator.Timing;
 
 namespace LaserEngrave.Devices.Tests.Fakes;
 

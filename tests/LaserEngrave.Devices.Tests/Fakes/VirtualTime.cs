@@ -8,9 +8,24 @@ public static class VirtualTime
 {
     /// <summary>Runs <paramref name="body"/> as one operation on the loop of <paramref name="time"/>, or directly on any other clock.</summary>
     /// <remarks>On the loop, a body that waits for something nobody will do fails with a <see cref="SimulationDeadlockException"/>;
-    /// <see cref="Eventually.Within(Task)"/> only bounds a test that is broken in some other way.</remarks>
-    public static Task RunTestAsync(this TimeProvider time, Func<Task> body) =>
-        time is VirtualTimeProvider loop ? loop.Run(async () => { await body(); return true; }).Within() : body().Within();
+    /// <see cref="Eventually.Within(Task)"/> only bounds a test that is broken in some other way. Work that reached the loop
+    /// from another thread during the body (something that left the loop) fails the test: the result could depend on timing.</remarks>
+    public static async Task RunTestAsync(this TimeProvider time, Func<Task> body)
+    {
+        if (time is not VirtualTimeProvider loop)
+        {
+            await body().Within();
+            return;
+        }
+
+        var foreign = loop.Loop.ForeignPosts;
+        await loop.Run(async () =>
+        {
+            await body();
+            return true;
+        }).Within();
+        Assert.True(loop.Loop.ForeignPosts == foreign, $"{loop.Loop.ForeignPosts - foreign} work item(s) reached the loop from another thread");
+    }
 
     /// <summary>Waits until nothing is left to do at this virtual instant (every reply read, every event raised) without moving the clock.</summary>
     /// <remarks>A timer due now fires only once the loop has no ready work left, after timers already due now.</remarks>
