@@ -1,11 +1,15 @@
 using System.Globalization;
 using System.Text;
 using System.Threading.Channels;
+using LaserEngrave.Devices.Scheduling;
 using LaserEngrave.Devices.Serial;
+using LaserEngrave.Simulator.Timing;
 
 namespace LaserEngrave.Devices.Tests.Fakes;
 
 /// <summary>A PIC laser gate speaking docs/laser-gate-protocol.md on the device end of a link; no timing, no watchdog clock.</summary>
+/// <remarks>Given a <see cref="VirtualTimeProvider"/>, it runs on that clock's loop (so a test sees every reply in
+/// virtual-time order, with no wall-clock waits); otherwise on the thread pool (real ports), guarded by <see cref="Eventually.Limit"/>.</remarks>
 public sealed class FakeLaserGate : IAsyncDisposable
 {
     private readonly ISerialLink _link;
@@ -13,12 +17,14 @@ public sealed class FakeLaserGate : IAsyncDisposable
     private readonly CancellationTokenSource _stop = new();
     private readonly Task _loop;
     private readonly List<string> _log = [];
+    private readonly bool _onLoop;
     private int _disposed;
 
-    public FakeLaserGate(ISerialLink deviceEnd)
+    public FakeLaserGate(ISerialLink deviceEnd, TimeProvider? time = null)
     {
         _link = deviceEnd;
-        _loop = Task.Run(LoopAsync);
+        _onLoop = time is VirtualTimeProvider;
+        _loop = TaskRunner.For(time ?? TimeProvider.System).Start(LoopAsync);
     }
 
     public int FrequencyHz { get; set; }
@@ -42,7 +48,7 @@ public sealed class FakeLaserGate : IAsyncDisposable
     }
 
     /// <summary>Waits for the next line from the host.</summary>
-    public async Task<string> NextAsync() => await _received.Reader.ReadAsync().AsTask().Within();
+    public async Task<string> NextAsync() => _onLoop ? await _received.Reader.ReadAsync() : await _received.Reader.ReadAsync().AsTask().Within();
 
     public Task SendRawAsync(string text) => _link.WriteAsync(Encoding.ASCII.GetBytes(text), CancellationToken.None).AsTask();
 
@@ -53,9 +59,9 @@ public sealed class FakeLaserGate : IAsyncDisposable
             return;
         }
 
-        await _stop.CancelAsync();
+        _stop.Cancel();
         await _link.DisposeAsync();
-        await _loop.Within();
+        await (_onLoop ? _loop : _loop.Within());
         _stop.Dispose();
     }
 

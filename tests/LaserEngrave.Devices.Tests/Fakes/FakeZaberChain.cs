@@ -1,25 +1,36 @@
 using System.Threading.Channels;
+using LaserEngrave.Devices.Scheduling;
 using LaserEngrave.Devices.Serial;
 using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Simulator.Timing;
 
 namespace LaserEngrave.Devices.Tests.Fakes;
 
 /// <summary>Fake Zaber devices on the device end of a link: records every frame, answers through
 /// <see cref="FakeZaberDevice"/> unless <see cref="Intercept"/> says otherwise, and lets the test send any bytes.</summary>
+/// <remarks>Given a <see cref="VirtualTimeProvider"/>, it runs on that clock's loop (so a test sees every reply in
+/// virtual-time order, with no wall-clock waits); otherwise on the thread pool (real ports), guarded by <see cref="Eventually.Limit"/>.</remarks>
 public sealed class FakeZaberChain : IAsyncDisposable
 {
     private readonly ISerialLink _link;
     private readonly Channel<ZaberFrame> _received = Channel.CreateUnbounded<ZaberFrame>();
-    private readonly SemaphoreSlim _writeLock = new(1, 1);
+    private readonly AsyncLock _writeLock = new();
     private readonly CancellationTokenSource _stop = new();
     private readonly Task _loop;
+    private readonly bool _onLoop;
     private int _disposed;
 
     public FakeZaberChain(ISerialLink deviceEnd, params FakeZaberDevice[] devices)
+        : this(deviceEnd, null, devices)
+    {
+    }
+
+    public FakeZaberChain(ISerialLink deviceEnd, TimeProvider? time, params FakeZaberDevice[] devices)
     {
         _link = deviceEnd;
         Devices = devices;
-        _loop = Task.Run(LoopAsync);
+        _onLoop = time is VirtualTimeProvider;
+        _loop = TaskRunner.For(time ?? TimeProvider.System).Start(LoopAsync);
     }
 
     public IReadOnlyList<FakeZaberDevice> Devices { get; }
@@ -35,7 +46,7 @@ public sealed class FakeZaberChain : IAsyncDisposable
     public FakeZaberDevice this[byte number] => Devices.Single(d => d.Number == number);
 
     /// <summary>Waits for the next frame from the host.</summary>
-    public async Task<ZaberFrame> NextAsync() => await _received.Reader.ReadAsync().AsTask().Within();
+    public async Task<ZaberFrame> NextAsync() => _onLoop ? await _received.Reader.ReadAsync() : await _received.Reader.ReadAsync().AsTask().Within();
 
     /// <summary>Waits for the next frame with this command, skipping others.</summary>
     public async Task<ZaberFrame> NextAsync(ZaberCommand command)
@@ -72,18 +83,17 @@ public sealed class FakeZaberChain : IAsyncDisposable
             return;
         }
 
-        await _stop.CancelAsync();
+        _stop.Cancel();
         await _link.DisposeAsync();
         try
         {
-            await _loop.Within();
+            await (_onLoop ? _loop : _loop.Within());
         }
         catch (OperationCanceledException)
         {
         }
 
         _stop.Dispose();
-        _writeLock.Dispose();
     }
 
     private async Task LoopAsync()

@@ -1,18 +1,30 @@
 using LaserEngrave.Devices.Serial;
 using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Simulator.Timing;
 
 namespace LaserEngrave.Devices.Tests.Fakes;
 
-/// <summary>A connection on a manual clock, wired in memory to two fake devices (1 = X, 2 = Y).</summary>
+/// <summary>A connection wired in memory to two fake devices (1 = X, 2 = Y), on a virtual clock.</summary>
+/// <remarks>
+/// On a <see cref="VirtualTimeProvider"/> (the default) the connection and the fake devices run on the simulation's loop:
+/// run the test's body with <see cref="RunAsync"/>. On a <c>FakeTimeProvider</c> they run on the thread pool with the
+/// clock standing still, for tests that never move time.
+/// </remarks>
 public sealed class ZaberRig : IAsyncDisposable
 {
     public const string Port = "/dev/fake-zaber";
 
     public ZaberRig(ZaberConnectionOptions? options = null)
+        : this(new VirtualTimeProvider(), options)
     {
+    }
+
+    public ZaberRig(TimeProvider clock, ZaberConnectionOptions? options = null)
+    {
+        Clock = clock;
         var (host, device) = InMemorySerialLink.CreatePair(Port);
         Connection = new ZaberConnection(host, Clock, options);
-        Wire = new FakeZaberChain(device, new FakeZaberDevice(1), new FakeZaberDevice(2));
+        Wire = new FakeZaberChain(device, Clock, new FakeZaberDevice(1), new FakeZaberDevice(2));
         X = new ZaberBinaryDevice(Connection, 1, "X");
         Y = new ZaberBinaryDevice(Connection, 2, "Y");
         Connection.LineEvent += (_, e) =>
@@ -24,7 +36,10 @@ public sealed class ZaberRig : IAsyncDisposable
         };
     }
 
-    public ManualTimeProvider Clock { get; } = new();
+    public TimeProvider Clock { get; }
+
+    /// <summary>The virtual clock (only for a rig made on one).</summary>
+    public VirtualTimeProvider Time => (VirtualTimeProvider)Clock;
 
     public ZaberConnection Connection { get; }
 
@@ -44,9 +59,16 @@ public sealed class ZaberRig : IAsyncDisposable
         }
     }
 
+    /// <summary>Runs the test's body: as one operation on the loop of a virtual clock, directly on a fake one.</summary>
+    public Task RunAsync(Func<Task> body) => Clock.RunTestAsync(body);
+
     public async ValueTask DisposeAsync()
     {
-        await Connection.DisposeAsync().AsTask().Within();
-        await Wire.DisposeAsync().AsTask().Within();
+        await Clock.RunTestAsync(async () =>
+        {
+            await Connection.DisposeAsync();
+            await Wire.DisposeAsync();
+        });
+        (Clock as IDisposable)?.Dispose();
     }
 }

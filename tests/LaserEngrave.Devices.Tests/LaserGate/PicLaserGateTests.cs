@@ -3,9 +3,13 @@ using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.LaserGate;
 using LaserEngrave.Devices.Serial;
 using LaserEngrave.Devices.Tests.Fakes;
+using LaserEngrave.Simulator.Timing;
+using Microsoft.Extensions.Time.Testing;
 
 namespace LaserEngrave.Devices.Tests.LaserGate;
 
+/// <summary>The gate host against <see cref="FakeLaserGate"/>. Tests in which time never moves stand on a
+/// <c>FakeTimeProvider</c>; tests about timing, ordering or what the reader does in between run on the simulation's loop.</summary>
 public class PicLaserGateTests
 {
     private const string Port = "/dev/fake-gate";
@@ -14,7 +18,7 @@ public class PicLaserGateTests
     [Fact]
     public async Task IdentifyAsync_GateAnswers_ReturnsTheTextAfterOk()
     {
-        await using var rig = new GateRig();
+        await using var rig = new GateRig(new FakeTimeProvider());
         rig.Fake.Firmware = "PICGATE 2.1";
 
         Assert.Equal("PICGATE 2.1", await rig.Gate.IdentifyAsync(None).Within());
@@ -24,7 +28,7 @@ public class PicLaserGateTests
     [Fact]
     public async Task SetFrequencyAsync_1kHz_SendsFreqLineAndWaitsForOk()
     {
-        await using var rig = new GateRig();
+        await using var rig = new GateRig(new FakeTimeProvider());
 
         await rig.Gate.SetFrequencyAsync(1000, None).Within();
 
@@ -35,7 +39,7 @@ public class PicLaserGateTests
     [Fact]
     public async Task OffAsync_AfterFiring_StopsTheGate()
     {
-        await using var rig = new GateRig();
+        await using var rig = new GateRig(new FakeTimeProvider());
         await rig.Gate.SetFrequencyAsync(1000, None).Within();
 
         await rig.Gate.OffAsync(None).Within();
@@ -48,7 +52,7 @@ public class PicLaserGateTests
     [InlineData("OK STATE 0 OFF WDOG 0 TRIPPED", 0, false, 0, true)]
     public async Task GetStateAsync_StateLine_IsParsed(string reply, int hz, bool firing, int watchdogMs, bool tripped)
     {
-        await using var rig = new GateRig();
+        await using var rig = new GateRig(new FakeTimeProvider());
         rig.Fake.Intercept = _ => reply + "\n";
 
         var state = await rig.Gate.GetStateAsync(None).Within();
@@ -59,7 +63,7 @@ public class PicLaserGateTests
     [Fact]
     public async Task GetStateAsync_AfterSettingUp_ReflectsTheGate()
     {
-        await using var rig = new GateRig();
+        await using var rig = new GateRig(new FakeTimeProvider());
         await rig.Gate.SetWatchdogAsync(750, None).Within();
         await rig.Gate.SetFrequencyAsync(2500, None).Within();
 
@@ -71,7 +75,7 @@ public class PicLaserGateTests
     [InlineData("OK STATE fast ON WDOG 800")]
     public async Task GetStateAsync_UnreadableState_ThrowsNamingTheReply(string reply)
     {
-        await using var rig = new GateRig();
+        await using var rig = new GateRig(new FakeTimeProvider());
         rig.Fake.Intercept = _ => reply + "\n";
 
         var error = await Assert.ThrowsAsync<LaserGateException>(() => rig.Gate.GetStateAsync(None).Within());
@@ -83,25 +87,29 @@ public class PicLaserGateTests
     [Fact]
     public async Task GetStateAsync_ReplyToAnotherCommand_IsReportedAndDoesNotAnswer()
     {
-        await using var rig = new GateRig();
+        await using var rig = new GateRig(new VirtualTimeProvider());
         var unexpected = new List<string>();
         rig.Gate.UnexpectedLine += (_, e) => unexpected.Add(e.Line);
         rig.Fake.Intercept = _ => "OK 1000 ON\n";
 
-        var state = rig.Gate.GetStateAsync(None);
-        await rig.Clock.WaitForTimerAsync(TimeSpan.FromMilliseconds(500), TimeSpan.FromMilliseconds(500));
-        await Eventually.TrueAsync(() => unexpected.Count > 0, "the reply that answers nothing");
-        rig.Clock.Advance(TimeSpan.FromMilliseconds(500));
+        await rig.RunAsync(async () =>
+        {
+            var state = rig.Gate.GetStateAsync(None);
+            await rig.Time.SettleAsync();
+            Assert.Equal(["OK 1000 ON"], unexpected);
+            Assert.False(state.IsCompleted);
 
-        await Assert.ThrowsAsync<DeviceTimeoutException>(() => state.Within());
+            await VirtualTime.ThrowsAsync<DeviceTimeoutException>(state);
 
-        Assert.Equal(["OK 1000 ON"], unexpected);
+            Assert.Equal(TimeSpan.FromMilliseconds(500), rig.Time.Elapsed);
+            Assert.Equal(["OK 1000 ON"], unexpected);
+        });
     }
 
     [Fact]
     public async Task SetFrequencyAsync_GateSaysErr_ThrowsWithTheGatesText()
     {
-        await using var rig = new GateRig();
+        await using var rig = new GateRig(new FakeTimeProvider());
 
         var error = await Assert.ThrowsAsync<LaserGateException>(() => rig.Gate.SetFrequencyAsync(200000, None).Within());
 
@@ -112,7 +120,7 @@ public class PicLaserGateTests
     [Fact]
     public async Task SendAsync_ReplyWithNeitherPrefix_ThrowsSayingWhatWasExpected()
     {
-        await using var rig = new GateRig();
+        await using var rig = new GateRig(new FakeTimeProvider());
         rig.Fake.Intercept = _ => "HELLO\n";
 
         var error = await Assert.ThrowsAsync<LaserGateException>(() => rig.Gate.KeepAliveAsync(None).Within());
@@ -123,18 +131,20 @@ public class PicLaserGateTests
     [Fact]
     public async Task SetFrequencyAsync_SilentGate_TimesOutOnTheClockWithAClearMessage()
     {
-        await using var rig = new GateRig();
+        await using var rig = new GateRig(new VirtualTimeProvider());
         rig.Fake.Intercept = _ => string.Empty;
-        var command = rig.Gate.SetFrequencyAsync(1000, None);
-        await rig.Fake.NextAsync();
-        await rig.Clock.WaitForTimerAsync(TimeSpan.FromMilliseconds(500), TimeSpan.FromMilliseconds(500));
 
-        rig.Clock.Advance(TimeSpan.FromMilliseconds(499));
-        await Eventually.AssertStillPendingAsync(command);
-        rig.Clock.Advance(TimeSpan.FromMilliseconds(1));
+        await rig.RunAsync(async () =>
+        {
+            var command = rig.Gate.SetFrequencyAsync(1000, None);
+            Assert.Equal("FREQ 1000", await rig.Fake.NextAsync());
+            var sentAt = rig.Time.Elapsed;
 
-        var error = await Assert.ThrowsAsync<DeviceTimeoutException>(() => command.Within());
-        Assert.Equal($"laser gate on {Port} did not acknowledge 'FREQ 1000' within 500 ms", error.Message);
+            var error = await VirtualTime.ThrowsAsync<DeviceTimeoutException>(command);
+
+            Assert.Equal(TimeSpan.FromMilliseconds(500), rig.Time.Elapsed - sentAt);
+            Assert.Equal($"laser gate on {Port} did not acknowledge 'FREQ 1000' within 500 ms", error.Message);
+        });
     }
 
     [Fact]
@@ -148,7 +158,7 @@ public class PicLaserGateTests
             ErrorPrefix = "NAK",
             LineTerminator = "\r\n",
         };
-        await using var rig = new GateRig(profile);
+        await using var rig = new GateRig(new FakeTimeProvider(), profile);
         rig.Fake.Intercept = line => line switch
         {
             "F1000" => "ACK\r\n",
@@ -168,7 +178,7 @@ public class PicLaserGateTests
     [Fact]
     public async Task SendAsync_ReplyInPiecesEndedByCrLf_IsOneLine()
     {
-        await using var rig = new GateRig();
+        await using var rig = new GateRig(new FakeTimeProvider());
         rig.Fake.Intercept = _ => string.Empty;
         var identify = rig.Gate.IdentifyAsync(None);
         await rig.Fake.NextAsync();
@@ -183,39 +193,49 @@ public class PicLaserGateTests
     [Fact]
     public async Task UnexpectedLine_WithNoCommandWaiting_IsReportedAndNotTakenAsTheNextReply()
     {
-        await using var rig = new GateRig();
+        await using var rig = new GateRig(new VirtualTimeProvider());
         var stray = new List<string>();
         rig.Gate.UnexpectedLine += (_, e) => stray.Add(e.Line);
 
-        await rig.Fake.SendRawAsync("OK LATE\n");
-        await Eventually.TrueAsync(() => stray.Count == 1, "the stray line was reported");
+        await rig.RunAsync(async () =>
+        {
+            await rig.Fake.SendRawAsync("OK LATE\n");
+            await rig.Time.SettleAsync();
+            Assert.Equal(["OK LATE"], stray);
 
-        Assert.Equal("PICGATE 1.0", await rig.Gate.IdentifyAsync(None).Within());
-        Assert.Equal(["OK LATE"], stray);
+            Assert.Equal("PICGATE 1.0", await rig.Gate.IdentifyAsync(None));
+            Assert.Equal(["OK LATE"], stray);
+        });
     }
 
     [Fact]
     public async Task SendAsync_TwoCommandsAtOnce_SecondIsSentOnlyAfterTheFirstIsAcknowledged()
     {
-        await using var rig = new GateRig();
+        await using var rig = new GateRig(new VirtualTimeProvider());
         rig.Fake.Intercept = _ => string.Empty;
-        var first = rig.Gate.SetFrequencyAsync(1000, None);
-        Assert.Equal("FREQ 1000", await rig.Fake.NextAsync());
-        var second = rig.Gate.KeepAliveAsync(None);
-        await Task.Delay(50, TestContext.Current.CancellationToken);
-        Assert.Equal(["FREQ 1000"], rig.Fake.AllReceived());
 
-        await rig.Fake.SendRawAsync("OK FREQ 1000\n");
-        Assert.Equal("PING", await rig.Fake.NextAsync());
-        await rig.Fake.SendRawAsync("OK PONG\n");
+        await rig.RunAsync(async () =>
+        {
+            var first = rig.Gate.SetFrequencyAsync(1000, None);
+            Assert.Equal("FREQ 1000", await rig.Fake.NextAsync());
+            var second = rig.Gate.KeepAliveAsync(None);
+            await rig.Time.SettleAsync();
+            Assert.Equal(["FREQ 1000"], rig.Fake.AllReceived());
+            Assert.False(second.IsCompleted);
 
-        await Task.WhenAll(first, second).Within();
+            await rig.Fake.SendRawAsync("OK FREQ 1000\n");
+            Assert.Equal("PING", await rig.Fake.NextAsync());
+            await rig.Fake.SendRawAsync("OK PONG\n");
+
+            await Task.WhenAll(first, second);
+            Assert.Equal(TimeSpan.Zero, rig.Time.Elapsed);
+        });
     }
 
     [Fact]
     public async Task SendAsync_LinkDropsWhileWaiting_ThrowsLinkLostNamingPortAndCommand()
     {
-        await using var rig = new GateRig();
+        await using var rig = new GateRig(new FakeTimeProvider());
         rig.Fake.Intercept = _ => string.Empty;
         var command = rig.Gate.SetFrequencyAsync(1000, None);
         await rig.Fake.NextAsync();
@@ -231,7 +251,7 @@ public class PicLaserGateTests
     [Fact]
     public async Task SetFrequencyAsync_Negative_IsRefusedBeforeSending()
     {
-        await using var rig = new GateRig();
+        await using var rig = new GateRig(new FakeTimeProvider());
 
         await Assert.ThrowsAsync<ArgumentOutOfRangeException>(() => rig.Gate.SetFrequencyAsync(-1, None));
     }
@@ -239,32 +259,44 @@ public class PicLaserGateTests
     [Fact]
     public async Task BurstAsync_SendsPulseCountAndFrequency()
     {
-        await using var rig = new GateRig();
+        await using var rig = new GateRig(new FakeTimeProvider());
 
         await rig.Gate.BurstAsync(10, 500, None).Within();
 
         Assert.Equal("BURST 10 500", await rig.Fake.NextAsync());
     }
 
+    /// <summary>The gate and its fake on <paramref name="clock"/>: on the loop of a <see cref="VirtualTimeProvider"/>, or on the thread pool.</summary>
     private sealed class GateRig : IAsyncDisposable
     {
-        public GateRig(LaserGateProfile? profile = null)
+        public GateRig(TimeProvider clock, LaserGateProfile? profile = null)
         {
+            Clock = clock;
             var (host, device) = InMemorySerialLink.CreatePair(Port);
-            Fake = new FakeLaserGate(device);
+            Fake = new FakeLaserGate(device, Clock);
             Gate = new PicLaserGate(host, profile ?? new LaserGateProfile(), Clock);
         }
 
-        public ManualTimeProvider Clock { get; } = new();
+        public TimeProvider Clock { get; }
+
+        /// <summary>The virtual clock (only for a rig made on one).</summary>
+        public VirtualTimeProvider Time => (VirtualTimeProvider)Clock;
 
         public FakeLaserGate Fake { get; }
 
         public PicLaserGate Gate { get; }
 
+        /// <summary>Runs the test's body: as one operation on the loop of a virtual clock, directly on a fake one.</summary>
+        public Task RunAsync(Func<Task> body) => Clock.RunTestAsync(body);
+
         public async ValueTask DisposeAsync()
         {
-            await Gate.DisposeAsync().AsTask().Within();
-            await Fake.DisposeAsync().AsTask().Within();
+            await Clock.RunTestAsync(async () =>
+            {
+                await Gate.DisposeAsync();
+                await Fake.DisposeAsync();
+            });
+            (Clock as IDisposable)?.Dispose();
         }
     }
 }

@@ -3,9 +3,12 @@ using LaserEngrave.Core.Motion;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Tests.Fakes;
 using LaserEngrave.Devices.Zaber;
+using Microsoft.Extensions.Time.Testing;
 
 namespace LaserEngrave.Devices.Tests.Zaber;
 
+/// <summary>A Zaber axis against fake devices in memory. Request-and-reply tests stand on a <c>FakeTimeProvider</c> (time
+/// never moves); the move timeout and the unsolicited reply run on the simulation's loop.</summary>
 public class ZaberBinaryDeviceTests
 {
     private static readonly CancellationToken None = CancellationToken.None;
@@ -13,7 +16,7 @@ public class ZaberBinaryDeviceTests
     [Fact]
     public async Task MoveAbsoluteAsync_FirstMove_ReadsSpeedAccelerationAndMaximumThenMoves()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
 
         var final = await rig.X.MoveAbsoluteAsync(12345, None).Within();
 
@@ -31,7 +34,7 @@ public class ZaberBinaryDeviceTests
     [Fact]
     public async Task MoveAbsoluteAsync_SecondMove_DoesNotReadSettingsAgain()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
         await rig.X.MoveAbsoluteAsync(100, None).Within();
         var before = rig.Wire.Log.Count;
 
@@ -44,33 +47,40 @@ public class ZaberBinaryDeviceTests
     public async Task MoveAbsoluteAsync_DeviceSilent_TimeoutFollowsDistanceSpeedAndAcceleration()
     {
         await using var rig = new ZaberRig();
-        await rig.X.SetTargetSpeedAsync(1000, None).Within();
-        await rig.X.SetAccelerationAsync(20, None).Within();
-        await rig.X.MoveAbsoluteAsync(0, None).Within();
-        rig.Wire.Intercept = f => f.Command == ZaberCommand.MoveAbsolute ? FakeZaberChain.Hold : null;
 
-        const long distance = 300000;
-        var move = rig.X.MoveAbsoluteAsync(distance, None);
-        await rig.Wire.NextAsync(ZaberCommand.MoveAbsolute);
-        var travel = TimeSpan.FromSeconds(new TrapezoidProfile(
-            distance, StageUnits.SpeedMicrostepsPerS(1000), StageUnits.AccelerationMicrostepsPerS2(20)).Duration);
-        await rig.Clock.WaitForTimerAsync(travel, TimeSpan.FromHours(1));
+        await rig.RunAsync(async () =>
+        {
+            await rig.X.SetTargetSpeedAsync(1000, None);
+            await rig.X.SetAccelerationAsync(20, None);
+            await rig.X.MoveAbsoluteAsync(0, None);
+            rig.Wire.Intercept = f => f.Command == ZaberCommand.MoveAbsolute ? FakeZaberChain.Hold : null;
 
-        // A slow move must not be given up while the stage can still be travelling ...
-        rig.Clock.Advance(travel);
-        await Eventually.AssertStillPendingAsync(move);
+            const long distance = 300000;
+            var move = rig.X.MoveAbsoluteAsync(distance, None);
+            await rig.Wire.NextAsync(ZaberCommand.MoveAbsolute);
+            var sentAt = rig.Time.Elapsed;
+            var travelSeconds = new TrapezoidProfile(
+                distance, StageUnits.SpeedMicrostepsPerS(1000), StageUnits.AccelerationMicrostepsPerS2(20)).Duration;
+            var travel = TimeSpan.FromSeconds(travelSeconds);
 
-        // ... but a silent device is a fault before long.
-        rig.Clock.Advance(travel + TimeSpan.FromSeconds(2));
-        var error = await Assert.ThrowsAsync<DeviceTimeoutException>(() => move.Within());
-        Assert.Contains("device 1 (X) did not reply to Move Absolute 300000", error.Message, StringComparison.Ordinal);
-        Assert.Null(rig.X.LastKnownPosition);
+            // A slow move must not be given up while the stage can still be travelling ...
+            await Task.Delay(travel, rig.Time);
+            await rig.Time.AssertStillPendingAsync(move);
+
+            // ... but a silent device is a fault before long: the travel time x 1.5 + 1 s after the move was sent.
+            var error = await VirtualTime.ThrowsAsync<DeviceTimeoutException>(move);
+            var options = rig.Connection.Options;
+            Assert.Equal(TimeSpan.FromSeconds(travelSeconds * options.MoveTimeoutFactor) + options.MoveTimeoutMargin, rig.Time.Elapsed - sentAt);
+            Assert.True(rig.Time.Elapsed - sentAt <= travel + travel + TimeSpan.FromSeconds(2));
+            Assert.Contains("device 1 (X) did not reply to Move Absolute 300000", error.Message, StringComparison.Ordinal);
+            Assert.Null(rig.X.LastKnownPosition);
+        });
     }
 
     [Fact]
     public async Task MoveTimeout_LongerMoveOrSlowerSpeed_AllowsMoreTime()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
 
         var shortMove = rig.X.MoveTimeout(1000, 2000, 100);
         var longMove = rig.X.MoveTimeout(500000, 2000, 100);
@@ -84,7 +94,7 @@ public class ZaberBinaryDeviceTests
     [Fact]
     public async Task MoveRelativeAsync_Negative_SendsSignedDataAndReturnsFinalPosition()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
         rig.Wire[2].Position = 5000;
 
         var final = await rig.Y.MoveRelativeAsync(-1500, None).Within();
@@ -96,7 +106,7 @@ public class ZaberBinaryDeviceTests
     [Fact]
     public async Task HomeAsync_Homes_ReturnsZeroAndMarksHomed()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
         await rig.X.IdentifyAsync(None).Within();
         Assert.Equal(0, rig.X.DeviceMode & ZaberBinaryDevice.HomeStatusBit);
 
@@ -110,7 +120,7 @@ public class ZaberBinaryDeviceTests
     [Fact]
     public async Task MoveAtConstantSpeedAsync_RepliesAtOnce_ThenStopReturnsWhereItStopped()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
 
         Assert.Equal(-300, await rig.X.MoveAtConstantSpeedAsync(-300, None).Within());
         Assert.Null(rig.X.LastKnownPosition);
@@ -122,7 +132,7 @@ public class ZaberBinaryDeviceTests
     [Fact]
     public async Task SetDeviceModeAsync_SetAndClearBits_KeepsTheOtherBits()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
         rig.Wire[1].Mode = 0x80 | 0x08 | 0x4000;
 
         var mode = await rig.X.SetDeviceModeAsync(0x10, 0x08, None).Within();
@@ -136,7 +146,7 @@ public class ZaberBinaryDeviceTests
     [Fact]
     public async Task SetDeviceModeAsync_NothingToChange_SendsNoSetDeviceMode()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
         rig.Wire[1].Mode = 0x10;
 
         await rig.X.SetDeviceModeAsync(0x10, 0, None).Within();
@@ -147,7 +157,7 @@ public class ZaberBinaryDeviceTests
     [Fact]
     public async Task SettersAndReturns_RoundTripThroughTheDevice()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
 
         await rig.Y.SetTargetSpeedAsync(4300, None).Within();
         await rig.Y.SetAccelerationAsync(45, None).Within();
@@ -165,7 +175,7 @@ public class ZaberBinaryDeviceTests
     [Fact]
     public async Task ReturnSettingAsync_InvalidSetting_ThrowsWithSettingInvalidMeaning()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
 
         var error = await Assert.ThrowsAsync<ZaberException>(() => rig.X.ReturnSettingAsync((ZaberCommand)99, None).Within());
 
@@ -178,7 +188,7 @@ public class ZaberBinaryDeviceTests
     [Fact]
     public async Task IdentifyAsync_ReadsIdFirmwareModeAndMaximum()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
         rig.Wire[2].DeviceId = 4711;
         rig.Wire[2].Firmware = 522;
         rig.Wire[2].Mode = 0x88;
@@ -194,7 +204,7 @@ public class ZaberBinaryDeviceTests
     [Fact]
     public async Task EchoAsync_ReturnsTheSameData()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
 
         Assert.Equal(-123456, await rig.X.EchoAsync(-123456, None).Within());
     }
@@ -202,7 +212,7 @@ public class ZaberBinaryDeviceTests
     [Fact]
     public async Task ReturnDeviceIdAndFirmware_ReturnTheDeviceValues()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
         rig.Wire[1].DeviceId = 5001;
         rig.Wire[1].Firmware = 504;
 
@@ -213,7 +223,7 @@ public class ZaberBinaryDeviceTests
     [Fact]
     public async Task RenumberAsync_ReplyComesFromTheNewNumber_DeviceTakesIt()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
 
         await rig.Y.RenumberAsync(7, None).Within();
 
@@ -227,7 +237,7 @@ public class ZaberBinaryDeviceTests
     [Fact]
     public async Task ResetAsync_SendsResetAndForgetsThePosition()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
         await rig.X.GetPositionAsync(None).Within();
 
         await rig.X.ResetAsync(None).Within();
@@ -245,17 +255,21 @@ public class ZaberBinaryDeviceTests
         rig.X.UnsolicitedReply += (_, e) => xEvents.Add(e.Reply);
         rig.Y.UnsolicitedReply += (_, e) => yEvents.Add(e.Reply);
 
-        await rig.Wire.SendAsync(new ZaberFrame(1, ZaberCommand.LimitActive, 604724));
+        await rig.RunAsync(async () =>
+        {
+            await rig.Wire.SendAsync(new ZaberFrame(1, ZaberCommand.LimitActive, 604724));
+            await rig.Time.SettleAsync();
 
-        await Eventually.TrueAsync(() => xEvents.Count == 1, "X heard Limit Active");
-        Assert.Empty(yEvents);
-        Assert.Equal(604724, rig.X.LastKnownPosition);
+            Assert.Single(xEvents);
+            Assert.Empty(yEvents);
+            Assert.Equal(604724, rig.X.LastKnownPosition);
+        });
     }
 
     [Fact]
     public async Task MoveAbsoluteAsync_BothAxesAtOnce_EachCompletesWithItsTarget()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
         await rig.X.IdentifyAsync(None).Within();
         await rig.Y.IdentifyAsync(None).Within();
 

@@ -1,9 +1,13 @@
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Tests.Fakes;
 using LaserEngrave.Devices.Zaber;
+using Microsoft.Extensions.Time.Testing;
 
 namespace LaserEngrave.Devices.Tests.Zaber;
 
+/// <summary>The Zaber connection against fake devices in memory. Tests in which time never moves and nothing needs to be
+/// looked at between the reader's steps stand on a <c>FakeTimeProvider</c>; the others run on the simulation's loop,
+/// where time moves only when nothing else is left to do, so timeouts are asserted at their exact virtual times.</summary>
 public class ZaberConnectionTests
 {
     private static readonly CancellationToken None = CancellationToken.None;
@@ -11,7 +15,7 @@ public class ZaberConnectionTests
     [Fact]
     public async Task RequestAsync_DeviceReplies_ReturnsItsReply()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
         rig.Wire[1].Position = 4242;
 
         var reply = await rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 0), None).Within();
@@ -22,7 +26,7 @@ public class ZaberConnectionTests
     [Fact]
     public async Task RequestAsync_RepliesOfBothAxesInterleaved_EachReachesItsOwnWaiter()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
         rig.Wire.Intercept = _ => FakeZaberChain.Hold;
         var x = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 1000), TimeSpan.FromSeconds(5), None);
         var y = rig.Connection.RequestAsync(new ZaberFrame(2, ZaberCommand.MoveAbsolute, 2000), TimeSpan.FromSeconds(5), None);
@@ -41,23 +45,28 @@ public class ZaberConnectionTests
     {
         await using var rig = new ZaberRig();
         rig.Wire.Intercept = _ => FakeZaberChain.Hold;
-        var x = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 0), None);
-        var y = rig.Connection.RequestAsync(new ZaberFrame(2, ZaberCommand.ReturnCurrentPosition, 0), None);
-        await rig.Wire.NextAsync();
-        await rig.Wire.NextAsync();
 
-        await rig.Wire.SendAsync(new ZaberFrame(2, ZaberCommand.ReturnCurrentPosition, 22));
+        await rig.RunAsync(async () =>
+        {
+            var x = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 0), None);
+            var y = rig.Connection.RequestAsync(new ZaberFrame(2, ZaberCommand.ReturnCurrentPosition, 0), None);
+            await rig.Wire.NextAsync();
+            await rig.Wire.NextAsync();
 
-        Assert.Equal(22, (await y.Within()).Data);
-        await Eventually.AssertStillPendingAsync(x);
-        await rig.Wire.SendAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 11));
-        Assert.Equal(11, (await x.Within()).Data);
+            await rig.Wire.SendAsync(new ZaberFrame(2, ZaberCommand.ReturnCurrentPosition, 22));
+
+            Assert.Equal(22, (await y).Data);
+            await rig.Time.AssertStillPendingAsync(x);
+            await rig.Wire.SendAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 11));
+            Assert.Equal(11, (await x).Data);
+            Assert.Equal(TimeSpan.Zero, rig.Time.Elapsed);
+        });
     }
 
     [Fact]
     public async Task RequestAsync_ReplyArrivesOneByteAtATime_IsAssembled()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
         rig.Wire.Intercept = _ => FakeZaberChain.Hold;
         var request = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 0), None);
         await rig.Wire.NextAsync();
@@ -73,7 +82,7 @@ public class ZaberConnectionTests
     [Fact]
     public async Task RequestAsync_ReturnSetting_MatchesTheReplyCarryingTheSettingNumber()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
         rig.Wire[2].Settings[(byte)ZaberCommand.SetTargetSpeed] = 4300;
 
         var reply = await rig.Connection.RequestAsync(new ZaberFrame(2, ZaberCommand.ReturnSetting, (int)ZaberCommand.SetTargetSpeed), None).Within();
@@ -84,7 +93,7 @@ public class ZaberConnectionTests
     [Fact]
     public async Task RequestAsync_ErrorReply_ThrowsZaberExceptionNamingPortDeviceCommandAndMeaning()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
 
         var error = await Assert.ThrowsAsync<ZaberException>(
             () => rig.X.MoveAbsoluteAsync(700000, None).Within());
@@ -103,16 +112,21 @@ public class ZaberConnectionTests
     {
         await using var rig = new ZaberRig();
         rig.Wire.Intercept = f => f.Command == ZaberCommand.MoveAbsolute ? FakeZaberChain.Hold : null;
-        var move = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 500), TimeSpan.FromSeconds(5), None);
-        await rig.Wire.NextAsync();
 
-        var speed = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.SetTargetSpeed, 99999), None);
+        await rig.RunAsync(async () =>
+        {
+            var move = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 500), TimeSpan.FromSeconds(5), None);
+            await rig.Wire.NextAsync();
 
-        var error = await Assert.ThrowsAsync<ZaberException>(() => speed.Within());
-        Assert.Equal(ZaberCommand.SetTargetSpeed, error.Command);
-        await Eventually.AssertStillPendingAsync(move);
-        await rig.Wire.SendAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 500));
-        Assert.Equal(500, (await move.Within()).Data);
+            var speed = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.SetTargetSpeed, 99999), None);
+
+            var error = await VirtualTime.ThrowsAsync<ZaberException>(speed);
+            Assert.Equal(ZaberCommand.SetTargetSpeed, error.Command);
+            await rig.Time.AssertStillPendingAsync(move);
+            await rig.Wire.SendAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 500));
+            Assert.Equal(500, (await move).Data);
+            Assert.Equal(TimeSpan.Zero, rig.Time.Elapsed);
+        });
     }
 
     [Fact]
@@ -120,17 +134,26 @@ public class ZaberConnectionTests
     {
         await using var rig = new ZaberRig();
         rig.Wire.Intercept = _ => FakeZaberChain.Hold;
-        var home = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.Home, 0), TimeSpan.FromSeconds(5), None);
-        await rig.Wire.NextAsync();
-        var other = rig.Connection.RequestAsync(new ZaberFrame(2, ZaberCommand.Home, 0), TimeSpan.FromSeconds(5), None);
-        await rig.Wire.NextAsync();
 
-        await rig.Wire.SendAsync(new ZaberFrame(1, ZaberCommand.Error, 14));
+        await rig.RunAsync(async () =>
+        {
+            var home = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.Home, 0), TimeSpan.FromSeconds(5), None);
+            await rig.Wire.NextAsync();
+            var other = rig.Connection.RequestAsync(new ZaberFrame(2, ZaberCommand.Home, 0), TimeSpan.FromSeconds(5), None);
+            await rig.Wire.NextAsync();
 
-        var error = await Assert.ThrowsAsync<ZaberException>(() => home.Within());
-        Assert.Equal(14, error.ErrorCode);
-        Assert.Contains("voltage low", error.Message, StringComparison.Ordinal);
-        await Eventually.AssertStillPendingAsync(other);
+            await rig.Wire.SendAsync(new ZaberFrame(1, ZaberCommand.Error, 14));
+
+            var error = await VirtualTime.ThrowsAsync<ZaberException>(home);
+            Assert.Equal(14, error.ErrorCode);
+            Assert.Contains("voltage low", error.Message, StringComparison.Ordinal);
+            await rig.Time.AssertStillPendingAsync(other);
+            Assert.Equal(TimeSpan.Zero, rig.Time.Elapsed);
+
+            // The other request ends with its own timeout, 5 s after it was sent.
+            await VirtualTime.ThrowsAsync<DeviceTimeoutException>(other);
+            Assert.Equal(TimeSpan.FromSeconds(5), rig.Time.Elapsed);
+        });
     }
 
     [Fact]
@@ -138,27 +161,26 @@ public class ZaberConnectionTests
     {
         await using var rig = new ZaberRig();
         var events = new List<ZaberFrame>();
-        rig.Connection.UnsolicitedReply += (_, e) =>
-        {
-            lock (events)
-            {
-                events.Add(e.Reply);
-            }
-        };
+        rig.Connection.UnsolicitedReply += (_, e) => events.Add(e.Reply);
         rig.Wire.Intercept = _ => FakeZaberChain.Hold;
-        var move = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 9000), TimeSpan.FromSeconds(5), None);
-        await rig.Wire.NextAsync();
 
-        await rig.Wire.SendAsync(
-            new ZaberFrame(1, ZaberCommand.MoveTracking, 3000),
-            new ZaberFrame(2, ZaberCommand.ManualMoveTracking, 77),
-            new ZaberFrame(1, ZaberCommand.LimitActive, 0));
+        await rig.RunAsync(async () =>
+        {
+            var move = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 9000), TimeSpan.FromSeconds(5), None);
+            await rig.Wire.NextAsync();
 
-        await Eventually.TrueAsync(() => { lock (events) { return events.Count == 3; } }, "three unsolicited replies");
-        Assert.Equal(new ZaberFrame(1, ZaberCommand.MoveTracking, 3000), events[0]);
-        Assert.Equal(new ZaberFrame(2, ZaberCommand.ManualMoveTracking, 77), events[1]);
-        Assert.Equal(ZaberCommand.LimitActive, events[2].Command);
-        Assert.False(move.IsCompleted);
+            await rig.Wire.SendAsync(
+                new ZaberFrame(1, ZaberCommand.MoveTracking, 3000),
+                new ZaberFrame(2, ZaberCommand.ManualMoveTracking, 77),
+                new ZaberFrame(1, ZaberCommand.LimitActive, 0));
+            await rig.Time.SettleAsync();
+
+            Assert.Equal(3, events.Count);
+            Assert.Equal(new ZaberFrame(1, ZaberCommand.MoveTracking, 3000), events[0]);
+            Assert.Equal(new ZaberFrame(2, ZaberCommand.ManualMoveTracking, 77), events[1]);
+            Assert.Equal(ZaberCommand.LimitActive, events[2].Command);
+            Assert.False(move.IsCompleted);
+        });
     }
 
     [Fact]
@@ -166,17 +188,22 @@ public class ZaberConnectionTests
     {
         await using var rig = new ZaberRig();
         rig.Wire.Intercept = _ => FakeZaberChain.Hold;
-        var request = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 0), None);
-        await rig.Wire.NextAsync();
 
-        await rig.Wire.SendRawAsync([1, 60, 9]);
-        await Eventually.TrueAsync(() => rig.Connection.BytesReceived == 3, "the host read the short frame");
-        rig.Clock.Advance(TimeSpan.FromMilliseconds(11));
-        await rig.Wire.SendAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 123));
+        await rig.RunAsync(async () =>
+        {
+            var request = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 0), None);
+            await rig.Wire.NextAsync();
 
-        Assert.Equal(123, (await request.Within()).Data);
-        // The reply's waiter may run before the reader thread raises the line event it noted for the same read.
-        await Eventually.TrueAsync(() => rig.Saw(ZaberLineEvent.PartialFrameDropped), "the dropped partial frame reported");
+            await rig.Wire.SendRawAsync([1, 60, 9]);
+            await Task.Delay(TimeSpan.FromMilliseconds(11), rig.Time);
+            Assert.Equal(3, rig.Connection.BytesReceived);
+            Assert.False(rig.Saw(ZaberLineEvent.PartialFrameDropped));
+            await rig.Wire.SendAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 123));
+
+            Assert.Equal(123, (await request).Data);
+            await rig.Time.SettleAsync();
+            Assert.True(rig.Saw(ZaberLineEvent.PartialFrameDropped));
+        });
     }
 
     [Fact]
@@ -184,17 +211,22 @@ public class ZaberConnectionTests
     {
         await using var rig = new ZaberRig();
         rig.Wire.Intercept = _ => FakeZaberChain.Hold;
-        var request = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 0), None);
-        await rig.Wire.NextAsync();
-        var bytes = new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 321).ToBytes();
 
-        await rig.Wire.SendRawAsync(bytes[..3]);
-        await Eventually.TrueAsync(() => rig.Connection.BytesReceived == 3, "the host read the first half");
-        rig.Clock.Advance(TimeSpan.FromMilliseconds(9));
-        await rig.Wire.SendRawAsync(bytes[3..]);
+        await rig.RunAsync(async () =>
+        {
+            var request = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 0), None);
+            await rig.Wire.NextAsync();
+            var bytes = new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 321).ToBytes();
 
-        Assert.Equal(321, (await request.Within()).Data);
-        Assert.False(rig.Saw(ZaberLineEvent.PartialFrameDropped));
+            await rig.Wire.SendRawAsync(bytes[..3]);
+            await Task.Delay(TimeSpan.FromMilliseconds(9), rig.Time);
+            Assert.Equal(3, rig.Connection.BytesReceived);
+            await rig.Wire.SendRawAsync(bytes[3..]);
+
+            Assert.Equal(321, (await request).Data);
+            await rig.Time.SettleAsync();
+            Assert.False(rig.Saw(ZaberLineEvent.PartialFrameDropped));
+        });
     }
 
     [Fact]
@@ -202,26 +234,30 @@ public class ZaberConnectionTests
     {
         await using var rig = new ZaberRig();
         rig.Wire.Intercept = f => f.Command == ZaberCommand.ReturnCurrentPosition ? FakeZaberChain.Hold : null;
-        var request = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 0), None);
-        await rig.Wire.NextAsync();
 
-        await rig.Wire.SendRawAsync([0xEE, .. new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 5).ToBytes()]);
-        await Eventually.TrueAsync(() => rig.Saw(ZaberLineEvent.GarbageDropped), "garbage noticed");
+        await rig.RunAsync(async () =>
+        {
+            var request = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 0), None);
+            await rig.Wire.NextAsync();
 
-        // The connection waits out the 10 ms gap on its clock, then checks the line with Echo Data.
-        await rig.Clock.WaitForTimerAsync(TimeSpan.FromMilliseconds(10), TimeSpan.FromMilliseconds(10));
-        rig.Clock.Advance(TimeSpan.FromMilliseconds(10));
-        var echo = await rig.Wire.NextAsync(ZaberCommand.EchoData);
-        Assert.Equal(1, echo.Device);
-        await Eventually.TrueAsync(() => rig.Saw(ZaberLineEvent.Resynchronised), "resynchronised");
+            await rig.Wire.SendRawAsync([0xEE, .. new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 5).ToBytes()]);
+            await rig.Time.SettleAsync();
+            Assert.True(rig.Saw(ZaberLineEvent.GarbageDropped));
 
-        // The garbled reply is gone: the request times out, and the next one works.
-        await rig.Clock.WaitForTimerAsync(TimeSpan.FromMilliseconds(1), TimeSpan.FromMilliseconds(500));
-        rig.Clock.Advance(TimeSpan.FromMilliseconds(500));
-        await Assert.ThrowsAsync<DeviceTimeoutException>(() => request.Within());
-        rig.Wire.Intercept = null;
-        rig.Wire[1].Position = 6;
-        Assert.Equal(6, await rig.X.GetPositionAsync(None).Within());
+            // The connection waits out the 10 ms gap on its clock, then checks the line with Echo Data.
+            var echo = await rig.Wire.NextAsync(ZaberCommand.EchoData);
+            Assert.Equal(TimeSpan.FromMilliseconds(10), rig.Time.Elapsed);
+            Assert.Equal(1, echo.Device);
+            await rig.Time.SettleAsync();
+            Assert.True(rig.Saw(ZaberLineEvent.Resynchronised));
+
+            // The garbled reply is gone: the request times out 500 ms after it was sent, and the next one works.
+            await VirtualTime.ThrowsAsync<DeviceTimeoutException>(request);
+            Assert.Equal(TimeSpan.FromMilliseconds(500), rig.Time.Elapsed);
+            rig.Wire.Intercept = null;
+            rig.Wire[1].Position = 6;
+            Assert.Equal(6, await rig.X.GetPositionAsync(None));
+        });
     }
 
     [Fact]
@@ -229,16 +265,17 @@ public class ZaberConnectionTests
     {
         await using var rig = new ZaberRig();
         rig.Wire.Intercept = _ => FakeZaberChain.Hold;
-        var request = rig.Connection.RequestAsync(new ZaberFrame(2, ZaberCommand.SetAcceleration, 50), None);
-        await rig.Wire.NextAsync();
-        await rig.Clock.WaitForTimerAsync(rig.Connection.Options.CommandTimeout, rig.Connection.Options.CommandTimeout);
 
-        rig.Clock.Advance(rig.Connection.Options.CommandTimeout - TimeSpan.FromMilliseconds(1));
-        await Eventually.AssertStillPendingAsync(request);
-        rig.Clock.Advance(TimeSpan.FromMilliseconds(1));
+        await rig.RunAsync(async () =>
+        {
+            var request = rig.Connection.RequestAsync(new ZaberFrame(2, ZaberCommand.SetAcceleration, 50), None);
+            await rig.Wire.NextAsync();
 
-        var error = await Assert.ThrowsAsync<DeviceTimeoutException>(() => request.Within());
-        Assert.Equal($"{ZaberRig.Port}: device 2 (Y) did not reply to Set Acceleration 50 within 500 ms", error.Message);
+            var error = await VirtualTime.ThrowsAsync<DeviceTimeoutException>(request);
+
+            Assert.Equal(rig.Connection.Options.CommandTimeout, rig.Time.Elapsed);
+            Assert.Equal($"{ZaberRig.Port}: device 2 (Y) did not reply to Set Acceleration 50 within 500 ms", error.Message);
+        });
     }
 
     [Fact]
@@ -246,24 +283,27 @@ public class ZaberConnectionTests
     {
         await using var rig = new ZaberRig();
         rig.Wire.Intercept = f => f.Command == ZaberCommand.ReturnDeviceId ? FakeZaberChain.Hold : null;
-        var request = rig.Connection.RequestAsync(new ZaberFrame(2, ZaberCommand.ReturnDeviceId, 0), None);
-        await rig.Wire.NextAsync();
-        await rig.Clock.WaitForTimerAsync();
-        rig.Clock.Advance(rig.Connection.Options.CommandTimeout);
-        await Assert.ThrowsAsync<DeviceTimeoutException>(() => request.Within());
 
-        await rig.Clock.WaitForTimerAsync();
-        rig.Clock.Advance(rig.Connection.Options.PartialFrameTimeout);
+        await rig.RunAsync(async () =>
+        {
+            var request = rig.Connection.RequestAsync(new ZaberFrame(2, ZaberCommand.ReturnDeviceId, 0), None);
+            await rig.Wire.NextAsync();
+            await VirtualTime.ThrowsAsync<DeviceTimeoutException>(request);
+            Assert.Equal(rig.Connection.Options.CommandTimeout, rig.Time.Elapsed);
 
-        var echo = await rig.Wire.NextAsync(ZaberCommand.EchoData);
-        Assert.Equal(2, echo.Device);
-        await Eventually.TrueAsync(() => rig.Saw(ZaberLineEvent.Resynchronised), "resynchronised");
+            var echo = await rig.Wire.NextAsync(ZaberCommand.EchoData);
+
+            Assert.Equal(rig.Connection.Options.CommandTimeout + rig.Connection.Options.PartialFrameTimeout, rig.Time.Elapsed);
+            Assert.Equal(2, echo.Device);
+            await rig.Time.SettleAsync();
+            Assert.True(rig.Saw(ZaberLineEvent.Resynchronised));
+        });
     }
 
     [Fact]
     public async Task RequestAsync_LinkDropsWhileWaiting_ThrowsLinkLostNamingPortDeviceAndCommand()
     {
-        await using var rig = new ZaberRig();
+        await using var rig = new ZaberRig(new FakeTimeProvider());
         rig.Wire.Intercept = _ => FakeZaberChain.Hold;
         var move = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 10), TimeSpan.FromHours(1), None);
         await rig.Wire.NextAsync();
@@ -281,12 +321,18 @@ public class ZaberConnectionTests
     public async Task RequestAsync_AfterTheLinkDropped_FailsAtOnce()
     {
         await using var rig = new ZaberRig();
-        await rig.Wire.DisposeAsync();
-        await Eventually.TrueAsync(() => !rig.Connection.IsOpen, "the connection noticed");
 
-        var error = await Assert.ThrowsAsync<LinkLostException>(() => rig.Y.HomeAsync(None).Within());
+        await rig.RunAsync(async () =>
+        {
+            await rig.Wire.DisposeAsync();
+            await rig.Time.SettleAsync();
+            Assert.False(rig.Connection.IsOpen);
 
-        Assert.Contains("device 2 (Y)", error.Message, StringComparison.Ordinal);
+            var error = await VirtualTime.ThrowsAsync<LinkLostException>(rig.Y.HomeAsync(None));
+
+            Assert.Contains("device 2 (Y)", error.Message, StringComparison.Ordinal);
+            Assert.Equal(TimeSpan.Zero, rig.Time.Elapsed);
+        });
     }
 
     [Fact]
@@ -296,14 +342,16 @@ public class ZaberConnectionTests
         rig.Wire[1].DeviceId = 111;
         rig.Wire[2].DeviceId = 222;
 
-        var broadcast = rig.Connection.BroadcastAsync(ZaberCommand.ReturnDeviceId, 0, TimeSpan.FromMilliseconds(500), None);
-        await Eventually.TrueAsync(() => rig.Connection.BytesReceived == 12, "both replies read");
-        await rig.Clock.WaitForTimerAsync(rig.Connection.Options.BroadcastQuietPeriod, rig.Connection.Options.BroadcastQuietPeriod);
-        rig.Clock.Advance(rig.Connection.Options.BroadcastQuietPeriod);
+        await rig.RunAsync(async () =>
+        {
+            var replies = await rig.Connection.BroadcastAsync(ZaberCommand.ReturnDeviceId, 0, TimeSpan.FromMilliseconds(500), None);
 
-        var replies = await broadcast.Within();
-        Assert.Equal([new ZaberFrame(1, ZaberCommand.ReturnDeviceId, 111), new ZaberFrame(2, ZaberCommand.ReturnDeviceId, 222)], replies);
-        Assert.Equal(new ZaberFrame(0, ZaberCommand.ReturnDeviceId, 0), rig.Wire.Log[0]);
+            // Both replies come at once; the broadcast then waits one quiet period for more.
+            Assert.Equal(rig.Connection.Options.BroadcastQuietPeriod, rig.Time.Elapsed);
+            Assert.Equal(12, rig.Connection.BytesReceived);
+            Assert.Equal([new ZaberFrame(1, ZaberCommand.ReturnDeviceId, 111), new ZaberFrame(2, ZaberCommand.ReturnDeviceId, 222)], replies);
+            Assert.Equal(new ZaberFrame(0, ZaberCommand.ReturnDeviceId, 0), rig.Wire.Log[0]);
+        });
     }
 
     [Fact]
@@ -312,11 +360,13 @@ public class ZaberConnectionTests
         await using var rig = new ZaberRig();
         rig.Wire.Intercept = _ => FakeZaberChain.Hold;
 
-        var broadcast = rig.Connection.BroadcastAsync(ZaberCommand.ReturnDeviceId, 0, TimeSpan.FromMilliseconds(300), None);
-        await rig.Clock.WaitForTimerAsync(TimeSpan.FromMilliseconds(300), TimeSpan.FromMilliseconds(300));
-        rig.Clock.Advance(TimeSpan.FromMilliseconds(300));
+        await rig.RunAsync(async () =>
+        {
+            var replies = await rig.Connection.BroadcastAsync(ZaberCommand.ReturnDeviceId, 0, TimeSpan.FromMilliseconds(300), None);
 
-        Assert.Empty(await broadcast.Within());
+            Assert.Empty(replies);
+            Assert.Equal(TimeSpan.FromMilliseconds(300), rig.Time.Elapsed);
+        });
     }
 
     [Fact]
@@ -324,17 +374,23 @@ public class ZaberConnectionTests
     {
         await using var rig = new ZaberRig();
         rig.Wire.Intercept = _ => FakeZaberChain.Hold;
-        var move = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 9000), TimeSpan.FromSeconds(5), None);
-        await rig.Wire.NextAsync();
 
-        var stop = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.Stop, 0), None);
+        await rig.RunAsync(async () =>
+        {
+            var move = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 9000), TimeSpan.FromSeconds(5), None);
+            await rig.Wire.NextAsync();
 
-        var interrupted = await Assert.ThrowsAsync<ZaberInterruptedException>(() => move.Within());
-        Assert.Contains("interrupted by Stop", interrupted.Message, StringComparison.Ordinal);
-        await rig.Wire.NextAsync();
-        await rig.Wire.SendAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 4000), new ZaberFrame(1, ZaberCommand.Stop, 4000));
-        Assert.Equal(4000, (await stop.Within()).Data);
-        await Eventually.TrueAsync(() => rig.Saw(ZaberLineEvent.UnmatchedReply), "the late reply reported");
+            var stop = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.Stop, 0), None);
+
+            var interrupted = await VirtualTime.ThrowsAsync<ZaberInterruptedException>(move);
+            Assert.Contains("interrupted by Stop", interrupted.Message, StringComparison.Ordinal);
+            await rig.Wire.NextAsync();
+            await rig.Wire.SendAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 4000), new ZaberFrame(1, ZaberCommand.Stop, 4000));
+            Assert.Equal(4000, (await stop).Data);
+            await rig.Time.SettleAsync();
+            Assert.True(rig.Saw(ZaberLineEvent.UnmatchedReply));
+            Assert.Equal(TimeSpan.Zero, rig.Time.Elapsed);
+        });
     }
 
     [Fact]
@@ -342,16 +398,21 @@ public class ZaberConnectionTests
     {
         await using var rig = new ZaberRig();
         rig.Wire.Intercept = _ => FakeZaberChain.Hold;
-        var first = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 9000), TimeSpan.FromSeconds(5), None);
-        await rig.Wire.NextAsync();
-        var second = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 100), TimeSpan.FromSeconds(5), None);
-        await rig.Wire.NextAsync();
-        await Assert.ThrowsAsync<ZaberInterruptedException>(() => first.Within());
 
-        await rig.Wire.SendAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 3500));
-        await Eventually.AssertStillPendingAsync(second);
-        await rig.Wire.SendAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 100));
+        await rig.RunAsync(async () =>
+        {
+            var first = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 9000), TimeSpan.FromSeconds(5), None);
+            await rig.Wire.NextAsync();
+            var second = rig.Connection.RequestAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 100), TimeSpan.FromSeconds(5), None);
+            await rig.Wire.NextAsync();
+            await VirtualTime.ThrowsAsync<ZaberInterruptedException>(first);
 
-        Assert.Equal(100, (await second.Within()).Data);
+            await rig.Wire.SendAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 3500));
+            await rig.Time.AssertStillPendingAsync(second);
+            await rig.Wire.SendAsync(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 100));
+
+            Assert.Equal(100, (await second).Data);
+            Assert.Equal(TimeSpan.Zero, rig.Time.Elapsed);
+        });
     }
 }
