@@ -52,8 +52,10 @@ internal sealed class SimulatedRun : IAsyncDisposable
             await Stage.DisposeAsync();
             await Gate.DisposeAsync();
             await Machine.ReconnectAsync();
+
+            // On the loop, so the new readers start in the same place in its queue every time.
+            Connect();
         });
-        Connect();
     }
 
     public BurnReport Analyze(PreparedJob job) => Machine.Recorder.Analyze(Grid(job), job.Mask);
