@@ -35,6 +35,7 @@ public sealed partial class MachineViewModel : ObservableObject
     public partial MachineProfile Profile { get; set; }
 
     [ObservableProperty]
+    [NotifyCanExecuteChangedFor(nameof(ConnectCommand), nameof(DisconnectCommand), nameof(IdentifyCommand), nameof(HomeCommand))]
     public partial IMachineConnection? Connection { get; private set; }
 
     [ObservableProperty]
@@ -60,9 +61,15 @@ public sealed partial class MachineViewModel : ObservableObject
     public partial string? Error { get; set; }
 
     [ObservableProperty]
+    [NotifyCanExecuteChangedFor(nameof(ConnectCommand), nameof(IdentifyCommand), nameof(HomeCommand))]
     public partial bool IsBusy { get; private set; }
 
     public bool IsConnected => Connection is not null;
+
+    public bool CanConnect => Connection is null && !IsBusy;
+
+    /// <summary>Connected and no machine command under way.</summary>
+    public bool CanUseMachine => Connection is not null && !IsBusy;
 
     public void RefreshPorts()
     {
@@ -77,7 +84,7 @@ public sealed partial class MachineViewModel : ObservableObject
     }
 
     /// <summary>Opens the machine and reads its state; any failure leaves it disconnected with the reason shown.</summary>
-    [RelayCommand(IncludeCancelCommand = true)]
+    [RelayCommand(IncludeCancelCommand = true, CanExecute = nameof(CanConnect))]
     private async Task ConnectAsync(CancellationToken cancellationToken)
     {
         await DisconnectAsync().ConfigureAwait(false);
@@ -99,7 +106,7 @@ public sealed partial class MachineViewModel : ObservableObject
         }).ConfigureAwait(false);
     }
 
-    [RelayCommand]
+    [RelayCommand(CanExecute = nameof(IsConnected))]
     private async Task DisconnectAsync()
     {
         var connection = Connection;
@@ -115,12 +122,12 @@ public sealed partial class MachineViewModel : ObservableObject
         }
     }
 
-    [RelayCommand(IncludeCancelCommand = true)]
+    [RelayCommand(IncludeCancelCommand = true, CanExecute = nameof(CanUseMachine))]
     private Task IdentifyAsync(CancellationToken cancellationToken) =>
         Guard(() => ReadStateAsync(RequireConnection(), cancellationToken));
 
     /// <summary>Homes both axes together, the laser switched off first.</summary>
-    [RelayCommand(IncludeCancelCommand = true)]
+    [RelayCommand(IncludeCancelCommand = true, CanExecute = nameof(CanUseMachine))]
     private Task HomeAsync(CancellationToken cancellationToken) => Guard(async () =>
     {
         var connection = RequireConnection();
@@ -136,6 +143,9 @@ public sealed partial class MachineViewModel : ObservableObject
         XMicrosteps = await connection.Stage.X.GetPositionAsync(cancellationToken).ConfigureAwait(false);
         YMicrosteps = await connection.Stage.Y.GetPositionAsync(cancellationToken).ConfigureAwait(false);
     }
+
+    /// <summary>Reads homed flags, the gate and both positions again (after a run, which homes in its preflight).</summary>
+    public Task RefreshStateAsync(CancellationToken cancellationToken) => ReadStateAsync(RequireConnection(), cancellationToken);
 
     internal IMachineConnection RequireConnection() => Connection ?? throw new DeviceException("not connected: connect to the simulator or the machine first");
 

@@ -42,6 +42,23 @@ public sealed partial class RunViewModel : ObservableObject
         _testMoves = testMoves;
         _log = log;
         _time = time;
+        _job.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName == nameof(JobViewModel.PlanVersion))
+            {
+                ClearStaleProgress();
+            }
+
+            RefreshCommands();
+        };
+        _machine.PropertyChanged += (_, _) => RefreshCommands();
+        PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName is nameof(State) or nameof(StoppedAt) or nameof(RunPlanVersion))
+            {
+                RefreshCommands();
+            }
+        };
     }
 
     [ObservableProperty]
@@ -69,6 +86,13 @@ public sealed partial class RunViewModel : ObservableObject
     public bool CanContinue => !IsActive && StoppedAt is not null && RunPlanVersion == _job.PlanVersion && _machine.Connection is not null;
 
     public bool IsActive => State is RunState.Running or RunState.Paused or RunState.Aborting;
+
+    /// <summary>Whether <see cref="StartCommand"/> would run: a planned job with something to burn inside the travel, a machine, nothing under way.</summary>
+    public bool CanStart => !IsActive && _job.Job is { Geometry.FitsTravel: true, Statistics.BurnRuns: > 0 } && _machine.Connection is not null && !_machine.IsBusy;
+
+    public bool CanPause => State == RunState.Running;
+
+    public bool CanResume => State == RunState.Paused;
 
     /// <summary>Fraction of all passes done, 0..1.</summary>
     public double Fraction => Progress is { } p && p.MovesTotal > 0
@@ -99,7 +123,7 @@ public sealed partial class RunViewModel : ObservableObject
     }
 
     /// <summary>Runs the planned job on the connected machine; <see cref="AbortCommand"/> stops it.</summary>
-    [RelayCommand]
+    [RelayCommand(CanExecute = nameof(CanStart))]
     private async Task StartAsync(CancellationToken cancellationToken)
     {
         Error = null;
@@ -130,7 +154,7 @@ public sealed partial class RunViewModel : ObservableObject
     /// Continues the run that stopped (a fault or an abort) from its first burn run not completed, laser off on the way
     /// there, so the sample ends with no gap and nothing burned twice. Only while the plan is the one that stopped.
     /// </summary>
-    [RelayCommand]
+    [RelayCommand(CanExecute = nameof(CanContinue))]
     private async Task ContinueAsync(CancellationToken cancellationToken)
     {
         Error = null;
@@ -150,7 +174,7 @@ public sealed partial class RunViewModel : ObservableObject
         await RunAsync(job!, connection!, StoppedAt, cancellationToken).ConfigureAwait(false);
     }
 
-    [RelayCommand]
+    [RelayCommand(CanExecute = nameof(CanPause))]
     private void Pause()
     {
         if (State == RunState.Running)
@@ -160,7 +184,7 @@ public sealed partial class RunViewModel : ObservableObject
         }
     }
 
-    [RelayCommand]
+    [RelayCommand(CanExecute = nameof(CanResume))]
     private void Resume()
     {
         if (State == RunState.Paused)
@@ -244,15 +268,37 @@ public sealed partial class RunViewModel : ObservableObject
         _log.Record(record);
         try
         {
-            await _machine.ReadPositionsAsync(CancellationToken.None).ConfigureAwait(false);
+            // The whole state, not only the positions: the run's preflight homed the stage, and the view must say so.
+            await _machine.RefreshStateAsync(CancellationToken.None).ConfigureAwait(false);
         }
-        catch (Exception ex) when (ex is DeviceException or InvalidOperationException or ObjectDisposedException)
+        catch (Exception ex) when (ex is DeviceException or InvalidOperationException or ObjectDisposedException or TimeoutException or IOException)
         {
             _machine.Error = ex.Message;
         }
 
         // The run counts as ended only once its log is written, so whoever waits for the end finds the log.
         State = final;
+    }
+
+    private void RefreshCommands()
+    {
+        StartCommand.NotifyCanExecuteChanged();
+        ContinueCommand.NotifyCanExecuteChanged();
+        PauseCommand.NotifyCanExecuteChanged();
+        ResumeCommand.NotifyCanExecuteChanged();
+    }
+
+    /// <summary>A new plan makes the last run's figures meaningless for it ("100 %, row 33 of 33" on a job never run).</summary>
+    private void ClearStaleProgress()
+    {
+        if (!IsActive && Progress is not null && RunPlanVersion != _job.PlanVersion)
+        {
+            Progress = null;
+            if (State is RunState.Completed or RunState.Aborted or RunState.Failed)
+            {
+                State = RunState.Idle;
+            }
+        }
     }
 
     private static string HashOrMissing(string path)

@@ -21,7 +21,30 @@ public sealed partial class TestMovesViewModel : ObservableObject
         ArgumentNullException.ThrowIfNull(job);
         _machine = machine;
         _job = job;
+        _machine.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName is nameof(MachineViewModel.Connection) or nameof(MachineViewModel.IsBusy))
+            {
+                RefreshCommands();
+            }
+        };
+        _job.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName == nameof(JobViewModel.Job))
+            {
+                RefreshCommands();
+            }
+        };
     }
+
+    /// <summary>A machine, nothing else moving it, no run.</summary>
+    public bool CanMove => !RunActive && _machine.CanUseMachine;
+
+    /// <summary>As <see cref="CanMove"/>, with a planned job to go to or trace.</summary>
+    public bool CanMoveToJob => CanMove && _job.Job is not null;
+
+    /// <summary>A move, homing or connect is under way and can be stopped.</summary>
+    public bool CanStop => _machine.IsBusy;
 
     [ObservableProperty]
     public partial double StepUm { get; set; } = 100;
@@ -37,6 +60,7 @@ public sealed partial class TestMovesViewModel : ObservableObject
 
     /// <summary>Set by the run view-model while a run owns the machine.</summary>
     [ObservableProperty]
+    [NotifyCanExecuteChangedFor(nameof(JogCommand), nameof(GoToCommand), nameof(GoToOriginCommand), nameof(FrameCommand), nameof(TestFireCommand))]
     public partial bool RunActive { get; set; }
 
     /// <summary>The last failure of a test move, one line.</summary>
@@ -44,7 +68,7 @@ public sealed partial class TestMovesViewModel : ObservableObject
     public partial string? Error { get; private set; }
 
     /// <summary>Moves one axis by the step size; direction is "x+", "x-", "y+" or "y-".</summary>
-    [RelayCommand(IncludeCancelCommand = true)]
+    [RelayCommand(IncludeCancelCommand = true, CanExecute = nameof(CanMove))]
     private Task JogAsync(string direction, CancellationToken cancellationToken) => Move((moves, ct) =>
     {
         var (axis, sign) = direction switch
@@ -63,21 +87,21 @@ public sealed partial class TestMovesViewModel : ObservableObject
         return moves.JogAsync(axis, sign * StepUm, ct);
     }, cancellationToken);
 
-    [RelayCommand(IncludeCancelCommand = true)]
+    [RelayCommand(IncludeCancelCommand = true, CanExecute = nameof(CanMove))]
     private Task GoToAsync(CancellationToken cancellationToken) => Move((moves, ct) => moves.GoToAsync(GoToXMm, GoToYMm, ct), cancellationToken);
 
     /// <summary>Moves to the job's top-left corner, where the first pixel edge lies.</summary>
-    [RelayCommand(IncludeCancelCommand = true)]
+    [RelayCommand(IncludeCancelCommand = true, CanExecute = nameof(CanMoveToJob))]
     private Task GoToOriginAsync(CancellationToken cancellationToken) =>
         Move((moves, ct) => moves.GoToOriginAsync(RequireJob().Geometry.Geometry, ct), cancellationToken);
 
     /// <summary>Traces the job's outline with the laser off, so the user sees where it will land.</summary>
-    [RelayCommand(IncludeCancelCommand = true)]
+    [RelayCommand(IncludeCancelCommand = true, CanExecute = nameof(CanMoveToJob))]
     private Task FrameAsync(CancellationToken cancellationToken) =>
         Move((moves, ct) => moves.FrameAsync(RequireJob().Geometry.Geometry, visibleFrequencyHz: null, ct), cancellationToken);
 
     /// <summary>Fires a burst where the stage stands (the stage does not move), at the job's frequency.</summary>
-    [RelayCommand(IncludeCancelCommand = true)]
+    [RelayCommand(IncludeCancelCommand = true, CanExecute = nameof(CanMove))]
     private Task TestFireAsync(CancellationToken cancellationToken) => Run(async (moves, ct) =>
     {
         if (TestFirePulses is < 1 or > 100000)
@@ -94,6 +118,26 @@ public sealed partial class TestMovesViewModel : ObservableObject
         await moves.FirePulsesAsync(TestFirePulses, frequency, ct).ConfigureAwait(false);
         _machine.GateState = MachineViewModel.Describe(await moves.Gate.GetStateAsync(ct).ConfigureAwait(false));
     }, cancellationToken);
+
+    /// <summary>Stops whichever test move or homing is under way.</summary>
+    [RelayCommand(CanExecute = nameof(CanStop))]
+    private void Stop()
+    {
+        foreach (var cancel in new[] { JogCancelCommand, GoToCancelCommand, GoToOriginCancelCommand, FrameCancelCommand, TestFireCancelCommand, _machine.HomeCancelCommand, _machine.IdentifyCancelCommand, _machine.ConnectCancelCommand })
+        {
+            cancel.Execute(null);
+        }
+    }
+
+    private void RefreshCommands()
+    {
+        JogCommand.NotifyCanExecuteChanged();
+        GoToCommand.NotifyCanExecuteChanged();
+        GoToOriginCommand.NotifyCanExecuteChanged();
+        FrameCommand.NotifyCanExecuteChanged();
+        TestFireCommand.NotifyCanExecuteChanged();
+        StopCommand.NotifyCanExecuteChanged();
+    }
 
     private Core.Jobs.PreparedJob RequireJob() =>
         _job.Job ?? throw new ArgumentException("no job planned: open an image and give it a usable size first");

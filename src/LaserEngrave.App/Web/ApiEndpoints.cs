@@ -21,7 +21,6 @@ internal static class ApiEndpoints
     {
         var api = app.MapGroup("/api");
         api.MapGet("/state", (MainViewModel main) => Results.Json(StateSnapshot.From(main)));
-        api.MapGet("/events", EventStream.SendAsync);
 
         api.MapPost("/image", UploadAsync);
         api.MapPost("/image/open", (MainViewModel main, PathRequest request) =>

@@ -1,7 +1,7 @@
-using System.Reflection;
+using LaserEngrave.App.Components;
 using LaserEngrave.App.Services;
 using LaserEngrave.App.ViewModels;
-using Microsoft.Extensions.FileProviders;
+using Microsoft.FluentUI.AspNetCore.Components;
 
 namespace LaserEngrave.App.Web;
 
@@ -14,8 +14,10 @@ public static class AppHost
     /// <summary>Builds the app; <paramref name="configure"/> may replace services (tests give fakes or a data folder).</summary>
     public static WebApplication Build(string[] args, string? url = null, Action<IServiceCollection>? configure = null)
     {
-        var builder = WebApplication.CreateBuilder(new WebApplicationOptions { Args = args, ContentRootPath = AppContext.BaseDirectory });
+        var builder = WebApplication.CreateBuilder(new WebApplicationOptions { Args = args, ContentRootPath = AppContext.BaseDirectory, ApplicationName = typeof(AppHost).Assembly.GetName().Name });
         builder.Logging.SetMinimumLevel(LogLevel.Warning);
+        // Built, not published (dotnet run, tests): the page's assets are read where the build left them, in any environment.
+        builder.WebHost.UseStaticWebAssets();
         if (url is not null)
         {
             builder.WebHost.UseUrls(url);
@@ -36,13 +38,16 @@ public static class AppHost
             main.Restore();
             return main;
         });
+        services.AddRazorComponents().AddInteractiveServerComponents();
+        services.AddFluentUIComponents();
+        services.AddWindowLifetime();
         configure?.Invoke(services);
 
         var app = builder.Build();
         app.Use(GuardAsync);
-        var page = new EmbeddedFileProvider(Assembly.GetExecutingAssembly(), "LaserEngrave.App.wwwroot");
-        app.UseDefaultFiles(new DefaultFilesOptions { FileProvider = page });
-        app.UseStaticFiles(new StaticFileOptions { FileProvider = page });
+        app.UseAntiforgery();
+        app.MapStaticAssets();
+        app.MapRazorComponents<Components.App>().AddInteractiveServerRenderMode();
         ApiEndpoints.Map(app);
         app.Lifetime.ApplicationStopping.Register(() => Shutdown(app.Services));
         return app;
@@ -58,7 +63,8 @@ public static class AppHost
             return Task.CompletedTask;
         }
 
-        if (HttpMethods.IsPost(context.Request.Method) && !context.Request.Headers.ContainsKey(RequestHeader))
+        // The page's own connection (Blazor's SignalR hub) needs the circuit the page was served with, not the header.
+        if (HttpMethods.IsPost(context.Request.Method) && !context.Request.Headers.ContainsKey(RequestHeader) && !context.Request.Path.StartsWithSegments("/_blazor"))
         {
             context.Response.StatusCode = StatusCodes.Status403Forbidden;
             return context.Response.WriteAsync($"POST needs the {RequestHeader} header");
