@@ -26,11 +26,20 @@ var app = AppHost.Build([.. options.HostArgs], options.Url, services =>
     {
         services.AddSingleton(new AppFolders(Path.GetFullPath(folder)));
     }
+
+    if (options.OpenBrowser)
+    {
+        // The app's own window: closing it ends the app (after the grace period, never during a run).
+        services.AddSingleton(new WindowLifetimeOptions(options.IdleExit));
+    }
 });
 await app.StartAsync();
 var url = app.Services.GetRequiredService<IServer>().Features.Get<IServerAddressesFeature>()!.Addresses.First();
 Console.WriteLine($"LaserEngrave is running at {url}  (Ctrl+C to stop)");
-if (options.OpenBrowser && !BrowserLauncher.TryOpen(url))
+// Created now, so the window's connections are counted from the first.
+_ = app.Services.GetRequiredService<WindowLifetime>();
+var profileFolder = Path.Combine(app.Services.GetRequiredService<AppFolders>().DataFolder, "window");
+if (options.OpenBrowser && !BrowserLauncher.TryOpen(url, profileFolder))
 {
     Console.WriteLine("Could not open a browser: open the address above yourself.");
 }
