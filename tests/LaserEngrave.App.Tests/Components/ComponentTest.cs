@@ -25,6 +25,9 @@ public abstract class ComponentTest : BunitContext
         Services.AddFluentUIComponents();
         Services.AddSingleton(Files);
         Services.AddSingleton(Main);
+        PresetStore.Load().Returns(ProcessPreset.Examples);
+        Presets = new PresetsViewModel(PresetStore, Main.Job);
+        Services.AddSingleton(Presets);
         JSInterop.Mode = JSRuntimeMode.Loose;
         SetRendererInfo(new RendererInfo("Server", isInteractive: true));
     }
@@ -40,6 +43,10 @@ public abstract class ComponentTest : BunitContext
     private protected IFileAccess Files { get; } = Substitute.For<IFileAccess>();
 
     private protected MainViewModel Main { get; }
+
+    private protected IPresetStore PresetStore { get; } = Substitute.For<IPresetStore>();
+
+    private protected PresetsViewModel Presets { get; }
 
     private protected static MachineProfile Profile => MachineProfile.Default;
 
