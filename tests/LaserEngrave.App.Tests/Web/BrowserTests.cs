@@ -190,6 +190,7 @@ public sealed class BrowserTests : IAsyncLifetime
         WaitFor(d => d.FindElement(By.Id("status-run")).Text == "completed", "continued run completed", 240);
         WaitFor(_ => Progress() == 100, "progress at 100 %");
         Assert.Contains("yes", Text("machine-homed"), StringComparison.Ordinal);
+        Screenshot("workspace-run-completed");
 
         WaitFor(d => d.FindElements(By.Id("export-txt")).Count == 1, "the log can be exported");
         var href = Id("export-txt").GetAttribute("href")!;
@@ -214,20 +215,40 @@ public sealed class BrowserTests : IAsyncLifetime
     [Fact]
     public void Workspace_LightAndDark_Screenshots()
     {
+        Resize(1440, 1000);
         OpenSample("qr-code.bmp");
         SetField("widthMm", "12");
         WaitFor(d => d.FindElement(By.Id("status-estimate")).Text.StartsWith("12 × 12 mm", StringComparison.Ordinal), "12 mm job planned");
         Id("connect").Click();
-        WaitFor(d => d.FindElement(By.Id("machine-connection")).Text.Contains("simulator", StringComparison.Ordinal), "connected to the simulator");
+        WaitFor(d => d.FindElement(By.Id("machine-homed")).Displayed && Enabled("jog-x-"), "connected to the simulator, state read");
         WaitFor(d => d.FindElement(By.Id("stage-host")).GetAttribute("data-drawn-moves") != "0", "plan drawn");
         Assert.True(new FileInfo(Screenshot("workspace-light")).Length > 20_000);
 
+        // The system's dark mode, as the page sees it at load.
         Driver.ExecuteCdpCommand("Emulation.setEmulatedMedia", new Dictionary<string, object?>
         {
             ["features"] = new[] { new Dictionary<string, string> { ["name"] = "prefers-color-scheme", ["value"] = "dark" } },
         });
+        Open();
         WaitFor(d => (string)((IJavaScriptExecutor)d).ExecuteScript("return getComputedStyle(document.body).backgroundColor;")! != "rgb(243, 244, 246)", "dark colours");
+        WaitFor(d => d.FindElement(By.Id("stage-host")).GetAttribute("data-drawn-moves") != "0", "plan drawn");
         Assert.True(new FileInfo(Screenshot("workspace-dark")).Length > 20_000);
+    }
+
+    [Fact]
+    public void Page_Loaded_WeighsLessThan2MB()
+    {
+        // The first load of a fresh profile: the page and everything it loaded, as the browser decoded it.
+        var weight = Convert.ToInt64(Driver.ExecuteScript(
+            """
+            const all = [...performance.getEntriesByType('navigation'), ...performance.getEntriesByType('resource')];
+            return all.reduce((n, e) => n + (e.decodedBodySize || 0), 0);
+            """), CultureInfo.InvariantCulture);
+        var files = Convert.ToInt64(Driver.ExecuteScript("return performance.getEntriesByType('resource').length + 1;"), CultureInfo.InvariantCulture);
+        var readyMs = Convert.ToDouble(Driver.ExecuteScript("return performance.getEntriesByName('laserengrave-ready')[0].startTime;"), CultureInfo.InvariantCulture);
+        TestContext.Current.TestOutputHelper?.WriteLine($"page weight {weight / 1024} KB in {files} files; usable {readyMs:0} ms after navigation");
+
+        Assert.InRange(weight, 50_000, 2_000_000);
     }
 
     [Fact]

@@ -219,6 +219,8 @@ export function create(host, dotnet) {
   const observer = new ResizeObserver(resize);
   observer.observe(host);
   resize();
+  // When the workspace became usable (the circuit is up and the stage drawn), for the page-load figures.
+  performance.mark('laserengrave-ready');
 
   return {
     setTravel(w, h) { s.travel = { w, h }; s.fitted = false; resize(); },
