@@ -190,6 +190,28 @@ public sealed class BrowserTests : IAsyncLifetime
         WaitFor(d => d.FindElement(By.Id("status-run")).Text == "completed", "continued run completed", 240);
         WaitFor(_ => Progress() == 100, "progress at 100 %");
         Assert.Contains("yes", Text("machine-homed"), StringComparison.Ordinal);
+
+        // Zoom in on the job with the wheel, around the cursor, to see what burned.
+        Resize(1440, 1000);
+        (scale, ox, oy) = View();
+        var centre = (X: ox + ((dragged + 1.5) * scale), Y: oy + (2.5 * scale));
+        var wheelAt = new WheelInputDevice.ScrollOrigin
+        {
+            Element = canvas,
+            XOffset = (int)(centre.X - (canvas.Size.Width / 2.0)),
+            YOffset = (int)(centre.Y - (canvas.Size.Height / 2.0)),
+        };
+        for (var i = 0; i < 8; i++)
+        {
+            new Actions(Driver).ScrollFromOrigin(wheelAt, 0, -100).Perform();
+        }
+
+        WaitFor(_ => View().Scale > scale * 3, "zoomed in around the job");
+
+        // Pan: drag the empty stage, and the job comes down into view.
+        var unpanned = View();
+        new Actions(Driver).MoveToElement(canvas, 0, 100).ClickAndHold().MoveByOffset(150, 250).Release().Perform();
+        WaitFor(_ => View().Y > unpanned.Y + 200, "panned");
         Screenshot("workspace-run-completed");
 
         WaitFor(d => d.FindElements(By.Id("export-txt")).Count == 1, "the log can be exported");
