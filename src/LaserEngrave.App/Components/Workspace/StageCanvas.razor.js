@@ -8,10 +8,11 @@ export function create(host, dotnet) {
   const cursor = host.querySelector('[data-cursor]');
   const menu = host.querySelector('[data-menu]');
   const ctx = canvas.getContext('2d');
+  const scheme = matchMedia('(prefers-color-scheme: dark)');
   const s = {
     travel: { w: 60, h: 60 }, job: null, draggable: false, laser: null, laserOn: false,
     moves: new Float32Array(0), paths: null, burned: null, burnedUpTo: 0, movesDone: 0,
-    mask: null, maskUrl: null, scale: 1, ox: 0, oy: 0, fitted: false, drag: null, raf: 0,
+    mask: null, maskUrl: null, scale: 1, ox: 0, oy: 0, fitted: false, userView: false, drag: null, raf: 0,
   };
   const css = (name) => getComputedStyle(host).getPropertyValue(name).trim() || '#888';
   const toMm = (px, py) => ({ x: (px - s.ox) / s.scale, y: (py - s.oy) / s.scale });
@@ -23,7 +24,8 @@ export function create(host, dotnet) {
     canvas.height = Math.max(1, Math.round(r.height * d));
     canvas.style.width = r.width + 'px';
     canvas.style.height = r.height + 'px';
-    if (!s.fitted) fit(); else invalidate();
+    // The whole travel stays fitted to a resized window until the user zooms or pans.
+    if (!s.fitted || !s.userView) fit(); else invalidate();
   }
 
   function fit() {
@@ -33,7 +35,7 @@ export function create(host, dotnet) {
     s.scale = Math.min(w / s.travel.w, h / s.travel.h);
     s.ox = RULER + m + (w - s.travel.w * s.scale) / 2;
     s.oy = RULER + m + (h - s.travel.h * s.scale) / 2;
-    s.fitted = true;
+    s.fitted = true; s.userView = false;
     invalidate();
   }
 
@@ -87,8 +89,9 @@ export function create(host, dotnet) {
     if (job) {
       const dx = job.x - s.job.x, dy = job.y - s.job.y;
       if (s.mask && s.mask.complete && s.mask.naturalWidth > 0) {
-        ctx.imageSmoothingEnabled = false; ctx.globalAlpha = 0.35;
-        ctx.drawImage(s.mask, job.x, job.y, job.w, job.h); ctx.globalAlpha = 1;
+        // Burned pixels dark on a light stage, light on a dark one, like the plan's burns.
+        ctx.imageSmoothingEnabled = false; ctx.globalAlpha = 0.35; ctx.filter = scheme.matches ? 'invert(1)' : 'none';
+        ctx.drawImage(s.mask, job.x, job.y, job.w, job.h); ctx.globalAlpha = 1; ctx.filter = 'none';
       }
       if (s.paths) {
         ctx.translate(dx, dy);
@@ -148,7 +151,7 @@ export function create(host, dotnet) {
   canvas.addEventListener('wheel', (e) => {
     e.preventDefault();
     const { px, py } = local(e), mm = toMm(px, py), k = e.deltaY < 0 ? 1.2 : 1 / 1.2;
-    s.scale = Math.min(5000, Math.max(1, s.scale * k));
+    s.scale = Math.min(5000, Math.max(1, s.scale * k)); s.userView = true;
     s.ox = px - mm.x * s.scale; s.oy = py - mm.y * s.scale;
     invalidate();
   }, { passive: false });
@@ -169,7 +172,7 @@ export function create(host, dotnet) {
     const on = mm.x >= 0 && mm.y >= 0 && mm.x <= s.travel.w && mm.y <= s.travel.h;
     cursor.textContent = on ? `X ${fmt(mm.x)}  Y ${fmt(mm.y)} mm` : '';
     if (!s.drag) { canvas.style.cursor = inJob(mm) ? 'move' : 'crosshair'; return; }
-    if (s.drag.kind === 'pan') { s.ox = s.drag.ox + px - s.drag.px; s.oy = s.drag.oy + py - s.drag.py; }
+    if (s.drag.kind === 'pan') { s.ox = s.drag.ox + px - s.drag.px; s.oy = s.drag.oy + py - s.drag.py; s.userView = true; }
     else {
       s.drag.x = snap(s.job.x + mm.x - s.drag.sx); s.drag.y = snap(s.job.y + mm.y - s.drag.sy);
       cursor.textContent = `origin X ${fmt(s.drag.x)}  Y ${fmt(s.drag.y)} mm`;
@@ -214,7 +217,6 @@ export function create(host, dotnet) {
     dotnet.invokeMethodAsync('OnJogKey', keys[e.key]);
   };
   document.addEventListener('keydown', onKey);
-  const scheme = matchMedia('(prefers-color-scheme: dark)');
   scheme.addEventListener('change', invalidate);
   const observer = new ResizeObserver(resize);
   observer.observe(host);
@@ -239,7 +241,7 @@ export function create(host, dotnet) {
     setProgress(movesDone) { s.movesDone = movesDone; extendBurned(); invalidate(); },
     setLaser(x, y, on) { s.laser = x === null ? null : { x, y }; s.laserOn = on; invalidate(); },
     fit,
-    zoom(k) { const r = host.getBoundingClientRect(), cx = r.width / 2, cy = r.height / 2, mm = toMm(cx, cy); s.scale *= k; s.ox = cx - mm.x * s.scale; s.oy = cy - mm.y * s.scale; invalidate(); },
+    zoom(k) { s.userView = true; const r = host.getBoundingClientRect(), cx = r.width / 2, cy = r.height / 2, mm = toMm(cx, cy); s.scale *= k; s.ox = cx - mm.x * s.scale; s.oy = cy - mm.y * s.scale; invalidate(); },
     dispose() { document.removeEventListener('keydown', onKey); scheme.removeEventListener('change', invalidate); observer.disconnect(); },
   };
 }
