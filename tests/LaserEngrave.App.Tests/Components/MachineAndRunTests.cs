@@ -233,7 +233,23 @@ public sealed class StageCanvasTests : ComponentTest
     }
 
     [Fact]
-    public void PlanBytes_HugePlan_CappedAndCounted()
+    public void PlanBytes_PlanOfMoreMovesThanDrawn_CappedAndCounted()
+    {
+        // One-pixel checks: every other pixel a burn run of its own, far more moves than the page draws.
+        using var folder = TestFiles.NewFolder();
+        var path = TestFiles.WriteChecker(folder.Path, 500, 500, cell: 1);
+        Assert.True(Main.Job.LoadImage(path));
+        Main.Job.EditWidth(50);
+
+        var (bytes, drawn, total) = StageCanvas.PlanBytes(Main.Job.Job);
+
+        Assert.True(total > StageCanvas.MaxDrawnMoves, $"only {total} moves");
+        Assert.Equal(StageCanvas.MaxDrawnMoves, drawn);
+        Assert.Equal(drawn * 5 * sizeof(float), bytes.Length);
+    }
+
+    [Fact]
+    public void PlanBytes_SmallPlan_AllDrawn()
     {
         OpenQr();
 

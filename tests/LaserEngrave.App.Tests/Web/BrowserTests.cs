@@ -29,9 +29,17 @@ public sealed class BrowserTests : IAsyncLifetime
     /// <summary>Screenshots land here (the test output folder); docs/images takes them from there.</summary>
     public static string ScreenshotFolder => Path.Combine(AppContext.BaseDirectory, "screenshots");
 
+    /// <summary>How long the app outlives its window in these tests (the app opened "its own window": the test's browser).</summary>
+    private static readonly TimeSpan IdleExit = TimeSpan.FromMilliseconds(300);
+
     public async ValueTask InitializeAsync()
     {
-        _app = AppHost.Build([], "http://127.0.0.1:0", services => AppFactory.UseTestServices(services, _folder.Path));
+        _app = AppHost.Build([], "http://127.0.0.1:0", services =>
+        {
+            AppFactory.UseTestServices(services, _folder.Path);
+            // Only the test of the window's end lets the app end; the others reload the page at will.
+            services.AddSingleton(new WindowLifetimeOptions(TestContext.Current.TestMethod?.MethodName == nameof(Window_Closed_AppEnds) ? IdleExit : null));
+        });
         await _app.StartAsync(TestContext.Current.CancellationToken);
         _url = _app.Services.GetRequiredService<IServer>().Features.Get<IServerAddressesFeature>()!.Addresses.First();
 
@@ -271,6 +279,19 @@ public sealed class BrowserTests : IAsyncLifetime
         TestContext.Current.TestOutputHelper?.WriteLine($"page weight {weight / 1024} KB in {files} files; usable {readyMs:0} ms after navigation");
 
         Assert.InRange(weight, 50_000, 2_000_000);
+    }
+
+    [Fact]
+    public void Window_Closed_AppEnds()
+    {
+        var stopping = _app!.Lifetime.ApplicationStopping;
+        Assert.Equal(1, _app.Services.GetRequiredService<WindowLifetime>().OpenWindows);
+        Assert.False(stopping.IsCancellationRequested);
+
+        // Leaving the page drops its connection, as closing the window does.
+        Driver.Navigate().GoToUrl("about:blank");
+
+        WaitFor(_ => stopping.IsCancellationRequested, "the app ending after its window closed");
     }
 
     [Fact]
