@@ -190,6 +190,13 @@ public sealed class BrowserTests : IAsyncLifetime
         WaitFor(_ => Progress() >= 5, "a twentieth done", 120);
         Id("pause").Click();
         WaitFor(d => d.FindElement(By.Id("status-run")).Text == "paused", "paused");
+        var paused = Progress();
+
+        // A window opened again shows the run where it is.
+        Open();
+        WaitFor(d => d.FindElement(By.Id("status-run")).Text == "paused", "the paused run shown in the new window");
+        // Pause waits for the burn run under way, so the figure may still have grown a little.
+        Assert.True(Progress() >= paused, $"progress {Progress()} % after reopening, {paused} % before");
         Assert.True(Enabled("resume") && Enabled("abort") && !Enabled("start"));
         Id("abort").Click();
         WaitFor(d => d.FindElement(By.Id("status-run")).Text == "aborted", "aborted");
@@ -201,6 +208,7 @@ public sealed class BrowserTests : IAsyncLifetime
 
         // Zoom in on the job with the wheel, around the cursor, to see what burned.
         Resize(1440, 1000);
+        canvas = Id("stage-canvas");
         (scale, ox, oy) = View();
         var centre = (X: ox + ((dragged + 1.5) * scale), Y: oy + (2.5 * scale));
         var wheelAt = new WheelInputDevice.ScrollOrigin
