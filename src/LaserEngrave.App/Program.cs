@@ -20,6 +20,12 @@ try
         {
             services.AddSingleton(new AppFolders(Path.GetFullPath(folder)));
         }
+
+        if (options.OpenBrowser)
+        {
+            // The app's own window: closing it ends the app (after the grace period, never during a run).
+            services.AddSingleton(new WindowLifetimeOptions(options.IdleExit));
+        }
     });
 }
 catch (ArgumentException ex)
@@ -42,7 +48,10 @@ var token = app.Services.GetRequiredService<AccessToken>();
 var url = $"{addresses.First().TrimEnd('/')}/?{AccessToken.QueryName}={token.Value}";
 Console.WriteLine($"LaserEngrave is running at {url}");
 Console.WriteLine("Ctrl+C stops it (the laser is switched off first).");
-if (options.OpenBrowser && !BrowserLauncher.TryOpen(url))
+// Created now, so the window's connections are counted from the first.
+_ = app.Services.GetRequiredService<WindowLifetime>();
+var profileFolder = Path.Combine(app.Services.GetRequiredService<AppFolders>().DataFolder, "window");
+if (options.OpenBrowser && !BrowserLauncher.TryOpen(url, profileFolder))
 {
     Console.WriteLine("Could not open a browser: open the address above yourself.");
 }

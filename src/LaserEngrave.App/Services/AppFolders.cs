@@ -13,6 +13,8 @@ public sealed record AppFolders(string DataFolder, string? LogFolder = null)
 
     public string SettingsFile => Path.Combine(DataFolder, "settings.json");
 
+    public string PresetsFile => Path.Combine(DataFolder, "presets.json");
+
     public string UploadFolder => Path.Combine(DataFolder, "images");
 
     public string RunLogFolder => LogFolder ?? Path.Combine(DataFolder, "logs");

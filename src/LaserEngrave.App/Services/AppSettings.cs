@@ -17,6 +17,9 @@ public sealed record AppSettings
     /// <summary>A machine profile JSON file; null for the built-in profile.</summary>
     public string? ProfilePath { get; init; }
 
+    /// <summary>The last job's size, position and process (its image is the first recent file), restored at the next start.</summary>
+    public JobSettings? LastJob { get; init; }
+
     /// <summary>"light" or "dark".</summary>
     public string Theme { get; init; } = "light";
 }

@@ -30,6 +30,12 @@ public sealed partial class JobViewModel : ObservableObject
     public const string PassesField = "passes";
     public const string ThresholdField = "thresholdPercent";
 
+    /// <summary>The largest pixel pitch offered, µm (a 1 mm pixel).</summary>
+    public const double MaxPitchUm = 1000;
+
+    /// <summary>The laser gate's highest burst frequency, Hz.</summary>
+    public const double MaxLaserFrequencyHz = 100_000;
+
     private static readonly HashSet<string> MaskInputs = [nameof(ThresholdPercent), nameof(Dither), nameof(Invert)];
 
     private static readonly HashSet<string> PlanInputs =
@@ -582,6 +588,39 @@ public sealed partial class JobViewModel : ObservableObject
             errors[TravelSpeedField] = $"travel speed {N(TravelSpeedMmPerS)} mm/s is above the stage's {N(_profile.X.MaxSpeedMmPerS)} mm/s";
         }
 
+        // The machine's limits, so a typo (1e9 mm) is refused where it is typed, not planned into a job of years.
+        var travelXMm = _profile.X.TravelMm;
+        var travelYMm = _profile.Y.TravelMm;
+        if (SizeMode is SizeMode.Width or SizeMode.WidthAndHeight)
+        {
+            Within(WidthMm, WidthField, "width", "mm", travelXMm, "the stage's X travel");
+        }
+
+        if (SizeMode is SizeMode.Height or SizeMode.WidthAndHeight)
+        {
+            Within(HeightMm, HeightField, "height", "mm", travelYMm, "the stage's Y travel");
+        }
+
+        if (SizeMode == SizeMode.Pitch)
+        {
+            Within(PitchUm, PitchField, "pixel pitch", "µm", MaxPitchUm, "the largest pitch");
+        }
+
+        if (!(OriginXMm >= 0 && OriginXMm <= travelXMm) || !(OriginYMm >= 0 && OriginYMm <= travelYMm))
+        {
+            errors[OriginField] = $"origin {N(OriginXMm)}, {N(OriginYMm)} mm must lie on the stage (0 to {N(travelXMm)} × 0 to {N(travelYMm)} mm)";
+        }
+
+        if (AccelerationMmPerS2 > _profile.X.MaxAccelerationMmPerS2)
+        {
+            errors[AccelerationField] = $"acceleration {N(AccelerationMmPerS2)} mm/s² is above the stage's {N(_profile.X.MaxAccelerationMmPerS2)} mm/s²";
+        }
+
+        if (LaserFrequencyHz > MaxLaserFrequencyHz)
+        {
+            errors[FrequencyField] = $"laser frequency {N(LaserFrequencyHz)} Hz is above the gate's {N(MaxLaserFrequencyHz)} Hz";
+        }
+
         if (!(OverscanMm >= 0) || double.IsInfinity(OverscanMm))
         {
             errors[OverscanField] = $"overscan {N(OverscanMm)} mm must be 0 or more";
@@ -593,6 +632,14 @@ public sealed partial class JobViewModel : ObservableObject
         }
 
         return errors;
+
+        void Within(double value, string field, string what, string unit, double most, string limit)
+        {
+            if (!(value > 0) || value > most)
+            {
+                errors[field] = $"{what} {N(value)} {unit} must be above 0 and at most {N(most)} {unit} ({limit})";
+            }
+        }
 
         void Positive(double value, string field, string what, string unit, double least)
         {

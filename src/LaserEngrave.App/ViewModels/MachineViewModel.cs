@@ -52,6 +52,7 @@ public sealed partial class MachineViewModel : ObservableObject
     public partial MachineProfile Profile { get; set; }
 
     [ObservableProperty]
+    [NotifyCanExecuteChangedFor(nameof(ConnectCommand), nameof(DisconnectCommand), nameof(IdentifyCommand), nameof(HomeCommand))]
     public partial IMachineConnection? Connection { get; private set; }
 
     [ObservableProperty]
@@ -81,6 +82,12 @@ public sealed partial class MachineViewModel : ObservableObject
 
     public bool IsConnected => Connection is not null;
 
+    /// <summary>Whether <see cref="ConnectCommand"/> is offered: nothing holds the machine (the interlock decides first), not connected yet.</summary>
+    public bool CanConnect => !Activity.IsBusy && Connection is null;
+
+    /// <summary>Connected and nothing holds the machine (the interlock decides first).</summary>
+    public bool CanUseMachine => !Activity.IsBusy && Connection is not null;
+
     public void RefreshPorts()
     {
         try
@@ -94,7 +101,7 @@ public sealed partial class MachineViewModel : ObservableObject
     }
 
     /// <summary>Opens the machine and reads its state; any failure leaves it disconnected with the reason shown.</summary>
-    [RelayCommand(CanExecute = nameof(CanUseMachine))]
+    [RelayCommand(CanExecute = nameof(CanConnect))]
     private Task ConnectAsync() => Guard(MachineOperation.Connecting, async cancellationToken =>
     {
         await CloseAsync();
@@ -130,8 +137,6 @@ public sealed partial class MachineViewModel : ObservableObject
         await ReadStateAsync(connection, cancellationToken);
     });
 
-    private bool CanUseMachine() => !Activity.IsBusy;
-
     /// <summary>Closes the connection whatever holds the machine: for the app's exit, after the run was aborted.</summary>
     internal async Task CloseAsync()
     {
@@ -157,6 +162,13 @@ public sealed partial class MachineViewModel : ObservableObject
             XMicrosteps = await connection.Stage.X.GetPositionAsync(cancellationToken);
             YMicrosteps = await connection.Stage.Y.GetPositionAsync(cancellationToken);
         });
+    }
+
+    /// <summary>Reads homed flags, the gate and both positions again (after a run, which homes in its preflight).</summary>
+    public Task RefreshStateAsync(CancellationToken cancellationToken)
+    {
+        var connection = RequireConnection();
+        return TaskRunner.Run(connection.TimeProvider, () => ReadStateAsync(connection, cancellationToken));
     }
 
     internal IMachineConnection RequireConnection() => Connection ?? throw new DeviceException("not connected: connect to the simulator or the machine first");

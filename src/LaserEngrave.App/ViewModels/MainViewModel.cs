@@ -77,6 +77,11 @@ public sealed partial class MainViewModel : ObservableObject
     public void Restore()
     {
         Log.RefreshCommand.Execute(null);
+        if (Settings.LastJob is { } lastJob)
+        {
+            Job.Apply(lastJob with { ImagePath = null });
+        }
+
         if (Settings.RecentFiles.FirstOrDefault() is { } last && _files.Exists(last))
         {
             Job.LoadImage(last);
@@ -114,6 +119,15 @@ public sealed partial class MainViewModel : ObservableObject
         {
             var recent = Settings.RecentFiles.Where(f => f != path).Prepend(path).Take(RecentFileCount).ToList();
             Save(Settings with { RecentFiles = recent, LastFolder = Path.GetDirectoryName(path) });
+        }
+        else if (e.PropertyName == nameof(JobViewModel.PlanVersion) && Job.ImagePath is not null)
+        {
+            // Size, position and process as they were last planned, for the next start; written only when they changed.
+            var job = Job.ToSettings() with { ImagePath = null };
+            if (job != Settings.LastJob)
+            {
+                Save(Settings with { LastJob = job });
+            }
         }
     }
 

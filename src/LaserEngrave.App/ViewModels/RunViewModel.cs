@@ -40,12 +40,13 @@ public sealed partial class RunViewModel : ObservableObject
         _runs = runs;
         _job = job;
         _machine = machine;
+        _log = log;
+        _time = time;
         _machine.Activity.PropertyChanged += (_, e) =>
         {
             if (e.PropertyName == nameof(MachineActivity.Current))
             {
-                StartCommand.NotifyCanExecuteChanged();
-                ContinueCommand.NotifyCanExecuteChanged();
+                RefreshCommands();
                 OnPropertyChanged(nameof(CanContinue));
                 OnPropertyChanged(nameof(ContinueUnavailableReason));
             }
@@ -54,13 +55,21 @@ public sealed partial class RunViewModel : ObservableObject
         {
             if (e.PropertyName == nameof(JobViewModel.PlanVersion))
             {
-                ContinueCommand.NotifyCanExecuteChanged();
+                ClearStaleProgress();
                 OnPropertyChanged(nameof(CanContinue));
                 OnPropertyChanged(nameof(ContinueUnavailableReason));
             }
+
+            RefreshCommands();
         };
-        _log = log;
-        _time = time;
+        _machine.PropertyChanged += (_, _) => RefreshCommands();
+        PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName is nameof(State) or nameof(StoppedAt) or nameof(RunPlanVersion))
+            {
+                RefreshCommands();
+            }
+        };
     }
 
     [ObservableProperty]
@@ -96,6 +105,16 @@ public sealed partial class RunViewModel : ObservableObject
     public string? ContinueUnavailableReason => StoppedAt is null ? null : WhyNotContinue();
 
     public bool IsActive => State is RunState.Running or RunState.Paused or RunState.Aborting;
+
+    /// <summary>
+    /// Whether <see cref="StartCommand"/> would run: nothing holds the machine (the interlock decides first), a planned job
+    /// with something to burn inside the travel, a machine.
+    /// </summary>
+    public bool CanStart => !_machine.Activity.IsBusy && !IsActive && _job.Job is { Geometry.FitsTravel: true, Statistics.BurnRuns: > 0 } && _machine.Connection is not null;
+
+    public bool CanPause => State == RunState.Running;
+
+    public bool CanResume => State == RunState.Paused;
 
     /// <summary>Fraction of all passes done, 0..1.</summary>
     public double Fraction => Progress is { } p && p.MovesTotal > 0
@@ -194,8 +213,6 @@ public sealed partial class RunViewModel : ObservableObject
     [ObservableProperty]
     public partial string? Notice { get; private set; }
 
-    private bool CanStart() => !_machine.Activity.IsBusy;
-
     private string? WhyNotContinue()
     {
         if (_machine.Activity.BusyMessage is { } busy)
@@ -237,7 +254,7 @@ public sealed partial class RunViewModel : ObservableObject
             : $"the job changed since the run stopped ({string.Join(", ", changed)}): continuing would not match what is burned; set it back to continue, or start again";
     }
 
-    [RelayCommand]
+    [RelayCommand(CanExecute = nameof(CanPause))]
     private void Pause()
     {
         if (State == RunState.Running)
@@ -247,7 +264,7 @@ public sealed partial class RunViewModel : ObservableObject
         }
     }
 
-    [RelayCommand]
+    [RelayCommand(CanExecute = nameof(CanResume))]
     private void Resume()
     {
         if (State == RunState.Paused)
@@ -339,15 +356,37 @@ public sealed partial class RunViewModel : ObservableObject
         _log.Record(record);
         try
         {
-            await _machine.ReadPositionsAsync(CancellationToken.None);
+            // The whole state, not only the positions: the run's preflight homed the stage, and the view must say so.
+            await _machine.RefreshStateAsync(CancellationToken.None);
         }
-        catch (Exception ex) when (ex is DeviceException or InvalidOperationException or ObjectDisposedException)
+        catch (Exception ex) when (ex is DeviceException or InvalidOperationException or ObjectDisposedException or TimeoutException or IOException)
         {
             _machine.Error = ex.Message;
         }
 
         // The run counts as ended only once its log is written, so whoever waits for the end finds the log.
         State = final;
+    }
+
+    private void RefreshCommands()
+    {
+        StartCommand.NotifyCanExecuteChanged();
+        ContinueCommand.NotifyCanExecuteChanged();
+        PauseCommand.NotifyCanExecuteChanged();
+        ResumeCommand.NotifyCanExecuteChanged();
+    }
+
+    /// <summary>A new plan makes the last run's figures meaningless for it ("100 %, row 33 of 33" on a job never run).</summary>
+    private void ClearStaleProgress()
+    {
+        if (!IsActive && Progress is not null && RunPlanVersion != _job.PlanVersion)
+        {
+            Progress = null;
+            if (State is RunState.Completed or RunState.Aborted or RunState.Failed)
+            {
+                State = RunState.Idle;
+            }
+        }
     }
 
     private static string HashOrMissing(string path)

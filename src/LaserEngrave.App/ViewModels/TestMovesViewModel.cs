@@ -4,6 +4,7 @@ using CommunityToolkit.Mvvm.Input;
 using LaserEngrave.App.Services;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Execution;
+using LaserEngrave.Devices.Scheduling;
 
 namespace LaserEngrave.App.ViewModels;
 
@@ -37,10 +38,21 @@ public sealed partial class TestMovesViewModel : ObservableObject
         {
             if (e.PropertyName == nameof(MachineActivity.Current))
             {
-                foreach (var command in new IRelayCommand[] { JogCommand, GoToCommand, GoToOriginCommand, FrameCommand, TestFireCommand })
-                {
-                    command.NotifyCanExecuteChanged();
-                }
+                RefreshCommands();
+            }
+        };
+        _machine.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName is nameof(MachineViewModel.Connection))
+            {
+                RefreshCommands();
+            }
+        };
+        _job.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName == nameof(JobViewModel.Job))
+            {
+                RefreshCommands();
             }
         };
     }
@@ -105,7 +117,8 @@ public sealed partial class TestMovesViewModel : ObservableObject
                 Error = null;
                 _jogXUm = dx * step;
                 _jogYUm = dy * step;
-                _jogging = JogUntilReachedAsync(lease);
+                // Where the machine's clock says: on the simulation's loop in virtual time.
+                _jogging = TaskRunner.Run(_machine.Connection?.TimeProvider ?? TimeProvider.System, () => JogUntilReachedAsync(lease));
             }
             else
             {
@@ -117,7 +130,8 @@ public sealed partial class TestMovesViewModel : ObservableObject
         }
     }
 
-    private bool CanJog(string? direction) => !Activity.IsBusy || Activity.Current?.Kind == MachineOperationKind.Jog;
+    /// <summary>A machine, and nothing but a jog holding it (presses during a jog add to its target).</summary>
+    private bool CanJog(string? direction) => (!Activity.IsBusy || Activity.Current?.Kind == MachineOperationKind.Jog) && _machine.IsConnected;
 
     /// <summary>Moves to where the jog began plus every step pressed so far, again as long as presses keep coming.</summary>
     private async Task JogUntilReachedAsync(MachineActivity.Lease lease)
@@ -186,11 +200,11 @@ public sealed partial class TestMovesViewModel : ObservableObject
     private Task GoToAsync() => Move("go to", (moves, ct) => moves.GoToAsync(GoToXMm, GoToYMm, ct));
 
     /// <summary>Moves to the job's top-left corner, where the first pixel edge lies.</summary>
-    [RelayCommand(CanExecute = nameof(CanMove))]
+    [RelayCommand(CanExecute = nameof(CanMoveToJob))]
     private Task GoToOriginAsync() => Move("go to the job's origin", (moves, ct) => moves.GoToOriginAsync(RequireJob().Geometry.Geometry, ct));
 
     /// <summary>Traces the job's outline with the laser off, so the user sees where it will land.</summary>
-    [RelayCommand(CanExecute = nameof(CanMove))]
+    [RelayCommand(CanExecute = nameof(CanMoveToJob))]
     private Task FrameAsync() => Move("frame", (moves, ct) => moves.FrameAsync(RequireJob().Geometry.Geometry, visibleFrequencyHz: null, ct));
 
     /// <summary>Fires a burst where the stage stands (the stage does not move), at the job's frequency.</summary>
@@ -213,7 +227,7 @@ public sealed partial class TestMovesViewModel : ObservableObject
     });
 
     /// <summary>Stops the test move, jog or homing under way (laser off); a run is stopped with its own Abort.</summary>
-    [RelayCommand]
+    [RelayCommand(CanExecute = nameof(CanStop))]
     private void Stop()
     {
         if (Activity.Current is { Kind: not MachineOperationKind.Run })
@@ -222,7 +236,24 @@ public sealed partial class TestMovesViewModel : ObservableObject
         }
     }
 
-    private bool CanMove() => !Activity.IsBusy;
+    /// <summary>A machine, and nothing holding it (the interlock decides first).</summary>
+    public bool CanMove => !Activity.IsBusy && _machine.IsConnected;
+
+    /// <summary>As <see cref="CanMove"/>, with a planned job to go to or trace.</summary>
+    public bool CanMoveToJob => CanMove && _job.Job is not null;
+
+    /// <summary>A test move, jog, homing or connect holds the machine and can be stopped (a run has its own Abort).</summary>
+    public bool CanStop => Activity.Current is { Kind: not MachineOperationKind.Run };
+
+    private void RefreshCommands()
+    {
+        JogCommand.NotifyCanExecuteChanged();
+        GoToCommand.NotifyCanExecuteChanged();
+        GoToOriginCommand.NotifyCanExecuteChanged();
+        FrameCommand.NotifyCanExecuteChanged();
+        TestFireCommand.NotifyCanExecuteChanged();
+        StopCommand.NotifyCanExecuteChanged();
+    }
 
     private Core.Jobs.PreparedJob RequireJob() =>
         _job.Job ?? throw new ArgumentException("no job planned: open an image and give it a usable size first");

@@ -36,7 +36,6 @@ internal static class ApiEndpoints
         });
 
         api.MapGet("/state", (MainViewModel main) => Results.Json(StateSnapshot.From(main)));
-        api.MapGet("/events", EventStream.SendAsync);
 
         api.MapPost("/image", UploadAsync);
         api.MapPost("/image/open", (MainViewModel main, PathRequest request) => OpenImage(main, request.Path));
@@ -164,9 +163,12 @@ internal static class ApiEndpoints
     /// <summary>A request that changed nothing on purpose (a second Start during a run): 200, the note and the state.</summary>
     private static IResult Ignored(MainViewModel main, string note) => Results.Json(new { note, state = StateSnapshot.From(main) });
 
-    /// <summary>The 409 answer when the interlock disables <paramref name="command"/> now; null when it may start.</summary>
+    /// <summary>
+    /// The 409 answer when the interlock disables <paramref name="command"/> now; null when it may start. A command the
+    /// page only greys out for the state (not connected, no job) still starts and reports why it failed in the state.
+    /// </summary>
     private static IResult? Refused(MainViewModel main, IAsyncRelayCommand command, object? parameter = null) =>
-        command.CanExecute(parameter) ? null : Busy(main.Activity.BusyMessage ?? "the machine is busy");
+        command.CanExecute(parameter) || main.Activity.BusyMessage is not { } busy ? null : Busy(busy);
 
     /// <summary>Answers once the command has started (202); its end shows in the state. Refused with 409 while the interlock disables it.</summary>
     private static IResult Start(MainViewModel main, IAsyncRelayCommand command, object? parameter = null)

@@ -1,7 +1,7 @@
-using System.Reflection;
+using LaserEngrave.App.Components;
 using LaserEngrave.App.Services;
 using LaserEngrave.App.ViewModels;
-using Microsoft.Extensions.FileProviders;
+using Microsoft.FluentUI.AspNetCore.Components;
 
 namespace LaserEngrave.App.Web;
 
@@ -11,7 +11,7 @@ public static class AppHost
     /// <summary>The header every POST authorised by the page's cookie must also carry: a page of another site cannot add it without the server's consent (CORS).</summary>
     public const string RequestHeader = "X-LaserEngrave";
 
-    /// <summary>How long the host gives the server to close its connections on exit (an open page's event stream ends at once).</summary>
+    /// <summary>How long the host gives the server to close its connections on exit (an open page's circuit is dropped, never waited for).</summary>
     public static readonly TimeSpan ShutdownTimeout = TimeSpan.FromMilliseconds(500);
 
     /// <summary>Builds the app; <paramref name="configure"/> may replace services (tests give fakes or a data folder).</summary>
@@ -19,8 +19,10 @@ public static class AppHost
     /// <exception cref="ArgumentException">An address is not on this computer; the message is one line naming it.</exception>
     public static WebApplication Build(string[] args, string? url = null, Action<IServiceCollection>? configure = null)
     {
-        var builder = WebApplication.CreateBuilder(new WebApplicationOptions { Args = args, ContentRootPath = AppContext.BaseDirectory });
+        var builder = WebApplication.CreateBuilder(new WebApplicationOptions { Args = args, ContentRootPath = AppContext.BaseDirectory, ApplicationName = typeof(AppHost).Assembly.GetName().Name });
         builder.Logging.SetMinimumLevel(LogLevel.Warning);
+        // Built, not published (dotnet run, tests): the page's assets are read where the build left them, in any environment.
+        builder.WebHost.UseStaticWebAssets();
         var urls = url ?? builder.Configuration["urls"] ?? AppOptions.DefaultUrl;
         if (LoopbackAddresses.Problem(builder.Configuration, urls) is { } problem)
         {
@@ -46,19 +48,24 @@ public static class AppHost
         services.AddSingleton<IFileAccess>(sp => new Services.FileAccess(sp.GetRequiredService<AppFolders>()));
         services.AddSingleton<ISettingsStore>(sp => new JsonSettingsStore(sp.GetRequiredService<AppFolders>().SettingsFile));
         services.AddSingleton<IRunLogStore>(sp => new RunLogFolder(sp.GetRequiredService<AppFolders>().RunLogFolder));
+        services.AddSingleton<IPresetStore>(sp => new JsonPresetStore(sp.GetRequiredService<AppFolders>().PresetsFile));
+        services.AddSingleton(sp => new PresetsViewModel(sp.GetRequiredService<IPresetStore>(), sp.GetRequiredService<MainViewModel>().Job));
         services.AddSingleton(sp =>
         {
             var main = ActivatorUtilities.CreateInstance<MainViewModel>(sp);
             main.Restore();
             return main;
         });
+        services.AddRazorComponents().AddInteractiveServerComponents();
+        services.AddFluentUIComponents();
+        services.AddWindowLifetime();
         configure?.Invoke(services);
 
         var app = builder.Build();
         app.Use(GuardAsync);
-        var page = new EmbeddedFileProvider(Assembly.GetExecutingAssembly(), "LaserEngrave.App.wwwroot");
-        app.UseDefaultFiles(new DefaultFilesOptions { FileProvider = page });
-        app.UseStaticFiles(new StaticFileOptions { FileProvider = page });
+        app.UseAntiforgery();
+        app.MapStaticAssets();
+        app.MapRazorComponents<Components.App>().AddInteractiveServerRenderMode();
         ApiEndpoints.Map(app);
         app.Lifetime.ApplicationStopping.Register(() => Shutdown(app.Services));
         return app;
@@ -100,7 +107,9 @@ public static class AppHost
             return Unauthorized(response, $"this needs the token LaserEngrave printed when it started: open that address, or send 'Authorization: Bearer TOKEN' or '{AccessToken.HeaderName}: TOKEN'");
         }
 
-        if (byCookie && HttpMethods.IsPost(request.Method) && !request.Headers.ContainsKey(RequestHeader))
+        // The page's own connection (Blazor's SignalR hub) cannot add the header; it still needs the cookie (SameSite=Strict:
+        // another site's page never sends it), and its circuit is the one the page was served with.
+        if (byCookie && HttpMethods.IsPost(request.Method) && !request.Headers.ContainsKey(RequestHeader) && !request.Path.StartsWithSegments(BlazorHubPath))
         {
             response.StatusCode = StatusCodes.Status403Forbidden;
             return response.WriteAsync($"POST needs the {RequestHeader} header");
@@ -108,6 +117,9 @@ public static class AppHost
 
         return next(context);
     }
+
+    /// <summary>Blazor's SignalR hub, the page's own connection.</summary>
+    internal const string BlazorHubPath = "/_blazor";
 
     /// <summary>The page's cookie, per port: cookies do not tell ports apart, and two apps may run at once.</summary>
     internal static string CookieName(HttpRequest request) => $"{AccessToken.CookieName}-{request.Host.Port ?? 80}";

@@ -4,18 +4,21 @@ namespace LaserEngrave.App.Web;
 /// <param name="OpenBrowser">Open the page in the default browser (off with --no-browser).</param>
 /// <param name="Url">Where to listen (--urls, loopback addresses only); null for ASPNETCORE_URLS or appsettings' "urls", else a free port on 127.0.0.1.</param>
 /// <param name="DataFolder">Where settings, images and logs go (--data-folder); by default the user's application-data folder.</param>
-public sealed record AppOptions(bool OpenBrowser, string? Url, string? DataFolder)
+/// <param name="IdleExit">How long the app outlives its closed window (--idle-exit SECONDS); used only when it opened the window itself.</param>
+public sealed record AppOptions(bool OpenBrowser, string? Url, string? DataFolder, TimeSpan IdleExit)
 {
+    public static readonly TimeSpan DefaultIdleExit = TimeSpan.FromSeconds(10);
+
     /// <summary>Options in ASP.NET Core's --key=value form, passed on to the host (test hosts set the content root this way).</summary>
     public IReadOnlyList<string> HostArgs { get; init; } = [];
 
     public const string DefaultUrl = "http://127.0.0.1:0";
 
-    /// <summary>Reads --no-browser, --urls URL and --data-folder PATH; throws <see cref="ArgumentException"/> with one line for a bad value.</summary>
+    /// <summary>Reads --no-browser, --urls URL, --data-folder PATH and --idle-exit SECONDS; throws <see cref="ArgumentException"/> with one line for a bad value.</summary>
     public static AppOptions Parse(IReadOnlyList<string> args)
     {
         ArgumentNullException.ThrowIfNull(args);
-        var options = new AppOptions(true, null, null);
+        var options = new AppOptions(true, null, null, DefaultIdleExit);
         for (var i = 0; i < args.Count; i++)
         {
             switch (args[i])
@@ -28,6 +31,15 @@ public sealed record AppOptions(bool OpenBrowser, string? Url, string? DataFolde
                     break;
                 case "--data-folder":
                     options = options with { DataFolder = Value(i++) };
+                    break;
+                case "--idle-exit":
+                    var text = Value(i++);
+                    options = options with
+                    {
+                        IdleExit = double.TryParse(text, System.Globalization.NumberStyles.Float, System.Globalization.CultureInfo.InvariantCulture, out var seconds) && seconds is >= 0 and <= 86400
+                            ? TimeSpan.FromSeconds(seconds)
+                            : throw new ArgumentException($"--idle-exit {text}: seconds from 0 to 86400"),
+                    };
                     break;
                 case "--help" or "-h":
                     throw new ArgumentException(Usage);
@@ -49,5 +61,6 @@ public sealed record AppOptions(bool OpenBrowser, string? Url, string? DataFolde
         string Value(int at) => at + 1 < args.Count ? args[at + 1] : throw new ArgumentException($"{args[at]} needs a value");
     }
 
-    public const string Usage = "usage: LaserEngrave.App [--no-browser] [--urls http://127.0.0.1:PORT] [--data-folder PATH]";
+    public const string Usage = "usage: LaserEngrave.App [--no-browser] [--urls http://127.0.0.1:PORT] [--data-folder PATH] [--idle-exit SECONDS]\n" +
+        "  the app opens its own window and ends SECONDS (default 10) after it is closed, unless a run is under way; with --no-browser it runs until stopped";
 }

@@ -1,13 +1,37 @@
 using System.ComponentModel;
+using System.Diagnostics;
 using LaserEngrave.App.Services;
 
 namespace LaserEngrave.App.Web;
 
-/// <summary>Opens a URL in the user's default browser.</summary>
+/// <summary>
+/// Opens the page in its own window: Edge's, Chrome's or Chromium's app mode (no tabs, no address bar, its own profile
+/// so it is its own process), else the default browser.
+/// </summary>
 internal static class BrowserLauncher
 {
-    public static bool TryOpen(string url)
+    /// <summary>Opens <paramref name="url"/>; false when nothing could open it.</summary>
+    public static bool TryOpen(string url, string profileFolder)
     {
+        if (FindAppBrowser(Candidates(), File.Exists) is { } browser)
+        {
+            try
+            {
+                var start = new ProcessStartInfo(browser) { UseShellExecute = false };
+                foreach (var argument in AppModeArguments(url, profileFolder))
+                {
+                    start.ArgumentList.Add(argument);
+                }
+
+                using var process = Process.Start(start);
+                return true;
+            }
+            catch (Exception ex) when (ex is Win32Exception or InvalidOperationException)
+            {
+                // Fall through to the default browser.
+            }
+        }
+
         try
         {
             SystemShell.Open(url);
@@ -16,6 +40,49 @@ internal static class BrowserLauncher
         catch (Exception ex) when (ex is Win32Exception or InvalidOperationException)
         {
             return false;
+        }
+    }
+
+    /// <summary>The arguments of an app-mode window with its own profile (so it opens a window of its own, not a tab).</summary>
+    public static IReadOnlyList<string> AppModeArguments(string url, string profileFolder) =>
+        ["--app=" + url, "--user-data-dir=" + profileFolder, "--no-first-run", "--no-default-browser-check", "--window-size=1400,900"];
+
+    /// <summary>The first candidate that exists.</summary>
+    public static string? FindAppBrowser(IEnumerable<string> candidates, Func<string, bool> exists) => candidates.FirstOrDefault(exists);
+
+    /// <summary>Where Edge, Chrome and Chromium live on this system, most likely first (Edge comes with Windows).</summary>
+    public static IEnumerable<string> Candidates()
+    {
+        if (OperatingSystem.IsWindows())
+        {
+            foreach (var root in new[] { Environment.SpecialFolder.ProgramFilesX86, Environment.SpecialFolder.ProgramFiles, Environment.SpecialFolder.LocalApplicationData })
+            {
+                var folder = Environment.GetFolderPath(root);
+                if (folder.Length > 0)
+                {
+                    yield return Path.Combine(folder, "Microsoft", "Edge", "Application", "msedge.exe");
+                    yield return Path.Combine(folder, "Google", "Chrome", "Application", "chrome.exe");
+                }
+            }
+
+            yield break;
+        }
+
+        if (OperatingSystem.IsMacOS())
+        {
+            yield return "/Applications/Microsoft Edge.app/Contents/MacOS/Microsoft Edge";
+            yield return "/Applications/Google Chrome.app/Contents/MacOS/Google Chrome";
+            yield return "/Applications/Chromium.app/Contents/MacOS/Chromium";
+            yield break;
+        }
+
+        var path = Environment.GetEnvironmentVariable("PATH") ?? string.Empty;
+        foreach (var name in new[] { "chromium", "chromium-browser", "google-chrome", "google-chrome-stable", "microsoft-edge", "microsoft-edge-stable" })
+        {
+            foreach (var folder in path.Split(Path.PathSeparator, StringSplitOptions.RemoveEmptyEntries))
+            {
+                yield return Path.Combine(folder, name);
+            }
         }
     }
 }

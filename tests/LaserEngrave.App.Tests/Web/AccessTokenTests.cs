@@ -22,9 +22,9 @@ public sealed class AccessTokenTests : IDisposable
 
     [Theory]
     [InlineData("/")]
-    [InlineData("/app.js")]
+    [InlineData("/app.css")]
+    [InlineData("/_framework/blazor.web.js")]
     [InlineData("/api/state")]
-    [InlineData("/api/events")]
     public async Task Get_NoToken_Unauthorized(string path)
     {
         using var client = Client();
@@ -102,6 +102,30 @@ public sealed class AccessTokenTests : IDisposable
 
         Assert.Equal(HttpStatusCode.Forbidden, bare.StatusCode);
         Assert.Equal(HttpStatusCode.OK, withHeader.StatusCode);
+    }
+
+    [Fact]
+    public async Task BlazorHub_NoCookie_UnauthorizedEvenWithTheAppHeader()
+    {
+        using var client = Client();
+        client.DefaultRequestHeaders.Add(AppHost.RequestHeader, "1");
+
+        using var negotiate = await client.PostAsync("/_blazor/negotiate?negotiateVersion=1", null, Token);
+
+        Assert.Equal(HttpStatusCode.Unauthorized, negotiate.StatusCode);
+    }
+
+    [Fact]
+    public async Task BlazorHub_ByCookie_AllowedWithoutTheAppHeader()
+    {
+        using var client = Client(cookies: true);
+        using var first = await client.GetAsync($"/?token={Secret}", Token);
+
+        // Blazor's own connection cannot add the app's header; the page's cookie is what lets it in.
+        using var negotiate = await client.PostAsync("/_blazor/negotiate?negotiateVersion=1", null, Token);
+
+        Assert.Equal(HttpStatusCode.OK, negotiate.StatusCode);
+        Assert.Contains("connectionToken", await negotiate.Content.ReadAsStringAsync(Token), StringComparison.Ordinal);
     }
 
     [Fact]

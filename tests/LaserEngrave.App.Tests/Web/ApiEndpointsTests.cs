@@ -59,10 +59,10 @@ public sealed class ApiEndpointsTests : IDisposable
     public async Task Root_Get_ServesThePage()
     {
         var page = await _client.GetStringAsync("/", Token);
-        var script = await _client.GetStringAsync("/app.js", Token);
 
         Assert.Contains("<title>LaserEngrave</title>", page, StringComparison.Ordinal);
-        Assert.Contains("EventSource", script, StringComparison.Ordinal);
+        Assert.Contains("_framework/blazor.web", page, StringComparison.Ordinal);
+        Assert.Contains("id=\"stage-host\"", page, StringComparison.Ordinal);
     }
 
     [Fact]
@@ -169,17 +169,6 @@ public sealed class ApiEndpointsTests : IDisposable
         var json = await _client.GetFromJsonAsync<JsonElement>($"/api/logs/export?format=json&path={Uri.EscapeDataString(path)}", Token);
         Assert.Equal("completed", json.GetProperty("outcome").GetString(), ignoreCase: true);
         Assert.Single(state.GetProperty("log").GetProperty("history").EnumerateArray());
-    }
-
-    [Fact]
-    public async Task Events_Open_FirstMessageIsTheState()
-    {
-        using var stream = await _client.GetStreamAsync("/api/events", Token);
-        using var reader = new StreamReader(stream);
-
-        var line = await reader.ReadLineAsync(Token);
-
-        Assert.StartsWith("data: {\"settings\"", line, StringComparison.Ordinal);
     }
 
     [Fact]

@@ -15,6 +15,14 @@ public sealed class AppOptionsTests
     }
 
     [Fact]
+    public void Parse_IdleExit_SecondsOrTenByDefault()
+    {
+        Assert.Equal(TimeSpan.FromSeconds(10), AppOptions.Parse([]).IdleExit);
+        Assert.Equal(TimeSpan.FromSeconds(2.5), AppOptions.Parse(["--idle-exit", "2.5"]).IdleExit);
+        Assert.Throws<ArgumentException>(() => AppOptions.Parse(["--idle-exit", "-1"]));
+    }
+
+    [Fact]
     public void Parse_HostOption_PassedOn()
     {
         var options = AppOptions.Parse(["--environment=Development", "--no-browser"]);

@@ -1,6 +1,7 @@
 using System.Diagnostics;
 using System.Net;
 using System.Net.Http.Json;
+using System.Net.WebSockets;
 using System.Text.Json;
 using System.Text.RegularExpressions;
 
@@ -133,9 +134,8 @@ public sealed partial class AppProcessTests : IDisposable
         await WaitForAsync(client, s => s.GetProperty("machine").GetProperty("connected").GetBoolean() && !s.GetProperty("activity").GetProperty("busy").GetBoolean());
         (await client.PostAsJsonAsync("/api/run/start", new { sampleId = "SIGTERM" }, Token)).EnsureSuccessStatusCode();
         await WaitForAsync(client, s => s.GetProperty("run").GetProperty("phase").GetString() == "running");
-        // The page's event stream stays open through the exit.
-        using var events = await client.GetAsync("/api/events", HttpCompletionOption.ResponseHeadersRead, Token);
-        Assert.Equal(HttpStatusCode.OK, events.StatusCode);
+        // The page's connection (Blazor's hub, over a WebSocket, authorised by the page's cookie) stays open through the exit.
+        using var page = await OpenPageConnectionAsync(address, secret);
 
         await TerminateAsync(process);
         await process.WaitForExitAsync(Token).WaitAsync(Bound, Token);
@@ -148,6 +148,30 @@ public sealed partial class AppProcessTests : IDisposable
         {
             Assert.True(fault.GetProperty("laserOffConfirmed").GetBoolean());
         }
+    }
+
+    /// <summary>
+    /// What an open page holds: the cookie from the address with the token, then Blazor's hub negotiated and its WebSocket
+    /// open with the handshake done, as the page's script does.
+    /// </summary>
+    private static async Task<ClientWebSocket> OpenPageConnectionAsync(string address, string secret)
+    {
+        var cookies = new CookieContainer();
+        using var handler = new HttpClientHandler { CookieContainer = cookies };
+        using var browser = new HttpClient(handler) { BaseAddress = new Uri(address), Timeout = Bound };
+        (await browser.GetAsync($"/?token={secret}", Token)).EnsureSuccessStatusCode();
+        using var negotiate = await browser.PostAsync("/_blazor/negotiate?negotiateVersion=1", null, Token);
+        negotiate.EnsureSuccessStatusCode();
+        var connectionToken = (await negotiate.Content.ReadFromJsonAsync<JsonElement>(Token)).GetProperty("connectionToken").GetString();
+
+        var socket = new ClientWebSocket();
+        socket.Options.Cookies = cookies;
+        await socket.ConnectAsync(new Uri($"{address.Replace("http://", "ws://", StringComparison.Ordinal)}/_blazor?id={connectionToken}"), Token);
+        await socket.SendAsync("{\"protocol\":\"blazorpack\",\"version\":1}\u001e"u8.ToArray(), WebSocketMessageType.Text, endOfMessage: true, Token);
+        var reply = new byte[256];
+        var received = await socket.ReceiveAsync(reply, Token);
+        Assert.Equal("{}\u001e", System.Text.Encoding.UTF8.GetString(reply, 0, received.Count));
+        return socket;
     }
 
     private static async Task WaitForAsync(HttpClient client, Func<JsonElement, bool> condition)

@@ -1,0 +1,25 @@
+using System.Globalization;
+
+namespace LaserEngrave.App.Components;
+
+/// <summary>Numbers as the views show them.</summary>
+public static class Format
+{
+    /// <summary>"42 s", "3 min 05 s", "2 h 07 min".</summary>
+    public static string Duration(double seconds)
+    {
+        if (!double.IsFinite(seconds) || seconds < 0)
+        {
+            return "–";
+        }
+
+        var t = TimeSpan.FromSeconds(Math.Round(seconds));
+        return t.TotalHours >= 1 ? string.Create(CultureInfo.InvariantCulture, $"{(int)t.TotalHours} h {t.Minutes:00} min")
+            : t.TotalMinutes >= 1 ? string.Create(CultureInfo.InvariantCulture, $"{t.Minutes} min {t.Seconds:00} s")
+            : string.Create(CultureInfo.InvariantCulture, $"{t.Seconds} s");
+    }
+
+    /// <summary>A stage position in mm from microsteps.</summary>
+    public static string Mm(long? microsteps, double microstepUm) =>
+        microsteps is { } m ? (m * microstepUm / 1000).ToString("0.000", CultureInfo.InvariantCulture) : "–";
+}

@@ -1,0 +1,159 @@
+using System.Text.Json;
+using CommunityToolkit.Mvvm.ComponentModel;
+using CommunityToolkit.Mvvm.Input;
+using LaserEngrave.App.Services;
+
+namespace LaserEngrave.App.ViewModels;
+
+/// <summary>The preset library: apply a preset to the job, keep the job's process values as one, import and export them as JSON.</summary>
+public sealed partial class PresetsViewModel : ObservableObject
+{
+    private readonly IPresetStore _store;
+    private readonly JobViewModel _job;
+
+    public PresetsViewModel(IPresetStore store, JobViewModel job)
+    {
+        ArgumentNullException.ThrowIfNull(store);
+        ArgumentNullException.ThrowIfNull(job);
+        _store = store;
+        _job = job;
+        Presets = store.Load();
+        Selected = Presets.FirstOrDefault()?.Name;
+        _job.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName == nameof(JobViewModel.LockedBecause))
+            {
+                ApplyCommand.NotifyCanExecuteChanged();
+            }
+        };
+    }
+
+    [ObservableProperty]
+    public partial IReadOnlyList<ProcessPreset> Presets { get; private set; }
+
+    [ObservableProperty]
+    [NotifyCanExecuteChangedFor(nameof(ApplyCommand), nameof(DeleteCommand))]
+    public partial string? Selected { get; set; }
+
+    /// <summary>The name the job's values are kept under.</summary>
+    [ObservableProperty]
+    [NotifyCanExecuteChangedFor(nameof(SaveCurrentCommand))]
+    public partial string? NewName { get; set; }
+
+    [ObservableProperty]
+    public partial string? NewNotes { get; set; }
+
+    [ObservableProperty]
+    public partial string? Error { get; private set; }
+
+    public ProcessPreset? SelectedPreset => Presets.FirstOrDefault(p => p.Name == Selected);
+
+    public bool HasSelection => SelectedPreset is not null;
+
+    /// <summary>A preset selected, and the job free to change (the interlock decides: not during a run, homing or a test move).</summary>
+    public bool CanApply => HasSelection && _job.LockedBecause is null;
+
+    public bool CanSaveCurrent => !string.IsNullOrWhiteSpace(NewName);
+
+    /// <summary>Sets the job's process values and pitch from the selected preset (the pitch then decides the size).</summary>
+    [RelayCommand(CanExecute = nameof(CanApply))]
+    private void Apply()
+    {
+        if (SelectedPreset is not { } preset)
+        {
+            return;
+        }
+
+        Error = null;
+        try
+        {
+            _job.Batch(() =>
+            {
+                _job.LaserFrequencyHz = preset.LaserFrequencyHz;
+                _job.BurnSpeedMmPerS = preset.BurnSpeedMmPerS;
+                _job.TravelSpeedMmPerS = preset.TravelSpeedMmPerS;
+                _job.Passes = preset.Passes;
+                _job.OverscanMm = preset.OverscanMm;
+                _job.EditPitch(preset.PitchUm);
+            });
+        }
+        catch (MachineBusyException ex)
+        {
+            Error = ex.Message;
+        }
+    }
+
+    /// <summary>Keeps the job's process values under <see cref="NewName"/>, replacing a preset of that name.</summary>
+    [RelayCommand(CanExecute = nameof(CanSaveCurrent))]
+    private void SaveCurrent()
+    {
+        var name = NewName!.Trim();
+        var preset = new ProcessPreset
+        {
+            Name = name,
+            LaserFrequencyHz = _job.LaserFrequencyHz,
+            BurnSpeedMmPerS = _job.BurnSpeedMmPerS,
+            TravelSpeedMmPerS = _job.TravelSpeedMmPerS,
+            Passes = _job.Passes,
+            PitchUm = _job.PitchUm,
+            OverscanMm = _job.OverscanMm,
+            Notes = string.IsNullOrWhiteSpace(NewNotes) ? null : NewNotes.Trim(),
+        };
+        if (Store([.. Presets.Where(p => p.Name != name), preset]))
+        {
+            Selected = name;
+            NewName = null;
+            NewNotes = null;
+        }
+    }
+
+    [RelayCommand(CanExecute = nameof(HasSelection))]
+    private void Delete()
+    {
+        if (Store([.. Presets.Where(p => p.Name != Selected)]))
+        {
+            Selected = Presets.FirstOrDefault()?.Name;
+        }
+    }
+
+    /// <summary>The library as JSON, to keep or hand to another lab.</summary>
+    public string ExportJson() => ProcessPreset.ToJson(Presets);
+
+    /// <summary>Adds the presets in <paramref name="json"/>, replacing those of the same name; a bad file changes nothing and says why.</summary>
+    public bool Import(string json)
+    {
+        IReadOnlyList<ProcessPreset> imported;
+        try
+        {
+            imported = ProcessPreset.FromJson(json);
+        }
+        catch (Exception ex) when (ex is JsonException or ArgumentException or NotSupportedException)
+        {
+            Error = $"not imported: {ex.Message}";
+            return false;
+        }
+
+        var names = imported.Select(p => p.Name).ToHashSet();
+        return Store([.. Presets.Where(p => !names.Contains(p.Name)), .. imported]);
+    }
+
+    private bool Store(IReadOnlyList<ProcessPreset> presets)
+    {
+        try
+        {
+            _store.Save(presets);
+        }
+        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
+        {
+            Error = $"presets not saved: {ex.Message}";
+            return false;
+        }
+
+        Error = null;
+        Presets = presets;
+        OnPropertyChanged(nameof(SelectedPreset));
+        ApplyCommand.NotifyCanExecuteChanged();
+        DeleteCommand.NotifyCanExecuteChanged();
+        return true;
+    }
+}

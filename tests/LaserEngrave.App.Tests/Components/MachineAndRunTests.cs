@@ -1,0 +1,296 @@
+using Bunit;
+using LaserEngrave.App.Components.Pages;
+using LaserEngrave.App.Components.Workspace;
+using LaserEngrave.App.Services;
+using LaserEngrave.App.ViewModels;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Logging;
+using LaserEngrave.Devices.Execution;
+using NSubstitute;
+using RunProgress = LaserEngrave.App.Services.RunProgress;
+
+namespace LaserEngrave.App.Tests.Components;
+
+public sealed class MachinePanelTests : ComponentTest
+{
+    [Fact]
+    public void Connect_Clicked_ConnectedAndConnectDisabled()
+    {
+        var cut = Render<MachinePanel>(p => p.Add(c => c.Machine, Main.Machine));
+        Assert.True(Disabled(cut.Find("#home")));
+
+        cut.Find("#connect").Click();
+
+        cut.WaitForAssertion(() => Assert.Equal("fake machine", cut.Find("#machine-connection").TextContent));
+        cut.WaitForAssertion(() => Assert.True(Disabled(cut.Find("#connect"))));
+        Assert.False(Disabled(cut.Find("#home")));
+        Assert.Contains("X yes", cut.Find("#machine-homed").TextContent, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void SerialPorts_Chosen_PortFieldsShown()
+    {
+        var cut = Render<MachinePanel>(p => p.Add(c => c.Machine, Main.Machine));
+        Assert.Empty(cut.FindAll("#stagePort"));
+
+        cut.Find("#use-ports").Change(true);
+
+        Assert.False(Main.Machine.UseSimulator);
+        Assert.NotNull(cut.Find("#stagePort"));
+    }
+}
+
+public sealed class JogPadTests : ComponentTest
+{
+    [Fact]
+    public async Task Jog_NotConnected_Disabled_Connected_Moves()
+    {
+        var cut = Render<JogPad>(p => p.Add(c => c.Moves, Main.TestMoves).Add(c => c.Machine, Main.Machine));
+        Assert.True(Disabled(cut.Find("[id='jog-x+']")));
+
+        await ConnectAsync();
+        cut.WaitForAssertion(() => Assert.False(Disabled(cut.Find("[id='jog-x+']"))));
+        cut.Find("[id='jog-x+']").Click();
+
+        cut.WaitForAssertion(() => Assert.StartsWith("X 0.100", cut.Find("#position").TextContent, StringComparison.Ordinal));
+    }
+
+    [Fact]
+    public async Task GoTo_Running_BusyWithStop_StopCancelsIt()
+    {
+        await ConnectAsync();
+        Machine.X.MoveAbsoluteAsync(Arg.Any<long>(), Arg.Any<CancellationToken>())
+            .Returns(async c =>
+            {
+                // A move that ends only by its cancellation, as the stage's does when Stop cancels it.
+                await Task.Delay(Timeout.Infinite, c.Arg<CancellationToken>());
+                return 0L;
+            });
+        var cut = Render<JogPad>(p => p.Add(c => c.Moves, Main.TestMoves).Add(c => c.Machine, Main.Machine));
+        cut.Find("#goto-x").Change("12");
+
+        cut.Find("#goto").Click();
+
+        cut.WaitForAssertion(() => Assert.Contains("Going to 12, 0 mm", cut.Find("#moves-busy").TextContent, StringComparison.Ordinal));
+        Assert.True(Disabled(cut.Find("[id='jog-x+']")));
+        cut.Find("#moves-stop").Click();
+        cut.WaitForAssertion(() => Assert.Empty(cut.FindAll("#moves-busy")));
+        Assert.Equal("cancelled", Main.TestMoves.Error);
+    }
+
+    [Fact]
+    public async Task Frame_NoJob_Disabled()
+    {
+        await ConnectAsync();
+
+        var cut = Render<JogPad>(p => p.Add(c => c.Moves, Main.TestMoves).Add(c => c.Machine, Main.Machine));
+
+        Assert.True(Disabled(cut.Find("#frame")));
+        Assert.False(Disabled(cut.Find("#goto")));
+    }
+}
+
+public sealed class RunBarTests : ComponentTest
+{
+    private IRenderedComponent<RunBar> RenderBar() => Render<RunBar>(p => p.Add(c => c.Run, Main.Run));
+
+    [Fact]
+    public async Task Start_EnabledOnlyWithAJobAndAMachine()
+    {
+        var cut = RenderBar();
+        Assert.True(Disabled(cut.Find("#start")));
+        OpenQr();
+        Assert.True(Disabled(cut.Find("#start")));
+
+        await ConnectAsync();
+
+        cut.WaitForAssertion(() => Assert.False(Disabled(cut.Find("#start"))));
+        Assert.True(Disabled(cut.Find("#pause")));
+        Assert.True(Disabled(cut.Find("#continue")));
+    }
+
+    [Fact]
+    public async Task Run_UnderWay_ProgressPauseResume()
+    {
+        OpenQr();
+        await ConnectAsync();
+        var release = new TaskCompletionSource<RunResult>();
+        Runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>()).Returns(c =>
+        {
+            c.Arg<IProgress<RunProgress>>().Report(new RunProgress(50, 100, 10, 20, 1, 0, 0, true));
+            return release.Task;
+        });
+        var cut = RenderBar();
+
+        cut.Find("#start").Click();
+
+        cut.WaitForAssertion(() => Assert.Equal("50 %", cut.Find("#progress-text").TextContent));
+        Assert.Contains("row 10 of 20", cut.Find("#progress-figures").TextContent, StringComparison.Ordinal);
+        Assert.True(Disabled(cut.Find("#start")));
+        cut.Find("#pause").Click();
+        cut.WaitForAssertion(() => Assert.Equal("paused", cut.Find("#status-run").TextContent));
+        cut.Find("#resume").Click();
+        cut.WaitForAssertion(() => Assert.Equal("running", cut.Find("#status-run").TextContent));
+        cut.Find("#abort").Click();
+        release.SetResult(new RunResult
+        {
+            Outcome = RunOutcome.Aborted, LaserOffConfirmed = true, StartedAt = DateTimeOffset.UnixEpoch, EndedAt = DateTimeOffset.UnixEpoch,
+            EngravingDuration = TimeSpan.Zero, EstimatedSeconds = 1, LaserOnSeconds = 0, RowsDone = 10, RowsTotal = 20, RunsDone = 3, RunsTotal = 7,
+        });
+        cut.WaitForAssertion(() => Assert.Equal("aborted", cut.Find("#status-run").TextContent));
+    }
+
+    [Fact]
+    public async Task NewJob_AfterARun_StaleProgressCleared()
+    {
+        OpenQr();
+        await ConnectAsync();
+        Runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>()).Returns(c =>
+        {
+            c.Arg<IProgress<RunProgress>>().Report(new RunProgress(100, 100, 33, 33, 1, 0, 0, false));
+            return Task.FromResult(new RunResult
+            {
+                Outcome = RunOutcome.Completed, LaserOffConfirmed = true, StartedAt = DateTimeOffset.UnixEpoch, EndedAt = DateTimeOffset.UnixEpoch,
+                EngravingDuration = TimeSpan.Zero, EstimatedSeconds = 1, LaserOnSeconds = 0, RowsDone = 33, RowsTotal = 33, RunsTotal = 7, RunsDone = 7,
+            });
+        });
+        await Main.Run.StartCommand.ExecuteAsync(null);
+        var cut = RenderBar();
+        Assert.Equal("100 %", cut.Find("#progress-text").TextContent);
+
+        Main.Job.EditWidth(8);
+
+        cut.WaitForAssertion(() => Assert.Equal("0 %", cut.Find("#progress-text").TextContent));
+        Assert.Empty(cut.FindAll("#progress-figures"));
+        Assert.Equal("idle", cut.Find("#status-run").TextContent);
+    }
+}
+
+public sealed class LogPanelTests : ComponentTest
+{
+    [Fact]
+    public void RunRecorded_SummaryAndExportLinks()
+    {
+        OpenQr();
+        var record = RunRecord.ForJob(Main.Job.Job!, "hash", DateTimeOffset.UnixEpoch) with { SampleId = "B-7" };
+        var cut = Render<LogPanel>(p => p.Add(c => c.Log, Main.Log));
+
+        Main.Log.Record(record with { EndedAt = DateTimeOffset.UnixEpoch, Outcome = RunOutcome.Completed });
+
+        cut.WaitForAssertion(() => Assert.Contains("B-7", cut.Find("#last-run").TextContent, StringComparison.Ordinal));
+        Assert.Contains("format=json", cut.Find("#export-json").GetAttribute("href"), StringComparison.Ordinal);
+        Assert.Contains(Uri.EscapeDataString("/logs/run.json"), cut.Find("#export-txt").GetAttribute("href"), StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void SampleId_Typed_KeptForTheNextRun()
+    {
+        var cut = Render<LogPanel>(p => p.Add(c => c.Log, Main.Log));
+
+        cut.Find("#sampleId").Change("W-12");
+
+        Assert.Equal("W-12", Main.Log.SampleId);
+    }
+}
+
+public sealed class StageCanvasTests : ComponentTest
+{
+    private IRenderedComponent<StageCanvas> RenderStage() =>
+        Render<StageCanvas>(p => p.Add(c => c.Job, Main.Job).Add(c => c.Machine, Main.Machine).Add(c => c.Moves, Main.TestMoves).Add(c => c.Run, Main.Run));
+
+    [Fact]
+    public async Task JobDropped_OnTheStage_OriginSnappedTo10Um()
+    {
+        OpenQr();
+        var cut = RenderStage();
+
+        var accepted = await cut.InvokeAsync(() => cut.Instance.OnJobDropped(20.123, 7.456));
+
+        Assert.True(accepted);
+        Assert.Equal((20.12, 7.46), (Main.Job.OriginXMm, Main.Job.OriginYMm));
+        Assert.Empty(cut.FindAll("#drop-refused"));
+    }
+
+    [Fact]
+    public async Task JobDropped_OffTheTravel_RefusedOriginKept()
+    {
+        OpenQr(widthMm: 10);
+        var cut = RenderStage();
+
+        var accepted = await cut.InvokeAsync(() => cut.Instance.OnJobDropped(55, 1));
+
+        Assert.False(accepted);
+        Assert.Equal(1, Main.Job.OriginXMm);
+        Assert.Contains("leave the stage's 60 × 60 mm travel", cut.Find("#drop-refused").TextContent, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task MoveLaserHere_Connected_GoesThere()
+    {
+        await ConnectAsync();
+        var cut = RenderStage();
+
+        await cut.InvokeAsync(() => cut.Instance.OnMoveLaserHere(12.346, 30));
+
+        cut.WaitForAssertion(() => Assert.Equal((long)Math.Round(12.35 * 1000 / Profile.X.MicrostepUm), Main.Machine.XMicrosteps), TimeSpan.FromSeconds(10));
+        Assert.Null(Main.TestMoves.Error);
+        Assert.Equal(12.35, Main.TestMoves.GoToXMm);
+    }
+
+    [Fact]
+    public void PlanBytes_PlanOfMoreMovesThanDrawn_CappedAndCounted()
+    {
+        // One-pixel checks: every other pixel a burn run of its own, far more moves than the page draws.
+        using var folder = TestFiles.NewFolder();
+        var path = TestFiles.WriteChecker(folder.Path, 500, 500, cell: 1);
+        Assert.True(Main.Job.LoadImage(path));
+        Main.Job.EditWidth(50);
+
+        var (bytes, drawn, total) = StageCanvas.PlanBytes(Main.Job.Job);
+
+        Assert.True(total > StageCanvas.MaxDrawnMoves, $"only {total} moves");
+        Assert.Equal(StageCanvas.MaxDrawnMoves, drawn);
+        Assert.Equal(drawn * 5 * sizeof(float), bytes.Length);
+    }
+
+    [Fact]
+    public void PlanBytes_SmallPlan_AllDrawn()
+    {
+        OpenQr();
+
+        var (bytes, drawn, total) = StageCanvas.PlanBytes(Main.Job.Job);
+
+        Assert.Equal(Main.Job.Job!.Statistics.Moves, total);
+        Assert.Equal(total, drawn);
+        Assert.Equal(drawn * 5 * sizeof(float), bytes.Length);
+        Assert.True(StageCanvas.MaxDrawnMoves <= 100_000);
+    }
+}
+
+public sealed class WorkspaceTests : ComponentTest
+{
+    [Fact]
+    public void Page_AllPanelsTheStageAndTheRunBar()
+    {
+        var cut = Render<Workspace>();
+
+        foreach (var id in new[] { "panel-image", "panel-size", "panel-process", "panel-machine", "panel-jog", "panel-log", "stage", "runbar" })
+        {
+            Assert.NotNull(cut.Find("#" + id));
+        }
+
+        Assert.Equal("no image", cut.Find("#status-estimate").TextContent);
+    }
+
+    [Fact]
+    public async Task Header_FollowsTheJobAndTheMachine()
+    {
+        var cut = Render<Workspace>();
+
+        OpenQr(widthMm: 4);
+        await ConnectAsync();
+
+        cut.WaitForAssertion(() => Assert.StartsWith("4 × 4 mm", cut.Find("#status-estimate").TextContent, StringComparison.Ordinal));
+        cut.WaitForAssertion(() => Assert.Equal("fake machine", cut.Find("#status-machine").TextContent));
+    }
+}
