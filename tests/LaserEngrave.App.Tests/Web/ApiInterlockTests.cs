@@ -54,9 +54,10 @@ public sealed class ApiInterlockTests : IDisposable
     private async Task<JsonElement> WaitForAsync(Func<JsonElement, bool> condition)
     {
         // The state polled until the machine's own completion shows; the bound only stops a broken test from hanging.
+        var state = default(JsonElement);
         for (var i = 0; i < 3000; i++)
         {
-            var state = await _client.GetFromJsonAsync<JsonElement>("/api/state", Token);
+            state = await _client.GetFromJsonAsync<JsonElement>("/api/state", Token);
             if (condition(state))
             {
                 return state;
@@ -65,7 +66,7 @@ public sealed class ApiInterlockTests : IDisposable
             await Task.Delay(10, Token);
         }
 
-        throw new TimeoutException("the state never reached the condition");
+        throw new TimeoutException($"the state never reached the condition; machine: {state.GetProperty("machine")}, activity: {state.GetProperty("activity")}");
     }
 
     private async Task StartHeldRunAsync()
