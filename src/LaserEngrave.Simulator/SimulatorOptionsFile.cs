@@ -28,7 +28,7 @@ public static class SimulatorOptionsFile
         }
         catch (JsonException ex)
         {
-            throw new InvalidDataException($"{path}: {ex.Message.Split('\n')[0].Trim()}", ex);
+            throw new InvalidDataException($"{path}: {Describe(ex)}", ex);
         }
         catch (IOException ex)
         {
@@ -70,6 +70,23 @@ public static class SimulatorOptionsFile
 
         return options;
     }
+
+    // System.Text.Json names its own types in its messages; the user needs the field and what is wrong with it.
+    private static string Describe(JsonException ex)
+    {
+        var field = ex.Path is { Length: > 2 } p ? p[2..] : null;
+        var line = ex.LineNumber is { } n ? $" (line {n + 1})" : string.Empty;
+        if (ex.Message.Contains("could not be mapped", StringComparison.Ordinal))
+        {
+            var name = ex.Message.Split('\'') is { Length: > 2 } parts ? parts[1] : field;
+            return $"unknown field '{name}'{line}; the fields are {string.Join(", ", KnownFields)}";
+        }
+
+        return field is null ? $"not a JSON object of simulator options{line}" : $"field '{field}' has a value of the wrong kind{line}";
+    }
+
+    private static readonly string[] KnownFields =
+        ["seed", "adapterLatency", "gateProcessing", "jitterScale", "targetSpeedData", "homeSpeedData", "accelerationData", "faults"];
 
     private static Jitter? Checked(string path, string name, Jitter? jitter)
     {
