@@ -89,6 +89,33 @@ public sealed record LaserGateProfile
     public int MaxFrequencyHz { get; init; } = 100000;
 }
 
+/// <summary>The machine's serial latencies besides the wire time, which timed laser switching plans with (`laserengrave machine latency` measures them).</summary>
+/// <remarks>
+/// Each is a mean and the half-width of its spread, in ms. The defaults are the simulator's (docs/simulator.md): a USB-serial
+/// adapter adds 1 ± 0.5 ms to every write and every reply, and the gate takes 0.5 ± 0.2 ms from a command's last byte to
+/// the Q-switch changing.
+/// </remarks>
+public sealed record LatencyProfile
+{
+    /// <summary>The stage link's adapter latency, one way, ms: from the host's write to the command leaving on the wire, and from a reply's last byte to the host.</summary>
+    public double StageMs { get; init; } = 1.0;
+
+    /// <summary>Half-width of the spread of <see cref="StageMs"/>, ms.</summary>
+    public double StageJitterMs { get; init; } = 0.5;
+
+    /// <summary>The gate link's adapter latency, one way, ms.</summary>
+    public double GateMs { get; init; } = 1.0;
+
+    /// <summary>Half-width of the spread of <see cref="GateMs"/>, ms.</summary>
+    public double GateJitterMs { get; init; } = 0.5;
+
+    /// <summary>The gate's processing time from a command's last byte to the Q-switch changing (and its reply leaving), ms.</summary>
+    public double GateProcessingMs { get; init; } = 0.5;
+
+    /// <summary>Half-width of the spread of <see cref="GateProcessingMs"/>, ms.</summary>
+    public double GateProcessingJitterMs { get; init; } = 0.2;
+}
+
 /// <summary>The machine: two Zaber axes, the laser gate, the spot and the default process settings.</summary>
 public sealed record MachineProfile
 {
@@ -131,6 +158,9 @@ public sealed record MachineProfile
     public int MaxFrameFrequencyHz { get; init; } = 100;
 
     public LaserGateProfile Gate { get; init; } = new();
+
+    /// <summary>Serial latencies besides the wire time, measured by `laserengrave machine latency`.</summary>
+    public LatencyProfile Latency { get; init; } = new();
 
     /// <summary>The stage's squareness and scale errors from `laserengrave calibrate solve`; null (absent from the file) means uncalibrated.</summary>
     [JsonIgnore(Condition = JsonIgnoreCondition.WhenWritingNull)]

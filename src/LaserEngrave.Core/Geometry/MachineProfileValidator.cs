@@ -38,6 +38,8 @@ public static class MachineProfileValidator
         }
     }
 
+    private const double MaxLatencyMs = 100;
+
     /// <summary>Every problem of <paramref name="profile"/>, each "field: what is wrong (got value)", in the order of the file.</summary>
     public static IReadOnlyList<string> Problems(MachineProfile profile)
     {
@@ -53,7 +55,7 @@ public static class MachineProfileValidator
 
         // A section given as null in the JSON ("gate": null) arrives here as null despite the type.
         Require(!string.IsNullOrWhiteSpace(profile.Name), "name must not be empty");
-        var sections = new (string Name, object? Value)[] { ("x", profile.X), ("y", profile.Y), ("gate", profile.Gate) };
+        var sections = new (string Name, object? Value)[] { ("x", profile.X), ("y", profile.Y), ("gate", profile.Gate), ("latency", profile.Latency) };
         foreach (var (name, value) in sections.Where(s => s.Value is null))
         {
             problems.Add($"{name} must not be null: give the section or leave it out for the defaults");
@@ -112,6 +114,16 @@ public static class MachineProfileValidator
             gate.WatchdogMs is >= MinWatchdogMs and <= MaxWatchdogMs,
             $"gate.watchdogMs must be {MinWatchdogMs}..{MaxWatchdogMs} ms: the watchdog switches the laser off when the host falls silent, and a run never burns without it (got {gate.WatchdogMs})");
         CheckGateStrings(gate, problems);
+        var latency = profile.Latency;
+        foreach (var (name, ms) in new[]
+                 {
+                     ("stageMs", latency.StageMs), ("stageJitterMs", latency.StageJitterMs), ("gateMs", latency.GateMs),
+                     ("gateJitterMs", latency.GateJitterMs), ("gateProcessingMs", latency.GateProcessingMs), ("gateProcessingJitterMs", latency.GateProcessingJitterMs),
+                 })
+        {
+            Require(ms is >= 0 and <= MaxLatencyMs, $"latency.{name} must be 0..{MaxLatencyMs} ms (got {N(ms)})");
+        }
+
         try
         {
             profile.Calibration?.Validate("calibration");
