@@ -35,10 +35,24 @@ public sealed class PlanEstimator
     private readonly double _accelerationMicrostepsPerS2;
     private readonly int _burnSpeedData;
     private readonly int _travelSpeedData;
+    private readonly TimedSwitching? _timing;
     private int _xSpeedData;
     private int _ySpeedData;
 
-    public PlanEstimator(ProcessSettings process, PlanStrategy strategy, double microstepUm, LaserGateProfile? gate = null)
+    // Timed switching: the stroke being added (length so far, time provisionally counted) and the last motion's peak speed.
+    private MotionTimeline? _timeline;
+    private bool _inStroke;
+    private long _strokeLength;
+    private long _strokeRunUp;
+    private long _strokeLastOff;
+    private double _strokeStartGuess;
+
+    /// <param name="process">Speeds, acceleration, frequency and baud rates.</param>
+    /// <param name="strategy">The plan's strategy.</param>
+    /// <param name="microstepUm">The stage's microstep.</param>
+    /// <param name="gate">The gate's command strings (default: <see cref="LaserGateProfile"/>'s defaults).</param>
+    /// <param name="timing">For an optimized plan made with timed switching: the model the executor runs it by (docs/execution.md).</param>
+    public PlanEstimator(ProcessSettings process, PlanStrategy strategy, double microstepUm, LaserGateProfile? gate = null, TimedSwitching? timing = null)
     {
         ArgumentNullException.ThrowIfNull(process);
         process.Validate();
@@ -60,6 +74,7 @@ public sealed class PlanEstimator
 
         _xSpeedData = _travelSpeedData;
         _ySpeedData = _travelSpeedData;
+        _timing = strategy == PlanStrategy.Optimized ? timing : null;
         StartSeconds = 4 * _roundTripSeconds;
         ElapsedSeconds = StartSeconds;
     }
@@ -80,6 +95,11 @@ public sealed class PlanEstimator
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public double Add(in Move move)
     {
+        if (_timing is not null)
+        {
+            return AddTimed(move, _timing);
+        }
+
         var seconds = 0.0;
         if (move.Kind == MoveKind.Burn)
         {
@@ -121,6 +141,13 @@ public sealed class PlanEstimator
     /// <summary>Ends the run: switches the laser off if it is on; returns the time that took.</summary>
     public double Finish()
     {
+        if (_timing is not null)
+        {
+            LaserSwitches += LaserOn ? 1 : 0;
+            LaserOn = false;
+            return _timeline is null ? 0 : EndStroke(_timing, _timeline);
+        }
+
         if (!LaserOn)
         {
             return 0;
@@ -130,6 +157,68 @@ public sealed class PlanEstimator
         LaserSwitches++;
         ElapsedSeconds += _laserOffSeconds;
         return _laserOffSeconds;
+    }
+
+    // A stroke is one move from rest to rest at the burn speed over its run-up, runs, crossed gaps and run-out; a travel
+    // is a stop-go move of one or both axes; MotionTimeline says when each starts and ends.
+    private double AddTimed(in Move move, TimedSwitching timing)
+    {
+        var before = ElapsedSeconds;
+        var timeline = _timeline ??= new MotionTimeline(timing, StartSeconds, timing.TravelSpeedData);
+        var burn = move.Kind == MoveKind.Burn;
+        if (burn != LaserOn)
+        {
+            LaserOn = burn;
+            LaserSwitches++;
+        }
+
+        if (move.Kind == MoveKind.Travel)
+        {
+            EndStroke(timing, timeline);
+            var speed = timeline.XSpeedData;
+            timeline.Travel(move.LengthX, move.LengthY);
+            SpeedChanges += speed != timeline.XSpeedData ? 1 : 0;
+            ElapsedSeconds = timeline.End;
+        }
+        else
+        {
+            if (!_inStroke)
+            {
+                _inStroke = true;
+                _strokeLength = 0;
+                _strokeRunUp = move.Kind == MoveKind.Overscan ? move.LengthX : 0;
+                _strokeLastOff = 0;
+                _strokeStartGuess = timeline.End + timing.MarginSeconds;
+            }
+
+            // Provisionally at the burn speed; the ramps and the start are settled when the stroke ends.
+            _strokeLength += move.LengthX;
+            if (burn)
+            {
+                _strokeLastOff = _strokeLength;
+            }
+
+            ElapsedSeconds = _strokeStartGuess + (_strokeLength / timing.BurnSpeed);
+        }
+
+        return ElapsedSeconds - before;
+    }
+
+    private double EndStroke(TimedSwitching timing, MotionTimeline timeline)
+    {
+        if (!_inStroke)
+        {
+            return 0;
+        }
+
+        _inStroke = false;
+        var before = ElapsedSeconds;
+        var speed = timeline.XSpeedData;
+        var stroke = timing.Stroke(_strokeLength);
+        timeline.Stroke(_strokeLength, stroke.TimeAt(_strokeRunUp), stroke.TimeAt(_strokeLastOff));
+        SpeedChanges += speed != timeline.XSpeedData ? 1 : 0;
+        ElapsedSeconds = timeline.End;
+        return ElapsedSeconds - before;
     }
 
     private double SetSpeed(ref int axisSpeedData, int wanted)

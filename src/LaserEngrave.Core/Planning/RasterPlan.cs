@@ -14,7 +14,7 @@ namespace LaserEngrave.Core.Planning;
 /// </remarks>
 public sealed class RasterPlan
 {
-    public RasterPlan(BitMask mask, JobGeometry geometry, PlanOptions? options = null)
+    public RasterPlan(BitMask mask, JobGeometry geometry, PlanOptions? options = null, TimedSwitching? timing = null)
     {
         ArgumentNullException.ThrowIfNull(mask);
         ArgumentNullException.ThrowIfNull(geometry);
@@ -31,6 +31,9 @@ public sealed class RasterPlan
         OverscanMicrosteps = options.Strategy == PlanStrategy.Paper
             ? 0
             : JobGeometry.Round(StageUnits.MmToMicrosteps(options.OverscanMm, geometry.MicrostepUm));
+        Timing = options.Strategy == PlanStrategy.Optimized ? timing : null;
+        RunUpMicrosteps = Math.Max(OverscanMicrosteps, Timing?.RunUpMicrosteps ?? 0);
+        RunOutMicrosteps = Math.Max(OverscanMicrosteps, Timing?.RunOutMicrosteps ?? 0);
         Warnings = OverscanWarnings();
     }
 
@@ -42,6 +45,18 @@ public sealed class RasterPlan
 
     /// <summary>Overscan length in whole microsteps (0 under <see cref="PlanStrategy.Paper"/>).</summary>
     public long OverscanMicrosteps { get; }
+
+    /// <summary>
+    /// The timing model the plan was made for (run-ups long enough for timed laser switching, gaps crossed or travelled
+    /// whichever is faster); null for <see cref="PlanStrategy.Paper"/> or when planned without one (moves only).
+    /// </summary>
+    public TimedSwitching? Timing { get; }
+
+    /// <summary>Run-up before each row's first burn run, microsteps: the overscan, or longer when timed switching needs it.</summary>
+    public long RunUpMicrosteps { get; }
+
+    /// <summary>Run-out after each row's last burn run, microsteps.</summary>
+    public long RunOutMicrosteps { get; }
 
     /// <summary>Warnings about the plan itself (the geometry's own are in its <see cref="GeometryReport"/>).</summary>
     public IReadOnlyList<JobWarning> Warnings { get; }
@@ -94,7 +109,7 @@ public sealed class RasterPlan
     /// <param name="gate">The gate's command strings (default: <see cref="LaserGateProfile"/>'s defaults).</param>
     public PlanStatistics ComputeStatistics(ProcessSettings process, LaserGateProfile? gate = null)
     {
-        var visitor = new StatisticsVisitor(new PlanEstimator(process, Options.Strategy, Geometry.MicrostepUm, gate));
+        var visitor = new StatisticsVisitor(new PlanEstimator(process, Options.Strategy, Geometry.MicrostepUm, gate, Timing));
         var planner = NewPlanner();
         while (planner.NextRow < Mask.Height)
         {
@@ -126,7 +141,7 @@ public sealed class RasterPlan
         }
     }
 
-    private RowPlanner NewPlanner() => new(Mask, Geometry, Options, OverscanMicrosteps);
+    private RowPlanner NewPlanner() => new(Mask, Geometry, Options, OverscanMicrosteps, Timing);
 
     private List<JobWarning> OverscanWarnings()
     {

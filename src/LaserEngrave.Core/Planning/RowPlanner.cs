@@ -18,14 +18,20 @@ internal sealed class RowPlanner
     private readonly bool _paper;
     private readonly bool _bidirectional;
     private readonly long _overscan;
+    private readonly long _runUp;
+    private readonly long _runOut;
+    private readonly TimedSwitching? _timing;
     private int[] _runs = new int[64];
     private long[] _edges = new long[64];
     private bool _hasPosition;
     private long _x;
     private long _y;
 
-    public RowPlanner(BitMask mask, JobGeometry geometry, PlanOptions options, long overscanMicrosteps)
+    public RowPlanner(BitMask mask, JobGeometry geometry, PlanOptions options, long overscanMicrosteps, TimedSwitching? timing)
     {
+        _timing = timing;
+        _runUp = Math.Max(overscanMicrosteps, timing?.RunUpMicrosteps ?? 0);
+        _runOut = Math.Max(overscanMicrosteps, timing?.RunOutMicrosteps ?? 0);
         _mask = mask;
         _geometry = geometry;
         _paper = options.Strategy == PlanStrategy.Paper;
@@ -121,7 +127,7 @@ internal sealed class RowPlanner
         }
 
         var y = _geometry.RowY(row);
-        var o = _overscan;
+        var o = _timing is null ? _overscan : 0;
         var travel = _geometry.TravelXMicrosteps;
         var dir = leftToRight ? 1L : -1L;
         for (var j = 0; j < runCount; j++)
@@ -133,7 +139,7 @@ internal sealed class RowPlanner
             if (j == 0)
             {
                 var roomBefore = Math.Max(0, leftToRight ? entry : travel - entry);
-                var runUp = entry - (dir * Math.Min(o, roomBefore));
+                var runUp = entry - (dir * Math.Min(_runUp, roomBefore));
                 if (_hasPosition)
                 {
                     Emit(ref sink, MoveKind.Travel, _x, _y, runUp, y, row);
@@ -148,22 +154,24 @@ internal sealed class RowPlanner
             {
                 var next = leftToRight ? i + 1 : i - 1;
                 var nextEntry = _edges[leftToRight ? 2 * next : (2 * next) + 1];
-                if (Math.Abs(nextEntry - exit) <= 2 * o)
+                var gap = Math.Abs(nextEntry - exit);
+                if (gap <= 2 * o || gap <= _runOut + _runUp || (_timing is not null && _timing.CrossesGap(gap)))
                 {
-                    // A gap no longer than two overscans is crossed at the burn speed in one move, so the speed never dips.
+                    // Crossed at the burn speed in one move, so the speed never dips: a gap no longer than two overscans,
+                    // or (timed switching) one crossed sooner than a stop-go travel would take.
                     Emit(ref sink, MoveKind.Overscan, exit, y, nextEntry, y, row);
                 }
                 else
                 {
-                    Emit(ref sink, MoveKind.Overscan, exit, y, exit + (dir * o), y, row);
-                    Emit(ref sink, MoveKind.Travel, exit + (dir * o), y, nextEntry - (dir * o), y, row);
-                    Emit(ref sink, MoveKind.Overscan, nextEntry - (dir * o), y, nextEntry, y, row);
+                    Emit(ref sink, MoveKind.Overscan, exit, y, exit + (dir * _runOut), y, row);
+                    Emit(ref sink, MoveKind.Travel, exit + (dir * _runOut), y, nextEntry - (dir * _runUp), y, row);
+                    Emit(ref sink, MoveKind.Overscan, nextEntry - (dir * _runUp), y, nextEntry, y, row);
                 }
             }
             else
             {
                 var roomAfter = Math.Max(0, leftToRight ? travel - exit : exit);
-                var runOut = exit + (dir * Math.Min(o, roomAfter));
+                var runOut = exit + (dir * Math.Min(_runOut, roomAfter));
                 Emit(ref sink, MoveKind.Overscan, exit, y, runOut, y, row);
                 SetPosition(runOut, y);
             }

@@ -13,6 +13,12 @@ public interface IStageAxis
     /// <summary>Moves to an absolute position and waits for arrival; returns the final position.</summary>
     Task<long> MoveAbsoluteAsync(long position, CancellationToken cancellationToken);
 
+    /// <summary>
+    /// Moves to an absolute position, sent to arrive just after the axis' current move ends (its reply may still be on the
+    /// way); returns the final position. Devices that cannot tell the two apart simply move.
+    /// </summary>
+    Task<long> MoveAbsoluteAfterAsync(long position, CancellationToken cancellationToken) => MoveAbsoluteAsync(position, cancellationToken);
+
     /// <summary>Moves by a signed distance and waits for arrival; returns the final position.</summary>
     Task<long> MoveRelativeAsync(long distance, CancellationToken cancellationToken);
 

@@ -17,7 +17,7 @@ namespace LaserEngrave.Devices.Execution;
 /// <see cref="Pause"/>, <see cref="Resume"/> and <see cref="Abort"/> may be called from any thread at any time.
 /// The protocol is the one <see cref="PlanEstimator"/> models; docs/execution.md describes it.
 /// </remarks>
-public sealed class RunExecutor
+public sealed partial class RunExecutor
 {
     private const string AbortedMessage = "aborted by the operator";
 
@@ -156,7 +156,15 @@ public sealed class RunExecutor
             SetState(RunState.Running);
             _keepAlive = new GateKeepAlive(Gate, GateKeepAlive.PeriodFor(_profile.Gate.WatchdogMs, Options.KeepAliveFraction), TimeProvider, OnKeepAliveFailed);
             using var linked = CancellationTokenSource.CreateLinkedTokenSource(token, _fault.Token);
-            await ExecuteAsync(moves, firstIndex, linked.Token);
+            if (Job.Plan.Timing is { } timing)
+            {
+                await ExecuteTimedAsync(moves, firstIndex, timing, linked.Token);
+            }
+            else
+            {
+                await ExecuteAsync(moves, firstIndex, linked.Token);
+            }
+
             await SwitchLaserAsync(on: false);
             return await FinishAsync(RunOutcome.Completed, null, identity, startedAt);
         }
@@ -174,7 +182,8 @@ public sealed class RunExecutor
                 return await FinishAsync(RunOutcome.Aborted, AbortedMessage, identity, startedAt);
             }
 
-            var reason = _keepAlive?.Fault is { } keepAliveFault ? $"the laser gate did not answer the keepalive: {keepAliveFault.Message}" : ex.Message;
+            var reason = _timedFault
+                ?? (_keepAlive?.Fault is { } keepAliveFault ? $"the laser gate did not answer the keepalive: {keepAliveFault.Message}" : ex.Message);
             return await FailAsync(reason, identity, startedAt);
         }
         finally
@@ -485,7 +494,7 @@ public sealed class RunExecutor
         var plan = Job.Plan;
         var microstepUm = plan.Geometry.MicrostepUm;
         var strategy = plan.Options.Strategy;
-        _estimator = new PlanEstimator(_process, strategy, microstepUm, _profile.Gate);
+        _estimator = new PlanEstimator(_process, strategy, microstepUm, _profile.Gate, plan.Timing);
         if (Options.ResumeFrom is not { } resume)
         {
             _estimateTotal = Job.Statistics.EstimatedSeconds;
@@ -513,8 +522,8 @@ public sealed class RunExecutor
         }
 
         // What was done before the resume point, where its row starts, and the estimate of what is left.
-        var before = new PlanEstimator(_process, strategy, microstepUm, _profile.Gate);
-        var remaining = new PlanEstimator(_process, strategy, microstepUm, _profile.Gate);
+        var before = new PlanEstimator(_process, strategy, microstepUm, _profile.Gate, plan.Timing);
+        var remaining = new PlanEstimator(_process, strategy, microstepUm, _profile.Gate, plan.Timing);
         long rowStart = -1;
         index = 0;
         foreach (var move in plan.Moves())
@@ -725,7 +734,8 @@ public sealed class RunExecutor
                     _laserOnSince = TimeProvider.GetTimestamp();
                 }
 
-                _keepAlive!.Active = true;
+                // Timed runs feed the watchdog in their own gate schedule, between the timed commands.
+                _keepAlive!.Active = Job.Plan.Timing is null;
             }
             else
             {

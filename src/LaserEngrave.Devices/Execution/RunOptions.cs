@@ -21,4 +21,7 @@ public sealed record RunOptions
 
     /// <summary>How many times the laser-off command is tried after a fault before the gate counts as unreachable.</summary>
     public int LaserOffAttempts { get; init; } = 3;
+
+    /// <summary>How late past its expected arrival a stage reply may come before the run counts the stage as stalled, ms.</summary>
+    public double StallMarginMs { get; init; } = 20;
 }

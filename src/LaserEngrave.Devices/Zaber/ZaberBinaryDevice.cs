@@ -95,6 +95,30 @@ public sealed class ZaberBinaryDevice : IStageAxis
         return await MoveAsync(ZaberCommand.MoveAbsolute, target, MoveTimeout(distance, speed, acceleration), cancellationToken);
     }
 
+    /// <summary>
+    /// Moves to an absolute position, sent to arrive after the device's current move has ended (its reply may still be on
+    /// the way): that move is not counted as pre-empted, and each waits for its own reply.
+    /// </summary>
+    public async Task<long> MoveAbsoluteAfterAsync(long position, CancellationToken cancellationToken)
+    {
+        var target = ToData(position, nameof(position));
+        await EnsureMotionSettingsAsync(cancellationToken);
+        var (speed, acceleration, maximum) = Read(() => (_speedData!.Value, _accelerationData!.Value, _maximumPosition!.Value));
+        var distance = Math.Max(Math.Abs(position), Math.Abs(maximum - position));
+        try
+        {
+            var request = new ZaberFrame(DeviceNumber, ZaberCommand.MoveAbsolute, target);
+            var reply = await Connection.RequestCoreAsync(request, MoveTimeout(distance, speed, acceleration), holdLine: false, resynchroniseOnTimeout: true, cancellationToken, preempts: false);
+            Write(() => _position = reply.Data);
+            return reply.Data;
+        }
+        catch (Exception ex) when (ex is DeviceTimeoutException or ZaberInterruptedException or OperationCanceledException)
+        {
+            Write(() => _position = null);
+            throw;
+        }
+    }
+
     public async Task<long> MoveRelativeAsync(long distance, CancellationToken cancellationToken)
     {
         var data = ToData(distance, nameof(distance));

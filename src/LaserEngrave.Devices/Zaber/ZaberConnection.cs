@@ -272,7 +272,16 @@ public sealed class ZaberConnection : IAsyncDisposable
         }
     }
 
-    internal async Task<ZaberFrame> RequestCoreAsync(ZaberFrame request, TimeSpan timeout, bool holdLine, bool resynchroniseOnTimeout, CancellationToken cancellationToken)
+    /// <param name="request">The command.</param>
+    /// <param name="timeout">How long to wait for its reply.</param>
+    /// <param name="holdLine">Keep the send lock until the reply (Renumber).</param>
+    /// <param name="resynchroniseOnTimeout">Confirm the line with Echo Data after a timeout.</param>
+    /// <param name="cancellationToken">Cancels the wait.</param>
+    /// <param name="preempts">
+    /// Whether a move pre-empts the device's move still waiting for its reply (true), or is sent to arrive after that
+    /// move ended, its reply still on the way (false: both wait for their own replies, matched by position).
+    /// </param>
+    internal async Task<ZaberFrame> RequestCoreAsync(ZaberFrame request, TimeSpan timeout, bool holdLine, bool resynchroniseOnTimeout, CancellationToken cancellationToken, bool preempts = true)
     {
         if (request.Device == 0)
         {
@@ -297,7 +306,7 @@ public sealed class ZaberConnection : IAsyncDisposable
                 _knownDevices.Add(request.Device);
                 _knownDevices.Add(pending.ReplyDevice);
                 _expectedReplies.Add((pending.ReplyDevice, pending.ReplyCommand));
-                if (PreemptiveMoves.Contains(request.Command))
+                if (preempts && PreemptiveMoves.Contains(request.Command))
                 {
                     interrupted = Preempt(request);
                 }

@@ -43,7 +43,7 @@ public class ExecutionFigures
             lines.Add(string.Create(
                 CultureInfo.InvariantCulture,
                 $"| {sample} | {strategy} | {job.Statistics.Moves} | {job.Statistics.BurnRuns} | {result.EstimatedSeconds:0.0} | {seconds:0.0} | {Percent(difference)} | {result.Duration.TotalSeconds:0.0} | {report.Burned.ContentEquals(job.Mask)} |"));
-            Assert.Equal(RunOutcome.Completed, result.Outcome);
+            Assert.True(result.Outcome == RunOutcome.Completed, $"{result.Outcome}: {result.FaultMessage}");
             Assert.True(report.Burned.ContentEquals(job.Mask), $"{sample} {strategy}: burned differs from the mask");
             Assert.Equal(0, report.LaserOnTravelCount);
             Assert.True(report.DwellCount == 0, $"{sample} {strategy}: {report.DwellCount} dwell(s), the longest {report.LongestDwellSeconds * 1000:0.0} ms");

@@ -82,7 +82,7 @@ public class PreflightTests
 
         var result = await run.Do(() => run.Executor(job).RunAsync(TestContext.Current.CancellationToken));
 
-        Assert.Equal(RunOutcome.Completed, result.Outcome);
+        Assert.True(result.Outcome == RunOutcome.Completed, $"{result.Outcome}: {result.FaultMessage}");
         Assert.Equal(0, run.Machine.Stage.X.DeviceMode & 1);
         Assert.Equal(0, run.Machine.Stage.Y.DeviceMode & 1);
         Assert.False(result.Machine!.X.AutoReplyDisabled);
@@ -110,7 +110,7 @@ public class PreflightTests
         var result = await run.Do(() => new RunExecutor(devices.Stage, devices.Gate, job, run.Time).RunAsync(TestContext.Current.CancellationToken));
         var log = devices.Log.ToList();
 
-        Assert.Equal(RunOutcome.Completed, result.Outcome);
+        Assert.True(result.Outcome == RunOutcome.Completed, $"{result.Outcome}: {result.FaultMessage}");
         Assert.Equal(["X home", "Y home"], log.Where(e => e.EndsWith("home", StringComparison.Ordinal)).Order());
         Assert.True(log.IndexOf("X home") < log.FindIndex(e => e.StartsWith("X move", StringComparison.Ordinal)));
     }
@@ -125,7 +125,7 @@ public class PreflightTests
 
         var result = await new RunExecutor(stage, gate, job, options: new RunOptions { Home = true }).RunAsync(TestContext.Current.CancellationToken);
 
-        Assert.Equal(RunOutcome.Completed, result.Outcome);
+        Assert.True(result.Outcome == RunOutcome.Completed, $"{result.Outcome}: {result.FaultMessage}");
         await stage.X.Received(1).HomeAsync(Arg.Any<CancellationToken>());
         await stage.Y.Received(1).HomeAsync(Arg.Any<CancellationToken>());
     }
@@ -140,7 +140,7 @@ public class PreflightTests
 
         var result = await new RunExecutor(stage, gate, job).RunAsync(TestContext.Current.CancellationToken);
 
-        Assert.Equal(RunOutcome.Completed, result.Outcome);
+        Assert.True(result.Outcome == RunOutcome.Completed, $"{result.Outcome}: {result.FaultMessage}");
         await stage.X.DidNotReceiveWithAnyArgs().HomeAsync(Arg.Any<CancellationToken>());
         await gate.Received().SetWatchdogAsync(1000, Arg.Any<CancellationToken>());
         await gate.Received().SetFrequencyAsync(1000, Arg.Any<CancellationToken>());

@@ -29,7 +29,7 @@ public class PtyRunTests
         var result = await new RunExecutor(stage, gate, job).RunAsync(ct);
         var report = machine.Recorder.Analyze(SimulatedRun.Grid(job), job.Mask);
 
-        Assert.Equal(RunOutcome.Completed, result.Outcome);
+        Assert.True(result.Outcome == RunOutcome.Completed, $"{result.Outcome}: {result.FaultMessage}");
         Assert.True(report.Burned.ContentEquals(job.Mask), $"burned differs: {report.ExtraPixels} extra, {report.MissingPixels} missing");
         Assert.Equal(0, report.LaserOnTravelCount);
         Assert.False(machine.Gate.IsFiring);

@@ -41,7 +41,7 @@ public class RunControlTests
 
         var result = await run.Do(() => executor.RunAsync(TestContext.Current.CancellationToken));
 
-        Assert.Equal(RunOutcome.Completed, result.Outcome);
+        Assert.True(result.Outcome == RunOutcome.Completed, $"{result.Outcome}: {result.FaultMessage}");
         Assert.Equal([RunState.Preflight, RunState.Running, RunState.Pausing, RunState.Paused, RunState.Running, RunState.Completed], states);
         Assert.False(firingWhilePaused);
         Assert.Equal(0, completedWhilePaused);

@@ -21,7 +21,7 @@ public class RunExecutorTests
         var result = await run.Do(() => run.Executor(job).RunAsync(TestContext.Current.CancellationToken));
         var report = run.Analyze(job);
 
-        Assert.Equal(RunOutcome.Completed, result.Outcome);
+        Assert.True(result.Outcome == RunOutcome.Completed, $"{result.Outcome}: {result.FaultMessage}");
         Assert.True(report.Burned.ContentEquals(job.Mask), $"burned differs: {report.ExtraPixels} extra, {report.MissingPixels} missing");
         Assert.Equal(0, report.LaserOnTravelCount);
         Assert.Equal(0, report.DwellCount);
@@ -44,7 +44,7 @@ public class RunExecutorTests
         var result = await run.Do(() => run.Executor(job).RunAsync(TestContext.Current.CancellationToken));
         var report = run.Analyze(job);
 
-        Assert.Equal(RunOutcome.Completed, result.Outcome);
+        Assert.True(result.Outcome == RunOutcome.Completed, $"{result.Outcome}: {result.FaultMessage}");
         Assert.True(report.Burned.ContentEquals(job.Mask), $"burned differs: {report.ExtraPixels} extra, {report.MissingPixels} missing");
         Assert.Equal(0, report.LaserOnTravelCount);
         Assert.Equal(0, report.DwellCount);

@@ -1,0 +1,244 @@
+using System.Globalization;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Motion;
+
+namespace LaserEngrave.Core.Planning;
+
+/// <summary>
+/// The timing model of an optimized run: when each command must leave the host so that the stage and the laser act at
+/// the right moment, how long a run-up must be, and whether a gap is crossed at the burn speed or by a stop-go travel.
+/// </summary>
+/// <remarks>
+/// <para>
+/// The executor (Devices/Execution/RunExecutor) sends its commands at the times computed here and
+/// <see cref="PlanEstimator"/> adds up the same times, so the estimate models what the executor does by construction.
+/// docs/execution.md explains the model; all times are seconds, all distances microsteps.
+/// </para>
+/// <para>
+/// A command takes effect when its last byte has arrived: the adapter's latency (the profile's <c>latency</c> section)
+/// plus its bytes at the baud rate (10 bits a byte), plus the gate's processing time for a gate command. A motion is
+/// a Zaber trapezoid from rest to rest at the quantised speed and acceleration.
+/// </para>
+/// </remarks>
+public sealed class TimedSwitching
+{
+    /// <summary>Bytes of a Zaber binary frame.</summary>
+    public const int FrameBytes = 6;
+
+    private const double BitsPerByte = 10;
+
+    // Time the host allows itself to react to a reply before acting on it.
+    private const double ReactionSeconds = 0.0005;
+
+    public TimedSwitching(ProcessSettings process, MachineProfile profile, double microstepUm)
+    {
+        ArgumentNullException.ThrowIfNull(process);
+        ArgumentNullException.ThrowIfNull(profile);
+        var latency = profile.Latency;
+        var gate = profile.Gate;
+        MicrostepUm = microstepUm;
+        BurnSpeedData = StageUnits.SpeedData(process.SpeedMmPerS(MoveKind.Burn, PlanStrategy.Optimized), microstepUm);
+        TravelSpeedData = StageUnits.SpeedData(process.SpeedMmPerS(MoveKind.Travel, PlanStrategy.Optimized), microstepUm);
+        AccelerationData = StageUnits.AccelerationData(process.AccelerationMmPerS2, microstepUm);
+        BurnSpeed = StageUnits.SpeedMicrostepsPerS(BurnSpeedData);
+        TravelSpeed = StageUnits.SpeedMicrostepsPerS(TravelSpeedData);
+        Acceleration = StageUnits.AccelerationMicrostepsPerS2(AccelerationData);
+
+        var stageByte = BitsPerByte / process.StageBaudRate;
+        FrameSeconds = FrameBytes * stageByte;
+        StageAdapterSeconds = latency.StageMs / 1000;
+        StageJitterSeconds = latency.StageJitterMs / 1000;
+        StageCommandSeconds = StageAdapterSeconds + FrameSeconds;
+        StageReplySeconds = FrameSeconds + StageAdapterSeconds;
+
+        var gateByte = BitsPerByte / process.GateBaudRate;
+        var frequency = process.LaserFrequencyWholeHz;
+        OnCommand = Format(gate.FrequencyCommand, frequency) + gate.LineTerminator;
+        OffCommand = gate.OffCommand + gate.LineTerminator;
+        var onReply = gate.AckPrefix + " " + Format(gate.FrequencyReply, frequency) + gate.LineTerminator;
+        var offReply = gate.AckPrefix + " " + gate.OffReply + gate.LineTerminator;
+        var ping = gate.KeepAliveCommand + gate.LineTerminator;
+        var pong = gate.AckPrefix + " " + gate.KeepAliveReply + gate.LineTerminator;
+        var gateAdapter = latency.GateMs / 1000;
+        var processing = latency.GateProcessingMs / 1000;
+        GateJitterSeconds = (latency.GateJitterMs + latency.GateProcessingJitterMs) / 1000;
+        HalfPulseSeconds = 0.5 / Math.Max(1, frequency);
+        OnLeadSeconds = gateAdapter + (OnCommand.Length * gateByte) + processing;
+        OffLeadSeconds = gateAdapter + (OffCommand.Length * gateByte) + processing;
+        OnRoundTripSeconds = OnLeadSeconds + (onReply.Length * gateByte) + gateAdapter;
+        OffRoundTripSeconds = OffLeadSeconds + (offReply.Length * gateByte) + gateAdapter;
+        KeepAliveRoundTripSeconds = gateAdapter + (ping.Length * gateByte) + processing + (pong.Length * gateByte) + gateAdapter;
+
+        // A move is sent so that it arrives after the motion before it has ended, whatever both latencies drew.
+        MarginSeconds = (2 * StageJitterSeconds) + ReactionSeconds;
+
+        // From a stroke's start (its Move Absolute arriving): the position query sent right behind it comes back; then the
+        // switch-on needs its lead. The laser is never switched on before the stage has been seen moving.
+        PollReplySeconds = FrameSeconds + StageReplySeconds + (2 * StageJitterSeconds) + ReactionSeconds;
+        var ramp = BurnSpeed / Acceleration;
+        FirstEdgeSeconds = Math.Max(ramp + ReactionSeconds, PollReplySeconds + OnLeadSeconds + GateJitterSeconds);
+        RunUpMicrosteps = (long)Math.Ceiling((BurnSpeed * BurnSpeed / (2 * Acceleration)) + (BurnSpeed * (FirstEdgeSeconds - ramp)));
+        RunOutMicrosteps = (long)Math.Ceiling(BurnSpeed * BurnSpeed / (2 * Acceleration));
+
+        // The gate answers one command at a time: a switch waits for the reply to the one before.
+        MinOnSeconds = OnRoundTripSeconds - OnLeadSeconds + OffLeadSeconds + (2 * GateJitterSeconds) + ReactionSeconds;
+        MinOffSeconds = OffRoundTripSeconds - OffLeadSeconds + OnLeadSeconds + (2 * GateJitterSeconds) + ReactionSeconds;
+    }
+
+    public double MicrostepUm { get; }
+
+    public int BurnSpeedData { get; }
+
+    public int TravelSpeedData { get; }
+
+    public int AccelerationData { get; }
+
+    /// <summary>Burn speed, microsteps/s (quantised).</summary>
+    public double BurnSpeed { get; }
+
+    /// <summary>Travel speed, microsteps/s (quantised).</summary>
+    public double TravelSpeed { get; }
+
+    /// <summary>Acceleration, microsteps/s² (quantised).</summary>
+    public double Acceleration { get; }
+
+    /// <summary>One Zaber frame on the wire.</summary>
+    public double FrameSeconds { get; }
+
+    public double StageAdapterSeconds { get; }
+
+    /// <summary>Half-width of the spread of the stage adapter's latency.</summary>
+    public double StageJitterSeconds { get; }
+
+    /// <summary>From writing a Zaber command to the device acting on it, when the wire is free.</summary>
+    public double StageCommandSeconds { get; }
+
+    /// <summary>From a device sending a reply to the host having it.</summary>
+    public double StageReplySeconds { get; }
+
+    /// <summary>Half-width of the spread of a gate command's lead (adapter and processing).</summary>
+    public double GateJitterSeconds { get; }
+
+    public string OnCommand { get; }
+
+    public string OffCommand { get; }
+
+    /// <summary>
+    /// Half a pulse period: the Q-switch fires its first pulse when switched on, so the switch-on comes this long after
+    /// the entry edge and the first pulse lands half a pulse spacing inside the run, as the last one does.
+    /// </summary>
+    public double HalfPulseSeconds { get; }
+
+    /// <summary>
+    /// How far inside a run each switching is aimed: the most the gate's and the stage's latencies can move a pulse
+    /// relative to the stage, so that no pulse ever lands on the white beyond an edge.
+    /// </summary>
+    public double EdgeGuardSeconds => GateJitterSeconds + StageJitterSeconds;
+
+    /// <summary>From crossing a run's entry edge to the switch-on taking effect: the guard, at least half a pulse period.</summary>
+    public double OnDelaySeconds => Math.Max(HalfPulseSeconds, EdgeGuardSeconds);
+
+    /// <summary>From the switch-off taking effect to crossing the run's exit edge.</summary>
+    public double OffAdvanceSeconds => EdgeGuardSeconds;
+
+    /// <summary>
+    /// When a stroke's first switch-on may be sent at the earliest after a Y move's nominal end: once its reply is in.
+    /// </summary>
+    public double AfterYSeconds => StageReplySeconds + (2 * StageJitterSeconds) + ReactionSeconds;
+
+    /// <summary>From writing the switch-on line to the Q-switch firing.</summary>
+    public double OnLeadSeconds { get; }
+
+    /// <summary>From writing the switch-off line to the Q-switch stopping.</summary>
+    public double OffLeadSeconds { get; }
+
+    public double OnRoundTripSeconds { get; }
+
+    public double OffRoundTripSeconds { get; }
+
+    public double KeepAliveRoundTripSeconds { get; }
+
+    /// <summary>Between a motion's end and the arrival of the next move on the same axis.</summary>
+    public double MarginSeconds { get; }
+
+    /// <summary>From a stroke's start to the latest time the position query's reply is in.</summary>
+    public double PollReplySeconds { get; }
+
+    /// <summary>From a stroke's start (at rest) to its first edge.</summary>
+    public double FirstEdgeSeconds { get; }
+
+    /// <summary>Run-up before a stroke's first edge: the speed ramp plus the distance covered until the laser may come on.</summary>
+    public long RunUpMicrosteps { get; }
+
+    /// <summary>Run-out after a stroke's last edge: the braking distance.</summary>
+    public long RunOutMicrosteps { get; }
+
+    /// <summary>Shortest time the laser can be on: the switch-on's reply must be in before the switch-off is sent.</summary>
+    public double MinOnSeconds { get; }
+
+    /// <summary>Shortest time the laser can be off between two burn runs of one stroke.</summary>
+    public double MinOffSeconds { get; }
+
+    /// <summary>The built-in model for a process on a profile at the geometry's microstep.</summary>
+    public static TimedSwitching For(ProcessSettings process, MachineProfile profile, double microstepUm) => new(process, profile, microstepUm);
+
+    /// <summary>A stroke's motion: from rest to rest at the burn speed.</summary>
+    public TrapezoidProfile Stroke(long lengthMicrosteps) => new(lengthMicrosteps, BurnSpeed, Acceleration);
+
+    /// <summary>One axis' travel from rest to rest at the travel speed.</summary>
+    public TrapezoidProfile Travel(long lengthMicrosteps) => new(lengthMicrosteps, TravelSpeed, Acceleration);
+
+    /// <summary>
+    /// From the first move's arrival to the end of a travel on one or both axes: the longer axis is sent first, the
+    /// other one frame later.
+    /// </summary>
+    public double TravelSeconds(long dx, long dy)
+    {
+        var x = dx == 0 ? 0 : Travel(dx).Duration;
+        var y = dy == 0 ? 0 : Travel(dy).Duration;
+        return dx != 0 && dy != 0 ? Math.Max(Math.Max(x, y), Math.Min(x, y) + FrameSeconds) : Math.Max(x, y);
+    }
+
+    /// <summary>
+    /// Whether the speed of the next motion can be set while the one before brakes (so it costs no time): the new speed is
+    /// not below the speed the axis brakes through, for long enough to send the command before the next move.
+    /// </summary>
+    /// <param name="peakSpeed">Peak speed of the motion before, microsteps/s.</param>
+    /// <param name="newSpeed">The speed to set, microsteps/s.</param>
+    public bool CanSetSpeedWhileBraking(double peakSpeed, double newSpeed) =>
+        Math.Min(peakSpeed, newSpeed) / Acceleration >= FrameSeconds + (4 * StageJitterSeconds) + ReactionSeconds;
+
+    /// <summary>
+    /// From a switch-off's nominal time to the earliest arrival of a travel command: no travel is sent before the gate has
+    /// acknowledged the switch-off.
+    /// </summary>
+    public double AfterOffSeconds => OffAcknowledgedSeconds + StageCommandSeconds;
+
+    /// <summary>From a switch-off's nominal time to its acknowledgement at the latest.</summary>
+    public double OffAcknowledgedSeconds => OffRoundTripSeconds - OffLeadSeconds + (2 * GateJitterSeconds) + ReactionSeconds;
+
+    /// <summary>What a speed change between two motions adds, when it cannot be made while the first brakes.</summary>
+    public double SpeedChangeSeconds => FrameSeconds + MarginSeconds;
+
+    /// <summary>Time from crossing one run's exit edge to crossing the next run's entry edge through a stop-go travel of the X axis.</summary>
+    public double StopGoSeconds(long gapMicrosteps)
+    {
+        var travel = gapMicrosteps - RunOutMicrosteps - RunUpMicrosteps;
+        if (travel <= 0)
+        {
+            return double.PositiveInfinity;
+        }
+
+        var brake = Stroke(2 * RunOutMicrosteps);
+        var seconds = (brake.Duration / 2) + MarginSeconds + Travel(travel).Duration + MarginSeconds + FirstEdgeSeconds;
+        var profile = Travel(travel);
+        seconds += CanSetSpeedWhileBraking(BurnSpeed, TravelSpeed) ? 0 : SpeedChangeSeconds;
+        seconds += CanSetSpeedWhileBraking(profile.PeakSpeed, BurnSpeed) ? 0 : SpeedChangeSeconds;
+        return seconds;
+    }
+
+    /// <summary>Whether a gap between two runs of a row is crossed at the burn speed (faster than stopping and travelling).</summary>
+    public bool CrossesGap(long gapMicrosteps) => gapMicrosteps / BurnSpeed <= StopGoSeconds(gapMicrosteps);
+
+    private static string Format(string format, int value) => string.Format(CultureInfo.InvariantCulture, format, value);
+}

@@ -1,0 +1,482 @@
+using LaserEngrave.Core.Planning;
+using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Devices.Scheduling;
+using LaserEngrave.Devices.Zaber;
+
+namespace LaserEngrave.Devices.Execution;
+
+/// <summary>Timed switching: the optimized plan's strokes and travels sent by <see cref="MotionTimeline"/>, the laser switched by time.</summary>
+/// <remarks>
+/// A stroke is one X move from rest to rest at the burn speed over a row's run-up, burn runs, crossed gaps and run-out.
+/// The stage's Move Absolute is sent so that it arrives a margin after the motion before has ended; a position query
+/// follows it, and the laser is switched on only once that has shown the stage moving on its path and every earlier
+/// move has reported its end. Then the gate's commands leave so that they take effect as the stage crosses each edge
+/// (docs/execution.md). Nothing waits for a reply it does not need: every move's reply is watched against its expected
+/// arrival, and one missing or late ends the run, laser off first.
+/// </remarks>
+public sealed partial class RunExecutor
+{
+    private readonly List<(Task Reply, double Deadline, string What)> _watched = [];
+    private string? _timedFault;
+    private double _lastGateWrite;
+    private Task _lastOff = Task.CompletedTask;
+
+    private double RunSeconds => TimeProvider.GetElapsedTime(_engravingStart).TotalSeconds;
+
+    private async Task ExecuteTimedAsync(IEnumerable<Move> moves, long firstIndex, TimedSwitching timing, CancellationToken token)
+    {
+        lock (_lock)
+        {
+            _moveIndex = firstIndex;
+            _moveRow = Options.ResumeFrom?.Row ?? 0;
+        }
+
+        // The start the estimate models: acceleration and the travel speed on both axes.
+        _engravingStart = TimeProvider.GetTimestamp();
+        _engravingStarted = true;
+        foreach (var axis in new[] { Stage.X, Stage.Y })
+        {
+            await axis.SetAccelerationAsync(_accelerationData, token);
+            await axis.SetTargetSpeedAsync(_travelSpeedData, token);
+        }
+
+        (_xSpeedData, _ySpeedData) = (_travelSpeedData, _travelSpeedData);
+        MotionTimeline? timeline = null;
+        foreach (var segment in Segments(moves, firstIndex, timing))
+        {
+            if (timeline is null)
+            {
+                // Reaching the first segment's start (the plan's or the resume point's) is not part of the estimate.
+                var positioning = TimeProvider.GetTimestamp();
+                await MoveToAsync(segment.StartX, segment.StartY, _travelSpeedData, token);
+                _notEngraving += TimeProvider.GetElapsedTime(positioning);
+                timeline = new MotionTimeline(timing, RunSeconds, _xSpeedData);
+            }
+
+            if (IsPauseRequested)
+            {
+                // Pauses come between segments, with the laser off and the stage at rest.
+                await LastOffAcknowledgedAsync();
+                await WatchedRepliesAsync(token);
+                await PauseIfAskedAsync(token);
+                timeline = new MotionTimeline(timing, RunSeconds, _xSpeedData);
+            }
+
+            if (segment.Stroke)
+            {
+                await StrokeAsync(segment, timing, timeline, token);
+            }
+            else
+            {
+                await TravelAsync(segment, timing, timeline, token);
+            }
+        }
+
+        await LastOffAcknowledgedAsync();
+        await WatchedRepliesAsync(token);
+        lock (_lock)
+        {
+            _moveRow = Job.Plan.Mask.Height;
+            _currentMove = null;
+            if (_lastRow >= 0)
+            {
+                _rowsDone++;
+                _lastRow = -1;
+            }
+        }
+    }
+
+    private bool IsPauseRequested
+    {
+        get
+        {
+            lock (_lock)
+            {
+                return _pauseRequested && !_abortRequested;
+            }
+        }
+    }
+
+    /// <summary>The plan's moves as strokes (runs with their run-ups, crossed gaps and run-outs) and travels.</summary>
+    private IEnumerable<Segment> Segments(IEnumerable<Move> moves, long firstIndex, TimedSwitching timing)
+    {
+        var index = firstIndex;
+        List<(Move Move, long Index)>? stroke = null;
+        foreach (var move in moves)
+        {
+            if (move.Kind == MoveKind.Travel)
+            {
+                if (stroke is not null)
+                {
+                    yield return StrokeSegment(stroke, timing);
+                    stroke = null;
+                }
+
+                yield return new Segment(false, [(move, index)], move.X0, move.Y0, move.X1, move.Y1);
+            }
+            else if (stroke is not null && (stroke[^1].Move.Row != move.Row || stroke[^1].Move.X1 != move.X0 || stroke[^1].Move.Y1 != move.Y0
+                     || Math.Sign(stroke[^1].Move.X1 - stroke[^1].Move.X0) != Math.Sign(move.X1 - move.X0)))
+            {
+                yield return StrokeSegment(stroke, timing);
+                stroke = [(move, index)];
+            }
+            else
+            {
+                (stroke ??= []).Add((move, index));
+            }
+
+            index++;
+        }
+
+        if (stroke is not null)
+        {
+            yield return StrokeSegment(stroke, timing);
+        }
+    }
+
+    // A stroke starts a run-up before its first edge (when its first move is shorter, e.g. when resuming mid-row), within the travel.
+    private Segment StrokeSegment(List<(Move Move, long Index)> moves, TimedSwitching timing)
+    {
+        var first = moves[0].Move;
+        var last = moves[^1].Move;
+        var dir = Math.Sign(last.X1 - first.X0);
+        var startX = first.X0;
+        var firstBurn = moves.FirstOrDefault(m => m.Move.Kind == MoveKind.Burn);
+        if (firstBurn.Move.Kind == MoveKind.Burn && Math.Abs(firstBurn.Move.X0 - first.X0) < timing.RunUpMicrosteps)
+        {
+            startX = Math.Clamp(firstBurn.Move.X0 - (dir * timing.RunUpMicrosteps), 0, Job.Plan.Geometry.TravelXMicrosteps);
+        }
+
+        return new Segment(true, moves, startX, first.Y0, last.X1, last.Y1);
+    }
+
+    private async Task StrokeAsync(Segment segment, TimedSwitching timing, MotionTimeline timeline, CancellationToken token)
+    {
+        var length = Math.Abs(segment.EndX - segment.StartX);
+        var profile = timing.Stroke(length);
+        var burns = segment.Moves.Where(m => m.Move.Kind == MoveKind.Burn).ToList();
+        double Offset(long x) => profile.TimeAt(Math.Abs(x - segment.StartX));
+        var firstEdge = burns.Count > 0 ? Offset(burns[0].Move.X0) : 0;
+        var lastOff = burns.Count > 0 ? Offset(burns[^1].Move.X1) : 0;
+        var times = timeline.Stroke(length, firstEdge, lastOff);
+
+        if (times.SpeedArrival is { } speedArrival)
+        {
+            await DelayUntilAsync(speedArrival - timing.StageCommandSeconds, token);
+            Watch(SetSpeedAsync(Stage.X, _burnSpeedData, token), speedArrival + timing.StageReplySeconds, "Set Target Speed (X)");
+            _xSpeedData = _burnSpeedData;
+        }
+
+        await DelayUntilAsync(times.Arrival - timing.StageCommandSeconds, token);
+        await LastOffAcknowledgedAsync();
+        ThrowIfAborted();
+        var start = segment.StartX;
+        var earlier = _watched.ToList();
+        var move = Stage.X.MoveAbsoluteAfterAsync(segment.EndX, token);
+        Watch(Arrive(move, "X", segment.EndX, x => _x = x), times.End + timing.StageReplySeconds, "the end of a stroke (X)");
+        var poll = burns.Count > 0 ? Stage.X.GetPositionAsync(token) : null;
+
+        var index = 0;
+        foreach (var (burn, burnIndex) in burns)
+        {
+            var onWrite = times.Arrival + Offset(burn.X0) + timing.OnDelaySeconds - timing.OnLeadSeconds;
+            var offWrite = times.Arrival + Offset(burn.X1) - timing.OffAdvanceSeconds - timing.OffLeadSeconds;
+            if (index++ == 0)
+            {
+                await ConfirmMovingAsync(earlier, poll!, start, Math.Sign(segment.EndX - start), timing, onWrite, token);
+            }
+
+            CompleteUpTo(segment, burnIndex - 1);
+            await DelayUntilAsync(onWrite, token);
+            await SwitchLaserAsync(on: true);
+            _lastGateWrite = onWrite;
+            lock (_lock)
+            {
+                _currentMove = burn;
+                _currentIndex = burnIndex;
+                _moveIndex = burnIndex;
+                _moveRow = burn.Row;
+            }
+
+            await KeepAlivesUntilAsync(offWrite, timing, token);
+            if (RunSeconds > offWrite + timing.GateJitterSeconds)
+            {
+                throw new DeviceException($"the laser gate acknowledged the switch-on {(RunSeconds - offWrite) * 1000:0.0} ms too late to switch off on time");
+            }
+
+            await DelayUntilAsync(offWrite, token);
+            _lastGateWrite = offWrite;
+            if (index < burns.Count)
+            {
+                await SwitchLaserAsync(on: false);
+            }
+            else
+            {
+                // The stroke's last switch-off: the next segment's speed change may go while it is acknowledged, its move not.
+                _lastOff = SwitchLaserAsync(on: false);
+            }
+
+            CompleteUpTo(segment, burnIndex);
+        }
+
+        CompleteUpTo(segment, segment.Moves[^1].Index);
+    }
+
+    private async Task TravelAsync(Segment segment, TimedSwitching timing, MotionTimeline timeline, CancellationToken token)
+    {
+        var (move, index) = segment.Moves[0];
+        var times = timeline.Travel(move.LengthX, move.LengthY);
+        var sends = new List<(double Write, Func<Task> Send)>();
+        if (times.YArrival is { } yArrival)
+        {
+            sends.Add((yArrival - timing.StageCommandSeconds, async () =>
+            {
+                await LastOffAcknowledgedAsync();
+                Watch(Arrive(Stage.Y.MoveAbsoluteAfterAsync(move.Y1, token), "Y", move.Y1, y => _y = y), times.YEnd + timing.StageReplySeconds, "the end of a travel (Y)");
+            }));
+        }
+
+        if (times.SpeedArrival is { } speedArrival)
+        {
+            sends.Add((speedArrival - timing.StageCommandSeconds, () =>
+            {
+                Watch(SetSpeedAsync(Stage.X, _travelSpeedData, token), speedArrival + timing.StageReplySeconds, "Set Target Speed (X)");
+                _xSpeedData = _travelSpeedData;
+                return Task.CompletedTask;
+            }));
+        }
+
+        if (times.XArrival is { } xArrival)
+        {
+            sends.Add((xArrival - timing.StageCommandSeconds, async () =>
+            {
+                await LastOffAcknowledgedAsync();
+                Watch(Arrive(Stage.X.MoveAbsoluteAfterAsync(move.X1, token), "X", move.X1, x => _x = x), times.XEnd + timing.StageReplySeconds, "the end of a travel (X)");
+            }));
+        }
+
+        foreach (var (write, send) in sends.OrderBy(s => s.Write))
+        {
+            await DelayUntilAsync(write, token);
+            ThrowIfAborted();
+            await send();
+        }
+
+        lock (_lock)
+        {
+            _currentMove = move;
+            _currentIndex = index;
+            _moveIndex = index;
+            _moveRow = move.Row;
+        }
+
+        Completed(move, index);
+    }
+
+    /// <summary>Before the first switch-on of a stroke: every earlier move has reported its end, and the position query shows the stage on its way.</summary>
+    private async Task ConfirmMovingAsync(List<(Task Reply, double Deadline, string What)> earlier, Task<long> poll, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token)
+    {
+        foreach (var (reply, _, what) in earlier)
+        {
+            if (!reply.IsCompleted && !await CompletesByAsync(reply, onWrite, token))
+            {
+                throw Fault($"the stage had not reported {what} when the laser was to come on");
+            }
+        }
+
+        if (!await CompletesByAsync(poll, onWrite, token))
+        {
+            throw Fault("the X axis did not answer the position query before the laser was to come on");
+        }
+
+        long position;
+        try
+        {
+            position = await poll;
+        }
+        catch (DeviceException ex)
+        {
+            throw Fault($"the X axis did not answer the position query before the laser was to come on: {ex.Message}");
+        }
+
+        // The query arrives one frame after the move: the stage has accelerated that long, give or take both latencies.
+        var a = timing.Acceleration;
+        var earliest = Math.Max(0, timing.FrameSeconds - (2 * timing.StageJitterSeconds));
+        var latest = timing.FrameSeconds + (2 * timing.StageJitterSeconds);
+        var moved = (position - start) * direction;
+        var least = Math.Max(1, Math.Floor(0.5 * a * earliest * earliest / 2));
+        var most = Math.Ceiling(0.5 * a * latest * latest) + 2;
+        if (moved < least || moved > most)
+        {
+            throw Fault($"the X axis reported {position} microsteps just after starting its stroke, not {start + (direction * least)}..{start + (direction * most)}: it is not moving as planned, so the laser stays off");
+        }
+    }
+
+    private async Task<bool> CompletesByAsync(Task task, double seconds, CancellationToken token)
+    {
+        var wait = seconds - RunSeconds;
+        if (task.IsCompleted || wait <= 0)
+        {
+            return task.IsCompleted;
+        }
+
+        using var stop = CancellationTokenSource.CreateLinkedTokenSource(token);
+        var timer = PreciseDelay.DelayAsync(TimeProvider, TimeSpan.FromSeconds(wait), stop.Token);
+        await Task.WhenAny(task, timer);
+        stop.Cancel();
+        token.ThrowIfCancellationRequested();
+        return task.IsCompleted;
+    }
+
+    private async Task KeepAlivesUntilAsync(double offWrite, TimedSwitching timing, CancellationToken token)
+    {
+        var period = GateKeepAlive.PeriodFor(_profile.Gate.WatchdogMs, Options.KeepAliveFraction).TotalSeconds;
+        if (period <= 0)
+        {
+            return;
+        }
+
+        while (true)
+        {
+            var next = Math.Max(_lastGateWrite + period, RunSeconds);
+            if (next + timing.KeepAliveRoundTripSeconds + (2 * timing.GateJitterSeconds) + 0.001 >= offWrite)
+            {
+                return;
+            }
+
+            await DelayUntilAsync(next, token);
+            _lastGateWrite = RunSeconds;
+            await Gate.KeepAliveAsync(CancellationToken.None);
+        }
+    }
+
+    /// <summary>No move is sent before the last switch-off is acknowledged.</summary>
+    private async Task LastOffAcknowledgedAsync()
+    {
+        var off = _lastOff;
+        _lastOff = Task.CompletedTask;
+        await off;
+    }
+
+    private async Task DelayUntilAsync(double seconds, CancellationToken token)
+    {
+        var wait = seconds - RunSeconds;
+        if (wait > 0)
+        {
+            await PreciseDelay.DelayAsync(TimeProvider, TimeSpan.FromSeconds(wait), token);
+        }
+
+        token.ThrowIfCancellationRequested();
+    }
+
+    private static async Task SetSpeedAsync(IStageAxis axis, int speedData, CancellationToken token) => await axis.SetTargetSpeedAsync(speedData, token);
+
+    private static async Task Arrive(Task<long> move, string axis, long target, Action<long> arrived)
+    {
+        var position = await move;
+        arrived(Arrived(axis, position, target));
+    }
+
+    /// <summary>Watches a reply: late past its expected arrival (plus the stall margin), failed or wrong, it ends the run, laser off first.</summary>
+    private void Watch(Task reply, double expectedSeconds, string what)
+    {
+        var deadline = expectedSeconds + ((Job.Plan.Timing?.StageJitterSeconds ?? 0) * 2) + (Options.StallMarginMs / 1000);
+        _watched.Add((reply, deadline, what));
+        _ = TaskRunner.For(TimeProvider).Start(async () =>
+        {
+            try
+            {
+                using var stop = new CancellationTokenSource();
+                var wait = deadline - RunSeconds;
+                if (wait > 0 && !reply.IsCompleted)
+                {
+                    var timer = PreciseDelay.DelayAsync(TimeProvider, TimeSpan.FromSeconds(wait), stop.Token);
+                    await Task.WhenAny(reply, timer);
+                    stop.Cancel();
+                }
+
+                if (!reply.IsCompleted)
+                {
+                    _ = Fault($"the stage did not report {what} within {Options.StallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)");
+                    return;
+                }
+
+                await reply;
+            }
+            catch (OperationCanceledException)
+            {
+                // The run is ending anyway.
+            }
+            catch (Exception ex) when (ex is DeviceException)
+            {
+                _ = Fault(ex.Message);
+            }
+        });
+    }
+
+    private async Task WatchedRepliesAsync(CancellationToken token)
+    {
+        foreach (var (reply, deadline, what) in _watched.ToList())
+        {
+            if (!await CompletesByAsync(reply, deadline + 0.001, token))
+            {
+                throw Fault($"the stage did not report {what} within {Options.StallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)");
+            }
+
+            await reply;
+        }
+
+        _watched.Clear();
+    }
+
+    /// <summary>A fault found while commands are in flight: the laser goes off at once, then the run ends as failed; returns the exception to throw.</summary>
+    private DeviceException Fault(string reason)
+    {
+        var first = false;
+        lock (_lock)
+        {
+            if (_timedFault is null)
+            {
+                _timedFault = reason;
+                first = true;
+            }
+        }
+
+        if (first)
+        {
+            _ = TaskRunner.For(TimeProvider).Start(LaserOffSafelyAsync);
+            _fault.Cancel();
+        }
+
+        return new DeviceException(reason);
+    }
+
+    private void CompleteUpTo(Segment segment, long index)
+    {
+        foreach (var (move, moveIndex) in segment.Moves)
+        {
+            if (moveIndex > index)
+            {
+                break;
+            }
+
+            if (moveIndex >= Progress_NextIndex)
+            {
+                Completed(move, moveIndex);
+            }
+        }
+    }
+
+    private long Progress_NextIndex
+    {
+        get
+        {
+            lock (_lock)
+            {
+                return _moveIndex;
+            }
+        }
+    }
+
+    private sealed record Segment(bool Stroke, List<(Move Move, long Index)> Moves, long StartX, long StartY, long EndX, long EndY);
+}

@@ -1,0 +1,79 @@
+using System.Diagnostics;
+
+namespace LaserEngrave.Devices.Scheduling;
+
+/// <summary>Waits to the tick on a <see cref="TimeProvider"/>: what timed laser switching needs.</summary>
+/// <remarks>
+/// Written by hand because <c>Task.Delay(TimeSpan, TimeProvider)</c> truncates the delay to whole milliseconds, a
+/// micrometre at 1 mm/s. On a virtual clock the timer is created with the exact delay. On the system clock, whose timers
+/// fire late by up to a scheduler tick (15.6 ms on Windows by default), the wait sleeps until a few milliseconds before
+/// the time and spins the rest on the high-resolution timestamp.
+/// </remarks>
+public static class PreciseDelay
+{
+    private static readonly TimeSpan SpinWindow = TimeSpan.FromMilliseconds(16);
+
+    public static Task DelayAsync(TimeProvider time, TimeSpan delay, CancellationToken cancellationToken)
+    {
+        ArgumentNullException.ThrowIfNull(time);
+        if (delay <= TimeSpan.Zero)
+        {
+            cancellationToken.ThrowIfCancellationRequested();
+            return Task.CompletedTask;
+        }
+
+        return time == TimeProvider.System ? SystemDelayAsync(delay, cancellationToken) : TimerDelayAsync(time, delay, cancellationToken);
+    }
+
+    private static async Task SystemDelayAsync(TimeSpan delay, CancellationToken cancellationToken)
+    {
+        var until = Stopwatch.GetTimestamp() + (long)(delay.TotalSeconds * Stopwatch.Frequency);
+        if (delay > SpinWindow)
+        {
+            await Task.Delay(delay - SpinWindow, cancellationToken);
+        }
+
+        var spinner = default(SpinWait);
+        while (Stopwatch.GetTimestamp() < until)
+        {
+            cancellationToken.ThrowIfCancellationRequested();
+            spinner.SpinOnce(sleep1Threshold: -1);
+        }
+    }
+
+    private static Task TimerDelayAsync(TimeProvider time, TimeSpan delay, CancellationToken cancellationToken) =>
+        new TimerDelay(time, delay, cancellationToken).Task;
+
+    // Everything happens in the timer's or the token's callback, on whatever thread the clock runs them: nothing is
+    // posted to the thread pool, which a simulation loop would not see.
+    private sealed class TimerDelay
+    {
+        private readonly TaskCompletionSource _done = new(TaskCreationOptions.RunContinuationsAsynchronously);
+        private readonly ITimer _timer;
+        private readonly CancellationTokenRegistration _registration;
+
+        public TimerDelay(TimeProvider time, TimeSpan delay, CancellationToken cancellationToken)
+        {
+            _timer = time.CreateTimer(static state => ((TimerDelay)state!).Fire(), this, delay, Timeout.InfiniteTimeSpan);
+            if (cancellationToken.CanBeCanceled)
+            {
+                _registration = cancellationToken.UnsafeRegister(static (state, token) => ((TimerDelay)state!).Cancel(token), this);
+            }
+        }
+
+        public Task Task => _done.Task;
+
+        private void Fire()
+        {
+            _registration.Dispose();
+            _timer.Dispose();
+            _done.TrySetResult();
+        }
+
+        private void Cancel(CancellationToken token)
+        {
+            _timer.Dispose();
+            _done.TrySetCanceled(token);
+        }
+    }
+}
