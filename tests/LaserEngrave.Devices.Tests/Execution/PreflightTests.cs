@@ -105,7 +105,7 @@ public class PreflightTests
     {
         await using var run = SimulatedRun.Create();
         var devices = new RecordingDevices(run.Stage, run.Gate);
-        var job = TestJobs.FromMask(TestJobs.RandomMask(2, 8, 4), 1, new PlanOptions());
+        var job = TestJobs.FromMask(TestJobs.RandomMask(2, 8, 4), 1, Untimed);
 
         var result = await run.Do(() => new RunExecutor(devices.Stage, devices.Gate, job, run.Time).RunAsync(TestContext.Current.CancellationToken));
         var log = devices.Log.ToList();
@@ -121,7 +121,7 @@ public class PreflightTests
         var stage = FakeStage(Homed);
         var gate = Substitute.For<ILaserGate>();
         gate.IdentifyAsync(Arg.Any<CancellationToken>()).ReturnsForAnyArgs("PICGATE 1.0");
-        var job = TestJobs.FromMask(TestJobs.Mask("#"), 0.1, new PlanOptions());
+        var job = TestJobs.FromMask(TestJobs.Mask("#"), 0.1, Untimed);
 
         var result = await new RunExecutor(stage, gate, job, options: new RunOptions { Home = true }).RunAsync(TestContext.Current.CancellationToken);
 
@@ -136,7 +136,7 @@ public class PreflightTests
         var stage = FakeStage(Homed);
         var gate = Substitute.For<ILaserGate>();
         gate.IdentifyAsync(Arg.Any<CancellationToken>()).ReturnsForAnyArgs("PICGATE 1.0");
-        var job = TestJobs.FromMask(TestJobs.Mask("#"), 0.1, new PlanOptions());
+        var job = TestJobs.FromMask(TestJobs.Mask("#"), 0.1, Untimed);
 
         var result = await new RunExecutor(stage, gate, job).RunAsync(TestContext.Current.CancellationToken);
 
@@ -198,8 +198,11 @@ public class PreflightTests
         var ex = await Assert.ThrowsAsync<PreflightException>(
             () => new RunExecutor(stage, gate, job, options: new RunOptions { ResumeFrom = new RunStopPoint(0, 99, null, null) }).RunAsync(TestContext.Current.CancellationToken));
 
-        Assert.Equal("the resume point (row 0, move 99) is not in this job's plan of 1 moves", ex.Message);
+        Assert.Equal("the resume point (row 0, move 99) is not in this job's plan of 3 moves", ex.Message);
     }
+
+    // An instant fake stage cannot show itself moving to timed switching's position query: these tests run the plan step by step.
+    private static PlanOptions Untimed => new() { Strategy = PlanStrategy.Paper };
 
     /// <summary>A stage whose axes identify as <paramref name="identity"/> and arrive wherever they are sent.</summary>
     private static IStage FakeStage(AxisIdentity identity)

@@ -30,6 +30,8 @@ internal sealed class RecordingDevices
 
         public Task<long> MoveAbsoluteAsync(long position, CancellationToken cancellationToken) => Logged($"move {position}", () => inner.MoveAbsoluteAsync(position, cancellationToken));
 
+        public Task<long> MoveAbsoluteAfterAsync(long position, CancellationToken cancellationToken) => Logged($"move {position}", () => inner.MoveAbsoluteAfterAsync(position, cancellationToken));
+
         public Task<long> MoveRelativeAsync(long distance, CancellationToken cancellationToken) => Logged($"move by {distance}", () => inner.MoveRelativeAsync(distance, cancellationToken));
 
         public Task<long> StopAsync(CancellationToken cancellationToken) => Logged("stop", () => inner.StopAsync(cancellationToken));
