@@ -89,6 +89,13 @@ public sealed class SerialPortLink : ISerialLink
         }
     }
 
+    public async ValueTask<StampedRead> ReadStampedAsync(Memory<byte> buffer, TimeProvider time, CancellationToken cancellationToken)
+    {
+        ArgumentNullException.ThrowIfNull(time);
+        var n = await ReadAsync(buffer, cancellationToken);
+        return new StampedRead(n, time.GetTimestamp());
+    }
+
     public async ValueTask WriteAsync(ReadOnlyMemory<byte> data, CancellationToken cancellationToken)
     {
         if (IsDisposed)
