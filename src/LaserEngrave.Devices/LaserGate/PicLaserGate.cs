@@ -179,7 +179,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
         string line;
         try
         {
-            line = await Signals.WaitAsync(reply, Timeout, _time, cancellationToken);
+            line = await Signals.WaitAsync(reply, Timeout, _time, () => _channel.IsReceiving, cancellationToken);
         }
         catch (TimeoutException)
         {

@@ -20,6 +20,10 @@ public interface ISerialLink : IAsyncDisposable
     /// <returns>The bytes read (0: the link is closed) and their arrival as a timestamp of <paramref name="time"/>.</returns>
     ValueTask<StampedRead> ReadStampedAsync(Memory<byte> buffer, TimeProvider time, CancellationToken cancellationToken);
 
+    /// <summary>True when bytes have arrived that no read has returned yet (false when the link cannot tell).</summary>
+    /// <remarks>Asked from any thread, when a reply's time is up: bytes already here may be that reply, noticed late.</remarks>
+    bool HasUnreadBytes { get; }
+
     /// <summary>Writes all of <paramref name="data"/>.</summary>
     ValueTask WriteAsync(ReadOnlyMemory<byte> data, CancellationToken cancellationToken);
 }

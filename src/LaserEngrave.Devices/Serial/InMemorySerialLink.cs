@@ -26,6 +26,8 @@ public sealed class InMemorySerialLink : ISerialLink
 
     public string Name { get; }
 
+    public bool HasUnreadBytes => Volatile.Read(ref _pendingOffset) < _pending.Data.Length || _incoming.Reader.TryPeek(out _);
+
     /// <summary>Makes a connected pair: (host end, device end).</summary>
     /// <param name="name">The host end's name; the device end's adds "(device end)".</param>
     /// <param name="clock">Stamps every write with its time; null: bytes arrive when they are read.</param>

@@ -28,6 +28,7 @@ public sealed class SerialChannel<TMessage> : IAsyncDisposable
     private readonly CancellationTokenSource _stop = new();
     private Task _readLoop = Task.CompletedTask;
     private long _bytesReceived;
+    private volatile bool _dispatching;
     private bool _started;
     private bool _closed;
     private bool _disposing;
@@ -62,6 +63,10 @@ public sealed class SerialChannel<TMessage> : IAsyncDisposable
 
     /// <summary>Bytes taken from the link so far.</summary>
     public long BytesReceived => Interlocked.Read(ref _bytesReceived);
+
+    /// <summary>True while bytes that have arrived are still on their way to the device: unread, or being framed and handed on.</summary>
+    /// <remarks>A wait whose time is up asks it: a reply that arrived in time but was noticed late (a loaded machine) still answers.</remarks>
+    public bool IsReceiving => _dispatching || _link.HasUnreadBytes;
 
     /// <summary>False once the link was lost or the channel disposed.</summary>
     public bool IsOpen
@@ -165,7 +170,15 @@ public sealed class SerialChannel<TMessage> : IAsyncDisposable
                 }
 
                 Interlocked.Add(ref _bytesReceived, read.Count);
-                _framer.Push(buffer.AsSpan(0, read.Count), read.ArrivalTimestamp, _onMessage);
+                _dispatching = true;
+                try
+                {
+                    _framer.Push(buffer.AsSpan(0, read.Count), read.ArrivalTimestamp, _onMessage);
+                }
+                finally
+                {
+                    _dispatching = false;
+                }
             }
         }
         catch (OperationCanceledException) when (_stop.IsCancellationRequested)

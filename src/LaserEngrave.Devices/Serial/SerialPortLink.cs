@@ -52,6 +52,26 @@ public sealed class SerialPortLink : ISerialLink
 
     public string Name => Settings.PortName;
 
+    public bool HasUnreadBytes
+    {
+        get
+        {
+            if (_received.Reader.TryPeek(out _) || Volatile.Read(ref _pendingOffset) < _pending.Data.Length)
+            {
+                return true;
+            }
+
+            try
+            {
+                return !IsDisposed && _failure is null && _port.BytesToRead > 0;
+            }
+            catch (Exception ex) when (ex is IOException or InvalidOperationException or ObjectDisposedException)
+            {
+                return false;
+            }
+        }
+    }
+
     /// <summary>Opens and configures the port; throws a <see cref="SerialPortException"/> naming the port when it cannot.</summary>
     public static SerialPortLink Open(SerialPortSettings settings)
     {

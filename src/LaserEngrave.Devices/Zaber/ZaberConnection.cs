@@ -312,7 +312,7 @@ public sealed class ZaberConnection : IAsyncDisposable
 
             try
             {
-                return await Signals.WaitAsync(pending.Completion, timeout, _time, cancellationToken);
+                return await Signals.WaitAsync(pending.Completion, timeout, _time, () => _channel.IsReceiving, cancellationToken);
             }
             catch (TimeoutException)
             {

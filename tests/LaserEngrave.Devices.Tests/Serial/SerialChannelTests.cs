@@ -117,6 +117,8 @@ public class SerialChannelTests
 
         public string Name => "/dev/fail";
 
+        public bool HasUnreadBytes => false;
+
         public ValueTask<int> ReadAsync(Memory<byte> buffer, CancellationToken cancellationToken) => ValueTask.FromException<int>(Failure);
 
         public ValueTask<StampedRead> ReadStampedAsync(Memory<byte> buffer, TimeProvider time, CancellationToken cancellationToken) =>

@@ -272,6 +272,59 @@ public class ZaberConnectionTests
         });
     }
 
+    [Theory]
+    [InlineData(20, true)]
+    [InlineData(600, false)]
+    public async Task RequestAsync_ReplyArrivedInTimeButReadLate_AnswersUntilTwiceTheTimeout(int readLateMs, bool answered)
+    {
+        // The reply arrives at 100 ms; the host gets to it 500 + readLateMs ms in. Bytes already here when the time is up may
+        // be the reply, so the wait looks again while they are read, for at most one more timeout.
+        using var clock = new VirtualTimeProvider();
+        var (host, device) = InMemorySerialLink.CreatePair(ZaberRig.Port, clock);
+        var held = new HeldSerialLink(host);
+        var connection = new ZaberConnection(held, clock);
+
+        await clock.RunTestAsync(async () =>
+        {
+            var request = connection.RequestAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 0), None);
+            await Task.Delay(TimeSpan.FromMilliseconds(100), clock);
+            await device.WriteAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 321).ToBytes(), None);
+            await Task.Delay(connection.Options.CommandTimeout - TimeSpan.FromMilliseconds(100) + TimeSpan.FromMilliseconds(readLateMs), clock);
+            held.Release();
+
+            if (answered)
+            {
+                Assert.Equal(321, (await request).Data);
+            }
+            else
+            {
+                var error = await VirtualTime.ThrowsAsync<DeviceTimeoutException>(request);
+                Assert.Contains("within 500 ms", error.Message, StringComparison.Ordinal);
+            }
+
+            await connection.DisposeAsync();
+            await device.DisposeAsync();
+        });
+    }
+
+    [Fact]
+    public async Task RequestAsync_NothingArrived_TimesOutAtTheTimeoutItself()
+    {
+        using var clock = new VirtualTimeProvider();
+        var (host, device) = InMemorySerialLink.CreatePair(ZaberRig.Port, clock);
+        var connection = new ZaberConnection(new HeldSerialLink(host), clock);
+
+        await clock.RunTestAsync(async () =>
+        {
+            var start = clock.Elapsed;
+            await VirtualTime.ThrowsAsync<DeviceTimeoutException>(connection.RequestAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 0), None));
+
+            Assert.Equal(connection.Options.CommandTimeout, clock.Elapsed - start);
+            await connection.DisposeAsync();
+            await device.DisposeAsync();
+        });
+    }
+
     [Fact]
     public async Task OnBytes_GarbageByteBeforeAReply_DiscardsAndResynchronisesWithEcho()
     {
