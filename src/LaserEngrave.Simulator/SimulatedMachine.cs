@@ -241,14 +241,14 @@ public sealed class SimulatedMachine : IAsyncDisposable
 
     private ISerialLink ServeInProcessStage()
     {
-        var (host, device) = InMemorySerialLink.CreatePair("simulated stage");
+        var (host, device) = InMemorySerialLink.CreatePair("simulated stage", TimeProvider);
         ServeStage(device);
         return host;
     }
 
     private ISerialLink ServeInProcessLaser()
     {
-        var (host, device) = InMemorySerialLink.CreatePair("simulated laser gate");
+        var (host, device) = InMemorySerialLink.CreatePair("simulated laser gate", TimeProvider);
         ServeLaser(device);
         return host;
     }

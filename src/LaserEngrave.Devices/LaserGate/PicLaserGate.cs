@@ -10,40 +10,37 @@ namespace LaserEngrave.Devices.LaserGate;
 /// <summary>The PIC that gates the laser's Q-switch, spoken to in ASCII lines (docs/laser-gate-protocol.md).</summary>
 /// <remarks>
 /// Every command string and the acknowledgement and error prefixes come from the <see cref="LaserGateProfile"/>.
-/// One reader loop frames lines (ended by '\n', '\r' or both); commands go one at a time and each waits for its one
-/// reply line within the profile's timeout on the given <see cref="System.TimeProvider"/>.
+/// Its <see cref="SerialChannel{TMessage}"/> reads the link and frames lines (ended by '\n', '\r' or both) with a
+/// <see cref="LineFramer"/>; commands go one at a time and each waits for its one reply line within the profile's timeout
+/// on the given <see cref="System.TimeProvider"/>.
 /// </remarks>
 public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
 {
     private const int MaxLineLength = 1024;
 
-    private readonly ISerialLink _link;
+    private readonly SerialChannel<string> _channel;
     private readonly TimeProvider _time;
     private readonly Lock _gate = new();
-    private readonly AsyncLock _sendLock = new();
-    private readonly CancellationTokenSource _stop = new();
-    private readonly Task _readLoop;
+    private readonly AsyncLock _sendLock;
     private (string Command, string Expected, TaskCompletionSource<string> Reply)? _pending;
     private bool _resynchronise;
     private bool _closed;
-    private bool _disposing;
-    private Exception? _closeReason;
-    private int _disposed;
 
     public PicLaserGate(ISerialLink link, LaserGateProfile profile, TimeProvider? timeProvider = null)
     {
         ArgumentNullException.ThrowIfNull(link);
         ArgumentNullException.ThrowIfNull(profile);
-        _link = link;
         Profile = profile;
         _time = timeProvider ?? TimeProvider.System;
-        _readLoop = TaskRunner.For(_time).Start(ReadLoopAsync);
+        _channel = new SerialChannel<string>(link, new LineFramer(MaxLineLength), _time, OnLine, Close);
+        _sendLock = _channel.SendLock;
+        _channel.Start();
     }
 
     /// <summary>A line arrived while no command was waiting; raised on the reader loop.</summary>
     public event EventHandler<LaserGateLineEventArgs>? UnexpectedLine;
 
-    public string PortName => _link.Name;
+    public string PortName => _channel.Name;
 
     public LaserGateProfile Profile { get; }
 
@@ -171,12 +168,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
 
         try
         {
-            await _link.WriteAsync(Encoding.ASCII.GetBytes(command + Profile.LineTerminator), cancellationToken);
-        }
-        catch (Exception ex) when (ex is IOException or ObjectDisposedException or InvalidOperationException)
-        {
-            ClearPending(reply);
-            throw new LinkLostException($"laser gate on {PortName}: cannot send '{command}': {ex.Message}", ex);
+            await _channel.WriteAsync(Encoding.ASCII.GetBytes(command + Profile.LineTerminator), $"laser gate on {PortName}: cannot send '{command}'", cancellationToken);
         }
         catch
         {
@@ -187,7 +179,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
         string line;
         try
         {
-            line = await Signals.WaitAsync(reply, Timeout, _time, cancellationToken);
+            line = await Signals.WaitAsync(reply, Timeout, _time, () => _channel.IsReceiving, cancellationToken);
         }
         catch (TimeoutException)
         {
@@ -228,24 +220,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
             || body.StartsWith(expected + " ", StringComparison.OrdinalIgnoreCase);
     }
 
-    public async ValueTask DisposeAsync()
-    {
-        if (Interlocked.Exchange(ref _disposed, 1) != 0)
-        {
-            return;
-        }
-
-        lock (_gate)
-        {
-            _disposing = true;
-        }
-
-        _stop.Cancel();
-        await _link.DisposeAsync();
-        await _readLoop;
-        Close(null);
-        _stop.Dispose();
-    }
+    public ValueTask DisposeAsync() => _channel.DisposeAsync();
 
     /// <summary>Reads "STATE 1000 ON WDOG 1000 [TRIPPED]"; null when the text has another shape.</summary>
     internal static LaserGateState? ParseState(string text)
@@ -315,59 +290,10 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
 
     private LinkLostException LinkLost(string command, bool waiting)
     {
-        var what = _disposing ? "the connection was closed" : "the link was lost";
-        var reason = _closeReason is null ? string.Empty : $" ({_closeReason.Message})";
-        var message = waiting
-            ? $"laser gate on {PortName}: {what} while waiting for the reply to '{command}'{reason}"
-            : $"laser gate on {PortName}: cannot send '{command}': {what}{reason}";
-        return _closeReason is null ? new LinkLostException(message) : new LinkLostException(message, _closeReason);
-    }
-
-    private async Task ReadLoopAsync()
-    {
-        var buffer = new byte[256];
-        var line = new StringBuilder();
-        Exception? failure = null;
-        try
-        {
-            while (true)
-            {
-                var n = await _link.ReadAsync(buffer, _stop.Token);
-                if (n == 0)
-                {
-                    break;
-                }
-
-                for (var i = 0; i < n; i++)
-                {
-                    var c = (char)buffer[i];
-                    if (c is '\n' or '\r')
-                    {
-                        if (line.Length > 0)
-                        {
-                            OnLine(line.ToString());
-                            line.Clear();
-                        }
-                    }
-                    else if (line.Length < MaxLineLength)
-                    {
-                        line.Append(c);
-                    }
-                }
-            }
-        }
-        catch (OperationCanceledException) when (_stop.IsCancellationRequested)
-        {
-            // Disposal.
-        }
-#pragma warning disable CA1031 // Whatever ends the reader loop is handed to the waiting command as the reason the link was lost.
-        catch (Exception ex)
-#pragma warning restore CA1031
-        {
-            failure = ex;
-        }
-
-        Close(failure);
+        var what = _channel.ClosedState;
+        return _channel.LinkLost(waiting
+            ? $"laser gate on {PortName}: {what} while waiting for the reply to '{command}'"
+            : $"laser gate on {PortName}: cannot send '{command}': {what}");
     }
 
     private void OnLine(string line)
@@ -404,7 +330,6 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
             }
 
             _closed = true;
-            _closeReason = reason;
             pending = _pending;
             _pending = null;
             if (pending is { } p)

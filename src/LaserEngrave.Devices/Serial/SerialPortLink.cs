@@ -1,16 +1,28 @@
+using System.Diagnostics;
 using System.IO.Ports;
+using System.Threading.Channels;
 using Microsoft.Win32.SafeHandles;
 
 namespace LaserEngrave.Devices.Serial;
 
 /// <summary>A real serial port (or pty) as an <see cref="ISerialLink"/>, over System.IO.Ports.</summary>
 /// <remarks>
-/// Reads go straight to <see cref="SerialPort.BaseStream"/>, never through DataReceived. On Linux its I/O loop polls the
-/// port every millisecond, so disposing the stream or cancelling the token ends a pending read at once (measured on a
-/// pty: 1 ms, 25 ms the first time while the code is compiled); on Windows closing the handle aborts the pending read. A hang-up or unplug also ends the pending read with
-/// "port is closed" and stops that I/O loop for good, so while the link is open that is reported as an
-/// <see cref="IOException"/> naming the port, and later writes fail at once instead of waiting on a loop that is gone.
-/// That millisecond poll costs about 4 % of one core per port while a read is pending (measured on this machine).
+/// <para>
+/// One thread of its own per port reads <see cref="SerialPort.BaseStream"/> (never through DataReceived) with blocking
+/// reads, stamps each read with the time it returned, and queues it; <see cref="ReadStampedAsync"/> hands that stamp on
+/// as the bytes' arrival. The reader loop that awaits the queue continues on that thread too, so a reply is framed and
+/// handed to its waiter as soon as the operating system returns it, even while the thread pool is busy (compiling,
+/// running a job) or the machine is loaded: on a loaded 2-core machine, reads through the thread pool came hundreds of
+/// milliseconds late and replies timed out (docs/execution.md).
+/// </para>
+/// <para>
+/// On Linux the stream's I/O loop polls the port every millisecond, so disposing the stream ends a pending read at once
+/// (measured on a pty: 1 ms, 25 ms the first time while the code is compiled); on Windows closing the handle aborts the
+/// pending read. A hang-up or unplug also ends the pending read with "port is closed" and stops that I/O loop for good, so
+/// while the link is open that is reported as an <see cref="IOException"/> naming the port, and later writes fail at once
+/// instead of waiting on a loop that is gone. That millisecond poll costs about 4 % of one core per port while a read is
+/// pending (measured on this machine).
+/// </para>
 /// </remarks>
 public sealed class SerialPortLink : ISerialLink
 {
@@ -19,6 +31,12 @@ public sealed class SerialPortLink : ISerialLink
     private readonly SerialPort _port;
     private readonly Stream _stream;
     private readonly SafeFileHandle? _lock;
+    private readonly Lock _readerStart = new();
+    private readonly Channel<Received> _received = Channel.CreateUnbounded<Received>(
+        new UnboundedChannelOptions { SingleReader = true, AllowSynchronousContinuations = true });
+    private Thread? _reader;
+    private Received _pending = new([], 0);
+    private int _pendingOffset;
     private int _disposed;
     private volatile IOException? _failure;
 
@@ -33,6 +51,26 @@ public sealed class SerialPortLink : ISerialLink
     public SerialPortSettings Settings { get; }
 
     public string Name => Settings.PortName;
+
+    public bool HasUnreadBytes
+    {
+        get
+        {
+            if (_received.Reader.TryPeek(out _) || Volatile.Read(ref _pendingOffset) < _pending.Data.Length)
+            {
+                return true;
+            }
+
+            try
+            {
+                return !IsDisposed && _failure is null && _port.BytesToRead > 0;
+            }
+            catch (Exception ex) when (ex is IOException or InvalidOperationException or ObjectDisposedException)
+            {
+                return false;
+            }
+        }
+    }
 
     /// <summary>Opens and configures the port; throws a <see cref="SerialPortException"/> naming the port when it cannot.</summary>
     public static SerialPortLink Open(SerialPortSettings settings)
@@ -63,30 +101,61 @@ public sealed class SerialPortLink : ISerialLink
     /// <summary>Opens the port at 9600 8N1 without handshake.</summary>
     public static SerialPortLink Open(string portName, int baudRate = 9600) => Open(new SerialPortSettings(portName) { BaudRate = baudRate });
 
-    public async ValueTask<int> ReadAsync(Memory<byte> buffer, CancellationToken cancellationToken)
+    public async ValueTask<int> ReadAsync(Memory<byte> buffer, CancellationToken cancellationToken) =>
+        (await ReadStampedAsync(buffer, TimeProvider.System, cancellationToken)).Count;
+
+    public async ValueTask<StampedRead> ReadStampedAsync(Memory<byte> buffer, TimeProvider time, CancellationToken cancellationToken)
     {
-        if (_failure is { } failure)
+        ArgumentNullException.ThrowIfNull(time);
+        while (_pendingOffset >= _pending.Data.Length)
         {
-            throw new IOException(failure.Message, failure);
+            if (_failure is { } failure)
+            {
+                throw new IOException(failure.Message, failure);
+            }
+
+            if (IsDisposed)
+            {
+                return new StampedRead(0, time.GetTimestamp());
+            }
+
+            StartReader();
+            bool more;
+            try
+            {
+                more = await _received.Reader.WaitToReadAsync(cancellationToken);
+            }
+            catch (OperationCanceledException) when (IsDisposed)
+            {
+                more = false;
+            }
+            catch (IOException)
+            {
+                // The reader thread lost the port; _failure says how.
+                more = false;
+            }
+
+            if (!more)
+            {
+                if (_failure is { } lost)
+                {
+                    throw new IOException(lost.Message, lost);
+                }
+
+                return new StampedRead(0, time.GetTimestamp());
+            }
+
+            if (_received.Reader.TryRead(out var received))
+            {
+                _pending = received;
+                _pendingOffset = 0;
+            }
         }
 
-        if (IsDisposed)
-        {
-            return 0;
-        }
-
-        try
-        {
-            return await _stream.ReadAsync(buffer, cancellationToken);
-        }
-        catch (Exception ex) when (IsDisposed && ex is ObjectDisposedException or IOException or OperationCanceledException)
-        {
-            return 0;
-        }
-        catch (Exception ex) when (ex is ObjectDisposedException or IOException)
-        {
-            throw Lost(ex);
-        }
+        var n = Math.Min(buffer.Length, _pending.Data.Length - _pendingOffset);
+        _pending.Data.AsMemory(_pendingOffset, n).CopyTo(buffer);
+        _pendingOffset += n;
+        return new StampedRead(n, StampedRead.OnClock(_pending.Stamp, TimeProvider.System, time));
     }
 
     public async ValueTask WriteAsync(ReadOnlyMemory<byte> data, CancellationToken cancellationToken)
@@ -130,12 +199,61 @@ public sealed class SerialPortLink : ISerialLink
         // The stream first: SerialPort.Dispose flushes before closing, and that flush never returns once the device has
         // hung up with a write still queued. With the stream closed the port skips the flush.
         _stream.Dispose();
+        _received.Writer.TryComplete();
         _port.Dispose();
         _lock?.Dispose();
         return ValueTask.CompletedTask;
     }
 
     private bool IsDisposed => Volatile.Read(ref _disposed) != 0;
+
+    private void StartReader()
+    {
+        lock (_readerStart)
+        {
+            if (_reader is not null)
+            {
+                return;
+            }
+
+            // Above normal where the system allows it (Windows); on Linux the thread of its own is what counts.
+            _reader = new Thread(ReadLoop) { IsBackground = true, Name = $"serial reader {Name}", Priority = ThreadPriority.AboveNormal };
+            _reader.Start();
+        }
+    }
+
+    // Blocking reads on the port's own thread: each read is stamped when it returned, before anything else can delay it.
+    private void ReadLoop()
+    {
+        var buffer = new byte[512];
+        while (true)
+        {
+            int n;
+            try
+            {
+                n = _stream.Read(buffer, 0, buffer.Length);
+            }
+            catch (Exception ex) when (IsDisposed && ex is ObjectDisposedException or IOException or OperationCanceledException or InvalidOperationException)
+            {
+                _received.Writer.TryComplete();
+                return;
+            }
+            catch (Exception ex) when (ex is ObjectDisposedException or IOException or InvalidOperationException or OperationCanceledException)
+            {
+                _received.Writer.TryComplete(Lost(ex));
+                return;
+            }
+
+            if (n == 0)
+            {
+                _received.Writer.TryComplete();
+                return;
+            }
+
+            var stamp = Stopwatch.GetTimestamp();
+            _received.Writer.TryWrite(new Received(buffer.AsSpan(0, n).ToArray(), stamp));
+        }
+    }
 
     private IOException Closed(Exception? inner) => new($"{Name}: the port is closed", inner);
 
@@ -204,6 +322,8 @@ public sealed class SerialPortLink : ISerialLink
             // A pty has no modem lines.
         }
     }
+
+    private sealed record Received(byte[] Data, long Stamp);
 
     private static Parity ToParity(SerialParity parity) => parity switch
     {

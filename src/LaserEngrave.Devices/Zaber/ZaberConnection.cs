@@ -8,7 +8,8 @@ namespace LaserEngrave.Devices.Zaber;
 
 /// <summary>The one owner of a Zaber chain's serial link: frames replies and hands each to the request waiting for it.</summary>
 /// <remarks>
-/// One reader loop assembles 6-byte frames (dropping an unfinished frame older than the partial-frame timeout) and
+/// Its <see cref="SerialChannel{TMessage}"/> reads the link and assembles 6-byte frames with a <see cref="ZaberFramer"/>
+/// (dropping an unfinished frame whose bytes arrived further apart than the partial-frame timeout); the connection
 /// matches each reply to a pending request by device and command; both axes share the wire, so a reply for one
 /// reaches its own waiter while the other is still moving. Reply-only frames (8, 9, 10) come out as
 /// <see cref="UnsolicitedReply"/>. Every wait runs on the given <see cref="System.TimeProvider"/>. After garbage or a
@@ -25,39 +26,33 @@ public sealed class ZaberConnection : IAsyncDisposable
     private static readonly HashSet<ZaberCommand> PreemptiveMoves =
         [(ZaberCommand)18, ZaberCommand.MoveAbsolute, ZaberCommand.MoveRelative, ZaberCommand.MoveAtConstantSpeed, ZaberCommand.Stop];
 
-    private readonly ISerialLink _link;
+    private readonly SerialChannel<ZaberFrame> _channel;
+    private readonly ZaberFramer _framer;
     private readonly TimeProvider _time;
     private readonly Lock _gate = new();
-    private readonly AsyncLock _sendLock = new();
+    private readonly AsyncLock _sendLock;
     private readonly CancellationTokenSource _stop = new();
     private readonly List<PendingRequest> _pending = [];
     private readonly List<PendingBroadcast> _broadcasts = [];
     private readonly Dictionary<byte, string> _labels = [];
     private readonly HashSet<byte> _knownDevices = [];
     private readonly HashSet<(byte Device, byte Command)> _expectedReplies = [];
-    private readonly byte[] _partial = new byte[ZaberFrame.Length];
-    private readonly Task _readLoop;
-    private int _partialCount;
-    private long _lastByteTimestamp;
-    private bool _anyByte;
-    private bool _discarding;
     private long _sequence;
     private int _echoNonce = FirstEchoNonce;
-    private long _bytesReceived;
     private bool _resyncRunning;
     private Task _resync = Task.CompletedTask;
     private bool _closed;
-    private bool _disposing;
-    private Exception? _closeReason;
     private int _disposed;
 
     public ZaberConnection(ISerialLink link, TimeProvider? timeProvider = null, ZaberConnectionOptions? options = null)
     {
         ArgumentNullException.ThrowIfNull(link);
-        _link = link;
         _time = timeProvider ?? TimeProvider.System;
         Options = options ?? new ZaberConnectionOptions();
-        _readLoop = TaskRunner.For(_time).Start(ReadLoopAsync);
+        _framer = new ZaberFramer(Options.PartialFrameTimeout, _time, OnPartialFrameDropped);
+        _channel = new SerialChannel<ZaberFrame>(link, _framer, _time, OnFrame, Close);
+        _sendLock = _channel.SendLock;
+        _channel.Start();
     }
 
     /// <summary>Reply-only frames (Move Tracking, Limit Active, Manual Move Tracking) and errors no request is waiting for.</summary>
@@ -67,7 +62,7 @@ public sealed class ZaberConnection : IAsyncDisposable
     /// <summary>Noise, stale replies and resynchronisation, for logs and diagnostics.</summary>
     public event EventHandler<ZaberLineEventArgs>? LineEvent;
 
-    public string PortName => _link.Name;
+    public string PortName => _channel.Name;
 
     public ZaberConnectionOptions Options { get; }
 
@@ -86,7 +81,7 @@ public sealed class ZaberConnection : IAsyncDisposable
     }
 
     /// <summary>Bytes taken from the link so far (tests use it to know the reader has seen what was sent).</summary>
-    internal long BytesReceived => Interlocked.Read(ref _bytesReceived);
+    internal long BytesReceived => _channel.BytesReceived;
 
     /// <summary>Names a device in messages ("device 1 (X)") and marks it as one that may reply.</summary>
     public void SetDeviceLabel(byte device, string? label)
@@ -243,15 +238,8 @@ public sealed class ZaberConnection : IAsyncDisposable
             return;
         }
 
-        lock (_gate)
-        {
-            _disposing = true;
-        }
-
         _stop.Cancel();
-        await _link.DisposeAsync();
-        await _readLoop;
-        Close(null);
+        await _channel.DisposeAsync();
         try
         {
             await _resync;
@@ -333,7 +321,7 @@ public sealed class ZaberConnection : IAsyncDisposable
 
             try
             {
-                return await Signals.WaitAsync(pending.Completion, timeout, _time, cancellationToken);
+                return await Signals.WaitAsync(pending.Completion, timeout, _time, () => _channel.IsReceiving, cancellationToken);
             }
             catch (TimeoutException)
             {
@@ -377,18 +365,8 @@ public sealed class ZaberConnection : IAsyncDisposable
         _ => null,
     };
 
-    private async Task WriteFrameAsync(ZaberFrame frame, CancellationToken cancellationToken)
-    {
-        try
-        {
-            await _link.WriteAsync(frame.ToBytes(), cancellationToken);
-        }
-        catch (Exception ex) when (ex is IOException or ObjectDisposedException or InvalidOperationException)
-        {
-            throw new LinkLostException(
-                $"{PortName}: cannot send {ZaberCommandText.Describe(frame)} to {DescribeTarget(frame.Device)}: {ex.Message}", ex);
-        }
-    }
+    private Task WriteFrameAsync(ZaberFrame frame, CancellationToken cancellationToken) =>
+        _channel.WriteAsync(frame.ToBytes(), $"{PortName}: cannot send {ZaberCommandText.Describe(frame)} to {DescribeTarget(frame.Device)}", cancellationToken);
 
     private string DescribeTarget(byte device) => device == 0 ? "every device" : DescribeDevice(device);
 
@@ -435,43 +413,10 @@ public sealed class ZaberConnection : IAsyncDisposable
 
     private LinkLostException LinkLost(ZaberFrame frame, bool replyExpected)
     {
-        var what = _disposing ? "the connection was closed" : "the link was lost";
-        var reason = _closeReason is null ? string.Empty : $" ({_closeReason.Message})";
-        var message = replyExpected
-            ? $"{PortName}: {what} while waiting for {DescribeTarget(frame.Device)} to reply to {ZaberCommandText.Describe(frame)}{reason}"
-            : $"{PortName}: cannot send {ZaberCommandText.Describe(frame)} to {DescribeTarget(frame.Device)}: {what}{reason}";
-        return _closeReason is null ? new LinkLostException(message) : new LinkLostException(message, _closeReason);
-    }
-
-    private async Task ReadLoopAsync()
-    {
-        var buffer = new byte[512];
-        Exception? failure = null;
-        try
-        {
-            while (true)
-            {
-                var n = await _link.ReadAsync(buffer, _stop.Token);
-                if (n == 0)
-                {
-                    break;
-                }
-
-                OnBytes(buffer, n);
-            }
-        }
-        catch (OperationCanceledException) when (_stop.IsCancellationRequested)
-        {
-            // Disposal.
-        }
-#pragma warning disable CA1031 // Whatever ends the reader loop is handed to every waiter as the reason the link was lost.
-        catch (Exception ex)
-#pragma warning restore CA1031
-        {
-            failure = ex;
-        }
-
-        Close(failure);
+        var what = _channel.ClosedState;
+        return _channel.LinkLost(replyExpected
+            ? $"{PortName}: {what} while waiting for {DescribeTarget(frame.Device)} to reply to {ZaberCommandText.Describe(frame)}"
+            : $"{PortName}: cannot send {ZaberCommandText.Describe(frame)} to {DescribeTarget(frame.Device)}: {what}");
     }
 
     private void Close(Exception? reason)
@@ -485,7 +430,6 @@ public sealed class ZaberConnection : IAsyncDisposable
             }
 
             _closed = true;
-            _closeReason = reason;
             foreach (var pending in _pending)
             {
                 failed.Add((pending, LinkLost(pending.Request, replyExpected: true)));
@@ -504,41 +448,12 @@ public sealed class ZaberConnection : IAsyncDisposable
         }
     }
 
-    private void OnBytes(byte[] buffer, int count)
+    private void OnFrame(ZaberFrame frame)
     {
         List<Action>? after = null;
         lock (_gate)
         {
-            _bytesReceived += count;
-            var now = _time.GetTimestamp();
-            if (_anyByte && (_partialCount > 0 || _discarding) && _time.GetElapsedTime(_lastByteTimestamp, now) > Options.PartialFrameTimeout)
-            {
-                if (_partialCount > 0 && !_discarding)
-                {
-                    var dropped = Convert.ToHexString(_partial, 0, _partialCount);
-                    Note(ref after, ZaberLineEvent.PartialFrameDropped, $"{PortName}: dropped {_partialCount} byte(s) of an unfinished frame ({dropped}) after a gap");
-                }
-
-                _partialCount = 0;
-                _discarding = false;
-            }
-
-            _anyByte = true;
-            _lastByteTimestamp = now;
-            for (var i = 0; i < count; i++)
-            {
-                if (_discarding)
-                {
-                    continue;
-                }
-
-                _partial[_partialCount++] = buffer[i];
-                if (_partialCount == ZaberFrame.Length)
-                {
-                    _partialCount = 0;
-                    Dispatch(ZaberFrame.Decode(_partial), ref after);
-                }
-            }
+            Dispatch(frame, ref after);
         }
 
         foreach (var action in after ?? [])
@@ -546,6 +461,9 @@ public sealed class ZaberConnection : IAsyncDisposable
             action();
         }
     }
+
+    private void OnPartialFrameDropped(byte[] dropped) => LineEvent?.Invoke(this, new ZaberLineEventArgs(
+        ZaberLineEvent.PartialFrameDropped, $"{PortName}: dropped {dropped.Length} byte(s) of an unfinished frame ({Convert.ToHexString(dropped)}) after a gap"));
 
     private void Dispatch(ZaberFrame frame, ref List<Action>? after)
     {
@@ -697,7 +615,7 @@ public sealed class ZaberConnection : IAsyncDisposable
 
     private void Garbage(ZaberFrame frame, ref List<Action>? after)
     {
-        _discarding = true;
+        _framer.DiscardUntilQuiet();
         Note(ref after, ZaberLineEvent.GarbageDropped,
             $"{PortName}: received {Convert.ToHexString(frame.ToBytes())}, which is not a reply from this chain; discarding until the line is quiet");
         var device = _pending.Find(p => !p.Interrupted)?.Request.Device ?? (_knownDevices.Count > 0 ? _knownDevices.Min() : (byte)0);
@@ -749,14 +667,9 @@ public sealed class ZaberConnection : IAsyncDisposable
         for (var attempt = 0; attempt < 100; attempt++)
         {
             await Task.Delay(Options.PartialFrameTimeout, _time, cancellationToken);
-            lock (_gate)
+            if (_framer.ResetIfQuiet())
             {
-                if (!_anyByte || _time.GetElapsedTime(_lastByteTimestamp) >= Options.PartialFrameTimeout)
-                {
-                    _partialCount = 0;
-                    _discarding = false;
-                    break;
-                }
+                break;
             }
         }
 

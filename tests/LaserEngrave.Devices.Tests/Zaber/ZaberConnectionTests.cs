@@ -1,6 +1,8 @@
 using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Devices.Serial;
 using LaserEngrave.Devices.Tests.Fakes;
 using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Simulator.Timing;
 using Microsoft.Extensions.Time.Testing;
 
 namespace LaserEngrave.Devices.Tests.Zaber;
@@ -226,6 +228,100 @@ public class ZaberConnectionTests
             Assert.Equal(321, (await request).Data);
             await rig.Time.SettleAsync();
             Assert.False(rig.Saw(ZaberLineEvent.PartialFrameDropped));
+        });
+    }
+
+    [Theory]
+    [InlineData(4, false)]
+    [InlineData(12, true)]
+    public async Task OnBytes_FrameInTwoPiecesReadLate_JudgedOnTheGapBetweenTheirArrivals(int gapMs, bool dropped)
+    {
+        // Piece one is read as it arrives; piece two arrives gapMs later but the host only reads it at 15 ms (a busy
+        // machine). Stamped when read, a 4 ms gap would look like 15 ms and the frame would be dropped.
+        using var clock = new VirtualTimeProvider();
+        var (host, device) = InMemorySerialLink.CreatePair(ZaberRig.Port, clock);
+        var connection = new ZaberConnection(host, clock);
+        var events = new List<ZaberLineEvent>();
+        connection.LineEvent += (_, e) => events.Add(e.Kind);
+
+        await clock.RunTestAsync(async () =>
+        {
+            var request = connection.RequestAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 0), None);
+            var bytes = new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 321).ToBytes();
+            var start = clock.GetTimestamp();
+
+            await device.WriteArrivedAsync(bytes[..3], start);
+            await Task.Delay(TimeSpan.FromMilliseconds(15), clock);
+            Assert.Equal(3, connection.BytesReceived);
+            await device.WriteArrivedAsync(bytes[3..], start + TimeSpan.FromMilliseconds(gapMs).Ticks);
+            await clock.SettleAsync();
+
+            Assert.Equal(6, connection.BytesReceived);
+            Assert.Equal(dropped, events.Contains(ZaberLineEvent.PartialFrameDropped));
+            Assert.Equal(!dropped, request.IsCompletedSuccessfully);
+            if (dropped)
+            {
+                // Piece two is now an unfinished frame of its own: the answer comes after it too has gone stale.
+                await Task.Delay(TimeSpan.FromMilliseconds(11), clock);
+                await device.WriteAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 654).ToBytes(), None);
+            }
+
+            Assert.Equal(dropped ? 654 : 321, (await request).Data);
+            await connection.DisposeAsync();
+            await device.DisposeAsync();
+        });
+    }
+
+    [Theory]
+    [InlineData(20, true)]
+    [InlineData(600, false)]
+    public async Task RequestAsync_ReplyArrivedInTimeButReadLate_AnswersUntilTwiceTheTimeout(int readLateMs, bool answered)
+    {
+        // The reply arrives at 100 ms; the host gets to it 500 + readLateMs ms in. Bytes already here when the time is up may
+        // be the reply, so the wait looks again while they are read, for at most one more timeout.
+        using var clock = new VirtualTimeProvider();
+        var (host, device) = InMemorySerialLink.CreatePair(ZaberRig.Port, clock);
+        var held = new HeldSerialLink(host);
+        var connection = new ZaberConnection(held, clock);
+
+        await clock.RunTestAsync(async () =>
+        {
+            var request = connection.RequestAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 0), None);
+            await Task.Delay(TimeSpan.FromMilliseconds(100), clock);
+            await device.WriteAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 321).ToBytes(), None);
+            await Task.Delay(connection.Options.CommandTimeout - TimeSpan.FromMilliseconds(100) + TimeSpan.FromMilliseconds(readLateMs), clock);
+            held.Release();
+
+            if (answered)
+            {
+                Assert.Equal(321, (await request).Data);
+            }
+            else
+            {
+                var error = await VirtualTime.ThrowsAsync<DeviceTimeoutException>(request);
+                Assert.Contains("within 500 ms", error.Message, StringComparison.Ordinal);
+            }
+
+            await connection.DisposeAsync();
+            await device.DisposeAsync();
+        });
+    }
+
+    [Fact]
+    public async Task RequestAsync_NothingArrived_TimesOutAtTheTimeoutItself()
+    {
+        using var clock = new VirtualTimeProvider();
+        var (host, device) = InMemorySerialLink.CreatePair(ZaberRig.Port, clock);
+        var connection = new ZaberConnection(new HeldSerialLink(host), clock);
+
+        await clock.RunTestAsync(async () =>
+        {
+            var start = clock.Elapsed;
+            await VirtualTime.ThrowsAsync<DeviceTimeoutException>(connection.RequestAsync(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 0), None));
+
+            Assert.Equal(connection.Options.CommandTimeout, clock.Elapsed - start);
+            await connection.DisposeAsync();
+            await device.DisposeAsync();
         });
     }
 

@@ -1,0 +1,22 @@
+namespace LaserEngrave.Devices.Serial;
+
+/// <summary>What one read of a link returned: how many bytes, and when they arrived.</summary>
+/// <param name="Count">Bytes read; 0 when the link is closed.</param>
+/// <param name="ArrivalTimestamp">When they arrived, as a timestamp of the clock the reader asked for.</param>
+public readonly record struct StampedRead(int Count, long ArrivalTimestamp)
+{
+    /// <summary>Carries a stamp taken on <paramref name="stampClock"/> over to <paramref name="time"/> by its age.</summary>
+    /// <remarks>The same clock keeps the stamp as it is; another one (a real port read by a test's fake clock) gets "now minus the age".</remarks>
+    public static long OnClock(long stamp, TimeProvider stampClock, TimeProvider time)
+    {
+        ArgumentNullException.ThrowIfNull(stampClock);
+        ArgumentNullException.ThrowIfNull(time);
+        if (ReferenceEquals(stampClock, time))
+        {
+            return stamp;
+        }
+
+        var age = stampClock.GetElapsedTime(stamp);
+        return time.GetTimestamp() - (long)(age.TotalSeconds * time.TimestampFrequency);
+    }
+}

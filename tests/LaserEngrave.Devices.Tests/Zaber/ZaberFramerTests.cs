@@ -1,0 +1,70 @@
+using LaserEngrave.Devices.Zaber;
+using Microsoft.Extensions.Time.Testing;
+
+namespace LaserEngrave.Devices.Tests.Zaber;
+
+/// <summary>Zaber framing on arrival times: the 10 ms inter-byte rule judges when bytes arrived, not when they were read.</summary>
+public class ZaberFramerTests
+{
+    private static readonly TimeSpan PartialFrameTimeout = TimeSpan.FromMilliseconds(10);
+
+    private readonly FakeTimeProvider _time = new();
+
+    [Fact]
+    public void Push_TwoPiecesArrived4MsApartReadTogether15MsLate_GivesTheFrame()
+    {
+        var dropped = new List<byte[]>();
+        var framer = new ZaberFramer(PartialFrameTimeout, _time, dropped.Add);
+        var frames = new List<ZaberFrame>();
+        var bytes = new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 321).ToBytes();
+        var start = _time.GetTimestamp();
+        _time.Advance(TimeSpan.FromMilliseconds(15));
+
+        framer.Push(bytes.AsSpan(0, 3), start, frames.Add);
+        framer.Push(bytes.AsSpan(3), start + Ms(4), frames.Add);
+
+        Assert.Equal([new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 321)], frames);
+        Assert.Empty(dropped);
+    }
+
+    [Fact]
+    public void Push_TwoPiecesArrived12MsApart_DropsTheUnfinishedFrame()
+    {
+        var dropped = new List<byte[]>();
+        var framer = new ZaberFramer(PartialFrameTimeout, _time, dropped.Add);
+        var frames = new List<ZaberFrame>();
+        var bytes = new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 321).ToBytes();
+        var start = _time.GetTimestamp();
+
+        framer.Push(bytes.AsSpan(0, 3), start, frames.Add);
+        framer.Push(bytes.AsSpan(3), start + Ms(12), frames.Add);
+        framer.Push(bytes, start + Ms(30), frames.Add);
+
+        Assert.Equal([new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 321)], frames);
+        Assert.Equal([bytes[..3], bytes[3..]], dropped);
+    }
+
+    [Fact]
+    public void Push_GarbageFrameDelivered_DiscardsTheRestOfTheBurstUntilTheLineIsQuiet()
+    {
+        var framer = new ZaberFramer(PartialFrameTimeout, _time);
+        var frames = new List<ZaberFrame>();
+        var burst = new ZaberFrame(9, ZaberCommand.ReturnCurrentPosition, 1).ToBytes().Concat(new ZaberFrame(1, ZaberCommand.Home, 0).ToBytes()).ToArray();
+        var start = _time.GetTimestamp();
+
+        framer.Push(burst, start, frame =>
+        {
+            frames.Add(frame);
+            framer.DiscardUntilQuiet();
+        });
+        framer.Push(new byte[] { 1, 2 }, start + Ms(5), frames.Add);
+        Assert.False(framer.ResetIfQuiet());
+        _time.Advance(TimeSpan.FromMilliseconds(15));
+        Assert.True(framer.ResetIfQuiet());
+        framer.Push(new ZaberFrame(1, ZaberCommand.Home, 7).ToBytes(), _time.GetTimestamp(), frames.Add);
+
+        Assert.Equal([new ZaberFrame(9, ZaberCommand.ReturnCurrentPosition, 1), new ZaberFrame(1, ZaberCommand.Home, 7)], frames);
+    }
+
+    private long Ms(int milliseconds) => (long)(milliseconds / 1000.0 * _time.TimestampFrequency);
+}
