@@ -80,9 +80,12 @@ public sealed class TimedSwitching
         RunUpMicrosteps = (long)Math.Ceiling((BurnSpeed * BurnSpeed / (2 * Acceleration)) + (BurnSpeed * (FirstEdgeSeconds - ramp)));
         RunOutMicrosteps = (long)Math.Ceiling(BurnSpeed * BurnSpeed / (2 * Acceleration));
 
-        // The gate answers one command at a time: a switch waits for the reply to the one before.
-        MinOnSeconds = OnRoundTripSeconds - OnLeadSeconds + OffLeadSeconds + (2 * GateJitterSeconds) + ReactionSeconds;
-        MinOffSeconds = OffRoundTripSeconds - OffLeadSeconds + OnLeadSeconds + (2 * GateJitterSeconds) + ReactionSeconds;
+        // Switchings are sent without waiting for the acknowledgement before them, but one line must have left the wire
+        // before the next may: a switch-off can follow a switch-on no sooner than its own bytes take, and the other way round.
+        OffWireSeconds = OffCommand.Length * gateByte;
+        OnWireSeconds = OnCommand.Length * gateByte;
+        MinOnSeconds = (2 * EdgeGuardSeconds) + OffWireSeconds + (2 * GateJitterSeconds) + ReactionSeconds;
+        MinOffSeconds = OnWireSeconds + (2 * GateJitterSeconds) + ReactionSeconds - (2 * EdgeGuardSeconds);
     }
 
     public double MicrostepUm { get; }
@@ -173,11 +176,37 @@ public sealed class TimedSwitching
     /// <summary>Run-out after a stroke's last edge: the braking distance.</summary>
     public long RunOutMicrosteps { get; }
 
-    /// <summary>Shortest time the laser can be on: the switch-on's reply must be in before the switch-off is sent.</summary>
+    /// <summary>The switch-off line on the wire.</summary>
+    public double OffWireSeconds { get; }
+
+    /// <summary>The switch-on line on the wire.</summary>
+    public double OnWireSeconds { get; }
+
+    /// <summary>Shortest burn run the gate can switch exactly, as time at the burn speed (the guards at both edges and the switch-off's bytes).</summary>
     public double MinOnSeconds { get; }
 
-    /// <summary>Shortest time the laser can be off between two burn runs of one stroke.</summary>
+    /// <summary>Shortest gap between two runs of one stroke the gate can switch exactly, as time at the burn speed.</summary>
     public double MinOffSeconds { get; }
+
+    /// <summary>
+    /// Null when one pixel at the burn speed lasts long enough for the gate to switch it exactly, otherwise the reason in
+    /// one line (which says how slow the burn must be).
+    /// </summary>
+    public string? PixelTooShort(long pixelMicrosteps)
+    {
+        var seconds = pixelMicrosteps / BurnSpeed;
+        var needed = Math.Max(MinOnSeconds, MinOffSeconds);
+        if (seconds >= needed)
+        {
+            return null;
+        }
+
+        var pixelUm = pixelMicrosteps * MicrostepUm;
+        var slowest = pixelUm / 1000 / needed;
+        return string.Create(
+            CultureInfo.InvariantCulture,
+            $"a pixel of {pixelUm:0.##} µm lasts {seconds * 1000:0.#} ms at the burn speed, shorter than the {needed * 1000:0.#} ms the laser gate needs to switch it exactly: burn at {slowest:0.###} mm/s or slower, or use a coarser pitch");
+    }
 
     /// <summary>The built-in model for a process on a profile at the geometry's microstep.</summary>
     public static TimedSwitching For(ProcessSettings process, MachineProfile profile, double microstepUm) => new(process, profile, microstepUm);

@@ -19,7 +19,6 @@ public sealed partial class RunExecutor
     private readonly List<(Task Reply, double Deadline, string What)> _watched = [];
     private string? _timedFault;
     private double _lastGateWrite;
-    private Task _lastOff = Task.CompletedTask;
 
     private double RunSeconds => TimeProvider.GetElapsedTime(_engravingStart).TotalSeconds;
 
@@ -56,7 +55,6 @@ public sealed partial class RunExecutor
             if (IsPauseRequested)
             {
                 // Pauses come between segments, with the laser off and the stage at rest.
-                await LastOffAcknowledgedAsync();
                 await WatchedRepliesAsync(token);
                 await PauseIfAskedAsync(token);
                 timeline = new MotionTimeline(timing, RunSeconds, _xSpeedData);
@@ -72,7 +70,6 @@ public sealed partial class RunExecutor
             }
         }
 
-        await LastOffAcknowledgedAsync();
         await WatchedRepliesAsync(token);
         lock (_lock)
         {
@@ -168,7 +165,6 @@ public sealed partial class RunExecutor
         }
 
         await DelayUntilAsync(times.Arrival - timing.StageCommandSeconds, token);
-        await LastOffAcknowledgedAsync();
         ThrowIfAborted();
         var start = segment.StartX;
         var earlier = _watched.ToList();
@@ -188,8 +184,9 @@ public sealed partial class RunExecutor
 
             CompleteUpTo(segment, burnIndex - 1);
             await DelayUntilAsync(onWrite, token);
-            await SwitchLaserAsync(on: true);
+            var on = await SendSwitchAsync(on: true);
             _lastGateWrite = onWrite;
+            WatchGate(on, onWrite + timing.OnRoundTripSeconds, "the laser gate did not acknowledge the switch-on");
             lock (_lock)
             {
                 _currentMove = burn;
@@ -199,23 +196,10 @@ public sealed partial class RunExecutor
             }
 
             await KeepAlivesUntilAsync(offWrite, timing, token);
-            if (RunSeconds > offWrite + timing.GateJitterSeconds)
-            {
-                throw new DeviceException($"the laser gate acknowledged the switch-on {(RunSeconds - offWrite) * 1000:0.0} ms too late to switch off on time");
-            }
-
             await DelayUntilAsync(offWrite, token);
+            var off = await SendSwitchAsync(on: false);
             _lastGateWrite = offWrite;
-            if (index < burns.Count)
-            {
-                await SwitchLaserAsync(on: false);
-            }
-            else
-            {
-                // The stroke's last switch-off: the next segment's speed change may go while it is acknowledged, its move not.
-                _lastOff = SwitchLaserAsync(on: false);
-            }
-
+            WatchGate(off, offWrite + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off");
             CompleteUpTo(segment, burnIndex);
         }
 
@@ -229,10 +213,10 @@ public sealed partial class RunExecutor
         var sends = new List<(double Write, Func<Task> Send)>();
         if (times.YArrival is { } yArrival)
         {
-            sends.Add((yArrival - timing.StageCommandSeconds, async () =>
+            sends.Add((yArrival - timing.StageCommandSeconds, () =>
             {
-                await LastOffAcknowledgedAsync();
                 Watch(Arrive(Stage.Y.MoveAbsoluteAfterAsync(move.Y1, token), "Y", move.Y1, y => _y = y), times.YEnd + timing.StageReplySeconds, "the end of a travel (Y)");
+                return Task.CompletedTask;
             }));
         }
 
@@ -248,10 +232,10 @@ public sealed partial class RunExecutor
 
         if (times.XArrival is { } xArrival)
         {
-            sends.Add((xArrival - timing.StageCommandSeconds, async () =>
+            sends.Add((xArrival - timing.StageCommandSeconds, () =>
             {
-                await LastOffAcknowledgedAsync();
                 Watch(Arrive(Stage.X.MoveAbsoluteAfterAsync(move.X1, token), "X", move.X1, x => _x = x), times.XEnd + timing.StageReplySeconds, "the end of a travel (X)");
+                return Task.CompletedTask;
             }));
         }
 
@@ -346,17 +330,44 @@ public sealed partial class RunExecutor
 
             await DelayUntilAsync(next, token);
             _lastGateWrite = RunSeconds;
-            await Gate.KeepAliveAsync(CancellationToken.None);
+            WatchGate(Gate.KeepAliveAsync(CancellationToken.None), _lastGateWrite + timing.KeepAliveRoundTripSeconds, "the laser gate did not answer the keepalive");
         }
     }
 
-    /// <summary>No move is sent before the last switch-off is acknowledged.</summary>
-    private async Task LastOffAcknowledgedAsync()
+    /// <summary>
+    /// Sends a timed switching under the laser lock (a switch-on checks for an abort first) and returns its acknowledgement
+    /// without waiting for it: the lock is free again at once, so an abort's or a fault's switch-off never waits behind it.
+    /// </summary>
+    private async Task<Task> SendSwitchAsync(bool on)
     {
-        var off = _lastOff;
-        _lastOff = Task.CompletedTask;
-        await off;
+        await _laserLock.WaitAsync();
+        try
+        {
+            if (!on)
+            {
+                var off = Gate.OffAsync(CancellationToken.None);
+                MarkLaserOff();
+                return off;
+            }
+
+            ThrowIfAborted();
+            var ack = Gate.SetFrequencyAsync(_process.LaserFrequencyWholeHz, CancellationToken.None);
+            lock (_lock)
+            {
+                _laserOn = true;
+                _laserOnSince = TimeProvider.GetTimestamp();
+            }
+
+            return ack;
+        }
+        finally
+        {
+            _laserLock.Release();
+        }
     }
+
+    private void WatchGate(Task reply, double expectedSeconds, string what) =>
+        Watch(reply, expectedSeconds + ((Job.Plan.Timing?.GateJitterSeconds ?? 0) * 2) - ((Job.Plan.Timing?.StageJitterSeconds ?? 0) * 2), what, gate: true);
 
     private async Task DelayUntilAsync(double seconds, CancellationToken token)
     {
@@ -378,7 +389,7 @@ public sealed partial class RunExecutor
     }
 
     /// <summary>Watches a reply: late past its expected arrival (plus the stall margin), failed or wrong, it ends the run, laser off first.</summary>
-    private void Watch(Task reply, double expectedSeconds, string what)
+    private void Watch(Task reply, double expectedSeconds, string what, bool gate = false)
     {
         var deadline = expectedSeconds + ((Job.Plan.Timing?.StageJitterSeconds ?? 0) * 2) + (Options.StallMarginMs / 1000);
         _watched.Add((reply, deadline, what));
@@ -397,7 +408,9 @@ public sealed partial class RunExecutor
 
                 if (!reply.IsCompleted)
                 {
-                    _ = Fault($"the stage did not report {what} within {Options.StallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)");
+                    _ = Fault(gate
+                        ? $"{what} within {Options.StallMarginMs:0} ms of its expected arrival"
+                        : $"the stage did not report {what} within {Options.StallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)");
                     return;
                 }
 

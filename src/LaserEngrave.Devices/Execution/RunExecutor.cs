@@ -386,6 +386,11 @@ public sealed partial class RunExecutor
 
         var strategy = Job.Plan.Options.Strategy;
         var microstepUm = Job.Plan.Geometry.MicrostepUm;
+        if (Job.Plan.Timing?.PixelTooShort((long)Math.Floor(Job.Plan.Geometry.PitchXMicrosteps)) is { } tooShort)
+        {
+            throw new PreflightException(tooShort);
+        }
+
         CheckSpeed("burn speed", _process.SpeedMmPerS(MoveKind.Burn, strategy));
         CheckSpeed("travel speed", _process.SpeedMmPerS(MoveKind.Travel, strategy));
         var accelerationUnits = Math.Round(StageUnits.MmToMicrosteps(_process.AccelerationMmPerS2, microstepUm) / StageUnits.AccelerationUnitMicrostepsPerS2);

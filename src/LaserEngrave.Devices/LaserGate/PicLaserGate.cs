@@ -11,8 +11,10 @@ namespace LaserEngrave.Devices.LaserGate;
 /// <remarks>
 /// Every command string and the acknowledgement and error prefixes come from the <see cref="LaserGateProfile"/>.
 /// Its <see cref="SerialChannel{TMessage}"/> reads the link and frames lines (ended by '\n', '\r' or both) with a
-/// <see cref="LineFramer"/>; commands go one at a time and each waits for its one reply line within the profile's timeout
-/// on the given <see cref="System.TimeProvider"/>.
+/// <see cref="LineFramer"/>. A command holds the line only while it is written: several may wait for their replies at
+/// once (timed switching sends the switch-off while the switch-on's acknowledgement is still on its way), and each reply
+/// line goes to the oldest command waiting that it answers. Each waits for its reply within the profile's timeout on the
+/// given <see cref="System.TimeProvider"/>.
 /// </remarks>
 public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
 {
@@ -22,7 +24,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
     private readonly TimeProvider _time;
     private readonly Lock _gate = new();
     private readonly AsyncLock _sendLock;
-    private (string Command, string Expected, TaskCompletionSource<string> Reply)? _pending;
+    private readonly List<(string Command, string Expected, TaskCompletionSource<string> Reply)> _pending = [];
     private bool _resynchronise;
     private bool _closed;
 
@@ -119,6 +121,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
     {
         ArgumentNullException.ThrowIfNull(command);
         ArgumentNullException.ThrowIfNull(expected);
+        TaskCompletionSource<string> reply;
         await _sendLock.WaitAsync(cancellationToken);
         try
         {
@@ -133,7 +136,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
                 // After a timeout a late reply may still be on its way: a keepalive answered by its own reply proves the line is in step.
                 try
                 {
-                    await ExchangeAsync(Profile.KeepAliveCommand, Profile.KeepAliveReply, cancellationToken);
+                    await AwaitReplyAsync(Profile.KeepAliveCommand, await WriteAsync(Profile.KeepAliveCommand, Profile.KeepAliveReply, cancellationToken), cancellationToken);
                 }
                 catch (DeviceTimeoutException ex)
                 {
@@ -145,15 +148,18 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
                 }
             }
 
-            return await ExchangeAsync(command, expected, cancellationToken);
+            reply = await WriteAsync(command, expected, cancellationToken);
         }
         finally
         {
             _sendLock.Release();
         }
+
+        return await AwaitReplyAsync(command, reply, cancellationToken);
     }
 
-    private async Task<string> ExchangeAsync(string command, string expected, CancellationToken cancellationToken)
+    // Caller holds the send lock: the command joins the ones waiting for a reply, then goes on the wire.
+    private async Task<TaskCompletionSource<string>> WriteAsync(string command, string expected, CancellationToken cancellationToken)
     {
         var reply = new TaskCompletionSource<string>(TaskCreationOptions.RunContinuationsAsynchronously);
         lock (_gate)
@@ -163,7 +169,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
                 throw LinkLost(command, waiting: false);
             }
 
-            _pending = (command, expected, reply);
+            _pending.Add((command, expected, reply));
         }
 
         try
@@ -176,6 +182,11 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
             throw;
         }
 
+        return reply;
+    }
+
+    private async Task<string> AwaitReplyAsync(string command, TaskCompletionSource<string> reply, CancellationToken cancellationToken)
+    {
         string line;
         try
         {
@@ -281,10 +292,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
     {
         lock (_gate)
         {
-            if (_pending is { } pending && pending.Reply == reply)
-            {
-                _pending = null;
-            }
+            _pending.RemoveAll(p => p.Reply == reply);
         }
     }
 
@@ -301,10 +309,11 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
         TaskCompletionSource<string>? waiter = null;
         lock (_gate)
         {
-            if (_pending is { } pending && Answers(line, pending.Expected))
+            var index = _pending.FindIndex(p => Answers(line, p.Expected));
+            if (index >= 0)
             {
-                waiter = pending.Reply;
-                _pending = null;
+                waiter = _pending[index].Reply;
+                _pending.RemoveAt(index);
             }
         }
 
@@ -320,8 +329,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
 
     private void Close(Exception? reason)
     {
-        (string Command, string Expected, TaskCompletionSource<string> Reply)? pending;
-        LinkLostException? error = null;
+        List<(TaskCompletionSource<string> Reply, LinkLostException Error)> failed;
         lock (_gate)
         {
             if (_closed)
@@ -330,17 +338,13 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
             }
 
             _closed = true;
-            pending = _pending;
-            _pending = null;
-            if (pending is { } p)
-            {
-                error = LinkLost(p.Command, waiting: true);
-            }
+            failed = [.. _pending.Select(p => (p.Reply, LinkLost(p.Command, waiting: true)))];
+            _pending.Clear();
         }
 
-        if (pending is { } waiting)
+        foreach (var (reply, error) in failed)
         {
-            waiting.Reply.TrySetException(error!);
+            reply.TrySetException(error);
         }
     }
 }
