@@ -17,8 +17,10 @@ namespace LaserEngrave.Devices.Execution;
 public sealed partial class RunExecutor
 {
     private readonly List<(Task Reply, double Deadline, string What)> _watched = [];
+    private readonly Queue<(Move Move, long Index, Task? Acknowledged)> _toComplete = new();
     private string? _timedFault;
     private double _lastGateWrite;
+    private long _queuedUpTo = -1;
 
     private double RunSeconds => TimeProvider.GetElapsedTime(_engravingStart).TotalSeconds;
 
@@ -29,6 +31,8 @@ public sealed partial class RunExecutor
             _moveIndex = firstIndex;
             _moveRow = Options.ResumeFrom?.Row ?? 0;
         }
+
+        _queuedUpTo = firstIndex - 1;
 
         // The start the estimate models: acceleration and the travel speed on both axes.
         _engravingStart = TimeProvider.GetTimestamp();
@@ -56,6 +60,7 @@ public sealed partial class RunExecutor
             {
                 // Pauses come between segments, with the laser off and the stage at rest.
                 await WatchedRepliesAsync(token);
+                CompleteAcknowledged();
                 await PauseIfAskedAsync(token);
                 timeline = new MotionTimeline(timing, RunSeconds, _xSpeedData);
             }
@@ -71,6 +76,7 @@ public sealed partial class RunExecutor
         }
 
         await WatchedRepliesAsync(token);
+        CompleteAcknowledged();
         lock (_lock)
         {
             _moveRow = Job.Plan.Mask.Height;
@@ -182,28 +188,34 @@ public sealed partial class RunExecutor
                 await ConfirmMovingAsync(earlier, poll!, start, Math.Sign(segment.EndX - start), timing, onWrite, token);
             }
 
-            CompleteUpTo(segment, burnIndex - 1);
+            CompleteUpTo(segment, burnIndex - 1, null);
             await DelayUntilAsync(onWrite, token);
             var on = await SendSwitchAsync(on: true);
             _lastGateWrite = onWrite;
             WatchGate(on, onWrite + timing.OnRoundTripSeconds, "the laser gate did not acknowledge the switch-on");
+            RunProgress progress;
             lock (_lock)
             {
                 _currentMove = burn;
                 _currentIndex = burnIndex;
-                _moveIndex = burnIndex;
                 _moveRow = burn.Row;
+                _progress = Snapshot();
+                progress = _progress;
             }
+
+            ProgressChanged?.Invoke(this, progress);
 
             await KeepAlivesUntilAsync(offWrite, timing, token);
             await DelayUntilAsync(offWrite, token);
             var off = await SendSwitchAsync(on: false);
             _lastGateWrite = offWrite;
             WatchGate(off, offWrite + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off");
-            CompleteUpTo(segment, burnIndex);
+
+            // A run counts as burned once its switch-on is acknowledged (a silent gate burns nothing).
+            CompleteUpTo(segment, burnIndex, on);
         }
 
-        CompleteUpTo(segment, segment.Moves[^1].Index);
+        CompleteUpTo(segment, segment.Moves[^1].Index, null);
     }
 
     private async Task TravelAsync(Segment segment, TimedSwitching timing, MotionTimeline timeline, CancellationToken token)
@@ -250,11 +262,10 @@ public sealed partial class RunExecutor
         {
             _currentMove = move;
             _currentIndex = index;
-            _moveIndex = index;
             _moveRow = move.Row;
         }
 
-        Completed(move, index);
+        CompleteUpTo(segment, index, null);
     }
 
     /// <summary>Before the first switch-on of a stroke: every earlier move has reported its end, and the position query shows the stage on its way.</summary>
@@ -345,8 +356,9 @@ public sealed partial class RunExecutor
         {
             if (!on)
             {
+                // Counted from effect to effect: the switch-off takes effect its lead after it is sent, as the switch-on did.
                 var off = Gate.OffAsync(CancellationToken.None);
-                MarkLaserOff();
+                MarkLaserOff(Job.Plan.Timing!.OffLeadSeconds);
                 return off;
             }
 
@@ -355,7 +367,7 @@ public sealed partial class RunExecutor
             lock (_lock)
             {
                 _laserOn = true;
-                _laserOnSince = TimeProvider.GetTimestamp();
+                _laserOnSince = TimeProvider.GetTimestamp() + (long)(Job.Plan.Timing!.OnLeadSeconds * TimeProvider.TimestampFrequency);
             }
 
             return ack;
@@ -464,7 +476,7 @@ public sealed partial class RunExecutor
         return new DeviceException(reason);
     }
 
-    private void CompleteUpTo(Segment segment, long index)
+    private void CompleteUpTo(Segment segment, long index, Task? lastAcknowledged)
     {
         foreach (var (move, moveIndex) in segment.Moves)
         {
@@ -473,21 +485,23 @@ public sealed partial class RunExecutor
                 break;
             }
 
-            if (moveIndex >= Progress_NextIndex)
+            if (moveIndex > _queuedUpTo)
             {
-                Completed(move, moveIndex);
+                _toComplete.Enqueue((move, moveIndex, moveIndex == index ? lastAcknowledged : null));
+                _queuedUpTo = moveIndex;
             }
         }
+
+        CompleteAcknowledged();
     }
 
-    private long Progress_NextIndex
+    /// <summary>Raises completion, in order, for every queued move whose switch-on (if it has one) is acknowledged.</summary>
+    private void CompleteAcknowledged()
     {
-        get
+        while (_toComplete.TryPeek(out var next) && (next.Acknowledged is null || next.Acknowledged.IsCompletedSuccessfully))
         {
-            lock (_lock)
-            {
-                return _moveIndex;
-            }
+            _toComplete.Dequeue();
+            Completed(next.Move, next.Index);
         }
     }
 

@@ -759,13 +759,13 @@ public sealed partial class RunExecutor
         }
     }
 
-    private void MarkLaserOff()
+    private void MarkLaserOff(double leadSeconds = 0)
     {
         lock (_lock)
         {
             if (_laserOn)
             {
-                _laserOnSeconds += TimeProvider.GetElapsedTime(_laserOnSince).TotalSeconds;
+                _laserOnSeconds += Math.Max(0, TimeProvider.GetElapsedTime(_laserOnSince).TotalSeconds + leadSeconds);
                 _laserOn = false;
             }
         }
@@ -926,7 +926,10 @@ public sealed partial class RunExecutor
     private RunProgress Snapshot()
     {
         var elapsed = TimeProvider.GetElapsedTime(_startTimestamp);
-        var estimateDone = !_engravingStarted || _estimator is null ? 0 : _estimator.ElapsedSeconds;
+        // Timed runs keep to their estimate (the same timeline), so the clock says how much of it is done.
+        var estimateDone = !_engravingStarted || _estimator is null ? 0
+            : Job.Plan.Timing is not null ? Math.Min(_estimateTotal - _estimateBefore, (TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving).TotalSeconds)
+            : _estimator.ElapsedSeconds;
         var done = _estimateBefore + estimateDone;
         var percent = _estimateTotal > 0 ? Math.Clamp(100 * done / _estimateTotal, 0, 100) : 0;
         var engraving = !_engravingStarted ? 0 : (TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving).TotalSeconds;

@@ -94,10 +94,11 @@ internal static class TestJobs
             Process = process ?? ProcessSettings.Default,
         });
 
-    public static PreparedJob FromMask(BitMask mask, double widthMm, PlanOptions plan, OriginMm? origin = null, ProcessSettings? process = null)
+    public static PreparedJob FromMask(BitMask mask, double widthMm, PlanOptions plan, OriginMm? origin = null, ProcessSettings? process = null, MachineProfile? profile = null)
     {
         var spec = new JobSpec
         {
+            Profile = profile ?? MachineProfile.Default,
             ImagePath = "mask",
             Size = SizeSpec.Width(widthMm),
             Origin = origin ?? Origin,

@@ -209,7 +209,7 @@ public class PicLaserGateTests
     }
 
     [Fact]
-    public async Task SendAsync_TwoCommandsAtOnce_SecondIsSentOnlyAfterTheFirstIsAcknowledged()
+    public async Task SendAsync_TwoCommandsAtOnce_BothGoOutAndEachGetsTheReplyThatAnswersIt()
     {
         await using var rig = new GateRig(new VirtualTimeProvider());
         rig.Fake.Intercept = _ => string.Empty;
@@ -218,14 +218,16 @@ public class PicLaserGateTests
         {
             var first = rig.Gate.SetFrequencyAsync(1000, None);
             Assert.Equal("FREQ 1000", await rig.Fake.NextAsync());
-            var second = rig.Gate.KeepAliveAsync(None);
-            await rig.Time.SettleAsync();
-            Assert.Equal(["FREQ 1000"], rig.Fake.AllReceived());
+            var second = rig.Gate.OffAsync(None);
+            Assert.Equal("OFF", await rig.Fake.NextAsync());
+            Assert.False(first.IsCompleted);
             Assert.False(second.IsCompleted);
 
+            // Replies in order: the switch-on's first, then the switch-off's; neither answers the other.
             await rig.Fake.SendRawAsync("OK FREQ 1000\n");
-            Assert.Equal("PING", await rig.Fake.NextAsync());
-            await rig.Fake.SendRawAsync("OK PONG\n");
+            await first;
+            Assert.False(second.IsCompleted);
+            await rig.Fake.SendRawAsync("OK FREQ 0\n");
 
             await Task.WhenAll(first, second);
             Assert.Equal(TimeSpan.Zero, rig.Time.Elapsed);
