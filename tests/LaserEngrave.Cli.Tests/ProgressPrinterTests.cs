@@ -47,6 +47,7 @@ public class ProgressPrinterTests
     [Theory]
     [InlineData(RunState.Completed, 200, "done")]
     [InlineData(RunState.Completed, 50, "stopped")]
+    [InlineData(RunState.Aborted, 50, "stopped")]
     [InlineData(RunState.Failed, 50, "stopped")]
     [InlineData(RunState.Paused, 50, "paused")]
     public void StateLabel_EndedRun_SaysDoneOnlyWhenEveryRunWasBurned(RunState state, long runsDone, string expected)

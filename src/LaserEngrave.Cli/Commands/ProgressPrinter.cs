@@ -70,11 +70,11 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal)
             CultureInfo.InvariantCulture,
             $"{StateLabel(p)}: {p.Percent:0} %, row {p.RowsDone} of {p.RowsTotal}, {p.RunsDone} of {p.RunsTotal} burn runs, {Eta(p)} left");
 
-    /// <summary>The state as the operator reads it; the executor's Completed also ends an aborted run, which is not "done".</summary>
+    /// <summary>The state as the operator reads it: "done" only when every run was burned, "stopped" for an aborted or failed run.</summary>
     internal static string StateLabel(RunProgress p) => p.State switch
     {
         RunState.Completed when p.RunsDone == p.RunsTotal => "done",
-        RunState.Completed or RunState.Failed => "stopped",
+        RunState.Completed or RunState.Aborted or RunState.Failed => "stopped",
         _ => p.State.ToString().ToLowerInvariant(),
     };
 
