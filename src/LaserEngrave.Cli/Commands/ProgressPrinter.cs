@@ -7,7 +7,7 @@ namespace LaserEngrave.Cli.Commands;
 
 /// <summary>Shows a run's progress: a redrawn bar (rows, percent, ETA) on a terminal, a plain line every 10 % when redirected.</summary>
 /// <remarks>Called after every move on the run's thread, so it only prints when something visible changed or time passed.</remarks>
-internal sealed class ProgressPrinter(TextWriter writer, bool terminal)
+internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgress<EngraveProgress>
 {
     private const int BarWidth = 30;
     private static readonly TimeSpan RedrawInterval = TimeSpan.FromMilliseconds(100);
@@ -17,6 +17,13 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal)
     private int _lastDecile = -1;
     private RunState? _lastState;
     private bool _barShown;
+
+    /// <summary>A session's progress: its pass's figures under the session's state (a pass's end is not the run's).</summary>
+    public void Report(EngraveProgress value)
+    {
+        ArgumentNullException.ThrowIfNull(value);
+        Report(value.Run with { State = value.State });
+    }
 
     public void Report(RunProgress progress)
     {
