@@ -137,9 +137,16 @@ public sealed class EngraveSession
 
             _abortRequested = true;
             current = _current;
+
+            // Aborting at once, also between passes or before the first: the executor's own Aborting follows.
+            if (RunStateMachine.IsLegal(_state, RunState.Aborting))
+            {
+                _state = RunState.Aborting;
+            }
         }
 
         current?.Abort();
+        Report(null);
     }
 
     private static string HashOrMissing(string path)
@@ -266,10 +273,16 @@ public sealed class EngraveSession
         EngraveProgress progress;
         lock (_lock)
         {
+            if (RunStateMachine.IsEnd(_state) && pass is not null)
+            {
+                // A pass's report that comes after the session's end (an abort's, from another thread) changes nothing.
+                return;
+            }
+
             if (pass is { } p)
             {
                 // A pass's end is not the session's: that comes once every pass has run, the burn is checked and the log written.
-                _state = RunStateMachine.IsEnd(p.Run.State) ? _state : p.Run.State;
+                _state = RunStateMachine.IsEnd(p.Run.State) || (_abortRequested && p.Run.State is not RunState.Aborting) ? _state : p.Run.State;
                 _progress = new EngraveProgress(_state, p.Pass, Passes, p.MovesDone, Job.Statistics.Moves, _pauseRequested, p.Run);
             }
             else
