@@ -337,6 +337,7 @@ public sealed partial class RunViewModel : ObservableObject
         var machine = new EngraveMachine(connection.Stage, connection.Gate, connection.TimeProvider, connection.Description, connection.Description)
         {
             Simulated = connection.IsSimulated,
+            Inspector = connection.IsSimulated ? connection.Inspector : null,
         };
         var session = new EngraveSession(machine, job, new EngraveSessionOptions
         {

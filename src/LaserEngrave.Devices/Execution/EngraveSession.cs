@@ -174,6 +174,7 @@ public sealed class EngraveSession
             Passes = Passes,
         };
         var clockStart = time.GetTimestamp();
+        Machine.Inspector?.Begin();
         RunResult? run = null;
         Exception? error = null;
         var passesDone = 0;

@@ -5,11 +5,13 @@ using LaserEngrave.Devices.Execution;
 namespace LaserEngrave.Simulator.Burn;
 
 /// <summary>The simulator's burn check for an <see cref="EngraveSession"/>: what its recorder saw, against the job's mask, for the log.</summary>
-/// <remarks>The recorder holds every pulse since the simulator started, so a fresh simulator per run checks that run alone.</remarks>
+/// <remarks>Only what happened since <see cref="Begin"/> counts, so a run on a simulator that has burned before (the app's) is checked alone.</remarks>
 public sealed class BurnInspector(SimulatedMachine machine) : IRunInspector
 {
     /// <summary>The last check's whole report (the burned image, the pulse map); null before the first.</summary>
     public BurnReport? Report { get; private set; }
+
+    public void Begin() => machine.Recorder.Restart(machine.NowSeconds);
 
     public RunSimulation Inspect(PreparedJob job)
     {

@@ -66,6 +66,23 @@ public sealed class EngraveRunServiceTests : IAsyncDisposable
     }
 
     [Fact(Timeout = 120_000)]
+    public async Task Start_TwiceOnOneSimulator_EachRunsBurnCheckedAlone()
+    {
+        await ReadyAsync(passes: 1);
+        var records = new List<RunRecord>();
+        _store.Save(Arg.Do<RunRecord>(records.Add)).Returns(new RunLogFiles("/logs/run.json", "/logs/run.txt"));
+
+        await _run.StartCommand.ExecuteAsync(null);
+        await _run.StartCommand.ExecuteAsync(null);
+
+        Assert.Equal(2, records.Count);
+        var (first, second) = (records[0].Simulation!, records[1].Simulation!);
+        Assert.Equal((0L, 0L), (first.MissingPixels, first.ExtraPixels));
+        Assert.Equal((0L, 0L), (second.MissingPixels, second.ExtraPixels));
+        Assert.InRange(second.Pulses, first.Pulses * 0.99, first.Pulses * 1.01);
+    }
+
+    [Fact(Timeout = 120_000)]
     public async Task Abort_WhileRunning_EndsInTheEnginesAbortedWithTheLogWritten()
     {
         await ReadyAsync(passes: 1);

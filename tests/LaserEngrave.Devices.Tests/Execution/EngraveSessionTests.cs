@@ -17,9 +17,9 @@ public class EngraveSessionTests
         return PreparedJob.Prepare(job.Spec with { Passes = passes }, job.Image, job.Mask);
     }
 
-    private static EngraveSession Session(SimulatedRun run, PreparedJob job, RecordingLog log, RunStopPoint? resumeFrom = null) =>
+    private static EngraveSession Session(SimulatedRun run, PreparedJob job, RecordingLog log, RunStopPoint? resumeFrom = null, bool inspect = true) =>
         new(
-            new EngraveMachine(run.Stage, run.Gate, run.Time, "simulator", "simulator") { Simulated = true, Inspector = new BurnInspector(run.Machine) },
+            new EngraveMachine(run.Stage, run.Gate, run.Time, "simulator", "simulator") { Simulated = true, Inspector = inspect ? new BurnInspector(run.Machine) : null },
             job,
             new EngraveSessionOptions { Log = log, SampleId = "S-1", Notes = "session test", ResumeFrom = resumeFrom });
 
@@ -162,16 +162,33 @@ public class EngraveSessionTests
         var log = new RecordingLog();
         var job = Job(passes: 2);
         using var cancel = CancellationTokenSource.CreateLinkedTokenSource(ct);
-        var first = await Session(run, job, log).RunAsync(new SynchronousProgress(p => { if (p.MovesDone >= 10) { cancel.Cancel(); } }), cancel.Token);
+        var first = await Session(run, job, log, inspect: false).RunAsync(new SynchronousProgress(p => { if (p.MovesDone >= 10) { cancel.Cancel(); } }), cancel.Token);
         var stop = Assert.IsType<RunStopPoint>(first.Record.StoppedAt);
 
+        // Without the burn check, whose start would leave out what the first run burned.
         var reports = new List<EngraveProgress>();
-        var resumed = await Session(run, job, log, stop).RunAsync(new SynchronousProgress(reports.Add), ct);
+        var resumed = await Session(run, job, log, stop, inspect: false).RunAsync(new SynchronousProgress(reports.Add), ct);
 
         Assert.Equal(RunOutcome.Completed, resumed.Record.Outcome);
         Assert.Equal((1, (int?)null, true), (resumed.Record.Passes, resumed.Record.PassesDone, resumed.Record.Resumed));
         Assert.All(reports, r => Assert.Equal(1, r.Pass));
         Assert.True(run.Analyze(job).Burned.ContentEquals(job.Mask));
+    }
+
+    [Fact(Timeout = 120_000)]
+    public async Task RunAsync_TwiceOnOneSimulator_TheBurnCheckCountsEachSessionAlone()
+    {
+        var ct = TestContext.Current.CancellationToken;
+        await using var run = SimulatedRun.Create();
+        var log = new RecordingLog();
+        var job = Job();
+
+        await Session(run, job, log).RunAsync(null, ct);
+        await Session(run, job, log).RunAsync(null, ct);
+
+        var (first, second) = (log.Records[0].Simulation!, log.Records[1].Simulation!);
+        Assert.InRange(second.Pulses, first.Pulses * 0.99, first.Pulses * 1.01);
+        Assert.Equal(first.PulsesPerPixel.Max, second.PulsesPerPixel.Max, 1.0);
     }
 
     [Theory]
