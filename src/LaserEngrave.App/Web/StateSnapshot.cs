@@ -136,7 +136,7 @@ internal static class StateSnapshot
                 x = progress?.Run.XMicrosteps,
                 y = progress?.Run.YMicrosteps,
                 laserOn = progress?.Run.LaserOn,
-                phase = progress?.State.ToString().ToLowerInvariant(),
+                phase = progress is null ? null : run.State.ToString().ToLowerInvariant(),
                 percent = Math.Round(run.Fraction * 100, 1),
                 elapsedSeconds = Math.Round(run.ElapsedSeconds, 1),
                 remainingSeconds = Math.Round(run.RemainingSeconds, 1),
