@@ -201,6 +201,9 @@ public sealed class EngraveCommandTests : IDisposable
     [InlineData(new[] { "--width-mm", "5", "--simulate", "--speed-mm-s", "0" }, "--speed-mm-s 0: outside what the stage takes")]
     [InlineData(new[] { "--width-mm", "5", "--simulate", "--frequency-hz", "-5" }, "--frequency-hz -5: outside what the laser gate takes")]
     [InlineData(new[] { "--width-mm", "5", "--simulate", "--fault", "melt:stage" }, "melt")]
+    [InlineData(new[] { "--width-mm", "5", "--simulate", "--passes", "0" }, "--passes 0: must be 1..100")]
+    [InlineData(new[] { "--width-mm", "5", "--simulate", "--passes", "101" }, "--passes 101: must be 1..100")]
+    [InlineData(new[] { "--width-mm", "5", "--simulate", "--passes", "1.5" }, "--passes")]
     public async Task Engrave_BadOptions_Exit2WithOneLine(string[] options, string expected)
     {
         var (exit, _, error) = await CliHarness.RunAsync(["engrave", QrCode, "--log-dir", LogDir, .. options]);
@@ -209,6 +212,38 @@ public sealed class EngraveCommandTests : IDisposable
         Assert.Contains(expected, error, StringComparison.Ordinal);
         Assert.Single(error.TrimEnd().Split('\n'));
         Assert.False(Directory.Exists(LogDir));
+    }
+
+    [Fact]
+    public async Task EngraveSimulate_TwoPasses_BurnsTwiceTheDoseAndLogsBothPasses()
+    {
+        string[] job = ["engrave", QrCode, "--width-mm", "2", "--simulate", "--json", "--log-dir", LogDir];
+        var once = await CliHarness.RunAsync(job);
+        var (exit, output, error) = await CliHarness.RunAsync([.. job, "--passes", "2"]);
+
+        Assert.True(exit == 0, error);
+        using var one = JsonDocument.Parse(once.Out);
+        using var two = JsonDocument.Parse(output);
+        var root = two.RootElement;
+        Assert.Equal("completed", root.GetProperty("outcome").GetString());
+        Assert.Equal((1, 2), (one.RootElement.GetProperty("passes").GetInt32(), root.GetProperty("passes").GetInt32()));
+        Assert.Equal(JsonValueKind.Null, one.RootElement.GetProperty("passesDone").ValueKind);
+        Assert.Equal(2, root.GetProperty("passesDone").GetInt32());
+        Assert.Equal((0, 0), (root.GetProperty("missingPixels").GetInt64(), root.GetProperty("extraPixels").GetInt64()));
+        var pulses = one.RootElement.GetProperty("pulses").GetInt64();
+        Assert.InRange(root.GetProperty("pulses").GetInt64(), 2 * pulses * 0.99, 2 * pulses * 1.01);
+        var mean = one.RootElement.GetProperty("pulsesPerPixel").GetProperty("mean").GetDouble();
+        Assert.InRange(root.GetProperty("pulsesPerPixel").GetProperty("mean").GetDouble(), 2 * mean * 0.99, 2 * mean * 1.01);
+        var record = RunLogStore.Read(root.GetProperty("logPath").GetString()!);
+        Assert.Equal((2, (int?)2), (record.Passes, record.PassesDone));
+
+        var text = await CliHarness.RunAsync([.. job[..^3], "--log-dir", LogDir, "--passes", "2"]);
+        Assert.Contains("Passes:           2 of 2 done", text.Out, StringComparison.Ordinal);
+
+        // A repeat from the log burns as many passes as the log says.
+        var repeated = await CliHarness.RunAsync("engrave", "--from-log", root.GetProperty("logPath").GetString()!, "--simulate", "--json", "--log-dir", LogDir);
+        using var again = JsonDocument.Parse(repeated.Out);
+        Assert.Equal(2, again.RootElement.GetProperty("passesDone").GetInt32());
     }
 
     [Fact]

@@ -15,6 +15,32 @@ public class ProgressPrinterTests
     }
 
     [Fact]
+    public void Report_SessionOfTwoPasses_BarAndLinesSayWhichPass()
+    {
+        using var output = new StringWriter();
+        var printer = new ProgressPrinter(output, terminal: false);
+
+        printer.Report(new EngraveProgress(RunState.Preflight, 2, 2, 0, 100, false, At(0, RunState.Preflight)));
+        printer.Report(new EngraveProgress(RunState.Running, 2, 2, 10, 100, false, At(10)));
+
+        Assert.Equal(
+            ["preflight: checking the machine and the job (pass 2 of 2)", "running: 10 %, row 10 of 40, 50 of 200 burn runs, pass 2 of 2, 1 min 35.0 s left"],
+            output.ToString().TrimEnd().Split(Environment.NewLine));
+        Assert.Contains("row 10/40  pass 1 of 2  ETA", ProgressPrinter.Bar(At(25), "1 of 2"), StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void Report_SessionsPassCompleted_ShownAsTheSessionsStateNotDone()
+    {
+        using var output = new StringWriter();
+        var printer = new ProgressPrinter(output, terminal: false);
+
+        printer.Report(new EngraveProgress(RunState.Running, 1, 2, 100, 100, false, At(100, RunState.Completed, 200)));
+
+        Assert.StartsWith("running: 100 %", output.ToString(), StringComparison.Ordinal);
+    }
+
+    [Fact]
     public void Report_Redirected_OneLinePerTenPercentAndPerStateChange()
     {
         using var output = new StringWriter();
@@ -47,6 +73,7 @@ public class ProgressPrinterTests
     [Theory]
     [InlineData(RunState.Completed, 200, "done")]
     [InlineData(RunState.Completed, 50, "stopped")]
+    [InlineData(RunState.Aborted, 50, "stopped")]
     [InlineData(RunState.Failed, 50, "stopped")]
     [InlineData(RunState.Paused, 50, "paused")]
     public void StateLabel_EndedRun_SaysDoneOnlyWhenEveryRunWasBurned(RunState state, long runsDone, string expected)

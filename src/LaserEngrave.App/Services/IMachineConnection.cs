@@ -1,5 +1,6 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Devices.Execution;
 
 namespace LaserEngrave.App.Services;
 
@@ -20,4 +21,7 @@ public interface IMachineConnection : IAsyncDisposable
     IStage Stage { get; }
 
     ILaserGate Gate { get; }
+
+    /// <summary>The simulator's burn check for a run's log; null on a real machine.</summary>
+    IRunInspector? Inspector { get; }
 }

@@ -2,10 +2,10 @@ using LaserEngrave.Devices.Execution;
 
 namespace LaserEngrave.App.Services;
 
-/// <summary>Executes a planned job on a machine, reporting progress; cancelling aborts it with the laser switched off first.</summary>
+/// <summary>Runs an engraving session on its machine, reporting progress; cancelling aborts it with the laser switched off first.</summary>
+/// <remarks>The seam the view-model's tests fake: the session itself is the Devices use case both front ends share.</remarks>
 public interface IRunService
 {
-    /// <summary>Runs every pass; returns the last pass's result (completed, aborted or failed: faults do not throw) with times, estimate and laser-on added up over the passes run.</summary>
-    /// <exception cref="PreflightException">The machine refused the job before anything moved under the laser.</exception>
-    Task<RunResult> RunAsync(RunRequest request, IProgress<RunProgress> progress, CancellationToken cancellationToken);
+    /// <summary>Runs every pass, checks the burn on the simulator, writes the log; faults and refusals are in the result, never thrown.</summary>
+    Task<EngraveResult> RunAsync(EngraveSession session, IProgress<EngraveProgress> progress, CancellationToken cancellationToken);
 }

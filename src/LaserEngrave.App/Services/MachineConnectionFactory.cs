@@ -1,8 +1,10 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Devices.Execution;
 using LaserEngrave.Devices.Machine;
 using LaserEngrave.Devices.Serial;
 using LaserEngrave.Simulator;
+using LaserEngrave.Simulator.Burn;
 
 namespace LaserEngrave.App.Services;
 
@@ -46,6 +48,8 @@ public sealed class MachineConnectionFactory(SimulatorOptions? simulatorOptions 
         public IStage Stage => session.Stage;
 
         public ILaserGate Gate => session.Gate;
+
+        public IRunInspector? Inspector => session.Owner is SimulatedMachine simulator ? new BurnInspector(simulator) : null;
 
         public ValueTask DisposeAsync() => session.DisposeAsync();
     }

@@ -553,6 +553,7 @@ public sealed partial class JobViewModel : ObservableObject
         },
         Origin = new OriginMm(OriginXMm, OriginYMm),
         Plan = new PlanOptions { Strategy = Strategy, Bidirectional = Bidirectional, OverscanMm = OverscanMm },
+        Passes = Passes,
         Process = ProcessSettings.FromProfile(_profile) with
         {
             LaserFrequencyHz = LaserFrequencyHz,

@@ -45,20 +45,41 @@ public sealed partial class LogViewModel : ObservableObject
 
     public string Folder => _store.Folder;
 
+    /// <summary>Where a run's log goes (the store's folder), for the run's <see cref="Devices.Execution.EngraveSession"/>.</summary>
+    public IRunLogWriter Writer => new StoreWriter(_store);
+
     /// <summary>Saves a finished run's log and shows it as the last run.</summary>
     public void Record(RunRecord record)
     {
         ArgumentNullException.ThrowIfNull(record);
+        RunLogFiles? files = null;
+        Exception? error = null;
         try
         {
-            var files = _store.Save(record);
-            LastRun = new RunLogEntry(files.JsonPath, record, null);
-            Error = null;
+            files = _store.Save(record);
         }
         catch (Exception ex) when (ex is RunLogException or IOException or UnauthorizedAccessException)
         {
-            LastRun = new RunLogEntry(string.Empty, record, ex.Message);
-            Error = $"the run log could not be saved in {_store.Folder}: {ex.Message}";
+            error = ex;
+        }
+
+        Recorded(record, files, error);
+    }
+
+    /// <summary>Shows a run whose log was written (to <paramref name="files"/>), or could not be (<paramref name="error"/>), as the last run.</summary>
+    public void Recorded(RunRecord record, RunLogFiles? files, Exception? error)
+    {
+        ArgumentNullException.ThrowIfNull(record);
+        if (files is not null)
+        {
+            LastRun = new RunLogEntry(files.JsonPath, record, null);
+            Error = null;
+        }
+        else
+        {
+            var why = error?.Message ?? "no log was written";
+            LastRun = new RunLogEntry(string.Empty, record, why);
+            Error = $"the run log could not be saved in {_store.Folder}: {why}";
         }
 
         Refresh();
@@ -123,5 +144,10 @@ public sealed partial class LogViewModel : ObservableObject
         {
             Error = $"cannot open {_store.Folder}: {ex.Message}";
         }
+    }
+
+    private sealed class StoreWriter(IRunLogStore store) : IRunLogWriter
+    {
+        public RunLogFiles Write(RunRecord record) => store.Save(record);
     }
 }

@@ -6,15 +6,15 @@ using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Execution;
-using RunProgress = LaserEngrave.App.Services.RunProgress;
-using RunState = LaserEngrave.App.ViewModels.RunState;
 
 namespace LaserEngrave.App.ViewModels;
 
 /// <summary>The Preview view's run: start, pause, resume, abort (always allowed), and live progress.</summary>
 /// <remarks>
-/// Progress is stored as the latest value only: the page samples it at its own pace, so a run of many short moves
-/// never floods it. Abort cancels the run, whose executor switches the laser off before it stops the axes.
+/// The run is an <see cref="EngraveSession"/>, the same the command line runs: this view-model only starts it, forwards
+/// pause, resume and abort, and mirrors its state and progress. Progress is stored as the latest value only: the page
+/// samples it at its own pace, so a run of many short moves never floods it. Abort switches the laser off before the
+/// axes stop.
 /// </remarks>
 public sealed partial class RunViewModel : ObservableObject
 {
@@ -23,7 +23,7 @@ public sealed partial class RunViewModel : ObservableObject
     private readonly MachineViewModel _machine;
     private readonly LogViewModel _log;
     private readonly TimeProvider _time;
-    private RunPauseGate _pause = new();
+    private EngraveSession? _session;
     private CancellationTokenSource? _abort;
     private StoppedRun? _stopped;
     private (int PlanVersion, string? Reason) _continueCheck = (-1, null);
@@ -72,12 +72,25 @@ public sealed partial class RunViewModel : ObservableObject
         };
     }
 
+    /// <summary>The run's state, as its session reports it (Idle before any run; Failed also for a run refused before it started).</summary>
     [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(StateName))]
     public partial RunState State { get; private set; }
 
     /// <summary>The latest progress of the run under way (or of the last one).</summary>
     [ObservableProperty]
-    public partial RunProgress? Progress { get; private set; }
+    public partial EngraveProgress? Progress { get; private set; }
+
+    /// <summary>
+    /// The state as docs/api.md names it: Idle, Running (preflight included), Paused (pausing included), Aborting,
+    /// Completed, Aborted, Failed. <see cref="State"/> has the engine's finer state.
+    /// </summary>
+    public string StateName => State switch
+    {
+        RunState.Preflight => nameof(RunState.Running),
+        RunState.Pausing => nameof(RunState.Paused),
+        _ => State.ToString(),
+    };
 
     /// <summary>The plan version the run executes, so the page draws the burned part over the right plan.</summary>
     [ObservableProperty]
@@ -104,7 +117,7 @@ public sealed partial class RunViewModel : ObservableObject
     /// </summary>
     public string? ContinueUnavailableReason => StoppedAt is null ? null : WhyNotContinue();
 
-    public bool IsActive => State is RunState.Running or RunState.Paused or RunState.Aborting;
+    public bool IsActive => State is RunState.Preflight or RunState.Running or RunState.Pausing or RunState.Paused or RunState.Aborting;
 
     /// <summary>
     /// Whether <see cref="StartCommand"/> would run: nothing holds the machine (the interlock decides first), a planned job
@@ -112,14 +125,14 @@ public sealed partial class RunViewModel : ObservableObject
     /// </summary>
     public bool CanStart => !_machine.Activity.IsBusy && !IsActive && _job.Job is { Geometry.FitsTravel: true, Statistics.BurnRuns: > 0 } && _machine.Connection is not null;
 
-    public bool CanPause => State == RunState.Running;
+    /// <summary>Whether a pause can be asked: the run is starting or running and no pause is pending.</summary>
+    public bool CanPause => State is RunState.Preflight or RunState.Running && Progress?.PauseRequested != true;
 
-    public bool CanResume => State == RunState.Paused;
+    /// <summary>Whether a pause is pending or holds the run (the session's own flag: the engine pauses after the current move).</summary>
+    public bool CanResume => State is not RunState.Aborting && IsActive && Progress?.PauseRequested == true;
 
     /// <summary>Fraction of all passes done, 0..1.</summary>
-    public double Fraction => Progress is { } p && p.MovesTotal > 0
-        ? Math.Clamp((p.Pass - 1 + ((double)p.MovesDone / p.MovesTotal)) / Math.Max(1, _job.Passes), 0, 1)
-        : State == RunState.Completed ? 1 : 0;
+    public double Fraction => Progress is { MovesTotal: > 0 } p ? p.Fraction : State == RunState.Completed ? 1 : 0;
 
     public double ElapsedSeconds => IsActive ? _time.GetElapsedTime(_startedTicks).TotalSeconds : ElapsedSecondsAtEnd;
 
@@ -134,10 +147,10 @@ public sealed partial class RunViewModel : ObservableObject
             }
 
             // The executor's figure for this pass, plus the estimate of the passes still to come.
-            var passes = Math.Max(1, _job.Passes);
-            if (Progress is { PassRemainingSeconds: { } passRemaining } p && p.MovesDone > 0)
+            if (Progress is { } p && p.MovesDone > 0)
             {
-                return passRemaining + (Math.Max(0, passes - p.Pass) * _estimatedSeconds / passes);
+                var passes = Math.Max(1, p.Passes);
+                return p.Run.Remaining.TotalSeconds + (Math.Max(0, passes - p.Pass) * _estimatedSeconds / passes);
             }
 
             return Math.Max(0, _estimatedSeconds * (1 - Fraction));
@@ -257,20 +270,20 @@ public sealed partial class RunViewModel : ObservableObject
     [RelayCommand(CanExecute = nameof(CanPause))]
     private void Pause()
     {
-        if (State == RunState.Running)
+        if (_session is { } session && CanPause)
         {
-            _pause.Pause();
-            State = RunState.Paused;
+            session.Pause();
+            Mirror(session);
         }
     }
 
     [RelayCommand(CanExecute = nameof(CanResume))]
     private void Resume()
     {
-        if (State == RunState.Paused)
+        if (_session is { } session && CanResume)
         {
-            _pause.Resume();
-            State = RunState.Running;
+            session.Resume();
+            Mirror(session);
         }
     }
 
@@ -278,10 +291,34 @@ public sealed partial class RunViewModel : ObservableObject
     [RelayCommand]
     private void Abort()
     {
-        if (IsActive)
+        if (IsActive && _session is { } session)
         {
-            State = RunState.Aborting;
+            session.Abort();
             _abort?.Cancel();
+            Mirror(session);
+        }
+    }
+
+    /// <summary>Takes the session's state and progress while it runs; the start and the end are this view-model's to set (the end once the log is in).</summary>
+    private void Mirror(EngraveSession session) => Mirror(session, session.Progress);
+
+    private void Mirror(EngraveSession session, EngraveProgress progress)
+    {
+        if (!ReferenceEquals(session, _session))
+        {
+            return;
+        }
+
+        var pauseChanged = Progress?.PauseRequested != progress.PauseRequested;
+        Progress = progress;
+        if (progress.State is not RunState.Idle && !RunStateMachine.IsEnd(progress.State))
+        {
+            State = progress.State;
+        }
+
+        if (pauseChanged)
+        {
+            RefreshCommands();
         }
     }
 
@@ -295,36 +332,35 @@ public sealed partial class RunViewModel : ObservableObject
 
         using var held = lease;
         var continuedFrom = resumeFrom is null ? null : _log.LastRun?.Path;
-        _pause = new RunPauseGate();
         _startedTicks = _time.GetTimestamp();
         _estimatedSeconds = _job.EstimatedSeconds ?? 0;
-        var record = RunRecord.ForJob(job, HashOrMissing(job.Spec.ImagePath), _time.GetLocalNow()) with
+        var machine = new EngraveMachine(connection.Stage, connection.Gate, connection.TimeProvider, connection.Description, connection.Description)
         {
             Simulated = connection.IsSimulated,
+            Inspector = connection.IsSimulated ? connection.Inspector : null,
+        };
+        var session = new EngraveSession(machine, job, new EngraveSessionOptions
+        {
             Notes = _log.Notes,
             SampleId = _log.SampleId,
             RepeatOf = string.IsNullOrEmpty(continuedFrom) ? null : continuedFrom,
-            Resumed = resumeFrom is not null,
-        };
-        var passes = resumeFrom is null ? _job.Passes : 1;
+            ResumeFrom = resumeFrom,
+            Log = _log.Writer,
+            WallClock = _time,
+        });
         StoppedAt = null;
         RunPlanVersion = _job.PlanVersion;
-        Progress = new RunProgress(0, 0, 0, 0, 1, 0, 0, false, "preflight");
-        State = RunState.Running;
-        RunResult? result = null;
-        Exception? error = null;
+        _session = session;
+        Progress = session.Progress;
+        State = RunState.Preflight;
+        EngraveResult result;
+
         // Abort (or the app's exit) cancels this; a second Start or Continue never does.
         using var abort = CancellationTokenSource.CreateLinkedTokenSource(lease.CancellationToken);
         _abort = abort;
         try
         {
-            var request = new RunRequest(job, connection.Stage, connection.Gate, passes, _pause) { TimeProvider = connection.TimeProvider, ResumeFrom = resumeFrom };
-            result = await _runs.RunAsync(request, new LatestProgress(this), abort.Token);
-        }
-        catch (Exception ex) when (ex is DeviceException or OperationCanceledException or IOException or InvalidOperationException or TimeoutException or ObjectDisposedException)
-        {
-            // Preflight refusals and anything the executor did not turn into a result; the log is written all the same.
-            error = ex;
+            result = await _runs.RunAsync(session, new LatestProgress(this, session), abort.Token);
         }
         finally
         {
@@ -332,18 +368,8 @@ public sealed partial class RunViewModel : ObservableObject
             ElapsedSecondsAtEnd = _time.GetElapsedTime(_startedTicks).TotalSeconds;
         }
 
-        var endedAt = _time.GetLocalNow();
-        record = RunRecords.Complete(record, result, error, connection.Description, connection.Description, endedAt, endedAt - record.StartedAt) with
-        {
-            Passes = Math.Max(1, passes),
-            PassesDone = passes > 1 ? (result?.Outcome == RunOutcome.Completed ? passes : Math.Max(0, (Progress?.Pass ?? 1) - 1)) : null,
-        };
-        var final = record.Outcome switch
-        {
-            RunOutcome.Completed => RunState.Completed,
-            RunOutcome.Aborted => RunState.Aborted,
-            _ => RunState.Failed,
-        };
+        var record = result.Record;
+        var final = result.State;
         if (final == RunState.Failed)
         {
             Error = record.Fault?.Message ?? "the run failed";
@@ -353,7 +379,7 @@ public sealed partial class RunViewModel : ObservableObject
         _stopped = stopPoint is null ? null : new StoppedRun(job, settings, stopPoint);
         _continueCheck = (-1, null);
         StoppedAt = stopPoint;
-        _log.Record(record);
+        _log.Recorded(record, result.Files, result.LogError);
         try
         {
             // The whole state, not only the positions: the run's preflight homed the stage, and the view must say so.
@@ -365,6 +391,7 @@ public sealed partial class RunViewModel : ObservableObject
         }
 
         // The run counts as ended only once its log is written, so whoever waits for the end finds the log.
+        _session = null;
         State = final;
     }
 
@@ -389,29 +416,17 @@ public sealed partial class RunViewModel : ObservableObject
         }
     }
 
-    private static string HashOrMissing(string path)
-    {
-        try
-        {
-            return PreparedJob.HashFile(path);
-        }
-        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
-        {
-            return "unreadable: " + ex.Message;
-        }
-    }
-
     /// <summary>A run that stopped before its end: the plan it ran, the job's values then, and where it stopped.</summary>
     private sealed record StoppedRun(PreparedJob Job, JobSettings Settings, RunStopPoint StopPoint);
 
     /// <summary>Keeps only the newest report: assigning a reference is all a serial reply costs the UI.</summary>
-    private sealed class LatestProgress(RunViewModel owner) : IProgress<RunProgress>
+    private sealed class LatestProgress(RunViewModel owner, EngraveSession session) : IProgress<EngraveProgress>
     {
-        public void Report(RunProgress value)
+        public void Report(EngraveProgress value)
         {
-            owner.Progress = value;
-            owner._machine.XMicrosteps = value.XMicrosteps;
-            owner._machine.YMicrosteps = value.YMicrosteps;
+            owner.Mirror(session, value);
+            owner._machine.XMicrosteps = value.Run.XMicrosteps;
+            owner._machine.YMicrosteps = value.Run.YMicrosteps;
         }
     }
 }

@@ -44,7 +44,7 @@ public static class AppHost
         services.AddSingleton<MachineActivity>();
         services.AddSingleton<IImageService, ImageService>();
         services.AddSingleton<IMachineConnectionFactory>(new MachineConnectionFactory());
-        services.AddSingleton<IRunService, ExecutorRunService>();
+        services.AddSingleton<IRunService, EngraveRunService>();
         services.AddSingleton<IFileAccess>(sp => new Services.FileAccess(sp.GetRequiredService<AppFolders>()));
         services.AddSingleton<ISettingsStore>(sp => new JsonSettingsStore(sp.GetRequiredService<AppFolders>().SettingsFile));
         services.AddSingleton<IRunLogStore>(sp => new RunLogFolder(sp.GetRequiredService<AppFolders>().RunLogFolder));

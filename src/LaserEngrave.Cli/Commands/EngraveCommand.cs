@@ -41,8 +41,11 @@ internal static class EngraveCommand
         }
 
         OptionChecks.OutputFile(burnedPath, "--burned");
+        var passes = result.GetValue(o.Passes);
+        OptionChecks.InRange(passes, 1, JobSpec.MaxPasses, "--passes", string.Empty, "burns of the plan over the same place");
 
         var (spec, repeatOf, resumeFrom) = BindJob(result, o);
+        spec = spec with { Passes = passes ?? spec.Passes };
         var prepared = PreparedJob.Prepare(spec);
         RefuseOutsideTravel(prepared);
         foreach (var warning in prepared.Warnings)
@@ -54,62 +57,51 @@ internal static class EngraveCommand
 
         // A run must not start without a place for its log.
         store.CreateFolder();
-        var record = RunRecord.ForJob(prepared, PreparedJob.HashFile(spec.ImagePath), DateTimeOffset.Now) with
-        {
-            Simulated = simulate,
-            Notes = result.GetValue(o.Notes),
-            SampleId = result.GetValue(o.Sample),
-            RepeatOf = repeatOf,
-            Resumed = resumeFrom is not null,
-        };
-
-        RunResult? run = null;
-        Exception? error = null;
+        EngraveResult engraved;
         double? wallSeconds = null;
-        BurnReport? burn = null;
-        var session = o.Machine.Open(result, spec.Profile);
-        await using (session.ConfigureAwait(false))
+        BurnInspector? inspector = null;
+        var machineSession = o.Machine.Open(result, spec.Profile);
+        await using (machineSession.ConfigureAwait(false))
         {
-            var executor = new RunExecutor(session.Stage, session.Gate, prepared, session.TimeProvider, new RunOptions { Home = result.GetValue(o.Home), ResumeFrom = resumeFrom });
+            inspector = machineSession.Owner is SimulatedMachine simulator ? new BurnInspector(simulator) : null;
+            var machine = new EngraveMachine(machineSession.Stage, machineSession.Gate, machineSession.TimeProvider, machineSession.StagePort, machineSession.LaserPort)
+            {
+                Simulated = simulate,
+                Inspector = inspector,
+            };
+            var session = new EngraveSession(machine, prepared, new EngraveSessionOptions
+            {
+                Notes = result.GetValue(o.Notes),
+                SampleId = result.GetValue(o.Sample),
+                RepeatOf = repeatOf,
+                ResumeFrom = resumeFrom,
+                Home = result.GetValue(o.Home),
+                Log = store,
+            });
             var printer = new ProgressPrinter(stderr, terminal: ReferenceEquals(stderr, Console.Error) && !Console.IsErrorRedirected);
-            executor.ProgressChanged += (_, progress) => printer.Report(progress);
-            var clockStart = session.TimeProvider.GetTimestamp();
             var wall = Stopwatch.StartNew();
             try
             {
-                run = await session.RunAsync(() => executor.RunAsync(cancellationToken)).ConfigureAwait(false);
-            }
-            catch (Exception ex) when (ex is not OutOfMemoryException)
-            {
-                // Whatever stopped the run, the log is still written; the error is reported once that is done.
-                error = ex;
+                engraved = await session.RunAsync(printer, cancellationToken).ConfigureAwait(false);
             }
             finally
             {
                 printer.Finish();
                 wallSeconds = wall.Elapsed.TotalSeconds;
             }
-
-            if (session.Owner is SimulatedMachine simulator)
-            {
-                burn = simulator.Recorder.Analyze(BurnGrid.For(prepared.Plan.Geometry), prepared.Mask, prepared.Spec.Process.BurnSpeedMmPerS);
-                record = record with { Simulation = Twin(simulator.Options.Seed, burn) };
-            }
-
-            record = RunRecords.Complete(record, run, error, session.StagePort, session.LaserPort, DateTimeOffset.Now, session.TimeProvider.GetElapsedTime(clockStart));
         }
 
-        RunLogFiles files;
-        try
-        {
-            files = store.Write(record);
-        }
-        catch (RunLogException ex)
+        var record = engraved.Record;
+        var error = engraved.Error;
+        if (engraved.Files is not { } files)
         {
             // The run happened: keep what the log would have said on stderr, and fail (not "bad input").
             stderr.Write(RunSummaryText.Format(record));
-            throw new InvalidOperationException($"the run ended ({record.Outcome.ToString().ToLowerInvariant()}) but its log could not be written, so the summary is above: {ex.Message}", ex);
+            var why = engraved.LogError?.Message ?? "no log was written";
+            throw new InvalidOperationException($"the run ended ({record.Outcome.ToString().ToLowerInvariant()}) but its log could not be written, so the summary is above: {why}", engraved.LogError);
         }
+
+        var burn = inspector?.Report;
 
         if (burnedPath is not null && burn is not null)
         {
@@ -177,7 +169,7 @@ internal static class EngraveCommand
             throw new UsageException($"give IMAGE ({image}) or --from-log, not both: a repeated run takes its image and parameters from the log");
         }
 
-        if (o.Job.Given(result).FirstOrDefault() is { } ignored)
+        if (o.Job.Given(result).Concat(OptionChecks.IsGiven(result, o.Passes) ? [o.Passes.Name] : []).FirstOrDefault() is { } ignored)
         {
             throw new UsageException($"{ignored} with --from-log: a repeated run takes every parameter from its log, so {ignored} would be ignored; leave it out, or give IMAGE instead of --from-log");
         }
@@ -202,22 +194,17 @@ internal static class EngraveCommand
         return (spec, Path.GetFullPath(fromLog), stop);
     }
 
-    private static RunSimulation Twin(int seed, BurnReport burn) => new(
-        seed,
-        burn.Pulses,
-        burn.Edges is { } e ? new EdgeErrors(e.Count, e.MeanErrorUm, e.MaxErrorUm) : null,
-        burn.Dwells is { } d ? new DwellCounts(d.Count, d.Pulses) : null,
-        new PulseCountRange(burn.PulsesPerPixel.Min, burn.PulsesPerPixel.Mean, burn.PulsesPerPixel.Max),
-        burn.LaserOnTravelCount,
-        burn.MissingPixels,
-        burn.ExtraPixels);
-
     private static void WriteText(TextWriter output, EngraveSummary s)
     {
         var c = CultureInfo.InvariantCulture;
         var clock = s.Simulated ? " (simulated time)" : string.Empty;
         output.WriteLine(string.Create(c, $"Outcome:          {s.Outcome}{(s.Fault is null ? string.Empty : $": {s.Fault}")}"));
         output.WriteLine(string.Create(c, $"Done:             {s.RowsDone} of {s.RowsTotal} rows, {s.RunsDone} of {s.RunsTotal} burn runs"));
+        if (s.Passes > 1)
+        {
+            output.WriteLine(string.Create(c, $"Passes:           {s.PassesDone ?? 0} of {s.Passes} done (rows and runs above: the last pass)"));
+        }
+
         output.WriteLine(string.Create(c, $"Duration:         {RunSummaryText.Duration(s.DurationSeconds)}{clock}; engraving {RunSummaryText.Duration(s.EngravingSeconds)}, estimated {RunSummaryText.Duration(s.EstimatedSeconds)}"));
         output.WriteLine(string.Create(c, $"Laser on:         {RunSummaryText.Duration(s.LaserOnSeconds)}"));
         if (s.MissingPixels is { } missing && s.ExtraPixels is { } extra)
@@ -294,11 +281,13 @@ internal static class EngraveCommand
 
         public Option<bool> Home { get; } = new("--home") { Description = "Home both axes before the run even if they are homed" };
 
+        public Option<int?> Passes { get; } = new("--passes") { Description = "Burn the plan N times over the same place, one pass after the other (1..100, default 1)" };
+
         public void AddTo(Command command)
         {
             Job.AddTo(command);
             Machine.AddTo(command);
-            foreach (var option in new Option[] { LogDir, Burned, Dose, Notes, Sample, Json, FromLog, Resume, Home })
+            foreach (var option in new Option[] { LogDir, Burned, Dose, Notes, Sample, Json, FromLog, Resume, Home, Passes })
             {
                 command.Options.Add(option);
             }
@@ -333,7 +322,9 @@ internal sealed record EngraveSummary(
     long? LaserOnTravelCount,
     EdgeErrors? Edges,
     DwellCounts? Dwells,
-    PulseCountRange? PulsesPerPixel)
+    PulseCountRange? PulsesPerPixel,
+    int Passes,
+    int? PassesDone)
 {
     public static EngraveSummary From(RunRecord record, RunLogFiles files, string? burnedPath, string? dosePath, double? wallSeconds) => new(
         record.Outcome.ToString().ToLowerInvariant(),
@@ -361,5 +352,7 @@ internal sealed record EngraveSummary(
         record.Simulation?.LaserOnTravelCount,
         record.Simulation?.Edges,
         record.Simulation?.Dwells,
-        record.Simulation?.PulsesPerPixel);
+        record.Simulation?.PulsesPerPixel,
+        record.Passes,
+        record.PassesDone);
 }

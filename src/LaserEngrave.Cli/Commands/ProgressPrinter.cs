@@ -7,7 +7,7 @@ namespace LaserEngrave.Cli.Commands;
 
 /// <summary>Shows a run's progress: a redrawn bar (rows, percent, ETA) on a terminal, a plain line every 10 % when redirected.</summary>
 /// <remarks>Called after every move on the run's thread, so it only prints when something visible changed or time passed.</remarks>
-internal sealed class ProgressPrinter(TextWriter writer, bool terminal)
+internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgress<EngraveProgress>
 {
     private const int BarWidth = 30;
     private static readonly TimeSpan RedrawInterval = TimeSpan.FromMilliseconds(100);
@@ -17,6 +17,15 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal)
     private int _lastDecile = -1;
     private RunState? _lastState;
     private bool _barShown;
+    private string? _pass;
+
+    /// <summary>A session's progress: its pass's figures under the session's state (a pass's end is not the run's).</summary>
+    public void Report(EngraveProgress value)
+    {
+        ArgumentNullException.ThrowIfNull(value);
+        _pass = value.Passes > 1 ? string.Create(CultureInfo.InvariantCulture, $"{value.Pass} of {value.Passes}") : null;
+        Report(value.Run with { State = value.State });
+    }
 
     public void Report(RunProgress progress)
     {
@@ -27,7 +36,7 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal)
         {
             if (stateChanged || _sinceLastPrint.Elapsed >= RedrawInterval)
             {
-                writer.Write("\r" + Bar(progress));
+                writer.Write("\r" + Bar(progress, _pass));
                 writer.Flush();
                 _barShown = true;
                 _sinceLastPrint.Restart();
@@ -40,7 +49,7 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal)
         if (decile != _lastDecile || stateChanged || _sinceLastPrint.Elapsed >= PlainInterval)
         {
             _lastDecile = decile;
-            writer.WriteLine(Line(progress));
+            writer.WriteLine(Line(progress, _pass));
             _sinceLastPrint.Restart();
         }
     }
@@ -55,26 +64,28 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal)
         }
     }
 
-    internal static string Bar(RunProgress p)
+    /// <param name="p">The pass's progress.</param>
+    /// <param name="pass">"1 of 2" when the job has several passes.</param>
+    internal static string Bar(RunProgress p, string? pass = null)
     {
         var filled = (int)Math.Round(Math.Clamp(p.Percent, 0, 100) / 100 * BarWidth);
         var state = p.State is RunState.Running ? string.Empty : $"  {StateLabel(p)}";
         return string.Create(
             CultureInfo.InvariantCulture,
-            $"[{new string('#', filled)}{new string('.', BarWidth - filled)}] {p.Percent,5:0.0} %  row {p.RowsDone}/{p.RowsTotal}  ETA {Eta(p)}{state}   ");
+            $"[{new string('#', filled)}{new string('.', BarWidth - filled)}] {p.Percent,5:0.0} %  row {p.RowsDone}/{p.RowsTotal}{(pass is null ? string.Empty : $"  pass {pass}")}  ETA {Eta(p)}{state}   ");
     }
 
-    internal static string Line(RunProgress p) => p.State == RunState.Preflight
-        ? "preflight: checking the machine and the job"
+    internal static string Line(RunProgress p, string? pass = null) => p.State == RunState.Preflight
+        ? "preflight: checking the machine and the job" + (pass is null ? string.Empty : $" (pass {pass})")
         : string.Create(
             CultureInfo.InvariantCulture,
-            $"{StateLabel(p)}: {p.Percent:0} %, row {p.RowsDone} of {p.RowsTotal}, {p.RunsDone} of {p.RunsTotal} burn runs, {Eta(p)} left");
+            $"{StateLabel(p)}: {p.Percent:0} %, row {p.RowsDone} of {p.RowsTotal}, {p.RunsDone} of {p.RunsTotal} burn runs{(pass is null ? string.Empty : $", pass {pass}")}, {Eta(p)} left");
 
-    /// <summary>The state as the operator reads it; the executor's Completed also ends an aborted run, which is not "done".</summary>
+    /// <summary>The state as the operator reads it: "done" only when every run was burned, "stopped" for an aborted or failed run.</summary>
     internal static string StateLabel(RunProgress p) => p.State switch
     {
         RunState.Completed when p.RunsDone == p.RunsTotal => "done",
-        RunState.Completed or RunState.Failed => "stopped",
+        RunState.Completed or RunState.Aborted or RunState.Failed => "stopped",
         _ => p.State.ToString().ToLowerInvariant(),
     };
 

@@ -8,7 +8,7 @@ namespace LaserEngrave.Core.Logging;
 /// File names are the start time (local, with seconds) and the sample ID, e.g. 2026-11-23_143005_S17.json and .txt;
 /// a name already taken gets -2, -3 ... so two runs never share or overwrite a file.
 /// </remarks>
-public sealed class RunLogStore
+public sealed class RunLogStore : IRunLogWriter
 {
     /// <summary>The name of the folder under the user's documents.</summary>
     public const string FolderName = "LaserEngrave";

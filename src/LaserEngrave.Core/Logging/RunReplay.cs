@@ -43,6 +43,7 @@ public static class RunReplay
             Plan = record.Plan,
             Process = record.Process,
             Profile = record.Profile,
+            Passes = Math.Clamp(record.Passes, 1, JobSpec.MaxPasses),
         };
     }
 

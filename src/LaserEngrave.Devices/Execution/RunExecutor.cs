@@ -200,7 +200,7 @@ public sealed partial class RunExecutor
     {
         lock (_lock)
         {
-            if (_abortRequested || _state is RunState.Completed or RunState.Failed or RunState.Paused or RunState.Pausing)
+            if (_abortRequested || RunStateMachine.IsEnd(_state) || _state is RunState.Paused or RunState.Pausing)
             {
                 return;
             }
@@ -244,7 +244,7 @@ public sealed partial class RunExecutor
         TaskCompletionSource resumed;
         lock (_lock)
         {
-            if (_abortRequested || _state is RunState.Completed or RunState.Failed)
+            if (_abortRequested || RunStateMachine.IsEnd(_state))
             {
                 return;
             }
@@ -867,6 +867,8 @@ public sealed partial class RunExecutor
     {
         if (outcome == RunOutcome.Aborted)
         {
+            // Through Aborting even when the run noticed the abort before Abort() had set it: the table's only way to Aborted.
+            SetState(RunState.Aborting);
             await _abortSequence;
 
             // A move may have been sent in the moment between the abort and the run noticing it: stop again.
@@ -903,7 +905,7 @@ public sealed partial class RunExecutor
             };
         }
 
-        SetState(outcome == RunOutcome.Failed ? RunState.Failed : RunState.Completed);
+        SetState(RunStateMachine.EndState(outcome));
         return result;
     }
 
@@ -945,9 +947,9 @@ public sealed partial class RunExecutor
         lock (_lock)
         {
             previous = _state;
-            if (previous == state
-                || previous is RunState.Completed or RunState.Failed
-                || (_abortRequested && state is not (RunState.Aborting or RunState.Completed or RunState.Failed)))
+            // Only the table's transitions; once an abort is asked, only towards its end.
+            if (!RunStateMachine.IsLegal(previous, state)
+                || (_abortRequested && state is not RunState.Aborting && !RunStateMachine.IsEnd(state)))
             {
                 return;
             }

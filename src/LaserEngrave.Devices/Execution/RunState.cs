@@ -1,6 +1,6 @@
 namespace LaserEngrave.Devices.Execution;
 
-/// <summary>Where a run is: the state machine of <see cref="RunExecutor"/>.</summary>
+/// <summary>Where a run is: the state machine of <see cref="RunExecutor"/>; <see cref="RunStateMachine"/> holds its legal transitions.</summary>
 public enum RunState
 {
     /// <summary>Not started.</summary>
@@ -21,8 +21,11 @@ public enum RunState
     /// <summary>Abort asked: laser off, then both axes stopped.</summary>
     Aborting,
 
-    /// <summary>Ended: every move done, or aborted (see <see cref="RunResult.Outcome"/>).</summary>
+    /// <summary>Ended with every move done.</summary>
     Completed,
+
+    /// <summary>Ended by an abort: the laser off, then both axes stopped; the result has a stop point to resume from.</summary>
+    Aborted,
 
     /// <summary>Ended by a fault or a preflight refusal.</summary>
     Failed,

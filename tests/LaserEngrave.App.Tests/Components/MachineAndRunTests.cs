@@ -2,12 +2,12 @@ using Bunit;
 using LaserEngrave.App.Components.Pages;
 using LaserEngrave.App.Components.Workspace;
 using LaserEngrave.App.Services;
+using LaserEngrave.App.Tests.ViewModels;
 using LaserEngrave.App.ViewModels;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Devices.Execution;
 using NSubstitute;
-using RunProgress = LaserEngrave.App.Services.RunProgress;
 
 namespace LaserEngrave.App.Tests.Components;
 
@@ -115,10 +115,12 @@ public sealed class RunBarTests : ComponentTest
         OpenQr();
         await ConnectAsync();
         var release = new TaskCompletionSource<RunResult>();
-        Runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>()).Returns(c =>
+        Runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>()).Returns(async c =>
         {
-            c.Arg<IProgress<RunProgress>>().Report(new RunProgress(50, 100, 10, 20, 1, 0, 0, true));
-            return release.Task;
+            var progress = c.Arg<IProgress<EngraveProgress>>();
+            var session = c.Arg<EngraveSession>();
+            progress.Report(SessionResults.Report(RunState.Running, 50, 100, 10, 20, laserOn: true));
+            return SessionResults.Ended(session, await release.Task);
         });
         var cut = RenderBar();
 
@@ -128,9 +130,10 @@ public sealed class RunBarTests : ComponentTest
         Assert.Contains("row 10 of 20", cut.Find("#progress-figures").TextContent, StringComparison.Ordinal);
         Assert.True(Disabled(cut.Find("#start")));
         cut.Find("#pause").Click();
-        cut.WaitForAssertion(() => Assert.Equal("paused", cut.Find("#status-run").TextContent));
+        cut.WaitForAssertion(() => Assert.Empty(cut.FindAll("#pause")));
         cut.Find("#resume").Click();
-        cut.WaitForAssertion(() => Assert.Equal("running", cut.Find("#status-run").TextContent));
+        cut.WaitForAssertion(() => Assert.Empty(cut.FindAll("#resume")));
+        Assert.Equal("running", cut.Find("#status-run").TextContent);
         cut.Find("#abort").Click();
         release.SetResult(new RunResult
         {
@@ -145,14 +148,14 @@ public sealed class RunBarTests : ComponentTest
     {
         OpenQr();
         await ConnectAsync();
-        Runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>()).Returns(c =>
+        Runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>()).Returns(c =>
         {
-            c.Arg<IProgress<RunProgress>>().Report(new RunProgress(100, 100, 33, 33, 1, 0, 0, false));
-            return Task.FromResult(new RunResult
+            c.Arg<IProgress<EngraveProgress>>().Report(SessionResults.Report(RunState.Running, 100, 100, 33, 33));
+            return Task.FromResult(SessionResults.Ended(c.Arg<EngraveSession>(), new RunResult
             {
                 Outcome = RunOutcome.Completed, LaserOffConfirmed = true, StartedAt = DateTimeOffset.UnixEpoch, EndedAt = DateTimeOffset.UnixEpoch,
                 EngravingDuration = TimeSpan.Zero, EstimatedSeconds = 1, LaserOnSeconds = 0, RowsDone = 33, RowsTotal = 33, RunsTotal = 7, RunsDone = 7,
-            });
+            }));
         });
         await Main.Run.StartCommand.ExecuteAsync(null);
         var cut = RenderBar();

@@ -6,9 +6,7 @@ using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Abstractions;
 using NSubstitute;
 using LaserEngrave.Devices.Execution;
-using NSubstitute.ExceptionExtensions;
-using RunProgress = LaserEngrave.App.Services.RunProgress;
-using RunState = LaserEngrave.App.ViewModels.RunState;
+using NSubstitute.Core;
 
 namespace LaserEngrave.App.Tests.ViewModels;
 
@@ -49,6 +47,13 @@ public sealed class RunViewModelTests
         RunsTotal = 7,
     };
 
+    private static EngraveResult Ended(EngraveSession session, RunResult? run, Exception? error = null) => SessionResults.Ended(session, run, error);
+
+    private static Func<CallInfo, Task<EngraveResult>> Ends(RunResult run) => SessionResults.Ends(run);
+
+    private static EngraveProgress Report(RunState state, long movesDone, long movesTotal, int rowsDone, int rowsTotal, int pass = 1, int passes = 1, long x = 0, long y = 0, bool laserOn = false, double remainingSeconds = 0) =>
+        SessionResults.Report(state, movesDone, movesTotal, rowsDone, rowsTotal, pass, passes, x, y, laserOn, remainingSeconds);
+
     private async Task ReadyAsync()
     {
         _job.LoadImage(TestFiles.Asset("qr-code.bmp"));
@@ -63,7 +68,7 @@ public sealed class RunViewModelTests
         await _run.StartCommand.ExecuteAsync(null);
 
         Assert.Contains("no job planned", _run.Error, StringComparison.Ordinal);
-        await _runs.DidNotReceive().RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>());
+        await _runs.DidNotReceive().RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>());
     }
 
     [Fact]
@@ -74,7 +79,7 @@ public sealed class RunViewModelTests
         await _run.StartCommand.ExecuteAsync(null);
 
         Assert.Contains("not connected", _run.Error, StringComparison.Ordinal);
-        await _runs.DidNotReceive().RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>());
+        await _runs.DidNotReceive().RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>());
     }
 
     [Fact]
@@ -86,7 +91,7 @@ public sealed class RunViewModelTests
         await _run.StartCommand.ExecuteAsync(null);
 
         Assert.Contains("outside the stage's travel", _run.Error, StringComparison.Ordinal);
-        await _runs.DidNotReceive().RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>());
+        await _runs.DidNotReceive().RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>());
     }
 
     [Fact]
@@ -95,19 +100,19 @@ public sealed class RunViewModelTests
         await ReadyAsync();
         _log.SampleId = "S-17";
         _log.Notes = "first try";
-        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
+        _runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
             .Returns(c =>
             {
-                c.Arg<IProgress<RunProgress>>().Report(new RunProgress(10, 10, 5, 5, 1, 123, 456, false));
-                return Task.FromResult(Result(RunOutcome.Completed));
+                c.Arg<IProgress<EngraveProgress>>().Report(Report(RunState.Running, 10, 10, 5, 5, x: 123, y: 456));
+                return Task.FromResult(Ended(c.Arg<EngraveSession>(), Result(RunOutcome.Completed)));
             });
 
         await _run.StartCommand.ExecuteAsync(null);
 
         Assert.Equal(RunState.Completed, _run.State);
         Assert.Equal(1, _run.Fraction);
-        Assert.Equal(123, _run.Progress!.XMicrosteps);
-        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == RunOutcome.Completed && r.SampleId == "S-17" && r.Notes == "first try" && r.RunsDone == 7 && r.Image.Sha256.Length == 64));
+        Assert.Equal(123, _run.Progress!.Run.XMicrosteps);
+        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == RunOutcome.Completed && r.SampleId == "S-17" && r.Notes == "first try" && r.RunsDone == 7));
         Assert.Equal(RunOutcome.Completed, _log.LastRun!.Record!.Outcome);
     }
 
@@ -116,11 +121,14 @@ public sealed class RunViewModelTests
     {
         await ReadyAsync();
         _job.Passes = 2;
-        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
-            .Returns(Task.FromResult(Result(RunOutcome.Completed)));
+        var sessions = new List<EngraveSession>();
+        _runs.RunAsync(Arg.Do<EngraveSession>(sessions.Add), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(Ends(Result(RunOutcome.Completed)));
 
         await _run.StartCommand.ExecuteAsync(null);
 
+        Assert.Equal(2, Assert.Single(sessions).Job.Spec.Passes);
+        Assert.Equal(2, sessions[0].Passes);
         _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Passes == 2 && r.PassesDone == 2));
     }
 
@@ -130,17 +138,17 @@ public sealed class RunViewModelTests
         await ReadyAsync();
         _job.Passes = 2;
         var stop = new RunStopPoint(12, 140, 5000, 6000);
-        var requests = new List<RunRequest>();
-        _runs.RunAsync(Arg.Do<RunRequest>(requests.Add), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
-            .Returns(Result(RunOutcome.Failed, "x axis: no reply") with { StopPoint = stop }, Result(RunOutcome.Completed));
+        var sessions = new List<EngraveSession>();
+        _runs.RunAsync(Arg.Do<EngraveSession>(sessions.Add), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(Ends(Result(RunOutcome.Failed, "x axis: no reply") with { StopPoint = stop }), Ends(Result(RunOutcome.Completed)));
         await _run.StartCommand.ExecuteAsync(null);
         Assert.True(_run.CanContinue);
 
         await _run.ContinueCommand.ExecuteAsync(null);
 
         Assert.Equal(RunState.Completed, _run.State);
-        Assert.Equal([null, stop], requests.Select(r => r.ResumeFrom));
-        Assert.Equal(1, requests[1].Passes);
+        Assert.Equal([null, stop], sessions.Select(r => r.Options.ResumeFrom));
+        Assert.Equal(1, sessions[1].Passes);
         _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Resumed && r.Outcome == RunOutcome.Completed));
         Assert.False(_run.CanContinue);
     }
@@ -149,8 +157,8 @@ public sealed class RunViewModelTests
     public async Task Continue_JobChangedSinceTheStop_RefusedAndNothingRuns()
     {
         await ReadyAsync();
-        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
-            .Returns(Result(RunOutcome.Failed, "x axis: no reply") with { StopPoint = new RunStopPoint(3, 20, null, null) });
+        _runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(Ends(Result(RunOutcome.Failed, "x axis: no reply") with { StopPoint = new RunStopPoint(3, 20, null, null) }));
         await _run.StartCommand.ExecuteAsync(null);
         _job.OriginXMm = 7;
 
@@ -158,15 +166,15 @@ public sealed class RunViewModelTests
 
         Assert.Contains("the job changed", _run.Error, StringComparison.Ordinal);
         Assert.False(_run.CanContinue);
-        await _runs.Received(1).RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>());
+        await _runs.Received(1).RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>());
     }
 
     [Fact]
     public async Task Start_GateSilentDuringRun_FailedWithErrorAndLogged()
     {
         await ReadyAsync();
-        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
-            .Returns(Result(RunOutcome.Failed, "laser gate: no reply to FREQ 1000 within 500 ms"));
+        _runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(Ends(Result(RunOutcome.Failed, "laser gate: no reply to FREQ 1000 within 500 ms")));
 
         await _run.StartCommand.ExecuteAsync(null);
 
@@ -179,8 +187,8 @@ public sealed class RunViewModelTests
     public async Task Start_PreflightRefuses_RefusedWithReasonAndLogged()
     {
         await ReadyAsync();
-        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
-            .ThrowsAsync(new PreflightException("stage: device 1 (X) did not answer; check the cable"));
+        _runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(c => Task.FromResult(Ended(c.Arg<EngraveSession>(), null, new PreflightException("stage: device 1 (X) did not answer; check the cable"))));
 
         await _run.StartCommand.ExecuteAsync(null);
 
@@ -194,12 +202,13 @@ public sealed class RunViewModelTests
     {
         await ReadyAsync();
         var started = new TaskCompletionSource();
-        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
+        _runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
             .Returns(async c =>
             {
+                c.Arg<IProgress<EngraveProgress>>().Report(Report(RunState.Running, 1, 10, 0, 5));
                 started.SetResult();
-                await Task.Delay(Timeout.Infinite, c.Arg<CancellationToken>());
-                return Result(RunOutcome.Completed);
+                await Task.Delay(Timeout.Infinite, c.Arg<CancellationToken>()).ContinueWith(_ => { }, TaskScheduler.Default);
+                return Ended(c.Arg<EngraveSession>(), Result(RunOutcome.Aborted, "aborted by the operator"));
             });
         var run = _run.StartCommand.ExecuteAsync(null);
         await started.Task.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
@@ -213,30 +222,31 @@ public sealed class RunViewModelTests
     }
 
     [Fact]
-    public async Task PauseResume_WhileRunning_GateHeldThenReleased()
+    public async Task PauseResume_WhileRunning_ForwardedToTheSessionAndMirrored()
     {
         await ReadyAsync();
-        var started = new TaskCompletionSource<RunRequest>();
+        var started = new TaskCompletionSource<EngraveSession>();
         var finish = new TaskCompletionSource();
-        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
+        _runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
             .Returns(async c =>
             {
-                started.SetResult(c.Arg<RunRequest>());
+                c.Arg<IProgress<EngraveProgress>>().Report(Report(RunState.Running, 1, 10, 0, 5));
+                started.SetResult(c.Arg<EngraveSession>());
                 await finish.Task;
-                return Result(RunOutcome.Completed);
+                return Ended(c.Arg<EngraveSession>(), Result(RunOutcome.Completed));
             });
         var run = _run.StartCommand.ExecuteAsync(null);
-        var request = await started.Task.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+        var session = await started.Task.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
 
         _run.PauseCommand.Execute(null);
-        var paused = (_run.State, request.Pause.IsPaused);
+        var paused = (session.Progress.PauseRequested, _run.CanResume, _run.PauseCommand.CanExecute(null));
         _run.ResumeCommand.Execute(null);
-        var resumed = (_run.State, request.Pause.IsPaused);
+        var resumed = (session.Progress.PauseRequested, _run.CanResume, _run.PauseCommand.CanExecute(null));
         finish.SetResult();
         await run.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
 
-        Assert.Equal((RunState.Paused, true), paused);
-        Assert.Equal((RunState.Running, false), resumed);
+        Assert.Equal((true, true, false), paused);
+        Assert.Equal((false, false, true), resumed);
     }
 
     [Fact]
@@ -247,13 +257,13 @@ public sealed class RunViewModelTests
         var perPass = _job.EstimatedSeconds!.Value / 2;
         var reported = new TaskCompletionSource();
         var finish = new TaskCompletionSource();
-        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
+        _runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
             .Returns(async c =>
             {
-                c.Arg<IProgress<RunProgress>>().Report(new RunProgress(5, 10, 2, 4, 1, 0, 0, true, "running", PassRemainingSeconds: 30));
+                c.Arg<IProgress<EngraveProgress>>().Report(Report(RunState.Running, 5, 10, 2, 4, pass: 1, passes: 2, laserOn: true, remainingSeconds: 30));
                 reported.SetResult();
                 await finish.Task;
-                return Result(RunOutcome.Completed);
+                return Ended(c.Arg<EngraveSession>(), Result(RunOutcome.Completed));
             });
         var run = _run.StartCommand.ExecuteAsync(null);
         await reported.Task.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
@@ -272,14 +282,15 @@ public sealed class RunViewModelTests
     {
         await ReadyAsync();
         var continued = new TaskCompletionSource();
-        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
+        _runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
             .Returns(
-                _ => Task.FromResult(Result(RunOutcome.Failed, "x axis: no reply") with { StopPoint = new RunStopPoint(3, 20, null, null) }),
+                Ends(Result(RunOutcome.Failed, "x axis: no reply") with { StopPoint = new RunStopPoint(3, 20, null, null) }),
                 async c =>
                 {
+                    c.Arg<IProgress<EngraveProgress>>().Report(Report(RunState.Running, 21, 100, 3, 10));
                     continued.SetResult();
-                    await Task.Delay(Timeout.Infinite, c.Arg<CancellationToken>());
-                    return Result(RunOutcome.Completed);
+                    await Task.Delay(Timeout.Infinite, c.Arg<CancellationToken>()).ContinueWith(_ => { }, TaskScheduler.Default);
+                    return Ended(c.Arg<EngraveSession>(), Result(RunOutcome.Aborted, "aborted by the operator"));
                 });
         await _run.StartCommand.ExecuteAsync(null);
         var run = _run.ContinueCommand.ExecuteAsync(null);
@@ -308,14 +319,15 @@ public sealed class RunViewModelTests
         var started = new TaskCompletionSource();
         var release = new TaskCompletionSource();
         var tokens = new List<CancellationToken>();
-        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
+        _runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
             .Returns(async c =>
             {
                 var token = c.Arg<CancellationToken>();
                 tokens.Add(token);
+                c.Arg<IProgress<EngraveProgress>>().Report(Report(RunState.Running, 1, 10, 0, 5));
                 started.TrySetResult();
                 await release.Task.WaitAsync(token);
-                return Result(RunOutcome.Completed);
+                return Ended(c.Arg<EngraveSession>(), Result(RunOutcome.Completed));
             });
         var run = _run.StartCommand.ExecuteAsync(null);
         await started.Task.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
@@ -336,7 +348,7 @@ public sealed class RunViewModelTests
         release.SetResult();
         await run.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
         Assert.Equal(RunState.Completed, _run.State);
-        await _runs.Received(1).RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>());
+        await _runs.Received(1).RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>());
     }
 
     [Fact]
@@ -391,7 +403,7 @@ public sealed class RunViewModelTests
         await _run.StartCommand.ExecuteAsync(null);
 
         Assert.Contains("homing is under way", _run.Error, StringComparison.Ordinal);
-        await _runs.DidNotReceive().RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>());
+        await _runs.DidNotReceive().RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>());
     }
 
     [Fact]
@@ -399,9 +411,9 @@ public sealed class RunViewModelTests
     {
         await ReadyAsync();
         var stop = new RunStopPoint(3, 20, null, null);
-        var requests = new List<RunRequest>();
-        _runs.RunAsync(Arg.Do<RunRequest>(requests.Add), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
-            .Returns(Result(RunOutcome.Failed, "x axis: no reply") with { StopPoint = stop }, Result(RunOutcome.Completed));
+        var sessions = new List<EngraveSession>();
+        _runs.RunAsync(Arg.Do<EngraveSession>(sessions.Add), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(Ends(Result(RunOutcome.Failed, "x axis: no reply") with { StopPoint = stop }), Ends(Result(RunOutcome.Completed)));
         await _run.StartCommand.ExecuteAsync(null);
         var origin = _job.OriginXMm;
 
@@ -416,7 +428,7 @@ public sealed class RunViewModelTests
         Assert.Null(_run.ContinueUnavailableReason);
         await _run.ContinueCommand.ExecuteAsync(null);
         Assert.Equal(RunState.Completed, _run.State);
-        Assert.Same(requests[0].Job, requests[1].Job);
-        Assert.Equal(stop, requests[1].ResumeFrom);
+        Assert.Same(sessions[0].Job, sessions[1].Job);
+        Assert.Equal(stop, sessions[1].Options.ResumeFrom);
     }
 }

@@ -2,10 +2,11 @@ using System.Net;
 using System.Net.Http.Json;
 using System.Text.Json;
 using LaserEngrave.App.Services;
+using LaserEngrave.App.Tests.ViewModels;
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Devices.Execution;
 using Microsoft.Extensions.DependencyInjection;
 using NSubstitute;
-using RunProgress = LaserEngrave.App.Services.RunProgress;
 
 namespace LaserEngrave.App.Tests.Web;
 
@@ -20,7 +21,7 @@ public sealed class ApiInterlockTests : IDisposable
 
     public ApiInterlockTests()
     {
-        _runs.RunAsync(Arg.Any<RunRequest>(), Arg.Any<IProgress<RunProgress>>(), Arg.Any<CancellationToken>())
+        _runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
             .Returns(async c =>
             {
                 var token = c.Arg<CancellationToken>();
@@ -29,9 +30,12 @@ public sealed class ApiInterlockTests : IDisposable
                     _tokens.Add(token);
                 }
 
+                c.Arg<IProgress<EngraveProgress>>().Report(SessionResults.Report(RunState.Running, 1, 10, 0, 5));
                 _started.TrySetResult();
-                await Task.Delay(Timeout.Infinite, token);
-                return await Task.FromException<RunResult>(new InvalidOperationException("unreachable"));
+                await Task.Delay(Timeout.Infinite, token).ContinueWith(_ => { }, TaskScheduler.Default);
+
+                // As the session ends an aborted run: with a result, never by throwing.
+                return SessionResults.Ended(c.Arg<EngraveSession>(), SessionResults.Result(RunOutcome.Aborted, "aborted by the operator"));
             });
         _app = new AppFactory(services => services.AddSingleton(_runs));
         _client = _app.NewClient();

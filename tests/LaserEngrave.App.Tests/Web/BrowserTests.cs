@@ -1,6 +1,7 @@
 using System.Globalization;
 using LaserEngrave.App.ViewModels;
 using LaserEngrave.App.Web;
+using LaserEngrave.Devices.Execution;
 using Microsoft.AspNetCore.Builder;
 using Microsoft.AspNetCore.Hosting.Server;
 using Microsoft.AspNetCore.Hosting.Server.Features;
@@ -197,7 +198,8 @@ public sealed class BrowserTests : IAsyncLifetime
         var held = 0;
         run.PropertyChanged += (_, e) =>
         {
-            if (e.PropertyName == nameof(RunViewModel.State) && run.State == RunState.Paused)
+            // Pausing is enough: the engine pauses after the current move, which is this very report's.
+            if (e.PropertyName == nameof(RunViewModel.State) && run.State is RunState.Pausing or RunState.Paused)
             {
                 pauseLanded.Set();
             }

@@ -188,6 +188,10 @@ public static class BadInputTable
         Add("bogus", [.. engrave, "--simulate", "--fault", "bogus"]);
         Add("--burned needs --simulate", [.. engrave, "--stage-port", "/nonexistent/a", "--laser-port", "/nonexistent/b", "--burned", "@out"]);
         Add("--resume needs --from-log", [.. engrave, "--simulate", "--resume"]);
+        Add("--passes 0: must be 1..100", [.. engrave, "--simulate", "--passes", "0"]);
+        Add("--passes -3: must be 1..100", [.. engrave, "--simulate", "--passes", "-3"]);
+        Add("--passes 101: must be 1..100", [.. engrave, "--simulate", "--passes", "101"]);
+        Add("--passes", [.. engrave, "--simulate", "--passes", "two"]);
         Add("named pipe (FIFO)", "engrave", "@fifo", "--width-mm", "1", "--simulate", "--log-dir", "@logdir");
         Add("is a folder", "engrave", "@dir", "--width-mm", "1", "--simulate", "--log-dir", "@logdir");
         Add("the file is truncated", "engrave", "@truncated", "--width-mm", "1", "--simulate", "--log-dir", "@logdir");
@@ -198,6 +202,7 @@ public static class BadInputTable
         Add("--width-mm with --from-log", [.. fromLog, "--width-mm", "5"]);
         Add("--height-mm with --from-log", [.. fromLog, "--height-mm", "5"]);
         Add("--pitch-um with --from-log", [.. fromLog, "--pitch-um", "50"]);
+        Add("--passes with --from-log", [.. fromLog, "--passes", "2"]);
         Add("--frequency-hz with --from-log", [.. fromLog, "--frequency-hz", "5000"]);
         Add("--speed-mm-s with --from-log", [.. fromLog, "--speed-mm-s", "2"]);
         Add("--origin-mm with --from-log", [.. fromLog, "--origin-mm", "5,5"]);

@@ -70,7 +70,7 @@ public class RunControlTests
         var log = devices.Log.ToList();
 
         Assert.True(result.Outcome == RunOutcome.Aborted, $"{result.Outcome}: {result.FaultMessage}");
-        Assert.Equal(RunState.Completed, executor.State);
+        Assert.Equal(RunState.Aborted, executor.State);
         Assert.False(run.Machine.Gate.IsFiring);
         Assert.False(run.Machine.Stage.X.IsMoving || run.Machine.Stage.Y.IsMoving);
         var firstStop = log.FindIndex(e => e.EndsWith(" stop", StringComparison.Ordinal));
@@ -109,6 +109,7 @@ public class RunControlTests
         var result = await run.Do(() => executor.RunAsync(TestContext.Current.CancellationToken));
 
         Assert.Equal(RunOutcome.Aborted, result.Outcome);
+        Assert.Equal(RunState.Aborted, executor.State);
         Assert.Equal(movesWhenPaused, moves);
         Assert.False(run.Machine.Gate.IsFiring);
         Assert.Equal(movesWhenPaused, Assert.IsType<RunStopPoint>(result.StopPoint).MoveIndex);
@@ -131,6 +132,7 @@ public class RunControlTests
         var result = await run.Do(() => executor.RunAsync(TestContext.Current.CancellationToken));
 
         Assert.Equal(RunOutcome.Aborted, result.Outcome);
+        Assert.Equal(RunState.Aborted, executor.State);
         Assert.Equal(0, result.RunsDone);
         Assert.False(run.Machine.Gate.IsFiring);
     }
@@ -155,6 +157,7 @@ public class RunControlTests
 
         Assert.Equal(RunOutcome.Aborted, result.Outcome);
         Assert.Equal("aborted by the operator", result.FaultMessage);
+        Assert.Equal(RunState.Aborted, executor.State);
         Assert.False(run.Machine.Gate.IsFiring);
     }
 

@@ -1,0 +1,15 @@
+namespace LaserEngrave.Devices.Execution;
+
+/// <summary>A snapshot of an <see cref="EngraveSession"/>: its state, the pass under way, and that pass's executor progress.</summary>
+/// <param name="State">The session's state: the pass's executor's, except that a pass's end is not the session's until the last pass.</param>
+/// <param name="Pass">The pass under way, from 1.</param>
+/// <param name="Passes">The passes this session runs.</param>
+/// <param name="MovesDone">Moves of the plan completed in this pass (with those done before a resume).</param>
+/// <param name="MovesTotal">Moves of the plan.</param>
+/// <param name="PauseRequested">A pause was asked and not yet resumed (it takes effect after the current move).</param>
+/// <param name="Run">The pass's executor progress: rows, runs, percent and time left of this pass, position, laser.</param>
+public sealed record EngraveProgress(RunState State, int Pass, int Passes, long MovesDone, long MovesTotal, bool PauseRequested, RunProgress Run)
+{
+    /// <summary>Share of all passes done, 0..1.</summary>
+    public double Fraction => MovesTotal > 0 ? Math.Clamp((Pass - 1 + ((double)MovesDone / MovesTotal)) / Math.Max(1, Passes), 0, 1) : 0;
+}

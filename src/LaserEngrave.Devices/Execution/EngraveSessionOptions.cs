@@ -1,0 +1,31 @@
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Logging;
+
+namespace LaserEngrave.Devices.Execution;
+
+/// <summary>What an <see cref="EngraveSession"/> needs besides the job and the machine: the log's fields, where it goes, and how to start.</summary>
+public sealed record EngraveSessionOptions
+{
+    public static EngraveSessionOptions Default { get; } = new();
+
+    /// <summary>The operator's notes, for the log.</summary>
+    public string? Notes { get; init; }
+
+    /// <summary>The sample's ID, for the log (and its file name).</summary>
+    public string? SampleId { get; init; }
+
+    /// <summary>The log of the run this one repeats or continues.</summary>
+    public string? RepeatOf { get; init; }
+
+    /// <summary>Continue a stopped run from here: only the rest of the pass that stopped is run.</summary>
+    public RunStopPoint? ResumeFrom { get; init; }
+
+    /// <summary>Home both axes in the first pass's preflight even when they are homed.</summary>
+    public bool Home { get; init; }
+
+    /// <summary>Where the log is written; null writes none (the result still has the record).</summary>
+    public IRunLogWriter? Log { get; init; }
+
+    /// <summary>The wall clock the log's start and end times come from (the system's; a test's own).</summary>
+    public TimeProvider WallClock { get; init; } = TimeProvider.System;
+}

@@ -1,0 +1,31 @@
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Logging;
+using LaserEngrave.Devices.Execution;
+
+namespace LaserEngrave.Simulator.Burn;
+
+/// <summary>The simulator's burn check for an <see cref="EngraveSession"/>: what its recorder saw, against the job's mask, for the log.</summary>
+/// <remarks>Only what happened since <see cref="Begin"/> counts, so a run on a simulator that has burned before (the app's) is checked alone.</remarks>
+public sealed class BurnInspector(SimulatedMachine machine) : IRunInspector
+{
+    /// <summary>The last check's whole report (the burned image, the pulse map); null before the first.</summary>
+    public BurnReport? Report { get; private set; }
+
+    public void Begin() => machine.Recorder.Restart(machine.NowSeconds);
+
+    public RunSimulation Inspect(PreparedJob job)
+    {
+        ArgumentNullException.ThrowIfNull(job);
+        var burn = machine.Recorder.Analyze(BurnGrid.For(job.Plan.Geometry), job.Mask, job.Spec.Process.BurnSpeedMmPerS);
+        Report = burn;
+        return new RunSimulation(
+            machine.Options.Seed,
+            burn.Pulses,
+            burn.Edges is { } e ? new EdgeErrors(e.Count, e.MeanErrorUm, e.MaxErrorUm) : null,
+            burn.Dwells is { } d ? new DwellCounts(d.Count, d.Pulses) : null,
+            new PulseCountRange(burn.PulsesPerPixel.Min, burn.PulsesPerPixel.Mean, burn.PulsesPerPixel.Max),
+            burn.LaserOnTravelCount,
+            burn.MissingPixels,
+            burn.ExtraPixels);
+    }
+}

@@ -1,0 +1,223 @@
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Logging;
+using LaserEngrave.Core.Planning;
+using LaserEngrave.Devices.Execution;
+using LaserEngrave.Simulator;
+using LaserEngrave.Simulator.Burn;
+
+namespace LaserEngrave.Devices.Tests.Execution;
+
+/// <summary>The one use case both front ends call, on the in-process simulator: passes, the burn check, the log, progress and the end state.</summary>
+public class EngraveSessionTests
+{
+    private static PreparedJob Job(int passes = 1, OriginMm? origin = null)
+    {
+        var job = TestJobs.FromMask(TestJobs.RandomMask(seed: 21, 12, 6), 1, new PlanOptions(), origin);
+        return PreparedJob.Prepare(job.Spec with { Passes = passes }, job.Image, job.Mask);
+    }
+
+    private static EngraveSession Session(SimulatedRun run, PreparedJob job, RecordingLog log, RunStopPoint? resumeFrom = null, bool inspect = true) =>
+        new(
+            new EngraveMachine(run.Stage, run.Gate, run.Time, "simulator", "simulator") { Simulated = true, Inspector = inspect ? new BurnInspector(run.Machine) : null },
+            job,
+            new EngraveSessionOptions { Log = log, SampleId = "S-1", Notes = "session test", ResumeFrom = resumeFrom });
+
+    [Fact(Timeout = 120_000)]
+    public async Task RunAsync_TwoPasses_BurnsEveryPixelTwiceAndLogsBothPasses()
+    {
+        var ct = TestContext.Current.CancellationToken;
+        var onePass = new RecordingLog();
+        await using (var run = SimulatedRun.Create())
+        {
+            await Session(run, Job(passes: 1), onePass).RunAsync(null, ct);
+        }
+
+        var twoPasses = new RecordingLog();
+        await using var twice = SimulatedRun.Create();
+        var job = Job(passes: 2);
+        var result = await Session(twice, job, twoPasses).RunAsync(null, ct);
+
+        var one = Assert.IsType<RunSimulation>(Assert.Single(onePass.Records).Simulation);
+        var record = Assert.Single(twoPasses.Records);
+        var two = Assert.IsType<RunSimulation>(record.Simulation);
+        Assert.Equal(RunOutcome.Completed, record.Outcome);
+        Assert.Equal(RunState.Completed, result.State);
+        Assert.Equal((2, (int?)2), (record.Passes, record.PassesDone));
+        Assert.Equal((job.Statistics.BurnRuns, job.Statistics.Rows), (record.RunsDone, record.RowsDone));
+        Assert.Equal((0L, 0L), (two.MissingPixels, two.ExtraPixels));
+        Assert.InRange(two.Pulses, 2 * one.Pulses * 0.99, 2 * one.Pulses * 1.01);
+        Assert.InRange(two.PulsesPerPixel.Min, 2 * one.PulsesPerPixel.Min - 2, 2 * one.PulsesPerPixel.Min + 2);
+        Assert.InRange(two.PulsesPerPixel.Mean, 2 * one.PulsesPerPixel.Mean * 0.99, 2 * one.PulsesPerPixel.Mean * 1.01);
+        Assert.InRange(record.LaserOnSeconds, 2 * Assert.Single(onePass.Records).LaserOnSeconds * 0.99, 2 * Assert.Single(onePass.Records).LaserOnSeconds * 1.01);
+        Assert.Equal(new RunLogFiles("run.json", "run.txt"), result.Files);
+        Assert.Equal(("S-1", "session test", true), (record.SampleId, record.Notes, record.Simulated));
+        Assert.False(twice.Machine.Gate.IsFiring);
+    }
+
+    [Fact(Timeout = 120_000)]
+    public async Task RunAsync_TwoPasses_ProgressGoesThroughBothPassesAndEndsCompletedOnlyAtTheEnd()
+    {
+        await using var run = SimulatedRun.Create();
+        var log = new RecordingLog();
+        var reports = new List<EngraveProgress>();
+        var session = Session(run, Job(passes: 2), log);
+
+        var result = await session.RunAsync(new SynchronousProgress(reports.Add), TestContext.Current.CancellationToken);
+
+        Assert.Equal([1, 2], reports.Select(r => r.Pass).Distinct());
+        Assert.All(reports.Take(reports.Count - 1), r => Assert.False(RunStateMachine.IsEnd(r.State), $"the session reported {r.State} before its end"));
+        Assert.Contains(reports, r => r.Pass == 1 && r.Run.State == RunState.Completed && r.State == RunState.Running);
+        for (var i = 1; i < reports.Count; i++)
+        {
+            Assert.True(reports[i].Fraction >= reports[i - 1].Fraction, $"the fraction went back at {i}");
+        }
+
+        Assert.Equal(RunState.Completed, reports[^1].State);
+        Assert.Equal(1, reports[^1].Fraction, 6);
+        Assert.Equal(RunState.Completed, session.State);
+        Assert.Equal(RunOutcome.Completed, result.Record.Outcome);
+    }
+
+    [Fact(Timeout = 120_000)]
+    public async Task Abort_InTheSecondPass_EndsAbortedWithOnePassDoneLoggedAndTheLaserOff()
+    {
+        await using var run = SimulatedRun.Create();
+        var log = new RecordingLog();
+        var job = Job(passes: 2);
+        EngraveSession? session = null;
+        var aborted = 0;
+        session = Session(run, job, log);
+        var progress = new SynchronousProgress(p =>
+        {
+            if (p.Pass == 2 && p.MovesDone >= 5 && Interlocked.Exchange(ref aborted, 1) == 0)
+            {
+                _ = Task.Delay(TimeSpan.FromMilliseconds(100), run.Time).ContinueWith(_ => session.Abort(), run.Loop);
+            }
+        });
+
+        var result = await session.RunAsync(progress, TestContext.Current.CancellationToken);
+
+        var record = Assert.Single(log.Records);
+        Assert.Equal(RunState.Aborted, session.State);
+        Assert.Equal(RunState.Aborted, result.State);
+        Assert.Equal(RunOutcome.Aborted, record.Outcome);
+        Assert.Equal((2, (int?)1), (record.Passes, record.PassesDone));
+        Assert.NotNull(record.StoppedAt);
+        Assert.Null(result.Error);
+        Assert.False(run.Machine.Gate.IsFiring);
+    }
+
+    [Fact(Timeout = 60_000)]
+    public async Task RunAsync_Cancelled_EndsAbortedAndLogged()
+    {
+        await using var run = SimulatedRun.Create();
+        var log = new RecordingLog();
+        using var cancel = CancellationTokenSource.CreateLinkedTokenSource(TestContext.Current.CancellationToken);
+        var session = Session(run, Job(), log);
+
+        var result = await session.RunAsync(new SynchronousProgress(p => { if (p.MovesDone >= 3) { cancel.Cancel(); } }), cancel.Token);
+
+        Assert.Equal(RunState.Aborted, result.State);
+        Assert.Equal(RunOutcome.Aborted, Assert.Single(log.Records).Outcome);
+        Assert.False(run.Machine.Gate.IsFiring);
+    }
+
+    [Fact(Timeout = 60_000)]
+    public async Task RunAsync_PreflightRefuses_FailedWithTheRefusalLoggedAndReturned()
+    {
+        await using var run = SimulatedRun.Create();
+        var log = new RecordingLog();
+        var session = Session(run, Job(origin: new OriginMm(59.5, 10)), log);
+
+        var result = await session.RunAsync(null, TestContext.Current.CancellationToken);
+
+        Assert.IsType<PreflightException>(result.Error);
+        Assert.Null(result.Run);
+        Assert.Equal(RunState.Failed, session.State);
+        var record = Assert.Single(log.Records);
+        Assert.Equal(RunOutcome.Refused, record.Outcome);
+        Assert.Equal("preflight", record.Fault?.Kind);
+        Assert.Equal(0, run.Machine.Recorder.Analyze(SimulatedRun.Grid(session.Job)).Pulses);
+    }
+
+    [Fact(Timeout = 60_000)]
+    public async Task RunAsync_LogCannotBeWritten_RunEndsAndTheErrorIsReturned()
+    {
+        await using var run = SimulatedRun.Create();
+        var log = new RecordingLog { Fail = true };
+
+        var result = await Session(run, Job(), log).RunAsync(null, TestContext.Current.CancellationToken);
+
+        Assert.Equal(RunOutcome.Completed, result.Record.Outcome);
+        Assert.Null(result.Files);
+        Assert.IsType<RunLogException>(result.LogError);
+    }
+
+    [Fact(Timeout = 120_000)]
+    public async Task RunAsync_ResumingATwoPassJob_RunsOnlyTheRestOfThePassThatStopped()
+    {
+        var ct = TestContext.Current.CancellationToken;
+        await using var run = SimulatedRun.Create();
+        var log = new RecordingLog();
+        var job = Job(passes: 2);
+        using var cancel = CancellationTokenSource.CreateLinkedTokenSource(ct);
+        var first = await Session(run, job, log, inspect: false).RunAsync(new SynchronousProgress(p => { if (p.MovesDone >= 10) { cancel.Cancel(); } }), cancel.Token);
+        var stop = Assert.IsType<RunStopPoint>(first.Record.StoppedAt);
+
+        // Without the burn check, whose start would leave out what the first run burned.
+        var reports = new List<EngraveProgress>();
+        var resumed = await Session(run, job, log, stop, inspect: false).RunAsync(new SynchronousProgress(reports.Add), ct);
+
+        Assert.Equal(RunOutcome.Completed, resumed.Record.Outcome);
+        Assert.Equal((1, (int?)null, true), (resumed.Record.Passes, resumed.Record.PassesDone, resumed.Record.Resumed));
+        Assert.All(reports, r => Assert.Equal(1, r.Pass));
+        Assert.True(run.Analyze(job).Burned.ContentEquals(job.Mask));
+    }
+
+    [Fact(Timeout = 120_000)]
+    public async Task RunAsync_TwiceOnOneSimulator_TheBurnCheckCountsEachSessionAlone()
+    {
+        var ct = TestContext.Current.CancellationToken;
+        await using var run = SimulatedRun.Create();
+        var log = new RecordingLog();
+        var job = Job();
+
+        await Session(run, job, log).RunAsync(null, ct);
+        await Session(run, job, log).RunAsync(null, ct);
+
+        var (first, second) = (log.Records[0].Simulation!, log.Records[1].Simulation!);
+        Assert.InRange(second.Pulses, first.Pulses * 0.99, first.Pulses * 1.01);
+        Assert.Equal(first.PulsesPerPixel.Max, second.PulsesPerPixel.Max, 1.0);
+    }
+
+    [Theory]
+    [InlineData(0)]
+    [InlineData(101)]
+    public async Task Constructor_PassesOutsideOneToHundred_Refused(int passes)
+    {
+        await using var run = SimulatedRun.Create();
+        var job = Job();
+        var bad = PreparedJob.Prepare(job.Spec with { Passes = passes }, job.Image, job.Mask);
+
+        Assert.Throws<ArgumentOutOfRangeException>(() => Session(run, bad, new RecordingLog()));
+    }
+
+    private sealed class RecordingLog : IRunLogWriter
+    {
+        public List<RunRecord> Records { get; } = [];
+
+        public bool Fail { get; init; }
+
+        public RunLogFiles Write(RunRecord record)
+        {
+            Records.Add(record);
+            return Fail ? throw new RunLogException("/logs: the disk is full") : new RunLogFiles("run.json", "run.txt");
+        }
+    }
+
+    private sealed class SynchronousProgress(Action<EngraveProgress> report) : IProgress<EngraveProgress>
+    {
+        public void Report(EngraveProgress value) => report(value);
+    }
+}
