@@ -77,6 +77,7 @@ internal sealed record JobSummary(
     double TravelLengthMm,
     long LaserSwitches,
     double EstimatedSeconds,
+    double LowerBoundSeconds,
     IReadOnlyList<string> Warnings,
     double PulseSpacingUm,
     double OverlapPercent,
@@ -108,6 +109,7 @@ internal sealed record JobSummary(
             s.TravelLengthMm,
             s.LaserSwitches,
             s.EstimatedSeconds,
+            s.LowerBoundSeconds,
             [.. job.Warnings.Select(w => w.Message)],
             job.Pulses.PulseSpacingUm,
             job.Pulses.OverlapPercent,
@@ -136,6 +138,7 @@ internal sealed record JobSummary(
         output.WriteLine(string.Create(c, $"Laser switches:   {s.LaserSwitches}"));
         output.WriteLine(string.Create(c, $"Pulses:           {s.PulseSpacingUm:0.###} µm apart, {s.OverlapPercent:0.#} % overlap, {s.PulsesPerPixel:0.##} per pixel"));
         output.WriteLine(string.Create(c, $"Estimated time:   {Duration(s.EstimatedSeconds)}"));
+        output.WriteLine(string.Create(c, $"Lower bound:      {Duration(s.LowerBoundSeconds)} (motion only)"));
     }
 
     public static string Duration(double seconds)

@@ -94,7 +94,7 @@ public sealed class RasterPlan
     /// <param name="gate">The gate's command strings (default: <see cref="LaserGateProfile"/>'s defaults).</param>
     public PlanStatistics ComputeStatistics(ProcessSettings process, LaserGateProfile? gate = null)
     {
-        var visitor = new StatisticsVisitor(new PlanEstimator(process, Options.Strategy, Geometry.MicrostepUm, gate));
+        var visitor = new StatisticsVisitor(new PlanEstimator(process, Options.Strategy, Geometry.MicrostepUm, gate), new LowerBound(process, Geometry.MicrostepUm));
         var planner = NewPlanner();
         while (planner.NextRow < Mask.Height)
         {
