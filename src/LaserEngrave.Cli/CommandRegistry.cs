@@ -20,6 +20,7 @@ internal static class CommandRegistry
         yield return StageCommand.Create();
         yield return LaserCommand.Create();
         yield return SimulatorCommand.Create();
+        yield return MachineCommand.Create();
         yield return EngraveCommand.Create();
         yield return LogCommand.Create();
         foreach (var command in TestMoveCommands.All())

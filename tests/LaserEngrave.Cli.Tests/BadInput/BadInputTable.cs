@@ -285,6 +285,14 @@ public static class BadInputTable
         Add("gate.watchdogMs must be 50..60000 ms", "simulator", "--stage-port", "/nonexistent/a", "--laser-port", "/nonexistent/b", "--profile", "@profile:watchdog-0");
         Add("--stage-port", "simulator", "--laser-port", "/nonexistent/b");
 
+        // machine latency: the count, the profile to write, the machine.
+        Add("--count 0: must be 1..100000", "machine", "latency", "--simulate", "--count", "0");
+        Add("--count -3: must be 1..100000", "machine", "latency", "--simulate", "--count", "-3");
+        Add("--count 1000000: must be 1..100000", "machine", "latency", "--simulate", "--count", "1000000");
+        Add("--write needs --profile FILE", "machine", "latency", "--simulate", "--write");
+        Add("give the machine", "machine", "latency");
+        Add("gate.watchdogMs must be 50..60000 ms", "machine", "latency", "--simulate", "--profile", "@profile:watchdog-0", "--write");
+
         // Logs, previews, the benchmark, and what is not a command at all.
         Add("named pipe (FIFO)", "log", "show", "@fifo");
         Add("is a folder", "log", "show", "@dir");
