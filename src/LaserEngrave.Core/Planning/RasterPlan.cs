@@ -10,11 +10,18 @@ namespace LaserEngrave.Core.Planning;
 /// A move's <see cref="Move.Row"/> is the image row it burns on, or for a travel between rows the row it leads to.
 /// The plan begins at the first move's start; reaching it is the executor's business.
 /// <see cref="PlanStrategy.Paper"/> ignores <see cref="PlanOptions.Bidirectional"/> and <see cref="PlanOptions.OverscanMm"/>.
+/// A scan offset shifts every X position of the right-to-left rows (edges, run-ups, run-outs) before the one rounding;
+/// rows burned left to right, and every row of a unidirectional or paper plan, are left as they are.
 /// The plan reads the mask each time it is enumerated, so the mask must not change while the plan is in use.
 /// </remarks>
 public sealed class RasterPlan
 {
-    public RasterPlan(BitMask mask, JobGeometry geometry, PlanOptions? options = null)
+    /// <param name="mask">What to burn.</param>
+    /// <param name="geometry">Where the mask lands on the stage.</param>
+    /// <param name="options">Strategy, scan direction, overscan.</param>
+    /// <param name="scanOffsetUm">Shift of right-to-left rows' X edges, µm, positive towards +X: the machine profile's
+    /// scan offset at the burn speed (<see cref="MachineProfile.ScanOffsetUmAt"/>).</param>
+    public RasterPlan(BitMask mask, JobGeometry geometry, PlanOptions? options = null, double scanOffsetUm = 0)
     {
         ArgumentNullException.ThrowIfNull(mask);
         ArgumentNullException.ThrowIfNull(geometry);
@@ -25,9 +32,15 @@ public sealed class RasterPlan
             throw new PlanException($"the mask is {mask.Width} x {mask.Height} pixels but the geometry is for {geometry.WidthPx} x {geometry.HeightPx}");
         }
 
+        if (!double.IsFinite(scanOffsetUm))
+        {
+            throw new PlanException($"scan offset {scanOffsetUm.ToString(CultureInfo.InvariantCulture)} µm must be a finite number");
+        }
+
         Mask = mask;
         Geometry = geometry;
         Options = options;
+        ScanOffsetUm = scanOffsetUm;
         OverscanMicrosteps = options.Strategy == PlanStrategy.Paper
             ? 0
             : JobGeometry.Round(StageUnits.MmToMicrosteps(options.OverscanMm, geometry.MicrostepUm));
@@ -39,6 +52,9 @@ public sealed class RasterPlan
     public JobGeometry Geometry { get; }
 
     public PlanOptions Options { get; }
+
+    /// <summary>Shift of the right-to-left rows' X edges, µm, positive towards +X (0: none).</summary>
+    public double ScanOffsetUm { get; }
 
     /// <summary>Overscan length in whole microsteps (0 under <see cref="PlanStrategy.Paper"/>).</summary>
     public long OverscanMicrosteps { get; }
@@ -126,7 +142,7 @@ public sealed class RasterPlan
         }
     }
 
-    private RowPlanner NewPlanner() => new(Mask, Geometry, Options, OverscanMicrosteps);
+    private RowPlanner NewPlanner() => new(Mask, Geometry, Options, OverscanMicrosteps, StageUnits.UmToMicrosteps(ScanOffsetUm, Geometry.MicrostepUm));
 
     private List<JobWarning> OverscanWarnings()
     {

@@ -18,19 +18,21 @@ internal sealed class RowPlanner
     private readonly bool _paper;
     private readonly bool _bidirectional;
     private readonly long _overscan;
+    private readonly double _reverseOffset;
     private int[] _runs = new int[64];
     private long[] _edges = new long[64];
     private bool _hasPosition;
     private long _x;
     private long _y;
 
-    public RowPlanner(BitMask mask, JobGeometry geometry, PlanOptions options, long overscanMicrosteps)
+    public RowPlanner(BitMask mask, JobGeometry geometry, PlanOptions options, long overscanMicrosteps, double reverseOffsetMicrosteps)
     {
         _mask = mask;
         _geometry = geometry;
         _paper = options.Strategy == PlanStrategy.Paper;
         _bidirectional = options.Bidirectional;
         _overscan = overscanMicrosteps;
+        _reverseOffset = reverseOffsetMicrosteps;
     }
 
     /// <summary>Index of the next row to plan; equals the mask height when every row is done.</summary>
@@ -115,9 +117,11 @@ internal sealed class RowPlanner
             _edges = new long[_runs.Length];
         }
 
+        // A right-to-left row's edges carry the scan offset, added before the one rounding.
+        var offset = leftToRight ? 0 : _reverseOffset;
         for (var i = 0; i < 2 * runCount; i++)
         {
-            _edges[i] = _geometry.RunEdgeX(_runs[i], row);
+            _edges[i] = _geometry.RunEdgeX(_runs[i], row, offset);
         }
 
         var y = _geometry.RowY(row);
