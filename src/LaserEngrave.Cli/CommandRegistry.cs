@@ -14,6 +14,7 @@ internal static class CommandRegistry
         yield return PreviewCommand.Create();
         yield return ProcessCommand.Create();
         yield return CalibrateCommand.Create();
+        yield return PatternCommand.Create();
         yield return AlignCommand.Create();
         yield return BenchCommand.Create();
         yield return PortsCommand.Create();
