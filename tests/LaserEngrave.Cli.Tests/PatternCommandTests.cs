@@ -87,6 +87,12 @@ public class PatternCommandTests
             var (exit, _, error) = await CliHarness.RunAsync("plan", pattern, "--pitch-um", "25", "--origin-mm", "10,10", "--profile", profile, "--segments", shifted);
 
             Assert.True(exit == 0, error);
+            var (_, json, _) = await CliHarness.RunAsync("plan", pattern, "--pitch-um", "25", "--origin-mm", "10,10", "--profile", profile, "--json");
+            using (var document = JsonDocument.Parse(json))
+            {
+                Assert.Equal(10, document.RootElement.GetProperty("scanOffsetUm").GetDouble());
+            }
+
             var before = Burns(plain);
             var after = Burns(shifted);
             Assert.Equal(before.Count, after.Count);

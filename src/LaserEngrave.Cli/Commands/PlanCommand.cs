@@ -70,6 +70,7 @@ internal sealed record JobSummary(
     string Strategy,
     bool Bidirectional,
     double OverscanMm,
+    double ScanOffsetUm,
     int Rows,
     long Moves,
     long BurnRuns,
@@ -102,6 +103,7 @@ internal sealed record JobSummary(
             job.Spec.Plan.Strategy.ToString().ToLowerInvariant(),
             job.Spec.Plan.Bidirectional,
             job.Spec.Plan.OverscanMm,
+            job.Plan.ScanOffsetUm,
             s.Rows,
             s.Moves,
             s.BurnRuns,
@@ -130,7 +132,7 @@ internal sealed record JobSummary(
             output.WriteLine($"Compensated:      {calibration.Describe()} (the profile's calibration)");
         }
 
-        output.WriteLine(string.Create(c, $"Strategy:         {s.Strategy}{(s.Strategy == "optimized" ? $", {(s.Bidirectional ? "bidirectional" : "unidirectional")}, overscan {s.OverscanMm:0.###} mm" : string.Empty)}"));
+        output.WriteLine(string.Create(c, $"Strategy:         {s.Strategy}{(s.Strategy == "optimized" ? $", {(s.Bidirectional ? "bidirectional" : "unidirectional")}, overscan {s.OverscanMm:0.###} mm" : string.Empty)}{(s.ScanOffsetUm != 0 && s.Strategy == "optimized" && s.Bidirectional ? $", right-to-left rows shifted {s.ScanOffsetUm:0.###} µm (the profile's scanOffsets)" : string.Empty)}"));
         output.WriteLine(string.Create(c, $"Rows:             {s.Rows}"));
         output.WriteLine(string.Create(c, $"Moves:            {s.Moves}"));
         output.WriteLine(string.Create(c, $"Burn runs:        {s.BurnRuns} ({s.BurnLengthMm:0.###} mm)"));

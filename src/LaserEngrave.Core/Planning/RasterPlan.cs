@@ -44,7 +44,7 @@ public sealed class RasterPlan
         OverscanMicrosteps = options.Strategy == PlanStrategy.Paper
             ? 0
             : JobGeometry.Round(StageUnits.MmToMicrosteps(options.OverscanMm, geometry.MicrostepUm));
-        Warnings = OverscanWarnings();
+        Warnings = [.. OverscanWarnings(), .. ScanOffsetWarnings()];
     }
 
     public BitMask Mask { get; }
@@ -161,6 +161,28 @@ public sealed class RasterPlan
             warnings.Add(new JobWarning(
                 JobWarningKind.OverscanClamped,
                 $"overscan {Options.OverscanMm.ToString("0.###", CultureInfo.InvariantCulture)} mm reaches past the stage travel at {side} of the job: run-ups and run-outs there are shortened, so burning starts or stops while the stage is still changing speed"));
+        }
+
+        return warnings;
+    }
+
+    private List<JobWarning> ScanOffsetWarnings()
+    {
+        var warnings = new List<JobWarning>();
+        if (ScanOffsetUm == 0 || Options.Strategy == PlanStrategy.Paper || !Options.Bidirectional)
+        {
+            return warnings;
+        }
+
+        var bounds = Geometry.StageBounds();
+        var offset = StageUnits.UmToMicrosteps(ScanOffsetUm, Geometry.MicrostepUm);
+        var left = JobGeometry.Round(bounds.Left + offset);
+        var right = JobGeometry.Round(bounds.Right + offset);
+        if (left < 0 || right > Geometry.TravelXMicrosteps)
+        {
+            warnings.Add(new JobWarning(
+                JobWarningKind.OutsideTravel,
+                $"scan offset {ScanOffsetUm.ToString("0.###", CultureInfo.InvariantCulture)} µm moves the right-to-left rows past the stage travel at the {(left < 0 ? "left" : "right")} edge: the stage will refuse those moves; move the job inwards"));
         }
 
         return warnings;

@@ -88,6 +88,19 @@ public class ScanOffsetPlanTests
     }
 
     [Fact]
+    public void Warnings_OffsetPastTheTravel_Warned_OnlyWhenRowsRunBothWays()
+    {
+        var mask = TestMasks.FromRows(Rows);
+        var geometry = TestMasks.Geometry(mask, pitch: 1000, ox: 0);
+
+        var warning = Assert.Single(new RasterPlan(mask, geometry, scanOffsetUm: -5).Warnings);
+        Assert.Equal(JobWarningKind.OutsideTravel, warning.Kind);
+        Assert.Contains("scan offset -5 µm moves the right-to-left rows past the stage travel at the left edge", warning.Message, StringComparison.Ordinal);
+        Assert.Empty(new RasterPlan(mask, geometry, scanOffsetUm: 5).Warnings);
+        Assert.Empty(new RasterPlan(mask, geometry, new PlanOptions { Bidirectional = false }, -5).Warnings);
+    }
+
+    [Fact]
     public void Constructor_OffsetNotFinite_Refused()
     {
         var mask = TestMasks.FromRows(Rows);
