@@ -14,12 +14,14 @@ internal static class CommandRegistry
         yield return PreviewCommand.Create();
         yield return ProcessCommand.Create();
         yield return CalibrateCommand.Create();
+        yield return PatternCommand.Create();
         yield return AlignCommand.Create();
         yield return BenchCommand.Create();
         yield return PortsCommand.Create();
         yield return StageCommand.Create();
         yield return LaserCommand.Create();
         yield return SimulatorCommand.Create();
+        yield return MachineCommand.Create();
         yield return EngraveCommand.Create();
         yield return LogCommand.Create();
         foreach (var command in TestMoveCommands.All())

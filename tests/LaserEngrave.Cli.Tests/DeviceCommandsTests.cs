@@ -82,6 +82,28 @@ public sealed class DeviceCommandsTests : IAsyncLifetime
     }
 
     [Fact(Timeout = 60_000)]
+    public async Task MachineLatency_OnPtys_MeasuresBothDevicesAndWritesTheProfile()
+    {
+        var path = CliHarness.TempFile(".json");
+        try
+        {
+            // On the wall clock: only what was measured and written is checked, not how long it took.
+            var (exit, output, error) = await CliHarness.RunAsync("machine", "latency", "--stage-port", StagePort, "--laser-port", LaserPort, "--count", "10", "--profile", path, "--write");
+
+            Assert.True(exit == 0, error);
+            Assert.Contains("device 1 (X): 10 round trips", output, StringComparison.Ordinal);
+            Assert.Contains("device 2 (Y): 10 round trips", output, StringComparison.Ordinal);
+            Assert.Contains($"laser gate on {LaserPort}: 10 round trips", output, StringComparison.Ordinal);
+            var saved = MachineProfile.Load(path);
+            Assert.Equal(MachineProfile.Default.Latency.GateProcessingMs, saved.Latency.GateProcessingMs);
+        }
+        finally
+        {
+            File.Delete(path);
+        }
+    }
+
+    [Fact(Timeout = 60_000)]
     public async Task Stage_MissingPort_Exit1NamingThePort()
     {
         var (exit, _, error) = await CliHarness.RunAsync("stage", "--port", "/dev/ttyNOPE42", "identify");

@@ -26,6 +26,20 @@ public class PlanCommandsTests
     }
 
     [Fact]
+    public async Task PlanJson_QrSample_LowerBoundIsBelowTheEstimate()
+    {
+        var (exit, output, _) = await CliHarness.RunAsync("plan", Path.Combine(CliHarness.RepositoryRoot, "assets", "qr-code.bmp"), "--width-mm", "5", "--json");
+
+        Assert.Equal(0, exit);
+        using var json = JsonDocument.Parse(output);
+        var bound = json.RootElement.GetProperty("lowerBoundSeconds").GetDouble();
+
+        // docs/execution.md, "Lower bound": 105.35 s against an estimate of 135.77 s.
+        Assert.Equal(105.35, bound, 2);
+        Assert.True(bound < json.RootElement.GetProperty("estimatedSeconds").GetDouble());
+    }
+
+    [Fact]
     public async Task Plan_PaperAgainstOptimized_PaperSwitchesMoreAndTakesLonger()
     {
         var image = CliHarness.BmpSuite("g/pal1.bmp");

@@ -70,6 +70,7 @@ internal sealed record JobSummary(
     string Strategy,
     bool Bidirectional,
     double OverscanMm,
+    double ScanOffsetUm,
     int Rows,
     long Moves,
     long BurnRuns,
@@ -77,6 +78,7 @@ internal sealed record JobSummary(
     double TravelLengthMm,
     long LaserSwitches,
     double EstimatedSeconds,
+    double LowerBoundSeconds,
     IReadOnlyList<string> Warnings,
     double PulseSpacingUm,
     double OverlapPercent,
@@ -101,6 +103,7 @@ internal sealed record JobSummary(
             job.Spec.Plan.Strategy.ToString().ToLowerInvariant(),
             job.Spec.Plan.Bidirectional,
             job.Spec.Plan.OverscanMm,
+            job.Plan.ScanOffsetUm,
             s.Rows,
             s.Moves,
             s.BurnRuns,
@@ -108,6 +111,7 @@ internal sealed record JobSummary(
             s.TravelLengthMm,
             s.LaserSwitches,
             s.EstimatedSeconds,
+            s.LowerBoundSeconds,
             [.. job.Warnings.Select(w => w.Message)],
             job.Pulses.PulseSpacingUm,
             job.Pulses.OverlapPercent,
@@ -128,7 +132,7 @@ internal sealed record JobSummary(
             output.WriteLine($"Compensated:      {calibration.Describe()} (the profile's calibration)");
         }
 
-        output.WriteLine(string.Create(c, $"Strategy:         {s.Strategy}{(s.Strategy == "optimized" ? $", {(s.Bidirectional ? "bidirectional" : "unidirectional")}, overscan {s.OverscanMm:0.###} mm" : string.Empty)}"));
+        output.WriteLine(string.Create(c, $"Strategy:         {s.Strategy}{(s.Strategy == "optimized" ? $", {(s.Bidirectional ? "bidirectional" : "unidirectional")}, overscan {s.OverscanMm:0.###} mm" : string.Empty)}{(s.ScanOffsetUm != 0 && s.Strategy == "optimized" && s.Bidirectional ? $", right-to-left rows shifted {s.ScanOffsetUm:0.###} µm (the profile's scanOffsets)" : string.Empty)}"));
         output.WriteLine(string.Create(c, $"Rows:             {s.Rows}"));
         output.WriteLine(string.Create(c, $"Moves:            {s.Moves}"));
         output.WriteLine(string.Create(c, $"Burn runs:        {s.BurnRuns} ({s.BurnLengthMm:0.###} mm)"));
@@ -136,6 +140,7 @@ internal sealed record JobSummary(
         output.WriteLine(string.Create(c, $"Laser switches:   {s.LaserSwitches}"));
         output.WriteLine(string.Create(c, $"Pulses:           {s.PulseSpacingUm:0.###} µm apart, {s.OverlapPercent:0.#} % overlap, {s.PulsesPerPixel:0.##} per pixel"));
         output.WriteLine(string.Create(c, $"Estimated time:   {Duration(s.EstimatedSeconds)}"));
+        output.WriteLine(string.Create(c, $"Lower bound:      {Duration(s.LowerBoundSeconds)} (motion only)"));
     }
 
     public static string Duration(double seconds)

@@ -129,6 +129,13 @@ public sealed record JobGeometry
     public long RunEdgeX(long column, int row) =>
         Round(Math.FusedMultiplyAdd(column, PitchXMicrosteps, Math.FusedMultiplyAdd(row + 0.5, ShearXMicrosteps, OriginXMicrosteps)));
 
+    /// <summary>
+    /// <see cref="RunEdgeX(long, int)"/> shifted by <paramref name="offsetMicrosteps"/> (unrounded) before its one rounding:
+    /// where a right-to-left row's edges go under a bidirectional scan offset. An offset of 0 gives the same edge, bit for bit.
+    /// </summary>
+    public long RunEdgeX(long column, int row, double offsetMicrosteps) =>
+        Round(Math.FusedMultiplyAdd(column, PitchXMicrosteps, Math.FusedMultiplyAdd(row + 0.5, ShearXMicrosteps, OriginXMicrosteps + offsetMicrosteps)));
+
     /// <summary>Stage Y of the top edge of pixel row <paramref name="rowEdge"/> (0..HeightPx; HeightPx is the bottom edge of the image).</summary>
     public long EdgeY(long rowEdge) => Round(Math.FusedMultiplyAdd(rowEdge, PitchYMicrosteps, OriginYMicrosteps));
 

@@ -162,6 +162,13 @@ public sealed record MachineProfile
     /// <summary>Serial latencies besides the wire time, measured by `laserengrave machine latency`.</summary>
     public LatencyProfile Latency { get; init; } = new();
 
+    /// <summary>
+    /// The bidirectional scan offsets, by burn speed (`laserengrave pattern scan-offset` shows what to enter): right-to-left
+    /// rows are shifted by the offset at the burn speed; null (absent from the file) or empty means none.
+    /// </summary>
+    [JsonIgnore(Condition = JsonIgnoreCondition.WhenWritingNull)]
+    public IReadOnlyList<ScanOffset>? ScanOffsets { get; init; }
+
     /// <summary>The stage's squareness and scale errors from `laserengrave calibrate solve`; null (absent from the file) means uncalibrated.</summary>
     [JsonIgnore(Condition = JsonIgnoreCondition.WhenWritingNull)]
     public AxisCalibration? Calibration { get; init; }
@@ -206,6 +213,9 @@ public sealed record MachineProfile
         profile.Validate(path);
         return profile;
     }
+
+    /// <summary>The scan offset at <paramref name="burnSpeedMmPerS"/>, µm (<see cref="ScanOffset.At"/>).</summary>
+    public double ScanOffsetUmAt(double burnSpeedMmPerS) => ScanOffset.At(ScanOffsets, burnSpeedMmPerS);
 
     public string ToJson() => JsonSerializer.Serialize(this, JsonOptions);
 

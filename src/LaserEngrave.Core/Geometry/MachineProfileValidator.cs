@@ -124,6 +124,7 @@ public static class MachineProfileValidator
             Require(ms is >= 0 and <= MaxLatencyMs, $"latency.{name} must be 0..{MaxLatencyMs} ms (got {N(ms)})");
         }
 
+        CheckScanOffsets(profile.ScanOffsets, problems);
         try
         {
             profile.Calibration?.Validate("calibration");
@@ -134,6 +135,44 @@ public static class MachineProfileValidator
         }
 
         return problems;
+    }
+
+    // Speeds in increasing order, each once, so the table reads one way; offsets bounded, so a typo (mm for µm) is caught.
+    private static void CheckScanOffsets(IReadOnlyList<ScanOffset>? table, List<string> problems)
+    {
+        if (table is null)
+        {
+            return;
+        }
+
+        for (var i = 0; i < table.Count; i++)
+        {
+            var entry = table[i];
+            var name = $"scanOffsets[{i}]";
+            if (entry is null)
+            {
+                problems.Add($"{name} must not be null: give speedMmPerS and offsetUm");
+                return;
+            }
+
+            if (!(entry.SpeedMmPerS > 0) || !double.IsFinite(entry.SpeedMmPerS))
+            {
+                problems.Add($"{name}.speedMmPerS must be a finite speed above 0 mm/s (got {N(entry.SpeedMmPerS)})");
+                return;
+            }
+
+            if (!double.IsFinite(entry.OffsetUm) || Math.Abs(entry.OffsetUm) > ScanOffset.MaxOffsetUm)
+            {
+                problems.Add($"{name}.offsetUm must be finite and at most {N(ScanOffset.MaxOffsetUm)} µm either way (got {N(entry.OffsetUm)})");
+                return;
+            }
+
+            if (i > 0 && table[i - 1] is { } previous && !(entry.SpeedMmPerS > previous.SpeedMmPerS))
+            {
+                problems.Add($"{name}.speedMmPerS must be above scanOffsets[{i - 1}].speedMmPerS {N(previous.SpeedMmPerS)} mm/s: list the speeds in increasing order, each once (got {N(entry.SpeedMmPerS)})");
+                return;
+            }
+        }
     }
 
     /// <summary>

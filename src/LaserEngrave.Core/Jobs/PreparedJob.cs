@@ -67,7 +67,12 @@ public sealed class PreparedJob
         ArgumentNullException.ThrowIfNull(info);
         ArgumentNullException.ThrowIfNull(mask);
         var geometry = GeometryResolver.Resolve(spec.Size, mask.Width, mask.Height, spec.Origin, spec.Profile);
-        var plan = new RasterPlan(mask, geometry.Geometry, spec.Plan, TimedSwitching.For(spec.Process, spec.Profile, geometry.Geometry.MicrostepUm));
+        var plan = new RasterPlan(
+            mask,
+            geometry.Geometry,
+            spec.Plan,
+            spec.Profile.ScanOffsetUmAt(spec.Process.BurnSpeedMmPerS),
+            TimedSwitching.For(spec.Process, spec.Profile, geometry.Geometry.MicrostepUm));
         var statistics = plan.ComputeStatistics(spec.Process, spec.Profile.Gate);
         return new PreparedJob(spec, info, mask, geometry, plan, statistics);
     }

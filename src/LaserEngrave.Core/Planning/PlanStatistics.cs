@@ -28,4 +28,7 @@ public sealed record PlanStatistics
 
     /// <summary>Estimated duration of the run, s (see <see cref="PlanEstimator"/> for the model).</summary>
     public required double EstimatedSeconds { get; init; }
+
+    /// <summary>The least time any executor could take for the burns, motion only, s (see <see cref="LowerBound"/>).</summary>
+    public required double LowerBoundSeconds { get; init; }
 }

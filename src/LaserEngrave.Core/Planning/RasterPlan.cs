@@ -10,11 +10,19 @@ namespace LaserEngrave.Core.Planning;
 /// A move's <see cref="Move.Row"/> is the image row it burns on, or for a travel between rows the row it leads to.
 /// The plan begins at the first move's start; reaching it is the executor's business.
 /// <see cref="PlanStrategy.Paper"/> ignores <see cref="PlanOptions.Bidirectional"/> and <see cref="PlanOptions.OverscanMm"/>.
+/// A scan offset shifts every X position of the right-to-left rows (edges, run-ups, run-outs) before the one rounding;
+/// rows burned left to right, and every row of a unidirectional or paper plan, are left as they are.
 /// The plan reads the mask each time it is enumerated, so the mask must not change while the plan is in use.
 /// </remarks>
 public sealed class RasterPlan
 {
-    public RasterPlan(BitMask mask, JobGeometry geometry, PlanOptions? options = null, TimedSwitching? timing = null)
+    /// <param name="mask">What to burn.</param>
+    /// <param name="geometry">Where the mask lands on the stage.</param>
+    /// <param name="options">Strategy, scan direction, overscan.</param>
+    /// <param name="scanOffsetUm">Shift of right-to-left rows' X edges, µm, positive towards +X: the machine profile's
+    /// scan offset at the burn speed (<see cref="MachineProfile.ScanOffsetUmAt"/>).</param>
+    /// <param name="timing">The timing model of timed switching (run-ups, gap choices, the estimate); null: moves only.</param>
+    public RasterPlan(BitMask mask, JobGeometry geometry, PlanOptions? options = null, double scanOffsetUm = 0, TimedSwitching? timing = null)
     {
         ArgumentNullException.ThrowIfNull(mask);
         ArgumentNullException.ThrowIfNull(geometry);
@@ -25,16 +33,22 @@ public sealed class RasterPlan
             throw new PlanException($"the mask is {mask.Width} x {mask.Height} pixels but the geometry is for {geometry.WidthPx} x {geometry.HeightPx}");
         }
 
+        if (!double.IsFinite(scanOffsetUm))
+        {
+            throw new PlanException($"scan offset {scanOffsetUm.ToString(CultureInfo.InvariantCulture)} µm must be a finite number");
+        }
+
         Mask = mask;
         Geometry = geometry;
         Options = options;
+        ScanOffsetUm = scanOffsetUm;
         OverscanMicrosteps = options.Strategy == PlanStrategy.Paper
             ? 0
             : JobGeometry.Round(StageUnits.MmToMicrosteps(options.OverscanMm, geometry.MicrostepUm));
         Timing = options.Strategy == PlanStrategy.Optimized ? timing : null;
         RunUpMicrosteps = Math.Max(OverscanMicrosteps, Timing?.RunUpMicrosteps ?? 0);
         RunOutMicrosteps = Math.Max(OverscanMicrosteps, Timing?.RunOutMicrosteps ?? 0);
-        Warnings = OverscanWarnings();
+        Warnings = [.. OverscanWarnings(), .. ScanOffsetWarnings()];
     }
 
     public BitMask Mask { get; }
@@ -42,6 +56,9 @@ public sealed class RasterPlan
     public JobGeometry Geometry { get; }
 
     public PlanOptions Options { get; }
+
+    /// <summary>Shift of the right-to-left rows' X edges, µm, positive towards +X (0: none).</summary>
+    public double ScanOffsetUm { get; }
 
     /// <summary>Overscan length in whole microsteps (0 under <see cref="PlanStrategy.Paper"/>).</summary>
     public long OverscanMicrosteps { get; }
@@ -109,7 +126,7 @@ public sealed class RasterPlan
     /// <param name="gate">The gate's command strings (default: <see cref="LaserGateProfile"/>'s defaults).</param>
     public PlanStatistics ComputeStatistics(ProcessSettings process, LaserGateProfile? gate = null)
     {
-        var visitor = new StatisticsVisitor(new PlanEstimator(process, Options.Strategy, Geometry.MicrostepUm, gate, Timing));
+        var visitor = new StatisticsVisitor(new PlanEstimator(process, Options.Strategy, Geometry.MicrostepUm, gate, Timing), new LowerBound(process, Geometry.MicrostepUm));
         var planner = NewPlanner();
         while (planner.NextRow < Mask.Height)
         {
@@ -141,7 +158,7 @@ public sealed class RasterPlan
         }
     }
 
-    private RowPlanner NewPlanner() => new(Mask, Geometry, Options, OverscanMicrosteps, Timing);
+    private RowPlanner NewPlanner() => new(Mask, Geometry, Options, OverscanMicrosteps, StageUnits.UmToMicrosteps(ScanOffsetUm, Geometry.MicrostepUm), Timing);
 
     private List<JobWarning> OverscanWarnings()
     {
@@ -160,6 +177,28 @@ public sealed class RasterPlan
             warnings.Add(new JobWarning(
                 JobWarningKind.OverscanClamped,
                 $"overscan {Options.OverscanMm.ToString("0.###", CultureInfo.InvariantCulture)} mm reaches past the stage travel at {side} of the job: run-ups and run-outs there are shortened, so burning starts or stops while the stage is still changing speed"));
+        }
+
+        return warnings;
+    }
+
+    private List<JobWarning> ScanOffsetWarnings()
+    {
+        var warnings = new List<JobWarning>();
+        if (ScanOffsetUm == 0 || Options.Strategy == PlanStrategy.Paper || !Options.Bidirectional)
+        {
+            return warnings;
+        }
+
+        var bounds = Geometry.StageBounds();
+        var offset = StageUnits.UmToMicrosteps(ScanOffsetUm, Geometry.MicrostepUm);
+        var left = JobGeometry.Round(bounds.Left + offset);
+        var right = JobGeometry.Round(bounds.Right + offset);
+        if (left < 0 || right > Geometry.TravelXMicrosteps)
+        {
+            warnings.Add(new JobWarning(
+                JobWarningKind.OutsideTravel,
+                $"scan offset {ScanOffsetUm.ToString("0.###", CultureInfo.InvariantCulture)} µm moves the right-to-left rows past the stage travel at the {(left < 0 ? "left" : "right")} edge: the stage will refuse those moves; move the job inwards"));
         }
 
         return warnings;

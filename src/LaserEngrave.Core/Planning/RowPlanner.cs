@@ -21,13 +21,14 @@ internal sealed class RowPlanner
     private readonly long _runUp;
     private readonly long _runOut;
     private readonly TimedSwitching? _timing;
+    private readonly double _reverseOffset;
     private int[] _runs = new int[64];
     private long[] _edges = new long[64];
     private bool _hasPosition;
     private long _x;
     private long _y;
 
-    public RowPlanner(BitMask mask, JobGeometry geometry, PlanOptions options, long overscanMicrosteps, TimedSwitching? timing)
+    public RowPlanner(BitMask mask, JobGeometry geometry, PlanOptions options, long overscanMicrosteps, double reverseOffsetMicrosteps, TimedSwitching? timing)
     {
         _timing = timing;
         _runUp = Math.Max(overscanMicrosteps, timing?.RunUpMicrosteps ?? 0);
@@ -37,6 +38,7 @@ internal sealed class RowPlanner
         _paper = options.Strategy == PlanStrategy.Paper;
         _bidirectional = options.Bidirectional;
         _overscan = overscanMicrosteps;
+        _reverseOffset = reverseOffsetMicrosteps;
     }
 
     /// <summary>Index of the next row to plan; equals the mask height when every row is done.</summary>
@@ -121,9 +123,11 @@ internal sealed class RowPlanner
             _edges = new long[_runs.Length];
         }
 
+        // A right-to-left row's edges carry the scan offset, added before the one rounding.
+        var offset = leftToRight ? 0 : _reverseOffset;
         for (var i = 0; i < 2 * runCount; i++)
         {
-            _edges[i] = _geometry.RunEdgeX(_runs[i], row);
+            _edges[i] = _geometry.RunEdgeX(_runs[i], row, offset);
         }
 
         var y = _geometry.RowY(row);

@@ -6,13 +6,18 @@ namespace LaserEngrave.Core.Planning;
 internal struct StatisticsVisitor : IMoveVisitor
 {
     private readonly PlanEstimator _estimator;
+    private LowerBound _lowerBound;
     private long _moves;
     private long _burnRuns;
     private long _burnMicrosteps;
     private long _overscanMicrosteps;
     private double _travelMicrosteps;
 
-    public StatisticsVisitor(PlanEstimator estimator) => _estimator = estimator;
+    public StatisticsVisitor(PlanEstimator estimator, LowerBound lowerBound)
+    {
+        _estimator = estimator;
+        _lowerBound = lowerBound;
+    }
 
     public void Visit(in Move move)
     {
@@ -34,6 +39,7 @@ internal struct StatisticsVisitor : IMoveVisitor
         }
 
         _estimator.Add(move);
+        _lowerBound.Add(move);
     }
 
     public readonly PlanStatistics Finish(int rows, double microstepUm)
@@ -50,6 +56,7 @@ internal struct StatisticsVisitor : IMoveVisitor
             LaserSwitches = _estimator.LaserSwitches,
             SpeedChanges = _estimator.SpeedChanges,
             EstimatedSeconds = _estimator.ElapsedSeconds,
+            LowerBoundSeconds = _lowerBound.Seconds,
         };
     }
 }

@@ -38,6 +38,9 @@ public static class BadInputTable
         ["terminator"] = ("""{ "gate": { "lineTerminator": ";" } }""", "gate.lineTerminator must be"),
         ["timeout-0"] = ("""{ "gate": { "timeoutMs": 0 } }""", "gate.timeoutMs must be 1..60000 ms"),
         ["gate-baud"] = ("""{ "gate": { "baudRate": 12345 } }""", "gate.baudRate must be one of"),
+        ["scan-speed-0"] = ("""{ "scanOffsets": [ { "speedMmPerS": 0, "offsetUm": 1 } ] }""", "scanOffsets[0].speedMmPerS must be a finite speed above 0"),
+        ["scan-unsorted"] = ("""{ "scanOffsets": [ { "speedMmPerS": 2, "offsetUm": 1 }, { "speedMmPerS": 1, "offsetUm": 1 } ] }""", "scanOffsets[1].speedMmPerS must be above"),
+        ["scan-too-far"] = ("""{ "scanOffsets": [ { "speedMmPerS": 1, "offsetUm": 2000 } ] }""", "scanOffsets[0].offsetUm must be finite and at most 1000 µm"),
         ["gate-max-frequency"] = ("""{ "gate": { "maxFrequencyHz": 200000 } }""", "gate.maxFrequencyHz must be 1..100000 Hz"),
         ["frequency-huge"] = ("""{ "laserFrequencyHz": 1e12 }""", "laserFrequencyHz must be 1..100000 Hz"),
         ["frequency-above-gate"] = ("""{ "gate": { "maxFrequencyHz": 500 } }""", "laserFrequencyHz must be 1..500 Hz"),
@@ -289,6 +292,26 @@ public static class BadInputTable
         Add("gate must not be null", "laser", "--port", "/nonexistent/tty", "status", "--profile", "@profile:gate-null");
         Add("gate.watchdogMs must be 50..60000 ms", "simulator", "--stage-port", "/nonexistent/a", "--laser-port", "/nonexistent/b", "--profile", "@profile:watchdog-0");
         Add("--stage-port", "simulator", "--laser-port", "/nonexistent/b");
+
+        // pattern scan-offset: the sizes, the speeds, the file and where the blocks go.
+        Add("--out", "pattern", "scan-offset");
+        Add("give a .png or .bmp file", "pattern", "scan-offset", "--out", "@dir");
+        Add("give a .png or .bmp file", "pattern", "scan-offset", "--out", "scan.txt");
+        Add("0 bars: give 1..100", "pattern", "scan-offset", "--out", "@out", "--bars", "0");
+        Add("pitch 0 µm must be a finite number above 0", "pattern", "scan-offset", "--out", "@out", "--pitch-um", "0");
+        Add("bar width 1 µm is less than one pixel of 25 µm", "pattern", "scan-offset", "--out", "@out", "--bar-width-um", "1");
+        Add("--speed-mm-s 100: outside what the stage takes", "pattern", "scan-offset", "--out", "@out", "--speed-mm-s", "100");
+        Add("--speed-mm-s 1, 1: each speed once", "pattern", "scan-offset", "--out", "@out", "--speed-mm-s", "1", "--speed-mm-s", "1");
+        Add("past the travel", "pattern", "scan-offset", "--out", "@out", "--origin-mm", "59,10");
+        Add("scanOffsets[0].speedMmPerS must be a finite speed above 0", "pattern", "scan-offset", "--out", "@out", "--profile", "@profile:scan-speed-0");
+
+        // machine latency: the count, the profile to write, the machine.
+        Add("--count 0: must be 1..100000", "machine", "latency", "--simulate", "--count", "0");
+        Add("--count -3: must be 1..100000", "machine", "latency", "--simulate", "--count", "-3");
+        Add("--count 1000000: must be 1..100000", "machine", "latency", "--simulate", "--count", "1000000");
+        Add("--write needs --profile FILE", "machine", "latency", "--simulate", "--write");
+        Add("give the machine", "machine", "latency");
+        Add("gate.watchdogMs must be 50..60000 ms", "machine", "latency", "--simulate", "--profile", "@profile:watchdog-0", "--write");
 
         // Logs, previews, the benchmark, and what is not a command at all.
         Add("named pipe (FIFO)", "log", "show", "@fifo");

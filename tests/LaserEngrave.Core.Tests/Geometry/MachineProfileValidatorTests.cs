@@ -52,6 +52,13 @@ public class MachineProfileValidatorTests
         { """{ "gate": { "watchdogMs": "soon" } }""", "gate.watchdogMs has a value of the wrong type" },
         { """{ "gate": { "WatchdogMs": 0 } }""", ": gate.WatchdogMs is not a field of the machine profile (line 1)" },
         { """{ "watchdogMs": 100 }""", ": watchdogMs is not a field of the machine profile (line 1)" },
+        { """{ "scanOffsets": [ { "speedMmPerS": 2, "offsetUm": 5 }, { "speedMmPerS": 1, "offsetUm": 3 } ] }""", "scanOffsets[1].speedMmPerS must be above scanOffsets[0].speedMmPerS 2 mm/s: list the speeds in increasing order, each once (got 1)" },
+        { """{ "scanOffsets": [ { "speedMmPerS": 1, "offsetUm": 5 }, { "speedMmPerS": 1, "offsetUm": 3 } ] }""", "scanOffsets[1].speedMmPerS must be above scanOffsets[0].speedMmPerS 1 mm/s" },
+        { """{ "scanOffsets": [ { "speedMmPerS": 0, "offsetUm": 5 } ] }""", "scanOffsets[0].speedMmPerS must be a finite speed above 0 mm/s (got 0)" },
+        { """{ "scanOffsets": [ { "speedMmPerS": 1, "offsetUm": -1500 } ] }""", "scanOffsets[0].offsetUm must be finite and at most 1000 µm either way (got -1500)" },
+        { """{ "scanOffsets": [ { "speedMmPerS": 1, "offsetUm": 1e400 } ] }""", "scanOffsets[0].offsetUm must be finite and at most 1000 µm either way (got Infinity)" },
+        { """{ "scanOffsets": [ null ] }""", "scanOffsets[0] must not be null: give speedMmPerS and offsetUm" },
+        { """{ "scanOffsets": [ { "speed": 1, "offsetUm": 2 } ] }""", "is not a field of the machine profile" },
         { """[1, 2]""", "not a valid machine profile (line 1): expected a JSON object" },
         { """null""", "the machine profile is empty" },
         { "", "not a valid machine profile" },
@@ -94,6 +101,27 @@ public class MachineProfileValidatorTests
             Assert.Equal(profile with { X = MachineProfile.Default.X, Y = MachineProfile.Default.Y, Gate = profile.Gate }, MachineProfile.Load(path) with { X = MachineProfile.Default.X, Y = MachineProfile.Default.Y, Gate = profile.Gate });
             Assert.Equal(500, MachineProfile.Load(path).Gate.WatchdogMs);
             Assert.Equal(20, MachineProfile.Load(path).MaxFrameFrequencyHz);
+        }
+        finally
+        {
+            File.Delete(path);
+        }
+    }
+
+    [Fact]
+    public void Load_ScanOffsets_LoadBackInOrder()
+    {
+        var path = Path.Combine(Path.GetTempPath(), $"profile-{Guid.NewGuid():N}.json");
+        try
+        {
+            var profile = MachineProfile.Default with { ScanOffsets = [new ScanOffset(0.5, 2), new ScanOffset(2, 9.5)] };
+            profile.Save(path);
+
+            var loaded = MachineProfile.Load(path);
+
+            Assert.Equal(profile.ScanOffsets, loaded.ScanOffsets);
+            Assert.Equal(5.75, loaded.ScanOffsetUmAt(1.25), 12);
+            Assert.DoesNotContain("scanOffsets", MachineProfile.Default.ToJson(), StringComparison.Ordinal);
         }
         finally
         {

@@ -1,0 +1,81 @@
+using System.CommandLine;
+using System.Globalization;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Devices.Machine;
+
+namespace LaserEngrave.Cli.Commands;
+
+/// <summary>`laserengrave machine latency`: measures the machine's own serial latencies and keeps them in the profile's latency section.</summary>
+internal static class MachineCommand
+{
+    /// <summary>Most round trips per device one measurement may ask for (about 25 minutes on the gate at 9600 baud).</summary>
+    internal const int MaxExchanges = 100_000;
+
+    public static Command Create()
+    {
+        var command = new Command("machine", "Measure the machine itself: its serial latencies (kept in the profile for timed laser switching)");
+        command.Subcommands.Add(Latency());
+        return command;
+    }
+
+    private static Command Latency()
+    {
+        var machine = new MachineOptions();
+        var profile = new Option<string?>("--profile") { Description = "Machine profile (JSON) of the machine; with --write the measured latency section is stored in it (created from the default when missing)" };
+        var count = new Option<int>("--count") { Description = "Round trips per device (each axis and the gate)", DefaultValueFactory = _ => 200 };
+        var write = new Option<bool>("--write") { Description = "Store the measured latencies in --profile's latency section (gate processing kept)" };
+        var json = new Option<bool>("--json") { Description = "Print one JSON object" };
+        var command = new Command("latency", "Time hundreds of round trips to both axes (Zaber Echo Data) and the gate (its keepalive), report mean and jitter, and derive the one-way adapter latencies") { profile, count, write, json };
+        machine.AddTo(command);
+        command.SetAction(async (result, ct) =>
+        {
+            var exchanges = result.GetValue(count);
+            OptionChecks.InRange(exchanges, 1, MaxExchanges, "--count", string.Empty, "round trips per device");
+            var path = result.GetValue(profile);
+            var store = result.GetValue(write);
+            if (store && path is null)
+            {
+                throw new UsageException("--write needs --profile FILE: the profile to store the latency section in");
+            }
+
+            var existing = path is null ? MachineProfile.Default : File.Exists(path) || !store ? MachineProfile.Load(path) : MachineProfile.Default;
+            LatencyMeasurement measured;
+            var session = machine.Open(result, existing);
+            await using (session)
+            {
+                var probe = new LatencyProbe(session.Stage, session.Gate, session.TimeProvider);
+                measured = await session.RunAsync(() => probe.MeasureAsync(exchanges, ct));
+            }
+
+            var latency = measured.ToProfile(existing.Latency);
+            if (store)
+            {
+                (existing with { Latency = latency }).Save(path!);
+            }
+
+            var stdout = result.InvocationConfiguration.Output;
+            if (result.GetValue(json))
+            {
+                CliJson.Write(stdout, new { profile = path, written = store, x = measured.X, y = measured.Y, stage = measured.Stage, gate = measured.Gate, latency });
+                return CliRunner.Ok;
+            }
+
+            foreach (var trips in new[] { measured.X, measured.Y, measured.Gate })
+            {
+                stdout.WriteLine(Describe(trips));
+            }
+
+            var c = CultureInfo.InvariantCulture;
+            stdout.WriteLine(string.Create(c, $"Stage adapter:    {latency.StageMs:0.###} ± {latency.StageJitterMs:0.###} ms one way (round trip - wire, halved; spread from the standard deviation)"));
+            stdout.WriteLine(string.Create(c, $"Gate adapter:     {latency.GateMs:0.###} ± {latency.GateJitterMs:0.###} ms one way (round trip - wire - processing, halved)"));
+            stdout.WriteLine(string.Create(c, $"Gate processing:  {latency.GateProcessingMs:0.###} ± {latency.GateProcessingJitterMs:0.###} ms, kept from the profile: a round trip cannot tell it from the adapter's"));
+            stdout.WriteLine(store ? $"Written:          the latency section of {path}" : "Not written:      give --profile FILE --write to store it");
+            return CliRunner.Ok;
+        });
+        return command;
+    }
+
+    private static string Describe(RoundTrips trips) => string.Create(
+        CultureInfo.InvariantCulture,
+        $"{trips.Device}: {trips.Count} round trips, min {trips.MinMs:0.###} / mean {trips.MeanMs:0.###} / max {trips.MaxMs:0.###} ms, spread ±{trips.SpreadMs:0.###} ms, standard deviation {trips.StdDevMs:0.###} ms (wire {trips.WireMs:0.###} ms)");
+}

@@ -1,0 +1,71 @@
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Motion;
+
+namespace LaserEngrave.Core.Planning;
+
+/// <summary>The least time any executor could take for a plan's burns: motion only, no serial time, no laser switching.</summary>
+/// <remarks>
+/// Streams the plan's burn moves in order (docs/execution.md, "Lower bound"): every burn run at the burn speed; every gap
+/// between two burn runs of one row the shorter of crossing it at the burn speed and a stop-go move (a rest-to-rest
+/// <see cref="TrapezoidProfile"/> at the travel speed and the acceleration); every row change, from the last run's exit
+/// edge to the next visited row's first entry edge as the plan orders them, the longer of the two axes' rest-to-rest
+/// moves at the travel speed. Speeds and acceleration are the quantised Zaber ones (<see cref="StageUnits"/>), as the
+/// estimator's; the travel speed is the process's whatever the strategy, since a bound asks what the machine could do.
+/// </remarks>
+public struct LowerBound
+{
+    private readonly double _burnSpeed;
+    private readonly double _travelSpeed;
+    private readonly double _acceleration;
+    private bool _hasBurn;
+    private long _lastX;
+    private long _lastY;
+    private int _lastRow;
+
+    /// <summary>A bound for moves in microsteps of <paramref name="microstepUm"/> under <paramref name="process"/>.</summary>
+    public LowerBound(ProcessSettings process, double microstepUm)
+    {
+        ArgumentNullException.ThrowIfNull(process);
+        _burnSpeed = StageUnits.SpeedMicrostepsPerS(StageUnits.SpeedData(process.BurnSpeedMmPerS, microstepUm));
+        _travelSpeed = StageUnits.SpeedMicrostepsPerS(StageUnits.SpeedData(process.TravelSpeedMmPerS, microstepUm));
+        _acceleration = StageUnits.AccelerationMicrostepsPerS2(StageUnits.AccelerationData(process.AccelerationMmPerS2, microstepUm));
+    }
+
+    /// <summary>The bound so far, s.</summary>
+    public double Seconds { readonly get; private set; }
+
+    /// <summary>The bound for every move of <paramref name="plan"/> under <paramref name="process"/>, s.</summary>
+    public static double Of(RasterPlan plan, ProcessSettings process)
+    {
+        ArgumentNullException.ThrowIfNull(plan);
+        var bound = new LowerBound(process, plan.Geometry.MicrostepUm);
+        foreach (var move in plan.Moves())
+        {
+            bound.Add(move);
+        }
+
+        return bound.Seconds;
+    }
+
+    /// <summary>Counts one move of the plan, in order; only burns count, with what lies between them.</summary>
+    public void Add(in Move move)
+    {
+        if (move.Kind != MoveKind.Burn)
+        {
+            return;
+        }
+
+        if (_hasBurn)
+        {
+            long dx = Math.Abs(move.X0 - _lastX), dy = Math.Abs(move.Y0 - _lastY);
+            Seconds += move.Row == _lastRow && dy == 0
+                ? Math.Min(dx / _burnSpeed, StopGo(dx))
+                : Math.Max(StopGo(dx), StopGo(dy));
+        }
+
+        Seconds += move.LengthX / _burnSpeed;
+        (_hasBurn, _lastX, _lastY, _lastRow) = (true, move.X1, move.Y1, move.Row);
+    }
+
+    private readonly double StopGo(long distance) => distance == 0 ? 0 : new TrapezoidProfile(distance, _travelSpeed, _acceleration).Duration;
+}

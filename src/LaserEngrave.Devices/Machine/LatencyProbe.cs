@@ -1,0 +1,87 @@
+using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Devices.LaserGate;
+using LaserEngrave.Devices.Zaber;
+
+namespace LaserEngrave.Devices.Machine;
+
+/// <summary>Times round trips to the machine's devices: Zaber Echo Data (command 55) to each axis and the gate's keepalive.</summary>
+/// <remarks>
+/// Every exchange waits for its reply before the next goes out, so no two share the wire, and is timed on the session's
+/// clock from just before the write to the reply's arrival (virtual time on the in-process simulator, so the figures are
+/// the same for the same seed). The first exchange with each device is not timed and is tried twice, as preflight does:
+/// the first line after a port opens can be lost.
+/// </remarks>
+public sealed class LatencyProbe
+{
+    private const int ZaberFrameBytes = 6;
+    private const double BitsPerByte = 10;
+
+    private readonly ZaberChain _stage;
+    private readonly PicLaserGate _gate;
+    private readonly TimeProvider _time;
+
+    public LatencyProbe(ZaberChain stage, PicLaserGate gate, TimeProvider timeProvider)
+    {
+        ArgumentNullException.ThrowIfNull(stage);
+        ArgumentNullException.ThrowIfNull(gate);
+        ArgumentNullException.ThrowIfNull(timeProvider);
+        _stage = stage;
+        _gate = gate;
+        _time = timeProvider;
+    }
+
+    /// <summary>Measures <paramref name="exchanges"/> round trips to each axis and to the gate, one device after the other.</summary>
+    /// <param name="exchanges">Round trips per device, at least 1.</param>
+    /// <param name="cancellationToken">Stops the measurement.</param>
+    public async Task<LatencyMeasurement> MeasureAsync(int exchanges, CancellationToken cancellationToken)
+    {
+        ArgumentOutOfRangeException.ThrowIfLessThan(exchanges, 1);
+        var stageWireMs = WireMs(2 * ZaberFrameBytes, _stage.Profile.StageBaudRate);
+        var x = RoundTrips.Of(_stage.X.Description, await TimeAsync(exchanges, i => EchoAsync(_stage.X, i, cancellationToken), cancellationToken), stageWireMs);
+        var y = RoundTrips.Of(_stage.Y.Description, await TimeAsync(exchanges, i => EchoAsync(_stage.Y, i, cancellationToken), cancellationToken), stageWireMs);
+
+        var gate = _gate.Profile;
+        var reply = string.Empty;
+        var times = await TimeAsync(exchanges, async _ => reply = await _gate.SendAsync(gate.KeepAliveCommand, gate.KeepAliveReply, cancellationToken), cancellationToken);
+
+        // The reply as it came: the prefix, the text after it if any, the terminator.
+        var replyBytes = gate.AckPrefix.Length + (reply.Length == 0 ? 0 : 1 + reply.Length) + gate.LineTerminator.Length;
+        var gateWireMs = WireMs(gate.KeepAliveCommand.Length + gate.LineTerminator.Length + replyBytes, gate.BaudRate);
+        return new LatencyMeasurement(x, y, RoundTrips.Of($"laser gate on {_gate.PortName}", times, gateWireMs));
+    }
+
+    /// <summary>Time <paramref name="bytes"/> take on the wire at <paramref name="baudRate"/>, 10 bits a byte (8N1), ms.</summary>
+    public static double WireMs(int bytes, int baudRate) => bytes * BitsPerByte * 1000 / baudRate;
+
+    private static async Task EchoAsync(ZaberBinaryDevice axis, int data, CancellationToken cancellationToken)
+    {
+        var echoed = await axis.EchoAsync(data, cancellationToken);
+        if (echoed != data)
+        {
+            throw new DeviceException($"{axis.Connection.PortName}: {axis.Description} echoed {echoed} for Echo Data {data}; the line is garbled");
+        }
+    }
+
+    private async Task<double[]> TimeAsync(int exchanges, Func<int, Task> exchange, CancellationToken cancellationToken)
+    {
+        try
+        {
+            await exchange(0);
+        }
+        catch (DeviceTimeoutException)
+        {
+            await exchange(0);
+        }
+
+        var times = new double[exchanges];
+        for (var i = 0; i < exchanges; i++)
+        {
+            cancellationToken.ThrowIfCancellationRequested();
+            var start = _time.GetTimestamp();
+            await exchange(i + 1);
+            times[i] = _time.GetElapsedTime(start).TotalMilliseconds;
+        }
+
+        return times;
+    }
+}
