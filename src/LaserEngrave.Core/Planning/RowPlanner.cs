@@ -67,7 +67,7 @@ internal sealed class RowPlanner
         }
         else
         {
-            PlanOptimizedRow(ref sink, row, runCount, leftToRight: !_bidirectional || VisitedRows % 2 == 0);
+            PlanOptimizedRow(ref sink, row, runCount, leftToRight: Direction(row, runCount, !_bidirectional || VisitedRows % 2 == 0));
         }
 
         VisitedRows++;
@@ -180,6 +180,22 @@ internal sealed class RowPlanner
                 SetPosition(runOut, y);
             }
         }
+    }
+
+    // Timed switching needs its run-up inside the travel: a row whose first run starts too near the end it would be
+    // entered from is scanned the other way, when there is room there.
+    private bool Direction(int row, int runCount, bool preferred)
+    {
+        if (_timing is null)
+        {
+            return preferred;
+        }
+
+        var roomLeft = _geometry.RunEdgeX(_runs[0], row);
+        var roomRight = _geometry.TravelXMicrosteps - _geometry.RunEdgeX(_runs[(2 * runCount) - 1], row);
+        var fits = preferred ? roomLeft >= _runUp : roomRight >= _runUp;
+        var otherFits = preferred ? roomRight >= _runUp : roomLeft >= _runUp;
+        return fits || !otherFits ? preferred : !preferred;
     }
 
     private void SetPosition(long x, long y)

@@ -16,7 +16,8 @@ namespace LaserEngrave.Devices.Execution;
 /// </remarks>
 public sealed partial class RunExecutor
 {
-    private readonly List<(Task Reply, double Deadline, string What)> _watched = [];
+    private readonly List<Watched> _watched = [];
+    private readonly Dictionary<string, Watched> _lastMove = [];
     private readonly Queue<(Move Move, long Index, Task? Acknowledged)> _toComplete = new();
     private string? _timedFault;
     private double _lastGateWrite;
@@ -175,7 +176,7 @@ public sealed partial class RunExecutor
         var start = segment.StartX;
         var earlier = _watched.ToList();
         var move = Stage.X.MoveAbsoluteAfterAsync(segment.EndX, token);
-        Watch(Arrive(move, "X", segment.EndX, x => _x = x), times.End + timing.StageReplySeconds, "the end of a stroke (X)");
+        Watch(Arrive(move, "X", segment.EndX, x => _x = x), times.End + timing.StageReplySeconds, "the end of a stroke (X)", axis: "X");
         var poll = burns.Count > 0 ? Stage.X.GetPositionAsync(token) : null;
 
         var index = 0;
@@ -227,7 +228,7 @@ public sealed partial class RunExecutor
         {
             sends.Add((yArrival - timing.StageCommandSeconds, () =>
             {
-                Watch(Arrive(Stage.Y.MoveAbsoluteAfterAsync(move.Y1, token), "Y", move.Y1, y => _y = y), times.YEnd + timing.StageReplySeconds, "the end of a travel (Y)");
+                Watch(Arrive(Stage.Y.MoveAbsoluteAfterAsync(move.Y1, token), "Y", move.Y1, y => _y = y), times.YEnd + timing.StageReplySeconds, "the end of a travel (Y)", axis: "Y");
                 return Task.CompletedTask;
             }));
         }
@@ -246,7 +247,7 @@ public sealed partial class RunExecutor
         {
             sends.Add((xArrival - timing.StageCommandSeconds, () =>
             {
-                Watch(Arrive(Stage.X.MoveAbsoluteAfterAsync(move.X1, token), "X", move.X1, x => _x = x), times.XEnd + timing.StageReplySeconds, "the end of a travel (X)");
+                Watch(Arrive(Stage.X.MoveAbsoluteAfterAsync(move.X1, token), "X", move.X1, x => _x = x), times.XEnd + timing.StageReplySeconds, "the end of a travel (X)", axis: "X");
                 return Task.CompletedTask;
             }));
         }
@@ -269,13 +270,15 @@ public sealed partial class RunExecutor
     }
 
     /// <summary>Before the first switch-on of a stroke: every earlier move has reported its end, and the position query shows the stage on its way.</summary>
-    private async Task ConfirmMovingAsync(List<(Task Reply, double Deadline, string What)> earlier, Task<long> poll, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token)
+    private async Task ConfirmMovingAsync(List<Watched> earlier, Task<long> poll, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token)
     {
-        foreach (var (reply, _, what) in earlier)
+        foreach (var watched in earlier)
         {
-            if (!reply.IsCompleted && !await CompletesByAsync(reply, onWrite, token))
+            // A move whose end is never reported is settled by the next move of its axis reporting its own.
+            var settled = watched.Successor is { } next ? Task.WhenAny(watched.Reply, next.Reply) : watched.Reply;
+            if (!await CompletesByAsync(settled, onWrite, token))
             {
-                throw Fault($"the stage had not reported {what} when the laser was to come on");
+                throw Fault($"the stage had not reported {watched.What} when the laser was to come on");
             }
         }
 
@@ -309,6 +312,7 @@ public sealed partial class RunExecutor
 
     private async Task<bool> CompletesByAsync(Task task, double seconds, CancellationToken token)
     {
+        token.ThrowIfCancellationRequested();
         var wait = seconds - RunSeconds;
         if (task.IsCompleted || wait <= 0)
         {
@@ -363,6 +367,11 @@ public sealed partial class RunExecutor
             }
 
             ThrowIfAborted();
+            if (_fault.IsCancellationRequested)
+            {
+                throw new DeviceException(_timedFault ?? "a fault ended the run");
+            }
+
             var ack = Gate.SetFrequencyAsync(_process.LaserFrequencyWholeHz, CancellationToken.None);
             lock (_lock)
             {
@@ -401,54 +410,98 @@ public sealed partial class RunExecutor
     }
 
     /// <summary>Watches a reply: late past its expected arrival (plus the stall margin), failed or wrong, it ends the run, laser off first.</summary>
-    private void Watch(Task reply, double expectedSeconds, string what, bool gate = false)
+    /// <remarks>
+    /// A move of an axis (<paramref name="axis"/>) is sent to arrive just after the one before has ended; should it catch
+    /// that one in its last moments, the device may never report the earlier end (the protocol leaves it open). So an
+    /// earlier move whose reply is missing or says it was replaced counts as done once the later move reports its end.
+    /// </remarks>
+    private void Watch(Task reply, double expectedSeconds, string what, bool gate = false, string? axis = null)
     {
         var deadline = expectedSeconds + ((Job.Plan.Timing?.StageJitterSeconds ?? 0) * 2) + (Options.StallMarginMs / 1000);
-        _watched.Add((reply, deadline, what));
-        _ = TaskRunner.For(TimeProvider).Start(async () =>
+        var watched = new Watched(reply, deadline, what);
+        if (axis is not null)
         {
-            try
+            if (_lastMove.TryGetValue(axis, out var before))
             {
-                using var stop = new CancellationTokenSource();
-                var wait = deadline - RunSeconds;
-                if (wait > 0 && !reply.IsCompleted)
-                {
-                    var timer = PreciseDelay.DelayAsync(TimeProvider, TimeSpan.FromSeconds(wait), stop.Token);
-                    await Task.WhenAny(reply, timer);
-                    stop.Cancel();
-                }
+                before.Successor = watched;
+            }
 
-                if (!reply.IsCompleted)
-                {
-                    _ = Fault(gate
-                        ? $"{what} within {Options.StallMarginMs:0} ms of its expected arrival"
-                        : $"the stage did not report {what} within {Options.StallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)");
-                    return;
-                }
+            _lastMove[axis] = watched;
+        }
 
-                await reply;
-            }
-            catch (OperationCanceledException)
-            {
-                // The run is ending anyway.
-            }
-            catch (Exception ex) when (ex is DeviceException)
-            {
-                _ = Fault(ex.Message);
-            }
-        });
+        _watched.Add(watched);
+        _ = TaskRunner.For(TimeProvider).Start(() => WatchAsync(watched, gate));
     }
 
-    private async Task WatchedRepliesAsync(CancellationToken token)
+    private async Task WatchAsync(Watched watched, bool gate)
     {
-        foreach (var (reply, deadline, what) in _watched.ToList())
+        try
         {
-            if (!await CompletesByAsync(reply, deadline + 0.001, token))
+            var reply = watched.Reply;
+            using (var stop = new CancellationTokenSource())
             {
-                throw Fault($"the stage did not report {what} within {Options.StallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)");
+                var wait = watched.Deadline - RunSeconds;
+                if (wait > 0 && !reply.IsCompleted)
+                {
+                    await Task.WhenAny(reply, PreciseDelay.DelayAsync(TimeProvider, TimeSpan.FromSeconds(wait), stop.Token));
+                    stop.Cancel();
+                }
+            }
+
+            if (reply.IsCompletedSuccessfully)
+            {
+                return;
+            }
+
+            if (watched.Successor is { } successor && (!reply.IsCompleted || reply.Exception?.InnerException is ZaberInterruptedException))
+            {
+                await successor.Done.Task;
+                return;
+            }
+
+            if (!reply.IsCompleted)
+            {
+                _ = Fault(gate
+                    ? $"{watched.What} within {Options.StallMarginMs:0} ms of its expected arrival"
+                    : $"the stage did not report {watched.What} within {Options.StallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)");
+                return;
             }
 
             await reply;
+        }
+        catch (OperationCanceledException)
+        {
+            // The run is ending anyway.
+        }
+        catch (Exception ex) when (ex is DeviceException)
+        {
+            _ = Fault(ex.Message);
+        }
+        finally
+        {
+            watched.Done.TrySetResult();
+        }
+    }
+
+    // Every reply watched so far, each by its deadline (a move never reported is settled by the next of its axis).
+    private async Task WatchedRepliesAsync(CancellationToken token)
+    {
+        foreach (var watched in _watched.ToList())
+        {
+            var settled = watched.Successor is { } next ? Task.WhenAny(watched.Reply, next.Reply) : watched.Reply;
+            var deadline = watched.Successor is { } later ? Math.Max(watched.Deadline, later.Deadline) : watched.Deadline;
+            if (!await CompletesByAsync(settled, deadline + 0.001, token))
+            {
+                throw Fault($"the stage did not report {watched.What} within {Options.StallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)");
+            }
+        }
+
+        lock (_lock)
+        {
+            if (_timedFault is { } fault)
+            {
+                throw new DeviceException(fault);
+            }
         }
 
         _watched.Clear();
@@ -503,6 +556,21 @@ public sealed partial class RunExecutor
             _toComplete.Dequeue();
             Completed(next.Move, next.Index);
         }
+    }
+
+    /// <summary>A reply being watched; <see cref="Done"/> completes once it is settled (or has faulted the run).</summary>
+    private sealed class Watched(Task reply, double deadline, string what)
+    {
+        public Task Reply { get; } = reply;
+
+        public double Deadline { get; } = deadline;
+
+        public string What { get; } = what;
+
+        /// <summary>The next move of the same axis, which settles this one if this one's end is never reported.</summary>
+        public Watched? Successor { get; set; }
+
+        public TaskCompletionSource Done { get; } = new(TaskCreationOptions.RunContinuationsAsynchronously);
     }
 
     private sealed record Segment(bool Stroke, List<(Move Move, long Index)> Moves, long StartX, long StartY, long EndX, long EndY);

@@ -521,7 +521,13 @@ public sealed class ZaberConnection : IAsyncDisposable
             else
             {
                 ExpireZombies(request);
+                var replaced = ReplacedMoves(request);
                 request.Completion.TrySetResult(frame);
+                foreach (var earlier in replaced)
+                {
+                    earlier.Completion.TrySetException(new ZaberInterruptedException(
+                        $"{PortName}: {DescribeDevice(earlier.Request.Device)} {ZaberCommandText.Describe(earlier.Request)} was replaced by the next move before it reported its end"));
+                }
             }
 
             return;
@@ -600,6 +606,22 @@ public sealed class ZaberConnection : IAsyncDisposable
 
         var command = CommandForErrorCode(code);
         return live.Find(p => p.Request.Command == command) ?? live[0];
+    }
+
+    // A move sent to arrive after the one before ended (RequestCoreAsync with preempts: false) can still catch it in its
+    // last moments and replace it, and a replaced move may never reply (the protocol leaves it open): once a later move
+    // of the device has reported its end, the earlier ones waiting count as replaced.
+    private List<PendingRequest> ReplacedMoves(PendingRequest answered)
+    {
+        if (!PreemptiveMoves.Contains(answered.Request.Command))
+        {
+            return [];
+        }
+
+        var replaced = _pending.Where(p => !p.Interrupted && p.Request.Device == answered.Request.Device
+            && p.Sequence < answered.Sequence && PreemptiveMoves.Contains(p.Request.Command)).ToList();
+        _pending.RemoveAll(replaced.Contains);
+        return replaced;
     }
 
     // A device answers in order, so once a later request of the device is answered, an interrupted one never will be.

@@ -41,7 +41,7 @@ public class EngraveSessionTests
         var one = Assert.IsType<RunSimulation>(Assert.Single(onePass.Records).Simulation);
         var record = Assert.Single(twoPasses.Records);
         var two = Assert.IsType<RunSimulation>(record.Simulation);
-        Assert.Equal(RunOutcome.Completed, record.Outcome);
+        Assert.True(record.Outcome == RunOutcome.Completed, $"{record.Outcome}: {record.Fault}");
         Assert.Equal(RunState.Completed, result.State);
         Assert.Equal((2, (int?)2), (record.Passes, record.PassesDone));
         Assert.Equal((job.Statistics.BurnRuns, job.Statistics.Rows), (record.RunsDone, record.RowsDone));
