@@ -29,7 +29,9 @@ public sealed class MotionTimeline
         _timing = timing;
         XFree = startSeconds;
         YFree = startSeconds;
-        WireFree = startSeconds;
+
+        // Nothing written from now can arrive before a command's latency has passed.
+        WireFree = startSeconds + timing.StageCommandSeconds - timing.FrameSeconds;
         XSpeedData = xSpeedData;
     }
 
@@ -125,6 +127,17 @@ public sealed class MotionTimeline
         LastOff = arrival + lastOffSeconds - t.OffAdvanceSeconds;
         AddReply(XFree);
         return new StrokeTimes(speedArrival, arrival, XFree);
+    }
+
+    /// <summary>The last stroke started <paramref name="seconds"/> later than planned (its commands left late): it ends that much later.</summary>
+    public void Delay(double seconds)
+    {
+        XFree += seconds;
+        WireFree += seconds;
+        if (LastOff is { } off)
+        {
+            LastOff = off + seconds;
+        }
     }
 
     private void AddReply(double? readyAt)

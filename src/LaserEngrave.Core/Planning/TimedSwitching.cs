@@ -136,7 +136,10 @@ public sealed class TimedSwitching
     /// How far inside a run each switching is aimed: the most the gate's and the stage's latencies can move a pulse
     /// relative to the stage, so that no pulse ever lands on the white beyond an edge.
     /// </summary>
-    public double EdgeGuardSeconds => GateJitterSeconds + StageJitterSeconds;
+    public double EdgeGuardSeconds => GateJitterSeconds + StageJitterSeconds + GuardMarginSeconds;
+
+    // Strictly inside: at the guard itself a pulse can land exactly on the edge.
+    private const double GuardMarginSeconds = 0.00002;
 
     /// <summary>From crossing a run's entry edge to the switch-on taking effect: the guard, at least half a pulse period.</summary>
     public double OnDelaySeconds => Math.Max(HalfPulseSeconds, EdgeGuardSeconds);

@@ -164,15 +164,26 @@ public sealed partial class RunExecutor
         var lastOff = burns.Count > 0 ? Offset(burns[^1].Move.X1) : 0;
         var times = timeline.Stroke(length, firstEdge, lastOff);
 
+        var speedWritten = double.NegativeInfinity;
         if (times.SpeedArrival is { } speedArrival)
         {
             await DelayUntilAsync(speedArrival - timing.StageCommandSeconds, token);
+            speedWritten = RunSeconds;
             Watch(SetSpeedAsync(Stage.X, _burnSpeedData, token), speedArrival + timing.StageReplySeconds, "Set Target Speed (X)");
             _xSpeedData = _burnSpeedData;
         }
 
         await DelayUntilAsync(times.Arrival - timing.StageCommandSeconds, token);
         ThrowIfAborted();
+
+        // A host late to write (a loaded machine on the wall clock) moves the whole stroke, and everything after it, later.
+        var arrival = Math.Max(RunSeconds + timing.StageCommandSeconds, speedWritten + timing.StageCommandSeconds + timing.FrameSeconds);
+        if (arrival > times.Arrival + 0.0001)
+        {
+            timeline.Delay(arrival - times.Arrival);
+            times = times with { Arrival = arrival, End = times.End + (arrival - times.Arrival) };
+        }
+
         var start = segment.StartX;
         var earlier = _watched.ToList();
         var move = Stage.X.MoveAbsoluteAfterAsync(segment.EndX, token);
