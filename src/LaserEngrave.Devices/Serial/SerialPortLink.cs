@@ -12,8 +12,7 @@ namespace LaserEngrave.Devices.Serial;
 /// reads, stamps each read with the time it returned, and queues it; <see cref="ReadStampedAsync"/> hands that stamp on
 /// as the bytes' arrival. The reader loop that awaits the queue continues on that thread too, so a reply is framed and
 /// handed to its waiter as soon as the operating system returns it, even while the thread pool is busy (compiling,
-/// running a job) or the machine is loaded: on a loaded 2-core machine, reads through the thread pool came hundreds of
-/// milliseconds late and replies timed out (docs/execution.md).
+/// running a job) or the machine is loaded (docs/zaber-protocol.md, Timeouts).
 /// </para>
 /// <para>
 /// On Linux the stream's I/O loop polls the port every millisecond, so disposing the stream ends a pending read at once
