@@ -13,7 +13,7 @@ namespace LaserEngrave.Devices.Serial;
 /// System.IO.Ports opened and configured; it is held (a reference on its handle) until the reader thread ends, so it
 /// cannot be closed and reused under it.
 /// </remarks>
-internal sealed class PosixPort
+internal sealed class PosixPort : IDisposable
 {
     private const short PollIn = 0x1;
     private const short PollOut = 0x4;
@@ -23,14 +23,18 @@ internal sealed class PosixPort
     private const int EIntr = 4;
     private const int EAgain = 11;
     private const int DisposeCheckMs = 100;
+    private const int EfdCloexec = 0x80000;
+    private const int EfdNonblock = 0x800;
 
     private readonly SafeHandle _handle;
     private readonly int _fd;
+    private readonly int _wake;
 
-    private PosixPort(SafeHandle handle)
+    private PosixPort(SafeHandle handle, int wake)
     {
         _handle = handle;
         _fd = (int)handle.DangerousGetHandle();
+        _wake = wake;
     }
 
     /// <summary>The descriptor under <paramref name="stream"/> on Linux; null elsewhere or when it cannot be found.</summary>
@@ -42,7 +46,21 @@ internal sealed class PosixPort
         }
 
         var field = stream.GetType().GetField("_handle", BindingFlags.NonPublic | BindingFlags.Instance);
-        return field?.GetValue(stream) is SafeHandle { IsInvalid: false, IsClosed: false } handle ? new PosixPort(handle) : null;
+        if (field?.GetValue(stream) is not SafeHandle { IsInvalid: false, IsClosed: false } handle)
+        {
+            return null;
+        }
+
+        // An eventfd that Wake signals, so that closing the port ends a pending poll() at once.
+        var wake = NativeMethods.EventFd(0, EfdCloexec | EfdNonblock);
+        return wake < 0 ? null : new PosixPort(handle, wake);
+    }
+
+    /// <summary>Ends a pending <see cref="Read"/> at once (it then asks whether the port was closed, and returns 0).</summary>
+    public void Wake()
+    {
+        var one = BitConverter.GetBytes(1L);
+        _ = NativeMethods.Write(_wake, one, (nuint)one.Length);
     }
 
     /// <summary>Keeps the descriptor open until <see cref="Release"/>, whoever disposes the stream meanwhile.</summary>
@@ -63,11 +81,14 @@ internal sealed class PosixPort
 
     public void Release() => _handle.DangerousRelease();
 
+    /// <summary>Closes the wake-up descriptor, once the reader thread has ended.</summary>
+    public void Dispose() => _ = NativeMethods.Close(_wake);
+
     /// <summary>Waits for bytes and reads them; 0 once <paramref name="closed"/> says the port was closed.</summary>
     /// <exception cref="IOException">The other end hung up or the device failed.</exception>
     public int Read(byte[] buffer, Func<bool> closed)
     {
-        var fds = new[] { new PollFd { Fd = _fd, Events = PollIn } };
+        var fds = new[] { new PollFd { Fd = _fd, Events = PollIn }, new PollFd { Fd = _wake, Events = PollIn } };
         while (true)
         {
             if (closed())
@@ -76,7 +97,14 @@ internal sealed class PosixPort
             }
 
             fds[0].Revents = 0;
-            var ready = NativeMethods.Poll(fds, 1, DisposeCheckMs);
+            fds[1].Revents = 0;
+            var ready = NativeMethods.Poll(fds, 2, DisposeCheckMs);
+            if (closed())
+            {
+                // Never read once closed: the port may already be open again elsewhere, and its bytes are not ours.
+                return 0;
+            }
+
             if (ready < 0)
             {
                 var errno = Marshal.GetLastPInvokeError();
@@ -184,6 +212,14 @@ internal sealed class PosixPort
         [DllImport("libc", EntryPoint = "read", SetLastError = true)]
         [DefaultDllImportSearchPaths(DllImportSearchPath.SafeDirectories)]
         public static extern nint Read(int fd, [Out] byte[] buffer, nuint count);
+
+        [DllImport("libc", EntryPoint = "eventfd", SetLastError = true)]
+        [DefaultDllImportSearchPaths(DllImportSearchPath.SafeDirectories)]
+        public static extern int EventFd(uint initial, int flags);
+
+        [DllImport("libc", EntryPoint = "close", SetLastError = true)]
+        [DefaultDllImportSearchPaths(DllImportSearchPath.SafeDirectories)]
+        public static extern int Close(int fd);
 
         [DllImport("libc", EntryPoint = "write", SetLastError = true)]
         [DefaultDllImportSearchPaths(DllImportSearchPath.SafeDirectories)]

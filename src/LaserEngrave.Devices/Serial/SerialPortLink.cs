@@ -18,7 +18,8 @@ namespace LaserEngrave.Devices.Serial;
 /// On Linux that thread and the writes use the port's file descriptor directly (<see cref="PosixPort"/>): System.IO.Ports'
 /// own I/O loop wakes every millisecond while a read is pending, and on a loaded machine those wake-ups held other
 /// processes' serial traffic (socat, the simulator) back by up to 1.3 s. The reader sleeps in poll() and looks every
-/// 100 ms whether the port was closed, so disposing ends a pending read within 100 ms; on Windows closing the handle
+/// 100 ms whether the port was closed; disposing wakes it at once and waits for it to end, so the port is closed (and no
+/// longer read here) when disposal returns; on Windows closing the handle
 /// aborts the pending read. A hang-up or unplug ends the pending read, so while the link is open that is reported as an
 /// <see cref="IOException"/> naming the port, and later writes fail at once.
 /// </para>
@@ -206,9 +207,26 @@ public sealed class SerialPortLink : ISerialLink
 
         // The stream first: SerialPort.Dispose flushes before closing, and that flush never returns once the device has
         // hung up with a write still queued. With the stream closed the port skips the flush.
+        // The reader thread first, so that the port is really closed (and its bytes no longer read here) when this returns.
+        if (_posix is not null)
+        {
+            _posix.Wake();
+            Thread? reader;
+            lock (_readerStart)
+            {
+                reader = _reader;
+            }
+
+            if (reader is not null && reader != Thread.CurrentThread)
+            {
+                reader.Join(TimeSpan.FromSeconds(1));
+            }
+        }
+
         _stream.Dispose();
         _received.Writer.TryComplete();
         _port.Dispose();
+        _posix?.Dispose();
         _lock?.Dispose();
         return ValueTask.CompletedTask;
     }
