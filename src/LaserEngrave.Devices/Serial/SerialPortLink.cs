@@ -12,16 +12,16 @@ namespace LaserEngrave.Devices.Serial;
 /// reads, stamps each read with the time it returned, and queues it; <see cref="ReadStampedAsync"/> hands that stamp on
 /// as the bytes' arrival. The reader loop that awaits the queue continues on that thread too, so a reply is framed and
 /// handed to its waiter as soon as the operating system returns it, even while the thread pool is busy (compiling,
-/// running a job) or the machine is loaded: on a loaded 2-core machine, reads through the thread pool came hundreds of
-/// milliseconds late and replies timed out (docs/execution.md).
+/// running a job) or the machine is loaded (docs/zaber-protocol.md, Timeouts).
 /// </para>
 /// <para>
-/// On Linux the stream's I/O loop polls the port every millisecond, so disposing the stream ends a pending read at once
-/// (measured on a pty: 1 ms, 25 ms the first time while the code is compiled); on Windows closing the handle aborts the
-/// pending read. A hang-up or unplug also ends the pending read with "port is closed" and stops that I/O loop for good, so
-/// while the link is open that is reported as an <see cref="IOException"/> naming the port, and later writes fail at once
-/// instead of waiting on a loop that is gone. That millisecond poll costs about 4 % of one core per port while a read is
-/// pending (measured on this machine).
+/// On Linux that thread and the writes use the port's file descriptor directly (<see cref="PosixPort"/>): System.IO.Ports'
+/// own I/O loop wakes every millisecond while a read is pending, and on a loaded machine those wake-ups held other
+/// processes' serial traffic (socat, the simulator) back by up to 1.3 s. The reader sleeps in poll() and looks every
+/// 100 ms whether the port was closed; disposing wakes it at once and waits for it to end, so the port is closed (and no
+/// longer read here) when disposal returns; on Windows closing the handle
+/// aborts the pending read. A hang-up or unplug ends the pending read, so while the link is open that is reported as an
+/// <see cref="IOException"/> naming the port, and later writes fail at once.
 /// </para>
 /// </remarks>
 public sealed class SerialPortLink : ISerialLink
@@ -31,6 +31,7 @@ public sealed class SerialPortLink : ISerialLink
     private readonly SerialPort _port;
     private readonly Stream _stream;
     private readonly SafeFileHandle? _lock;
+    private readonly PosixPort? _posix;
     private readonly Lock _readerStart = new();
     private readonly Channel<Received> _received = Channel.CreateUnbounded<Received>(
         new UnboundedChannelOptions { SingleReader = true, AllowSynchronousContinuations = true });
@@ -46,6 +47,7 @@ public sealed class SerialPortLink : ISerialLink
         _port = port;
         _stream = port.BaseStream;
         _lock = portLock;
+        _posix = PosixPort.TryOpen(_stream);
     }
 
     public SerialPortSettings Settings { get; }
@@ -175,7 +177,14 @@ public sealed class SerialPortLink : ISerialLink
         deadline.CancelAfter(WriteTimeout);
         try
         {
-            await _stream.WriteAsync(data, deadline.Token);
+            if (_posix is not null)
+            {
+                WritePosix(data.Span);
+            }
+            else
+            {
+                await _stream.WriteAsync(data, deadline.Token);
+            }
         }
         catch (Exception ex) when (ex is OperationCanceledException or TimeoutException && !cancellationToken.IsCancellationRequested)
         {
@@ -198,9 +207,26 @@ public sealed class SerialPortLink : ISerialLink
 
         // The stream first: SerialPort.Dispose flushes before closing, and that flush never returns once the device has
         // hung up with a write still queued. With the stream closed the port skips the flush.
+        // The reader thread first, so that the port is really closed (and its bytes no longer read here) when this returns.
+        if (_posix is not null)
+        {
+            _posix.Wake();
+            Thread? reader;
+            lock (_readerStart)
+            {
+                reader = _reader;
+            }
+
+            if (reader is not null && reader != Thread.CurrentThread)
+            {
+                reader.Join(TimeSpan.FromSeconds(1));
+            }
+        }
+
         _stream.Dispose();
         _received.Writer.TryComplete();
         _port.Dispose();
+        _posix?.Dispose();
         _lock?.Dispose();
         return ValueTask.CompletedTask;
     }
@@ -225,13 +251,52 @@ public sealed class SerialPortLink : ISerialLink
     // Blocking reads on the port's own thread: each read is stamped when it returned, before anything else can delay it.
     private void ReadLoop()
     {
+        var held = _posix?.TryHold() ?? false;
+        if (_posix is not null && !held)
+        {
+            _received.Writer.TryComplete();
+            return;
+        }
+
+        try
+        {
+            ReadUntilClosed();
+        }
+        finally
+        {
+            if (held)
+            {
+                _posix!.Release();
+            }
+        }
+    }
+
+    private void WritePosix(ReadOnlySpan<byte> data)
+    {
+        if (!_posix!.TryHold())
+        {
+            throw new ObjectDisposedException(Name);
+        }
+
+        try
+        {
+            _posix.Write(data, WriteTimeout);
+        }
+        finally
+        {
+            _posix.Release();
+        }
+    }
+
+    private void ReadUntilClosed()
+    {
         var buffer = new byte[512];
         while (true)
         {
             int n;
             try
             {
-                n = _stream.Read(buffer, 0, buffer.Length);
+                n = _posix is not null ? _posix.Read(buffer, () => IsDisposed) : _stream.Read(buffer, 0, buffer.Length);
             }
             catch (Exception ex) when (IsDisposed && ex is ObjectDisposedException or IOException or OperationCanceledException or InvalidOperationException)
             {

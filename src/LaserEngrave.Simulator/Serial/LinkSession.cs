@@ -16,7 +16,9 @@ namespace LaserEngrave.Simulator.Serial;
 /// Device to host: a reply leaves byte by byte behind the replies before it, and reaches the host when its last byte has
 /// left plus the adapter's latency (drawn once per reply), never before an earlier reply.
 /// </para>
-/// Reads never wait for virtual time, so every write is seen at the instant the host made it.
+/// Reads never wait for virtual time, so every write is seen at the instant the host made it. A byte's arrival is when the
+/// link says it arrived (on real ports, when the operating system returned it), not when this loop got to it: on a loaded
+/// computer a frame read in two pieces late is not taken for a frame with a gap in it.
 /// </remarks>
 internal sealed class LinkSession
 {
@@ -109,9 +111,12 @@ internal sealed class LinkSession
         while (true)
         {
             int n;
+            double arrived;
             try
             {
-                n = await _link.ReadAsync(buffer, cancellationToken);
+                var read = await _link.ReadStampedAsync(buffer, _clock.Time, cancellationToken);
+                n = read.Count;
+                arrived = _clock.SecondsAt(read.ArrivalTimestamp);
             }
             catch (OperationCanceledException)
             {
@@ -134,7 +139,7 @@ internal sealed class LinkSession
             }
 
             // The adapter holds the whole write for its latency; then the bytes go out one after the other.
-            var start = Math.Max(_clock.NowSeconds + _latency.ToDeviceSeconds(), _inBusyUntil);
+            var start = Math.Max(arrived + _latency.ToDeviceSeconds(), _inBusyUntil);
             for (var i = 0; i < n; i++)
             {
                 _inBusyUntil = start + _secondsPerByte;

@@ -14,7 +14,10 @@ internal sealed class SimulationClock
     public TimeProvider Time { get; }
 
     /// <summary>Seconds since the machine started.</summary>
-    public double NowSeconds => (Time.GetTimestamp() - _origin) / (double)Time.TimestampFrequency;
+    public double NowSeconds => SecondsAt(Time.GetTimestamp());
+
+    /// <summary>A timestamp of <see cref="Time"/> as seconds since the machine started.</summary>
+    public double SecondsAt(long timestamp) => (timestamp - _origin) / (double)Time.TimestampFrequency;
 
     /// <summary>Runs <paramref name="action"/> once at <paramref name="atSeconds"/> (at once when that has passed).</summary>
     public ITimer At(double atSeconds, Action action) =>

@@ -69,10 +69,13 @@ public sealed class SimulationLoop : SynchronizationContext, IDisposable
         lock (_lock)
         {
             ObjectDisposedException.ThrowIf(_stopping, this);
+
+            // The operation and its first step go in together: a loop that looked in between would see an operation with
+            // nothing to do and report a deadlock (it happened at t = 0 when the loop's thread was slow to start).
             _roots.Add(root);
+            Enqueue(_ => Start(), null, countForeign: false);
         }
 
-        Enqueue(_ => Start(), null, countForeign: false);
         return done.Task;
 
         async void Start()

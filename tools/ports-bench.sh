@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Engraves the QR sample through socat ptys against `laserengrave simulator` (both on the wall clock), N times, and
+# prints one line per job: exit code, outcome, the error if any, wall time.
+#   tools/ports-bench.sh [N] [WIDTH_MM]
+# Environment: CLI (laserengrave.dll to run; default: this tree's Release build), LOOPS=1 (two CPU-busy loops meanwhile),
+# VERBOSE=1 (socat -x -v: every transfer with its time in OUT/socat-*.log, to see which process held a reply),
+# OUT (work folder; default a fresh one under /tmp).
+# Build first: dotnet build -c Release src/LaserEngrave.Cli
+set -u
+N=${1:-1}; W=${2:-2}
+root=$(cd "$(dirname "$0")/.." && pwd)
+CLI=${CLI:-$root/src/LaserEngrave.Cli/bin/Release/net10.0/laserengrave.dll}
+out=${OUT:-$(mktemp -d /tmp/ports-bench.XXXXXX)}
+mkdir -p "$out"
+pids=()
+cleanup() { kill "${pids[@]}" 2>/dev/null; }
+trap cleanup EXIT
+if [ "${LOOPS:-0}" = 1 ]; then
+  ( while :; do :; done ) & pids+=($!)
+  ( while :; do :; done ) & pids+=($!)
+fi
+verbose=(); [ "${VERBOSE:-0}" = 1 ] && verbose=(-x -v)
+socat "${verbose[@]}" pty,raw,echo=0,link="$out/s" pty,raw,echo=0,link="$out/sh" 2>"$out/socat-s.log" & pids+=($!)
+socat "${verbose[@]}" pty,raw,echo=0,link="$out/l" pty,raw,echo=0,link="$out/lh" 2>"$out/socat-l.log" & pids+=($!)
+sleep 1
+echo '{ "homeSpeedData": 30000 }' > "$out/sim.json"
+dotnet "$CLI" simulator --stage-port "$out/s" --laser-port "$out/l" --sim-options "$out/sim.json" > "$out/sim.log" 2>&1 & pids+=($!)
+sleep 3
+for j in $(seq 1 "$N"); do
+  start=$(date +%s.%N)
+  dotnet "$CLI" engrave "$root/assets/qr-code.bmp" --width-mm "$W" --origin-mm 10,10 --stage-port "$out/sh" --laser-port "$out/lh" \
+    --json --log-dir "$out/logs" > "$out/run$j.json" 2> "$out/run$j.err"
+  rc=$?
+  end=$(date +%s.%N)
+  echo "job $j exit $rc $(grep -o '"outcome": "[a-z]*"' "$out/run$j.json") $(grep '^laserengrave:' "$out/run$j.err" | cut -c1-160) wall $(echo "$end - $start" | bc) s"
+done
