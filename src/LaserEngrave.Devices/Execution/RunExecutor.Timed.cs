@@ -315,6 +315,20 @@ public sealed partial class RunExecutor
         var moved = (position - start) * direction;
         var least = Math.Max(1, Math.Floor(0.5 * a * earliest * earliest / 2));
         var most = Math.Ceiling(0.5 * a * latest * latest) + 2;
+        if (moved < least && moved >= 0 && RunSeconds + timing.FrameSeconds + timing.StageReplySeconds + (2 * timing.StageJitterSeconds) < onWrite)
+        {
+            // Not yet seen moving (the query overtook the move's start on a late device, or on a simulator on the wall
+            // clock): ask once more while there is time; the laser stays off until it has been seen moving.
+            var again = Stage.X.GetPositionAsync(token);
+            if (await CompletesByAsync(again, onWrite, token) && again.IsCompletedSuccessfully)
+            {
+                position = again.Result;
+                moved = (position - start) * direction;
+                least = 1;
+                most = Math.Abs(Job.Plan.Geometry.TravelXMicrosteps);
+            }
+        }
+
         if (moved < least || moved > most)
         {
             throw Fault($"the X axis reported {position} microsteps just after starting its stroke, not {start + (direction * least)}..{start + (direction * most)}: it is not moving as planned, so the laser stays off");

@@ -17,19 +17,19 @@ public class PtyRunTests
     public async Task RunAsync_ThroughSocatPtys_BurnsExactlyTheMask()
     {
         var ct = TestContext.Current.CancellationToken;
-        // On the wall clock the host's own scheduling adds to the latencies: the profile allows 20 ms either way, so timed
-        // switching aims 40 ms inside every edge, on pixels of 200 µm at 1 mm/s.
-        var profile = MachineProfile.Default with { Latency = new LatencyProfile { StageJitterMs = 20, GateJitterMs = 20 } };
+        // On ports the simulator runs on the wall clock, where this machine's load (the tests run in parallel) can shift
+        // it by more than any latency model: the serial path is tested here step by step (paper), timed switching in
+        // virtual time (RunExecutorTests, ExecutionFigures).
+        var profile = MachineProfile.Default;
         await using var stagePair = await SocatPtyPair.StartAsync(ct);
         await using var laserPair = await SocatPtyPair.StartAsync(ct);
         // On ports the simulator runs on the wall clock: home fast so that the preflight takes seconds.
         await using var machine = SimulatedMachine.Attach(SerialPortLink.Open(stagePair.A), SerialPortLink.Open(laserPair.A), profile, new SimulatorOptions { HomeSpeedData = 30_000 });
         await using var stage = ZaberChain.Open(stagePair.B, profile);
         await using var gate = PicLaserGate.Open(laserPair.B, profile.Gate);
-        var job = TestJobs.FromMask(TestJobs.Mask("#..##.", ".####.", "#....#"), 1.2, new PlanOptions { OverscanMm = 0.02 }, profile: profile);
+        var job = TestJobs.FromMask(TestJobs.Mask("#..##.", ".####.", "#....#"), 0.6, new PlanOptions { Strategy = PlanStrategy.Paper }, profile: profile);
 
-        // A reply late by the test machine's load is not a stalled stage here: the margin is the gate's own timeout.
-        var result = await new RunExecutor(stage, gate, job, options: new RunOptions { StallMarginMs = 500 }).RunAsync(ct);
+        var result = await new RunExecutor(stage, gate, job).RunAsync(ct);
         var report = machine.Recorder.Analyze(SimulatedRun.Grid(job), job.Mask);
 
         Assert.True(result.Outcome == RunOutcome.Completed, $"{result.Outcome}: {result.FaultMessage}");
