@@ -163,6 +163,11 @@ public sealed class RasterPlan
     private List<JobWarning> OverscanWarnings()
     {
         var warnings = new List<JobWarning>();
+        if (Timing is not null && TimedRoomWarning() is { } timed)
+        {
+            warnings.Add(timed);
+        }
+
         if (OverscanMicrosteps == 0)
         {
             return warnings;
@@ -202,6 +207,34 @@ public sealed class RasterPlan
         }
 
         return warnings;
+    }
+
+    // Timed switching needs a run-up before and a run-out after every row's burn runs, inside the travel: a job whose
+    // black reaches nearer the end of the travel than that brakes (or starts) over its outermost pixels there.
+    private JobWarning? TimedRoomWarning()
+    {
+        var runs = new int[64];
+        long left = long.MaxValue, right = long.MinValue;
+        for (var row = 0; row < Mask.Height; row++)
+        {
+            var count = RowRuns.Find(Mask.ReadRow(row), ref runs);
+            if (count > 0)
+            {
+                left = Math.Min(left, Geometry.RunEdgeX(runs[0], row));
+                right = Math.Max(right, Geometry.RunEdgeX(runs[(2 * count) - 1], row));
+            }
+        }
+
+        var room = Math.Max(RunUpMicrosteps, RunOutMicrosteps);
+        if (left == long.MaxValue || (left >= room && Geometry.TravelXMicrosteps - right >= room))
+        {
+            return null;
+        }
+
+        var roomMm = StageUnits.MicrostepsToMm(room, Geometry.MicrostepUm).ToString("0.###", CultureInfo.InvariantCulture);
+        return new JobWarning(
+            JobWarningKind.OverscanClamped,
+            $"the job's black reaches within {roomMm} mm of the end of the stage travel: rows that start or end there accelerate or brake over their outermost pixels (more dose there); move the job at least {roomMm} mm in");
     }
 
     private struct NullVisitor : IMoveVisitor
