@@ -185,6 +185,8 @@ public sealed partial class RunExecutor
         }
 
         var start = segment.StartX;
+        // Settled replies need no more looking at (their watchers report any fault): the list stays short.
+        _watched.RemoveAll(w => w.Reply.IsCompletedSuccessfully || (w.Successor?.Reply.IsCompletedSuccessfully ?? false));
         var earlier = _watched.ToList();
         var move = Stage.X.MoveAbsoluteAfterAsync(segment.EndX, token);
         Watch(Arrive(move, "X", segment.EndX, x => _x = x), times.End + timing.StageReplySeconds, "the end of a stroke (X)", axis: "X");
