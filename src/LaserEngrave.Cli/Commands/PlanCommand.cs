@@ -78,6 +78,7 @@ internal sealed record JobSummary(
     double TravelLengthMm,
     long LaserSwitches,
     double EstimatedSeconds,
+    double? WholeRunSeconds,
     double LowerBoundSeconds,
     IReadOnlyList<string> Warnings,
     double PulseSpacingUm,
@@ -111,6 +112,7 @@ internal sealed record JobSummary(
             s.TravelLengthMm,
             s.LaserSwitches,
             s.EstimatedSeconds,
+            s.WholeRunSeconds,
             s.LowerBoundSeconds,
             [.. job.Warnings.Select(w => w.Message)],
             job.Pulses.PulseSpacingUm,
@@ -140,6 +142,11 @@ internal sealed record JobSummary(
         output.WriteLine(string.Create(c, $"Laser switches:   {s.LaserSwitches}"));
         output.WriteLine(string.Create(c, $"Pulses:           {s.PulseSpacingUm:0.###} µm apart, {s.OverlapPercent:0.#} % overlap, {s.PulsesPerPixel:0.##} per pixel"));
         output.WriteLine(string.Create(c, $"Estimated time:   {Duration(s.EstimatedSeconds)}"));
+        if (s.WholeRunSeconds is { } whole)
+        {
+            output.WriteLine(string.Create(c, $"Whole run:        {Duration(whole)} (with preflight, homing from the far end and the first travel)"));
+        }
+
         output.WriteLine(string.Create(c, $"Lower bound:      {Duration(s.LowerBoundSeconds)} (motion only)"));
     }
 

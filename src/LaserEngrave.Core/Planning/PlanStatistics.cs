@@ -29,6 +29,13 @@ public sealed record PlanStatistics
     /// <summary>Estimated duration of the run, s (see <see cref="PlanEstimator"/> for the model).</summary>
     public required double EstimatedSeconds { get; init; }
 
+    /// <summary>
+    /// The whole run: <see cref="EstimatedSeconds"/> plus preflight, homing from the far end of the travel (as after
+    /// power-up; a stage already homed is sooner) and the travel to the first position (<see cref="TimedSwitching.PreparationSeconds"/>);
+    /// null for a plan without a timing model.
+    /// </summary>
+    public double? WholeRunSeconds { get; init; }
+
     /// <summary>The least time any executor could take for the burns, motion only, s (see <see cref="LowerBound"/>).</summary>
     public required double LowerBoundSeconds { get; init; }
 }

@@ -133,7 +133,13 @@ public sealed class RasterPlan
             planner.PlanNextRow(ref visitor);
         }
 
-        return visitor.Finish(planner.VisitedRows, Geometry.MicrostepUm);
+        var statistics = visitor.Finish(planner.VisitedRows, Geometry.MicrostepUm);
+        if (Timing is null || Moves().Take(1).ToList() is not [var first])
+        {
+            return statistics;
+        }
+
+        return statistics with { WholeRunSeconds = statistics.EstimatedSeconds + Timing.PreparationSeconds(first.X0, first.Y0) };
     }
 
     private IEnumerable<Move> Enumerate(int fromRow)

@@ -30,6 +30,11 @@ public sealed class TimedSwitching
     // Time the host allows itself to react to a reply before acting on it.
     private const double ReactionSeconds = 0.0005;
 
+    private readonly double _gateByteSeconds;
+    private readonly double _gateAdapterSeconds;
+    private readonly double _gateProcessingSeconds;
+    private readonly MachineProfile _profile;
+
     public TimedSwitching(ProcessSettings process, MachineProfile profile, double microstepUm)
     {
         ArgumentNullException.ThrowIfNull(process);
@@ -61,6 +66,10 @@ public sealed class TimedSwitching
         var pong = gate.AckPrefix + " " + gate.KeepAliveReply + gate.LineTerminator;
         var gateAdapter = latency.GateMs / 1000;
         var processing = latency.GateProcessingMs / 1000;
+        _gateByteSeconds = gateByte;
+        _gateAdapterSeconds = gateAdapter;
+        _gateProcessingSeconds = processing;
+        _profile = profile;
         GateJitterSeconds = (latency.GateJitterMs + latency.GateProcessingJitterMs) / 1000;
         HalfPulseSeconds = 0.5 / Math.Max(1, frequency);
         OnLeadSeconds = gateAdapter + (OnCommand.Length * gateByte) + processing;
@@ -267,6 +276,32 @@ public sealed class TimedSwitching
         seconds += CanSetSpeedWhileBraking(BurnSpeed, TravelSpeed) ? 0 : SpeedChangeSeconds;
         seconds += CanSetSpeedWhileBraking(profile.PeakSpeed, BurnSpeed) ? 0 : SpeedChangeSeconds;
         return seconds;
+    }
+
+    /// <summary>
+    /// What a run adds before its engraving, as the executor does it: the gate's preflight (identify, off, watchdog), both
+    /// axes identified, homed from the far end of their travel (as after power-up) at the travel speed and the process'
+    /// acceleration, their positions read, and the travel with the laser off to the plan's first position.
+    /// </summary>
+    /// <param name="firstX">The plan's first position, X microsteps.</param>
+    /// <param name="firstY">The plan's first position, Y microsteps.</param>
+    public double PreparationSeconds(long firstX, long firstY)
+    {
+        var gate = _profile.Gate;
+        double GateExchange(int commandBytes, int replyBytes) =>
+            (2 * _gateAdapterSeconds) + _gateProcessingSeconds + ((commandBytes + replyBytes) * _gateByteSeconds);
+        var terminator = gate.LineTerminator.Length;
+        var gateSeconds = GateExchange(gate.IdentifyCommand.Length + terminator, 24)
+            + GateExchange(OffCommand.Length, gate.AckPrefix.Length + 1 + gate.OffReply.Length + terminator)
+            + GateExchange(gate.WatchdogCommand.Length + 3 + terminator, gate.AckPrefix.Length + 1 + gate.WatchdogReply.Length + 3 + terminator);
+
+        // Per axis: device ID, firmware, Device Mode, target speed, acceleration, Maximum Position, home speed, position;
+        // then acceleration and home speed set; after homing the position again.
+        var roundTrip = StageCommandSeconds + StageReplySeconds;
+        var stageSeconds = 2 * 11 * roundTrip;
+        var homing = Math.Max(Travel(_profile.X.TravelMicrosteps).Duration, Travel(_profile.Y.TravelMicrosteps).Duration) + roundTrip;
+        var first = Math.Max(firstX == 0 ? 0 : Travel(firstX).Duration, firstY == 0 ? 0 : Travel(firstY).Duration) + roundTrip;
+        return gateSeconds + stageSeconds + homing + first;
     }
 
     /// <summary>Whether a gap between two runs of a row is crossed at the burn speed (faster than stopping and travelling).</summary>

@@ -30,6 +30,9 @@ public interface IStageAxis
     /// <summary>Sets the target speed, in device units (x 9.375 microsteps/s).</summary>
     Task SetTargetSpeedAsync(int speedData, CancellationToken cancellationToken);
 
+    /// <summary>Sets the speed of homing, in device units (x 9.375 microsteps/s); devices without the setting ignore it.</summary>
+    Task SetHomeSpeedAsync(int speedData, CancellationToken cancellationToken) => Task.CompletedTask;
+
     /// <summary>Sets the acceleration, in device units (x 11250 microsteps/s²).</summary>
     Task SetAccelerationAsync(int accelerationData, CancellationToken cancellationToken);
 

@@ -311,18 +311,28 @@ public sealed partial class RunExecutor
         CheckReach(x, y);
 
         var homing = new List<Task<long>>();
-        if (Options.Home || !x.IsHomed)
-        {
-            homing.Add(Stage.X.HomeAsync(token));
-        }
-
-        if (Options.Home || !y.IsHomed)
-        {
-            homing.Add(Stage.Y.HomeAsync(token));
-        }
-
         try
         {
+            // Homing at the process' acceleration and travel speed, so it takes the time the estimate says, not the device's power-up settings'.
+            foreach (var (axis, identity) in new[] { (Stage.X, x), (Stage.Y, y) })
+            {
+                if (Options.Home || !identity.IsHomed)
+                {
+                    await axis.SetAccelerationAsync(_accelerationData, token);
+                    await axis.SetHomeSpeedAsync(_travelSpeedData, token);
+                }
+            }
+
+            if (Options.Home || !x.IsHomed)
+            {
+                homing.Add(Stage.X.HomeAsync(token));
+            }
+
+            if (Options.Home || !y.IsHomed)
+            {
+                homing.Add(Stage.Y.HomeAsync(token));
+            }
+
             await Task.WhenAll(homing);
             _x = await Stage.X.GetPositionAsync(token);
             _y = await Stage.Y.GetPositionAsync(token);

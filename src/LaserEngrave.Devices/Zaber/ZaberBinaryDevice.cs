@@ -156,6 +156,12 @@ public sealed class ZaberBinaryDevice : IStageAxis
         return reply.Data;
     }
 
+    public async Task SetHomeSpeedAsync(int speedData, CancellationToken cancellationToken)
+    {
+        var reply = await RequestAsync(ZaberCommand.SetHomeSpeed, speedData, cancellationToken);
+        Write(() => _homeSpeedData = reply.Data);
+    }
+
     public async Task SetTargetSpeedAsync(int speedData, CancellationToken cancellationToken)
     {
         var reply = await RequestAsync(ZaberCommand.SetTargetSpeed, speedData, cancellationToken);
