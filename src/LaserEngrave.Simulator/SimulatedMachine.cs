@@ -64,8 +64,8 @@ public sealed class SimulatedMachine : IAsyncDisposable
         _clock = new SimulationClock(TimeProvider);
         Faults = FaultInjector.Parse(options.FaultSpec);
         Faults.Triggered += (_, rule) => Raise(rule.Target == FaultTarget.Stage ? StagePort : LaserPort, $"fault injected: {rule}");
-        var x = new Motion.AxisTrajectory(profile.X.TravelMicrosteps);
-        var y = new Motion.AxisTrajectory(profile.Y.TravelMicrosteps);
+        var x = new Motion.AxisTrajectory(StartPosition(profile.X, options));
+        var y = new Motion.AxisTrajectory(StartPosition(profile.Y, options));
         Recorder = new BurnRecorder(x, y, profile.X.MicrostepUm, profile.Y.MicrostepUm, options.DwellTolerance, () => _clock.NowSeconds);
         Stage = new VirtualZaberChain(profile, options, _clock, Faults, Recorder);
         Gate = new VirtualLaserGate(profile.Gate, options, _clock, Faults, Recorder);
@@ -275,6 +275,9 @@ public sealed class SimulatedMachine : IAsyncDisposable
 
         return task;
     }
+
+    private static long StartPosition(AxisProfile axis, SimulatorOptions options) =>
+        options.StartMm is { } mm ? Math.Clamp((long)Math.Round(StageUnits.MmToMicrosteps(mm, axis.MicrostepUm)), 0, axis.TravelMicrosteps) : axis.TravelMicrosteps;
 
     private void Raise(string port, string message) => EventRaised?.Invoke(this, new SimulatorEvent(TimeProvider.GetUtcNow(), port, message));
 }

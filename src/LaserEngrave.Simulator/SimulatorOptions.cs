@@ -21,6 +21,12 @@ public sealed record SimulatorOptions
     /// <summary>The laser gate's time from a command's last byte to the Q-switch changing (and its reply leaving).</summary>
     public Jitter GateProcessing { get; init; } = new(0.5, 0.2);
 
+    /// <summary>
+    /// Where both axes stand at power-up, mm from home (clamped to their travel); null: the far end of the travel, as a
+    /// T-series device reports after power-up. Tests on the wall clock start near home so homing takes little time.
+    /// </summary>
+    public double? StartMm { get; init; }
+
     /// <summary>Faults to inject from the start, in the grammar of <see cref="Faults.FaultInjector.Parse"/>.</summary>
     public string? FaultSpec { get; init; }
 

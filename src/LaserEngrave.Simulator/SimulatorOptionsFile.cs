@@ -53,6 +53,9 @@ public static class SimulatorOptionsFile
             HomeSpeedData = InRange(path, "homeSpeedData", fields.HomeSpeedData, 1, 32767) ?? baseOptions.HomeSpeedData,
             AccelerationData = InRange(path, "accelerationData", fields.AccelerationData, 0, 32767) ?? baseOptions.AccelerationData,
             FaultSpec = fields.Faults ?? baseOptions.FaultSpec,
+            StartMm = fields.StartMm is { } startMm
+                ? double.IsFinite(startMm) && startMm >= 0 && startMm <= 1000 ? startMm : throw new InvalidDataException($"{path}: startMm must be 0..1000 mm (got {startMm.ToString(System.Globalization.CultureInfo.InvariantCulture)})")
+                : baseOptions.StartMm,
         };
         if (fields.JitterScale is { } scale)
         {
@@ -86,7 +89,7 @@ public static class SimulatorOptionsFile
     }
 
     private static readonly string[] KnownFields =
-        ["seed", "adapterLatency", "gateProcessing", "jitterScale", "targetSpeedData", "homeSpeedData", "accelerationData", "faults"];
+        ["seed", "adapterLatency", "gateProcessing", "jitterScale", "targetSpeedData", "homeSpeedData", "accelerationData", "startMm", "faults"];
 
     private static Jitter? Checked(string path, string name, Jitter? jitter)
     {
@@ -118,6 +121,8 @@ public static class SimulatorOptionsFile
         public int? HomeSpeedData { get; init; }
 
         public int? AccelerationData { get; init; }
+
+        public double? StartMm { get; init; }
 
         public string? Faults { get; init; }
     }

@@ -14,9 +14,9 @@ internal sealed class SimulatorProcess : IAsyncDisposable
     {
         var cli = typeof(Program).Assembly.Location;
         var dotnet = Environment.GetEnvironmentVariable("DOTNET_HOST_PATH") is { Length: > 0 } host ? host : "dotnet";
-        // On ports the simulator runs on the wall clock: home fast (26 mm/s) so that a run's preflight takes seconds, not a minute.
+        // On ports the simulator runs on the wall clock: it starts 1 mm from home so that a run's homing takes a moment, not 15 s.
         var options = Path.Combine(Path.GetTempPath(), $"le-sim-options-{Guid.NewGuid():N}.json");
-        await File.WriteAllTextAsync(options, """{ "homeSpeedData": 30000 }""", cancellationToken);
+        await File.WriteAllTextAsync(options, """{ "startMm": 1 }""", cancellationToken);
         var start = new ProcessStartInfo(dotnet)
         {
             ArgumentList = { cli, "simulator", "--stage-port", stage.A, "--laser-port", laser.A, "--sim-options", options },

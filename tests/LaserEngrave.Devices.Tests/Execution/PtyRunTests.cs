@@ -23,8 +23,8 @@ public class PtyRunTests
         var profile = MachineProfile.Default;
         await using var stagePair = await SocatPtyPair.StartAsync(ct);
         await using var laserPair = await SocatPtyPair.StartAsync(ct);
-        // On ports the simulator runs on the wall clock: home fast so that the preflight takes seconds.
-        await using var machine = SimulatedMachine.Attach(SerialPortLink.Open(stagePair.A), SerialPortLink.Open(laserPair.A), profile, new SimulatorOptions { HomeSpeedData = 30_000 });
+        // On ports the simulator runs on the wall clock: it starts 1 mm from home so that homing takes a moment.
+        await using var machine = SimulatedMachine.Attach(SerialPortLink.Open(stagePair.A), SerialPortLink.Open(laserPair.A), profile, new SimulatorOptions { StartMm = 1 });
         await using var stage = ZaberChain.Open(stagePair.B, profile);
         await using var gate = PicLaserGate.Open(laserPair.B, profile.Gate);
         var job = TestJobs.FromMask(TestJobs.Mask("#..##.", ".####.", "#....#"), 0.6, new PlanOptions { Strategy = PlanStrategy.Paper }, profile: profile);
