@@ -271,8 +271,8 @@ public sealed class TimedSwitching
         }
 
         var brake = Stroke(2 * RunOutMicrosteps);
-        var seconds = (brake.Duration / 2) + MarginSeconds + Travel(travel).Duration + MarginSeconds + FirstEdgeSeconds;
         var profile = Travel(travel);
+        var seconds = (brake.Duration / 2) + MarginSeconds + profile.Duration + MarginSeconds + FirstEdgeSeconds;
         seconds += CanSetSpeedWhileBraking(BurnSpeed, TravelSpeed) ? 0 : SpeedChangeSeconds;
         seconds += CanSetSpeedWhileBraking(profile.PeakSpeed, BurnSpeed) ? 0 : SpeedChangeSeconds;
         return seconds;

@@ -169,7 +169,7 @@ public sealed partial class RunExecutor
         {
             await DelayUntilAsync(speedArrival - timing.StageCommandSeconds, token);
             speedWritten = RunSeconds;
-            Watch(SetSpeedAsync(Stage.X, _burnSpeedData, token), speedArrival + timing.StageReplySeconds, "Set Target Speed (X)");
+            Watch(Stage.X.SetTargetSpeedAsync(_burnSpeedData, token), speedArrival + timing.StageReplySeconds, "Set Target Speed (X)");
             _xSpeedData = _burnSpeedData;
         }
 
@@ -250,7 +250,7 @@ public sealed partial class RunExecutor
         {
             sends.Add((speedArrival - timing.StageCommandSeconds, () =>
             {
-                Watch(SetSpeedAsync(Stage.X, _travelSpeedData, token), speedArrival + timing.StageReplySeconds, "Set Target Speed (X)");
+                Watch(Stage.X.SetTargetSpeedAsync(_travelSpeedData, token), speedArrival + timing.StageReplySeconds, "Set Target Speed (X)");
                 _xSpeedData = _travelSpeedData;
                 return Task.CompletedTask;
             }));
@@ -415,7 +415,7 @@ public sealed partial class RunExecutor
     }
 
     private void WatchGate(Task reply, double expectedSeconds, string what) =>
-        Watch(reply, expectedSeconds + ((Job.Plan.Timing?.GateJitterSeconds ?? 0) * 2) - ((Job.Plan.Timing?.StageJitterSeconds ?? 0) * 2), what, gate: true);
+        Watch(reply, expectedSeconds, what, gate: true);
 
     private async Task DelayUntilAsync(double seconds, CancellationToken token)
     {
@@ -427,8 +427,6 @@ public sealed partial class RunExecutor
 
         token.ThrowIfCancellationRequested();
     }
-
-    private static async Task SetSpeedAsync(IStageAxis axis, int speedData, CancellationToken token) => await axis.SetTargetSpeedAsync(speedData, token);
 
     private static async Task Arrive(Task<long> move, string axis, long target, Action<long> arrived)
     {
@@ -444,7 +442,8 @@ public sealed partial class RunExecutor
     /// </remarks>
     private void Watch(Task reply, double expectedSeconds, string what, bool gate = false, string? axis = null)
     {
-        var deadline = expectedSeconds + ((Job.Plan.Timing?.StageJitterSeconds ?? 0) * 2) + (Options.StallMarginMs / 1000);
+        var jitter = gate ? Job.Plan.Timing?.GateJitterSeconds : Job.Plan.Timing?.StageJitterSeconds;
+        var deadline = expectedSeconds + ((jitter ?? 0) * 2) + (Options.StallMarginMs / 1000);
         var watched = new Watched(reply, deadline, what);
         if (axis is not null)
         {

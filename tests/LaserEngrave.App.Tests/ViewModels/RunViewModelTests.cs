@@ -31,21 +31,7 @@ public sealed class RunViewModelTests
         _store.Save(Arg.Any<RunRecord>()).Returns(new RunLogFiles("/logs/run.json", "/logs/run.txt"));
     }
 
-    private static RunResult Result(RunOutcome outcome, string? fault = null) => new()
-    {
-        Outcome = outcome,
-        FaultMessage = fault,
-        LaserOffConfirmed = true,
-        StartedAt = DateTimeOffset.UnixEpoch,
-        EndedAt = DateTimeOffset.UnixEpoch.AddSeconds(12),
-        EngravingDuration = TimeSpan.FromSeconds(10),
-        EstimatedSeconds = 11,
-        LaserOnSeconds = 4,
-        RowsDone = 5,
-        RowsTotal = 5,
-        RunsDone = 7,
-        RunsTotal = 7,
-    };
+    private static RunResult Result(RunOutcome outcome, string? fault = null) => SessionResults.Result(outcome, fault);
 
     private static EngraveResult Ended(EngraveSession session, RunResult? run, Exception? error = null) => SessionResults.Ended(session, run, error);
 
