@@ -23,6 +23,17 @@ public sealed class EngraveCommandTests : IDisposable
     private string LogDir => Path.Combine(folder, "logs");
 
     [Fact]
+    public async Task Engrave_PixelTooShortForTheGate_Exit2OneLineBeforeAnythingOpensNoLog()
+    {
+        var (exit, _, error) = await CliHarness.RunAsync("engrave", QrCode, "--width-mm", "1", "--speed-mm-s", "4", "--simulate", "--log-dir", LogDir);
+
+        Assert.Equal(2, exit);
+        var line = Assert.Single(error.Split('\n', StringSplitOptions.RemoveEmptyEntries), l => l.StartsWith("laserengrave: ", StringComparison.Ordinal));
+        Assert.Contains("shorter than the 9.9 ms the laser gate needs to switch it exactly: burn at ", line, StringComparison.Ordinal);
+        Assert.False(Directory.Exists(LogDir) && Directory.EnumerateFiles(LogDir).Any());
+    }
+
+    [Fact]
     public async Task EngraveSimulate_QrCode_CompletesExit0WithConsistentJsonBurnedImageAndLog()
     {
         var burned = Path.Combine(folder, "burned.png");

@@ -48,6 +48,11 @@ internal static class EngraveCommand
         spec = spec with { Passes = passes ?? spec.Passes };
         var prepared = PreparedJob.Prepare(spec);
         RefuseOutsideTravel(prepared);
+        if (prepared.Plan.SwitchingProblem is { } tooShort)
+        {
+            // Known from the plan alone: refused before any port opens, as preflight would refuse it later.
+            throw new UsageException(tooShort);
+        }
         foreach (var warning in prepared.Warnings)
         {
             stderr.WriteLine($"warning: {warning.Message}");

@@ -23,6 +23,9 @@ public enum JobWarningKind
 
     /// <summary>A solved laser frequency is not whole Hz; the gate is sent the nearest whole number.</summary>
     FrequencyNotWhole,
+
+    /// <summary>A pixel lasts less at the burn speed than the gate needs to switch it: the plan can be looked at, not engraved.</summary>
+    PixelTooShortForTheGate,
 }
 
 /// <summary>A condition the job can run with but the user should know about.</summary>

@@ -69,6 +69,9 @@ public sealed class RasterPlan
     /// </summary>
     public TimedSwitching? Timing { get; }
 
+    /// <summary>Null when timed switching can switch one pixel exactly at the burn speed; otherwise why not, in one line.</summary>
+    public string? SwitchingProblem => Timing?.PixelTooShort((long)Math.Floor(Geometry.PitchXMicrosteps));
+
     /// <summary>Run-up before each row's first burn run, microsteps: the overscan, or longer when timed switching needs it.</summary>
     public long RunUpMicrosteps { get; }
 
@@ -172,6 +175,11 @@ public sealed class RasterPlan
         if (Timing is not null && TimedRoomWarning() is { } timed)
         {
             warnings.Add(timed);
+        }
+
+        if (SwitchingProblem is { } tooShort)
+        {
+            warnings.Add(new JobWarning(JobWarningKind.PixelTooShortForTheGate, tooShort + " (engraving is refused)"));
         }
 
         if (OverscanMicrosteps == 0)

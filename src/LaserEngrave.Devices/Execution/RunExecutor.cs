@@ -396,7 +396,7 @@ public sealed partial class RunExecutor
 
         var strategy = Job.Plan.Options.Strategy;
         var microstepUm = Job.Plan.Geometry.MicrostepUm;
-        if (Job.Plan.Timing?.PixelTooShort((long)Math.Floor(Job.Plan.Geometry.PitchXMicrosteps)) is { } tooShort)
+        if (Job.Plan.SwitchingProblem is { } tooShort)
         {
             throw new PreflightException(tooShort);
         }
