@@ -51,7 +51,7 @@ public sealed class SimulatedMachine : IAsyncDisposable
         Options = options;
         if (inProcess && !options.RealTime)
         {
-            _virtual = new VirtualTimeProvider(options.VirtualStart);
+            _virtual = new VirtualTimeProvider(options.VirtualStart, options.Paced);
             TimeProvider = _virtual;
         }
         else

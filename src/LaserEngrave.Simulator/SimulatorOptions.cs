@@ -9,6 +9,13 @@ public sealed record SimulatorOptions
     /// <remarks>A simulator attached to ports always runs on the wall clock: its host lives in real time in another process.</remarks>
     public bool RealTime { get; init; }
 
+    /// <summary>
+    /// Virtual time that never runs ahead of the wall clock: the run takes its real time, as the app's live view needs,
+    /// but every event still happens at its exact virtual time (the wall clock's timers would be late by a scheduler
+    /// tick). In-process only; <see cref="RealTime"/> wins if both are set.
+    /// </summary>
+    public bool Paced { get; init; }
+
     /// <summary>Wall-clock time at which virtual time starts (what logs show as a run's start); now when not given.</summary>
     public DateTimeOffset? VirtualStart { get; init; }
 

@@ -8,11 +8,11 @@ using LaserEngrave.Simulator.Burn;
 
 namespace LaserEngrave.App.Services;
 
-/// <summary>Opens the in-process simulator (real time, so the page shows a run at the machine's pace) or two real ports.</summary>
-/// <param name="simulatorOptions">How the simulator runs; by default in real time. Tests pass virtual time.</param>
+/// <summary>Opens the in-process simulator (virtual time paced to the wall clock, so the page shows a run at the machine's pace) or two real ports.</summary>
+/// <param name="simulatorOptions">How the simulator runs; by default paced virtual time. Tests pass unpaced virtual time.</param>
 public sealed class MachineConnectionFactory(SimulatorOptions? simulatorOptions = null) : IMachineConnectionFactory
 {
-    private readonly SimulatorOptions _simulatorOptions = simulatorOptions ?? new SimulatorOptions { RealTime = true };
+    private readonly SimulatorOptions _simulatorOptions = simulatorOptions ?? new SimulatorOptions { Paced = true };
 
     public Task<IMachineConnection> ConnectAsync(MachineChoice choice, MachineProfile profile, CancellationToken cancellationToken)
     {
@@ -21,7 +21,8 @@ public sealed class MachineConnectionFactory(SimulatorOptions? simulatorOptions 
         cancellationToken.ThrowIfCancellationRequested();
         if (choice.UseSimulator)
         {
-            var description = _simulatorOptions.RealTime ? "simulator (in-process, real time)" : "simulator (in-process, virtual time)";
+            var description = _simulatorOptions.RealTime ? "simulator (in-process, real time)"
+                : _simulatorOptions.Paced ? "simulator (in-process, at the machine's pace)" : "simulator (in-process, virtual time)";
             return Task.FromResult<IMachineConnection>(new Connection(description, profile, SimulatedMachine.OpenInProcess(profile, _simulatorOptions)));
         }
 

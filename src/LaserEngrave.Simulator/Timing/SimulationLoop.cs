@@ -34,13 +34,24 @@ public sealed class SimulationLoop : SynchronizationContext, IDisposable
     private long _steps;
     private long _foreignPosts;
     private bool _stopping;
+    private readonly bool _paced;
+    private readonly long _wallStart = System.Diagnostics.Stopwatch.GetTimestamp();
 
-    public SimulationLoop(string name = "simulation")
+    /// <param name="name">The loop thread's name.</param>
+    /// <param name="paced">
+    /// Never ahead of the wall clock: each event waits until its time has come on the wall clock too, and an operation
+    /// waiting for work from another thread (a page's Pause, Resume) waits for it instead of counting as deadlocked. For
+    /// a live view (the app): every event still happens at its exact virtual time, so timing is what the model says.
+    /// </param>
+    public SimulationLoop(string name = "simulation", bool paced = false)
     {
+        _paced = paced;
         _scheduler = new LoopTaskScheduler(this);
         _thread = new Thread(Loop) { IsBackground = true, Name = name };
         _thread.Start();
     }
+
+    private long WallTicks => (long)((System.Diagnostics.Stopwatch.GetTimestamp() - _wallStart) * ((double)TimeSpan.TicksPerSecond / System.Diagnostics.Stopwatch.Frequency));
 
     /// <summary>Virtual time since the loop started, in ticks of 100 ns.</summary>
     public long NowTicks => Volatile.Read(ref _now);
@@ -223,6 +234,18 @@ public sealed class SimulationLoop : SynchronizationContext, IDisposable
                         break;
                     }
 
+                    if (_paced && _roots.Count == 0)
+                    {
+                        // Idle: virtual time catches up with the wall clock, so the next operation starts now.
+                        _now = Math.Max(_now, WallTicks);
+                    }
+
+                    if (_paced && hasTimer && at.Due > _now && _roots.Count > 0 && WallTicks < at.Due)
+                    {
+                        Monitor.Wait(_lock, TimeSpan.FromTicks(Math.Max(1, at.Due - WallTicks)));
+                        continue;
+                    }
+
                     if (hasTimer && (at.Due <= _now || _roots.Count > 0))
                     {
                         _timers.Dequeue();
@@ -234,6 +257,13 @@ public sealed class SimulationLoop : SynchronizationContext, IDisposable
                         }
 
                         break;
+                    }
+
+                    if (_roots.Count > 0 && _paced)
+                    {
+                        // Paced: what an operation waits for can come from another thread at any time.
+                        Monitor.Wait(_lock);
+                        continue;
                     }
 
                     if (_roots.Count > 0)

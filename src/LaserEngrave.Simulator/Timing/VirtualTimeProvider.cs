@@ -13,10 +13,11 @@ public sealed class VirtualTimeProvider : TimeProvider, ITaskRunner, IDisposable
     private readonly DateTimeOffset _start;
 
     /// <param name="start">Wall-clock time at virtual time zero (what logs show as the start of a run); now by default.</param>
-    public VirtualTimeProvider(DateTimeOffset? start = null)
+    /// <param name="paced">Never ahead of the wall clock (<see cref="SimulationLoop"/>), for a live view.</param>
+    public VirtualTimeProvider(DateTimeOffset? start = null, bool paced = false)
     {
         _start = start ?? System.GetUtcNow();
-        Loop = new SimulationLoop();
+        Loop = new SimulationLoop(paced: paced);
     }
 
     /// <summary>The loop this clock belongs to.</summary>

@@ -82,6 +82,48 @@ public class SimulationLoopTests
     }
 
     [Fact(Timeout = 20_000)]
+    public async Task Run_Paced_WaitsForWorkFromAnotherThreadInsteadOfReportingADeadlock()
+    {
+        using var time = new VirtualTimeProvider(paced: true);
+        var resume = new TaskCompletionSource<int>(TaskCreationOptions.RunContinuationsAsynchronously);
+        var ct = TestContext.Current.CancellationToken;
+        _ = Task.Run(
+            async () =>
+            {
+                await Task.Delay(50, ct);
+                resume.TrySetResult(7);
+            },
+            ct);
+
+        var value = await time.Loop.Run(
+            async () =>
+            {
+                await Task.Delay(TimeSpan.FromMilliseconds(1), time);
+                return await resume.Task;
+            },
+            "a resume from the page");
+
+        Assert.Equal(7, value);
+    }
+
+    [Fact(Timeout = 20_000)]
+    public async Task Run_Paced_NeverAheadOfTheWallClockAndEachEventAtItsExactTime()
+    {
+        using var time = new VirtualTimeProvider(paced: true);
+        var wall = System.Diagnostics.Stopwatch.StartNew();
+
+        var (elapsed, at) = await time.Run(async () =>
+        {
+            var start = time.Elapsed;
+            await Task.Delay(TimeSpan.FromMilliseconds(80), time);
+            return (wall.Elapsed, time.Elapsed - start);
+        });
+
+        Assert.True(elapsed >= TimeSpan.FromMilliseconds(79), $"{elapsed}");
+        Assert.Equal(TimeSpan.FromMilliseconds(80), at);
+    }
+
+    [Fact(Timeout = 20_000)]
     public async Task Time_BetweenOperations_StandsStill()
     {
         using var time = new VirtualTimeProvider();
