@@ -267,9 +267,10 @@ public sealed class VirtualLaserGate
                     return;
                 }
 
-                SetFrequency(0, _clock.NowSeconds);
+                // Counted before the laser stops: whoever sees it stopped (without the lock) also sees why.
                 Tripped = true;
                 WatchdogTrips++;
+                SetFrequency(0, _clock.NowSeconds);
                 _log($"watchdog switched the laser off after {WatchdogMs} ms without a line");
             }
         });
