@@ -5,6 +5,7 @@ using System.Runtime.ExceptionServices;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
+using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Execution;
 using LaserEngrave.Simulator;
 using LaserEngrave.Simulator.Burn;
@@ -48,7 +49,7 @@ internal static class EngraveCommand
         spec = spec with { Passes = passes ?? spec.Passes };
         var prepared = PreparedJob.Prepare(spec);
         RefuseOutsideTravel(prepared);
-        if (prepared.Plan.SwitchingProblem is { } tooShort)
+        if (prepared.EngraveProblem is { } tooShort)
         {
             // Known from the plan alone: refused before any port opens, as preflight would refuse it later.
             throw new UsageException(tooShort);
@@ -204,7 +205,7 @@ internal static class EngraveCommand
         var c = CultureInfo.InvariantCulture;
         var clock = s.Simulated ? " (simulated time)" : string.Empty;
         output.WriteLine(string.Create(c, $"Outcome:          {s.Outcome}{(s.Fault is null ? string.Empty : $": {s.Fault}")}"));
-        output.WriteLine(string.Create(c, $"Done:             {s.RowsDone} of {s.RowsTotal} rows, {s.RunsDone} of {s.RunsTotal} burn runs"));
+        output.WriteLine(string.Create(c, $"Done:             {s.RowsDone} of {s.RowsTotal} rows, {s.RunsDone} of {s.RunsTotal} {(s.Mode == "dots" ? "dots" : "burn runs")}"));
         if (s.Passes > 1)
         {
             output.WriteLine(string.Create(c, $"Passes:           {s.PassesDone ?? 0} of {s.Passes} done (rows and runs above: the last pass)"));
@@ -223,6 +224,11 @@ internal static class EngraveCommand
             if (s.Dwells is { } dwells)
             {
                 output.WriteLine(string.Create(c, $"Dwells:           {dwells.Count} ({dwells.Pulses} pulses with the stage still)"));
+            }
+
+            if (s.Mode == "dots")
+            {
+                output.WriteLine(string.Create(c, $"Dot mode:         {s.PulsesPerDot} pulses per dot, {s.PulsesWhileMoving} pulses while the stage moved"));
             }
 
             if (s.PulsesPerPixel is { } ppp)
@@ -329,7 +335,10 @@ internal sealed record EngraveSummary(
     DwellCounts? Dwells,
     PulseCountRange? PulsesPerPixel,
     int Passes,
-    int? PassesDone)
+    int? PassesDone,
+    string Mode,
+    int PulsesPerDot,
+    long? PulsesWhileMoving)
 {
     public static EngraveSummary From(RunRecord record, RunLogFiles files, string? burnedPath, string? dosePath, double? wallSeconds) => new(
         record.Outcome.ToString().ToLowerInvariant(),
@@ -359,5 +368,8 @@ internal sealed record EngraveSummary(
         record.Simulation?.Dwells,
         record.Simulation?.PulsesPerPixel,
         record.Passes,
-        record.PassesDone);
+        record.PassesDone,
+        record.Process.Mode == PlanMode.Dots ? "dots" : "raster",
+        record.Process.PulsesPerDot,
+        record.Simulation?.PulsesWhileMoving);
 }

@@ -46,6 +46,14 @@ internal sealed class JobOptions
 
     public Option<double?> AccelerationMmS2 { get; } = new("--acceleration-mm-s2") { Description = "Acceleration, mm/s²" };
 
+    public Option<string?> Mode { get; } = new("--mode") { Description = "raster (burn while moving, the default) or dots (stop at each dot and fire a counted burst)" };
+
+    public Option<int?> PulsesPerDot { get; } = new("--pulses-per-dot") { Description = "Pulses fired at each dot in --mode dots (default 1)" };
+
+    public Option<long?> DotPitchMicrosteps { get; } = new("--dot-pitch-microsteps") { Description = "Distance between dots along a run, microsteps, in --mode dots (default: one dot at each pixel's centre)" };
+
+    public Option<double?> DotSettleMs { get; } = new("--dot-settle-ms") { Description = "Time the stage is left to settle at each dot before the burst, ms (default 0)" };
+
     public void AddTo(Command command)
     {
         command.Arguments.Add(Image);
@@ -53,7 +61,7 @@ internal sealed class JobOptions
         foreach (var option in new Option[]
         {
             WidthMm, HeightMm, PitchUm, ImageDpi, OriginMm, Strategy, Bidirectional, Unidirectional, OverscanMm,
-            Profile, FrequencyHz, SpeedMmS, TravelSpeedMmS, AccelerationMmS2,
+            Profile, FrequencyHz, SpeedMmS, TravelSpeedMmS, AccelerationMmS2, Mode, PulsesPerDot, DotPitchMicrosteps, DotSettleMs,
         })
         {
             command.Options.Add(option);
@@ -74,6 +82,7 @@ internal sealed class JobOptions
             AccelerationMmPerS2 = Acceleration(result.GetValue(AccelerationMmS2), limits) ?? profile.AccelerationMmPerS2,
             LaserFrequencyHz = Frequency(result.GetValue(FrequencyHz), limits) ?? profile.LaserFrequencyHz,
         };
+        process = BindDots(result, process, profile);
         var origin = ParseOrigin(result.GetValue(OriginMm));
         OptionChecks.WithinTravel(origin.X, limits.TravelXMm, "--origin-mm", "X");
         OptionChecks.WithinTravel(origin.Y, limits.TravelYMm, "--origin-mm", "Y");
@@ -118,8 +127,50 @@ internal sealed class JobOptions
         new Option[]
         {
             Mask.Threshold, Mask.Dither, Mask.Invert, WidthMm, HeightMm, PitchUm, ImageDpi, OriginMm, Strategy, Bidirectional, Unidirectional,
-            OverscanMm, Profile, FrequencyHz, SpeedMmS, TravelSpeedMmS, AccelerationMmS2,
+            OverscanMm, Profile, FrequencyHz, SpeedMmS, TravelSpeedMmS, AccelerationMmS2, Mode, PulsesPerDot, DotPitchMicrosteps, DotSettleMs,
         }.Where(option => OptionChecks.IsGiven(result, option)).Select(option => option.Name);
+
+    /// <summary>The dot-mode options; refused with one line when out of range or given without <c>--mode dots</c>.</summary>
+    private ProcessSettings BindDots(ParseResult result, ProcessSettings process, MachineProfile profile)
+    {
+        var mode = ParseMode(result.GetValue(Mode));
+        var pulses = result.GetValue(PulsesPerDot);
+        var pitch = result.GetValue(DotPitchMicrosteps);
+        var settle = result.GetValue(DotSettleMs);
+        if (mode != PlanMode.Dots)
+        {
+            var stray = new Option[] { PulsesPerDot, DotPitchMicrosteps, DotSettleMs }.FirstOrDefault(o => OptionChecks.IsGiven(result, o));
+            return stray is null ? process : throw new UsageException($"{stray.Name} applies to --mode dots only");
+        }
+
+        if (pulses is { } n && n is < 1 or > MaxPulsesPerDot)
+        {
+            throw new UsageException($"--pulses-per-dot {n}: must be 1..{MaxPulsesPerDot}");
+        }
+
+        var travel = Math.Min(profile.X.TravelMicrosteps, profile.Y.TravelMicrosteps);
+        if (pitch is { } k && (k < 1 || k > travel))
+        {
+            throw new UsageException($"--dot-pitch-microsteps {k}: must be 1..{travel} (the travel), or left out for one dot a pixel");
+        }
+
+        if (settle is { } ms && !(ms >= 0 && ms <= 60_000))
+        {
+            throw new UsageException($"--dot-settle-ms {OptionChecks.N(ms)}: must be 0..60000 ms");
+        }
+
+        return process with { Mode = PlanMode.Dots, PulsesPerDot = pulses ?? 1, DotPitchMicrosteps = pitch ?? 0, DotSettleMs = settle ?? 0 };
+    }
+
+    /// <summary>The most pulses a dot may get: the gate's burst range.</summary>
+    internal const int MaxPulsesPerDot = 1_000_000;
+
+    internal static PlanMode ParseMode(string? text) => text?.Trim().ToLowerInvariant() switch
+    {
+        null or "" or "raster" => PlanMode.Raster,
+        "dots" or "dot" => PlanMode.Dots,
+        _ => throw new UsageException($"--mode {text}: use raster or dots"),
+    };
 
     private static double? Speed(double? value, string name, MachineLimits limits) =>
         value is { } v && !limits.SpeedAllowed(v)
@@ -239,6 +290,14 @@ internal sealed class MaskOptionSet
     public Option<string?> Dither { get; } = new("--dither") { Description = "none, floyd-steinberg, atkinson or bayer" };
 
     public Option<bool> Invert { get; } = new("--invert") { Description = "Burn the light pixels instead of the dark ones" };
+
+    public Option<string?> Mode { get; } = new("--mode") { Description = "raster (burn while moving, the default) or dots (stop at each dot and fire a counted burst)" };
+
+    public Option<int?> PulsesPerDot { get; } = new("--pulses-per-dot") { Description = "Pulses fired at each dot in --mode dots (default 1)" };
+
+    public Option<long?> DotPitchMicrosteps { get; } = new("--dot-pitch-microsteps") { Description = "Distance between dots along a run, microsteps, in --mode dots (default: one dot at each pixel's centre)" };
+
+    public Option<double?> DotSettleMs { get; } = new("--dot-settle-ms") { Description = "Time the stage is left to settle at each dot before the burst, ms (default 0)" };
 
     public void AddTo(Command command)
     {

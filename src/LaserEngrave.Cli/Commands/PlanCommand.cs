@@ -83,7 +83,12 @@ internal sealed record JobSummary(
     IReadOnlyList<string> Warnings,
     double PulseSpacingUm,
     double OverlapPercent,
-    double PulsesPerPixel)
+    double PulsesPerPixel,
+    string Mode,
+    int PulsesPerDot,
+    long? DotPitchMicrosteps,
+    double? DotSpacingUm,
+    long? Dots)
 {
     public static JobSummary From(PreparedJob job)
     {
@@ -117,7 +122,12 @@ internal sealed record JobSummary(
             [.. job.Warnings.Select(w => w.Message)],
             job.Pulses.PulseSpacingUm,
             job.Pulses.OverlapPercent,
-            job.Pulses.PulsesPerPixel ?? 0);
+            job.Pulses.PulsesPerPixel ?? 0,
+            job.Spec.Process.Mode == PlanMode.Dots ? "dots" : "raster",
+            job.Spec.Process.PulsesPerDot,
+            job.Dots?.DotPitchMicrosteps,
+            job.Dots?.DotSpacingUm,
+            job.Dots?.Estimate.Dots);
     }
 
     public static void WriteText(TextWriter output, PreparedJob job)
@@ -135,6 +145,12 @@ internal sealed record JobSummary(
         }
 
         output.WriteLine(string.Create(c, $"Strategy:         {s.Strategy}{(s.Strategy == "optimized" ? $", {(s.Bidirectional ? "bidirectional" : "unidirectional")}, overscan {s.OverscanMm:0.###} mm" : string.Empty)}{(s.ScanOffsetUm != 0 && s.Strategy == "optimized" && s.Bidirectional ? $", right-to-left rows shifted {s.ScanOffsetUm:0.###} µm (the profile's scanOffsets)" : string.Empty)}"));
+        if (job.Dots is { } dots)
+        {
+            output.WriteLine(string.Create(c, $"Mode:             dots, {dots.PulsesPerDot} pulses at {job.Spec.Process.LaserFrequencyWholeHz} Hz per dot, a dot at {dots.DescribePitch()}, {dots.Estimate.Dots} dots ({dots.Estimate.Pulses} pulses)"));
+            output.WriteLine(string.Create(c, $"Per dot:          {dots.Estimate.AtDotSeconds * 1000:0.##} ms standing (settle {dots.Estimate.SettleSeconds * 1000:0.##} ms, burst {dots.Estimate.BurstSeconds * 1000:0.##} ms, commands and the wait for its end), steps {dots.Estimate.StepsSeconds:0.##} s in all"));
+        }
+
         output.WriteLine(string.Create(c, $"Rows:             {s.Rows}"));
         output.WriteLine(string.Create(c, $"Moves:            {s.Moves}"));
         output.WriteLine(string.Create(c, $"Burn runs:        {s.BurnRuns} ({s.BurnLengthMm:0.###} mm)"));
@@ -147,7 +163,10 @@ internal sealed record JobSummary(
             output.WriteLine(string.Create(c, $"Whole run:        {Duration(whole)} (with preflight, homing from the far end and the first travel)"));
         }
 
-        output.WriteLine(string.Create(c, $"Lower bound:      {Duration(s.LowerBoundSeconds)} (motion only)"));
+        if (job.Dots is null)
+        {
+            output.WriteLine(string.Create(c, $"Lower bound:      {Duration(s.LowerBoundSeconds)} (motion only)"));
+        }
     }
 
     public static string Duration(double seconds)

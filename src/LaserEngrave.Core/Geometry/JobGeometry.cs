@@ -136,6 +136,13 @@ public sealed record JobGeometry
     public long RunEdgeX(long column, int row, double offsetMicrosteps) =>
         Round(Math.FusedMultiplyAdd(column, PitchXMicrosteps, Math.FusedMultiplyAdd(row + 0.5, ShearXMicrosteps, OriginXMicrosteps + offsetMicrosteps)));
 
+    /// <summary>
+    /// Stage X of a point <paramref name="columns"/> pixel widths (not necessarily whole) from the image's left edge on
+    /// row <paramref name="row"/>'s centre line, rounded once: where dot mode stops (a pixel's centre is column c + 0.5).
+    /// </summary>
+    public long PointX(double columns, int row) =>
+        Round(Math.FusedMultiplyAdd(columns, PitchXMicrosteps, Math.FusedMultiplyAdd(row + 0.5, ShearXMicrosteps, OriginXMicrosteps)));
+
     /// <summary>Stage Y of the top edge of pixel row <paramref name="rowEdge"/> (0..HeightPx; HeightPx is the bottom edge of the image).</summary>
     public long EdgeY(long rowEdge) => Round(Math.FusedMultiplyAdd(rowEdge, PitchYMicrosteps, OriginYMicrosteps));
 

@@ -26,6 +26,9 @@ public enum JobWarningKind
 
     /// <summary>A pixel lasts less at the burn speed than the gate needs to switch it: the plan can be looked at, not engraved.</summary>
     PixelTooShortForTheGate,
+
+    /// <summary>A dot's burst lasts too long for the gate's watchdog: the plan can be looked at, not engraved.</summary>
+    BurstTooLongForTheWatchdog,
 }
 
 /// <summary>A condition the job can run with but the user should know about.</summary>

@@ -9,9 +9,12 @@ namespace LaserEngrave.Core.Jobs;
 /// <summary>A job ready to preview, estimate or engrave: the mask, its geometry on the stage, the plan and its figures.</summary>
 public sealed class PreparedJob
 {
-    private PreparedJob(JobSpec spec, ImageInfo image, BitMask mask, GeometryReport geometry, RasterPlan plan, PlanStatistics statistics)
+    private PreparedJob(JobSpec spec, ImageInfo image, BitMask mask, GeometryReport geometry, RasterPlan plan, PlanStatistics statistics, DotPlan? dots)
     {
-        Pulses = PulseFigures.For(spec.Process, spec.Profile.SpotDiameterUm, geometry.PitchUm);
+        Pulses = dots is null
+            ? PulseFigures.For(spec.Process, spec.Profile.SpotDiameterUm, geometry.PitchUm)
+            : PulseFigures.ForDots(spec.Process.PulsesPerDot, spec.Process.LaserFrequencyWholeHz, dots.DotSpacingUm, spec.Profile.SpotDiameterUm, geometry.PitchUm, spec.Process.PulseEnergyUj);
+        Dots = dots;
         Spec = spec;
         Image = image;
         Mask = mask;
@@ -30,13 +33,20 @@ public sealed class PreparedJob
 
     public RasterPlan Plan { get; }
 
+    /// <summary>The raster's figures; in dot mode its estimate is the dot plan's (<see cref="DotModeEstimate.TotalSeconds"/>).</summary>
     public PlanStatistics Statistics { get; }
+
+    /// <summary>The dot plan in <see cref="PlanMode.Dots"/> (what the executor runs then); null in raster mode.</summary>
+    public DotPlan? Dots { get; }
+
+    /// <summary>Null when the job can be engraved as planned; otherwise why not, in one line (checked before anything opens).</summary>
+    public string? EngraveProblem => Dots is { } dots ? dots.Problem : Plan.SwitchingProblem;
 
     /// <summary>What the process does per pulse and per pixel at this pitch and the profile's spot (seed 004).</summary>
     public PulseFigures Pulses { get; }
 
     /// <summary>Warnings of the geometry, of the plan and of the pulses, in that order.</summary>
-    public IReadOnlyList<JobWarning> Warnings => [.. Geometry.Warnings, .. Plan.Warnings, .. Pulses.Warnings];
+    public IReadOnlyList<JobWarning> Warnings => [.. Geometry.Warnings, .. Plan.Warnings, .. Dots?.Warnings ?? [], .. Pulses.Warnings];
 
     /// <summary>Refuses a drawing where only images are run yet.</summary>
     /// <remarks>Without this a drawing would be refused as "not an image", which sends the user looking in the wrong place.</remarks>
@@ -67,14 +77,39 @@ public sealed class PreparedJob
         ArgumentNullException.ThrowIfNull(info);
         ArgumentNullException.ThrowIfNull(mask);
         var geometry = GeometryResolver.Resolve(spec.Size, mask.Width, mask.Height, spec.Origin, spec.Profile);
+        var dotMode = spec.Process.Mode == PlanMode.Dots;
+        var timing = TimedSwitching.For(spec.Process, spec.Profile, geometry.Geometry.MicrostepUm);
+
+        // In dot mode the raster plan is kept for the preview and the figures of the runs; it is not what is executed.
         var plan = new RasterPlan(
             mask,
             geometry.Geometry,
             spec.Plan,
             spec.Profile.ScanOffsetUmAt(spec.Process.BurnSpeedMmPerS),
-            TimedSwitching.For(spec.Process, spec.Profile, geometry.Geometry.MicrostepUm));
+            dotMode ? null : timing);
         var statistics = plan.ComputeStatistics(spec.Process, spec.Profile.Gate);
-        return new PreparedJob(spec, info, mask, geometry, plan, statistics);
+        DotPlan? dots = null;
+        if (dotMode)
+        {
+            dots = new DotPlan(mask, geometry.Geometry, spec.Process, spec.Profile, spec.Plan);
+            var first = dots.Dots().Take(1).ToList();
+            // What is executed: every dot a stop with a burst, no burning in motion, no speed change.
+            statistics = statistics with
+            {
+                Rows = dots.Estimate.Rows,
+                Moves = dots.Estimate.Dots,
+                BurnRuns = dots.Estimate.Dots,
+                BurnLengthMm = 0,
+                TravelLengthMm = dots.Estimate.TravelLengthMm,
+                OverscanLengthMm = 0,
+                LaserSwitches = dots.Estimate.Dots + 1,
+                SpeedChanges = 0,
+                EstimatedSeconds = dots.Estimate.TotalSeconds,
+                WholeRunSeconds = first is [var dot] ? dots.Estimate.TotalSeconds + timing.PreparationSeconds(dot.X, dot.Y) : dots.Estimate.TotalSeconds,
+            };
+        }
+
+        return new PreparedJob(spec, info, mask, geometry, plan, statistics, dots);
     }
 
     /// <summary>SHA-256 of the image file, lower-case hex, for the run log.</summary>

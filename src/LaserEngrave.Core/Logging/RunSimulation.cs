@@ -9,6 +9,7 @@ namespace LaserEngrave.Core.Logging;
 /// <param name="LaserOnTravelCount">Pulses that landed on a white pixel or off the job.</param>
 /// <param name="MissingPixels">Black pixels of the mask that got no pulse.</param>
 /// <param name="ExtraPixels">White pixels of the mask that got a pulse.</param>
+/// <param name="PulsesWhileMoving">Pulses fired while the stage moved (null in logs written before it was measured); dot mode fires none.</param>
 public sealed record RunSimulation(
     int Seed,
     long Pulses,
@@ -17,7 +18,8 @@ public sealed record RunSimulation(
     PulseCountRange PulsesPerPixel,
     long LaserOnTravelCount,
     long MissingPixels,
-    long ExtraPixels);
+    long ExtraPixels,
+    long? PulsesWhileMoving = null);
 
 /// <summary>Edge placement over the burn runs: how many edges, their mean and largest error, µm.</summary>
 public sealed record EdgeErrors(int Count, double MeanErrorUm, double MaxErrorUm);

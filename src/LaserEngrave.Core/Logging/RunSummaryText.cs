@@ -56,6 +56,9 @@ public static class RunSummaryText
         var s = record.Process;
         Line("Speeds", string.Create(c, $"burn {s.BurnSpeedMmPerS:0.###} mm/s, travel {s.TravelSpeedMmPerS:0.###} mm/s, acceleration {s.AccelerationMmPerS2:0.###} mm/s²"));
         Line("Laser frequency", string.Create(c, $"{s.LaserFrequencyHz:0.###} Hz"));
+        Line("Mode", s.Mode == PlanMode.Dots
+            ? string.Create(c, $"dots: {s.PulsesPerDot} pulses per dot, a dot {(s.DotPitchMicrosteps == 0 ? "at every pixel's centre" : $"every {s.DotPitchMicrosteps} microsteps")}, settle {s.DotSettleMs:0.###} ms")
+            : "raster (burning while moving)");
         Line("Machine", record.Profile.Name + (record.Simulated ? " (simulator)" : string.Empty));
         foreach (var device in record.Devices)
         {
@@ -68,6 +71,11 @@ public static class RunSummaryText
             if (sim.Edges is { } edges)
             {
                 Line("Edges", string.Create(c, $"{edges.Count}: mean error {edges.MeanErrorUm:0.##} µm, largest {edges.MaxErrorUm:0.##} µm"));
+            }
+
+            if (sim.PulsesWhileMoving is { } moving)
+            {
+                Line("Pulses moving", string.Create(c, $"{moving} fired while the stage moved"));
             }
 
             if (sim.Dwells is { } dwells)

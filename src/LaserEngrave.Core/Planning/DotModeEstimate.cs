@@ -1,24 +1,18 @@
-using System.Globalization;
-using LaserEngrave.Core.Geometry;
-using LaserEngrave.Core.Imaging;
-using LaserEngrave.Core.Motion;
-
 namespace LaserEngrave.Core.Planning;
 
-/// <summary>What dot mode (<see cref="PlanMode.Dots"/>) costs per dot: step, commands, settle and the burst. Planning data only; no executor runs it yet.</summary>
+/// <summary>What a dot-mode plan (<see cref="PlanMode.Dots"/>) costs: its dots and rows, and the time the executor takes, part by part.</summary>
 /// <remarks>
-/// Every burnt pixel is a dot. At each dot the stage steps one pitch from the previous dot (a trapezoid at the burn
-/// speed and acceleration, quantised as the Zaber devices quantise them), the Move Absolute and its reply cross the
-/// stage line, the stage settles for <see cref="ProcessSettings.DotSettleMs"/>, the gate is sent `BURST n f` and answers
-/// `OK BURST n`, and the laser fires for N / f (seed 004: any dwell in [N T, N T + tg) gives exactly N pulses).
-/// Travel between rows and between runs is as in raster mode and not counted here.
+/// <see cref="DotTiming"/> is the model, and the executor does exactly what it says: the start settings, then for each dot
+/// after the first the step from the dot before (travel speed, commands and replies), and at every dot the settle time, the
+/// burst command, its acknowledgement and the wait for the burst's end; at the end the switch-off. The travel to the first
+/// dot is not part of the engraving (as in raster mode).
 /// </remarks>
 public sealed record DotModeEstimate
 {
-    private const double BitsPerByte = 10;
-    private const int ZaberFrameBytes = 6;
-
     public required long Dots { get; init; }
+
+    /// <summary>Rows with at least one dot.</summary>
+    public required int Rows { get; init; }
 
     public required int PulsesPerDot { get; init; }
 
@@ -27,42 +21,64 @@ public sealed record DotModeEstimate
 
     public required double SettleSeconds { get; init; }
 
-    /// <summary>The one-pitch step from the previous dot, seconds.</summary>
-    public required double StepSeconds { get; init; }
+    /// <summary>At one dot: settle, burst command and acknowledgement, and the wait for the burst's end, seconds.</summary>
+    public required double AtDotSeconds { get; init; }
 
-    /// <summary>Move Absolute and its reply, and `BURST n f` and its reply, seconds.</summary>
-    public required double CommandSeconds { get; init; }
+    /// <summary>All steps from dot to dot (motion, commands and replies), seconds.</summary>
+    public required double StepsSeconds { get; init; }
+
+    /// <summary>The start settings and the final switch-off, seconds.</summary>
+    public required double StartEndSeconds { get; init; }
+
+    /// <summary>The stage's travel between dots, mm (the laser is off throughout).</summary>
+    public required double TravelLengthMm { get; init; }
 
     /// <summary>Dwell at a dot: burst plus settle, seconds.</summary>
     public double DwellSeconds => BurstSeconds + SettleSeconds;
 
-    public double SecondsPerDot => StepSeconds + CommandSeconds + DwellSeconds;
+    /// <summary>The whole engraving, seconds.</summary>
+    public double TotalSeconds => StartEndSeconds + StepsSeconds + (Dots * AtDotSeconds);
 
-    /// <summary>All dots, seconds (travel between runs not included).</summary>
-    public double DotsSeconds => Dots * SecondsPerDot;
+    /// <summary>Pulses the plan fires in all.</summary>
+    public long Pulses => Dots * PulsesPerDot;
 
-    public static DotModeEstimate For(BitMask mask, JobGeometry geometry, ProcessSettings process, LaserGateProfile? gate = null)
+    /// <summary>Adds up <paramref name="plan"/>'s dots in one pass.</summary>
+    public static DotModeEstimate For(DotPlan plan)
     {
-        ArgumentNullException.ThrowIfNull(mask);
-        ArgumentNullException.ThrowIfNull(geometry);
-        ArgumentNullException.ThrowIfNull(process);
-        process.Validate();
-        gate ??= new LaserGateProfile();
-        var n = process.PulsesPerDot;
-        var f = process.LaserFrequencyWholeHz;
-        var burstLine = string.Format(CultureInfo.InvariantCulture, gate.BurstCommand, n, f) + gate.LineTerminator;
-        var burstReply = $"{gate.AckPrefix} BURST {n}{gate.LineTerminator}";
-        var speed = StageUnits.SpeedMicrostepsPerS(StageUnits.SpeedData(process.BurnSpeedMmPerS, geometry.MicrostepUm));
-        var acceleration = StageUnits.AccelerationMicrostepsPerS2(StageUnits.AccelerationData(process.AccelerationMmPerS2, geometry.MicrostepUm));
+        ArgumentNullException.ThrowIfNull(plan);
+        var timing = plan.Timing;
+        long dots = 0;
+        var rows = 0;
+        var lastRow = -1;
+        double steps = 0, travel = 0;
+        Dot previous = default;
+        foreach (var dot in plan.Dots())
+        {
+            if (dots > 0)
+            {
+                steps += timing.StepSeconds(dot.X - previous.X, dot.Y - previous.Y);
+                travel += Math.Sqrt(Square(dot.X - previous.X) + Square(dot.Y - previous.Y));
+            }
+
+            rows += dot.Row != lastRow ? 1 : 0;
+            lastRow = dot.Row;
+            previous = dot;
+            dots++;
+        }
+
         return new DotModeEstimate
         {
-            Dots = mask.CountSet(),
-            PulsesPerDot = n,
-            BurstSeconds = (double)n / f,
-            SettleSeconds = process.DotSettleMs / 1000,
-            StepSeconds = new TrapezoidProfile(geometry.PitchMicrosteps, speed, acceleration).Duration,
-            CommandSeconds = (2 * ZaberFrameBytes * BitsPerByte / process.StageBaudRate)
-                + ((burstLine.Length + burstReply.Length) * BitsPerByte / process.GateBaudRate),
+            Dots = dots,
+            Rows = rows,
+            PulsesPerDot = timing.PulsesPerDot,
+            BurstSeconds = timing.BurstSeconds,
+            SettleSeconds = timing.SettleSeconds,
+            AtDotSeconds = timing.AtDotSeconds,
+            StepsSeconds = steps,
+            StartEndSeconds = timing.StartSeconds + timing.OffRoundTripSeconds,
+            TravelLengthMm = travel * plan.Geometry.MicrostepUm / 1000,
         };
+
+        static double Square(double v) => v * v;
     }
 }

@@ -6,6 +6,6 @@ public enum PlanMode
     /// <summary>The laser fires at its frequency while the stage moves along a run (seed 000).</summary>
     Raster,
 
-    /// <summary>The stage stops at each dot and the gate fires exactly <see cref="ProcessSettings.PulsesPerDot"/> pulses (seed 004's N pulses per dot). Planned and estimated only; no executor yet.</summary>
+    /// <summary>The stage stops at each dot and the gate fires exactly <see cref="ProcessSettings.PulsesPerDot"/> pulses (seed 004's N pulses per dot). docs/process.md.</summary>
     Dots,
 }

@@ -33,6 +33,12 @@ public sealed record ProcessSettings
     /// <summary>Time the stage is given to settle at a dot before the burst, ms (<see cref="PlanMode.Dots"/> only).</summary>
     public double DotSettleMs { get; init; }
 
+    /// <summary>
+    /// Distance between dots along a run in <see cref="PlanMode.Dots"/>, whole microsteps; 0 (the default): one dot at
+    /// the centre of every pixel.
+    /// </summary>
+    public long DotPitchMicrosteps { get; init; }
+
     /// <summary>Baud rate of the Zaber chain.</summary>
     public int StageBaudRate { get; init; } = 9600;
 
@@ -86,6 +92,16 @@ public sealed record ProcessSettings
         if (!(DotSettleMs >= 0) || double.IsInfinity(DotSettleMs))
         {
             throw new PlanException($"dot settle time {N(DotSettleMs)} ms must be 0 or more");
+        }
+
+        if (DotPitchMicrosteps < 0)
+        {
+            throw new PlanException($"dot pitch {DotPitchMicrosteps} microsteps must be 0 (every pixel) or more");
+        }
+
+        if (!Enum.IsDefined(Mode))
+        {
+            throw new PlanException($"mode {Mode} is not known (raster or dots)");
         }
 
         if (StageBaudRate <= 0 || GateBaudRate <= 0)

@@ -41,6 +41,44 @@ public sealed record PulseFigures
         return For(process.BurnSpeedMmPerS, process.LaserFrequencyHz, spotDiameterUm, pitchUm, process.PulseEnergyUj, process.PulsesPerDot);
     }
 
+    /// <summary>
+    /// The figures of dot mode: N pulses at each dot, dots <paramref name="dotSpacingUm"/> apart (the pixel pitch when
+    /// every pixel gets one); the speed is the mean speed v = D f / N of seed 004.
+    /// </summary>
+    public static PulseFigures ForDots(int pulsesPerDot, double frequencyHz, double dotSpacingUm, double spotDiameterUm, double pitchUm, double? pulseEnergyUj = null)
+    {
+        var perPixel = PulseArithmetic.PulsesPerPixel(pitchUm, dotSpacingUm, pulsesPerDot);
+        var warnings = new List<JobWarning>();
+        if (dotSpacingUm > spotDiameterUm)
+        {
+            warnings.Add(new JobWarning(
+                JobWarningKind.PulseGaps,
+                $"dot spacing {N(dotSpacingUm)} µm is above the {N(spotDiameterUm)} µm spot: the dots leave gaps of {N(dotSpacingUm - spotDiameterUm)} µm"));
+        }
+
+        if (perPixel < 1)
+        {
+            warnings.Add(new JobWarning(
+                JobWarningKind.PixelUnderOnePulse,
+                $"a {N(pitchUm)} µm pixel gets {N(perPixel)} pulses: some pixels get none"));
+        }
+
+        return new PulseFigures
+        {
+            SpeedMmPerS = PulseArithmetic.SpeedMmPerS(dotSpacingUm, frequencyHz, pulsesPerDot),
+            FrequencyHz = frequencyHz,
+            PulsesPerDot = pulsesPerDot,
+            SpotDiameterUm = spotDiameterUm,
+            PulseSpacingUm = dotSpacingUm,
+            OverlapPercent = 100 * PulseArithmetic.Overlap(dotSpacingUm, spotDiameterUm),
+            PitchUm = pitchUm,
+            PulsesPerPixel = perPixel,
+            PulseEnergyUj = pulseEnergyUj,
+            EnergyPerPixelUj = pulseEnergyUj is { } e ? perPixel * e : null,
+            Warnings = warnings,
+        };
+    }
+
     /// <summary>The figures of a speed and frequency for a spot and, when given, a pitch and pulse energy.</summary>
     public static PulseFigures For(double speedMmPerS, double frequencyHz, double spotDiameterUm, double? pitchUm = null, double? pulseEnergyUj = null, int pulsesPerDot = 1)
     {

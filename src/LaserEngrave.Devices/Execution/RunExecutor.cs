@@ -152,11 +152,15 @@ public sealed partial class RunExecutor
         {
             SetState(RunState.Preflight);
             identity = await PreflightAsync(token);
-            var (moves, firstIndex) = Prepare();
+            var (moves, firstIndex) = Job.Dots is { } dots ? ([], PrepareDots(dots)) : Prepare();
             SetState(RunState.Running);
             _keepAlive = new GateKeepAlive(Gate, GateKeepAlive.PeriodFor(_profile.Gate.WatchdogMs, Options.KeepAliveFraction), TimeProvider, OnKeepAliveFailed);
             using var linked = CancellationTokenSource.CreateLinkedTokenSource(token, _fault.Token);
-            if (Job.Plan.Timing is { } timing)
+            if (Job.Dots is { } dotPlan)
+            {
+                await ExecuteDotsAsync(dotPlan, firstIndex, linked.Token);
+            }
+            else if (Job.Plan.Timing is { } timing)
             {
                 await ExecuteTimedAsync(moves, firstIndex, timing, linked.Token);
             }
@@ -396,7 +400,7 @@ public sealed partial class RunExecutor
 
         var strategy = Job.Plan.Options.Strategy;
         var microstepUm = Job.Plan.Geometry.MicrostepUm;
-        if (Job.Plan.SwitchingProblem is { } tooShort)
+        if (Job.EngraveProblem is { } tooShort)
         {
             throw new PreflightException(tooShort);
         }
@@ -708,7 +712,7 @@ public sealed partial class RunExecutor
         RunProgress progress;
         lock (_lock)
         {
-            _estimator!.Add(move);
+            _estimator?.Add(move);
             if (move.Kind == MoveKind.Burn)
             {
                 _runsDone++;
@@ -939,9 +943,9 @@ public sealed partial class RunExecutor
     {
         var elapsed = TimeProvider.GetElapsedTime(_startTimestamp);
         // Timed runs keep to their estimate (the same timeline), so the clock says how much of it is done.
-        var estimateDone = !_engravingStarted || _estimator is null ? 0
-            : Job.Plan.Timing is not null ? Math.Min(_estimateTotal - _estimateBefore, (TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving).TotalSeconds)
-            : _estimator.ElapsedSeconds;
+        var estimateDone = !_engravingStarted ? 0
+            : Job.Plan.Timing is not null || Job.Dots is not null ? Math.Min(_estimateTotal - _estimateBefore, (TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving).TotalSeconds)
+            : _estimator?.ElapsedSeconds ?? 0;
         var done = _estimateBefore + estimateDone;
         var percent = _estimateTotal > 0 ? Math.Clamp(100 * done / _estimateTotal, 0, 100) : 0;
         var engraving = !_engravingStarted ? 0 : (TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving).TotalSeconds;

@@ -16,7 +16,9 @@ public sealed class BurnInspector(SimulatedMachine machine) : IRunInspector
     public RunSimulation Inspect(PreparedJob job)
     {
         ArgumentNullException.ThrowIfNull(job);
-        var burn = machine.Recorder.Analyze(BurnGrid.For(job.Plan.Geometry), job.Mask, job.Spec.Process.BurnSpeedMmPerS);
+        // In dot mode nothing burns in motion: no edges or dwells to measure against a burn speed, only the pulses while moving (none).
+        var dots = job.Dots is not null;
+        var burn = machine.Recorder.Analyze(BurnGrid.For(job.Plan.Geometry), job.Mask, dots ? null : job.Spec.Process.BurnSpeedMmPerS);
         Report = burn;
         return new RunSimulation(
             machine.Options.Seed,
@@ -26,6 +28,7 @@ public sealed class BurnInspector(SimulatedMachine machine) : IRunInspector
             new PulseCountRange(burn.PulsesPerPixel.Min, burn.PulsesPerPixel.Mean, burn.PulsesPerPixel.Max),
             burn.LaserOnTravelCount,
             burn.MissingPixels,
-            burn.ExtraPixels);
+            burn.ExtraPixels,
+            burn.PulsesWhileMoving);
     }
 }

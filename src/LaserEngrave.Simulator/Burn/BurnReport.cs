@@ -39,6 +39,9 @@ public sealed record BurnReport
     /// <summary>Pulses per pixel over the expected image's black pixels (over the burned ones without an expected image).</summary>
     public required PulsesPerPixelFigures PulsesPerPixel { get; init; }
 
+    /// <summary>Pulses fired while either axis was moving (velocity not zero); dot mode must have none.</summary>
+    public long PulsesWhileMoving { get; init; }
+
     /// <summary>Move commands the stage answered with an error.</summary>
     public int RefusedMoves { get; init; }
 

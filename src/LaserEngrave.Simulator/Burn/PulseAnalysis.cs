@@ -71,6 +71,9 @@ internal sealed class PulseAnalysis
 
     public long DwellPulses { get; private set; }
 
+    /// <summary>Pulses fired while either axis moved (its velocity not zero).</summary>
+    public long MovingPulses { get; private set; }
+
     /// <summary>Fires every period's pulses; <paramref name="periods"/> in time order, not overlapping.</summary>
     public void Walk(IReadOnlyList<LaserPeriod> periods, MotionSegment[] xs, MotionSegment[] ys)
     {
@@ -144,6 +147,7 @@ internal sealed class PulseAnalysis
             PulsesPerPixel = counted == 0 ? new PulsesPerPixelFigures(0, 0, 0) : new PulsesPerPixelFigures(min, (double)sum / counted, max),
             RefusedMoves = refusedMoves,
             LaserOnSeconds = LaserOnSeconds,
+            PulsesWhileMoving = MovingPulses,
             ExtraPixels = _expected is null ? 0 : extra,
             MissingPixels = _expected is null ? 0 : missing,
         };
@@ -197,9 +201,12 @@ internal sealed class PulseAnalysis
             _dose[SubcellIndex(x, y, column, row)]++;
         }
 
+        var vx = VelocityAt(xSegment, t);
+        var vy = VelocityAt(ySegment, t);
+        MovingPulses += vx != 0 || vy != 0 ? 1 : 0;
         if (_burnSpeedUmPerS is { } burn)
         {
-            var speed = Math.Sqrt(Square(VelocityAt(xSegment, t) * _xUm) + Square(VelocityAt(ySegment, t) * _yUm));
+            var speed = Math.Sqrt(Square(vx * _xUm) + Square(vy * _yUm));
             var dwell = speed < burn / 10;
             if (dwell)
             {

@@ -207,13 +207,16 @@ public sealed class VirtualLaserGate
 
                 SetFrequency(burstHz, now);
                 var generation = _generation;
-                _burstEnd = _clock.At(now + ((double)pulses / burstHz), () =>
+                // The gate counts its pulses: the burst ends exactly N / f after it began, though the clock's timer,
+                // rounded up to whole ticks, runs a moment later (which would let an (N+1)th pulse through).
+                var end = now + ((double)pulses / burstHz);
+                _burstEnd = _clock.At(end, () =>
                 {
                     lock (_lock)
                     {
                         if (generation == _generation)
                         {
-                            SetFrequency(0, _clock.NowSeconds);
+                            SetFrequency(0, end);
                         }
                     }
                 });

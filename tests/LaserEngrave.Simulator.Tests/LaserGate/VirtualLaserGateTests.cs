@@ -1,4 +1,5 @@
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Simulator.Burn;
 
 namespace LaserEngrave.Simulator.Tests.LaserGate;
 
@@ -193,6 +194,27 @@ public class VirtualLaserGateTests
         var (from, to) = Assert.Single(bench.Machine.Recorder.LaserOnIntervals(bench.Machine.NowSeconds));
         Assert.Equal(0.25, to - from, 6);
         Assert.Equal("OK STATE 0 OFF WDOG 1000", await bench.AskAsync("STATE?"));
+    }
+
+    [Theory(Timeout = 20_000)]
+    [InlineData(1, 1000)]
+    [InlineData(10, 1000)]
+    [InlineData(7, 3000)]
+    [InlineData(250, 60000)]
+    public async Task Burst_Repeated_FiresExactlyItsPulsesEachTime(int pulses, int hz)
+    {
+        await using var bench = MachineBench.Create();
+
+        // At many start instants: a burst timed by a clock rounded to whole ticks must still count N pulses.
+        const int Bursts = 20;
+        for (var i = 0; i < Bursts; i++)
+        {
+            await bench.AskAsync($"BURST {pulses} {hz}");
+            await bench.WaitAsync(TimeSpan.FromMilliseconds(3.3 + ((double)pulses * 1000 / hz)));
+        }
+
+        var report = bench.Machine.Recorder.Analyze(new BurnGrid(0, 0, 1000, 10, 10));
+        Assert.Equal(Bursts * pulses, report.Pulses);
     }
 
     [Fact(Timeout = 20_000)]

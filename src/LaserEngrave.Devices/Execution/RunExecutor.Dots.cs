@@ -1,0 +1,151 @@
+using LaserEngrave.Core.Planning;
+using LaserEngrave.Devices.Scheduling;
+
+namespace LaserEngrave.Devices.Execution;
+
+/// <summary>Dot mode: stop at each dot, fire exactly N pulses with the gate's burst, move on only once the burst has surely ended.</summary>
+/// <remarks>
+/// The steps are those <see cref="DotTiming"/> models and <see cref="DotModeEstimate"/> adds up (docs/process.md, "Dot
+/// mode"). The laser fires only while the stage stands: a burst is sent after every axis has reported its arrival (and
+/// the settle time), and the next move only after the burst's end. Each dot is a <see cref="MoveKind.Burn"/> of zero
+/// length in <see cref="MoveCompleted"/> and in the counters (runs = dots); a stop point's index is the first dot not fired.
+/// </remarks>
+public sealed partial class RunExecutor
+{
+    private async Task ExecuteDotsAsync(DotPlan plan, long firstIndex, CancellationToken token)
+    {
+        var timing = plan.Timing;
+        lock (_lock)
+        {
+            _moveIndex = firstIndex;
+            _moveRow = Options.ResumeFrom?.Row ?? 0;
+        }
+
+        // The start the estimate models: acceleration and the travel speed on both axes (every move between dots is a travel).
+        _engravingStart = TimeProvider.GetTimestamp();
+        _engravingStarted = true;
+        foreach (var axis in new[] { Stage.X, Stage.Y })
+        {
+            await axis.SetAccelerationAsync(_accelerationData, token);
+            await axis.SetTargetSpeedAsync(_travelSpeedData, token);
+        }
+
+        (_xSpeedData, _ySpeedData) = (_travelSpeedData, _travelSpeedData);
+        var settle = TimeSpan.FromSeconds(timing.SettleSeconds);
+        var index = firstIndex;
+        var first = true;
+        foreach (var dot in plan.Dots(firstIndex))
+        {
+            lock (_lock)
+            {
+                _moveIndex = index;
+                _currentIndex = index;
+                _moveRow = dot.Row;
+            }
+
+            await PauseIfAskedAsync(token);
+            if (first)
+            {
+                // Reaching the first dot (or the resume point's) is not part of the estimate.
+                var positioning = TimeProvider.GetTimestamp();
+                await MoveToAsync(dot.X, dot.Y, _travelSpeedData, token);
+                _notEngraving += TimeProvider.GetElapsedTime(positioning);
+                first = false;
+            }
+            else
+            {
+                await MoveToAsync(dot.X, dot.Y, _travelSpeedData, token);
+            }
+
+            await PreciseDelay.DelayAsync(TimeProvider, settle, token);
+            await FireDotAsync(timing, token);
+            Completed(new Move(MoveKind.Burn, dot.X, dot.Y, dot.X, dot.Y, dot.Row), index);
+            index++;
+        }
+
+        lock (_lock)
+        {
+            _moveIndex = index;
+            _moveRow = Job.Plan.Mask.Height;
+            if (_lastRow >= 0)
+            {
+                _rowsDone++;
+                _lastRow = -1;
+            }
+        }
+    }
+
+    /// <summary>One burst at the stage's standing position; returns once the laser is surely off again.</summary>
+    private async Task FireDotAsync(DotTiming timing, CancellationToken token)
+    {
+        await _laserLock.WaitAsync();
+        try
+        {
+            // Inside the lock: an abort's switch-off is either already sent (and we stop here) or comes after the burst.
+            ThrowIfAborted();
+            lock (_lock)
+            {
+                _laserOn = true;
+                _laserOnSince = TimeProvider.GetTimestamp();
+            }
+
+            // Not cancelled: a reply arriving after a cancelled command would be taken for the next one's.
+            await Gate.BurstAsync(timing.PulsesPerDot, timing.FrequencyHz, CancellationToken.None);
+        }
+        finally
+        {
+            _laserLock.Release();
+        }
+
+        // The gate answers as the burst starts; nothing moves before it has surely ended. An abort meanwhile switches the laser off.
+        await PreciseDelay.DelayAsync(TimeProvider, TimeSpan.FromSeconds(timing.AfterAckSeconds), token);
+        lock (_lock)
+        {
+            _laserOn = false;
+            _laserOnSeconds += timing.BurstSeconds;
+        }
+    }
+
+    /// <summary>For a resumed dot run: the dots fired before the resume point, counted, and the estimate of what is left.</summary>
+    private long PrepareDots(DotPlan plan)
+    {
+        var estimate = plan.Estimate;
+        _estimateTotal = estimate.TotalSeconds;
+        if (Options.ResumeFrom is not { } resume)
+        {
+            return 0;
+        }
+
+        var start = resume.MoveIndex;
+        if (start < 0 || start > estimate.Dots)
+        {
+            throw new PreflightException($"the resume point (row {resume.Row}, dot {resume.MoveIndex}) is not in this job's plan of {estimate.Dots} dots");
+        }
+
+        // The time the dots before took, as the estimate counts it (the start settings included).
+        var before = plan.Timing.StartSeconds;
+        long index = 0;
+        Dot previous = default;
+        foreach (var dot in plan.Dots())
+        {
+            if (index == start)
+            {
+                break;
+            }
+
+            before += (index > 0 ? plan.Timing.StepSeconds(dot.X - previous.X, dot.Y - previous.Y) : 0) + plan.Timing.AtDotSeconds;
+            _runsDone++;
+            if (dot.Row != _lastRow)
+            {
+                _rowsDone += _lastRow >= 0 ? 1 : 0;
+                _lastRow = dot.Row;
+            }
+
+            previous = dot;
+            index++;
+        }
+
+        _estimateBefore = before;
+        return start;
+    }
+}
