@@ -34,6 +34,31 @@ public sealed class EngraveCommandTests : IDisposable
     }
 
     [Fact]
+    public async Task EngraveSimulate_DotsTenPulses_EveryPixelTenPulsesNoneMovingModeLogged()
+    {
+        var (exit, output, error) = await CliHarness.RunAsync(
+            "engrave", QrCode, "--width-mm", "5", "--origin-mm", "10,10", "--mode", "dots", "--pulses-per-dot", "10", "--simulate", "--json", "--log-dir", LogDir);
+
+        Assert.True(exit == 0, error);
+        using var json = JsonDocument.Parse(output);
+        var root = json.RootElement;
+        using var plan = JsonDocument.Parse((await CliHarness.RunAsync("plan", QrCode, "--width-mm", "5", "--origin-mm", "10,10", "--mode", "dots", "--pulses-per-dot", "10", "--json")).Out);
+        var dots = plan.RootElement.GetProperty("dots").GetInt64();
+        Assert.Equal("dots", plan.RootElement.GetProperty("mode").GetString());
+        Assert.Equal(10, plan.RootElement.GetProperty("pulsesPerPixel").GetDouble(), 9);
+        Assert.Equal(("completed", "dots", 10), (root.GetProperty("outcome").GetString(), root.GetProperty("mode").GetString(), root.GetProperty("pulsesPerDot").GetInt32()));
+        Assert.Equal((dots, dots), (root.GetProperty("runsDone").GetInt64(), root.GetProperty("runsTotal").GetInt64()));
+        Assert.Equal(10 * dots, root.GetProperty("pulses").GetInt64());
+        Assert.Equal(0, root.GetProperty("pulsesWhileMoving").GetInt64());
+        var perPixel = root.GetProperty("pulsesPerPixel");
+        Assert.Equal((10, 10), (perPixel.GetProperty("min").GetInt32(), perPixel.GetProperty("max").GetInt32()));
+        var estimate = root.GetProperty("estimatedSeconds").GetDouble();
+        Assert.InRange(root.GetProperty("engravingSeconds").GetDouble(), 0.98 * estimate, 1.02 * estimate);
+        var log = RunLogStore.Read(root.GetProperty("logPath").GetString()!);
+        Assert.Equal((Core.Planning.PlanMode.Dots, 10), (log.Process.Mode, log.Process.PulsesPerDot));
+    }
+
+    [Fact]
     public async Task EngraveSimulate_QrCode_CompletesExit0WithConsistentJsonBurnedImageAndLog()
     {
         var burned = Path.Combine(folder, "burned.png");

@@ -128,6 +128,14 @@ public static class BadInputTable
             ("--overscan-mm 1E+300: must be 0..60 mm", ["--width-mm", "1", "--overscan-mm", "1e300"]),
             ("--overscan-mm Infinity: must be 0..60 mm", ["--width-mm", "1", "--overscan-mm", "Infinity"]),
             ("--strategy zigzag", ["--width-mm", "1", "--strategy", "zigzag"]),
+            ("--mode spots: use raster or dots", ["--width-mm", "1", "--mode", "spots"]),
+            ("--pulses-per-dot applies to --mode dots only", ["--width-mm", "1", "--pulses-per-dot", "5"]),
+            ("--dot-pitch-microsteps applies to --mode dots only", ["--width-mm", "1", "--mode", "raster", "--dot-pitch-microsteps", "100"]),
+            ("--pulses-per-dot 0: must be 1..1000000", ["--width-mm", "1", "--mode", "dots", "--pulses-per-dot", "0"]),
+            ("--pulses-per-dot -3: must be 1..1000000", ["--width-mm", "1", "--mode", "dots", "--pulses-per-dot", "-3"]),
+            ("--dot-pitch-microsteps 0: must be 1..", ["--width-mm", "1", "--mode", "dots", "--dot-pitch-microsteps", "0"]),
+            ("--dot-settle-ms NaN: must be 0..60000 ms", ["--width-mm", "1", "--mode", "dots", "--dot-settle-ms", "NaN"]),
+            ("--dot-settle-ms -1: must be 0..60000 ms", ["--width-mm", "1", "--mode", "dots", "--dot-settle-ms", "-1"]),
             ("contradict each other", ["--width-mm", "1", "--bidirectional", "--unidirectional"]),
             ("--speed-mm-s 100: outside what the stage takes, 0.00093..4 mm/s", ["--width-mm", "1", "--speed-mm-s", "100"]),
             ("--speed-mm-s 0: outside what the stage takes", ["--width-mm", "1", "--speed-mm-s", "0"]),
@@ -195,6 +203,7 @@ public static class BadInputTable
         Add("--passes -3: must be 1..100", [.. engrave, "--simulate", "--passes", "-3"]);
         Add("--passes 101: must be 1..100", [.. engrave, "--simulate", "--passes", "101"]);
         Add("--passes", [.. engrave, "--simulate", "--passes", "two"]);
+        Add("lasts 600 ms, more than half the gate's watchdog time (1000 ms)", [.. engrave, "--simulate", "--mode", "dots", "--pulses-per-dot", "600"]);
         Add("named pipe (FIFO)", "engrave", "@fifo", "--width-mm", "1", "--simulate", "--log-dir", "@logdir");
         Add("is a folder", "engrave", "@dir", "--width-mm", "1", "--simulate", "--log-dir", "@logdir");
         Add("the file is truncated", "engrave", "@truncated", "--width-mm", "1", "--simulate", "--log-dir", "@logdir");
@@ -212,6 +221,8 @@ public static class BadInputTable
         Add("--threshold with --from-log", [.. fromLog, "--threshold", "40"]);
         Add("--invert with --from-log", [.. fromLog, "--invert"]);
         Add("--strategy with --from-log", [.. fromLog, "--strategy", "paper"]);
+        Add("--mode with --from-log", [.. fromLog, "--mode", "dots"]);
+        Add("--pulses-per-dot with --from-log", [.. fromLog, "--pulses-per-dot", "3"]);
         Add("--profile with --from-log", [.. fromLog, "--profile", "@profile:watchdog-0"]);
         Add("give IMAGE (", [.. fromLog, "@qr"]);
         Add("nothing to resume", [.. fromLog, "--resume"]);

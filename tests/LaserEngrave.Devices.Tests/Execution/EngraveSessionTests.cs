@@ -203,19 +203,6 @@ public class EngraveSessionTests
         Assert.Throws<ArgumentOutOfRangeException>(() => Session(run, bad, new RecordingLog()));
     }
 
-    private sealed class RecordingLog : IRunLogWriter
-    {
-        public List<RunRecord> Records { get; } = [];
-
-        public bool Fail { get; init; }
-
-        public RunLogFiles Write(RunRecord record)
-        {
-            Records.Add(record);
-            return Fail ? throw new RunLogException("/logs: the disk is full") : new RunLogFiles("run.json", "run.txt");
-        }
-    }
-
     private sealed class SynchronousProgress(Action<EngraveProgress> report) : IProgress<EngraveProgress>
     {
         public void Report(EngraveProgress value) => report(value);
