@@ -45,6 +45,18 @@ public sealed record JobSettings
 
     public int Passes { get; init; } = 1;
 
+    /// <summary>Raster (burn while moving) or dots (stop and fire a counted burst at each dot).</summary>
+    public PlanMode Mode { get; init; } = PlanMode.Raster;
+
+    /// <summary>Pulses at each dot in dot mode.</summary>
+    public int PulsesPerDot { get; init; } = 1;
+
+    /// <summary>Distance between dots along a run in dot mode, microsteps; 0: one dot at each pixel's centre.</summary>
+    public long DotPitchMicrosteps { get; init; }
+
+    /// <summary>Settle time at each dot before the burst, ms.</summary>
+    public double DotSettleMs { get; init; }
+
     /// <summary>The values of a job (e.g. one a run log repeats), as the page shows them.</summary>
     public static JobSettings From(JobSpec spec)
     {
@@ -64,6 +76,10 @@ public sealed record JobSettings
             Strategy = spec.Plan.Strategy,
             Bidirectional = spec.Plan.Bidirectional,
             OverscanMm = spec.Plan.OverscanMm,
+            Mode = spec.Process.Mode,
+            PulsesPerDot = spec.Process.PulsesPerDot,
+            DotPitchMicrosteps = spec.Process.DotPitchMicrosteps,
+            DotSettleMs = spec.Process.DotSettleMs,
         };
         return spec.Size switch
         {

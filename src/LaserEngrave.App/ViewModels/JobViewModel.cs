@@ -29,6 +29,13 @@ public sealed partial class JobViewModel : ObservableObject
     public const string OverscanField = "overscanMm";
     public const string PassesField = "passes";
     public const string ThresholdField = "thresholdPercent";
+    public const string PulsesPerDotField = "pulsesPerDot";
+    public const string DotPitchField = "dotPitchMicrosteps";
+    public const string DotSettleField = "dotSettleMs";
+    public const string PulsesField = "pulses";
+
+    /// <summary>The most pulses a dot may get: the gate's burst range.</summary>
+    public const int MaxPulsesPerDot = 1_000_000;
 
     /// <summary>The largest pixel pitch offered, µm (a 1 mm pixel).</summary>
     public const double MaxPitchUm = 1000;
@@ -43,6 +50,7 @@ public sealed partial class JobViewModel : ObservableObject
         nameof(SizeMode), nameof(WidthMm), nameof(HeightMm), nameof(PitchUm), nameof(OriginXMm), nameof(OriginYMm),
         nameof(LaserFrequencyHz), nameof(BurnSpeedMmPerS), nameof(TravelSpeedMmPerS), nameof(AccelerationMmPerS2),
         nameof(Strategy), nameof(Bidirectional), nameof(OverscanMm), nameof(Passes),
+        nameof(Mode), nameof(PulsesPerDot), nameof(DotPitchMicrosteps), nameof(DotSettleMs),
     ];
 
     private readonly IImageService _images;
@@ -143,6 +151,25 @@ public sealed partial class JobViewModel : ObservableObject
 
     [ObservableProperty]
     public partial int Passes { get; set; }
+
+    /// <summary>Raster (burn while moving) or dots (stop at each dot and fire <see cref="PulsesPerDot"/> pulses).</summary>
+    [ObservableProperty]
+    public partial PlanMode Mode { get; set; }
+
+    [ObservableProperty]
+    public partial int PulsesPerDot { get; set; } = 1;
+
+    /// <summary>Distance between dots along a run, microsteps; 0: one dot at each pixel's centre.</summary>
+    [ObservableProperty]
+    public partial long DotPitchMicrosteps { get; set; }
+
+    [ObservableProperty]
+    public partial double DotSettleMs { get; set; }
+
+    /// <summary>What the process does per pulse and per pixel (seed 004), in one line; null without a plan.</summary>
+    public string? PulsesSummary => Job?.Pulses is { } p
+        ? string.Create(CultureInfo.InvariantCulture, $"{(Mode == PlanMode.Dots ? "dots" : "pulses")} {p.PulseSpacingUm:0.###} µm apart · overlap {p.OverlapPercent:0.#} % · {p.PulsesPerPixel ?? 0:0.##} pulses per pixel")
+        : null;
 
     /// <summary>The planned job, or null without an image or with an unusable value.</summary>
     [ObservableProperty]
@@ -303,6 +330,10 @@ public sealed partial class JobViewModel : ObservableObject
             Bidirectional = settings.Bidirectional;
             OverscanMm = settings.OverscanMm;
             Passes = settings.Passes;
+            Mode = settings.Mode;
+            PulsesPerDot = settings.PulsesPerDot;
+            DotPitchMicrosteps = settings.DotPitchMicrosteps;
+            DotSettleMs = settings.DotSettleMs;
         });
         if (settings.ImagePath is { } path && path != ImagePath)
         {
@@ -330,6 +361,10 @@ public sealed partial class JobViewModel : ObservableObject
         Bidirectional = Bidirectional,
         OverscanMm = OverscanMm,
         Passes = Passes,
+        Mode = Mode,
+        PulsesPerDot = PulsesPerDot,
+        DotPitchMicrosteps = DotPitchMicrosteps,
+        DotSettleMs = DotSettleMs,
     };
 
     /// <summary>Runs several changes and plans once at the end.</summary>
@@ -499,6 +534,8 @@ public sealed partial class JobViewModel : ObservableObject
                     {
                         JobWarningKind.OutsideTravel => OriginField,
                         JobWarningKind.OverscanClamped => OverscanField,
+                        JobWarningKind.PulseGaps or JobWarningKind.PixelUnderOnePulse => PulsesField,
+                        JobWarningKind.BurstTooLongForTheWatchdog => PulsesPerDotField,
                         _ => PitchField,
                     };
                     warnings[field] = warnings.TryGetValue(field, out var before) ? before + "; " + warning.Message : warning.Message;
@@ -536,6 +573,7 @@ public sealed partial class JobViewModel : ObservableObject
             SetErrors(errors);
             Warnings = warnings;
             OnPropertyChanged(nameof(MicrostepsPerPixel));
+            OnPropertyChanged(nameof(PulsesSummary));
             PlanVersion++;
         }
     }
@@ -560,6 +598,10 @@ public sealed partial class JobViewModel : ObservableObject
             BurnSpeedMmPerS = BurnSpeedMmPerS,
             TravelSpeedMmPerS = TravelSpeedMmPerS,
             AccelerationMmPerS2 = AccelerationMmPerS2,
+            Mode = Mode,
+            PulsesPerDot = Mode == PlanMode.Dots ? PulsesPerDot : 1,
+            DotPitchMicrosteps = Mode == PlanMode.Dots ? DotPitchMicrosteps : 0,
+            DotSettleMs = Mode == PlanMode.Dots ? DotSettleMs : 0,
         },
         Profile = _profile,
     };
@@ -630,6 +672,25 @@ public sealed partial class JobViewModel : ObservableObject
         if (Passes is < 1 or > 100)
         {
             errors[PassesField] = $"passes {Passes} must be 1 to 100";
+        }
+
+        if (Mode == PlanMode.Dots)
+        {
+            if (PulsesPerDot is < 1 or > MaxPulsesPerDot)
+            {
+                errors[PulsesPerDotField] = $"pulses per dot {PulsesPerDot} must be 1 to {MaxPulsesPerDot}";
+            }
+
+            var travel = Math.Min(_profile.X.TravelMicrosteps, _profile.Y.TravelMicrosteps);
+            if (DotPitchMicrosteps < 0 || DotPitchMicrosteps > travel)
+            {
+                errors[DotPitchField] = $"dot pitch {DotPitchMicrosteps} microsteps must be 0 (every pixel) to {travel}";
+            }
+
+            if (!(DotSettleMs >= 0 && DotSettleMs <= 60_000))
+            {
+                errors[DotSettleField] = $"settle time {N(DotSettleMs)} ms must be 0 to 60000 ms";
+            }
         }
 
         return errors;

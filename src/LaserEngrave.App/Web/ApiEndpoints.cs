@@ -267,6 +267,10 @@ internal static class ApiEndpoints
             case "bidirectional": job.Bidirectional = value.GetBoolean(); break;
             case "overscanMm": job.OverscanMm = value.GetDouble(); break;
             case "passes": job.Passes = value.GetInt32(); break;
+            case "mode": job.Mode = Enum.Parse<PlanMode>(value.GetString()!, ignoreCase: true); break;
+            case "pulsesPerDot": job.PulsesPerDot = value.GetInt32(); break;
+            case "dotPitchMicrosteps": job.DotPitchMicrosteps = value.GetInt64(); break;
+            case "dotSettleMs": job.DotSettleMs = value.GetDouble(); break;
             default: throw new ArgumentException($"unknown field {field}");
         }
     }

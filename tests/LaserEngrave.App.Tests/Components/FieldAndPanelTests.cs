@@ -134,4 +134,48 @@ public sealed class ProcessPanelTests : ComponentTest
         Assert.Equal(one * 3, Main.Job.EstimatedSeconds!.Value, 6);
         Assert.Contains("est.", cut.Find("#estimate").TextContent, StringComparison.Ordinal);
     }
+
+    [Fact]
+    public void Mode_DotsAndPulsesPerDot_PlannedAsDotsWithNPulsesAPixel()
+    {
+        OpenQr();
+        var cut = Render<ProcessPanel>(p => p.Add(c => c.Job, Main.Job));
+        Assert.Empty(cut.FindAll("#pulsesPerDot"));
+
+        cut.Find("#mode").Change("Dots");
+        cut.Find("#pulsesPerDot").Change("10");
+
+        var job = Assert.IsType<Core.Jobs.PreparedJob>(Main.Job.Job);
+        var dots = Assert.IsType<Core.Planning.DotPlan>(job.Dots);
+        Assert.Equal((Core.Planning.PlanMode.Dots, 10), (job.Spec.Process.Mode, job.Spec.Process.PulsesPerDot));
+        Assert.Equal(dots.Estimate.TotalSeconds, Main.Job.EstimatedSeconds!.Value, 6);
+        Assert.Contains("dots", cut.Find("#estimate").TextContent, StringComparison.Ordinal);
+        Assert.Contains("10 pulses per pixel", cut.Find("#pulses").TextContent, StringComparison.Ordinal);
+        Assert.Equal((Core.Planning.PlanMode.Dots, 10), (Main.Job.ToSettings().Mode, Main.Job.ToSettings().PulsesPerDot));
+    }
+
+    [Fact]
+    public void PulsesPerDot_Zero_RefusedBesideTheField()
+    {
+        OpenQr();
+        var cut = Render<ProcessPanel>(p => p.Add(c => c.Job, Main.Job));
+        cut.Find("#mode").Change("Dots");
+
+        cut.Find("#pulsesPerDot").Change("0");
+
+        cut.WaitForAssertion(() => Assert.Contains("pulses per dot 0 must be 1", cut.Find("[data-error=pulsesPerDot]").TextContent, StringComparison.Ordinal));
+        Assert.Null(Main.Job.Job);
+    }
+
+    [Fact]
+    public void Raster_PulseFiguresShownLive()
+    {
+        OpenQr();
+        var cut = Render<ProcessPanel>(p => p.Add(c => c.Job, Main.Job));
+
+        cut.Find("#burnSpeedMmPerS").Change("2");
+
+        // 2 mm/s at 1 kHz: pulses 2 µm apart, 90 % of a 20 µm spot overlapped.
+        Assert.Contains("pulses 2 µm apart · overlap 90 %", cut.Find("#pulses").TextContent, StringComparison.Ordinal);
+    }
 }
