@@ -62,6 +62,7 @@ internal static class CliRunner
         UsageException or InvalidDataException or ProfileException or RunLogException or GeometryException or PlanException or ArgumentException or FormatException => BadInput,
         _ when ex.GetType().Name == "ImageLoadException" => BadInput,
         Core.Vectors.DrawingException => BadInput,
+        Core.Sweeps.SweepException => BadInput,
         TestMoveException => BadInput,
         DeviceException => Failure,
         OperationCanceledException => Failure,

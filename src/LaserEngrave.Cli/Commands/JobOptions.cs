@@ -72,17 +72,10 @@ internal sealed class JobOptions
     /// <remarks>Every number is checked against the machine profile's limits here, before any port opens.</remarks>
     public JobSpec Bind(ParseResult result)
     {
-        var profile = result.GetValue(Profile) is { } path ? MachineProfile.Load(path) : MachineProfile.Default;
+        var profile = BindProfile(result);
         var image = result.GetValue(Image) ?? throw new UsageException("IMAGE is required");
         var limits = MachineLimits.Of(profile);
-        var process = ProcessSettings.FromProfile(profile) with
-        {
-            BurnSpeedMmPerS = Speed(result.GetValue(SpeedMmS), "--speed-mm-s", limits) ?? profile.BurnSpeedMmPerS,
-            TravelSpeedMmPerS = Speed(result.GetValue(TravelSpeedMmS), "--travel-speed-mm-s", limits) ?? profile.TravelSpeedMmPerS,
-            AccelerationMmPerS2 = Acceleration(result.GetValue(AccelerationMmS2), limits) ?? profile.AccelerationMmPerS2,
-            LaserFrequencyHz = Frequency(result.GetValue(FrequencyHz), limits) ?? profile.LaserFrequencyHz,
-        };
-        process = BindDots(result, process, profile);
+        var process = BindProcess(result, profile);
         var origin = ParseOrigin(result.GetValue(OriginMm));
         OptionChecks.WithinTravel(origin.X, limits.TravelXMm, "--origin-mm", "X");
         OptionChecks.WithinTravel(origin.Y, limits.TravelYMm, "--origin-mm", "Y");
@@ -98,6 +91,37 @@ internal sealed class JobOptions
             Process = process,
             Profile = profile,
         };
+    }
+
+    /// <summary>The machine profile the options name (the default one without --profile).</summary>
+    public MachineProfile BindProfile(ParseResult result) =>
+        result.GetValue(Profile) is { } path ? MachineProfile.Load(path) : MachineProfile.Default;
+
+    /// <summary>Speeds, acceleration, frequency and the dot-mode values, each checked against the profile's limits.</summary>
+    public ProcessSettings BindProcess(ParseResult result, MachineProfile profile)
+    {
+        var limits = MachineLimits.Of(profile);
+        var process = ProcessSettings.FromProfile(profile) with
+        {
+            BurnSpeedMmPerS = Speed(result.GetValue(SpeedMmS), "--speed-mm-s", limits) ?? profile.BurnSpeedMmPerS,
+            TravelSpeedMmPerS = Speed(result.GetValue(TravelSpeedMmS), "--travel-speed-mm-s", limits) ?? profile.TravelSpeedMmPerS,
+            AccelerationMmPerS2 = Acceleration(result.GetValue(AccelerationMmS2), limits) ?? profile.AccelerationMmPerS2,
+            LaserFrequencyHz = Frequency(result.GetValue(FrequencyHz), limits) ?? profile.LaserFrequencyHz,
+        };
+        return BindDots(result, process, profile);
+    }
+
+    /// <summary>Adds the process options (not the image, size or mask ones) to a command that makes its own jobs.</summary>
+    public void AddProcessTo(Command command)
+    {
+        foreach (var option in new Option[]
+        {
+            Strategy, Bidirectional, Unidirectional, OverscanMm, Profile, FrequencyHz, SpeedMmS, TravelSpeedMmS, AccelerationMmS2,
+            Mode, PulsesPerDot, DotPitchMicrosteps, DotSettleMs,
+        })
+        {
+            command.Options.Add(option);
+        }
     }
 
     /// <summary>Refuses a size whose pixels would be smaller than one microstep, the smallest step the stage makes (whole pixels would vanish).</summary>
@@ -232,7 +256,7 @@ internal sealed class JobOptions
         };
     }
 
-    private PlanOptions BindPlan(ParseResult result, MachineLimits limits)
+    public PlanOptions BindPlan(ParseResult result, MachineLimits limits)
     {
         var strategy = result.GetValue(Strategy)?.Trim().ToLowerInvariant() switch
         {

@@ -28,6 +28,7 @@ namespace LaserEngrave.Core.Logging;
         typeof(CamelCaseEnumConverter<PlanMode>),
     ])]
 [JsonSerializable(typeof(RunRecord))]
+[JsonSerializable(typeof(SweepRecord))]
 internal sealed partial class RunLogJsonContext : JsonSerializerContext;
 
 /// <summary>Writes an enum as its camelCase name, e.g. "floydSteinberg", and reads it back in any case.</summary>

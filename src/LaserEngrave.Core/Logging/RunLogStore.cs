@@ -8,7 +8,7 @@ namespace LaserEngrave.Core.Logging;
 /// File names are the start time (local, with seconds) and the sample ID, e.g. 2026-11-23_143005_S17.json and .txt;
 /// a name already taken gets -2, -3 ... so two runs never share or overwrite a file.
 /// </remarks>
-public sealed class RunLogStore : IRunLogWriter
+public sealed class RunLogStore : IRunLogWriter, ISweepLogWriter
 {
     /// <summary>The name of the folder under the user's documents.</summary>
     public const string FolderName = "LaserEngrave";
@@ -67,13 +67,25 @@ public sealed class RunLogStore : IRunLogWriter
         ArgumentNullException.ThrowIfNull(record);
         CreateFolder();
 
-        var json = RunRecordJson.Serialize(record);
-        var summary = RunSummaryText.Format(record);
-        var stem = FileStem(record);
+        return WritePair(FileStem(record), RunRecordJson.Serialize(record), RunSummaryText.Format(record));
+    }
+
+    /// <summary>Writes a sweep's log as <c>STEM.sweep.json</c> and <c>.sweep.txt</c> (each cell's run inside it); <see cref="List"/> leaves them out.</summary>
+    public RunLogFiles WriteSweep(SweepRecord record)
+    {
+        ArgumentNullException.ThrowIfNull(record);
+        CreateFolder();
+        var stem = record.StartedAt.ToString("yyyy-MM-dd_HHmmss", CultureInfo.InvariantCulture);
+        var sample = SafeName(record.SampleId);
+        return WritePair((sample.Length == 0 ? stem : $"{stem}_{sample}"), SweepRecord.Serialize(record), SweepRecord.Format(record), ".sweep");
+    }
+
+    private RunLogFiles WritePair(string stem, string json, string summary, string kind = "")
+    {
         for (var n = 1; n <= MaxSuffix; n++)
         {
             var name = n == 1 ? stem : string.Create(CultureInfo.InvariantCulture, $"{stem}-{n}");
-            var files = new RunLogFiles(Path.Combine(Folder, name + ".json"), Path.Combine(Folder, name + ".txt"));
+            var files = new RunLogFiles(Path.Combine(Folder, name + kind + ".json"), Path.Combine(Folder, name + kind + ".txt"));
             if (File.Exists(files.JsonPath) || File.Exists(files.TextPath) || !TryCreate(files.JsonPath, json))
             {
                 continue;
@@ -103,6 +115,12 @@ public sealed class RunLogStore : IRunLogWriter
         var entries = new List<RunLogEntry>();
         foreach (var path in Directory.EnumerateFiles(Folder, "*.json"))
         {
+            if (path.EndsWith(".sweep.json", StringComparison.OrdinalIgnoreCase))
+            {
+                // A sweep's log holds its cells' runs; it is read with SweepRecord, not listed as one run.
+                continue;
+            }
+
             try
             {
                 entries.Add(new RunLogEntry(path, Read(path), null));

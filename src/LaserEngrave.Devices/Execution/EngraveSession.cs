@@ -164,7 +164,7 @@ public sealed class EngraveSession
     private async Task<EngraveResult> RunPassesAsync(CancellationToken cancellationToken)
     {
         var time = Machine.TimeProvider;
-        var record = RunRecord.ForJob(Job, HashOrMissing(Job.Spec.ImagePath), Options.WallClock.GetLocalNow()) with
+        var record = RunRecord.ForJob(Job, Options.ImageSha256 ?? HashOrMissing(Job.Spec.ImagePath), Options.WallClock.GetLocalNow()) with
         {
             Simulated = Machine.Simulated,
             Notes = Options.Notes,

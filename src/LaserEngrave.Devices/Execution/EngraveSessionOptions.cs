@@ -26,6 +26,9 @@ public sealed record EngraveSessionOptions
     /// <summary>Where the log is written; null writes none (the result still has the record).</summary>
     public IRunLogWriter? Log { get; init; }
 
+    /// <summary>The image's hash for the log when the job's mask was made in memory (a sweep's cell); null: the image file's SHA-256.</summary>
+    public string? ImageSha256 { get; init; }
+
     /// <summary>The wall clock the log's start and end times come from (the system's; a test's own).</summary>
     public TimeProvider WallClock { get; init; } = TimeProvider.System;
 }

@@ -1,0 +1,244 @@
+using System.CommandLine;
+using System.Globalization;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Logging;
+using LaserEngrave.Core.Sweeps;
+using LaserEngrave.Devices.Execution;
+using LaserEngrave.Simulator;
+using LaserEngrave.Simulator.Burn;
+
+namespace LaserEngrave.Cli.Commands;
+
+/// <summary>
+/// `laserengrave sweep --rows speed=0.5,1,2 [--columns frequency=500,1000] ... (--simulate | ports)`: a grid of test cells,
+/// one or two process values varied over its rows and columns, burned in one run and logged cell by cell.
+/// </summary>
+/// <remarks>Exit code 0 when every cell was burned, 1 when the sweep stopped (its log is still written), 2 for bad input before anything opens.</remarks>
+internal static class SweepCommand
+{
+    public static Command Create()
+    {
+        var o = new SweepOptions();
+        var command = new Command("sweep", "Burn a test grid: cells (filled square, line set or dot array) with one or two process values varied over rows and columns, in one run, logged cell by cell");
+        o.AddTo(command);
+        command.SetAction((result, ct) => RunAsync(result, o, ct));
+        return command;
+    }
+
+    private static async Task<int> RunAsync(ParseResult result, SweepOptions o, CancellationToken cancellationToken)
+    {
+        var stdout = result.InvocationConfiguration.Output;
+        var stderr = result.InvocationConfiguration.Error;
+        var plan = SweepPlan.Build(o.Bind(result));
+        var json = result.GetValue(o.Json);
+        if (result.GetValue(o.PlanOnly))
+        {
+            if (json)
+            {
+                CliJson.Write(stdout, SweepPlanSummary.From(plan));
+            }
+            else
+            {
+                WritePlan(stdout, plan);
+            }
+
+            return 0;
+        }
+
+        o.Machine.Validate(result);
+        var simulate = result.GetValue(o.Machine.Simulate);
+        var doseDir = result.GetValue(o.DoseDir);
+        if (doseDir is not null && !simulate)
+        {
+            throw new UsageException("--dose-dir needs --simulate: only the simulator knows what was burned");
+        }
+
+        var store = new RunLogStore(result.GetValue(o.LogDir) ?? RunLogStore.DefaultFolder);
+        store.CreateFolder();
+        if (doseDir is not null)
+        {
+            Directory.CreateDirectory(doseDir);
+        }
+
+        SweepResult swept;
+        var machineSession = o.Machine.Open(result, plan.Spec.Profile);
+        await using (machineSession.ConfigureAwait(false))
+        {
+            var inspector = machineSession.Owner is SimulatedMachine simulator ? new BurnInspector(simulator) : null;
+            var machine = new EngraveMachine(machineSession.Stage, machineSession.Gate, machineSession.TimeProvider, machineSession.StagePort, machineSession.LaserPort)
+            {
+                Simulated = simulate,
+                Inspector = inspector,
+            };
+            var session = new SweepSession(machine, plan, new SweepSessionOptions
+            {
+                Notes = result.GetValue(o.Notes),
+                SampleId = result.GetValue(o.Sample),
+                Home = result.GetValue(o.Home),
+                Log = store,
+            });
+            var jobs = plan.Cells.Count + (plan.Labels is null ? 0 : 1);
+            var done = 0;
+            session.JobEnded += (_, e) =>
+            {
+                done++;
+                var record = e.Result.Record;
+                var what = e.Cell?.Describe() ?? "labels";
+                var ppp = record.Simulation?.PulsesPerPixel is { } p ? string.Create(CultureInfo.InvariantCulture, $", pulses per pixel {p.Min}/{p.Mean:0.#}/{p.Max}") : string.Empty;
+                stderr.WriteLine(string.Create(CultureInfo.InvariantCulture, $"{done} of {jobs}: {what}: {record.Outcome.ToString().ToLowerInvariant()}{ppp}"));
+                if (doseDir is not null && e.Cell is { } cell && inspector?.Report is { } report)
+                {
+                    report.WriteDosePng(Path.Combine(doseDir, string.Create(CultureInfo.InvariantCulture, $"cell-r{cell.Row + 1}-c{cell.Column + 1}.png")));
+                }
+            };
+            swept = await session.RunAsync(null, cancellationToken).ConfigureAwait(false);
+        }
+
+        if (swept.Files is not { } files)
+        {
+            stderr.Write(SweepRecord.Format(swept.Record));
+            throw new InvalidOperationException($"the sweep ended ({swept.Record.Outcome.ToString().ToLowerInvariant()}) but its log could not be written, so the summary is above: {swept.LogError?.Message ?? "no log was written"}", swept.LogError);
+        }
+
+        if (json)
+        {
+            CliJson.Write(stdout, new SweepRunSummary(swept.Record.Outcome.ToString().ToLowerInvariant(), swept.Record.Fault, files.JsonPath, files.TextPath, doseDir is null ? null : Path.GetFullPath(doseDir), swept.Record));
+        }
+        else
+        {
+            stdout.Write(SweepRecord.Format(swept.Record));
+            stdout.WriteLine($"Log:      {files.JsonPath}");
+            stdout.WriteLine($"Summary:  {files.TextPath}");
+            if (doseDir is not null)
+            {
+                stdout.WriteLine($"Pulse maps: {Path.GetFullPath(doseDir)} (cell-rR-cC.png)");
+            }
+        }
+
+        return swept.Completed ? 0 : 1;
+    }
+
+    private static void WritePlan(TextWriter output, SweepPlan plan)
+    {
+        var c = CultureInfo.InvariantCulture;
+        var s = plan.Spec;
+        output.WriteLine(string.Create(c, $"Grid:      {plan.RowCount} x {plan.ColumnCount} {s.Pattern.ToString().ToLowerInvariant()} cells of {s.CellMm:0.###} mm, {s.SpacingMm:0.###} mm apart; first cell at {plan.GridXMm:0.###}, {plan.GridYMm:0.###} mm"));
+        output.WriteLine($"Rows:      {s.Rows}");
+        output.WriteLine($"Columns:   {s.Columns?.ToString() ?? "(one)"}");
+        if (plan.Labels is { } labels)
+        {
+            output.WriteLine(string.Create(c, $"Labels:    at {s.Origin.X:0.###}, {s.Origin.Y:0.###} mm, pixels of {labels.Geometry.PitchUm:0.#} µm, {labels.Statistics.EstimatedSeconds:0.#} s"));
+        }
+
+        output.WriteLine("row col  parameters                                at (mm)          pixels  pulses/pixel  est. s");
+        foreach (var cell in plan.Cells)
+        {
+            var parameters = string.Join(", ", cell.Parameters.Select(p => string.Create(c, $"{p.Key} {p.Value:0.######}")));
+            var job = cell.Job;
+            output.WriteLine(string.Create(c, $"{cell.Row + 1,3} {cell.Column + 1,3}  {parameters,-40}  {cell.OriginXMm,7:0.###}, {cell.OriginYMm,7:0.###}  {job.Mask.Width,6}  {job.Pulses.PulsesPerPixel ?? 0,12:0.##}  {job.Statistics.EstimatedSeconds * job.Spec.Passes,6:0.#}"));
+        }
+
+        output.WriteLine(string.Create(c, $"Estimated: {SweepDuration(plan.EstimatedSeconds)} (engraving; preflight and the travels between cells not counted)"));
+    }
+
+    private static string SweepDuration(double seconds) => JobSummary.Duration(seconds);
+
+    /// <summary>The options of `sweep`.</summary>
+    private sealed class SweepOptions
+    {
+        public JobOptions Process { get; } = new();
+
+        public MachineOptions Machine { get; } = new();
+
+        public Option<string?> Pattern { get; } = new("--pattern") { Description = "What each cell burns: square (filled, the default), lines (every other pixel row) or dots (every other pixel of every other row)" };
+
+        public Option<double?> CellMm { get; } = new("--cell-mm") { Description = "Side of each cell, mm (default 1)" };
+
+        public Option<double?> SpacingMm { get; } = new("--spacing-mm") { Description = "White between cells, mm (default 0.5)" };
+
+        public Option<double?> PitchUm { get; } = new("--pitch-um") { Description = "The cells' pixel pitch, µm, unless swept (default 50)" };
+
+        public Option<string?> OriginMm { get; } = new("--origin-mm") { Description = "Stage position of the grid's top-left corner (its labels'), X,Y in mm (default 1,1)" };
+
+        public Option<string?> Rows { get; } = new("--rows") { Description = "The parameter varied down the rows and its values: speed, frequency, passes, pulses-per-dot or pitch, e.g. speed=0.5,1,2" };
+
+        public Option<string?> Columns { get; } = new("--columns") { Description = "The parameter varied across the columns and its values, e.g. frequency=500,1000,2000" };
+
+        public Option<bool> Labels { get; } = new("--labels") { Description = "Burn each row's and column's value beside it (tiny digits, raster at the base process)" };
+
+        public Option<int?> Passes { get; } = new("--passes") { Description = "Passes of every cell unless swept (1..100, default 1)" };
+
+        public Option<bool> PlanOnly { get; } = new("--plan-only") { Description = "Print the grid, each cell's values, place, pulses per pixel and estimate; open nothing" };
+
+        public Option<string?> LogDir { get; } = LogCommand.LogDirOption();
+
+        public Option<string?> DoseDir { get; } = new("--dose-dir") { Description = "With --simulate: write each cell's pulse map (cell-rR-cC.png) into this folder" };
+
+        public Option<string?> Notes { get; } = new("--notes") { Description = "Notes for the sweep's log" };
+
+        public Option<string?> Sample { get; } = new("--sample") { Description = "Sample ID for the sweep's log; also part of its file name" };
+
+        public Option<bool> Home { get; } = new("--home") { Description = "Home both axes before the first cell even if they are homed" };
+
+        public Option<bool> Json { get; } = new("--json") { Description = "Print one JSON object (with --plan-only: the grid; otherwise the sweep's log)" };
+
+        public void AddTo(Command command)
+        {
+            Process.AddProcessTo(command);
+            Machine.AddTo(command);
+            foreach (var option in new Option[] { Pattern, CellMm, SpacingMm, PitchUm, OriginMm, Rows, Columns, Labels, Passes, PlanOnly, LogDir, DoseDir, Notes, Sample, Home, Json })
+            {
+                command.Options.Add(option);
+            }
+        }
+
+        /// <summary>Reads the options into a sweep; throws <see cref="UsageException"/> or <see cref="SweepException"/> naming the bad value.</summary>
+        public SweepSpec Bind(ParseResult result)
+        {
+            var profile = Process.BindProfile(result);
+            var limits = MachineLimits.Of(profile);
+            var rows = result.GetValue(Rows) ?? throw new UsageException("give what the rows vary: --rows PARAMETER=V1,V2,..., e.g. --rows speed=0.5,1,2");
+            var origin = result.GetValue(OriginMm) is { } text ? JobOptions.ParseOrigin(text) : new Core.Geometry.OriginMm(1, 1);
+            OptionChecks.WithinTravel(origin.X, limits.TravelXMm, "--origin-mm", "X");
+            OptionChecks.WithinTravel(origin.Y, limits.TravelYMm, "--origin-mm", "Y");
+            return new SweepSpec
+            {
+                Pattern = result.GetValue(Pattern)?.Trim().ToLowerInvariant() switch
+                {
+                    null or "" or "square" => SweepPattern.Square,
+                    "lines" => SweepPattern.Lines,
+                    "dots" => SweepPattern.Dots,
+                    var other => throw new UsageException($"--pattern {other}: use square, lines or dots"),
+                },
+                CellMm = result.GetValue(CellMm) ?? 1,
+                SpacingMm = result.GetValue(SpacingMm) ?? 0.5,
+                PitchUm = result.GetValue(PitchUm) ?? 50,
+                Origin = origin,
+                Rows = SweepAxis.Parse(rows, "--rows"),
+                Columns = result.GetValue(Columns) is { } columns ? SweepAxis.Parse(columns, "--columns") : null,
+                Labels = result.GetValue(Labels),
+                Process = Process.BindProcess(result, profile),
+                Plan = Process.BindPlan(result, limits),
+                Profile = profile,
+                Passes = result.GetValue(Passes) ?? 1,
+            };
+        }
+    }
+}
+
+/// <summary>What `sweep --plan-only --json` prints.</summary>
+internal sealed record SweepPlanSummary(int Rows, int Columns, double GridXMm, double GridYMm, double EstimatedSeconds, IReadOnlyList<SweepPlanCell> Cells)
+{
+    public static SweepPlanSummary From(SweepPlan plan) => new(
+        plan.RowCount,
+        plan.ColumnCount,
+        plan.GridXMm,
+        plan.GridYMm,
+        plan.EstimatedSeconds,
+        [.. plan.Cells.Select(c => new SweepPlanCell(c.Row, c.Column, c.Parameters, c.OriginXMm, c.OriginYMm, c.Job.Geometry.AchievedWidthMm, c.Job.Geometry.PitchUm, c.Job.Spec.Passes, c.Job.Pulses.PulsesPerPixel ?? 0, c.Job.Statistics.EstimatedSeconds * c.Job.Spec.Passes))]);
+}
+
+internal sealed record SweepPlanCell(int Row, int Column, IReadOnlyDictionary<string, double> Parameters, double OriginXMm, double OriginYMm, double SizeMm, double PitchUm, int Passes, double PulsesPerPixel, double EstimatedSeconds);
+
+/// <summary>What `sweep --json` prints after a run: the outcome, the log's files and the whole log.</summary>
+internal sealed record SweepRunSummary(string Outcome, string? Fault, string LogPath, string SummaryPath, string? DoseDir, SweepRecord Sweep);

@@ -1,0 +1,67 @@
+namespace LaserEngrave.Core.Sweeps;
+
+/// <summary>A process value a sweep varies over its rows or columns.</summary>
+public enum SweepParameter
+{
+    /// <summary>Burn speed, mm/s.</summary>
+    Speed,
+
+    /// <summary>Laser (Q-switch) frequency, Hz.</summary>
+    Frequency,
+
+    /// <summary>Passes over the same cell, 1..100.</summary>
+    Passes,
+
+    /// <summary>Pulses at each dot (dot mode only).</summary>
+    PulsesPerDot,
+
+    /// <summary>The cell's pixel pitch, µm: the distance between raster lines, lines of a line set and dots of a dot array.</summary>
+    Pitch,
+}
+
+/// <summary>Names and units of the sweep parameters, as the command line, the log and the labels say them.</summary>
+public static class SweepParameters
+{
+    /// <summary>The name on the command line (<c>--rows speed=...</c>).</summary>
+    public static string CliName(this SweepParameter parameter) => parameter switch
+    {
+        SweepParameter.Speed => "speed",
+        SweepParameter.Frequency => "frequency",
+        SweepParameter.Passes => "passes",
+        SweepParameter.PulsesPerDot => "pulses-per-dot",
+        SweepParameter.Pitch => "pitch",
+        _ => throw new ArgumentOutOfRangeException(nameof(parameter)),
+    };
+
+    /// <summary>The key in the sweep log's cell parameters, with its unit.</summary>
+    public static string LogKey(this SweepParameter parameter) => parameter switch
+    {
+        SweepParameter.Speed => "speedMmPerS",
+        SweepParameter.Frequency => "frequencyHz",
+        SweepParameter.Passes => "passes",
+        SweepParameter.PulsesPerDot => "pulsesPerDot",
+        SweepParameter.Pitch => "pitchUm",
+        _ => throw new ArgumentOutOfRangeException(nameof(parameter)),
+    };
+
+    public static string Unit(this SweepParameter parameter) => parameter switch
+    {
+        SweepParameter.Speed => "mm/s",
+        SweepParameter.Frequency => "Hz",
+        SweepParameter.Pitch => "µm",
+        _ => string.Empty,
+    };
+
+    /// <summary>Whether the value must be a whole number.</summary>
+    public static bool IsWhole(this SweepParameter parameter) => parameter is SweepParameter.Passes or SweepParameter.PulsesPerDot;
+
+    public static SweepParameter Parse(string text) => text.Trim().ToLowerInvariant() switch
+    {
+        "speed" => SweepParameter.Speed,
+        "frequency" or "freq" => SweepParameter.Frequency,
+        "passes" => SweepParameter.Passes,
+        "pulses-per-dot" or "pulses" => SweepParameter.PulsesPerDot,
+        "pitch" => SweepParameter.Pitch,
+        _ => throw new SweepException($"'{text}' is not a sweep parameter: use speed, frequency, passes, pulses-per-dot or pitch"),
+    };
+}

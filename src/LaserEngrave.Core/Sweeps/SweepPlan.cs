@@ -1,0 +1,313 @@
+using System.Globalization;
+using System.Security.Cryptography;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Imaging;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Planning;
+
+namespace LaserEngrave.Core.Sweeps;
+
+/// <summary>A sweep laid out on the stage: every cell's job, and the labels' job, in the order they are burned.</summary>
+/// <remarks>
+/// <para>
+/// The grid's top-left corner is <see cref="SweepSpec.Origin"/>. With labels, a strip on the left holds each row's value
+/// and a strip on top each column's (digits of <see cref="TinyFont"/>, one job in raster mode at the base process), and
+/// the cells begin right and below them. Cell (r, c) has its top-left corner at grid + (c (cell + spacing), r (cell + spacing)).
+/// A cell of side s at pitch p has n = max(1, round(s / p)) pixels a side: all black (square), every other row (lines),
+/// or every other pixel of every other row (dots). Cells are burned row by row, left to right, after the labels.
+/// </para>
+/// <para>docs/process.md ("Parameter sweeps") has a worked example.</para>
+/// </remarks>
+public sealed class SweepPlan
+{
+    /// <summary>The most cells a sweep may have.</summary>
+    public const int MaxCells = 400;
+
+    /// <summary>Label glyph height as a share of the cell side.</summary>
+    private const double LabelHeightShare = 0.4;
+
+    private SweepPlan(SweepSpec spec, IReadOnlyList<SweepCell> cells, PreparedJob? labels, double gridXMm, double gridYMm)
+    {
+        Spec = spec;
+        Cells = cells;
+        Labels = labels;
+        GridXMm = gridXMm;
+        GridYMm = gridYMm;
+    }
+
+    public SweepSpec Spec { get; }
+
+    /// <summary>The cells in the order they are burned: row by row, left to right.</summary>
+    public IReadOnlyList<SweepCell> Cells { get; }
+
+    /// <summary>The labels' job (null without labels).</summary>
+    public PreparedJob? Labels { get; }
+
+    /// <summary>Stage position of the first cell's top-left corner, mm.</summary>
+    public double GridXMm { get; }
+
+    public double GridYMm { get; }
+
+    public int RowCount => Spec.Rows.Values.Count;
+
+    public int ColumnCount => Spec.Columns?.Values.Count ?? 1;
+
+    /// <summary>The estimated engraving time of every cell (all its passes) and of the labels, s (without preflight and the travels between cells).</summary>
+    public double EstimatedSeconds =>
+        Cells.Sum(c => c.Job.Statistics.EstimatedSeconds * c.Job.Spec.Passes) + (Labels?.Statistics.EstimatedSeconds ?? 0);
+
+    /// <summary>The SHA-256 of a generated mask's bits (it has no file), lower-case hex: the run log's image hash for a cell.</summary>
+    public static string MaskSha256(BitMask mask)
+    {
+        ArgumentNullException.ThrowIfNull(mask);
+        using var hash = IncrementalHash.CreateHash(HashAlgorithmName.SHA256);
+        Span<byte> size = stackalloc byte[8];
+        BitConverter.TryWriteBytes(size[..4], mask.Width);
+        BitConverter.TryWriteBytes(size[4..], mask.Height);
+        hash.AppendData(size);
+        var bytes = new byte[mask.WordsPerRow * sizeof(ulong)];
+        for (var y = 0; y < mask.Height; y++)
+        {
+            System.Runtime.InteropServices.MemoryMarshal.AsBytes(mask.ReadRow(y)).CopyTo(bytes);
+            hash.AppendData(bytes);
+        }
+
+        return Convert.ToHexStringLower(hash.GetHashAndReset());
+    }
+
+    /// <summary>Lays the sweep out and plans every cell; throws <see cref="SweepException"/> with one line naming the value (or the cell) and the problem.</summary>
+    public static SweepPlan Build(SweepSpec spec)
+    {
+        ArgumentNullException.ThrowIfNull(spec);
+        var profile = spec.Profile;
+        var limits = MachineLimits.Of(profile);
+        var microstepUm = Math.Max(profile.X.MicrostepUm, profile.Y.MicrostepUm);
+        Validate(spec, limits, microstepUm);
+
+        var cellUm = spec.CellMm * 1000;
+        var columns = spec.Columns;
+        var rowTexts = spec.Rows.Values.Select(Label).ToList();
+        var columnTexts = columns?.Values.Select(Label).ToList() ?? [];
+
+        // Labels: glyphs 0.4 of a cell tall, narrower when a column's label would not fit over its cell and the spacing.
+        var labelPitchUm = 0.0;
+        double stripXMm = 0, stripYMm = 0;
+        if (spec.Labels)
+        {
+            labelPitchUm = cellUm * LabelHeightShare / TinyFont.GlyphHeight;
+            foreach (var text in columnTexts)
+            {
+                labelPitchUm = Math.Min(labelPitchUm, (spec.CellMm + spec.SpacingMm) * 1000 / (TinyFont.Width(text) + 1));
+            }
+
+            if (labelPitchUm < microstepUm)
+            {
+                throw new SweepException($"--labels: cells of {N(spec.CellMm)} mm leave labels pixels of {N(labelPitchUm)} µm, below one microstep; make the cells larger or leave the labels out");
+            }
+
+            var gap = Math.Max(spec.SpacingMm, 2 * labelPitchUm / 1000);
+            stripXMm = (rowTexts.Max(TinyFont.Width) * labelPitchUm / 1000) + gap;
+            stripYMm = columns is null ? 0 : (TinyFont.GlyphHeight * labelPitchUm / 1000) + gap;
+        }
+
+        var gridX = spec.Origin.X + stripXMm;
+        var gridY = spec.Origin.Y + stripYMm;
+        var stepMm = spec.CellMm + spec.SpacingMm;
+        var cells = new List<SweepCell>();
+        for (var r = 0; r < spec.Rows.Values.Count; r++)
+        {
+            for (var c = 0; c < (columns?.Values.Count ?? 1); c++)
+            {
+                var parameters = new Dictionary<string, double> { [spec.Rows.Parameter.LogKey()] = spec.Rows.Values[r] };
+                if (columns is not null)
+                {
+                    parameters[columns.Parameter.LogKey()] = columns.Values[c];
+                }
+
+                var origin = new OriginMm(gridX + (c * stepMm), gridY + (r * stepMm));
+                cells.Add(PlanCell(spec, r, c, parameters, origin));
+            }
+        }
+
+        PreparedJob? labels = null;
+        if (spec.Labels)
+        {
+            var widthMm = (gridX - spec.Origin.X) + ((columns?.Values.Count ?? 1) * stepMm) - spec.SpacingMm;
+            var heightMm = (gridY - spec.Origin.Y) + (spec.Rows.Values.Count * stepMm) - spec.SpacingMm;
+            var mask = new BitMask(
+                Math.Max(1, (int)Math.Ceiling(widthMm * 1000 / labelPitchUm)),
+                Math.Max(1, (int)Math.Ceiling(heightMm * 1000 / labelPitchUm)));
+            int Px(double mm) => (int)Math.Round(mm * 1000 / labelPitchUm);
+            for (var r = 0; r < rowTexts.Count; r++)
+            {
+                var centreY = gridY - spec.Origin.Y + (r * stepMm) + (spec.CellMm / 2);
+                TinyFont.Draw(mask, rowTexts[r], 0, Px(centreY) - (TinyFont.GlyphHeight / 2));
+            }
+
+            for (var c = 0; c < columnTexts.Count; c++)
+            {
+                var centreX = gridX - spec.Origin.X + (c * stepMm) + (spec.CellMm / 2);
+                TinyFont.Draw(mask, columnTexts[c], Px(centreX) - (TinyFont.Width(columnTexts[c]) / 2), 0);
+            }
+
+            var process = spec.Process with { Mode = PlanMode.Raster, PulsesPerDot = 1, DotPitchMicrosteps = 0, DotSettleMs = 0 };
+            labels = Prepare(spec, "sweep labels", mask, SizeSpec.Pitch(labelPitchUm), spec.Origin, process, 1, "the labels");
+        }
+
+        return new SweepPlan(spec, cells, labels, gridX, gridY);
+    }
+
+    /// <summary>The cell's mask: a square of n x n pixels, filled, lines or dots.</summary>
+    public static BitMask CellMask(SweepPattern pattern, int n)
+    {
+        var mask = new BitMask(n, n);
+        for (var y = 0; y < n; y++)
+        {
+            for (var x = 0; x < n; x++)
+            {
+                mask[x, y] = pattern switch
+                {
+                    SweepPattern.Lines => y % 2 == 0,
+                    SweepPattern.Dots => y % 2 == 0 && x % 2 == 0,
+                    _ => true,
+                };
+            }
+        }
+
+        return mask;
+    }
+
+    private static SweepCell PlanCell(SweepSpec spec, int row, int column, Dictionary<string, double> parameters, OriginMm origin)
+    {
+        var process = spec.Process;
+        var passes = spec.Passes;
+        var pitch = spec.PitchUm;
+        foreach (var (key, value) in parameters)
+        {
+            switch (key)
+            {
+                case "speedMmPerS": process = process with { BurnSpeedMmPerS = value }; break;
+                case "frequencyHz": process = process with { LaserFrequencyHz = value }; break;
+                case "passes": passes = (int)value; break;
+                case "pulsesPerDot": process = process with { PulsesPerDot = (int)value }; break;
+                case "pitchUm": pitch = value; break;
+                default: throw new InvalidOperationException($"unknown sweep parameter {key}");
+            }
+        }
+
+        var n = Math.Max(1, (int)Math.Round(spec.CellMm * 1000 / pitch));
+        var job = Prepare(spec, $"sweep cell r{row + 1} c{column + 1}", CellMask(spec.Pattern, n), SizeSpec.Pitch(pitch), origin, process, passes, SweepCell.Describe(row, column, parameters));
+        return new SweepCell(row, column, parameters, job);
+    }
+
+    private static PreparedJob Prepare(SweepSpec spec, string name, BitMask mask, SizeSpec size, OriginMm origin, ProcessSettings process, int passes, string what)
+    {
+        var info = new ImageInfo(name, ImageFormat.Pbm, 1, 2, mask.Width, mask.Height, 0, null, null, RowOrder.TopDown, "none", false);
+        var jobSpec = new JobSpec
+        {
+            ImagePath = name,
+            Size = size,
+            Origin = origin,
+            Plan = spec.Plan,
+            Process = process,
+            Profile = spec.Profile,
+            Passes = passes,
+        };
+        PreparedJob job;
+        try
+        {
+            job = PreparedJob.Prepare(jobSpec, info, mask);
+        }
+        catch (Exception ex) when (ex is PlanException or GeometryException)
+        {
+            throw new SweepException($"{what}: {ex.Message}", ex);
+        }
+
+        if (!job.Geometry.FitsTravel)
+        {
+            throw new SweepException($"{what} reaches past the stage travel ({N(job.Spec.Profile.X.TravelMm)} x {N(job.Spec.Profile.Y.TravelMm)} mm): move the sweep (--origin-mm) or make it smaller");
+        }
+
+        if (job.EngraveProblem is { } problem)
+        {
+            throw new SweepException($"{what}: {problem}");
+        }
+
+        return job;
+    }
+
+    private static void Validate(SweepSpec spec, MachineLimits limits, double microstepUm)
+    {
+        var travel = Math.Min(limits.TravelXMm, limits.TravelYMm);
+        if (!(spec.CellMm > 0 && spec.CellMm <= travel))
+        {
+            throw new SweepException($"--cell-mm {N(spec.CellMm)}: must be above 0 and at most {N(travel)} mm (the travel)");
+        }
+
+        if (!(spec.SpacingMm >= 0 && spec.SpacingMm <= travel))
+        {
+            throw new SweepException($"--spacing-mm {N(spec.SpacingMm)}: must be 0..{N(travel)} mm");
+        }
+
+        CheckPitch(spec.PitchUm, "--pitch-um");
+        if (spec.Passes is < 1 or > JobSpec.MaxPasses)
+        {
+            throw new SweepException($"--passes {spec.Passes}: must be 1..{JobSpec.MaxPasses}");
+        }
+
+        if (spec.Columns is { } columns && columns.Parameter == spec.Rows.Parameter)
+        {
+            throw new SweepException($"--rows and --columns both vary {columns.Parameter.CliName()}: vary two different parameters, or one");
+        }
+
+        var cells = spec.Rows.Values.Count * (spec.Columns?.Values.Count ?? 1);
+        if (spec.Rows.Values.Count == 0 || spec.Columns is { Values.Count: 0 })
+        {
+            throw new SweepException("a sweep needs at least one value along its rows and its columns");
+        }
+
+        if (cells > MaxCells)
+        {
+            throw new SweepException($"{cells} cells: a sweep has at most {MaxCells}");
+        }
+
+        foreach (var (axis, option) in new[] { (spec.Rows, "--rows"), (spec.Columns, "--columns") })
+        {
+            if (axis is null)
+            {
+                continue;
+            }
+
+            foreach (var value in axis.Values)
+            {
+                var problem = axis.Parameter switch
+                {
+                    SweepParameter.Speed when !limits.SpeedAllowed(value) => $"outside what the stage takes, {limits.SpeedRange}",
+                    SweepParameter.Frequency when !limits.FrequencyAllowed(value) => $"outside what the laser gate takes, 1..{limits.MaxFrequencyHz} Hz",
+                    SweepParameter.Passes when value is < 1 or > JobSpec.MaxPasses => $"must be 1..{JobSpec.MaxPasses}",
+                    SweepParameter.PulsesPerDot when value is < 1 or > 1_000_000 => "must be 1..1000000",
+                    SweepParameter.PulsesPerDot when spec.Process.Mode != PlanMode.Dots => "pulses per dot are swept in dot mode only: add --mode dots",
+                    SweepParameter.Pitch when !(value >= microstepUm && value <= spec.CellMm * 1000) => $"must be {N(microstepUm)} µm (a microstep) .. {N(spec.CellMm * 1000)} µm (the cell)",
+                    _ => null,
+                };
+                if (problem is not null)
+                {
+                    throw new SweepException($"{option} {axis}: {axis.Parameter.CliName()} {N(value)} {axis.Parameter.Unit()}".TrimEnd() + $": {problem}");
+                }
+            }
+        }
+
+        void CheckPitch(double pitch, string option)
+        {
+            if (!(pitch >= microstepUm && pitch <= spec.CellMm * 1000))
+            {
+                throw new SweepException($"{option} {N(pitch)}: must be {N(microstepUm)} µm (a microstep) .. {N(spec.CellMm * 1000)} µm (the cell)");
+            }
+        }
+    }
+
+    /// <summary>A value as its label burns it: up to three decimals, no trailing zeros.</summary>
+    private static string Label(double value) => value.ToString("0.###", CultureInfo.InvariantCulture);
+
+    private static string N(double value) => MachineLimits.Text.N(value);
+}

@@ -1,0 +1,222 @@
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Logging;
+using LaserEngrave.Core.Sweeps;
+using LaserEngrave.Devices.Scheduling;
+
+namespace LaserEngrave.Devices.Execution;
+
+/// <summary>What a <see cref="SweepSession"/> is doing: which job of the sweep (the labels count as one), and that job's progress.</summary>
+/// <param name="Index">The job under way, from 0 (the labels first when there are labels, then the cells row by row).</param>
+/// <param name="Jobs">The sweep's jobs.</param>
+/// <param name="Cell">The cell under way; null while the labels burn.</param>
+/// <param name="Run">The job's own progress.</param>
+public sealed record SweepProgress(int Index, int Jobs, SweepCell? Cell, EngraveProgress Run);
+
+/// <summary>One job of a sweep has ended: the cell (null for the labels) and how it ended, with the simulator's burn check when there is one.</summary>
+public sealed class SweepJobEndedEventArgs(SweepCell? cell, EngraveResult result) : EventArgs
+{
+    public SweepCell? Cell { get; } = cell;
+
+    public EngraveResult Result { get; } = result;
+}
+
+/// <summary>How a sweep ended: its record (written or not) and where it went.</summary>
+public sealed record SweepResult(SweepRecord Record, RunLogFiles? Files, Exception? LogError)
+{
+    public bool Completed => Record.Outcome == RunOutcome.Completed;
+}
+
+/// <summary>Options of a sweep run, as of an engraving.</summary>
+public sealed record SweepSessionOptions
+{
+    public string? Notes { get; init; }
+
+    public string? SampleId { get; init; }
+
+    /// <summary>Home both axes before the first job even if they are homed.</summary>
+    public bool Home { get; init; }
+
+    public ISweepLogWriter? Log { get; init; }
+
+    public TimeProvider WallClock { get; init; } = TimeProvider.System;
+}
+
+/// <summary>
+/// A parameter sweep in one run: the labels, then every cell, each an <see cref="EngraveSession"/> (its passes, its
+/// burn check on the simulator) on the same machine, one after the other; then one log with every cell.
+/// </summary>
+/// <remarks>
+/// A job that does not complete ends the sweep with the laser off (as its session leaves it); the cells after it are
+/// logged as not run. <see cref="Abort"/> may be called from any thread at any time. A session runs once.
+/// </remarks>
+public sealed class SweepSession
+{
+    private readonly Lock _lock = new();
+    private EngraveSession? _current;
+    private bool _abortRequested;
+    private int _started;
+
+    public SweepSession(EngraveMachine machine, SweepPlan plan, SweepSessionOptions? options = null)
+    {
+        ArgumentNullException.ThrowIfNull(machine);
+        ArgumentNullException.ThrowIfNull(plan);
+        Machine = machine;
+        Plan = plan;
+        Options = options ?? new SweepSessionOptions();
+    }
+
+    /// <summary>Raised after each job (labels or cell), on the run's thread: keep it quick.</summary>
+    public event EventHandler<SweepJobEndedEventArgs>? JobEnded;
+
+    public EngraveMachine Machine { get; }
+
+    public SweepPlan Plan { get; }
+
+    public SweepSessionOptions Options { get; }
+
+    /// <summary>Runs the labels and every cell on the machine's own runner, then writes the sweep's log.</summary>
+    public Task<SweepResult> RunAsync(IProgress<SweepProgress>? progress, CancellationToken cancellationToken)
+    {
+        if (Interlocked.Exchange(ref _started, 1) != 0)
+        {
+            throw new InvalidOperationException("a SweepSession runs once; make a new one");
+        }
+
+        return TaskRunner.For(Machine.TimeProvider).Run(() => RunJobsAsync(progress, cancellationToken));
+    }
+
+    /// <summary>Laser off, then the stage stopped; no further cell starts.</summary>
+    public void Abort()
+    {
+        EngraveSession? current;
+        lock (_lock)
+        {
+            _abortRequested = true;
+            current = _current;
+        }
+
+        current?.Abort();
+    }
+
+    private async Task<SweepResult> RunJobsAsync(IProgress<SweepProgress>? progress, CancellationToken cancellationToken)
+    {
+        await using var registration = cancellationToken.Register(Abort);
+        var startedAt = Options.WallClock.GetLocalNow();
+        var jobs = new List<(SweepCell? Cell, PreparedJob Job)>();
+        if (Plan.Labels is { } labelsJob)
+        {
+            jobs.Add((null, labelsJob));
+        }
+
+        jobs.AddRange(Plan.Cells.Select(c => ((SweepCell?)c, c.Job)));
+        var runs = new Dictionary<SweepCell, RunRecord>();
+        RunRecord? labels = null;
+        var outcome = RunOutcome.Completed;
+        string? fault = null;
+        for (var i = 0; i < jobs.Count; i++)
+        {
+            var (cell, job) = jobs[i];
+            EngraveSession session;
+            lock (_lock)
+            {
+                if (_abortRequested)
+                {
+                    outcome = RunOutcome.Aborted;
+                    fault = "aborted by the operator";
+                    break;
+                }
+
+                session = new EngraveSession(Machine, job, new EngraveSessionOptions
+                {
+                    Notes = Options.Notes,
+                    SampleId = Options.SampleId,
+                    Home = Options.Home && i == 0,
+                    ImageSha256 = SweepPlan.MaskSha256(job.Mask),
+                    WallClock = Options.WallClock,
+                });
+                _current = session;
+            }
+
+            var index = i;
+            var sink = progress is null ? null : new Relay(p => progress.Report(new SweepProgress(index, jobs.Count, cell, p)));
+            var result = await session.RunAsync(sink, cancellationToken);
+            lock (_lock)
+            {
+                _current = null;
+            }
+
+            if (cell is null)
+            {
+                labels = result.Record;
+            }
+            else
+            {
+                runs[cell] = result.Record;
+            }
+
+            JobEnded?.Invoke(this, new SweepJobEndedEventArgs(cell, result));
+            if (result.Record.Outcome != RunOutcome.Completed)
+            {
+                outcome = result.Record.Outcome;
+                var what = cell?.Describe() ?? "the labels";
+                fault = $"{what}: {result.Error?.Message ?? result.Record.Fault?.Message ?? outcome.ToString().ToLowerInvariant()}";
+                break;
+            }
+        }
+
+        var spec = Plan.Spec;
+        var record = new SweepRecord
+        {
+            SoftwareVersion = RunRecord.CurrentSoftwareVersion,
+            StartedAt = startedAt,
+            EndedAt = Options.WallClock.GetLocalNow(),
+            Outcome = outcome,
+            Fault = fault,
+            Pattern = spec.Pattern.ToString().ToLowerInvariant(),
+            CellMm = spec.CellMm,
+            SpacingMm = spec.SpacingMm,
+            OriginXMm = spec.Origin.X,
+            OriginYMm = spec.Origin.Y,
+            Rows = spec.Rows.ToString(),
+            Columns = spec.Columns?.ToString(),
+            Simulated = Machine.Simulated,
+            Notes = Options.Notes,
+            SampleId = Options.SampleId,
+            Labels = labels,
+            Cells =
+            [
+                .. Plan.Cells.Select(c => new SweepCellRecord(
+                    c.Row,
+                    c.Column,
+                    c.Parameters,
+                    c.OriginXMm,
+                    c.OriginYMm,
+                    c.Job.Geometry.AchievedWidthMm,
+                    c.Job.Geometry.AchievedHeightMm,
+                    c.Job.Geometry.PitchUm,
+                    c.Job.Spec.Passes,
+                    runs.GetValueOrDefault(c))),
+            ],
+        };
+        RunLogFiles? files = null;
+        Exception? logError = null;
+        if (Options.Log is { } log)
+        {
+            try
+            {
+                files = log.WriteSweep(record);
+            }
+            catch (Exception ex) when (ex is RunLogException or IOException or UnauthorizedAccessException)
+            {
+                logError = ex;
+            }
+        }
+
+        return new SweepResult(record, files, logError);
+    }
+
+    private sealed class Relay(Action<EngraveProgress> report) : IProgress<EngraveProgress>
+    {
+        public void Report(EngraveProgress value) => report(value);
+    }
+}
