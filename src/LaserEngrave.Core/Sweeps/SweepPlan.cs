@@ -132,22 +132,25 @@ public sealed class SweepPlan
         PreparedJob? labels = null;
         if (spec.Labels)
         {
-            var widthMm = (gridX - spec.Origin.X) + ((columns?.Values.Count ?? 1) * stepMm) - spec.SpacingMm;
-            var heightMm = (gridY - spec.Origin.Y) + (spec.Rows.Values.Count * stepMm) - spec.SpacingMm;
-            var mask = new BitMask(
-                Math.Max(1, (int)Math.Ceiling(widthMm * 1000 / labelPitchUm)),
-                Math.Max(1, (int)Math.Ceiling(heightMm * 1000 / labelPitchUm)));
+            // Each label centred on its row or column, in label pixels from the grid's corner; the mask holds them all.
             int Px(double mm) => (int)Math.Round(mm * 1000 / labelPitchUm);
+            var placed = new List<(string Text, int X, int Y)>();
             for (var r = 0; r < rowTexts.Count; r++)
             {
-                var centreY = gridY - spec.Origin.Y + (r * stepMm) + (spec.CellMm / 2);
-                TinyFont.Draw(mask, rowTexts[r], 0, Px(centreY) - (TinyFont.GlyphHeight / 2));
+                placed.Add((rowTexts[r], 0, Px(gridY - spec.Origin.Y + (r * stepMm) + (spec.CellMm / 2)) - (TinyFont.GlyphHeight / 2)));
             }
 
             for (var c = 0; c < columnTexts.Count; c++)
             {
-                var centreX = gridX - spec.Origin.X + (c * stepMm) + (spec.CellMm / 2);
-                TinyFont.Draw(mask, columnTexts[c], Px(centreX) - (TinyFont.Width(columnTexts[c]) / 2), 0);
+                placed.Add((columnTexts[c], Px(gridX - spec.Origin.X + (c * stepMm) + (spec.CellMm / 2)) - (TinyFont.Width(columnTexts[c]) / 2), 0));
+            }
+
+            var mask = new BitMask(
+                Math.Max(1, placed.Max(p => p.X + TinyFont.Width(p.Text))),
+                Math.Max(1, placed.Max(p => p.Y + TinyFont.GlyphHeight)));
+            foreach (var (text, x, y) in placed)
+            {
+                TinyFont.Draw(mask, text, x, y);
             }
 
             var process = spec.Process with { Mode = PlanMode.Raster, PulsesPerDot = 1, DotPitchMicrosteps = 0, DotSettleMs = 0 };

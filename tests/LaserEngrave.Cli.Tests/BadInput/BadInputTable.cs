@@ -209,6 +209,21 @@ public static class BadInputTable
         Add("the file is truncated", "engrave", "@truncated", "--width-mm", "1", "--simulate", "--log-dir", "@logdir");
         Add("file not found", "engrave", "@missing", "--width-mm", "1", "--simulate", "--log-dir", "@logdir");
 
+        // A sweep's every value is checked before the machine opens.
+        string[] sweep = ["sweep", "--simulate", "--log-dir", "@logdir"];
+        Add("give what the rows vary: --rows", sweep);
+        Add("--rows speed=1,10: speed 10 mm/s: outside what the stage takes", [.. sweep, "--rows", "speed=1,10"]);
+        Add("--rows colour=1: 'colour' is not a sweep parameter", [.. sweep, "--rows", "colour=1"]);
+        Add("--rows passes=1.5: passes takes whole numbers", [.. sweep, "--rows", "passes=1.5"]);
+        Add("--columns frequency=0: frequency 0 Hz: outside what the laser gate takes", [.. sweep, "--rows", "speed=1", "--columns", "frequency=0"]);
+        Add("add --mode dots", [.. sweep, "--rows", "pulses-per-dot=1,5"]);
+        Add("--pattern stars: use square, lines or dots", [.. sweep, "--rows", "speed=1", "--pattern", "stars"]);
+        Add("--cell-mm 0: must be above 0", [.. sweep, "--rows", "speed=1", "--cell-mm", "0"]);
+        Add("--pitch-um 0.01: must be", [.. sweep, "--rows", "speed=1", "--pitch-um", "0.01"]);
+        Add("reaches past the stage travel", [.. sweep, "--rows", "speed=1,2", "--origin-mm", "59,59"]);
+        Add("--speed-mm-s 100: outside what the stage takes", [.. sweep, "--rows", "frequency=500", "--speed-mm-s", "100"]);
+        Add("--dose-dir needs --simulate", "sweep", "--rows", "speed=1", "--stage-port", "/nonexistent/a", "--laser-port", "/nonexistent/b", "--dose-dir", "@out");
+
         // A repeated run takes everything from its log: options it would ignore are refused, and so is a bad log.
         string[] fromLog = ["engrave", "--from-log", "@log", "--simulate", "--log-dir", "@logdir"];
         Add("--width-mm with --from-log", [.. fromLog, "--width-mm", "5"]);

@@ -92,4 +92,27 @@ public class PulseArithmeticTests
         Assert.Null(figures.PulsesPerPixel);
         Assert.Null(figures.EnergyPerPixelUj);
     }
+
+    [Fact]
+    public void ForDots_DotAtEveryPixel_NPulsesAPixel()
+    {
+        // 10 pulses at 1 kHz on dots 121.95 µm apart (a 5 mm QR code of 41 px): 10 a pixel; mean speed 121.95 µm x 1000 / 10.
+        var figures = PulseFigures.ForDots(10, 1000, 5000.0 / 41, 20, 5000.0 / 41, pulseEnergyUj: 5);
+
+        Assert.Equal(10, figures.PulsesPerPixel!.Value, 12);
+        Assert.Equal(50, figures.EnergyPerPixelUj!.Value, 12);
+        Assert.Equal(5000.0 / 41 / 1000 * 1000 / 10, figures.SpeedMmPerS, 12);
+        Assert.Contains(figures.Warnings, w => w.Kind == JobWarningKind.PulseGaps);
+    }
+
+    [Fact]
+    public void ForDots_DotPitchAQuarterPixel_FourDotsOfNPulses()
+    {
+        // Dots 12.5 µm apart on 50 µm pixels, 3 pulses each: 12 pulses a pixel; 1 - 12.5 / 20 = 37.5 % overlap.
+        var figures = PulseFigures.ForDots(3, 1000, 12.5, 20, 50);
+
+        Assert.Equal(12, figures.PulsesPerPixel!.Value, 12);
+        Assert.Equal(37.5, figures.OverlapPercent, 12);
+        Assert.Empty(figures.Warnings);
+    }
 }

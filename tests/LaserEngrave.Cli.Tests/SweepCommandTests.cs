@@ -1,0 +1,64 @@
+using System.Text.Json;
+
+namespace LaserEngrave.Cli.Tests;
+
+public sealed class SweepCommandTests : IDisposable
+{
+    private readonly string folder = Path.Combine(Path.GetTempPath(), $"le-cli-sweep-{Guid.NewGuid():N}");
+
+    public SweepCommandTests() => Directory.CreateDirectory(folder);
+
+    [Fact]
+    public async Task SweepPlanOnly_Json_EveryCellWithItsValuesPlaceAndPulses()
+    {
+        var (exit, output, error) = await CliHarness.RunAsync(
+            "sweep", "--rows", "speed=0.5,1", "--columns", "frequency=500,1000,2000", "--origin-mm", "5,5", "--plan-only", "--json");
+
+        Assert.True(exit == 0, error);
+        using var json = JsonDocument.Parse(output);
+        var cells = json.RootElement.GetProperty("cells");
+        Assert.Equal(6, cells.GetArrayLength());
+        var last = cells[5];
+        Assert.Equal(1, last.GetProperty("parameters").GetProperty("speedMmPerS").GetDouble());
+        Assert.Equal(2000, last.GetProperty("parameters").GetProperty("frequencyHz").GetDouble());
+
+        // Third column, second row: 2 x 1.5 mm and 1.5 mm from the corner; 50 µm x 2000 Hz / 1 mm/s = 100 pulses a pixel.
+        Assert.Equal((8.0, 6.5), (last.GetProperty("originXMm").GetDouble(), last.GetProperty("originYMm").GetDouble()));
+        Assert.Equal(100, last.GetProperty("pulsesPerPixel").GetDouble(), 9);
+    }
+
+    [Fact]
+    public async Task SweepSimulate_TwoByTwoWithLabels_Exit0OneSweepLogDoseMapsPerCell()
+    {
+        var logs = Path.Combine(folder, "logs");
+        var doses = Path.Combine(folder, "dose");
+
+        var (exit, output, error) = await CliHarness.RunAsync(
+            "sweep", "--rows", "speed=1,2", "--columns", "passes=1,2", "--cell-mm", "0.4", "--labels", "--origin-mm", "5,5",
+            "--simulate", "--json", "--log-dir", logs, "--dose-dir", doses);
+
+        Assert.True(exit == 0, error);
+        using var json = JsonDocument.Parse(output);
+        var root = json.RootElement;
+        Assert.Equal("completed", root.GetProperty("outcome").GetString());
+        Assert.EndsWith(".sweep.json", root.GetProperty("logPath").GetString(), StringComparison.Ordinal);
+        var cells = root.GetProperty("sweep").GetProperty("cells");
+        Assert.Equal(4, cells.GetArrayLength());
+
+        // Two passes burn twice the pulses of one: 50 µm / 1 µm = 50, then 100 a pixel at 1 mm/s.
+        var one = cells[0].GetProperty("run").GetProperty("simulation").GetProperty("pulsesPerPixel").GetProperty("mean").GetDouble();
+        var two = cells[1].GetProperty("run").GetProperty("simulation").GetProperty("pulsesPerPixel").GetProperty("mean").GetDouble();
+        Assert.InRange(one, 49, 51);
+        Assert.InRange(two, 98, 102);
+        Assert.Equal(4, Directory.GetFiles(doses, "cell-r*-c*.png").Length);
+        Assert.Contains("4 of 5", error, StringComparison.Ordinal);
+    }
+
+    public void Dispose()
+    {
+        if (Directory.Exists(folder))
+        {
+            Directory.Delete(folder, recursive: true);
+        }
+    }
+}

@@ -1,0 +1,172 @@
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Imaging;
+using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Sweeps;
+
+namespace LaserEngrave.Core.Tests.Sweeps;
+
+/// <summary>A sweep's layout and each cell's values, checked by hand.</summary>
+public class SweepPlanTests
+{
+    private static SweepSpec Spec(string rows, string? columns = null) => new()
+    {
+        Rows = SweepAxis.Parse(rows, "--rows"),
+        Columns = columns is null ? null : SweepAxis.Parse(columns, "--columns"),
+        Origin = new OriginMm(5, 5),
+        CellMm = 1,
+        SpacingMm = 0.5,
+        PitchUm = 50,
+    };
+
+    [Fact]
+    public void Build_SpeedRowsFrequencyColumns_EachCellItsValuesAndPlace()
+    {
+        var plan = SweepPlan.Build(Spec("speed=0.5,1,2", "frequency=500,1000"));
+
+        Assert.Equal(6, plan.Cells.Count);
+        var cell = plan.Cells[3];
+
+        // Row 2, column 2: 1 mm/s at 1000 Hz, 1.5 mm right of and 1.5 mm below the first cell at 5, 5 mm.
+        Assert.Equal((1, 1), (cell.Row, cell.Column));
+        Assert.Equal(new Dictionary<string, double> { ["speedMmPerS"] = 1, ["frequencyHz"] = 1000 }, cell.Parameters);
+        Assert.Equal((6.5, 6.5), (cell.OriginXMm, cell.OriginYMm));
+        Assert.Equal((1.0, 1000.0), (cell.Job.Spec.Process.BurnSpeedMmPerS, cell.Job.Spec.Process.LaserFrequencyHz));
+
+        // 1 mm at 50 µm: 20 x 20 pixels, all black; 50 µm / (1 mm/s / 1000 Hz) = 50 pulses a pixel.
+        Assert.Equal((20, 20, 400L), (cell.Job.Mask.Width, cell.Job.Mask.Height, cell.Job.Mask.CountSet()));
+        Assert.Equal(50, cell.Job.Pulses.PulsesPerPixel!.Value, 9);
+        Assert.Equal(12.5, plan.Cells[4].Job.Pulses.PulsesPerPixel!.Value, 9);
+        Assert.Null(plan.Labels);
+        Assert.Equal(plan.Cells.Sum(c => c.Job.Statistics.EstimatedSeconds), plan.EstimatedSeconds, 9);
+    }
+
+    [Fact]
+    public void Build_PitchAndPassesSwept_CellsSizedByTheirPitchBurnedTheirPasses()
+    {
+        var plan = SweepPlan.Build(Spec("pitch=25,100", "passes=1,3"));
+
+        Assert.Equal((40, 1), (plan.Cells[0].Job.Mask.Width, plan.Cells[0].Job.Spec.Passes));
+        Assert.Equal((10, 3), (plan.Cells[3].Job.Mask.Width, plan.Cells[3].Job.Spec.Passes));
+        Assert.Equal(100, plan.Cells[3].Job.Geometry.PitchUm, 9);
+        Assert.Equal(
+            plan.Cells.Sum(c => c.Job.Statistics.EstimatedSeconds * c.Job.Spec.Passes),
+            plan.EstimatedSeconds,
+            9);
+    }
+
+    [Fact]
+    public void Build_PulsesPerDotInDotMode_DotArrayCellsFireTheirCount()
+    {
+        var spec = Spec("pulses-per-dot=1,10") with
+        {
+            Pattern = SweepPattern.Dots,
+            Process = ProcessSettings.Default with { Mode = PlanMode.Dots },
+        };
+
+        var plan = SweepPlan.Build(spec);
+
+        var cell = plan.Cells[1];
+        Assert.Equal(10, cell.Job.Spec.Process.PulsesPerDot);
+        Assert.Equal(100, cell.Job.Dots!.Estimate.Dots);
+        Assert.Equal(1000, cell.Job.Dots.Estimate.Pulses);
+    }
+
+    [Theory]
+    [InlineData(SweepPattern.Square, "####|####|####|####")]
+    [InlineData(SweepPattern.Lines, "####|....|####|....")]
+    [InlineData(SweepPattern.Dots, "#.#.|....|#.#.|....")]
+    public void CellMask_Pattern_ItsPixels(SweepPattern pattern, string expected)
+    {
+        var mask = SweepPlan.CellMask(pattern, 4);
+
+        Assert.Equal(expected, string.Join('|', Enumerable.Range(0, 4).Select(y => new string([.. Enumerable.Range(0, 4).Select(x => mask[x, y] ? '#' : '.')]))));
+    }
+
+    [Fact]
+    public void Build_Labels_CellsMovedPastTheLabelStripsAndEveryDigitBurned()
+    {
+        var plan = SweepPlan.Build(Spec("speed=0.5,1", "frequency=500,1000") with { Labels = true });
+
+        // Glyphs 0.4 mm tall: pixels of 80 µm; the widest row label "0.5" is 11 px = 0.88 mm, then the 0.5 mm spacing;
+        // the column labels 5 px = 0.4 mm tall, then 0.5 mm.
+        var labels = Assert.IsType<Core.Jobs.PreparedJob>(plan.Labels);
+        Assert.Equal(80, labels.Geometry.PitchUm, 9);
+        Assert.Equal(5 + 0.88 + 0.5, plan.GridXMm, 9);
+        Assert.Equal(5 + 0.4 + 0.5, plan.GridYMm, 9);
+        Assert.Equal((plan.GridXMm, plan.GridYMm), (plan.Cells[0].OriginXMm, plan.Cells[0].OriginYMm));
+        Assert.Equal(PlanMode.Raster, labels.Spec.Process.Mode);
+
+        // Every glyph of "0.5" and "1" beside the rows, "500" and "1000" over the columns, none cut off.
+        var expected = new[] { "0.5", "1", "500", "1000" }.Sum(Pixels);
+        Assert.Equal(expected, labels.Mask.CountSet());
+
+        static long Pixels(string text)
+        {
+            var mask = new BitMask(TinyFont.Width(text), TinyFont.GlyphHeight);
+            TinyFont.Draw(mask, text, 0, 0);
+            return mask.CountSet();
+        }
+    }
+
+    [Fact]
+    public void TinyFont_Digits_ThreeByFiveGlyphs()
+    {
+        var mask = new BitMask(TinyFont.Width("10"), 5);
+
+        TinyFont.Draw(mask, "10", 0, 0);
+
+        Assert.Equal(7, mask.Width);
+        var rows = Enumerable.Range(0, 5).Select(y => new string([.. Enumerable.Range(0, 7).Select(x => mask[x, y] ? '#' : '.')]));
+        Assert.Equal([".#..###", "##..#.#", ".#..#.#", ".#..#.#", "###.###"], rows);
+    }
+
+    [Theory]
+    [InlineData("speed", "expected PARAMETER=V1,V2")]
+    [InlineData("colour=1,2", "'colour' is not a sweep parameter")]
+    [InlineData("speed=1,x", "'x' is not a number")]
+    [InlineData("passes=1.5", "passes takes whole numbers")]
+    [InlineData("speed=NaN", "'NaN' is not a number")]
+    public void Parse_Bad_OneLineNamingIt(string text, string fragment)
+    {
+        var ex = Assert.Throws<SweepException>(() => SweepAxis.Parse(text, "--rows"));
+
+        Assert.Contains(fragment, ex.Message, StringComparison.Ordinal);
+        Assert.StartsWith("--rows ", ex.Message, StringComparison.Ordinal);
+    }
+
+    [Theory]
+    [InlineData("speed=0.5,10", null, "speed 10 mm/s: outside what the stage takes")]
+    [InlineData("frequency=0", null, "outside what the laser gate takes")]
+    [InlineData("passes=0,2", null, "passes 0: must be 1..100")]
+    [InlineData("pulses-per-dot=3", null, "add --mode dots")]
+    [InlineData("pitch=0.01", null, "a microstep")]
+    [InlineData("pitch=2000", null, "(the cell)")]
+    [InlineData("speed=1", "speed=2", "both vary speed")]
+    public void Build_BadValue_RefusedNamingIt(string rows, string? columns, string fragment)
+    {
+        var ex = Assert.Throws<SweepException>(() => SweepPlan.Build(Spec(rows, columns)));
+
+        Assert.Contains(fragment, ex.Message, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void Build_PastTheTravel_RefusedNamingTheCell()
+    {
+        var ex = Assert.Throws<SweepException>(() => SweepPlan.Build(Spec("speed=1,2,3") with { Origin = new OriginMm(10, 58) }));
+
+        Assert.Contains("cell row 2, column 1", ex.Message, StringComparison.Ordinal);
+        Assert.Contains("past the stage travel", ex.Message, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void MaskSha256_SameBitsSameHashOtherBitsOther()
+    {
+        var a = SweepPlan.CellMask(SweepPattern.Lines, 10);
+        var b = SweepPlan.CellMask(SweepPattern.Lines, 10);
+        var c = SweepPlan.CellMask(SweepPattern.Dots, 10);
+
+        Assert.Equal(SweepPlan.MaskSha256(a), SweepPlan.MaskSha256(b));
+        Assert.NotEqual(SweepPlan.MaskSha256(a), SweepPlan.MaskSha256(c));
+        Assert.Equal(64, SweepPlan.MaskSha256(a).Length);
+    }
+}
