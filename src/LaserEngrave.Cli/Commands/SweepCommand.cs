@@ -53,6 +53,14 @@ internal static class SweepCommand
             throw new UsageException("--dose-dir needs --simulate: only the simulator knows what was burned");
         }
 
+        var dosePath = result.GetValue(o.Dose);
+        if (dosePath is not null && !simulate)
+        {
+            throw new UsageException("--dose needs --simulate: only the simulator knows what was burned");
+        }
+
+        OptionChecks.OutputFile(dosePath, "--dose");
+
         var store = new RunLogStore(result.GetValue(o.LogDir) ?? RunLogStore.DefaultFolder);
         store.CreateFolder();
         if (doseDir is not null)
@@ -91,7 +99,12 @@ internal static class SweepCommand
                     report.WriteDosePng(Path.Combine(doseDir, string.Create(CultureInfo.InvariantCulture, $"cell-r{cell.Row + 1}-c{cell.Column + 1}.png")));
                 }
             };
+            var start = (machineSession.Owner as SimulatedMachine)?.NowSeconds ?? 0;
             swept = await session.RunAsync(null, cancellationToken).ConfigureAwait(false);
+            if (dosePath is not null && machineSession.Owner is SimulatedMachine twin)
+            {
+                WholeDose(twin, plan, start).WriteDosePng(dosePath);
+            }
         }
 
         if (swept.Files is not { } files)
@@ -113,9 +126,41 @@ internal static class SweepCommand
             {
                 stdout.WriteLine($"Pulse maps: {Path.GetFullPath(doseDir)} (cell-rR-cC.png)");
             }
+
+            if (dosePath is not null)
+            {
+                stdout.WriteLine($"Sweep's pulse map: {Path.GetFullPath(dosePath)}");
+            }
         }
 
         return swept.Completed ? 0 : 1;
+    }
+
+    /// <summary>The pulse map of the whole sweep, labels and cells, on a grid of at most 200 cells a side over its area.</summary>
+    private static BurnReport WholeDose(SimulatedMachine twin, SweepPlan plan, double startSeconds)
+    {
+        const int MaxSide = 200;
+        var spec = plan.Spec;
+        var right = plan.Cells.Max(c => c.OriginXMm + c.Job.Geometry.AchievedWidthMm);
+        var bottom = plan.Cells.Max(c => c.OriginYMm + c.Job.Geometry.AchievedHeightMm);
+        if (plan.Labels is { } labels)
+        {
+            right = Math.Max(right, spec.Origin.X + labels.Geometry.AchievedWidthMm);
+            bottom = Math.Max(bottom, spec.Origin.Y + labels.Geometry.AchievedHeightMm);
+        }
+
+        var microstepUm = spec.Profile.X.MicrostepUm;
+        var pitchUm = Math.Max(Math.Max(right - spec.Origin.X, bottom - spec.Origin.Y) * 1000 / MaxSide, microstepUm);
+        var grid = new BurnGrid(
+            spec.Origin.X * 1000 / microstepUm,
+            spec.Origin.Y * 1000 / microstepUm,
+            pitchUm / microstepUm,
+            Math.Max(1, (int)Math.Ceiling((right - spec.Origin.X) * 1000 / pitchUm)),
+            Math.Max(1, (int)Math.Ceiling((bottom - spec.Origin.Y) * 1000 / pitchUm)));
+
+        // Every job's check started its own window; the whole sweep's starts where the sweep did.
+        twin.Recorder.Restart(startSeconds);
+        return twin.Recorder.Analyze(grid);
     }
 
     private static void WritePlan(TextWriter output, SweepPlan plan)
@@ -174,6 +219,8 @@ internal static class SweepCommand
 
         public Option<string?> DoseDir { get; } = new("--dose-dir") { Description = "With --simulate: write each cell's pulse map (cell-rR-cC.png) into this folder" };
 
+        public Option<string?> Dose { get; } = new("--dose") { Description = "With --simulate: write the whole sweep's pulse map (labels and cells) as one PNG, grey = pulses (black = the most)" };
+
         public Option<string?> Notes { get; } = new("--notes") { Description = "Notes for the sweep's log" };
 
         public Option<string?> Sample { get; } = new("--sample") { Description = "Sample ID for the sweep's log; also part of its file name" };
@@ -186,7 +233,7 @@ internal static class SweepCommand
         {
             Process.AddProcessTo(command);
             Machine.AddTo(command);
-            foreach (var option in new Option[] { Pattern, CellMm, SpacingMm, PitchUm, OriginMm, Rows, Columns, Labels, Passes, PlanOnly, LogDir, DoseDir, Notes, Sample, Home, Json })
+            foreach (var option in new Option[] { Pattern, CellMm, SpacingMm, PitchUm, OriginMm, Rows, Columns, Labels, Passes, PlanOnly, LogDir, DoseDir, Dose, Notes, Sample, Home, Json })
             {
                 command.Options.Add(option);
             }
