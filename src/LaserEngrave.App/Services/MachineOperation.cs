@@ -7,6 +7,9 @@ public sealed record MachineOperation(MachineOperationKind Kind, string Summary)
 {
     public static MachineOperation Run { get; } = new(MachineOperationKind.Run, "a run is under way");
 
+    /// <summary>A parameter sweep: a run of many cells.</summary>
+    public static MachineOperation Sweep { get; } = new(MachineOperationKind.Run, "a sweep is under way");
+
     public static MachineOperation Homing { get; } = new(MachineOperationKind.Homing, "homing is under way");
 
     public static MachineOperation Jog { get; } = new(MachineOperationKind.Jog, "a jog is under way");

@@ -590,21 +590,27 @@ public sealed partial class JobViewModel : ObservableObject
             _ => SizeSpec.Width(WidthMm),
         },
         Origin = new OriginMm(OriginXMm, OriginYMm),
-        Plan = new PlanOptions { Strategy = Strategy, Bidirectional = Bidirectional, OverscanMm = OverscanMm },
+        Plan = PlanOptions(),
         Passes = Passes,
-        Process = ProcessSettings.FromProfile(_profile) with
-        {
-            LaserFrequencyHz = LaserFrequencyHz,
-            BurnSpeedMmPerS = BurnSpeedMmPerS,
-            TravelSpeedMmPerS = TravelSpeedMmPerS,
-            AccelerationMmPerS2 = AccelerationMmPerS2,
-            Mode = Mode,
-            PulsesPerDot = Mode == PlanMode.Dots ? PulsesPerDot : 1,
-            DotPitchMicrosteps = Mode == PlanMode.Dots ? DotPitchMicrosteps : 0,
-            DotSettleMs = Mode == PlanMode.Dots ? DotSettleMs : 0,
-        },
+        Process = Process(),
         Profile = _profile,
     };
+
+    /// <summary>The process values as the fields say them (a sweep's base process).</summary>
+    public ProcessSettings Process() => ProcessSettings.FromProfile(_profile) with
+    {
+        LaserFrequencyHz = LaserFrequencyHz,
+        BurnSpeedMmPerS = BurnSpeedMmPerS,
+        TravelSpeedMmPerS = TravelSpeedMmPerS,
+        AccelerationMmPerS2 = AccelerationMmPerS2,
+        Mode = Mode,
+        PulsesPerDot = Mode == PlanMode.Dots ? PulsesPerDot : 1,
+        DotPitchMicrosteps = Mode == PlanMode.Dots ? DotPitchMicrosteps : 0,
+        DotSettleMs = Mode == PlanMode.Dots ? DotSettleMs : 0,
+    };
+
+    /// <summary>The plan options as the fields say them.</summary>
+    public PlanOptions PlanOptions() => new() { Strategy = Strategy, Bidirectional = Bidirectional, OverscanMm = OverscanMm };
 
     private string SizeField() => SizeMode switch
     {

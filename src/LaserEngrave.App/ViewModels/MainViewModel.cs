@@ -42,6 +42,7 @@ public sealed partial class MainViewModel : ObservableObject
         TestMoves = new TestMovesViewModel(Machine, Job);
         Log = new LogViewModel(logs, files, Job);
         Run = new RunViewModel(runs, Job, Machine, Log, time);
+        Sweep = new SweepViewModel(Job, Machine, logs, time);
         Machine.PropertyChanged += OnMachineChanged;
         Job.PropertyChanged += OnJobChanged;
     }
@@ -59,6 +60,9 @@ public sealed partial class MainViewModel : ObservableObject
     public TestMovesViewModel TestMoves { get; }
 
     public RunViewModel Run { get; }
+
+    /// <summary>The parameter sweep (a test grid in one run).</summary>
+    public SweepViewModel Sweep { get; }
 
     public LogViewModel Log { get; }
 

@@ -179,3 +179,22 @@ public sealed class ProcessPanelTests : ComponentTest
         Assert.Contains("pulses 2 µm apart · overlap 90 %", cut.Find("#pulses").TextContent, StringComparison.Ordinal);
     }
 }
+
+public sealed class SweepPanelTests : ComponentTest
+{
+    [Fact]
+    public void Rows_Typed_SummaryOrTheRefusalBesideIt()
+    {
+        var cut = Render<SweepPanel>(p => p.Add(c => c.Sweep, Main.Sweep));
+
+        cut.Find("#sweepRows").Change("pitch=25,50,100");
+
+        Assert.Contains("3 × 3 cells", cut.Find("#sweep-summary").TextContent, StringComparison.Ordinal);
+
+        cut.Find("#sweepColumns").Change("pitch=10");
+
+        Assert.Contains("both vary pitch", cut.Find("[data-error=sweep]").TextContent, StringComparison.Ordinal);
+        Assert.True(cut.Find("#sweepRun").HasAttribute("disabled"));
+    }
+}
+

@@ -1,0 +1,190 @@
+using System.Globalization;
+using CommunityToolkit.Mvvm.ComponentModel;
+using CommunityToolkit.Mvvm.Input;
+using LaserEngrave.App.Services;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Logging;
+using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Sweeps;
+using LaserEngrave.Devices.Execution;
+
+namespace LaserEngrave.App.ViewModels;
+
+/// <summary>
+/// The Sweep view: a test grid with one or two process values varied over its rows and columns, planned live from the
+/// job's process and origin, run on the connected machine as the command line's <c>sweep</c> runs it (<see cref="SweepSession"/>).
+/// </summary>
+public sealed partial class SweepViewModel : ObservableObject
+{
+    private readonly JobViewModel _job;
+    private readonly MachineViewModel _machine;
+    private readonly IRunLogStore _logs;
+    private readonly TimeProvider _time;
+    private SweepSession? _session;
+
+    public SweepViewModel(JobViewModel job, MachineViewModel machine, IRunLogStore logs, TimeProvider time)
+    {
+        ArgumentNullException.ThrowIfNull(job);
+        ArgumentNullException.ThrowIfNull(machine);
+        ArgumentNullException.ThrowIfNull(logs);
+        ArgumentNullException.ThrowIfNull(time);
+        _job = job;
+        _machine = machine;
+        _logs = logs;
+        _time = time;
+        _job.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName is nameof(JobViewModel.PlanVersion) or nameof(JobViewModel.Errors))
+            {
+                Replan();
+            }
+        };
+        _machine.PropertyChanged += (_, _) => RunSweepCommand.NotifyCanExecuteChanged();
+        _machine.Activity.PropertyChanged += (_, _) => RunSweepCommand.NotifyCanExecuteChanged();
+        Replan();
+    }
+
+    [ObservableProperty]
+    public partial SweepPattern Pattern { get; set; } = SweepPattern.Square;
+
+    [ObservableProperty]
+    public partial double CellMm { get; set; } = 1;
+
+    [ObservableProperty]
+    public partial double SpacingMm { get; set; } = 0.5;
+
+    [ObservableProperty]
+    public partial double PitchUm { get; set; } = 50;
+
+    /// <summary>What the rows vary, as the command line says it: <c>speed=0.5,1,2</c>.</summary>
+    [ObservableProperty]
+    public partial string Rows { get; set; } = "speed=0.5,1,2";
+
+    /// <summary>What the columns vary; empty: one column.</summary>
+    [ObservableProperty]
+    public partial string Columns { get; set; } = "frequency=500,1000,2000";
+
+    [ObservableProperty]
+    public partial bool Labels { get; set; } = true;
+
+    /// <summary>The sweep as planned from these values and the job's process and origin; null when a value is refused.</summary>
+    [ObservableProperty]
+    [NotifyCanExecuteChangedFor(nameof(RunSweepCommand))]
+    public partial SweepPlan? Plan { get; private set; }
+
+    /// <summary>Why the sweep cannot be planned, one line.</summary>
+    [ObservableProperty]
+    public partial string? Error { get; private set; }
+
+    /// <summary>What the sweep under way is doing, or how the last one ended.</summary>
+    [ObservableProperty]
+    public partial string? Status { get; private set; }
+
+    [ObservableProperty]
+    [NotifyCanExecuteChangedFor(nameof(RunSweepCommand), nameof(AbortSweepCommand))]
+    public partial bool IsRunning { get; private set; }
+
+    /// <summary>The last sweep's log (its cells with their values, places and runs).</summary>
+    [ObservableProperty]
+    public partial SweepRecord? LastSweep { get; private set; }
+
+    public bool CanRun => Plan is not null && !IsRunning && _machine.CanUseMachine;
+
+    /// <summary>Lays the sweep out again from the fields and the job's process and origin.</summary>
+    public void Replan()
+    {
+        try
+        {
+            Plan = SweepPlan.Build(new SweepSpec
+            {
+                Pattern = Pattern,
+                CellMm = CellMm,
+                SpacingMm = SpacingMm,
+                PitchUm = PitchUm,
+                Origin = new OriginMm(_job.OriginXMm, _job.OriginYMm),
+                Rows = SweepAxis.Parse(Rows ?? string.Empty, "rows"),
+                Columns = string.IsNullOrWhiteSpace(Columns) ? null : SweepAxis.Parse(Columns, "columns"),
+                Labels = Labels,
+                Process = _job.Process(),
+                Plan = _job.PlanOptions(),
+                Profile = _job.Profile,
+            });
+            Error = null;
+        }
+        catch (Exception ex) when (ex is SweepException or PlanException or GeometryException)
+        {
+            Plan = null;
+            Error = ex.Message;
+        }
+    }
+
+    /// <summary>The plan in one line: cells, place and estimate.</summary>
+    public string? Summary => Plan is { } plan
+        ? string.Create(CultureInfo.InvariantCulture, $"{plan.RowCount} × {plan.ColumnCount} cells from {plan.Spec.Origin.X:0.##}, {plan.Spec.Origin.Y:0.##} mm · est. {plan.EstimatedSeconds:0} s")
+        : null;
+
+    partial void OnPlanChanged(SweepPlan? value) => OnPropertyChanged(nameof(Summary));
+
+    partial void OnPatternChanged(SweepPattern value) => Replan();
+
+    partial void OnCellMmChanged(double value) => Replan();
+
+    partial void OnSpacingMmChanged(double value) => Replan();
+
+    partial void OnPitchUmChanged(double value) => Replan();
+
+    partial void OnRowsChanged(string value) => Replan();
+
+    partial void OnColumnsChanged(string value) => Replan();
+
+    partial void OnLabelsChanged(bool value) => Replan();
+
+    /// <summary>Runs the sweep on the connected machine (the simulator's burn check per cell), then writes its log.</summary>
+    [RelayCommand(CanExecute = nameof(CanRun))]
+    private async Task RunSweep()
+    {
+        if (Plan is not { } plan || !_machine.IsConnected)
+        {
+            return;
+        }
+
+        if (!_machine.Activity.TryBegin(MachineOperation.Sweep, out var lease, out var refusal))
+        {
+            Status = refusal;
+            return;
+        }
+
+        using var held = lease;
+        var connection = _machine.RequireConnection();
+        var machine = new EngraveMachine(connection.Stage, connection.Gate, connection.TimeProvider, connection.Description, connection.Description)
+        {
+            Simulated = connection.IsSimulated,
+            Inspector = connection.IsSimulated ? connection.Inspector : null,
+        };
+        var session = new SweepSession(machine, plan, new SweepSessionOptions { Log = new RunLogStore(_logs.Folder), WallClock = _time });
+        var jobs = plan.Cells.Count + (plan.Labels is null ? 0 : 1);
+        var done = 0;
+        session.JobEnded += (_, e) => Status = string.Create(CultureInfo.InvariantCulture, $"{++done} of {jobs} done: {e.Cell?.Describe() ?? "the labels"}: {e.Result.Record.Outcome.ToString().ToLowerInvariant()}");
+        _session = session;
+        IsRunning = true;
+        Status = $"0 of {jobs} done";
+        try
+        {
+            var result = await session.RunAsync(null, lease.CancellationToken);
+            LastSweep = result.Record;
+            Status = result.Record.Outcome == RunOutcome.Completed
+                ? $"completed: {jobs} of {jobs}; log {result.Files?.JsonPath ?? result.LogError?.Message}"
+                : $"{result.Record.Outcome.ToString().ToLowerInvariant()}: {result.Record.Fault}";
+        }
+        finally
+        {
+            _session = null;
+            IsRunning = false;
+        }
+    }
+
+    /// <summary>Laser off, stage stopped, no further cell.</summary>
+    [RelayCommand(CanExecute = nameof(IsRunning))]
+    private void AbortSweep() => _session?.Abort();
+}

@@ -1,0 +1,84 @@
+using LaserEngrave.App.Services;
+using LaserEngrave.App.ViewModels;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Sweeps;
+using LaserEngrave.Simulator;
+using NSubstitute;
+
+namespace LaserEngrave.App.Tests.ViewModels;
+
+/// <summary>The app's sweep: planned live from the job's process and origin, run on the in-process simulator in virtual time, logged.</summary>
+public sealed class SweepViewModelTests : IDisposable
+{
+    private readonly TestFiles.TempFolder _folder = TestFiles.NewFolder();
+    private readonly MachineViewModel _machine;
+    private readonly JobViewModel _job;
+    private readonly SweepViewModel _sweep;
+
+    public SweepViewModelTests()
+    {
+        var activity = new MachineActivity();
+        _machine = new MachineViewModel(new MachineConnectionFactory(new SimulatorOptions()), MachineProfile.Default, activity);
+        _job = new JobViewModel(new ImageService(), MachineProfile.Default, activity);
+        var store = Substitute.For<IRunLogStore>();
+        store.Folder.Returns(_folder.Path);
+        _sweep = new SweepViewModel(_job, _machine, store, TimeProvider.System);
+    }
+
+    [Fact]
+    public void Plan_JobProcessAndOrigin_CellsTakeThemAndVaryTheRest()
+    {
+        _job.OriginXMm = 7;
+        _job.OriginYMm = 8;
+        _job.LaserFrequencyHz = 2000;
+
+        _sweep.Labels = false;
+        _sweep.Columns = string.Empty;
+        _sweep.Rows = "speed=0.5,1";
+
+        var plan = Assert.IsType<SweepPlan>(_sweep.Plan);
+        Assert.Equal(2, plan.Cells.Count);
+        Assert.Equal((7.0, 8.0), (plan.Cells[0].OriginXMm, plan.Cells[0].OriginYMm));
+        Assert.Equal((1.0, 2000.0), (plan.Cells[1].Job.Spec.Process.BurnSpeedMmPerS, plan.Cells[1].Job.Spec.Process.LaserFrequencyHz));
+        Assert.Contains("2 × 1 cells", _sweep.Summary, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void Plan_BadRows_ErrorAndNoRun()
+    {
+        _sweep.Rows = "speed=1,99";
+
+        Assert.Null(_sweep.Plan);
+        Assert.Contains("speed 99 mm/s: outside what the stage takes", _sweep.Error, StringComparison.Ordinal);
+        Assert.False(_sweep.RunSweepCommand.CanExecute(null));
+    }
+
+    [Fact(Timeout = 120_000)]
+    public async Task RunSweep_OnTheSimulator_EveryCellCompletedAndTheLogWritten()
+    {
+        _job.OriginXMm = 5;
+        _job.OriginYMm = 5;
+        _sweep.CellMm = 0.3;
+        _sweep.SpacingMm = 0.2;
+        _sweep.Rows = "speed=1,2";
+        _sweep.Columns = "frequency=500,1000";
+        await _machine.ConnectCommand.ExecuteAsync(null);
+        Assert.True(_sweep.RunSweepCommand.CanExecute(null), _sweep.Error ?? _machine.Error);
+
+        await _sweep.RunSweepCommand.ExecuteAsync(null);
+
+        var record = Assert.IsType<Core.Logging.SweepRecord>(_sweep.LastSweep);
+        Assert.Equal(RunOutcome.Completed, record.Outcome);
+        Assert.All(record.Cells, c => Assert.Equal(RunOutcome.Completed, c.Run!.Outcome));
+
+        // 50 µm pixels at 2 mm/s and 500 Hz: 12.5 pulses each.
+        var cell = record.Cells.Single(c => c.Parameters["speedMmPerS"] == 2 && c.Parameters["frequencyHz"] == 500);
+        Assert.InRange(cell.Run!.Simulation!.PulsesPerPixel.Mean, 11.5, 13.5);
+        Assert.Single(Directory.GetFiles(_folder.Path, "*.sweep.json"));
+        Assert.StartsWith("completed", _sweep.Status, StringComparison.Ordinal);
+        Assert.False(_sweep.IsRunning);
+    }
+
+    public void Dispose() => _folder.Dispose();
+}
