@@ -297,6 +297,29 @@ public sealed class BrowserTests : IAsyncLifetime
     }
 
     [Fact]
+    public void DotModeAndSweep_SetInThePanels_PlannedAndShown()
+    {
+        Resize(1440, 1000);
+        OpenSample("qr-code.bmp");
+        SetField("widthMm", "5");
+        Driver.FindElement(By.CssSelector("#mode option[value='Dots']")).Click();
+        WaitFor(d => d.FindElements(By.Id("pulsesPerDot")).Count == 1, "the dot fields shown");
+        SetField("pulsesPerDot", "10");
+        WaitFor(d => d.FindElement(By.Id("pulses")).Text.Contains("10 pulses per pixel", StringComparison.Ordinal), "10 pulses a pixel");
+        Assert.Contains("563 dots", Text("estimate"), StringComparison.Ordinal);
+
+        Driver.FindElement(By.CssSelector("#panel-sweep summary")).Click();
+        SetField("sweepRows", "pulses-per-dot=1,5,20");
+        SetField("sweepColumns", "pitch=25,50");
+        WaitFor(d => d.FindElement(By.Id("sweep-summary")).Text.StartsWith("3 × 2 cells", StringComparison.Ordinal), "the sweep planned");
+        Driver.ExecuteScript("document.getElementById('panel-process').scrollIntoView();");
+        Assert.True(new FileInfo(Screenshot("workspace-dots")).Length > 20_000);
+        Driver.ExecuteScript("document.getElementById('panel-sweep').scrollIntoView();");
+        Assert.True(new FileInfo(Screenshot("workspace-sweep")).Length > 20_000);
+        Assert.DoesNotContain(Driver.Manage().Logs.GetLog(LogType.Browser), e => e.Level == LogLevel.Severe);
+    }
+
+    [Fact]
     public void Page_Loaded_WeighsLessThan2MB()
     {
         // The first load of a fresh profile: the page and everything it loaded, as the browser decoded it.
