@@ -282,7 +282,23 @@ internal static class ApiEndpoints
         var profile = main.Job.Profile;
         var moves = new List<long>();
         var truncated = false;
-        if (job is not null)
+        if (job?.Dots is { } dots)
+        {
+            // Dot mode: each dot as a short burn stroke a quarter of the dot spacing either side, one a dot, so the
+            // run's progress (dots done) marks as many of them burned.
+            var half = Math.Max(1, (long)Math.Round(dots.DotSpacingUm / dots.Geometry.MicrostepUm / 4));
+            foreach (var dot in dots.Dots())
+            {
+                if (moves.Count >= MaxPlanMoves * 5)
+                {
+                    truncated = true;
+                    break;
+                }
+
+                moves.AddRange([(long)Core.Planning.MoveKind.Burn, dot.X - half, dot.Y, dot.X + half, dot.Y]);
+            }
+        }
+        else if (job is not null)
         {
             foreach (var move in job.Plan.Moves())
             {

@@ -136,6 +136,21 @@ public sealed class ApiEndpointsTests : IDisposable
     }
 
     [Fact]
+    public async Task Plan_DotMode_OneStrokeADotAsManyAsTheRunCounts()
+    {
+        await UploadAsync(TestFiles.Asset("qr-code.bmp"));
+
+        var state = await PostAsync("/api/job", new { mode = "dots", pulsesPerDot = 10 }, HttpStatusCode.OK);
+        var plan = await _client.GetFromJsonAsync<JsonElement>("/api/plan", Token);
+
+        // The QR code's 563 black pixels: 563 dots, each a burn stroke (kind 1) centred on its pixel.
+        Assert.Equal("Dots", state.GetProperty("job").GetProperty("mode").GetString());
+        Assert.Equal(563, state.GetProperty("estimate").GetProperty("moves").GetInt64());
+        Assert.Equal(563 * 5, plan.GetProperty("moves").GetArrayLength());
+        Assert.Equal(1, plan.GetProperty("moves")[0].GetInt64());
+    }
+
+    [Fact]
     public async Task Connect_PortsWithoutNames_ErrorShown()
     {
         await PostAsync("/api/machine/connect", new { useSimulator = false }, HttpStatusCode.Accepted);
