@@ -45,6 +45,9 @@ public sealed record JobSettings
 
     public int Passes { get; init; } = 1;
 
+    /// <summary>Energy of one pulse, µJ, when known (for the energy per pixel); null: not given.</summary>
+    public double? PulseEnergyUj { get; init; }
+
     /// <summary>Raster (burn while moving) or dots (stop and fire a counted burst at each dot).</summary>
     public PlanMode Mode { get; init; } = PlanMode.Raster;
 
@@ -76,6 +79,7 @@ public sealed record JobSettings
             Strategy = spec.Plan.Strategy,
             Bidirectional = spec.Plan.Bidirectional,
             OverscanMm = spec.Plan.OverscanMm,
+            PulseEnergyUj = spec.Process.PulseEnergyUj,
             Mode = spec.Process.Mode,
             PulsesPerDot = spec.Process.PulsesPerDot,
             DotPitchMicrosteps = spec.Process.DotPitchMicrosteps,

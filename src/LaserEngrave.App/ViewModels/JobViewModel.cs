@@ -33,6 +33,7 @@ public sealed partial class JobViewModel : ObservableObject
     public const string DotPitchField = "dotPitchMicrosteps";
     public const string DotSettleField = "dotSettleMs";
     public const string PulsesField = "pulses";
+    public const string PulseEnergyField = "pulseEnergyUj";
 
     /// <summary>The most pulses a dot may get: the gate's burst range.</summary>
     public const int MaxPulsesPerDot = 1_000_000;
@@ -50,7 +51,7 @@ public sealed partial class JobViewModel : ObservableObject
         nameof(SizeMode), nameof(WidthMm), nameof(HeightMm), nameof(PitchUm), nameof(OriginXMm), nameof(OriginYMm),
         nameof(LaserFrequencyHz), nameof(BurnSpeedMmPerS), nameof(TravelSpeedMmPerS), nameof(AccelerationMmPerS2),
         nameof(Strategy), nameof(Bidirectional), nameof(OverscanMm), nameof(Passes),
-        nameof(Mode), nameof(PulsesPerDot), nameof(DotPitchMicrosteps), nameof(DotSettleMs),
+        nameof(Mode), nameof(PulsesPerDot), nameof(DotPitchMicrosteps), nameof(DotSettleMs), nameof(PulseEnergyUj),
     ];
 
     private readonly IImageService _images;
@@ -166,9 +167,13 @@ public sealed partial class JobViewModel : ObservableObject
     [ObservableProperty]
     public partial double DotSettleMs { get; set; }
 
+    /// <summary>Energy of one pulse, µJ; 0: not known (no energy per pixel is shown).</summary>
+    [ObservableProperty]
+    public partial double PulseEnergyUj { get; set; }
+
     /// <summary>What the process does per pulse and per pixel (seed 004), in one line; null without a plan.</summary>
     public string? PulsesSummary => Job?.Pulses is { } p
-        ? string.Create(CultureInfo.InvariantCulture, $"{(Mode == PlanMode.Dots ? "dots" : "pulses")} {p.PulseSpacingUm:0.###} µm apart · overlap {p.OverlapPercent:0.#} % · {p.PulsesPerPixel ?? 0:0.##} pulses per pixel")
+        ? string.Create(CultureInfo.InvariantCulture, $"{(Mode == PlanMode.Dots ? "dots" : "pulses")} {p.PulseSpacingUm:0.###} µm apart · overlap {p.OverlapPercent:0.#} % · {p.PulsesPerPixel ?? 0:0.##} pulses per pixel{(p.EnergyPerPixelUj is { } e ? $" · {e:0.##} µJ per pixel" : string.Empty)}")
         : null;
 
     /// <summary>The planned job, or null without an image or with an unusable value.</summary>
@@ -334,6 +339,7 @@ public sealed partial class JobViewModel : ObservableObject
             PulsesPerDot = settings.PulsesPerDot;
             DotPitchMicrosteps = settings.DotPitchMicrosteps;
             DotSettleMs = settings.DotSettleMs;
+            PulseEnergyUj = settings.PulseEnergyUj ?? 0;
         });
         if (settings.ImagePath is { } path && path != ImagePath)
         {
@@ -365,6 +371,7 @@ public sealed partial class JobViewModel : ObservableObject
         PulsesPerDot = PulsesPerDot,
         DotPitchMicrosteps = DotPitchMicrosteps,
         DotSettleMs = DotSettleMs,
+        PulseEnergyUj = PulseEnergyUj > 0 ? PulseEnergyUj : null,
     };
 
     /// <summary>Runs several changes and plans once at the end.</summary>
@@ -603,6 +610,7 @@ public sealed partial class JobViewModel : ObservableObject
         BurnSpeedMmPerS = BurnSpeedMmPerS,
         TravelSpeedMmPerS = TravelSpeedMmPerS,
         AccelerationMmPerS2 = AccelerationMmPerS2,
+        PulseEnergyUj = PulseEnergyUj > 0 ? PulseEnergyUj : null,
         Mode = Mode,
         PulsesPerDot = Mode == PlanMode.Dots ? PulsesPerDot : 1,
         DotPitchMicrosteps = Mode == PlanMode.Dots ? DotPitchMicrosteps : 0,
@@ -678,6 +686,11 @@ public sealed partial class JobViewModel : ObservableObject
         if (Passes is < 1 or > 100)
         {
             errors[PassesField] = $"passes {Passes} must be 1 to 100";
+        }
+
+        if (!(PulseEnergyUj >= 0) || double.IsInfinity(PulseEnergyUj))
+        {
+            errors[PulseEnergyField] = $"pulse energy {N(PulseEnergyUj)} µJ must be 0 (not known) or more";
         }
 
         if (Mode == PlanMode.Dots)

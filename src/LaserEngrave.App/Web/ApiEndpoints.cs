@@ -271,6 +271,7 @@ internal static class ApiEndpoints
             case "pulsesPerDot": job.PulsesPerDot = value.GetInt32(); break;
             case "dotPitchMicrosteps": job.DotPitchMicrosteps = value.GetInt64(); break;
             case "dotSettleMs": job.DotSettleMs = value.GetDouble(); break;
+            case "pulseEnergyUj": job.PulseEnergyUj = value.GetDouble(); break;
             default: throw new ArgumentException($"unknown field {field}");
         }
     }

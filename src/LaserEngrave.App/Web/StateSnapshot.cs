@@ -74,6 +74,7 @@ internal static class StateSnapshot
                 job.PulsesPerDot,
                 job.DotPitchMicrosteps,
                 job.DotSettleMs,
+                job.PulseEnergyUj,
                 pulses = job.PulsesSummary,
                 errors = job.Errors,
                 warnings = job.Warnings,

@@ -177,6 +177,13 @@ public sealed class ProcessPanelTests : ComponentTest
 
         // 2 mm/s at 1 kHz: pulses 2 µm apart, 90 % of a 20 µm spot overlapped.
         Assert.Contains("pulses 2 µm apart · overlap 90 %", cut.Find("#pulses").TextContent, StringComparison.Ordinal);
+        Assert.DoesNotContain("µJ", cut.Find("#pulses").TextContent, StringComparison.Ordinal);
+
+        cut.Find("#pulseEnergyUj").Change("5");
+
+        // 5 mm over 41 px: 121.95 µm pixels, 60.98 pulses of 5 µJ each.
+        Assert.Contains("60.98 pulses per pixel · 304.88 µJ per pixel", cut.Find("#pulses").TextContent, StringComparison.Ordinal);
+        Assert.Equal(5, Main.Job.ToSettings().PulseEnergyUj);
     }
 }
 
