@@ -117,6 +117,42 @@ public class DotModeRunTests
         Assert.Equal(10, Assert.IsType<RunStopPoint>(result.StopPoint).MoveIndex);
     }
 
+    [Fact(Timeout = 120_000)]
+    public async Task Pause_MidDots_StandsWithTheLaserOffAndResumeFiresEveryDotOnce()
+    {
+        await using var run = SimulatedRun.Create();
+        var job = TestJobs.FromMask(TestJobs.RandomMask(seed: 9, 12, 6), 1, new PlanOptions(), process: Dots(6));
+        var executor = run.Executor(job);
+        var states = new List<RunState>();
+        bool? firingWhilePaused = null;
+        executor.MoveCompleted += (_, e) =>
+        {
+            if (e.MoveIndex == 7)
+            {
+                executor.Pause();
+            }
+        };
+        executor.StateChanged += (_, e) =>
+        {
+            states.Add(e.State);
+            if (e.State == RunState.Paused)
+            {
+                firingWhilePaused = run.Machine.Gate.IsFiring;
+                _ = Task.Delay(TimeSpan.FromSeconds(2), run.Time).ContinueWith(_ => executor.Resume(), run.Loop);
+            }
+        };
+
+        var result = await run.Do(() => executor.RunAsync(TestContext.Current.CancellationToken));
+        var report = run.Analyze(job);
+
+        Assert.True(result.Outcome == RunOutcome.Completed, $"{result.Outcome}: {result.FaultMessage}");
+        Assert.Equal([RunState.Preflight, RunState.Running, RunState.Pausing, RunState.Paused, RunState.Running, RunState.Completed], states);
+        Assert.False(firingWhilePaused);
+        Assert.Equal((6, 6), (report.PulsesPerPixel.Min, report.PulsesPerPixel.Max));
+        Assert.Equal(0, report.PulsesWhileMoving);
+        Assert.True(result.Duration - result.EngravingDuration >= TimeSpan.FromSeconds(2), "the pause is counted as engraving time");
+    }
+
     [Theory(Timeout = 120_000)]
     [InlineData("no-ack:gate:after=20")]
     [InlineData("silent:stage:after=60")]
