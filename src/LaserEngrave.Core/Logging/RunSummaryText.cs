@@ -33,7 +33,7 @@ public static class RunSummaryText
         Line("Started", record.StartedAt.ToString("yyyy-MM-dd HH:mm:ss zzz", c));
         Line("Ended", record.EndedAt.ToString("yyyy-MM-dd HH:mm:ss zzz", c));
         var clock = record.Simulated ? " (simulated time)" : string.Empty;
-        Line("Duration", string.Create(c, $"{Duration(record.ActualSeconds)}{clock}; engraving {Duration(record.EngravingSeconds)}, estimated {Duration(record.EstimatedSeconds)}"));
+        Line("Duration", string.Create(c, $"{Duration(record.ActualSeconds)}, estimated {Duration(record.EstimatedSeconds)}{clock}; engraving {Duration(record.EngravingSeconds)}, estimated {Duration(record.EstimatedEngravingSeconds)}"));
         Line("Laser on", Duration(record.LaserOnSeconds));
         Line("Done", string.Create(c, $"{record.RowsDone} of {record.RowsTotal} rows, {record.RunsDone} of {record.RunsTotal} burn runs"));
         if (record.Passes > 1)

@@ -137,12 +137,16 @@ public sealed class RasterPlan
         }
 
         var statistics = visitor.Finish(planner.VisitedRows, Geometry.MicrostepUm);
-        if (Timing is null || Moves().Take(1).ToList() is not [var first])
+        if (Timing is null || visitor.Start is not { } start)
         {
             return statistics;
         }
 
-        return statistics with { WholeRunSeconds = statistics.EstimatedSeconds + Timing.PreparationSeconds(first.X0, first.Y0) };
+        return statistics with
+        {
+            PreparationSeconds = Timing.PreparationSeconds(start.X, start.Y, home: true, from: (0, 0)),
+            PassSetupSeconds = Timing.PreparationSeconds(start.X, start.Y, home: false, from: visitor.End),
+        };
     }
 
     private IEnumerable<Move> Enumerate(int fromRow)

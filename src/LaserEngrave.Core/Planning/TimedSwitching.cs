@@ -285,7 +285,9 @@ public sealed class TimedSwitching
     /// </summary>
     /// <param name="firstX">The plan's first position, X microsteps.</param>
     /// <param name="firstY">The plan's first position, Y microsteps.</param>
-    public double PreparationSeconds(long firstX, long firstY)
+    /// <param name="home">Whether the run homes (the first pass) or starts where the stage stands (a later pass).</param>
+    /// <param name="from">Where the stage stands when the run does not home, microsteps.</param>
+    public double PreparationSeconds(long firstX, long firstY, bool home = true, (long X, long Y) from = default)
     {
         var gate = _profile.Gate;
         double GateExchange(int commandBytes, int replyBytes) =>
@@ -298,6 +300,15 @@ public sealed class TimedSwitching
         // Per axis: device ID, firmware, Device Mode, target speed, acceleration, Maximum Position, home speed, position;
         // then acceleration and home speed set; after homing the position again.
         var roundTrip = StageCommandSeconds + StageReplySeconds;
+        if (!home)
+        {
+            // No acceleration and home speed set, no homing: the travel from where the stage stands.
+            var dx = Math.Abs(firstX - from.X);
+            var dy = Math.Abs(firstY - from.Y);
+            var back = Math.Max(dx == 0 ? 0 : Travel(dx).Duration, dy == 0 ? 0 : Travel(dy).Duration) + roundTrip;
+            return gateSeconds + (2 * 9 * roundTrip) + back;
+        }
+
         var stageSeconds = 2 * 11 * roundTrip;
         var homing = Math.Max(Travel(_profile.X.TravelMicrosteps).Duration, Travel(_profile.Y.TravelMicrosteps).Duration) + roundTrip;
         var first = Math.Max(firstX == 0 ? 0 : Travel(firstX).Duration, firstY == 0 ? 0 : Travel(firstY).Duration) + roundTrip;

@@ -69,6 +69,8 @@ public sealed partial class RunExecutor
     private long _runsDone;
     private double _estimateBefore;
     private double _estimateTotal;
+    private double _estimatePreparation;
+    private bool _homed;
     private PlanEstimator? _estimator;
 
     public RunExecutor(IStage stage, ILaserGate gate, PreparedJob job, TimeProvider? timeProvider = null, RunOptions? options = null)
@@ -88,7 +90,7 @@ public sealed partial class RunExecutor
         _burnSpeedData = StageUnits.SpeedData(_process.SpeedMmPerS(MoveKind.Burn, strategy), microstepUm);
         _travelSpeedData = StageUnits.SpeedData(_process.SpeedMmPerS(MoveKind.Travel, strategy), microstepUm);
         _accelerationData = StageUnits.AccelerationData(_process.AccelerationMmPerS2, microstepUm);
-        _progress = new RunProgress(RunState.Idle, 0, job.Statistics.Rows, 0, job.Statistics.BurnRuns, 0, TimeSpan.Zero, TimeSpan.FromSeconds(job.Statistics.EstimatedSeconds), 0, 0, false);
+        _progress = new RunProgress(RunState.Idle, 0, job.Statistics.Rows, 0, job.Statistics.BurnRuns, 0, TimeSpan.Zero, TimeSpan.FromSeconds(job.Statistics.EngravingSeconds), 0, 0, false);
     }
 
     /// <summary>Raised on every state change.</summary>
@@ -153,6 +155,7 @@ public sealed partial class RunExecutor
             SetState(RunState.Preflight);
             identity = await PreflightAsync(token);
             var (moves, firstIndex) = Prepare();
+            _estimatePreparation = EstimatePreparation(moves);
             SetState(RunState.Running);
             _keepAlive = new GateKeepAlive(Gate, GateKeepAlive.PeriodFor(_profile.Gate.WatchdogMs, Options.KeepAliveFraction), TimeProvider, OnKeepAliveFailed);
             using var linked = CancellationTokenSource.CreateLinkedTokenSource(token, _fault.Token);
@@ -334,6 +337,7 @@ public sealed partial class RunExecutor
             }
 
             await Task.WhenAll(homing);
+            _homed = homing.Count > 0;
             _x = await Stage.X.GetPositionAsync(token);
             _y = await Stage.Y.GetPositionAsync(token);
         }
@@ -512,7 +516,7 @@ public sealed partial class RunExecutor
         _estimator = new PlanEstimator(_process, strategy, microstepUm, _profile.Gate, plan.Timing);
         if (Options.ResumeFrom is not { } resume)
         {
-            _estimateTotal = Job.Statistics.EstimatedSeconds;
+            _estimateTotal = Job.Statistics.EngravingSeconds;
             return (plan.Moves(), 0);
         }
 
@@ -576,6 +580,12 @@ public sealed partial class RunExecutor
         _estimateTotal = _estimateBefore + remaining.ElapsedSeconds;
         return start == index ? ([], index) : (plan.Moves(resume.Row).Skip(checked((int)(start - rowStart))), start);
     }
+
+    /// <summary>The estimate of what preflight did and the travel to the first move will take, as the plan's figure is made.</summary>
+    private double EstimatePreparation(IEnumerable<Move> moves) =>
+        Job.Plan.Timing is { } timing && moves.Take(1).ToList() is [var first]
+            ? timing.PreparationSeconds(first.X0, first.Y0, _homed, from: (_x, _y))
+            : 0;
 
     private async Task ExecuteMoveAsync(Move move, CancellationToken token)
     {
@@ -905,7 +915,8 @@ public sealed partial class RunExecutor
                 StartedAt = startedAt,
                 EndedAt = TimeProvider.GetUtcNow(),
                 EngravingDuration = engraving < TimeSpan.Zero ? TimeSpan.Zero : engraving,
-                EstimatedSeconds = _estimateTotal - _estimateBefore,
+                EstimatedSeconds = _estimatePreparation + _estimateTotal - _estimateBefore,
+                EstimatedEngravingSeconds = _estimateTotal - _estimateBefore,
                 LaserOnSeconds = _laserOnSeconds,
                 RowsDone = _rowsDone,
                 RowsTotal = Job.Statistics.Rows,

@@ -131,7 +131,8 @@ public sealed class ProcessPanelTests : ComponentTest
 
         cut.Find("#passes").Change("3");
 
-        Assert.Equal(one * 3, Main.Job.EstimatedSeconds!.Value, 6);
+        var statistics = Main.Job.Job!.Statistics;
+        Assert.Equal(one + (2 * (statistics.EngravingSeconds + statistics.PassSetupSeconds)), Main.Job.EstimatedSeconds!.Value, 6);
         Assert.Contains("est.", cut.Find("#estimate").TextContent, StringComparison.Ordinal);
     }
 }

@@ -132,7 +132,9 @@ public sealed class RunRecordJsonTests : IDisposable
         Assert.Equal(job.Geometry.AchievedWidthMm, record.Geometry.WidthMm);
         Assert.Equal(job.Statistics.Rows, record.RowsTotal);
         Assert.Equal(job.Statistics.BurnRuns, record.RunsTotal);
-        Assert.Equal(job.Statistics.EstimatedSeconds, record.EstimatedSeconds);
+        Assert.Equal(job.Statistics.WholeRunSeconds(), record.EstimatedSeconds);
+        Assert.Equal(job.Statistics.EngravingSeconds, record.EstimatedEngravingSeconds);
+        Assert.True(record.EstimatedSeconds > record.EstimatedEngravingSeconds, "the whole run includes preflight and homing");
         Assert.Same(job.Spec.Process, record.Process);
     }
 

@@ -58,7 +58,7 @@ public class LowerBoundTests
         var overscan = new RasterPlan(mask, geometry, new PlanOptions { OverscanMm = 0.1 }).ComputeStatistics(ProcessSettings.Default);
 
         Assert.Equal(plain.LowerBoundSeconds, overscan.LowerBoundSeconds, 12);
-        Assert.True(plain.LowerBoundSeconds < plain.EstimatedSeconds);
+        Assert.True(plain.LowerBoundSeconds < plain.EngravingSeconds);
         Assert.Equal(plain.LowerBoundSeconds, LowerBound.Of(new RasterPlan(mask, geometry), ProcessSettings.Default), 12);
     }
 
