@@ -730,7 +730,10 @@ public sealed partial class RunExecutor
                 _lastRow = move.Row;
             }
 
+            // The stop point: the first move not done, and a row it is in or after (timed runs complete moves in order,
+            // behind the switchings, so the row of the last one done).
             _moveIndex = index + 1;
+            _moveRow = move.Row;
             _progress = Snapshot();
             progress = _progress;
         }
