@@ -28,6 +28,11 @@ public static class RunSummaryText
         {
             var position = stop.XMicrosteps is { } x && stop.YMicrosteps is { } y ? string.Create(c, $", stage at {x}, {y} microsteps") : string.Empty;
             Line("Stopped at", string.Create(c, $"row {stop.Row}, move {stop.MoveIndex}{position}"));
+            if (stop is { ResumeXMicrosteps: { } resumeX, CutPixel: { } cut })
+            {
+                var check = stop.ExpectedXMicrosteps is { } expected ? string.Create(c, $" if X is found at {expected} microsteps (else from the run's start)") : string.Empty;
+                Line("Resumes", string.Create(c, $"mid-run at X {resumeX} microsteps{check}; pixel column {cut.Column}, row {cut.Row} (the laser went off in it) burns twice"));
+            }
         }
 
         Line("Started", record.StartedAt.ToString("yyyy-MM-dd HH:mm:ss zzz", c));

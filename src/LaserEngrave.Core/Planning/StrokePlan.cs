@@ -95,6 +95,34 @@ public sealed class StrokePlan
         return _profile.TimeAt(offset) - (gained / _burnSpeed);
     }
 
+    /// <summary>
+    /// Where the stage is <paramref name="seconds"/> after the start, microsteps from the start position, for a time
+    /// outside the bumps (the inverse of <see cref="TimeAt"/>; within a bump, the burn-speed estimate before it).
+    /// </summary>
+    public double OffsetAt(double seconds)
+    {
+        if (seconds <= 0)
+        {
+            return 0;
+        }
+
+        long low = 0, high = Length;
+        if (TimeAt(high) <= seconds)
+        {
+            return Length;
+        }
+
+        while (high - low > 1)
+        {
+            var mid = low + ((high - low) / 2);
+            (low, high) = TimeAt(mid) <= seconds ? (mid, high) : (low, mid);
+        }
+
+        var t0 = TimeAt(low);
+        var t1 = TimeAt(high);
+        return t1 > t0 ? low + ((seconds - t0) / (t1 - t0)) : low;
+    }
+
     /// <summary>One flown gap: when its commands arrive at the stage and where the position query must find it.</summary>
     /// <param name="Exit">The exit edge before the gap, microsteps from the start.</param>
     /// <param name="Entry">The entry edge after the gap.</param>

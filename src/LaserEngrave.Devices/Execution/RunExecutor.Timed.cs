@@ -1,3 +1,4 @@
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Scheduling;
@@ -22,6 +23,13 @@ public sealed partial class RunExecutor
     private string? _timedFault;
     private double _lastGateWrite;
     private long _queuedUpTo = -1;
+
+    // Where the run was when a fault or an abort cut it: the stroke under way, the burn run whose switch-on was sent and
+    // whose switch-off not yet, when the fault's switch-off left, and whether the X axis stopped where its motion said.
+    private ActiveStroke? _activeStroke;
+    private (Move Move, long Index, Task Acknowledged)? _burning;
+    private double? _faultOffWrite;
+    private bool? _stopMatchesMotion;
 
     private double RunSeconds => TimeProvider.GetElapsedTime(_engravingStart).TotalSeconds;
 
@@ -192,6 +200,12 @@ public sealed partial class RunExecutor
         }
 
         var start = segment.StartX;
+        var active = new ActiveStroke(start, Math.Sign(segment.EndX - start), segment.EndX, plan) { Origin = times.Arrival };
+        lock (_lock)
+        {
+            _activeStroke = active;
+        }
+
         // Settled replies need no more looking at (their watchers report any fault): the list stays short.
         _watched.RemoveAll(w => w.Reply.IsCompletedSuccessfully || (w.Successor?.Reply.IsCompletedSuccessfully ?? false));
         var earlier = _watched.ToList();
@@ -215,6 +229,7 @@ public sealed partial class RunExecutor
             else if (flown is { } gap)
             {
                 shift += await MeasureFlownGapAsync(gap.Bump, gap.Query, start, direction, timing, onWrite, token);
+                active.Origin = times.Arrival + shift;
                 onWrite = times.Arrival + Offset(burn.X0) + shift + timing.OnDelaySeconds - timing.OnLeadSeconds;
                 flown = null;
             }
@@ -224,6 +239,11 @@ public sealed partial class RunExecutor
             CompleteUpTo(segment, burnIndex - 1, null);
             await DelayUntilAsync(onWrite, token);
             var on = await SendSwitchAsync(on: true);
+            lock (_lock)
+            {
+                _burning = (burn, burnIndex, on);
+            }
+
             _lastGateWrite = onWrite;
             WatchGate(on, onWrite + timing.OnRoundTripSeconds, "the laser gate did not acknowledge the switch-on");
             RunProgress progress;
@@ -240,6 +260,11 @@ public sealed partial class RunExecutor
             await KeepAlivesUntilAsync(offWrite, timing, token);
             await DelayUntilAsync(offWrite, token);
             var off = await SendSwitchAsync(on: false);
+            lock (_lock)
+            {
+                _burning = null;
+            }
+
             _lastGateWrite = offWrite;
             WatchGate(off, offWrite + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off");
 
@@ -662,6 +687,71 @@ public sealed partial class RunExecutor
         public Watched? Successor { get; set; }
 
         public TaskCompletionSource Done { get; } = new(TaskCreationOptions.RunContinuationsAsynchronously);
+    }
+
+    /// <summary>
+    /// The stop point of a timed run cut off in the middle of a burn run (issue: resume without double burn): the time
+    /// the fault's switch-off took effect, at the earliest, and the stroke's motion say how far the run was burned;
+    /// the run resumes at the first pixel not completely burned, so only the one the laser went off in burns twice.
+    /// The motion is trusted only if the X axis stopped where it said, or, when it could not be asked, is found at the
+    /// stroke's end on resuming (<see cref="RunStopPoint.ExpectedXMicrosteps"/>). Caller holds the lock.
+    /// </summary>
+    private RunStopPoint CutWithin(RunStopPoint stop)
+    {
+        if (Job.Plan.Timing is not { } timing || _burning is not { } burning || burning.Index != stop.MoveIndex
+            || !burning.Acknowledged.IsCompletedSuccessfully || !_laserOffConfirmed || _faultOffWrite is not { } offWrite
+            || _activeStroke is not { } stroke || _stopMatchesMotion == false)
+        {
+            return stop;
+        }
+
+        var offAt = offWrite + timing.OffLeadSeconds - timing.GateJitterSeconds;
+        var along = stroke.Plan.OffsetAt(offAt - stroke.Origin) - (timing.BurnSpeed * timing.StageJitterSeconds);
+        if (Job.Plan.ResumeWithin(burning.Move, stroke.StartX + (stroke.Direction * along)) is not { } cut)
+        {
+            return stop;
+        }
+
+        return stop with
+        {
+            ResumeXMicrosteps = cut.ResumeX,
+            CutPixel = new PixelIndex(cut.Column, burning.Move.Row),
+            ExpectedXMicrosteps = _stopMatchesMotion is null ? stroke.EndX : null,
+        };
+    }
+
+    /// <summary>The X axis' reply to the stop after a fault: whether it stopped where the stroke's motion put it (braking from the burn speed).</summary>
+    private void NoteStopped(double written, long position)
+    {
+        lock (_lock)
+        {
+            if (Job.Plan.Timing is not { } timing || _activeStroke is not { } stroke || double.IsNaN(written))
+            {
+                return;
+            }
+
+            var arrival = written + timing.StageCommandSeconds - stroke.Origin;
+            var along = stroke.Plan.OffsetAt(arrival);
+            var expected = along >= stroke.Plan.Length
+                ? stroke.EndX
+                : stroke.StartX + (stroke.Direction * (along + (timing.BurnSpeed * timing.BurnSpeed / (2 * timing.Acceleration))));
+            var tolerance = (2 * timing.BurnSpeed * timing.StageJitterSeconds) + 2;
+            _stopMatchesMotion ??= Math.Abs(position - expected) <= tolerance;
+        }
+    }
+
+    private sealed class ActiveStroke(long startX, int direction, long endX, StrokePlan plan)
+    {
+        public long StartX { get; } = startX;
+
+        public int Direction { get; } = direction;
+
+        public long EndX { get; } = endX;
+
+        public StrokePlan Plan { get; } = plan;
+
+        /// <summary>When the stroke's offset 0 is, s on the run's clock (its start, moved by the position queries' findings).</summary>
+        public double Origin { get; set; }
     }
 
     private sealed record Segment(bool Stroke, List<(Move Move, long Index)> Moves, long StartX, long StartY, long EndX, long EndY);

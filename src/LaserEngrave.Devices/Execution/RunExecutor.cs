@@ -70,6 +70,7 @@ public sealed partial class RunExecutor
     private double _estimateBefore;
     private double _estimateTotal;
     private double _estimatePreparation;
+    private long? _resumeX;
     private bool _homed;
     private PlanEstimator? _estimator;
 
@@ -312,6 +313,23 @@ public sealed partial class RunExecutor
         var x = await IdentifyAxisAsync(Stage.X, "X", token);
         var y = await IdentifyAxisAsync(Stage.Y, "Y", token);
         CheckReach(x, y);
+        _resumeX = Options.ResumeFrom?.ResumeXMicrosteps;
+        if (Options.ResumeFrom is { ResumeXMicrosteps: not null, ExpectedXMicrosteps: { } expected })
+        {
+            // The stage could not be asked when the run stopped: it must be found where its motion was taking it, or the
+            // time the laser went off says nothing of where it burned, and the cut-off run is burned again from its start.
+            try
+            {
+                if (!x.IsHomed || await Stage.X.GetPositionAsync(token) != expected)
+                {
+                    _resumeX = null;
+                }
+            }
+            catch (DeviceException ex)
+            {
+                throw new PreflightException($"the X axis does not answer: {ex.Message}", ex);
+            }
+        }
 
         var homing = new List<Task<long>>();
         try
@@ -520,15 +538,27 @@ public sealed partial class RunExecutor
             return (plan.Moves(), 0);
         }
 
-        // A burn run is resumed with its run-up, as it was planned.
+        // A burn run is resumed with its run-up, as it was planned; one cut off midway, from its first pixel not
+        // completely burned (the stroke then gets its run-up before that edge).
         var start = resume.MoveIndex;
         long index = 0;
         Move? previous = null;
+        Move? trimmed = null;
         foreach (var move in plan.Moves())
         {
             if (index == resume.MoveIndex)
             {
-                if (move.Kind == MoveKind.Burn && previous is { Kind: MoveKind.Overscan } runUp && runUp.Row == move.Row)
+                if (_resumeX is { } x)
+                {
+                    var dir = Math.Sign(move.X1 - move.X0);
+                    if (move.Kind != MoveKind.Burn || (x - move.X0) * dir <= 0 || (move.X1 - x) * dir <= 0)
+                    {
+                        throw new PreflightException($"the resume point (row {resume.Row}, move {resume.MoveIndex}, X {x}) is not inside a burn run of this job's plan");
+                    }
+
+                    trimmed = move with { X0 = x };
+                }
+                else if (move.Kind == MoveKind.Burn && previous is { Kind: MoveKind.Overscan } runUp && runUp.Row == move.Row)
                 {
                     start--;
                 }
@@ -578,7 +608,13 @@ public sealed partial class RunExecutor
 
         _estimateBefore = before.ElapsedSeconds - before.StartSeconds;
         _estimateTotal = _estimateBefore + remaining.ElapsedSeconds;
-        return start == index ? ([], index) : (plan.Moves(resume.Row).Skip(checked((int)(start - rowStart))), start);
+        if (start == index)
+        {
+            return ([], index);
+        }
+
+        var moves = plan.Moves(resume.Row).Skip(checked((int)(start - rowStart)));
+        return (trimmed is { } first ? moves.Skip(1).Prepend(first) : moves, start);
     }
 
     /// <summary>The estimate of what preflight did and the travel to the first move will take, as the plan's figure is made.</summary>
@@ -806,6 +842,14 @@ public sealed partial class RunExecutor
             }
 
             Exception? last = null;
+            if (_engravingStarted)
+            {
+                lock (_lock)
+                {
+                    _faultOffWrite ??= RunSeconds;
+                }
+            }
+
             for (var attempt = 0; attempt < Math.Max(1, Options.LaserOffAttempts); attempt++)
             {
                 try
@@ -848,7 +892,13 @@ public sealed partial class RunExecutor
         {
             try
             {
+                var written = _engravingStarted ? RunSeconds : double.NaN;
                 var position = await axis.StopAsync(CancellationToken.None);
+                if (axis == Stage.X)
+                {
+                    NoteStopped(written, position);
+                }
+
                 lock (_lock)
                 {
                     if (axis == Stage.X)
@@ -945,7 +995,7 @@ public sealed partial class RunExecutor
                 index++;
             }
 
-            return new RunStopPoint(row, index, _stoppedAtKnownPosition ? _x : null, _stoppedAtKnownPosition ? _y : null);
+            return CutWithin(new RunStopPoint(row, index, _stoppedAtKnownPosition ? _x : null, _stoppedAtKnownPosition ? _y : null));
         }
     }
 
