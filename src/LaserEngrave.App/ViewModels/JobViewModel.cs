@@ -180,7 +180,7 @@ public sealed partial class JobViewModel : ObservableObject
     [ObservableProperty]
     public partial PreparedJob? Job { get; private set; }
 
-    /// <summary>Estimated duration of all passes, s.</summary>
+    /// <summary>Estimated duration of the whole run, all passes, s: preflight, homing, the first travel and the engraving.</summary>
     [ObservableProperty]
     public partial double? EstimatedSeconds { get; private set; }
 
@@ -576,7 +576,7 @@ public sealed partial class JobViewModel : ObservableObject
             }
 
             Job = job;
-            EstimatedSeconds = job is null ? null : job.Statistics.EstimatedSeconds * Passes;
+            EstimatedSeconds = job is null ? null : job.Statistics.WholeRunSeconds(Passes);
             SetErrors(errors);
             Warnings = warnings;
             OnPropertyChanged(nameof(MicrostepsPerPixel));

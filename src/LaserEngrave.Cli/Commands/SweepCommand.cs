@@ -172,18 +172,18 @@ internal static class SweepCommand
         output.WriteLine($"Columns:   {s.Columns?.ToString() ?? "(one)"}");
         if (plan.Labels is { } labels)
         {
-            output.WriteLine(string.Create(c, $"Labels:    at {s.Origin.X:0.###}, {s.Origin.Y:0.###} mm, pixels of {labels.Geometry.PitchUm:0.#} µm, {labels.Statistics.EstimatedSeconds:0.#} s"));
+            output.WriteLine(string.Create(c, $"Labels:    at {s.Origin.X:0.###}, {s.Origin.Y:0.###} mm, pixels of {labels.Geometry.PitchUm:0.#} µm, {labels.Statistics.EngravingSeconds:0.#} s"));
         }
 
-        output.WriteLine("row col  parameters                                at (mm)          pixels  pulses/pixel  est. s");
+        output.WriteLine("row col  parameters                                at (mm)          pixels  pulses/pixel  engrave s");
         foreach (var cell in plan.Cells)
         {
             var parameters = string.Join(", ", cell.Parameters.Select(p => string.Create(c, $"{p.Key} {p.Value:0.######}")));
             var job = cell.Job;
-            output.WriteLine(string.Create(c, $"{cell.Row + 1,3} {cell.Column + 1,3}  {parameters,-40}  {cell.OriginXMm,7:0.###}, {cell.OriginYMm,7:0.###}  {job.Mask.Width,6}  {job.Pulses.PulsesPerPixel ?? 0,12:0.##}  {job.Statistics.EstimatedSeconds * job.Spec.Passes,6:0.#}"));
+            output.WriteLine(string.Create(c, $"{cell.Row + 1,3} {cell.Column + 1,3}  {parameters,-40}  {cell.OriginXMm,7:0.###}, {cell.OriginYMm,7:0.###}  {job.Mask.Width,6}  {job.Pulses.PulsesPerPixel ?? 0,12:0.##}  {job.Statistics.EngravingSeconds * job.Spec.Passes,6:0.#}"));
         }
 
-        output.WriteLine(string.Create(c, $"Estimated: {SweepDuration(plan.EstimatedSeconds)} (engraving; preflight and the travels between cells not counted)"));
+        output.WriteLine(string.Create(c, $"Estimated: {SweepDuration(plan.EstimatedSeconds)} for the whole sweep (preflight, homing and the travels between cells included), engraving {SweepDuration(plan.EngravingSeconds)}"));
     }
 
     private static string SweepDuration(double seconds) => JobSummary.Duration(seconds);
@@ -282,7 +282,7 @@ internal sealed record SweepPlanSummary(int Rows, int Columns, double GridXMm, d
         plan.GridXMm,
         plan.GridYMm,
         plan.EstimatedSeconds,
-        [.. plan.Cells.Select(c => new SweepPlanCell(c.Row, c.Column, c.Parameters, c.OriginXMm, c.OriginYMm, c.Job.Geometry.AchievedWidthMm, c.Job.Geometry.PitchUm, c.Job.Spec.Passes, c.Job.Pulses.PulsesPerPixel ?? 0, c.Job.Statistics.EstimatedSeconds * c.Job.Spec.Passes))]);
+        [.. plan.Cells.Select(c => new SweepPlanCell(c.Row, c.Column, c.Parameters, c.OriginXMm, c.OriginYMm, c.Job.Geometry.AchievedWidthMm, c.Job.Geometry.PitchUm, c.Job.Spec.Passes, c.Job.Pulses.PulsesPerPixel ?? 0, c.Job.Statistics.EngravingSeconds * c.Job.Spec.Passes))]);
 }
 
 internal sealed record SweepPlanCell(int Row, int Column, IReadOnlyDictionary<string, double> Parameters, double OriginXMm, double OriginYMm, double SizeMm, double PitchUm, int Passes, double PulsesPerPixel, double EstimatedSeconds);

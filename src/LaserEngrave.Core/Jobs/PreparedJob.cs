@@ -33,7 +33,7 @@ public sealed class PreparedJob
 
     public RasterPlan Plan { get; }
 
-    /// <summary>The raster's figures; in dot mode its estimate is the dot plan's (<see cref="DotModeEstimate.TotalSeconds"/>).</summary>
+    /// <summary>The plan's figures; in dot mode the dot plan's (its engraving estimate <see cref="DotModeEstimate.TotalSeconds"/>).</summary>
     public PlanStatistics Statistics { get; }
 
     /// <summary>The dot plan in <see cref="PlanMode.Dots"/> (what the executor runs then); null in raster mode.</summary>
@@ -92,7 +92,13 @@ public sealed class PreparedJob
         if (dotMode)
         {
             dots = new DotPlan(mask, geometry.Geometry, spec.Process, spec.Profile, spec.Plan);
-            var first = dots.Dots().Take(1).ToList();
+            Dot? first = null, last = null;
+            foreach (var dot in dots.Dots())
+            {
+                first ??= dot;
+                last = dot;
+            }
+
             // What is executed: every dot a stop with a burst, no burning in motion, no speed change.
             statistics = statistics with
             {
@@ -104,8 +110,9 @@ public sealed class PreparedJob
                 OverscanLengthMm = 0,
                 LaserSwitches = dots.Estimate.Dots + 1,
                 SpeedChanges = 0,
-                EstimatedSeconds = dots.Estimate.TotalSeconds,
-                WholeRunSeconds = first is [var dot] ? dots.Estimate.TotalSeconds + timing.PreparationSeconds(dot.X, dot.Y) : dots.Estimate.TotalSeconds,
+                EngravingSeconds = dots.Estimate.TotalSeconds,
+                PreparationSeconds = first is { } a ? timing.PreparationSeconds(a.X, a.Y, home: true, from: (0, 0)) : 0,
+                PassSetupSeconds = first is { } b && last is { } z ? timing.PreparationSeconds(b.X, b.Y, home: false, from: (z.X, z.Y)) : 0,
             };
         }
 

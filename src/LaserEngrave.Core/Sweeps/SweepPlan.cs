@@ -52,9 +52,36 @@ public sealed class SweepPlan
 
     public int ColumnCount => Spec.Columns?.Values.Count ?? 1;
 
-    /// <summary>The estimated engraving time of every cell (all its passes) and of the labels, s (without preflight and the travels between cells).</summary>
-    public double EstimatedSeconds =>
-        Cells.Sum(c => c.Job.Statistics.EstimatedSeconds * c.Job.Spec.Passes) + (Labels?.Statistics.EstimatedSeconds ?? 0);
+    /// <summary>The estimated engraving time of every cell (all its passes) and of the labels, s.</summary>
+    public double EngravingSeconds => Jobs().Sum(j => j.Statistics.EngravingSeconds * j.Spec.Passes);
+
+    /// <summary>
+    /// The estimate of the whole sweep, s: the first job's preparation (preflight, homing from the far end, the travel to
+    /// it), every later job's preflight without homing and travel from where the one before ended, and every job's passes.
+    /// </summary>
+    public double EstimatedSeconds
+    {
+        get
+        {
+            var total = 0.0;
+            (long X, long Y)? end = null;
+            foreach (var job in Jobs())
+            {
+                var (start, stop) = Ends(job);
+                var statistics = job.Statistics;
+                total += end is { } from
+                    ? TimedSwitching.For(job.Spec.Process, job.Spec.Profile, job.Plan.Geometry.MicrostepUm).PreparationSeconds(start.X, start.Y, home: false, from: from)
+                    : statistics.PreparationSeconds;
+                total += (job.Spec.Passes * statistics.EngravingSeconds) + ((job.Spec.Passes - 1) * statistics.PassSetupSeconds);
+                end = stop;
+            }
+
+            return total;
+        }
+    }
+
+    /// <summary>The jobs in the order they are burned: the labels, then the cells.</summary>
+    public IEnumerable<PreparedJob> Jobs() => Labels is null ? Cells.Select(c => c.Job) : Cells.Select(c => c.Job).Prepend(Labels);
 
     /// <summary>The SHA-256 of a generated mask's bits (it has no file), lower-case hex: the run log's image hash for a cell.</summary>
     public static string MaskSha256(BitMask mask)
@@ -158,6 +185,22 @@ public sealed class SweepPlan
         }
 
         return new SweepPlan(spec, cells, labels, gridX, gridY);
+    }
+
+    // Where a job's plan starts and ends on the stage, microsteps (its first and last dot in dot mode).
+    private static ((long X, long Y) Start, (long X, long Y) End) Ends(PreparedJob job)
+    {
+        if (job.Dots is { } dots)
+        {
+            var first = dots.Dots().First();
+            var last = dots.Dots().Last();
+            return ((first.X, first.Y), (last.X, last.Y));
+        }
+
+        var moves = job.Plan.Moves();
+        var a = moves.First();
+        var z = moves.Last();
+        return ((a.X0, a.Y0), (z.X1, z.Y1));
     }
 
     /// <summary>The cell's mask: a square of n x n pixels, filled, lines or dots.</summary>

@@ -35,7 +35,7 @@ public sealed class EngraveSession
 
         // Continuing a stopped run finishes the pass that stopped, and only that.
         Passes = Options.ResumeFrom is null ? job.Spec.Passes : 1;
-        var idle = new RunProgress(RunState.Idle, 0, job.Statistics.Rows, 0, job.Statistics.BurnRuns, 0, TimeSpan.Zero, TimeSpan.FromSeconds(job.Statistics.EstimatedSeconds), 0, 0, false);
+        var idle = new RunProgress(RunState.Idle, 0, job.Statistics.Rows, 0, job.Statistics.BurnRuns, 0, TimeSpan.Zero, TimeSpan.FromSeconds(job.Statistics.EngravingSeconds), 0, 0, false);
         _progress = new EngraveProgress(RunState.Idle, 1, Passes, 0, job.Statistics.Moves, false, idle);
     }
 
@@ -190,6 +190,7 @@ public sealed class EngraveSession
                     StartedAt = run.StartedAt,
                     EngravingDuration = run.EngravingDuration + result.EngravingDuration,
                     EstimatedSeconds = run.EstimatedSeconds + result.EstimatedSeconds,
+                    EstimatedEngravingSeconds = run.EstimatedEngravingSeconds + result.EstimatedEngravingSeconds,
                     LaserOnSeconds = run.LaserOnSeconds + result.LaserOnSeconds,
                 };
                 if (result.Outcome != RunOutcome.Completed)

@@ -106,6 +106,12 @@ public sealed partial class RunExecutor
         }
     }
 
+    /// <summary>Preflight's share of the estimate before the first dot: the exchanges, homing if it homed, and the travel to the dot.</summary>
+    private double EstimateDotsPreparation(DotPlan plan, long firstIndex) =>
+        plan.Dots(firstIndex).Take(1).ToList() is [var first]
+            ? TimedSwitching.For(_process, _profile, plan.Geometry.MicrostepUm).PreparationSeconds(first.X, first.Y, _homed, from: (_x, _y))
+            : 0;
+
     /// <summary>For a resumed dot run: the dots fired before the resume point, counted, and the estimate of what is left.</summary>
     private long PrepareDots(DotPlan plan)
     {

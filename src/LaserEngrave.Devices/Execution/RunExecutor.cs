@@ -69,6 +69,9 @@ public sealed partial class RunExecutor
     private long _runsDone;
     private double _estimateBefore;
     private double _estimateTotal;
+    private double _estimatePreparation;
+    private long? _resumeX;
+    private bool _homed;
     private PlanEstimator? _estimator;
 
     public RunExecutor(IStage stage, ILaserGate gate, PreparedJob job, TimeProvider? timeProvider = null, RunOptions? options = null)
@@ -88,7 +91,7 @@ public sealed partial class RunExecutor
         _burnSpeedData = StageUnits.SpeedData(_process.SpeedMmPerS(MoveKind.Burn, strategy), microstepUm);
         _travelSpeedData = StageUnits.SpeedData(_process.SpeedMmPerS(MoveKind.Travel, strategy), microstepUm);
         _accelerationData = StageUnits.AccelerationData(_process.AccelerationMmPerS2, microstepUm);
-        _progress = new RunProgress(RunState.Idle, 0, job.Statistics.Rows, 0, job.Statistics.BurnRuns, 0, TimeSpan.Zero, TimeSpan.FromSeconds(job.Statistics.EstimatedSeconds), 0, 0, false);
+        _progress = new RunProgress(RunState.Idle, 0, job.Statistics.Rows, 0, job.Statistics.BurnRuns, 0, TimeSpan.Zero, TimeSpan.FromSeconds(job.Statistics.EngravingSeconds), 0, 0, false);
     }
 
     /// <summary>Raised on every state change.</summary>
@@ -153,6 +156,7 @@ public sealed partial class RunExecutor
             SetState(RunState.Preflight);
             identity = await PreflightAsync(token);
             var (moves, firstIndex) = Job.Dots is { } dots ? ([], PrepareDots(dots)) : Prepare();
+            _estimatePreparation = Job.Dots is { } dotPlan0 ? EstimateDotsPreparation(dotPlan0, firstIndex) : EstimatePreparation(moves);
             SetState(RunState.Running);
             _keepAlive = new GateKeepAlive(Gate, GateKeepAlive.PeriodFor(_profile.Gate.WatchdogMs, Options.KeepAliveFraction), TimeProvider, OnKeepAliveFailed);
             using var linked = CancellationTokenSource.CreateLinkedTokenSource(token, _fault.Token);
@@ -313,6 +317,23 @@ public sealed partial class RunExecutor
         var x = await IdentifyAxisAsync(Stage.X, "X", token);
         var y = await IdentifyAxisAsync(Stage.Y, "Y", token);
         CheckReach(x, y);
+        _resumeX = Options.ResumeFrom?.ResumeXMicrosteps;
+        if (Options.ResumeFrom is { ResumeXMicrosteps: not null, ExpectedXMicrosteps: { } expected })
+        {
+            // The stage could not be asked when the run stopped: it must be found where its motion was taking it, or the
+            // time the laser went off says nothing of where it burned, and the cut-off run is burned again from its start.
+            try
+            {
+                if (!x.IsHomed || await Stage.X.GetPositionAsync(token) != expected)
+                {
+                    _resumeX = null;
+                }
+            }
+            catch (DeviceException ex)
+            {
+                throw new PreflightException($"the X axis does not answer: {ex.Message}", ex);
+            }
+        }
 
         var homing = new List<Task<long>>();
         try
@@ -338,6 +359,7 @@ public sealed partial class RunExecutor
             }
 
             await Task.WhenAll(homing);
+            _homed = homing.Count > 0;
             _x = await Stage.X.GetPositionAsync(token);
             _y = await Stage.Y.GetPositionAsync(token);
         }
@@ -516,19 +538,31 @@ public sealed partial class RunExecutor
         _estimator = new PlanEstimator(_process, strategy, microstepUm, _profile.Gate, plan.Timing);
         if (Options.ResumeFrom is not { } resume)
         {
-            _estimateTotal = Job.Statistics.EstimatedSeconds;
+            _estimateTotal = Job.Statistics.EngravingSeconds;
             return (plan.Moves(), 0);
         }
 
-        // A burn run is resumed with its run-up, as it was planned.
+        // A burn run is resumed with its run-up, as it was planned; one cut off midway, from its first pixel not
+        // completely burned (the stroke then gets its run-up before that edge).
         var start = resume.MoveIndex;
         long index = 0;
         Move? previous = null;
+        Move? trimmed = null;
         foreach (var move in plan.Moves())
         {
             if (index == resume.MoveIndex)
             {
-                if (move.Kind == MoveKind.Burn && previous is { Kind: MoveKind.Overscan } runUp && runUp.Row == move.Row)
+                if (_resumeX is { } x)
+                {
+                    var dir = Math.Sign(move.X1 - move.X0);
+                    if (move.Kind != MoveKind.Burn || (x - move.X0) * dir <= 0 || (move.X1 - x) * dir <= 0)
+                    {
+                        throw new PreflightException($"the resume point (row {resume.Row}, move {resume.MoveIndex}, X {x}) is not inside a burn run of this job's plan");
+                    }
+
+                    trimmed = move with { X0 = x };
+                }
+                else if (move.Kind == MoveKind.Burn && previous is { Kind: MoveKind.Overscan } runUp && runUp.Row == move.Row)
                 {
                     start--;
                 }
@@ -578,8 +612,20 @@ public sealed partial class RunExecutor
 
         _estimateBefore = before.ElapsedSeconds - before.StartSeconds;
         _estimateTotal = _estimateBefore + remaining.ElapsedSeconds;
-        return start == index ? ([], index) : (plan.Moves(resume.Row).Skip(checked((int)(start - rowStart))), start);
+        if (start == index)
+        {
+            return ([], index);
+        }
+
+        var moves = plan.Moves(resume.Row).Skip(checked((int)(start - rowStart)));
+        return (trimmed is { } first ? moves.Skip(1).Prepend(first) : moves, start);
     }
+
+    /// <summary>The estimate of what preflight did and the travel to the first move will take, as the plan's figure is made.</summary>
+    private double EstimatePreparation(IEnumerable<Move> moves) =>
+        Job.Plan.Timing is { } timing && moves.Take(1).ToList() is [var first]
+            ? timing.PreparationSeconds(first.X0, first.Y0, _homed, from: (_x, _y))
+            : 0;
 
     private async Task ExecuteMoveAsync(Move move, CancellationToken token)
     {
@@ -724,7 +770,10 @@ public sealed partial class RunExecutor
                 _lastRow = move.Row;
             }
 
+            // The stop point: the first move not done, and a row it is in or after (timed runs complete moves in order,
+            // behind the switchings, so the row of the last one done).
             _moveIndex = index + 1;
+            _moveRow = move.Row;
             _progress = Snapshot();
             progress = _progress;
         }
@@ -797,6 +846,14 @@ public sealed partial class RunExecutor
             }
 
             Exception? last = null;
+            if (_engravingStarted)
+            {
+                lock (_lock)
+                {
+                    _faultOffWrite ??= RunSeconds;
+                }
+            }
+
             for (var attempt = 0; attempt < Math.Max(1, Options.LaserOffAttempts); attempt++)
             {
                 try
@@ -839,7 +896,13 @@ public sealed partial class RunExecutor
         {
             try
             {
+                var written = _engravingStarted ? RunSeconds : double.NaN;
                 var position = await axis.StopAsync(CancellationToken.None);
+                if (axis == Stage.X)
+                {
+                    NoteStopped(written, position);
+                }
+
                 lock (_lock)
                 {
                     if (axis == Stage.X)
@@ -909,7 +972,8 @@ public sealed partial class RunExecutor
                 StartedAt = startedAt,
                 EndedAt = TimeProvider.GetUtcNow(),
                 EngravingDuration = engraving < TimeSpan.Zero ? TimeSpan.Zero : engraving,
-                EstimatedSeconds = _estimateTotal - _estimateBefore,
+                EstimatedSeconds = _estimatePreparation + _estimateTotal - _estimateBefore,
+                EstimatedEngravingSeconds = _estimateTotal - _estimateBefore,
                 LaserOnSeconds = _laserOnSeconds,
                 RowsDone = _rowsDone,
                 RowsTotal = Job.Statistics.Rows,
@@ -935,7 +999,7 @@ public sealed partial class RunExecutor
                 index++;
             }
 
-            return new RunStopPoint(row, index, _stoppedAtKnownPosition ? _x : null, _stoppedAtKnownPosition ? _y : null);
+            return CutWithin(new RunStopPoint(row, index, _stoppedAtKnownPosition ? _x : null, _stoppedAtKnownPosition ? _y : null));
         }
     }
 

@@ -37,7 +37,10 @@ public class SweepPlanTests
         Assert.Equal(50, cell.Job.Pulses.PulsesPerPixel!.Value, 9);
         Assert.Equal(12.5, plan.Cells[4].Job.Pulses.PulsesPerPixel!.Value, 9);
         Assert.Null(plan.Labels);
-        Assert.Equal(plan.Cells.Sum(c => c.Job.Statistics.EstimatedSeconds), plan.EstimatedSeconds, 9);
+        Assert.Equal(plan.Cells.Sum(c => c.Job.Statistics.EngravingSeconds), plan.EngravingSeconds, 9);
+
+        // The whole sweep: the first cell's preparation (homing from the far end), then each cell's preflight and travel.
+        Assert.InRange(plan.EstimatedSeconds - plan.EngravingSeconds, plan.Cells[0].Job.Statistics.PreparationSeconds, plan.Cells[0].Job.Statistics.PreparationSeconds + (5 * 1.5));
     }
 
     [Fact]
@@ -49,8 +52,8 @@ public class SweepPlanTests
         Assert.Equal((10, 3), (plan.Cells[3].Job.Mask.Width, plan.Cells[3].Job.Spec.Passes));
         Assert.Equal(100, plan.Cells[3].Job.Geometry.PitchUm, 9);
         Assert.Equal(
-            plan.Cells.Sum(c => c.Job.Statistics.EstimatedSeconds * c.Job.Spec.Passes),
-            plan.EstimatedSeconds,
+            plan.Cells.Sum(c => c.Job.Statistics.EngravingSeconds * c.Job.Spec.Passes),
+            plan.EngravingSeconds,
             9);
     }
 

@@ -62,6 +62,10 @@ public class SweepSessionTests
         Assert.Equal(plan.GridXMm + 0.5, record.Cells[1].OriginXMm, 9);
         Assert.Equal(plan.GridYMm + 0.5, record.Cells[2].OriginYMm, 9);
         Assert.Equal(("speed=0.5,2", "frequency=500,2000", "SW-1"), (record.Rows, record.Columns, record.SampleId));
+
+        // The whole sweep on the twin (homing, each job's preflight and travel, the burns) against its estimate.
+        var actual = record.Cells.Sum(c => c.Run!.ActualSeconds) + record.Labels.ActualSeconds;
+        Assert.True(Math.Abs(actual - plan.EstimatedSeconds) < 0.02 * plan.EstimatedSeconds, $"the sweep took {actual:0.###} s, estimated {plan.EstimatedSeconds:0.###} s");
         Assert.False(run.Machine.Gate.IsFiring);
     }
 
