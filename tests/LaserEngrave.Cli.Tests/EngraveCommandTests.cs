@@ -52,8 +52,10 @@ public sealed class EngraveCommandTests : IDisposable
         Assert.Equal(0, root.GetProperty("pulsesWhileMoving").GetInt64());
         var perPixel = root.GetProperty("pulsesPerPixel");
         Assert.Equal((10, 10), (perPixel.GetProperty("min").GetInt32(), perPixel.GetProperty("max").GetInt32()));
-        var estimate = root.GetProperty("estimatedSeconds").GetDouble();
-        Assert.InRange(root.GetProperty("engravingSeconds").GetDouble(), 0.98 * estimate, 1.02 * estimate);
+        var engraving = root.GetProperty("estimatedEngravingSeconds").GetDouble();
+        Assert.InRange(root.GetProperty("engravingSeconds").GetDouble(), 0.98 * engraving, 1.02 * engraving);
+        var whole = root.GetProperty("estimatedSeconds").GetDouble();
+        Assert.InRange(root.GetProperty("durationSeconds").GetDouble(), 0.98 * whole, 1.02 * whole);
         var log = RunLogStore.Read(root.GetProperty("logPath").GetString()!);
         Assert.Equal((Core.Planning.PlanMode.Dots, 10), (log.Process.Mode, log.Process.PulsesPerDot));
     }

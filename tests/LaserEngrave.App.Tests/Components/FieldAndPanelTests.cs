@@ -162,7 +162,8 @@ public sealed class ProcessPanelTests : ComponentTest
         var job = Assert.IsType<Core.Jobs.PreparedJob>(Main.Job.Job);
         var dots = Assert.IsType<Core.Planning.DotPlan>(job.Dots);
         Assert.Equal((Core.Planning.PlanMode.Dots, 10), (job.Spec.Process.Mode, job.Spec.Process.PulsesPerDot));
-        Assert.Equal(dots.Estimate.TotalSeconds, Main.Job.EstimatedSeconds!.Value, 6);
+        Assert.Equal(dots.Estimate.TotalSeconds, job.Statistics.EngravingSeconds, 9);
+        Assert.Equal(job.Statistics.WholeRunSeconds(), Main.Job.EstimatedSeconds!.Value, 6);
         Assert.Contains("dots", cut.Find("#estimate").TextContent, StringComparison.Ordinal);
         Assert.Contains("10 pulses per pixel", cut.Find("#pulses").TextContent, StringComparison.Ordinal);
         Assert.Equal((Core.Planning.PlanMode.Dots, 10), (Main.Job.ToSettings().Mode, Main.Job.ToSettings().PulsesPerDot));
