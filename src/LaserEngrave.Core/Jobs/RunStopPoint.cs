@@ -23,6 +23,13 @@ public sealed record RunStopPoint(int Row, long MoveIndex, long? XMicrosteps = n
     /// when the stage could not be asked after the fault; null when its position was already checked against its motion.
     /// </summary>
     public long? ExpectedXMicrosteps { get; init; }
+
+    /// <summary>
+    /// The gate's link was lost with the laser on: the gate went on firing until its own watchdog tripped, a watchdog
+    /// time after the last command it had, and <see cref="ResumeXMicrosteps"/> counts on that. On resuming the gate must
+    /// report its watchdog tripped (else the run is burned again from its start).
+    /// </summary>
+    public bool OffByGateWatchdog { get; init; }
 }
 
 /// <summary>A pixel of the job's image.</summary>

@@ -31,7 +31,8 @@ public static class RunSummaryText
             if (stop is { ResumeXMicrosteps: { } resumeX, CutPixel: { } cut })
             {
                 var check = stop.ExpectedXMicrosteps is { } expected ? string.Create(c, $" if X is found at {expected} microsteps (else from the run's start)") : string.Empty;
-                Line("Resumes", string.Create(c, $"mid-run at X {resumeX} microsteps{check}; pixel column {cut.Column}, row {cut.Row} (the laser went off in it) burns twice"));
+                var watchdog = stop.OffByGateWatchdog ? " (the gate's link was lost: the laser went off by the gate's watchdog, which it must report tripped)" : string.Empty;
+                Line("Resumes", string.Create(c, $"mid-run at X {resumeX} microsteps{check}; pixel column {cut.Column}, row {cut.Row} (the laser went off in it{watchdog}) burns twice"));
             }
         }
 

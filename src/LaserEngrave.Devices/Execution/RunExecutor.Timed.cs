@@ -30,6 +30,7 @@ public sealed partial class RunExecutor
     private (Move Move, long Index, Task Acknowledged)? _burning;
     private double? _faultOffWrite;
     private bool? _stopMatchesMotion;
+    private double _gateAliveAt = double.NegativeInfinity;
 
     private double RunSeconds => TimeProvider.GetElapsedTime(_engravingStart).TotalSeconds;
 
@@ -504,8 +505,27 @@ public sealed partial class RunExecutor
         }
     }
 
-    private void WatchGate(Task reply, double expectedSeconds, string what) =>
+    private void WatchGate(Task reply, double expectedSeconds, string what)
+    {
         Watch(reply, expectedSeconds, what, gate: true);
+
+        // When the gate last showed it was alive: its reply left it a reply's wire and adapter time before it came in.
+        _ = reply.ContinueWith(
+            answered =>
+            {
+                if (answered.IsCompletedSuccessfully && Job.Plan.Timing is { } timing)
+                {
+                    var left = RunSeconds - (timing.OnRoundTripSeconds - timing.OnLeadSeconds) - timing.GateJitterSeconds;
+                    lock (_lock)
+                    {
+                        _gateAliveAt = Math.Max(_gateAliveAt, left);
+                    }
+                }
+            },
+            CancellationToken.None,
+            TaskContinuationOptions.ExecuteSynchronously,
+            TaskScheduler.Default);
+    }
 
     private async Task DelayUntilAsync(double seconds, CancellationToken token)
     {
@@ -699,14 +719,37 @@ public sealed partial class RunExecutor
     private RunStopPoint CutWithin(RunStopPoint stop)
     {
         if (Job.Plan.Timing is not { } timing || _burning is not { } burning || burning.Index != stop.MoveIndex
-            || !burning.Acknowledged.IsCompletedSuccessfully || !_laserOffConfirmed || _faultOffWrite is not { } offWrite
-            || _activeStroke is not { } stroke || _stopMatchesMotion == false)
+            || !burning.Acknowledged.IsCompletedSuccessfully || _activeStroke is not { } stroke || _stopMatchesMotion == false)
         {
             return stop;
         }
 
-        var offAt = offWrite + timing.OffLeadSeconds - timing.GateJitterSeconds;
+        // Off when the gate confirmed the fault's switch-off (its lead after it left, at the earliest). With the gate's
+        // link lost, it fired on until its watchdog tripped, a watchdog time after the last command it had: at the
+        // earliest after the last one it answered (the resumed run checks that the watchdog did trip).
+        double offAt;
+        var byWatchdog = false;
+        if (_laserOffConfirmed && _faultOffWrite is { } offWrite)
+        {
+            offAt = offWrite + timing.OffLeadSeconds - timing.GateJitterSeconds;
+        }
+        else if (!_laserOffConfirmed && _gateAliveAt > double.NegativeInfinity)
+        {
+            offAt = _gateAliveAt + (_profile.Gate.WatchdogMs / 1000.0) - timing.GateJitterSeconds;
+            byWatchdog = true;
+        }
+        else
+        {
+            return stop;
+        }
+
         var along = stroke.Plan.OffsetAt(offAt - stroke.Origin) - (timing.BurnSpeed * timing.StageJitterSeconds);
+        if (_stoppedAtKnownPosition)
+        {
+            // Stopped while the laser still fired (its gate out of reach): it burned no further than where X stopped.
+            along = Math.Min(along, (_x - stroke.StartX) * stroke.Direction);
+        }
+
         if (Job.Plan.ResumeWithin(burning.Move, stroke.StartX + (stroke.Direction * along)) is not { } cut)
         {
             return stop;
@@ -717,6 +760,7 @@ public sealed partial class RunExecutor
             ResumeXMicrosteps = cut.ResumeX,
             CutPixel = new PixelIndex(cut.Column, burning.Move.Row),
             ExpectedXMicrosteps = _stopMatchesMotion is null ? stroke.EndX : null,
+            OffByGateWatchdog = byWatchdog,
         };
     }
 

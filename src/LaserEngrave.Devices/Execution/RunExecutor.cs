@@ -71,6 +71,7 @@ public sealed partial class RunExecutor
     private double _estimateTotal;
     private double _estimatePreparation;
     private long? _resumeX;
+    private bool _gateVouchesForCut = true;
     private bool _homed;
     private PlanEstimator? _estimator;
 
@@ -306,6 +307,12 @@ public sealed partial class RunExecutor
         try
         {
             gateIdentity = await OnceMoreAfterTimeoutAsync(() => Gate.IdentifyAsync(token));
+            if (Options.ResumeFrom is { OffByGateWatchdog: true, ResumeXMicrosteps: not null } && !(await Gate.GetStateAsync(token)).WatchdogTripped)
+            {
+                // The laser's switch-off time counted on the watchdog; a gate restarted since cannot vouch for it.
+                _gateVouchesForCut = false;
+            }
+
             await Gate.OffAsync(token);
             await Gate.SetWatchdogAsync(_profile.Gate.WatchdogMs, token);
         }
@@ -317,7 +324,7 @@ public sealed partial class RunExecutor
         var x = await IdentifyAxisAsync(Stage.X, "X", token);
         var y = await IdentifyAxisAsync(Stage.Y, "Y", token);
         CheckReach(x, y);
-        _resumeX = Options.ResumeFrom?.ResumeXMicrosteps;
+        _resumeX = _gateVouchesForCut ? Options.ResumeFrom?.ResumeXMicrosteps : null;
         if (Options.ResumeFrom is { ResumeXMicrosteps: not null, ExpectedXMicrosteps: { } expected })
         {
             // The stage could not be asked when the run stopped: it must be found where its motion was taking it, or the

@@ -78,6 +78,52 @@ public sealed class ResumeCutRunTests
         }
     }
 
+    [Theory(Timeout = 120_000)]
+    [InlineData(6)]
+    [InlineData(9)]
+    public async Task GateLinkLostMidRun_ResumesWhereTheGatesWatchdogSwitchedTheLaserOff(int gateCommand)
+    {
+        // Preflight sends the gate 3 lines; then the switch-on and a keepalive every 250 ms: the link goes part-way into the run.
+        var ct = TestContext.Current.CancellationToken;
+        await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = $"disconnect:gate:after={gateCommand}" });
+        var job = TestJobs.FromMask(TestJobs.Mask("################", "....############"), 4, new PlanOptions());
+
+        var failed = await run.Do(() => run.Executor(job).RunAsync(ct));
+        await run.Do(() => Task.Delay(TimeSpan.FromMilliseconds(run.Machine.Profile.Gate.WatchdogMs * 2), run.Time, ct));
+        var stop = Assert.IsType<RunStopPoint>(failed.StopPoint);
+        Assert.Equal(RunOutcome.Failed, failed.Outcome);
+        Assert.False(failed.LaserOffConfirmed);
+        Assert.True(stop.OffByGateWatchdog);
+        Assert.NotNull(stop.ResumeXMicrosteps);
+
+        await run.RecoverAsync();
+        var resumed = await run.Do(() => run.Executor(job, new RunOptions { ResumeFrom = stop }).RunAsync(ct));
+        var report = run.Analyze(job);
+
+        Assert.Equal(RunOutcome.Completed, resumed.Outcome);
+        Assert.True(report.Burned.ContentEquals(job.Mask));
+        var twice = BurnedTwice(job, report);
+        Assert.True(twice.Count <= 1, string.Join(", ", twice));
+        Assert.All(twice, p => Assert.Equal(stop.CutPixel, p));
+    }
+
+    [Fact(Timeout = 120_000)]
+    public async Task StopPointCountingOnTheWatchdog_GateDoesNotReportItTripped_BurnedAgainFromTheRunsStart()
+    {
+        var ct = TestContext.Current.CancellationToken;
+        await using var run = SimulatedRun.Create();
+        var job = TestJobs.FromMask(TestJobs.Mask("################", "....############"), 4, new PlanOptions());
+        var stop = await AbortPartWayAsync(run, job, 1.3, ct);
+
+        // As if the gate had lost its link: a gate whose watchdog never tripped cannot vouch for when the laser went off.
+        var resumed = await run.Do(() => run.Executor(job, new RunOptions { ResumeFrom = stop with { OffByGateWatchdog = true } }).RunAsync(ct));
+        var report = run.Analyze(job);
+
+        Assert.Equal(RunOutcome.Completed, resumed.Outcome);
+        Assert.True(report.Burned.ContentEquals(job.Mask));
+        Assert.InRange(BurnedTwice(job, report).Count, stop.CutPixel!.Value.Column, stop.CutPixel.Value.Column + 1);
+    }
+
     private static async Task<RunStopPoint> AbortPartWayAsync(SimulatedRun run, PreparedJob job, double seconds, CancellationToken ct)
     {
         var executor = run.Executor(job);
