@@ -140,6 +140,18 @@ public sealed partial class MainViewModel : ObservableObject
         }
     }
 
+    /// <summary>Uses <paramref name="profile"/>, saved at <paramref name="path"/>, from now on: the job plans with it, the next connection uses it, the settings remember it.</summary>
+    /// <exception cref="MachineBusyException">A run, homing or a test move is under way: nothing is changed.</exception>
+    public void UseProfile(string path, MachineProfile profile)
+    {
+        ArgumentException.ThrowIfNullOrWhiteSpace(path);
+        ArgumentNullException.ThrowIfNull(profile);
+        Job.UseProfile(profile);
+        Machine.Profile = profile;
+        ProfileError = null;
+        Save(Settings with { ProfilePath = path });
+    }
+
     public void SetTheme(string theme)
     {
         if (theme is "light" or "dark")

@@ -28,6 +28,8 @@ public abstract class ComponentTest : BunitContext
         PresetStore.Load().Returns(ProcessPreset.Examples);
         Presets = new PresetsViewModel(PresetStore, Main.Job);
         Services.AddSingleton(Presets);
+        Calibration = new CalibrationViewModel(Main, DataFolder.Path);
+        Services.AddSingleton(Calibration);
         JSInterop.Mode = JSRuntimeMode.Loose;
         SetRendererInfo(new RendererInfo("Server", isInteractive: true));
     }
@@ -47,6 +49,21 @@ public abstract class ComponentTest : BunitContext
     private protected IPresetStore PresetStore { get; } = Substitute.For<IPresetStore>();
 
     private protected PresetsViewModel Presets { get; }
+
+    /// <summary>The app's data folder in these tests (the calibration writes its pattern and profile there).</summary>
+    private protected TestFiles.TempFolder DataFolder { get; } = TestFiles.NewFolder();
+
+    private protected CalibrationViewModel Calibration { get; }
+
+    protected override void Dispose(bool disposing)
+    {
+        if (disposing)
+        {
+            DataFolder.Dispose();
+        }
+
+        base.Dispose(disposing);
+    }
 
     private protected static MachineProfile Profile => MachineProfile.Default;
 

@@ -220,3 +220,61 @@ public sealed class SweepPanelTests : ComponentTest
     }
 }
 
+
+public sealed class CalibrationPanelTests : ComponentTest
+{
+    [Fact]
+    public void Measurements_SolvedAndStored_TheJobIsCompensatedFromNowOn()
+    {
+        OpenQr();
+        var cut = Render<CalibrationPanel>(p => p.Add(c => c.Calibration, Calibration));
+        Assert.Contains("not calibrated", cut.Find("#calibration-current").TextContent, StringComparison.Ordinal);
+        Assert.True(cut.Find("#calStore").HasAttribute("disabled"));
+
+        // The command line's worked example: X 16 mm measured 16.008, Y 15.992, the grooves at 90.5°.
+        cut.Find("#calXMeasured").Change("16.008");
+        cut.Find("#calYMeasured").Change("15.992");
+        cut.Find("#calAngle").Change("90.5");
+        cut.Find("#calSolve").Click();
+
+        Assert.Contains("squareness +0.5000°, scale X +500.0 ppm, scale Y -500.0 ppm", cut.FindAll("[data-solution=line]")[0].TextContent, StringComparison.Ordinal);
+        cut.Find("#calStore").Click();
+
+        var calibration = Assert.IsType<Core.Calibration.AxisCalibration>(Main.Job.Profile.Calibration);
+        Assert.Equal(500, calibration.ScaleXPpm, 6);
+        Assert.Equal(0.5, calibration.SquarenessDegrees, 6);
+        var path = Path.Combine(DataFolder.Path, "machine-profile.json");
+        Assert.Equal(calibration, Core.Geometry.MachineProfile.Load(path).Calibration);
+        Assert.Same(Main.Job.Profile, Main.Machine.Profile);
+        Assert.NotEqual(1.0, Main.Job.Job!.Geometry.Geometry.Compensation.XPerX);
+        Assert.Contains("scale X +500.0 ppm", cut.Find("#calibration-current").TextContent, StringComparison.Ordinal);
+
+        cut.Find("#calClear").Click();
+
+        Assert.Null(Main.Job.Profile.Calibration);
+        Assert.Null(Core.Geometry.MachineProfile.Load(path).Calibration);
+    }
+
+    [Fact]
+    public void LoadPattern_OpensItAsTheJobAtItsPitch()
+    {
+        var cut = Render<CalibrationPanel>(p => p.Add(c => c.Calibration, Calibration));
+
+        cut.Find("#calLoadPattern").Click();
+
+        Assert.StartsWith("calibration-pattern-20mm-10um", Path.GetFileName(Main.Job.ImagePath), StringComparison.Ordinal);
+        Assert.Equal(10, Main.Job.Job!.Geometry.PitchUm, 9);
+        Assert.Contains("Scale marks every", cut.Markup, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void Solve_NothingMeasured_RefusedWithOneLine()
+    {
+        var cut = Render<CalibrationPanel>(p => p.Add(c => c.Calibration, Calibration));
+
+        cut.Find("#calSolve").Click();
+
+        Assert.False(string.IsNullOrWhiteSpace(cut.Find("[data-error=calibration]").TextContent));
+        Assert.Null(Calibration.Solution);
+    }
+}

@@ -316,6 +316,15 @@ public sealed class BrowserTests : IAsyncLifetime
         Assert.True(new FileInfo(Screenshot("workspace-dots")).Length > 20_000);
         Driver.ExecuteScript("document.getElementById('panel-sweep').scrollIntoView();");
         Assert.True(new FileInfo(Screenshot("workspace-sweep")).Length > 20_000);
+
+        Driver.FindElement(By.CssSelector("#panel-calibration summary")).Click();
+        SetField("calXMeasured", "16.008");
+        SetField("calYMeasured", "15.992");
+        SetField("calAngle", "90.5");
+        Id("calSolve").Click();
+        WaitFor(d => d.FindElements(By.CssSelector("[data-solution=line]")).Count > 0, "the calibration solved");
+        Driver.ExecuteScript("document.getElementById('panel-calibration').scrollIntoView();");
+        Assert.True(new FileInfo(Screenshot("workspace-calibration")).Length > 20_000);
         Assert.DoesNotContain(Driver.Manage().Logs.GetLog(LogType.Browser), e => e.Level == LogLevel.Severe);
     }
 
