@@ -51,6 +51,7 @@ public static class AppHost
         services.AddSingleton<IPresetStore>(sp => new JsonPresetStore(sp.GetRequiredService<AppFolders>().PresetsFile));
         services.AddSingleton(sp => new PresetsViewModel(sp.GetRequiredService<IPresetStore>(), sp.GetRequiredService<MainViewModel>().Job));
         services.AddSingleton(sp => new CalibrationViewModel(sp.GetRequiredService<MainViewModel>(), sp.GetRequiredService<AppFolders>().DataFolder));
+        services.AddSingleton(sp => new AlignmentViewModel(sp.GetRequiredService<MainViewModel>(), sp.GetRequiredService<AppFolders>().DataFolder));
         services.AddSingleton(sp =>
         {
             var main = ActivatorUtilities.CreateInstance<MainViewModel>(sp);

@@ -30,6 +30,8 @@ public abstract class ComponentTest : BunitContext
         Services.AddSingleton(Presets);
         Calibration = new CalibrationViewModel(Main, DataFolder.Path);
         Services.AddSingleton(Calibration);
+        Alignment = new AlignmentViewModel(Main, DataFolder.Path);
+        Services.AddSingleton(Alignment);
         JSInterop.Mode = JSRuntimeMode.Loose;
         SetRendererInfo(new RendererInfo("Server", isInteractive: true));
     }
@@ -54,6 +56,8 @@ public abstract class ComponentTest : BunitContext
     private protected TestFiles.TempFolder DataFolder { get; } = TestFiles.NewFolder();
 
     private protected CalibrationViewModel Calibration { get; }
+
+    private protected AlignmentViewModel Alignment { get; }
 
     protected override void Dispose(bool disposing)
     {

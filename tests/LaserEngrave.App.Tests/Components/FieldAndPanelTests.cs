@@ -278,3 +278,65 @@ public sealed class CalibrationPanelTests : ComponentTest
         Assert.Null(Calibration.Solution);
     }
 }
+
+public sealed class AlignmentPanelTests : ComponentTest
+{
+    private static (double X, double Y) OnStage(double x, double y, double degrees)
+    {
+        // A sample turned by `degrees` with the job's corner at 20, 15 mm.
+        var a = degrees * Math.PI / 180;
+        return (20 + (x * Math.Cos(a)) - (y * Math.Sin(a)), 15 + (x * Math.Sin(a)) + (y * Math.Cos(a)));
+    }
+
+    private static void Mark(IRenderedComponent<AlignmentPanel> cut, int mark, double jobX, double jobY, (double X, double Y) stage)
+    {
+        cut.Find($"#alJob{mark}X").Change(jobX.ToString(System.Globalization.CultureInfo.InvariantCulture));
+        cut.Find($"#alJob{mark}Y").Change(jobY.ToString(System.Globalization.CultureInfo.InvariantCulture));
+        cut.Find($"#alStage{mark}X").Change(stage.X.ToString("R", System.Globalization.CultureInfo.InvariantCulture));
+        cut.Find($"#alStage{mark}Y").Change(stage.Y.ToString("R", System.Globalization.CultureInfo.InvariantCulture));
+    }
+
+    [Fact]
+    public void Align_MarksOfASampleTurnedTwoDegrees_TheJobRotatedOntoThem()
+    {
+        OpenQr();
+        var pitch = Main.Job.Job!.Geometry.PitchUm;
+        var cut = Render<AlignmentPanel>(p => p.Add(c => c.Alignment, Alignment));
+        Mark(cut, 1, 1, 1, OnStage(1, 1, 2));
+        Mark(cut, 2, 4, 4, OnStage(4, 4, 2));
+
+        cut.Find("#alAlign").Click();
+
+        Assert.Contains("Rotation: +2°", cut.FindAll("[data-alignment=line]")[0].TextContent, StringComparison.Ordinal);
+        Assert.EndsWith("-aligned.png", Main.Job.ImagePath, StringComparison.Ordinal);
+        Assert.Equal(pitch, Main.Job.Job!.Geometry.PitchUm, 6);
+
+        // The rotated QR code is wider than 41 px, and its box starts left of the job's corner (the turn moves its left edge in -X).
+        Assert.True(Main.Job.Mask!.Width > 41);
+        Assert.True(Main.Job.OriginXMm < 20 && Main.Job.OriginYMm <= 15.0001, $"origin {Main.Job.OriginXMm}, {Main.Job.OriginYMm}");
+    }
+
+    [Fact]
+    public void Align_MarksFartherApartOnTheStage_RefusedWithOneLine()
+    {
+        OpenQr();
+        var cut = Render<AlignmentPanel>(p => p.Add(c => c.Alignment, Alignment));
+        Mark(cut, 1, 1, 1, (21, 16));
+        Mark(cut, 2, 4, 4, (24.2, 19));
+
+        cut.Find("#alAlign").Click();
+
+        Assert.False(string.IsNullOrWhiteSpace(cut.Find("[data-error=alignment]").TextContent));
+        Assert.EndsWith("qr-code.bmp", Main.Job.ImagePath, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void TakeStagePosition_NotConnected_SaysWhatToDo()
+    {
+        var cut = Render<AlignmentPanel>(p => p.Add(c => c.Alignment, Alignment));
+
+        cut.Find("#alTake1").Click();
+
+        Assert.Contains("connect, home and jog onto the mark first", cut.Find("[data-error=alignment]").TextContent, StringComparison.Ordinal);
+    }
+}
