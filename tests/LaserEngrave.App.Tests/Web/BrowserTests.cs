@@ -325,6 +325,10 @@ public sealed class BrowserTests : IAsyncLifetime
         WaitFor(d => d.FindElements(By.CssSelector("[data-solution=line]")).Count > 0, "the calibration solved");
         Driver.ExecuteScript("document.getElementById('panel-calibration').scrollIntoView();");
         Assert.True(new FileInfo(Screenshot("workspace-calibration")).Length > 20_000);
+
+        Driver.FindElement(By.CssSelector("#panel-alignment summary")).Click();
+        Driver.ExecuteScript("document.getElementById('panel-alignment').scrollIntoView();");
+        Assert.True(new FileInfo(Screenshot("workspace-alignment")).Length > 20_000);
         Assert.DoesNotContain(Driver.Manage().Logs.GetLog(LogType.Browser), e => e.Level == LogLevel.Severe);
     }
 
