@@ -80,7 +80,7 @@ public sealed partial class RunExecutor
         CompleteAcknowledged();
         lock (_lock)
         {
-            _moveRow = Job.Plan.Mask.Height;
+            _moveRow = Job!.Plan.Mask.Height;
             _currentMove = null;
             if (_lastRow >= 0)
             {
@@ -148,7 +148,7 @@ public sealed partial class RunExecutor
         var firstBurn = moves.FirstOrDefault(m => m.Move.Kind == MoveKind.Burn);
         if (firstBurn.Move.Kind == MoveKind.Burn && Math.Abs(firstBurn.Move.X0 - first.X0) < timing.RunUpMicrosteps)
         {
-            startX = Math.Clamp(firstBurn.Move.X0 - (dir * timing.RunUpMicrosteps), 0, Job.Plan.Geometry.TravelXMicrosteps);
+            startX = Math.Clamp(firstBurn.Move.X0 - (dir * timing.RunUpMicrosteps), 0, Job!.Plan.Geometry.TravelXMicrosteps);
         }
 
         return new Segment(true, moves, startX, first.Y0, last.X1, last.Y1);
@@ -327,7 +327,7 @@ public sealed partial class RunExecutor
                 position = again.Result;
                 moved = (position - start) * direction;
                 least = 1;
-                most = Math.Abs(Job.Plan.Geometry.TravelXMicrosteps);
+                most = Math.Abs(Job!.Plan.Geometry.TravelXMicrosteps);
             }
         }
 
@@ -389,7 +389,7 @@ public sealed partial class RunExecutor
             {
                 // Counted from effect to effect: the switch-off takes effect its lead after it is sent, as the switch-on did.
                 var off = Gate.OffAsync(CancellationToken.None);
-                MarkLaserOff(Job.Plan.Timing!.OffLeadSeconds);
+                MarkLaserOff(_timing!.OffLeadSeconds);
                 return off;
             }
 
@@ -403,7 +403,7 @@ public sealed partial class RunExecutor
             lock (_lock)
             {
                 _laserOn = true;
-                _laserOnSince = TimeProvider.GetTimestamp() + (long)(Job.Plan.Timing!.OnLeadSeconds * TimeProvider.TimestampFrequency);
+                _laserOnSince = TimeProvider.GetTimestamp() + (long)(_timing!.OnLeadSeconds * TimeProvider.TimestampFrequency);
             }
 
             return ack;
@@ -442,7 +442,7 @@ public sealed partial class RunExecutor
     /// </remarks>
     private void Watch(Task reply, double expectedSeconds, string what, bool gate = false, string? axis = null)
     {
-        var jitter = gate ? Job.Plan.Timing?.GateJitterSeconds : Job.Plan.Timing?.StageJitterSeconds;
+        var jitter = gate ? _timing?.GateJitterSeconds : _timing?.StageJitterSeconds;
         var deadline = expectedSeconds + ((jitter ?? 0) * 2) + (Options.StallMarginMs / 1000);
         var watched = new Watched(reply, deadline, what);
         if (axis is not null)

@@ -3,6 +3,7 @@ using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Motion;
 using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Vectors;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Zaber;
 
@@ -31,8 +32,11 @@ public sealed partial class RunExecutor
     private readonly AsyncLock _laserLock = new();
     private readonly CancellationTokenSource _abortDone = new();
     private readonly CancellationTokenSource _fault = new();
-    private readonly ProcessSettings _process;
-    private readonly MachineProfile _profile;
+    private readonly ProcessSettings _process = ProcessSettings.Default;
+    private readonly MachineProfile _profile = MachineProfile.Default;
+    private readonly TimedSwitching? _timing;
+    private readonly int _rowsTotal;
+    private readonly long _runsTotal;
     private readonly int _burnSpeedData;
     private readonly int _travelSpeedData;
     private readonly int _accelerationData;
@@ -72,23 +76,47 @@ public sealed partial class RunExecutor
     private PlanEstimator? _estimator;
 
     public RunExecutor(IStage stage, ILaserGate gate, PreparedJob job, TimeProvider? timeProvider = null, RunOptions? options = null)
+        : this(stage, gate, job?.Spec!, job?.Plan.Geometry.MicrostepUm ?? 0, job?.Plan.Options.Strategy ?? PlanStrategy.Optimized, timeProvider, options)
+    {
+        ArgumentNullException.ThrowIfNull(job);
+        Job = job;
+        _timing = job.Plan.Timing;
+        _rowsTotal = job.Statistics.Rows;
+        _runsTotal = job.Statistics.BurnRuns;
+        _progress = new RunProgress(RunState.Idle, 0, _rowsTotal, 0, _runsTotal, 0, TimeSpan.Zero, TimeSpan.FromSeconds(job.Statistics.EstimatedSeconds), 0, 0, false);
+    }
+
+    /// <summary>An executor for a drawing: its strokes, each axis streaming its speed (docs/vectors.md).</summary>
+    public RunExecutor(IStage stage, ILaserGate gate, PreparedDrawing drawing, TimeProvider? timeProvider = null, RunOptions? options = null)
+        : this(stage, gate, drawing?.Spec!, drawing?.Schedule.Timing.MicrostepUm ?? 0, PlanStrategy.Optimized, timeProvider, options)
+    {
+        ArgumentNullException.ThrowIfNull(drawing);
+        Drawing = drawing;
+        _timing = drawing.Schedule.Timing;
+        _rowsTotal = drawing.Schedule.Strokes.Count;
+        _runsTotal = drawing.Plan.Paths.Count;
+        _progress = new RunProgress(RunState.Idle, 0, _rowsTotal, 0, _runsTotal, 0, TimeSpan.Zero, TimeSpan.FromSeconds(drawing.Schedule.EstimatedSeconds), 0, 0, false);
+    }
+
+    private RunExecutor(IStage stage, ILaserGate gate, JobSpec spec, double microstepUm, PlanStrategy strategy, TimeProvider? timeProvider, RunOptions? options)
     {
         ArgumentNullException.ThrowIfNull(stage);
         ArgumentNullException.ThrowIfNull(gate);
-        ArgumentNullException.ThrowIfNull(job);
         Stage = stage;
         Gate = gate;
-        Job = job;
         TimeProvider = timeProvider ?? TimeProvider.System;
         Options = options ?? RunOptions.Default;
-        _process = job.Spec.Process;
-        _profile = job.Spec.Profile;
-        var microstepUm = job.Plan.Geometry.MicrostepUm;
-        var strategy = job.Plan.Options.Strategy;
+        _progress = new RunProgress(RunState.Idle, 0, 0, 0, 0, 0, TimeSpan.Zero, TimeSpan.Zero, 0, 0, false);
+        if (spec is null)
+        {
+            return;
+        }
+
+        _process = spec.Process;
+        _profile = spec.Profile;
         _burnSpeedData = StageUnits.SpeedData(_process.SpeedMmPerS(MoveKind.Burn, strategy), microstepUm);
         _travelSpeedData = StageUnits.SpeedData(_process.SpeedMmPerS(MoveKind.Travel, strategy), microstepUm);
         _accelerationData = StageUnits.AccelerationData(_process.AccelerationMmPerS2, microstepUm);
-        _progress = new RunProgress(RunState.Idle, 0, job.Statistics.Rows, 0, job.Statistics.BurnRuns, 0, TimeSpan.Zero, TimeSpan.FromSeconds(job.Statistics.EstimatedSeconds), 0, 0, false);
     }
 
     /// <summary>Raised on every state change.</summary>
@@ -104,7 +132,11 @@ public sealed partial class RunExecutor
 
     public ILaserGate Gate { get; }
 
-    public PreparedJob Job { get; }
+    /// <summary>The image job this executor runs; null for a drawing.</summary>
+    public PreparedJob? Job { get; }
+
+    /// <summary>The drawing this executor runs; null for an image job.</summary>
+    public PreparedDrawing? Drawing { get; }
 
     public TimeProvider TimeProvider { get; }
 
@@ -152,11 +184,16 @@ public sealed partial class RunExecutor
         {
             SetState(RunState.Preflight);
             identity = await PreflightAsync(token);
-            var (moves, firstIndex) = Prepare();
+            var (moves, firstIndex) = Drawing is null ? Prepare() : ([], 0);
+            var firstStroke = Drawing is null ? 0 : PrepareStrokes();
             SetState(RunState.Running);
             _keepAlive = new GateKeepAlive(Gate, GateKeepAlive.PeriodFor(_profile.Gate.WatchdogMs, Options.KeepAliveFraction), TimeProvider, OnKeepAliveFailed);
             using var linked = CancellationTokenSource.CreateLinkedTokenSource(token, _fault.Token);
-            if (Job.Plan.Timing is { } timing)
+            if (Drawing is { } drawing)
+            {
+                await ExecuteVectorAsync(drawing, firstStroke, linked.Token);
+            }
+            else if (Job!.Plan.Timing is { } timing)
             {
                 await ExecuteTimedAsync(moves, firstIndex, timing, linked.Token);
             }
@@ -387,16 +424,19 @@ public sealed partial class RunExecutor
     /// <summary>Refuses a job that leaves the travel or asks for speeds the stage cannot run.</summary>
     private void CheckJob()
     {
-        var geometry = Job.Geometry;
-        if (!geometry.FitsTravel)
+        if (Drawing is { } drawing)
         {
-            var outside = geometry.Warnings.FirstOrDefault(w => w.Kind == JobWarningKind.OutsideTravel);
+            CheckDrawing(drawing);
+        }
+        else if (!Job!.Geometry.FitsTravel)
+        {
+            var outside = Job.Geometry.Warnings.FirstOrDefault(w => w.Kind == JobWarningKind.OutsideTravel);
             throw new PreflightException(outside?.Message ?? "the job does not fit the stage travel");
         }
 
-        var strategy = Job.Plan.Options.Strategy;
-        var microstepUm = Job.Plan.Geometry.MicrostepUm;
-        if (Job.Plan.SwitchingProblem is { } tooShort)
+        var strategy = Job?.Plan.Options.Strategy ?? PlanStrategy.Optimized;
+        var microstepUm = Job?.Plan.Geometry.MicrostepUm ?? _timing!.MicrostepUm;
+        if (Job?.Plan.SwitchingProblem is { } tooShort)
         {
             throw new PreflightException(tooShort);
         }
@@ -427,7 +467,13 @@ public sealed partial class RunExecutor
     /// <summary>Refuses a job that reaches past an axis' Maximum Position (the device's own limit may be below the profile's travel).</summary>
     private void CheckReach(AxisIdentity x, AxisIdentity y)
     {
-        var plan = Job.Plan;
+        if (Drawing is { } drawing)
+        {
+            CheckDrawingReach(drawing, x, y);
+            return;
+        }
+
+        var plan = Job!.Plan;
         var geometry = plan.Geometry;
         var right = Math.Min(geometry.EdgeX(geometry.WidthPx) + plan.OverscanMicrosteps, geometry.TravelXMicrosteps);
         var bottom = geometry.EdgeY(geometry.HeightPx);
@@ -492,7 +538,7 @@ public sealed partial class RunExecutor
         lock (_lock)
         {
             _moveIndex = index;
-            _moveRow = Job.Plan.Mask.Height;
+            _moveRow = Job!.Plan.Mask.Height;
             _currentMove = null;
             if (_lastRow >= 0)
             {
@@ -506,7 +552,7 @@ public sealed partial class RunExecutor
     /// <exception cref="PreflightException">The resume point is not in this job's plan.</exception>
     private (IEnumerable<Move> Moves, long FirstIndex) Prepare()
     {
-        var plan = Job.Plan;
+        var plan = Job!.Plan;
         var microstepUm = plan.Geometry.MicrostepUm;
         var strategy = plan.Options.Strategy;
         _estimator = new PlanEstimator(_process, strategy, microstepUm, _profile.Gate, plan.Timing);
@@ -750,7 +796,7 @@ public sealed partial class RunExecutor
                 }
 
                 // Timed runs feed the watchdog in their own gate schedule, between the timed commands.
-                _keepAlive!.Active = Job.Plan.Timing is null;
+                _keepAlive!.Active = _timing is null;
             }
             else
             {
@@ -908,9 +954,9 @@ public sealed partial class RunExecutor
                 EstimatedSeconds = _estimateTotal - _estimateBefore,
                 LaserOnSeconds = _laserOnSeconds,
                 RowsDone = _rowsDone,
-                RowsTotal = Job.Statistics.Rows,
+                RowsTotal = _rowsTotal,
                 RunsDone = _runsDone,
-                RunsTotal = Job.Statistics.BurnRuns,
+                RunsTotal = _runsTotal,
                 Machine = identity,
             };
         }
@@ -939,15 +985,15 @@ public sealed partial class RunExecutor
     {
         var elapsed = TimeProvider.GetElapsedTime(_startTimestamp);
         // Timed runs keep to their estimate (the same timeline), so the clock says how much of it is done.
-        var estimateDone = !_engravingStarted || _estimator is null ? 0
-            : Job.Plan.Timing is not null ? Math.Min(_estimateTotal - _estimateBefore, (TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving).TotalSeconds)
-            : _estimator.ElapsedSeconds;
+        var estimateDone = !_engravingStarted || (_estimator is null && Drawing is null) ? 0
+            : _timing is not null ? Math.Min(_estimateTotal - _estimateBefore, (TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving).TotalSeconds)
+            : _estimator!.ElapsedSeconds;
         var done = _estimateBefore + estimateDone;
         var percent = _estimateTotal > 0 ? Math.Clamp(100 * done / _estimateTotal, 0, 100) : 0;
         var engraving = !_engravingStarted ? 0 : (TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving).TotalSeconds;
         var ratio = estimateDone > 1 && engraving > 0 ? engraving / estimateDone : 1;
         var remaining = Math.Max(0, _estimateTotal - done) * ratio;
-        return new RunProgress(_state, _rowsDone, Job.Statistics.Rows, _runsDone, Job.Statistics.BurnRuns, percent, elapsed, TimeSpan.FromSeconds(remaining), _x, _y, _laserOn);
+        return new RunProgress(_state, _rowsDone, _rowsTotal, _runsDone, _runsTotal, percent, elapsed, TimeSpan.FromSeconds(remaining), _x, _y, _laserOn);
     }
 
     private void SetState(RunState state)
