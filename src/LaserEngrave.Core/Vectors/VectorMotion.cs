@@ -22,6 +22,9 @@ public static class VectorMotion
     // Time the host allows itself to react to a reply before acting on it (as TimedSwitching).
     private const double ReactionSeconds = 0.0005;
 
+    // The spot's speed along the path may differ this much from the burn speed in the model (the pulses' spacing by as much).
+    private const double SpeedTolerance = 0.06;
+
     // The deviation is checked on the model this often while the laser is on.
     private const double CheckStepSeconds = 0.00025;
 
@@ -157,7 +160,8 @@ public static class VectorMotion
                 along[i] = along[i - 1] + StagePoint.Distance(points[i - 1], points[i]);
             }
 
-            var window = _speed * 2 * _slot * 2;
+            // After a sharp turn the axes take several updates to settle: the worst can come well after the corner.
+            var window = _speed * 16 * _slot;
             var splits = new SortedSet<int>();
             foreach (var at in worst)
             {
@@ -242,12 +246,16 @@ public static class VectorMotion
                 var s = ideal.DistanceAt(t);
                 var d = ideal.DistanceToPath(x.Position, y.Position, Math.Max(pathStart, s - window), Math.Min(pathEnd, s + window));
                 largest = Math.Max(largest, d);
-                if (d > _limit)
+
+                // A corner the axes round within the limit can still slow the spot down or speed it up: the pulses bunch.
+                var speedError = Math.Abs((Math.Sqrt((x.Velocity * x.Velocity) + (y.Velocity * y.Velocity)) / _speed) - 1);
+                if (d > _limit || speedError > SpeedTolerance)
                 {
                     over = true;
-                    if (d > peak.Deviation)
+                    var badness = Math.Max(d / _limit, speedError / SpeedTolerance);
+                    if (badness > peak.Deviation)
                     {
-                        peak = (d, s - pathStart);
+                        peak = (badness, s - pathStart);
                     }
                 }
                 else if (over)

@@ -43,10 +43,10 @@ public class VectorRunTests
         Assert.Single(job.Schedule.Strokes);
     }
 
-    internal static async Task<(RunResult Result, PathReport Report, PreparedDrawing Job)> RunAsync(string drawingPath, int seed, VectorMotionOptions? motion = null)
+    internal static async Task<(RunResult Result, PathReport Report, PreparedDrawing Job)> RunAsync(string drawingPath, int seed, VectorMotionOptions? motion = null, double? widthMm = null)
     {
-        var spec = new JobSpec { ImagePath = drawingPath, Size = SizeSpec.Width(1), Origin = new OriginMm(5, 5) };
-        var job = PreparedDrawing.PrepareOwnSize(spec, VectorOptions.Default, motion);
+        var spec = new JobSpec { ImagePath = drawingPath, Size = SizeSpec.Width(widthMm ?? 1), Origin = new OriginMm(5, 5) };
+        var job = widthMm is null ? PreparedDrawing.PrepareOwnSize(spec, VectorOptions.Default, motion) : PreparedDrawing.Prepare(spec, VectorOptions.Default, motion);
         await using var run = SimulatedRun.Create(new SimulatorOptions { Seed = seed });
         var result = await run.Do(() => new RunExecutor(run.Stage, run.Gate, job, run.Time).RunAsync(TestContext.Current.CancellationToken));
         var report = run.Machine.Recorder.AnalyzePaths(job.Plan.Paths, job.Spec.Process.BurnSpeedMmPerS);
@@ -79,5 +79,41 @@ internal static class TestDrawing
         var path = Path.Combine(Path.GetTempPath(), $"le-vector-{Guid.NewGuid():N}.svg");
         File.WriteAllText(path, $"<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10mm\" height=\"10mm\" viewBox=\"0 0 10 10\">{body}</svg>");
         return path;
+    }
+}
+
+/// <summary>The test drawings on the twin (assets/drawings), figures printed for docs/vectors.md.</summary>
+[Trait("Category", "Figures")]
+public class VectorDrawingFigures
+{
+    [Theory(Timeout = 600_000)]
+    [InlineData("hexagons.dxf")]
+    [InlineData("scattered.dxf")]
+    [InlineData("curves.dxf")]
+    [InlineData("every-command.svg")]
+    public async Task RunAsync_TestDrawing_OnPathAndAsEstimated(string name)
+    {
+        var path = TestJobs.AssetPath(Path.Combine("drawings", name));
+        var watch = System.Diagnostics.Stopwatch.StartNew();
+        var (result, report, job) = await VectorRunTests.RunAsync(path, seed: 1, widthMm: 20);
+        TestContext.Current.TestOutputHelper?.WriteLine($"wall {watch.Elapsed.TotalSeconds:0.00} s");
+        VectorRunTests.AssertOnPath(result, report, job);
+    }
+}
+
+/// <summary>Continuous strokes against a stop at every vertex (laser off for each stop), on the twin: both on the path, continuous much faster.</summary>
+[Trait("Category", "Figures")]
+public class VectorStopFigures
+{
+    [Fact(Timeout = 600_000)]
+    public async Task RunAsync_CircleHalfMillimetre_ContinuousFasterThanStoppingAtEveryVertex()
+    {
+        var drawing = TestDrawing.Svg("<circle cx=\"3\" cy=\"3\" r=\"0.5\"/>");
+        var (smooth, smoothReport, smoothJob) = await VectorRunTests.RunAsync(drawing, seed: 1);
+        var (stops, stopsReport, stopsJob) = await VectorRunTests.RunAsync(drawing, seed: 1, new VectorMotionOptions { StopAtEveryVertex = true });
+
+        VectorRunTests.AssertOnPath(smooth, smoothReport, smoothJob);
+        VectorRunTests.AssertOnPath(stops, stopsReport, stopsJob);
+        Assert.True(stops.EngravingDuration > 3 * smooth.EngravingDuration, $"{stops.EngravingDuration} against {smooth.EngravingDuration}");
     }
 }
