@@ -46,7 +46,18 @@ public sealed class VectorSchedule
     public double TravelSeconds(StagePoint from, StagePoint to)
     {
         long dx = Math.Abs(to.X - from.X), dy = Math.Abs(to.Y - from.Y);
-        return dx == 0 && dy == 0 ? ReactionSeconds : Timing.StageCommandSeconds + Timing.TravelSeconds(dx, dy) + Timing.StageReplySeconds + ReactionSeconds;
+        if (dx == 0 || dy == 0)
+        {
+            return dx == 0 && dy == 0 ? ReactionSeconds : Timing.StageCommandSeconds + Timing.TravelSeconds(dx, dy) + Timing.StageReplySeconds + ReactionSeconds;
+        }
+
+        // X is written first, Y right behind it on the wire (a frame later); the replies queue one behind the other coming back.
+        var frame = Timing.FrameSeconds;
+        var xEnd = Timing.Travel(dx).Duration;
+        var yEnd = frame + Timing.Travel(dy).Duration;
+        var first = Math.Min(xEnd, yEnd) + frame;
+        var last = Math.Max(Math.Max(xEnd, yEnd) + frame, first + frame);
+        return Timing.StageCommandSeconds + last + Timing.StageAdapterSeconds + ReactionSeconds;
     }
 
     /// <summary>The time of the strokes from <paramref name="first"/> on (a resumed run), with the setup and the last switch-off.</summary>
