@@ -26,6 +26,7 @@ namespace LaserEngrave.Core.Logging;
         typeof(CamelCaseEnumConverter<DitherMethod>),
         typeof(CamelCaseEnumConverter<PlanStrategy>),
         typeof(CamelCaseEnumConverter<PlanMode>),
+        typeof(CamelCaseEnumConverter<Vectors.VectorFillMode>),
     ])]
 [JsonSerializable(typeof(RunRecord))]
 internal sealed partial class RunLogJsonContext : JsonSerializerContext;

@@ -15,6 +15,7 @@ namespace LaserEngrave.Devices.Execution;
 public sealed class EngraveSession
 {
     private readonly Lock _lock = new();
+    private readonly long _moves;
     private RunExecutor? _current;
     private RunState _state = RunState.Idle;
     private EngraveProgress _progress;
@@ -24,24 +25,51 @@ public sealed class EngraveSession
     private int _started;
 
     public EngraveSession(EngraveMachine machine, PreparedJob job, EngraveSessionOptions? options = null)
+        : this(machine, job?.Spec!, options)
+    {
+        ArgumentNullException.ThrowIfNull(job);
+        Job = job;
+        _moves = job.Statistics.Moves;
+        var idle = new RunProgress(RunState.Idle, 0, job.Statistics.Rows, 0, job.Statistics.BurnRuns, 0, TimeSpan.Zero, TimeSpan.FromSeconds(job.Statistics.EstimatedSeconds), 0, 0, false);
+        _progress = new EngraveProgress(RunState.Idle, 1, Passes, 0, _moves, false, idle);
+    }
+
+    /// <summary>A session that engraves a drawing: its strokes (docs/vectors.md), the passes, the twin's path check and the log.</summary>
+    public EngraveSession(EngraveMachine machine, PreparedDrawing drawing, EngraveSessionOptions? options = null)
+        : this(machine, drawing?.Spec!, options)
+    {
+        ArgumentNullException.ThrowIfNull(drawing);
+        Drawing = drawing;
+        _moves = drawing.Schedule.Strokes.Count;
+        var idle = new RunProgress(RunState.Idle, 0, drawing.Schedule.Strokes.Count, 0, drawing.Plan.Paths.Count, 0, TimeSpan.Zero, TimeSpan.FromSeconds(drawing.Schedule.EstimatedSeconds), 0, 0, false);
+        _progress = new EngraveProgress(RunState.Idle, 1, Passes, 0, _moves, false, idle);
+    }
+
+    private EngraveSession(EngraveMachine machine, JobSpec spec, EngraveSessionOptions? options)
     {
         ArgumentNullException.ThrowIfNull(machine);
-        ArgumentNullException.ThrowIfNull(job);
-        ArgumentOutOfRangeException.ThrowIfLessThan(job.Spec.Passes, 1);
-        ArgumentOutOfRangeException.ThrowIfGreaterThan(job.Spec.Passes, JobSpec.MaxPasses);
+        ArgumentNullException.ThrowIfNull(spec);
+        ArgumentOutOfRangeException.ThrowIfLessThan(spec.Passes, 1);
+        ArgumentOutOfRangeException.ThrowIfGreaterThan(spec.Passes, JobSpec.MaxPasses);
         Machine = machine;
-        Job = job;
+        Spec = spec;
         Options = options ?? EngraveSessionOptions.Default;
 
         // Continuing a stopped run finishes the pass that stopped, and only that.
-        Passes = Options.ResumeFrom is null ? job.Spec.Passes : 1;
-        var idle = new RunProgress(RunState.Idle, 0, job.Statistics.Rows, 0, job.Statistics.BurnRuns, 0, TimeSpan.Zero, TimeSpan.FromSeconds(job.Statistics.EstimatedSeconds), 0, 0, false);
-        _progress = new EngraveProgress(RunState.Idle, 1, Passes, 0, job.Statistics.Moves, false, idle);
+        Passes = Options.ResumeFrom is null ? spec.Passes : 1;
+        _progress = new EngraveProgress(RunState.Idle, 1, Passes, 0, 0, false, new RunProgress(RunState.Idle, 0, 0, 0, 0, 0, TimeSpan.Zero, TimeSpan.Zero, 0, 0, false));
     }
 
     public EngraveMachine Machine { get; }
 
-    public PreparedJob Job { get; }
+    /// <summary>The image job; null for a drawing.</summary>
+    public PreparedJob? Job { get; }
+
+    /// <summary>The drawing; null for an image job.</summary>
+    public PreparedDrawing? Drawing { get; }
+
+    /// <summary>The job's spec (the image's or the drawing's).</summary>
+    public JobSpec Spec { get; }
 
     public EngraveSessionOptions Options { get; }
 
@@ -164,7 +192,9 @@ public sealed class EngraveSession
     private async Task<EngraveResult> RunPassesAsync(CancellationToken cancellationToken)
     {
         var time = Machine.TimeProvider;
-        var record = RunRecord.ForJob(Job, HashOrMissing(Job.Spec.ImagePath), Options.WallClock.GetLocalNow()) with
+        var hash = HashOrMissing(Spec.ImagePath);
+        var started = Options.WallClock.GetLocalNow();
+        var record = (Drawing is { } drawing ? RunRecord.ForDrawing(drawing, hash, started) : RunRecord.ForJob(Job!, hash, started)) with
         {
             Simulated = Machine.Simulated,
             Notes = Options.Notes,
@@ -208,7 +238,7 @@ public sealed class EngraveSession
 
         if (Machine.Inspector is { } inspector)
         {
-            record = record with { Simulation = inspector.Inspect(Job) };
+            record = record with { Simulation = Drawing is { } inspected ? inspector.InspectDrawing(inspected) : inspector.Inspect(Job!) };
         }
 
         record = RunRecords.Complete(record, run, error, Machine.StagePort, Machine.LaserPort, Options.WallClock.GetLocalNow(), time.GetElapsedTime(clockStart)) with
@@ -242,7 +272,9 @@ public sealed class EngraveSession
     private async Task<RunResult> RunPassAsync(int pass, CancellationToken cancellationToken)
     {
         var options = new RunOptions { Home = Options.Home && pass == 1, ResumeFrom = pass == 1 ? Options.ResumeFrom : null };
-        var executor = new RunExecutor(Machine.Stage, Machine.Gate, Job, Machine.TimeProvider, options);
+        var executor = Drawing is { } drawing
+            ? new RunExecutor(Machine.Stage, Machine.Gate, drawing, Machine.TimeProvider, options)
+            : new RunExecutor(Machine.Stage, Machine.Gate, Job!, Machine.TimeProvider, options);
         var movesDone = options.ResumeFrom?.MoveIndex ?? 0;
         executor.MoveCompleted += (_, e) => Interlocked.Exchange(ref movesDone, e.MoveIndex + 1);
         executor.ProgressChanged += (_, p) => Report(new PassProgress(pass, Interlocked.Read(ref movesDone), p));
@@ -284,7 +316,7 @@ public sealed class EngraveSession
             {
                 // A pass's end is not the session's: that comes once every pass has run, the burn is checked and the log written.
                 _state = RunStateMachine.IsEnd(p.Run.State) || (_abortRequested && p.Run.State is not RunState.Aborting) ? _state : p.Run.State;
-                _progress = new EngraveProgress(_state, p.Pass, Passes, p.MovesDone, Job.Statistics.Moves, _pauseRequested, p.Run);
+                _progress = new EngraveProgress(_state, p.Pass, Passes, p.MovesDone, _moves, _pauseRequested, p.Run);
             }
             else
             {
