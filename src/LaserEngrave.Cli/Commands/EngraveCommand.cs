@@ -46,10 +46,21 @@ internal static class EngraveCommand
 
         PreparedJob? prepared = null;
         PreparedDrawing? drawing = null;
-        string? repeatOf;
-        RunStopPoint? resumeFrom;
+        LayeredJob? layered = null;
+        string? repeatOf = null;
+        RunStopPoint? resumeFrom = null;
         IEnumerable<string> warnings;
-        if (IsDrawingJob(result, o))
+        if (result.GetValue(o.JobFile) is { } jobFile)
+        {
+            if (new Option[] { o.FromLog, o.Resume, o.Passes, o.Burned, o.Dose }.FirstOrDefault(option => OptionChecks.IsGiven(result, option)) is { } other)
+            {
+                throw new UsageException($"{other.Name} with --job: {(other == o.Passes ? "each layer has its own passes" : other == o.Burned || other == o.Dose ? "--burned and --dose are for one image" : "a job of layers is run again from its file, not from a log")}");
+            }
+
+            layered = LayerCommands.Prepare(result, jobFile, o.Job, o.Vector);
+            warnings = LayerCommands.Warnings(layered);
+        }
+        else if (IsDrawingJob(result, o))
         {
             if (burnedPath is not null || dosePath is not null)
             {
@@ -81,7 +92,7 @@ internal static class EngraveCommand
             stderr.WriteLine($"warning: {warning}");
         }
 
-        var profile = drawing?.Spec.Profile ?? prepared!.Spec.Profile;
+        var profile = layered?.Layers[0].Image?.Spec.Profile ?? layered?.Layers[0].Drawing!.Spec.Profile ?? drawing?.Spec.Profile ?? prepared!.Spec.Profile;
         var store = new RunLogStore(result.GetValue(o.LogDir) ?? RunLogStore.DefaultFolder);
 
         // A run must not start without a place for its log.
@@ -107,8 +118,8 @@ internal static class EngraveCommand
                 Home = result.GetValue(o.Home),
                 Log = store,
             };
-            var session = drawing is not null
-                ? new EngraveSession(machine, drawing, sessionOptions)
+            var session = layered is not null ? new EngraveSession(machine, layered, sessionOptions)
+                : drawing is not null ? new EngraveSession(machine, drawing, sessionOptions)
                 : new EngraveSession(machine, prepared!, sessionOptions);
             var printer = new ProgressPrinter(stderr, terminal: ReferenceEquals(stderr, Console.Error) && !Console.IsErrorRedirected);
             var wall = Stopwatch.StartNew();
@@ -327,6 +338,15 @@ internal static class EngraveCommand
             output.WriteLine($"Pulse map:        {s.DosePath}");
         }
 
+        foreach (var (layer, i) in (s.Layers ?? []).Select((l, i) => (l, i + 1)))
+        {
+            var ended = layer.Outcome is { } outcome ? outcome.ToString().ToLowerInvariant() : "not started";
+            var twin = layer.Simulation?.Path is { } path
+                ? string.Create(c, $"; deviation max {path.DeviationUm.Max:0.##} µm, spacing {path.PulseSpacingUm.Min:0.###}..{path.PulseSpacingUm.Max:0.###} µm")
+                : layer.Simulation is { } sim ? string.Create(c, $"; {sim.MissingPixels} pixels missing, {sim.ExtraPixels} extra") : string.Empty;
+            output.WriteLine(string.Create(c, $"Layer {i}:          \"{layer.Name}\" {ended}, {layer.PassesDone} of {layer.Passes} passes, engraving {RunSummaryText.Duration(layer.EngravingSeconds)} (estimated {RunSummaryText.Duration(layer.EstimatedSeconds)}){twin}"));
+        }
+
         output.WriteLine($"Log:              {s.LogPath}");
         output.WriteLine($"Summary:          {s.SummaryPath}");
     }
@@ -364,6 +384,8 @@ internal static class EngraveCommand
 
         public Option<bool> Home { get; } = new("--home") { Description = "Home both axes before the run even if they are homed" };
 
+        public Option<string?> JobFile { get; } = LayerCommands.JobOption();
+
         public Option<int?> Passes { get; } = new("--passes") { Description = "Burn the plan N times over the same place, one pass after the other (1..100, default 1)" };
 
         public void AddTo(Command command)
@@ -371,7 +393,7 @@ internal static class EngraveCommand
             Job.AddTo(command);
             Vector.AddTo(command);
             Machine.AddTo(command);
-            foreach (var option in new Option[] { LogDir, Burned, Dose, Notes, Sample, Json, FromLog, Resume, Home, Passes })
+            foreach (var option in new Option[] { LogDir, Burned, Dose, Notes, Sample, Json, FromLog, Resume, Home, Passes, JobFile })
             {
                 command.Options.Add(option);
             }
@@ -412,7 +434,8 @@ internal sealed record EngraveSummary(
     MeanMax? PathDeviationUm,
     SpacingRange? PulseSpacingUm,
     double? ExpectedSpacingUm,
-    bool Drawing)
+    bool Drawing,
+    IReadOnlyList<RunLayer>? Layers)
 {
     public static EngraveSummary From(RunRecord record, RunLogFiles files, string? burnedPath, string? dosePath, double? wallSeconds) => new(
         record.Outcome.ToString().ToLowerInvariant(),
@@ -446,5 +469,6 @@ internal sealed record EngraveSummary(
         record.Simulation?.Path?.DeviationUm,
         record.Simulation?.Path?.PulseSpacingUm,
         record.Simulation?.Path?.ExpectedSpacingUm,
-        record.Drawing is not null);
+        record.Drawing is not null,
+        record.Layers);
 }

@@ -27,6 +27,7 @@ namespace LaserEngrave.Core.Logging;
         typeof(CamelCaseEnumConverter<PlanStrategy>),
         typeof(CamelCaseEnumConverter<PlanMode>),
         typeof(CamelCaseEnumConverter<Vectors.VectorFillMode>),
+        typeof(CamelCaseEnumConverter<LayerMode>),
     ])]
 [JsonSerializable(typeof(RunRecord))]
 internal sealed partial class RunLogJsonContext : JsonSerializerContext;

@@ -98,6 +98,9 @@ public sealed record RunRecord
     /// <summary>For a drawing: how it was read, placed and ordered (the image fields then describe the drawing's file); null for an image.</summary>
     public RunDrawing? Drawing { get; init; }
 
+    /// <summary>For a job of layers: each layer in the order it ran (the fields above then describe the first layer's file, and the times and counts the whole run); null otherwise.</summary>
+    public IReadOnlyList<RunLayer>? Layers { get; init; }
+
     /// <summary>On the simulator: what the twin measured of the edges and pulses (null on the machine).</summary>
     public RunSimulation? Simulation { get; init; }
 

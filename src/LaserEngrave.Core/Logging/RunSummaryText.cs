@@ -106,6 +106,15 @@ public static class RunSummaryText
             }
         }
 
+        foreach (var (layer, i) in (record.Layers ?? []).Select((l, i) => (l, i + 1)))
+        {
+            var ended = layer.Outcome is { } o ? o.ToString().ToLowerInvariant() : "not started";
+            var path = layer.Simulation?.Path is { } figures ? string.Create(c, $"; twin: deviation max {figures.DeviationUm.Max:0.##} µm, spacing {figures.PulseSpacingUm.Min:0.###}..{figures.PulseSpacingUm.Max:0.###} µm") : string.Empty;
+            Line($"Layer {i}", string.Create(
+                c,
+                $"\"{layer.Name}\" {layer.Mode.ToString().ToLowerInvariant()} {Path.GetFileName(layer.Source)}{(layer.DrawingLayer is null ? string.Empty : $" layer {layer.DrawingLayer}")}: {layer.BurnSpeedMmPerS:0.###} mm/s, {layer.FrequencyHz:0.###} Hz, {layer.PassesDone} of {layer.Passes} passes, {ended}, engraving {Duration(layer.EngravingSeconds)} (estimated {Duration(layer.EstimatedSeconds)}){path}"));
+        }
+
         if (record.RepeatOf is { } repeated)
         {
             Line(record.Resumed ? "Resumes" : "Repeats", repeated + (record.Resumed ? " (from where it stopped)" : string.Empty));
