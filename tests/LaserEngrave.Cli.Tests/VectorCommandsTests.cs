@@ -216,4 +216,57 @@ public class VectorCommandsTests
         Assert.Contains(expected, error, StringComparison.Ordinal);
         Assert.Single(error.TrimEnd().Split('\n'));
     }
+
+    [Fact]
+    public async Task EngraveJob_LayersOnTheTwin_RunInOrderEachWithItsSettingsAndLoggedPerLayer()
+    {
+        var job = Path.Combine(CliHarness.RepositoryRoot, "assets", "jobs", "plate.json");
+        var logs = Path.Combine(Path.GetTempPath(), $"le-cli-layers-{Guid.NewGuid():N}");
+        try
+        {
+            var (planExit, planOutput, _) = await CliHarness.RunAsync("plan", "--job", job, "--json");
+            var (exit, output, error) = await CliHarness.RunAsync("engrave", "--job", job, "--simulate", "--json", "--log-dir", logs);
+
+            Assert.Equal(0, planExit);
+            Assert.True(exit == 0, error);
+            using var plan = JsonDocument.Parse(planOutput);
+            using var run = JsonDocument.Parse(output);
+            var estimate = plan.RootElement.GetProperty("estimatedSeconds").GetDouble();
+            Assert.Equal(estimate, run.RootElement.GetProperty("estimatedSeconds").GetDouble(), 6);
+            Assert.InRange(run.RootElement.GetProperty("engravingSeconds").GetDouble(), estimate * 0.98, estimate * 1.02);
+
+            using var log = JsonDocument.Parse(File.ReadAllText(run.RootElement.GetProperty("logPath").GetString()!));
+            var layers = log.RootElement.GetProperty("layers").EnumerateArray().ToList();
+            Assert.Equal(["marks", "logo", "cut"], layers.Select(l => l.GetProperty("name").GetString()));
+            Assert.All(layers, l => Assert.Equal("completed", l.GetProperty("outcome").GetString()));
+            Assert.Equal(0.5, layers[0].GetProperty("burnSpeedMmPerS").GetDouble());
+            Assert.Equal(500, layers[0].GetProperty("frequencyHz").GetDouble());
+            Assert.Equal(2, layers[2].GetProperty("passesDone").GetInt32());
+            Assert.Equal("raster", layers[1].GetProperty("mode").GetString());
+            Assert.Equal(0, layers[1].GetProperty("simulation").GetProperty("missingPixels").GetInt64());
+            Assert.True(layers[0].GetProperty("simulation").GetProperty("path").GetProperty("deviationUm").GetProperty("max").GetDouble() <= 3);
+            Assert.True(layers[2].GetProperty("simulation").GetProperty("path").GetProperty("deviationUm").GetProperty("max").GetDouble() <= 3);
+        }
+        finally
+        {
+            if (Directory.Exists(logs))
+            {
+                Directory.Delete(logs, recursive: true);
+            }
+        }
+    }
+
+    [Theory]
+    [InlineData(new[] { "--width-mm", "5" }, "--width-mm with --job")]
+    [InlineData(new[] { "--passes", "2" }, "--passes with --job: each layer has its own passes")]
+    public async Task EngraveJob_WithTheJobsOwnOptions_Exit2OneLine(string[] options, string expected)
+    {
+        var job = Path.Combine(CliHarness.RepositoryRoot, "assets", "jobs", "plate.json");
+
+        var (exit, _, error) = await CliHarness.RunAsync(["engrave", "--job", job, "--simulate", .. options]);
+
+        Assert.Equal(2, exit);
+        Assert.Contains(expected, error, StringComparison.Ordinal);
+        Assert.Single(error.TrimEnd().Split('\n'));
+    }
 }
