@@ -196,10 +196,11 @@ internal static class EngraveCommand
     }
 
     /// <summary>Whether the job is a drawing: IMAGE is a .dxf or .svg, or the log repeated is a drawing's.</summary>
+    /// <remarks>With both IMAGE and --from-log the image's way refuses the pair, before the log is read.</remarks>
     private static bool IsDrawingJob(ParseResult result, EngraveOptions o) =>
-        result.GetValue(o.FromLog) is { } fromLog
-            ? RunLogStore.Read(fromLog).Drawing is not null
-            : result.GetValue(o.Job.Image) is { } image && Core.Vectors.DrawingReader.IsDrawing(image);
+        result.GetValue(o.Job.Image) is { } image
+            ? Core.Vectors.DrawingReader.IsDrawing(image) && result.GetValue(o.FromLog) is null
+            : result.GetValue(o.FromLog) is { } fromLog && RunLogStore.Read(fromLog).Drawing is not null;
 
     /// <summary>The drawing's job from the options, or from a drawing's run log (the file checked against its SHA-256).</summary>
     private static (PreparedDrawing Drawing, string? RepeatOf, RunStopPoint? ResumeFrom) BindDrawingJob(ParseResult result, EngraveOptions o, int? passes)

@@ -144,6 +144,8 @@ public sealed partial class RunExecutor
         var onWrite = origin + stroke.LaserOnSeconds - timing.OnLeadSeconds;
         var offWrite = origin + stroke.LaserOffSeconds - timing.OffLeadSeconds;
         var events = new List<(double Write, int Order, Func<Task> Send)>();
+        var due = new List<(Task Reply, double Due, string What)>();
+        var stall = (2 * timing.StageJitterSeconds) + (Options.StallMarginMs / 1000);
         Task<long>? poll = null;
         IStageAxis? polled = null;
         Task? off = null;
@@ -157,10 +159,12 @@ public sealed partial class RunExecutor
                 switch (command.Kind)
                 {
                     case AxisCommandKind.Speed:
-                        Watch(Settled(axis.MoveAtConstantSpeedAsync(command.SpeedData, token)), arrival + timing.StageReplySeconds, $"a speed change of its stroke ({name})");
+                        var speed = Settled(axis.StreamSpeedAsync(command.SpeedData, token));
+                        due.Add((speed, arrival + timing.StageReplySeconds + stall, $"a speed change of its stroke ({name})"));
+                        Watch(speed, arrival + timing.StageReplySeconds, $"a speed change of its stroke ({name})");
                         break;
                     case AxisCommandKind.Stop:
-                        Watch(Settled(axis.StopAsync(token)), arrival + (timing.BurnSpeed / timing.Acceleration) + timing.StageReplySeconds, $"the stop of its stroke ({name})");
+                        Watch(Settled(axis.StreamStopAsync(token)), arrival + (timing.BurnSpeed / timing.Acceleration) + timing.StageReplySeconds, $"the stop of its stroke ({name})");
                         break;
                     default:
                         poll = axis.GetPositionAsync(token);
@@ -204,6 +208,10 @@ public sealed partial class RunExecutor
         {
             await DelayUntilAsync(at, token);
             ThrowIfAborted();
+
+            // Every reply that is due is looked at before each command: a stage that stops answering (or acting) is
+            // caught within a slot of its reply's deadline, on the stroke's own path, not by a watcher's timer.
+            CheckDue(due);
             await send();
         }
 
@@ -222,6 +230,27 @@ public sealed partial class RunExecutor
         }
 
         return travel;
+    }
+
+    private void CheckDue(List<(Task Reply, double Due, string What)> due)
+    {
+        var now = RunSeconds;
+        for (var i = due.Count - 1; i >= 0; i--)
+        {
+            var (reply, at, what) = due[i];
+            if (reply.IsCompletedSuccessfully)
+            {
+                due.RemoveAt(i);
+            }
+            else if (reply.IsFaulted && reply.Exception?.InnerException is DeviceException refused)
+            {
+                throw Fault(refused.Message);
+            }
+            else if (at < now)
+            {
+                throw Fault($"the stage did not report {what} within {Options.StallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)");
+            }
+        }
     }
 
     /// <summary>Before the switch-on: the position query shows the stroke's axis where the model has it, give or take both latencies.</summary>
@@ -278,7 +307,10 @@ public sealed partial class RunExecutor
         ProgressChanged?.Invoke(this, progress);
     }
 
-    /// <summary>A stroke's command settled: acknowledged, or replaced by the axis' next command before its reply came (which is fine here).</summary>
+    /// <summary>
+    /// A stroke's command settled: acknowledged, or counted as replaced when the stroke's stop has reported its end
+    /// (a lost reply to a speed change the axis has carried out, as its later replies show).
+    /// </summary>
     private static async Task Settled<T>(Task<T> reply)
     {
         try
@@ -287,7 +319,7 @@ public sealed partial class RunExecutor
         }
         catch (ZaberInterruptedException)
         {
-            // The next command of the same axis went out before this one's reply came back: it has done its part.
+            // Only the stop at the stroke's end replaces earlier commands (each speed change waits for its own reply).
         }
     }
 }
