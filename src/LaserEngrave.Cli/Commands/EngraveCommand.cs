@@ -121,7 +121,7 @@ internal static class EngraveCommand
             var session = layered is not null ? new EngraveSession(machine, layered, sessionOptions)
                 : drawing is not null ? new EngraveSession(machine, drawing, sessionOptions)
                 : new EngraveSession(machine, prepared!, sessionOptions);
-            var printer = new ProgressPrinter(stderr, terminal: ReferenceEquals(stderr, Console.Error) && !Console.IsErrorRedirected);
+            var printer = new ProgressPrinter(stderr, terminal: ReferenceEquals(stderr, Console.Error) && !Console.IsErrorRedirected) { Drawing = drawing is not null };
             var wall = Stopwatch.StartNew();
             try
             {
