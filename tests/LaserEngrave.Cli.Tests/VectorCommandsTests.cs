@@ -137,9 +137,11 @@ public class VectorCommandsTests
             Assert.Equal(0, root.GetProperty("dwells").GetProperty("count").GetInt32());
 
             // The plan's estimate is the run's, and within 2 % of what the twin took.
-            var estimate = plan.RootElement.GetProperty("estimatedSeconds").GetDouble();
-            Assert.Equal(estimate, root.GetProperty("estimatedSeconds").GetDouble(), 9);
+            var estimate = plan.RootElement.GetProperty("estimatedEngravingSeconds").GetDouble();
+            Assert.Equal(estimate, root.GetProperty("estimatedEngravingSeconds").GetDouble(), 9);
             Assert.InRange(root.GetProperty("engravingSeconds").GetDouble(), estimate * 0.98, estimate * 1.02);
+            var whole = plan.RootElement.GetProperty("estimatedSeconds").GetDouble();
+            Assert.InRange(root.GetProperty("durationSeconds").GetDouble(), whole * 0.98, whole * 1.02);
 
             using var log = JsonDocument.Parse(File.ReadAllText(root.GetProperty("logPath").GetString()!));
             Assert.Equal(plan.RootElement.GetProperty("pathCount").GetInt32(), log.RootElement.GetProperty("drawing").GetProperty("paths").GetInt32());
@@ -231,8 +233,8 @@ public class VectorCommandsTests
             Assert.True(exit == 0, error);
             using var plan = JsonDocument.Parse(planOutput);
             using var run = JsonDocument.Parse(output);
-            var estimate = plan.RootElement.GetProperty("estimatedSeconds").GetDouble();
-            Assert.Equal(estimate, run.RootElement.GetProperty("estimatedSeconds").GetDouble(), 6);
+            var estimate = plan.RootElement.GetProperty("estimatedEngravingSeconds").GetDouble();
+            Assert.Equal(estimate, run.RootElement.GetProperty("estimatedEngravingSeconds").GetDouble(), 6);
             Assert.InRange(run.RootElement.GetProperty("engravingSeconds").GetDouble(), estimate * 0.98, estimate * 1.02);
 
             using var log = JsonDocument.Parse(File.ReadAllText(run.RootElement.GetProperty("logPath").GetString()!));

@@ -71,6 +71,15 @@ public sealed class FileAccess(AppFolders folders, long maxUploadBytes = IFileAc
             ? [.. Directory.EnumerateFiles(folders.SamplesFolder).Order(StringComparer.OrdinalIgnoreCase)]
             : [];
 
+    public string SavePattern(string name, Core.Imaging.BitMask mask)
+    {
+        var folder = Path.Combine(folders.UploadFolder, "patterns");
+        Directory.CreateDirectory(folder);
+        var path = Path.Combine(folder, name + ".png");
+        Core.Imaging.PngWriter.WriteMask(path, mask);
+        return path;
+    }
+
     public void OpenFolder(string path)
     {
         Directory.CreateDirectory(path);

@@ -15,6 +15,10 @@ public interface IFileAccess
     /// <summary>The sample images shipped with the app (assets/ of the repository), full paths, by name.</summary>
     IReadOnlyList<string> SampleImages();
 
+    /// <summary>Writes a generated test pattern (black = burn) as a PNG under the app's image folder; returns its path.</summary>
+    /// <exception cref="IOException">The folder cannot be written.</exception>
+    string SavePattern(string name, Core.Imaging.BitMask mask);
+
     /// <summary>Opens a folder in the system's file manager.</summary>
     void OpenFolder(string path);
 }

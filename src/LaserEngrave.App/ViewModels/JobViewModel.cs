@@ -156,7 +156,7 @@ public sealed partial class JobViewModel : ObservableObject
     /// <summary>Whether the open file is a drawing rather than an image.</summary>
     public bool IsDrawing => ImagePath is { } path && DrawingReader.IsDrawing(path);
 
-    /// <summary>Estimated duration of all passes, s.</summary>
+    /// <summary>Estimated duration of the whole run, all passes, s: preflight, homing, the first travel and the engraving.</summary>
     [ObservableProperty]
     public partial double? EstimatedSeconds { get; private set; }
 
@@ -595,7 +595,7 @@ public sealed partial class JobViewModel : ObservableObject
 
             Job = job;
             Drawing = null;
-            EstimatedSeconds = job is null ? null : job.Statistics.EstimatedSeconds * Passes;
+            EstimatedSeconds = job is null ? null : job.Statistics.WholeRunSeconds(Passes);
             SetErrors(errors);
             Warnings = warnings;
             OnPropertyChanged(nameof(MicrostepsPerPixel));
@@ -665,7 +665,7 @@ public sealed partial class JobViewModel : ObservableObject
 
             Job = null;
             Drawing = drawing;
-            EstimatedSeconds = drawing is null ? null : drawing.Schedule.EstimatedSeconds * Passes;
+            EstimatedSeconds = drawing?.WholeRunSeconds(Passes);
             SetErrors(errors);
             Warnings = warnings;
             PlanVersion++;

@@ -1,7 +1,9 @@
 using System.ComponentModel;
 using CommunityToolkit.Mvvm.ComponentModel;
 using LaserEngrave.App.Services;
+using LaserEngrave.Core.Calibration;
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Planning;
 
 namespace LaserEngrave.App.ViewModels;
 
@@ -72,6 +74,52 @@ public sealed partial class MainViewModel : ObservableObject
     /// <summary>Why the settings could not be saved, if they could not.</summary>
     [ObservableProperty]
     public partial string? SettingsError { get; private set; }
+
+    /// <summary>Why the last test pattern could not be made, if it could not.</summary>
+    [ObservableProperty]
+    public partial string? PatternError { get; private set; }
+
+    /// <summary>
+    /// Opens the bidirectional scan offset pattern as the job (docs/execution.md, "Scan offsets"): short vertical bars at
+    /// a 25 µm pitch, every other row burned the other way, at the burn speed set, with a run-up long enough to reach it.
+    /// Burned and looked at under the microscope, the bars' halves show any offset between the two directions, to be
+    /// entered per speed in the profile's <c>scanOffsets</c>.
+    /// </summary>
+    /// <exception cref="MachineBusyException">A run, homing or a test move is under way.</exception>
+    public bool LoadScanOffsetPattern()
+    {
+        Activity.ThrowIfJobLocked();
+        var pattern = ScanOffsetPattern.Create(pitchUm: 25, barWidthUm: 200, barHeightUm: 500, bars: 5, gapUm: 300);
+        string path;
+        try
+        {
+            path = _files.SavePattern("scan-offset", pattern.ToMask());
+        }
+        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
+        {
+            PatternError = $"the scan offset pattern could not be written: {ex.Message}";
+            return false;
+        }
+
+        PatternError = null;
+        if (!Job.LoadImage(path))
+        {
+            return false;
+        }
+
+        var speed = Job.BurnSpeedMmPerS;
+        var acceleration = Job.AccelerationMmPerS2;
+        Job.Batch(() =>
+        {
+            Job.EditPitch(pattern.PitchUm);
+            Job.Strategy = PlanStrategy.Optimized;
+            Job.Bidirectional = true;
+
+            // A run-up as long as the stage needs to reach the speed, so the bars' edges burn at it.
+            Job.OverscanMm = Math.Max(0.01, Math.Ceiling(speed * speed / (2 * acceleration) * 100) / 100);
+        });
+        return true;
+    }
 
     /// <summary>Opens the last image again, if it is still there.</summary>
     public void Restore()

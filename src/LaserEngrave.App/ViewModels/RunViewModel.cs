@@ -29,6 +29,7 @@ public sealed partial class RunViewModel : ObservableObject
     private (int PlanVersion, string? Reason) _continueCheck = (-1, null);
     private long _startedTicks;
     private double _estimatedSeconds;
+    private double _laterPassSeconds;
 
     public RunViewModel(IRunService runs, JobViewModel job, MachineViewModel machine, LogViewModel log, TimeProvider time)
     {
@@ -152,7 +153,7 @@ public sealed partial class RunViewModel : ObservableObject
             if (Progress is { } p && p.MovesDone > 0)
             {
                 var passes = Math.Max(1, p.Passes);
-                return p.Run.Remaining.TotalSeconds + (Math.Max(0, passes - p.Pass) * _estimatedSeconds / passes);
+                return p.Run.Remaining.TotalSeconds + (Math.Max(0, passes - p.Pass) * _laterPassSeconds);
             }
 
             return Math.Max(0, _estimatedSeconds * (1 - Fraction));
@@ -355,6 +356,9 @@ public sealed partial class RunViewModel : ObservableObject
         var continuedFrom = resumeFrom is null ? null : _log.LastRun?.Path;
         _startedTicks = _time.GetTimestamp();
         _estimatedSeconds = _job.EstimatedSeconds ?? 0;
+        _laterPassSeconds = job is not null ? job.Statistics.EngravingSeconds + job.Statistics.PassSetupSeconds
+            : _job.Drawing is { } drawing ? drawing.Schedule.EstimatedSeconds + drawing.PassSetupSeconds
+            : 0;
         var machine = new EngraveMachine(connection.Stage, connection.Gate, connection.TimeProvider, connection.Description, connection.Description)
         {
             Simulated = connection.IsSimulated,

@@ -283,7 +283,7 @@ internal static class EngraveCommand
             output.WriteLine(string.Create(c, $"Passes:           {s.PassesDone ?? 0} of {s.Passes} done (rows and runs above: the last pass)"));
         }
 
-        output.WriteLine(string.Create(c, $"Duration:         {RunSummaryText.Duration(s.DurationSeconds)}{clock}; engraving {RunSummaryText.Duration(s.EngravingSeconds)}, estimated {RunSummaryText.Duration(s.EstimatedSeconds)}"));
+        output.WriteLine(string.Create(c, $"Duration:         {RunSummaryText.Duration(s.DurationSeconds)}, estimated {RunSummaryText.Duration(s.EstimatedSeconds)}{clock}; engraving {RunSummaryText.Duration(s.EngravingSeconds)}, estimated {RunSummaryText.Duration(s.EstimatedEngravingSeconds)}"));
         output.WriteLine(string.Create(c, $"Laser on:         {RunSummaryText.Duration(s.LaserOnSeconds)}"));
         if (s.PathDeviationUm is { } deviation && s.PulseSpacingUm is { } spacing)
         {
@@ -377,7 +377,7 @@ internal static class EngraveCommand
 
         public Option<string?> Sample { get; } = new("--sample") { Description = "Sample ID for the run log; also part of the log's file name" };
 
-        public Option<bool> Json { get; } = new("--json") { Description = "Print one JSON object with the outcome, times, counts and the log's path" };
+        public Option<bool> Json { get; } = new("--json") { Description = "Print one JSON object with the outcome, times, counts and the log's path; durationSeconds and estimatedSeconds are the whole run (preflight and homing included), engravingSeconds and estimatedEngravingSeconds the engraving alone" };
 
         public Option<string?> FromLog { get; } = new("--from-log") { Description = "Repeat the run of this log (its image, unchanged, and all its parameters) instead of giving IMAGE" };
 
@@ -413,6 +413,7 @@ internal sealed record EngraveSummary(
     double? WallSeconds,
     double EngravingSeconds,
     double EstimatedSeconds,
+    double EstimatedEngravingSeconds,
     double LaserOnSeconds,
     int RowsDone,
     int RowsTotal,
@@ -448,6 +449,7 @@ internal sealed record EngraveSummary(
         wallSeconds,
         record.EngravingSeconds,
         record.EstimatedSeconds,
+        record.EstimatedEngravingSeconds,
         record.LaserOnSeconds,
         record.RowsDone,
         record.RowsTotal,

@@ -57,7 +57,7 @@ internal static class LayerCommands
                 output.WriteLine(string.Create(c, $"                  {layer.SpeedMmPerS:0.###} mm/s, {layer.FrequencyHz:0.###} Hz, {layer.Passes} pass(es), {RunSummaryText.Duration(layer.EstimatedSeconds)} ({layer.EstimatedSeconds:0.##} s)"));
             }
 
-            output.WriteLine(string.Create(c, $"Estimated time:   {RunSummaryText.Duration(summary.EstimatedSeconds)} ({summary.EstimatedSeconds:0.##} s), layers in this order"));
+            output.WriteLine(string.Create(c, $"Estimated time:   {RunSummaryText.Duration(summary.EstimatedSeconds)} ({summary.EstimatedSeconds:0.##} s, the whole run, layers in this order); engraving {RunSummaryText.Duration(summary.EstimatedEngravingSeconds)} ({summary.EstimatedEngravingSeconds:0.##} s)"));
         }
 
         foreach (var warning in Warnings(job))
@@ -70,7 +70,7 @@ internal static class LayerCommands
 }
 
 /// <summary>What `plan --job FILE --json` prints: each layer and the whole job's estimate.</summary>
-internal sealed record LayersSummary(IReadOnlyList<LayerSummary> Layers, double EstimatedSeconds)
+internal sealed record LayersSummary(IReadOnlyList<LayerSummary> Layers, double EstimatedSeconds, double EstimatedEngravingSeconds)
 {
     public static LayersSummary From(LayeredJob job) => new(
         [.. job.Layers.Select(l =>
@@ -89,9 +89,11 @@ internal sealed record LayersSummary(IReadOnlyList<LayerSummary> Layers, double 
                 spec.Process.BurnSpeedMmPerS,
                 spec.Process.LaserFrequencyHz,
                 l.Layer.Passes,
-                l.EstimatedSeconds * l.Layer.Passes);
+                l.EstimatedSeconds,
+                l.EngravingSeconds * l.Layer.Passes);
         })],
-        job.EstimatedSeconds);
+        job.EstimatedSeconds,
+        job.EstimatedEngravingSeconds);
 }
 
 /// <summary>One layer in `plan --job --json`: what, where, how, and its estimate over all its passes.</summary>
@@ -107,4 +109,5 @@ internal sealed record LayerSummary(
     double SpeedMmPerS,
     double FrequencyHz,
     int Passes,
-    double EstimatedSeconds);
+    double EstimatedSeconds,
+    double EstimatedEngravingSeconds);

@@ -11,12 +11,15 @@ internal static class PlanCommand
     public static Command Create()
     {
         var job = new JobOptions();
-        var json = new Option<bool>("--json") { Description = "Print one JSON object" };
+        var json = new Option<bool>("--json")
+        {
+            Description = "Print one JSON object; estimatedSeconds is the whole run (preflight, homing from the far end, the first travel and the engraving), estimatedEngravingSeconds the engraving alone",
+        };
         var segments = new Option<string?>("--segments") { Description = "Write every move in order as CSV (kind,x0,y0,x1,y1 in microsteps)" };
         var vector = new VectorOptionSet();
         var jobFile = LayerCommands.JobOption();
         job.Image.Arity = ArgumentArity.ZeroOrOne;
-        var command = new Command("plan", "Size an image on the stage and plan the raster: runs, lengths, laser switches, estimated time; or a drawing (.dxf, .svg): paths, lengths, travel");
+        var command = new Command("plan", "Size an image on the stage and plan the raster: runs, lengths, laser switches, the estimated time of the whole run; or a drawing (.dxf, .svg): paths, lengths, strokes, estimated time; or a job of layers (--job)");
         job.AddTo(command);
         vector.AddTo(command);
         command.Options.Add(json);
@@ -95,8 +98,10 @@ internal sealed record JobSummary(
     double BurnLengthMm,
     double TravelLengthMm,
     long LaserSwitches,
+    int Passes,
     double EstimatedSeconds,
-    double? WholeRunSeconds,
+    double EstimatedEngravingSeconds,
+    double EstimatedPreparationSeconds,
     double LowerBoundSeconds,
     IReadOnlyList<string> Warnings,
     double PulseSpacingUm,
@@ -129,8 +134,10 @@ internal sealed record JobSummary(
             s.BurnLengthMm,
             s.TravelLengthMm,
             s.LaserSwitches,
-            s.EstimatedSeconds,
-            s.WholeRunSeconds,
+            job.Spec.Passes,
+            s.WholeRunSeconds(job.Spec.Passes),
+            s.EngravingSeconds * job.Spec.Passes,
+            s.PreparationSeconds,
             s.LowerBoundSeconds,
             [.. job.Warnings.Select(w => w.Message)],
             job.Pulses.PulseSpacingUm,
@@ -159,12 +166,7 @@ internal sealed record JobSummary(
         output.WriteLine(string.Create(c, $"Travel:           {s.TravelLengthMm:0.###} mm"));
         output.WriteLine(string.Create(c, $"Laser switches:   {s.LaserSwitches}"));
         output.WriteLine(string.Create(c, $"Pulses:           {s.PulseSpacingUm:0.###} µm apart, {s.OverlapPercent:0.#} % overlap, {s.PulsesPerPixel:0.##} per pixel"));
-        output.WriteLine(string.Create(c, $"Estimated time:   {Duration(s.EstimatedSeconds)}"));
-        if (s.WholeRunSeconds is { } whole)
-        {
-            output.WriteLine(string.Create(c, $"Whole run:        {Duration(whole)} (with preflight, homing from the far end and the first travel)"));
-        }
-
+        output.WriteLine(string.Create(c, $"Estimated time:   {Duration(s.EstimatedSeconds)} for the whole run{(s.Passes > 1 ? $" of {s.Passes} passes" : string.Empty)}: preflight, homing from the far end and the first travel {Duration(s.EstimatedPreparationSeconds)}, engraving {Duration(s.EstimatedEngravingSeconds)}"));
         output.WriteLine(string.Create(c, $"Lower bound:      {Duration(s.LowerBoundSeconds)} (motion only)"));
     }
 

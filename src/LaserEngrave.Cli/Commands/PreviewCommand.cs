@@ -42,7 +42,7 @@ internal static class PreviewCommand
             var path = result.GetValue(output)!;
             PlanPreview.Render(prepared.Plan, path, maxPx);
             var console = result.InvocationConfiguration.Output;
-            console.WriteLine(string.Create(CultureInfo.InvariantCulture, $"{path}: plan of {prepared.Statistics.Moves} moves, estimated {JobSummary.Duration(prepared.Statistics.EstimatedSeconds)}"));
+            console.WriteLine(string.Create(CultureInfo.InvariantCulture, $"{path}: plan of {prepared.Statistics.Moves} moves, estimated {JobSummary.Duration(prepared.Statistics.WholeRunSeconds(prepared.Spec.Passes))}"));
             if (result.GetValue(maskOut) is { } maskPath)
             {
                 MaskPreview.Render(prepared.Mask, maskPath, maxPx);

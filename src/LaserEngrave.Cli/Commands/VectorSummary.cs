@@ -23,6 +23,7 @@ internal sealed record VectorSummary(
     IReadOnlyList<string> Warnings,
     int Strokes,
     double EstimatedSeconds,
+    double EstimatedEngravingSeconds,
     double PredictedDeviationUm)
 {
     public static VectorSummary From(PreparedDrawing drawing)
@@ -33,7 +34,8 @@ internal sealed record VectorSummary(
             FitsTravel = drawing.FitsTravel,
             Warnings = drawing.Warnings,
             Strokes = drawing.Schedule.Strokes.Count,
-            EstimatedSeconds = drawing.Schedule.EstimatedSeconds,
+            EstimatedSeconds = drawing.WholeRunSeconds(drawing.Spec.Passes),
+            EstimatedEngravingSeconds = drawing.Schedule.EstimatedSeconds * drawing.Spec.Passes,
             PredictedDeviationUm = drawing.Schedule.PredictedDeviationUm,
         };
     }
@@ -56,6 +58,7 @@ internal sealed record VectorSummary(
         plan.Warnings,
         0,
         0,
+        0,
         0);
 
     public void WriteText(TextWriter output)
@@ -69,7 +72,7 @@ internal sealed record VectorSummary(
         if (Strokes > 0)
         {
             output.WriteLine(string.Create(c, $"Strokes:          {Strokes} (each axis streaming its speed; the model within {PredictedDeviationUm:0.##} µm of the path)"));
-            output.WriteLine(string.Create(c, $"Estimated time:   {Core.Logging.RunSummaryText.Duration(EstimatedSeconds)} ({EstimatedSeconds:0.##} s)"));
+            output.WriteLine(string.Create(c, $"Estimated time:   {Core.Logging.RunSummaryText.Duration(EstimatedSeconds)} ({EstimatedSeconds:0.##} s, the whole run); engraving {Core.Logging.RunSummaryText.Duration(EstimatedEngravingSeconds)} ({EstimatedEngravingSeconds:0.##} s)"));
         }
 
         output.WriteLine(string.Create(c, $"Fits the travel:  {(FitsTravel ? "yes" : "NO")}"));

@@ -12,8 +12,11 @@ public sealed class LayeredJob
 
     public IReadOnlyList<PreparedLayer> Layers { get; }
 
-    /// <summary>Every layer's estimate times its passes, s.</summary>
-    public double EstimatedSeconds => Layers.Sum(l => l.EstimatedSeconds * l.Layer.Passes);
+    /// <summary>The whole run: every layer's passes with their preflight and positioning, s.</summary>
+    public double EstimatedSeconds => Layers.Sum(l => l.EstimatedSeconds);
+
+    /// <summary>The engraving part: every layer's engraving times its passes, s.</summary>
+    public double EstimatedEngravingSeconds => Layers.Sum(l => l.EngravingSeconds * l.Layer.Passes);
 
     public bool FitsTravel => Layers.All(l => l.FitsTravel);
 
@@ -119,8 +122,11 @@ public sealed class LayeredJob
 /// <summary>One layer ready to run: an image job or a drawing, with the layer that asked for it.</summary>
 public sealed record PreparedLayer(JobLayer Layer, PreparedJob? Image, PreparedDrawing? Drawing)
 {
-    /// <summary>One pass's estimate, s.</summary>
-    public double EstimatedSeconds => Image?.Statistics.EstimatedSeconds ?? Drawing!.Schedule.EstimatedSeconds;
+    /// <summary>One pass's engraving, s.</summary>
+    public double EngravingSeconds => Image?.Statistics.EngravingSeconds ?? Drawing!.Schedule.EstimatedSeconds;
+
+    /// <summary>The layer's whole run, all its passes with their preflight and positioning, s.</summary>
+    public double EstimatedSeconds => Image?.Statistics.WholeRunSeconds(Layer.Passes) ?? Drawing!.WholeRunSeconds(Layer.Passes);
 
     public bool FitsTravel => Image?.Geometry.FitsTravel ?? Drawing!.FitsTravel;
 

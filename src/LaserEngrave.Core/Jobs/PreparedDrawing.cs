@@ -24,6 +24,31 @@ public sealed class PreparedDrawing
 
     public VectorSchedule Schedule { get; }
 
+    /// <summary>What a run adds before its engraving: preflight, homing from the far end, the travel to the first run-up, s.</summary>
+    public double PreparationSeconds
+    {
+        get
+        {
+            var first = Schedule.Strokes.Count > 0 ? Schedule.Strokes[0].RunUpStart : Plan.Start;
+            return Schedule.Timing.PreparationSeconds(first.X, first.Y, home: true, from: (0, 0));
+        }
+    }
+
+    /// <summary>What each further pass adds before its engraving: preflight without homing, the travel back to the first run-up, s.</summary>
+    public double PassSetupSeconds
+    {
+        get
+        {
+            var first = Schedule.Strokes.Count > 0 ? Schedule.Strokes[0].RunUpStart : Plan.Start;
+            var last = Schedule.Strokes.Count > 0 ? Schedule.Strokes[^1].RestEnd : Plan.Start;
+            return Schedule.Timing.PreparationSeconds(first.X, first.Y, home: false, from: (last.X, last.Y));
+        }
+    }
+
+    /// <summary>The whole run of <paramref name="passes"/> passes, as for images (<c>PlanStatistics.WholeRunSeconds</c>), s.</summary>
+    public double WholeRunSeconds(int passes = 1) =>
+        PreparationSeconds + (Math.Max(1, passes) * Schedule.EstimatedSeconds) + (Math.Max(0, passes - 1) * PassSetupSeconds);
+
     /// <summary>Whether the paths and every stroke's run-up and run-out stay inside the travel.</summary>
     public bool FitsTravel => Plan.FitsTravel && Schedule.FitsTravel;
 

@@ -35,8 +35,11 @@ public sealed record RunLayer(
     /// <summary>How its last pass ended; null when the layer never started (an earlier one stopped the run).</summary>
     public RunOutcome? Outcome { get; init; }
 
-    /// <summary>Its estimate, all passes, s.</summary>
+    /// <summary>Its estimate, all passes, preflight and positioning included, s.</summary>
     public double EstimatedSeconds { get; init; }
+
+    /// <summary>The engraving part of <see cref="EstimatedSeconds"/>, all passes, s.</summary>
+    public double EstimatedEngravingSeconds { get; init; }
 
     /// <summary>The part of its time the estimate models, s.</summary>
     public double EngravingSeconds { get; init; }

@@ -55,8 +55,14 @@ public sealed record RunRecord
     /// <summary>The devices as they identified themselves, with their firmware versions.</summary>
     public IReadOnlyList<RunDevice> Devices { get; init; } = [];
 
-    /// <summary>The estimated duration of the moves this run was to execute (all of them, or those after a resume point), s.</summary>
+    /// <summary>
+    /// The estimated duration of the whole run, s: preflight, homing, the travel to the first move and the engraving of
+    /// every pass (all of the plan, or what follows a resume point). Compare with <see cref="ActualSeconds"/>.
+    /// </summary>
     public required double EstimatedSeconds { get; init; }
+
+    /// <summary>The part of <see cref="EstimatedSeconds"/> that is engraving, s. Compare with <see cref="EngravingSeconds"/>.</summary>
+    public double EstimatedEngravingSeconds { get; init; }
 
     /// <summary>How long the run took from start to end, s (virtual when simulated).</summary>
     public double ActualSeconds { get; init; }
@@ -127,7 +133,8 @@ public sealed record RunRecord
             Plan = job.Spec.Plan,
             Process = job.Spec.Process,
             Profile = job.Spec.Profile,
-            EstimatedSeconds = job.Statistics.EstimatedSeconds,
+            EstimatedSeconds = job.Statistics.WholeRunSeconds(job.Spec.Passes),
+            EstimatedEngravingSeconds = job.Statistics.EngravingSeconds * Math.Max(1, job.Spec.Passes),
             RowsTotal = job.Statistics.Rows,
             RunsTotal = job.Statistics.BurnRuns,
         };
@@ -153,7 +160,8 @@ public sealed record RunRecord
             Plan = spec.Plan,
             Process = spec.Process,
             Profile = spec.Profile,
-            EstimatedSeconds = schedule.EstimatedSeconds,
+            EstimatedSeconds = drawing.WholeRunSeconds(spec.Passes),
+            EstimatedEngravingSeconds = schedule.EstimatedSeconds * Math.Max(1, spec.Passes),
             RowsTotal = schedule.Strokes.Count,
             RunsTotal = schedule.Strokes.Select(s => s.PathIndex).Distinct().Count(),
             Drawing = new RunDrawing(

@@ -28,12 +28,18 @@ public static class RunSummaryText
         {
             var position = stop.XMicrosteps is { } x && stop.YMicrosteps is { } y ? string.Create(c, $", stage at {x}, {y} microsteps") : string.Empty;
             Line("Stopped at", string.Create(c, $"row {stop.Row}, move {stop.MoveIndex}{position}"));
+            if (stop is { ResumeXMicrosteps: { } resumeX, CutPixel: { } cut })
+            {
+                var check = stop.ExpectedXMicrosteps is { } expected ? string.Create(c, $" if X is found at {expected} microsteps (else from the run's start)") : string.Empty;
+                var watchdog = stop.OffByGateWatchdog ? " (the gate's link was lost: the laser went off by the gate's watchdog, which it must report tripped)" : string.Empty;
+                Line("Resumes", string.Create(c, $"mid-run at X {resumeX} microsteps{check}; pixel column {cut.Column}, row {cut.Row} (the laser went off in it{watchdog}) burns twice"));
+            }
         }
 
         Line("Started", record.StartedAt.ToString("yyyy-MM-dd HH:mm:ss zzz", c));
         Line("Ended", record.EndedAt.ToString("yyyy-MM-dd HH:mm:ss zzz", c));
         var clock = record.Simulated ? " (simulated time)" : string.Empty;
-        Line("Duration", string.Create(c, $"{Duration(record.ActualSeconds)}{clock}; engraving {Duration(record.EngravingSeconds)}, estimated {Duration(record.EstimatedSeconds)}"));
+        Line("Duration", string.Create(c, $"{Duration(record.ActualSeconds)}, estimated {Duration(record.EstimatedSeconds)}{clock}; engraving {Duration(record.EngravingSeconds)}, estimated {Duration(record.EstimatedEngravingSeconds)}"));
         Line("Laser on", Duration(record.LaserOnSeconds));
         Line("Done", record.Drawing is null
             ? string.Create(c, $"{record.RowsDone} of {record.RowsTotal} rows, {record.RunsDone} of {record.RunsTotal} burn runs")

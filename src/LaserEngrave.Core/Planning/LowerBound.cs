@@ -6,7 +6,8 @@ namespace LaserEngrave.Core.Planning;
 /// <summary>The least time any executor could take for a plan's burns: motion only, no serial time, no laser switching.</summary>
 /// <remarks>
 /// Streams the plan's burn moves in order (docs/execution.md, "Lower bound"): every burn run at the burn speed; every gap
-/// between two burn runs of one row the shorter of crossing it at the burn speed and a stop-go move (a rest-to-rest
+/// between two burn runs of one row the shortest of crossing it at the burn speed, flying it (from the burn speed up
+/// towards the travel speed and back, at the acceleration) and a stop-go move (a rest-to-rest
 /// <see cref="TrapezoidProfile"/> at the travel speed and the acceleration); every row change, from the last run's exit
 /// edge to the next visited row's first entry edge as the plan orders them, the longer of the two axes' rest-to-rest
 /// moves at the travel speed. Speeds and acceleration are the quantised Zaber ones (<see cref="StageUnits"/>), as the
@@ -59,12 +60,25 @@ public struct LowerBound
         {
             long dx = Math.Abs(move.X0 - _lastX), dy = Math.Abs(move.Y0 - _lastY);
             Seconds += move.Row == _lastRow && dy == 0
-                ? Math.Min(dx / _burnSpeed, StopGo(dx))
+                ? Math.Min(Math.Min(dx / _burnSpeed, Flown(dx)), StopGo(dx))
                 : Math.Max(StopGo(dx), StopGo(dy));
         }
 
         Seconds += move.LengthX / _burnSpeed;
         (_hasBurn, _lastX, _lastY, _lastRow) = (true, move.X1, move.Y1, move.Row);
+    }
+
+    // Speeding up from the burn speed (towards the travel speed) and back to it at the next edge, without stopping.
+    private readonly double Flown(long distance)
+    {
+        if (_travelSpeed <= _burnSpeed)
+        {
+            return distance / _burnSpeed;
+        }
+
+        var peak = Math.Min(_travelSpeed, Math.Sqrt((_burnSpeed * _burnSpeed) + (_acceleration * distance)));
+        var ramps = ((peak * peak) - (_burnSpeed * _burnSpeed)) / _acceleration;
+        return (2 * (peak - _burnSpeed) / _acceleration) + ((distance - ramps) / peak);
     }
 
     private readonly double StopGo(long distance) => distance == 0 ? 0 : new TrapezoidProfile(distance, _travelSpeed, _acceleration).Duration;

@@ -91,12 +91,13 @@ public sealed class MotionTimeline
     }
 
     /// <summary>
-    /// A stroke: one X move from rest to rest at the burn speed, <paramref name="length"/> microsteps long, whose first entry
-    /// edge comes <paramref name="firstEdgeSeconds"/> after it starts and whose last exit edge <paramref name="lastOffSeconds"/>
+    /// A stroke: one X move from rest to rest at the burn speed (its flown gaps sped up), whose first entry edge comes
+    /// <paramref name="firstEdgeSeconds"/> after it starts and whose last exit edge <paramref name="lastOffSeconds"/>
     /// after; returns when its commands arrive.
     /// </summary>
-    public StrokeTimes Stroke(long length, double firstEdgeSeconds, double lastOffSeconds)
+    public StrokeTimes Stroke(StrokePlan stroke, double firstEdgeSeconds, double lastOffSeconds)
     {
+        ArgumentNullException.ThrowIfNull(stroke);
         var t = _timing;
 
         // Y must have stopped, and said so, before the first switch-on is sent; its reply leaves before the position
@@ -121,7 +122,16 @@ public sealed class MotionTimeline
 
         WireFree = Math.Max(WireFree, arrival + t.FrameSeconds);
         AddReply(arrival + t.FrameSeconds);
-        var stroke = t.Stroke(length);
+
+        // A flown gap's two speed changes and its position query, each answered as it arrives.
+        foreach (var bump in stroke.Bumps)
+        {
+            AddReply(arrival + bump.SpeedUpArrival);
+            AddReply(arrival + bump.SpeedDownArrival);
+            AddReply(arrival + bump.QueryArrival);
+            WireFree = Math.Max(WireFree, arrival + bump.QueryArrival);
+        }
+
         XFree = arrival + stroke.Duration;
         LastXPeak = stroke.PeakSpeed;
         LastOff = arrival + lastOffSeconds - t.OffAdvanceSeconds;

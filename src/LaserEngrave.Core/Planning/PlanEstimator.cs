@@ -46,6 +46,8 @@ public sealed class PlanEstimator
     private long _strokeRunUp;
     private long _strokeLastOff;
     private double _strokeStartGuess;
+    private readonly List<(long Exit, long Entry)> _strokeGaps = [];
+    private long _strokeGapStart = -1;
 
     /// <param name="process">Speeds, acceleration, frequency and baud rates.</param>
     /// <param name="strategy">The plan's strategy.</param>
@@ -189,9 +191,17 @@ public sealed class PlanEstimator
                 _strokeRunUp = move.Kind == MoveKind.Overscan ? move.LengthX : 0;
                 _strokeLastOff = 0;
                 _strokeStartGuess = timeline.End + timing.MarginSeconds;
+                _strokeGaps.Clear();
+                _strokeGapStart = -1;
             }
 
-            // Provisionally at the burn speed; the ramps and the start are settled when the stroke ends.
+            // Provisionally at the burn speed; the ramps, the flown gaps and the start are settled when the stroke ends.
+            if (burn && _strokeGapStart >= 0)
+            {
+                _strokeGaps.Add((_strokeGapStart, _strokeLength));
+            }
+
+            _strokeGapStart = !burn && _strokeLastOff == _strokeLength && _strokeLength > 0 ? _strokeLength : -1;
             _strokeLength += move.LengthX;
             if (burn)
             {
@@ -214,8 +224,8 @@ public sealed class PlanEstimator
         _inStroke = false;
         var before = ElapsedSeconds;
         var speed = timeline.XSpeedData;
-        var stroke = timing.Stroke(_strokeLength);
-        timeline.Stroke(_strokeLength, stroke.TimeAt(_strokeRunUp), stroke.TimeAt(_strokeLastOff));
+        var stroke = timing.Stroke(_strokeLength, _strokeGaps);
+        timeline.Stroke(stroke, stroke.TimeAt(_strokeRunUp), stroke.TimeAt(_strokeLastOff));
         SpeedChanges += speed != timeline.XSpeedData ? 1 : 0;
         ElapsedSeconds = timeline.End;
         return ElapsedSeconds - before;

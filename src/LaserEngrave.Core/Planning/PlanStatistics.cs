@@ -26,15 +26,22 @@ public sealed record PlanStatistics
     /// <summary>Set Target Speed commands sent after the start.</summary>
     public required long SpeedChanges { get; init; }
 
-    /// <summary>Estimated duration of the run, s (see <see cref="PlanEstimator"/> for the model).</summary>
-    public required double EstimatedSeconds { get; init; }
+    /// <summary>Estimated duration of the engraving, from the plan's first move to its last, s (see <see cref="PlanEstimator"/> for the model).</summary>
+    public required double EngravingSeconds { get; init; }
 
     /// <summary>
-    /// The whole run: <see cref="EstimatedSeconds"/> plus preflight, homing from the far end of the travel (as after
+    /// Estimated time before the engraving of the first pass: preflight, homing from the far end of the travel (as after
     /// power-up; a stage already homed is sooner) and the travel to the first position (<see cref="TimedSwitching.PreparationSeconds"/>);
-    /// null for a plan without a timing model.
+    /// 0 for a plan without a timing model.
     /// </summary>
-    public double? WholeRunSeconds { get; init; }
+    public double PreparationSeconds { get; init; }
+
+    /// <summary>Estimated time before each later pass: preflight without homing and the travel back from the plan's end to its start, s.</summary>
+    public double PassSetupSeconds { get; init; }
+
+    /// <summary>The estimate of a whole run of <paramref name="passes"/> passes: preparation, engraving, and each later pass' setup, s.</summary>
+    public double WholeRunSeconds(int passes = 1) =>
+        PreparationSeconds + (Math.Max(1, passes) * EngravingSeconds) + (Math.Max(0, passes - 1) * PassSetupSeconds);
 
     /// <summary>The least time any executor could take for the burns, motion only, s (see <see cref="LowerBound"/>).</summary>
     public required double LowerBoundSeconds { get; init; }

@@ -137,12 +137,16 @@ public sealed class RasterPlan
         }
 
         var statistics = visitor.Finish(planner.VisitedRows, Geometry.MicrostepUm);
-        if (Timing is null || Moves().Take(1).ToList() is not [var first])
+        if (Timing is null || visitor.Start is not { } start)
         {
             return statistics;
         }
 
-        return statistics with { WholeRunSeconds = statistics.EstimatedSeconds + Timing.PreparationSeconds(first.X0, first.Y0) };
+        return statistics with
+        {
+            PreparationSeconds = Timing.PreparationSeconds(start.X, start.Y, home: true, from: (0, 0)),
+            PassSetupSeconds = Timing.PreparationSeconds(start.X, start.Y, home: false, from: visitor.End),
+        };
     }
 
     private IEnumerable<Move> Enumerate(int fromRow)
@@ -165,6 +169,34 @@ public sealed class RasterPlan
                 yield return move;
             }
         }
+    }
+
+    /// <summary>
+    /// Where a burn run cut off after the laser burned it up to <paramref name="burnedUpTo"/> (stage X, microsteps) goes
+    /// on: the entry edge of the first pixel not completely burned, and that pixel's column (the one burned twice); null
+    /// when no pixel of the run was completely burned.
+    /// </summary>
+    public (long ResumeX, int Column)? ResumeWithin(in Move burn, double burnedUpTo)
+    {
+        if (burn.Kind != MoveKind.Burn || burn.X0 == burn.X1)
+        {
+            throw new ArgumentException("a burn run along X is needed", nameof(burn));
+        }
+
+        var leftToRight = burn.X1 > burn.X0;
+        var offset = leftToRight ? 0 : StageUnits.UmToMicrosteps(ScanOffsetUm, Geometry.MicrostepUm);
+        (long X, int Column)? best = null;
+        for (var c = 0; c <= Geometry.WidthPx; c++)
+        {
+            var b = Geometry.RunEdgeX(c, burn.Row, offset);
+            var inside = leftToRight ? b > burn.X0 && b < burn.X1 && b <= burnedUpTo : b < burn.X0 && b > burn.X1 && b >= burnedUpTo;
+            if (inside && (best is null || (leftToRight ? b > best.Value.X : b < best.Value.X)))
+            {
+                best = (b, leftToRight ? c : c - 1);
+            }
+        }
+
+        return best;
     }
 
     private RowPlanner NewPlanner() => new(Mask, Geometry, Options, OverscanMicrosteps, StageUnits.UmToMicrosteps(ScanOffsetUm, Geometry.MicrostepUm), Timing);

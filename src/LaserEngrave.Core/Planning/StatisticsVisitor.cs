@@ -13,6 +13,12 @@ internal struct StatisticsVisitor : IMoveVisitor
     private long _overscanMicrosteps;
     private double _travelMicrosteps;
 
+    /// <summary>Where the plan starts: the first move's start.</summary>
+    public (long X, long Y)? Start { get; private set; }
+
+    /// <summary>Where the plan ends: the last move's end.</summary>
+    public (long X, long Y) End { get; private set; }
+
     public StatisticsVisitor(PlanEstimator estimator, LowerBound lowerBound)
     {
         _estimator = estimator;
@@ -22,6 +28,8 @@ internal struct StatisticsVisitor : IMoveVisitor
     public void Visit(in Move move)
     {
         _moves++;
+        Start ??= (move.X0, move.Y0);
+        End = (move.X1, move.Y1);
         switch (move.Kind)
         {
             case MoveKind.Burn:
@@ -55,7 +63,7 @@ internal struct StatisticsVisitor : IMoveVisitor
             OverscanLengthMm = StageUnits.MicrostepsToMm(_overscanMicrosteps, microstepUm),
             LaserSwitches = _estimator.LaserSwitches,
             SpeedChanges = _estimator.SpeedChanges,
-            EstimatedSeconds = _estimator.ElapsedSeconds,
+            EngravingSeconds = _estimator.ElapsedSeconds,
             LowerBoundSeconds = _lowerBound.Seconds,
         };
     }

@@ -285,7 +285,9 @@ public sealed class TimedSwitching
     /// </summary>
     /// <param name="firstX">The plan's first position, X microsteps.</param>
     /// <param name="firstY">The plan's first position, Y microsteps.</param>
-    public double PreparationSeconds(long firstX, long firstY)
+    /// <param name="home">Whether the run homes (the first pass) or starts where the stage stands (a later pass).</param>
+    /// <param name="from">Where the stage stands when the run does not home, microsteps.</param>
+    public double PreparationSeconds(long firstX, long firstY, bool home = true, (long X, long Y) from = default)
     {
         var gate = _profile.Gate;
         double GateExchange(int commandBytes, int replyBytes) =>
@@ -298,6 +300,15 @@ public sealed class TimedSwitching
         // Per axis: device ID, firmware, Device Mode, target speed, acceleration, Maximum Position, home speed, position;
         // then acceleration and home speed set; after homing the position again.
         var roundTrip = StageCommandSeconds + StageReplySeconds;
+        if (!home)
+        {
+            // No acceleration and home speed set, no homing: the travel from where the stage stands.
+            var dx = Math.Abs(firstX - from.X);
+            var dy = Math.Abs(firstY - from.Y);
+            var back = Math.Max(dx == 0 ? 0 : Travel(dx).Duration, dy == 0 ? 0 : Travel(dy).Duration) + roundTrip;
+            return gateSeconds + (2 * 9 * roundTrip) + back;
+        }
+
         var stageSeconds = 2 * 11 * roundTrip;
         var homing = Math.Max(Travel(_profile.X.TravelMicrosteps).Duration, Travel(_profile.Y.TravelMicrosteps).Duration) + roundTrip;
         var first = Math.Max(firstX == 0 ? 0 : Travel(firstX).Duration, firstY == 0 ? 0 : Travel(firstY).Duration) + roundTrip;
@@ -305,7 +316,69 @@ public sealed class TimedSwitching
     }
 
     /// <summary>Whether a gap between two runs of a row is crossed at the burn speed (faster than stopping and travelling).</summary>
-    public bool CrossesGap(long gapMicrosteps) => gapMicrosteps / BurnSpeed <= StopGoSeconds(gapMicrosteps);
+    public bool CrossesGap(long gapMicrosteps) => CrossSeconds(gapMicrosteps) <= StopGoSeconds(gapMicrosteps);
+
+    /// <summary>Time from one run's exit edge to the next one's entry edge when the gap is crossed without stopping: flown if it can be, else at the burn speed.</summary>
+    public double CrossSeconds(long gapMicrosteps) => (gapMicrosteps - (Fly(gapMicrosteps)?.GainMicrosteps ?? 0)) / BurnSpeed;
+
+    /// <summary>A stroke of <paramref name="lengthMicrosteps"/> whose crossed gaps (exit and entry edges, microsteps from its start) are flown where they can be.</summary>
+    public StrokePlan Stroke(long lengthMicrosteps, IReadOnlyList<(long Exit, long Entry)> gaps) => new(this, lengthMicrosteps, gaps);
+
+    /// <summary>
+    /// How a gap crossed within a stroke is flown, or null when it is too short to gain anything: the target speed goes up
+    /// to the travel speed just after the exit edge and back to the burn speed in time for a position query to find the
+    /// stage at the burn speed and its reply to be in before the next switch-on must leave.
+    /// </summary>
+    /// <remarks>
+    /// A bump held <c>T</c> (from the speed-up arriving to the speed-down arriving) rises by <c>dV = min(a T, v_t - v_b)</c>
+    /// and gains <c>A = T dV</c> on the burn speed. Its latencies (each command arrives within the stage's jitter <c>J</c>)
+    /// move the stage by up to <c>A'(T) 2 J</c>; the query, sent once the stage is surely back at the burn speed, measures
+    /// that, and the switchings after it are re-timed, so the edges keep the accuracy of a stroke's start. The gap must hold
+    /// <c>v_b (2J + T + query delay + reply and switch-on lead + error / v_b) + A</c>; the longest <c>T</c> that fits is taken.
+    /// </remarks>
+    public FlyingGap? Fly(long gapMicrosteps)
+    {
+        var rise = TravelSpeed - BurnSpeed;
+        if (rise <= 0 || gapMicrosteps <= 0)
+        {
+            return null;
+        }
+
+        var a = Acceleration;
+        var j = StageJitterSeconds;
+        double Rise(double hold) => Math.Min(a * hold, rise);
+        double Slope(double hold) => a * hold < rise ? 2 * a * hold : rise;
+        double QueryDelay(double hold) => Math.Max((Rise(hold) / a) + (2 * j), FrameSeconds);
+        double MaxError(double hold) => (Slope(hold) * 2 * j) + (2 * BurnSpeed * j) + 1;
+        double Needed(double hold)
+        {
+            // Query reply in, the switch-on's lead, and room for a correction of the largest error.
+            var afterQuery = (2 * j) + StageReplySeconds + ReactionSeconds + OnLeadSeconds + GateJitterSeconds + (MaxError(hold) / BurnSpeed);
+            return (BurnSpeed * ((2 * j) + hold + QueryDelay(hold) + afterQuery)) + (hold * Rise(hold));
+        }
+
+        // The speed-down follows the speed-up on the wire, a frame later at the soonest.
+        var low = FrameSeconds;
+        if (Needed(low) > gapMicrosteps)
+        {
+            return null;
+        }
+
+        var high = low;
+        while (Needed(high * 2) <= gapMicrosteps)
+        {
+            high *= 2;
+        }
+
+        high *= 2;
+        for (var i = 0; i < 60; i++)
+        {
+            var mid = 0.5 * (low + high);
+            (low, high) = Needed(mid) <= gapMicrosteps ? (mid, high) : (low, mid);
+        }
+
+        return new FlyingGap(2 * j, low, QueryDelay(low), low * Rise(low), MaxError(low));
+    }
 
     private static string Format(string format, int value) => string.Format(CultureInfo.InvariantCulture, format, value);
 }

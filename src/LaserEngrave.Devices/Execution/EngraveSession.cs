@@ -73,7 +73,7 @@ public sealed class EngraveSession
         _moves = Moves(parts[0]);
         var first = parts[0];
         var idle = first.Image is { } image
-            ? new RunProgress(RunState.Idle, 0, image.Statistics.Rows, 0, image.Statistics.BurnRuns, 0, TimeSpan.Zero, TimeSpan.FromSeconds(image.Statistics.EstimatedSeconds), 0, 0, false)
+            ? new RunProgress(RunState.Idle, 0, image.Statistics.Rows, 0, image.Statistics.BurnRuns, 0, TimeSpan.Zero, TimeSpan.FromSeconds(image.Statistics.EngravingSeconds), 0, 0, false)
             : new RunProgress(RunState.Idle, 0, first.Drawing!.Schedule.Strokes.Count, 0, first.Drawing.Plan.Paths.Count, 0, TimeSpan.Zero, TimeSpan.FromSeconds(first.Drawing.Schedule.EstimatedSeconds), 0, 0, false);
         _progress = new EngraveProgress(RunState.Idle, 1, Passes, 0, _moves, false, idle);
     }
@@ -244,7 +244,8 @@ public sealed class EngraveSession
             spec.Process.LaserFrequencyHz,
             part.Layer.Passes)
         {
-            EstimatedSeconds = part.EstimatedSeconds * part.Layer.Passes,
+            EstimatedSeconds = part.EstimatedSeconds,
+            EstimatedEngravingSeconds = part.EngravingSeconds * part.Layer.Passes,
         };
     }
 
@@ -263,7 +264,7 @@ public sealed class EngraveSession
         var layers = _layered ? _parts.Select(LayerEntry).ToList() : null;
         if (layers is not null)
         {
-            record = record with { EstimatedSeconds = layers.Sum(l => l.EstimatedSeconds) };
+            record = record with { EstimatedSeconds = layers.Sum(l => l.EstimatedSeconds), EstimatedEngravingSeconds = layers.Sum(l => l.EstimatedEngravingSeconds) };
         }
 
         var clockStart = time.GetTimestamp();
@@ -349,7 +350,7 @@ public sealed class EngraveSession
         if (layers is not null)
         {
             // The estimate is the whole job's, whatever part of it ran.
-            record = record with { EstimatedSeconds = layers.Sum(l => l.EstimatedSeconds) };
+            record = record with { EstimatedSeconds = layers.Sum(l => l.EstimatedSeconds), EstimatedEngravingSeconds = layers.Sum(l => l.EstimatedEngravingSeconds) };
         }
 
         RunLogFiles? files = null;
@@ -380,6 +381,7 @@ public sealed class EngraveSession
             StartedAt = sum.StartedAt,
             EngravingDuration = sum.EngravingDuration + result.EngravingDuration,
             EstimatedSeconds = sum.EstimatedSeconds + result.EstimatedSeconds,
+            EstimatedEngravingSeconds = sum.EstimatedEngravingSeconds + result.EstimatedEngravingSeconds,
             LaserOnSeconds = sum.LaserOnSeconds + result.LaserOnSeconds,
         };
     }

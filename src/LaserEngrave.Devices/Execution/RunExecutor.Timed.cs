@@ -1,3 +1,4 @@
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Scheduling;
@@ -22,6 +23,14 @@ public sealed partial class RunExecutor
     private string? _timedFault;
     private double _lastGateWrite;
     private long _queuedUpTo = -1;
+
+    // Where the run was when a fault or an abort cut it: the stroke under way, the burn run whose switch-on was sent and
+    // whose switch-off not yet, when the fault's switch-off left, and whether the X axis stopped where its motion said.
+    private ActiveStroke? _activeStroke;
+    private (Move Move, long Index, Task Acknowledged)? _burning;
+    private double? _faultOffWrite;
+    private bool? _stopMatchesMotion;
+    private double _gateAliveAt = double.NegativeInfinity;
 
     private double RunSeconds => TimeProvider.GetElapsedTime(_engravingStart).TotalSeconds;
 
@@ -157,12 +166,19 @@ public sealed partial class RunExecutor
     private async Task StrokeAsync(Segment segment, TimedSwitching timing, MotionTimeline timeline, CancellationToken token)
     {
         var length = Math.Abs(segment.EndX - segment.StartX);
-        var profile = timing.Stroke(length);
         var burns = segment.Moves.Where(m => m.Move.Kind == MoveKind.Burn).ToList();
-        double Offset(long x) => profile.TimeAt(Math.Abs(x - segment.StartX));
+        long Distance(long x) => Math.Abs(x - segment.StartX);
+        var gaps = new List<(long Exit, long Entry)>();
+        for (var i = 1; i < burns.Count; i++)
+        {
+            gaps.Add((Distance(burns[i - 1].Move.X1), Distance(burns[i].Move.X0)));
+        }
+
+        var plan = timing.Stroke(length, gaps);
+        double Offset(long x) => plan.TimeAt(Distance(x));
         var firstEdge = burns.Count > 0 ? Offset(burns[0].Move.X0) : 0;
         var lastOff = burns.Count > 0 ? Offset(burns[^1].Move.X1) : 0;
-        var times = timeline.Stroke(length, firstEdge, lastOff);
+        var times = timeline.Stroke(plan, firstEdge, lastOff);
 
         var speedWritten = double.NegativeInfinity;
         if (times.SpeedArrival is { } speedArrival)
@@ -185,26 +201,50 @@ public sealed partial class RunExecutor
         }
 
         var start = segment.StartX;
+        var active = new ActiveStroke(start, Math.Sign(segment.EndX - start), segment.EndX, plan) { Origin = times.Arrival };
+        lock (_lock)
+        {
+            _activeStroke = active;
+        }
+
         // Settled replies need no more looking at (their watchers report any fault): the list stays short.
         _watched.RemoveAll(w => w.Reply.IsCompletedSuccessfully || (w.Successor?.Reply.IsCompletedSuccessfully ?? false));
         var earlier = _watched.ToList();
         var move = Stage.X.MoveAbsoluteAfterAsync(segment.EndX, token);
         Watch(Arrive(move, "X", segment.EndX, x => _x = x), times.End + timing.StageReplySeconds, "the end of a stroke (X)", axis: "X");
         var poll = burns.Count > 0 ? Stage.X.GetPositionAsync(token) : null;
+        var direction = Math.Sign(segment.EndX - start);
 
+        // Where the position queries after flown gaps found the stage ahead (-) or behind (+) its plan, as time at the burn speed.
+        var shift = 0.0;
+        (StrokePlan.Bump Bump, Task<long> Query)? flown = null;
+        var bumps = plan.Bumps.ToDictionary(b => b.Exit);
         var index = 0;
         foreach (var (burn, burnIndex) in burns)
         {
-            var onWrite = times.Arrival + Offset(burn.X0) + timing.OnDelaySeconds - timing.OnLeadSeconds;
-            var offWrite = times.Arrival + Offset(burn.X1) - timing.OffAdvanceSeconds - timing.OffLeadSeconds;
+            var onWrite = times.Arrival + Offset(burn.X0) + shift + timing.OnDelaySeconds - timing.OnLeadSeconds;
             if (index++ == 0)
             {
-                await ConfirmMovingAsync(earlier, poll!, start, Math.Sign(segment.EndX - start), timing, onWrite, token);
+                await ConfirmMovingAsync(earlier, poll!, start, direction, timing, onWrite, token);
             }
+            else if (flown is { } gap)
+            {
+                shift += await MeasureFlownGapAsync(gap.Bump, gap.Query, start, direction, timing, onWrite, token);
+                active.Origin = times.Arrival + shift;
+                onWrite = times.Arrival + Offset(burn.X0) + shift + timing.OnDelaySeconds - timing.OnLeadSeconds;
+                flown = null;
+            }
+
+            var offWrite = times.Arrival + Offset(burn.X1) + shift - timing.OffAdvanceSeconds - timing.OffLeadSeconds;
 
             CompleteUpTo(segment, burnIndex - 1, null);
             await DelayUntilAsync(onWrite, token);
             var on = await SendSwitchAsync(on: true);
+            lock (_lock)
+            {
+                _burning = (burn, burnIndex, on);
+            }
+
             _lastGateWrite = onWrite;
             WatchGate(on, onWrite + timing.OnRoundTripSeconds, "the laser gate did not acknowledge the switch-on");
             RunProgress progress;
@@ -212,7 +252,6 @@ public sealed partial class RunExecutor
             {
                 _currentMove = burn;
                 _currentIndex = burnIndex;
-                _moveRow = burn.Row;
                 _progress = Snapshot();
                 progress = _progress;
             }
@@ -222,11 +261,27 @@ public sealed partial class RunExecutor
             await KeepAlivesUntilAsync(offWrite, timing, token);
             await DelayUntilAsync(offWrite, token);
             var off = await SendSwitchAsync(on: false);
+            lock (_lock)
+            {
+                _burning = null;
+            }
+
             _lastGateWrite = offWrite;
             WatchGate(off, offWrite + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off");
 
             // A run counts as burned once its switch-on is acknowledged (a silent gate burns nothing).
             CompleteUpTo(segment, burnIndex, on);
+
+            if (bumps.TryGetValue(Distance(burn.X1), out var bump))
+            {
+                flown = (bump, await FlyGapAsync(bump, times.Arrival + shift, timing, token));
+            }
+        }
+
+        // Behind its plan, the stroke also ends later: the next move must not catch it braking.
+        if (shift > 0)
+        {
+            timeline.Delay(shift);
         }
 
         CompleteUpTo(segment, segment.Moves[^1].Index, null);
@@ -276,10 +331,46 @@ public sealed partial class RunExecutor
         {
             _currentMove = move;
             _currentIndex = index;
-            _moveRow = move.Row;
         }
 
         CompleteUpTo(segment, index, null);
+    }
+
+    /// <summary>
+    /// Flies a gap (docs/execution.md, "Flown gaps"): the travel speed set just after the exit edge, the burn speed set back,
+    /// then a position query once the stage is surely at the burn speed again; returns the query.
+    /// </summary>
+    private async Task<Task<long>> FlyGapAsync(StrokePlan.Bump bump, double start, TimedSwitching timing, CancellationToken token)
+    {
+        await DelayUntilAsync(start + bump.SpeedUpArrival - timing.StageCommandSeconds, token);
+        ThrowIfAborted();
+        Watch(Stage.X.SetTargetSpeedAsync(_travelSpeedData, token), start + bump.SpeedUpArrival + timing.StageReplySeconds, "Set Target Speed (X, a flown gap)");
+        await DelayUntilAsync(start + bump.SpeedDownArrival - timing.StageCommandSeconds, token);
+        Watch(Stage.X.SetTargetSpeedAsync(_burnSpeedData, token), start + bump.SpeedDownArrival + timing.StageReplySeconds, "Set Target Speed (X, after a flown gap)");
+        await DelayUntilAsync(start + bump.QueryArrival - timing.StageCommandSeconds, token);
+        return Stage.X.GetPositionAsync(token);
+    }
+
+    /// <summary>
+    /// After a flown gap, before the next switch-on: the position query's answer says how far ahead of its plan the stage
+    /// is (the speed changes' latencies); returns the time shift that puts the next switchings back on their edges.
+    /// </summary>
+    private async Task<double> MeasureFlownGapAsync(StrokePlan.Bump bump, Task<long> query, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token)
+    {
+        if (!await CompletesByAsync(query, onWrite, token) || !query.IsCompletedSuccessfully)
+        {
+            throw Fault("the X axis did not answer the position query after a flown gap before the laser was to come on");
+        }
+
+        var ahead = ((query.Result - start) * direction) - bump.ExpectedOffset;
+        if (Math.Abs(ahead) > bump.MaxErrorMicrosteps + 1)
+        {
+            throw Fault(string.Create(
+                System.Globalization.CultureInfo.InvariantCulture,
+                $"the X axis reported {query.Result} microsteps after a flown gap, {ahead:0} from its plan (at most {bump.MaxErrorMicrosteps:0} expected): it is not moving as planned, so the laser stays off"));
+        }
+
+        return -ahead / timing.BurnSpeed;
     }
 
     /// <summary>Before the first switch-on of a stroke: every earlier move has reported its end, and the position query shows the stage on its way.</summary>
@@ -414,8 +505,27 @@ public sealed partial class RunExecutor
         }
     }
 
-    private void WatchGate(Task reply, double expectedSeconds, string what) =>
+    private void WatchGate(Task reply, double expectedSeconds, string what)
+    {
         Watch(reply, expectedSeconds, what, gate: true);
+
+        // When the gate last showed it was alive: its reply left it a reply's wire and adapter time before it came in.
+        _ = reply.ContinueWith(
+            answered =>
+            {
+                if (answered.IsCompletedSuccessfully && Job?.Plan.Timing is { } timing)
+                {
+                    var left = RunSeconds - (timing.OnRoundTripSeconds - timing.OnLeadSeconds) - timing.GateJitterSeconds;
+                    lock (_lock)
+                    {
+                        _gateAliveAt = Math.Max(_gateAliveAt, left);
+                    }
+                }
+            },
+            CancellationToken.None,
+            TaskContinuationOptions.ExecuteSynchronously,
+            TaskScheduler.Default);
+    }
 
     private async Task DelayUntilAsync(double seconds, CancellationToken token)
     {
@@ -597,6 +707,95 @@ public sealed partial class RunExecutor
         public Watched? Successor { get; set; }
 
         public TaskCompletionSource Done { get; } = new(TaskCreationOptions.RunContinuationsAsynchronously);
+    }
+
+    /// <summary>
+    /// The stop point of a timed run cut off in the middle of a burn run (issue: resume without double burn): the time
+    /// the fault's switch-off took effect, at the earliest, and the stroke's motion say how far the run was burned;
+    /// the run resumes at the first pixel not completely burned, so only the one the laser went off in burns twice.
+    /// The motion is trusted only if the X axis stopped where it said, or, when it could not be asked, is found at the
+    /// stroke's end on resuming (<see cref="RunStopPoint.ExpectedXMicrosteps"/>). Caller holds the lock.
+    /// </summary>
+    private RunStopPoint CutWithin(RunStopPoint stop)
+    {
+        if (Job?.Plan.Timing is not { } timing || _burning is not { } burning || burning.Index != stop.MoveIndex
+            || !burning.Acknowledged.IsCompletedSuccessfully || _activeStroke is not { } stroke || _stopMatchesMotion == false)
+        {
+            return stop;
+        }
+
+        // Off when the gate confirmed the fault's switch-off (its lead after it left, at the earliest). With the gate's
+        // link lost, it fired on until its watchdog tripped, a watchdog time after the last command it had: at the
+        // earliest after the last one it answered (the resumed run checks that the watchdog did trip).
+        double offAt;
+        var byWatchdog = false;
+        if (_laserOffConfirmed && _faultOffWrite is { } offWrite)
+        {
+            offAt = offWrite + timing.OffLeadSeconds - timing.GateJitterSeconds;
+        }
+        else if (!_laserOffConfirmed && _gateAliveAt > double.NegativeInfinity)
+        {
+            offAt = _gateAliveAt + (_profile.Gate.WatchdogMs / 1000.0) - timing.GateJitterSeconds;
+            byWatchdog = true;
+        }
+        else
+        {
+            return stop;
+        }
+
+        var along = stroke.Plan.OffsetAt(offAt - stroke.Origin) - (timing.BurnSpeed * timing.StageJitterSeconds);
+        if (_stoppedAtKnownPosition)
+        {
+            // Stopped while the laser still fired (its gate out of reach): it burned no further than where X stopped.
+            along = Math.Min(along, (_x - stroke.StartX) * stroke.Direction);
+        }
+
+        if (Job.Plan.ResumeWithin(burning.Move, stroke.StartX + (stroke.Direction * along)) is not { } cut)
+        {
+            return stop;
+        }
+
+        return stop with
+        {
+            ResumeXMicrosteps = cut.ResumeX,
+            CutPixel = new PixelIndex(cut.Column, burning.Move.Row),
+            ExpectedXMicrosteps = _stopMatchesMotion is null ? stroke.EndX : null,
+            OffByGateWatchdog = byWatchdog,
+        };
+    }
+
+    /// <summary>The X axis' reply to the stop after a fault: whether it stopped where the stroke's motion put it (braking from the burn speed).</summary>
+    private void NoteStopped(double written, long position)
+    {
+        lock (_lock)
+        {
+            if (Job?.Plan.Timing is not { } timing || _activeStroke is not { } stroke || double.IsNaN(written))
+            {
+                return;
+            }
+
+            var arrival = written + timing.StageCommandSeconds - stroke.Origin;
+            var along = stroke.Plan.OffsetAt(arrival);
+            var expected = along >= stroke.Plan.Length
+                ? stroke.EndX
+                : stroke.StartX + (stroke.Direction * (along + (timing.BurnSpeed * timing.BurnSpeed / (2 * timing.Acceleration))));
+            var tolerance = (2 * timing.BurnSpeed * timing.StageJitterSeconds) + 2;
+            _stopMatchesMotion ??= Math.Abs(position - expected) <= tolerance;
+        }
+    }
+
+    private sealed class ActiveStroke(long startX, int direction, long endX, StrokePlan plan)
+    {
+        public long StartX { get; } = startX;
+
+        public int Direction { get; } = direction;
+
+        public long EndX { get; } = endX;
+
+        public StrokePlan Plan { get; } = plan;
+
+        /// <summary>When the stroke's offset 0 is, s on the run's clock (its start, moved by the position queries' findings).</summary>
+        public double Origin { get; set; }
     }
 
     private sealed record Segment(bool Stroke, List<(Move Move, long Index)> Moves, long StartX, long StartY, long EndX, long EndY);

@@ -42,6 +42,15 @@ public sealed partial class RunExecutor
         return first;
     }
 
+    /// <summary>Preflight, homing if it homes, and the travel to the first stroke's run-up, as for images (<c>TimedSwitching.PreparationSeconds</c>).</summary>
+    private double EstimateDrawingPreparation(int firstStroke)
+    {
+        var strokes = Drawing!.Schedule.Strokes;
+        return firstStroke < strokes.Count
+            ? Drawing.Schedule.Timing.PreparationSeconds(strokes[firstStroke].RunUpStart.X, strokes[firstStroke].RunUpStart.Y, _homed, from: (_x, _y))
+            : 0;
+    }
+
     private static bool IsLastOfPath(VectorSchedule schedule, int index) =>
         index + 1 >= schedule.Strokes.Count || schedule.Strokes[index + 1].PathIndex != schedule.Strokes[index].PathIndex;
 

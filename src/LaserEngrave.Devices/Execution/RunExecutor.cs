@@ -73,6 +73,10 @@ public sealed partial class RunExecutor
     private long _runsDone;
     private double _estimateBefore;
     private double _estimateTotal;
+    private double _estimatePreparation;
+    private long? _resumeX;
+    private bool _gateVouchesForCut = true;
+    private bool _homed;
     private PlanEstimator? _estimator;
 
     public RunExecutor(IStage stage, ILaserGate gate, PreparedJob job, TimeProvider? timeProvider = null, RunOptions? options = null)
@@ -83,7 +87,7 @@ public sealed partial class RunExecutor
         _timing = job.Plan.Timing;
         _rowsTotal = job.Statistics.Rows;
         _runsTotal = job.Statistics.BurnRuns;
-        _progress = new RunProgress(RunState.Idle, 0, _rowsTotal, 0, _runsTotal, 0, TimeSpan.Zero, TimeSpan.FromSeconds(job.Statistics.EstimatedSeconds), 0, 0, false);
+        _progress = new RunProgress(RunState.Idle, 0, _rowsTotal, 0, _runsTotal, 0, TimeSpan.Zero, TimeSpan.FromSeconds(job.Statistics.EngravingSeconds), 0, 0, false);
     }
 
     /// <summary>An executor for a drawing: its strokes, each axis streaming its speed (docs/vectors.md).</summary>
@@ -186,6 +190,7 @@ public sealed partial class RunExecutor
             identity = await PreflightAsync(token);
             var (moves, firstIndex) = Drawing is null ? Prepare() : ([], 0);
             var firstStroke = Drawing is null ? 0 : PrepareStrokes();
+            _estimatePreparation = Drawing is null ? EstimatePreparation(moves) : EstimateDrawingPreparation(firstStroke);
             SetState(RunState.Running);
             _keepAlive = new GateKeepAlive(Gate, GateKeepAlive.PeriodFor(_profile.Gate.WatchdogMs, Options.KeepAliveFraction), TimeProvider, OnKeepAliveFailed);
             using var linked = CancellationTokenSource.CreateLinkedTokenSource(token, _fault.Token);
@@ -335,6 +340,12 @@ public sealed partial class RunExecutor
         try
         {
             gateIdentity = await OnceMoreAfterTimeoutAsync(() => Gate.IdentifyAsync(token));
+            if (Options.ResumeFrom is { OffByGateWatchdog: true, ResumeXMicrosteps: not null } && !(await Gate.GetStateAsync(token)).WatchdogTripped)
+            {
+                // The laser's switch-off time counted on the watchdog; a gate restarted since cannot vouch for it.
+                _gateVouchesForCut = false;
+            }
+
             await Gate.OffAsync(token);
             await Gate.SetWatchdogAsync(_profile.Gate.WatchdogMs, token);
         }
@@ -346,6 +357,23 @@ public sealed partial class RunExecutor
         var x = await IdentifyAxisAsync(Stage.X, "X", token);
         var y = await IdentifyAxisAsync(Stage.Y, "Y", token);
         CheckReach(x, y);
+        _resumeX = _gateVouchesForCut ? Options.ResumeFrom?.ResumeXMicrosteps : null;
+        if (Options.ResumeFrom is { ResumeXMicrosteps: not null, ExpectedXMicrosteps: { } expected })
+        {
+            // The stage could not be asked when the run stopped: it must be found where its motion was taking it, or the
+            // time the laser went off says nothing of where it burned, and the cut-off run is burned again from its start.
+            try
+            {
+                if (!x.IsHomed || await Stage.X.GetPositionAsync(token) != expected)
+                {
+                    _resumeX = null;
+                }
+            }
+            catch (DeviceException ex)
+            {
+                throw new PreflightException($"the X axis does not answer: {ex.Message}", ex);
+            }
+        }
 
         var homing = new List<Task<long>>();
         try
@@ -371,6 +399,7 @@ public sealed partial class RunExecutor
             }
 
             await Task.WhenAll(homing);
+            _homed = homing.Count > 0;
             _x = await Stage.X.GetPositionAsync(token);
             _y = await Stage.Y.GetPositionAsync(token);
         }
@@ -558,19 +587,31 @@ public sealed partial class RunExecutor
         _estimator = new PlanEstimator(_process, strategy, microstepUm, _profile.Gate, plan.Timing);
         if (Options.ResumeFrom is not { } resume)
         {
-            _estimateTotal = Job.Statistics.EstimatedSeconds;
+            _estimateTotal = Job.Statistics.EngravingSeconds;
             return (plan.Moves(), 0);
         }
 
-        // A burn run is resumed with its run-up, as it was planned.
+        // A burn run is resumed with its run-up, as it was planned; one cut off midway, from its first pixel not
+        // completely burned (the stroke then gets its run-up before that edge).
         var start = resume.MoveIndex;
         long index = 0;
         Move? previous = null;
+        Move? trimmed = null;
         foreach (var move in plan.Moves())
         {
             if (index == resume.MoveIndex)
             {
-                if (move.Kind == MoveKind.Burn && previous is { Kind: MoveKind.Overscan } runUp && runUp.Row == move.Row)
+                if (_resumeX is { } x)
+                {
+                    var dir = Math.Sign(move.X1 - move.X0);
+                    if (move.Kind != MoveKind.Burn || (x - move.X0) * dir <= 0 || (move.X1 - x) * dir <= 0)
+                    {
+                        throw new PreflightException($"the resume point (row {resume.Row}, move {resume.MoveIndex}, X {x}) is not inside a burn run of this job's plan");
+                    }
+
+                    trimmed = move with { X0 = x };
+                }
+                else if (move.Kind == MoveKind.Burn && previous is { Kind: MoveKind.Overscan } runUp && runUp.Row == move.Row)
                 {
                     start--;
                 }
@@ -620,8 +661,20 @@ public sealed partial class RunExecutor
 
         _estimateBefore = before.ElapsedSeconds - before.StartSeconds;
         _estimateTotal = _estimateBefore + remaining.ElapsedSeconds;
-        return start == index ? ([], index) : (plan.Moves(resume.Row).Skip(checked((int)(start - rowStart))), start);
+        if (start == index)
+        {
+            return ([], index);
+        }
+
+        var moves = plan.Moves(resume.Row).Skip(checked((int)(start - rowStart)));
+        return (trimmed is { } first ? moves.Skip(1).Prepend(first) : moves, start);
     }
+
+    /// <summary>The estimate of what preflight did and the travel to the first move will take, as the plan's figure is made.</summary>
+    private double EstimatePreparation(IEnumerable<Move> moves) =>
+        Job?.Plan.Timing is { } timing && moves.Take(1).ToList() is [var first]
+            ? timing.PreparationSeconds(first.X0, first.Y0, _homed, from: (_x, _y))
+            : 0;
 
     private async Task ExecuteMoveAsync(Move move, CancellationToken token)
     {
@@ -766,7 +819,10 @@ public sealed partial class RunExecutor
                 _lastRow = move.Row;
             }
 
+            // The stop point: the first move not done, and a row it is in or after (timed runs complete moves in order,
+            // behind the switchings, so the row of the last one done).
             _moveIndex = index + 1;
+            _moveRow = move.Row;
             _progress = Snapshot();
             progress = _progress;
         }
@@ -839,6 +895,14 @@ public sealed partial class RunExecutor
             }
 
             Exception? last = null;
+            if (_engravingStarted)
+            {
+                lock (_lock)
+                {
+                    _faultOffWrite ??= RunSeconds;
+                }
+            }
+
             for (var attempt = 0; attempt < Math.Max(1, Options.LaserOffAttempts); attempt++)
             {
                 try
@@ -881,7 +945,13 @@ public sealed partial class RunExecutor
         {
             try
             {
+                var written = _engravingStarted ? RunSeconds : double.NaN;
                 var position = await axis.StopAsync(CancellationToken.None);
+                if (axis == Stage.X)
+                {
+                    NoteStopped(written, position);
+                }
+
                 lock (_lock)
                 {
                     if (axis == Stage.X)
@@ -951,7 +1021,8 @@ public sealed partial class RunExecutor
                 StartedAt = startedAt,
                 EndedAt = TimeProvider.GetUtcNow(),
                 EngravingDuration = engraving < TimeSpan.Zero ? TimeSpan.Zero : engraving,
-                EstimatedSeconds = _estimateTotal - _estimateBefore,
+                EstimatedSeconds = _estimatePreparation + _estimateTotal - _estimateBefore,
+                EstimatedEngravingSeconds = _estimateTotal - _estimateBefore,
                 LaserOnSeconds = _laserOnSeconds,
                 RowsDone = _rowsDone,
                 RowsTotal = _rowsTotal,
@@ -977,7 +1048,7 @@ public sealed partial class RunExecutor
                 index++;
             }
 
-            return new RunStopPoint(row, index, _stoppedAtKnownPosition ? _x : null, _stoppedAtKnownPosition ? _y : null);
+            return CutWithin(new RunStopPoint(row, index, _stoppedAtKnownPosition ? _x : null, _stoppedAtKnownPosition ? _y : null));
         }
     }
 

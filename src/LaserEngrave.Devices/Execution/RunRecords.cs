@@ -52,6 +52,7 @@ public static class RunRecords
                 ]
                 : [],
             EstimatedSeconds = run.EstimatedSeconds,
+            EstimatedEngravingSeconds = run.EstimatedEngravingSeconds,
             ActualSeconds = run.Duration.TotalSeconds,
             EngravingSeconds = run.EngravingDuration.TotalSeconds,
             LaserOnSeconds = run.LaserOnSeconds,

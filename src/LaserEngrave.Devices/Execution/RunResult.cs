@@ -33,8 +33,11 @@ public sealed record RunResult
     /// <summary>The part the estimate models: from setting speed and acceleration at the plan's first position to the end, pauses left out.</summary>
     public required TimeSpan EngravingDuration { get; init; }
 
-    /// <summary>Estimated duration of the moves this run was to execute (all of them, or those after the resume point), s.</summary>
+    /// <summary>Estimated duration of the whole run: preflight (with homing if it homed), the travel to the first move and <see cref="EstimatedEngravingSeconds"/>, s.</summary>
     public required double EstimatedSeconds { get; init; }
+
+    /// <summary>Estimated duration of the moves this run was to execute (all of them, or those after the resume point), s.</summary>
+    public double EstimatedEngravingSeconds { get; init; }
 
     /// <summary>Time the laser was on (from each switch-on's acknowledgement to the switch-off's), s.</summary>
     public required double LaserOnSeconds { get; init; }

@@ -44,6 +44,19 @@ public sealed class ImagePanelTests : ComponentTest
     }
 
     [Fact]
+    public void ScanOffsetTestClicked_AsksForThePatternAndShowsItsError()
+    {
+        var asked = 0;
+        var cut = Render<ImagePanel>(p => p.Add(c => c.Job, Main.Job).Add(c => c.Samples, Main.SampleImages)
+            .Add(c => c.OnScanOffsetPattern, () => asked++).Add(c => c.PatternError, "the scan offset pattern could not be written: disk full"));
+
+        cut.Find("#scan-offset-pattern").Click();
+
+        Assert.Equal(1, asked);
+        Assert.Equal("the scan offset pattern could not be written: disk full", cut.Find("#pattern-error").TextContent);
+    }
+
+    [Fact]
     public void SampleClicked_ImageOpenAndMaskCounted()
     {
         var cut = Render<ImagePanel>(p => p.Add(c => c.Job, Main.Job).Add(c => c.Samples, Main.SampleImages));
@@ -131,7 +144,8 @@ public sealed class ProcessPanelTests : ComponentTest
 
         cut.Find("#passes").Change("3");
 
-        Assert.Equal(one * 3, Main.Job.EstimatedSeconds!.Value, 6);
+        var statistics = Main.Job.Job!.Statistics;
+        Assert.Equal(one + (2 * (statistics.EngravingSeconds + statistics.PassSetupSeconds)), Main.Job.EstimatedSeconds!.Value, 6);
         Assert.Contains("est.", cut.Find("#estimate").TextContent, StringComparison.Ordinal);
     }
 }

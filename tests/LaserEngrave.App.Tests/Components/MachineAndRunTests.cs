@@ -284,6 +284,8 @@ public sealed class WorkspaceTests : ComponentTest
         }
 
         Assert.Equal("no image", cut.Find("#status-estimate").TextContent);
+        Assert.NotNull(cut.Find("#scan-offset-pattern"));
+        Assert.Empty(cut.FindAll("#pattern-error"));
     }
 
     [Fact]

@@ -193,14 +193,17 @@ public sealed class JobViewModelTests
     }
 
     [Fact]
-    public void Passes_Two_EstimateDoubles()
+    public void Passes_Two_EstimateAddsAPassWithoutHoming()
     {
         var job = Loaded();
         var one = job.EstimatedSeconds!.Value;
+        var statistics = job.Job!.Statistics;
 
         job.Passes = 2;
 
-        Assert.Equal(2 * one, job.EstimatedSeconds!.Value, 6);
+        Assert.Equal(one, statistics.PreparationSeconds + statistics.EngravingSeconds, 6);
+        Assert.Equal(one + statistics.EngravingSeconds + statistics.PassSetupSeconds, job.EstimatedSeconds!.Value, 6);
+        Assert.True(statistics.PassSetupSeconds < statistics.PreparationSeconds, "a later pass does not home");
     }
 
     [Fact]

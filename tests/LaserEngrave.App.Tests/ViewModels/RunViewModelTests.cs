@@ -260,7 +260,7 @@ public sealed class RunViewModelTests
     {
         await ReadyAsync();
         _job.Passes = 2;
-        var perPass = _job.EstimatedSeconds!.Value / 2;
+        var perPass = _job.Job!.Statistics.EngravingSeconds + _job.Job.Statistics.PassSetupSeconds;
         var reported = new TaskCompletionSource();
         var finish = new TaskCompletionSource();
         _runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())

@@ -37,6 +37,19 @@ public sealed class RunRecordJsonTests : IDisposable
     }
 
     [Fact]
+    public void RoundTrip_StopPointCutMidRun_KeepsWhereToResumeAndThePixelBurnedTwice()
+    {
+        var stop = new RunStopPoint(3, 17) { ResumeXMicrosteps = 12_345, CutPixel = new PixelIndex(7, 3), ExpectedXMicrosteps = 20_000 };
+        var record = runs.FailedRecord() with { StoppedAt = stop };
+
+        var back = RunRecordJson.Deserialize(RunRecordJson.Serialize(record), "test");
+
+        Assert.Equal(stop, back.StoppedAt);
+        var text = RunSummaryText.Format(back);
+        Assert.Contains("Resumes:            mid-run at X 12345 microsteps if X is found at 20000 microsteps (else from the run's start); pixel column 7, row 3 (the laser went off in it) burns twice", text, StringComparison.Ordinal);
+    }
+
+    [Fact]
     public void Serialize_Record_HoldsEveryFieldTheIssueLists()
     {
         var record = runs.FailedRecord();
@@ -132,7 +145,9 @@ public sealed class RunRecordJsonTests : IDisposable
         Assert.Equal(job.Geometry.AchievedWidthMm, record.Geometry.WidthMm);
         Assert.Equal(job.Statistics.Rows, record.RowsTotal);
         Assert.Equal(job.Statistics.BurnRuns, record.RunsTotal);
-        Assert.Equal(job.Statistics.EstimatedSeconds, record.EstimatedSeconds);
+        Assert.Equal(job.Statistics.WholeRunSeconds(), record.EstimatedSeconds);
+        Assert.Equal(job.Statistics.EngravingSeconds, record.EstimatedEngravingSeconds);
+        Assert.True(record.EstimatedSeconds > record.EstimatedEngravingSeconds, "the whole run includes preflight and homing");
         Assert.Same(job.Spec.Process, record.Process);
     }
 

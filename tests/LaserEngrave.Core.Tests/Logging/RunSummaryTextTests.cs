@@ -23,7 +23,7 @@ public sealed class RunSummaryTextTests : IDisposable
         Assert.Contains("burn 0.8 mm/s, travel 3 mm/s, acceleration 40 mm/s²", text, StringComparison.Ordinal);
         Assert.Contains("Laser frequency:    1500 Hz", text, StringComparison.Ordinal);
         Assert.Contains("optimized, unidirectional, overscan 0.2 mm", text, StringComparison.Ordinal);
-        Assert.Contains("Duration:           1 min 01.5 s (simulated time); engraving 0 min 55.5 s, estimated ", text, StringComparison.Ordinal);
+        Assert.Contains("Duration:           1 min 01.5 s, estimated 1 min 10.3 s (simulated time); engraving 0 min 55.5 s, estimated 0 min 54.8 s", text, StringComparison.Ordinal);
         Assert.Contains("firmware 5.29", text, StringComparison.Ordinal);
         Assert.Contains("Repeats:            /logs/2026-11-22_090000_S-16.json", text, StringComparison.Ordinal);
         Assert.Contains("Notes:              first try\n                    focus 2 turns down", text, StringComparison.Ordinal);

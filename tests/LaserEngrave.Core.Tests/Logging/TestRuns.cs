@@ -47,6 +47,8 @@ internal sealed class TestRuns : IDisposable
             Devices = [new RunDevice("x axis", "simulator", "device 1, ID 6320", "5.29"), new RunDevice("laser gate", "simulator", "CEILAP PIC gate v1.2", "1.2")],
             ActualSeconds = 61.5,
             EngravingSeconds = 55.5,
+            EstimatedSeconds = 70.3,
+            EstimatedEngravingSeconds = 54.8,
             LaserOnSeconds = 20.25,
             RowsDone = 11,
             RunsDone = 40,

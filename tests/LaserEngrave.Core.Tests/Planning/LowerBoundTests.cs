@@ -5,23 +5,26 @@ namespace LaserEngrave.Core.Tests.Planning;
 public class LowerBoundTests
 {
     // Default process on a T-LA (PlanEstimatorTests has the arithmetic): burn 1075 units = 10078.125 µsteps/s,
-    // travel 4300 units = 40312.5 µsteps/s, acceleration 45 units = 506250 µsteps/s². A stop-go move beats crossing at
-    // the burn speed once d / vb > 2 sqrt(d / a), that is beyond d = 4 vb² / a = 802.5 microsteps.
+    // travel 4300 units = 40312.5 µsteps/s, acceleration 45 units = 506250 µsteps/s². Flying a gap (up from the burn speed
+    // and back) beats both crossing it at the burn speed and a stop-go move from rest.
     private const double BurnSpeed = 10078.125;
     private const double TravelSpeed = 40312.5;
     private const double Acceleration = 506250;
 
     [Fact]
-    public void ComputeStatistics_GapsInARow_TakeTheShorterOfBurnSpeedAndStopGo()
+    public void ComputeStatistics_GapsInARow_TakeTheShortestOfBurnSpeedFlownAndStopGo()
     {
-        // Pitch 100 microsteps: burns 0..100, 200..400, 1400..1800 (700 microsteps); the 100-microstep gap is crossed at
-        // the burn speed (9.92 ms against a 28.11 ms triangle), the 1000-microstep gap by a stop-go triangle
-        // 2 sqrt(1000 / 506250) = 88.89 ms (against 99.22 ms).
+        // Pitch 100 microsteps: burns 0..100, 200..400, 1400..1800 (700 microsteps). Both gaps are flown: from the burn
+        // speed up at the acceleration and back, never reaching the travel speed: 2 (sqrt(vb² + a d) - vb) / a, that is
+        // 8.93 ms for the 100-microstep gap (against 9.92 ms at the burn speed) and 57.58 ms for the 1000-microstep one
+        // (against an 88.89 ms stop-go triangle).
         var mask = TestMasks.FromRows("#.##..........####");
         var stats = new RasterPlan(mask, TestMasks.Geometry(mask, pitch: 100)).ComputeStatistics(ProcessSettings.Default);
 
-        var expected = (700 / BurnSpeed) + (100 / BurnSpeed) + (2 * Math.Sqrt(1000 / Acceleration));
-        Assert.Equal(0.168269, expected, 6);
+        static double Flown(double d) => 2 * (Math.Sqrt((BurnSpeed * BurnSpeed) + (Acceleration * d)) - BurnSpeed) / Acceleration;
+        var expected = (700 / BurnSpeed) + Flown(100) + Flown(1000);
+        Assert.Equal(0.135964, expected, 6);
+        Assert.True(Flown(100) < 100 / BurnSpeed && Flown(1000) < 2 * Math.Sqrt(1000 / Acceleration));
         Assert.Equal(expected, stats.LowerBoundSeconds, 12);
     }
 
@@ -58,7 +61,7 @@ public class LowerBoundTests
         var overscan = new RasterPlan(mask, geometry, new PlanOptions { OverscanMm = 0.1 }).ComputeStatistics(ProcessSettings.Default);
 
         Assert.Equal(plain.LowerBoundSeconds, overscan.LowerBoundSeconds, 12);
-        Assert.True(plain.LowerBoundSeconds < plain.EstimatedSeconds);
+        Assert.True(plain.LowerBoundSeconds < plain.EngravingSeconds);
         Assert.Equal(plain.LowerBoundSeconds, LowerBound.Of(new RasterPlan(mask, geometry), ProcessSettings.Default), 12);
     }
 

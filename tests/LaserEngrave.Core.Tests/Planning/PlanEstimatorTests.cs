@@ -40,8 +40,8 @@ public class PlanEstimatorTests
         // then OFF at the end 14.583 ms. Total 0.530348 s.
         const double Motion = (BurnSpeed / Acceleration) + (4000 / BurnSpeed);
         Assert.Equal(0.416807, Motion, 6);
-        Assert.Equal(0.05 + LaserOn + RoundTrip + RoundTrip + Motion + LaserOff, stats.EstimatedSeconds, 12);
-        Assert.Equal(0.530348, stats.EstimatedSeconds, 6);
+        Assert.Equal(0.05 + LaserOn + RoundTrip + RoundTrip + Motion + LaserOff, stats.EngravingSeconds, 12);
+        Assert.Equal(0.530348, stats.EngravingSeconds, 6);
         Assert.Equal(2, stats.LaserSwitches);
         Assert.Equal(1, stats.SpeedChanges);
     }

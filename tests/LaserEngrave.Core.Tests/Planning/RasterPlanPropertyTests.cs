@@ -187,7 +187,7 @@ public class RasterPlanPropertyTests
             Assert.Equal(moves.Count, stats.Moves);
             Assert.Equal(moves.Count(m => m.Kind == MoveKind.Burn), stats.BurnRuns);
             Assert.Equal(StageUnits.MicrostepsToMm(moves.Where(m => m.Kind == MoveKind.Burn).Sum(m => m.LengthX), plan.Geometry.MicrostepUm), stats.BurnLengthMm, 9);
-            Assert.Equal(estimator.ElapsedSeconds, stats.EstimatedSeconds, 9);
+            Assert.Equal(estimator.ElapsedSeconds, stats.EngravingSeconds, 9);
             Assert.Equal(estimator.LaserSwitches, stats.LaserSwitches);
 
             var fromRow = rng.Next(plan.Mask.Height + 1);

@@ -216,3 +216,29 @@ public class RasterPlanTests
         Assert.Equal(0, stats.SpeedChanges);
     }
 }
+
+public class ResumeWithinTests
+{
+    [Theory]
+    [InlineData(true, 450.0, 400L, 4)]
+    [InlineData(true, 400.0, 400L, 4)]
+    [InlineData(true, 399.0, 300L, 3)]
+    [InlineData(true, 150.0, null, null)]
+    [InlineData(false, 450.0, 500L, 4)]
+    [InlineData(false, 500.0, 500L, 4)]
+    [InlineData(false, 650.0, 700L, 6)]
+    [InlineData(false, 750.0, null, null)]
+    public void ResumeWithin_BurnedPartWay_FirstPixelNotCompletelyBurnedAndItsColumn(bool leftToRight, double burnedUpTo, long? resumeX, int? column)
+    {
+        // Pitch 100 microsteps, one run over columns 2..7 (x 200..800).
+        var mask = TestMasks.FromRows("..######..");
+        var plan = new RasterPlan(mask, TestMasks.Geometry(mask, pitch: 100));
+        var y = plan.Geometry.RowY(0);
+        var burn = leftToRight ? new Move(MoveKind.Burn, 200, y, 800, y, 0) : new Move(MoveKind.Burn, 800, y, 200, y, 0);
+
+        var found = plan.ResumeWithin(burn, burnedUpTo);
+
+        Assert.Equal(resumeX, found?.ResumeX);
+        Assert.Equal(column, found?.Column);
+    }
+}

@@ -32,9 +32,10 @@ public class TimedSwitchingTests
 
     [Theory]
     [InlineData(1, true)]
-    [InlineData(3, false)]
-    [InlineData(8, false)]
-    public void CrossesGap_ShortGapsAtTheBurnSpeedLongOnesByATravel(int pixelsOf122Um, bool crossed)
+    [InlineData(3, true)]
+    [InlineData(8, true)]
+    [InlineData(400, true)]
+    public void CrossesGap_FlownGapsBeatAStopGoTravel(int pixelsOf122Um, bool crossed)
     {
         var gap = (long)Math.Round(pixelsOf122Um * 121.95 / Defaults.MicrostepUm);
 
@@ -47,9 +48,9 @@ public class TimedSwitchingTests
         var t = Defaults;
         var timeline = new MotionTimeline(t, 0, t.TravelSpeedData);
 
-        var first = timeline.Stroke(20_000, 0.03, 1.5);
+        var first = timeline.Stroke(t.Stroke(20_000, []), 0.03, 1.5);
         var travel = timeline.Travel(5_000, 0);
-        var second = timeline.Stroke(20_000, 0.03, 1.5);
+        var second = timeline.Stroke(t.Stroke(20_000, []), 0.03, 1.5);
 
         Assert.True(travel.XArrival >= first.End + t.MarginSeconds - 1e-12);
         Assert.True(travel.SpeedArrival < first.End, "the travel speed is set while the stroke brakes");
@@ -64,9 +65,71 @@ public class TimedSwitchingTests
         var t = Defaults;
         var timeline = new MotionTimeline(t, 10, t.TravelSpeedData);
 
-        var stroke = timeline.Stroke(20_000, 0.03, 1.5);
+        var stroke = timeline.Stroke(t.Stroke(20_000, []), 0.03, 1.5);
 
         Assert.True(stroke.SpeedArrival >= 10 + t.StageCommandSeconds - 1e-12);
         Assert.True(stroke.Arrival >= stroke.SpeedArrival + t.FrameSeconds - 1e-12);
+    }
+
+    [Fact]
+    public void Fly_ShortGapNotFlownOnePixelFlownLongerGapsGainMore()
+    {
+        var t = Defaults;
+        var pixel = (long)Math.Round(121.95 / t.MicrostepUm);
+
+        Assert.Null(t.Fly(pixel / 4));
+        var one = Assert.NotNull(t.Fly(pixel));
+        var three = Assert.NotNull(t.Fly(3 * pixel));
+
+        Assert.True(one.GainMicrosteps > 0);
+        Assert.True(three.GainMicrosteps > one.GainMicrosteps);
+        Assert.True(t.CrossSeconds(pixel) < pixel / t.BurnSpeed, "a flown pixel is crossed sooner than at the burn speed");
+        Assert.True(t.CrossSeconds(3 * pixel) < t.StopGoSeconds(3 * pixel), "and a longer gap sooner than by stopping");
+        Assert.True(t.CrossesGap(3 * pixel));
+    }
+
+    [Theory]
+    [InlineData(1)]
+    [InlineData(2)]
+    [InlineData(5)]
+    [InlineData(40)]
+    public void StrokePlan_FlownGap_EntryCrossedWhenTheSpeedProfileSaysAndAfterTheQueryIsAnswered(int pixels)
+    {
+        var t = Defaults;
+        var pixel = (long)Math.Round(121.95 / t.MicrostepUm);
+        var exit = t.RunUpMicrosteps + (3 * pixel);
+        var entry = exit + (pixels * pixel);
+        var length = entry + (3 * pixel) + t.RunOutMicrosteps;
+
+        var plan = t.Stroke(length, [(exit, entry)]);
+
+        var bump = Assert.Single(plan.Bumps);
+
+        // The device's own motion, integrated independently: burn speed, up at the acceleration from the speed-up's
+        // arrival (never above the travel speed), down again from the speed-down's arrival, then the burn speed.
+        var plain = t.Stroke(length);
+        var dt = 1e-6;
+        double x = exit, v = t.BurnSpeed, time = plain.TimeAt(exit);
+        while (x < entry)
+        {
+            var a = time < bump.SpeedUpArrival ? 0
+                : time < bump.SpeedDownArrival ? (v < t.TravelSpeed ? t.Acceleration : 0)
+                : (v > t.BurnSpeed ? -t.Acceleration : 0);
+            v = Math.Clamp(v + (a * dt), t.BurnSpeed, t.TravelSpeed);
+            x += v * dt;
+            time += dt;
+        }
+
+        Assert.Equal(plan.TimeAt(entry), time, 3);
+        Assert.True(plan.TimeAt(entry) < plain.TimeAt(entry), "the flown gap is crossed sooner");
+        Assert.Equal(plain.TimeAt(exit), plan.TimeAt(exit), 12);
+        Assert.Equal(plain.Duration - (bump.GainedUpTo / t.BurnSpeed), plan.Duration, 9);
+
+        // The query finds the stage back at the burn speed, and its answer is in before the switch-on must leave, whatever the error.
+        Assert.True(bump.QueryArrival >= bump.SpeedDownArrival + t.FrameSeconds - 1e-12);
+        var answered = bump.QueryArrival + (2 * t.StageJitterSeconds) + t.StageReplySeconds;
+        var switchOn = plan.TimeAt(entry) + t.OnDelaySeconds - t.OnLeadSeconds - (bump.MaxErrorMicrosteps / t.BurnSpeed);
+        Assert.True(answered <= switchOn, $"{answered} > {switchOn}");
+        Assert.Equal(entry - (t.BurnSpeed * (plan.TimeAt(entry) - bump.QueryArrival)), bump.ExpectedOffset, 6);
     }
 }

@@ -37,12 +37,12 @@ public class ExecutionFigures
             var result = await run.Do(() => run.Executor(job).RunAsync(TestContext.Current.CancellationToken));
             var report = run.Analyze(job);
             var seconds = result.EngravingDuration.TotalSeconds;
-            var difference = (result.EstimatedSeconds / seconds) - 1;
+            var difference = (result.EstimatedEngravingSeconds / seconds) - 1;
             worst = Math.Max(worst, Math.Abs(difference));
             simulated[(sample, strategy)] = seconds;
             lines.Add(string.Create(
                 CultureInfo.InvariantCulture,
-                $"| {sample} | {strategy} | {job.Statistics.Moves} | {job.Statistics.BurnRuns} | {result.EstimatedSeconds:0.0} | {seconds:0.0} | {Percent(difference)} | {result.Duration.TotalSeconds:0.0} | {report.Burned.ContentEquals(job.Mask)} |"));
+                $"| {sample} | {strategy} | {job.Statistics.Moves} | {job.Statistics.BurnRuns} | {result.EstimatedEngravingSeconds:0.0} | {seconds:0.0} | {Percent(difference)} | {result.Duration.TotalSeconds:0.0} | {report.Burned.ContentEquals(job.Mask)} |"));
             Assert.True(result.Outcome == RunOutcome.Completed, $"{result.Outcome}: {result.FaultMessage}");
             Assert.True(report.Burned.ContentEquals(job.Mask), $"{sample} {strategy}: burned differs from the mask");
             Assert.Equal(0, report.LaserOnTravelCount);
