@@ -42,7 +42,7 @@ public sealed class JobViewModelTests
         Assert.Null(job.Mask);
         var drawing = Assert.IsType<Core.Jobs.PreparedDrawing>(job.Drawing);
         Assert.Equal(10, drawing.Plan.WidthMm, 9);
-        Assert.Equal(drawing.Schedule.EstimatedSeconds, job.EstimatedSeconds!.Value, 9);
+        Assert.Equal(drawing.WholeRunSeconds(1), job.EstimatedSeconds!.Value, 9);
         Assert.Equal(Math.Round(drawing.Plan.HeightMm, 4), job.HeightMm);
         Assert.Empty(job.Errors);
     }

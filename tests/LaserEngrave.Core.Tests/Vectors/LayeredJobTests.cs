@@ -36,8 +36,13 @@ public sealed class LayeredJobTests : IDisposable
         Assert.Equal(0.5, job.Layers[0].Drawing!.Spec.Process.BurnSpeedMmPerS);
         Assert.Equal(1, job.Layers[2].Drawing!.Spec.Process.BurnSpeedMmPerS);
         Assert.NotNull(job.Layers[1].Image);
-        Assert.Equal(job.Layers.Sum(l => l.EstimatedSeconds * l.Layer.Passes), job.EstimatedSeconds, 9);
-        Assert.True(job.Layers[2].EstimatedSeconds > 0);
+        Assert.Equal(job.Layers.Sum(l => l.EstimatedSeconds), job.EstimatedSeconds, 9);
+        Assert.Equal(job.Layers.Sum(l => l.EngravingSeconds * l.Layer.Passes), job.EstimatedEngravingSeconds, 9);
+
+        // The cut's two passes: twice the engraving, with the preflight before each.
+        var cut = job.Layers[2];
+        Assert.Equal(cut.Drawing!.WholeRunSeconds(2), cut.EstimatedSeconds, 9);
+        Assert.True(cut.EstimatedSeconds > 2 * cut.EngravingSeconds);
     }
 
     [Fact]
