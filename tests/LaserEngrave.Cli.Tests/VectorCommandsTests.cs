@@ -115,12 +115,94 @@ public class VectorCommandsTests
     }
 
     [Fact]
-    public async Task Engrave_Drawing_Exit2SayingDrawingsAreNotEngravedYet()
+    public async Task EngraveJson_DrawingOnTheTwin_OnThePathEvenlySpacedAsEstimatedAndLogged()
     {
-        var (exit, _, error) = await CliHarness.RunAsync("engrave", Drawing("hexagons.dxf"), "--width-mm", "5", "--simulate");
+        var logs = Path.Combine(Path.GetTempPath(), $"le-cli-vector-{Guid.NewGuid():N}");
+        try
+        {
+            var (exit, output, error) = await CliHarness.RunAsync("engrave", Drawing("hexagons.dxf"), "--width-mm", "8", "--origin-mm", "10,10", "--simulate", "--json", "--log-dir", logs);
+            var (planExit, planOutput, _) = await CliHarness.RunAsync("plan", Drawing("hexagons.dxf"), "--width-mm", "8", "--origin-mm", "10,10", "--json");
+
+            Assert.True(exit == 0, error);
+            Assert.Equal(0, planExit);
+            using var json = JsonDocument.Parse(output);
+            using var plan = JsonDocument.Parse(planOutput);
+            var root = json.RootElement;
+            Assert.Equal("completed", root.GetProperty("outcome").GetString());
+            Assert.InRange(root.GetProperty("pathDeviationUm").GetProperty("max").GetDouble(), 0, 3);
+            var expected = root.GetProperty("expectedSpacingUm").GetDouble();
+            Assert.InRange(root.GetProperty("pulseSpacingUm").GetProperty("min").GetDouble(), expected * 0.9, expected * 1.1);
+            Assert.InRange(root.GetProperty("pulseSpacingUm").GetProperty("max").GetDouble(), expected * 0.9, expected * 1.1);
+            Assert.Equal(0, root.GetProperty("laserOnTravelCount").GetInt64());
+            Assert.Equal(0, root.GetProperty("dwells").GetProperty("count").GetInt32());
+
+            // The plan's estimate is the run's, and within 2 % of what the twin took.
+            var estimate = plan.RootElement.GetProperty("estimatedEngravingSeconds").GetDouble();
+            Assert.Equal(estimate, root.GetProperty("estimatedEngravingSeconds").GetDouble(), 9);
+            Assert.InRange(root.GetProperty("engravingSeconds").GetDouble(), estimate * 0.98, estimate * 1.02);
+            var whole = plan.RootElement.GetProperty("estimatedSeconds").GetDouble();
+            Assert.InRange(root.GetProperty("durationSeconds").GetDouble(), whole * 0.98, whole * 1.02);
+
+            using var log = JsonDocument.Parse(File.ReadAllText(root.GetProperty("logPath").GetString()!));
+            Assert.Equal(plan.RootElement.GetProperty("pathCount").GetInt32(), log.RootElement.GetProperty("drawing").GetProperty("paths").GetInt32());
+            Assert.True(log.RootElement.GetProperty("simulation").GetProperty("path").GetProperty("deviationUm").GetProperty("max").GetDouble() <= 3);
+        }
+        finally
+        {
+            if (Directory.Exists(logs))
+            {
+                Directory.Delete(logs, recursive: true);
+            }
+        }
+    }
+
+    [Fact]
+    public async Task EngraveFromLog_Drawing_RepeatsTheSameStrokes()
+    {
+        var logs = Path.Combine(Path.GetTempPath(), $"le-cli-vector-{Guid.NewGuid():N}");
+        try
+        {
+            var (exit, output, _) = await CliHarness.RunAsync("engrave", Drawing("curves-r12.dxf"), "--width-mm", "6", "--origin-mm", "3,3", "--tolerance-um", "2", "--simulate", "--json", "--log-dir", logs);
+            using var first = JsonDocument.Parse(output);
+            var logPath = first.RootElement.GetProperty("logPath").GetString()!;
+            var (again, repeated, error) = await CliHarness.RunAsync("engrave", "--from-log", logPath, "--simulate", "--json", "--log-dir", logs);
+
+            Assert.Equal(0, exit);
+            Assert.True(again == 0, error);
+            using var second = JsonDocument.Parse(repeated);
+            Assert.Equal(first.RootElement.GetProperty("estimatedSeconds").GetDouble(), second.RootElement.GetProperty("estimatedSeconds").GetDouble(), 9);
+            Assert.Equal(first.RootElement.GetProperty("rowsTotal").GetInt32(), second.RootElement.GetProperty("rowsTotal").GetInt32());
+        }
+        finally
+        {
+            if (Directory.Exists(logs))
+            {
+                Directory.Delete(logs, recursive: true);
+            }
+        }
+    }
+
+    [Theory]
+    [InlineData(new[] { "--origin-mm", "59,10" }, "does not fit the stage's travel")]
+    [InlineData(new[] { "--burned", "b.png" }, "--burned and --dose are for images")]
+    [InlineData(new[] { "--threshold", "40" }, "--threshold is for images")]
+    public async Task Engrave_DrawingWithBadOptions_Exit2OneLineBeforeAnythingOpens(string[] options, string expected)
+    {
+        var (exit, _, error) = await CliHarness.RunAsync(["engrave", Drawing("hexagons.dxf"), "--width-mm", "20", "--simulate", "--log-dir", Path.Combine(Path.GetTempPath(), "le-never"), .. options]);
 
         Assert.Equal(2, exit);
-        Assert.Contains("hexagons.dxf: drawings can be planned and previewed", error, StringComparison.Ordinal);
+        Assert.Contains(expected, error, StringComparison.Ordinal);
+        Assert.Single(error.TrimEnd().Split('\n'));
+        Assert.False(Directory.Exists(Path.Combine(Path.GetTempPath(), "le-never")));
+    }
+
+    [Fact]
+    public async Task Frame_Drawing_TracesItsBoundingBoxAndStopsAtTheTopLeft()
+    {
+        var (exit, output, error) = await CliHarness.RunAsync("frame", Drawing("hexagons.dxf"), "--width-mm", "20", "--origin-mm", "10,10", "--simulate");
+
+        Assert.True(exit == 0, error);
+        Assert.Contains("= 10, 10 mm", output, StringComparison.Ordinal);
     }
 
     [Theory]
@@ -131,6 +213,59 @@ public class VectorCommandsTests
     public async Task Plan_DrawingWithBadOptions_Exit2WithOneLine(string[] options, string expected)
     {
         var (exit, _, error) = await CliHarness.RunAsync(["plan", Drawing("hexagons.dxf"), .. options]);
+
+        Assert.Equal(2, exit);
+        Assert.Contains(expected, error, StringComparison.Ordinal);
+        Assert.Single(error.TrimEnd().Split('\n'));
+    }
+
+    [Fact]
+    public async Task EngraveJob_LayersOnTheTwin_RunInOrderEachWithItsSettingsAndLoggedPerLayer()
+    {
+        var job = Path.Combine(CliHarness.RepositoryRoot, "assets", "jobs", "plate.json");
+        var logs = Path.Combine(Path.GetTempPath(), $"le-cli-layers-{Guid.NewGuid():N}");
+        try
+        {
+            var (planExit, planOutput, _) = await CliHarness.RunAsync("plan", "--job", job, "--json");
+            var (exit, output, error) = await CliHarness.RunAsync("engrave", "--job", job, "--simulate", "--json", "--log-dir", logs);
+
+            Assert.Equal(0, planExit);
+            Assert.True(exit == 0, error);
+            using var plan = JsonDocument.Parse(planOutput);
+            using var run = JsonDocument.Parse(output);
+            var estimate = plan.RootElement.GetProperty("estimatedEngravingSeconds").GetDouble();
+            Assert.Equal(estimate, run.RootElement.GetProperty("estimatedEngravingSeconds").GetDouble(), 6);
+            Assert.InRange(run.RootElement.GetProperty("engravingSeconds").GetDouble(), estimate * 0.98, estimate * 1.02);
+
+            using var log = JsonDocument.Parse(File.ReadAllText(run.RootElement.GetProperty("logPath").GetString()!));
+            var layers = log.RootElement.GetProperty("layers").EnumerateArray().ToList();
+            Assert.Equal(["marks", "logo", "cut"], layers.Select(l => l.GetProperty("name").GetString()));
+            Assert.All(layers, l => Assert.Equal("completed", l.GetProperty("outcome").GetString()));
+            Assert.Equal(0.5, layers[0].GetProperty("burnSpeedMmPerS").GetDouble());
+            Assert.Equal(500, layers[0].GetProperty("frequencyHz").GetDouble());
+            Assert.Equal(2, layers[2].GetProperty("passesDone").GetInt32());
+            Assert.Equal("raster", layers[1].GetProperty("mode").GetString());
+            Assert.Equal(0, layers[1].GetProperty("simulation").GetProperty("missingPixels").GetInt64());
+            Assert.True(layers[0].GetProperty("simulation").GetProperty("path").GetProperty("deviationUm").GetProperty("max").GetDouble() <= 3);
+            Assert.True(layers[2].GetProperty("simulation").GetProperty("path").GetProperty("deviationUm").GetProperty("max").GetDouble() <= 3);
+        }
+        finally
+        {
+            if (Directory.Exists(logs))
+            {
+                Directory.Delete(logs, recursive: true);
+            }
+        }
+    }
+
+    [Theory]
+    [InlineData(new[] { "--width-mm", "5" }, "--width-mm with --job")]
+    [InlineData(new[] { "--passes", "2" }, "--passes with --job: each layer has its own passes")]
+    public async Task EngraveJob_WithTheJobsOwnOptions_Exit2OneLine(string[] options, string expected)
+    {
+        var job = Path.Combine(CliHarness.RepositoryRoot, "assets", "jobs", "plate.json");
+
+        var (exit, _, error) = await CliHarness.RunAsync(["engrave", "--job", job, "--simulate", .. options]);
 
         Assert.Equal(2, exit);
         Assert.Contains(expected, error, StringComparison.Ordinal);

@@ -6,6 +6,7 @@ using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Vectors;
 
 namespace LaserEngrave.App.ViewModels;
 
@@ -180,6 +181,13 @@ public sealed partial class JobViewModel : ObservableObject
     [ObservableProperty]
     public partial PreparedJob? Job { get; private set; }
 
+    /// <summary>The planned drawing when a .dxf or .svg is open (docs/vectors.md), else null; sized by the width, or its own units.</summary>
+    [ObservableProperty]
+    public partial PreparedDrawing? Drawing { get; private set; }
+
+    /// <summary>Whether the open file is a drawing rather than an image.</summary>
+    public bool IsDrawing => ImagePath is { } path && DrawingReader.IsDrawing(path);
+
     /// <summary>Estimated duration of the whole run, all passes, s: preflight, homing, the first travel and the engraving.</summary>
     [ObservableProperty]
     public partial double? EstimatedSeconds { get; private set; }
@@ -230,12 +238,60 @@ public sealed partial class JobViewModel : ObservableObject
     {
         ArgumentException.ThrowIfNullOrWhiteSpace(path);
         _activity.ThrowIfJobLocked();
+        if (DrawingReader.IsDrawing(path))
+        {
+            return OpenDrawing(path);
+        }
+
         if (!Open(path))
         {
             return false;
         }
 
         RebuildMask();
+        return true;
+    }
+
+    /// <summary>A drawing has no pixels: the image and mask go, and the plan reads it (its errors stand beside the image).</summary>
+    private bool OpenDrawing(string path)
+    {
+        try
+        {
+            // Read once first: a drawing that cannot be read leaves the open image or drawing as it was.
+            DrawingReader.Read(path);
+        }
+        catch (DrawingException ex)
+        {
+            SetErrors(new Dictionary<string, string>(Errors) { [ImageField] = ex.Message });
+            return false;
+        }
+        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
+        {
+            SetErrors(new Dictionary<string, string>(Errors) { [ImageField] = $"{path}: {ex.Message}" });
+            return false;
+        }
+
+        lock (_lock)
+        {
+            _image = null;
+            _originalPreview = null;
+            ImageInfo = null;
+            Mask = null;
+            MaskVersion++;
+            ImagePath = path;
+            var errors = new Dictionary<string, string>(Errors);
+            errors.Remove(ImageField);
+            errors.Remove(ThresholdField);
+            SetErrors(errors);
+        }
+
+        OnPropertyChanged(nameof(IsDrawing));
+        Replan();
+        if (Errors.ContainsKey(ImageField))
+        {
+            return false;
+        }
+
         return true;
     }
 
@@ -504,6 +560,12 @@ public sealed partial class JobViewModel : ObservableObject
 
     private void Replan()
     {
+        if (IsDrawing)
+        {
+            ReplanDrawing();
+            return;
+        }
+
         lock (_lock)
         {
             var errors = FieldErrors();
@@ -576,11 +638,81 @@ public sealed partial class JobViewModel : ObservableObject
             }
 
             Job = job;
+            Drawing = null;
             EstimatedSeconds = job is null ? null : job.Statistics.WholeRunSeconds(Passes);
             SetErrors(errors);
             Warnings = warnings;
             OnPropertyChanged(nameof(MicrostepsPerPixel));
             OnPropertyChanged(nameof(PulsesSummary));
+            PlanVersion++;
+        }
+    }
+
+    /// <summary>Plans the open drawing: by the width typed (width mode), else in its own units; placed at the origin.</summary>
+    private void ReplanDrawing()
+    {
+        lock (_lock)
+        {
+            var errors = FieldErrors();
+            errors.Remove(PitchField);
+            errors.Remove(HeightField);
+            var warnings = new Dictionary<string, string>();
+            PreparedDrawing? drawing = null;
+            if (errors.Count == 0)
+            {
+                try
+                {
+                    var spec = Spec(ImagePath!) with { Size = SizeSpec.Width(WidthMm > 0 ? WidthMm : 1) };
+                    drawing = SizeMode == SizeMode.Width && WidthMm > 0
+                        ? PreparedDrawing.Prepare(spec, VectorOptions.Default)
+                        : PreparedDrawing.PrepareOwnSize(spec, VectorOptions.Default);
+                }
+                catch (DrawingException ex)
+                {
+                    errors[ImageField] = ex.Message;
+                }
+                catch (GeometryException ex)
+                {
+                    errors[WidthField] = ex.Message;
+                }
+                catch (PlanException ex)
+                {
+                    errors[ImageField] = ex.Message;
+                }
+            }
+
+            if (drawing is not null)
+            {
+                if (drawing.Warnings.Count > 0)
+                {
+                    warnings[ImageField] = string.Join("; ", drawing.Warnings);
+                }
+
+                if (!drawing.FitsTravel)
+                {
+                    warnings[OriginField] = "the drawing, with its strokes' run-ups and run-outs, leaves the stage's travel: move the origin or make it smaller";
+                }
+
+                // The fields that follow show what the drawing will really be.
+                Interlocked.Increment(ref _suspended);
+                Interlocked.Increment(ref _following);
+                try
+                {
+                    WidthMm = Math.Round(drawing.Plan.WidthMm, 4);
+                    HeightMm = Math.Round(drawing.Plan.HeightMm, 4);
+                }
+                finally
+                {
+                    Interlocked.Decrement(ref _following);
+                    Interlocked.Decrement(ref _suspended);
+                }
+            }
+
+            Job = null;
+            Drawing = drawing;
+            EstimatedSeconds = drawing?.WholeRunSeconds(Passes);
+            SetErrors(errors);
+            Warnings = warnings;
             PlanVersion++;
         }
     }

@@ -124,7 +124,9 @@ public sealed partial class RunViewModel : ObservableObject
     /// Whether <see cref="StartCommand"/> would run: nothing holds the machine (the interlock decides first), a planned job
     /// with something to burn inside the travel, a machine.
     /// </summary>
-    public bool CanStart => !_machine.Activity.IsBusy && !IsActive && _job.Job is { Geometry.FitsTravel: true, Statistics.BurnRuns: > 0 } && _machine.Connection is not null;
+    public bool CanStart => !_machine.Activity.IsBusy && !IsActive
+        && (_job.Job is { Geometry.FitsTravel: true, Statistics.BurnRuns: > 0 } || _job.Drawing is { FitsTravel: true, Schedule.Strokes.Count: > 0 })
+        && _machine.Connection is not null;
 
     /// <summary>Whether a pause can be asked: the run is starting or running and no pause is pending.</summary>
     public bool CanPause => State is RunState.Preflight or RunState.Running && Progress?.PauseRequested != true;
@@ -177,8 +179,25 @@ public sealed partial class RunViewModel : ObservableObject
             return;
         }
 
-        var job = _job.Job;
         var connection = _machine.Connection;
+        if (_job.Drawing is { } drawing)
+        {
+            var refused = !drawing.FitsTravel ? "the drawing lies outside the stage's travel: move the origin or make it smaller"
+                : drawing.Schedule.Strokes.Count == 0 ? "the drawing has no path long enough to burn"
+                : connection is null ? "not connected: connect to the simulator or the machine first"
+                : null;
+            if (refused is not null)
+            {
+                Error = refused;
+                State = RunState.Failed;
+                return;
+            }
+
+            await RunAsync((machine, options) => new EngraveSession(machine, drawing, options), null, _job.ToSettings(), connection!, resumeFrom: null);
+            return;
+        }
+
+        var job = _job.Job;
         var problem = job is null ? "no job planned: open an image and give it a usable size first"
             : !job.Geometry.FitsTravel ? "the job lies outside the stage's travel: move the origin or make it smaller"
             : job.Statistics.BurnRuns == 0 ? "the mask has no pixel to burn: change the threshold or invert it"
@@ -191,7 +210,7 @@ public sealed partial class RunViewModel : ObservableObject
             return;
         }
 
-        await RunAsync(job!, _job.ToSettings(), connection!, resumeFrom: null);
+        await RunAsync((machine, options) => new EngraveSession(machine, job!, options), job, _job.ToSettings(), connection!, resumeFrom: null);
     }
 
     /// <summary>
@@ -220,7 +239,7 @@ public sealed partial class RunViewModel : ObservableObject
             return;
         }
 
-        await RunAsync(stopped!.Job, stopped.Settings, connection!, stopped.StopPoint);
+        await RunAsync((machine, options) => new EngraveSession(machine, stopped!.Job, options), stopped!.Job, stopped.Settings, connection!, stopped.StopPoint);
     }
 
     /// <summary>One line for the user on a request that did nothing, e.g. a second Start during a run.</summary>
@@ -323,7 +342,9 @@ public sealed partial class RunViewModel : ObservableObject
         }
     }
 
-    private async Task RunAsync(PreparedJob job, JobSettings settings, IMachineConnection connection, RunStopPoint? resumeFrom)
+    /// <param name="session">Makes the session (an image's or a drawing's) on the machine with the options.</param>
+    /// <param name="job">The image job, which Continue can resume; null for a drawing (continued from the command line).</param>
+    private async Task RunAsync(Func<EngraveMachine, EngraveSessionOptions, EngraveSession> session, PreparedJob? job, JobSettings settings, IMachineConnection connection, RunStopPoint? resumeFrom)
     {
         if (!_machine.Activity.TryBegin(MachineOperation.Run, out var lease, out var refusal))
         {
@@ -335,13 +356,15 @@ public sealed partial class RunViewModel : ObservableObject
         var continuedFrom = resumeFrom is null ? null : _log.LastRun?.Path;
         _startedTicks = _time.GetTimestamp();
         _estimatedSeconds = _job.EstimatedSeconds ?? 0;
-        _laterPassSeconds = job.Statistics.EngravingSeconds + job.Statistics.PassSetupSeconds;
+        _laterPassSeconds = job is not null ? job.Statistics.EngravingSeconds + job.Statistics.PassSetupSeconds
+            : _job.Drawing is { } drawing ? drawing.Schedule.EstimatedSeconds + drawing.PassSetupSeconds
+            : 0;
         var machine = new EngraveMachine(connection.Stage, connection.Gate, connection.TimeProvider, connection.Description, connection.Description)
         {
             Simulated = connection.IsSimulated,
             Inspector = connection.IsSimulated ? connection.Inspector : null,
         };
-        var session = new EngraveSession(machine, job, new EngraveSessionOptions
+        var running = session(machine, new EngraveSessionOptions
         {
             Notes = _log.Notes,
             SampleId = _log.SampleId,
@@ -352,8 +375,8 @@ public sealed partial class RunViewModel : ObservableObject
         });
         StoppedAt = null;
         RunPlanVersion = _job.PlanVersion;
-        _session = session;
-        Progress = session.Progress;
+        _session = running;
+        Progress = running.Progress;
         State = RunState.Preflight;
         EngraveResult result;
 
@@ -362,7 +385,7 @@ public sealed partial class RunViewModel : ObservableObject
         _abort = abort;
         try
         {
-            result = await _runs.RunAsync(session, new LatestProgress(this, session), abort.Token);
+            result = await _runs.RunAsync(running, new LatestProgress(this, running), abort.Token);
         }
         finally
         {
@@ -378,7 +401,7 @@ public sealed partial class RunViewModel : ObservableObject
         }
 
         var stopPoint = record.Outcome is RunOutcome.Failed or RunOutcome.Aborted ? record.StoppedAt : null;
-        _stopped = stopPoint is null ? null : new StoppedRun(job, settings, stopPoint);
+        _stopped = stopPoint is null || job is null ? null : new StoppedRun(job, settings, stopPoint);
         _continueCheck = (-1, null);
         StoppedAt = stopPoint;
         _log.Recorded(record, result.Files, result.LogError);

@@ -45,20 +45,55 @@ internal static class EngraveCommand
         var passes = result.GetValue(o.Passes);
         OptionChecks.InRange(passes, 1, JobSpec.MaxPasses, "--passes", string.Empty, "burns of the plan over the same place");
 
-        var (spec, repeatOf, resumeFrom) = BindJob(result, o);
-        spec = spec with { Passes = passes ?? spec.Passes };
-        var prepared = PreparedJob.Prepare(spec);
-        RefuseOutsideTravel(prepared);
-        if (prepared.EngraveProblem is { } tooShort)
+        PreparedJob? prepared = null;
+        PreparedDrawing? drawing = null;
+        LayeredJob? layered = null;
+        string? repeatOf = null;
+        RunStopPoint? resumeFrom = null;
+        IEnumerable<string> warnings;
+        if (result.GetValue(o.JobFile) is { } jobFile)
         {
-            // Known from the plan alone: refused before any port opens, as preflight would refuse it later.
-            throw new UsageException(tooShort);
+            if (new Option[] { o.FromLog, o.Resume, o.Passes, o.Burned, o.Dose }.FirstOrDefault(option => OptionChecks.IsGiven(result, option)) is { } other)
+            {
+                throw new UsageException($"{other.Name} with --job: {(other == o.Passes ? "each layer has its own passes" : other == o.Burned || other == o.Dose ? "--burned and --dose are for one image" : "a job of layers is run again from its file, not from a log")}");
+            }
+
+            layered = LayerCommands.Prepare(result, jobFile, o.Job, o.Vector);
+            warnings = LayerCommands.Warnings(layered);
         }
-        foreach (var warning in prepared.Warnings)
+        else if (IsDrawingJob(result, o))
         {
-            stderr.WriteLine($"warning: {warning.Message}");
+            if (burnedPath is not null || dosePath is not null)
+            {
+                throw new UsageException("--burned and --dose are for images; a drawing's figures are in the log and in --json (pathDeviationUm, pulseSpacingUm)");
+            }
+
+            (drawing, repeatOf, resumeFrom) = BindDrawingJob(result, o, passes);
+            VectorCommands.RefuseUnrunnable(drawing);
+            warnings = drawing.Warnings;
+        }
+        else
+        {
+            JobSpec spec;
+            (spec, repeatOf, resumeFrom) = BindJob(result, o);
+            spec = spec with { Passes = passes ?? spec.Passes };
+            prepared = PreparedJob.Prepare(spec);
+            RefuseOutsideTravel(prepared);
+            if (prepared.EngraveProblem is { } tooShort)
+            {
+                // Known from the plan alone: refused before any port opens, as preflight would refuse it later.
+                throw new UsageException(tooShort);
+            }
+
+            warnings = prepared.Warnings.Select(w => w.Message);
         }
 
+        foreach (var warning in warnings)
+        {
+            stderr.WriteLine($"warning: {warning}");
+        }
+
+        var profile = layered?.Layers[0].Image?.Spec.Profile ?? layered?.Layers[0].Drawing!.Spec.Profile ?? drawing?.Spec.Profile ?? prepared!.Spec.Profile;
         var store = new RunLogStore(result.GetValue(o.LogDir) ?? RunLogStore.DefaultFolder);
 
         // A run must not start without a place for its log.
@@ -66,7 +101,7 @@ internal static class EngraveCommand
         EngraveResult engraved;
         double? wallSeconds = null;
         BurnInspector? inspector = null;
-        var machineSession = o.Machine.Open(result, spec.Profile);
+        var machineSession = o.Machine.Open(result, profile);
         await using (machineSession.ConfigureAwait(false))
         {
             inspector = machineSession.Owner is SimulatedMachine simulator ? new BurnInspector(simulator) : null;
@@ -75,7 +110,7 @@ internal static class EngraveCommand
                 Simulated = simulate,
                 Inspector = inspector,
             };
-            var session = new EngraveSession(machine, prepared, new EngraveSessionOptions
+            var sessionOptions = new EngraveSessionOptions
             {
                 Notes = result.GetValue(o.Notes),
                 SampleId = result.GetValue(o.Sample),
@@ -83,8 +118,11 @@ internal static class EngraveCommand
                 ResumeFrom = resumeFrom,
                 Home = result.GetValue(o.Home),
                 Log = store,
-            });
-            var printer = new ProgressPrinter(stderr, terminal: ReferenceEquals(stderr, Console.Error) && !Console.IsErrorRedirected);
+            };
+            var session = layered is not null ? new EngraveSession(machine, layered, sessionOptions)
+                : drawing is not null ? new EngraveSession(machine, drawing, sessionOptions)
+                : new EngraveSession(machine, prepared!, sessionOptions);
+            var printer = new ProgressPrinter(stderr, terminal: ReferenceEquals(stderr, Console.Error) && !Console.IsErrorRedirected) { Drawing = drawing is not null };
             var wall = Stopwatch.StartNew();
             try
             {
@@ -158,6 +196,39 @@ internal static class EngraveCommand
             $"the job ({g.AchievedWidthMm:0.###} x {g.AchievedHeightMm:0.###} mm at origin {spec.Origin.X:0.###}, {spec.Origin.Y:0.###} mm) does not fit the stage's travel ({spec.Profile.X.TravelMm:0.###} x {spec.Profile.Y.TravelMm:0.###} mm); move --origin-mm or make it smaller"));
     }
 
+    /// <summary>Whether the job is a drawing: IMAGE is a .dxf or .svg, or the log repeated is a drawing's.</summary>
+    /// <remarks>With both IMAGE and --from-log the image's way refuses the pair, before the log is read.</remarks>
+    private static bool IsDrawingJob(ParseResult result, EngraveOptions o) =>
+        result.GetValue(o.Job.Image) is { } image
+            ? Core.Vectors.DrawingReader.IsDrawing(image) && result.GetValue(o.FromLog) is null
+            : result.GetValue(o.FromLog) is { } fromLog && RunLogStore.Read(fromLog).Drawing is not null;
+
+    /// <summary>The drawing's job from the options, or from a drawing's run log (the file checked against its SHA-256).</summary>
+    private static (PreparedDrawing Drawing, string? RepeatOf, RunStopPoint? ResumeFrom) BindDrawingJob(ParseResult result, EngraveOptions o, int? passes)
+    {
+        if (result.GetValue(o.FromLog) is null)
+        {
+            if (result.GetValue(o.Resume))
+            {
+                throw new UsageException("--resume needs --from-log: the log says where the run stopped");
+            }
+
+            var fresh = VectorCommands.Prepare(result, o.Job, o.Vector);
+            return (passes is { } n ? Rebuild(fresh, fresh.Spec with { Passes = n }) : fresh, null, null);
+        }
+
+        if (OptionChecks.IsGiven(result, o.Vector.ToleranceUm) || OptionChecks.IsGiven(result, o.Vector.Fill) || OptionChecks.IsGiven(result, o.Vector.FillPitchUm) || result.GetValue(o.Vector.DrawingOrder))
+        {
+            throw new UsageException("drawing options with --from-log: a repeated run takes every parameter from its log; leave them out");
+        }
+
+        var (spec, repeatOf, resumeFrom) = BindJob(result, o);
+        var logged = RunLogStore.Read(result.GetValue(o.FromLog)!);
+        return (PreparedDrawing.Prepare(spec, logged.Drawing!.ToVectorOptions()), repeatOf, resumeFrom);
+
+        static PreparedDrawing Rebuild(PreparedDrawing d, JobSpec spec) => PreparedDrawing.Prepare(spec, d.Vector);
+    }
+
     /// <summary>The job from the options, or from a run log (the image checked against its SHA-256), with the stop point to resume from.</summary>
     private static (JobSpec Spec, string? RepeatOf, RunStopPoint? ResumeFrom) BindJob(ParseResult result, EngraveOptions o)
     {
@@ -205,7 +276,9 @@ internal static class EngraveCommand
         var c = CultureInfo.InvariantCulture;
         var clock = s.Simulated ? " (simulated time)" : string.Empty;
         output.WriteLine(string.Create(c, $"Outcome:          {s.Outcome}{(s.Fault is null ? string.Empty : $": {s.Fault}")}"));
-        output.WriteLine(string.Create(c, $"Done:             {s.RowsDone} of {s.RowsTotal} rows, {s.RunsDone} of {s.RunsTotal} {(s.Mode == "dots" ? "dots" : "burn runs")}"));
+        output.WriteLine(s.PathDeviationUm is null && !s.Drawing
+            ? string.Create(c, $"Done:             {s.RowsDone} of {s.RowsTotal} rows, {s.RunsDone} of {s.RunsTotal} {(s.Mode == "dots" ? "dots" : "burn runs")}")
+            : string.Create(c, $"Done:             {s.RowsDone} of {s.RowsTotal} strokes, {s.RunsDone} of {s.RunsTotal} paths"));
         if (s.Passes > 1)
         {
             output.WriteLine(string.Create(c, $"Passes:           {s.PassesDone ?? 0} of {s.Passes} done (rows and runs above: the last pass)"));
@@ -213,7 +286,22 @@ internal static class EngraveCommand
 
         output.WriteLine(string.Create(c, $"Duration:         {RunSummaryText.Duration(s.DurationSeconds)}, estimated {RunSummaryText.Duration(s.EstimatedSeconds)}{clock}; engraving {RunSummaryText.Duration(s.EngravingSeconds)}, estimated {RunSummaryText.Duration(s.EstimatedEngravingSeconds)}"));
         output.WriteLine(string.Create(c, $"Laser on:         {RunSummaryText.Duration(s.LaserOnSeconds)}"));
-        if (s.MissingPixels is { } missing && s.ExtraPixels is { } extra)
+        if (s.PathDeviationUm is { } deviation && s.PulseSpacingUm is { } spacing)
+        {
+            output.WriteLine(string.Create(c, $"Path deviation:   mean {deviation.Mean:0.###} µm, largest {deviation.Max:0.###} µm; {s.LaserOnTravelCount} pulses off the path"));
+            output.WriteLine(string.Create(c, $"Pulse spacing:    {spacing.Min:0.###}..{spacing.Max:0.###} µm, mean {spacing.Mean:0.####} µm (v/f = {s.ExpectedSpacingUm:0.####} µm)"));
+            if (s.Dwells is { } pathDwells)
+            {
+                output.WriteLine(string.Create(c, $"Dwells:           {pathDwells.Count} ({pathDwells.Pulses} pulses with the stage still)"));
+            }
+
+            if (s.WallSeconds is { } wall && wall > 0)
+            {
+                output.WriteLine(string.Create(c, $"Simulated in:     {wall:0.###} s of wall time ({s.DurationSeconds / wall:0} x real time, seed {s.SimSeed})"));
+            }
+        }
+
+        if (s.MissingPixels is { } missing && s.ExtraPixels is { } extra && !s.Drawing)
         {
             output.WriteLine(string.Create(c, $"Burned vs mask:   {missing} pixels missing, {extra} extra, {s.LaserOnTravelCount} pulses off the black"));
             if (s.Edges is { } edges)
@@ -257,6 +345,15 @@ internal static class EngraveCommand
             output.WriteLine($"Pulse map:        {s.DosePath}");
         }
 
+        foreach (var (layer, i) in (s.Layers ?? []).Select((l, i) => (l, i + 1)))
+        {
+            var ended = layer.Outcome is { } outcome ? outcome.ToString().ToLowerInvariant() : "not started";
+            var twin = layer.Simulation?.Path is { } path
+                ? string.Create(c, $"; deviation max {path.DeviationUm.Max:0.##} µm, spacing {path.PulseSpacingUm.Min:0.###}..{path.PulseSpacingUm.Max:0.###} µm")
+                : layer.Simulation is { } sim ? string.Create(c, $"; {sim.MissingPixels} pixels missing, {sim.ExtraPixels} extra") : string.Empty;
+            output.WriteLine(string.Create(c, $"Layer {i}:          \"{layer.Name}\" {ended}, {layer.PassesDone} of {layer.Passes} passes, engraving {RunSummaryText.Duration(layer.EngravingSeconds)} (estimated {RunSummaryText.Duration(layer.EstimatedSeconds)}){twin}"));
+        }
+
         output.WriteLine($"Log:              {s.LogPath}");
         output.WriteLine($"Summary:          {s.SummaryPath}");
     }
@@ -271,6 +368,8 @@ internal static class EngraveCommand
         }
 
         public JobOptions Job { get; } = new();
+
+        public VectorOptionSet Vector { get; } = new();
 
         public MachineOptions Machine { get; } = new();
 
@@ -292,13 +391,16 @@ internal static class EngraveCommand
 
         public Option<bool> Home { get; } = new("--home") { Description = "Home both axes before the run even if they are homed" };
 
+        public Option<string?> JobFile { get; } = LayerCommands.JobOption();
+
         public Option<int?> Passes { get; } = new("--passes") { Description = "Burn the plan N times over the same place, one pass after the other (1..100, default 1)" };
 
         public void AddTo(Command command)
         {
             Job.AddTo(command);
+            Vector.AddTo(command);
             Machine.AddTo(command);
-            foreach (var option in new Option[] { LogDir, Burned, Dose, Notes, Sample, Json, FromLog, Resume, Home, Passes })
+            foreach (var option in new Option[] { LogDir, Burned, Dose, Notes, Sample, Json, FromLog, Resume, Home, Passes, JobFile })
             {
                 command.Options.Add(option);
             }
@@ -339,7 +441,12 @@ internal sealed record EngraveSummary(
     int? PassesDone,
     string Mode,
     int PulsesPerDot,
-    long? PulsesWhileMoving)
+    long? PulsesWhileMoving,
+    MeanMax? PathDeviationUm,
+    SpacingRange? PulseSpacingUm,
+    double? ExpectedSpacingUm,
+    bool Drawing,
+    IReadOnlyList<RunLayer>? Layers)
 {
     public static EngraveSummary From(RunRecord record, RunLogFiles files, string? burnedPath, string? dosePath, double? wallSeconds) => new(
         record.Outcome.ToString().ToLowerInvariant(),
@@ -363,15 +470,20 @@ internal sealed record EngraveSummary(
         dosePath is null ? null : Path.GetFullPath(dosePath),
         record.Simulation?.Seed,
         record.Simulation?.Pulses,
-        record.Simulation?.MissingPixels,
-        record.Simulation?.ExtraPixels,
+        record.Drawing is null ? record.Simulation?.MissingPixels : null,
+        record.Drawing is null ? record.Simulation?.ExtraPixels : null,
         record.Simulation?.LaserOnTravelCount,
         record.Simulation?.Edges,
         record.Simulation?.Dwells,
-        record.Simulation?.PulsesPerPixel,
+        record.Drawing is null ? record.Simulation?.PulsesPerPixel : null,
         record.Passes,
         record.PassesDone,
         record.Process.Mode == PlanMode.Dots ? "dots" : "raster",
         record.Process.PulsesPerDot,
-        record.Simulation?.PulsesWhileMoving);
+        record.Simulation?.PulsesWhileMoving,
+        record.Simulation?.Path?.DeviationUm,
+        record.Simulation?.Path?.PulseSpacingUm,
+        record.Simulation?.Path?.ExpectedSpacingUm,
+        record.Drawing is not null,
+        record.Layers);
 }

@@ -124,6 +124,47 @@ internal sealed class JobOptions
         }
     }
 
+    /// <summary>
+    /// Reads the options of a drawing's job: width (or the drawing's own size when null), origin, process and profile;
+    /// the image-only options (and dot mode) are refused with one line.
+    /// </summary>
+    public (JobSpec Spec, double? WidthMm) BindDrawing(ParseResult result)
+    {
+        var drawing = result.GetValue(Image) ?? throw new UsageException("IMAGE is required");
+        if (new Option[] { HeightMm, PitchUm, ImageDpi }.FirstOrDefault(o => OptionChecks.IsGiven(result, o)) is { } sizeOption)
+        {
+            throw new UsageException($"{drawing}: a drawing is sized by --width-mm or by its own units; {sizeOption.Name} is for images");
+        }
+
+        if (new Option[] { Mask.Threshold, Mask.Dither, Mask.Invert, Strategy, Bidirectional, Unidirectional, OverscanMm, Mode, PulsesPerDot, DotPitchMicrosteps, DotSettleMs }
+            .FirstOrDefault(o => OptionChecks.IsGiven(result, o)) is { } imageOption)
+        {
+            throw new UsageException($"{drawing}: {imageOption.Name} is for images; a drawing's paths are burned as they are");
+        }
+
+        var width = result.GetValue(WidthMm);
+        if (width is { } w && !(w > 0 && double.IsFinite(w)))
+        {
+            throw new UsageException($"--width-mm {OptionChecks.N(w)}: must be above 0");
+        }
+
+        var profile = BindProfile(result);
+        var limits = MachineLimits.Of(profile);
+        var process = BindProcess(result, profile);
+        var origin = ParseOrigin(result.GetValue(OriginMm));
+        OptionChecks.WithinTravel(origin.X, limits.TravelXMm, "--origin-mm", "X");
+        OptionChecks.WithinTravel(origin.Y, limits.TravelYMm, "--origin-mm", "Y");
+        var spec = new JobSpec
+        {
+            ImagePath = drawing,
+            Size = SizeSpec.Width(width ?? 1),
+            Origin = origin,
+            Process = process,
+            Profile = profile,
+        };
+        return (spec, width);
+    }
+
     /// <summary>Refuses a size whose pixels would be smaller than one microstep, the smallest step the stage makes (whole pixels would vanish).</summary>
     private static void RefusePitchBelowMicrostep(SizeSpec size, string image, OriginMm origin, MachineProfile profile)
     {

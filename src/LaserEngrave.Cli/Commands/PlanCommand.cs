@@ -17,13 +17,31 @@ internal static class PlanCommand
         };
         var segments = new Option<string?>("--segments") { Description = "Write every move in order as CSV (kind,x0,y0,x1,y1 in microsteps)" };
         var vector = new VectorOptionSet();
-        var command = new Command("plan", "Size an image on the stage and plan the raster: runs, lengths, laser switches, the estimated time of the whole run; or a drawing (.dxf, .svg): paths, lengths, travel");
+        var jobFile = LayerCommands.JobOption();
+        job.Image.Arity = ArgumentArity.ZeroOrOne;
+        var command = new Command("plan", "Size an image on the stage and plan the raster: runs, lengths, laser switches, the estimated time of the whole run; or a drawing (.dxf, .svg): paths, lengths, strokes, estimated time; or a job of layers (--job)");
         job.AddTo(command);
         vector.AddTo(command);
         command.Options.Add(json);
         command.Options.Add(segments);
+        command.Options.Add(jobFile);
         command.SetAction(result =>
         {
+            if (result.GetValue(jobFile) is { } file)
+            {
+                if (result.GetValue(segments) is not null)
+                {
+                    throw new UsageException("--segments is for one image or drawing, not a job of layers");
+                }
+
+                return LayerCommands.Plan(result, LayerCommands.Prepare(result, file, job, vector), result.GetValue(json));
+            }
+
+            if (result.GetValue(job.Image) is null)
+            {
+                throw new UsageException("IMAGE (or --job FILE) is required");
+            }
+
             if (VectorCommands.IsDrawing(result, job))
             {
                 return VectorCommands.Plan(result, job, vector, result.GetValue(json), result.GetValue(segments));

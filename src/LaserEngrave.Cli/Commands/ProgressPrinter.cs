@@ -19,6 +19,9 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
     private bool _barShown;
     private string? _pass;
 
+    /// <summary>A drawing's run: its rows are strokes and its burn runs paths.</summary>
+    public bool Drawing { get; init; }
+
     /// <summary>A session's progress: its pass's figures under the session's state (a pass's end is not the run's).</summary>
     public void Report(EngraveProgress value)
     {
@@ -36,7 +39,7 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
         {
             if (stateChanged || _sinceLastPrint.Elapsed >= RedrawInterval)
             {
-                writer.Write("\r" + Bar(progress, _pass));
+                writer.Write("\r" + Bar(progress, _pass, Drawing));
                 writer.Flush();
                 _barShown = true;
                 _sinceLastPrint.Restart();
@@ -49,7 +52,7 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
         if (decile != _lastDecile || stateChanged || _sinceLastPrint.Elapsed >= PlainInterval)
         {
             _lastDecile = decile;
-            writer.WriteLine(Line(progress, _pass));
+            writer.WriteLine(Line(progress, _pass, Drawing));
             _sinceLastPrint.Restart();
         }
     }
@@ -66,20 +69,21 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
 
     /// <param name="p">The pass's progress.</param>
     /// <param name="pass">"1 of 2" when the job has several passes.</param>
-    internal static string Bar(RunProgress p, string? pass = null)
+    /// <param name="drawing">A drawing's run: strokes and paths instead of rows and burn runs.</param>
+    internal static string Bar(RunProgress p, string? pass = null, bool drawing = false)
     {
         var filled = (int)Math.Round(Math.Clamp(p.Percent, 0, 100) / 100 * BarWidth);
         var state = p.State is RunState.Running ? string.Empty : $"  {StateLabel(p)}";
         return string.Create(
             CultureInfo.InvariantCulture,
-            $"[{new string('#', filled)}{new string('.', BarWidth - filled)}] {p.Percent,5:0.0} %  row {p.RowsDone}/{p.RowsTotal}{(pass is null ? string.Empty : $"  pass {pass}")}  ETA {Eta(p)}{state}   ");
+            $"[{new string('#', filled)}{new string('.', BarWidth - filled)}] {p.Percent,5:0.0} %  {(drawing ? "stroke" : "row")} {p.RowsDone}/{p.RowsTotal}{(pass is null ? string.Empty : $"  pass {pass}")}  ETA {Eta(p)}{state}   ");
     }
 
-    internal static string Line(RunProgress p, string? pass = null) => p.State == RunState.Preflight
+    internal static string Line(RunProgress p, string? pass = null, bool drawing = false) => p.State == RunState.Preflight
         ? "preflight: checking the machine and the job" + (pass is null ? string.Empty : $" (pass {pass})")
         : string.Create(
             CultureInfo.InvariantCulture,
-            $"{StateLabel(p)}: {p.Percent:0} %, row {p.RowsDone} of {p.RowsTotal}, {p.RunsDone} of {p.RunsTotal} burn runs{(pass is null ? string.Empty : $", pass {pass}")}, {Eta(p)} left");
+            $"{StateLabel(p)}: {p.Percent:0} %, {(drawing ? "stroke" : "row")} {p.RowsDone} of {p.RowsTotal}, {p.RunsDone} of {p.RunsTotal} {(drawing ? "paths" : "burn runs")}{(pass is null ? string.Empty : $", pass {pass}")}, {Eta(p)} left");
 
     /// <summary>The state as the operator reads it: "done" only when every run was burned, "stopped" for an aborted or failed run.</summary>
     internal static string StateLabel(RunProgress p) => p.State switch

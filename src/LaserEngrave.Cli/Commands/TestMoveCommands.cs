@@ -26,14 +26,26 @@ internal static class TestMoveCommands
     private static Command Frame()
     {
         var job = new JobOptions();
+        var vector = new VectorOptionSet();
         var machine = new MachineOptions();
         var visibleHz = new Option<int?>("--visible-hz") { Description = "Fire at this low frequency while tracing, to see the frame (default: laser off)" };
         var command = new Command("frame", "Trace the job's bounding rectangle on the stage, laser off (or at --visible-hz), and stop at its top-left corner");
         job.AddTo(command);
+        vector.AddTo(command);
         machine.AddTo(command);
         command.Options.Add(visibleHz);
         command.SetAction(async (result, ct) =>
         {
+            if (VectorCommands.IsDrawing(result, job))
+            {
+                var drawing = VectorCommands.Prepare(result, job, vector);
+                OptionChecks.InRange(result.GetValue(visibleHz), 1, drawing.Spec.Profile.MaxFrameFrequencyHz, "--visible-hz", " Hz", "the profile's maxFrameFrequencyHz");
+                VectorCommands.RefuseUnrunnable(drawing);
+                var points = drawing.Plan.Paths.SelectMany(p => p.Points).ToList();
+                return await WithMovesAsync(result, machine, drawing.Spec.Profile, drawing.Spec.Process, async moves =>
+                    Describe(await moves.FrameAsync(points.Min(p => p.X), points.Min(p => p.Y), points.Max(p => p.X), points.Max(p => p.Y), result.GetValue(visibleHz), ct), drawing.Spec.Profile));
+            }
+
             var spec = job.Bind(result);
 
             // The laser is on around the whole frame: only a low frequency, to see the outline without burning it.

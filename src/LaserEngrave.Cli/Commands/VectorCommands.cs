@@ -1,6 +1,7 @@
 using System.CommandLine;
 using System.Globalization;
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Preview;
 using LaserEngrave.Core.Vectors;
 
@@ -14,14 +15,15 @@ internal static class VectorCommands
 
     public static int Plan(ParseResult result, JobOptions job, VectorOptionSet vector, bool json, string? segmentsCsv)
     {
-        var plan = Build(result, job, vector);
+        var prepared = Prepare(result, job, vector);
+        var plan = prepared.Plan;
         if (segmentsCsv is not null)
         {
             WriteSegments(plan, segmentsCsv);
         }
 
         var output = result.InvocationConfiguration.Output;
-        var summary = VectorSummary.From(plan);
+        var summary = VectorSummary.From(prepared);
         if (json)
         {
             CliJson.Write(output, summary);
@@ -31,8 +33,37 @@ internal static class VectorCommands
             summary.WriteText(output);
         }
 
-        WriteWarnings(result, plan);
+        foreach (var warning in prepared.Warnings)
+        {
+            result.InvocationConfiguration.Error.WriteLine($"warning: {warning}");
+        }
+
         return 0;
+    }
+
+    /// <summary>The drawing job from the options: read, placed, ordered, and its strokes planned; nothing opened.</summary>
+    public static PreparedDrawing Prepare(ParseResult result, JobOptions job, VectorOptionSet vector)
+    {
+        var (spec, width) = job.BindDrawing(result);
+        var options = vector.Bind(result);
+        return width is null ? PreparedDrawing.PrepareOwnSize(spec, options) : PreparedDrawing.Prepare(spec, options);
+    }
+
+    /// <summary>Refuses a drawing whose strokes leave the travel, or that has nothing long enough to burn, before any port opens.</summary>
+    public static void RefuseUnrunnable(PreparedDrawing drawing)
+    {
+        if (!drawing.FitsTravel)
+        {
+            var spec = drawing.Spec;
+            throw new UsageException(string.Create(
+                CultureInfo.InvariantCulture,
+                $"the drawing ({drawing.Plan.WidthMm:0.###} x {drawing.Plan.HeightMm:0.###} mm at origin {spec.Origin.X:0.###}, {spec.Origin.Y:0.###} mm, with its strokes' run-ups and run-outs) does not fit the stage's travel ({spec.Profile.X.TravelMm:0.###} x {spec.Profile.Y.TravelMm:0.###} mm); move --origin-mm or make it smaller"));
+        }
+
+        if (drawing.Schedule.Strokes.Count == 0)
+        {
+            throw new UsageException($"{drawing.Spec.ImagePath}: no path is long enough to burn ({string.Join("; ", drawing.Schedule.Warnings)})");
+        }
     }
 
     public static int Preview(ParseResult result, JobOptions job, VectorOptionSet vector, string path, int maxPx)

@@ -1,4 +1,5 @@
 using System.Globalization;
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Vectors;
 
 namespace LaserEngrave.Cli.Commands;
@@ -19,8 +20,26 @@ internal sealed record VectorSummary(
     double TravelDrawingOrderMm,
     double TravelSavedPercent,
     bool FitsTravel,
-    IReadOnlyList<string> Warnings)
+    IReadOnlyList<string> Warnings,
+    int Strokes,
+    double EstimatedSeconds,
+    double EstimatedEngravingSeconds,
+    double PredictedDeviationUm)
 {
+    public static VectorSummary From(PreparedDrawing drawing)
+    {
+        var plan = drawing.Plan;
+        return From(plan) with
+        {
+            FitsTravel = drawing.FitsTravel,
+            Warnings = drawing.Warnings,
+            Strokes = drawing.Schedule.Strokes.Count,
+            EstimatedSeconds = drawing.WholeRunSeconds(drawing.Spec.Passes),
+            EstimatedEngravingSeconds = drawing.Schedule.EstimatedSeconds * drawing.Spec.Passes,
+            PredictedDeviationUm = drawing.Schedule.PredictedDeviationUm,
+        };
+    }
+
     public static VectorSummary From(VectorPlan plan) => new(
         plan.DrawingPath,
         plan.WidthMm,
@@ -36,7 +55,11 @@ internal sealed record VectorSummary(
         plan.TravelDrawingOrderMm,
         plan.TravelSavedPercent,
         plan.FitsTravel,
-        plan.Warnings);
+        plan.Warnings,
+        0,
+        0,
+        0,
+        0);
 
     public void WriteText(TextWriter output)
     {
@@ -46,6 +69,12 @@ internal sealed record VectorSummary(
         output.WriteLine(string.Create(c, $"Paths:            {PathCount} ({OutlineCount} outlines, {FillRows} fill rows), {Vertices} vertices within {ToleranceUm:0.###} µm"));
         output.WriteLine(string.Create(c, $"Burn length:      {BurnLengthMm:0.###} mm"));
         output.WriteLine(string.Create(c, $"Travel:           {TravelMm:0.###} mm ({TravelDrawingOrderMm:0.###} mm in drawing order, {TravelSavedPercent:0.#} % saved)"));
+        if (Strokes > 0)
+        {
+            output.WriteLine(string.Create(c, $"Strokes:          {Strokes} (each axis streaming its speed; the model within {PredictedDeviationUm:0.##} µm of the path)"));
+            output.WriteLine(string.Create(c, $"Estimated time:   {Core.Logging.RunSummaryText.Duration(EstimatedSeconds)} ({EstimatedSeconds:0.##} s, the whole run); engraving {Core.Logging.RunSummaryText.Duration(EstimatedEngravingSeconds)} ({EstimatedEngravingSeconds:0.##} s)"));
+        }
+
         output.WriteLine(string.Create(c, $"Fits the travel:  {(FitsTravel ? "yes" : "NO")}"));
     }
 }

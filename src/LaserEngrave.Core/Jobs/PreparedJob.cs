@@ -48,13 +48,13 @@ public sealed class PreparedJob
     /// <summary>Warnings of the geometry, of the plan and of the pulses, in that order.</summary>
     public IReadOnlyList<JobWarning> Warnings => [.. Geometry.Warnings, .. Plan.Warnings, .. Dots?.Warnings ?? [], .. Pulses.Warnings];
 
-    /// <summary>Refuses a drawing where only images are run yet.</summary>
+    /// <summary>Refuses a drawing where only images are taken (a drawing is a <see cref="PreparedDrawing"/>).</summary>
     /// <remarks>Without this a drawing would be refused as "not an image", which sends the user looking in the wrong place.</remarks>
     public static void RefuseDrawing(string path)
     {
         if (Vectors.DrawingReader.IsDrawing(path))
         {
-            throw new Vectors.DrawingException($"{path}: drawings can be planned and previewed (laserengrave plan, preview) but not yet engraved or framed");
+            throw new Vectors.DrawingException($"{path}: a drawing is not an image; plan, preview, engrave and frame take drawings, this does not");
         }
     }
 

@@ -26,6 +26,8 @@ namespace LaserEngrave.Core.Logging;
         typeof(CamelCaseEnumConverter<DitherMethod>),
         typeof(CamelCaseEnumConverter<PlanStrategy>),
         typeof(CamelCaseEnumConverter<PlanMode>),
+        typeof(CamelCaseEnumConverter<Vectors.VectorFillMode>),
+        typeof(CamelCaseEnumConverter<LayerMode>),
     ])]
 [JsonSerializable(typeof(RunRecord))]
 [JsonSerializable(typeof(SweepRecord))]

@@ -101,6 +101,12 @@ public sealed record RunRecord
     /// <summary>Whether this run resumed <see cref="RepeatOf"/> from its stop point rather than starting over.</summary>
     public bool Resumed { get; init; }
 
+    /// <summary>For a drawing: how it was read, placed and ordered (the image fields then describe the drawing's file); null for an image.</summary>
+    public RunDrawing? Drawing { get; init; }
+
+    /// <summary>For a job of layers: each layer in the order it ran (the fields above then describe the first layer's file, and the times and counts the whole run); null otherwise.</summary>
+    public IReadOnlyList<RunLayer>? Layers { get; init; }
+
     /// <summary>On the simulator: what the twin measured of the edges and pulses (null on the machine).</summary>
     public RunSimulation? Simulation { get; init; }
 
@@ -131,6 +137,44 @@ public sealed record RunRecord
             EstimatedEngravingSeconds = job.Statistics.EngravingSeconds * Math.Max(1, job.Spec.Passes),
             RowsTotal = job.Statistics.Rows,
             RunsTotal = job.Statistics.BurnRuns,
+        };
+    }
+
+    /// <summary>The record of a drawing about to run, as <see cref="ForJob"/> for an image; the image's pixel size is 0 x 0.</summary>
+    public static RunRecord ForDrawing(PreparedDrawing drawing, string sha256, DateTimeOffset startedAt)
+    {
+        ArgumentNullException.ThrowIfNull(drawing);
+        ArgumentException.ThrowIfNullOrWhiteSpace(sha256);
+        var spec = drawing.Spec;
+        var plan = drawing.Plan;
+        var schedule = drawing.Schedule;
+        return new RunRecord
+        {
+            SoftwareVersion = CurrentSoftwareVersion,
+            StartedAt = startedAt,
+            EndedAt = startedAt,
+            Outcome = RunOutcome.Failed,
+            Image = new RunImage(Path.GetFullPath(spec.ImagePath), sha256, 0, 0),
+            Mask = spec.Mask,
+            Geometry = new RunGeometry(RunSize.From(spec.Size), 0, 0, plan.MicrostepUm, plan.WidthMm, plan.HeightMm, spec.Origin.X, spec.Origin.Y, 0),
+            Plan = spec.Plan,
+            Process = spec.Process,
+            Profile = spec.Profile,
+            EstimatedSeconds = drawing.WholeRunSeconds(spec.Passes),
+            EstimatedEngravingSeconds = schedule.EstimatedSeconds * Math.Max(1, spec.Passes),
+            RowsTotal = schedule.Strokes.Count,
+            RunsTotal = schedule.Strokes.Select(s => s.PathIndex).Distinct().Count(),
+            Drawing = new RunDrawing(
+                drawing.Vector.ToleranceUm,
+                drawing.Vector.Fill,
+                drawing.Vector.FillPitchUm,
+                !drawing.Vector.Optimize,
+                plan.Scale,
+                plan.Paths.Count,
+                schedule.Strokes.Count,
+                plan.BurnLengthMm,
+                plan.TravelMm,
+                schedule.PredictedDeviationUm),
         };
     }
 

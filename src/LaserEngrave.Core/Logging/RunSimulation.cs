@@ -19,7 +19,11 @@ public sealed record RunSimulation(
     long LaserOnTravelCount,
     long MissingPixels,
     long ExtraPixels,
-    long? PulsesWhileMoving = null);
+    long? PulsesWhileMoving = null)
+{
+    /// <summary>For a drawing: each pulse's distance from the path and the pulses' spacing along it; null for an image.</summary>
+    public PathFigures? Path { get; init; }
+}
 
 /// <summary>Edge placement over the burn runs: how many edges, their mean and largest error, µm.</summary>
 public sealed record EdgeErrors(int Count, double MeanErrorUm, double MaxErrorUm);

@@ -41,24 +41,39 @@ public static class RunSummaryText
         var clock = record.Simulated ? " (simulated time)" : string.Empty;
         Line("Duration", string.Create(c, $"{Duration(record.ActualSeconds)}, estimated {Duration(record.EstimatedSeconds)}{clock}; engraving {Duration(record.EngravingSeconds)}, estimated {Duration(record.EstimatedEngravingSeconds)}"));
         Line("Laser on", Duration(record.LaserOnSeconds));
-        Line("Done", string.Create(c, $"{record.RowsDone} of {record.RowsTotal} rows, {record.RunsDone} of {record.RunsTotal} burn runs"));
+        Line("Done", record.Drawing is null
+            ? string.Create(c, $"{record.RowsDone} of {record.RowsTotal} rows, {record.RunsDone} of {record.RunsTotal} burn runs")
+            : string.Create(c, $"{record.RowsDone} of {record.RowsTotal} strokes, {record.RunsDone} of {record.RunsTotal} paths"));
         if (record.Passes > 1)
         {
             Line("Passes", string.Create(c, $"{record.PassesDone ?? 0} of {record.Passes} done (rows and runs above: the last pass)"));
         }
 
-        Line("Image", string.Create(c, $"{record.Image.Path} ({record.Image.WidthPx} x {record.Image.HeightPx} px)"));
-        Line("Image SHA-256", record.Image.Sha256);
-        var m = record.Mask;
-        Line("Mask", string.Create(c, $"threshold {m.ThresholdPercent:0.##} %, dither {m.Dither.ToString().ToLowerInvariant()}{(m.Invert ? ", inverted" : string.Empty)}"));
         var g = record.Geometry;
-        Line("Size on stage", string.Create(c, $"{g.WidthMm:0.####} x {g.HeightMm:0.####} mm (asked: {g.Size.ToSizeSpec().Describe()})"));
-        Line("Origin", string.Create(c, $"{g.OriginXMm:0.####}, {g.OriginYMm:0.####} mm"));
-        Line("Pitch", string.Create(c, $"{g.PitchUm:0.####} µm = {g.MicrostepsPerPixel:0.####} microsteps per pixel ({g.MicrostepUm} µm per microstep)"));
-        var p = record.Plan;
-        Line("Strategy", p.Strategy == PlanStrategy.Paper
-            ? "paper"
-            : string.Create(c, $"optimized, {(p.Bidirectional ? "bidirectional" : "unidirectional")}, overscan {p.OverscanMm:0.###} mm"));
+        if (record.Drawing is { } d)
+        {
+            Line("Drawing", record.Image.Path);
+            Line("Drawing SHA-256", record.Image.Sha256);
+            Line("Size on stage", string.Create(c, $"{g.WidthMm:0.####} x {g.HeightMm:0.####} mm (scale {d.Scale:0.######})"));
+            Line("Origin", string.Create(c, $"{g.OriginXMm:0.####}, {g.OriginYMm:0.####} mm"));
+            Line("Paths", string.Create(c, $"{d.Paths} ({d.Fill.ToString().ToLowerInvariant()}{(d.Fill == Vectors.VectorFillMode.Outline ? string.Empty : $", fill pitch {d.FillPitchUm:0.##} µm")}), curves within {d.ToleranceUm:0.###} µm, {(d.DrawingOrder ? "drawing order" : "ordered")}"));
+            Line("Strokes", string.Create(c, $"{d.Strokes}, burn {d.BurnLengthMm:0.###} mm, travel {d.TravelMm:0.###} mm, model within {d.PredictedDeviationUm:0.##} µm of the path"));
+        }
+        else
+        {
+            Line("Image", string.Create(c, $"{record.Image.Path} ({record.Image.WidthPx} x {record.Image.HeightPx} px)"));
+            Line("Image SHA-256", record.Image.Sha256);
+            var m = record.Mask;
+            Line("Mask", string.Create(c, $"threshold {m.ThresholdPercent:0.##} %, dither {m.Dither.ToString().ToLowerInvariant()}{(m.Invert ? ", inverted" : string.Empty)}"));
+            Line("Size on stage", string.Create(c, $"{g.WidthMm:0.####} x {g.HeightMm:0.####} mm (asked: {g.Size.ToSizeSpec().Describe()})"));
+            Line("Origin", string.Create(c, $"{g.OriginXMm:0.####}, {g.OriginYMm:0.####} mm"));
+            Line("Pitch", string.Create(c, $"{g.PitchUm:0.####} µm = {g.MicrostepsPerPixel:0.####} microsteps per pixel ({g.MicrostepUm} µm per microstep)"));
+            var p = record.Plan;
+            Line("Strategy", p.Strategy == PlanStrategy.Paper
+                ? "paper"
+                : string.Create(c, $"optimized, {(p.Bidirectional ? "bidirectional" : "unidirectional")}, overscan {p.OverscanMm:0.###} mm"));
+        }
+
         var s = record.Process;
         Line("Speeds", string.Create(c, $"burn {s.BurnSpeedMmPerS:0.###} mm/s, travel {s.TravelSpeedMmPerS:0.###} mm/s, acceleration {s.AccelerationMmPerS2:0.###} mm/s²"));
         Line("Laser frequency", string.Create(c, $"{s.LaserFrequencyHz:0.###} Hz"));
@@ -73,23 +88,45 @@ public static class RunSummaryText
 
         if (record.Simulation is { } sim)
         {
-            Line("Twin", string.Create(c, $"seed {sim.Seed}, {sim.Pulses} pulses, {sim.MissingPixels} pixels missing, {sim.ExtraPixels} extra, {sim.LaserOnTravelCount} pulses off the black"));
-            if (sim.Edges is { } edges)
+            if (sim.Path is { } path)
             {
-                Line("Edges", string.Create(c, $"{edges.Count}: mean error {edges.MeanErrorUm:0.##} µm, largest {edges.MaxErrorUm:0.##} µm"));
+                Line("Twin", string.Create(c, $"seed {sim.Seed}, {sim.Pulses} pulses, {path.OffPathPulses} off the path"));
+                Line("Path deviation", string.Create(c, $"mean {path.DeviationUm.Mean:0.###} µm, largest {path.DeviationUm.Max:0.###} µm"));
+                Line("Pulse spacing", string.Create(c, $"{path.PulseSpacingUm.Min:0.###}..{path.PulseSpacingUm.Max:0.###} µm, mean {path.PulseSpacingUm.Mean:0.####} µm (v/f = {path.ExpectedSpacingUm:0.####} µm)"));
+                if (sim.Dwells is { } pathDwells)
+                {
+                    Line("Dwells", string.Create(c, $"{pathDwells.Count} ({pathDwells.Pulses} pulses with the stage still)"));
+                }
             }
-
-            if (sim.PulsesWhileMoving is { } moving)
+            else
             {
-                Line("Pulses moving", string.Create(c, $"{moving} fired while the stage moved"));
-            }
+                Line("Twin", string.Create(c, $"seed {sim.Seed}, {sim.Pulses} pulses, {sim.MissingPixels} pixels missing, {sim.ExtraPixels} extra, {sim.LaserOnTravelCount} pulses off the black"));
+                if (sim.Edges is { } edges)
+                {
+                    Line("Edges", string.Create(c, $"{edges.Count}: mean error {edges.MeanErrorUm:0.##} µm, largest {edges.MaxErrorUm:0.##} µm"));
+                }
 
-            if (sim.Dwells is { } dwells)
-            {
-                Line("Dwells", string.Create(c, $"{dwells.Count} ({dwells.Pulses} pulses with the stage still)"));
-            }
+                if (sim.PulsesWhileMoving is { } moving)
+                {
+                    Line("Pulses moving", string.Create(c, $"{moving} fired while the stage moved"));
+                }
 
-            Line("Pulses per pixel", string.Create(c, $"min {sim.PulsesPerPixel.Min}, mean {sim.PulsesPerPixel.Mean:0.#}, max {sim.PulsesPerPixel.Max}"));
+                if (sim.Dwells is { } dwells)
+                {
+                    Line("Dwells", string.Create(c, $"{dwells.Count} ({dwells.Pulses} pulses with the stage still)"));
+                }
+
+                Line("Pulses per pixel", string.Create(c, $"min {sim.PulsesPerPixel.Min}, mean {sim.PulsesPerPixel.Mean:0.#}, max {sim.PulsesPerPixel.Max}"));
+            }
+        }
+
+        foreach (var (layer, i) in (record.Layers ?? []).Select((l, i) => (l, i + 1)))
+        {
+            var ended = layer.Outcome is { } o ? o.ToString().ToLowerInvariant() : "not started";
+            var path = layer.Simulation?.Path is { } figures ? string.Create(c, $"; twin: deviation max {figures.DeviationUm.Max:0.##} µm, spacing {figures.PulseSpacingUm.Min:0.###}..{figures.PulseSpacingUm.Max:0.###} µm") : string.Empty;
+            Line($"Layer {i}", string.Create(
+                c,
+                $"\"{layer.Name}\" {layer.Mode.ToString().ToLowerInvariant()} {Path.GetFileName(layer.Source)}{(layer.DrawingLayer is null ? string.Empty : $" layer {layer.DrawingLayer}")}: {layer.BurnSpeedMmPerS:0.###} mm/s, {layer.FrequencyHz:0.###} Hz, {layer.PassesDone} of {layer.Passes} passes, {ended}, engraving {Duration(layer.EngravingSeconds)} (estimated {Duration(layer.EstimatedSeconds)}){path}"));
         }
 
         if (record.RepeatOf is { } repeated)

@@ -22,6 +22,9 @@ public sealed record VectorOptions
     /// <summary>Distance between the scan lines of a fill, µm.</summary>
     public double FillPitchUm { get; init; } = 20;
 
+    /// <summary>Only the paths on this layer of the drawing are burned, placed where they are in the whole drawing; null burns every layer.</summary>
+    public string? Layer { get; init; }
+
     /// <summary>Whether to order the paths (inner first, then shortest travel); false burns them in drawing order.</summary>
     public bool Optimize { get; init; } = true;
 

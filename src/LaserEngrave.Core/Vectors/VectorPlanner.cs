@@ -42,8 +42,20 @@ public static class VectorPlanner
             Affine.Compose(Affine.Translate(-min.X, -min.Y), Affine.Scale(scale, scale)),
             Affine.Translate(options.Origin.X, options.Origin.Y));
         var toleranceMm = options.ToleranceUm / 1000;
-        var flat = new List<FlatPath>(drawing.Paths.Count);
-        foreach (var path in drawing.Paths)
+        var selected = drawing.Paths;
+        if (options.Layer is { } layer)
+        {
+            // The layer keeps its place in the whole drawing, so that layers burned one after the other line up.
+            selected = [.. drawing.Paths.Where(p => string.Equals(p.Layer, layer, StringComparison.Ordinal))];
+            if (selected.Count == 0)
+            {
+                var layers = drawing.Paths.Select(p => p.Layer.Length == 0 ? "(none)" : p.Layer).Distinct(StringComparer.Ordinal).Order(StringComparer.Ordinal);
+                throw new DrawingException($"{drawing.Path}: no path on layer \"{layer}\" (its layers: {string.Join(", ", layers)})");
+            }
+        }
+
+        var flat = new List<FlatPath>(selected.Count);
+        foreach (var path in selected)
         {
             var placed = path.Transform(toStageMm).Flatten(toleranceMm);
             var microsteps = placed.ConvertAll(p => new DrawingPoint(StageUnits.MmToMicrosteps(p.X, microstepUm), StageUnits.MmToMicrosteps(p.Y, microstepUm)));

@@ -22,6 +22,22 @@ public interface IStageAxis
     /// <summary>Moves by a signed distance and waits for arrival; returns the final position.</summary>
     Task<long> MoveRelativeAsync(long distance, CancellationToken cancellationToken);
 
+    /// <summary>
+    /// Starts moving (or changes speed while moving) at a signed speed, in device units (x 9.375 microsteps/s): the axis
+    /// ramps to it at its acceleration; returns once the device has acknowledged it. Devices without it refuse.
+    /// </summary>
+    Task<int> MoveAtConstantSpeedAsync(int speedData, CancellationToken cancellationToken) =>
+        throw new NotSupportedException($"axis {DeviceNumber} cannot move at a constant speed");
+
+    /// <summary>
+    /// As <see cref="MoveAtConstantSpeedAsync"/>, one of a stream of speed changes: the axis' earlier commands still
+    /// waiting for their replies are not counted as replaced, so a reply that never comes is noticed.
+    /// </summary>
+    Task<int> StreamSpeedAsync(int speedData, CancellationToken cancellationToken) => MoveAtConstantSpeedAsync(speedData, cancellationToken);
+
+    /// <summary>As <see cref="StopAsync"/>, at the end of a stream of speed changes (<see cref="StreamSpeedAsync"/>).</summary>
+    Task<long> StreamStopAsync(CancellationToken cancellationToken) => StopAsync(cancellationToken);
+
     /// <summary>Decelerates to a stop; returns the position where it stopped.</summary>
     Task<long> StopAsync(CancellationToken cancellationToken);
 

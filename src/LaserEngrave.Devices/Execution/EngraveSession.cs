@@ -15,6 +15,9 @@ namespace LaserEngrave.Devices.Execution;
 public sealed class EngraveSession
 {
     private readonly Lock _lock = new();
+    private readonly IReadOnlyList<PreparedLayer> _parts;
+    private readonly bool _layered;
+    private long _moves;
     private RunExecutor? _current;
     private RunState _state = RunState.Idle;
     private EngraveProgress _progress;
@@ -24,28 +27,71 @@ public sealed class EngraveSession
     private int _started;
 
     public EngraveSession(EngraveMachine machine, PreparedJob job, EngraveSessionOptions? options = null)
+        : this(machine, job?.Spec!, [Single(job?.Spec, job, null)], false, options)
+    {
+        Job = job;
+    }
+
+    /// <summary>A session that engraves a drawing: its strokes (docs/vectors.md), the passes, the twin's path check and the log.</summary>
+    public EngraveSession(EngraveMachine machine, PreparedDrawing drawing, EngraveSessionOptions? options = null)
+        : this(machine, drawing?.Spec!, [Single(drawing?.Spec, null, drawing)], false, options)
+    {
+        Drawing = drawing;
+    }
+
+    /// <summary>A session that engraves the layers of a job one after the other, each with its own process and passes, all in one log.</summary>
+    /// <remarks>A layered run cannot be continued from a stop point (<see cref="EngraveSessionOptions.ResumeFrom"/>).</remarks>
+    public EngraveSession(EngraveMachine machine, LayeredJob job, EngraveSessionOptions? options = null)
+        : this(machine, First(job), job?.Layers!, true, options)
+    {
+        Job = job!.Layers[0].Image;
+        Drawing = job.Layers[0].Drawing;
+    }
+
+    private EngraveSession(EngraveMachine machine, JobSpec spec, IReadOnlyList<PreparedLayer> parts, bool layered, EngraveSessionOptions? options)
     {
         ArgumentNullException.ThrowIfNull(machine);
-        ArgumentNullException.ThrowIfNull(job);
-        ArgumentOutOfRangeException.ThrowIfLessThan(job.Spec.Passes, 1);
-        ArgumentOutOfRangeException.ThrowIfGreaterThan(job.Spec.Passes, JobSpec.MaxPasses);
+        ArgumentNullException.ThrowIfNull(spec);
         Machine = machine;
-        Job = job;
+        Spec = spec;
         Options = options ?? EngraveSessionOptions.Default;
+        _parts = parts;
+        _layered = layered;
+        foreach (var part in parts)
+        {
+            ArgumentOutOfRangeException.ThrowIfLessThan(part.Layer.Passes, 1);
+            ArgumentOutOfRangeException.ThrowIfGreaterThan(part.Layer.Passes, JobSpec.MaxPasses);
+        }
+
+        if (layered && Options.ResumeFrom is not null)
+        {
+            throw new ArgumentException("a job of layers cannot be continued from a stop point; run it again", nameof(options));
+        }
 
         // Continuing a stopped run finishes the pass that stopped, and only that.
-        Passes = Options.ResumeFrom is null ? job.Spec.Passes : 1;
-        var idle = new RunProgress(RunState.Idle, 0, job.Statistics.Rows, 0, job.Statistics.BurnRuns, 0, TimeSpan.Zero, TimeSpan.FromSeconds(job.Statistics.EngravingSeconds), 0, 0, false);
-        _progress = new EngraveProgress(RunState.Idle, 1, Passes, 0, job.Statistics.Moves, false, idle);
+        Passes = Options.ResumeFrom is null ? parts.Sum(p => p.Layer.Passes) : 1;
+        _moves = Moves(parts[0]);
+        var first = parts[0];
+        var idle = first.Image is { } image
+            ? new RunProgress(RunState.Idle, 0, image.Statistics.Rows, 0, image.Statistics.BurnRuns, 0, TimeSpan.Zero, TimeSpan.FromSeconds(image.Statistics.EngravingSeconds), 0, 0, false)
+            : new RunProgress(RunState.Idle, 0, first.Drawing!.Schedule.Strokes.Count, 0, first.Drawing.Plan.Paths.Count, 0, TimeSpan.Zero, TimeSpan.FromSeconds(first.Drawing.Schedule.EstimatedSeconds), 0, 0, false);
+        _progress = new EngraveProgress(RunState.Idle, 1, Passes, 0, _moves, false, idle);
     }
 
     public EngraveMachine Machine { get; }
 
-    public PreparedJob Job { get; }
+    /// <summary>The image job (a layered job's first layer's); null for a drawing.</summary>
+    public PreparedJob? Job { get; }
+
+    /// <summary>The drawing (a layered job's first layer's); null for an image job.</summary>
+    public PreparedDrawing? Drawing { get; }
+
+    /// <summary>The job's spec (the image's or the drawing's).</summary>
+    public JobSpec Spec { get; }
 
     public EngraveSessionOptions Options { get; }
 
-    /// <summary>The passes this session runs: the job's, or 1 when it continues a stopped run.</summary>
+    /// <summary>The passes this session runs: the job's (every layer's added up), or 1 when it continues a stopped run.</summary>
     public int Passes { get; }
 
     public RunState State
@@ -161,10 +207,52 @@ public sealed class EngraveSession
         }
     }
 
+    private static PreparedLayer Single(JobSpec? spec, PreparedJob? job, PreparedDrawing? drawing) =>
+        new(new JobLayer { Name = string.Empty, Source = spec?.ImagePath ?? string.Empty, Passes = spec?.Passes ?? 1, Mode = drawing is null ? LayerMode.Raster : LayerMode.Outline }, job, drawing);
+
+    private static JobSpec First(LayeredJob job)
+    {
+        ArgumentNullException.ThrowIfNull(job);
+        return job.Layers[0].Image?.Spec ?? job.Layers[0].Drawing!.Spec;
+    }
+
+    private static long Moves(PreparedLayer part) => part.Image?.Statistics.Moves ?? part.Drawing!.Schedule.Strokes.Count;
+
+    private static JobSpec SpecOf(PreparedLayer part) => part.Image?.Spec ?? part.Drawing!.Spec;
+
+    private RunRecord NewRecord(PreparedLayer part, DateTimeOffset started)
+    {
+        var hash = Options.ImageSha256 ?? HashOrMissing(SpecOf(part).ImagePath);
+        return part.Drawing is { } drawing ? RunRecord.ForDrawing(drawing, hash, started) : RunRecord.ForJob(part.Image!, hash, started);
+    }
+
+    private static RunLayer LayerEntry(PreparedLayer part)
+    {
+        var spec = SpecOf(part);
+        var (width, height) = part.Image is { } image ? (image.Geometry.AchievedWidthMm, image.Geometry.AchievedHeightMm) : (part.Drawing!.Plan.WidthMm, part.Drawing.Plan.HeightMm);
+        return new RunLayer(
+            part.Layer.Name,
+            Path.GetFullPath(spec.ImagePath),
+            HashOrMissing(spec.ImagePath),
+            part.Layer.Mode,
+            part.Layer.DrawingLayer,
+            width,
+            height,
+            spec.Origin.X,
+            spec.Origin.Y,
+            spec.Process.BurnSpeedMmPerS,
+            spec.Process.LaserFrequencyHz,
+            part.Layer.Passes)
+        {
+            EstimatedSeconds = part.EstimatedSeconds,
+            EstimatedEngravingSeconds = part.EngravingSeconds * part.Layer.Passes,
+        };
+    }
+
     private async Task<EngraveResult> RunPassesAsync(CancellationToken cancellationToken)
     {
         var time = Machine.TimeProvider;
-        var record = RunRecord.ForJob(Job, Options.ImageSha256 ?? HashOrMissing(Job.Spec.ImagePath), Options.WallClock.GetLocalNow()) with
+        var record = NewRecord(_parts[0], Options.WallClock.GetLocalNow()) with
         {
             Simulated = Machine.Simulated,
             Notes = Options.Notes,
@@ -173,32 +261,74 @@ public sealed class EngraveSession
             Resumed = Options.ResumeFrom is not null,
             Passes = Passes,
         };
+        var layers = _layered ? _parts.Select(LayerEntry).ToList() : null;
+        if (layers is not null)
+        {
+            record = record with { EstimatedSeconds = layers.Sum(l => l.EstimatedSeconds), EstimatedEngravingSeconds = layers.Sum(l => l.EstimatedEngravingSeconds) };
+        }
+
         var clockStart = time.GetTimestamp();
         Machine.Inspector?.Begin();
         RunResult? run = null;
         Exception? error = null;
         var passesDone = 0;
+        var pass = 0;
         try
         {
-            for (var pass = 1; pass <= Passes; pass++)
+            for (var index = 0; index < _parts.Count; index++)
             {
-                var result = await RunPassAsync(pass, cancellationToken);
-
-                // The log speaks for the whole job: times and laser-on add up over the passes, the counts are the last pass's.
-                run = run is null ? result : result with
+                var part = _parts[index];
+                lock (_lock)
                 {
-                    StartedAt = run.StartedAt,
-                    EngravingDuration = run.EngravingDuration + result.EngravingDuration,
-                    EstimatedSeconds = run.EstimatedSeconds + result.EstimatedSeconds,
-                    EstimatedEngravingSeconds = run.EstimatedEngravingSeconds + result.EstimatedEngravingSeconds,
-                    LaserOnSeconds = run.LaserOnSeconds + result.LaserOnSeconds,
-                };
-                if (result.Outcome != RunOutcome.Completed)
+                    _moves = Moves(part);
+                }
+
+                if (index > 0)
+                {
+                    // Each layer's burn is checked on its own.
+                    Machine.Inspector?.Begin();
+                }
+
+                RunResult? layerRun = null;
+                var layerPasses = 0;
+                var passes = Options.ResumeFrom is null ? part.Layer.Passes : 1;
+                try
+                {
+                    for (var p = 1; p <= passes; p++)
+                    {
+                        var result = await RunPassAsync(part, ++pass, firstOfSession: pass == 1, cancellationToken);
+
+                        // The log speaks for the whole job: times and laser-on add up over the passes, the counts are the last pass's.
+                        run = Add(run, result);
+                        layerRun = Add(layerRun, result);
+                        if (result.Outcome != RunOutcome.Completed)
+                        {
+                            break;
+                        }
+
+                        passesDone++;
+                        layerPasses++;
+                    }
+                }
+                finally
+                {
+                    if (layers is not null)
+                    {
+                        layers[index] = layers[index] with
+                        {
+                            PassesDone = layerPasses,
+                            Outcome = layerRun?.Outcome,
+                            EngravingSeconds = layerRun?.EngravingDuration.TotalSeconds ?? 0,
+                            LaserOnSeconds = layerRun?.LaserOnSeconds ?? 0,
+                            Simulation = Machine.Inspector is { } layerInspector && layerRun is not null ? Inspect(layerInspector, part) : null,
+                        };
+                    }
+                }
+
+                if (layerRun?.Outcome != RunOutcome.Completed)
                 {
                     break;
                 }
-
-                passesDone++;
             }
         }
         catch (Exception ex) when (ex is not OutOfMemoryException)
@@ -207,15 +337,22 @@ public sealed class EngraveSession
             error = ex;
         }
 
-        if (Machine.Inspector is { } inspector)
+        if (Machine.Inspector is { } inspector && !_layered)
         {
-            record = record with { Simulation = inspector.Inspect(Job) };
+            record = record with { Simulation = Inspect(inspector, _parts[0]) };
         }
 
         record = RunRecords.Complete(record, run, error, Machine.StagePort, Machine.LaserPort, Options.WallClock.GetLocalNow(), time.GetElapsedTime(clockStart)) with
         {
             PassesDone = Passes > 1 ? passesDone : null,
+            Layers = layers,
         };
+        if (layers is not null)
+        {
+            // The estimate is the whole job's, whatever part of it ran.
+            record = record with { EstimatedSeconds = layers.Sum(l => l.EstimatedSeconds), EstimatedEngravingSeconds = layers.Sum(l => l.EstimatedEngravingSeconds) };
+        }
+
         RunLogFiles? files = null;
         Exception? logError = null;
         if (Options.Log is { } log)
@@ -238,12 +375,26 @@ public sealed class EngraveSession
 
         Report(null);
         return new EngraveResult(record, run, error, files, logError);
+
+        static RunResult Add(RunResult? sum, RunResult result) => sum is null ? result : result with
+        {
+            StartedAt = sum.StartedAt,
+            EngravingDuration = sum.EngravingDuration + result.EngravingDuration,
+            EstimatedSeconds = sum.EstimatedSeconds + result.EstimatedSeconds,
+            EstimatedEngravingSeconds = sum.EstimatedEngravingSeconds + result.EstimatedEngravingSeconds,
+            LaserOnSeconds = sum.LaserOnSeconds + result.LaserOnSeconds,
+        };
     }
 
-    private async Task<RunResult> RunPassAsync(int pass, CancellationToken cancellationToken)
+    private static RunSimulation Inspect(IRunInspector inspector, PreparedLayer part) =>
+        part.Drawing is { } drawing ? inspector.InspectDrawing(drawing) : inspector.Inspect(part.Image!);
+
+    private async Task<RunResult> RunPassAsync(PreparedLayer part, int pass, bool firstOfSession, CancellationToken cancellationToken)
     {
-        var options = new RunOptions { Home = Options.Home && pass == 1, ResumeFrom = pass == 1 ? Options.ResumeFrom : null };
-        var executor = new RunExecutor(Machine.Stage, Machine.Gate, Job, Machine.TimeProvider, options);
+        var options = new RunOptions { Home = Options.Home && firstOfSession, ResumeFrom = firstOfSession ? Options.ResumeFrom : null };
+        var executor = part.Drawing is { } drawing
+            ? new RunExecutor(Machine.Stage, Machine.Gate, drawing, Machine.TimeProvider, options)
+            : new RunExecutor(Machine.Stage, Machine.Gate, part.Image!, Machine.TimeProvider, options);
         var movesDone = options.ResumeFrom?.MoveIndex ?? 0;
         executor.MoveCompleted += (_, e) => Interlocked.Exchange(ref movesDone, e.MoveIndex + 1);
         executor.ProgressChanged += (_, p) => Report(new PassProgress(pass, Interlocked.Read(ref movesDone), p));
@@ -285,7 +436,7 @@ public sealed class EngraveSession
             {
                 // A pass's end is not the session's: that comes once every pass has run, the burn is checked and the log written.
                 _state = RunStateMachine.IsEnd(p.Run.State) || (_abortRequested && p.Run.State is not RunState.Aborting) ? _state : p.Run.State;
-                _progress = new EngraveProgress(_state, p.Pass, Passes, p.MovesDone, Job.Statistics.Moves, _pauseRequested, p.Run);
+                _progress = new EngraveProgress(_state, p.Pass, Passes, p.MovesDone, _moves, _pauseRequested, p.Run);
             }
             else
             {

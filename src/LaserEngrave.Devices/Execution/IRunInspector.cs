@@ -11,4 +11,7 @@ public interface IRunInspector
 
     /// <summary>What was burned against <paramref name="job"/>'s mask since <see cref="Begin"/>, after every pass has ended.</summary>
     RunSimulation Inspect(PreparedJob job);
+
+    /// <summary>What was burned against <paramref name="drawing"/>'s paths since <see cref="Begin"/>, after every pass has ended.</summary>
+    RunSimulation InspectDrawing(PreparedDrawing drawing);
 }

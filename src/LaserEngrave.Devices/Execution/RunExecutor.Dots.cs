@@ -66,7 +66,7 @@ public sealed partial class RunExecutor
         lock (_lock)
         {
             _moveIndex = index;
-            _moveRow = Job.Plan.Mask.Height;
+            _moveRow = Job!.Plan.Mask.Height;
             if (_lastRow >= 0)
             {
                 _rowsDone++;

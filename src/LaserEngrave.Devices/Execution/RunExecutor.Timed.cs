@@ -89,7 +89,7 @@ public sealed partial class RunExecutor
         CompleteAcknowledged();
         lock (_lock)
         {
-            _moveRow = Job.Plan.Mask.Height;
+            _moveRow = Job!.Plan.Mask.Height;
             _currentMove = null;
             if (_lastRow >= 0)
             {
@@ -157,7 +157,7 @@ public sealed partial class RunExecutor
         var firstBurn = moves.FirstOrDefault(m => m.Move.Kind == MoveKind.Burn);
         if (firstBurn.Move.Kind == MoveKind.Burn && Math.Abs(firstBurn.Move.X0 - first.X0) < timing.RunUpMicrosteps)
         {
-            startX = Math.Clamp(firstBurn.Move.X0 - (dir * timing.RunUpMicrosteps), 0, Job.Plan.Geometry.TravelXMicrosteps);
+            startX = Math.Clamp(firstBurn.Move.X0 - (dir * timing.RunUpMicrosteps), 0, Job!.Plan.Geometry.TravelXMicrosteps);
         }
 
         return new Segment(true, moves, startX, first.Y0, last.X1, last.Y1);
@@ -418,7 +418,7 @@ public sealed partial class RunExecutor
                 position = again.Result;
                 moved = (position - start) * direction;
                 least = 1;
-                most = Math.Abs(Job.Plan.Geometry.TravelXMicrosteps);
+                most = Math.Abs(Job!.Plan.Geometry.TravelXMicrosteps);
             }
         }
 
@@ -480,7 +480,7 @@ public sealed partial class RunExecutor
             {
                 // Counted from effect to effect: the switch-off takes effect its lead after it is sent, as the switch-on did.
                 var off = Gate.OffAsync(CancellationToken.None);
-                MarkLaserOff(Job.Plan.Timing!.OffLeadSeconds);
+                MarkLaserOff(_timing!.OffLeadSeconds);
                 return off;
             }
 
@@ -494,7 +494,7 @@ public sealed partial class RunExecutor
             lock (_lock)
             {
                 _laserOn = true;
-                _laserOnSince = TimeProvider.GetTimestamp() + (long)(Job.Plan.Timing!.OnLeadSeconds * TimeProvider.TimestampFrequency);
+                _laserOnSince = TimeProvider.GetTimestamp() + (long)(_timing!.OnLeadSeconds * TimeProvider.TimestampFrequency);
             }
 
             return ack;
@@ -513,7 +513,7 @@ public sealed partial class RunExecutor
         _ = reply.ContinueWith(
             answered =>
             {
-                if (answered.IsCompletedSuccessfully && Job.Plan.Timing is { } timing)
+                if (answered.IsCompletedSuccessfully && Job?.Plan.Timing is { } timing)
                 {
                     var left = RunSeconds - (timing.OnRoundTripSeconds - timing.OnLeadSeconds) - timing.GateJitterSeconds;
                     lock (_lock)
@@ -552,7 +552,7 @@ public sealed partial class RunExecutor
     /// </remarks>
     private void Watch(Task reply, double expectedSeconds, string what, bool gate = false, string? axis = null)
     {
-        var jitter = gate ? Job.Plan.Timing?.GateJitterSeconds : Job.Plan.Timing?.StageJitterSeconds;
+        var jitter = gate ? _timing?.GateJitterSeconds : _timing?.StageJitterSeconds;
         var deadline = expectedSeconds + ((jitter ?? 0) * 2) + (Options.StallMarginMs / 1000);
         var watched = new Watched(reply, deadline, what);
         if (axis is not null)
@@ -718,7 +718,7 @@ public sealed partial class RunExecutor
     /// </summary>
     private RunStopPoint CutWithin(RunStopPoint stop)
     {
-        if (Job.Plan.Timing is not { } timing || _burning is not { } burning || burning.Index != stop.MoveIndex
+        if (Job?.Plan.Timing is not { } timing || _burning is not { } burning || burning.Index != stop.MoveIndex
             || !burning.Acknowledged.IsCompletedSuccessfully || _activeStroke is not { } stroke || _stopMatchesMotion == false)
         {
             return stop;
@@ -769,7 +769,7 @@ public sealed partial class RunExecutor
     {
         lock (_lock)
         {
-            if (Job.Plan.Timing is not { } timing || _activeStroke is not { } stroke || double.IsNaN(written))
+            if (Job?.Plan.Timing is not { } timing || _activeStroke is not { } stroke || double.IsNaN(written))
             {
                 return;
             }

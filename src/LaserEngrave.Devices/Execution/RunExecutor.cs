@@ -3,6 +3,7 @@ using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Motion;
 using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Vectors;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Zaber;
 
@@ -31,8 +32,11 @@ public sealed partial class RunExecutor
     private readonly AsyncLock _laserLock = new();
     private readonly CancellationTokenSource _abortDone = new();
     private readonly CancellationTokenSource _fault = new();
-    private readonly ProcessSettings _process;
-    private readonly MachineProfile _profile;
+    private readonly ProcessSettings _process = ProcessSettings.Default;
+    private readonly MachineProfile _profile = MachineProfile.Default;
+    private readonly TimedSwitching? _timing;
+    private readonly int _rowsTotal;
+    private readonly long _runsTotal;
     private readonly int _burnSpeedData;
     private readonly int _travelSpeedData;
     private readonly int _accelerationData;
@@ -76,23 +80,47 @@ public sealed partial class RunExecutor
     private PlanEstimator? _estimator;
 
     public RunExecutor(IStage stage, ILaserGate gate, PreparedJob job, TimeProvider? timeProvider = null, RunOptions? options = null)
+        : this(stage, gate, job?.Spec!, job?.Plan.Geometry.MicrostepUm ?? 0, job?.Plan.Options.Strategy ?? PlanStrategy.Optimized, timeProvider, options)
+    {
+        ArgumentNullException.ThrowIfNull(job);
+        Job = job;
+        _timing = job.Plan.Timing;
+        _rowsTotal = job.Statistics.Rows;
+        _runsTotal = job.Statistics.BurnRuns;
+        _progress = new RunProgress(RunState.Idle, 0, _rowsTotal, 0, _runsTotal, 0, TimeSpan.Zero, TimeSpan.FromSeconds(job.Statistics.EngravingSeconds), 0, 0, false);
+    }
+
+    /// <summary>An executor for a drawing: its strokes, each axis streaming its speed (docs/vectors.md).</summary>
+    public RunExecutor(IStage stage, ILaserGate gate, PreparedDrawing drawing, TimeProvider? timeProvider = null, RunOptions? options = null)
+        : this(stage, gate, drawing?.Spec!, drawing?.Schedule.Timing.MicrostepUm ?? 0, PlanStrategy.Optimized, timeProvider, options)
+    {
+        ArgumentNullException.ThrowIfNull(drawing);
+        Drawing = drawing;
+        _timing = drawing.Schedule.Timing;
+        _rowsTotal = drawing.Schedule.Strokes.Count;
+        _runsTotal = drawing.Plan.Paths.Count;
+        _progress = new RunProgress(RunState.Idle, 0, _rowsTotal, 0, _runsTotal, 0, TimeSpan.Zero, TimeSpan.FromSeconds(drawing.Schedule.EstimatedSeconds), 0, 0, false);
+    }
+
+    private RunExecutor(IStage stage, ILaserGate gate, JobSpec spec, double microstepUm, PlanStrategy strategy, TimeProvider? timeProvider, RunOptions? options)
     {
         ArgumentNullException.ThrowIfNull(stage);
         ArgumentNullException.ThrowIfNull(gate);
-        ArgumentNullException.ThrowIfNull(job);
         Stage = stage;
         Gate = gate;
-        Job = job;
         TimeProvider = timeProvider ?? TimeProvider.System;
         Options = options ?? RunOptions.Default;
-        _process = job.Spec.Process;
-        _profile = job.Spec.Profile;
-        var microstepUm = job.Plan.Geometry.MicrostepUm;
-        var strategy = job.Plan.Options.Strategy;
+        _progress = new RunProgress(RunState.Idle, 0, 0, 0, 0, 0, TimeSpan.Zero, TimeSpan.Zero, 0, 0, false);
+        if (spec is null)
+        {
+            return;
+        }
+
+        _process = spec.Process;
+        _profile = spec.Profile;
         _burnSpeedData = StageUnits.SpeedData(_process.SpeedMmPerS(MoveKind.Burn, strategy), microstepUm);
         _travelSpeedData = StageUnits.SpeedData(_process.SpeedMmPerS(MoveKind.Travel, strategy), microstepUm);
         _accelerationData = StageUnits.AccelerationData(_process.AccelerationMmPerS2, microstepUm);
-        _progress = new RunProgress(RunState.Idle, 0, job.Statistics.Rows, 0, job.Statistics.BurnRuns, 0, TimeSpan.Zero, TimeSpan.FromSeconds(job.Statistics.EngravingSeconds), 0, 0, false);
     }
 
     /// <summary>Raised on every state change.</summary>
@@ -108,7 +136,11 @@ public sealed partial class RunExecutor
 
     public ILaserGate Gate { get; }
 
-    public PreparedJob Job { get; }
+    /// <summary>The image job this executor runs; null for a drawing.</summary>
+    public PreparedJob? Job { get; }
+
+    /// <summary>The drawing this executor runs; null for an image job.</summary>
+    public PreparedDrawing? Drawing { get; }
 
     public TimeProvider TimeProvider { get; }
 
@@ -156,12 +188,19 @@ public sealed partial class RunExecutor
         {
             SetState(RunState.Preflight);
             identity = await PreflightAsync(token);
-            var (moves, firstIndex) = Job.Dots is { } dots ? ([], PrepareDots(dots)) : Prepare();
-            _estimatePreparation = Job.Dots is { } dotPlan0 ? EstimateDotsPreparation(dotPlan0, firstIndex) : EstimatePreparation(moves);
+            var (moves, firstIndex) = Drawing is not null ? ([], 0) : Job!.Dots is { } dots ? ([], PrepareDots(dots)) : Prepare();
+            var firstStroke = Drawing is null ? 0 : PrepareStrokes();
+            _estimatePreparation = Drawing is not null ? EstimateDrawingPreparation(firstStroke)
+                : Job!.Dots is { } dotPlan0 ? EstimateDotsPreparation(dotPlan0, firstIndex)
+                : EstimatePreparation(moves);
             SetState(RunState.Running);
             _keepAlive = new GateKeepAlive(Gate, GateKeepAlive.PeriodFor(_profile.Gate.WatchdogMs, Options.KeepAliveFraction), TimeProvider, OnKeepAliveFailed);
             using var linked = CancellationTokenSource.CreateLinkedTokenSource(token, _fault.Token);
-            if (Job.Dots is { } dotPlan)
+            if (Drawing is { } drawing)
+            {
+                await ExecuteVectorAsync(drawing, firstStroke, linked.Token);
+            }
+            else if (Job!.Dots is { } dotPlan)
             {
                 await ExecuteDotsAsync(dotPlan, firstIndex, linked.Token);
             }
@@ -420,16 +459,19 @@ public sealed partial class RunExecutor
     /// <summary>Refuses a job that leaves the travel or asks for speeds the stage cannot run.</summary>
     private void CheckJob()
     {
-        var geometry = Job.Geometry;
-        if (!geometry.FitsTravel)
+        if (Drawing is { } drawing)
         {
-            var outside = geometry.Warnings.FirstOrDefault(w => w.Kind == JobWarningKind.OutsideTravel);
+            CheckDrawing(drawing);
+        }
+        else if (!Job!.Geometry.FitsTravel)
+        {
+            var outside = Job.Geometry.Warnings.FirstOrDefault(w => w.Kind == JobWarningKind.OutsideTravel);
             throw new PreflightException(outside?.Message ?? "the job does not fit the stage travel");
         }
 
-        var strategy = Job.Plan.Options.Strategy;
-        var microstepUm = Job.Plan.Geometry.MicrostepUm;
-        if (Job.EngraveProblem is { } tooShort)
+        var strategy = Job?.Plan.Options.Strategy ?? PlanStrategy.Optimized;
+        var microstepUm = Job?.Plan.Geometry.MicrostepUm ?? _timing!.MicrostepUm;
+        if (Job?.EngraveProblem is { } tooShort)
         {
             throw new PreflightException(tooShort);
         }
@@ -460,7 +502,13 @@ public sealed partial class RunExecutor
     /// <summary>Refuses a job that reaches past an axis' Maximum Position (the device's own limit may be below the profile's travel).</summary>
     private void CheckReach(AxisIdentity x, AxisIdentity y)
     {
-        var plan = Job.Plan;
+        if (Drawing is { } drawing)
+        {
+            CheckDrawingReach(drawing, x, y);
+            return;
+        }
+
+        var plan = Job!.Plan;
         var geometry = plan.Geometry;
         var right = Math.Min(geometry.EdgeX(geometry.WidthPx) + plan.OverscanMicrosteps, geometry.TravelXMicrosteps);
         var bottom = geometry.EdgeY(geometry.HeightPx);
@@ -525,7 +573,7 @@ public sealed partial class RunExecutor
         lock (_lock)
         {
             _moveIndex = index;
-            _moveRow = Job.Plan.Mask.Height;
+            _moveRow = Job!.Plan.Mask.Height;
             _currentMove = null;
             if (_lastRow >= 0)
             {
@@ -539,7 +587,7 @@ public sealed partial class RunExecutor
     /// <exception cref="PreflightException">The resume point is not in this job's plan.</exception>
     private (IEnumerable<Move> Moves, long FirstIndex) Prepare()
     {
-        var plan = Job.Plan;
+        var plan = Job!.Plan;
         var microstepUm = plan.Geometry.MicrostepUm;
         var strategy = plan.Options.Strategy;
         _estimator = new PlanEstimator(_process, strategy, microstepUm, _profile.Gate, plan.Timing);
@@ -630,7 +678,7 @@ public sealed partial class RunExecutor
 
     /// <summary>The estimate of what preflight did and the travel to the first move will take, as the plan's figure is made.</summary>
     private double EstimatePreparation(IEnumerable<Move> moves) =>
-        Job.Plan.Timing is { } timing && moves.Take(1).ToList() is [var first]
+        Job?.Plan.Timing is { } timing && moves.Take(1).ToList() is [var first]
             ? timing.PreparationSeconds(first.X0, first.Y0, _homed, from: (_x, _y))
             : 0;
 
@@ -810,7 +858,7 @@ public sealed partial class RunExecutor
                 }
 
                 // Timed runs feed the watchdog in their own gate schedule, between the timed commands.
-                _keepAlive!.Active = Job.Plan.Timing is null;
+                _keepAlive!.Active = _timing is null;
             }
             else
             {
@@ -983,9 +1031,9 @@ public sealed partial class RunExecutor
                 EstimatedEngravingSeconds = _estimateTotal - _estimateBefore,
                 LaserOnSeconds = _laserOnSeconds,
                 RowsDone = _rowsDone,
-                RowsTotal = Job.Statistics.Rows,
+                RowsTotal = _rowsTotal,
                 RunsDone = _runsDone,
-                RunsTotal = Job.Statistics.BurnRuns,
+                RunsTotal = _runsTotal,
                 Machine = identity,
             };
         }
@@ -1015,14 +1063,14 @@ public sealed partial class RunExecutor
         var elapsed = TimeProvider.GetElapsedTime(_startTimestamp);
         // Timed runs keep to their estimate (the same timeline), so the clock says how much of it is done.
         var estimateDone = !_engravingStarted ? 0
-            : Job.Plan.Timing is not null || Job.Dots is not null ? Math.Min(_estimateTotal - _estimateBefore, (TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving).TotalSeconds)
+            : _timing is not null || Job?.Dots is not null ? Math.Min(_estimateTotal - _estimateBefore, (TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving).TotalSeconds)
             : _estimator?.ElapsedSeconds ?? 0;
         var done = _estimateBefore + estimateDone;
         var percent = _estimateTotal > 0 ? Math.Clamp(100 * done / _estimateTotal, 0, 100) : 0;
         var engraving = !_engravingStarted ? 0 : (TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving).TotalSeconds;
         var ratio = estimateDone > 1 && engraving > 0 ? engraving / estimateDone : 1;
         var remaining = Math.Max(0, _estimateTotal - done) * ratio;
-        return new RunProgress(_state, _rowsDone, Job.Statistics.Rows, _runsDone, Job.Statistics.BurnRuns, percent, elapsed, TimeSpan.FromSeconds(remaining), _x, _y, _laserOn);
+        return new RunProgress(_state, _rowsDone, _rowsTotal, _runsDone, _runsTotal, percent, elapsed, TimeSpan.FromSeconds(remaining), _x, _y, _laserOn);
     }
 
     private void SetState(RunState state)

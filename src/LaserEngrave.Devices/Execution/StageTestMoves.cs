@@ -125,7 +125,17 @@ public sealed class StageTestMoves
             throw new TestMoveException($"frame frequency {visibleFrequencyHz} Hz must be above 0 (leave it out to frame with the laser off)");
         }
 
-        long left = geometry.EdgeX(0), right = geometry.EdgeX(geometry.WidthPx), top = geometry.EdgeY(0), bottom = geometry.EdgeY(geometry.HeightPx);
+        return await FrameAsync(geometry.EdgeX(0), geometry.EdgeY(0), geometry.EdgeX(geometry.WidthPx), geometry.EdgeY(geometry.HeightPx), visibleFrequencyHz, cancellationToken);
+    }
+
+    /// <summary>Traces a rectangle in microsteps (a drawing's bounding box) from its top-left corner, as <see cref="FrameAsync(JobGeometry, int?, CancellationToken)"/>.</summary>
+    public async Task<StagePosition> FrameAsync(long left, long top, long right, long bottom, int? visibleFrequencyHz, CancellationToken cancellationToken)
+    {
+        if (visibleFrequencyHz is <= 0)
+        {
+            throw new TestMoveException($"frame frequency {visibleFrequencyHz} Hz must be above 0 (leave it out to frame with the laser off)");
+        }
+
         StagePosition[] corners = [new(left, top), new(right, top), new(right, bottom), new(left, bottom), new(left, top)];
         foreach (var corner in corners)
         {

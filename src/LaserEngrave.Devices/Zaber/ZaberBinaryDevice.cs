@@ -136,6 +136,27 @@ public sealed class ZaberBinaryDevice : IStageAxis
         return reply.Data;
     }
 
+    /// <summary>One of a stream of speed changes: an earlier command of this device still waiting for its reply is not replaced; replies come in order.</summary>
+    public async Task<int> StreamSpeedAsync(int speedData, CancellationToken cancellationToken)
+    {
+        Write(() => _position = null);
+        var request = new ZaberFrame(DeviceNumber, ZaberCommand.MoveAtConstantSpeed, speedData);
+        var reply = await Connection.RequestCoreAsync(request, Connection.Options.CommandTimeout, holdLine: false, resynchroniseOnTimeout: true, cancellationToken, preempts: false);
+        return reply.Data;
+    }
+
+    /// <summary>Stop at the end of a stream of speed changes, which it does not count as replaced.</summary>
+    public async Task<long> StreamStopAsync(CancellationToken cancellationToken)
+    {
+        var (speed, acceleration) = Read(() => (_speedData ?? StageUnits.MaxSettingData, _accelerationData ?? 1));
+        var decelerationS = StageUnits.SpeedMicrostepsPerS(Math.Max(speed, 1)) / StageUnits.AccelerationMicrostepsPerS2(acceleration);
+        var timeout = Connection.Options.CommandTimeout + (TimeSpan.FromSeconds(decelerationS * Connection.Options.MoveTimeoutFactor) + Connection.Options.MoveTimeoutMargin);
+        var request = new ZaberFrame(DeviceNumber, ZaberCommand.Stop, 0);
+        var reply = await Connection.RequestCoreAsync(request, timeout, holdLine: false, resynchroniseOnTimeout: true, cancellationToken, preempts: false);
+        Write(() => _position = reply.Data);
+        return reply.Data;
+    }
+
     public async Task<long> StopAsync(CancellationToken cancellationToken)
     {
         var (speed, acceleration) = Read(() => (_speedData ?? StageUnits.MaxSettingData, _accelerationData ?? 1));

@@ -8,6 +8,9 @@ namespace LaserEngrave.Simulator.Burn;
 /// <remarks>Only what happened since <see cref="Begin"/> counts, so a run on a simulator that has burned before (the app's) is checked alone.</remarks>
 public sealed class BurnInspector(SimulatedMachine machine) : IRunInspector
 {
+    /// <summary>The last drawing check's report; null before the first.</summary>
+    public PathReport? PathReport { get; private set; }
+
     /// <summary>The last check's whole report (the burned image, the pulse map); null before the first.</summary>
     public BurnReport? Report { get; private set; }
 
@@ -30,5 +33,28 @@ public sealed class BurnInspector(SimulatedMachine machine) : IRunInspector
             burn.MissingPixels,
             burn.ExtraPixels,
             burn.PulsesWhileMoving);
+    }
+
+    public RunSimulation InspectDrawing(PreparedDrawing drawing)
+    {
+        ArgumentNullException.ThrowIfNull(drawing);
+        var burn = machine.Recorder.AnalyzePaths(drawing.Plan.Paths, drawing.Spec.Process.BurnSpeedMmPerS);
+        PathReport = burn;
+        return new RunSimulation(
+            machine.Options.Seed,
+            burn.Pulses,
+            null,
+            new DwellCounts(burn.DwellCount, burn.DwellPulses),
+            new PulseCountRange(0, 0, 0),
+            burn.OffPathPulses,
+            0,
+            0)
+        {
+            Path = new PathFigures(
+                new MeanMax(burn.DeviationMeanUm, burn.DeviationMaxUm),
+                new SpacingRange(burn.SpacingMinUm, burn.SpacingMeanUm, burn.SpacingMaxUm),
+                burn.ExpectedSpacingUm,
+                burn.OffPathPulses),
+        };
     }
 }

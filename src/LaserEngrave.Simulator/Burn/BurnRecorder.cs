@@ -150,6 +150,23 @@ public sealed class BurnRecorder
         return analysis.Report(RefusedMoves.Count);
     }
 
+    /// <summary>The pulses of a vector job against its paths: distance from the path, spacing, dwells, pulses off every path.</summary>
+    /// <param name="paths">The paths that should be burned, in microsteps.</param>
+    /// <param name="burnSpeedMmPerS">The process' burn speed, mm/s (the spacing it should give, and what counts as a dwell).</param>
+    public PathReport AnalyzePaths(IReadOnlyList<LaserEngrave.Core.Vectors.StagePath> paths, double burnSpeedMmPerS)
+    {
+        ArgumentNullException.ThrowIfNull(paths);
+        if (!(burnSpeedMmPerS > 0 && double.IsFinite(burnSpeedMmPerS)))
+        {
+            throw new ArgumentOutOfRangeException(nameof(burnSpeedMmPerS), burnSpeedMmPerS, "the burn speed must be above 0 mm/s");
+        }
+
+        MotionSegment[] xs = [.. X.Segments];
+        MotionSegment[] ys = [.. Y.Segments];
+        var until = _now?.Invoke() ?? LastInstant(xs, ys);
+        return new PathAnalysis(paths, XMicrostepUm, YMicrostepUm).Analyze(LaserPeriods(until), X, Y, burnSpeedMmPerS);
+    }
+
     // The laser-on periods inside the window, in time order, the last one ended at untilSeconds when still open.
     private List<LaserPeriod> LaserPeriods(double untilSeconds)
     {

@@ -28,6 +28,57 @@ public sealed class JobViewModelTests
     }
 
     [Fact]
+    public void LoadImage_Drawing_PlansItsStrokesWithEstimateAndNoMask()
+    {
+        var job = new JobViewModel(new ImageService(), MachineProfile.Default);
+        job.OriginXMm = 5;
+        job.OriginYMm = 5;
+        job.WidthMm = 10;
+
+        Assert.True(job.LoadImage(TestFiles.Asset(Path.Combine("drawings", "hexagons.dxf"))));
+
+        Assert.True(job.IsDrawing);
+        Assert.Null(job.Job);
+        Assert.Null(job.Mask);
+        var drawing = Assert.IsType<Core.Jobs.PreparedDrawing>(job.Drawing);
+        Assert.Equal(10, drawing.Plan.WidthMm, 9);
+        Assert.Equal(drawing.WholeRunSeconds(1), job.EstimatedSeconds!.Value, 9);
+        Assert.Equal(Math.Round(drawing.Plan.HeightMm, 4), job.HeightMm);
+        Assert.Empty(job.Errors);
+    }
+
+    [Fact]
+    public void EditWidth_Drawing_ScalesItAndThePlanFollows()
+    {
+        var job = new JobViewModel(new ImageService(), MachineProfile.Default);
+        job.OriginXMm = 5;
+        job.OriginYMm = 5;
+        job.WidthMm = 10;
+        job.LoadImage(TestFiles.Asset(Path.Combine("drawings", "hexagons.dxf")));
+        var before = job.Drawing!.Plan.BurnLengthMm;
+
+        job.EditWidth(20);
+
+        Assert.Equal(20, job.Drawing!.Plan.WidthMm, 9);
+        Assert.InRange(job.Drawing.Plan.BurnLengthMm, before * 1.99, before * 2.01);
+    }
+
+    [Fact]
+    public void LoadImage_BadDrawingAfterGoodImage_KeepsTheImageAndSaysWhy()
+    {
+        var job = Loaded();
+        using var folder = TestFiles.NewFolder();
+        var bad = Path.Combine(folder.Path, "bad.dxf");
+        File.WriteAllText(bad, "0\nSECTION\n2\nENTITIES\n0\nLINE\n5\n2A\n10\n1,5\n");
+
+        Assert.False(job.LoadImage(bad));
+
+        Assert.EndsWith("qr-code.bmp", job.ImagePath, StringComparison.Ordinal);
+        Assert.NotNull(job.Job);
+        Assert.Contains("bad.dxf: LINE (handle 2A, line 6)", job.Errors[JobViewModel.ImageField], StringComparison.Ordinal);
+    }
+
+    [Fact]
     public void LoadImage_BadImage_ErrorBesideImageAndNoPlan()
     {
         var images = Substitute.For<IImageService>();

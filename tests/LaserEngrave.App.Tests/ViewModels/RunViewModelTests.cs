@@ -103,6 +103,26 @@ public sealed class RunViewModelTests
     }
 
     [Fact]
+    public async Task Start_Drawing_RunsItsSessionAndLogsTheDrawing()
+    {
+        _job.OriginXMm = 5;
+        _job.OriginYMm = 5;
+        _job.WidthMm = 10;
+        _job.LoadImage(TestFiles.Asset(Path.Combine("drawings", "hexagons.dxf")));
+        await _machine.ConnectCommand.ExecuteAsync(null);
+        var sessions = new List<EngraveSession>();
+        _runs.RunAsync(Arg.Do<EngraveSession>(sessions.Add), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(Ends(Result(RunOutcome.Completed)));
+
+        Assert.True(_run.CanStart);
+        await _run.StartCommand.ExecuteAsync(null);
+
+        Assert.Same(_job.Drawing, Assert.Single(sessions).Drawing);
+        Assert.Equal(RunState.Completed, _run.State);
+        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Drawing != null && r.Drawing.Strokes == _job.Drawing!.Schedule.Strokes.Count));
+    }
+
+    [Fact]
     public async Task Start_TwoPassesCompleted_LogSaysBothPassesDone()
     {
         await ReadyAsync();
@@ -113,7 +133,7 @@ public sealed class RunViewModelTests
 
         await _run.StartCommand.ExecuteAsync(null);
 
-        Assert.Equal(2, Assert.Single(sessions).Job.Spec.Passes);
+        Assert.Equal(2, Assert.Single(sessions).Job!.Spec.Passes);
         Assert.Equal(2, sessions[0].Passes);
         _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Passes == 2 && r.PassesDone == 2));
     }

@@ -11,7 +11,7 @@ internal static class SessionResults
     /// <summary>What the session returns for a run that ended with <paramref name="run"/> (or <paramref name="error"/>): its record, logged through its writer, as the session does.</summary>
     public static EngraveResult Ended(EngraveSession session, RunResult? run, Exception? error = null)
     {
-        var record = RunRecord.ForJob(session.Job, new string('0', 64), DateTimeOffset.UnixEpoch) with
+        var record = (session.Drawing is { } drawing ? RunRecord.ForDrawing(drawing, new string('0', 64), DateTimeOffset.UnixEpoch) : RunRecord.ForJob(session.Job!, new string('0', 64), DateTimeOffset.UnixEpoch)) with
         {
             Notes = session.Options.Notes,
             SampleId = session.Options.SampleId,

@@ -262,6 +262,27 @@ public sealed class BrowserTests : IAsyncLifetime
     }
 
     [Fact]
+    public void Drawing_SampleOpened_ItsStrokesDrawnOnTheStageWithTheEstimate()
+    {
+        Resize(1440, 1000);
+        SetField("widthMm", "20");
+        SetField("originXMm", "10");
+        SetField("originYMm", "10");
+        WaitFor(d => d.FindElements(By.CssSelector("#samples button[data-path$='hexagons.dxf']")).Count == 1, "hexagons.dxf offered");
+        Driver.FindElement(By.CssSelector("#samples button[data-path$='hexagons.dxf']")).Click();
+        WaitFor(d => d.FindElement(By.Id("drawing-meta")).Text.Contains("strokes", StringComparison.Ordinal), "the drawing planned");
+        WaitFor(d => int.Parse(d.FindElement(By.Id("stage-host")).GetAttribute("data-drawn-moves") ?? "0", CultureInfo.InvariantCulture) > 0, "its strokes drawn");
+
+        Id("zoom-in").Click();
+        Id("zoom-in").Click();
+        var path = Screenshot("drawing-on-stage");
+
+        Assert.True(File.Exists(path));
+        Assert.Contains("mm to burn", Text("drawing-meta"), StringComparison.Ordinal);
+        Assert.Empty(Driver.FindElements(By.Id("no-image")));
+    }
+
+    [Fact]
     public void Workspace_CommonWindowSizes_NoHorizontalScrolling()
     {
         OpenSample("text-banner.png");

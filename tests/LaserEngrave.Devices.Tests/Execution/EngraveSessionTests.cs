@@ -138,7 +138,7 @@ public class EngraveSessionTests
         var record = Assert.Single(log.Records);
         Assert.Equal(RunOutcome.Refused, record.Outcome);
         Assert.Equal("preflight", record.Fault?.Kind);
-        Assert.Equal(0, run.Machine.Recorder.Analyze(SimulatedRun.Grid(session.Job)).Pulses);
+        Assert.Equal(0, run.Machine.Recorder.Analyze(SimulatedRun.Grid(session.Job!)).Pulses);
     }
 
     [Fact(Timeout = 60_000)]

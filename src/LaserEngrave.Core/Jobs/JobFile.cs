@@ -1,0 +1,147 @@
+using System.Globalization;
+using System.Text.Json;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Planning;
+
+namespace LaserEngrave.Core.Jobs;
+
+/// <summary>
+/// A job's layers from a JSON file: <c>{"layers": [{"name": ..., "source": ..., "mode": ..., ...}, ...]}</c>
+/// (docs/vectors.md, "Layers"); a source is relative to the file's folder. Unknown or bad values are refused with one line
+/// naming the file, the layer and the field.
+/// </summary>
+public static class JobFile
+{
+    private static readonly string[] Fields =
+        ["name", "source", "mode", "drawingLayer", "widthMm", "originMm", "speedMmPerS", "frequencyHz", "passes", "toleranceUm", "fillPitchUm"];
+
+    public static IReadOnlyList<JobLayer> Load(string path)
+    {
+        ArgumentException.ThrowIfNullOrWhiteSpace(path);
+        if (IO.RegularFile.Problem(path) is { } problem)
+        {
+            throw new PlanException($"{path}: {problem}");
+        }
+
+        JsonDocument document;
+        try
+        {
+            document = JsonDocument.Parse(File.ReadAllText(path), new JsonDocumentOptions { AllowTrailingCommas = true, CommentHandling = JsonCommentHandling.Skip });
+        }
+        catch (JsonException ex)
+        {
+            throw new PlanException($"{path}: not valid JSON ({ex.Message})", ex);
+        }
+
+        using (document)
+        {
+            var folder = Path.GetDirectoryName(Path.GetFullPath(path)) ?? ".";
+            var root = document.RootElement;
+            if (root.ValueKind != JsonValueKind.Object || !root.TryGetProperty("layers", out var layers) || layers.ValueKind != JsonValueKind.Array)
+            {
+                throw new PlanException($"{path}: a job file is an object with \"layers\": [ ... ]");
+            }
+
+            foreach (var property in root.EnumerateObject())
+            {
+                if (property.Name != "layers")
+                {
+                    throw new PlanException($"{path}: unknown field \"{property.Name}\" (a job file has only \"layers\")");
+                }
+            }
+
+            var list = new List<JobLayer>();
+            var index = 0;
+            foreach (var element in layers.EnumerateArray())
+            {
+                index++;
+                list.Add(ReadLayer(path, folder, index, element));
+            }
+
+            return list.Count > 0 ? list : throw new PlanException($"{path}: \"layers\" is empty");
+        }
+    }
+
+    private static JobLayer ReadLayer(string path, string folder, int index, JsonElement element)
+    {
+        var where = $"{path}: layer {index}";
+        if (element.ValueKind != JsonValueKind.Object)
+        {
+            throw new PlanException($"{where}: must be an object");
+        }
+
+        foreach (var property in element.EnumerateObject())
+        {
+            if (!Fields.Contains(property.Name, StringComparer.Ordinal))
+            {
+                throw new PlanException($"{where}: unknown field \"{property.Name}\" (fields: {string.Join(", ", Fields)})");
+            }
+        }
+
+        var name = String(element, "name", where) ?? $"layer {index}";
+        where = $"{path}: layer {index} \"{name}\"";
+        var source = String(element, "source", where) ?? throw new PlanException($"{where}: \"source\" (the image or drawing file) is missing");
+        var mode = String(element, "mode", where) is { } text
+            ? text.Trim().ToLowerInvariant() switch
+            {
+                "raster" => LayerMode.Raster,
+                "outline" => LayerMode.Outline,
+                "fill" => LayerMode.Fill,
+                "both" => LayerMode.Both,
+                _ => throw new PlanException($"{where}: mode \"{text}\" is not raster, outline, fill or both"),
+            }
+            : Vectors.DrawingReader.IsDrawing(source) ? LayerMode.Outline : LayerMode.Raster;
+        var passes = Number(element, "passes", where) is { } p
+            ? p == Math.Floor(p) && p is >= 1 and <= JobSpec.MaxPasses ? (int)p : throw new PlanException($"{where}: passes {N(p)} must be a whole number 1..{JobSpec.MaxPasses}")
+            : 1;
+        return new JobLayer
+        {
+            Name = name,
+            Source = Path.GetFullPath(Path.Combine(folder, source)),
+            Mode = mode,
+            DrawingLayer = String(element, "drawingLayer", where),
+            WidthMm = Positive(element, "widthMm", where),
+            Origin = Origin(element, where),
+            SpeedMmPerS = Positive(element, "speedMmPerS", where),
+            FrequencyHz = Positive(element, "frequencyHz", where),
+            Passes = passes,
+            ToleranceUm = Positive(element, "toleranceUm", where),
+            FillPitchUm = Positive(element, "fillPitchUm", where),
+        };
+    }
+
+    private static string? String(JsonElement element, string name, string where) =>
+        !element.TryGetProperty(name, out var value) || value.ValueKind == JsonValueKind.Null ? null
+        : value.ValueKind == JsonValueKind.String ? value.GetString()
+        : throw new PlanException($"{where}: \"{name}\" must be a string");
+
+    private static double? Number(JsonElement element, string name, string where) =>
+        !element.TryGetProperty(name, out var value) || value.ValueKind == JsonValueKind.Null ? null
+        : value.ValueKind == JsonValueKind.Number ? value.GetDouble()
+        : throw new PlanException($"{where}: \"{name}\" must be a number");
+
+    private static double? Positive(JsonElement element, string name, string where) =>
+        Number(element, name, where) is { } v
+            ? v > 0 && double.IsFinite(v) ? v : throw new PlanException($"{where}: {name} {N(v)} must be above 0")
+            : null;
+
+    private static OriginMm Origin(JsonElement element, string where)
+    {
+        if (!element.TryGetProperty("originMm", out var value) || value.ValueKind == JsonValueKind.Null)
+        {
+            return OriginMm.Zero;
+        }
+
+        if (value.ValueKind != JsonValueKind.Array || value.GetArrayLength() != 2 || value.EnumerateArray().Any(v => v.ValueKind != JsonValueKind.Number))
+        {
+            throw new PlanException($"{where}: \"originMm\" must be [x, y] in mm");
+        }
+
+        double x = value[0].GetDouble(), y = value[1].GetDouble();
+        return x >= 0 && y >= 0 && double.IsFinite(x) && double.IsFinite(y)
+            ? new OriginMm(x, y)
+            : throw new PlanException($"{where}: originMm {N(x)}, {N(y)} must not be negative");
+    }
+
+    private static string N(double v) => v.ToString("0.######", CultureInfo.InvariantCulture);
+}

@@ -1,0 +1,134 @@
+using System.Globalization;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Vectors;
+
+namespace LaserEngrave.Core.Jobs;
+
+/// <summary>A job of several layers, each an image or a drawing with its own process, passes and mode, run in order.</summary>
+public sealed class LayeredJob
+{
+    private LayeredJob(IReadOnlyList<PreparedLayer> layers) => Layers = layers;
+
+    public IReadOnlyList<PreparedLayer> Layers { get; }
+
+    /// <summary>The whole run: every layer's passes with their preflight and positioning, s.</summary>
+    public double EstimatedSeconds => Layers.Sum(l => l.EstimatedSeconds);
+
+    /// <summary>The engraving part: every layer's engraving times its passes, s.</summary>
+    public double EstimatedEngravingSeconds => Layers.Sum(l => l.EngravingSeconds * l.Layer.Passes);
+
+    public bool FitsTravel => Layers.All(l => l.FitsTravel);
+
+    /// <summary>Prepares every layer (reads, sizes, plans); throws one line naming the layer and the problem.</summary>
+    /// <param name="layers">The layers in burn order.</param>
+    /// <param name="profile">The machine: its process values fill in what a layer leaves out.</param>
+    public static LayeredJob Prepare(IReadOnlyList<JobLayer> layers, MachineProfile profile)
+    {
+        ArgumentNullException.ThrowIfNull(layers);
+        ArgumentNullException.ThrowIfNull(profile);
+        if (layers.Count == 0)
+        {
+            throw new PlanException("a job needs at least one layer");
+        }
+
+        var prepared = new List<PreparedLayer>(layers.Count);
+        foreach (var layer in layers)
+        {
+            try
+            {
+                prepared.Add(PrepareLayer(layer, profile));
+            }
+            catch (Exception ex) when (ex is GeometryException or PlanException or DrawingException or Imaging.ImageLoadException)
+            {
+                throw new PlanException($"layer \"{layer.Name}\": {ex.Message}", ex);
+            }
+        }
+
+        return new LayeredJob(prepared);
+    }
+
+    private static PreparedLayer PrepareLayer(JobLayer layer, MachineProfile profile)
+    {
+        var drawing = DrawingReader.IsDrawing(layer.Source);
+        if (drawing == (layer.Mode == LayerMode.Raster))
+        {
+            throw new PlanException(drawing
+                ? $"{layer.Source} is a drawing: its mode is outline, fill or both, not raster"
+                : $"{layer.Source} is an image: its mode is raster, not {layer.Mode.ToString().ToLowerInvariant()}");
+        }
+
+        if (layer.Passes is < 1 or > JobSpec.MaxPasses)
+        {
+            throw new PlanException(string.Create(CultureInfo.InvariantCulture, $"passes {layer.Passes} must be 1..{JobSpec.MaxPasses}"));
+        }
+
+        var process = ProcessSettings.FromProfile(profile) with
+        {
+            BurnSpeedMmPerS = layer.SpeedMmPerS ?? profile.BurnSpeedMmPerS,
+            LaserFrequencyHz = layer.FrequencyHz ?? profile.LaserFrequencyHz,
+        };
+        if (MachineProfileValidator.ProcessProblem(profile, process) is { } problem)
+        {
+            throw new PlanException(problem);
+        }
+
+        if (!drawing)
+        {
+            if (layer.DrawingLayer is not null || layer.ToleranceUm is not null || layer.FillPitchUm is not null)
+            {
+                throw new PlanException("drawingLayer, toleranceUm and fillPitchUm are for drawings");
+            }
+
+            var width = layer.WidthMm ?? throw new PlanException($"{layer.Source}: an image layer needs widthMm");
+            var job = PreparedJob.Prepare(new JobSpec
+            {
+                ImagePath = layer.Source,
+                Size = SizeSpec.Width(width),
+                Origin = layer.Origin,
+                Process = process,
+                Profile = profile,
+                Passes = layer.Passes,
+            });
+            return new PreparedLayer(layer, job, null);
+        }
+
+        var options = new VectorOptions
+        {
+            ToleranceUm = layer.ToleranceUm ?? VectorOptions.Default.ToleranceUm,
+            FillPitchUm = layer.FillPitchUm ?? VectorOptions.Default.FillPitchUm,
+            Fill = layer.Mode switch
+            {
+                LayerMode.Fill => VectorFillMode.Fill,
+                LayerMode.Both => VectorFillMode.Both,
+                _ => VectorFillMode.Outline,
+            },
+            Layer = layer.DrawingLayer,
+        };
+        var spec = new JobSpec
+        {
+            ImagePath = layer.Source,
+            Size = SizeSpec.Width(layer.WidthMm ?? 1),
+            Origin = layer.Origin,
+            Process = process,
+            Profile = profile,
+            Passes = layer.Passes,
+        };
+        var prepared = layer.WidthMm is null ? PreparedDrawing.PrepareOwnSize(spec, options) : PreparedDrawing.Prepare(spec, options);
+        return new PreparedLayer(layer, null, prepared);
+    }
+}
+
+/// <summary>One layer ready to run: an image job or a drawing, with the layer that asked for it.</summary>
+public sealed record PreparedLayer(JobLayer Layer, PreparedJob? Image, PreparedDrawing? Drawing)
+{
+    /// <summary>One pass's engraving, s.</summary>
+    public double EngravingSeconds => Image?.Statistics.EngravingSeconds ?? Drawing!.Schedule.EstimatedSeconds;
+
+    /// <summary>The layer's whole run, all its passes with their preflight and positioning, s.</summary>
+    public double EstimatedSeconds => Image?.Statistics.WholeRunSeconds(Layer.Passes) ?? Drawing!.WholeRunSeconds(Layer.Passes);
+
+    public bool FitsTravel => Image?.Geometry.FitsTravel ?? Drawing!.FitsTravel;
+
+    public IEnumerable<string> Warnings => Image?.Warnings.Select(w => w.Message) ?? Drawing!.Warnings;
+}

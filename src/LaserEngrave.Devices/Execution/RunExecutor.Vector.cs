@@ -1,0 +1,334 @@
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Vectors;
+using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Devices.Zaber;
+
+namespace LaserEngrave.Devices.Execution;
+
+/// <summary>Vector jobs: each stroke of a <see cref="VectorSchedule"/> sent by time, both axes streaming their speeds, the laser switched by time.</summary>
+/// <remarks>
+/// Every command leaves so that it arrives when the schedule says (the adapter's latency and a frame ahead). Before the
+/// laser comes on, the stroke's position query must show the stage where the model has it, give or take the latencies;
+/// every reply is watched against its expected arrival, and one missing or late ends the run, laser off first. Between
+/// strokes the laser is off and acknowledged, the axes rest, and a travel takes them to the next run-up's start
+/// (its replies awaited, so every stroke starts from a known position). Pauses come between strokes.
+/// </remarks>
+public sealed partial class RunExecutor
+{
+    // Time the host allows itself to react to a reply before acting on it (as TimedSwitching).
+    private const double VectorReactionSeconds = 0.0005;
+
+    /// <summary>The first stroke to run (a resumed run's stop point), with the estimates of what was done before.</summary>
+    private int PrepareStrokes()
+    {
+        var schedule = Drawing!.Schedule;
+        var first = 0;
+        if (Options.ResumeFrom is { } resume)
+        {
+            if (resume.MoveIndex < 0 || resume.MoveIndex > schedule.Strokes.Count)
+            {
+                throw new PreflightException($"the resume point (stroke {resume.MoveIndex}) is not in this drawing's {schedule.Strokes.Count} strokes");
+            }
+
+            first = (int)resume.MoveIndex;
+            _rowsDone = first;
+            _runsDone = first == 0 ? 0 : schedule.Strokes.Take(first).Count(s => IsLastOfPath(schedule, s.Index));
+        }
+
+        _estimateTotal = schedule.EstimatedSeconds;
+        _estimateBefore = schedule.EstimatedSeconds - schedule.SecondsFrom(first);
+        return first;
+    }
+
+    /// <summary>Preflight, homing if it homes, and the travel to the first stroke's run-up, as for images (<c>TimedSwitching.PreparationSeconds</c>).</summary>
+    private double EstimateDrawingPreparation(int firstStroke)
+    {
+        var strokes = Drawing!.Schedule.Strokes;
+        return firstStroke < strokes.Count
+            ? Drawing.Schedule.Timing.PreparationSeconds(strokes[firstStroke].RunUpStart.X, strokes[firstStroke].RunUpStart.Y, _homed, from: (_x, _y))
+            : 0;
+    }
+
+    private static bool IsLastOfPath(VectorSchedule schedule, int index) =>
+        index + 1 >= schedule.Strokes.Count || schedule.Strokes[index + 1].PathIndex != schedule.Strokes[index].PathIndex;
+
+    private void CheckDrawing(PreparedDrawing drawing)
+    {
+        if (!drawing.FitsTravel)
+        {
+            throw new PreflightException(drawing.Warnings.LastOrDefault(w => w.Contains("travel", StringComparison.Ordinal)) ?? "the drawing does not fit the stage travel");
+        }
+
+        if (drawing.Schedule.Strokes.Count == 0)
+        {
+            throw new PreflightException($"{drawing.Spec.ImagePath}: no path is long enough to burn");
+        }
+    }
+
+    private void CheckDrawingReach(PreparedDrawing drawing, AxisIdentity x, AxisIdentity y)
+    {
+        var strokes = drawing.Schedule.Strokes;
+        var right = strokes.Max(s => Math.Max(Math.Max(s.RunUpStart.X, s.RestEnd.X), s.Path.Points.Max(p => p.X)));
+        var bottom = strokes.Max(s => Math.Max(Math.Max(s.RunUpStart.Y, s.RestEnd.Y), s.Path.Points.Max(p => p.Y)));
+        var microstepUm = drawing.Plan.MicrostepUm;
+        foreach (var (name, reach, identity) in new[] { ("X", right, x), ("Y", bottom, y) })
+        {
+            if (identity.MaximumPosition > 0 && reach > identity.MaximumPosition)
+            {
+                throw new PreflightException(
+                    $"the job reaches {name} = {N(StageUnits.MicrostepsToMm(reach, microstepUm))} mm but the {name} axis stops at {N(StageUnits.MicrostepsToMm(identity.MaximumPosition, microstepUm))} mm (its Maximum Position)");
+            }
+        }
+    }
+
+    private async Task ExecuteVectorAsync(PreparedDrawing drawing, int first, CancellationToken token)
+    {
+        var schedule = drawing.Schedule;
+        var timing = schedule.Timing;
+        lock (_lock)
+        {
+            _moveIndex = first;
+            _moveRow = first;
+        }
+
+        // The start the estimate models: acceleration and the travel speed on both axes.
+        _engravingStart = TimeProvider.GetTimestamp();
+        _engravingStarted = true;
+        foreach (var axis in new[] { Stage.X, Stage.Y })
+        {
+            await axis.SetAccelerationAsync(_accelerationData, token);
+            await axis.SetTargetSpeedAsync(_travelSpeedData, token);
+        }
+
+        (_xSpeedData, _ySpeedData) = (_travelSpeedData, _travelSpeedData);
+        var travelWrite = double.NaN;
+        for (var k = first; k < schedule.Strokes.Count; k++)
+        {
+            var stroke = schedule.Strokes[k];
+            lock (_lock)
+            {
+                _moveIndex = k;
+                _moveRow = k;
+            }
+
+            if (k == first)
+            {
+                // Reaching the first run-up (the plan's or the resume point's) is not part of the estimate.
+                var positioning = TimeProvider.GetTimestamp();
+                await MoveToAsync(stroke.RunUpStart.X, stroke.RunUpStart.Y, _travelSpeedData, token);
+                _notEngraving += TimeProvider.GetElapsedTime(positioning);
+            }
+            else
+            {
+                await DelayUntilAsync(travelWrite, token);
+                if (IsPauseRequested)
+                {
+                    // Pauses come between strokes, with the laser off and the stage at rest.
+                    await PauseIfAskedAsync(token);
+                }
+
+                await MoveToAsync(stroke.RunUpStart.X, stroke.RunUpStart.Y, _travelSpeedData, token);
+            }
+
+            await DelayUntilAsync(RunSeconds + VectorReactionSeconds, token);
+            travelWrite = await VectorStrokeAsync(stroke, timing, token);
+            StrokeDone(schedule, stroke);
+        }
+
+        await DelayUntilAsync(travelWrite, token);
+        lock (_lock)
+        {
+            _moveIndex = schedule.Strokes.Count;
+            _moveRow = schedule.Strokes.Count;
+        }
+    }
+
+    /// <summary>One stroke by time; returns when (run seconds) the travel to the next stroke may be written.</summary>
+    private async Task<double> VectorStrokeAsync(VectorStroke stroke, TimedSwitching timing, CancellationToken token)
+    {
+        var write = RunSeconds;
+        var origin = write + timing.StageCommandSeconds;
+        var onWrite = origin + stroke.LaserOnSeconds - timing.OnLeadSeconds;
+        var offWrite = origin + stroke.LaserOffSeconds - timing.OffLeadSeconds;
+        var events = new List<(double Write, int Order, Func<Task> Send)>();
+        var due = new List<(Task Reply, double Due, string What)>();
+        var stall = (2 * timing.StageJitterSeconds) + (Options.StallMarginMs / 1000);
+        Task<long>? poll = null;
+        IStageAxis? polled = null;
+        Task? off = null;
+        foreach (var command in stroke.Commands)
+        {
+            var axis = command.Axis == VectorAxis.X ? Stage.X : Stage.Y;
+            var name = command.Axis.ToString();
+            var arrival = origin + command.AtSeconds;
+            events.Add((arrival - timing.StageCommandSeconds, 0, () =>
+            {
+                switch (command.Kind)
+                {
+                    case AxisCommandKind.Speed:
+                        var speed = Settled(axis.StreamSpeedAsync(command.SpeedData, token));
+                        due.Add((speed, arrival + timing.StageReplySeconds + stall, $"a speed change of its stroke ({name})"));
+                        Watch(speed, arrival + timing.StageReplySeconds, $"a speed change of its stroke ({name})");
+                        break;
+                    case AxisCommandKind.Stop:
+                        Watch(Settled(axis.StreamStopAsync(token)), arrival + (timing.BurnSpeed / timing.Acceleration) + timing.StageReplySeconds, $"the stop of its stroke ({name})");
+                        break;
+                    default:
+                        poll = axis.GetPositionAsync(token);
+                        polled = axis;
+                        break;
+                }
+
+                return Task.CompletedTask;
+            }));
+        }
+
+        events.Add((onWrite, 1, async () =>
+        {
+            await ConfirmStrokeAsync(poll, polled, stroke, timing, onWrite, token);
+            await DelayUntilAsync(onWrite, token);
+            var on = await SendSwitchAsync(on: true);
+            _lastGateWrite = onWrite;
+            WatchGate(on, onWrite + timing.OnRoundTripSeconds, "the laser gate did not acknowledge the switch-on");
+        }));
+
+        var period = GateKeepAlive.PeriodFor(_profile.Gate.WatchdogMs, Options.KeepAliveFraction).TotalSeconds;
+        for (var ping = onWrite + period; period > 0 && ping + timing.KeepAliveRoundTripSeconds + (2 * timing.GateJitterSeconds) + 0.001 < offWrite; ping += period)
+        {
+            var at = ping;
+            events.Add((at, 2, () =>
+            {
+                _lastGateWrite = at;
+                WatchGate(Gate.KeepAliveAsync(CancellationToken.None), at + timing.KeepAliveRoundTripSeconds, "the laser gate did not answer the keepalive");
+                return Task.CompletedTask;
+            }));
+        }
+
+        events.Add((offWrite, 3, async () =>
+        {
+            off = await SendSwitchAsync(on: false);
+            _lastGateWrite = offWrite;
+            WatchGate(off, offWrite + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off");
+        }));
+
+        foreach (var (at, _, send) in events.OrderBy(e => e.Write).ThenBy(e => e.Order))
+        {
+            await DelayUntilAsync(at, token);
+            ThrowIfAborted();
+
+            // Every reply that is due is looked at before each command: a stage that stops answering (or acting) is
+            // caught within a slot of its reply's deadline, on the stroke's own path, not by a watcher's timer.
+            CheckDue(due);
+            await send();
+        }
+
+        // The travel leaves once the axes rest and the switch-off is acknowledged.
+        var travel = write + stroke.NextArrivalSeconds;
+        if (!await CompletesByAsync(off!, travel, token) || !off!.IsCompletedSuccessfully)
+        {
+            throw Fault("the laser gate had not acknowledged the switch-off when the stage was to travel");
+        }
+
+        MarkLaserOff();
+        lock (_lock)
+        {
+            _x = stroke.RestEnd.X;
+            _y = stroke.RestEnd.Y;
+        }
+
+        return travel;
+    }
+
+    private void CheckDue(List<(Task Reply, double Due, string What)> due)
+    {
+        var now = RunSeconds;
+        for (var i = due.Count - 1; i >= 0; i--)
+        {
+            var (reply, at, what) = due[i];
+            if (reply.IsCompletedSuccessfully)
+            {
+                due.RemoveAt(i);
+            }
+            else if (reply.IsFaulted && reply.Exception?.InnerException is DeviceException refused)
+            {
+                throw Fault(refused.Message);
+            }
+            else if (at < now)
+            {
+                throw Fault($"the stage did not report {what} within {Options.StallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)");
+            }
+        }
+    }
+
+    /// <summary>Before the switch-on: the position query shows the stroke's axis where the model has it, give or take both latencies.</summary>
+    private async Task ConfirmStrokeAsync(Task<long>? poll, IStageAxis? axis, VectorStroke stroke, TimedSwitching timing, double onWrite, CancellationToken token)
+    {
+        var name = axis == Stage.Y ? "Y" : "X";
+        if (poll is null || !await CompletesByAsync(poll, onWrite, token))
+        {
+            throw Fault($"the {name} axis did not answer the position query before the laser was to come on");
+        }
+
+        long position;
+        try
+        {
+            position = await poll;
+        }
+        catch (DeviceException ex)
+        {
+            throw Fault($"the {name} axis did not answer the position query before the laser was to come on: {ex.Message}");
+        }
+
+        var start = name == "X" ? stroke.RunUpStart.X : stroke.RunUpStart.Y;
+        var tolerance = Math.Ceiling(timing.BurnSpeed * 4 * timing.StageJitterSeconds) + 2;
+        var direction = Math.Sign(stroke.QueryExpected - start);
+        var moved = (position - start) * direction;
+        if (Math.Abs(position - stroke.QueryExpected) > tolerance || moved < 1)
+        {
+            throw Fault($"the {name} axis reported {position} microsteps just after starting its stroke, not {stroke.QueryExpected} ± {tolerance}: it is not moving as planned, so the laser stays off");
+        }
+    }
+
+    private void StrokeDone(VectorSchedule schedule, VectorStroke stroke)
+    {
+        RunProgress progress;
+        lock (_lock)
+        {
+            _rowsDone++;
+            if (IsLastOfPath(schedule, stroke.Index))
+            {
+                _runsDone++;
+            }
+
+            _moveIndex = stroke.Index + 1;
+            _progress = Snapshot();
+            progress = _progress;
+        }
+
+        var points = stroke.Path.Points;
+        for (var i = 1; i < points.Count; i++)
+        {
+            MoveCompleted?.Invoke(this, new MoveCompletedEventArgs(new Move(MoveKind.Burn, points[i - 1].X, points[i - 1].Y, points[i].X, points[i].Y, stroke.Index), stroke.Index));
+        }
+
+        ProgressChanged?.Invoke(this, progress);
+    }
+
+    /// <summary>
+    /// A stroke's command settled: acknowledged, or counted as replaced when the stroke's stop has reported its end
+    /// (a lost reply to a speed change the axis has carried out, as its later replies show).
+    /// </summary>
+    private static async Task Settled<T>(Task<T> reply)
+    {
+        try
+        {
+            await reply;
+        }
+        catch (ZaberInterruptedException)
+        {
+            // Only the stop at the stroke's end replaces earlier commands (each speed change waits for its own reply).
+        }
+    }
+}

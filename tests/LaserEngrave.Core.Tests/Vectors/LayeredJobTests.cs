@@ -1,0 +1,102 @@
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Vectors;
+
+namespace LaserEngrave.Core.Tests.Vectors;
+
+/// <summary>Jobs of layers: the job file, each layer's own settings, a drawing's layer placed where it is in the whole drawing.</summary>
+public sealed class LayeredJobTests : IDisposable
+{
+    private readonly string folder = Path.Combine(Path.GetTempPath(), $"le-layers-{Guid.NewGuid():N}");
+
+    public LayeredJobTests() => Directory.CreateDirectory(folder);
+
+    private static string Plate => Path.Combine(Path.GetDirectoryName(TestDrawings.Folder)!, "jobs", "plate.json");
+
+    [Fact]
+    public void Load_PlateJob_LayersInOrderWithTheirOwnSettingsAndSourcesFromTheFilesFolder()
+    {
+        var layers = JobFile.Load(Plate);
+
+        Assert.Equal(["marks", "logo", "cut"], layers.Select(l => l.Name));
+        Assert.Equal([LayerMode.Outline, LayerMode.Raster, LayerMode.Outline], layers.Select(l => l.Mode));
+        Assert.Equal(TestDrawings.File("layers.svg"), layers[0].Source);
+        Assert.Equal(0.5, layers[0].SpeedMmPerS);
+        Assert.Equal(500, layers[0].FrequencyHz);
+        Assert.Equal(2, layers[2].Passes);
+        Assert.Equal(new OriginMm(24, 22), layers[1].Origin);
+    }
+
+    [Fact]
+    public void Prepare_PlateJob_EachLayerPlannedWithItsProcessAndTheEstimateAddsUpThePasses()
+    {
+        var job = LayeredJob.Prepare(JobFile.Load(Plate), MachineProfile.Default);
+
+        Assert.Equal(0.5, job.Layers[0].Drawing!.Spec.Process.BurnSpeedMmPerS);
+        Assert.Equal(1, job.Layers[2].Drawing!.Spec.Process.BurnSpeedMmPerS);
+        Assert.NotNull(job.Layers[1].Image);
+        Assert.Equal(job.Layers.Sum(l => l.EstimatedSeconds), job.EstimatedSeconds, 9);
+        Assert.Equal(job.Layers.Sum(l => l.EngravingSeconds * l.Layer.Passes), job.EstimatedEngravingSeconds, 9);
+
+        // The cut's two passes: twice the engraving, with the preflight before each.
+        var cut = job.Layers[2];
+        Assert.Equal(cut.Drawing!.WholeRunSeconds(2), cut.EstimatedSeconds, 9);
+        Assert.True(cut.EstimatedSeconds > 2 * cut.EngravingSeconds);
+    }
+
+    [Fact]
+    public void Plan_OneLayerOfADrawing_OnlyItsPathsPlacedWhereTheyAreInTheWholeDrawing()
+    {
+        var whole = VectorPlanner.Plan(TestDrawings.File("layers.svg"), new VectorOptions { Origin = new OriginMm(10, 10) }, MachineProfile.Default);
+        var mark = VectorPlanner.Plan(TestDrawings.File("layers.svg"), new VectorOptions { Origin = new OriginMm(10, 10), Layer = "mark" }, MachineProfile.Default);
+
+        Assert.All(mark.Paths, p => Assert.Equal("mark", p.Layer));
+        Assert.Equal(3, mark.Paths.Count);
+        Assert.Equal(whole.Scale, mark.Scale);
+        var cross = mark.Paths.SelectMany(p => p.Points).ToHashSet();
+        var everything = whole.Paths.SelectMany(p => p.Points).ToHashSet();
+        Assert.Subset(everything, cross);
+    }
+
+    [Fact]
+    public void Plan_LayerTheDrawingDoesNotHave_OneLineNamingItsLayers()
+    {
+        var ex = Assert.Throws<DrawingException>(() => VectorPlanner.Plan(TestDrawings.File("layers.svg"), new VectorOptions { Layer = "engrave" }, MachineProfile.Default));
+
+        Assert.Contains("no path on layer \"engrave\" (its layers: cut, mark)", ex.Message, StringComparison.Ordinal);
+    }
+
+    [Theory]
+    [InlineData("""{"layers":[{"name":"a","source":"x.svg","speed":1}]}""", "layer 1: unknown field \"speed\"")]
+    [InlineData("""{"layers":[{"name":"a"}]}""", "layer 1 \"a\": \"source\" (the image or drawing file) is missing")]
+    [InlineData("""{"layers":[{"name":"a","source":"x.svg","mode":"hatch"}]}""", "mode \"hatch\" is not raster, outline, fill or both")]
+    [InlineData("""{"layers":[{"name":"a","source":"x.svg","passes":0}]}""", "passes 0 must be a whole number 1..100")]
+    [InlineData("""{"layers":[{"name":"a","source":"x.svg","originMm":[1]}]}""", "\"originMm\" must be [x, y] in mm")]
+    [InlineData("""{"layers":[]}""", "\"layers\" is empty")]
+    [InlineData("""{"jobs":[]}""", "a job file is an object with \"layers\"")]
+    public void Load_BadJobFile_OneLineNamingTheFileTheLayerAndTheField(string json, string expected)
+    {
+        var path = Path.Combine(folder, "job.json");
+        File.WriteAllText(path, json);
+
+        var ex = Assert.Throws<PlanException>(() => JobFile.Load(path));
+
+        Assert.StartsWith(path, ex.Message, StringComparison.Ordinal);
+        Assert.Contains(expected, ex.Message, StringComparison.Ordinal);
+        Assert.DoesNotContain('\n', ex.Message);
+    }
+
+    [Fact]
+    public void Prepare_RasterModeForADrawing_RefusedNamingTheLayer()
+    {
+        JobLayer[] layers = [new JobLayer { Name = "cut", Source = TestDrawings.File("layers.svg"), Mode = LayerMode.Raster }];
+
+        var ex = Assert.Throws<PlanException>(() => LayeredJob.Prepare(layers, MachineProfile.Default));
+
+        Assert.Contains("layer \"cut\"", ex.Message, StringComparison.Ordinal);
+        Assert.Contains("is a drawing: its mode is outline, fill or both", ex.Message, StringComparison.Ordinal);
+    }
+
+    public void Dispose() => Directory.Delete(folder, recursive: true);
+}
