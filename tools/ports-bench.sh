@@ -26,9 +26,18 @@ sleep 1
 echo '{ "homeSpeedData": 30000 }' > "$out/sim.json"
 dotnet "$CLI" simulator --stage-port "$out/s" --laser-port "$out/l" --sim-options "$out/sim.json" > "$out/sim.log" 2>&1 & pids+=($!)
 sleep 3
+# The host plans timed switching with the profile's latencies: measured here, through the ptys and this computer's
+# scheduling (docs/machine-profile.md), as on a real machine; the default profile describes a USB adapter instead.
+profile=(--profile "$out/profile.json")
+if [ "${MEASURE:-1}" = 1 ]; then
+  dotnet "$CLI" machine latency --stage-port "$out/sh" --laser-port "$out/lh" --profile "$out/profile.json" --write > "$out/latency.txt" 2>&1
+  grep -E "adapter|round trips" "$out/latency.txt"
+else
+  profile=()
+fi
 for j in $(seq 1 "$N"); do
   start=$(date +%s.%N)
-  dotnet "$CLI" engrave "$root/assets/qr-code.bmp" --width-mm "$W" --origin-mm 10,10 --stage-port "$out/sh" --laser-port "$out/lh" \
+  dotnet "$CLI" engrave "$root/assets/qr-code.bmp" --width-mm "$W" --origin-mm 10,10 --stage-port "$out/sh" --laser-port "$out/lh" "${profile[@]}" \
     --json --log-dir "$out/logs" > "$out/run$j.json" 2> "$out/run$j.err"
   rc=$?
   end=$(date +%s.%N)

@@ -36,6 +36,8 @@ internal sealed class LinkSession
     private double _inBusyUntil;
     private double _lastArrival = double.NegativeInfinity;
     private int _closed;
+    private volatile bool _ended;
+    private volatile string? _writeFailure;
 
     public LinkSession(ISerialLink link, SimulationClock clock, int baudRate, int bitsPerByte, LinkLatency latency, Action<string> log)
     {
@@ -56,7 +58,16 @@ internal sealed class LinkSession
             var start = Math.Max(_clock.NowSeconds + extraDelay.TotalSeconds, _outBusyUntil);
             _outBusyUntil = start + (data.Length * _secondsPerByte);
             _lastDelivery = Math.Max(_outBusyUntil + _latency.ToHostSeconds(), _lastDelivery);
-            _outgoing.Writer.TryWrite((data, _lastDelivery));
+            if (_clock.IsWallClock)
+            {
+                // Written by the pacer at its instant, in order (deliveries never go back in time), without waiting for
+                // the thread pool, which a loaded computer holds up.
+                _clock.At(_lastDelivery, () => WriteNow(data));
+            }
+            else
+            {
+                _outgoing.Writer.TryWrite((data, _lastDelivery));
+            }
         }
     }
 
@@ -89,11 +100,12 @@ internal sealed class LinkSession
         }
         finally
         {
+            _ended = true;
             _outgoing.Writer.TryComplete();
             _actions.Writer.TryComplete();
             linked.Cancel();
             await actions;
-            var writeFailure = await writer;
+            var writeFailure = await writer ?? _writeFailure;
             if (Volatile.Read(ref _closed) == 0 && !cancellationToken.IsCancellationRequested)
             {
                 _log(writeFailure ?? why);
@@ -154,7 +166,21 @@ internal sealed class LinkSession
 
                 // Actions keep their order even when a later one draws a shorter processing time.
                 lastAction = Math.Max(_inBusyUntil + _latency.ProcessingSeconds(), lastAction);
-                _actions.Writer.TryWrite((lastAction, action));
+                if (_clock.IsWallClock)
+                {
+                    // Run by the pacer at its instant, in order, as the write above.
+                    _clock.At(lastAction, () =>
+                    {
+                        if (!_ended)
+                        {
+                            action();
+                        }
+                    });
+                }
+                else
+                {
+                    _actions.Writer.TryWrite((lastAction, action));
+                }
             }
         }
     }
@@ -169,7 +195,7 @@ internal sealed class LinkSession
                 while (_actions.Reader.TryRead(out var item))
                 {
                     await _clock.DelayUntil(item.AtSeconds, cancellationToken);
-                    item.Action();
+                    _clock.RunAt(item.AtSeconds, item.Action);
                 }
             }
         }
@@ -177,6 +203,54 @@ internal sealed class LinkSession
         {
             // The session ended; what had not happened yet never will.
         }
+    }
+
+    // On the wall clock, on the pacer's thread: a port's write returns at once (or fails).
+    private void WriteNow(byte[] data)
+    {
+        if (_ended || _writeFailure is not null)
+        {
+            return;
+        }
+
+        try
+        {
+            var write = _link.WriteAsync(data, _stop.Token);
+            if (!write.IsCompletedSuccessfully)
+            {
+                _ = CompleteWriteAsync(write);
+            }
+        }
+        catch (OperationCanceledException)
+        {
+            // The session is ending.
+        }
+        catch (IOException ex)
+        {
+            FailWrite(ex);
+        }
+    }
+
+    private async Task CompleteWriteAsync(ValueTask write)
+    {
+        try
+        {
+            await write;
+        }
+        catch (OperationCanceledException)
+        {
+            // The session is ending.
+        }
+        catch (IOException ex)
+        {
+            FailWrite(ex);
+        }
+    }
+
+    private void FailWrite(IOException ex)
+    {
+        _writeFailure ??= $"link failed: {ex.Message}";
+        _ = _link.DisposeAsync().AsTask();
     }
 
     // Returns why writing failed, or null when it simply ended.
