@@ -1,3 +1,4 @@
+using System.Globalization;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Scheduling;
@@ -232,6 +233,11 @@ public sealed partial class RunExecutor
             var (off, offWritten) = await SendSwitchAsync(on: false);
             _lastGateWrite = offWrite;
             WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off");
+            if (offWritten - offWrite > timing.EdgeGuardSeconds)
+            {
+                // The laser stayed on past its time: its last pulses may have crossed the exit edge onto the white.
+                throw Fault(string.Create(CultureInfo.InvariantCulture, $"this computer sent the switch-off {(offWritten - offWrite) * 1000:0.0} ms late, more than the {timing.EdgeGuardSeconds * 1000:0.00} ms the edge guard allows, so pulses may have landed past the edge (a loaded computer: free it of other work, or measure its latency with `laserengrave machine latency` so that the plan allows for it)"));
+            }
 
             // A run counts as burned once its switch-on is acknowledged (a silent gate burns nothing).
             CompleteUpTo(segment, burnIndex, on);
