@@ -221,7 +221,7 @@ internal sealed class LinkSession
                 _ = CompleteWriteAsync(write);
             }
         }
-        catch (OperationCanceledException)
+        catch (Exception ex) when (ex is OperationCanceledException or ObjectDisposedException)
         {
             // The session is ending.
         }
