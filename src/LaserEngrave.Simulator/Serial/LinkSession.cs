@@ -37,7 +37,6 @@ internal sealed class LinkSession
     private double _lastArrival = double.NegativeInfinity;
     private int _closed;
     private volatile bool _ended;
-    private volatile string? _writeFailure;
 
     public LinkSession(ISerialLink link, SimulationClock clock, int baudRate, int bitsPerByte, LinkLatency latency, Action<string> log)
     {
@@ -60,9 +59,11 @@ internal sealed class LinkSession
             _lastDelivery = Math.Max(_outBusyUntil + _latency.ToHostSeconds(), _lastDelivery);
             if (_clock.IsWallClock)
             {
-                // Written by the pacer at its instant, in order (deliveries never go back in time), without waiting for
-                // the thread pool, which a loaded computer holds up.
-                _clock.At(_lastDelivery, () => WriteNow(data));
+                // Handed to the writer by the pacer at its instant, in order (deliveries never go back in time): the
+                // system's timers would hand it a few milliseconds late. The write itself stays off the pacer's thread,
+                // which every simulator of the process shares, since a port's write can block.
+                var delivery = _lastDelivery;
+                _clock.At(delivery, () => _outgoing.Writer.TryWrite((data, delivery)));
             }
             else
             {
@@ -105,7 +106,7 @@ internal sealed class LinkSession
             _actions.Writer.TryComplete();
             linked.Cancel();
             await actions;
-            var writeFailure = await writer ?? _writeFailure;
+            var writeFailure = await writer;
             if (Volatile.Read(ref _closed) == 0 && !cancellationToken.IsCancellationRequested)
             {
                 _log(writeFailure ?? why);
@@ -203,54 +204,6 @@ internal sealed class LinkSession
         {
             // The session ended; what had not happened yet never will.
         }
-    }
-
-    // On the wall clock, on the pacer's thread: a port's write returns at once (or fails).
-    private void WriteNow(byte[] data)
-    {
-        if (_ended || _writeFailure is not null)
-        {
-            return;
-        }
-
-        try
-        {
-            var write = _link.WriteAsync(data, _stop.Token);
-            if (!write.IsCompletedSuccessfully)
-            {
-                _ = CompleteWriteAsync(write);
-            }
-        }
-        catch (Exception ex) when (ex is OperationCanceledException or ObjectDisposedException)
-        {
-            // The session is ending.
-        }
-        catch (IOException ex)
-        {
-            FailWrite(ex);
-        }
-    }
-
-    private async Task CompleteWriteAsync(ValueTask write)
-    {
-        try
-        {
-            await write;
-        }
-        catch (OperationCanceledException)
-        {
-            // The session is ending.
-        }
-        catch (IOException ex)
-        {
-            FailWrite(ex);
-        }
-    }
-
-    private void FailWrite(IOException ex)
-    {
-        _writeFailure ??= $"link failed: {ex.Message}";
-        _ = _link.DisposeAsync().AsTask();
     }
 
     // Returns why writing failed, or null when it simply ended.

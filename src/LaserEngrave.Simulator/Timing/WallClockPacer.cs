@@ -11,8 +11,8 @@ namespace LaserEngrave.Simulator.Timing;
 /// due times in the coarse tick (4 ms on a Linux kernel at 250 Hz; 15.6 ms on Windows) and hands each callback to the
 /// thread pool, so on Linux a simulated reply left 2-3 ms late on every wait, twice per exchange, even on an idle
 /// computer, and the host's timed switching (which plans with the profile's latencies) failed its first stroke. The
-/// callbacks run on this thread, so they must be short and never block: the simulator's are (a device acting, a reply
-/// written to a port).
+/// callbacks run on this thread, which every simulator of the process shares, so they must be short and never block: the
+/// simulator's are (a device acting, a reply handed to its link's writer, which writes it to the port on its own).
 /// </remarks>
 internal sealed class WallClockPacer
 {
