@@ -3,6 +3,9 @@
 # prints one line per job: exit code, outcome, the error if any, wall time.
 #   tools/ports-bench.sh [N] [WIDTH_MM]
 # Environment: CLI (laserengrave.dll to run; default: this tree's Release build), LOOPS=1 (two CPU-busy loops meanwhile),
+# NICE=-10 (socat and the simulator at that niceness: they stand in for a USB adapter and the devices' firmware, which
+# never wait for the CPU; needs root or CAP_SYS_NICE; the host keeps the normal priority), MEASURE=0 (the default profile
+# instead of one measured through the ptys first),
 # VERBOSE=1 (socat -x -v: every transfer with its time in OUT/socat-*.log, to see which process held a reply),
 # OUT (work folder; default a fresh one under /tmp).
 # Build first: dotnet build -c Release src/LaserEngrave.Cli
@@ -20,15 +23,25 @@ if [ "${LOOPS:-0}" = 1 ]; then
   ( while :; do :; done ) & pids+=($!)
 fi
 verbose=(); [ "${VERBOSE:-0}" = 1 ] && verbose=(-x -v)
-socat "${verbose[@]}" pty,raw,echo=0,link="$out/s" pty,raw,echo=0,link="$out/sh" 2>"$out/socat-s.log" & pids+=($!)
-socat "${verbose[@]}" pty,raw,echo=0,link="$out/l" pty,raw,echo=0,link="$out/lh" 2>"$out/socat-l.log" & pids+=($!)
+hw=(); [ -n "${NICE:-}" ] && hw=(nice -n "$NICE")
+"${hw[@]}" socat "${verbose[@]}" pty,raw,echo=0,link="$out/s" pty,raw,echo=0,link="$out/sh" 2>"$out/socat-s.log" & pids+=($!)
+"${hw[@]}" socat "${verbose[@]}" pty,raw,echo=0,link="$out/l" pty,raw,echo=0,link="$out/lh" 2>"$out/socat-l.log" & pids+=($!)
 sleep 1
 echo '{ "homeSpeedData": 30000 }' > "$out/sim.json"
-dotnet "$CLI" simulator --stage-port "$out/s" --laser-port "$out/l" --sim-options "$out/sim.json" > "$out/sim.log" 2>&1 & pids+=($!)
+"${hw[@]}" dotnet "$CLI" simulator --stage-port "$out/s" --laser-port "$out/l" --sim-options "$out/sim.json" > "$out/sim.log" 2>&1 & pids+=($!)
 sleep 3
+# The host plans timed switching with the profile's latencies: measured here, through the ptys and this computer's
+# scheduling (docs/machine-profile.md), as on a real machine; the default profile describes a USB adapter instead.
+profile=(--profile "$out/profile.json")
+if [ "${MEASURE:-1}" = 1 ]; then
+  dotnet "$CLI" machine latency --stage-port "$out/sh" --laser-port "$out/lh" --profile "$out/profile.json" --write > "$out/latency.txt" 2>&1
+  grep -E "adapter|round trips" "$out/latency.txt"
+else
+  profile=()
+fi
 for j in $(seq 1 "$N"); do
   start=$(date +%s.%N)
-  dotnet "$CLI" engrave "$root/assets/qr-code.bmp" --width-mm "$W" --origin-mm 10,10 --stage-port "$out/sh" --laser-port "$out/lh" \
+  dotnet "$CLI" engrave "$root/assets/qr-code.bmp" --width-mm "$W" --origin-mm 10,10 --stage-port "$out/sh" --laser-port "$out/lh" "${profile[@]}" \
     --json --log-dir "$out/logs" > "$out/run$j.json" 2> "$out/run$j.err"
   rc=$?
   end=$(date +%s.%N)

@@ -70,6 +70,9 @@ public static class AppHost
         app.MapRazorComponents<Components.App>().AddInteractiveServerRenderMode();
         ApiEndpoints.Map(app);
         app.Lifetime.ApplicationStopping.Register(() => Shutdown(app.Services));
+
+        // The run log's JSON writer is built in the background, so the first log (an abort's at exit too) does not wait for it.
+        app.Lifetime.ApplicationStarted.Register(() => _ = Task.Run(Core.Logging.RunRecordJson.Prepare));
         return app;
     }
 
@@ -134,7 +137,12 @@ public static class AppHost
     }
 
     /// <summary>How long the exit waits for an aborted run to write its log before the ports are closed regardless.</summary>
-    internal static readonly TimeSpan RunEndWait = TimeSpan.FromMilliseconds(1000);
+    /// <remarks>
+    /// The wait ends as soon as the run has ended, so only a stuck run makes it last. An abort takes milliseconds, but on a
+    /// loaded computer the laser-off sequence and the log (the first JSON the process writes, if no earlier run wrote one)
+    /// took over a second, and with a one-second bound the app exited without the log (a SIGTERM test beside busy loops).
+    /// </remarks>
+    internal static readonly TimeSpan RunEndWait = TimeSpan.FromSeconds(10);
 
     /// <summary>On exit the laser goes off and the ports close, whatever was running; an aborted run writes its log first.</summary>
     private static void Shutdown(IServiceProvider services)

@@ -16,5 +16,13 @@ internal static class CliJson
         NumberHandling = JsonNumberHandling.AllowNamedFloatingPointLiterals,
     };
 
+    /// <summary>Builds the metadata for <paramref name="type"/> now (on another thread while a run goes on), so that writing it later does not wait for it.</summary>
+    public static void Prepare(Type type)
+    {
+        // As the first Serialize would: the default (reflection) resolver, and the options frozen.
+        Options.MakeReadOnly(populateMissingResolver: true);
+        _ = Options.GetTypeInfo(type);
+    }
+
     public static void Write(TextWriter output, object value) => output.WriteLine(JsonSerializer.Serialize(value, value.GetType(), Options));
 }

@@ -139,11 +139,16 @@ public sealed class MotionTimeline
         return new StrokeTimes(speedArrival, arrival, XFree);
     }
 
-    /// <summary>The last stroke started <paramref name="seconds"/> later than planned (its commands left late): it ends that much later.</summary>
-    public void Delay(double seconds)
+    /// <summary>The last stroke (or, with <paramref name="travel"/>, travel) started <paramref name="seconds"/> later than planned (its commands left late): it ends that much later.</summary>
+    public void Delay(double seconds, bool travel = false)
     {
         XFree += seconds;
         WireFree += seconds;
+        if (travel)
+        {
+            YFree += seconds;
+        }
+
         if (LastOff is { } off)
         {
             LastOff = off + seconds;

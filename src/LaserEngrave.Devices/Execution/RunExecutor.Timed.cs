@@ -1,3 +1,4 @@
+using System.Globalization;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Abstractions;
@@ -31,6 +32,14 @@ public sealed partial class RunExecutor
     private double? _faultOffWrite;
     private bool? _stopMatchesMotion;
     private double _gateAliveAt = double.NegativeInfinity;
+
+    // How late the host may write a timed command before the times after it are moved (below that: the clock's rounding).
+    private const double LateSeconds = 0.0001;
+
+    // How late the host has written the current travel's commands so far (a loaded computer on the wall clock).
+    private double _travelLate;
+
+    private double TravelLate => _travelLate > LateSeconds ? _travelLate : 0;
 
     private double RunSeconds => TimeProvider.GetElapsedTime(_engravingStart).TotalSeconds;
 
@@ -185,7 +194,7 @@ public sealed partial class RunExecutor
         {
             await DelayUntilAsync(speedArrival - timing.StageCommandSeconds, token);
             speedWritten = RunSeconds;
-            Watch(Stage.X.SetTargetSpeedAsync(_burnSpeedData, token), speedArrival + timing.StageReplySeconds, "Set Target Speed (X)");
+            Watch(Stage.X.SetTargetSpeedAsync(_burnSpeedData, token), Sent(speedArrival, speedWritten, timing) + timing.StageReplySeconds, "Set Target Speed (X)");
             _xSpeedData = _burnSpeedData;
         }
 
@@ -194,7 +203,7 @@ public sealed partial class RunExecutor
 
         // A host late to write (a loaded machine on the wall clock) moves the whole stroke, and everything after it, later.
         var arrival = Math.Max(RunSeconds + timing.StageCommandSeconds, speedWritten + timing.StageCommandSeconds + timing.FrameSeconds);
-        if (arrival > times.Arrival + 0.0001)
+        if (arrival > times.Arrival + LateSeconds)
         {
             timeline.Delay(arrival - times.Arrival);
             times = times with { Arrival = arrival, End = times.End + (arrival - times.Arrival) };
@@ -239,14 +248,14 @@ public sealed partial class RunExecutor
 
             CompleteUpTo(segment, burnIndex - 1, null);
             await DelayUntilAsync(onWrite, token);
-            var on = await SendSwitchAsync(on: true);
+            var (on, onWritten) = await SendSwitchAsync(on: true);
             lock (_lock)
             {
                 _burning = (burn, burnIndex, on);
             }
 
             _lastGateWrite = onWrite;
-            WatchGate(on, onWrite + timing.OnRoundTripSeconds, "the laser gate did not acknowledge the switch-on");
+            WatchGate(on, Later(onWrite, onWritten) + timing.OnRoundTripSeconds, "the laser gate did not acknowledge the switch-on");
             RunProgress progress;
             lock (_lock)
             {
@@ -260,14 +269,19 @@ public sealed partial class RunExecutor
 
             await KeepAlivesUntilAsync(offWrite, timing, token);
             await DelayUntilAsync(offWrite, token);
-            var off = await SendSwitchAsync(on: false);
+            var (off, offWritten) = await SendSwitchAsync(on: false);
             lock (_lock)
             {
                 _burning = null;
             }
 
             _lastGateWrite = offWrite;
-            WatchGate(off, offWrite + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off");
+            WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off");
+            if (offWritten - offWrite > timing.EdgeGuardSeconds)
+            {
+                // The laser stayed on past its time: its last pulses may have crossed the exit edge onto the white.
+                throw Fault(string.Create(CultureInfo.InvariantCulture, $"this computer sent the switch-off {(offWritten - offWrite) * 1000:0.0} ms late, more than the {timing.EdgeGuardSeconds * 1000:0.00} ms the edge guard allows, so pulses may have landed past the edge (a loaded computer: free it of other work, or measure its latency with `laserengrave machine latency` so that the plan allows for it)"));
+            }
 
             // A run counts as burned once its switch-on is acknowledged (a silent gate burns nothing).
             CompleteUpTo(segment, burnIndex, on);
@@ -296,7 +310,7 @@ public sealed partial class RunExecutor
         {
             sends.Add((yArrival - timing.StageCommandSeconds, () =>
             {
-                Watch(Arrive(Stage.Y.MoveAbsoluteAfterAsync(move.Y1, token), "Y", move.Y1, y => _y = y), times.YEnd + timing.StageReplySeconds, "the end of a travel (Y)", axis: "Y");
+                Watch(Arrive(Stage.Y.MoveAbsoluteAfterAsync(move.Y1, token), "Y", move.Y1, y => _y = y), times.YEnd + TravelLate + timing.StageReplySeconds, "the end of a travel (Y)", axis: "Y");
                 return Task.CompletedTask;
             }));
         }
@@ -305,7 +319,7 @@ public sealed partial class RunExecutor
         {
             sends.Add((speedArrival - timing.StageCommandSeconds, () =>
             {
-                Watch(Stage.X.SetTargetSpeedAsync(_travelSpeedData, token), speedArrival + timing.StageReplySeconds, "Set Target Speed (X)");
+                Watch(Stage.X.SetTargetSpeedAsync(_travelSpeedData, token), speedArrival + TravelLate + timing.StageReplySeconds, "Set Target Speed (X)");
                 _xSpeedData = _travelSpeedData;
                 return Task.CompletedTask;
             }));
@@ -315,7 +329,7 @@ public sealed partial class RunExecutor
         {
             sends.Add((xArrival - timing.StageCommandSeconds, () =>
             {
-                Watch(Arrive(Stage.X.MoveAbsoluteAfterAsync(move.X1, token), "X", move.X1, x => _x = x), times.XEnd + timing.StageReplySeconds, "the end of a travel (X)", axis: "X");
+                Watch(Arrive(Stage.X.MoveAbsoluteAfterAsync(move.X1, token), "X", move.X1, x => _x = x), times.XEnd + TravelLate + timing.StageReplySeconds, "the end of a travel (X)", axis: "X");
                 return Task.CompletedTask;
             }));
         }
@@ -324,8 +338,17 @@ public sealed partial class RunExecutor
         {
             await DelayUntilAsync(write, token);
             ThrowIfAborted();
+            _travelLate = Math.Max(_travelLate, RunSeconds - write);
             await send();
         }
+
+        if (_travelLate > LateSeconds)
+        {
+            // A host late to write (a loaded computer) moves this travel's ends, and everything after them, later.
+            timeline.Delay(_travelLate, travel: true);
+        }
+
+        _travelLate = 0;
 
         lock (_lock)
         {
@@ -469,19 +492,21 @@ public sealed partial class RunExecutor
 
     /// <summary>
     /// Sends a timed switching under the laser lock (a switch-on checks for an abort first) and returns its acknowledgement
-    /// without waiting for it: the lock is free again at once, so an abort's or a fault's switch-off never waits behind it.
+    /// without waiting for it, and when it was written: the lock is free again at once, so an abort's or a fault's
+    /// switch-off never waits behind it.
     /// </summary>
-    private async Task<Task> SendSwitchAsync(bool on)
+    private async Task<(Task Acknowledged, double WrittenSeconds)> SendSwitchAsync(bool on)
     {
         await _laserLock.WaitAsync();
         try
         {
+            var written = RunSeconds;
             if (!on)
             {
                 // Counted from effect to effect: the switch-off takes effect its lead after it is sent, as the switch-on did.
                 var off = Gate.OffAsync(CancellationToken.None);
                 MarkLaserOff(_timing!.OffLeadSeconds);
-                return off;
+                return (off, written);
             }
 
             ThrowIfAborted();
@@ -497,13 +522,21 @@ public sealed partial class RunExecutor
                 _laserOnSince = TimeProvider.GetTimestamp() + (long)(_timing!.OnLeadSeconds * TimeProvider.TimestampFrequency);
             }
 
-            return ack;
+            return (ack, written);
         }
         finally
         {
             _laserLock.Release();
         }
     }
+
+    /// <summary>When a stage command planned to arrive at <paramref name="plannedArrival"/> arrives, written at <paramref name="writtenSeconds"/>.</summary>
+    /// <remarks>A host late to write (a loaded computer) is not the device's delay: its reply is expected that much later.</remarks>
+    private static double Sent(double plannedArrival, double writtenSeconds, TimedSwitching timing) =>
+        Later(plannedArrival, writtenSeconds + timing.StageCommandSeconds);
+
+    // The actual time when it is later than planned by more than the clock's rounding, else the planned one.
+    private static double Later(double planned, double actual) => actual > planned + LateSeconds ? actual : planned;
 
     private void WatchGate(Task reply, double expectedSeconds, string what)
     {

@@ -189,9 +189,9 @@ public sealed partial class RunExecutor
         {
             await ConfirmStrokeAsync(poll, polled, stroke, timing, onWrite, token);
             await DelayUntilAsync(onWrite, token);
-            var on = await SendSwitchAsync(on: true);
+            var (on, onWritten) = await SendSwitchAsync(on: true);
             _lastGateWrite = onWrite;
-            WatchGate(on, onWrite + timing.OnRoundTripSeconds, "the laser gate did not acknowledge the switch-on");
+            WatchGate(on, Later(onWrite, onWritten) + timing.OnRoundTripSeconds, "the laser gate did not acknowledge the switch-on");
         }));
 
         var period = GateKeepAlive.PeriodFor(_profile.Gate.WatchdogMs, Options.KeepAliveFraction).TotalSeconds;
@@ -208,9 +208,9 @@ public sealed partial class RunExecutor
 
         events.Add((offWrite, 3, async () =>
         {
-            off = await SendSwitchAsync(on: false);
+            (off, var offWritten) = await SendSwitchAsync(on: false);
             _lastGateWrite = offWrite;
-            WatchGate(off, offWrite + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off");
+            WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off");
         }));
 
         foreach (var (at, _, send) in events.OrderBy(e => e.Write).ThenBy(e => e.Order))

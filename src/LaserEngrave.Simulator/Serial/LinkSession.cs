@@ -36,6 +36,7 @@ internal sealed class LinkSession
     private double _inBusyUntil;
     private double _lastArrival = double.NegativeInfinity;
     private int _closed;
+    private volatile bool _ended;
 
     public LinkSession(ISerialLink link, SimulationClock clock, int baudRate, int bitsPerByte, LinkLatency latency, Action<string> log)
     {
@@ -56,7 +57,18 @@ internal sealed class LinkSession
             var start = Math.Max(_clock.NowSeconds + extraDelay.TotalSeconds, _outBusyUntil);
             _outBusyUntil = start + (data.Length * _secondsPerByte);
             _lastDelivery = Math.Max(_outBusyUntil + _latency.ToHostSeconds(), _lastDelivery);
-            _outgoing.Writer.TryWrite((data, _lastDelivery));
+            if (_clock.IsWallClock)
+            {
+                // Handed to the writer by the pacer at its instant, in order (deliveries never go back in time): the
+                // system's timers would hand it a few milliseconds late. The write itself stays off the pacer's thread,
+                // which every simulator of the process shares, since a port's write can block.
+                var delivery = _lastDelivery;
+                _clock.At(delivery, () => _outgoing.Writer.TryWrite((data, delivery)));
+            }
+            else
+            {
+                _outgoing.Writer.TryWrite((data, _lastDelivery));
+            }
         }
     }
 
@@ -89,6 +101,7 @@ internal sealed class LinkSession
         }
         finally
         {
+            _ended = true;
             _outgoing.Writer.TryComplete();
             _actions.Writer.TryComplete();
             linked.Cancel();
@@ -154,7 +167,21 @@ internal sealed class LinkSession
 
                 // Actions keep their order even when a later one draws a shorter processing time.
                 lastAction = Math.Max(_inBusyUntil + _latency.ProcessingSeconds(), lastAction);
-                _actions.Writer.TryWrite((lastAction, action));
+                if (_clock.IsWallClock)
+                {
+                    // Run by the pacer at its instant, in order, as the write above.
+                    _clock.At(lastAction, () =>
+                    {
+                        if (!_ended)
+                        {
+                            action();
+                        }
+                    });
+                }
+                else
+                {
+                    _actions.Writer.TryWrite((lastAction, action));
+                }
             }
         }
     }
@@ -169,7 +196,7 @@ internal sealed class LinkSession
                 while (_actions.Reader.TryRead(out var item))
                 {
                     await _clock.DelayUntil(item.AtSeconds, cancellationToken);
-                    item.Action();
+                    _clock.RunAt(item.AtSeconds, item.Action);
                 }
             }
         }

@@ -132,4 +132,24 @@ public class TimedSwitchingTests
         Assert.True(answered <= switchOn, $"{answered} > {switchOn}");
         Assert.Equal(entry - (t.BurnSpeed * (plan.TimeAt(entry) - bump.QueryArrival)), bump.ExpectedOffset, 6);
     }
+
+    [Fact]
+    public void Timeline_ATravelLeftLate_MovesBothAxesEndsAndTheNextStrokeLater()
+    {
+        var t = Defaults;
+        var onTime = new MotionTimeline(t, 0, t.TravelSpeedData);
+        var late = new MotionTimeline(t, 0, t.TravelSpeedData);
+        onTime.Stroke(t.Stroke(20_000, []), 0.03, 1.5);
+        late.Stroke(t.Stroke(20_000, []), 0.03, 1.5);
+        onTime.Travel(-20_000, 5_000);
+        late.Travel(-20_000, 5_000);
+
+        late.Delay(0.040, travel: true);
+
+        Assert.Equal(onTime.XFree + 0.040, late.XFree, 9);
+        Assert.Equal(onTime.YFree + 0.040, late.YFree, 9);
+        var next = late.Stroke(t.Stroke(20_000, []), 0.03, 1.5);
+        var planned = onTime.Stroke(t.Stroke(20_000, []), 0.03, 1.5);
+        Assert.True(next.Arrival >= planned.Arrival + 0.040 - 1e-9, "the next stroke waits for the late travel's ends");
+    }
 }

@@ -1,0 +1,126 @@
+using System.Diagnostics;
+
+namespace LaserEngrave.Simulator.Timing;
+
+/// <summary>
+/// Runs the wall-clock simulator's events at their instants to a fraction of a millisecond: one thread for the process
+/// that sleeps until just before the next instant and waits the rest out on the high-resolution timestamp.
+/// </summary>
+/// <remarks>
+/// The system's timers are too coarse for a device model whose replies are planned to the millisecond: .NET counts their
+/// due times in the coarse tick (4 ms on a Linux kernel at 250 Hz; 15.6 ms on Windows) and hands each callback to the
+/// thread pool, so on Linux a simulated reply left 2-3 ms late on every wait, twice per exchange, even on an idle
+/// computer, and the host's timed switching (which plans with the profile's latencies) failed its first stroke. The
+/// callbacks run on this thread, which every simulator of the process shares, so they must be short and never block: the
+/// simulator's are (a device acting, a reply handed to its link's writer, which writes it to the port on its own).
+/// </remarks>
+internal sealed class WallClockPacer
+{
+    // Monitor.Wait sleeps to the millisecond on Linux; the last stretch is waited out on the timestamp.
+    private static readonly long SpinTicks = Stopwatch.Frequency / 500;
+
+    private readonly object _lock = new();
+    private readonly PriorityQueue<Entry, (long Due, long Sequence)> _queue = new();
+    private long _sequence;
+
+    private WallClockPacer()
+    {
+        var thread = new Thread(Run) { IsBackground = true, Name = "simulator wall-clock pacer", Priority = ThreadPriority.AboveNormal };
+        thread.Start();
+    }
+
+    /// <summary>The process' pacer.</summary>
+    public static WallClockPacer Shared { get; } = new();
+
+    /// <summary>Runs <paramref name="action"/> on the pacer's thread at <paramref name="dueTimestamp"/> (<see cref="Stopwatch"/> ticks); dispose the result to cancel it.</summary>
+    public IDisposable Schedule(long dueTimestamp, Action action)
+    {
+        var entry = new Entry(action);
+        lock (_lock)
+        {
+            _queue.Enqueue(entry, (dueTimestamp, _sequence++));
+            Monitor.Pulse(_lock);
+        }
+
+        return entry;
+    }
+
+    private void Run()
+    {
+        while (true)
+        {
+            Entry? due = null;
+            lock (_lock)
+            {
+                while (due is null)
+                {
+                    if (!_queue.TryPeek(out var head, out var at))
+                    {
+                        Monitor.Wait(_lock);
+                        continue;
+                    }
+
+                    if (head.Cancelled)
+                    {
+                        _queue.Dequeue();
+                        continue;
+                    }
+
+                    var remaining = at.Due - Stopwatch.GetTimestamp();
+                    if (remaining <= 0)
+                    {
+                        due = _queue.Dequeue();
+                    }
+                    else if (remaining > SpinTicks)
+                    {
+                        // Woken early by a new, earlier event or by the wait's end; either way look again.
+                        Monitor.Wait(_lock, TimeSpan.FromSeconds((double)(remaining - SpinTicks) / Stopwatch.Frequency));
+                    }
+                    else
+                    {
+                        Monitor.Exit(_lock);
+                        try
+                        {
+                            var until = at.Due;
+                            while (Stopwatch.GetTimestamp() < until)
+                            {
+                                Thread.SpinWait(20);
+                            }
+                        }
+                        finally
+                        {
+                            Monitor.Enter(_lock);
+                        }
+                    }
+                }
+            }
+
+            try
+            {
+                due.Run();
+            }
+            catch (Exception ex)
+            {
+                // An event's failure is its own: it must not stop the clock of every other one.
+                Trace.TraceError($"simulator wall-clock event failed: {ex}");
+            }
+        }
+    }
+
+    private sealed class Entry(Action action) : IDisposable
+    {
+        private volatile bool _cancelled;
+
+        public bool Cancelled => _cancelled;
+
+        public void Run()
+        {
+            if (!_cancelled)
+            {
+                action();
+            }
+        }
+
+        public void Dispose() => _cancelled = true;
+    }
+}
