@@ -324,6 +324,13 @@ public sealed class TimedSwitching
     /// <summary>A stroke of <paramref name="lengthMicrosteps"/> whose crossed gaps (exit and entry edges, microsteps from its start) are flown where they can be.</summary>
     public StrokePlan Stroke(long lengthMicrosteps, IReadOnlyList<(long Exit, long Entry)> gaps) => new(this, lengthMicrosteps, gaps);
 
+    /// <summary>What a speed bump held <paramref name="holdSeconds"/> gains on the burn speed, microsteps (<see cref="Fly"/>).</summary>
+    public double FlyGain(double holdSeconds)
+    {
+        var hold = Math.Max(0, holdSeconds);
+        return hold * Math.Min(Acceleration * hold, Math.Max(0, TravelSpeed - BurnSpeed));
+    }
+
     /// <summary>
     /// How a gap crossed within a stroke is flown, or null when it is too short to gain anything: the target speed goes up
     /// to the travel speed just after the exit edge and back to the burn speed in time for a position query to find the
@@ -354,7 +361,7 @@ public sealed class TimedSwitching
         {
             // Query reply in, the switch-on's lead, and room for a correction of the largest error.
             var afterQuery = (2 * j) + StageReplySeconds + ReactionSeconds + OnLeadSeconds + GateJitterSeconds + (MaxError(hold) / BurnSpeed);
-            return (BurnSpeed * ((2 * j) + hold + QueryDelay(hold) + afterQuery)) + (hold * Rise(hold));
+            return (BurnSpeed * ((2 * j) + hold + QueryDelay(hold) + afterQuery)) + FlyGain(hold);
         }
 
         // The speed-down follows the speed-up on the wire, a frame later at the soonest.
@@ -377,7 +384,7 @@ public sealed class TimedSwitching
             (low, high) = Needed(mid) <= gapMicrosteps ? (mid, high) : (low, mid);
         }
 
-        return new FlyingGap(2 * j, low, QueryDelay(low), low * Rise(low), MaxError(low));
+        return new FlyingGap(2 * j, low, QueryDelay(low), FlyGain(low), MaxError(low));
     }
 
     private static string Format(string format, int value) => string.Format(CultureInfo.InvariantCulture, format, value);

@@ -226,7 +226,7 @@ public sealed partial class RunExecutor
 
         // Where the position queries after flown gaps found the stage ahead (-) or behind (+) its plan, as time at the burn speed.
         var shift = 0.0;
-        (StrokePlan.Bump Bump, Task<long> Query)? flown = null;
+        (StrokePlan.Bump Bump, FlownQuery Query)? flown = null;
         var bumps = plan.Bumps.ToDictionary(b => b.Exit);
         var index = 0;
         foreach (var (burn, burnIndex) in burns)
@@ -363,29 +363,45 @@ public sealed partial class RunExecutor
     /// Flies a gap (docs/execution.md, "Flown gaps"): the travel speed set just after the exit edge, the burn speed set back,
     /// then a position query once the stage is surely at the burn speed again; returns the query.
     /// </summary>
-    private async Task<Task<long>> FlyGapAsync(StrokePlan.Bump bump, double start, TimedSwitching timing, CancellationToken token)
+    private async Task<FlownQuery> FlyGapAsync(StrokePlan.Bump bump, double start, TimedSwitching timing, CancellationToken token)
     {
-        await DelayUntilAsync(start + bump.SpeedUpArrival - timing.StageCommandSeconds, token);
+        var upWrite = start + bump.SpeedUpArrival - timing.StageCommandSeconds;
+        await DelayUntilAsync(upWrite, token);
         ThrowIfAborted();
-        Watch(Stage.X.SetTargetSpeedAsync(_travelSpeedData, token), start + bump.SpeedUpArrival + timing.StageReplySeconds, "Set Target Speed (X, a flown gap)");
-        await DelayUntilAsync(start + bump.SpeedDownArrival - timing.StageCommandSeconds, token);
-        Watch(Stage.X.SetTargetSpeedAsync(_burnSpeedData, token), start + bump.SpeedDownArrival + timing.StageReplySeconds, "Set Target Speed (X, after a flown gap)");
-        await DelayUntilAsync(start + bump.QueryArrival - timing.StageCommandSeconds, token);
-        return Stage.X.GetPositionAsync(token);
+        var upLate = RunSeconds - upWrite;
+        Watch(Stage.X.SetTargetSpeedAsync(_travelSpeedData, token), Sent(start + bump.SpeedUpArrival, RunSeconds, timing) + timing.StageReplySeconds, "Set Target Speed (X, a flown gap)");
+        var downWrite = start + bump.SpeedDownArrival - timing.StageCommandSeconds;
+        await DelayUntilAsync(downWrite, token);
+        var downLate = RunSeconds - downWrite;
+        Watch(Stage.X.SetTargetSpeedAsync(_burnSpeedData, token), Sent(start + bump.SpeedDownArrival, RunSeconds, timing) + timing.StageReplySeconds, "Set Target Speed (X, after a flown gap)");
+
+        // The query goes once the stage is surely back at the burn speed: never sooner after the speed-down than planned.
+        var queryWrite = start + bump.QueryArrival - timing.StageCommandSeconds;
+        await DelayUntilAsync(Math.Max(queryWrite, RunSeconds + (bump.QueryArrival - bump.SpeedDownArrival)), token);
+        var queryLate = RunSeconds - queryWrite;
+        return new FlownQuery(Stage.X.GetPositionAsync(token), Later(0, upLate), Later(0, downLate), Later(0, queryLate));
     }
+
+    /// <summary>A flown gap's position query, and how late (s) the host wrote the speed-up, the speed-down and the query.</summary>
+    private sealed record FlownQuery(Task<long> Query, double UpLate, double DownLate, double QueryLate);
 
     /// <summary>
     /// After a flown gap, before the next switch-on: the position query's answer says how far ahead of its plan the stage
     /// is (the speed changes' latencies); returns the time shift that puts the next switchings back on their edges.
     /// </summary>
-    private async Task<double> MeasureFlownGapAsync(StrokePlan.Bump bump, Task<long> query, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token)
+    private async Task<double> MeasureFlownGapAsync(StrokePlan.Bump bump, FlownQuery flown, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token)
     {
+        var query = flown.Query;
         if (!await CompletesByAsync(query, onWrite, token) || !query.IsCompletedSuccessfully)
         {
             throw Fault("the X axis did not answer the position query after a flown gap before the laser was to come on");
         }
 
-        var ahead = ((query.Result - start) * direction) - bump.ExpectedOffset;
+        // A host late to write (a loaded computer) held the bump longer or shorter and asked later: where the stage then is.
+        var hold = bump.SpeedDownArrival - bump.SpeedUpArrival;
+        var expected = bump.ExpectedOffset + (timing.BurnSpeed * flown.QueryLate)
+            + timing.FlyGain(hold + flown.DownLate - flown.UpLate) - timing.FlyGain(hold);
+        var ahead = ((query.Result - start) * direction) - expected;
         if (Math.Abs(ahead) > bump.MaxErrorMicrosteps + 1)
         {
             throw Fault(string.Create(

@@ -86,6 +86,11 @@ public class TimedSwitchingTests
         Assert.True(t.CrossSeconds(pixel) < pixel / t.BurnSpeed, "a flown pixel is crossed sooner than at the burn speed");
         Assert.True(t.CrossSeconds(3 * pixel) < t.StopGoSeconds(3 * pixel), "and a longer gap sooner than by stopping");
         Assert.True(t.CrossesGap(3 * pixel));
+
+        // The gain of a bump held T: a T² while it never reaches the travel speed, (v_t - v_b) T once it does.
+        Assert.Equal(one.GainMicrosteps, t.FlyGain(one.HoldSeconds), 9);
+        Assert.Equal(t.Acceleration * 0.01 * 0.01, t.FlyGain(0.01), 9);
+        Assert.Equal((t.TravelSpeed - t.BurnSpeed) * 0.5, t.FlyGain(0.5), 9);
     }
 
     [Theory]
