@@ -15,22 +15,8 @@ public sealed partial class RunExecutor
     private async Task ExecuteDotsAsync(DotPlan plan, long firstIndex, CancellationToken token)
     {
         var timing = plan.Timing;
-        lock (_lock)
-        {
-            _moveIndex = firstIndex;
-            _moveRow = Options.ResumeFrom?.Row ?? 0;
-        }
-
-        // The start the estimate models: acceleration and the travel speed on both axes (every move between dots is a travel).
-        _engravingStart = TimeProvider.GetTimestamp();
-        _engravingStarted = true;
-        foreach (var axis in new[] { Stage.X, Stage.Y })
-        {
-            await axis.SetAccelerationAsync(_accelerationData, token);
-            await axis.SetTargetSpeedAsync(_travelSpeedData, token);
-        }
-
-        (_xSpeedData, _ySpeedData) = (_travelSpeedData, _travelSpeedData);
+        // Every move between dots is a travel.
+        await BeginEngravingAsync(firstIndex, Options.ResumeFrom?.Row ?? 0, token);
         var settle = TimeSpan.FromSeconds(timing.SettleSeconds);
         var index = firstIndex;
         var first = true;

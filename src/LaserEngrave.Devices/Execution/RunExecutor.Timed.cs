@@ -45,24 +45,8 @@ public sealed partial class RunExecutor
 
     private async Task ExecuteTimedAsync(IEnumerable<Move> moves, long firstIndex, TimedSwitching timing, CancellationToken token)
     {
-        lock (_lock)
-        {
-            _moveIndex = firstIndex;
-            _moveRow = Options.ResumeFrom?.Row ?? 0;
-        }
-
         _queuedUpTo = firstIndex - 1;
-
-        // The start the estimate models: acceleration and the travel speed on both axes.
-        _engravingStart = TimeProvider.GetTimestamp();
-        _engravingStarted = true;
-        foreach (var axis in new[] { Stage.X, Stage.Y })
-        {
-            await axis.SetAccelerationAsync(_accelerationData, token);
-            await axis.SetTargetSpeedAsync(_travelSpeedData, token);
-        }
-
-        (_xSpeedData, _ySpeedData) = (_travelSpeedData, _travelSpeedData);
+        await BeginEngravingAsync(firstIndex, Options.ResumeFrom?.Row ?? 0, token);
         MotionTimeline? timeline = null;
         foreach (var segment in Segments(moves, firstIndex, timing))
         {

@@ -87,22 +87,7 @@ public sealed partial class RunExecutor
     {
         var schedule = drawing.Schedule;
         var timing = schedule.Timing;
-        lock (_lock)
-        {
-            _moveIndex = first;
-            _moveRow = first;
-        }
-
-        // The start the estimate models: acceleration and the travel speed on both axes.
-        _engravingStart = TimeProvider.GetTimestamp();
-        _engravingStarted = true;
-        foreach (var axis in new[] { Stage.X, Stage.Y })
-        {
-            await axis.SetAccelerationAsync(_accelerationData, token);
-            await axis.SetTargetSpeedAsync(_travelSpeedData, token);
-        }
-
-        (_xSpeedData, _ySpeedData) = (_travelSpeedData, _travelSpeedData);
+        await BeginEngravingAsync(first, first, token);
         var travelWrite = double.NaN;
         for (var k = first; k < schedule.Strokes.Count; k++)
         {

@@ -524,16 +524,18 @@ public sealed partial class RunExecutor
 
     // ---- the plan ----
 
-    private async Task ExecuteAsync(IEnumerable<Move> moves, long firstIndex, CancellationToken token)
+    /// <summary>
+    /// Where every execution starts, and where its estimate starts counting: the stop point at the first move (and a row
+    /// it is in), then the acceleration and the travel speed set on both axes.
+    /// </summary>
+    private async Task BeginEngravingAsync(long firstIndex, int row, CancellationToken token)
     {
         lock (_lock)
         {
             _moveIndex = firstIndex;
-            _moveRow = Options.ResumeFrom?.Row ?? 0;
+            _moveRow = row;
         }
 
-
-        // The start the estimate models: acceleration and the travel speed on both axes.
         _engravingStart = TimeProvider.GetTimestamp();
         _engravingStarted = true;
         foreach (var axis in new[] { Stage.X, Stage.Y })
@@ -543,6 +545,11 @@ public sealed partial class RunExecutor
         }
 
         (_xSpeedData, _ySpeedData) = (_travelSpeedData, _travelSpeedData);
+    }
+
+    private async Task ExecuteAsync(IEnumerable<Move> moves, long firstIndex, CancellationToken token)
+    {
+        await BeginEngravingAsync(firstIndex, Options.ResumeFrom?.Row ?? 0, token);
         var index = firstIndex;
         var first = true;
         foreach (var move in moves)
