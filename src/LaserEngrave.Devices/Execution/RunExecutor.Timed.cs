@@ -261,11 +261,7 @@ public sealed partial class RunExecutor
 
             _lastGateWrite = offWrite;
             WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off");
-            if (offWritten - offWrite > timing.EdgeGuardSeconds)
-            {
-                // The laser stayed on past its time: its last pulses may have crossed the exit edge onto the white.
-                throw Fault(string.Create(CultureInfo.InvariantCulture, $"this computer sent the switch-off {(offWritten - offWrite) * 1000:0.0} ms late, more than the {timing.EdgeGuardSeconds * 1000:0.00} ms the edge guard allows, so pulses may have landed past the edge (a loaded computer: free it of other work, or measure its latency with `laserengrave machine latency` so that the plan allows for it)"));
-            }
+            ThrowIfSwitchOffLate(offWrite, offWritten, timing);
 
             // A run counts as burned once its switch-on is acknowledged (a silent gate burns nothing).
             CompleteUpTo(segment, burnIndex, on);
@@ -527,6 +523,15 @@ public sealed partial class RunExecutor
         finally
         {
             _laserLock.Release();
+        }
+    }
+
+    /// <summary>A switch-off written later than the edge guard allows: the laser stayed on past its time, so its last pulses may have crossed the edge.</summary>
+    private void ThrowIfSwitchOffLate(double planned, double written, TimedSwitching timing)
+    {
+        if (written - planned > timing.EdgeGuardSeconds)
+        {
+            throw Fault(string.Create(CultureInfo.InvariantCulture, $"this computer sent the switch-off {(written - planned) * 1000:0.0} ms late, more than the {timing.EdgeGuardSeconds * 1000:0.00} ms the edge guard allows, so pulses may have landed past the edge (a loaded computer: free it of other work, or measure its latency with `laserengrave machine latency` so that the plan allows for it)"));
         }
     }
 

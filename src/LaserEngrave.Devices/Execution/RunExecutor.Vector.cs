@@ -196,6 +196,7 @@ public sealed partial class RunExecutor
             (off, var offWritten) = await SendSwitchAsync(on: false);
             _lastGateWrite = offWrite;
             WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off");
+            ThrowIfSwitchOffLate(offWrite, offWritten, timing);
         }));
 
         foreach (var (at, _, send) in events.OrderBy(e => e.Write).ThenBy(e => e.Order))
