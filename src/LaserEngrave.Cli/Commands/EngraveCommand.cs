@@ -93,7 +93,7 @@ internal static class EngraveCommand
             stderr.WriteLine($"warning: {warning}");
         }
 
-        var profile = layered?.Layers[0].Image?.Spec.Profile ?? layered?.Layers[0].Drawing!.Spec.Profile ?? drawing?.Spec.Profile ?? prepared!.Spec.Profile;
+        var profile = layered?.Layers[0].Spec.Profile ?? drawing?.Spec.Profile ?? prepared!.Spec.Profile;
 
         // While the machine opens and runs (the simulation on one thread), another thread prepares the JSON writers of
         // the log and the summary, which would otherwise add their compiling time (a tenth of a second) after the run.

@@ -75,8 +75,8 @@ internal sealed record LayersSummary(IReadOnlyList<LayerSummary> Layers, double 
     public static LayersSummary From(LayeredJob job) => new(
         [.. job.Layers.Select(l =>
         {
-            var spec = l.Image?.Spec ?? l.Drawing!.Spec;
-            var (width, height) = l.Image is { } image ? (image.Geometry.AchievedWidthMm, image.Geometry.AchievedHeightMm) : (l.Drawing!.Plan.WidthMm, l.Drawing.Plan.HeightMm);
+            var spec = l.Spec;
+            var (width, height) = l.SizeMm;
             return new LayerSummary(
                 l.Layer.Name,
                 l.Layer.Mode.ToString().ToLowerInvariant(),

@@ -130,5 +130,12 @@ public sealed record PreparedLayer(JobLayer Layer, PreparedJob? Image, PreparedD
 
     public bool FitsTravel => Image?.Geometry.FitsTravel ?? Drawing!.FitsTravel;
 
+    /// <summary>The layer's job: its file, size, origin, process and profile.</summary>
+    public JobSpec Spec => Image?.Spec ?? Drawing!.Spec;
+
+    /// <summary>Its size on the stage, mm (after rounding to microsteps for an image).</summary>
+    public (double WidthMm, double HeightMm) SizeMm =>
+        Image is { } image ? (image.Geometry.AchievedWidthMm, image.Geometry.AchievedHeightMm) : (Drawing!.Plan.WidthMm, Drawing.Plan.HeightMm);
+
     public IEnumerable<string> Warnings => Image?.Warnings.Select(w => w.Message) ?? Drawing!.Warnings;
 }

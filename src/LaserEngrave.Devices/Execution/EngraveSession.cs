@@ -213,23 +213,22 @@ public sealed class EngraveSession
     private static JobSpec First(LayeredJob job)
     {
         ArgumentNullException.ThrowIfNull(job);
-        return job.Layers[0].Image?.Spec ?? job.Layers[0].Drawing!.Spec;
+        return job.Layers[0].Spec;
     }
 
     private static long Moves(PreparedLayer part) => part.Image?.Statistics.Moves ?? part.Drawing!.Schedule.Strokes.Count;
 
-    private static JobSpec SpecOf(PreparedLayer part) => part.Image?.Spec ?? part.Drawing!.Spec;
 
     private RunRecord NewRecord(PreparedLayer part, DateTimeOffset started)
     {
-        var hash = Options.ImageSha256 ?? HashOrMissing(SpecOf(part).ImagePath);
+        var hash = Options.ImageSha256 ?? HashOrMissing(part.Spec.ImagePath);
         return part.Drawing is { } drawing ? RunRecord.ForDrawing(drawing, hash, started) : RunRecord.ForJob(part.Image!, hash, started);
     }
 
     private static RunLayer LayerEntry(PreparedLayer part)
     {
-        var spec = SpecOf(part);
-        var (width, height) = part.Image is { } image ? (image.Geometry.AchievedWidthMm, image.Geometry.AchievedHeightMm) : (part.Drawing!.Plan.WidthMm, part.Drawing.Plan.HeightMm);
+        var spec = part.Spec;
+        var (width, height) = part.SizeMm;
         return new RunLayer(
             part.Layer.Name,
             Path.GetFullPath(spec.ImagePath),
