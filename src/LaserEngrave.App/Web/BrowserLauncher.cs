@@ -18,7 +18,7 @@ internal static class BrowserLauncher
             try
             {
                 var start = new ProcessStartInfo(browser) { UseShellExecute = false };
-                foreach (var argument in AppModeArguments(url, profileFolder))
+                foreach (var argument in AppModeArguments(url, profileFolder, asRoot: OperatingSystem.IsLinux() && Environment.IsPrivilegedProcess))
                 {
                     start.ArgumentList.Add(argument);
                 }
@@ -44,8 +44,12 @@ internal static class BrowserLauncher
     }
 
     /// <summary>The arguments of an app-mode window with its own profile (so it opens a window of its own, not a tab).</summary>
-    public static IReadOnlyList<string> AppModeArguments(string url, string profileFolder) =>
-        ["--app=" + url, "--user-data-dir=" + profileFolder, "--no-first-run", "--no-default-browser-check", "--window-size=1400,900"];
+    /// <remarks>
+    /// Chromium refuses to start as root on Linux unless told to run without its sandbox: then (a lab PC where the app
+    /// runs as root for the serial ports) the window shows only the app's own page on this computer, so it is told.
+    /// </remarks>
+    public static IReadOnlyList<string> AppModeArguments(string url, string profileFolder, bool asRoot = false) =>
+        ["--app=" + url, "--user-data-dir=" + profileFolder, "--no-first-run", "--no-default-browser-check", "--window-size=1400,900", .. asRoot ? ["--no-sandbox"] : Array.Empty<string>()];
 
     /// <summary>The first candidate that exists.</summary>
     public static string? FindAppBrowser(IEnumerable<string> candidates, Func<string, bool> exists) => candidates.FirstOrDefault(exists);

@@ -25,6 +25,16 @@ public sealed class BrowserLauncherTests
 
         Assert.Contains("--app=http://127.0.0.1:5080/", arguments);
         Assert.Contains("--user-data-dir=/data/window", arguments);
+        Assert.DoesNotContain("--no-sandbox", arguments);
+    }
+
+    [Fact]
+    public void AppModeArguments_AsRoot_WithoutTheSandboxChromiumRefusesRootFor()
+    {
+        var arguments = BrowserLauncher.AppModeArguments("http://127.0.0.1:5080/", "/data/window", asRoot: true);
+
+        Assert.Contains("--no-sandbox", arguments);
+        Assert.Contains("--app=http://127.0.0.1:5080/", arguments);
     }
 
     [Fact]
