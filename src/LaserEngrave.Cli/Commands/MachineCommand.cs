@@ -2,6 +2,7 @@ using System.CommandLine;
 using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Machine;
+using LaserEngrave.Devices.Scheduling;
 
 namespace LaserEngrave.Cli.Commands;
 
@@ -40,6 +41,9 @@ internal static class MachineCommand
 
             var existing = path is null ? MachineProfile.Default : File.Exists(path) || !store ? MachineProfile.Load(path) : MachineProfile.Default;
             LatencyMeasurement measured;
+
+            // Measured at the priority a run gets, so that the profile describes what a run will see.
+            using var priority = result.GetValue(machine.Simulate) ? null : RunPriority.Raise();
             var session = machine.Open(result, existing);
             await using (session)
             {

@@ -1,6 +1,7 @@
 using System.CommandLine;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Devices.Scheduling;
 using LaserEngrave.Devices.Serial;
 using LaserEngrave.Simulator;
 using LaserEngrave.Simulator.Faults;
@@ -61,6 +62,10 @@ internal static class SimulatorCommand
     {
         var profile = profilePath is null ? MachineProfile.Default : MachineProfile.Load(profilePath);
         var faults = FaultInjector.ParseRules(options.FaultSpec);
+
+        // The simulator stands in for the devices' firmware, which never waits for the computer: it asks for the CPU
+        // priority a run on real ports gets (its threads, started below, inherit it).
+        using var priority = RunPriority.Raise();
         var stage = open(stagePath, profile.StageBaudRate);
         ISerialLink laser;
         try
@@ -85,7 +90,7 @@ internal static class SimulatorCommand
         await using var machine = SimulatedMachine.Attach(stage, laser, profile, options);
         machine.EventRaised += (_, e) => Print($"{e.Port}: {e.Message}");
         Print($"simulator: stage (X = device {profile.X.DeviceNumber}, Y = device {profile.Y.DeviceNumber}) on {stagePath}, laser gate on {laserPath}, "
-            + $"on the wall clock (a host in another process lives in real time), seed {options.Seed}{(faults.Count > 0 ? $", faults {string.Join(',', faults)}" : string.Empty)}; Ctrl+C to stop");
+            + $"on the wall clock (a host in another process lives in real time), priority {priority.Description}, seed {options.Seed}{(faults.Count > 0 ? $", faults {string.Join(',', faults)}" : string.Empty)}; Ctrl+C to stop");
 
         try
         {

@@ -52,6 +52,12 @@ public sealed record RunRecord
     /// <summary>Whether the run was on the built-in simulator (durations then are virtual time).</summary>
     public bool Simulated { get; init; }
 
+    /// <summary>
+    /// The host's CPU priority during a run on real ports ("raised (...)" or "normal (...)" with the reason); null on the
+    /// built-in simulator. Timed switching plans to the millisecond, and a computer busy with other work can delay it.
+    /// </summary>
+    public string? HostPriority { get; init; }
+
     /// <summary>The devices as they identified themselves, with their firmware versions.</summary>
     public IReadOnlyList<RunDevice> Devices { get; init; } = [];
 

@@ -266,6 +266,9 @@ public sealed class EngraveSession
             record = record with { EstimatedSeconds = layers.Sum(l => l.EstimatedSeconds), EstimatedEngravingSeconds = layers.Sum(l => l.EstimatedEngravingSeconds) };
         }
 
+        // On real ports the host's timing is the laser's: the run asks for a higher CPU priority, and the log says what it got.
+        using var priority = Machine.Simulated ? null : RunPriority.Raise();
+        record = record with { HostPriority = priority?.Description };
         var clockStart = time.GetTimestamp();
         Machine.Inspector?.Begin();
         RunResult? run = null;
