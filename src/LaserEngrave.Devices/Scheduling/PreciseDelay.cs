@@ -6,13 +6,11 @@ namespace LaserEngrave.Devices.Scheduling;
 /// <remarks>
 /// Written by hand because <c>Task.Delay(TimeSpan, TimeProvider)</c> truncates the delay to whole milliseconds, a
 /// micrometre at 1 mm/s. On a virtual clock the timer is created with the exact delay. On the system clock, whose timers
-/// fire late by up to a scheduler tick (15.6 ms on Windows by default), the wait sleeps until a few milliseconds before
-/// the time and spins the rest on the high-resolution timestamp.
+/// fire late by up to a scheduler tick (15.6 ms on Windows by default), the wait is the <see cref="WallClockPacer"/>'s,
+/// which sleeps until 2 ms before the time and spins the rest on the high-resolution timestamp.
 /// </remarks>
 public static class PreciseDelay
 {
-    private static readonly TimeSpan SpinWindow = TimeSpan.FromMilliseconds(16);
-
     public static Task DelayAsync(TimeProvider time, TimeSpan delay, CancellationToken cancellationToken)
     {
         ArgumentNullException.ThrowIfNull(time);
@@ -25,20 +23,15 @@ public static class PreciseDelay
         return time == TimeProvider.System ? SystemDelayAsync(delay, cancellationToken) : TimerDelayAsync(time, delay, cancellationToken);
     }
 
+    // The continuation runs on the pacer's thread, at once: a hop to the thread pool would add its own lateness to the
+    // command the caller sends next.
     private static async Task SystemDelayAsync(TimeSpan delay, CancellationToken cancellationToken)
     {
+        var done = new TaskCompletionSource();
         var until = Stopwatch.GetTimestamp() + (long)(delay.TotalSeconds * Stopwatch.Frequency);
-        if (delay > SpinWindow)
-        {
-            await Task.Delay(delay - SpinWindow, cancellationToken);
-        }
-
-        var spinner = default(SpinWait);
-        while (Stopwatch.GetTimestamp() < until)
-        {
-            cancellationToken.ThrowIfCancellationRequested();
-            spinner.SpinOnce(sleep1Threshold: -1);
-        }
+        using var scheduled = WallClockPacer.Shared.Schedule(until, () => done.TrySetResult());
+        await using var registration = cancellationToken.UnsafeRegister(static (state, token) => ((TaskCompletionSource)state!).TrySetCanceled(token), done);
+        await done.Task.ConfigureAwait(false);
     }
 
     private static Task TimerDelayAsync(TimeProvider time, TimeSpan delay, CancellationToken cancellationToken) =>

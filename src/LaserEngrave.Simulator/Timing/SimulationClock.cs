@@ -1,4 +1,5 @@
 using System.Diagnostics;
+using LaserEngrave.Devices.Scheduling;
 
 namespace LaserEngrave.Simulator.Timing;
 

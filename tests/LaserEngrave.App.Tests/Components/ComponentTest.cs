@@ -69,6 +69,13 @@ public abstract class ComponentTest : BunitContext
         base.Dispose(disposing);
     }
 
+    // xunit disposes the context asynchronously, which does not go through Dispose(bool): the folder is removed here too.
+    protected override async ValueTask DisposeAsyncCore()
+    {
+        await base.DisposeAsyncCore();
+        DataFolder.Dispose();
+    }
+
     private protected static MachineProfile Profile => MachineProfile.Default;
 
     private protected void OpenQr(double widthMm = 5)

@@ -370,9 +370,22 @@ public sealed class BadInputFiles
 
     private readonly Dictionary<string, string> _tokens = new(StringComparer.Ordinal);
 
+    private static void DeleteFolder(string folder)
+    {
+        try
+        {
+            Directory.Delete(folder, recursive: true);
+        }
+        catch (Exception e) when (e is IOException or UnauthorizedAccessException)
+        {
+            // Left for the system's temp cleaning.
+        }
+    }
+
     private BadInputFiles()
     {
         var folder = Directory.CreateTempSubdirectory("le-bad-input-").FullName;
+        AppDomain.CurrentDomain.ProcessExit += (_, _) => DeleteFolder(folder);
         var qr = Path.Combine(CliHarness.RepositoryRoot, "assets", "qr-code.bmp");
         _tokens["@qr"] = qr;
         _tokens["@dir"] = folder;

@@ -74,9 +74,26 @@ public class VectorRunTests
 /// <summary>Small SVG drawings in millimetres, written to the test's temporary folder.</summary>
 internal static class TestDrawing
 {
+    private static readonly Lazy<string> Folder = new(() =>
+    {
+        var folder = Directory.CreateTempSubdirectory("le-vector-").FullName;
+        AppDomain.CurrentDomain.ProcessExit += (_, _) =>
+        {
+            try
+            {
+                Directory.Delete(folder, recursive: true);
+            }
+            catch (IOException)
+            {
+                // Left for the system's temp cleaning.
+            }
+        };
+        return folder;
+    });
+
     public static string Svg(string body)
     {
-        var path = Path.Combine(Path.GetTempPath(), $"le-vector-{Guid.NewGuid():N}.svg");
+        var path = Path.Combine(Folder.Value, $"{Guid.NewGuid():N}.svg");
         File.WriteAllText(path, $"<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10mm\" height=\"10mm\" viewBox=\"0 0 10 10\">{body}</svg>");
         return path;
     }

@@ -8,49 +8,6 @@ namespace LaserEngrave.Simulator.Tests.Timing;
 public class WallClockTests
 {
     [Fact(Timeout = 20_000)]
-    public async Task Pacer_Events_RunInTheOrderOfTheirInstants_TiesInTheOrderGiven()
-    {
-        var now = Stopwatch.GetTimestamp();
-        var ms = Stopwatch.Frequency / 1000;
-        var ran = new List<string>();
-        var last = new TaskCompletionSource(TaskCreationOptions.RunContinuationsAsynchronously);
-        var pacer = WallClockPacer.Shared;
-
-        pacer.Schedule(now + (30 * ms), () => ran.Add("30"));
-        pacer.Schedule(now + (10 * ms), () => ran.Add("10 first"));
-        pacer.Schedule(now + (20 * ms), () => ran.Add("20"));
-        pacer.Schedule(now + (10 * ms), () => ran.Add("10 second"));
-        pacer.Schedule(now + (40 * ms), () =>
-        {
-            ran.Add("40");
-            last.SetResult();
-        });
-        await last.Task;
-
-        Assert.Equal(["10 first", "10 second", "20", "30", "40"], ran);
-    }
-
-    [Fact(Timeout = 20_000)]
-    public async Task Pacer_CancelledEvent_NeverRuns()
-    {
-        var now = Stopwatch.GetTimestamp();
-        var ms = Stopwatch.Frequency / 1000;
-        var ran = new List<string>();
-        var last = new TaskCompletionSource(TaskCreationOptions.RunContinuationsAsynchronously);
-
-        var cancelled = WallClockPacer.Shared.Schedule(now + (10 * ms), () => ran.Add("cancelled"));
-        WallClockPacer.Shared.Schedule(now + (20 * ms), () =>
-        {
-            ran.Add("kept");
-            last.SetResult();
-        });
-        cancelled.Dispose();
-        await last.Task;
-
-        Assert.Equal(["kept"], ran);
-    }
-
-    [Fact(Timeout = 20_000)]
     public async Task At_OnTheWallClock_TheEventReadsItsOwnInstant_NotWhenTheProcessGotToIt()
     {
         var clock = new SimulationClock(TimeProvider.System);

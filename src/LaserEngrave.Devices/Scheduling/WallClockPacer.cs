@@ -1,20 +1,23 @@
 using System.Diagnostics;
 
-namespace LaserEngrave.Simulator.Timing;
+namespace LaserEngrave.Devices.Scheduling;
 
 /// <summary>
-/// Runs the wall-clock simulator's events at their instants to a fraction of a millisecond: one thread for the process
-/// that sleeps until just before the next instant and waits the rest out on the high-resolution timestamp.
+/// Runs actions at their instants on the wall clock to a fraction of a millisecond: one thread for the process that
+/// sleeps until just before the next instant and waits the rest out on the high-resolution timestamp. The host's timed
+/// switching waits on it (<see cref="PreciseDelay"/>), and so do the wall-clock simulator's events.
 /// </summary>
 /// <remarks>
-/// The system's timers are too coarse for a device model whose replies are planned to the millisecond: .NET counts their
-/// due times in the coarse tick (4 ms on a Linux kernel at 250 Hz; 15.6 ms on Windows) and hands each callback to the
-/// thread pool, so on Linux a simulated reply left 2-3 ms late on every wait, twice per exchange, even on an idle
-/// computer, and the host's timed switching (which plans with the profile's latencies) failed its first stroke. The
-/// callbacks run on this thread, which every simulator of the process shares, so they must be short and never block: the
-/// simulator's are (a device acting, a reply handed to its link's writer, which writes it to the port on its own).
+/// The system's timers are too coarse for commands and replies planned to the millisecond: .NET counts their due times
+/// in whole milliseconds or the coarse tick (15.6 ms on Windows) and hands each callback to the thread pool; measured on
+/// Linux, <c>Task.Delay</c> ended 2.3 ms late at the median and up to 8 ms late on a loaded computer. So a simulated
+/// reply left 2-3 ms late on every wait, and the host waited out the last 16 ms of every timed wait spinning on a
+/// thread-pool thread (about half a core during a run, taken from the devices' side on a two-core computer). Here only
+/// the last 2 ms are spun, on one thread. The actions run on this thread, which the whole process shares, so they must
+/// be short and never block: a simulated device acting, a reply handed to its link's writer, or the host's continuation
+/// after a timed wait, which sends its command and awaits the next thing.
 /// </remarks>
-internal sealed class WallClockPacer
+public sealed class WallClockPacer
 {
     // Monitor.Wait sleeps to the millisecond on Linux; the last stretch is waited out on the timestamp.
     private static readonly long SpinTicks = Stopwatch.Frequency / 500;
@@ -25,7 +28,7 @@ internal sealed class WallClockPacer
 
     private WallClockPacer()
     {
-        var thread = new Thread(Run) { IsBackground = true, Name = "simulator wall-clock pacer", Priority = ThreadPriority.AboveNormal };
+        var thread = new Thread(Run) { IsBackground = true, Name = "wall-clock pacer", Priority = ThreadPriority.AboveNormal };
         thread.Start();
     }
 
@@ -102,7 +105,7 @@ internal sealed class WallClockPacer
             catch (Exception ex)
             {
                 // An event's failure is its own: it must not stop the clock of every other one.
-                Trace.TraceError($"simulator wall-clock event failed: {ex}");
+                Trace.TraceError($"wall-clock pacer: an action failed: {ex}");
             }
         }
     }
