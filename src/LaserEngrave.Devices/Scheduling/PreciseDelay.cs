@@ -7,7 +7,7 @@ namespace LaserEngrave.Devices.Scheduling;
 /// Written by hand because <c>Task.Delay(TimeSpan, TimeProvider)</c> truncates the delay to whole milliseconds, a
 /// micrometre at 1 mm/s. On a virtual clock the timer is created with the exact delay. On the system clock, whose timers
 /// fire late by up to a scheduler tick (15.6 ms on Windows by default), the wait is the <see cref="WallClockPacer"/>'s,
-/// which sleeps until 2 ms before the time and spins the rest on the high-resolution timestamp.
+/// which sleeps until 2 ms before the time (17 ms on Windows) and spins the rest on the high-resolution timestamp.
 /// </remarks>
 public static class PreciseDelay
 {

@@ -11,16 +11,18 @@ namespace LaserEngrave.Devices.Scheduling;
 /// The system's timers are too coarse for commands and replies planned to the millisecond: .NET counts their due times
 /// in whole milliseconds or the coarse tick (15.6 ms on Windows) and hands each callback to the thread pool; measured on
 /// Linux, <c>Task.Delay</c> ended 2.3 ms late at the median and up to 8 ms late on a loaded computer. So a simulated
-/// reply left 2-3 ms late on every wait, and the host waited out the last 16 ms of every timed wait spinning on a
-/// thread-pool thread (about half a core during a run, taken from the devices' side on a two-core computer). Here only
-/// the last 2 ms are spun, on one thread. The actions run on this thread, which the whole process shares, so they must
-/// be short and never block: a simulated device acting, a reply handed to its link's writer, or the host's continuation
-/// after a timed wait, which sends its command and awaits the next thing.
+/// reply left 2-3 ms late on every wait, and the host spun out the last 16 ms of every timed wait on a thread-pool
+/// thread, up to 16 ms of a core per timed command, taken from the devices' side on a two-core computer. Here only the
+/// last 2 ms are spun (on Windows, whose waits end on its 15.6 ms tick, the last 17 ms), on one thread. The actions run
+/// on this thread, which the whole process shares, so they must be short and never block: a simulated device acting, a
+/// reply handed to its link's writer, or the host's continuation after a timed wait, which sends its command and awaits
+/// the next thing.
 /// </remarks>
 public sealed class WallClockPacer
 {
-    // Monitor.Wait sleeps to the millisecond on Linux; the last stretch is waited out on the timestamp.
-    private static readonly long SpinTicks = Stopwatch.Frequency / 500;
+    // Monitor.Wait sleeps to the millisecond on Linux and macOS, to the timer tick (15.6 ms by default) on Windows; the
+    // last stretch is waited out on the timestamp.
+    private static readonly long SpinTicks = OperatingSystem.IsWindows() ? Stopwatch.Frequency / 60 : Stopwatch.Frequency / 500;
 
     private readonly object _lock = new();
     private readonly PriorityQueue<Entry, (long Due, long Sequence)> _queue = new();
