@@ -8,7 +8,7 @@ public sealed record SweepAxis(SweepParameter Parameter, IReadOnlyList<double> V
     /// <summary>The most values along one axis.</summary>
     public const int MaxValues = 50;
 
-    /// <summary>Parses <c>name=v1,v2,...</c> (e.g. <c>speed=0.5,1,2</c>); throws <see cref="SweepException"/> naming <paramref name="option"/>.</summary>
+    /// <summary>Parses <c>name=v1,v2,...</c> (e.g. <c>speed=0.5,1,2</c>) or <c>name=from..to:step</c> (e.g. <c>focus=-200..200:50</c>); throws <see cref="SweepException"/> naming <paramref name="option"/>.</summary>
     public static SweepAxis Parse(string text, string option)
     {
         ArgumentNullException.ThrowIfNull(text);
@@ -28,17 +28,13 @@ public sealed record SweepAxis(SweepParameter Parameter, IReadOnlyList<double> V
             throw new SweepException($"{option} {text}: {ex.Message}", ex);
         }
 
+        var list = text[(equals + 1)..];
         var values = new List<double>();
-        foreach (var part in text[(equals + 1)..].Split(','))
+        foreach (var value in list.Contains("..", StringComparison.Ordinal) ? Range(list, text, option) : list.Split(',').Select(part => Number(part, text, option)))
         {
-            if (!double.TryParse(part, NumberStyles.Float, CultureInfo.InvariantCulture, out var value) || !double.IsFinite(value))
-            {
-                throw new SweepException($"{option} {text}: '{part}' is not a number");
-            }
-
             if (parameter.IsWhole() && value != Math.Round(value))
             {
-                throw new SweepException($"{option} {text}: {parameter.CliName()} takes whole numbers, not {part}");
+                throw new SweepException($"{option} {text}: {parameter.CliName()} takes whole numbers, not {value.ToString(CultureInfo.InvariantCulture)}");
             }
 
             values.Add(value);
@@ -50,6 +46,39 @@ public sealed record SweepAxis(SweepParameter Parameter, IReadOnlyList<double> V
         }
 
         return new SweepAxis(parameter, values);
+    }
+
+    private static double Number(string part, string text, string option) =>
+        double.TryParse(part, NumberStyles.Float, CultureInfo.InvariantCulture, out var value) && double.IsFinite(value)
+            ? value
+            : throw new SweepException($"{option} {text}: '{part}' is not a number");
+
+    // from..to:step, from and to both included; each value from + i step computed from the start, so no sum drifts.
+    private static IEnumerable<double> Range(string list, string text, string option)
+    {
+        var colon = list.IndexOf(':', StringComparison.Ordinal);
+        var dots = list.IndexOf("..", StringComparison.Ordinal);
+        if (colon < dots)
+        {
+            throw new SweepException($"{option} {text}: expected FROM..TO:STEP, e.g. focus=-200..200:50");
+        }
+
+        var from = Number(list[..dots], text, option);
+        var to = Number(list[(dots + 2)..colon], text, option);
+        var step = Number(list[(colon + 1)..], text, option);
+        if (!(step > 0))
+        {
+            throw new SweepException($"{option} {text}: the step must be above 0");
+        }
+
+        var count = Math.Floor((Math.Abs(to - from) / step) + 1e-9) + 1;
+        if (count > MaxValues)
+        {
+            throw new SweepException($"{option} {text}: {count} values, at most {MaxValues}");
+        }
+
+        var sign = to >= from ? 1 : -1;
+        return Enumerable.Range(0, (int)count).Select(i => from + (sign * i * step));
     }
 
     /// <summary>The axis as the command line gives it: <c>speed=0.5,1,2</c>.</summary>

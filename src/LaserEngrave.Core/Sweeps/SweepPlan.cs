@@ -228,6 +228,7 @@ public sealed class SweepPlan
         var process = spec.Process;
         var passes = spec.Passes;
         var pitch = spec.PitchUm;
+        double? focusUm = null;
         foreach (var (key, value) in parameters)
         {
             switch (key)
@@ -237,13 +238,27 @@ public sealed class SweepPlan
                 case "passes": passes = (int)value; break;
                 case "pulsesPerDot": process = process with { PulsesPerDot = (int)value }; break;
                 case "pitchUm": pitch = value; break;
+                case "focusUm": focusUm = value; break;
                 default: throw new InvalidOperationException($"unknown sweep parameter {key}");
             }
         }
 
-        var n = Math.Max(1, (int)Math.Round(spec.CellMm * 1000 / pitch));
-        var job = Prepare(spec, $"sweep cell r{row + 1} c{column + 1}", CellMask(spec.Pattern, n), SizeSpec.Pitch(pitch), origin, process, passes, SweepCell.Describe(row, column, parameters));
-        return new SweepCell(row, column, parameters, job);
+        BitMask mask;
+        if (spec.CellImage is { } image && spec.Pattern == SweepPattern.Image)
+        {
+            mask = image;
+            pitch = ImagePitchUm(spec, image);
+        }
+        else
+        {
+            mask = CellMask(spec.Pattern, Math.Max(1, (int)Math.Round(spec.CellMm * 1000 / pitch)));
+        }
+
+        var job = Prepare(spec, $"sweep cell r{row + 1} c{column + 1}", mask, SizeSpec.Pitch(pitch), origin, process, passes, SweepCell.Describe(row, column, parameters));
+        return new SweepCell(row, column, parameters, job)
+        {
+            FocusZMicrosteps = focusUm is { } offset ? spec.Profile.Z!.MicrostepsAt(offset) : null,
+        };
     }
 
     private static PreparedJob Prepare(SweepSpec spec, string name, BitMask mask, SizeSpec size, OriginMm origin, ProcessSettings process, int passes, string what)
@@ -295,7 +310,25 @@ public sealed class SweepPlan
             throw new SweepException($"--spacing-mm {N(spec.SpacingMm)}: must be 0..{N(travel)} mm");
         }
 
-        CheckPitch(spec.PitchUm, "--pitch-um");
+        if (spec.Pattern == SweepPattern.Image)
+        {
+            if (spec.CellImage is not { } image)
+            {
+                throw new SweepException("--pattern image needs the cell's image: --cell-image FILE");
+            }
+
+            if (spec.Rows.Parameter == SweepParameter.Pitch || spec.Columns?.Parameter == SweepParameter.Pitch)
+            {
+                throw new SweepException("--pattern image sizes the image to the cell (its larger side), so its pitch cannot be swept; sweep the cell size by runs of their own");
+            }
+
+            CheckPitch(ImagePitchUm(spec, image), $"--cell-image {spec.CellImageName} ({image.Width} x {image.Height} px over {N(spec.CellMm)} mm): a pixel of");
+        }
+        else
+        {
+            CheckPitch(spec.PitchUm, "--pitch-um");
+        }
+
         if (spec.Passes is < 1 or > JobSpec.MaxPasses)
         {
             throw new SweepException($"--passes {spec.Passes}: must be 1..{JobSpec.MaxPasses}");
@@ -334,6 +367,8 @@ public sealed class SweepPlan
                     SweepParameter.PulsesPerDot when value is < 1 or > 1_000_000 => "must be 1..1000000",
                     SweepParameter.PulsesPerDot when spec.Process.Mode != PlanMode.Dots => "pulses per dot are swept in dot mode only: add --mode dots",
                     SweepParameter.Pitch when !(value >= microstepUm && value <= spec.CellMm * 1000) => $"must be {N(microstepUm)} µm (a microstep) .. {N(spec.CellMm * 1000)} µm (the cell)",
+                    SweepParameter.Focus when spec.Profile.Z is null => "the machine has no Z axis: add a \"z\" section to the machine profile (docs/machine-profile.md) to sweep the focus",
+                    SweepParameter.Focus when spec.Profile.Z.OffsetProblem(value) is { } outside => outside,
                     _ => null,
                 };
                 if (problem is not null)
@@ -351,6 +386,9 @@ public sealed class SweepPlan
             }
         }
     }
+
+    // The image's larger side spans the cell.
+    private static double ImagePitchUm(SweepSpec spec, BitMask image) => spec.CellMm * 1000 / Math.Max(image.Width, image.Height);
 
     /// <summary>A value as its label burns it: up to three decimals, no trailing zeros.</summary>
     private static string Label(double value) => value.ToString("0.###", CultureInfo.InvariantCulture);

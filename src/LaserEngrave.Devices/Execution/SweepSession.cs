@@ -1,6 +1,7 @@
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Sweeps;
+using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Scheduling;
 
 namespace LaserEngrave.Devices.Execution;
@@ -110,6 +111,8 @@ public sealed class SweepSession
 
         jobs.AddRange(Plan.Cells.Select(c => ((SweepCell?)c, c.Job)));
         var runs = new Dictionary<SweepCell, RunRecord>();
+        var reachedZ = new Dictionary<SweepCell, long>();
+        var focus = Plan.Cells.Any(c => c.FocusZMicrosteps is not null) ? new FocusAxis(Machine.Stage, Machine.Gate, Plan.Spec.Profile) : null;
         RunRecord? labels = null;
         var outcome = RunOutcome.Completed;
         string? fault = null;
@@ -135,6 +138,25 @@ public sealed class SweepSession
                     WallClock = Options.WallClock,
                 });
                 _current = session;
+            }
+
+            if (focus is not null && cell?.FocusZMicrosteps is { } z)
+            {
+                try
+                {
+                    reachedZ[cell] = await focus.MoveToAsync(z, cancellationToken);
+                }
+                catch (Exception ex) when (ex is DeviceException or OperationCanceledException)
+                {
+                    outcome = ex is OperationCanceledException ? RunOutcome.Aborted : RunOutcome.Failed;
+                    fault = $"{cell.Describe()}: moving the focus to {z} microsteps: {ex.Message}";
+                    lock (_lock)
+                    {
+                        _current = null;
+                    }
+
+                    break;
+                }
             }
 
             var index = i;
@@ -164,6 +186,19 @@ public sealed class SweepSession
             }
         }
 
+        // Back to the visible focus once every cell is burned, so the next job is not burned out of focus.
+        if (focus is not null && outcome == RunOutcome.Completed)
+        {
+            try
+            {
+                await focus.MoveToAsync(Plan.Spec.Profile.Z!.MicrostepsAt(0), cancellationToken);
+            }
+            catch (Exception ex) when (ex is DeviceException or OperationCanceledException)
+            {
+                fault = $"every cell was burned, but the focus could not be moved back to z.focusMm: {ex.Message}";
+            }
+        }
+
         var spec = Plan.Spec;
         var record = new SweepRecord
         {
@@ -173,6 +208,7 @@ public sealed class SweepSession
             Outcome = outcome,
             Fault = fault,
             Pattern = spec.Pattern.ToString().ToLowerInvariant(),
+            CellImage = spec.Pattern == SweepPattern.Image ? spec.CellImageName : null,
             CellMm = spec.CellMm,
             SpacingMm = spec.SpacingMm,
             OriginXMm = spec.Origin.X,
@@ -195,7 +231,11 @@ public sealed class SweepSession
                     c.Job.Geometry.AchievedHeightMm,
                     c.Job.Geometry.PitchUm,
                     c.Job.Spec.Passes,
-                    runs.GetValueOrDefault(c))),
+                    runs.GetValueOrDefault(c))
+                {
+                    FocusZMicrosteps = c.FocusZMicrosteps,
+                    ZReachedMicrosteps = reachedZ.TryGetValue(c, out var reached) ? reached : null,
+                }),
             ],
         };
         RunLogFiles? files = null;
