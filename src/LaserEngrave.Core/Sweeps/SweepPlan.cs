@@ -350,7 +350,7 @@ public sealed class SweepPlan
             throw new SweepException($"{cells} cells: a sweep has at most {MaxCells}");
         }
 
-        foreach (var (axis, option) in new[] { (spec.Rows, "--rows"), (spec.Columns, "--columns") })
+        foreach (var (axis, option) in new[] { (spec.Rows, spec.RowsOption), (spec.Columns, "--columns") })
         {
             if (axis is null)
             {
@@ -373,7 +373,8 @@ public sealed class SweepPlan
                 };
                 if (problem is not null)
                 {
-                    throw new SweepException($"{option} {axis}: {axis.Parameter.CliName()} {N(value)} {axis.Parameter.Unit()}".TrimEnd() + $": {problem}");
+                    var given = option == "--focus-um" ? string.Join(',', axis.Values.Select(N)) : axis.ToString();
+                    throw new SweepException($"{option} {given}: {axis.Parameter.CliName()} {N(value)} {axis.Parameter.Unit()}".TrimEnd() + $": {problem}");
                 }
             }
         }

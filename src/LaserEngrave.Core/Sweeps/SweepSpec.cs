@@ -30,6 +30,9 @@ public sealed record SweepSpec
     /// <summary>The parameter varied down the rows, one value a row.</summary>
     public required SweepAxis Rows { get; init; }
 
+    /// <summary>The option that gave <see cref="Rows"/>, as error lines name it (<c>--focus-um</c> for a focal series).</summary>
+    public string RowsOption { get; init; } = "--rows";
+
     /// <summary>The parameter varied across the columns, one value a column; null: one column.</summary>
     public SweepAxis? Columns { get; init; }
 

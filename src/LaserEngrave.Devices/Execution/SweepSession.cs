@@ -140,16 +140,21 @@ public sealed class SweepSession
                 _current = session;
             }
 
-            if (focus is not null && cell?.FocusZMicrosteps is { } z)
+            // The labels burn at the visible focus, each cell at its own.
+            if (focus is not null && (cell is null ? Plan.Spec.Profile.Z!.MicrostepsAt(0) : cell.FocusZMicrosteps) is { } z)
             {
                 try
                 {
-                    reachedZ[cell] = await focus.MoveToAsync(z, cancellationToken);
+                    var reached = await focus.MoveToAsync(z, cancellationToken);
+                    if (cell is not null)
+                    {
+                        reachedZ[cell] = reached;
+                    }
                 }
                 catch (Exception ex) when (ex is DeviceException or OperationCanceledException)
                 {
                     outcome = ex is OperationCanceledException ? RunOutcome.Aborted : RunOutcome.Failed;
-                    fault = $"{cell.Describe()}: moving the focus to {z} microsteps: {ex.Message}";
+                    fault = $"{cell?.Describe() ?? "the labels"}: moving the focus to {z} microsteps: {ex.Message}";
                     lock (_lock)
                     {
                         _current = null;
