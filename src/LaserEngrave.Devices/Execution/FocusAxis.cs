@@ -31,6 +31,22 @@ public sealed class FocusAxis
         _accelerationData = StageUnits.AccelerationData(Math.Min(profile.AccelerationMmPerS2, _profile.MaxAccelerationMmPerS2), _profile.MicrostepUm);
     }
 
+    /// <summary>Laser off, then Z stopped: an abort while Z moves (the move under way ends with <see cref="Zaber.ZaberInterruptedException"/>). Never throws.</summary>
+    public async Task StopAsync()
+    {
+        foreach (var step in new Func<Task>[] { () => _gate.OffAsync(CancellationToken.None), () => _axis.StopAsync(CancellationToken.None) })
+        {
+            try
+            {
+                await step();
+            }
+            catch (DeviceException)
+            {
+                // The other step still runs: a gate that does not answer must not keep Z moving, nor the reverse.
+            }
+        }
+    }
+
     /// <summary>Laser off (acknowledged), then Z to <paramref name="microsteps"/>, awaited; returns where the device says it arrived.</summary>
     /// <exception cref="DeviceException">The axis did not arrive where it was sent, or a device failed.</exception>
     public async Task<long> MoveToAsync(long microsteps, CancellationToken cancellationToken)

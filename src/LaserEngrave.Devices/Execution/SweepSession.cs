@@ -54,6 +54,7 @@ public sealed class SweepSession
 {
     private readonly Lock _lock = new();
     private EngraveSession? _current;
+    private FocusAxis? _focusMoving;
     private bool _abortRequested;
     private int _started;
 
@@ -86,17 +87,23 @@ public sealed class SweepSession
         return TaskRunner.For(Machine.TimeProvider).Run(() => RunJobsAsync(progress, cancellationToken));
     }
 
-    /// <summary>Laser off, then the stage stopped; no further cell starts.</summary>
+    /// <summary>Laser off, then the stage stopped (the focus axis too, when it is moving); no further cell starts.</summary>
     public void Abort()
     {
         EngraveSession? current;
+        FocusAxis? focus;
         lock (_lock)
         {
             _abortRequested = true;
             current = _current;
+            focus = _focusMoving;
         }
 
         current?.Abort();
+        if (focus is not null)
+        {
+            _ = TaskRunner.For(Machine.TimeProvider).Start(focus.StopAsync);
+        }
     }
 
     private async Task<SweepResult> RunJobsAsync(IProgress<SweepProgress>? progress, CancellationToken cancellationToken)
@@ -112,11 +119,24 @@ public sealed class SweepSession
         jobs.AddRange(Plan.Cells.Select(c => ((SweepCell?)c, c.Job)));
         var runs = new Dictionary<SweepCell, RunRecord>();
         var reachedZ = new Dictionary<SweepCell, long>();
-        var focus = Plan.Cells.Any(c => c.FocusZMicrosteps is not null) ? new FocusAxis(Machine.Stage, Machine.Gate, Plan.Spec.Profile) : null;
         RunRecord? labels = null;
         var outcome = RunOutcome.Completed;
         string? fault = null;
-        for (var i = 0; i < jobs.Count; i++)
+        FocusAxis? focus = null;
+        if (Plan.Cells.Any(c => c.FocusZMicrosteps is not null))
+        {
+            try
+            {
+                focus = new FocusAxis(Machine.Stage, Machine.Gate, Plan.Spec.Profile);
+            }
+            catch (PreflightException ex)
+            {
+                outcome = RunOutcome.Refused;
+                fault = ex.Message;
+            }
+        }
+
+        for (var i = 0; fault is null && i < jobs.Count; i++)
         {
             var (cell, job) = jobs[i];
             EngraveSession session;
@@ -145,7 +165,7 @@ public sealed class SweepSession
             {
                 try
                 {
-                    var reached = await focus.MoveToAsync(z, cancellationToken);
+                    var reached = await MoveFocusAsync(focus, z, cancellationToken);
                     if (cell is not null)
                     {
                         reachedZ[cell] = reached;
@@ -153,13 +173,15 @@ public sealed class SweepSession
                 }
                 catch (Exception ex) when (ex is DeviceException or OperationCanceledException)
                 {
-                    outcome = ex is OperationCanceledException ? RunOutcome.Aborted : RunOutcome.Failed;
-                    fault = $"{cell?.Describe() ?? "the labels"}: moving the focus to {z} microsteps: {ex.Message}";
                     lock (_lock)
                     {
                         _current = null;
+                        outcome = ex is OperationCanceledException || _abortRequested ? RunOutcome.Aborted : RunOutcome.Failed;
                     }
 
+                    fault = outcome == RunOutcome.Aborted
+                        ? $"aborted by the operator while moving the focus to {z} microsteps for {cell?.Describe() ?? "the labels"}"
+                        : $"{cell?.Describe() ?? "the labels"}: moving the focus to {z} microsteps: {ex.Message}";
                     break;
                 }
             }
@@ -196,7 +218,7 @@ public sealed class SweepSession
         {
             try
             {
-                await focus.MoveToAsync(Plan.Spec.Profile.Z!.MicrostepsAt(0), cancellationToken);
+                await MoveFocusAsync(focus, Plan.Spec.Profile.Z!.MicrostepsAt(0), cancellationToken);
             }
             catch (Exception ex) when (ex is DeviceException or OperationCanceledException)
             {
@@ -258,6 +280,32 @@ public sealed class SweepSession
         }
 
         return new SweepResult(record, files, logError);
+    }
+
+    // A focus move that Abort can stop.
+    private async Task<long> MoveFocusAsync(FocusAxis focus, long microsteps, CancellationToken cancellationToken)
+    {
+        lock (_lock)
+        {
+            if (_abortRequested)
+            {
+                throw new OperationCanceledException("the sweep was aborted");
+            }
+
+            _focusMoving = focus;
+        }
+
+        try
+        {
+            return await focus.MoveToAsync(microsteps, cancellationToken);
+        }
+        finally
+        {
+            lock (_lock)
+            {
+                _focusMoving = null;
+            }
+        }
     }
 
     private sealed class Relay(Action<EngraveProgress> report) : IProgress<EngraveProgress>

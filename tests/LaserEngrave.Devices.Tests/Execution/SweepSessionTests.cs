@@ -186,6 +186,50 @@ public class SweepSessionTests
         Assert.Empty(run.Machine.Recorder.LaserOnIntervals(run.Machine.NowSeconds));
     }
 
+    [Fact(Timeout = 120_000)]
+    public async Task Abort_WhileZHomes_ZStoppedShortLaserOffNoCellBurned()
+    {
+        // Z powers up at the far end (25 mm) and homes at 1 mm/s: 5 s into the sweep it is on its way home.
+        await using var run = SimulatedRun.Create(profile: ThreeAxis);
+        var plan = FocusPlan("focus=-50,50", labels: false);
+        var log = new RecordingSweepLog();
+        var session = Session(run, plan, log);
+
+        // The abort as a timer on the twin's clock, so it lands at the same virtual instant every time.
+        var result = await run.Do(async () =>
+        {
+            using var timer = run.Time.CreateTimer(_ => session.Abort(), null, TimeSpan.FromSeconds(5), Timeout.InfiniteTimeSpan);
+            return await session.RunAsync(null, TestContext.Current.CancellationToken);
+        });
+
+        var record = Assert.Single(log.Records);
+        Assert.Equal(RunOutcome.Aborted, record.Outcome);
+        Assert.StartsWith("aborted by the operator while moving the focus", record.Fault, StringComparison.Ordinal);
+        Assert.All(record.Cells, c => Assert.Null(c.Run));
+        var z = run.Machine.Stage.Z!;
+        Assert.False(z.IsMoving);
+        Assert.InRange(z.Position, ThreeAxis.Z!.TravelMicrosteps / 2, ThreeAxis.Z.TravelMicrosteps - 1);
+        Assert.False(run.Machine.Gate.IsFiring);
+        Assert.False(result.Completed);
+    }
+
+    [Fact(Timeout = 60_000)]
+    public async Task RunAsync_ProfileWithZStageWithout_RefusedLoggedNothingMoved()
+    {
+        await using var run = SimulatedRun.Create(profile: ThreeAxis);
+        var log = new RecordingSweepLog();
+        var machine = new EngraveMachine(new TwoAxes(run.Stage.X, run.Stage.Y), run.Gate, run.Time, "simulator", "simulator") { Simulated = true };
+
+        var result = await new SweepSession(machine, FocusPlan("focus=0", labels: true), new SweepSessionOptions { Log = log }).RunAsync(null, TestContext.Current.CancellationToken);
+
+        var record = Assert.Single(log.Records);
+        Assert.Equal(RunOutcome.Refused, record.Outcome);
+        Assert.Contains("has a Z axis (device 3) but the stage offers none", record.Fault, StringComparison.Ordinal);
+        Assert.Null(record.Labels);
+        Assert.False(result.Completed);
+        Assert.Equal(ThreeAxis.X.TravelMicrosteps, run.Machine.Stage.X.Position);
+    }
+
     [Fact(Timeout = 60_000)]
     public async Task FocusAxis_ProfileWithZStageWithout_RefusedBeforeAnythingMoves()
     {
