@@ -182,6 +182,9 @@ public sealed class SweepSession
                     fault = outcome == RunOutcome.Aborted
                         ? $"aborted by the operator while moving the focus to {z} microsteps for {cell?.Describe() ?? "the labels"}"
                         : $"{cell?.Describe() ?? "the labels"}: moving the focus to {z} microsteps: {ex.Message}";
+
+                    // A device that failed mid-move (a lost reply) may still be moving: laser off and Z stopped before the log.
+                    await focus.StopAsync();
                     break;
                 }
             }
