@@ -33,6 +33,13 @@ public sealed record ZAxisProfile : AxisProfile
     [JsonIgnore]
     public double UpperMm => MaxMm ?? TravelMm;
 
+    /// <summary>Set Target Speed data of every Z move (<see cref="SpeedMmPerS"/>).</summary>
+    [JsonIgnore]
+    public int SpeedData => StageUnits.SpeedData(SpeedMmPerS, MicrostepUm);
+
+    /// <summary>Set Acceleration data of Z for the profile's <paramref name="accelerationMmPerS2"/>, at most <see cref="AxisProfile.MaxAccelerationMmPerS2"/>.</summary>
+    public int AccelerationData(double accelerationMmPerS2) => StageUnits.AccelerationData(Math.Min(accelerationMmPerS2, MaxAccelerationMmPerS2), MicrostepUm);
+
     /// <summary>The absolute Z position, whole microsteps, of the focus <paramref name="offsetUm"/> µm from <see cref="FocusMm"/> (rounded once, from absolute µm).</summary>
     public long MicrostepsAt(double offsetUm) =>
         (long)Math.Round(StageUnits.UmToMicrosteps((FocusMm * 1000) + offsetUm, MicrostepUm));

@@ -57,7 +57,8 @@ public sealed class SweepPlan
 
     /// <summary>
     /// The estimate of the whole sweep, s: the first job's preparation (preflight, homing from the far end, the travel to
-    /// it), every later job's preflight without homing and travel from where the one before ended, and every job's passes.
+    /// it), every later job's preflight without homing and travel from where the one before ended, every job's passes, and
+    /// the focus moves of a focal series (<see cref="FocusMovesSeconds"/>).
     /// </summary>
     public double EstimatedSeconds
     {
@@ -76,8 +77,39 @@ public sealed class SweepPlan
                 end = stop;
             }
 
-            return total;
+            return total + FocusMovesSeconds();
         }
+    }
+
+    /// <summary>
+    /// The focus moves of a focal series, s: from the visible focus to the labels' (the visible focus) and each cell's Z, and
+    /// back, each the laser's switch-off acknowledged, the move command, the motion (a trapezoid at z.speedMmPerS) and its
+    /// reply; and Z's identification and settings before the first. Homing Z, which the first move does when Z is not homed, is left out: where Z stands before is not known.
+    /// </summary>
+    public double FocusMovesSeconds()
+    {
+        if (Spec.Profile.Z is not { } z || Cells.All(c => c.FocusZMicrosteps is null))
+        {
+            return 0;
+        }
+
+        var timing = TimedSwitching.For(Spec.Process, Spec.Profile, z.MicrostepUm);
+        var speed = StageUnits.SpeedMicrostepsPerS(z.SpeedData);
+        var acceleration = StageUnits.AccelerationMicrostepsPerS2(z.AccelerationData(Spec.Profile.AccelerationMmPerS2));
+        var focus = z.MicrostepsAt(0);
+        var total = 0.0;
+        var at = focus;
+        foreach (var target in Cells.Select(c => c.FocusZMicrosteps ?? at).Append(focus))
+        {
+            var motion = target == at ? 0 : new Motion.TrapezoidProfile(Math.Abs(target - at), speed, acceleration).Duration;
+            total += timing.OffRoundTripSeconds + timing.StageCommandSeconds + motion + timing.StageReplySeconds;
+            at = target;
+        }
+
+        // Before the first move Z is identified (device ID, firmware, Device Mode, its settings and position: 8 round trips,
+        // as every axis in a preflight) and given its acceleration and speed (2).
+        var preparation = 10 * (timing.StageCommandSeconds + timing.StageReplySeconds);
+        return preparation + total + (Labels is null ? 0 : timing.OffRoundTripSeconds + timing.StageCommandSeconds + timing.StageReplySeconds);
     }
 
     /// <summary>The jobs in the order they are burned: the labels, then the cells.</summary>

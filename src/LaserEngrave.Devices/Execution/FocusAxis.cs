@@ -27,8 +27,8 @@ public sealed class FocusAxis
         _profile = profile.Z ?? throw new ArgumentException("the machine profile has no Z axis", nameof(profile));
         _axis = stage.Z ?? throw new PreflightException($"the machine profile has a Z axis (device {_profile.DeviceNumber}) but the stage offers none");
         _gate = gate;
-        _speedData = StageUnits.SpeedData(_profile.SpeedMmPerS, _profile.MicrostepUm);
-        _accelerationData = StageUnits.AccelerationData(Math.Min(profile.AccelerationMmPerS2, _profile.MaxAccelerationMmPerS2), _profile.MicrostepUm);
+        _speedData = _profile.SpeedData;
+        _accelerationData = _profile.AccelerationData(profile.AccelerationMmPerS2);
     }
 
     /// <summary>Laser off, then Z stopped: an abort while Z moves (the move under way ends with <see cref="Zaber.ZaberInterruptedException"/>). Never throws.</summary>

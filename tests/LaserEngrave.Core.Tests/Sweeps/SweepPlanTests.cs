@@ -198,6 +198,22 @@ public class SweepPlanTests
         Assert.Null(SweepPlan.Build(Spec("speed=1,2") with { Profile = ThreeAxis }).Cells[0].FocusZMicrosteps);
     }
 
+    [Fact]
+    public void EstimatedSeconds_FocusRows_AddTheZMovesToTheSameCellsWithoutThem()
+    {
+        var focus = SweepPlan.Build(Spec("focus=-50,0,50") with { Profile = ThreeAxis });
+        var still = SweepPlan.Build(Spec("passes=1,1,1") with { Profile = ThreeAxis });
+
+        // Four moves of 504 microsteps (50 µm): to -50, 0, +50 and back to 0. At 1 mm/s (data 1075 = 10078.1 microsteps/s)
+        // and 50 mm/s² (data 45 = 506250 microsteps/s²) each is 504 / 10078.1 + 10078.1 / 506250 = 0.0699 s of motion,
+        // plus the laser's switch-off and the move's command and reply (tens of ms at 9600 baud), and before the first Z's
+        // identification and settings (10 round trips of two 6-byte frames, 12.5 ms at 9600 baud, and the adapter's 2 x 1 ms).
+        var moves = focus.EstimatedSeconds - still.EstimatedSeconds;
+        Assert.Equal(moves, focus.FocusMovesSeconds(), 9);
+        Assert.InRange(moves - (10 * 0.0145), 4 * 0.0699, 4 * (0.0699 + 0.05));
+        Assert.Equal(0, still.FocusMovesSeconds());
+    }
+
     [Theory]
     [InlineData("focus=0", null, "--rows focus=0: focus 0 µm: the machine has no Z axis: add a \"z\" section to the machine profile")]
     [InlineData("speed=1", "focus=-50,50", "--columns focus=-50,50: focus -50 µm: the machine has no Z axis")]

@@ -169,6 +169,28 @@ public class SweepSessionTests
     }
 
     [Fact(Timeout = 120_000)]
+    public async Task RunAsync_FocusRowsZHomedAtTheFocus_TheTimeBetweenJobsIsTheEstimatedFocusMoves()
+    {
+        await using var run = SimulatedRun.Create(profile: ThreeAxis);
+        var z = ThreeAxis.Z!;
+        await run.Do(async () =>
+        {
+            await run.Stage.Z!.HomeAsync(CancellationToken.None);
+            return await run.Stage.Z.MoveAbsoluteAsync(z.MicrostepsAt(0), CancellationToken.None);
+        });
+        var plan = FocusPlan("focus=-100,0,100,200", labels: true);
+        var log = new RecordingSweepLog();
+        var start = run.Machine.NowSeconds;
+
+        await Session(run, plan, log).RunAsync(null, TestContext.Current.CancellationToken);
+
+        // Outside the jobs' own times the sweep only moves Z (and, the first time, sets its speed and acceleration).
+        var record = Assert.Single(log.Records);
+        var between = run.Machine.NowSeconds - start - record.Cells.Sum(c => c.Run!.ActualSeconds) - record.Labels!.ActualSeconds;
+        Assert.True(Math.Abs(between - plan.FocusMovesSeconds()) < 0.05 * plan.FocusMovesSeconds(), $"Z moves took {between:0.####} s, estimated {plan.FocusMovesSeconds():0.####} s");
+    }
+
+    [Fact(Timeout = 120_000)]
     public async Task RunAsync_ZAxisRefusesItsMove_SweepFailsBeforeTheCellLaserOff()
     {
         await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = "error:stage:device=3:code=20:count=all" }, ThreeAxis);
