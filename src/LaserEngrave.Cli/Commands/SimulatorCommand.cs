@@ -82,9 +82,14 @@ internal static class SimulatorCommand
             }
         }
 
+        if (profile.Z is { } z)
+        {
+            Print($"simulator: the chain has a focus axis, Z = device {z.DeviceNumber}");
+        }
+
         await using var machine = SimulatedMachine.Attach(stage, laser, profile, options);
         machine.EventRaised += (_, e) => Print($"{e.Port}: {e.Message}");
-        Print($"simulator: stage (X = device {profile.X.DeviceNumber}, Y = device {profile.Y.DeviceNumber}{(profile.Z is { } z ? $", Z = device {z.DeviceNumber}" : string.Empty)}) on {stagePath}, laser gate on {laserPath}, "
+        Print($"simulator: stage (X = device {profile.X.DeviceNumber}, Y = device {profile.Y.DeviceNumber}) on {stagePath}, laser gate on {laserPath}, "
             + $"on the wall clock (a host in another process lives in real time), seed {options.Seed}{(faults.Count > 0 ? $", faults {string.Join(',', faults)}" : string.Empty)}; Ctrl+C to stop");
 
         try
