@@ -24,6 +24,7 @@ internal static class CommandRegistry
         yield return MachineCommand.Create();
         yield return EngraveCommand.Create();
         yield return SweepCommand.Create();
+        yield return SweepCommand.CreateFocusSeries();
         yield return LogCommand.Create();
         foreach (var command in TestMoveCommands.All())
         {

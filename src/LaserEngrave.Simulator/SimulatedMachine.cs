@@ -66,7 +66,10 @@ public sealed class SimulatedMachine : IAsyncDisposable
         Faults.Triggered += (_, rule) => Raise(rule.Target == FaultTarget.Stage ? StagePort : LaserPort, $"fault injected: {rule}");
         var x = new Motion.AxisTrajectory(StartPosition(profile.X, options));
         var y = new Motion.AxisTrajectory(StartPosition(profile.Y, options));
-        Recorder = new BurnRecorder(x, y, profile.X.MicrostepUm, profile.Y.MicrostepUm, options.DwellTolerance, () => _clock.NowSeconds);
+        Recorder = new BurnRecorder(x, y, profile.X.MicrostepUm, profile.Y.MicrostepUm, options.DwellTolerance, () => _clock.NowSeconds)
+        {
+            Z = profile.Z is { } z ? new Motion.AxisTrajectory(StartPosition(z, options)) : null,
+        };
         Stage = new VirtualZaberChain(profile, options, _clock, Faults, Recorder);
         Gate = new VirtualLaserGate(profile.Gate, options, _clock, Faults, Recorder);
         _inProcess = inProcess;
@@ -93,7 +96,7 @@ public sealed class SimulatedMachine : IAsyncDisposable
     /// <summary>Whether time is virtual (deterministic, as fast as it can be computed) rather than the wall clock.</summary>
     public bool IsVirtualTime => _virtual is not null;
 
-    /// <summary>The Zaber chain (X, Y).</summary>
+    /// <summary>The Zaber chain (X, Y, and Z when the profile has a focus axis).</summary>
     public VirtualZaberChain Stage { get; }
 
     public VirtualLaserGate Gate { get; }

@@ -88,4 +88,10 @@ public sealed record SimulatorOptions
     /// the move adds 12.5 ms and goes over the default.
     /// </remarks>
     public TimeSpan DwellTolerance { get; init; } = TimeSpan.FromMilliseconds(25);
+
+    /// <summary>Where the beam is truly in focus, µm from the profile's visible focus (z.focusMm): the focal offset seed 002 finds with a focal series.</summary>
+    public double TrueFocusOffsetUm { get; init; }
+
+    /// <summary>The beam's Rayleigh length zR, µm: the spot grows as d0 √(1 + (Δz / zR)²) away from the true focus; null: spot growth not modelled.</summary>
+    public double? RayleighLengthUm { get; init; }
 }

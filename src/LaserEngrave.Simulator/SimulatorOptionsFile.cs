@@ -57,6 +57,22 @@ public static class SimulatorOptionsFile
                 ? double.IsFinite(startMm) && startMm >= 0 && startMm <= 1000 ? startMm : throw new InvalidDataException($"{path}: startMm must be 0..1000 mm (got {startMm.ToString(System.Globalization.CultureInfo.InvariantCulture)})")
                 : baseOptions.StartMm,
         };
+        if (fields.TrueFocusOffsetUm is { } focusOffset)
+        {
+            options = options with
+            {
+                TrueFocusOffsetUm = double.IsFinite(focusOffset) && Math.Abs(focusOffset) <= 100_000 ? focusOffset : throw new InvalidDataException($"{path}: trueFocusOffsetUm must be -100000..100000 µm (got {focusOffset.ToString(System.Globalization.CultureInfo.InvariantCulture)})"),
+            };
+        }
+
+        if (fields.RayleighLengthUm is { } rayleigh)
+        {
+            options = options with
+            {
+                RayleighLengthUm = double.IsFinite(rayleigh) && rayleigh > 0 && rayleigh <= 100_000 ? rayleigh : throw new InvalidDataException($"{path}: rayleighLengthUm must be above 0 and at most 100000 µm (got {rayleigh.ToString(System.Globalization.CultureInfo.InvariantCulture)})"),
+            };
+        }
+
         if (fields.JitterScale is { } scale)
         {
             if (!double.IsFinite(scale) || scale < 0 || scale > 100)
@@ -89,7 +105,7 @@ public static class SimulatorOptionsFile
     }
 
     private static readonly string[] KnownFields =
-        ["seed", "adapterLatency", "gateProcessing", "jitterScale", "targetSpeedData", "homeSpeedData", "accelerationData", "startMm", "faults"];
+        ["seed", "adapterLatency", "gateProcessing", "jitterScale", "targetSpeedData", "homeSpeedData", "accelerationData", "startMm", "faults", "trueFocusOffsetUm", "rayleighLengthUm"];
 
     private static Jitter? Checked(string path, string name, Jitter? jitter)
     {
@@ -125,5 +141,9 @@ public static class SimulatorOptionsFile
         public double? StartMm { get; init; }
 
         public string? Faults { get; init; }
+
+        public double? TrueFocusOffsetUm { get; init; }
+
+        public double? RayleighLengthUm { get; init; }
     }
 }

@@ -54,6 +54,58 @@ public sealed class SweepCommandTests : IDisposable
         Assert.Contains("4 of 5", error, StringComparison.Ordinal);
     }
 
+    [Fact]
+    public async Task FocusSeriesSimulate_ThreeAxisProfile_ZAtEachFocusWhileFiringSmallestSpotAtTheTrueFocus()
+    {
+        var options = Path.Combine(folder, "sim.json");
+        await File.WriteAllTextAsync(options, """{ "trueFocusOffsetUm": 60, "rayleighLengthUm": 100 }""", TestContext.Current.CancellationToken);
+        var profile = Path.Combine(CliHarness.RepositoryRoot, "assets", "profiles", "three-axis.json");
+
+        var (exit, output, error) = await CliHarness.RunAsync(
+            "focus-series", "--focus-um", "-100..100:50", "--cell-mm", "0.2", "--pitch-um", "40", "--labels", "--profile", profile,
+            "--simulate", "--sim-options", options, "--json", "--log-dir", Path.Combine(folder, "logs"));
+
+        Assert.True(exit == 0, error);
+        using var json = JsonDocument.Parse(output);
+        var cells = json.RootElement.GetProperty("sweep").GetProperty("cells");
+        Assert.Equal(5, cells.GetArrayLength());
+        var microstepUm = 0.09921875;
+        var spots = new List<double>();
+        foreach (var cell in cells.EnumerateArray())
+        {
+            // Visible focus 12.5 mm + the cell's offset, in microsteps rounded once; the twin's Z stood there whenever the laser fired.
+            var offset = cell.GetProperty("parameters").GetProperty("focusUm").GetDouble();
+            var expected = (long)Math.Round(((12.5 * 1000) + offset) / microstepUm);
+            Assert.Equal(expected, cell.GetProperty("focusZMicrosteps").GetInt64());
+            Assert.Equal(expected, cell.GetProperty("zReachedMicrosteps").GetInt64());
+            var focus = cell.GetProperty("run").GetProperty("simulation").GetProperty("focus");
+            Assert.Equal((expected, expected), (focus.GetProperty("zMinMicrosteps").GetInt64(), focus.GetProperty("zMaxMicrosteps").GetInt64()));
+            Assert.Equal(0, focus.GetProperty("laserOnWhileZMoving").GetInt32());
+            spots.Add(focus.GetProperty("spotDiameterUm").GetDouble());
+        }
+
+        // The true focus 60 µm above the visible one: the +50 µm cell (4th) has the smallest spot, 20 µm x √(1 + (10/100)²).
+        Assert.Equal(3, spots.IndexOf(spots.Min()));
+        Assert.Equal(20 * Math.Sqrt(1 + (0.1 * 0.1)), spots[3], 1);
+    }
+
+    [Fact]
+    public async Task SweepPlanOnly_ImagePattern_EachCellTheImageItsLargerSideTheCell()
+    {
+        var qr = Path.Combine(CliHarness.RepositoryRoot, "assets", "qr-code.bmp");
+
+        var (exit, output, error) = await CliHarness.RunAsync(
+            "sweep", "--rows", "speed=0.5,1", "--pattern", "image", "--cell-image", qr, "--cell-mm", "2", "--plan-only", "--json");
+
+        Assert.True(exit == 0, error);
+        using var json = JsonDocument.Parse(output);
+        var cell = json.RootElement.GetProperty("cells")[1];
+
+        // The QR code is 41 x 41 px: 2 mm / 41 = 48.78 µm a pixel.
+        Assert.Equal(2000.0 / 41, cell.GetProperty("pitchUm").GetDouble(), 6);
+        Assert.Equal(2, cell.GetProperty("sizeMm").GetDouble(), 3);
+    }
+
     public void Dispose()
     {
         if (Directory.Exists(folder))

@@ -35,7 +35,8 @@ public sealed partial class SweepViewModel : ObservableObject
         _time = time;
         _job.PropertyChanged += (_, e) =>
         {
-            if (e.PropertyName is nameof(JobViewModel.PlanVersion) or nameof(JobViewModel.Errors))
+            if (e.PropertyName is nameof(JobViewModel.PlanVersion) or nameof(JobViewModel.Errors) or nameof(JobViewModel.Profile)
+                || (e.PropertyName is nameof(JobViewModel.Mask) && Pattern == SweepPattern.Image))
             {
                 Replan();
             }
@@ -82,7 +83,7 @@ public sealed partial class SweepViewModel : ObservableObject
     public partial string? Status { get; private set; }
 
     [ObservableProperty]
-    [NotifyCanExecuteChangedFor(nameof(RunSweepCommand), nameof(AbortSweepCommand))]
+    [NotifyCanExecuteChangedFor(nameof(RunSweepCommand), nameof(AbortSweepCommand), nameof(FocalSeriesCommand))]
     public partial bool IsRunning { get; private set; }
 
     /// <summary>The last sweep's log (its cells with their values, places and runs).</summary>
@@ -91,14 +92,47 @@ public sealed partial class SweepViewModel : ObservableObject
 
     public bool CanRun => Plan is not null && !IsRunning && _machine.CanUseMachine;
 
+    /// <summary>Whether the machine has a focus (Z) axis, so the rows or columns may vary the focus.</summary>
+    public bool FocusAvailable => _job.Profile.Z is not null;
+
+    /// <summary>The parameters the rows and columns may vary, as the field's label lists them.</summary>
+    public string ParameterNames => FocusAvailable ? "speed, frequency, passes, pulses-per-dot, pitch, focus" : "speed, frequency, passes, pulses-per-dot, pitch";
+
+    /// <summary>What the focus parameter means on this machine, or why it is not offered.</summary>
+    public string FocusNote => _job.Profile.Z is { } z
+        ? string.Create(CultureInfo.InvariantCulture, $"focus: µm from the visible focus (Z {z.FocusMm:0.###} mm), within Z {z.MinMm:0.###}..{z.UpperMm:0.###} mm, e.g. focus=-200..200:50")
+        : "Focus is not offered: this machine profile has no Z axis (add a \"z\" section, docs/machine-profile.md).";
+
+    /// <summary>The cells burn the job's image (its larger side the cell's); false while no image is loaded.</summary>
+    public bool ImageAvailable => _job.Mask is not null && !_job.IsDrawing;
+
+    /// <summary>Sets up a focal series (seed 002): short lines at focus -200..200 µm in 50 µm steps, one column, labelled.</summary>
+    [RelayCommand(CanExecute = nameof(CanPresetFocalSeries))]
+    private void FocalSeries()
+    {
+        Pattern = SweepPattern.Lines;
+        Columns = string.Empty;
+        Labels = true;
+        Rows = "focus=-200..200:50";
+    }
+
+    private bool CanPresetFocalSeries() => FocusAvailable && !IsRunning;
+
     /// <summary>Lays the sweep out again from the fields and the job's process and origin.</summary>
     public void Replan()
     {
         try
         {
+            if (Pattern == SweepPattern.Image && !ImageAvailable)
+            {
+                throw new SweepException("the cells burn the job's image: load an image first (Image panel)");
+            }
+
             Plan = SweepPlan.Build(new SweepSpec
             {
                 Pattern = Pattern,
+                CellImage = Pattern == SweepPattern.Image && !_job.IsDrawing ? _job.Mask : null,
+                CellImageName = _job.ImagePath is { } path ? Path.GetFileName(path) : null,
                 CellMm = CellMm,
                 SpacingMm = SpacingMm,
                 PitchUm = PitchUm,
@@ -117,6 +151,12 @@ public sealed partial class SweepViewModel : ObservableObject
             Plan = null;
             Error = ex.Message;
         }
+
+        OnPropertyChanged(nameof(FocusAvailable));
+        OnPropertyChanged(nameof(ParameterNames));
+        OnPropertyChanged(nameof(FocusNote));
+        OnPropertyChanged(nameof(ImageAvailable));
+        FocalSeriesCommand.NotifyCanExecuteChanged();
     }
 
     /// <summary>The plan in one line: cells, place and estimate.</summary>

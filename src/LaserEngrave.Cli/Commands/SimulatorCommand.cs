@@ -87,6 +87,11 @@ internal static class SimulatorCommand
             }
         }
 
+        if (profile.Z is { } z)
+        {
+            Print($"simulator: the chain has a focus axis, Z = device {z.DeviceNumber}");
+        }
+
         await using var machine = SimulatedMachine.Attach(stage, laser, profile, options);
         machine.EventRaised += (_, e) => Print($"{e.Port}: {e.Message}");
         Print($"simulator: stage (X = device {profile.X.DeviceNumber}, Y = device {profile.Y.DeviceNumber}) on {stagePath}, laser gate on {laserPath}, "

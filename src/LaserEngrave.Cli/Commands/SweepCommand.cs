@@ -18,8 +18,18 @@ internal static class SweepCommand
 {
     public static Command Create()
     {
-        var o = new SweepOptions();
-        var command = new Command("sweep", "Burn a test grid: cells (filled square, line set or dot array) with one or two process values varied over rows and columns, in one run, logged cell by cell");
+        var o = new SweepOptions(focusSeries: false);
+        var command = new Command("sweep", "Burn a test grid: cells (filled square, line set, dot array or a small image) with one or two process values varied over rows and columns, in one run, logged cell by cell");
+        o.AddTo(command);
+        command.SetAction((result, ct) => RunAsync(result, o, ct));
+        return command;
+    }
+
+    /// <summary>`laserengrave focus-series --focus-um -200..200:50 ...`: the sweep whose rows are focus positions (machines with a Z axis).</summary>
+    public static Command CreateFocusSeries()
+    {
+        var o = new SweepOptions(focusSeries: true);
+        var command = new Command("focus-series", "Burn a focal series (seed 002): one cell (short lines by default) per focus position around the profile's visible focus, the Z axis moved with the laser off before each; the sweep of --rows focus=..., for a machine profile with a Z axis");
         o.AddTo(command);
         command.SetAction((result, ct) => RunAsync(result, o, ct));
         return command;
@@ -180,7 +190,7 @@ internal static class SweepCommand
         {
             var parameters = string.Join(", ", cell.Parameters.Select(p => string.Create(c, $"{p.Key} {p.Value:0.######}")));
             var job = cell.Job;
-            output.WriteLine(string.Create(c, $"{cell.Row + 1,3} {cell.Column + 1,3}  {parameters,-40}  {cell.OriginXMm,7:0.###}, {cell.OriginYMm,7:0.###}  {job.Mask.Width,6}  {job.Pulses.PulsesPerPixel ?? 0,12:0.##}  {job.Statistics.EngravingSeconds * job.Spec.Passes,6:0.#}"));
+            output.WriteLine(string.Create(c, $"{cell.Row + 1,3} {cell.Column + 1,3}  {parameters,-40}  {cell.OriginXMm,7:0.###}, {cell.OriginYMm,7:0.###}  {job.Mask.Width,6}  {job.Pulses.PulsesPerPixel ?? 0,12:0.##}  {job.Statistics.EngravingSeconds * job.Spec.Passes,6:0.#}{(cell.FocusZMicrosteps is { } z ? $"  Z {z}" : string.Empty)}"));
         }
 
         output.WriteLine(string.Create(c, $"Estimated: {SweepDuration(plan.EstimatedSeconds)} for the whole sweep (preflight, homing and the travels between cells included), engraving {SweepDuration(plan.EngravingSeconds)}"));
@@ -189,13 +199,17 @@ internal static class SweepCommand
     private static string SweepDuration(double seconds) => JobSummary.Duration(seconds);
 
     /// <summary>The options of `sweep`.</summary>
-    private sealed class SweepOptions
+    private sealed class SweepOptions(bool focusSeries)
     {
         public JobOptions Process { get; } = new();
 
         public MachineOptions Machine { get; } = new();
 
-        public Option<string?> Pattern { get; } = new("--pattern") { Description = "What each cell burns: square (filled, the default), lines (every other pixel row) or dots (every other pixel of every other row)" };
+        public Option<string?> Pattern { get; } = new("--pattern") { Description = $"What each cell burns: square (filled{(focusSeries ? string.Empty : ", the default")}), lines (every other pixel row{(focusSeries ? ", the default" : string.Empty)}), dots (every other pixel of every other row) or image (--cell-image, its larger side the cell's)" };
+
+        public Option<string?> CellImage { get; } = new("--cell-image") { Description = "With --pattern image: the image each cell burns (any format engrave takes, dark pixels burn at 50 % threshold), its larger side spanning --cell-mm" };
+
+        public Option<string?> FocusUm { get; } = new("--focus-um") { Description = "The focus positions, µm from the profile's visible focus (z.focusMm): FROM..TO:STEP (e.g. -200..200:50) or a list (-100,0,100)" };
 
         public Option<double?> CellMm { get; } = new("--cell-mm") { Description = "Side of each cell, mm (default 1)" };
 
@@ -205,7 +219,7 @@ internal static class SweepCommand
 
         public Option<string?> OriginMm { get; } = new("--origin-mm") { Description = "Stage position of the grid's top-left corner (its labels'), X,Y in mm (default 1,1)" };
 
-        public Option<string?> Rows { get; } = new("--rows") { Description = "The parameter varied down the rows and its values: speed, frequency, passes, pulses-per-dot or pitch, e.g. speed=0.5,1,2" };
+        public Option<string?> Rows { get; } = new("--rows") { Description = "The parameter varied down the rows and its values: speed, frequency, passes, pulses-per-dot, pitch or focus (µm from the visible focus, machines with a Z axis), e.g. speed=0.5,1,2 or focus=-200..200:50" };
 
         public Option<string?> Columns { get; } = new("--columns") { Description = "The parameter varied across the columns and its values, e.g. frequency=500,1000,2000" };
 
@@ -233,7 +247,7 @@ internal static class SweepCommand
         {
             Process.AddProcessTo(command);
             Machine.AddTo(command);
-            foreach (var option in new Option[] { Pattern, CellMm, SpacingMm, PitchUm, OriginMm, Rows, Columns, Labels, Passes, PlanOnly, LogDir, DoseDir, Dose, Notes, Sample, Home, Json })
+            foreach (var option in new Option[] { Pattern, CellImage, CellMm, SpacingMm, PitchUm, OriginMm, focusSeries ? FocusUm : Rows, Columns, Labels, Passes, PlanOnly, LogDir, DoseDir, Dose, Notes, Sample, Home, Json })
             {
                 command.Options.Add(option);
             }
@@ -244,24 +258,40 @@ internal static class SweepCommand
         {
             var profile = Process.BindProfile(result);
             var limits = MachineLimits.Of(profile);
-            var rows = result.GetValue(Rows) ?? throw new UsageException("give what the rows vary: --rows PARAMETER=V1,V2,..., e.g. --rows speed=0.5,1,2");
+            var rows = focusSeries
+                ? result.GetValue(FocusUm) is { } focus ? SweepAxis.Parse(SweepParameter.Focus, focus, $"--focus-um {focus}") : throw new UsageException("give the focus positions: --focus-um FROM..TO:STEP, e.g. --focus-um -200..200:50")
+                : SweepAxis.Parse(result.GetValue(Rows) ?? throw new UsageException("give what the rows vary: --rows PARAMETER=V1,V2,..., e.g. --rows speed=0.5,1,2"), "--rows");
+            var pattern = result.GetValue(Pattern)?.Trim().ToLowerInvariant() switch
+            {
+                null or "" => focusSeries ? SweepPattern.Lines : SweepPattern.Square,
+                "square" => SweepPattern.Square,
+                "lines" => SweepPattern.Lines,
+                "dots" => SweepPattern.Dots,
+                "image" => SweepPattern.Image,
+                var other => throw new UsageException($"--pattern {other}: use square, lines, dots or image"),
+            };
+            var cellImagePath = result.GetValue(CellImage);
+            if ((pattern == SweepPattern.Image) != (cellImagePath is not null))
+            {
+                throw new UsageException(cellImagePath is null ? "--pattern image needs the cell's image: --cell-image FILE" : "--cell-image goes with --pattern image");
+            }
+
+            // Through the image loader every engraving uses: one line naming the file when it cannot be read.
+            var cellImage = cellImagePath is null ? null : Core.Imaging.MaskBuilder.FromFile(cellImagePath, Core.Imaging.MaskOptions.Default, out _);
             var origin = result.GetValue(OriginMm) is { } text ? JobOptions.ParseOrigin(text) : new Core.Geometry.OriginMm(1, 1);
             OptionChecks.WithinTravel(origin.X, limits.TravelXMm, "--origin-mm", "X");
             OptionChecks.WithinTravel(origin.Y, limits.TravelYMm, "--origin-mm", "Y");
             return new SweepSpec
             {
-                Pattern = result.GetValue(Pattern)?.Trim().ToLowerInvariant() switch
-                {
-                    null or "" or "square" => SweepPattern.Square,
-                    "lines" => SweepPattern.Lines,
-                    "dots" => SweepPattern.Dots,
-                    var other => throw new UsageException($"--pattern {other}: use square, lines or dots"),
-                },
+                Pattern = pattern,
+                CellImage = cellImage,
+                CellImageName = cellImagePath is null ? null : Path.GetFileName(cellImagePath),
                 CellMm = result.GetValue(CellMm) ?? 1,
                 SpacingMm = result.GetValue(SpacingMm) ?? 0.5,
                 PitchUm = result.GetValue(PitchUm) ?? 50,
                 Origin = origin,
-                Rows = SweepAxis.Parse(rows, "--rows"),
+                Rows = rows,
+                RowsOption = focusSeries ? "--focus-um" : "--rows",
                 Columns = result.GetValue(Columns) is { } columns ? SweepAxis.Parse(columns, "--columns") : null,
                 Labels = result.GetValue(Labels),
                 Process = Process.BindProcess(result, profile),
@@ -282,10 +312,10 @@ internal sealed record SweepPlanSummary(int Rows, int Columns, double GridXMm, d
         plan.GridXMm,
         plan.GridYMm,
         plan.EstimatedSeconds,
-        [.. plan.Cells.Select(c => new SweepPlanCell(c.Row, c.Column, c.Parameters, c.OriginXMm, c.OriginYMm, c.Job.Geometry.AchievedWidthMm, c.Job.Geometry.PitchUm, c.Job.Spec.Passes, c.Job.Pulses.PulsesPerPixel ?? 0, c.Job.Statistics.EngravingSeconds * c.Job.Spec.Passes))]);
+        [.. plan.Cells.Select(c => new SweepPlanCell(c.Row, c.Column, c.Parameters, c.OriginXMm, c.OriginYMm, c.Job.Geometry.AchievedWidthMm, c.Job.Geometry.PitchUm, c.Job.Spec.Passes, c.Job.Pulses.PulsesPerPixel ?? 0, c.Job.Statistics.EngravingSeconds * c.Job.Spec.Passes, c.FocusZMicrosteps))]);
 }
 
-internal sealed record SweepPlanCell(int Row, int Column, IReadOnlyDictionary<string, double> Parameters, double OriginXMm, double OriginYMm, double SizeMm, double PitchUm, int Passes, double PulsesPerPixel, double EstimatedSeconds);
+internal sealed record SweepPlanCell(int Row, int Column, IReadOnlyDictionary<string, double> Parameters, double OriginXMm, double OriginYMm, double SizeMm, double PitchUm, int Passes, double PulsesPerPixel, double EstimatedSeconds, long? FocusZMicrosteps);
 
 /// <summary>What `sweep --json` prints after a run: the outcome, the log's files and the whole log.</summary>
 internal sealed record SweepRunSummary(string Outcome, string? Fault, string LogPath, string SummaryPath, string? DoseDir, SweepRecord Sweep);

@@ -6,7 +6,7 @@ using LaserEngrave.Core.IO;
 namespace LaserEngrave.Core.Geometry;
 
 /// <summary>One linear axis of the stage: which Zaber device drives it and what it can do.</summary>
-public sealed record AxisProfile
+public record AxisProfile
 {
     /// <summary>Zaber device number on the daisy chain (1 = X, 2 = Y by default).</summary>
     public byte DeviceNumber { get; init; }
@@ -135,6 +135,10 @@ public sealed record MachineProfile
     public AxisProfile X { get; init; } = new() { DeviceNumber = 1 };
 
     public AxisProfile Y { get; init; } = new() { DeviceNumber = 2 };
+
+    /// <summary>The focus axis, a third Zaber device on the same chain; null (absent from the file) on a two-axis machine.</summary>
+    [JsonIgnore(Condition = JsonIgnoreCondition.WhenWritingNull)]
+    public ZAxisProfile? Z { get; init; }
 
     /// <summary>Baud rate of the Zaber chain (T-series speak only 9600).</summary>
     public int StageBaudRate { get; init; } = 9600;

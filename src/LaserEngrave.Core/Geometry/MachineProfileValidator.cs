@@ -66,7 +66,13 @@ public static class MachineProfileValidator
             return problems;
         }
 
-        foreach (var (name, axis) in new[] { ("x", profile.X), ("y", profile.Y) })
+        var axes = new List<(string Name, AxisProfile Axis)> { ("x", profile.X), ("y", profile.Y) };
+        if (profile.Z is { } zAxis)
+        {
+            axes.Add(("z", zAxis));
+        }
+
+        foreach (var (name, axis) in axes)
         {
             Require(axis.DeviceNumber is >= 1 and <= 254, $"{name}.deviceNumber must be 1..254 (got {axis.DeviceNumber})");
             Require(axis.MicrostepUm is > 0 and <= 100, $"{name}.microstepUm must be above 0 and at most 100 µm (got {N(axis.MicrostepUm)})");
@@ -91,6 +97,11 @@ public static class MachineProfileValidator
         }
 
         Require(profile.X.DeviceNumber != profile.Y.DeviceNumber, $"x.deviceNumber and y.deviceNumber cannot both be {profile.X.DeviceNumber}");
+        if (profile.Z is { } z)
+        {
+            CheckZ(profile, z, problems);
+        }
+
         Require(profile.StageBaudRate == 9600, $"stageBaudRate must be 9600: Zaber T-series devices speak only 9600 baud (got {profile.StageBaudRate})");
         Require(profile.SpotDiameterUm > 0 && double.IsFinite(profile.SpotDiameterUm), $"spotDiameterUm must be a finite number above 0 (got {N(profile.SpotDiameterUm)})");
 
@@ -135,6 +146,42 @@ public static class MachineProfileValidator
         }
 
         return problems;
+    }
+
+    // The focus axis beyond what every axis must meet: its own device number, a move speed it takes, and limits inside its travel around the visible focus.
+    private static void CheckZ(MachineProfile profile, ZAxisProfile z, List<string> problems)
+    {
+        foreach (var (name, other) in new[] { ("x", profile.X), ("y", profile.Y) })
+        {
+            if (z.DeviceNumber == other.DeviceNumber)
+            {
+                problems.Add($"z.deviceNumber and {name}.deviceNumber cannot both be {z.DeviceNumber}: the focus axis is a device of its own on the chain");
+            }
+        }
+
+        if (problems.Count > 0)
+        {
+            return;
+        }
+
+        var minSpeed = StageUnits.MicrostepsToMm(StageUnits.SpeedUnitMicrostepsPerS, z.MicrostepUm);
+        if (!(z.SpeedMmPerS >= minSpeed && z.SpeedMmPerS <= z.MaxSpeedMmPerS))
+        {
+            problems.Add($"z.speedMmPerS must be {N(minSpeed)}..{N(z.MaxSpeedMmPerS)} mm/s, one speed unit up to z.maxSpeedMmPerS (got {N(z.SpeedMmPerS)})");
+        }
+
+        if (!(z.MinMm >= 0 && z.MinMm < z.TravelMm))
+        {
+            problems.Add($"z.minMm must be 0 or more and below z.travelMm {N(z.TravelMm)} mm (got {N(z.MinMm)})");
+        }
+        else if (z.MaxMm is { } max && !(max > z.MinMm && max <= z.TravelMm))
+        {
+            problems.Add($"z.maxMm must be above z.minMm {N(z.MinMm)} mm and at most z.travelMm {N(z.TravelMm)} mm (got {N(max)})");
+        }
+        else if (!(z.FocusMm >= z.MinMm && z.FocusMm <= z.UpperMm))
+        {
+            problems.Add($"z.focusMm must be within z.minMm..z.maxMm {N(z.MinMm)}..{N(z.UpperMm)} mm (got {N(z.FocusMm)})");
+        }
     }
 
     // Speeds in increasing order, each once, so the table reads one way; offsets bounded, so a typo (mm for µm) is caught.

@@ -23,7 +23,18 @@ public sealed record RunSimulation(
 {
     /// <summary>For a drawing: each pulse's distance from the path and the pulses' spacing along it; null for an image.</summary>
     public PathFigures? Path { get; init; }
+
+    /// <summary>On a machine with a Z axis: where Z stood while the laser fired, and the spot that gives; null without one.</summary>
+    public FocusFigures? Focus { get; init; }
 }
+
+/// <summary>The focus axis while the laser fired, as the simulator measured it.</summary>
+/// <param name="ZMinMicrosteps">Lowest Z position while firing, microsteps (rounded).</param>
+/// <param name="ZMaxMicrosteps">Highest, microsteps; equal to the lowest when Z stood still.</param>
+/// <param name="LaserOnWhileZMoving">Laser-on periods during which Z moved: 0 when every focus move was made with the laser off.</param>
+/// <param name="DefocusUm">Z's distance from the simulated true focus, µm (mean of the lowest and highest).</param>
+/// <param name="SpotDiameterUm">The spot at that defocus, d0 √(1 + (Δz / zR)²); null when the simulator's Rayleigh length is not set.</param>
+public sealed record FocusFigures(long ZMinMicrosteps, long ZMaxMicrosteps, int LaserOnWhileZMoving, double DefocusUm, double? SpotDiameterUm);
 
 /// <summary>Edge placement over the burn runs: how many edges, their mean and largest error, µm.</summary>
 public sealed record EdgeErrors(int Count, double MeanErrorUm, double MaxErrorUm);

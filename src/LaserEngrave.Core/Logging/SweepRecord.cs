@@ -24,8 +24,11 @@ public sealed record SweepRecord
 
     public string? Fault { get; init; }
 
-    /// <summary>square, lines or dots.</summary>
+    /// <summary>square, lines, dots or image.</summary>
     public required string Pattern { get; init; }
+
+    /// <summary>The image file each cell burned with the image pattern; null otherwise.</summary>
+    public string? CellImage { get; init; }
 
     public required double CellMm { get; init; }
 
@@ -82,7 +85,7 @@ public sealed record SweepRecord
         var text = new StringBuilder();
         text.AppendLine(string.Create(c, $"LaserEngrave sweep, {record.StartedAt:yyyy-MM-dd HH:mm:ss zzz}{(record.Simulated ? " (simulator)" : string.Empty)}"));
         text.AppendLine(string.Create(c, $"Outcome:  {record.Outcome.ToString().ToLowerInvariant()}{(record.Fault is null ? string.Empty : ": " + record.Fault)}"));
-        text.AppendLine(string.Create(c, $"Grid:     {record.Pattern} cells of {record.CellMm:0.###} mm, {record.SpacingMm:0.###} mm apart, from {record.OriginXMm:0.###}, {record.OriginYMm:0.###} mm"));
+        text.AppendLine(string.Create(c, $"Grid:     {record.Pattern}{(record.CellImage is null ? string.Empty : $" ({record.CellImage})")} cells of {record.CellMm:0.###} mm, {record.SpacingMm:0.###} mm apart, from {record.OriginXMm:0.###}, {record.OriginYMm:0.###} mm"));
         text.AppendLine($"Rows:     {record.Rows}");
         text.AppendLine($"Columns:  {record.Columns ?? "(one)"}");
         if (record.SampleId is not null)
@@ -102,7 +105,13 @@ public sealed record SweepRecord
             var parameters = string.Join(", ", cell.Parameters.Select(p => string.Create(c, $"{p.Key} {p.Value:0.######}")));
             var ppp = cell.Run?.Simulation?.PulsesPerPixel is { } p ? string.Create(c, $"{p.Min}/{p.Mean:0.#}/{p.Max}") : "-";
             var outcome = cell.Run?.Outcome.ToString().ToLowerInvariant() ?? "not run";
-            text.AppendLine(string.Create(c, $"{cell.Row + 1,3} {cell.Column + 1,3}  {parameters,-40}  {cell.OriginXMm,7:0.###}, {cell.OriginYMm,7:0.###}  {cell.WidthMm:0.###} x {cell.HeightMm:0.###}  {outcome,-9}  {ppp}"));
+            var focus = cell.ZReachedMicrosteps is { } z ? string.Create(c, $"  Z at {z}") : string.Empty;
+            if (cell.Run?.Simulation?.Focus is { } f)
+            {
+                focus += string.Create(c, $" (simulated: Z {f.ZMinMicrosteps}..{f.ZMaxMicrosteps} while firing, {f.LaserOnWhileZMoving} firing while Z moved, defocus {f.DefocusUm:0.#} µm{(f.SpotDiameterUm is { } d ? $", spot {d:0.#} µm" : string.Empty)})");
+            }
+
+            text.AppendLine(string.Create(c, $"{cell.Row + 1,3} {cell.Column + 1,3}  {parameters,-40}  {cell.OriginXMm,7:0.###}, {cell.OriginYMm,7:0.###}  {cell.WidthMm:0.###} x {cell.HeightMm:0.###}  {outcome,-9}  {ppp}{focus}"));
         }
 
         return text.ToString();
@@ -126,4 +135,11 @@ public sealed record SweepCellRecord(
     double HeightMm,
     double PitchUm,
     int Passes,
-    RunRecord? Run);
+    RunRecord? Run)
+{
+    /// <summary>The absolute Z position planned for the cell, microsteps; null when the sweep does not vary the focus.</summary>
+    public long? FocusZMicrosteps { get; init; }
+
+    /// <summary>Where the Z axis said it arrived before the cell burned, microsteps; null when Z did not move for it.</summary>
+    public long? ZReachedMicrosteps { get; init; }
+}

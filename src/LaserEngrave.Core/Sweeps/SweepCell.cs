@@ -9,6 +9,9 @@ namespace LaserEngrave.Core.Sweeps;
 /// <param name="Job">The cell's job: its mask, geometry, process and passes.</param>
 public sealed record SweepCell(int Row, int Column, IReadOnlyDictionary<string, double> Parameters, PreparedJob Job)
 {
+    /// <summary>The absolute Z position the cell is burned at, whole microsteps (<see cref="Geometry.ZAxisProfile.MicrostepsAt"/>); null when the sweep does not vary the focus.</summary>
+    public long? FocusZMicrosteps { get; init; }
+
     /// <summary>The cell's top-left corner on the stage, mm.</summary>
     public double OriginXMm => Job.Spec.Origin.X;
 

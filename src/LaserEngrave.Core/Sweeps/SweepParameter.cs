@@ -17,6 +17,9 @@ public enum SweepParameter
 
     /// <summary>The cell's pixel pitch, µm: the distance between raster lines, lines of a line set and dots of a dot array.</summary>
     Pitch,
+
+    /// <summary>The focus, µm from the profile's visible focus (z.focusMm): moves the Z axis before the cell (machines with a Z axis only).</summary>
+    Focus,
 }
 
 /// <summary>Names and units of the sweep parameters, as the command line, the log and the labels say them.</summary>
@@ -30,6 +33,7 @@ public static class SweepParameters
         SweepParameter.Passes => "passes",
         SweepParameter.PulsesPerDot => "pulses-per-dot",
         SweepParameter.Pitch => "pitch",
+        SweepParameter.Focus => "focus",
         _ => throw new ArgumentOutOfRangeException(nameof(parameter)),
     };
 
@@ -41,6 +45,7 @@ public static class SweepParameters
         SweepParameter.Passes => "passes",
         SweepParameter.PulsesPerDot => "pulsesPerDot",
         SweepParameter.Pitch => "pitchUm",
+        SweepParameter.Focus => "focusUm",
         _ => throw new ArgumentOutOfRangeException(nameof(parameter)),
     };
 
@@ -48,7 +53,7 @@ public static class SweepParameters
     {
         SweepParameter.Speed => "mm/s",
         SweepParameter.Frequency => "Hz",
-        SweepParameter.Pitch => "µm",
+        SweepParameter.Pitch or SweepParameter.Focus => "µm",
         _ => string.Empty,
     };
 
@@ -62,6 +67,7 @@ public static class SweepParameters
         "passes" => SweepParameter.Passes,
         "pulses-per-dot" or "pulses" => SweepParameter.PulsesPerDot,
         "pitch" => SweepParameter.Pitch,
-        _ => throw new SweepException($"'{text}' is not a sweep parameter: use speed, frequency, passes, pulses-per-dot or pitch"),
+        "focus" => SweepParameter.Focus,
+        _ => throw new SweepException($"'{text}' is not a sweep parameter: use speed, frequency, passes, pulses-per-dot, pitch or focus"),
     };
 }

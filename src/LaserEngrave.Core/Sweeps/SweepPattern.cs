@@ -11,4 +11,7 @@ public enum SweepPattern
 
     /// <summary>Every other pixel of every other row: isolated dots two pixels apart.</summary>
     Dots,
+
+    /// <summary>A small image (<see cref="SweepSpec.CellImage"/>), its larger side the cell's side.</summary>
+    Image,
 }

@@ -57,7 +57,8 @@ public sealed class SweepPlan
 
     /// <summary>
     /// The estimate of the whole sweep, s: the first job's preparation (preflight, homing from the far end, the travel to
-    /// it), every later job's preflight without homing and travel from where the one before ended, and every job's passes.
+    /// it), every later job's preflight without homing and travel from where the one before ended, every job's passes, and
+    /// the focus moves of a focal series (<see cref="FocusMovesSeconds"/>).
     /// </summary>
     public double EstimatedSeconds
     {
@@ -76,8 +77,39 @@ public sealed class SweepPlan
                 end = stop;
             }
 
-            return total;
+            return total + FocusMovesSeconds();
         }
+    }
+
+    /// <summary>
+    /// The focus moves of a focal series, s: from the visible focus to the labels' (the visible focus) and each cell's Z, and
+    /// back, each the laser's switch-off acknowledged, the move command, the motion (a trapezoid at z.speedMmPerS) and its
+    /// reply; and Z's identification and settings before the first. Homing Z, which the first move does when Z is not homed, is left out: where Z stands before is not known.
+    /// </summary>
+    public double FocusMovesSeconds()
+    {
+        if (Spec.Profile.Z is not { } z || Cells.All(c => c.FocusZMicrosteps is null))
+        {
+            return 0;
+        }
+
+        var timing = TimedSwitching.For(Spec.Process, Spec.Profile, z.MicrostepUm);
+        var speed = StageUnits.SpeedMicrostepsPerS(z.SpeedData);
+        var acceleration = StageUnits.AccelerationMicrostepsPerS2(z.AccelerationData(Spec.Profile.AccelerationMmPerS2));
+        var focus = z.MicrostepsAt(0);
+        var total = 0.0;
+        var at = focus;
+        foreach (var target in Cells.Select(c => c.FocusZMicrosteps ?? at).Append(focus))
+        {
+            var motion = target == at ? 0 : new Motion.TrapezoidProfile(Math.Abs(target - at), speed, acceleration).Duration;
+            total += timing.OffRoundTripSeconds + timing.StageCommandSeconds + motion + timing.StageReplySeconds;
+            at = target;
+        }
+
+        // Before the first move Z is identified (device ID, firmware, Device Mode, its settings and position: 8 round trips,
+        // as every axis in a preflight) and given its acceleration and speed (2).
+        var preparation = 10 * (timing.StageCommandSeconds + timing.StageReplySeconds);
+        return preparation + total + (Labels is null ? 0 : timing.OffRoundTripSeconds + timing.StageCommandSeconds + timing.StageReplySeconds);
     }
 
     /// <summary>The jobs in the order they are burned: the labels, then the cells.</summary>
@@ -228,6 +260,7 @@ public sealed class SweepPlan
         var process = spec.Process;
         var passes = spec.Passes;
         var pitch = spec.PitchUm;
+        double? focusUm = null;
         foreach (var (key, value) in parameters)
         {
             switch (key)
@@ -237,13 +270,27 @@ public sealed class SweepPlan
                 case "passes": passes = (int)value; break;
                 case "pulsesPerDot": process = process with { PulsesPerDot = (int)value }; break;
                 case "pitchUm": pitch = value; break;
+                case "focusUm": focusUm = value; break;
                 default: throw new InvalidOperationException($"unknown sweep parameter {key}");
             }
         }
 
-        var n = Math.Max(1, (int)Math.Round(spec.CellMm * 1000 / pitch));
-        var job = Prepare(spec, $"sweep cell r{row + 1} c{column + 1}", CellMask(spec.Pattern, n), SizeSpec.Pitch(pitch), origin, process, passes, SweepCell.Describe(row, column, parameters));
-        return new SweepCell(row, column, parameters, job);
+        BitMask mask;
+        if (spec.CellImage is { } image && spec.Pattern == SweepPattern.Image)
+        {
+            mask = image;
+            pitch = ImagePitchUm(spec, image);
+        }
+        else
+        {
+            mask = CellMask(spec.Pattern, Math.Max(1, (int)Math.Round(spec.CellMm * 1000 / pitch)));
+        }
+
+        var job = Prepare(spec, $"sweep cell r{row + 1} c{column + 1}", mask, SizeSpec.Pitch(pitch), origin, process, passes, SweepCell.Describe(row, column, parameters));
+        return new SweepCell(row, column, parameters, job)
+        {
+            FocusZMicrosteps = focusUm is { } offset ? spec.Profile.Z!.MicrostepsAt(offset) : null,
+        };
     }
 
     private static PreparedJob Prepare(SweepSpec spec, string name, BitMask mask, SizeSpec size, OriginMm origin, ProcessSettings process, int passes, string what)
@@ -295,7 +342,25 @@ public sealed class SweepPlan
             throw new SweepException($"--spacing-mm {N(spec.SpacingMm)}: must be 0..{N(travel)} mm");
         }
 
-        CheckPitch(spec.PitchUm, "--pitch-um");
+        if (spec.Pattern == SweepPattern.Image)
+        {
+            if (spec.CellImage is not { } image)
+            {
+                throw new SweepException("--pattern image needs the cell's image: --cell-image FILE");
+            }
+
+            if (spec.Rows.Parameter == SweepParameter.Pitch || spec.Columns?.Parameter == SweepParameter.Pitch)
+            {
+                throw new SweepException("--pattern image sizes the image to the cell (its larger side), so its pitch cannot be swept; sweep the cell size by runs of their own");
+            }
+
+            CheckPitch(ImagePitchUm(spec, image), $"--cell-image {spec.CellImageName} ({image.Width} x {image.Height} px over {N(spec.CellMm)} mm): a pixel of");
+        }
+        else
+        {
+            CheckPitch(spec.PitchUm, "--pitch-um");
+        }
+
         if (spec.Passes is < 1 or > JobSpec.MaxPasses)
         {
             throw new SweepException($"--passes {spec.Passes}: must be 1..{JobSpec.MaxPasses}");
@@ -317,7 +382,7 @@ public sealed class SweepPlan
             throw new SweepException($"{cells} cells: a sweep has at most {MaxCells}");
         }
 
-        foreach (var (axis, option) in new[] { (spec.Rows, "--rows"), (spec.Columns, "--columns") })
+        foreach (var (axis, option) in new[] { (spec.Rows, spec.RowsOption), (spec.Columns, "--columns") })
         {
             if (axis is null)
             {
@@ -334,11 +399,14 @@ public sealed class SweepPlan
                     SweepParameter.PulsesPerDot when value is < 1 or > 1_000_000 => "must be 1..1000000",
                     SweepParameter.PulsesPerDot when spec.Process.Mode != PlanMode.Dots => "pulses per dot are swept in dot mode only: add --mode dots",
                     SweepParameter.Pitch when !(value >= microstepUm && value <= spec.CellMm * 1000) => $"must be {N(microstepUm)} µm (a microstep) .. {N(spec.CellMm * 1000)} µm (the cell)",
+                    SweepParameter.Focus when spec.Profile.Z is null => "the machine has no Z axis: add a \"z\" section to the machine profile (docs/machine-profile.md) to sweep the focus",
+                    SweepParameter.Focus when spec.Profile.Z.OffsetProblem(value) is { } outside => outside,
                     _ => null,
                 };
                 if (problem is not null)
                 {
-                    throw new SweepException($"{option} {axis}: {axis.Parameter.CliName()} {N(value)} {axis.Parameter.Unit()}".TrimEnd() + $": {problem}");
+                    var given = option == "--focus-um" ? string.Join(',', axis.Values.Select(N)) : axis.ToString();
+                    throw new SweepException($"{option} {given}: {axis.Parameter.CliName()} {N(value)} {axis.Parameter.Unit()}".TrimEnd() + $": {problem}");
                 }
             }
         }
@@ -351,6 +419,9 @@ public sealed class SweepPlan
             }
         }
     }
+
+    // The image's larger side spans the cell.
+    private static double ImagePitchUm(SweepSpec spec, BitMask image) => spec.CellMm * 1000 / Math.Max(image.Width, image.Height);
 
     /// <summary>A value as its label burns it: up to three decimals, no trailing zeros.</summary>
     private static string Label(double value) => value.ToString("0.###", CultureInfo.InvariantCulture);

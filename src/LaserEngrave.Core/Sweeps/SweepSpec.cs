@@ -1,4 +1,5 @@
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Imaging;
 using LaserEngrave.Core.Planning;
 
 namespace LaserEngrave.Core.Sweeps;
@@ -7,6 +8,12 @@ namespace LaserEngrave.Core.Sweeps;
 public sealed record SweepSpec
 {
     public SweepPattern Pattern { get; init; } = SweepPattern.Square;
+
+    /// <summary>The mask every cell burns with <see cref="SweepPattern.Image"/>, its larger side spanning the cell; null otherwise.</summary>
+    public BitMask? CellImage { get; init; }
+
+    /// <summary>Where <see cref="CellImage"/> came from (a file name), for the log and messages.</summary>
+    public string? CellImageName { get; init; }
 
     /// <summary>Side of each (square) cell, mm.</summary>
     public double CellMm { get; init; } = 1;
@@ -22,6 +29,9 @@ public sealed record SweepSpec
 
     /// <summary>The parameter varied down the rows, one value a row.</summary>
     public required SweepAxis Rows { get; init; }
+
+    /// <summary>The option that gave <see cref="Rows"/>, as error lines name it (<c>--focus-um</c> for a focal series).</summary>
+    public string RowsOption { get; init; } = "--rows";
 
     /// <summary>The parameter varied across the columns, one value a column; null: one column.</summary>
     public SweepAxis? Columns { get; init; }

@@ -73,10 +73,13 @@ public sealed record AxisIdentity(byte DeviceNumber, int DeviceId, int FirmwareV
     public string FirmwareText => $"{FirmwareVersion / 100}.{FirmwareVersion % 100:00}";
 }
 
-/// <summary>The two axes of the X-Y stage.</summary>
+/// <summary>The two axes of the X-Y stage, and the focus axis when the machine has one.</summary>
 public interface IStage
 {
     IStageAxis X { get; }
 
     IStageAxis Y { get; }
+
+    /// <summary>The focus (Z) axis; null on a two-axis machine.</summary>
+    IStageAxis? Z => null;
 }

@@ -1,6 +1,7 @@
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Sweeps;
+using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Scheduling;
 
 namespace LaserEngrave.Devices.Execution;
@@ -53,6 +54,7 @@ public sealed class SweepSession
 {
     private readonly Lock _lock = new();
     private EngraveSession? _current;
+    private FocusAxis? _focusMoving;
     private bool _abortRequested;
     private int _started;
 
@@ -85,17 +87,23 @@ public sealed class SweepSession
         return TaskRunner.For(Machine.TimeProvider).Run(() => RunJobsAsync(progress, cancellationToken));
     }
 
-    /// <summary>Laser off, then the stage stopped; no further cell starts.</summary>
+    /// <summary>Laser off, then the stage stopped (the focus axis too, when it is moving); no further cell starts.</summary>
     public void Abort()
     {
         EngraveSession? current;
+        FocusAxis? focus;
         lock (_lock)
         {
             _abortRequested = true;
             current = _current;
+            focus = _focusMoving;
         }
 
         current?.Abort();
+        if (focus is not null)
+        {
+            _ = TaskRunner.For(Machine.TimeProvider).Start(focus.StopAsync);
+        }
     }
 
     private async Task<SweepResult> RunJobsAsync(IProgress<SweepProgress>? progress, CancellationToken cancellationToken)
@@ -110,10 +118,25 @@ public sealed class SweepSession
 
         jobs.AddRange(Plan.Cells.Select(c => ((SweepCell?)c, c.Job)));
         var runs = new Dictionary<SweepCell, RunRecord>();
+        var reachedZ = new Dictionary<SweepCell, long>();
         RunRecord? labels = null;
         var outcome = RunOutcome.Completed;
         string? fault = null;
-        for (var i = 0; i < jobs.Count; i++)
+        FocusAxis? focus = null;
+        if (Plan.Cells.Any(c => c.FocusZMicrosteps is not null))
+        {
+            try
+            {
+                focus = new FocusAxis(Machine.Stage, Machine.Gate, Plan.Spec.Profile);
+            }
+            catch (PreflightException ex)
+            {
+                outcome = RunOutcome.Refused;
+                fault = ex.Message;
+            }
+        }
+
+        for (var i = 0; fault is null && i < jobs.Count; i++)
         {
             var (cell, job) = jobs[i];
             EngraveSession session;
@@ -135,6 +158,35 @@ public sealed class SweepSession
                     WallClock = Options.WallClock,
                 });
                 _current = session;
+            }
+
+            // The labels burn at the visible focus, each cell at its own.
+            if (focus is not null && (cell is null ? Plan.Spec.Profile.Z!.MicrostepsAt(0) : cell.FocusZMicrosteps) is { } z)
+            {
+                try
+                {
+                    var reached = await MoveFocusAsync(focus, z, cancellationToken);
+                    if (cell is not null)
+                    {
+                        reachedZ[cell] = reached;
+                    }
+                }
+                catch (Exception ex) when (ex is DeviceException or OperationCanceledException)
+                {
+                    lock (_lock)
+                    {
+                        _current = null;
+                        outcome = ex is OperationCanceledException || _abortRequested ? RunOutcome.Aborted : RunOutcome.Failed;
+                    }
+
+                    fault = outcome == RunOutcome.Aborted
+                        ? $"aborted by the operator while moving the focus to {z} microsteps for {cell?.Describe() ?? "the labels"}"
+                        : $"{cell?.Describe() ?? "the labels"}: moving the focus to {z} microsteps: {ex.Message}";
+
+                    // A device that failed mid-move (a lost reply) may still be moving: laser off and Z stopped before the log.
+                    await focus.StopAsync();
+                    break;
+                }
             }
 
             var index = i;
@@ -164,6 +216,19 @@ public sealed class SweepSession
             }
         }
 
+        // Back to the visible focus once every cell is burned, so the next job is not burned out of focus.
+        if (focus is not null && outcome == RunOutcome.Completed)
+        {
+            try
+            {
+                await MoveFocusAsync(focus, Plan.Spec.Profile.Z!.MicrostepsAt(0), cancellationToken);
+            }
+            catch (Exception ex) when (ex is DeviceException or OperationCanceledException)
+            {
+                fault = $"every cell was burned, but the focus could not be moved back to z.focusMm: {ex.Message}";
+            }
+        }
+
         var spec = Plan.Spec;
         var record = new SweepRecord
         {
@@ -173,6 +238,7 @@ public sealed class SweepSession
             Outcome = outcome,
             Fault = fault,
             Pattern = spec.Pattern.ToString().ToLowerInvariant(),
+            CellImage = spec.Pattern == SweepPattern.Image ? spec.CellImageName : null,
             CellMm = spec.CellMm,
             SpacingMm = spec.SpacingMm,
             OriginXMm = spec.Origin.X,
@@ -195,7 +261,11 @@ public sealed class SweepSession
                     c.Job.Geometry.AchievedHeightMm,
                     c.Job.Geometry.PitchUm,
                     c.Job.Spec.Passes,
-                    runs.GetValueOrDefault(c))),
+                    runs.GetValueOrDefault(c))
+                {
+                    FocusZMicrosteps = c.FocusZMicrosteps,
+                    ZReachedMicrosteps = reachedZ.TryGetValue(c, out var reached) ? reached : null,
+                }),
             ],
         };
         RunLogFiles? files = null;
@@ -213,6 +283,32 @@ public sealed class SweepSession
         }
 
         return new SweepResult(record, files, logError);
+    }
+
+    // A focus move that Abort can stop.
+    private async Task<long> MoveFocusAsync(FocusAxis focus, long microsteps, CancellationToken cancellationToken)
+    {
+        lock (_lock)
+        {
+            if (_abortRequested)
+            {
+                throw new OperationCanceledException("the sweep was aborted");
+            }
+
+            _focusMoving = focus;
+        }
+
+        try
+        {
+            return await focus.MoveToAsync(microsteps, cancellationToken);
+        }
+        finally
+        {
+            lock (_lock)
+            {
+                _focusMoving = null;
+            }
+        }
     }
 
     private sealed class Relay(Action<EngraveProgress> report) : IProgress<EngraveProgress>

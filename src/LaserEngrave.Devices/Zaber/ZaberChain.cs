@@ -4,7 +4,7 @@ using LaserEngrave.Devices.Serial;
 
 namespace LaserEngrave.Devices.Zaber;
 
-/// <summary>The X-Y stage: two Zaber devices daisy-chained on one serial port, numbered as the machine profile says.</summary>
+/// <summary>The X-Y stage: two Zaber devices daisy-chained on one serial port, numbered as the machine profile says, and a third for focus when the profile has a Z axis.</summary>
 public sealed class ZaberChain : IStage, IAsyncDisposable
 {
     public ZaberChain(ZaberConnection connection, MachineProfile profile)
@@ -15,6 +15,7 @@ public sealed class ZaberChain : IStage, IAsyncDisposable
         Profile = profile;
         X = new ZaberBinaryDevice(connection, profile.X.DeviceNumber, "X");
         Y = new ZaberBinaryDevice(connection, profile.Y.DeviceNumber, "Y");
+        Z = profile.Z is { } z ? new ZaberBinaryDevice(connection, z.DeviceNumber, "Z") : null;
     }
 
     public ZaberConnection Connection { get; }
@@ -25,9 +26,14 @@ public sealed class ZaberChain : IStage, IAsyncDisposable
 
     public ZaberBinaryDevice Y { get; }
 
+    /// <summary>The focus axis; null when the profile has no Z axis.</summary>
+    public ZaberBinaryDevice? Z { get; }
+
     IStageAxis IStage.X => X;
 
     IStageAxis IStage.Y => Y;
+
+    IStageAxis? IStage.Z => Z;
 
     /// <summary>Opens the port at the profile's stage baud rate (8N1, no handshake) and starts the connection.</summary>
     public static ZaberChain Open(string portName, MachineProfile profile, TimeProvider? timeProvider = null, ZaberConnectionOptions? options = null)
@@ -61,11 +67,11 @@ public sealed class ZaberChain : IStage, IAsyncDisposable
         var devices = new List<ZaberDeviceInfo>();
         foreach (var (number, deviceId) in ids)
         {
-            var axis = number == X.DeviceNumber ? X : number == Y.DeviceNumber ? Y : new ZaberBinaryDevice(Connection, number);
+            var axis = number == X.DeviceNumber ? X : number == Y.DeviceNumber ? Y : number == Z?.DeviceNumber ? Z : new ZaberBinaryDevice(Connection, number);
             devices.Add(await InspectAsync(axis, deviceId, fixAutoReply, notes, cancellationToken));
         }
 
-        foreach (var axis in new[] { X, Y })
+        foreach (var axis in Z is null ? new[] { X, Y } : [X, Y, Z])
         {
             if (!ids.ContainsKey(axis.DeviceNumber))
             {

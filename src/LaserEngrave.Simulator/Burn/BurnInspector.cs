@@ -1,3 +1,4 @@
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Devices.Execution;
@@ -23,7 +24,7 @@ public sealed class BurnInspector(SimulatedMachine machine) : IRunInspector
         var dots = job.Dots is not null;
         var burn = machine.Recorder.Analyze(BurnGrid.For(job.Plan.Geometry), job.Mask, dots ? null : job.Spec.Process.BurnSpeedMmPerS);
         Report = burn;
-        return new RunSimulation(
+        var simulation = new RunSimulation(
             machine.Options.Seed,
             burn.Pulses,
             burn.Edges is { } e ? new EdgeErrors(e.Count, e.MeanErrorUm, e.MaxErrorUm) : null,
@@ -33,6 +34,23 @@ public sealed class BurnInspector(SimulatedMachine machine) : IRunInspector
             burn.MissingPixels,
             burn.ExtraPixels,
             burn.PulsesWhileMoving);
+        return simulation with { Focus = Focus() };
+    }
+
+    /// <summary>Where Z stood while the laser fired and the spot the twin's beam gives there; null without a Z axis.</summary>
+    public FocusFigures? Focus()
+    {
+        if (machine.Profile.Z is not { } z || machine.Recorder.FocusWhileFiring() is not { } firing)
+        {
+            return null;
+        }
+
+        var zUm = StageUnits.MicrostepsToUm((firing.MinMicrosteps + firing.MaxMicrosteps) / 2, z.MicrostepUm);
+        var defocusUm = zUm - ((z.FocusMm * 1000) + machine.Options.TrueFocusOffsetUm);
+        double? spot = machine.Options.RayleighLengthUm is { } zR
+            ? machine.Profile.SpotDiameterUm * Math.Sqrt(1 + Math.Pow(defocusUm / zR, 2))
+            : null;
+        return new FocusFigures((long)Math.Round(firing.MinMicrosteps), (long)Math.Round(firing.MaxMicrosteps), firing.PeriodsWhileMoving, defocusUm, spot);
     }
 
     public RunSimulation InspectDrawing(PreparedDrawing drawing)

@@ -50,6 +50,9 @@ public sealed class BurnRecorder
 
     public AxisTrajectory Y { get; }
 
+    /// <summary>The focus axis' trajectory; null on a two-axis machine.</summary>
+    public AxisTrajectory? Z { get; init; }
+
     public double XMicrostepUm { get; }
 
     public double YMicrostepUm { get; }
@@ -122,6 +125,42 @@ public sealed class BurnRecorder
     /// <summary>The laser-on intervals, ended at <paramref name="untilSeconds"/> when still open.</summary>
     public IReadOnlyList<(double From, double To)> LaserOnIntervals(double untilSeconds) =>
         [.. LaserPeriods(untilSeconds).Select(p => (p.FromSeconds, p.ToSeconds))];
+
+    /// <summary>Where the focus axis stood while the laser fired since <see cref="Restart"/>; null without a Z axis or without firing.</summary>
+    public ZWhileFiring? FocusWhileFiring()
+    {
+        if (Z is not { } z)
+        {
+            return null;
+        }
+
+        MotionSegment[] zs = [.. z.Segments];
+        var periods = LaserPeriods(_now?.Invoke() ?? LastInstant([.. X.Segments], [.. Y.Segments]));
+        if (periods.Count == 0)
+        {
+            return null;
+        }
+
+        double min = double.PositiveInfinity, max = double.NegativeInfinity;
+        var moving = 0;
+        foreach (var period in periods)
+        {
+            foreach (var at in new[] { period.FromSeconds, period.ToSeconds })
+            {
+                var position = z.PositionAt(at);
+                min = Math.Min(min, position);
+                max = Math.Max(max, position);
+            }
+
+            // A Z segment in motion overlapping the period: the focus changed while the laser fired.
+            if (zs.Any(s => (s.StartVelocity != 0 || s.Acceleration != 0) && s.StartSeconds < period.ToSeconds && s.EndSeconds > period.FromSeconds))
+            {
+                moving++;
+            }
+        }
+
+        return new ZWhileFiring(min, max, moving, periods.Count);
+    }
 
     /// <summary>Works out the burned image and the figures on <paramref name="grid"/>.</summary>
     /// <param name="grid">The job's pixel grid.</param>

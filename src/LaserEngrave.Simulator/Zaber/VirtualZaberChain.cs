@@ -9,7 +9,7 @@ using LaserEngrave.Simulator.Timing;
 
 namespace LaserEngrave.Simulator.Zaber;
 
-/// <summary>A daisy chain of simulated Zaber devices on one serial line: X nearest the PC, then Y.</summary>
+/// <summary>A daisy chain of simulated Zaber devices on one serial line: X nearest the PC, then Y, then Z when the profile has a focus axis.</summary>
 /// <remarks>
 /// Frames are 6 bytes; a partial frame is dropped when the next byte comes more than
 /// <see cref="SimulatorOptions.PartialFrameTimeout"/> after the previous one. A frame for device 0 reaches every
@@ -30,11 +30,17 @@ public sealed class VirtualZaberChain
         Clock = clock;
         Recorder = recorder;
         BaudRate = profile.StageBaudRate;
-        Devices =
+        List<VirtualZaberDevice> devices =
         [
             new VirtualZaberDevice(this, AxisName.X, 0, profile.X.DeviceNumber, profile.X.TravelMicrosteps, recorder.X, options),
             new VirtualZaberDevice(this, AxisName.Y, 1, profile.Y.DeviceNumber, profile.Y.TravelMicrosteps, recorder.Y, options),
         ];
+        if (profile.Z is { } z && recorder.Z is { } zTrajectory)
+        {
+            devices.Add(new VirtualZaberDevice(this, AxisName.Z, 2, z.DeviceNumber, z.TravelMicrosteps, zTrajectory, options));
+        }
+
+        Devices = devices;
     }
 
     /// <summary>The devices in chain order.</summary>
@@ -43,6 +49,9 @@ public sealed class VirtualZaberChain
     public VirtualZaberDevice X => Devices[0];
 
     public VirtualZaberDevice Y => Devices[1];
+
+    /// <summary>The focus axis; null when the machine profile has no Z axis.</summary>
+    public VirtualZaberDevice? Z => Devices.Count > 2 ? Devices[2] : null;
 
     public int BaudRate { get; }
 

@@ -218,6 +218,30 @@ public sealed class SweepPanelTests : ComponentTest
         Assert.Contains("both vary pitch", cut.Find("[data-error=sweep]").TextContent, StringComparison.Ordinal);
         Assert.True(cut.Find("#sweepRun").HasAttribute("disabled"));
     }
+
+    [Fact]
+    public void TwoAxisMachine_NoFocalSeriesButtonAndANoteWhy()
+    {
+        var cut = Render<SweepPanel>(p => p.Add(c => c.Sweep, Main.Sweep));
+
+        Assert.Empty(cut.FindAll("#sweepFocalSeries"));
+        Assert.Contains("no Z axis", cut.Find("#sweep-focus-note").TextContent, StringComparison.Ordinal);
+        Assert.DoesNotContain("focus", cut.Find("label[for=sweepRows]").TextContent, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void ProfileWithZ_FocalSeriesButton_FillsTheRowsWithTheFocus()
+    {
+        var cut = Render<SweepPanel>(p => p.Add(c => c.Sweep, Main.Sweep));
+
+        Main.Job.UseProfile(Core.Geometry.MachineProfile.Default with { Z = new Core.Geometry.ZAxisProfile() });
+        cut.Find("#sweepFocalSeries").Click();
+
+        Assert.Equal("focus=-200..200:50", cut.Find("#sweepRows").GetAttribute("value"));
+        Assert.Contains("9 × 1 cells", cut.Find("#sweep-summary").TextContent, StringComparison.Ordinal);
+        Assert.Contains("focus", cut.Find("label[for=sweepRows]").TextContent, StringComparison.Ordinal);
+        Assert.Contains("µm from the visible focus (Z 12.5 mm)", cut.Find("#sweep-focus-note").TextContent, StringComparison.Ordinal);
+    }
 }
 
 

@@ -80,5 +80,71 @@ public sealed class SweepViewModelTests : IDisposable
         Assert.False(_sweep.IsRunning);
     }
 
+    private static readonly MachineProfile ThreeAxis = MachineProfile.Default with { Z = new ZAxisProfile { FocusMm = 12.5, MinMm = 5, MaxMm = 20 } };
+
+    [Fact]
+    public void Focus_TwoAxisMachine_RefusedAndNotOffered()
+    {
+        _sweep.Rows = "focus=-100,0,100";
+
+        Assert.Null(_sweep.Plan);
+        Assert.Contains("the machine has no Z axis", _sweep.Error, StringComparison.Ordinal);
+        Assert.False(_sweep.FocusAvailable);
+        Assert.DoesNotContain("focus", _sweep.ParameterNames, StringComparison.Ordinal);
+        Assert.Contains("no Z axis", _sweep.FocusNote, StringComparison.Ordinal);
+        Assert.False(_sweep.FocalSeriesCommand.CanExecute(null));
+    }
+
+    [Fact]
+    public void FocalSeries_ProfileWithZ_NineCellsFromMinus200To200()
+    {
+        _job.UseProfile(ThreeAxis);
+
+        _sweep.FocalSeriesCommand.Execute(null);
+
+        Assert.True(_sweep.FocusAvailable);
+        Assert.Contains("focus", _sweep.ParameterNames, StringComparison.Ordinal);
+        var plan = Assert.IsType<SweepPlan>(_sweep.Plan);
+        Assert.Equal([-200.0, -150, -100, -50, 0, 50, 100, 150, 200], plan.Cells.Select(c => c.Parameters["focusUm"]));
+        Assert.Equal(ThreeAxis.Z!.MicrostepsAt(-200), plan.Cells[0].FocusZMicrosteps);
+        Assert.Equal(SweepPattern.Lines, _sweep.Pattern);
+    }
+
+    [Fact]
+    public void Pattern_ImageWithoutAnImage_AskedToLoadOne()
+    {
+        _sweep.Pattern = SweepPattern.Image;
+
+        Assert.Null(_sweep.Plan);
+        Assert.False(_sweep.ImageAvailable);
+        Assert.Contains("load an image first", _sweep.Error, StringComparison.Ordinal);
+    }
+
+    [Fact(Timeout = 120_000)]
+    public async Task RunSweep_FocusOnTheSimulatorWithZ_EachCellBurnedAtItsFocus()
+    {
+        var activity = new MachineActivity();
+        var machine = new MachineViewModel(new MachineConnectionFactory(new SimulatorOptions()), ThreeAxis, activity);
+        var job = new JobViewModel(new ImageService(), ThreeAxis, activity) { OriginXMm = 5, OriginYMm = 5 };
+        var store = Substitute.For<IRunLogStore>();
+        store.Folder.Returns(_folder.Path);
+        var sweep = new SweepViewModel(job, machine, store, TimeProvider.System) { CellMm = 0.2, SpacingMm = 0.2, Labels = false, Columns = string.Empty, Rows = "focus=-100,100" };
+        await machine.ConnectCommand.ExecuteAsync(null);
+        Assert.True(sweep.RunSweepCommand.CanExecute(null), sweep.Error ?? machine.Error);
+
+        await sweep.RunSweepCommand.ExecuteAsync(null);
+
+        var record = Assert.IsType<Core.Logging.SweepRecord>(sweep.LastSweep);
+        Assert.Equal(RunOutcome.Completed, record.Outcome);
+        foreach (var cell in record.Cells)
+        {
+            var expected = ThreeAxis.Z!.MicrostepsAt(cell.Parameters["focusUm"]);
+            Assert.Equal(expected, cell.ZReachedMicrosteps);
+            Assert.Equal((expected, 0), (cell.Run!.Simulation!.Focus!.ZMinMicrosteps, cell.Run.Simulation.Focus.LaserOnWhileZMoving));
+        }
+
+        await machine.DisconnectCommand.ExecuteAsync(null);
+    }
+
     public void Dispose() => _folder.Dispose();
 }

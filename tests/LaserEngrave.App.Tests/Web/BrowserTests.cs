@@ -318,6 +318,25 @@ public sealed class BrowserTests : IAsyncLifetime
     }
 
     [Fact]
+    public void FocalSeries_ProfileWithZ_PresetPlannedAndShown()
+    {
+        Resize(1440, 1000);
+        Driver.FindElement(By.CssSelector("#panel-sweep summary")).Click();
+        WaitFor(d => d.FindElement(By.Id("sweep-focus-note")).Text.Contains("no Z axis", StringComparison.Ordinal), "focus not offered on two axes");
+        var path = Path.Combine(_folder.Path, "three-axis.json");
+        var profile = Core.Geometry.MachineProfile.Default with { Z = new Core.Geometry.ZAxisProfile() };
+        profile.Save(path);
+
+        _app!.Services.GetRequiredService<MainViewModel>().UseProfile(path, profile);
+        WaitFor(d => d.FindElements(By.Id("sweepFocalSeries")).Count == 1, "the focal series offered");
+        Id("sweepFocalSeries").Click();
+
+        WaitFor(d => d.FindElement(By.Id("sweep-summary")).Text.StartsWith("9 × 1 cells", StringComparison.Ordinal), "the focal series planned");
+        Driver.ExecuteScript("document.getElementById('panel-sweep').scrollIntoView();");
+        Assert.True(new FileInfo(Screenshot("workspace-focal-series")).Length > 20_000);
+    }
+
+    [Fact]
     public void DotModeAndSweep_SetInThePanels_PlannedAndShown()
     {
         Resize(1440, 1000);

@@ -57,6 +57,11 @@ public static class BadInputTable
         ["microstep-0"] = ("""{ "x": { "deviceNumber": 1, "microstepUm": 0 } }""", "x.microstepUm must be above 0"),
         ["stage-baud"] = ("""{ "stageBaudRate": 115200 }""", "stageBaudRate must be 9600"),
         ["spot"] = ("""{ "spotDiameterUm": -1 }""", "spotDiameterUm must be a finite number above 0"),
+        ["z-same-device"] = ("""{ "z": { "deviceNumber": 2 } }""", "z.deviceNumber and y.deviceNumber cannot both be 2"),
+        ["z-focus-outside"] = ("""{ "z": { "focusMm": 30 } }""", "z.focusMm must be within z.minMm..z.maxMm 0..25 mm (got 30)"),
+        ["z-speed"] = ("""{ "z": { "speedMmPerS": 5 } }""", "z.speedMmPerS must be 0.00093..2 mm/s"),
+        ["z-limits"] = ("""{ "z": { "minMm": 10, "maxMm": 5 } }""", "z.maxMm must be above z.minMm 10 mm"),
+        ["z-misspelt"] = ("""{ "z": { "focusUm": 5 } }""", "z.focusUm is not a field of the machine profile"),
         ["unknown-field"] = ("""{ "gate": { "WatchdogMs": 0 } }""", "gate.WatchdogMs is not a field of the machine profile"),
         ["array"] = ("""[1, 2]""", "not a valid machine profile"),
         ["json-null"] = ("""null""", "the machine profile is empty"),
@@ -217,7 +222,23 @@ public static class BadInputTable
         Add("--rows passes=1.5: passes takes whole numbers", [.. sweep, "--rows", "passes=1.5"]);
         Add("--columns frequency=0: frequency 0 Hz: outside what the laser gate takes", [.. sweep, "--rows", "speed=1", "--columns", "frequency=0"]);
         Add("add --mode dots", [.. sweep, "--rows", "pulses-per-dot=1,5"]);
-        Add("--pattern stars: use square, lines or dots", [.. sweep, "--rows", "speed=1", "--pattern", "stars"]);
+        Add("--pattern stars: use square, lines, dots or image", [.. sweep, "--rows", "speed=1", "--pattern", "stars"]);
+        Add("--pattern image needs the cell's image: --cell-image FILE", [.. sweep, "--rows", "speed=1", "--pattern", "image"]);
+        Add("--cell-image goes with --pattern image", [.. sweep, "--rows", "speed=1", "--cell-image", "@qr"]);
+        Add("@text: not a BMP, PNG", [.. sweep, "--rows", "speed=1", "--pattern", "image", "--cell-image", "@text"]);
+        Add("@missing: file not found", [.. sweep, "--rows", "speed=1", "--pattern", "image", "--cell-image", "@missing"]);
+        Add("@dir: is a folder", [.. sweep, "--rows", "speed=1", "--pattern", "image", "--cell-image", "@dir"]);
+        Add("so its pitch cannot be swept", [.. sweep, "--rows", "pitch=20,40", "--pattern", "image", "--cell-image", "@qr"]);
+
+        // The focus is swept only on a machine with a Z axis, and only within its limits; nothing opens before.
+        Add("--rows focus=-100,0,100: focus -100 µm: the machine has no Z axis", [.. sweep, "--rows", "focus=-100,0,100"]);
+        string[] focus = ["focus-series", "--simulate", "--log-dir", "@logdir"];
+        Add("give the focus positions: --focus-um FROM..TO:STEP", focus);
+        Add("--focus-um -100,-50,0,50,100: focus -100 µm: the machine has no Z axis", [.. focus, "--focus-um", "-100..100:50"]);
+        Add("--focus-um 0,-13000: focus -13000 µm: puts Z at -0.5 mm, outside z.minMm..z.maxMm 5..20 mm", [.. focus, "--focus-um", "0,-13000", "--profile", "@zprofile"]);
+        Add("--focus-um -100..100:0: the step must be above 0", [.. focus, "--focus-um", "-100..100:0", "--profile", "@zprofile"]);
+        Add("--focus-um -100..100:2: 101 values, at most 50", [.. focus, "--focus-um", "-100..100:2", "--profile", "@zprofile"]);
+        Add("--focus-um 1..2: expected FROM..TO:STEP", [.. focus, "--focus-um", "1..2", "--profile", "@zprofile"]);
         Add("--cell-mm 0: must be above 0", [.. sweep, "--rows", "speed=1", "--cell-mm", "0"]);
         Add("--pitch-um 0.01: must be", [.. sweep, "--rows", "speed=1", "--pitch-um", "0.01"]);
         Add("reaches past the stage travel", [.. sweep, "--rows", "speed=1,2", "--origin-mm", "59,59"]);
@@ -388,6 +409,7 @@ public sealed class BadInputFiles
         AppDomain.CurrentDomain.ProcessExit += (_, _) => DeleteFolder(folder);
         var qr = Path.Combine(CliHarness.RepositoryRoot, "assets", "qr-code.bmp");
         _tokens["@qr"] = qr;
+        _tokens["@zprofile"] = Path.Combine(CliHarness.RepositoryRoot, "assets", "profiles", "three-axis.json");
         _tokens["@dir"] = folder;
         _tokens["@dev"] = "/dev/null";
         _tokens["@missing"] = Path.Combine(folder, "missing.bmp");

@@ -59,6 +59,15 @@ public class MachineProfileValidatorTests
         { """{ "scanOffsets": [ { "speedMmPerS": 1, "offsetUm": 1e400 } ] }""", "scanOffsets[0].offsetUm must be finite and at most 1000 µm either way (got Infinity)" },
         { """{ "scanOffsets": [ null ] }""", "scanOffsets[0] must not be null: give speedMmPerS and offsetUm" },
         { """{ "scanOffsets": [ { "speed": 1, "offsetUm": 2 } ] }""", "is not a field of the machine profile" },
+        { """{ "z": { "deviceNumber": 1 } }""", "z.deviceNumber and x.deviceNumber cannot both be 1: the focus axis is a device of its own on the chain" },
+        { """{ "z": { "deviceNumber": 0 } }""", "z.deviceNumber must be 1..254" },
+        { """{ "z": { "microstepUm": 0 } }""", "z.microstepUm must be above 0" },
+        { """{ "z": { "maxSpeedMmPerS": 40 } }""", "z.maxSpeedMmPerS must be 0.00093..30.47907 mm/s" },
+        { """{ "z": { "speedMmPerS": 3 } }""", "z.speedMmPerS must be 0.00093..2 mm/s, one speed unit up to z.maxSpeedMmPerS (got 3)" },
+        { """{ "z": { "minMm": 25 } }""", "z.minMm must be 0 or more and below z.travelMm 25 mm (got 25)" },
+        { """{ "z": { "maxMm": 26 } }""", "z.maxMm must be above z.minMm 0 mm and at most z.travelMm 25 mm (got 26)" },
+        { """{ "z": { "minMm": 5, "maxMm": 10 } }""", "z.focusMm must be within z.minMm..z.maxMm 5..10 mm (got 12.5)" },
+        { """{ "z": { "focusmm": 10 } }""", "z.focusmm is not a field of the machine profile" },
         { """[1, 2]""", "not a valid machine profile (line 1): expected a JSON object" },
         { """null""", "the machine profile is empty" },
         { "", "not a valid machine profile" },
@@ -122,6 +131,28 @@ public class MachineProfileValidatorTests
             Assert.Equal(profile.ScanOffsets, loaded.ScanOffsets);
             Assert.Equal(5.75, loaded.ScanOffsetUmAt(1.25), 12);
             Assert.DoesNotContain("scanOffsets", MachineProfile.Default.ToJson(), StringComparison.Ordinal);
+        }
+        finally
+        {
+            File.Delete(path);
+        }
+    }
+
+    [Fact]
+    public void Load_ThreeAxisExample_HasTheFocusAxisAndSavesBackWithIt()
+    {
+        var example = Imaging.StarterAssetsTests.Asset(Path.Combine("profiles", "three-axis.json"));
+        var path = Path.Combine(Path.GetTempPath(), $"profile-{Guid.NewGuid():N}.json");
+        try
+        {
+            var profile = MachineProfile.Load(example);
+            var z = Assert.IsType<ZAxisProfile>(profile.Z);
+            Assert.Equal((3, 12.5, 5.0, 20.0), (z.DeviceNumber, z.FocusMm, z.MinMm, z.UpperMm));
+
+            profile.Save(path);
+
+            Assert.Equal(z, MachineProfile.Load(path).Z);
+            Assert.DoesNotContain("\"z\"", MachineProfile.Default.ToJson(), StringComparison.Ordinal);
         }
         finally
         {

@@ -5,7 +5,7 @@ namespace LaserEngrave.Core.Tests.Imaging;
 /// <summary>The images in assets/ that a user starts with load, and the QR code is the right way up.</summary>
 public class StarterAssetsTests
 {
-    private static string Asset(string name)
+    internal static string Asset(string name)
     {
         var folder = new DirectoryInfo(AppContext.BaseDirectory);
         while (folder is not null && !File.Exists(Path.Combine(folder.FullName, "LaserEngrave.sln")))

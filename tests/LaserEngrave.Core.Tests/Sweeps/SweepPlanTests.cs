@@ -129,6 +129,10 @@ public class SweepPlanTests
     [InlineData("speed=1,x", "'x' is not a number")]
     [InlineData("passes=1.5", "passes takes whole numbers")]
     [InlineData("speed=NaN", "'NaN' is not a number")]
+    [InlineData("focus=-100..100:0", "the step must be above 0")]
+    [InlineData("focus=-100..100", "expected FROM..TO:STEP")]
+    [InlineData("focus=-1000..1000:10", "201 values, at most 50")]
+    [InlineData("passes=1..4:0.5", "passes takes whole numbers")]
     public void Parse_Bad_OneLineNamingIt(string text, string fragment)
     {
         var ex = Assert.Throws<SweepException>(() => SweepAxis.Parse(text, "--rows"));
@@ -159,6 +163,102 @@ public class SweepPlanTests
 
         Assert.Contains("cell row 2, column 1", ex.Message, StringComparison.Ordinal);
         Assert.Contains("past the stage travel", ex.Message, StringComparison.Ordinal);
+    }
+
+    [Theory]
+    [InlineData("focus=-200..200:50", new[] { -200.0, -150, -100, -50, 0, 50, 100, 150, 200 })]
+    [InlineData("focus=100..-100:100", new[] { 100.0, 0, -100 })]
+    [InlineData("speed=0.1..0.35:0.1", new[] { 0.1, 0.2, 0.3 })]
+    public void Parse_Range_FromAndToIncludedEachValueFromTheStart(string text, double[] expected)
+    {
+        var axis = SweepAxis.Parse(text, "--rows");
+
+        Assert.Equal(expected.Length, axis.Values.Count);
+        for (var i = 0; i < expected.Length; i++)
+        {
+            Assert.Equal(expected[i], axis.Values[i], 12);
+        }
+    }
+
+    private static readonly MachineProfile ThreeAxis = MachineProfile.Default with { Z = new ZAxisProfile { FocusMm = 12.5, MinMm = 5, MaxMm = 20 } };
+
+    [Fact]
+    public void Build_FocusRows_EachCellItsAbsoluteZFromTheVisibleFocus()
+    {
+        var plan = SweepPlan.Build(Spec("focus=-100,0,100", "speed=1,2") with { Profile = ThreeAxis });
+
+        Assert.Equal(6, plan.Cells.Count);
+        foreach (var cell in plan.Cells)
+        {
+            Assert.Equal(ThreeAxis.Z!.MicrostepsAt(cell.Parameters["focusUm"]), cell.FocusZMicrosteps);
+        }
+
+        // 12.4 mm / 0.09921875 µm = 124976.38 -> 124976; 12.6 mm = 126992.13 -> 126992.
+        Assert.Equal([124976L, 124976, 125984, 125984, 126992, 126992], plan.Cells.Select(c => c.FocusZMicrosteps!.Value));
+        Assert.Null(SweepPlan.Build(Spec("speed=1,2") with { Profile = ThreeAxis }).Cells[0].FocusZMicrosteps);
+    }
+
+    [Fact]
+    public void EstimatedSeconds_FocusRows_AddTheZMovesToTheSameCellsWithoutThem()
+    {
+        var focus = SweepPlan.Build(Spec("focus=-50,0,50") with { Profile = ThreeAxis });
+        var still = SweepPlan.Build(Spec("passes=1,1,1") with { Profile = ThreeAxis });
+
+        // Four moves of 504 microsteps (50 µm): to -50, 0, +50 and back to 0. At 1 mm/s (data 1075 = 10078.1 microsteps/s)
+        // and 50 mm/s² (data 45 = 506250 microsteps/s²) each is 504 / 10078.1 + 10078.1 / 506250 = 0.0699 s of motion,
+        // plus the laser's switch-off and the move's command and reply (tens of ms at 9600 baud), and before the first Z's
+        // identification and settings (10 round trips of two 6-byte frames, 12.5 ms at 9600 baud, and the adapter's 2 x 1 ms).
+        var moves = focus.EstimatedSeconds - still.EstimatedSeconds;
+        Assert.Equal(moves, focus.FocusMovesSeconds(), 9);
+        Assert.InRange(moves - (10 * 0.0145), 4 * 0.0699, 4 * (0.0699 + 0.05));
+        Assert.Equal(0, still.FocusMovesSeconds());
+    }
+
+    [Theory]
+    [InlineData("focus=0", null, "--rows focus=0: focus 0 µm: the machine has no Z axis: add a \"z\" section to the machine profile")]
+    [InlineData("speed=1", "focus=-50,50", "--columns focus=-50,50: focus -50 µm: the machine has no Z axis")]
+    public void Build_FocusWithoutZAxis_Refused(string rows, string? columns, string expected)
+    {
+        var ex = Assert.Throws<SweepException>(() => SweepPlan.Build(Spec(rows, columns)));
+
+        Assert.Equal(expected, ex.Message[..Math.Min(expected.Length, ex.Message.Length)]);
+    }
+
+    [Fact]
+    public void Build_FocusOutsideTheZLimits_RefusedBeforeAnythingIsPlanned()
+    {
+        var ex = Assert.Throws<SweepException>(() => SweepPlan.Build(Spec("focus=0,8000") with { Profile = ThreeAxis }));
+
+        Assert.Equal("--rows focus=0,8000: focus 8000 µm: puts Z at 20.5 mm, outside z.minMm..z.maxMm 5..20 mm (the visible focus z.focusMm is 12.5 mm)", ex.Message);
+    }
+
+    [Fact]
+    public void Build_ImagePattern_EveryCellTheImageItsLargerSideTheCell()
+    {
+        var image = new BitMask(4, 2);
+        image[0, 0] = image[3, 1] = true;
+
+        var plan = SweepPlan.Build(Spec("speed=1,2") with { Pattern = SweepPattern.Image, CellImage = image, CellImageName = "mark.png" });
+
+        // 1 mm over 4 pixels: 250 µm a pixel, the image 1 x 0.5 mm to within a microstep (0.0992 µm).
+        var job = plan.Cells[1].Job;
+        Assert.Same(image, job.Mask);
+        Assert.Equal(250, job.Geometry.PitchUm, 9);
+        Assert.InRange(job.Geometry.AchievedWidthMm, 1 - 0.0001, 1 + 0.0001);
+        Assert.InRange(job.Geometry.AchievedHeightMm, 0.5 - 0.0001, 0.5 + 0.0001);
+    }
+
+    [Theory]
+    [InlineData(null, "speed=1", "--pattern image needs the cell's image")]
+    [InlineData(4, "pitch=50,100", "so its pitch cannot be swept")]
+    [InlineData(20000, "speed=1", "a pixel of 0.05: must be")]
+    public void Build_ImagePatternBad_Refused(int? side, string rows, string fragment)
+    {
+        var spec = Spec(rows) with { Pattern = SweepPattern.Image, CellImage = side is { } n ? new BitMask(n, 1) : null, CellImageName = "mark.png" };
+
+        var ex = Assert.Throws<SweepException>(() => SweepPlan.Build(spec));
+
+        Assert.Contains(fragment, ex.Message, StringComparison.Ordinal);
     }
 
     [Fact]

@@ -27,8 +27,8 @@ internal sealed class SimulatedRun : IAsyncDisposable
 
     public TimeProvider Time => Machine.TimeProvider;
 
-    public static SimulatedRun Create(SimulatorOptions? options = null) =>
-        new(SimulatedMachine.CreateInProcess(MachineProfile.Default, options));
+    public static SimulatedRun Create(SimulatorOptions? options = null, MachineProfile? profile = null) =>
+        new(SimulatedMachine.CreateInProcess(profile ?? MachineProfile.Default, options));
 
     public RunExecutor Executor(PreparedJob job, RunOptions? options = null) => new(Stage, Gate, job, Time, options);
 
