@@ -60,6 +60,21 @@ public sealed record JobSettings
     /// <summary>Settle time at each dot before the burst, ms.</summary>
     public double DotSettleMs { get; init; }
 
+    /// <summary>A drawing's paths: outlines, fill or both.</summary>
+    public Core.Vectors.VectorFillMode DrawingFill { get; init; }
+
+    /// <summary>A drawing's chord tolerance, µm.</summary>
+    public double ToleranceUm { get; init; } = Core.Vectors.VectorOptions.Default.ToleranceUm;
+
+    /// <summary>A drawing's fill pitch, µm.</summary>
+    public double FillPitchUm { get; init; } = Core.Vectors.VectorOptions.Default.FillPitchUm;
+
+    /// <summary>Only this layer of a drawing; null: every layer.</summary>
+    public string? DrawingLayer { get; init; }
+
+    /// <summary>A drawing's paths in its own order, unoptimised.</summary>
+    public bool DrawingOrder { get; init; }
+
     /// <summary>The values of a job (e.g. one a run log repeats), as the page shows them.</summary>
     public static JobSettings From(JobSpec spec)
     {

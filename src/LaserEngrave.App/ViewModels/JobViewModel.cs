@@ -35,6 +35,9 @@ public sealed partial class JobViewModel : ObservableObject
     public const string DotSettleField = "dotSettleMs";
     public const string PulsesField = "pulses";
     public const string PulseEnergyField = "pulseEnergyUj";
+    public const string ToleranceField = "toleranceUm";
+    public const string FillPitchField = "fillPitchUm";
+    public const string DrawingLayerField = "drawingLayer";
 
     /// <summary>The most pulses a dot may get: the gate's burst range.</summary>
     public const int MaxPulsesPerDot = 1_000_000;
@@ -53,6 +56,7 @@ public sealed partial class JobViewModel : ObservableObject
         nameof(LaserFrequencyHz), nameof(BurnSpeedMmPerS), nameof(TravelSpeedMmPerS), nameof(AccelerationMmPerS2),
         nameof(Strategy), nameof(Bidirectional), nameof(OverscanMm), nameof(Passes),
         nameof(Mode), nameof(PulsesPerDot), nameof(DotPitchMicrosteps), nameof(DotSettleMs), nameof(PulseEnergyUj),
+        nameof(DrawingFill), nameof(ToleranceUm), nameof(FillPitchUm), nameof(DrawingLayer), nameof(DrawingOrder),
     ];
 
     private readonly IImageService _images;
@@ -172,6 +176,35 @@ public sealed partial class JobViewModel : ObservableObject
     [ObservableProperty]
     public partial double PulseEnergyUj { get; set; }
 
+    /// <summary>A drawing's paths: outlines, filled with scan lines, or both (the command line's <c>--fill</c>).</summary>
+    [ObservableProperty]
+    public partial VectorFillMode DrawingFill { get; set; }
+
+    /// <summary>A drawing's chord tolerance, µm (<c>--tolerance-um</c>).</summary>
+    [ObservableProperty]
+    public partial double ToleranceUm { get; set; } = VectorOptions.Default.ToleranceUm;
+
+    /// <summary>A drawing's fill pitch, µm (<c>--fill-pitch-um</c>).</summary>
+    [ObservableProperty]
+    public partial double FillPitchUm { get; set; } = VectorOptions.Default.FillPitchUm;
+
+    /// <summary>Only this layer of the drawing (one of <see cref="DrawingLayers"/>), placed where it is in the whole drawing; null burns every layer.</summary>
+    [ObservableProperty]
+    public partial string? DrawingLayer { get; set; }
+
+    /// <summary>Burn the paths as the drawing lists them rather than ordered (<c>--drawing-order</c>).</summary>
+    [ObservableProperty]
+    public partial bool DrawingOrder { get; set; }
+
+    /// <summary>The open drawing's own layers, by name ("" for paths on none); empty for an image.</summary>
+    [ObservableProperty]
+    public partial IReadOnlyList<string> DrawingLayers { get; private set; } = [];
+
+    /// <summary>The drawing's path order in one line: burn length, travel and what the order saves against the drawing's; null without a drawing.</summary>
+    public string? PathOrderSummary => Drawing?.Plan is { } plan
+        ? string.Create(CultureInfo.InvariantCulture, $"burn {plan.BurnLengthMm:0.###} mm · travel {plan.TravelMm:0.###} mm ({plan.TravelDrawingOrderMm:0.###} mm in drawing order, {plan.TravelSavedPercent:0.#} % saved)")
+        : null;
+
     /// <summary>What the process does per pulse and per pixel (seed 004), in one line; null without a plan.</summary>
     public string? PulsesSummary => Job?.Pulses is { } p
         ? string.Create(CultureInfo.InvariantCulture, $"{(Mode == PlanMode.Dots ? "dots" : "pulses")} {p.PulseSpacingUm:0.###} µm apart · overlap {p.OverlapPercent:0.#} % · {p.PulsesPerPixel ?? 0:0.##} pulses per pixel{(p.EnergyPerPixelUj is { } e ? $" · {e:0.##} µJ per pixel" : string.Empty)}")
@@ -255,10 +288,11 @@ public sealed partial class JobViewModel : ObservableObject
     /// <summary>A drawing has no pixels: the image and mask go, and the plan reads it (its errors stand beside the image).</summary>
     private bool OpenDrawing(string path)
     {
+        IReadOnlyList<string> layers;
         try
         {
             // Read once first: a drawing that cannot be read leaves the open image or drawing as it was.
-            DrawingReader.Read(path);
+            layers = DrawingReader.Read(path).Layers();
         }
         catch (DrawingException ex)
         {
@@ -279,6 +313,20 @@ public sealed partial class JobViewModel : ObservableObject
             Mask = null;
             MaskVersion++;
             ImagePath = path;
+            DrawingLayers = layers;
+            if (DrawingLayer is { } chosen && !layers.Contains(chosen, StringComparer.Ordinal))
+            {
+                Interlocked.Increment(ref _suspended);
+                try
+                {
+                    DrawingLayer = null;
+                }
+                finally
+                {
+                    Interlocked.Decrement(ref _suspended);
+                }
+            }
+
             var errors = new Dictionary<string, string>(Errors);
             errors.Remove(ImageField);
             errors.Remove(ThresholdField);
@@ -331,6 +379,7 @@ public sealed partial class JobViewModel : ObservableObject
             _originalPreview = preview;
             ImagePath = path;
             ImageInfo = image.Info;
+            DrawingLayers = [];
         }
 
         return true;
@@ -396,6 +445,11 @@ public sealed partial class JobViewModel : ObservableObject
             DotPitchMicrosteps = settings.DotPitchMicrosteps;
             DotSettleMs = settings.DotSettleMs;
             PulseEnergyUj = settings.PulseEnergyUj ?? 0;
+            DrawingFill = settings.DrawingFill;
+            ToleranceUm = settings.ToleranceUm;
+            FillPitchUm = settings.FillPitchUm;
+            DrawingLayer = settings.DrawingLayer;
+            DrawingOrder = settings.DrawingOrder;
         });
         if (settings.ImagePath is { } path && path != ImagePath)
         {
@@ -428,6 +482,11 @@ public sealed partial class JobViewModel : ObservableObject
         DotPitchMicrosteps = DotPitchMicrosteps,
         DotSettleMs = DotSettleMs,
         PulseEnergyUj = PulseEnergyUj > 0 ? PulseEnergyUj : null,
+        DrawingFill = DrawingFill,
+        ToleranceUm = ToleranceUm,
+        FillPitchUm = FillPitchUm,
+        DrawingLayer = DrawingLayer,
+        DrawingOrder = DrawingOrder,
     };
 
     /// <summary>Runs several changes and plans once at the end.</summary>
@@ -656,6 +715,16 @@ public sealed partial class JobViewModel : ObservableObject
             var errors = FieldErrors();
             errors.Remove(PitchField);
             errors.Remove(HeightField);
+            if (VectorOptions.ToleranceProblem(ToleranceUm) is { } tolerance)
+            {
+                errors[ToleranceField] = tolerance;
+            }
+
+            if (VectorOptions.FillPitchProblem(FillPitchUm) is { } pitch)
+            {
+                errors[FillPitchField] = pitch;
+            }
+
             var warnings = new Dictionary<string, string>();
             PreparedDrawing? drawing = null;
             if (errors.Count == 0)
@@ -664,8 +733,8 @@ public sealed partial class JobViewModel : ObservableObject
                 {
                     var spec = Spec(ImagePath!) with { Size = SizeSpec.Width(WidthMm > 0 ? WidthMm : 1) };
                     drawing = SizeMode == SizeMode.Width && WidthMm > 0
-                        ? PreparedDrawing.Prepare(spec, VectorOptions.Default)
-                        : PreparedDrawing.PrepareOwnSize(spec, VectorOptions.Default);
+                        ? PreparedDrawing.Prepare(spec, DrawingOptions())
+                        : PreparedDrawing.PrepareOwnSize(spec, DrawingOptions());
                 }
                 catch (DrawingException ex)
                 {
@@ -713,6 +782,7 @@ public sealed partial class JobViewModel : ObservableObject
             EstimatedSeconds = drawing?.WholeRunSeconds(Passes);
             SetErrors(errors);
             Warnings = warnings;
+            OnPropertyChanged(nameof(PathOrderSummary));
             PlanVersion++;
         }
     }
@@ -747,6 +817,16 @@ public sealed partial class JobViewModel : ObservableObject
         PulsesPerDot = Mode == PlanMode.Dots ? PulsesPerDot : 1,
         DotPitchMicrosteps = Mode == PlanMode.Dots ? DotPitchMicrosteps : 0,
         DotSettleMs = Mode == PlanMode.Dots ? DotSettleMs : 0,
+    };
+
+    /// <summary>A drawing's options as the fields say them: the same <see cref="VectorOptions"/> the command line binds.</summary>
+    public VectorOptions DrawingOptions() => new()
+    {
+        ToleranceUm = ToleranceUm,
+        Fill = DrawingFill,
+        FillPitchUm = FillPitchUm,
+        Layer = DrawingLayer,
+        Optimize = !DrawingOrder,
     };
 
     /// <summary>The plan options as the fields say them.</summary>

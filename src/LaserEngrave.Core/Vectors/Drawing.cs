@@ -20,6 +20,9 @@ public sealed record Drawing(string Path, IReadOnlyList<DrawingPath> Paths, IRea
         return BoundsOf(Paths.SelectMany(p => p.Flatten(extent * 1e-7)));
     }
 
+    /// <summary>The layers its paths lie on, in name order ("" for paths on no layer).</summary>
+    public IReadOnlyList<string> Layers() => [.. Paths.Select(p => p.Layer).Distinct(StringComparer.Ordinal).Order(StringComparer.Ordinal)];
+
     private static (DrawingPoint Min, DrawingPoint Max) BoundsOf(IEnumerable<DrawingPoint> points)
     {
         double minX = double.PositiveInfinity, minY = double.PositiveInfinity, maxX = double.NegativeInfinity, maxY = double.NegativeInfinity;

@@ -28,6 +28,14 @@ public sealed record VectorOptions
     /// <summary>Whether to order the paths (inner first, then shortest travel); false burns them in drawing order.</summary>
     public bool Optimize { get; init; } = true;
 
+    /// <summary>Why a chord tolerance cannot be used, one line; null when it can (the command line and the app ask the same).</summary>
+    public static string? ToleranceProblem(double toleranceUm) =>
+        toleranceUm is >= 0.01 and <= 1000 ? null : $"chord tolerance {Text(toleranceUm)} µm must be between 0.01 and 1000 µm";
+
+    /// <summary>Why a fill pitch cannot be used, one line; null when it can.</summary>
+    public static string? FillPitchProblem(double fillPitchUm) =>
+        fillPitchUm is >= 0.1 and <= 10_000 ? null : $"fill pitch {Text(fillPitchUm)} µm must be between 0.1 and 10000 µm";
+
     /// <summary>Throws a <see cref="GeometryException"/> naming the first unusable value.</summary>
     public void Validate()
     {
@@ -36,21 +44,21 @@ public sealed record VectorOptions
             throw new GeometryException($"width {Text(w)} mm must be above 0");
         }
 
-        if (!(ToleranceUm >= 0.01 && ToleranceUm <= 1000))
+        if (ToleranceProblem(ToleranceUm) is { } tolerance)
         {
-            throw new GeometryException($"chord tolerance {Text(ToleranceUm)} µm must be between 0.01 and 1000 µm");
+            throw new GeometryException(tolerance);
         }
 
-        if (!(FillPitchUm >= 0.1 && FillPitchUm <= 10_000))
+        if (FillPitchProblem(FillPitchUm) is { } pitch)
         {
-            throw new GeometryException($"fill pitch {Text(FillPitchUm)} µm must be between 0.1 and 10000 µm");
+            throw new GeometryException(pitch);
         }
 
         if (!double.IsFinite(Origin.X) || !double.IsFinite(Origin.Y))
         {
             throw new GeometryException($"origin {Text(Origin.X)}, {Text(Origin.Y)} mm must be finite");
         }
-
-        static string Text(double v) => v.ToString(CultureInfo.InvariantCulture);
     }
+
+    private static string Text(double v) => v.ToString(CultureInfo.InvariantCulture);
 }

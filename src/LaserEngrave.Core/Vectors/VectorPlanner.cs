@@ -49,7 +49,7 @@ public static class VectorPlanner
             selected = [.. drawing.Paths.Where(p => string.Equals(p.Layer, layer, StringComparison.Ordinal))];
             if (selected.Count == 0)
             {
-                var layers = drawing.Paths.Select(p => p.Layer.Length == 0 ? "(none)" : p.Layer).Distinct(StringComparer.Ordinal).Order(StringComparer.Ordinal);
+                var layers = drawing.Layers().Select(l => l.Length == 0 ? "(none)" : l);
                 throw new DrawingException($"{drawing.Path}: no path on layer \"{layer}\" (its layers: {string.Join(", ", layers)})");
             }
         }

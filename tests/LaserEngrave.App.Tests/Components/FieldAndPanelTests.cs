@@ -68,6 +68,25 @@ public sealed class ImagePanelTests : ComponentTest
     }
 
     [Fact]
+    public void Drawing_ModeToleranceLayerAndPathOrderShown_BadToleranceSaysWhy()
+    {
+        Assert.True(Main.Job.LoadImage(TestFiles.Asset(System.IO.Path.Combine("drawings", "layers.svg"))));
+        var cut = Render<ImagePanel>(p => p.Add(c => c.Job, Main.Job));
+
+        cut.Find("#drawingFill").Change(nameof(Core.Vectors.VectorFillMode.Both));
+        cut.Find("#drawingLayer").Change("cut");
+
+        Assert.Equal(Core.Vectors.VectorFillMode.Both, Main.Job.DrawingFill);
+        Assert.Equal("cut", Main.Job.DrawingLayer);
+        cut.WaitForAssertion(() => Assert.Contains("% saved", cut.Find("#path-order").TextContent, StringComparison.Ordinal));
+
+        cut.Find($"#{JobViewModel.ToleranceField}").Change("0");
+
+        cut.WaitForAssertion(() => Assert.Contains("chord tolerance 0 µm must be between", cut.Find($"[data-error={JobViewModel.ToleranceField}]").TextContent, StringComparison.Ordinal));
+        Assert.Null(Main.Job.Drawing);
+    }
+
+    [Fact]
     public void InvertTicked_ViewModelInvertsTheMask()
     {
         OpenQr();

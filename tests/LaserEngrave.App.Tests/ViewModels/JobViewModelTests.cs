@@ -63,6 +63,110 @@ public sealed class JobViewModelTests
         Assert.InRange(job.Drawing.Plan.BurnLengthMm, before * 1.99, before * 2.01);
     }
 
+    private static JobViewModel Drawing(string name)
+    {
+        var job = new JobViewModel(new ImageService(), MachineProfile.Default);
+        job.OriginXMm = 5;
+        job.OriginYMm = 5;
+        job.WidthMm = 10;
+        Assert.True(job.LoadImage(TestFiles.Asset(Path.Combine("drawings", name))));
+        return job;
+    }
+
+    [Fact]
+    public void DrawingFill_Both_PlansFillRowsAtThePitchAsTheCommandLineDoes()
+    {
+        var job = Drawing("hexagons.dxf");
+        var outlines = job.Drawing!.Plan.Paths.Count;
+
+        job.Batch(() =>
+        {
+            job.DrawingFill = Core.Vectors.VectorFillMode.Both;
+            job.FillPitchUm = 200;
+        });
+
+        var plan = job.Drawing!.Plan;
+        var same = Core.Vectors.VectorPlanner.Plan(job.ImagePath!, new Core.Vectors.VectorOptions { Fill = Core.Vectors.VectorFillMode.Both, FillPitchUm = 200, WidthMm = 10, Origin = new OriginMm(5, 5) }, MachineProfile.Default);
+        Assert.NotEmpty(plan.FillRows);
+        Assert.Equal(same.FillRows.Count, plan.FillRows.Count);
+        Assert.True(plan.Paths.Count > outlines);
+        Assert.Equal(same.BurnLengthMm, plan.BurnLengthMm, 9);
+    }
+
+    [Theory]
+    [InlineData(JobViewModel.ToleranceField, 0.001, "chord tolerance 0.001 µm must be between 0.01 and 1000 µm")]
+    [InlineData(JobViewModel.FillPitchField, 0, "fill pitch 0 µm must be between 0.1 and 10000 µm")]
+    public void DrawingOption_OutOfRange_FieldSaysWhyAndNothingIsPlanned(string field, double value, string message)
+    {
+        var job = Drawing("hexagons.dxf");
+
+        if (field == JobViewModel.ToleranceField)
+        {
+            job.ToleranceUm = value;
+        }
+        else
+        {
+            job.FillPitchUm = value;
+        }
+
+        Assert.Equal(message, job.Errors[field]);
+        Assert.Null(job.Drawing);
+        Assert.Null(job.EstimatedSeconds);
+    }
+
+    [Fact]
+    public void ToleranceUm_Coarser_FewerVerticesAndTheSummaryFollows()
+    {
+        var job = Drawing("curves.dxf");
+        var fine = job.Drawing!.Plan.Paths.Sum(p => p.Points.Count);
+
+        job.ToleranceUm = 50;
+
+        Assert.True(job.Drawing!.Plan.Paths.Sum(p => p.Points.Count) < fine);
+        Assert.Empty(job.Errors);
+    }
+
+    [Fact]
+    public void DrawingLayer_OneOfTheDrawingsLayers_BurnsOnlyItPlacedAsInTheWhole()
+    {
+        var job = Drawing("layers.svg");
+        Assert.Equal(["cut", "mark"], job.DrawingLayers);
+        var whole = job.Drawing!.Plan;
+
+        job.DrawingLayer = "mark";
+
+        var mark = job.Drawing!.Plan;
+        Assert.True(mark.Paths.Count < whole.Paths.Count);
+        Assert.True(mark.BurnLengthMm < whole.BurnLengthMm);
+        Assert.Equal("mark", job.ToSettings().DrawingLayer);
+    }
+
+    [Fact]
+    public void PathOrderSummary_Drawing_GivesBurnLengthAndTravelSavedAgainstDrawingOrder()
+    {
+        var job = Drawing("scattered.dxf");
+        var plan = job.Drawing!.Plan;
+
+        Assert.Contains(plan.TravelSavedPercent.ToString("0.#", System.Globalization.CultureInfo.InvariantCulture) + " % saved", job.PathOrderSummary, StringComparison.Ordinal);
+        Assert.StartsWith("burn " + plan.BurnLengthMm.ToString("0.###", System.Globalization.CultureInfo.InvariantCulture) + " mm", job.PathOrderSummary, StringComparison.Ordinal);
+        Assert.True(plan.TravelSavedPercent > 50);
+
+        job.DrawingOrder = true;
+
+        Assert.Equal(job.Drawing!.Plan.TravelDrawingOrderMm, job.Drawing.Plan.TravelMm, 6);
+    }
+
+    [Fact]
+    public void LoadImage_ImageAfterDrawing_DrawingLayersGo()
+    {
+        var job = Drawing("layers.svg");
+
+        Assert.True(job.LoadImage(TestFiles.Asset("qr-code.bmp")));
+
+        Assert.Empty(job.DrawingLayers);
+        Assert.Null(job.PathOrderSummary);
+    }
+
     [Fact]
     public void LoadImage_BadDrawingAfterGoodImage_KeepsTheImageAndSaysWhy()
     {

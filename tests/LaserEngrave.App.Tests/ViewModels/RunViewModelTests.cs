@@ -123,6 +123,24 @@ public sealed class RunViewModelTests
     }
 
     [Fact]
+    public async Task CanStart_DrawingWithABadChordTolerance_IsFalseAndNoSessionRuns()
+    {
+        _job.OriginXMm = 5;
+        _job.OriginYMm = 5;
+        _job.WidthMm = 10;
+        _job.LoadImage(TestFiles.Asset(Path.Combine("drawings", "hexagons.dxf")));
+        await _machine.ConnectCommand.ExecuteAsync(null);
+        Assert.True(_run.CanStart);
+
+        _job.ToleranceUm = 5000;
+
+        Assert.False(_run.CanStart);
+        Assert.False(_run.StartCommand.CanExecute(null));
+        await _run.StartCommand.ExecuteAsync(null);
+        await _runs.DidNotReceive().RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>());
+    }
+
+    [Fact]
     public async Task Start_TwoPassesCompleted_LogSaysBothPassesDone()
     {
         await ReadyAsync();
