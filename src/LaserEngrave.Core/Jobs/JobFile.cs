@@ -62,6 +62,66 @@ public static class JobFile
         }
     }
 
+    /// <summary>
+    /// Writes the layers as a job file that <see cref="Load"/> reads back the same: sources relative to the file's folder
+    /// (with forward slashes), fields left at their defaults left out.
+    /// </summary>
+    /// <exception cref="IOException">The file cannot be written.</exception>
+    public static void Save(string path, IReadOnlyList<JobLayer> layers)
+    {
+        ArgumentException.ThrowIfNullOrWhiteSpace(path);
+        ArgumentNullException.ThrowIfNull(layers);
+        var full = Path.GetFullPath(path);
+        var folder = Path.GetDirectoryName(full) ?? ".";
+        using var buffer = new MemoryStream();
+        using (var json = new Utf8JsonWriter(buffer, new JsonWriterOptions { Indented = true }))
+        {
+            json.WriteStartObject();
+            json.WriteStartArray("layers");
+            foreach (var layer in layers)
+            {
+                json.WriteStartObject();
+                json.WriteString("name", layer.Name);
+                json.WriteString("source", Path.GetRelativePath(folder, Path.GetFullPath(layer.Source)).Replace('\\', '/'));
+                json.WriteString("mode", layer.Mode.ToString().ToLowerInvariant());
+                if (layer.DrawingLayer is { } drawingLayer)
+                {
+                    json.WriteString("drawingLayer", drawingLayer);
+                }
+
+                Optional(json, "widthMm", layer.WidthMm);
+                json.WriteStartArray("originMm");
+                json.WriteNumberValue(layer.Origin.X);
+                json.WriteNumberValue(layer.Origin.Y);
+                json.WriteEndArray();
+                Optional(json, "speedMmPerS", layer.SpeedMmPerS);
+                Optional(json, "frequencyHz", layer.FrequencyHz);
+                json.WriteNumber("passes", layer.Passes);
+                Optional(json, "toleranceUm", layer.ToleranceUm);
+                Optional(json, "fillPitchUm", layer.FillPitchUm);
+                json.WriteEndObject();
+            }
+
+            json.WriteEndArray();
+            json.WriteEndObject();
+        }
+
+        buffer.WriteByte((byte)'\n');
+
+        // Written whole beside the file, then moved over it: a failed save leaves the old job as it was.
+        var temporary = full + ".saving";
+        File.WriteAllBytes(temporary, buffer.ToArray());
+        File.Move(temporary, full, overwrite: true);
+
+        static void Optional(Utf8JsonWriter json, string name, double? value)
+        {
+            if (value is { } v)
+            {
+                json.WriteNumber(name, v);
+            }
+        }
+    }
+
     private static JobLayer ReadLayer(string path, string folder, int index, JsonElement element)
     {
         var where = $"{path}: layer {index}";

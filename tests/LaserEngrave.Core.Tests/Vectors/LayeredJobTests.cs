@@ -29,6 +29,35 @@ public sealed class LayeredJobTests : IDisposable
     }
 
     [Fact]
+    public void Save_PlateJobElsewhere_ReadsBackTheSameLayersWithSourcesRelativeToTheNewFile()
+    {
+        var layers = JobFile.Load(Plate);
+        var saved = Path.Combine(folder, "sub", "plate-copy.json");
+        Directory.CreateDirectory(Path.GetDirectoryName(saved)!);
+
+        JobFile.Save(saved, layers);
+
+        Assert.Equal(layers, JobFile.Load(saved));
+        using var json = System.Text.Json.JsonDocument.Parse(File.ReadAllText(saved));
+        Assert.All(json.RootElement.GetProperty("layers").EnumerateArray(), l => Assert.False(Path.IsPathRooted(l.GetProperty("source").GetString())));
+    }
+
+    [Fact]
+    public void Save_EveryFieldSet_RoundTrips()
+    {
+        var layers = new List<JobLayer>
+        {
+            new() { Name = "fill \"a\"", Source = TestDrawings.File("hexagons.dxf"), Mode = LayerMode.Both, DrawingLayer = "0", WidthMm = 12.5, Origin = new OriginMm(1.25, 3), SpeedMmPerS = 0.75, FrequencyHz = 2500, Passes = 3, ToleranceUm = 0.5, FillPitchUm = 40 },
+            new() { Name = "layer 2", Source = Path.Combine(Path.GetDirectoryName(TestDrawings.Folder)!, "qr-code.bmp"), Mode = LayerMode.Raster, WidthMm = 3 },
+        };
+        var path = Path.Combine(folder, "job.json");
+
+        JobFile.Save(path, layers);
+
+        Assert.Equal(layers, JobFile.Load(path));
+    }
+
+    [Fact]
     public void Prepare_PlateJob_EachLayerPlannedWithItsProcessAndTheEstimateAddsUpThePasses()
     {
         var job = LayeredJob.Prepare(JobFile.Load(Plate), MachineProfile.Default);
