@@ -23,7 +23,8 @@ public sealed partial class MainViewModel : ObservableObject
         ISettingsStore settings,
         IFileAccess files,
         TimeProvider time,
-        MachineActivity activity)
+        MachineActivity activity,
+        IJobFiles? jobFiles = null)
     {
         ArgumentNullException.ThrowIfNull(settings);
         ArgumentNullException.ThrowIfNull(files);
@@ -43,7 +44,8 @@ public sealed partial class MainViewModel : ObservableObject
         };
         TestMoves = new TestMovesViewModel(Machine, Job);
         Log = new LogViewModel(logs, files, Job);
-        Run = new RunViewModel(runs, Job, Machine, Log, time);
+        Layers = new LayersViewModel(jobFiles ?? new JobFiles(AppFolders.Default), Job, activity);
+        Run = new RunViewModel(runs, Job, Machine, Log, time, Layers);
         Sweep = new SweepViewModel(Job, Machine, logs, time);
         Machine.PropertyChanged += OnMachineChanged;
         Job.PropertyChanged += OnJobChanged;
@@ -62,6 +64,9 @@ public sealed partial class MainViewModel : ObservableObject
     public TestMovesViewModel TestMoves { get; }
 
     public RunViewModel Run { get; }
+
+    /// <summary>The job of layers being built or opened; while it has layers, Start runs them.</summary>
+    public LayersViewModel Layers { get; }
 
     /// <summary>The parameter sweep (a test grid in one run).</summary>
     public SweepViewModel Sweep { get; }

@@ -23,15 +23,18 @@ public sealed partial class RunViewModel : ObservableObject
     private readonly MachineViewModel _machine;
     private readonly LogViewModel _log;
     private readonly TimeProvider _time;
+    private readonly LayersViewModel? _layers;
     private EngraveSession? _session;
+    private IReadOnlyList<PreparedLayer>? _runLayers;
     private CancellationTokenSource? _abort;
     private StoppedRun? _stopped;
     private (int PlanVersion, string? Reason) _continueCheck = (-1, null);
     private long _startedTicks;
     private double _estimatedSeconds;
-    private double _laterPassSeconds;
+    private double[] _passSeconds = [];
 
-    public RunViewModel(IRunService runs, JobViewModel job, MachineViewModel machine, LogViewModel log, TimeProvider time)
+    /// <param name="layers">The job of layers: while it has layers, Start runs them instead of the single job.</param>
+    public RunViewModel(IRunService runs, JobViewModel job, MachineViewModel machine, LogViewModel log, TimeProvider time, LayersViewModel? layers = null)
     {
         ArgumentNullException.ThrowIfNull(runs);
         ArgumentNullException.ThrowIfNull(job);
@@ -43,6 +46,15 @@ public sealed partial class RunViewModel : ObservableObject
         _machine = machine;
         _log = log;
         _time = time;
+        _layers = layers;
+        _layers?.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName is nameof(LayersViewModel.Job) or nameof(LayersViewModel.Layers))
+            {
+                RefreshCommands();
+                OnPropertyChanged(nameof(RunsLayers));
+            }
+        };
         _machine.Activity.PropertyChanged += (_, e) =>
         {
             if (e.PropertyName == nameof(MachineActivity.Current))
@@ -80,6 +92,7 @@ public sealed partial class RunViewModel : ObservableObject
 
     /// <summary>The latest progress of the run under way (or of the last one).</summary>
     [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(LayerText))]
     public partial EngraveProgress? Progress { get; private set; }
 
     /// <summary>
@@ -125,8 +138,18 @@ public sealed partial class RunViewModel : ObservableObject
     /// with something to burn inside the travel, a machine.
     /// </summary>
     public bool CanStart => !_machine.Activity.IsBusy && !IsActive
-        && (_job.Job is { Geometry.FitsTravel: true, Statistics.BurnRuns: > 0 } || _job.Drawing is { FitsTravel: true, Schedule.Strokes.Count: > 0 })
+        && (RunsLayers
+            ? _layers!.Job is { FitsTravel: true } && _layers.Error is null
+            : _job.Job is { Geometry.FitsTravel: true, Statistics.BurnRuns: > 0 } || _job.Drawing is { FitsTravel: true, Schedule.Strokes.Count: > 0 })
         && _machine.Connection is not null;
+
+    /// <summary>Whether Start runs the job of layers (the Layers view has some) rather than the single job.</summary>
+    public bool RunsLayers => _layers is { IsActive: true };
+
+    /// <summary>The layer under way as "layer 2 of 3 “logo”"; null when the run is not one of layers.</summary>
+    public string? LayerText => _runLayers is { Count: > 0 } layers && Progress is { } p && p.Layer >= 1 && p.Layer <= layers.Count
+        ? $"layer {p.Layer} of {layers.Count} “{layers[p.Layer - 1].Layer.Name}”"
+        : null;
 
     /// <summary>Whether a pause can be asked: the run is starting or running and no pause is pending.</summary>
     public bool CanPause => State is RunState.Preflight or RunState.Running && Progress?.PauseRequested != true;
@@ -152,8 +175,7 @@ public sealed partial class RunViewModel : ObservableObject
             // The executor's figure for this pass, plus the estimate of the passes still to come.
             if (Progress is { } p && p.MovesDone > 0)
             {
-                var passes = Math.Max(1, p.Passes);
-                return p.Run.Remaining.TotalSeconds + (Math.Max(0, passes - p.Pass) * _laterPassSeconds);
+                return p.Run.Remaining.TotalSeconds + _passSeconds.Skip(p.Pass).Sum();
             }
 
             return Math.Max(0, _estimatedSeconds * (1 - Fraction));
@@ -180,6 +202,24 @@ public sealed partial class RunViewModel : ObservableObject
         }
 
         var connection = _machine.Connection;
+        if (RunsLayers)
+        {
+            var layered = _layers!.Job;
+            var refused = layered is null ? _layers.Error ?? "the layers do not plan"
+                : _layers.Error is { } error ? error
+                : connection is null ? "not connected: connect to the simulator or the machine first"
+                : null;
+            if (refused is not null)
+            {
+                Error = refused;
+                State = RunState.Failed;
+                return;
+            }
+
+            await RunAsync((machine, options) => new EngraveSession(machine, layered!, options), null, _job.ToSettings(), connection!, resumeFrom: null, layered);
+            return;
+        }
+
         if (_job.Drawing is { } drawing)
         {
             var refused = !drawing.FitsTravel ? "the drawing lies outside the stage's travel: move the origin or make it smaller"
@@ -344,7 +384,8 @@ public sealed partial class RunViewModel : ObservableObject
 
     /// <param name="session">Makes the session (an image's or a drawing's) on the machine with the options.</param>
     /// <param name="job">The image job, which Continue can resume; null for a drawing (continued from the command line).</param>
-    private async Task RunAsync(Func<EngraveMachine, EngraveSessionOptions, EngraveSession> session, PreparedJob? job, JobSettings settings, IMachineConnection connection, RunStopPoint? resumeFrom)
+    /// <param name="layered">The job of layers the session runs, if it is one: its estimate and the layers' names for the progress.</param>
+    private async Task RunAsync(Func<EngraveMachine, EngraveSessionOptions, EngraveSession> session, PreparedJob? job, JobSettings settings, IMachineConnection connection, RunStopPoint? resumeFrom, LayeredJob? layered = null)
     {
         if (!_machine.Activity.TryBegin(MachineOperation.Run, out var lease, out var refusal))
         {
@@ -355,10 +396,15 @@ public sealed partial class RunViewModel : ObservableObject
         using var held = lease;
         var continuedFrom = resumeFrom is null ? null : _log.LastRun?.Path;
         _startedTicks = _time.GetTimestamp();
-        _estimatedSeconds = _job.EstimatedSeconds ?? 0;
-        _laterPassSeconds = job is not null ? job.Statistics.EngravingSeconds + job.Statistics.PassSetupSeconds
-            : _job.Drawing is { } drawing ? drawing.Schedule.EstimatedSeconds + drawing.PassSetupSeconds
-            : 0;
+        _estimatedSeconds = layered?.EstimatedSeconds ?? _job.EstimatedSeconds ?? 0;
+        _runLayers = layered?.Layers;
+
+        // Each pass's engraving with what goes before it, in run order: what is left once a pass is under way.
+        _passSeconds = layered is not null
+            ? [.. layered.Layers.SelectMany(l => Enumerable.Repeat(l.EngravingSeconds + (l.Image?.Statistics.PassSetupSeconds ?? l.Drawing!.PassSetupSeconds), l.Layer.Passes))]
+            : job is not null ? [.. Enumerable.Repeat(job.Statistics.EngravingSeconds + job.Statistics.PassSetupSeconds, resumeFrom is null ? job.Spec.Passes : 1)]
+            : _job.Drawing is { } drawing ? [.. Enumerable.Repeat(drawing.Schedule.EstimatedSeconds + drawing.PassSetupSeconds, drawing.Spec.Passes)]
+            : [];
         var machine = new EngraveMachine(connection.Stage, connection.Gate, connection.TimeProvider, connection.Description, connection.Description)
         {
             Simulated = connection.IsSimulated,

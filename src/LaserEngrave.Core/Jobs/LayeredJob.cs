@@ -63,6 +63,11 @@ public sealed class LayeredJob
             throw new PlanException(string.Create(CultureInfo.InvariantCulture, $"passes {layer.Passes} must be 1..{JobSpec.MaxPasses}"));
         }
 
+        if (!(layer.Origin.X >= 0 && layer.Origin.Y >= 0 && double.IsFinite(layer.Origin.X) && double.IsFinite(layer.Origin.Y)))
+        {
+            throw new PlanException(string.Create(CultureInfo.InvariantCulture, $"originMm {layer.Origin.X}, {layer.Origin.Y} must not be negative"));
+        }
+
         var process = ProcessSettings.FromProfile(profile) with
         {
             BurnSpeedMmPerS = layer.SpeedMmPerS ?? profile.BurnSpeedMmPerS,

@@ -8,7 +8,8 @@ namespace LaserEngrave.Devices.Execution;
 /// <param name="MovesTotal">Moves of the plan.</param>
 /// <param name="PauseRequested">A pause was asked and not yet resumed (it takes effect after the current move).</param>
 /// <param name="Run">The pass's executor progress: rows, runs, percent and time left of this pass, position, laser.</param>
-public sealed record EngraveProgress(RunState State, int Pass, int Passes, long MovesDone, long MovesTotal, bool PauseRequested, RunProgress Run)
+/// <param name="Layer">The layer under way, from 1 (a job of layers; 1 for a single job).</param>
+public sealed record EngraveProgress(RunState State, int Pass, int Passes, long MovesDone, long MovesTotal, bool PauseRequested, RunProgress Run, int Layer = 1)
 {
     /// <summary>Share of all passes done, 0..1.</summary>
     public double Fraction => MovesTotal > 0 ? Math.Clamp((Pass - 1 + ((double)MovesDone / MovesTotal)) / Math.Max(1, Passes), 0, 1) : 0;

@@ -18,6 +18,7 @@ public sealed class EngraveSession
     private readonly IReadOnlyList<PreparedLayer> _parts;
     private readonly bool _layered;
     private long _moves;
+    private int _layer = 1;
     private RunExecutor? _current;
     private RunState _state = RunState.Idle;
     private EngraveProgress _progress;
@@ -283,6 +284,7 @@ public sealed class EngraveSession
                 lock (_lock)
                 {
                     _moves = Moves(part);
+                    _layer = index + 1;
                 }
 
                 if (index > 0)
@@ -438,7 +440,7 @@ public sealed class EngraveSession
             {
                 // A pass's end is not the session's: that comes once every pass has run, the burn is checked and the log written.
                 _state = RunStateMachine.IsEnd(p.Run.State) || (_abortRequested && p.Run.State is not RunState.Aborting) ? _state : p.Run.State;
-                _progress = new EngraveProgress(_state, p.Pass, Passes, p.MovesDone, _moves, _pauseRequested, p.Run);
+                _progress = new EngraveProgress(_state, p.Pass, Passes, p.MovesDone, _moves, _pauseRequested, p.Run, _layer);
             }
             else
             {

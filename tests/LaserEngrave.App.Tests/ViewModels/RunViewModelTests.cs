@@ -141,6 +141,54 @@ public sealed class RunViewModelTests
     }
 
     [Fact]
+    public async Task Start_Layers_RunsOneSessionOfEveryLayerAndSaysWhichLayerIsUnderWay()
+    {
+        using var folder = TestFiles.NewFolder();
+        var layers = new LayersViewModel(new JobFiles(new AppFolders(folder.Path)), _job, _activity);
+        var run = new RunViewModel(_runs, _job, _machine, _log, TimeProvider.System, layers);
+        Assert.True(layers.Open(TestFiles.Asset(Path.Combine("jobs", "plate.json"))));
+        await _machine.ConnectCommand.ExecuteAsync(null);
+        string? layerText = null;
+        var sessions = new List<EngraveSession>();
+        _runs.RunAsync(Arg.Do<EngraveSession>(sessions.Add), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(c =>
+            {
+                c.Arg<IProgress<EngraveProgress>>().Report(Report(RunState.Running, 10, 100, 2, 41, pass: 2, passes: 4) with { Layer = 2 });
+                layerText = run.LayerText;
+                return Task.FromResult(Ended(c.Arg<EngraveSession>(), Result(RunOutcome.Completed)));
+            });
+
+        Assert.True(run.RunsLayers);
+        Assert.True(run.CanStart);
+        await run.StartCommand.ExecuteAsync(null);
+
+        var session = Assert.Single(sessions);
+        Assert.Equal(4, session.Passes);
+        Assert.Same(layers.Job!.Layers[0].Drawing, session.Drawing);
+        Assert.Equal("layer 2 of 3 “logo”", layerText);
+        Assert.Equal(RunState.Completed, run.State);
+    }
+
+    [Fact]
+    public async Task CanStart_LayerWithABadValue_IsFalseEvenWithAPlannedSingleJob()
+    {
+        using var folder = TestFiles.NewFolder();
+        var layers = new LayersViewModel(new JobFiles(new AppFolders(folder.Path)), _job, _activity);
+        var run = new RunViewModel(_runs, _job, _machine, _log, TimeProvider.System, layers);
+        await ReadyAsync();
+        layers.Open(TestFiles.Asset(Path.Combine("jobs", "plate.json")));
+        Assert.True(run.CanStart);
+
+        layers.Update(2, layers.Layers[2] with { Origin = new OriginMm(59, 10) });
+
+        Assert.Contains("layer \"cut\" does not fit the stage's travel", layers.Error, StringComparison.Ordinal);
+        Assert.False(run.CanStart);
+        layers.Clear();
+        Assert.True(run.CanStart);
+        Assert.False(run.RunsLayers);
+    }
+
+    [Fact]
     public async Task Start_TwoPassesCompleted_LogSaysBothPassesDone()
     {
         await ReadyAsync();

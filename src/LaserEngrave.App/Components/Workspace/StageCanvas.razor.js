@@ -10,7 +10,7 @@ export function create(host, dotnet) {
   const ctx = canvas.getContext('2d');
   const scheme = matchMedia('(prefers-color-scheme: dark)');
   const s = {
-    travel: { w: 60, h: 60 }, job: null, draggable: false, laser: null, laserOn: false,
+    travel: { w: 60, h: 60 }, job: null, layers: [], draggable: false, laser: null, laserOn: false,
     moves: new Float32Array(0), paths: null, burned: null, burnedUpTo: 0, movesDone: 0,
     mask: null, maskUrl: null, scale: 1, ox: 0, oy: 0, fitted: false, userView: false, drag: null, raf: 0,
   };
@@ -104,7 +104,17 @@ export function create(host, dotnet) {
       }
       ctx.lineWidth = 1.5 / s.scale; ctx.setLineDash([6 / s.scale, 4 / s.scale]);
       ctx.strokeStyle = job.fits ? css('--accent') : css('--danger');
-      ctx.strokeRect(job.x, job.y, job.w, job.h); ctx.setLineDash([]);
+      if (s.layers.length === 0) ctx.strokeRect(job.x, job.y, job.w, job.h);
+      ctx.setLineDash([]);
+    }
+    // A job of layers: each layer's box, numbered and named in burn order.
+    ctx.font = `${11 / s.scale}px system-ui, sans-serif`; ctx.textBaseline = 'bottom';
+    for (const l of s.layers) {
+      ctx.lineWidth = 1.2 / s.scale; ctx.setLineDash([4 / s.scale, 3 / s.scale]);
+      ctx.strokeStyle = l.fits ? css('--accent') : css('--danger');
+      ctx.strokeRect(l.x, l.y, l.w, l.h); ctx.setLineDash([]);
+      ctx.fillStyle = l.fits ? css('--accent') : css('--danger');
+      ctx.fillText(l.name, l.x, l.y - 2 / s.scale);
     }
     ctx.restore();
 
@@ -227,6 +237,7 @@ export function create(host, dotnet) {
   return {
     setTravel(w, h) { s.travel = { w, h }; s.fitted = false; resize(); },
     setJob(job, draggable) { s.job = job; s.draggable = draggable; invalidate(); },
+    setLayers(layers) { s.layers = layers || []; invalidate(); },
     setMask(url) {
       if (url === s.maskUrl) return;
       s.maskUrl = url;

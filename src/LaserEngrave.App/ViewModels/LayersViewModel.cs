@@ -1,0 +1,280 @@
+using CommunityToolkit.Mvvm.ComponentModel;
+using LaserEngrave.App.Services;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Vectors;
+
+namespace LaserEngrave.App.ViewModels;
+
+/// <summary>
+/// The Layers view: a job of layers (images and drawings, each with its own mode, origin, speed, frequency and passes),
+/// opened from a job file or built from the open image or drawing, planned as <c>engrave --job</c> plans it, and saved
+/// in the same JSON. While it has layers, Start runs them (one <c>EngraveSession</c>) rather than the single job.
+/// </summary>
+public sealed partial class LayersViewModel : ObservableObject
+{
+    private readonly IJobFiles _files;
+    private readonly JobViewModel _job;
+    private readonly MachineActivity _activity;
+
+    public LayersViewModel(IJobFiles files, JobViewModel job, MachineActivity activity)
+    {
+        ArgumentNullException.ThrowIfNull(files);
+        ArgumentNullException.ThrowIfNull(job);
+        ArgumentNullException.ThrowIfNull(activity);
+        _files = files;
+        _job = job;
+        _activity = activity;
+        SampleJobs = files.SampleJobs();
+        _job.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName == nameof(JobViewModel.Profile) && IsActive)
+            {
+                Replan();
+            }
+        };
+        _activity.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName == nameof(MachineActivity.Current))
+            {
+                OnPropertyChanged(nameof(LockedBecause));
+            }
+        };
+    }
+
+    /// <summary>The job files shipped with the app.</summary>
+    public IReadOnlyList<string> SampleJobs { get; }
+
+    /// <summary>Why the layers cannot change now (a run, homing or a test move); null when they can.</summary>
+    public string? LockedBecause => _activity.JobLockMessage;
+
+    /// <summary>The layers in burn order.</summary>
+    [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(IsActive))]
+    public partial IReadOnlyList<JobLayer> Layers { get; private set; } = [];
+
+    /// <summary>The layers planned, or null when there are none or one cannot be planned (<see cref="Error"/> says why).</summary>
+    [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(EstimatedSeconds))]
+    public partial LayeredJob? Job { get; private set; }
+
+    /// <summary>Why the layers cannot be planned or run, one line naming the layer and the value; null when they can.</summary>
+    [ObservableProperty]
+    public partial string? Error { get; private set; }
+
+    /// <summary>Why the last open or save did nothing, one line; null after one that worked.</summary>
+    [ObservableProperty]
+    public partial string? FileError { get; private set; }
+
+    /// <summary>The job file last opened or saved; the Save field offers it.</summary>
+    [ObservableProperty]
+    public partial string? JobPath { get; private set; }
+
+    /// <summary>Goes up whenever the layers' plan changes, so the stage canvas draws them again.</summary>
+    [ObservableProperty]
+    public partial int PlanVersion { get; private set; }
+
+    /// <summary>Whether there are layers: then Start runs them, not the single job.</summary>
+    public bool IsActive => Layers.Count > 0;
+
+    /// <summary>The whole job: every layer's passes with their preflight, s; null without a plan.</summary>
+    public double? EstimatedSeconds => Job?.EstimatedSeconds;
+
+    /// <summary>Where a new job file would be saved: the last one, else job.json in the app's jobs folder.</summary>
+    public string SuggestedPath => JobPath ?? Path.Combine(_files.DefaultFolder, "job.json");
+
+    /// <summary>Adds the open image or drawing, with the values its fields have now, as the last layer.</summary>
+    /// <returns>False (with <see cref="FileError"/> saying why) when nothing is open or its values do not plan.</returns>
+    public bool AddCurrent()
+    {
+        _activity.ThrowIfJobLocked();
+        if (_job.ImagePath is not { } source)
+        {
+            FileError = "open an image or drawing first: it becomes the new layer";
+            return false;
+        }
+
+        if (_job.Job is null && _job.Drawing is null)
+        {
+            FileError = "the open job does not plan (see the fields marked in red): set it right before adding it as a layer";
+            return false;
+        }
+
+        var drawing = _job.IsDrawing;
+        var name = Path.GetFileNameWithoutExtension(source) + (drawing && _job.DrawingLayer is { } l ? " " + l : string.Empty);
+        var layer = new JobLayer
+        {
+            Name = UniqueName(name),
+            Source = source,
+            Mode = drawing ? Mode(_job.DrawingFill) : LayerMode.Raster,
+            DrawingLayer = drawing ? _job.DrawingLayer : null,
+            WidthMm = drawing ? (_job.SizeMode == SizeMode.Width ? _job.WidthMm : null) : _job.Job!.Geometry.RequestedWidthMm,
+            Origin = new OriginMm(_job.OriginXMm, _job.OriginYMm),
+            SpeedMmPerS = _job.BurnSpeedMmPerS,
+            FrequencyHz = _job.LaserFrequencyHz,
+            Passes = _job.Passes,
+            ToleranceUm = drawing ? _job.ToleranceUm : null,
+            FillPitchUm = drawing ? _job.FillPitchUm : null,
+        };
+        FileError = null;
+        Set([.. Layers, layer]);
+        return true;
+    }
+
+    /// <summary>Replaces one layer (its name, mode, origin, speed, frequency or passes changed) and plans again.</summary>
+    public void Update(int index, JobLayer layer)
+    {
+        ArgumentNullException.ThrowIfNull(layer);
+        _activity.ThrowIfJobLocked();
+        ArgumentOutOfRangeException.ThrowIfNegative(index);
+        ArgumentOutOfRangeException.ThrowIfGreaterThanOrEqual(index, Layers.Count);
+        var layers = Layers.ToList();
+        layers[index] = layer;
+        Set(layers);
+    }
+
+    public void Remove(int index)
+    {
+        _activity.ThrowIfJobLocked();
+        ArgumentOutOfRangeException.ThrowIfNegative(index);
+        ArgumentOutOfRangeException.ThrowIfGreaterThanOrEqual(index, Layers.Count);
+        var layers = Layers.ToList();
+        layers.RemoveAt(index);
+        Set(layers);
+    }
+
+    /// <summary>Moves a layer earlier (<paramref name="by"/> -1) or later (+1) in the burn order; at either end nothing moves.</summary>
+    public void Move(int index, int by)
+    {
+        _activity.ThrowIfJobLocked();
+        var to = index + by;
+        if (index < 0 || index >= Layers.Count || to < 0 || to >= Layers.Count)
+        {
+            return;
+        }
+
+        var layers = Layers.ToList();
+        (layers[index], layers[to]) = (layers[to], layers[index]);
+        Set(layers);
+    }
+
+    /// <summary>Empties the list: Start runs the single job again.</summary>
+    public void Clear()
+    {
+        _activity.ThrowIfJobLocked();
+        FileError = null;
+        Set([]);
+    }
+
+    /// <summary>Opens a job file (as <c>--job</c> reads it); a bad file leaves the layers as they were and says why.</summary>
+    public bool Open(string path)
+    {
+        ArgumentException.ThrowIfNullOrWhiteSpace(path);
+        _activity.ThrowIfJobLocked();
+        IReadOnlyList<JobLayer> layers;
+        try
+        {
+            layers = _files.Load(path);
+        }
+        catch (Exception ex) when (ex is PlanException or IOException or UnauthorizedAccessException)
+        {
+            FileError = ex.Message;
+            return false;
+        }
+
+        FileError = null;
+        JobPath = Path.GetFullPath(path);
+        Set(layers);
+        return true;
+    }
+
+    /// <summary>Writes the layers to a job file the command line runs (<c>engrave --job FILE</c>).</summary>
+    public bool Save(string path)
+    {
+        ArgumentException.ThrowIfNullOrWhiteSpace(path);
+        if (Layers.Count == 0)
+        {
+            FileError = "no layers to save: add the open image or drawing as a layer first";
+            return false;
+        }
+
+        if (!path.EndsWith(".json", StringComparison.OrdinalIgnoreCase))
+        {
+            FileError = $"{path}: a job file ends in .json";
+            return false;
+        }
+
+        try
+        {
+            _files.Save(path, Layers);
+        }
+        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException or ArgumentException or NotSupportedException)
+        {
+            FileError = $"{path}: {ex.Message}";
+            return false;
+        }
+
+        FileError = null;
+        JobPath = Path.GetFullPath(path);
+        return true;
+    }
+
+    /// <summary>One layer's plan (null while the layers do not plan).</summary>
+    public PreparedLayer? Planned(int index) => Job is { } job && index >= 0 && index < job.Layers.Count ? job.Layers[index] : null;
+
+    private static LayerMode Mode(VectorFillMode fill) => fill switch
+    {
+        VectorFillMode.Fill => LayerMode.Fill,
+        VectorFillMode.Both => LayerMode.Both,
+        _ => LayerMode.Outline,
+    };
+
+    private string UniqueName(string name)
+    {
+        var taken = Layers.Select(l => l.Name).ToHashSet(StringComparer.Ordinal);
+        if (!taken.Contains(name))
+        {
+            return name;
+        }
+
+        var n = 2;
+        while (taken.Contains($"{name} {n}"))
+        {
+            n++;
+        }
+
+        return $"{name} {n}";
+    }
+
+    private void Set(IReadOnlyList<JobLayer> layers)
+    {
+        Layers = layers;
+        Replan();
+    }
+
+    private void Replan()
+    {
+        LayeredJob? job = null;
+        string? error = null;
+        if (Layers.Count > 0)
+        {
+            try
+            {
+                job = _files.Prepare(Layers, _job.Profile);
+                if (job.Layers.FirstOrDefault(l => !l.FitsTravel) is { } outside)
+                {
+                    error = $"layer \"{outside.Layer.Name}\" does not fit the stage's travel: move its origin or make it smaller";
+                }
+            }
+            catch (PlanException ex)
+            {
+                error = ex.Message;
+            }
+        }
+
+        Job = job;
+        Error = error;
+        PlanVersion++;
+    }
+}
