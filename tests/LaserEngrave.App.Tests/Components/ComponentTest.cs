@@ -21,7 +21,7 @@ public abstract class ComponentTest : BunitContext
         Store.Save(Arg.Any<RunRecord>()).Returns(new RunLogFiles("/logs/run.json", "/logs/run.txt"));
         Settings.Load().Returns(new AppSettings());
         Files.SampleImages().Returns([TestFiles.Asset("qr-code.bmp"), TestFiles.Asset("text-banner.png")]);
-        Main = new MainViewModel(new ImageService(), Machine.Factory, Runs, Store, Settings, Files, TimeProvider.System, new MachineActivity());
+        Main = new MainViewModel(new ImageService(), Machine.Factory, Runs, Store, Settings, Files, TimeProvider.System, new MachineActivity(), new JobFiles(new AppFolders(DataFolder.Path)));
         Services.AddFluentUIComponents();
         Services.AddSingleton(Files);
         Services.AddSingleton(Main);

@@ -1,0 +1,55 @@
+using Bunit;
+using LaserEngrave.App.Components.Workspace;
+using LaserEngrave.Core.Jobs;
+
+namespace LaserEngrave.App.Tests.Components;
+
+public sealed class LayersPanelTests : ComponentTest
+{
+    private static string Plate => TestFiles.Asset(Path.Combine("jobs", "plate.json"));
+
+    [Fact]
+    public void OpenJob_LayersListedWithEstimatesAndTotal()
+    {
+        var cut = Render<LayersPanel>(p => p.Add(c => c.Layers, Main.Layers));
+
+        cut.Find("#job-path").Change(Plate);
+        cut.Find("#job-open").Click();
+
+        cut.WaitForAssertion(() => Assert.Equal(3, cut.FindAll("#layer-list li").Count));
+        Assert.Equal("logo", cut.Find("#layer-2").GetAttribute("data-layer"));
+        Assert.Contains("est.", cut.Find("#layer-3-estimate").TextContent, StringComparison.Ordinal);
+        Assert.StartsWith("3 layers", cut.Find("#layers-total").TextContent, StringComparison.Ordinal);
+        Assert.NotNull(cut.Find("#layer-1-mode"));
+        Assert.Empty(cut.FindAll("#layer-2-mode"));
+    }
+
+    [Fact]
+    public void PassesOutOfRange_LayerNamedInTheErrorAndStartDisabled()
+    {
+        Main.Layers.Open(Plate);
+        var cut = Render<LayersPanel>(p => p.Add(c => c.Layers, Main.Layers));
+
+        cut.Find("#layer-3-passes").Change("101");
+
+        cut.WaitForAssertion(() => Assert.Equal("layer \"cut\": passes 101 must be 1..100", cut.Find("#layers-error").TextContent));
+        Assert.False(Main.Run.CanStart);
+    }
+
+    [Fact]
+    public void ReorderRenameAndSave_TheFileReadsBackAsTheListShows()
+    {
+        Main.Layers.Open(Plate);
+        var cut = Render<LayersPanel>(p => p.Add(c => c.Layers, Main.Layers));
+        var path = Path.Combine(DataFolder.Path, "saved.json");
+
+        cut.Find("#layer-3-up").Click();
+        cut.Find("#layer-1-name").Change("engraved marks");
+        cut.Find("#layer-2-remove").Click();
+        cut.Find("#job-path").Change(path);
+        cut.Find("#job-save").Click();
+
+        Assert.Null(Main.Layers.FileError);
+        Assert.Equal(["engraved marks", "logo"], JobFile.Load(path).Select(l => l.Name));
+    }
+}
