@@ -50,15 +50,29 @@ internal static class EngraveCommand
         LayeredJob? layered = null;
         string? repeatOf = null;
         RunStopPoint? resumeFrom = null;
+        LayerResumePoint? resumeLayers = null;
+        string? layeredFile = null;
         IEnumerable<string> warnings;
         if (result.GetValue(o.JobFile) is { } jobFile)
         {
             if (new Option[] { o.FromLog, o.Resume, o.Passes, o.Burned, o.Dose }.FirstOrDefault(option => OptionChecks.IsGiven(result, option)) is { } other)
             {
-                throw new UsageException($"{other.Name} with --job: {(other == o.Passes ? "each layer has its own passes" : other == o.Burned || other == o.Dose ? "--burned and --dose are for one image" : "a job of layers is run again from its file, not from a log")}");
+                throw new UsageException($"{other.Name} with --job: {(other == o.Passes ? "each layer has its own passes" : other == o.Burned || other == o.Dose ? "--burned and --dose are for one image" : "a job of layers is repeated or resumed by --from-log LOG alone (the log names its job file)")}");
             }
 
             layered = LayerCommands.Prepare(result, jobFile, o.Job, o.Vector);
+            layeredFile = jobFile;
+            warnings = LayerCommands.Warnings(layered);
+        }
+        else if (result.GetValue(o.FromLog) is { } layersLog && RunLogStore.Read(layersLog).Layers is not null)
+        {
+            if (new Option[] { o.Passes, o.Burned, o.Dose }.FirstOrDefault(option => OptionChecks.IsGiven(result, option)) is { } other)
+            {
+                throw new UsageException($"{other.Name} with --from-log of a job of layers: {(other == o.Passes ? "each layer has its own passes" : "--burned and --dose are for one image")}");
+            }
+
+            (layered, layeredFile, resumeLayers) = LayerCommands.FromLog(result, layersLog, result.GetValue(o.Resume), o.Job, o.Vector);
+            repeatOf = Path.GetFullPath(layersLog);
             warnings = LayerCommands.Warnings(layered);
         }
         else if (IsDrawingJob(result, o))
@@ -128,6 +142,8 @@ internal static class EngraveCommand
                 SampleId = result.GetValue(o.Sample),
                 RepeatOf = repeatOf,
                 ResumeFrom = resumeFrom,
+                ResumeLayers = resumeLayers,
+                JobFile = layeredFile,
                 Home = result.GetValue(o.Home),
                 Log = store,
             };

@@ -15,20 +15,45 @@ internal static class LayerCommands
     /// <summary>The layers of the job file, prepared; the job's own options (size, process, drawing options) are refused: each layer has its own.</summary>
     public static LayeredJob Prepare(ParseResult result, string jobFile, JobOptions job, VectorOptionSet vector)
     {
+        RefuseJobOptions(result, "--job", job, vector, profileAllowed: true);
+        var profile = result.GetValue(job.Profile) is { } path ? MachineProfile.Load(path) : MachineProfile.Default;
+        return Fitting(LayeredJob.Prepare(JobFile.Load(jobFile), profile), jobFile);
+    }
+
+    /// <summary>
+    /// The layers of a logged run of layers, from its job file and with its profile, checked unchanged (SHA-256 of the
+    /// file and of every layer's source); with <paramref name="resume"/>, where it goes on (docs/vectors.md, "Layers").
+    /// </summary>
+    public static (LayeredJob Job, string JobFile, LayerResumePoint? Resume) FromLog(ParseResult result, string log, bool resume, JobOptions job, VectorOptionSet vector)
+    {
+        RefuseJobOptions(result, "--from-log", job, vector, profileAllowed: false);
+        var logged = RunLogStore.Read(log);
+        var (layers, from) = RunReplay.ToLayers(logged, resume);
+        MachineProfileValidator.Validate(logged.Profile, $"{log}: profile");
+        return (Fitting(LayeredJob.Prepare(layers, logged.Profile), logged.JobFile!.Path), logged.JobFile.Path, from);
+    }
+
+    /// <summary>Each layer has its own size, place, process and drawing options: the command line's are refused, naming the first.</summary>
+    private static void RefuseJobOptions(ParseResult result, string with, JobOptions job, VectorOptionSet vector, bool profileAllowed)
+    {
         if (result.GetValue(job.Image) is { } image)
         {
-            throw new UsageException($"give IMAGE ({image}) or --job, not both");
+            throw new UsageException($"give IMAGE ({image}) or {with}, not both");
         }
 
-        var given = job.Given(result).Where(name => name != job.Profile.Name)
+        var given = job.Given(result).Where(name => !(profileAllowed && name == job.Profile.Name))
             .Concat(new Option[] { vector.ToleranceUm, vector.Fill, vector.FillPitchUm, vector.DrawingOrder }.Where(o => OptionChecks.IsGiven(result, o)).Select(o => o.Name));
         if (given.FirstOrDefault() is { } ignored)
         {
-            throw new UsageException($"{ignored} with --job: each layer of the job file has its own settings; set it there");
+            throw new UsageException(with == "--job"
+                ? $"{ignored} with --job: each layer of the job file has its own settings; set it there"
+                : $"{ignored} with --from-log: a repeated run takes every parameter from its log and job file, so {ignored} would be ignored; leave it out");
         }
+    }
 
-        var profile = result.GetValue(job.Profile) is { } path ? MachineProfile.Load(path) : MachineProfile.Default;
-        var layered = LayeredJob.Prepare(JobFile.Load(jobFile), profile);
+    private static LayeredJob Fitting(LayeredJob layered, string jobFile)
+    {
+        var profile = layered.Layers[0].Spec.Profile;
         foreach (var layer in layered.Layers.Where(l => !l.FitsTravel))
         {
             throw new UsageException($"{jobFile}: layer \"{layer.Layer.Name}\" does not fit the stage's travel ({profile.X.TravelMm:0.###} x {profile.Y.TravelMm:0.###} mm); move its originMm or make it smaller");

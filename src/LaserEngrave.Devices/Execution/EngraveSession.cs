@@ -19,6 +19,8 @@ public sealed class EngraveSession
     private readonly bool _layered;
     private long _moves;
     private int _layer = 1;
+    private readonly int _firstLayer;
+    private readonly RunStopPoint? _resumeFrom;
     private RunExecutor? _current;
     private RunState _state = RunState.Idle;
     private EngraveProgress _progress;
@@ -41,7 +43,7 @@ public sealed class EngraveSession
     }
 
     /// <summary>A session that engraves the layers of a job one after the other, each with its own process and passes, all in one log.</summary>
-    /// <remarks>A layered run cannot be continued from a stop point (<see cref="EngraveSessionOptions.ResumeFrom"/>).</remarks>
+    /// <remarks>A stopped run of layers is continued with <see cref="EngraveSessionOptions.ResumeLayers"/>, not <see cref="EngraveSessionOptions.ResumeFrom"/>.</remarks>
     public EngraveSession(EngraveMachine machine, LayeredJob job, EngraveSessionOptions? options = null)
         : this(machine, First(job), job?.Layers!, true, options)
     {
@@ -66,13 +68,32 @@ public sealed class EngraveSession
 
         if (layered && Options.ResumeFrom is not null)
         {
-            throw new ArgumentException("a job of layers cannot be continued from a stop point; run it again", nameof(options));
+            throw new ArgumentException("a job of layers is continued from its layer's stop point (ResumeLayers), not ResumeFrom", nameof(options));
         }
 
-        // Continuing a stopped run finishes the pass that stopped, and only that.
-        Passes = Options.ResumeFrom is null ? parts.Sum(p => p.Layer.Passes) : 1;
-        _moves = Moves(parts[0]);
-        var first = parts[0];
+        if (Options.ResumeLayers is { } resume)
+        {
+            if (!layered)
+            {
+                throw new ArgumentException("ResumeLayers is for a job of layers", nameof(options));
+            }
+
+            ArgumentOutOfRangeException.ThrowIfNegative(resume.Layer);
+            ArgumentOutOfRangeException.ThrowIfGreaterThanOrEqual(resume.Layer, parts.Count);
+            ArgumentOutOfRangeException.ThrowIfNegative(resume.PassesDone);
+            ArgumentOutOfRangeException.ThrowIfGreaterThanOrEqual(resume.PassesDone, parts[resume.Layer].Layer.Passes);
+        }
+
+        _firstLayer = Options.ResumeLayers?.Layer ?? 0;
+        _resumeFrom = Options.ResumeFrom ?? Options.ResumeLayers?.StopPoint;
+
+        // Continuing a stopped run finishes the pass that stopped, and only that; a run of layers goes on to its end.
+        Passes = Options.ResumeLayers is { } from ? parts.Skip(from.Layer).Sum(p => p.Layer.Passes) - from.PassesDone
+            : Options.ResumeFrom is null ? parts.Sum(p => p.Layer.Passes)
+            : 1;
+        _moves = Moves(parts[_firstLayer]);
+        _layer = _firstLayer + 1;
+        var first = parts[_firstLayer];
         var idle = first.Image is { } image
             ? new RunProgress(RunState.Idle, 0, image.Statistics.Rows, 0, image.Statistics.BurnRuns, 0, TimeSpan.Zero, TimeSpan.FromSeconds(image.Statistics.EngravingSeconds), 0, 0, false)
             : new RunProgress(RunState.Idle, 0, first.Drawing!.Schedule.Strokes.Count, 0, first.Drawing.Plan.Paths.Count, 0, TimeSpan.Zero, TimeSpan.FromSeconds(first.Drawing.Schedule.EstimatedSeconds), 0, 0, false);
@@ -258,7 +279,8 @@ public sealed class EngraveSession
             Notes = Options.Notes,
             SampleId = Options.SampleId,
             RepeatOf = Options.RepeatOf,
-            Resumed = Options.ResumeFrom is not null,
+            Resumed = _resumeFrom is not null || Options.ResumeLayers is not null,
+            JobFile = Options.JobFile is { } jobFile ? new RunJobFile(Path.GetFullPath(jobFile), HashOrMissing(jobFile)) : null,
             Passes = Passes,
         };
         var layers = _layered ? _parts.Select(LayerEntry).ToList() : null;
@@ -281,24 +303,31 @@ public sealed class EngraveSession
             for (var index = 0; index < _parts.Count; index++)
             {
                 var part = _parts[index];
+                if (index < _firstLayer)
+                {
+                    // Completed by the run this one continues: logged as it was, not burned again.
+                    layers![index] = layers[index] with { PassesDone = part.Layer.Passes, Outcome = RunOutcome.Completed };
+                    continue;
+                }
+
                 lock (_lock)
                 {
                     _moves = Moves(part);
                     _layer = index + 1;
                 }
 
-                if (index > 0)
+                if (index > _firstLayer)
                 {
                     // Each layer's burn is checked on its own.
                     Machine.Inspector?.Begin();
                 }
 
                 RunResult? layerRun = null;
-                var layerPasses = 0;
+                var layerPasses = index == _firstLayer ? Options.ResumeLayers?.PassesDone ?? 0 : 0;
                 var passes = Options.ResumeFrom is null ? part.Layer.Passes : 1;
                 try
                 {
-                    for (var p = 1; p <= passes; p++)
+                    for (var p = layerPasses + 1; p <= passes; p++)
                     {
                         var result = await RunPassAsync(part, ++pass, firstOfSession: pass == 1, cancellationToken);
 
@@ -395,7 +424,7 @@ public sealed class EngraveSession
 
     private async Task<RunResult> RunPassAsync(PreparedLayer part, int pass, bool firstOfSession, CancellationToken cancellationToken)
     {
-        var options = new RunOptions { Home = Options.Home && firstOfSession, ResumeFrom = firstOfSession ? Options.ResumeFrom : null };
+        var options = new RunOptions { Home = Options.Home && firstOfSession, ResumeFrom = firstOfSession ? _resumeFrom : null };
         var executor = part.Drawing is { } drawing
             ? new RunExecutor(Machine.Stage, Machine.Gate, drawing, Machine.TimeProvider, options)
             : new RunExecutor(Machine.Stage, Machine.Gate, part.Image!, Machine.TimeProvider, options);

@@ -20,6 +20,15 @@ public sealed record EngraveSessionOptions
     /// <summary>Continue a stopped run from here: only the rest of the pass that stopped is run.</summary>
     public RunStopPoint? ResumeFrom { get; init; }
 
+    /// <summary>
+    /// A job of layers only: continue a stopped run of it from this layer (the earlier ones completed and are not burned
+    /// again), the pass under way from its stop point, then the layer's other passes and every later layer.
+    /// </summary>
+    public LayerResumePoint? ResumeLayers { get; init; }
+
+    /// <summary>A job of layers: the job file it was read from, logged with its SHA-256 so a resume can refuse a changed file.</summary>
+    public string? JobFile { get; init; }
+
     /// <summary>Home both axes in the first pass's preflight even when they are homed.</summary>
     public bool Home { get; init; }
 

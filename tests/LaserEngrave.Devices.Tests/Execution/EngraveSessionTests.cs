@@ -202,9 +202,4 @@ public class EngraveSessionTests
 
         Assert.Throws<ArgumentOutOfRangeException>(() => Session(run, bad, new RecordingLog()));
     }
-
-    private sealed class SynchronousProgress(Action<EngraveProgress> report) : IProgress<EngraveProgress>
-    {
-        public void Report(EngraveProgress value) => report(value);
-    }
 }
