@@ -17,6 +17,7 @@ public sealed partial class LayersViewModel : ObservableObject
     private readonly IJobFiles _files;
     private readonly JobViewModel _job;
     private readonly MachineActivity _activity;
+    private IReadOnlyList<JobLayer>? _inFile;
 
     public LayersViewModel(IJobFiles files, JobViewModel job, MachineActivity activity)
     {
@@ -74,6 +75,12 @@ public sealed partial class LayersViewModel : ObservableObject
     /// <summary>Goes up whenever the layers' plan changes, so the stage canvas draws them again.</summary>
     [ObservableProperty]
     public partial int PlanVersion { get; private set; }
+
+    /// <summary>
+    /// The job file the layers are, unchanged since it was opened or saved: a run logs it (with its SHA-256), so the
+    /// command line can resume the run (<c>engrave --from-log LOG --resume</c>); null once a layer changed.
+    /// </summary>
+    public string? UnchangedJobFile => JobPath is { } path && _inFile is { } saved && saved.SequenceEqual(Layers) ? path : null;
 
     /// <summary>Whether there are layers: then Start runs them, not the single job.</summary>
     public bool IsActive => Layers.Count > 0;
@@ -185,6 +192,7 @@ public sealed partial class LayersViewModel : ObservableObject
 
         FileError = null;
         JobPath = Path.GetFullPath(path);
+        _inFile = layers;
         Set(layers);
         return true;
     }
@@ -217,6 +225,8 @@ public sealed partial class LayersViewModel : ObservableObject
 
         FileError = null;
         JobPath = Path.GetFullPath(path);
+        _inFile = Layers;
+        OnPropertyChanged(nameof(UnchangedJobFile));
         return true;
     }
 
@@ -250,6 +260,7 @@ public sealed partial class LayersViewModel : ObservableObject
     private void Set(IReadOnlyList<JobLayer> layers)
     {
         Layers = layers;
+        OnPropertyChanged(nameof(UnchangedJobFile));
         Replan();
     }
 

@@ -416,6 +416,7 @@ public sealed partial class RunViewModel : ObservableObject
             SampleId = _log.SampleId,
             RepeatOf = string.IsNullOrEmpty(continuedFrom) ? null : continuedFrom,
             ResumeFrom = resumeFrom,
+            JobFile = layered is null ? null : _layers?.UnchangedJobFile,
             Log = _log.Writer,
             WallClock = _time,
         });

@@ -170,6 +170,22 @@ public sealed class LayersViewModelTests : IDisposable
     }
 
     [Fact]
+    public void UnchangedJobFile_OpenedThenEdited_NamedUntilALayerChanges()
+    {
+        _files.Load(Plate).Returns(JobFile.Load(Plate));
+        _layers.Open(Plate);
+
+        Assert.Equal(Path.GetFullPath(Plate), _layers.UnchangedJobFile);
+
+        _layers.Update(0, _layers.Layers[0] with { Passes = 2 });
+
+        Assert.Null(_layers.UnchangedJobFile);
+        var path = Path.Combine(_folder.Path, "edited.json");
+        _layers.Save(path);
+        Assert.Equal(path, _layers.UnchangedJobFile);
+    }
+
+    [Fact]
     public void Save_NotJson_RefusedWithoutWriting()
     {
         _files.Load(Plate).Returns(JobFile.Load(Plate));

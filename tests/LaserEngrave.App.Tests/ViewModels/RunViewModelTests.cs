@@ -167,6 +167,7 @@ public sealed class RunViewModelTests
         Assert.Same(layers.Job!.Layers[0].Drawing, session.Drawing);
         Assert.Equal("layer 2 of 3 “logo”", layerText);
         Assert.Equal(RunState.Completed, run.State);
+        Assert.Equal(Path.GetFullPath(TestFiles.Asset(Path.Combine("jobs", "plate.json"))), session.Options.JobFile);
     }
 
     [Fact]
