@@ -283,6 +283,33 @@ public sealed class BrowserTests : IAsyncLifetime
     }
 
     [Fact]
+    public void Layers_SampleJobOpenedAndRunOnTheTwin_EachLayerDrawnAndTheRunCompletes()
+    {
+        Resize(1440, 1000);
+        // The Layers panel stays folded until there are layers.
+        Driver.FindElement(By.CssSelector("#panel-layers summary")).Click();
+        WaitFor(d => d.FindElements(By.CssSelector("#layer-samples button[data-path$='plate.json']")).Count == 1, "plate.json offered");
+        Driver.FindElement(By.CssSelector("#layer-samples button[data-path$='plate.json']")).Click();
+        WaitFor(d => d.FindElement(By.Id("layers-total")).Text.StartsWith("3 layers", StringComparison.Ordinal), "the layers planned");
+        WaitFor(d => int.Parse(d.FindElement(By.Id("stage-host")).GetAttribute("data-drawn-moves") ?? "0", CultureInfo.InvariantCulture) > 0, "the layers drawn");
+        Assert.StartsWith("3 layers", Text("status-estimate"), StringComparison.Ordinal);
+        Assert.True(Id("runs-layers").Displayed);
+
+        Id("connect").Click();
+        WaitFor(d => d.FindElement(By.Id("machine-connection")).Text.Contains("simulator", StringComparison.Ordinal), "connected to the simulator");
+        WaitFor(_ => Enabled("start"), "the layers can start");
+        Id("start").Click();
+        WaitFor(d => d.FindElement(By.Id("status-run")).Text == "completed", "the layers' run completed", 240);
+
+        Assert.Equal("layer 3 of 3 “cut”", Text("progress-layer"));
+        Assert.Equal(100, Progress());
+        Id("zoom-in").Click();
+        Driver.ExecuteScript("document.getElementById('layer-list').scrollIntoView({ block: 'center' });");
+        Assert.True(new FileInfo(Screenshot("layers-on-stage")).Length > 20_000);
+        Assert.DoesNotContain(Driver.Manage().Logs.GetLog(LogType.Browser), e => e.Level == LogLevel.Severe);
+    }
+
+    [Fact]
     public void Workspace_CommonWindowSizes_NoHorizontalScrolling()
     {
         OpenSample("text-banner.png");

@@ -109,10 +109,16 @@ export function create(host, dotnet) {
     }
     // A job of layers: each layer's box, numbered and named in burn order.
     ctx.font = `${11 / s.scale}px system-ui, sans-serif`; ctx.textBaseline = 'bottom';
+    const labels = new Map();
     for (const l of s.layers) {
       ctx.lineWidth = 1.2 / s.scale; ctx.setLineDash([4 / s.scale, 3 / s.scale]);
       ctx.strokeStyle = l.fits ? css('--accent') : css('--danger');
       ctx.strokeRect(l.x, l.y, l.w, l.h); ctx.setLineDash([]);
+      // Layers of one drawing share its box: one label names them all.
+      const key = `${l.x},${l.y}`, label = labels.get(key);
+      labels.set(key, label ? { ...label, name: `${label.name} · ${l.name}`, fits: label.fits && l.fits } : { x: l.x, y: l.y, name: l.name, fits: l.fits });
+    }
+    for (const l of labels.values()) {
       ctx.fillStyle = l.fits ? css('--accent') : css('--danger');
       ctx.fillText(l.name, l.x, l.y - 2 / s.scale);
     }
