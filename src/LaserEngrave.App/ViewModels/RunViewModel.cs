@@ -202,55 +202,53 @@ public sealed partial class RunViewModel : ObservableObject
         }
 
         var connection = _machine.Connection;
+        const string NotConnected = "not connected: connect to the simulator or the machine first";
         if (RunsLayers)
         {
             var layered = _layers!.Job;
-            var refused = layered is null ? _layers.Error ?? "the layers do not plan"
-                : _layers.Error is { } error ? error
-                : connection is null ? "not connected: connect to the simulator or the machine first"
-                : null;
-            if (refused is not null)
+            if (!Refused(_layers.Error ?? (layered is null ? "the layers do not plan" : connection is null ? NotConnected : null)))
             {
-                Error = refused;
-                State = RunState.Failed;
-                return;
+                await RunAsync((machine, options) => new EngraveSession(machine, layered!, options), null, _job.ToSettings(), connection!, resumeFrom: null, layered);
             }
 
-            await RunAsync((machine, options) => new EngraveSession(machine, layered!, options), null, _job.ToSettings(), connection!, resumeFrom: null, layered);
             return;
         }
 
         if (_job.Drawing is { } drawing)
         {
-            var refused = !drawing.FitsTravel ? "the drawing lies outside the stage's travel: move the origin or make it smaller"
+            if (!Refused(!drawing.FitsTravel ? "the drawing lies outside the stage's travel: move the origin or make it smaller"
                 : drawing.Schedule.Strokes.Count == 0 ? "the drawing has no path long enough to burn"
-                : connection is null ? "not connected: connect to the simulator or the machine first"
-                : null;
-            if (refused is not null)
+                : connection is null ? NotConnected
+                : null))
             {
-                Error = refused;
-                State = RunState.Failed;
-                return;
+                await RunAsync((machine, options) => new EngraveSession(machine, drawing, options), null, _job.ToSettings(), connection!, resumeFrom: null);
             }
 
-            await RunAsync((machine, options) => new EngraveSession(machine, drawing, options), null, _job.ToSettings(), connection!, resumeFrom: null);
             return;
         }
 
         var job = _job.Job;
-        var problem = job is null ? "no job planned: open an image and give it a usable size first"
+        if (!Refused(job is null ? "no job planned: open an image and give it a usable size first"
             : !job.Geometry.FitsTravel ? "the job lies outside the stage's travel: move the origin or make it smaller"
             : job.Statistics.BurnRuns == 0 ? "the mask has no pixel to burn: change the threshold or invert it"
-            : connection is null ? "not connected: connect to the simulator or the machine first"
-            : null;
-        if (problem is not null)
+            : connection is null ? NotConnected
+            : null))
         {
-            Error = problem;
-            State = RunState.Failed;
-            return;
+            await RunAsync((machine, options) => new EngraveSession(machine, job!, options), job, _job.ToSettings(), connection!, resumeFrom: null);
         }
 
-        await RunAsync((machine, options) => new EngraveSession(machine, job!, options), job, _job.ToSettings(), connection!, resumeFrom: null);
+        // A run refused before it starts: the reason stands in the run bar.
+        bool Refused(string? problem)
+        {
+            if (problem is null)
+            {
+                return false;
+            }
+
+            Error = problem;
+            State = RunState.Failed;
+            return true;
+        }
     }
 
     /// <summary>

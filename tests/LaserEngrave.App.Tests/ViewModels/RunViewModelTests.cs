@@ -102,14 +102,19 @@ public sealed class RunViewModelTests
         Assert.Equal(RunOutcome.Completed, _log.LastRun!.Record!.Outcome);
     }
 
-    [Fact]
-    public async Task Start_Drawing_RunsItsSessionAndLogsTheDrawing()
+    private async Task DrawingReadyAsync()
     {
         _job.OriginXMm = 5;
         _job.OriginYMm = 5;
         _job.WidthMm = 10;
         _job.LoadImage(TestFiles.Asset(Path.Combine("drawings", "hexagons.dxf")));
         await _machine.ConnectCommand.ExecuteAsync(null);
+    }
+
+    [Fact]
+    public async Task Start_Drawing_RunsItsSessionAndLogsTheDrawing()
+    {
+        await DrawingReadyAsync();
         var sessions = new List<EngraveSession>();
         _runs.RunAsync(Arg.Do<EngraveSession>(sessions.Add), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
             .Returns(Ends(Result(RunOutcome.Completed)));
@@ -125,11 +130,7 @@ public sealed class RunViewModelTests
     [Fact]
     public async Task CanStart_DrawingWithABadChordTolerance_IsFalseAndNoSessionRuns()
     {
-        _job.OriginXMm = 5;
-        _job.OriginYMm = 5;
-        _job.WidthMm = 10;
-        _job.LoadImage(TestFiles.Asset(Path.Combine("drawings", "hexagons.dxf")));
-        await _machine.ConnectCommand.ExecuteAsync(null);
+        await DrawingReadyAsync();
         Assert.True(_run.CanStart);
 
         _job.ToleranceUm = 5000;
