@@ -28,7 +28,7 @@ public sealed partial class RunViewModel : ObservableObject
     private IReadOnlyList<PreparedLayer>? _runLayers;
     private CancellationTokenSource? _abort;
     private StoppedRun? _stopped;
-    private (int PlanVersion, string? Reason) _continueCheck = (-1, null);
+    private ((int Job, int Layers) PlanVersion, string? Reason) _continueCheck = ((-1, -1), null);
     private long _startedTicks;
     private double _estimatedSeconds;
     private double[] _passSeconds = [];
@@ -53,6 +53,8 @@ public sealed partial class RunViewModel : ObservableObject
             {
                 RefreshCommands();
                 OnPropertyChanged(nameof(RunsLayers));
+                OnPropertyChanged(nameof(CanContinue));
+                OnPropertyChanged(nameof(ContinueUnavailableReason));
             }
         };
         _machine.Activity.PropertyChanged += (_, e) =>
@@ -208,7 +210,7 @@ public sealed partial class RunViewModel : ObservableObject
             var layered = _layers!.Job;
             if (!Refused(_layers.Error ?? (layered is null ? "the layers do not plan" : connection is null ? NotConnected : null)))
             {
-                await RunAsync((machine, options) => new EngraveSession(machine, layered!, options), null, _job.ToSettings(), connection!, resumeFrom: null, layered);
+                await RunAsync(new RunTarget(null, null, layered), _job.ToSettings(), connection!);
             }
 
             return;
@@ -221,7 +223,7 @@ public sealed partial class RunViewModel : ObservableObject
                 : connection is null ? NotConnected
                 : null))
             {
-                await RunAsync((machine, options) => new EngraveSession(machine, drawing, options), null, _job.ToSettings(), connection!, resumeFrom: null);
+                await RunAsync(new RunTarget(null, drawing, null), _job.ToSettings(), connection!);
             }
 
             return;
@@ -234,7 +236,7 @@ public sealed partial class RunViewModel : ObservableObject
             : connection is null ? NotConnected
             : null))
         {
-            await RunAsync((machine, options) => new EngraveSession(machine, job!, options), job, _job.ToSettings(), connection!, resumeFrom: null);
+            await RunAsync(new RunTarget(job, null, null), _job.ToSettings(), connection!);
         }
 
         // A run refused before it starts: the reason stands in the run bar.
@@ -277,7 +279,7 @@ public sealed partial class RunViewModel : ObservableObject
             return;
         }
 
-        await RunAsync((machine, options) => new EngraveSession(machine, stopped!.Job, options), stopped!.Job, stopped.Settings, connection!, stopped.StopPoint);
+        await RunAsync(stopped!.Target, stopped.Settings, connection!, stopped.Target.Layered is null ? stopped.StopPoint : null, stopped.LayerResume);
     }
 
     /// <summary>One line for the user on a request that did nothing, e.g. a second Start during a run.</summary>
@@ -296,7 +298,7 @@ public sealed partial class RunViewModel : ObservableObject
             return "not connected: connect to the machine the run stopped on first";
         }
 
-        var planVersion = _job.PlanVersion;
+        var planVersion = (_job.PlanVersion, _layers?.PlanVersion ?? 0);
         var check = _continueCheck;
         if (check.PlanVersion != planVersion)
         {
@@ -309,6 +311,18 @@ public sealed partial class RunViewModel : ObservableObject
     /// <summary>What about the job differs from the one the run stopped on, as one line; null when nothing does.</summary>
     private string? JobDifference(StoppedRun stopped)
     {
+        if (stopped.Target.Layered is not null)
+        {
+            return RunsLayers && _layers!.Layers.SequenceEqual(stopped.Layers ?? [])
+                ? null
+                : "the layers changed since the run stopped: continuing would not match what is burned; set them back to continue, or start again";
+        }
+
+        if (RunsLayers)
+        {
+            return "Start runs the layers now: clear them to continue the stopped job";
+        }
+
         var now = JsonSerializer.SerializeToElement(_job.ToSettings(), JsonSerializerOptions.Web);
         var then = JsonSerializer.SerializeToElement(stopped.Settings, JsonSerializerOptions.Web);
         var changed = then.EnumerateObject()
@@ -316,7 +330,7 @@ public sealed partial class RunViewModel : ObservableObject
             .Select(p => p.Name)
             .Where(name => name != "passes")
             .ToList();
-        if (changed.Count == 0 && (_job.Mask is not { } mask || !mask.ContentEquals(stopped.Job.Mask)))
+        if (changed.Count == 0 && stopped.Target.Job is { } job && (_job.Mask is not { } mask || !mask.ContentEquals(job.Mask)))
         {
             changed.Add("image");
         }
@@ -380,10 +394,10 @@ public sealed partial class RunViewModel : ObservableObject
         }
     }
 
-    /// <param name="session">Makes the session (an image's or a drawing's) on the machine with the options.</param>
-    /// <param name="job">The image job, which Continue can resume; null for a drawing (continued from the command line).</param>
-    /// <param name="layered">The job of layers the session runs, if it is one: its estimate and the layers' names for the progress.</param>
-    private async Task RunAsync(Func<EngraveMachine, EngraveSessionOptions, EngraveSession> session, PreparedJob? job, JobSettings settings, IMachineConnection connection, RunStopPoint? resumeFrom, LayeredJob? layered = null)
+    /// <param name="target">What runs: an image job, a drawing or a job of layers.</param>
+    /// <param name="resumeFrom">Continue a stopped image job or drawing from here (its stopped pass only).</param>
+    /// <param name="resumeLayers">Continue a stopped job of layers from here (its layer and pass, then the rest).</param>
+    private async Task RunAsync(RunTarget target, JobSettings settings, IMachineConnection connection, RunStopPoint? resumeFrom = null, LayerResumePoint? resumeLayers = null)
     {
         if (!_machine.Activity.TryBegin(MachineOperation.Run, out var lease, out var refusal))
         {
@@ -392,28 +406,30 @@ public sealed partial class RunViewModel : ObservableObject
         }
 
         using var held = lease;
-        var continuedFrom = resumeFrom is null ? null : _log.LastRun?.Path;
+        var continuedFrom = resumeFrom is null && resumeLayers is null ? null : _log.LastRun?.Path;
+        var (job, layered) = (target.Job, target.Layered);
         _startedTicks = _time.GetTimestamp();
         _estimatedSeconds = layered?.EstimatedSeconds ?? _job.EstimatedSeconds ?? 0;
         _runLayers = layered?.Layers;
 
         // Each pass's engraving with what goes before it, in run order: what is left once a pass is under way.
         _passSeconds = layered is not null
-            ? [.. layered.Layers.SelectMany(l => Enumerable.Repeat(l.EngravingSeconds + (l.Image?.Statistics.PassSetupSeconds ?? l.Drawing!.PassSetupSeconds), l.Layer.Passes))]
+            ? [.. layered.Layers.SelectMany(l => Enumerable.Repeat(l.EngravingSeconds + (l.Image?.Statistics.PassSetupSeconds ?? l.Drawing!.PassSetupSeconds), l.Layer.Passes)).Skip(resumeLayers is { } from ? layered.Layers.Take(from.Layer).Sum(l => l.Layer.Passes) + from.PassesDone : 0)]
             : job is not null ? [.. Enumerable.Repeat(job.Statistics.EngravingSeconds + job.Statistics.PassSetupSeconds, resumeFrom is null ? job.Spec.Passes : 1)]
-            : _job.Drawing is { } drawing ? [.. Enumerable.Repeat(drawing.Schedule.EstimatedSeconds + drawing.PassSetupSeconds, drawing.Spec.Passes)]
+            : target.Drawing is { } drawing ? [.. Enumerable.Repeat(drawing.Schedule.EstimatedSeconds + drawing.PassSetupSeconds, resumeFrom is null ? drawing.Spec.Passes : 1)]
             : [];
         var machine = new EngraveMachine(connection.Stage, connection.Gate, connection.TimeProvider, connection.Description, connection.Description)
         {
             Simulated = connection.IsSimulated,
             Inspector = connection.IsSimulated ? connection.Inspector : null,
         };
-        var running = session(machine, new EngraveSessionOptions
+        var running = target.Session(machine, new EngraveSessionOptions
         {
             Notes = _log.Notes,
             SampleId = _log.SampleId,
             RepeatOf = string.IsNullOrEmpty(continuedFrom) ? null : continuedFrom,
             ResumeFrom = resumeFrom,
+            ResumeLayers = resumeLayers,
             JobFile = layered is null ? null : _layers?.UnchangedJobFile,
             Log = _log.Writer,
             WallClock = _time,
@@ -446,8 +462,14 @@ public sealed partial class RunViewModel : ObservableObject
         }
 
         var stopPoint = record.Outcome is RunOutcome.Failed or RunOutcome.Aborted ? record.StoppedAt : null;
-        _stopped = stopPoint is null || job is null ? null : new StoppedRun(job, settings, stopPoint);
-        _continueCheck = (-1, null);
+        var layerResume = layered is null ? null : LayerResume(record);
+        if (layered is not null && layerResume is null)
+        {
+            stopPoint = null;
+        }
+
+        _stopped = stopPoint is null ? null : new StoppedRun(target, settings, stopPoint, layerResume, layered is null ? null : _layers?.Layers);
+        _continueCheck = ((-1, -1), null);
         StoppedAt = stopPoint;
         _log.Recorded(record, result.Files, result.LogError);
         try
@@ -486,8 +508,33 @@ public sealed partial class RunViewModel : ObservableObject
         }
     }
 
-    /// <summary>A run that stopped before its end: the plan it ran, the job's values then, and where it stopped.</summary>
-    private sealed record StoppedRun(PreparedJob Job, JobSettings Settings, RunStopPoint StopPoint);
+    /// <summary>Where a stopped run of layers goes on, as the command line's <c>--resume</c> finds it in the log; null when nothing is left.</summary>
+    private static LayerResumePoint? LayerResume(RunRecord record)
+    {
+        try
+        {
+            return RunReplay.ResumePoint(record);
+        }
+        catch (RunLogException)
+        {
+            return null;
+        }
+    }
+
+    /// <summary>What a run engraves: an image job, a drawing, or a job of layers (one of them).</summary>
+    private sealed record RunTarget(PreparedJob? Job, PreparedDrawing? Drawing, LayeredJob? Layered)
+    {
+        public EngraveSession Session(EngraveMachine machine, EngraveSessionOptions options) =>
+            Layered is { } layered ? new EngraveSession(machine, layered, options)
+            : Drawing is { } drawing ? new EngraveSession(machine, drawing, options)
+            : new EngraveSession(machine, Job!, options);
+    }
+
+    /// <summary>
+    /// A run that stopped before its end: what it ran, the job's values then, where it stopped, and for a job of layers
+    /// its layers then and where it goes on.
+    /// </summary>
+    private sealed record StoppedRun(RunTarget Target, JobSettings Settings, RunStopPoint StopPoint, LayerResumePoint? LayerResume, IReadOnlyList<JobLayer>? Layers);
 
     /// <summary>Keeps only the newest report: assigning a reference is all a serial reply costs the UI.</summary>
     private sealed class LatestProgress(RunViewModel owner, EngraveSession session) : IProgress<EngraveProgress>

@@ -172,6 +172,63 @@ public sealed class RunViewModelTests
     }
 
     [Fact]
+    public async Task Continue_LayersAbortedInLayerTwo_GoesOnFromThatLayersStopPointAsTheCommandLineWould()
+    {
+        using var folder = TestFiles.NewFolder();
+        var layers = new LayersViewModel(new JobFiles(new AppFolders(folder.Path)), _job, _activity);
+        var run = new RunViewModel(_runs, _job, _machine, _log, TimeProvider.System, layers);
+        layers.Open(TestFiles.Asset(Path.Combine("jobs", "plate.json")));
+        await _machine.ConnectCommand.ExecuteAsync(null);
+        var stop = new RunStopPoint(12, 140);
+        var sessions = new List<EngraveSession>();
+        _runs.RunAsync(Arg.Do<EngraveSession>(sessions.Add), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(
+                c =>
+                {
+                    var ended = Ended(c.Arg<EngraveSession>(), Result(RunOutcome.Aborted) with { StopPoint = stop });
+                    var logged = layers.Job!.Layers.Select((l, i) => new RunLayer(l.Layer.Name, l.Layer.Source, "0", l.Layer.Mode, l.Layer.DrawingLayer, 1, 1, 0, 0, 1, 1000, l.Layer.Passes)
+                    {
+                        PassesDone = i == 0 ? 1 : 0,
+                        Outcome = i switch { 0 => RunOutcome.Completed, 1 => RunOutcome.Aborted, _ => null },
+                    });
+                    return Task.FromResult(ended with { Record = ended.Record with { Layers = [.. logged] } });
+                },
+                Ends(Result(RunOutcome.Completed)));
+        await run.StartCommand.ExecuteAsync(null);
+        Assert.True(run.CanContinue);
+
+        layers.Update(2, layers.Layers[2] with { Passes = 3 });
+        Assert.Contains("the layers changed since the run stopped", run.ContinueUnavailableReason, StringComparison.Ordinal);
+        layers.Update(2, layers.Layers[2] with { Passes = 2 });
+        Assert.True(run.CanContinue);
+        await run.ContinueCommand.ExecuteAsync(null);
+
+        Assert.Equal(2, sessions.Count);
+        Assert.Equal(new LayerResumePoint(1, 0, stop), sessions[1].Options.ResumeLayers);
+        Assert.Null(sessions[1].Options.ResumeFrom);
+        Assert.Equal(3, sessions[1].Passes);
+        Assert.Equal(RunState.Completed, run.State);
+    }
+
+    [Fact]
+    public async Task Continue_DrawingAborted_GoesOnFromItsStopPoint()
+    {
+        await DrawingReadyAsync();
+        var stop = new RunStopPoint(7, 7);
+        var sessions = new List<EngraveSession>();
+        _runs.RunAsync(Arg.Do<EngraveSession>(sessions.Add), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(Ends(Result(RunOutcome.Aborted) with { StopPoint = stop }), Ends(Result(RunOutcome.Completed)));
+        await _run.StartCommand.ExecuteAsync(null);
+        Assert.True(_run.CanContinue);
+
+        await _run.ContinueCommand.ExecuteAsync(null);
+
+        Assert.Same(_job.Drawing, sessions[1].Drawing);
+        Assert.Equal(stop, sessions[1].Options.ResumeFrom);
+        Assert.Equal(RunState.Completed, _run.State);
+    }
+
+    [Fact]
     public async Task CanStart_LayerWithABadValue_IsFalseEvenWithAPlannedSingleJob()
     {
         using var folder = TestFiles.NewFolder();
