@@ -64,7 +64,8 @@ internal static class EngraveCommand
             layeredFile = jobFile;
             warnings = LayerCommands.Warnings(layered);
         }
-        else if (result.GetValue(o.FromLog) is { } layersLog && RunLogStore.Read(layersLog).Layers is not null)
+        // With IMAGE too, the image's way refuses the pair before any log is read.
+        else if (result.GetValue(o.Job.Image) is null && result.GetValue(o.FromLog) is { } layersLog && RunLogStore.Read(layersLog).Layers is not null)
         {
             if (new Option[] { o.Passes, o.Burned, o.Dose }.FirstOrDefault(option => OptionChecks.IsGiven(result, option)) is { } other)
             {
