@@ -64,6 +64,10 @@ public sealed partial class LayersViewModel : ObservableObject
     [ObservableProperty]
     public partial string? Error { get; private set; }
 
+    /// <summary>The layer (from 0) <see cref="Error"/> is about, so the view shows it there; null when it is about none.</summary>
+    [ObservableProperty]
+    public partial int? ErrorLayer { get; private set; }
+
     /// <summary>Why the last open or save did nothing, one line; null after one that worked.</summary>
     [ObservableProperty]
     public partial string? FileError { get; private set; }
@@ -268,24 +272,29 @@ public sealed partial class LayersViewModel : ObservableObject
     {
         LayeredJob? job = null;
         string? error = null;
+        int? errorLayer = null;
         if (Layers.Count > 0)
         {
             try
             {
                 job = _files.Prepare(Layers, _job.Profile);
-                if (job.Layers.FirstOrDefault(l => !l.FitsTravel) is { } outside)
+                var outside = job.Layers.ToList().FindIndex(l => !l.FitsTravel);
+                if (outside >= 0)
                 {
-                    error = $"layer \"{outside.Layer.Name}\" does not fit the stage's travel: move its origin or make it smaller";
+                    error = $"layer \"{job.Layers[outside].Layer.Name}\" does not fit the stage's travel: move its origin or make it smaller";
+                    errorLayer = outside;
                 }
             }
             catch (PlanException ex)
             {
                 error = ex.Message;
+                errorLayer = ex.Layer;
             }
         }
 
         Job = job;
         Error = error;
+        ErrorLayer = errorLayer;
         PlanVersion++;
     }
 }

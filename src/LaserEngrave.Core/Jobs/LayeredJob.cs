@@ -33,7 +33,7 @@ public sealed class LayeredJob
         }
 
         var prepared = new List<PreparedLayer>(layers.Count);
-        foreach (var layer in layers)
+        foreach (var (layer, index) in layers.Select((l, i) => (l, i)))
         {
             try
             {
@@ -41,7 +41,7 @@ public sealed class LayeredJob
             }
             catch (Exception ex) when (ex is GeometryException or PlanException or DrawingException or Imaging.ImageLoadException)
             {
-                throw new PlanException($"layer \"{layer.Name}\": {ex.Message}", ex);
+                throw new PlanException($"layer \"{layer.Name}\": {ex.Message}", ex) { Layer = index };
             }
         }
 

@@ -12,4 +12,7 @@ public sealed class PlanException : Exception
         : base(message, inner)
     {
     }
+
+    /// <summary>In a job of layers, the layer (from 0) the problem is in, so a front end can show it there; null otherwise.</summary>
+    public int? Layer { get; init; }
 }
