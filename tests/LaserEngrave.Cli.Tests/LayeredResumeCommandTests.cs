@@ -63,7 +63,8 @@ public sealed class LayeredResumeCommandTests : IDisposable
         Assert.Equal(3, record.Passes);
         var layers = record.Layers!;
         Assert.All(layers, l => Assert.Equal((RunOutcome.Completed, l.Passes), (l.Outcome!.Value, l.PassesDone)));
-        Assert.Equal((0.0, 0.0), (layers[0].EngravingSeconds, layers[0].LaserOnSeconds));
+        Assert.Equal((0.0, 0.0, true), (layers[0].EngravingSeconds, layers[0].LaserOnSeconds, layers[0].CompletedBefore));
+        Assert.False(layers[1].CompletedBefore);
         Assert.Null(layers[0].Simulation);
         Assert.True(layers[1].LaserOnSeconds > 0);
 

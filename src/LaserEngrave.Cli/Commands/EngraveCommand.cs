@@ -377,11 +377,11 @@ internal static class EngraveCommand
 
         foreach (var (layer, i) in (s.Layers ?? []).Select((l, i) => (l, i + 1)))
         {
-            var ended = layer.Outcome is { } outcome ? outcome.ToString().ToLowerInvariant() : "not started";
+            var ended = RunSummaryText.LayerEnd(layer);
             var twin = layer.Simulation?.Path is { } path
                 ? string.Create(c, $"; deviation max {path.DeviationUm.Max:0.##} µm, spacing {path.PulseSpacingUm.Min:0.###}..{path.PulseSpacingUm.Max:0.###} µm")
                 : layer.Simulation is { } sim ? string.Create(c, $"; {sim.MissingPixels} pixels missing, {sim.ExtraPixels} extra") : string.Empty;
-            output.WriteLine(string.Create(c, $"Layer {i}:          \"{layer.Name}\" {ended}, {layer.PassesDone} of {layer.Passes} passes, engraving {RunSummaryText.Duration(layer.EngravingSeconds)} (estimated {RunSummaryText.Duration(layer.EstimatedSeconds)}){twin}"));
+            output.WriteLine(string.Create(c, $"Layer {i}:          \"{layer.Name}\" {ended}, {layer.PassesDone} of {layer.Passes} passes, engraving {RunSummaryText.Duration(layer.EngravingSeconds)} (estimated {RunSummaryText.Duration(layer.EstimatedEngravingSeconds)}){twin}"));
         }
 
         output.WriteLine($"Log:              {s.LogPath}");

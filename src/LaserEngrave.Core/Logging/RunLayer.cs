@@ -35,6 +35,9 @@ public sealed record RunLayer(
     /// <summary>How its last pass ended; null when the layer never started (an earlier one stopped the run).</summary>
     public RunOutcome? Outcome { get; init; }
 
+    /// <summary>Completed by the run this one resumed (`--resume`, the app's Continue), and not burned in this one.</summary>
+    public bool CompletedBefore { get; init; }
+
     /// <summary>Its estimate, all passes, preflight and positioning included, s.</summary>
     public double EstimatedSeconds { get; init; }
 

@@ -127,11 +127,11 @@ public static class RunSummaryText
 
         foreach (var (layer, i) in (record.Layers ?? []).Select((l, i) => (l, i + 1)))
         {
-            var ended = layer.Outcome is { } o ? o.ToString().ToLowerInvariant() : "not started";
+            var ended = LayerEnd(layer);
             var path = layer.Simulation?.Path is { } figures ? string.Create(c, $"; twin: deviation max {figures.DeviationUm.Max:0.##} µm, spacing {figures.PulseSpacingUm.Min:0.###}..{figures.PulseSpacingUm.Max:0.###} µm") : string.Empty;
             Line($"Layer {i}", string.Create(
                 c,
-                $"\"{layer.Name}\" {layer.Mode.ToString().ToLowerInvariant()} {Path.GetFileName(layer.Source)}{(layer.DrawingLayer is null ? string.Empty : $" layer {layer.DrawingLayer}")}: {layer.BurnSpeedMmPerS:0.###} mm/s, {layer.FrequencyHz:0.###} Hz, {layer.PassesDone} of {layer.Passes} passes, {ended}, engraving {Duration(layer.EngravingSeconds)} (estimated {Duration(layer.EstimatedSeconds)}){path}"));
+                $"\"{layer.Name}\" {layer.Mode.ToString().ToLowerInvariant()} {Path.GetFileName(layer.Source)}{(layer.DrawingLayer is null ? string.Empty : $" layer {layer.DrawingLayer}")}: {layer.BurnSpeedMmPerS:0.###} mm/s, {layer.FrequencyHz:0.###} Hz, {layer.PassesDone} of {layer.Passes} passes, {ended}, engraving {Duration(layer.EngravingSeconds)} (estimated {Duration(layer.EstimatedEngravingSeconds)}){path}"));
         }
 
         if (record.RepeatOf is { } repeated)
@@ -145,6 +145,15 @@ public static class RunSummaryText
     }
 
     /// <summary>A duration as "1 h 02 min 03 s" or "2 min 03.4 s".</summary>
+    /// <summary>How a layer of a run ended, in a word or three: "completed", "failed", "not started", "completed before" (by the run resumed).</summary>
+    public static string LayerEnd(RunLayer layer)
+    {
+        ArgumentNullException.ThrowIfNull(layer);
+        return layer.CompletedBefore ? "completed before (by the run resumed)"
+            : layer.Outcome is { } outcome ? outcome.ToString().ToLowerInvariant()
+            : "not started";
+    }
+
     public static string Duration(double seconds)
     {
         var c = CultureInfo.InvariantCulture;

@@ -306,7 +306,7 @@ public sealed class EngraveSession
                 if (index < _firstLayer)
                 {
                     // Completed by the run this one continues: logged as it was, not burned again.
-                    layers![index] = layers[index] with { PassesDone = part.Layer.Passes, Outcome = RunOutcome.Completed };
+                    layers![index] = layers[index] with { PassesDone = part.Layer.Passes, Outcome = RunOutcome.Completed, CompletedBefore = true };
                     continue;
                 }
 

@@ -96,7 +96,7 @@ public sealed class LayeredResumeTests
         Assert.Equal(RunOutcome.Completed, resumed.Outcome);
         Assert.Equal([2, 3], reports.Select(r => r.Layer).Distinct());
         Assert.All(resumed.Layers!, l => Assert.Equal((RunOutcome.Completed, l.Passes), (l.Outcome!.Value, l.PassesDone)));
-        Assert.Equal((0, 0), (resumed.Layers![0].EngravingSeconds, resumed.Layers[0].LaserOnSeconds));
+        Assert.Equal((0, 0, true), (resumed.Layers![0].EngravingSeconds, resumed.Layers[0].LaserOnSeconds, resumed.Layers[0].CompletedBefore));
 
         // The layer cut mid-run goes on from its stop point: less of it is burned than in a whole pass.
         Assert.InRange(resumed.Layers[1].EngravingSeconds, 0.1, 0.99 * job.Layers[1].EngravingSeconds);
