@@ -30,6 +30,23 @@ public class ProgressPrinterTests
     }
 
     [Fact]
+    public void Report_JobOfLayers_LinesNameTheLayerAndCountADrawingsStrokes()
+    {
+        using var output = new StringWriter();
+        var printer = new ProgressPrinter(output, terminal: false) { Layers = [("marks", true), ("logo", false)] };
+
+        printer.Report(new EngraveProgress(RunState.Running, 1, 2, 10, 100, false, At(10), Layer: 1));
+        printer.Report(new EngraveProgress(RunState.Running, 2, 2, 10, 100, false, At(20), Layer: 2));
+
+        Assert.Equal(
+            [
+                "running: 10 %, stroke 10 of 40, 50 of 200 paths, pass 1 of 2 (layer 1 of 2 \"marks\"), 1 min 35.0 s left",
+                "running: 20 %, row 10 of 40, 50 of 200 burn runs, pass 2 of 2 (layer 2 of 2 \"logo\"), 1 min 35.0 s left",
+            ],
+            output.ToString().TrimEnd().Split(Environment.NewLine));
+    }
+
+    [Fact]
     public void Report_SessionsPassCompleted_ShownAsTheSessionsStateNotDone()
     {
         using var output = new StringWriter();

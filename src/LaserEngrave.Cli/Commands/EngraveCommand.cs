@@ -151,7 +151,11 @@ internal static class EngraveCommand
             var session = layered is not null ? new EngraveSession(machine, layered, sessionOptions)
                 : drawing is not null ? new EngraveSession(machine, drawing, sessionOptions)
                 : new EngraveSession(machine, prepared!, sessionOptions);
-            var printer = new ProgressPrinter(stderr, terminal: ReferenceEquals(stderr, Console.Error) && !Console.IsErrorRedirected) { Drawing = drawing is not null };
+            var printer = new ProgressPrinter(stderr, terminal: ReferenceEquals(stderr, Console.Error) && !Console.IsErrorRedirected)
+            {
+                Drawing = drawing is not null,
+                Layers = layered?.Layers.Select(l => (l.Layer.Name, l.Drawing is not null)).ToList(),
+            };
             var wall = Stopwatch.StartNew();
             try
             {

@@ -18,15 +18,26 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
     private RunState? _lastState;
     private bool _barShown;
     private string? _pass;
+    private bool? _layerIsDrawing;
 
     /// <summary>A drawing's run: its rows are strokes and its burn runs paths.</summary>
     public bool Drawing { get; init; }
+
+    /// <summary>A job of layers: each layer's name and whether it is a drawing, in burn order; the progress names the layer under way.</summary>
+    public IReadOnlyList<(string Name, bool Drawing)>? Layers { get; init; }
 
     /// <summary>A session's progress: its pass's figures under the session's state (a pass's end is not the run's).</summary>
     public void Report(EngraveProgress value)
     {
         ArgumentNullException.ThrowIfNull(value);
         _pass = value.Passes > 1 ? string.Create(CultureInfo.InvariantCulture, $"{value.Pass} of {value.Passes}") : null;
+        if (Layers is { Count: > 0 } layers && value.Layer >= 1 && value.Layer <= layers.Count)
+        {
+            var (name, drawing) = layers[value.Layer - 1];
+            _pass = string.Create(CultureInfo.InvariantCulture, $"{_pass ?? "1 of 1"} (layer {value.Layer} of {layers.Count} \"{name}\")");
+            _layerIsDrawing = drawing;
+        }
+
         Report(value.Run with { State = value.State });
     }
 
@@ -39,7 +50,7 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
         {
             if (stateChanged || _sinceLastPrint.Elapsed >= RedrawInterval)
             {
-                writer.Write("\r" + Bar(progress, _pass, Drawing));
+                writer.Write("\r" + Bar(progress, _pass, _layerIsDrawing ?? Drawing));
                 writer.Flush();
                 _barShown = true;
                 _sinceLastPrint.Restart();
@@ -52,7 +63,7 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
         if (decile != _lastDecile || stateChanged || _sinceLastPrint.Elapsed >= PlainInterval)
         {
             _lastDecile = decile;
-            writer.WriteLine(Line(progress, _pass, Drawing));
+            writer.WriteLine(Line(progress, _pass, _layerIsDrawing ?? Drawing));
             _sinceLastPrint.Restart();
         }
     }
