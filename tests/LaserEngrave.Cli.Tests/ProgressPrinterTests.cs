@@ -40,8 +40,8 @@ public class ProgressPrinterTests
 
         Assert.Equal(
             [
-                "running: 10 %, stroke 10 of 40, 50 of 200 paths, pass 1 of 2 (layer 1 of 2 \"marks\"), 1 min 35.0 s left",
-                "running: 20 %, row 10 of 40, 50 of 200 burn runs, pass 2 of 2 (layer 2 of 2 \"logo\"), 1 min 35.0 s left",
+                "running: 10 %, stroke 10 of 40, 50 of 200 paths, pass 1 of 2, layer 1 of 2 \"marks\", 1 min 35.0 s left",
+                "running: 20 %, row 10 of 40, 50 of 200 burn runs, pass 2 of 2, layer 2 of 2 \"logo\", 1 min 35.0 s left",
             ],
             output.ToString().TrimEnd().Split(Environment.NewLine));
     }

@@ -34,7 +34,7 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
         if (Layers is { Count: > 0 } layers && value.Layer >= 1 && value.Layer <= layers.Count)
         {
             var (name, drawing) = layers[value.Layer - 1];
-            _pass = string.Create(CultureInfo.InvariantCulture, $"{_pass ?? "1 of 1"} (layer {value.Layer} of {layers.Count} \"{name}\")");
+            _pass = string.Create(CultureInfo.InvariantCulture, $"{_pass ?? "1 of 1"}, layer {value.Layer} of {layers.Count} \"{name}\"");
             _layerIsDrawing = drawing;
         }
 
