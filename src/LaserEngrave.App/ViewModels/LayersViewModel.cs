@@ -127,6 +127,7 @@ public sealed partial class LayersViewModel : ObservableObject
             Passes = _job.Passes,
             ToleranceUm = drawing ? _job.ToleranceUm : null,
             FillPitchUm = drawing ? _job.FillPitchUm : null,
+            Mask = drawing ? Core.Imaging.MaskOptions.Default : new Core.Imaging.MaskOptions { ThresholdPercent = _job.ThresholdPercent, Dither = _job.Dither, Invert = _job.Invert },
         };
         FileError = null;
         Set([.. Layers, layer]);

@@ -382,12 +382,9 @@ internal sealed class MaskOptionSet
         return new MaskOptions { ThresholdPercent = threshold, Dither = ParseDither(result.GetValue(Dither)), Invert = result.GetValue(Invert) };
     }
 
-    internal static DitherMethod ParseDither(string? text) => text?.Trim().ToLowerInvariant().Replace("_", "-", StringComparison.Ordinal) switch
+    internal static DitherMethod ParseDither(string? text)
     {
-        null or "" or "none" => DitherMethod.None,
-        "floyd-steinberg" or "floydsteinberg" or "fs" => DitherMethod.FloydSteinberg,
-        "atkinson" => DitherMethod.Atkinson,
-        "bayer" or "ordered" => DitherMethod.Bayer,
-        _ => throw new UsageException($"--dither {text}: use none, floyd-steinberg, atkinson or bayer"),
-    };
+        var method = DitherNames.Parse(text, out var unknown);
+        return unknown ? throw new UsageException($"--dither {text}: use {DitherNames.List}") : method;
+    }
 }

@@ -13,7 +13,7 @@ namespace LaserEngrave.Core.Jobs;
 public static class JobFile
 {
     private static readonly string[] Fields =
-        ["name", "source", "mode", "drawingLayer", "widthMm", "originMm", "speedMmPerS", "frequencyHz", "passes", "toleranceUm", "fillPitchUm"];
+        ["name", "source", "mode", "drawingLayer", "widthMm", "originMm", "speedMmPerS", "frequencyHz", "passes", "toleranceUm", "fillPitchUm", "thresholdPercent", "dither", "invert"];
 
     public static IReadOnlyList<JobLayer> Load(string path)
     {
@@ -99,6 +99,12 @@ public static class JobFile
                 json.WriteNumber("passes", layer.Passes);
                 Optional(json, "toleranceUm", layer.ToleranceUm);
                 Optional(json, "fillPitchUm", layer.FillPitchUm);
+                if (layer.Mask != Imaging.MaskOptions.Default)
+                {
+                    json.WriteNumber("thresholdPercent", layer.Mask.ThresholdPercent);
+                    json.WriteString("dither", Imaging.DitherNames.Name(layer.Mask.Dither));
+                    json.WriteBoolean("invert", layer.Mask.Invert);
+                }
                 json.WriteEndObject();
             }
 
@@ -167,7 +173,26 @@ public static class JobFile
             Passes = passes,
             ToleranceUm = Positive(element, "toleranceUm", where),
             FillPitchUm = Positive(element, "fillPitchUm", where),
+            Mask = Mask(element, where),
         };
+    }
+
+    private static Imaging.MaskOptions Mask(JsonElement element, string where)
+    {
+        var threshold = Number(element, "thresholdPercent", where) is { } t
+            ? t is >= 0 and <= 100 ? t : throw new PlanException($"{where}: thresholdPercent {N(t)} must be 0..100")
+            : Imaging.MaskOptions.Default.ThresholdPercent;
+        var ditherText = String(element, "dither", where);
+        var dither = Imaging.DitherNames.Parse(ditherText, out var unknown);
+        if (unknown)
+        {
+            throw new PlanException($"{where}: dither \"{ditherText}\" is not {Imaging.DitherNames.List}");
+        }
+
+        var invert = !element.TryGetProperty("invert", out var value) || value.ValueKind == JsonValueKind.Null ? false
+            : value.ValueKind is JsonValueKind.True or JsonValueKind.False ? value.GetBoolean()
+            : throw new PlanException($"{where}: \"invert\" must be true or false");
+        return new Imaging.MaskOptions { ThresholdPercent = threshold, Dither = dither, Invert = invert };
     }
 
     private static string? String(JsonElement element, string name, string where) =>

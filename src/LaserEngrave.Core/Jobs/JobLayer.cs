@@ -28,6 +28,9 @@ public sealed record JobLayer
 
     public int Passes { get; init; } = 1;
 
+    /// <summary>For an image: how it becomes a burn mask (threshold, dither, invert); the defaults when not given.</summary>
+    public Imaging.MaskOptions Mask { get; init; } = Imaging.MaskOptions.Default;
+
     /// <summary>For a drawing: the chord tolerance, µm (default 1).</summary>
     public double? ToleranceUm { get; init; }
 

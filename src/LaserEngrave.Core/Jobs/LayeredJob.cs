@@ -85,10 +85,16 @@ public sealed class LayeredJob
                 throw new PlanException("drawingLayer, toleranceUm and fillPitchUm are for drawings");
             }
 
+            if (!(layer.Mask.ThresholdPercent is >= 0 and <= 100) || !Enum.IsDefined(layer.Mask.Dither))
+            {
+                throw new PlanException(string.Create(CultureInfo.InvariantCulture, $"thresholdPercent {layer.Mask.ThresholdPercent} must be 0..100 (and dither one of the known)"));
+            }
+
             var width = layer.WidthMm ?? throw new PlanException($"{layer.Source}: an image layer needs widthMm");
             var job = PreparedJob.Prepare(new JobSpec
             {
                 ImagePath = layer.Source,
+                Mask = layer.Mask,
                 Size = SizeSpec.Width(width),
                 Origin = layer.Origin,
                 Process = process,
@@ -96,6 +102,11 @@ public sealed class LayeredJob
                 Passes = layer.Passes,
             });
             return new PreparedLayer(layer, job, null);
+        }
+
+        if (layer.Mask != Imaging.MaskOptions.Default)
+        {
+            throw new PlanException("thresholdPercent, dither and invert are for images");
         }
 
         var options = new VectorOptions

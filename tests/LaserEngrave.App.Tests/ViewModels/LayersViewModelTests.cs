@@ -61,6 +61,8 @@ public sealed class LayersViewModelTests : IDisposable
             _job.OriginXMm = 24;
             _job.OriginYMm = 22;
             _job.Passes = 2;
+            _job.ThresholdPercent = 30;
+            _job.Invert = true;
         });
 
         Assert.True(_layers.AddCurrent());
@@ -69,6 +71,9 @@ public sealed class LayersViewModelTests : IDisposable
         var mark = _layers.Layers[0];
         Assert.Equal((LayerMode.Both, "mark", 100.0, 0.5), (mark.Mode, mark.DrawingLayer, mark.FillPitchUm!.Value, mark.SpeedMmPerS!.Value));
         Assert.Equal((LayerMode.Raster, 3.0, 2), (_layers.Layers[1].Mode, _layers.Layers[1].WidthMm!.Value, _layers.Layers[1].Passes));
+        Assert.Equal(new Core.Imaging.MaskOptions { ThresholdPercent = 30, Invert = true }, _layers.Layers[1].Mask);
+        Assert.True(_layers.Job!.Layers[1].Image!.Mask.ContentEquals(_job.Mask!));
+        Assert.Equal(Core.Imaging.MaskOptions.Default, mark.Mask);
         var same = LayeredJob.Prepare(_layers.Layers, MachineProfile.Default);
         Assert.Equal(same.EstimatedSeconds, _layers.EstimatedSeconds!.Value, 9);
         Assert.NotEmpty(_layers.Job!.Layers[0].Drawing!.Plan.FillRows);

@@ -49,12 +49,41 @@ public sealed class LayeredJobTests : IDisposable
         {
             new() { Name = "fill \"a\"", Source = TestDrawings.File("hexagons.dxf"), Mode = LayerMode.Both, DrawingLayer = "0", WidthMm = 12.5, Origin = new OriginMm(1.25, 3), SpeedMmPerS = 0.75, FrequencyHz = 2500, Passes = 3, ToleranceUm = 0.5, FillPitchUm = 40 },
             new() { Name = "layer 2", Source = Path.Combine(Path.GetDirectoryName(TestDrawings.Folder)!, "qr-code.bmp"), Mode = LayerMode.Raster, WidthMm = 3 },
+            new() { Name = "dithered", Source = Path.Combine(Path.GetDirectoryName(TestDrawings.Folder)!, "qr-code.bmp"), Mode = LayerMode.Raster, WidthMm = 2, Mask = new Core.Imaging.MaskOptions { ThresholdPercent = 30, Dither = Core.Imaging.DitherMethod.FloydSteinberg, Invert = true } },
         };
         var path = Path.Combine(folder, "job.json");
 
         JobFile.Save(path, layers);
 
         Assert.Equal(layers, JobFile.Load(path));
+    }
+
+    [Fact]
+    public void Prepare_ImageLayerWithItsMask_TheMaskIsTheLayersAndADrawingRefusesOne()
+    {
+        var qr = Path.Combine(Path.GetDirectoryName(TestDrawings.Folder)!, "qr-code.bmp");
+        var inverted = new JobLayer { Name = "inverted", Source = qr, Mode = LayerMode.Raster, WidthMm = 3, Mask = new Core.Imaging.MaskOptions { Invert = true } };
+        var plain = inverted with { Mask = Core.Imaging.MaskOptions.Default };
+
+        var job = LayeredJob.Prepare([plain, inverted], MachineProfile.Default);
+
+        Assert.Equal(41 * 41, job.Layers[0].Image!.Mask.CountSet() + job.Layers[1].Image!.Mask.CountSet());
+        var drawing = new JobLayer { Name = "d", Source = TestDrawings.File("hexagons.dxf"), Mode = LayerMode.Outline, Mask = new Core.Imaging.MaskOptions { Invert = true } };
+        Assert.Equal("layer \"d\": thresholdPercent, dither and invert are for images", Assert.Throws<PlanException>(() => LayeredJob.Prepare([drawing], MachineProfile.Default)).Message);
+    }
+
+    [Theory]
+    [InlineData("\"dither\": \"sierra\"", "dither \"sierra\" is not none, floyd-steinberg, atkinson or bayer")]
+    [InlineData("\"thresholdPercent\": 120", "thresholdPercent 120 must be 0..100")]
+    [InlineData("\"invert\": 1", "\"invert\" must be true or false")]
+    public void Load_BadMaskField_OneLineNamingTheLayerAndField(string field, string expected)
+    {
+        var path = Path.Combine(folder, "bad-mask.json");
+        File.WriteAllText(path, $$"""{ "layers": [ { "name": "logo", "source": "x.bmp", "widthMm": 3, {{field}} } ] }""");
+
+        var ex = Assert.Throws<PlanException>(() => JobFile.Load(path));
+
+        Assert.Equal($"{path}: layer 1 \"logo\": {expected}", ex.Message);
     }
 
     [Fact]
