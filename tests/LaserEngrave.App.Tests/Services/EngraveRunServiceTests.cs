@@ -103,6 +103,50 @@ public sealed class EngraveRunServiceTests : IAsyncDisposable
         _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Outcome == RunOutcome.Aborted && r.StoppedAt != null));
     }
 
+    [Fact(Timeout = 120_000)]
+    public async Task Continue_LayersAbortedInLayerTwo_TheEngineGoesOnFromThereAndLayerOneIsNotBurnedAgain()
+    {
+        var layers = new LayersViewModel(new JobFiles(new AppFolders(_folder.Path)), _job, _machine.Activity);
+        var run = new RunViewModel(new EngraveRunService(), _job, _machine, new LogViewModel(_store, Substitute.For<IFileAccess>(), _job), TimeProvider.System, layers);
+        await ReadyAsync(passes: 1);
+        foreach (var x in new[] { 0.5, 2, 3.5 })
+        {
+            _job.OriginXMm = x;
+            Assert.True(layers.AddCurrent());
+        }
+
+        var records = new List<RunRecord>();
+        _store.Save(Arg.Do<RunRecord>(records.Add)).Returns(new RunLogFiles("/logs/run.json", "/logs/run.txt"));
+        var aborted = 0;
+        run.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName == nameof(RunViewModel.Progress) && run.Progress is { Layer: 2, MovesDone: > 3 } && Interlocked.Exchange(ref aborted, 1) == 0)
+            {
+                run.AbortCommand.Execute(null);
+            }
+        };
+
+        await run.StartCommand.ExecuteAsync(null);
+        Assert.Equal(RunState.Aborted, run.State);
+        Assert.True(run.CanContinue, run.ContinueUnavailableReason);
+        await run.ContinueCommand.ExecuteAsync(null);
+
+        Assert.Equal(RunState.Completed, run.State);
+        Assert.Equal(2, records.Count);
+        Assert.Equal([RunOutcome.Completed, RunOutcome.Aborted, null], records[0].Layers!.Select(l => l.Outcome));
+        var resumed = records[1];
+        Assert.True(resumed.Resumed);
+        Assert.Equal(2, resumed.Passes);
+        Assert.All(resumed.Layers!, l => Assert.Equal(RunOutcome.Completed, l.Outcome));
+        Assert.Equal((true, 0.0), (resumed.Layers![0].CompletedBefore, resumed.Layers[0].LaserOnSeconds));
+        Assert.Null(resumed.Layers[0].Simulation);
+
+        // Layer 2 went on from its stop point: the pixels the stopped run burned are missing here, nothing extra; layer 3 whole.
+        Assert.InRange(resumed.Layers[1].Simulation!.MissingPixels, 1, 31);
+        Assert.Equal(0, resumed.Layers[1].Simulation!.ExtraPixels);
+        Assert.Equal((0L, 0L), (resumed.Layers[2].Simulation!.MissingPixels, resumed.Layers[2].Simulation!.ExtraPixels));
+    }
+
     public async ValueTask DisposeAsync()
     {
         if (_machine.Connection is { } connection)
