@@ -69,9 +69,18 @@ public sealed partial class SweepViewModel : ObservableObject
     [ObservableProperty]
     public partial bool Labels { get; set; } = true;
 
+    /// <summary>Asked to draw the sweep on the stage (its cells planned, each labelled) instead of the job, to check it before it runs.</summary>
+    [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(ShowsOnStage))]
+    public partial bool ShowOnStage { get; set; }
+
+    /// <summary>Whether the stage draws the sweep: planned, and asked for or under way.</summary>
+    public bool ShowsOnStage => Plan is not null && (ShowOnStage || IsRunning);
+
     /// <summary>The sweep as planned from these values and the job's process and origin; null when a value is refused.</summary>
     [ObservableProperty]
     [NotifyCanExecuteChangedFor(nameof(RunSweepCommand))]
+    [NotifyPropertyChangedFor(nameof(ShowsOnStage))]
     public partial SweepPlan? Plan { get; private set; }
 
     /// <summary>Why the sweep cannot be planned, one line.</summary>
@@ -84,6 +93,7 @@ public sealed partial class SweepViewModel : ObservableObject
 
     [ObservableProperty]
     [NotifyCanExecuteChangedFor(nameof(RunSweepCommand), nameof(AbortSweepCommand), nameof(FocalSeriesCommand))]
+    [NotifyPropertyChangedFor(nameof(ShowsOnStage))]
     public partial bool IsRunning { get; private set; }
 
     /// <summary>The last sweep's log (its cells with their values, places and runs).</summary>

@@ -70,7 +70,7 @@ internal static class MachineCommand
             }
 
             var c = CultureInfo.InvariantCulture;
-            stdout.WriteLine(string.Create(c, $"Stage adapter:    {latency.StageMs:0.###} ± {latency.StageJitterMs:0.###} ms one way (round trip - wire, halved; spread from the standard deviation)"));
+            stdout.WriteLine(string.Create(c, $"Stage adapter:    {latency.StageMs:0.###} ± {latency.StageJitterMs:0.###} ms one way (round trip - wire, halved; spread from the standard deviation or the furthest round trip, the larger)"));
             stdout.WriteLine(string.Create(c, $"Gate adapter:     {latency.GateMs:0.###} ± {latency.GateJitterMs:0.###} ms one way (round trip - wire - processing, halved)"));
             stdout.WriteLine(string.Create(c, $"Gate processing:  {latency.GateProcessingMs:0.###} ± {latency.GateProcessingJitterMs:0.###} ms, kept from the profile: a round trip cannot tell it from the adapter's"));
             stdout.WriteLine(store ? $"Written:          the latency section of {path}" : "Not written:      give --profile FILE --write to store it");

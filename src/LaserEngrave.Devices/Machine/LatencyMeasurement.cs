@@ -18,9 +18,12 @@ public sealed record LatencyMeasurement(RoundTrips X, RoundTrips Y, RoundTrips G
     /// A round trip is the wire time plus the adapter's latency twice (the command out, the reply back, each drawn afresh),
     /// plus on the gate its processing, which no round trip can tell apart from the adapter's: it is taken from the profile
     /// as it stands. So the one-way latency is (mean round trip - wire - processing) / 2. The half-width h of each
-    /// one-way draw comes from the round trips' variance, as uniform draws give it: s² = 2 h² / 3 (+ hp² / 3 for the gate's
-    /// processing of half-width hp). The range of a few hundred round trips would understate it: two or three draws rarely
-    /// reach their extremes together (about 0.45 of 0.5 ms on the simulator).
+    /// one-way draw is the larger of two. From the round trips' variance, as uniform draws give it: s² = 2 h² / 3 (+ hp² / 3
+    /// for the gate's processing of half-width hp); the range of a few hundred round trips alone would understate a
+    /// uniform spread, since two or three draws rarely reach their extremes together (about 0.45 of 0.5 ms on the
+    /// simulator). And from the round trip furthest from the mean, |d| &lt;= 2 h + hp: on a busy computer the delays have
+    /// tails that the variance understates (a few round trips 5 to 15 ms late among hundreds within 2 ms), and every check
+    /// the host makes against the profile's spread must allow what was seen.
     /// </remarks>
     public LatencyProfile ToProfile(LatencyProfile kept)
     {
@@ -29,16 +32,21 @@ public sealed record LatencyMeasurement(RoundTrips X, RoundTrips Y, RoundTrips G
         return kept with
         {
             StageMs = OneWay(stage.MeanMs - stage.WireMs),
-            StageJitterMs = HalfWidth(stage.StdDevMs, 0),
+            StageJitterMs = HalfWidth(stage, 0),
             GateMs = OneWay(Gate.MeanMs - Gate.WireMs - kept.GateProcessingMs),
-            GateJitterMs = HalfWidth(Gate.StdDevMs, kept.GateProcessingJitterMs),
+            GateJitterMs = HalfWidth(Gate, kept.GateProcessingJitterMs),
         };
     }
 
     // Never below 0: a round trip shorter than its wire time (a clock's resolution, a processing time set too high) means no latency to plan for.
     private static double OneWay(double roundTripMs) => Math.Max(0, roundTripMs / 2);
 
-    // s² = 2 h² / 3 + hp² / 3, solved for h.
-    private static double HalfWidth(double stdDevMs, double processingHalfWidthMs) =>
-        Math.Sqrt(Math.Max(0, (3 * stdDevMs * stdDevMs) - (processingHalfWidthMs * processingHalfWidthMs)) / 2);
+    // s² = 2 h² / 3 + hp² / 3 solved for h, or |d| <= 2 h + hp for the furthest round trip, whichever is larger.
+    private static double HalfWidth(RoundTrips trips, double processingHalfWidthMs)
+    {
+        var s = trips.StdDevMs;
+        var fromVariance = Math.Sqrt(Math.Max(0, (3 * s * s) - (processingHalfWidthMs * processingHalfWidthMs)) / 2);
+        var furthest = Math.Max(trips.MaxMs - trips.MeanMs, trips.MeanMs - trips.MinMs);
+        return Math.Max(fromVariance, Math.Max(0, furthest - processingHalfWidthMs) / 2);
+    }
 }

@@ -242,6 +242,48 @@ public sealed class StageCanvasTests : ComponentTest
     }
 
     [Fact]
+    public void SweepBoxes_PlannedSweep_TheLabelsAndEveryCellPlacedAndNamedByItsValues()
+    {
+        Main.Job.OriginXMm = 5;
+        Main.Job.OriginYMm = 6;
+        Main.Sweep.Rows = "speed=0.5,2";
+        Main.Sweep.Columns = "frequency=500,1000";
+        Main.Sweep.Labels = true;
+        var plan = Assert.IsType<LaserEngrave.Core.Sweeps.SweepPlan>(Main.Sweep.Plan);
+
+        var boxes = StageCanvas.SweepBoxes(plan);
+
+        Assert.Equal(5, boxes.Length);
+        Assert.Equal("labels", boxes[0].Name);
+        Assert.Equal(["0.5 · 1000", "0.5 · 500", "2 · 1000", "2 · 500"], boxes.Skip(1).Select(b => b.Name).Order(StringComparer.Ordinal));
+        foreach (var (box, cell) in boxes.Skip(1).Zip(plan.Cells))
+        {
+            // Each box is its cell's burn: from the cell's origin, the cell's size, within a pixel.
+            var pitch = cell.Job.Geometry.PitchUm / 1000;
+            Assert.InRange(box.X - cell.OriginXMm, -pitch, pitch);
+            Assert.InRange(box.Y - cell.OriginYMm, -pitch, pitch);
+            Assert.InRange(Math.Max(box.W, box.H), plan.Spec.CellMm - pitch, plan.Spec.CellMm + pitch);
+            Assert.True(box.Fits);
+        }
+
+        var (bytes, drawn, total) = StageCanvas.SweepBytes(plan);
+        Assert.Equal(plan.Jobs().Sum(j => j.Statistics.Moves), total);
+        Assert.Equal(total, drawn);
+        Assert.Equal(drawn * 5 * sizeof(float), bytes.Length);
+    }
+
+    [Fact]
+    public void SweepPanel_ShowOnStage_TheCheckboxSetsIt()
+    {
+        var cut = Render<SweepPanel>(p => p.Add(c => c.Sweep, Main.Sweep));
+
+        cut.Find("#sweepShow").Change(true);
+
+        Assert.True(Main.Sweep.ShowOnStage);
+        Assert.True(Main.Sweep.ShowsOnStage);
+    }
+
+    [Fact]
     public void PlanBytes_PlanOfMoreMovesThanDrawn_CappedAndCounted()
     {
         // One-pixel checks: every other pixel a burn run of its own, far more moves than the page draws.

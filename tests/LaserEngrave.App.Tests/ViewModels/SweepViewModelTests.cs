@@ -45,6 +45,21 @@ public sealed class SweepViewModelTests : IDisposable
     }
 
     [Fact]
+    public void ShowOnStage_PlannedSweep_ShownUntilItsValuesAreRefused()
+    {
+        Assert.False(_sweep.ShowsOnStage);
+        var changed = new List<string?>();
+        _sweep.PropertyChanged += (_, e) => changed.Add(e.PropertyName);
+
+        _sweep.ShowOnStage = true;
+        Assert.True(_sweep.ShowsOnStage);
+
+        _sweep.Rows = "speed=1,99";
+        Assert.False(_sweep.ShowsOnStage);
+        Assert.True(changed.Count(n => n == nameof(SweepViewModel.ShowsOnStage)) >= 2, string.Join(", ", changed));
+    }
+
+    [Fact]
     public void Plan_BadRows_ErrorAndNoRun()
     {
         _sweep.Rows = "speed=1,99";

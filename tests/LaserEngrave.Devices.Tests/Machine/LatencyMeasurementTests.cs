@@ -12,8 +12,9 @@ public class LatencyMeasurementTests
         // 200: s² = 2 x 99 x 0.36 / 199 -> h = sqrt(3 s² / 2) = 0.7330 ms.
         // Gate: mean 17 ms, wire 13 ms, processing kept 1 ms -> 1.5 ms each way; s = 0.5 ms, hp = 0.3 ms ->
         // h = sqrt((3 x 0.25 - 0.09) / 2) = 0.5745 ms.
-        var stage = new RoundTrips("X", 100, 13, 14.5, 16, 0.6, 12.5);
-        var gate = new RoundTrips("gate", 100, 15, 17, 19, 0.5, 13);
+        // The extremes are within what those half-widths allow (|d| <= 2 h + hp), so the variance decides.
+        var stage = new RoundTrips("X", 100, 13.1, 14.5, 15.9, 0.6, 12.5);
+        var gate = new RoundTrips("gate", 100, 16, 17, 18, 0.5, 13);
         var kept = new LatencyProfile { GateProcessingMs = 1, GateProcessingJitterMs = 0.3 };
 
         var latency = new LatencyMeasurement(stage, stage with { Device = "Y" }, gate).ToProfile(kept);
@@ -27,9 +28,24 @@ public class LatencyMeasurementTests
     }
 
     [Fact]
+    public void ToProfile_ALateRoundTripBeyondTheVariance_TheHalfWidthCoversIt()
+    {
+        // Hundreds of round trips within ±0.5 ms and one 9 ms late (a busy computer): s = 0.6 ms would give h = 0.73 ms,
+        // which does not cover it; the furthest needs 2 h + hp >= 9 ms.
+        var stage = new RoundTrips("X", 300, 14, 14.5, 23.5, 0.6, 12.5);
+        var gate = new RoundTrips("gate", 300, 16.5, 17, 26, 0.6, 13);
+        var kept = new LatencyProfile { GateProcessingMs = 1, GateProcessingJitterMs = 0.2 };
+
+        var latency = new LatencyMeasurement(stage, stage with { Device = "Y" }, gate).ToProfile(kept);
+
+        Assert.Equal(4.5, latency.StageJitterMs, 12);
+        Assert.Equal((9 - 0.2) / 2, latency.GateJitterMs, 12);
+    }
+
+    [Fact]
     public void ToProfile_RoundTripBelowWireAndProcessing_IsZeroNotNegative()
     {
-        var trips = new RoundTrips("X", 10, 12, 12.4, 12.8, 0.01, 12.5);
+        var trips = new RoundTrips("X", 10, 12.39, 12.4, 12.41, 0.01, 12.5);
         var latency = new LatencyMeasurement(trips, trips, trips).ToProfile(new LatencyProfile());
 
         Assert.Equal(0, latency.StageMs);
