@@ -300,6 +300,21 @@ public sealed class StageCanvasTests : ComponentTest
     }
 
     [Fact]
+    public void PlanBytes_DotJob_AllDrawnNoneMissing()
+    {
+        OpenQr();
+        Main.Job.Mode = LaserEngrave.Core.Planning.PlanMode.Dots;
+        var job = Assert.IsType<PreparedJob>(Main.Job.Job);
+
+        var (bytes, drawn, total) = StageCanvas.PlanBytes(job);
+
+        // Its statistics count the dots as moves too; the page draws every move the plan has, so nothing is "partly drawn".
+        Assert.Equal(job.Plan.Moves().Count(), drawn);
+        Assert.Equal(drawn, total);
+        Assert.Equal(drawn * 5 * sizeof(float), bytes.Length);
+    }
+
+    [Fact]
     public void PlanBytes_SmallPlan_AllDrawn()
     {
         OpenQr();

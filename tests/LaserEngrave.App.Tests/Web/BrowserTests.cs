@@ -309,6 +309,8 @@ public sealed class BrowserTests : IAsyncLifetime
         Assert.DoesNotContain(Driver.Manage().Logs.GetLog(LogType.Browser), e => e.Level == LogLevel.Severe);
     }
 
+    private int DrawnMoves() => int.Parse(Driver.FindElement(By.Id("stage-host")).GetAttribute("data-drawn-moves") ?? "0", CultureInfo.InvariantCulture);
+
     [Fact]
     public void Workspace_CommonWindowSizes_NoHorizontalScrolling()
     {
@@ -381,8 +383,15 @@ public sealed class BrowserTests : IAsyncLifetime
         WaitFor(d => d.FindElement(By.Id("sweep-summary")).Text.StartsWith("3 × 2 cells", StringComparison.Ordinal), "the sweep planned");
         Driver.ExecuteScript("document.getElementById('panel-process').scrollIntoView();");
         Assert.True(new FileInfo(Screenshot("workspace-dots")).Length > 20_000);
+
+        // The sweep on the stage instead of the job: its own moves drawn, then the job's again.
+        var jobMoves = DrawnMoves();
+        Id("sweepShow").Click();
+        WaitFor(_ => DrawnMoves() != jobMoves && DrawnMoves() > 0, "the sweep drawn on the stage");
         Driver.ExecuteScript("document.getElementById('panel-sweep').scrollIntoView();");
         Assert.True(new FileInfo(Screenshot("workspace-sweep")).Length > 20_000);
+        Id("sweepShow").Click();
+        WaitFor(_ => DrawnMoves() == jobMoves, "the job drawn again");
 
         Driver.FindElement(By.CssSelector("#panel-calibration summary")).Click();
         SetField("calXMeasured", "16.008");
