@@ -8,6 +8,7 @@ set -u
 N=${1:-5}
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=${OUT:-$(mktemp -d /tmp/loaded-suite.XXXXXX)}
+mkdir -p "$out"
 cd "$root" || exit 1
 dotnet build LaserEngrave.sln -v q -nologo > "$out/build.log" 2>&1 || { echo "build failed: $out/build.log"; exit 1; }
 pids=()

@@ -14,6 +14,7 @@ namespace LaserEngrave.Simulator.Faults;
 ///          code=N                  error only: the error code (default 255 Busy on the stage, 1 on the gate)
 ///          byte=N                  corrupt only: index of the reply byte inverted (default 1)
 ///          device=N                stage only: just this Zaber device number
+///          command=N               stage only: just commands (or replies) with this Zaber command number
 /// </code>
 /// Example: <c>drop-reply:stage:after=10,error:stage:code=20:after=3,no-ack:gate:after=4</c>.
 /// </remarks>
@@ -92,7 +93,7 @@ public sealed class FaultInjector
     }
 
     /// <summary>Decides what happens to a command <paramref name="device"/> of <paramref name="target"/> just received.</summary>
-    internal CommandFault OnCommand(FaultTarget target, byte device = 0)
+    internal CommandFault OnCommand(FaultTarget target, byte device = 0, byte? command = null)
     {
         var fault = default(CommandFault);
         var struck = new List<FaultRule>();
@@ -105,7 +106,7 @@ public sealed class FaultInjector
 
             foreach (var state in _rules)
             {
-                if (!state.Rule.CountsCommands || !state.Strikes(target, device))
+                if (!state.Rule.CountsCommands || !state.Strikes(target, device, command))
                 {
                     continue;
                 }
@@ -134,7 +135,7 @@ public sealed class FaultInjector
     }
 
     /// <summary>Decides what happens to a reply to a command that <paramref name="device"/> of <paramref name="target"/> is about to send.</summary>
-    internal ReplyFault OnReply(FaultTarget target, byte device = 0)
+    internal ReplyFault OnReply(FaultTarget target, byte device = 0, byte? command = null)
     {
         var fault = default(ReplyFault);
         var struck = new List<FaultRule>();
@@ -147,7 +148,7 @@ public sealed class FaultInjector
 
             foreach (var state in _rules)
             {
-                if (state.Rule.CountsCommands || !state.Strikes(target, device))
+                if (state.Rule.CountsCommands || !state.Strikes(target, device, command))
                 {
                     continue;
                 }
@@ -185,9 +186,9 @@ public sealed class FaultInjector
         public FaultRule Rule { get; } = rule;
 
         // Counts the event if it is the rule's, and says whether the rule strikes it.
-        public bool Strikes(FaultTarget target, byte device)
+        public bool Strikes(FaultTarget target, byte device, byte? command)
         {
-            if (Rule.Target != target || (Rule.Device is { } only && only != device))
+            if (Rule.Target != target || (Rule.Device is { } only && only != device) || (Rule.Command is { } just && just != command))
             {
                 return false;
             }

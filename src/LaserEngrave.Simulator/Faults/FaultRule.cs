@@ -33,6 +33,9 @@ public sealed record FaultRule(FaultKind Kind, FaultTarget Target)
     /// <summary>Only this Zaber device number (stage faults); null for every device.</summary>
     public byte? Device { get; init; }
 
+    /// <summary>Only commands, or replies, with this Zaber command number (stage faults, e.g. 60 Return Current Position); null for every one.</summary>
+    public byte? Command { get; init; }
+
     /// <summary>Affected count: <see cref="Count"/>, else every one from then on for Silent and NoAck, else 1.</summary>
     public int EffectiveCount => Count ?? (Kind is FaultKind.Silent or FaultKind.NoAck ? int.MaxValue : 1);
 
@@ -90,6 +93,7 @@ public sealed record FaultRule(FaultKind Kind, FaultTarget Target)
                 "code" when kind == FaultKind.Error => rule with { Code = Number(text, key, value, target == FaultTarget.Stage ? int.MinValue : 0, int.MaxValue) },
                 "byte" when kind == FaultKind.Corrupt => rule with { ByteIndex = Number(text, key, value, 0, 255) },
                 "device" when target == FaultTarget.Stage => rule with { Device = (byte)Number(text, key, value, 1, 254) },
+                "command" when target == FaultTarget.Stage => rule with { Command = (byte)Number(text, key, value, 0, 255) },
                 _ => throw Bad(text, $"'{key}' does not apply to {KindNames[kindIndex]}:{parts[1].Trim()}"),
             };
         }
@@ -102,6 +106,7 @@ public sealed record FaultRule(FaultKind Kind, FaultTarget Target)
     {
         var text = new StringBuilder(KindNames[(int)Kind]).Append(':').Append(Target == FaultTarget.Stage ? "stage" : "gate");
         Append("device", Device?.ToString(CultureInfo.InvariantCulture));
+        Append("command", Command?.ToString(CultureInfo.InvariantCulture));
         Append("after", After == 0 ? null : After.ToString(CultureInfo.InvariantCulture));
         Append("count", Count switch { null => null, int.MaxValue => "all", var n => n.Value.ToString(CultureInfo.InvariantCulture) });
         Append("ms", Kind == FaultKind.Delay ? DelayMs.ToString(CultureInfo.InvariantCulture) : null);

@@ -92,7 +92,7 @@ public sealed class VirtualZaberChain
     internal void Send(VirtualZaberDevice device, ZaberFrame frame, bool solicited)
     {
         var fault = solicited
-            ? _faults.OnReply(FaultTarget.Stage, device.Number)
+            ? _faults.OnReply(FaultTarget.Stage, device.Number, (byte)frame.Command)
             : new ReplyFault(_faults.IsSilent(FaultTarget.Stage, device.Number), null, TimeSpan.Zero);
         if (fault.Drop)
         {
@@ -136,7 +136,7 @@ public sealed class VirtualZaberChain
             var now = Clock.NowSeconds;
             foreach (var device in Devices.Where(d => frame.Device == 0 || frame.Device == d.Number).ToList())
             {
-                var fault = _faults.OnCommand(FaultTarget.Stage, device.Number);
+                var fault = _faults.OnCommand(FaultTarget.Stage, device.Number, (byte)frame.Command);
                 disconnect |= fault.Disconnect;
                 if (fault.Ignore || fault.Disconnect)
                 {

@@ -23,6 +23,28 @@ public class FaultInjectionTests
     }
 
     [Fact(Timeout = 20_000)]
+    public async Task DropReply_OneCommandOnly_OnlyItsRepliesCountAndAreDropped()
+    {
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { FaultSpec = "drop-reply:stage:command=60:after=1" });
+
+        // Echoes are not counted; the first position query passes, the second is dropped, the third passes.
+        await bench.SendAsync(1, ZaberCommand.EchoData, 1);
+        await bench.SendAsync(1, ZaberCommand.ReturnCurrentPosition, 0);
+        await bench.SendAsync(1, ZaberCommand.EchoData, 2);
+        await bench.SendAsync(1, ZaberCommand.ReturnCurrentPosition, 0);
+        await bench.SendAsync(1, ZaberCommand.ReturnCurrentPosition, 0);
+        await bench.SendAsync(1, ZaberCommand.EchoData, 3);
+
+        var commands = new List<ZaberCommand>();
+        while (await bench.TryReceiveAsync(TimeSpan.FromSeconds(1)) is { } reply)
+        {
+            commands.Add(reply.Command);
+        }
+
+        Assert.Equal([ZaberCommand.EchoData, ZaberCommand.ReturnCurrentPosition, ZaberCommand.EchoData, ZaberCommand.ReturnCurrentPosition, ZaberCommand.EchoData], commands);
+    }
+
+    [Fact(Timeout = 20_000)]
     public async Task DropReply_OnAMove_TheMoveStillHappens()
     {
         await using var bench = MachineBench.Create(MachineBench.WireOnly with { FaultSpec = "drop-reply:stage" });
