@@ -38,10 +38,13 @@ public static class PreciseDelay
         new TimerDelay(time, delay, cancellationToken).Task;
 
     // Everything happens in the timer's or the token's callback, on whatever thread the clock runs them: nothing is
-    // posted to the thread pool, which a simulation loop would not see.
+    // posted to the thread pool, which a simulation loop would not see. So the task's continuations run there too, at
+    // once: with RunContinuationsAsynchronously a Task.WhenAny over this wait completed on the thread pool, and the loop,
+    // seeing no work left, moved its clock on meanwhile. A deadline (the position query's before a switch-on) then ended
+    // as late as the next event: 157 ms, by which time the query had answered, and the laser came on past its edge.
     private sealed class TimerDelay
     {
-        private readonly TaskCompletionSource _done = new(TaskCreationOptions.RunContinuationsAsynchronously);
+        private readonly TaskCompletionSource _done = new();
         private readonly ITimer _timer;
         private readonly CancellationTokenRegistration _registration;
 

@@ -54,4 +54,26 @@ public class RunFaultTests
         Assert.Equal(0, report.LaserOnTravelCount);
         Assert.False(run.Machine.Gate.IsFiring);
     }
+
+    // The 10th and 16th position queries of the QR job at 5 mm: one before a stroke's first switch-on, one after a flown gap.
+    [Theory(Timeout = 120_000)]
+    [InlineData(9)]
+    [InlineData(15)]
+    public async Task RunAsync_PositionQueryAnsweredPastItsDeadline_TheLaserStaysOffAndNothingBurnsOffItsPixels(int after)
+    {
+        var ct = TestContext.Current.CancellationToken;
+        await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = $"delay:stage:device=1:command=60:after={after}:ms=150" });
+        var job = TestJobs.FromAsset("qr-code.bmp", 5, new PlanOptions());
+
+        var failed = await run.Do(() => run.Executor(job).RunAsync(ct));
+        var report = run.Machine.Recorder.Analyze(SimulatedRun.Grid(job), job.Mask, job.Spec.Process.BurnSpeedMmPerS);
+
+        // The deadline is the switch-on's: past it the laser must stay off, not come on late past its edge (as it did
+        // when the wait's end left the simulation's loop and the clock ran on to the late answer).
+        Assert.Equal(RunOutcome.Failed, failed.Outcome);
+        Assert.Contains("did not answer the position query", failed.FaultMessage, StringComparison.Ordinal);
+        Assert.Equal((0L, 0), (report.ExtraPixels, report.LaserOnTravelCount));
+        Assert.True(report.Edges is { MaxErrorUm: <= 3 }, $"edges {report.Edges}");
+        Assert.False(run.Machine.Gate.IsFiring);
+    }
 }
