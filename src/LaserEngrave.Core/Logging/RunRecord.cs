@@ -113,6 +113,9 @@ public sealed record RunRecord
     /// <summary>For a job of layers: each layer in the order it ran (the fields above then describe the first layer's file, and the times and counts the whole run); null otherwise.</summary>
     public IReadOnlyList<RunLayer>? Layers { get; init; }
 
+    /// <summary>The timing doubts the run went on from (a position query too late with the laser off, on a busy computer); null when none.</summary>
+    public IReadOnlyList<RunRecovery>? Recoveries { get; init; }
+
     /// <summary>For a job of layers: its job file and SHA-256 (a resume refuses a changed file); null otherwise.</summary>
     public RunJobFile? JobFile { get; init; }
 

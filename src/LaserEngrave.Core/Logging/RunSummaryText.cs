@@ -86,6 +86,11 @@ public static class RunSummaryText
             Line("Host priority", priority);
         }
 
+        foreach (var recovery in record.Recoveries ?? [])
+        {
+            Line("Went on after", string.Create(c, $"pass {recovery.Pass}, row {recovery.Row + 1} (move {recovery.MoveIndex}): {recovery.Fault}"));
+        }
+
         foreach (var device in record.Devices)
         {
             Line("Device", $"{device.Role} on {device.Port}: {device.Identity}, firmware {device.Firmware}");

@@ -27,7 +27,11 @@ public sealed class EngraveSession
     private IProgress<EngraveProgress>? _sink;
     private bool _pauseRequested;
     private bool _abortRequested;
+    private readonly List<RunRecovery> _recoveries = [];
     private int _started;
+
+    /// <summary>How many timing doubts a session goes on from (<see cref="RunResult.Recoverable"/>); the next one ends the run.</summary>
+    public const int MaxRecoveries = 3;
 
     public EngraveSession(EngraveMachine machine, PreparedJob job, EngraveSessionOptions? options = null)
         : this(machine, job?.Spec!, [Single(job?.Spec, job, null)], false, options)
@@ -329,7 +333,7 @@ public sealed class EngraveSession
                 {
                     for (var p = layerPasses + 1; p <= passes; p++)
                     {
-                        var result = await RunPassAsync(part, ++pass, firstOfSession: pass == 1, cancellationToken);
+                        var result = await RecoverAsync(part, ++pass, await RunPassAsync(part, pass, firstOfSession: pass == 1, cancellationToken), cancellationToken);
 
                         // The log speaks for the whole job: times and laser-on add up over the passes, the counts are the last pass's.
                         run = Add(run, result);
@@ -379,6 +383,7 @@ public sealed class EngraveSession
         {
             PassesDone = Passes > 1 ? passesDone : null,
             Layers = layers,
+            Recoveries = _recoveries.Count > 0 ? [.. _recoveries] : null,
         };
         if (layers is not null)
         {
@@ -419,12 +424,46 @@ public sealed class EngraveSession
         };
     }
 
+    /// <summary>
+    /// A pass that failed on a timing doubt (<see cref="RunResult.Recoverable"/>: a position query too late with the
+    /// laser off, nothing burned wrongly, a busy computer) goes on from its stop point, as a resume would, through the
+    /// resumed run's own checks; at most <see cref="MaxRecoveries"/> times a session, never after an abort. Anything
+    /// else ends the run.
+    /// </summary>
+    private async Task<RunResult> RecoverAsync(PreparedLayer part, int pass, RunResult result, CancellationToken cancellationToken)
+    {
+        while (result is { Outcome: RunOutcome.Failed, Recoverable: true, StopPoint: { } stop } && _recoveries.Count < MaxRecoveries
+            && !cancellationToken.IsCancellationRequested && !AbortRequested())
+        {
+            _recoveries.Add(new RunRecovery(pass, result.FaultMessage ?? "a timing doubt", stop.MoveIndex, stop.Row));
+            var again = await RunPassAsync(part, pass, firstOfSession: false, cancellationToken, resumeFrom: stop);
+            result = again with
+            {
+                StartedAt = result.StartedAt,
+                EngravingDuration = result.EngravingDuration + again.EngravingDuration,
+                EstimatedSeconds = result.EstimatedSeconds,
+                EstimatedEngravingSeconds = result.EstimatedEngravingSeconds,
+                LaserOnSeconds = result.LaserOnSeconds + again.LaserOnSeconds,
+            };
+        }
+
+        return result;
+    }
+
+    private bool AbortRequested()
+    {
+        lock (_lock)
+        {
+            return _abortRequested;
+        }
+    }
+
     private static RunSimulation Inspect(IRunInspector inspector, PreparedLayer part) =>
         part.Drawing is { } drawing ? inspector.InspectDrawing(drawing) : inspector.Inspect(part.Image!);
 
-    private async Task<RunResult> RunPassAsync(PreparedLayer part, int pass, bool firstOfSession, CancellationToken cancellationToken)
+    private async Task<RunResult> RunPassAsync(PreparedLayer part, int pass, bool firstOfSession, CancellationToken cancellationToken, RunStopPoint? resumeFrom = null)
     {
-        var options = new RunOptions { Home = Options.Home && firstOfSession, ResumeFrom = firstOfSession ? _resumeFrom : null };
+        var options = new RunOptions { Home = Options.Home && firstOfSession, ResumeFrom = resumeFrom ?? (firstOfSession ? _resumeFrom : null) };
         var executor = part.Drawing is { } drawing
             ? new RunExecutor(Machine.Stage, Machine.Gate, drawing, Machine.TimeProvider, options)
             : new RunExecutor(Machine.Stage, Machine.Gate, part.Image!, Machine.TimeProvider, options);

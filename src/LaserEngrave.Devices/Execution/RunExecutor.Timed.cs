@@ -22,6 +22,7 @@ public sealed partial class RunExecutor
     private readonly Dictionary<string, Watched> _lastMove = [];
     private readonly Queue<(Move Move, long Index, Task? Acknowledged)> _toComplete = new();
     private string? _timedFault;
+    private bool _recoverableFault;
     private double _lastGateWrite;
     private long _queuedUpTo = -1;
 
@@ -374,7 +375,7 @@ public sealed partial class RunExecutor
         var query = flown.Query;
         if (!await CompletesByAsync(query, onWrite, token) || !query.IsCompletedSuccessfully)
         {
-            throw Fault("the X axis did not answer the position query after a flown gap before the laser was to come on");
+            throw Fault("the X axis did not answer the position query after a flown gap before the laser was to come on", recoverable: true);
         }
 
         // A host late to write (a loaded computer) held the bump longer or shorter and asked later: where the stage then is.
@@ -386,7 +387,8 @@ public sealed partial class RunExecutor
         {
             throw Fault(string.Create(
                 System.Globalization.CultureInfo.InvariantCulture,
-                $"the X axis reported {query.Result} microsteps after a flown gap, {ahead:0} from its plan (at most {bump.MaxErrorMicrosteps:0} expected): it is not moving as planned, so the laser stays off"));
+                $"the X axis reported {query.Result} microsteps after a flown gap, {ahead:0} from its plan (at most {bump.MaxErrorMicrosteps:0} expected): it is not moving as planned, so the laser stays off"),
+                recoverable: true);
         }
 
         return -ahead / timing.BurnSpeed;
@@ -407,7 +409,7 @@ public sealed partial class RunExecutor
 
         if (!await CompletesByAsync(poll, onWrite, token))
         {
-            throw Fault("the X axis did not answer the position query before the laser was to come on");
+            throw Fault("the X axis did not answer the position query before the laser was to come on", recoverable: true);
         }
 
         long position;
@@ -682,7 +684,11 @@ public sealed partial class RunExecutor
     }
 
     /// <summary>A fault found while commands are in flight: the laser goes off at once, then the run ends as failed; returns the exception to throw.</summary>
-    private DeviceException Fault(string reason)
+    private DeviceException Fault(string reason) => Fault(reason, recoverable: false);
+
+    /// <param name="reason">The run's fault, one line.</param>
+    /// <param name="recoverable">Only a position query's doubt with the laser off: see <see cref="RunResult.Recoverable"/>.</param>
+    private DeviceException Fault(string reason, bool recoverable)
     {
         var first = false;
         lock (_lock)
@@ -690,7 +696,13 @@ public sealed partial class RunExecutor
             if (_timedFault is null)
             {
                 _timedFault = reason;
+                _recoverableFault = recoverable;
                 first = true;
+            }
+            else if (!recoverable)
+            {
+                // Anything else found while the first fault is handled is not a mere timing doubt.
+                _recoverableFault = false;
             }
         }
 

@@ -1030,6 +1030,8 @@ public sealed partial class RunExecutor
                 Outcome = outcome,
                 FaultMessage = fault,
                 StopPoint = stopPoint,
+                Recoverable = outcome == RunOutcome.Failed && _recoverableFault && _laserOffProblem is null && _laserOffConfirmed
+                    && stopPoint is { CutPixel: null, ResumeXMicrosteps: null },
                 LaserOffConfirmed = _laserOffConfirmed,
                 StartedAt = startedAt,
                 EndedAt = TimeProvider.GetUtcNow(),

@@ -20,6 +20,14 @@ public sealed record RunResult
     /// <summary>Where the run stopped; give it to <see cref="RunOptions.ResumeFrom"/> to finish the job (null when completed).</summary>
     public RunStopPoint? StopPoint { get; init; }
 
+    /// <summary>
+    /// The run failed on a timing doubt that burned nothing wrongly: the laser was off (confirmed) in a flown gap or before
+    /// a stroke's first switch-on, no burn run was cut, and the fault says only that a position query answered too late,
+    /// or found the stage too far from its plan, for the next switch-on to be timed (a busy computer). It may go on from
+    /// <see cref="StopPoint"/> at once, as a resume would.
+    /// </summary>
+    public bool Recoverable { get; init; }
+
     /// <summary>False when the laser could not be confirmed off at the end (the gate did not answer any attempt).</summary>
     public required bool LaserOffConfirmed { get; init; }
 

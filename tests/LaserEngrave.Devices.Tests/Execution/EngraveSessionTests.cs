@@ -202,4 +202,66 @@ public class EngraveSessionTests
 
         Assert.Throws<ArgumentOutOfRangeException>(() => Session(run, bad, new RecordingLog()));
     }
+
+    [Fact(Timeout = 120_000)]
+    public async Task RunAsync_FlownGapQueryAnsweredLate_GoesOnFromTheStopPointAndBurnsTheMaskOnce()
+    {
+        var ct = TestContext.Current.CancellationToken;
+        var job = TestJobs.FromAsset("qr-code.bmp", 5, new PlanOptions());
+        var clean = new RecordingLog();
+        await using (var run = SimulatedRun.Create())
+        {
+            await Session(run, job, clean).RunAsync(null, ct);
+        }
+
+        // The 16th position query of this job is a flown gap's: answered 150 ms late, past the next switch-on's time.
+        await using var late = SimulatedRun.Create(new SimulatorOptions { FaultSpec = "delay:stage:device=1:command=60:after=15:ms=150" });
+        var log = new RecordingLog();
+        var result = await Session(late, job, log).RunAsync(null, ct);
+
+        var record = Assert.Single(log.Records);
+        var sim = Assert.IsType<RunSimulation>(record.Simulation);
+        var once = Assert.IsType<RunSimulation>(Assert.Single(clean.Records).Simulation);
+        Assert.True(record.Outcome == RunOutcome.Completed, $"{record.Outcome}: {record.Fault}");
+        Assert.Equal(RunState.Completed, result.State);
+        var recovery = Assert.Single(record.Recoveries!);
+        Assert.Contains("position query after a flown gap", recovery.Fault, StringComparison.Ordinal);
+        Assert.Equal(1, recovery.Pass);
+        Assert.Equal((0L, 0L, 0), (sim.MissingPixels, sim.ExtraPixels, sim.LaserOnTravelCount));
+
+        // Nothing burned twice: the doubt came with the laser off, between burn runs.
+        Assert.InRange(sim.PulsesPerPixel.Max, 0, once.PulsesPerPixel.Max + 1);
+        Assert.InRange(sim.Pulses, once.Pulses * 0.999, once.Pulses * 1.001);
+        Assert.False(late.Machine.Gate.IsFiring);
+    }
+
+    [Fact(Timeout = 120_000)]
+    public async Task RunAsync_EveryQueryLate_GoesOnAtMostMaxRecoveriesTimesThenFailsLaserOff()
+    {
+        await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = "delay:stage:device=1:command=60:after=15:count=all:ms=150" });
+        var log = new RecordingLog();
+
+        var result = await Session(run, TestJobs.FromAsset("qr-code.bmp", 5, new PlanOptions()), log).RunAsync(null, TestContext.Current.CancellationToken);
+
+        var record = Assert.Single(log.Records);
+        Assert.Equal(RunOutcome.Failed, record.Outcome);
+        Assert.Equal(RunState.Failed, result.State);
+        Assert.Equal(EngraveSession.MaxRecoveries, record.Recoveries!.Count);
+        Assert.Contains("position query", record.Fault!.Message, StringComparison.Ordinal);
+        Assert.Equal((0L, 0), (record.Simulation!.ExtraPixels, record.Simulation.LaserOnTravelCount));
+        Assert.False(run.Machine.Gate.IsFiring);
+    }
+
+    [Fact(Timeout = 120_000)]
+    public async Task RunAsync_FaultThatIsNoTimingDoubt_EndsTheRunWithoutGoingOn()
+    {
+        await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = "silent:stage:after=60" });
+        var log = new RecordingLog();
+
+        await Session(run, Job(), log).RunAsync(null, TestContext.Current.CancellationToken);
+
+        var record = Assert.Single(log.Records);
+        Assert.Equal(RunOutcome.Failed, record.Outcome);
+        Assert.Null(record.Recoveries);
+    }
 }
