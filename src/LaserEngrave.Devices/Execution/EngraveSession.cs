@@ -436,7 +436,18 @@ public sealed class EngraveSession
             && !cancellationToken.IsCancellationRequested && !AbortRequested())
         {
             _recoveries.Add(new RunRecovery(pass, result.FaultMessage ?? "a timing doubt", stop.MoveIndex, stop.Row));
-            var again = await RunPassAsync(part, pass, firstOfSession: false, cancellationToken, resumeFrom: stop);
+            RunResult again;
+            try
+            {
+                again = await RunPassAsync(part, pass, firstOfSession: false, cancellationToken, resumeFrom: stop);
+            }
+            catch (Exception ex) when (ex is not OperationCanceledException and not OutOfMemoryException)
+            {
+                // Going on needs the machine to pass its checks again (a stage gone silent does not): the run ends on the
+                // first fault, with its stop point, so that a resume later starts there.
+                return result with { FaultMessage = $"{result.FaultMessage}; going on from it failed: {ex.Message}" };
+            }
+
             result = again with
             {
                 StartedAt = result.StartedAt,
