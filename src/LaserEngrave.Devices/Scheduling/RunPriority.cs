@@ -124,6 +124,8 @@ public sealed class RunPriority : IDisposable
             : new RunPriority(string.Create(CultureInfo.InvariantCulture, $"raised (nice {RaisedNice} on every thread)"), changed);
     }
 
+    // The process' thread ids (Linux keeps a nice value per thread), read only when a run on real ports starts and ends:
+    // no clock is read, and the twin never comes here (EngraveSession skips it on the simulator).
     private static IEnumerable<int> ThreadIds()
     {
         foreach (var dir in Directory.EnumerateDirectories("/proc/self/task"))
