@@ -9,14 +9,14 @@ namespace LaserEngrave.App.Web;
 /// </summary>
 public sealed class AccessToken
 {
-    /// <summary>The cookie the page gets when it is opened with <c>?token=</c>.</summary>
-    public const string CookieName = "LaserEngrave-Token";
-
     /// <summary>The header automation can send instead of <c>Authorization: Bearer</c>.</summary>
     public const string HeaderName = "X-LaserEngrave-Token";
 
     /// <summary>The query parameter of the address printed at start.</summary>
     public const string QueryName = "token";
+
+    /// <summary>Where SignalR's browser client puts the token on a WebSocket, which cannot carry a header; taken on the hub only.</summary>
+    public const string HubQueryName = "access_token";
 
     private readonly byte[] _bytes;
 
@@ -38,21 +38,20 @@ public sealed class AccessToken
     public bool Matches(string? candidate) =>
         candidate is not null && CryptographicOperations.FixedTimeEquals(Encoding.ASCII.GetBytes(candidate), _bytes);
 
-    /// <summary>Whether a request shows the token in <c>Authorization: Bearer</c> or the <see cref="HeaderName"/> header.</summary>
-    internal bool IsShownBy(HttpRequest request, out bool byCookie)
+    /// <summary>
+    /// Whether a request shows the token in <c>Authorization: Bearer</c> or the <see cref="HeaderName"/> header; on the
+    /// page's hub (<paramref name="hub"/>) also in <see cref="HubQueryName"/>. Never a cookie: a browser sends cookies by
+    /// itself, to every port on 127.0.0.1.
+    /// </summary>
+    internal bool IsShownBy(HttpRequest request, bool hub)
     {
-        byCookie = false;
         var authorization = request.Headers.Authorization.ToString();
         if (authorization.StartsWith("Bearer ", StringComparison.OrdinalIgnoreCase) && Matches(authorization["Bearer ".Length..].Trim()))
         {
             return true;
         }
 
-        if (Matches(request.Headers[HeaderName].ToString()))
-        {
-            return true;
-        }
-
-        return false;
+        return Matches(request.Headers[HeaderName].ToString())
+            || (hub && request.Query.TryGetValue(HubQueryName, out var query) && Matches(query.ToString()));
     }
 }

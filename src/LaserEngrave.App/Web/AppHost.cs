@@ -8,9 +8,6 @@ namespace LaserEngrave.App.Web;
 /// <summary>The composition root: the services, the view-models over them, the page and its API on one local web server.</summary>
 public static class AppHost
 {
-    /// <summary>The header every POST authorised by the page's cookie must also carry: a page of another site cannot add it without the server's consent (CORS).</summary>
-    public const string RequestHeader = "X-LaserEngrave";
-
     /// <summary>How long the host gives the server to close its connections on exit (an open page's circuit is dropped, never waited for).</summary>
     public static readonly TimeSpan ShutdownTimeout = TimeSpan.FromMilliseconds(500);
 
@@ -21,6 +18,8 @@ public static class AppHost
     {
         var builder = WebApplication.CreateBuilder(new WebApplicationOptions { Args = args, ContentRootPath = AppContext.BaseDirectory, ApplicationName = typeof(AppHost).Assembly.GetName().Name });
         builder.Logging.SetMinimumLevel(LogLevel.Warning);
+        // A start that fails (a port in use) is told in one line by Program, not as the host's stack trace.
+        builder.Logging.AddFilter("Microsoft.Extensions.Hosting.Internal.Host", LogLevel.Critical);
         // Built, not published (dotnet run, tests): the page's assets are read where the build left them, in any environment.
         builder.WebHost.UseStaticWebAssets();
         var urls = url ?? builder.Configuration["urls"] ?? AppOptions.DefaultUrl;
@@ -68,7 +67,7 @@ public static class AppHost
         app.Use(GuardAsync);
         app.UseAntiforgery();
         app.MapStaticAssets();
-        app.MapRazorComponents<Components.App>().AddInteractiveServerRenderMode();
+        app.MapRazorComponents<Components.App>().AddInteractiveServerRenderMode(o => o.ContentSecurityFrameAncestorsPolicy = "'none'");
         ApiEndpoints.Map(app);
         app.Lifetime.ApplicationStopping.Register(() => Shutdown(app.Services));
 
@@ -78,8 +77,10 @@ public static class AppHost
     }
 
     /// <summary>
-    /// Refuses other hosts (DNS rebinding) and every request without the start's token; the page's first load with
-    /// <c>?token=</c> gets it as an HttpOnly, SameSite=Strict cookie; a POST authorised by that cookie also needs the app's header.
+    /// Refuses other hosts (DNS rebinding), requests from another page (Origin) and every request for the API or the
+    /// page's hub without the start's token in a header (or, for the hub's WebSocket, Blazor's access_token). Nothing the
+    /// browser sends by itself (cookies) is a credential: the page keeps the token in its own tab and shows it, so no
+    /// other server on 127.0.0.1 ever receives it.
     /// </summary>
     private static Task GuardAsync(HttpContext context, RequestDelegate next)
     {
@@ -92,43 +93,59 @@ public static class AppHost
             return Task.CompletedTask;
         }
 
-        var token = context.RequestServices.GetRequiredService<AccessToken>();
-        var cookie = CookieName(request);
-        if (HttpMethods.IsGet(request.Method) && request.Query.TryGetValue(AccessToken.QueryName, out var given))
-        {
-            if (!token.Matches(given.ToString()))
-            {
-                return Unauthorized(response, "the token in the address is not this start's: open the address LaserEngrave printed when it started");
-            }
-
-            response.Cookies.Append(cookie, token.Value, new CookieOptions { HttpOnly = true, SameSite = SameSiteMode.Strict, Path = "/", IsEssential = true });
-            // The token leaves the address bar (and the history) once the cookie holds it.
-            response.Redirect(request.PathBase + request.Path);
-            return Task.CompletedTask;
-        }
-
-        var shown = token.IsShownBy(request, out var byCookie) || (byCookie = token.Matches(request.Cookies[cookie]));
-        if (!shown)
-        {
-            return Unauthorized(response, $"this needs the token LaserEngrave printed when it started: open that address, or send 'Authorization: Bearer TOKEN' or '{AccessToken.HeaderName}: TOKEN'");
-        }
-
-        // The page's own connection (Blazor's SignalR hub) cannot add the header; it still needs the cookie (SameSite=Strict:
-        // another site's page never sends it), and its circuit is the one the page was served with.
-        if (byCookie && HttpMethods.IsPost(request.Method) && !request.Headers.ContainsKey(RequestHeader) && !request.Path.StartsWithSegments(BlazorHubPath))
+        // A page of another origin (another port on 127.0.0.1 is one: the same "site" to a browser) is refused whatever
+        // it carries; scripts send no Origin and show the token instead.
+        if (request.Headers.Origin is { Count: > 0 } origin && !IsOwnOrigin(request, origin.ToString()))
         {
             response.StatusCode = StatusCodes.Status403Forbidden;
-            return response.WriteAsync($"POST needs the {RequestHeader} header");
+            return response.WriteAsync($"requests from another page ({origin}) are refused: only the app's own page or a script may call it");
         }
 
-        return next(context);
+        // The page never lets another page frame it (Blazor's own policy says the same: frame-ancestors 'none'), and
+        // sends no address onwards.
+        response.Headers.XFrameOptions = "DENY";
+        response.Headers["Referrer-Policy"] = "no-referrer";
+
+        var token = context.RequestServices.GetRequiredService<AccessToken>();
+        if (HttpMethods.IsGet(request.Method) && request.Query.TryGetValue(AccessToken.QueryName, out var given) && !token.Matches(given.ToString()))
+        {
+            return Unauthorized(response, "the token in the address is not this start's: open the address LaserEngrave printed when it started");
+        }
+
+        if (IsPublic(request) || token.IsShownBy(request, hub: request.Path.StartsWithSegments(BlazorHubPath)))
+        {
+            return next(context);
+        }
+
+        return Unauthorized(response, $"this needs the token LaserEngrave printed when it started: open that address, or send 'Authorization: Bearer TOKEN' or '{AccessToken.HeaderName}: TOKEN'");
     }
 
     /// <summary>Blazor's SignalR hub, the page's own connection.</summary>
     internal const string BlazorHubPath = "/_blazor";
 
-    /// <summary>The page's cookie, per port: cookies do not tell ports apart, and two apps may run at once.</summary>
-    internal static string CookieName(HttpRequest request) => $"{AccessToken.CookieName}-{request.Host.Port ?? 80}";
+    /// <summary>Where the app's state and commands are: the API, its description and the page's hub.</summary>
+    private static readonly string[] GuardedPaths = ["/api", "/openapi", BlazorHubPath];
+
+    /// <summary>
+    /// The page's shell and its static files (no state: the page is not prerendered), Blazor's list of script
+    /// initializers, and the beacon with which a closing page ends its own circuit (it names the circuit's secret id
+    /// and cannot carry a header). Everything else needs the token.
+    /// </summary>
+    private static bool IsPublic(HttpRequest request)
+    {
+        var path = request.Path;
+        if (HttpMethods.IsGet(request.Method) || HttpMethods.IsHead(request.Method))
+        {
+            return path.Equals(BlazorHubPath + "/initializers", StringComparison.OrdinalIgnoreCase)
+                || !GuardedPaths.Any(p => path.StartsWithSegments(p, StringComparison.OrdinalIgnoreCase));
+        }
+
+        return HttpMethods.IsPost(request.Method) && path.Equals(BlazorHubPath + "/disconnect", StringComparison.OrdinalIgnoreCase);
+    }
+
+    /// <summary>Whether <paramref name="origin"/> is the app's own scheme, host and port, as the request reached it.</summary>
+    internal static bool IsOwnOrigin(HttpRequest request, string origin) =>
+        string.Equals(origin, $"{request.Scheme}://{request.Host.Value}", StringComparison.OrdinalIgnoreCase);
 
     private static Task Unauthorized(HttpResponse response, string message)
     {

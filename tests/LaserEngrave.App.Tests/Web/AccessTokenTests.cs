@@ -21,25 +21,51 @@ public sealed class AccessTokenTests : IDisposable
         _app.CreateClient(new WebApplicationFactoryClientOptions { AllowAutoRedirect = false, HandleCookies = cookies });
 
     [Theory]
+    [InlineData("GET", "/api/state")]
+    [InlineData("GET", "/api/image/mask.png")]
+    [InlineData("GET", "/openapi/v1.json")]
+    [InlineData("POST", "/_blazor/negotiate?negotiateVersion=1")]
+    [InlineData("GET", "/_blazor?id=x")]
+    public async Task ApiAndHub_NoToken_Unauthorized(string method, string path)
+    {
+        using var client = Client();
+
+        using var response = await client.SendAsync(new HttpRequestMessage(new HttpMethod(method), path), Token);
+
+        Assert.Equal(HttpStatusCode.Unauthorized, response.StatusCode);
+        Assert.Contains("token", await response.Content.ReadAsStringAsync(Token), StringComparison.Ordinal);
+    }
+
+    [Theory]
     [InlineData("/")]
     [InlineData("/app.css")]
+    [InlineData("/boot.js")]
     [InlineData("/_framework/blazor.web.js")]
-    [InlineData("/api/state")]
-    public async Task Get_NoToken_Unauthorized(string path)
+    public async Task PageShell_NoToken_ServedWithoutStateAndNeverFramed(string path)
     {
+        _app.Services.GetRequiredService<App.ViewModels.MainViewModel>().Log.SampleId = "SECRET-SAMPLE";
         using var client = Client();
 
         using var response = await client.GetAsync(path, Token);
 
-        Assert.Equal(HttpStatusCode.Unauthorized, response.StatusCode);
-        Assert.Contains("token", await response.Content.ReadAsStringAsync(Token), StringComparison.Ordinal);
+        // A reload cannot carry a header: the shell is served, but it holds no state (not prerendered) until its
+        // connection shows the token.
+        Assert.Equal(HttpStatusCode.OK, response.StatusCode);
+        Assert.DoesNotContain("SECRET-SAMPLE", await response.Content.ReadAsStringAsync(Token), StringComparison.Ordinal);
+        Assert.Equal("DENY", response.Headers.GetValues("X-Frame-Options").Single());
+        if (path == "/")
+        {
+            Assert.Equal("frame-ancestors 'none'", response.Headers.GetValues("Content-Security-Policy").Single());
+        }
+
+        Assert.DoesNotContain(response.Headers.TryGetValues("Set-Cookie", out var cookies) ? cookies : [], c => c.Contains("LaserEngrave", StringComparison.Ordinal) || c.Contains(Secret, StringComparison.Ordinal));
     }
 
     [Fact]
     public async Task Post_OnlyTheOldFixedHeader_UnauthorizedAndNothingStarts()
     {
         using var client = Client();
-        client.DefaultRequestHeaders.Add(AppHost.RequestHeader, "1");
+        client.DefaultRequestHeaders.Add("X-LaserEngrave", "1");
 
         using var response = await client.PostAsync("/api/moves/fire", JsonContent.Create(new { pulses = 10 }), Token);
 
@@ -73,59 +99,105 @@ public sealed class AccessTokenTests : IDisposable
     }
 
     [Fact]
-    public async Task Page_TokenInAddress_StrictHttpOnlyCookieThenRedirectWithoutIt()
+    public async Task Page_TokenInAddress_ServedWithoutACookieOrRedirect()
     {
         using var client = Client(cookies: true);
 
         using var first = await client.GetAsync($"/?token={Secret}", Token);
 
-        Assert.Equal(HttpStatusCode.Redirect, first.StatusCode);
-        Assert.Equal("/", first.Headers.Location!.OriginalString);
-        var cookie = Assert.Single(first.Headers.GetValues("Set-Cookie"));
-        Assert.Contains("httponly", cookie, StringComparison.OrdinalIgnoreCase);
-        Assert.Contains("samesite=strict", cookie, StringComparison.OrdinalIgnoreCase);
-        using var page = await client.GetAsync("/", Token);
-        Assert.Equal(HttpStatusCode.OK, page.StatusCode);
-        using var state = await client.GetAsync("/api/state", Token);
-        Assert.Equal(HttpStatusCode.OK, state.StatusCode);
+        // The page keeps the token in its own tab (boot.js): no cookie holds it, nothing the browser would send to another port.
+        Assert.Equal(HttpStatusCode.OK, first.StatusCode);
+        Assert.DoesNotContain(first.Headers.TryGetValues("Set-Cookie", out var cookies) ? cookies : [], c => c.Contains(Secret, StringComparison.Ordinal) || c.Contains("LaserEngrave", StringComparison.Ordinal));
+        Assert.Contains("boot", await first.Content.ReadAsStringAsync(Token), StringComparison.Ordinal);
     }
 
     [Fact]
-    public async Task Post_ByCookieWithoutTheAppHeader_Forbidden()
+    public async Task Requests_OnlyThePagesCookies_Unauthorized()
     {
-        using var client = Client(cookies: true);
-        using var first = await client.GetAsync($"/?token={Secret}", Token);
-
-        using var bare = await client.PostAsync("/api/settings/theme", JsonContent.Create(new { theme = "dark" }), Token);
-        client.DefaultRequestHeaders.Add(AppHost.RequestHeader, "1");
-        using var withHeader = await client.PostAsync("/api/settings/theme", JsonContent.Create(new { theme = "dark" }), Token);
-
-        Assert.Equal(HttpStatusCode.Forbidden, bare.StatusCode);
-        Assert.Equal(HttpStatusCode.OK, withHeader.StatusCode);
-    }
-
-    [Fact]
-    public async Task BlazorHub_NoCookie_UnauthorizedEvenWithTheAppHeader()
-    {
+        // What a browser sends by itself after the page was opened: its cookies, here the old design's token cookie too.
         using var client = Client();
-        client.DefaultRequestHeaders.Add(AppHost.RequestHeader, "1");
+        var port = _app.Server.BaseAddress.Port;
+        client.DefaultRequestHeaders.Add("Cookie", $"LaserEngrave-Token-{port}={Secret}; LaserEngrave-Token-80={Secret}");
 
+        using var state = await client.GetAsync("/api/state", Token);
+        using var fire = await client.PostAsync("/api/moves/fire", JsonContent.Create(new { pulses = 10 }), Token);
         using var negotiate = await client.PostAsync("/_blazor/negotiate?negotiateVersion=1", null, Token);
 
+        Assert.Equal(HttpStatusCode.Unauthorized, state.StatusCode);
+        Assert.Equal(HttpStatusCode.Unauthorized, fire.StatusCode);
         Assert.Equal(HttpStatusCode.Unauthorized, negotiate.StatusCode);
     }
 
-    [Fact]
-    public async Task BlazorHub_ByCookie_AllowedWithoutTheAppHeader()
+    [Theory]
+    [InlineData("Authorization")]
+    [InlineData("access_token")]
+    public async Task BlazorHub_TokenShown_Negotiated(string how)
     {
-        using var client = Client(cookies: true);
-        using var first = await client.GetAsync($"/?token={Secret}", Token);
+        using var client = Client();
+        var path = "/_blazor/negotiate?negotiateVersion=1";
+        if (how == "Authorization")
+        {
+            client.DefaultRequestHeaders.Authorization = new("Bearer", Secret);
+        }
+        else
+        {
+            path += $"&access_token={Secret}";
+        }
 
-        // Blazor's own connection cannot add the app's header; the page's cookie is what lets it in.
-        using var negotiate = await client.PostAsync("/_blazor/negotiate?negotiateVersion=1", null, Token);
+        using var negotiate = await client.PostAsync(path, null, Token);
 
         Assert.Equal(HttpStatusCode.OK, negotiate.StatusCode);
         Assert.Contains("connectionToken", await negotiate.Content.ReadAsStringAsync(Token), StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task Api_TokenInQuery_NotTakenOutsideTheHub()
+    {
+        using var client = Client();
+
+        using var response = await client.GetAsync($"/api/state?access_token={Secret}", Token);
+
+        Assert.Equal(HttpStatusCode.Unauthorized, response.StatusCode);
+    }
+
+    [Theory]
+    [InlineData("POST", "/api/moves/fire", "http://evil.example")]
+    [InlineData("POST", "/api/settings/theme", "http://127.0.0.1:1")]
+    [InlineData("POST", "/api/run/start", "null")]
+    [InlineData("POST", "/_blazor/negotiate?negotiateVersion=1", "http://evil.example")]
+    [InlineData("POST", "/_blazor/negotiate?negotiateVersion=1", "http://localhost:1")]
+    [InlineData("GET", "/_blazor?id=x", "http://127.0.0.1:1")]
+    [InlineData("POST", "/_blazor/disconnect", "http://127.0.0.1:1")]
+    [InlineData("GET", "/api/state", "https://localhost")]
+    public async Task ForeignOrigin_EvenWithTheToken_Forbidden(string method, string path, string origin)
+    {
+        using var client = Client();
+        client.DefaultRequestHeaders.Authorization = new("Bearer", Secret);
+        using var request = new HttpRequestMessage(new HttpMethod(method), path) { Content = JsonContent.Create(new { pulses = 10, theme = "dark" }) };
+        request.Headers.Add("Origin", origin);
+
+        using var response = await client.SendAsync(request, Token);
+
+        Assert.Equal(HttpStatusCode.Forbidden, response.StatusCode);
+        Assert.Contains("another page", await response.Content.ReadAsStringAsync(Token), StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task OwnOrigin_WithTheToken_Allowed()
+    {
+        using var client = Client();
+        client.DefaultRequestHeaders.Authorization = new("Bearer", Secret);
+        var own = _app.Server.BaseAddress.GetLeftPart(UriPartial.Authority);
+        using var request = new HttpRequestMessage(HttpMethod.Post, "/api/settings/theme") { Content = JsonContent.Create(new { theme = "dark" }) };
+        request.Headers.Add("Origin", own);
+        using var negotiate = new HttpRequestMessage(HttpMethod.Post, "/_blazor/negotiate?negotiateVersion=1");
+        negotiate.Headers.Add("Origin", own);
+
+        using var response = await client.SendAsync(request, Token);
+        using var hub = await client.SendAsync(negotiate, Token);
+
+        Assert.Equal(HttpStatusCode.OK, response.StatusCode);
+        Assert.Equal(HttpStatusCode.OK, hub.StatusCode);
     }
 
     [Fact]

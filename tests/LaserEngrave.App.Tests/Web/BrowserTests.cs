@@ -3,6 +3,8 @@ using LaserEngrave.App.ViewModels;
 using LaserEngrave.App.Web;
 using LaserEngrave.Devices.Execution;
 using Microsoft.AspNetCore.Builder;
+using Microsoft.AspNetCore.Hosting;
+using Microsoft.AspNetCore.Http;
 using Microsoft.AspNetCore.Hosting.Server;
 using Microsoft.AspNetCore.Hosting.Server.Features;
 using Microsoft.Extensions.DependencyInjection;
@@ -259,6 +261,67 @@ public sealed class BrowserTests : IAsyncLifetime
         var text = await http.GetStringAsync(new Uri(href), TestContext.Current.CancellationToken);
         Assert.Contains("B-1", text, StringComparison.Ordinal);
         Assert.DoesNotContain(Driver.Manage().Logs.GetLog(LogType.Browser), e => e.Level == LogLevel.Severe);
+    }
+
+    [Fact]
+    public async Task OtherLocalServer_PageOpenInTheSameBrowser_ReceivesNoCredentialAndGetsNoHubConnection()
+    {
+        // Another program's server on another port of 127.0.0.1: it records every request the browser sends it, and its
+        // page tries what a hostile page would (the app's hub over a WebSocket, its API) and reports what it got.
+        var received = new System.Collections.Concurrent.ConcurrentQueue<string>();
+        var report = new TaskCompletionSource<string>(TaskCreationOptions.RunContinuationsAsynchronously);
+        var app = _url.TrimEnd('/');
+        var other = WebApplication.CreateBuilder();
+        other.WebHost.UseUrls("http://127.0.0.1:0");
+        other.Configuration["Logging:LogLevel:Default"] = "Warning";
+        await using var server = other.Build();
+        server.Use(async (context, next) =>
+        {
+            received.Enqueue($"{context.Request.Method} {context.Request.Path}{context.Request.QueryString} " +
+                string.Join("; ", context.Request.Headers.Select(h => $"{h.Key}: {h.Value}")));
+            await next(context);
+        });
+        server.MapGet("/", () => Results.Content(
+            $$"""
+            <!DOCTYPE html><html><body><img src="/probe.png"><script>
+            const app = '{{app}}';
+            const results = {};
+            const socket = new WebSocket(app.replace('http://', 'ws://') + '/_blazor');
+            const hub = new Promise(done => { socket.onopen = () => done('open'); socket.onerror = () => done('refused'); });
+            const negotiate = fetch(app + '/_blazor/negotiate?negotiateVersion=1', { method: 'POST', credentials: 'include' })
+              .then(r => 'answered ' + r.status, () => 'blocked');
+            const fire = fetch(app + '/api/moves/fire', { method: 'POST', mode: 'no-cors', credentials: 'include', body: '{"pulses":1}' })
+              .then(() => 'sent', () => 'blocked');
+            Promise.all([hub, negotiate, fire]).then(([h, n, f]) => fetch('/report?hub=' + h + '&negotiate=' + encodeURIComponent(n) + '&fire=' + f));
+            </script></body></html>
+            """, "text/html"));
+        server.MapGet("/report", (HttpRequest request) =>
+        {
+            report.TrySetResult(request.QueryString.Value ?? string.Empty);
+            return Results.Ok();
+        });
+        await server.StartAsync(TestContext.Current.CancellationToken);
+        var otherUrl = server.Services.GetRequiredService<IServer>().Features.Get<IServerAddressesFeature>()!.Addresses.First();
+        var appWindow = Driver.CurrentWindowHandle;
+        var windows = _app!.Services.GetRequiredService<WindowLifetime>();
+        Assert.Equal(1, windows.OpenWindows);
+
+        Driver.SwitchTo().NewWindow(WindowType.Tab);
+        Driver.Navigate().GoToUrl(otherUrl);
+        var outcome = await report.Task.WaitAsync(TimeSpan.FromSeconds(60), TestContext.Current.CancellationToken);
+
+        Assert.Contains("hub=refused", outcome, StringComparison.Ordinal);
+        Assert.Contains("fire=", outcome, StringComparison.Ordinal);
+        Assert.DoesNotContain("answered 200", Uri.UnescapeDataString(outcome), StringComparison.Ordinal);
+        Assert.Contains(received, r => r.StartsWith("GET /probe.png", StringComparison.Ordinal));
+        Assert.DoesNotContain(received, r => r.Contains(_token, StringComparison.Ordinal));
+        Assert.DoesNotContain(received, r => r.Contains("LaserEngrave", StringComparison.OrdinalIgnoreCase));
+        Assert.Equal(1, windows.OpenWindows);
+        Assert.Equal("off", _app.Services.GetRequiredService<MainViewModel>().Machine.Connection is null ? "off" : "connected");
+
+        // The app's own window still works.
+        Driver.SwitchTo().Window(appWindow);
+        OpenSample("qr-code.bmp");
     }
 
     [Fact]

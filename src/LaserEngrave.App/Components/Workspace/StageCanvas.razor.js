@@ -248,7 +248,14 @@ export function create(host, dotnet) {
       if (url === s.maskUrl) return;
       s.maskUrl = url;
       if (!url) { s.mask = null; invalidate(); return; }
-      const img = new Image(); img.onload = invalidate; img.src = url; s.mask = img;
+      // Fetched with the token (an image element could only send cookies, and the page keeps none), drawn once decoded.
+      window.laserEngrave.fetch(url).then((r) => (r.ok ? r.blob() : null)).then((blob) => {
+        if (!blob || s.maskUrl !== url) return;
+        const img = new Image();
+        img.onload = () => { URL.revokeObjectURL(img.src); invalidate(); };
+        img.src = URL.createObjectURL(blob);
+        s.mask = img;
+      });
     },
     async setPlan(stream) {
       const buffer = stream ? await stream.arrayBuffer() : new ArrayBuffer(0);
