@@ -34,7 +34,17 @@ catch (ArgumentException ex)
     return 2;
 }
 
-await app.StartAsync();
+try
+{
+    await app.StartAsync();
+}
+catch (Exception ex) when (ex is IOException or System.Net.Sockets.SocketException)
+{
+    // A port in use, or an address this computer cannot bind: one line, as for a refused option.
+    Console.Error.WriteLine(ex is IOException ? ex.Message : $"cannot listen on {options.Url ?? "the configured address"}: {ex.Message}");
+    return 2;
+}
+
 var addresses = app.Services.GetRequiredService<IServer>().Features.Get<IServerAddressesFeature>()!.Addresses;
 if (addresses.FirstOrDefault(a => !LoopbackAddresses.IsLoopback(a)) is { } open)
 {
@@ -45,7 +55,21 @@ if (addresses.FirstOrDefault(a => !LoopbackAddresses.IsLoopback(a)) is { } open)
 }
 
 var token = app.Services.GetRequiredService<AccessToken>();
-var url = $"{addresses.First().TrimEnd('/')}/?{AccessToken.QueryName}={token.Value}";
+var address = addresses.First().TrimEnd('/');
+var url = $"{address}/?{AccessToken.QueryName}={token.Value}";
+var connectionFile = app.Services.GetRequiredService<AppFolders>().ConnectionFile;
+try
+{
+    // For scripts of the same user (clients/python): the address and token, readable by the user alone.
+    ConnectionFile.Write(connectionFile, address, token.Value);
+    app.Lifetime.ApplicationStopping.Register(() => ConnectionFile.Remove(connectionFile, token.Value));
+}
+catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
+{
+    Console.Error.WriteLine($"{connectionFile}: could not write the address for scripts ({ex.Message}); they can take it from the next line");
+}
+
+// Printed once the connection file is there, so whoever reads this line finds it.
 Console.WriteLine($"LaserEngrave is running at {url}");
 Console.WriteLine("Ctrl+C stops it (the laser is switched off first).");
 // Created now, so the window's connections are counted from the first.

@@ -13,6 +13,9 @@ public sealed record AppFolders(string DataFolder, string? LogFolder = null)
 
     public string SettingsFile => Path.Combine(DataFolder, "settings.json");
 
+    /// <summary>The running app's address and token for scripts (Web/ConnectionFile), beside the settings.</summary>
+    public string ConnectionFile => Path.Combine(DataFolder, "connection.json");
+
     public string PresetsFile => Path.Combine(DataFolder, "presets.json");
 
     public string UploadFolder => Path.Combine(DataFolder, "images");

@@ -15,6 +15,11 @@ public sealed class FileAccess(AppFolders folders, long maxUploadBytes = IFileAc
             name = "image";
         }
 
+        if (UploadNameProblem(name) is { } problem)
+        {
+            throw new UploadException(Printable(name), problem);
+        }
+
         Directory.CreateDirectory(folders.UploadFolder);
         var path = Path.Combine(folders.UploadFolder, name);
 
@@ -53,6 +58,40 @@ public sealed class FileAccess(AppFolders folders, long maxUploadBytes = IFileAc
                 _ when IsBodyTooLarge(ex) => new UploadException(name, TooLargeFor(maxUploadBytes), ex),
                 _ => new UploadException(name, ex.Message, ex),
             };
+        }
+    }
+
+    /// <summary>Why <paramref name="name"/> cannot name a file in the image folder, in the user's words; null when it can.</summary>
+    private static string? UploadNameProblem(string name) =>
+        name is "." or ".." ? "not a file name"
+        : name.Any(c => char.IsControl(c) || c is '/' or '\\' || Array.IndexOf(Path.GetInvalidFileNameChars(), c) >= 0) ? "the name has a character a file name cannot have"
+        : name.Length > IFileAccess.MaxUploadNameLength || System.Text.Encoding.UTF8.GetByteCount(name) > IFileAccess.MaxUploadNameLength
+            ? $"the name is longer than {IFileAccess.MaxUploadNameLength} characters"
+        : null;
+
+    /// <summary>A name as a message can show it: control characters as '?', at most 60 characters.</summary>
+    private static string Printable(string name)
+    {
+        var shown = new string([.. name.Select(c => char.IsControl(c) ? '?' : c)]);
+        return shown.Length <= 60 ? shown : shown[..57] + "...";
+    }
+
+    public void RemoveUpload(string path)
+    {
+        ArgumentNullException.ThrowIfNull(path);
+        var full = Path.GetFullPath(path);
+        if (!string.Equals(Path.GetDirectoryName(full), Path.GetFullPath(folders.UploadFolder), StringComparison.Ordinal))
+        {
+            return;
+        }
+
+        try
+        {
+            File.Delete(full);
+        }
+        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
+        {
+            // Left behind only if the folder cannot be written; the open failure is what the user is told.
         }
     }
 

@@ -6,11 +6,17 @@ public interface IFileAccess
     /// <summary>The largest upload the app takes, bytes (512 MB); the web server's and the form's limits are set to it.</summary>
     const long MaxUploadBytes = 512L << 20;
 
+    /// <summary>The longest upload name taken, characters: with the temporary name's prefix and suffix it stays within a file system's 255 bytes.</summary>
+    const int MaxUploadNameLength = 200;
+
     /// <summary>Keeps an uploaded file under the app's image folder; returns its path.</summary>
-    /// <exception cref="UploadException">Too large, interrupted or not writable: one line naming the file; nothing is left behind.</exception>
+    /// <exception cref="UploadException">A name that cannot be a file's (a control character such as NUL, a path separator, "." or "..", longer than <see cref="MaxUploadNameLength"/>), too large, interrupted or not writable: one line naming the file; nothing is left behind.</exception>
     Task<string> SaveUploadAsync(string fileName, Stream content, CancellationToken cancellationToken);
 
     bool Exists(string path);
+
+    /// <summary>Removes an upload the app could not open (it did not decode), so images/ keeps only files that open; any other path is left alone.</summary>
+    void RemoveUpload(string path);
 
     /// <summary>The sample images shipped with the app (assets/ of the repository), full paths, by name.</summary>
     IReadOnlyList<string> SampleImages();

@@ -218,7 +218,12 @@ internal static class ApiEndpoints
                 : Results.Json(new { error = ex.Message }, statusCode: StatusCodes.Status400BadRequest);
         }
 
-        main.Job.LoadImage(path);
+        if (!main.Job.LoadImage(path))
+        {
+            // Only files that open stay in images/; why it did not open is in the state's errors.
+            files.RemoveUpload(path);
+        }
+
         return State(main);
     }
 

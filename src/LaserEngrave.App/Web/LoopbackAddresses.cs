@@ -20,6 +20,11 @@ public static class LoopbackAddresses
             {
                 return Refusal(url, "--urls");
             }
+
+            if (IsIPv4Mapped(url))
+            {
+                return $"{url} (--urls) is an IPv4 address written as IPv6, which the server cannot listen on: write it as IPv4, e.g. --urls http://127.0.0.1:5080";
+            }
         }
 
         foreach (var endpoint in configuration.GetSection("Kestrel:Endpoints").GetChildren())
@@ -50,6 +55,10 @@ public static class LoopbackAddresses
 
         return IPAddress.TryParse(host.Trim('[', ']'), out var address) && IPAddress.IsLoopback(address);
     }
+
+    /// <summary>Whether <paramref name="url"/>'s host is an IPv4-mapped IPv6 address ([::ffff:127.0.0.1]): loopback, but no socket binds it.</summary>
+    private static bool IsIPv4Mapped(string url) =>
+        HostOf(url.Trim()) is { } host && IPAddress.TryParse(host.Trim('[', ']'), out var address) && address.IsIPv4MappedToIPv6;
 
     public static IEnumerable<string> Split(string urls) =>
         urls.Split(';', StringSplitOptions.RemoveEmptyEntries | StringSplitOptions.TrimEntries);

@@ -29,7 +29,8 @@ internal static class FormatSniffer
             throw reader.Fail($"{unsupported} image: no decoder for that format is available in this build; save it as PNG or BMP and load that");
         }
 
-        throw reader.Fail($"not a BMP, PNG, GIF, JPEG, TIFF, WebP or Netpbm image (it starts with bytes {Convert.ToHexString(head[..Math.Min(n, 8)])})");
+        // Never the file's bytes: the message reaches the API's answer, and the file may be any file on this computer.
+        throw reader.Fail("not a BMP, PNG, GIF, JPEG, TIFF, WebP or Netpbm image");
     }
 
     /// <summary>The format, or null with <paramref name="unsupported"/> naming a recognised format that has no decoder.</summary>

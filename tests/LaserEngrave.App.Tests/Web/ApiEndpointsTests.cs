@@ -62,7 +62,9 @@ public sealed class ApiEndpointsTests : IDisposable
 
         Assert.Contains("<title>LaserEngrave</title>", page, StringComparison.Ordinal);
         Assert.Contains("_framework/blazor.web", page, StringComparison.Ordinal);
-        Assert.Contains("id=\"stage-host\"", page, StringComparison.Ordinal);
+        Assert.Contains("boot", page, StringComparison.Ordinal);
+        // Not prerendered: the workspace comes over the page's connection, which shows the token.
+        Assert.DoesNotContain("id=\"stage-host\"", page, StringComparison.Ordinal);
     }
 
     [Fact]
@@ -101,6 +103,45 @@ public sealed class ApiEndpointsTests : IDisposable
 
         Assert.Contains("notes.png", state.GetProperty("job").GetProperty("errors").GetProperty("image").GetString(), StringComparison.Ordinal);
         Assert.Equal(JsonValueKind.Null, state.GetProperty("estimate").ValueKind);
+        // Only files that open stay in images/.
+        Assert.Empty(Directory.GetFiles(Path.Combine(_app.DataFolder, "images")));
+    }
+
+    [Theory]
+    [InlineData("a\0b.png", "a?b.png: the name has a character a file name cannot have")]
+    [InlineData("..", "..: not a file name")]
+    [InlineData(".", ".: not a file name")]
+    [InlineData("LONG", "the name is longer than 200 characters")]
+    [InlineData("a\\b.png", "a\\b.png: the name has a character a file name cannot have")]
+    public async Task Upload_OddName_OneClearBadRequestAndNothingKept(string name, string error)
+    {
+        name = name == "LONG" ? new string('a', 296) + ".png" : name;
+        using var content = new ByteArrayContent(await File.ReadAllBytesAsync(TestFiles.Asset("qr-code.bmp"), Token));
+
+        using var response = await _client.PostAsync($"/api/image?name={Uri.EscapeDataString(name)}", content, Token);
+
+        Assert.Equal(HttpStatusCode.BadRequest, response.StatusCode);
+        var message = (await response.Content.ReadFromJsonAsync<JsonElement>(Token)).GetProperty("error").GetString()!;
+        Assert.EndsWith(error, message, StringComparison.Ordinal);
+        Assert.DoesNotContain('\n', message);
+        Assert.DoesNotContain(_app.DataFolder, message, StringComparison.Ordinal);
+        var images = Path.Combine(_app.DataFolder, "images");
+        Assert.Empty(Directory.Exists(images) ? Directory.GetFileSystemEntries(images) : []);
+    }
+
+    [Fact]
+    public async Task OpenImage_AnyOtherFile_ErrorNamesTheFileNeverItsContent()
+    {
+        using var folder = TestFiles.NewFolder();
+        var path = Path.Combine(folder.Path, "passwd");
+        await File.WriteAllTextAsync(path, "root:x:0:0:root:/root:/bin/bash\n", Token);
+
+        var state = await PostAsync("/api/image/open", new { path });
+
+        var error = state.GetProperty("job").GetProperty("errors").GetProperty("image").GetString()!;
+        Assert.Equal($"{path}: not a BMP, PNG, GIF, JPEG, TIFF, WebP or Netpbm image", error);
+        Assert.DoesNotContain("726F6F74", state.ToString(), StringComparison.OrdinalIgnoreCase);
+        Assert.DoesNotContain("root:x", state.ToString(), StringComparison.Ordinal);
     }
 
     [Fact]

@@ -93,6 +93,54 @@ public sealed partial class AppProcessTests : IDisposable
     }
 
     [Fact]
+    public async Task Start_PortInUse_OneLineExit2()
+    {
+        using var other = new System.Net.Sockets.TcpListener(IPAddress.Loopback, 0);
+        other.Start();
+        var port = ((IPEndPoint)other.LocalEndpoint).Port;
+        var process = Start(["--urls", $"http://127.0.0.1:{port}"]);
+
+        await process.WaitForExitAsync(Token).WaitAsync(Bound, Token);
+
+        var error = await process.StandardError.ReadToEndAsync(Token);
+        Assert.Equal(2, process.ExitCode);
+        Assert.Equal($"Failed to bind to address http://127.0.0.1:{port}: address already in use.", Assert.Single(error.Split('\n', StringSplitOptions.RemoveEmptyEntries)));
+        Assert.Empty(await process.StandardOutput.ReadToEndAsync(Token));
+    }
+
+    [Fact]
+    public async Task Start_IPv4MappedAddress_OneLineExit2()
+    {
+        var process = Start(["--urls", "http://[::ffff:127.0.0.1]:5097"]);
+
+        await process.WaitForExitAsync(Token).WaitAsync(Bound, Token);
+
+        var error = await process.StandardError.ReadToEndAsync(Token);
+        Assert.Equal(2, process.ExitCode);
+        Assert.StartsWith("http://[::ffff:127.0.0.1]:5097 (--urls) is an IPv4 address written as IPv6", Assert.Single(error.Split('\n', StringSplitOptions.RemoveEmptyEntries)), StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task Start_ConnectionFile_AddressAndTokenReadableByTheUserAloneRemovedAtExit()
+    {
+        var process = Start(["--urls", "http://127.0.0.1:0"]);
+        var (address, secret) = await ReadStartLineAsync(process);
+        var file = Path.Combine(_data.Path, "connection.json");
+
+        var connection = JsonDocument.Parse(await File.ReadAllTextAsync(file, Token)).RootElement;
+        Assert.Equal(address, connection.GetProperty("url").GetString());
+        Assert.Equal(secret, connection.GetProperty("token").GetString());
+        if (!OperatingSystem.IsWindows())
+        {
+            Assert.Equal(UnixFileMode.UserRead | UnixFileMode.UserWrite, File.GetUnixFileMode(file));
+        }
+
+        await TerminateAsync(process);
+        await process.WaitForExitAsync(Token).WaitAsync(Bound, Token);
+        Assert.False(File.Exists(file));
+    }
+
+    [Fact]
     public async Task Start_NetworkAddressInAspNetCoreUrls_RefusedExit2()
     {
         var process = Start([], ("ASPNETCORE_URLS", "http://0.0.0.0:5098"));
@@ -134,7 +182,7 @@ public sealed partial class AppProcessTests : IDisposable
         await WaitForAsync(client, s => s.GetProperty("machine").GetProperty("connected").GetBoolean() && !s.GetProperty("activity").GetProperty("busy").GetBoolean());
         (await client.PostAsJsonAsync("/api/run/start", new { sampleId = "SIGTERM" }, Token)).EnsureSuccessStatusCode();
         await WaitForAsync(client, s => s.GetProperty("run").GetProperty("phase").GetString() == "running");
-        // The page's connection (Blazor's hub, over a WebSocket, authorised by the page's cookie) stays open through the exit.
+        // The page's connection (Blazor's hub, over a WebSocket, authorised by the token) stays open through the exit.
         using var page = await OpenPageConnectionAsync(address, secret);
 
         await TerminateAsync(process);
@@ -151,22 +199,21 @@ public sealed partial class AppProcessTests : IDisposable
     }
 
     /// <summary>
-    /// What an open page holds: the cookie from the address with the token, then Blazor's hub negotiated and its WebSocket
-    /// open with the handshake done, as the page's script does.
+    /// What an open page holds: Blazor's hub negotiated and its WebSocket open with the handshake done, as the page's
+    /// script does, showing the token as SignalR's access token (a header on the negotiation, access_token on the socket).
     /// </summary>
     private static async Task<ClientWebSocket> OpenPageConnectionAsync(string address, string secret)
     {
-        var cookies = new CookieContainer();
-        using var handler = new HttpClientHandler { CookieContainer = cookies };
-        using var browser = new HttpClient(handler) { BaseAddress = new Uri(address), Timeout = Bound };
+        using var browser = new HttpClient { BaseAddress = new Uri(address), Timeout = Bound };
         (await browser.GetAsync($"/?token={secret}", Token)).EnsureSuccessStatusCode();
+        browser.DefaultRequestHeaders.Authorization = new("Bearer", secret);
         using var negotiate = await browser.PostAsync("/_blazor/negotiate?negotiateVersion=1", null, Token);
         negotiate.EnsureSuccessStatusCode();
         var connectionToken = (await negotiate.Content.ReadFromJsonAsync<JsonElement>(Token)).GetProperty("connectionToken").GetString();
 
         var socket = new ClientWebSocket();
-        socket.Options.Cookies = cookies;
-        await socket.ConnectAsync(new Uri($"{address.Replace("http://", "ws://", StringComparison.Ordinal)}/_blazor?id={connectionToken}"), Token);
+        socket.Options.SetRequestHeader("Origin", address);
+        await socket.ConnectAsync(new Uri($"{address.Replace("http://", "ws://", StringComparison.Ordinal)}/_blazor?id={connectionToken}&access_token={secret}"), Token);
         await socket.SendAsync("{\"protocol\":\"blazorpack\",\"version\":1}\u001e"u8.ToArray(), WebSocketMessageType.Text, endOfMessage: true, Token);
         var reply = new byte[256];
         var received = await socket.ReceiveAsync(reply, Token);

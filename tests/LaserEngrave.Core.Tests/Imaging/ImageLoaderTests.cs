@@ -40,7 +40,7 @@ public class ImageLoaderTests
     {
         var ex = ImageAssert.Refused("hello, world"u8.ToArray(), "notes.bmp");
 
-        Assert.Equal("notes.bmp: not a BMP, PNG, GIF, JPEG, TIFF, WebP or Netpbm image (it starts with bytes 68656C6C6F2C2077)", ex.Message);
+        Assert.Equal("notes.bmp: not a BMP, PNG, GIF, JPEG, TIFF, WebP or Netpbm image", ex.Message);
     }
 
     [Fact]
