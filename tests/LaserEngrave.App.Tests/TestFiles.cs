@@ -5,7 +5,12 @@ namespace LaserEngrave.App.Tests;
 /// <summary>Files the tests use: the repository's assets and small images written on the fly.</summary>
 internal static class TestFiles
 {
-    public static string Asset(string name)
+    public static string Asset(string name) => Path.Combine(RepositoryRoot(), "assets", name);
+
+    /// <summary>A file of the repository, by its path from the root (docs/openapi.json).</summary>
+    public static string RepositoryFile(string path) => Path.Combine(RepositoryRoot(), path);
+
+    private static string RepositoryRoot()
     {
         var folder = new DirectoryInfo(AppContext.BaseDirectory);
         while (folder is not null && !File.Exists(Path.Combine(folder.FullName, "LaserEngrave.sln")))
@@ -13,7 +18,7 @@ internal static class TestFiles
             folder = folder.Parent;
         }
 
-        return Path.Combine(folder?.FullName ?? throw new InvalidOperationException("repository root not found"), "assets", name);
+        return folder?.FullName ?? throw new InvalidOperationException("repository root not found");
     }
 
     /// <summary>A temporary folder, deleted when disposed.</summary>

@@ -35,23 +35,32 @@ internal static class ApiEndpoints
             }
         });
 
-        api.MapGet("/state", (MainViewModel main) => Results.Json(StateSnapshot.From(main)));
+        api.MapGet("/state", (MainViewModel main) => Results.Json(StateSnapshot.From(main)))
+            .WithSummary("The whole state: image, job, estimate, machine, test moves, run, log, and what holds the machine (activity).");
 
-        api.MapPost("/image", UploadAsync);
-        api.MapPost("/image/open", (MainViewModel main, PathRequest request) => OpenImage(main, request.Path));
+        api.MapPost("/image", UploadAsync)
+            .Accepts<Stream>("application/octet-stream")
+            .WithSummary("Keeps the request body (the file's bytes) under the data folder's images/ and opens it; ?name= is its file name.");
+        api.MapPost("/image/open", (MainViewModel main, PathRequest request) => OpenImage(main, request.Path))
+            .WithSummary("Opens an image or drawing file on this computer (regular files only).");
         api.MapGet("/image/original.png", (MainViewModel main) =>
-            main.Job.OriginalPreviewPng() is { } png ? Results.File(png, "image/png") : Results.NotFound());
+            main.Job.OriginalPreviewPng() is { } png ? Results.File(png, "image/png") : Results.NotFound())
+            .WithSummary("The image, at most 1024 px on its longer side.");
         api.MapGet("/image/mask.png", (MainViewModel main, IImageService images) =>
-            main.Job.Mask is { } mask ? Results.File(images.RenderMaskPng(mask, MaxPreviewSidePx), "image/png") : Results.NotFound());
+            main.Job.Mask is { } mask ? Results.File(images.RenderMaskPng(mask, MaxPreviewSidePx), "image/png") : Results.NotFound())
+            .WithSummary("The mask (black = burn), at most 1024 px.");
 
-        api.MapPost("/job", (MainViewModel main, Dictionary<string, JsonElement> changes) => EditJob(main, changes));
-        api.MapGet("/plan", (MainViewModel main) => Plan(main));
+        api.MapPost("/job", (MainViewModel main, Dictionary<string, JsonElement> changes) => EditJob(main, changes))
+            .WithSummary("Changes job values ({\"widthMm\": 20, \"laserFrequencyHz\": 5000, ...}; fields in docs/api.md) and plans once; 400 names each unusable field.");
+        api.MapGet("/plan", (MainViewModel main) => Plan(main))
+            .WithSummary("The plan's moves as [kind, x0, y0, x1, y1, ...] in microsteps, with the travel and the job's edges.");
 
         api.MapGet("/ports", (MainViewModel main) =>
         {
             main.Machine.RefreshPorts();
             return Results.Json(main.Machine.Ports);
-        });
+        })
+            .WithSummary("The serial ports.");
         api.MapPost("/machine/connect", (MainViewModel main, ConnectRequest request) =>
         {
             if (Refused(main, main.Machine.ConnectCommand) is { } refused)
@@ -63,10 +72,14 @@ internal static class ApiEndpoints
             main.Machine.StagePort = request.StagePort;
             main.Machine.LaserPort = request.LaserPort;
             return Start(main, main.Machine.ConnectCommand);
-        });
-        api.MapPost("/machine/disconnect", (MainViewModel main) => Start(main, main.Machine.DisconnectCommand));
-        api.MapPost("/machine/identify", (MainViewModel main) => Start(main, main.Machine.IdentifyCommand));
-        api.MapPost("/machine/home", (MainViewModel main) => Start(main, main.Machine.HomeCommand));
+        })
+            .WithSummary("202; connects (the simulator, or the stage and laser ports) and reads both axes and the gate.");
+        api.MapPost("/machine/disconnect", (MainViewModel main) => Start(main, main.Machine.DisconnectCommand))
+            .WithSummary("202; disconnects.");
+        api.MapPost("/machine/identify", (MainViewModel main) => Start(main, main.Machine.IdentifyCommand))
+            .WithSummary("202; reads the devices' identity and state again.");
+        api.MapPost("/machine/home", (MainViewModel main) => Start(main, main.Machine.HomeCommand))
+            .WithSummary("202; laser off, both axes home.");
 
         api.MapPost("/moves/jog", (MainViewModel main, JogRequest request) =>
         {
@@ -81,7 +94,8 @@ internal static class ApiEndpoints
             }
 
             return Start(main, main.TestMoves.JogCommand, request.Direction);
-        });
+        })
+            .WithSummary("202; a step in x+, x-, y+ or y- (1 µm to 60 mm).");
         api.MapPost("/moves/goto", (MainViewModel main, GoToRequest request) =>
         {
             if (Refused(main, main.TestMoves.GoToCommand) is { } refused)
@@ -92,9 +106,12 @@ internal static class ApiEndpoints
             main.TestMoves.GoToXMm = request.XMm;
             main.TestMoves.GoToYMm = request.YMm;
             return Start(main, main.TestMoves.GoToCommand);
-        });
-        api.MapPost("/moves/origin", (MainViewModel main) => Start(main, main.TestMoves.GoToOriginCommand));
-        api.MapPost("/moves/frame", (MainViewModel main) => Start(main, main.TestMoves.FrameCommand));
+        })
+            .WithSummary("202; moves to a position in mm, laser off.");
+        api.MapPost("/moves/origin", (MainViewModel main) => Start(main, main.TestMoves.GoToOriginCommand))
+            .WithSummary("202; to the job's top-left corner, laser off.");
+        api.MapPost("/moves/frame", (MainViewModel main) => Start(main, main.TestMoves.FrameCommand))
+            .WithSummary("202; traces the job's outline, laser off.");
         api.MapPost("/moves/fire", (MainViewModel main, FireRequest request) =>
         {
             if (Refused(main, main.TestMoves.TestFireCommand) is { } refused)
@@ -104,8 +121,10 @@ internal static class ApiEndpoints
 
             main.TestMoves.TestFirePulses = request.Pulses;
             return Start(main, main.TestMoves.TestFireCommand);
-        });
-        api.MapPost("/moves/stop", (MainViewModel main) => Do(main, main.TestMoves.StopCommand.Execute));
+        })
+            .WithSummary("202; a burst of pulses at the job's frequency where the stage stands.");
+        api.MapPost("/moves/stop", (MainViewModel main) => Do(main, main.TestMoves.StopCommand.Execute))
+            .WithSummary("Stops the test move, jog or homing under way (laser off).");
 
         api.MapPost("/run/start", (MainViewModel main, RunStartRequest request) =>
         {
@@ -122,7 +141,8 @@ internal static class ApiEndpoints
             main.Log.Notes = request.Notes;
             main.Log.SampleId = request.SampleId;
             return Start(main, main.Run.StartCommand);
-        });
+        })
+            .WithSummary("202; runs the planned job (all passes); a second start during a run is ignored (200 with a note).");
         api.MapPost("/run/continue", (MainViewModel main) =>
         {
             if (main.Run.IsActive)
@@ -133,20 +153,28 @@ internal static class ApiEndpoints
             return main.Run.ContinueUnavailableReason is { } reason ? Busy(reason)
                 : main.Run.StoppedAt is null ? Busy("no stopped run to continue: the last run completed, or none ran")
                 : Start(main, main.Run.ContinueCommand);
-        });
-        api.MapPost("/run/pause", (MainViewModel main) => Do(main, main.Run.PauseCommand.Execute));
-        api.MapPost("/run/resume", (MainViewModel main) => Do(main, main.Run.ResumeCommand.Execute));
-        api.MapPost("/run/abort", (MainViewModel main) => Do(main, main.Run.AbortCommand.Execute));
+        })
+            .WithSummary("202; continues the stopped run; 409 with the reason when it cannot.");
+        api.MapPost("/run/pause", (MainViewModel main) => Do(main, main.Run.PauseCommand.Execute))
+            .WithSummary("Pauses the run after the current move.");
+        api.MapPost("/run/resume", (MainViewModel main) => Do(main, main.Run.ResumeCommand.Execute))
+            .WithSummary("Resumes a paused run.");
+        api.MapPost("/run/abort", (MainViewModel main) => Do(main, main.Run.AbortCommand.Execute))
+            .WithSummary("Aborts the run: laser off first, then the stage stops; the log is written.");
 
         api.MapPost("/logs/load", (MainViewModel main, PathRequest request) =>
         {
             main.Activity.ThrowIfJobLocked();
             return Do(main, _ => main.Log.LoadCommand.Execute(request.Path ?? string.Empty));
-        });
-        api.MapPost("/logs/open-folder", (MainViewModel main) => Do(main, main.Log.OpenFolderCommand.Execute));
-        api.MapGet("/logs/export", (MainViewModel main, string path, string? format) => Export(main, path, format));
+        })
+            .WithSummary("Puts a past run's image and values back.");
+        api.MapPost("/logs/open-folder", (MainViewModel main) => Do(main, main.Log.OpenFolderCommand.Execute))
+            .WithSummary("Opens the log folder on this computer's screen.");
+        api.MapGet("/logs/export", (MainViewModel main, string path, string? format) => Export(main, path, format))
+            .WithSummary("A logged run's file (format=json or txt); only runs the history lists.");
 
-        api.MapPost("/settings/theme", (MainViewModel main, ThemeRequest request) => Do(main, _ => main.SetTheme(request.Theme)));
+        api.MapPost("/settings/theme", (MainViewModel main, ThemeRequest request) => Do(main, _ => main.SetTheme(request.Theme)))
+            .WithSummary("The theme: light or dark.");
     }
 
     private static JsonHttpResult<object> State(MainViewModel main) => TypedResults.Json(StateSnapshot.From(main));

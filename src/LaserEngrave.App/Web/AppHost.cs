@@ -58,6 +58,7 @@ public static class AppHost
             main.Restore();
             return main;
         });
+        services.AddOpenApi(ApiDescription.Configure);
         services.AddRazorComponents().AddInteractiveServerComponents();
         services.AddFluentUIComponents();
         services.AddWindowLifetime();
@@ -69,6 +70,7 @@ public static class AppHost
         app.MapStaticAssets();
         app.MapRazorComponents<Components.App>().AddInteractiveServerRenderMode(o => o.ContentSecurityFrameAncestorsPolicy = "'none'");
         ApiEndpoints.Map(app);
+        app.MapOpenApi(ApiDescription.Path);
         app.Lifetime.ApplicationStopping.Register(() => Shutdown(app.Services));
 
         // The run log's JSON writer is built in the background, so the first log (an abort's at exit too) does not wait for it.
