@@ -140,6 +140,66 @@ public sealed partial class AppProcessTests : IDisposable
         Assert.False(File.Exists(file));
     }
 
+    /// <summary>Runs clients/python/examples/test_grid.py with python3 and the arguments; its exit code and output.</summary>
+    private static async Task<(int Exit, string Output, string Error)> RunPythonExampleAsync(params string[] args)
+    {
+        var start = new ProcessStartInfo("python3") { RedirectStandardOutput = true, RedirectStandardError = true, UseShellExecute = false };
+        start.ArgumentList.Add(TestFiles.RepositoryFile(Path.Combine("clients", "python", "examples", "test_grid.py")));
+        foreach (var arg in args)
+        {
+            start.ArgumentList.Add(arg);
+        }
+
+        using var python = Process.Start(start)!;
+        var output = python.StandardOutput.ReadToEndAsync(Token);
+        var error = python.StandardError.ReadToEndAsync(Token);
+        await python.WaitForExitAsync(Token).WaitAsync(TimeSpan.FromMinutes(5), Token);
+        return (python.ExitCode, await output, await error);
+    }
+
+    [Fact]
+    public async Task PythonClient_TestGridOnTheSimulator_EachCellRunAndItsLogCollected()
+    {
+        var process = Start(["--urls", "http://127.0.0.1:0"]);
+        await ReadStartLineAsync(process);
+        using var logs = TestFiles.NewFolder();
+
+        // The lab's script as it is shipped: the address and token from the app's connection file, a mark uploaded,
+        // the simulator connected, one run a cell (burn speed a row, frequency a column), each cell's log fetched.
+        var (exit, output, error) = await RunPythonExampleAsync(
+            "--simulator", "--connection", Path.Combine(_data.Path, "connection.json"), "--speeds", "4", "--frequencies", "1000,5000",
+            "--size", "0.6", "--out", logs.Path);
+
+        Assert.True(exit == 0, $"exit {exit}\n{output}\n{error}");
+        Assert.Contains("2 of 2 cells completed", output, StringComparison.Ordinal);
+        foreach (var (cell, frequency, x) in new[] { ("r0c0", 1000.0, 1.0), ("r0c1", 5000.0, 2.1) })
+        {
+            using var record = JsonDocument.Parse(await File.ReadAllTextAsync(Path.Combine(logs.Path, cell + ".json"), Token));
+            var root = record.RootElement;
+            Assert.Equal("completed", root.GetProperty("outcome").GetString(), ignoreCase: true);
+            Assert.Equal("grid-" + cell, root.GetProperty("sampleId").GetString());
+            Assert.Equal(frequency, root.GetProperty("process").GetProperty("laserFrequencyHz").GetDouble());
+            Assert.Equal(4, root.GetProperty("process").GetProperty("burnSpeedMmPerS").GetDouble());
+            Assert.Equal(x, root.GetProperty("geometry").GetProperty("originXMm").GetDouble(), 3);
+        }
+
+        Assert.Equal(3, (await File.ReadAllLinesAsync(Path.Combine(logs.Path, "summary.csv"), Token)).Length);
+        Assert.Equal(2, Directory.GetFiles(Path.Combine(_data.Path, "logs"), "*.json", SearchOption.AllDirectories).Length);
+    }
+
+    [Fact]
+    public async Task PythonClient_NoApp_OneLineExit2()
+    {
+        using var folder = TestFiles.NewFolder();
+        var missing = Path.Combine(folder.Path, "connection.json");
+
+        var (exit, output, error) = await RunPythonExampleAsync("--connection", missing);
+
+        Assert.Equal(2, exit);
+        Assert.Equal($"test_grid: {missing}: no such file: is LaserEngrave running (it writes the file at start)?", error.TrimEnd());
+        Assert.Empty(output);
+    }
+
     [Fact]
     public async Task Start_NetworkAddressInAspNetCoreUrls_RefusedExit2()
     {
