@@ -58,9 +58,17 @@
     return;
   }
 
-  Blazor.start({
-    circuit: {
-      configureSignalR: (builder) => builder.withUrl('_blazor', { accessTokenFactory: token }),
-    },
-  }).catch(refuse);
+  // A token of an earlier start (the app restarted on this port) is refused here: Blazor would wait on its circuit.
+  authorisedFetch('api/state').then((response) => {
+    if (response.status === 401) {
+      refuse();
+      return;
+    }
+
+    Blazor.start({
+      circuit: {
+        configureSignalR: (builder) => builder.withUrl('_blazor', { accessTokenFactory: token }),
+      },
+    });
+  }, refuse);
 })();

@@ -325,6 +325,30 @@ public sealed class BrowserTests : IAsyncLifetime
     }
 
     [Fact]
+    public void Page_ReloadedKeepsTheToken_ANewTabOrAStaleTokenIsToldToOpenThePrintedAddress()
+    {
+        // The token left the address bar and no cookie holds it: the tab's sessionStorage does.
+        Assert.DoesNotContain("token", Driver.Url, StringComparison.Ordinal);
+        Assert.DoesNotContain(Driver.Manage().Cookies.AllCookies, c => c.Value.Contains(_token, StringComparison.Ordinal));
+        Driver.Navigate().Refresh();
+        WaitFor(d => d.FindElement(By.Id("app")).GetAttribute("data-interactive") == "true", "the reloaded page is interactive");
+
+        // A tab opened by hand has no token: one line says what to do, and no connection is made.
+        var windows = _app!.Services.GetRequiredService<WindowLifetime>();
+        Driver.SwitchTo().NewWindow(WindowType.Tab);
+        Driver.Navigate().GoToUrl(_url);
+        WaitFor(d => d.FindElement(By.Id("no-token")).Text.Contains("printed", StringComparison.Ordinal), "told to open the printed address");
+        Assert.Equal(1, windows.OpenWindows);
+
+        // A token of an earlier start (the app restarted on the same port): refused, then the same line.
+        Driver.ExecuteScript("sessionStorage.setItem('laserengrave-token', 'an-earlier-start');");
+        Driver.Navigate().Refresh();
+        WaitFor(d => d.FindElements(By.Id("no-token")).Count == 1, "a stale token told to open the printed address");
+        Assert.Null(Driver.ExecuteScript("return sessionStorage.getItem('laserengrave-token');"));
+        Assert.Equal(1, windows.OpenWindows);
+    }
+
+    [Fact]
     public void Drawing_SampleOpened_ItsStrokesDrawnOnTheStageWithTheEstimate()
     {
         Resize(1440, 1000);
