@@ -20,6 +20,21 @@ internal static class ApiDescription
         {
             var group = context.Description.RelativePath?.Split('/') is [_, var first, ..] ? first.Split('?')[0] : "api";
             operation.Tags = new HashSet<OpenApiTagReference> { new(group, context.Document) };
+
+            // The upload reads its body itself, whatever its content type (curl --data-binary sends a form's): described
+            // here, not declared on the endpoint, which would refuse other content types.
+            if (context.Description.RelativePath == "api/image" && context.Description.HttpMethod == "POST")
+            {
+                operation.RequestBody = new OpenApiRequestBody
+                {
+                    Required = true,
+                    Description = "The file's bytes.",
+                    Content = new Dictionary<string, OpenApiMediaType>
+                    {
+                        ["application/octet-stream"] = new() { Schema = new OpenApiSchema { Type = JsonSchemaType.String, Format = "binary" } },
+                    },
+                };
+            }
             return Task.CompletedTask;
         });
         options.AddDocumentTransformer((document, _, _) =>

@@ -39,7 +39,6 @@ internal static class ApiEndpoints
             .WithSummary("The whole state: image, job, estimate, machine, test moves, run, log, and what holds the machine (activity).");
 
         api.MapPost("/image", UploadAsync)
-            .Accepts<Stream>("application/octet-stream")
             .WithSummary("Keeps the request body (the file's bytes) under the data folder's images/ and opens it; ?name= is its file name.");
         api.MapPost("/image/open", (MainViewModel main, PathRequest request) => OpenImage(main, request.Path))
             .WithSummary("Opens an image or drawing file on this computer (regular files only).");

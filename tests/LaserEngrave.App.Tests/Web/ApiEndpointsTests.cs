@@ -92,6 +92,21 @@ public sealed class ApiEndpointsTests : IDisposable
         Assert.Equal("image/png", mask.Content.Headers.ContentType!.MediaType);
     }
 
+    [Theory]
+    [InlineData("application/x-www-form-urlencoded")]
+    [InlineData("image/bmp")]
+    [InlineData("application/octet-stream")]
+    public async Task Upload_AnyContentType_Opened(string contentType)
+    {
+        // curl --data-binary sends a form's content type; the upload takes the body's bytes whatever it is called.
+        using var content = new ByteArrayContent(await File.ReadAllBytesAsync(TestFiles.Asset("qr-code.bmp"), Token));
+        content.Headers.ContentType = new(contentType);
+
+        using var response = await _client.PostAsync("/api/image?name=qr-code.bmp", content, Token);
+
+        Assert.Equal(HttpStatusCode.OK, response.StatusCode);
+    }
+
     [Fact]
     public async Task Upload_NotAnImage_ErrorBesideImage()
     {
