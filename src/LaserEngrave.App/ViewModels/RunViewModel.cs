@@ -458,7 +458,10 @@ public sealed partial class RunViewModel : ObservableObject
         var final = result.State;
         if (final == RunState.Failed)
         {
-            Error = record.Fault?.Message ?? "the run failed";
+            // Which path confirmed the laser off is said only when it was not the usual OFF (docs/execution.md).
+            Error = record.Fault is { } fault
+                ? fault.LaserOffBy is null or LaserOffPath.Off ? fault.Message : $"{fault.Message}; laser off: {RunSummaryText.LaserOff(fault)}"
+                : "the run failed";
         }
 
         var stopPoint = record.Outcome is RunOutcome.Failed or RunOutcome.Aborted ? record.StoppedAt : null;

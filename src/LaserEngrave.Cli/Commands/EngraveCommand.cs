@@ -209,6 +209,11 @@ internal static class EngraveCommand
         if (record.Outcome != RunOutcome.Completed)
         {
             stderr.WriteLine($"laserengrave: run {summary.Outcome}: {record.Fault?.Message ?? "no reason given"} (log: {files.JsonPath})");
+            if (record.Fault is { } fault)
+            {
+                stderr.WriteLine($"laserengrave: laser off: {RunSummaryText.LaserOff(fault)}");
+            }
+
             return CliRunner.Failure;
         }
 

@@ -261,7 +261,7 @@ public sealed partial class RunExecutor
             }
 
             _lastGateWrite = offWrite;
-            WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off");
+            WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off", switchOff: true);
             ThrowIfSwitchOffLate(offWrite, offWritten, timing);
 
             // A run counts as burned once its switch-on is acknowledged (a silent gate burns nothing).
@@ -545,9 +545,10 @@ public sealed partial class RunExecutor
     // The actual time when it is later than planned by more than the clock's rounding, else the planned one.
     private static double Later(double planned, double actual) => actual > planned + LateSeconds ? actual : planned;
 
-    private void WatchGate(Task reply, double expectedSeconds, string what)
+    /// <param name="switchOff">A switch-off: refused or unanswered, the laser may still fire, so the fault takes every path to off.</param>
+    private void WatchGate(Task reply, double expectedSeconds, string what, bool switchOff = false)
     {
-        Watch(reply, expectedSeconds, what, gate: true);
+        Watch(reply, expectedSeconds, what, gate: true, switchOff: switchOff);
 
         // When the gate last showed it was alive: its reply left it a reply's wire and adapter time before it came in.
         _ = reply.ContinueWith(
@@ -590,11 +591,11 @@ public sealed partial class RunExecutor
     /// that one in its last moments, the device may never report the earlier end (the protocol leaves it open). So an
     /// earlier move whose reply is missing or says it was replaced counts as done once the later move reports its end.
     /// </remarks>
-    private void Watch(Task reply, double expectedSeconds, string what, bool gate = false, string? axis = null)
+    private void Watch(Task reply, double expectedSeconds, string what, bool gate = false, string? axis = null, bool switchOff = false)
     {
         var jitter = gate ? _timing?.GateJitterSeconds : _timing?.StageJitterSeconds;
         var deadline = expectedSeconds + ((jitter ?? 0) * 2) + (Options.StallMarginMs / 1000);
-        var watched = new Watched(reply, deadline, what);
+        var watched = new Watched(reply, deadline, what) { SwitchOff = switchOff };
         if (axis is not null)
         {
             if (_lastMove.TryGetValue(axis, out var before))
@@ -633,6 +634,11 @@ public sealed partial class RunExecutor
             {
                 await successor.Done.Task;
                 return;
+            }
+
+            if (watched.SwitchOff)
+            {
+                MarkSwitchOffFailed();
             }
 
             if (!reply.IsCompleted)
@@ -752,6 +758,9 @@ public sealed partial class RunExecutor
         public double Deadline { get; } = deadline;
 
         public string What { get; } = what;
+
+        /// <summary>A switch-off: refused or unanswered, the fault's off sequence takes every path at once.</summary>
+        public bool SwitchOff { get; init; }
 
         /// <summary>The next move of the same axis, which settles this one if this one's end is never reported.</summary>
         public Watched? Successor { get; set; }

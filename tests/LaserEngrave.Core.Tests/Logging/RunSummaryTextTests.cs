@@ -29,6 +29,22 @@ public sealed class RunSummaryTextTests : IDisposable
         Assert.Contains("Notes:              first try\n                    focus 2 turns down", text, StringComparison.Ordinal);
     }
 
+    [Theory]
+    [InlineData(true, LaserOffPath.Off, "Laser off:          confirmed by the gate (it acknowledged OFF)")]
+    [InlineData(true, LaserOffPath.OffAgain, "Laser off:          confirmed by the gate acknowledging OFF sent again (it had refused or not answered a switch-off")]
+    [InlineData(true, LaserOffPath.FrequencyZero, "Laser off:          confirmed by the gate acknowledging FREQ 0")]
+    [InlineData(false, LaserOffPath.None, "Laser off:          NOT CONFIRMED: the gate acknowledged neither OFF nor FREQ 0; its port was closed so that its watchdog switches the laser off; a person must check the laser")]
+    public void Format_LaserOffPath_SaysWhichCommandConfirmedItOrThatNoneDid(bool confirmed, LaserOffPath path, string line)
+    {
+        var record = runs.FailedRecord() with { Fault = new RunFault("laser gate refused 'OFF': ERR 1", null, confirmed, path) };
+
+        var text = RunSummaryText.Format(record);
+        var read = RunRecordJson.Deserialize(RunRecordJson.Serialize(record), "test.json");
+
+        Assert.Contains(line, text, StringComparison.Ordinal);
+        Assert.Equal(path, read.Fault!.LaserOffBy);
+    }
+
     [Fact]
     public void Format_CompletedRun_HasNoFaultOrStopLines()
     {
