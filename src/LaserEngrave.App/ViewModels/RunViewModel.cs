@@ -406,6 +406,18 @@ public sealed partial class RunViewModel : ObservableObject
         }
 
         using var held = lease;
+        try
+        {
+            // A run must not start without a place for its log (a read-only or full disk is found now, not after the burn).
+            _log.CheckWritable();
+        }
+        catch (RunLogException ex)
+        {
+            Error = ex.Message;
+            State = RunState.Failed;
+            return;
+        }
+
         var continuedFrom = resumeFrom is null && resumeLayers is null ? null : _log.LastRun?.Path;
         var (job, layered) = (target.Job, target.Layered);
         _startedTicks = _time.GetTimestamp();
