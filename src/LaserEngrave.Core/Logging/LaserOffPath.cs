@@ -6,7 +6,7 @@ public enum LaserOffPath
     /// <summary>The gate acknowledged the OFF sent on the fault or the abort: the usual way.</summary>
     Off,
 
-    /// <summary>A switch-off was refused or went unanswered; the gate acknowledged OFF sent again with every other path.</summary>
+    /// <summary>A switch-off was refused or not answered in time; the gate acknowledged OFF (late, or sent again with every other path).</summary>
     OffAgain,
 
     /// <summary>A switch-off was refused or went unanswered, and OFF again too; the gate acknowledged FREQ 0.</summary>

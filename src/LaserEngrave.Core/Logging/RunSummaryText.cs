@@ -14,7 +14,7 @@ public static class RunSummaryText
         ArgumentNullException.ThrowIfNull(fault);
         return (fault.LaserOffConfirmed, fault.LaserOffBy) switch
         {
-            (true, LaserOffPath.OffAgain) => "confirmed by the gate acknowledging OFF sent again (it had refused or not answered a switch-off; FREQ 0, its shortest watchdog and a stage stop went with it)",
+            (true, LaserOffPath.OffAgain) => "confirmed by the gate acknowledging OFF, late or sent again (it had refused or not answered a switch-off in time; FREQ 0, its shortest watchdog and a stage stop went with it)",
             (true, LaserOffPath.FrequencyZero) => "confirmed by the gate acknowledging FREQ 0 (it had refused or not answered a switch-off and OFF again)",
             (true, _) => "confirmed by the gate (it acknowledged OFF)",
             (false, LaserOffPath.None) => "NOT CONFIRMED: the gate acknowledged neither OFF nor FREQ 0; its port was closed so that its watchdog switches the laser off; a person must check the laser",

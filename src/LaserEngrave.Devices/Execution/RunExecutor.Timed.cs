@@ -351,6 +351,7 @@ public sealed partial class RunExecutor
         ThrowIfAborted();
         var upLate = RunSeconds - upWrite;
         Watch(Stage.X.SetTargetSpeedAsync(_travelSpeedData, token), Sent(start + bump.SpeedUpArrival, RunSeconds, timing) + timing.StageReplySeconds, "Set Target Speed (X, a flown gap)");
+        NoteGapFlown();
         var downWrite = start + bump.SpeedDownArrival - timing.StageCommandSeconds;
         await DelayUntilAsync(downWrite, token);
         var downLate = RunSeconds - downWrite;
@@ -778,10 +779,14 @@ public sealed partial class RunExecutor
     private RunStopPoint CutWithin(RunStopPoint stop)
     {
         if (Job?.Plan.Timing is not { } timing || _burning is not { } burning || burning.Index != stop.MoveIndex
-            || !burning.Acknowledged.IsCompletedSuccessfully || _activeStroke is not { } stroke || _stopMatchesMotion == false)
+            || _activeStroke is not { } stroke || _stopMatchesMotion == false || SwitchOnRefused(burning.Acknowledged))
         {
             return stop;
         }
+
+        // A switch-on never acknowledged (its reply lost, garbled or too late) may still have fired: the gate carries
+        // out what it hears. The laser then burned from the run's start to where it went off, and the resumed run burns it again.
+        var fired = burning.Acknowledged.IsCompletedSuccessfully;
 
         // Off when the gate confirmed the fault's switch-off (its lead after it left, at the earliest). With the gate's
         // link lost, it fired on until its watchdog tripped, a watchdog time after the last command it had: at the
@@ -802,25 +807,84 @@ public sealed partial class RunExecutor
             return stop;
         }
 
-        var along = stroke.Plan.OffsetAt(offAt - stroke.Origin) - (timing.BurnSpeed * timing.StageJitterSeconds);
+        var along = Along(stroke, offAt - stroke.Origin, timing) - (timing.BurnSpeed * timing.StageJitterSeconds);
         if (_stoppedAtKnownPosition)
         {
             // Stopped while the laser still fired (its gate out of reach): it burned no further than where X stopped.
             along = Math.Min(along, (_x - stroke.StartX) * stroke.Direction);
         }
 
-        if (Job.Plan.ResumeWithin(burning.Move, stroke.StartX + (stroke.Direction * along)) is not { } cut)
+        var burnedTo = stroke.StartX + (stroke.Direction * along);
+        var cut = Job.Plan.ResumeWithin(burning.Move, burnedTo);
+        if (cut is null || !fired)
         {
-            return stop;
+            // Off within the run's first pixel, or a switch-on not known to have fired: the run burns again from its
+            // start, so the pixel the laser went off in is the one that may get part of its dose twice; the log names it.
+            var reached = (burnedTo - burning.Move.X0) * stroke.Direction >= 0;
+            var column = Job.Plan.ColumnAt(burning.Move, Math.Clamp(burnedTo, Math.Min(burning.Move.X0, burning.Move.X1), Math.Max(burning.Move.X0, burning.Move.X1)));
+            return !reached ? stop : stop with
+            {
+                CutPixel = new PixelIndex(column, burning.Move.Row),
+                OffByGateWatchdog = byWatchdog,
+            };
         }
 
         return stop with
         {
-            ResumeXMicrosteps = cut.ResumeX,
-            CutPixel = new PixelIndex(cut.Column, burning.Move.Row),
+            ResumeXMicrosteps = cut.Value.ResumeX,
+            CutPixel = new PixelIndex(cut.Value.Column, burning.Move.Row),
             ExpectedXMicrosteps = _stopMatchesMotion is null ? stroke.EndX : null,
             OffByGateWatchdog = byWatchdog,
         };
+    }
+
+    /// <summary>
+    /// Where the stroke's motion put X <paramref name="seconds"/> after its origin, microsteps from its start: its plan,
+    /// but at the burn speed on from a flown gap whose speed-up was never sent (the run ended first), as the stage went.
+    /// </summary>
+    private static double Along(ActiveStroke stroke, double seconds, TimedSwitching timing)
+    {
+        var unflown = stroke.Plan.Bumps.OrderBy(b => b.Exit).Skip(stroke.GapsFlown).FirstOrDefault();
+        return unflown is not null && seconds > unflown.SpeedUpArrival
+            ? Math.Min(stroke.Plan.Length, stroke.Plan.OffsetAt(unflown.SpeedUpArrival) + (timing.BurnSpeed * (seconds - unflown.SpeedUpArrival)))
+            : stroke.Plan.OffsetAt(seconds);
+    }
+
+    // A flown gap's speed-up has been sent: from here the stroke's plan holds that gap.
+    private void NoteGapFlown()
+    {
+        lock (_lock)
+        {
+            if (_activeStroke is { } stroke)
+            {
+                stroke.GapsFlown++;
+            }
+        }
+    }
+
+    /// <summary>Whether the gate refused the switch-on (an error reply): the laser did not come on for that run.</summary>
+    private bool SwitchOnRefused(Task acknowledged) =>
+        acknowledged.Exception?.InnerException is LaserGate.LaserGateException refusal
+        && _profile.Gate.ErrorPrefix.Length > 0 && refusal.Reply.StartsWith(_profile.Gate.ErrorPrefix, StringComparison.Ordinal);
+
+    /// <summary>
+    /// Before the stop point: a switch-on whose acknowledgement is still on its way (a late reply) is waited for, at
+    /// most the gate's own timeout, so that a late "OK" says the run was burned up to the fault's switch-off.
+    /// </summary>
+    private async Task SettleSwitchOnAsync()
+    {
+        Task? acknowledged;
+        lock (_lock)
+        {
+            acknowledged = _burning?.Acknowledged;
+        }
+
+        if (acknowledged is { IsCompleted: false })
+        {
+            using var stop = new CancellationTokenSource();
+            await Task.WhenAny(acknowledged, PreciseDelay.DelayAsync(TimeProvider, TimeSpan.FromMilliseconds(_profile.Gate.TimeoutMs), stop.Token));
+            stop.Cancel();
+        }
     }
 
     /// <summary>The X axis' reply to the stop after a fault: whether it stopped where the stroke's motion put it (braking from the burn speed).</summary>
@@ -834,7 +898,7 @@ public sealed partial class RunExecutor
             }
 
             var arrival = written + timing.StageCommandSeconds - stroke.Origin;
-            var along = stroke.Plan.OffsetAt(arrival);
+            var along = Along(stroke, arrival, timing);
             var expected = along >= stroke.Plan.Length
                 ? stroke.EndX
                 : stroke.StartX + (stroke.Direction * (along + (timing.BurnSpeed * timing.BurnSpeed / (2 * timing.Acceleration))));
@@ -855,6 +919,9 @@ public sealed partial class RunExecutor
 
         /// <summary>When the stroke's offset 0 is, s on the run's clock (its start, moved by the position queries' findings).</summary>
         public double Origin { get; set; }
+
+        /// <summary>How many of its flown gaps' speed-ups were sent (the others the stage crossed at the burn speed).</summary>
+        public int GapsFlown { get; set; }
     }
 
     private sealed record Segment(bool Stroke, List<(Move Move, long Index)> Moves, long StartX, long StartY, long EndX, long EndY);

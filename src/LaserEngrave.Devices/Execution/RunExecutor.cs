@@ -932,7 +932,6 @@ public sealed partial class RunExecutor
             {
                 _keepAlive.Active = false;
             }
-
             bool inDoubt;
             lock (_lock)
             {
@@ -951,11 +950,22 @@ public sealed partial class RunExecutor
             }
 
             DeviceException? refused = null;
+            Task? first = null;
             if (!inDoubt)
             {
-                try
+                first = Gate.OffAsync(CancellationToken.None);
+
+                // Answered within its round trip (and the margin a stage reply gets), or it is in doubt: a gate gone deaf
+                // must not leave the stage sweeping for the whole of the gate's timeout with the laser on.
+                var roundTrip = (_timing?.OffRoundTripSeconds ?? 0.02) + (2 * (_timing?.GateJitterSeconds ?? 0)) + (Options.StallMarginMs / 1000);
+                using (var wait = new CancellationTokenSource())
                 {
-                    await Gate.OffAsync(CancellationToken.None);
+                    await Task.WhenAny(first, PreciseDelay.DelayAsync(TimeProvider, TimeSpan.FromSeconds(roundTrip), wait.Token));
+                    wait.Cancel();
+                }
+
+                if (first.IsCompletedSuccessfully)
+                {
                     MarkLaserOff();
                     lock (_lock)
                     {
@@ -966,13 +976,11 @@ public sealed partial class RunExecutor
 
                     return;
                 }
-                catch (DeviceException ex)
-                {
-                    refused = ex;
-                }
+
+                refused = first.Exception?.InnerException as DeviceException;
             }
 
-            await EveryWayOffAsync(refused);
+            await EveryWayOffAsync(refused, first);
         }
         finally
         {
@@ -986,15 +994,19 @@ public sealed partial class RunExecutor
     /// the laser off. When neither is acknowledged the gate's port is closed, so that the gate hears nothing more and its
     /// watchdog switches the laser off, and the run says a person must check the laser. Caller holds the laser lock.
     /// </summary>
-    private async Task EveryWayOffAsync(DeviceException? refused)
+    /// <param name="refused">Why the switch-off was refused, when it was.</param>
+    /// <param name="first">The fault's own OFF, still waiting for its answer (a late answer confirms the laser off too).</param>
+    private async Task EveryWayOffAsync(DeviceException? refused, Task? first)
     {
         // Gate commands are not cancelled (a late reply would be taken for the next one's): each waits its own timeout.
         var off = Gate.OffAsync(CancellationToken.None);
         var zero = Gate.SetFrequencyAsync(0, CancellationToken.None);
         var watchdog = Gate.SetWatchdogAsync(MachineProfileValidator.MinWatchdogMs, CancellationToken.None);
         var stopping = StopAxesAsync();
-        await Task.WhenAll(Settled(off), Settled(zero), Settled(watchdog), stopping);
-        var path = off.IsCompletedSuccessfully ? LaserOffPath.OffAgain : zero.IsCompletedSuccessfully ? LaserOffPath.FrequencyZero : LaserOffPath.None;
+        await Task.WhenAll(Settled(first ?? Task.CompletedTask), Settled(off), Settled(zero), Settled(watchdog), stopping);
+        var path = off.IsCompletedSuccessfully || first?.IsCompletedSuccessfully == true ? LaserOffPath.OffAgain
+            : zero.IsCompletedSuccessfully ? LaserOffPath.FrequencyZero
+            : LaserOffPath.None;
         MarkLaserOff();
         if (path == LaserOffPath.None && Gate is IAsyncDisposable port)
         {
@@ -1093,6 +1105,11 @@ public sealed partial class RunExecutor
         if (outcome == RunOutcome.Completed)
         {
             _estimator?.Finish();
+        }
+
+        if (outcome != RunOutcome.Completed)
+        {
+            await SettleSwitchOnAsync();
         }
 
         var stopPoint = outcome == RunOutcome.Completed ? null : StopPoint();

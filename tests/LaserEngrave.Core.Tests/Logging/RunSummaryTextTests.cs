@@ -31,7 +31,7 @@ public sealed class RunSummaryTextTests : IDisposable
 
     [Theory]
     [InlineData(true, LaserOffPath.Off, "Laser off:          confirmed by the gate (it acknowledged OFF)")]
-    [InlineData(true, LaserOffPath.OffAgain, "Laser off:          confirmed by the gate acknowledging OFF sent again (it had refused or not answered a switch-off")]
+    [InlineData(true, LaserOffPath.OffAgain, "Laser off:          confirmed by the gate acknowledging OFF, late or sent again (it had refused or not answered a switch-off in time")]
     [InlineData(true, LaserOffPath.FrequencyZero, "Laser off:          confirmed by the gate acknowledging FREQ 0")]
     [InlineData(false, LaserOffPath.None, "Laser off:          NOT CONFIRMED: the gate acknowledged neither OFF nor FREQ 0; its port was closed so that its watchdog switches the laser off; a person must check the laser")]
     public void Format_LaserOffPath_SaysWhichCommandConfirmedItOrThatNoneDid(bool confirmed, LaserOffPath path, string line)

@@ -34,7 +34,7 @@ public sealed class RefusedSwitchOffTests
         Assert.InRange(lastOn.To - refusedAt, 0, 0.030);
         Assert.Equal(50, run.Machine.Gate.WatchdogMs);
         var summary = RunSummaryText.LaserOff(new RunFault(failed.FaultMessage!, null, failed.LaserOffConfirmed, failed.LaserOffBy));
-        Assert.Contains("OFF sent again", summary, StringComparison.Ordinal);
+        Assert.Contains("OFF, late or sent again", summary, StringComparison.Ordinal);
         Assert.DoesNotContain("confirmed by the gate (it acknowledged OFF)", summary, StringComparison.Ordinal);
     }
 
