@@ -41,8 +41,14 @@ public sealed class SignalTests : IDisposable
         };
         using var process = Process.Start(start)!;
         var running = new TaskCompletionSource(TaskCreationOptions.RunContinuationsAsynchronously);
+        var stderr = new System.Collections.Concurrent.ConcurrentQueue<string>();
         process.ErrorDataReceived += (_, e) =>
         {
+            if (e.Data is { } line)
+            {
+                stderr.Enqueue(line);
+            }
+
             if (e.Data?.StartsWith("running:", StringComparison.Ordinal) == true)
             {
                 running.TrySetResult();
@@ -70,10 +76,11 @@ public sealed class SignalTests : IDisposable
         }
 
         // Exit 1 as for Ctrl+C (the run aborted), not 128 + the signal's number (killed before the laser went off).
-        Assert.Equal(1, process.ExitCode);
-        using var summary = JsonDocument.Parse(await stdout);
-        Assert.Equal("aborted", summary.RootElement.GetProperty("outcome").GetString());
-        Assert.Equal(0, summary.RootElement.GetProperty("laserOnTravelCount").GetInt64());
+        var printed = await stdout;
+        Assert.True(process.ExitCode == 1, $"exit {process.ExitCode}: {string.Join(" | ", stderr)} {printed}");
+        using var summary = JsonDocument.Parse(printed);
+        Assert.True(summary.RootElement.GetProperty("outcome").GetString() == "aborted", printed);
+        Assert.True(summary.RootElement.GetProperty("laserOnTravelCount").GetInt64() == 0, printed);
         var log = Assert.Single(Directory.GetFiles(_logs, "*.json"));
         using var record = JsonDocument.Parse(await File.ReadAllTextAsync(log, ct));
         Assert.Equal("aborted", record.RootElement.GetProperty("outcome").GetString());
