@@ -48,6 +48,16 @@ public static class RunSummaryText
                 var watchdog = stop.OffByGateWatchdog ? " (the gate's link was lost: the laser went off by the gate's watchdog, which it must report tripped)" : string.Empty;
                 Line("Resumes", string.Create(c, $"mid-run at X {resumeX} microsteps{check}; pixel column {cut.Column}, row {cut.Row} (the laser went off in it{watchdog}) burns twice"));
             }
+            else if (stop.CutPixel is { } first)
+            {
+                Line("Resumes", string.Create(c, $"from the run's start; pixel column {first.Column}, row {first.Row} (the laser went off in it, or its switch-on was never acknowledged) may get part of its dose twice"));
+            }
+
+            if (stop is { OffByGateWatchdog: true, OffCutPixel: { } offCut })
+            {
+                var at = stop.OffResumeXMicrosteps is { } offX ? string.Create(c, $"mid-run at X {offX} microsteps") : "from the run's start";
+                Line("Or resumes", string.Create(c, $"{at} if the gate reports its watchdog did not trip (it heard the OFF); then pixel column {offCut.Column}, row {offCut.Row} burns twice"));
+            }
         }
 
         Line("Started", record.StartedAt.ToString("yyyy-MM-dd HH:mm:ss zzz", c));

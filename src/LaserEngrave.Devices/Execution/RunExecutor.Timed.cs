@@ -807,6 +807,35 @@ public sealed partial class RunExecutor
             return stop;
         }
 
+        var (resumeX, cutPixel) = CutAt(offAt, burning.Move, stroke, timing, fired);
+        if (cutPixel is null)
+        {
+            return stop;
+        }
+
+        // Counting on the watchdog, which a gate that heard the fault's OFF (and carried it out unacknowledged) never
+        // trips: the resumed run then takes the cut at that OFF, the earliest the laser can have gone off.
+        var (offResumeX, offCut) = byWatchdog && _faultOffWrite is { } firstOff
+            ? CutAt(firstOff + timing.OffLeadSeconds - timing.GateJitterSeconds, burning.Move, stroke, timing, fired)
+            : (null, null);
+        return stop with
+        {
+            ResumeXMicrosteps = resumeX,
+            CutPixel = cutPixel,
+            ExpectedXMicrosteps = resumeX is not null && _stopMatchesMotion is null ? stroke.EndX : null,
+            OffByGateWatchdog = byWatchdog,
+            OffResumeXMicrosteps = offResumeX,
+            OffCutPixel = offCut,
+        };
+    }
+
+    /// <summary>
+    /// The cut of a burn run whose laser went off at <paramref name="offAt"/> (s on the run's clock): the first pixel edge
+    /// not completely burned and the pixel the laser went off in; no edge when the run burns again from its start (off
+    /// inside its first pixel, or a switch-on not known to have fired), no pixel when it went off before the run. Caller holds the lock.
+    /// </summary>
+    private (long? ResumeX, PixelIndex? Cut) CutAt(double offAt, Move burn, ActiveStroke stroke, TimedSwitching timing, bool fired)
+    {
         var along = Along(stroke, offAt - stroke.Origin, timing) - (timing.BurnSpeed * timing.StageJitterSeconds);
         if (_stoppedAtKnownPosition)
         {
@@ -815,27 +844,20 @@ public sealed partial class RunExecutor
         }
 
         var burnedTo = stroke.StartX + (stroke.Direction * along);
-        var cut = Job.Plan.ResumeWithin(burning.Move, burnedTo);
-        if (cut is null || !fired)
+        if (fired && Job!.Plan.ResumeWithin(burn, burnedTo) is { } cut)
         {
-            // Off within the run's first pixel, or a switch-on not known to have fired: the run burns again from its
-            // start, so the pixel the laser went off in is the one that may get part of its dose twice; the log names it.
-            var reached = (burnedTo - burning.Move.X0) * stroke.Direction >= 0;
-            var column = Job.Plan.ColumnAt(burning.Move, Math.Clamp(burnedTo, Math.Min(burning.Move.X0, burning.Move.X1), Math.Max(burning.Move.X0, burning.Move.X1)));
-            return !reached ? stop : stop with
-            {
-                CutPixel = new PixelIndex(column, burning.Move.Row),
-                OffByGateWatchdog = byWatchdog,
-            };
+            return (cut.ResumeX, new PixelIndex(cut.Column, burn.Row));
         }
 
-        return stop with
+        // Off within the run's first pixel, or a switch-on not known to have fired: the run burns again from its
+        // start, so the pixel the laser went off in is the one that may get part of its dose twice; the log names it.
+        if ((burnedTo - burn.X0) * stroke.Direction < 0)
         {
-            ResumeXMicrosteps = cut.Value.ResumeX,
-            CutPixel = new PixelIndex(cut.Value.Column, burning.Move.Row),
-            ExpectedXMicrosteps = _stopMatchesMotion is null ? stroke.EndX : null,
-            OffByGateWatchdog = byWatchdog,
-        };
+            return (null, null);
+        }
+
+        var column = Job!.Plan.ColumnAt(burn, Math.Clamp(burnedTo, Math.Min(burn.X0, burn.X1), Math.Max(burn.X0, burn.X1)));
+        return (null, new PixelIndex(column, burn.Row));
     }
 
     /// <summary>

@@ -351,7 +351,7 @@ public sealed partial class RunExecutor
         try
         {
             gateIdentity = await OnceMoreAfterTimeoutAsync(() => Gate.IdentifyAsync(token));
-            if (Options.ResumeFrom is { OffByGateWatchdog: true, ResumeXMicrosteps: not null } && !(await Gate.GetStateAsync(token)).WatchdogTripped)
+            if (Options.ResumeFrom is { OffByGateWatchdog: true } && !(await Gate.GetStateAsync(token)).WatchdogTripped)
             {
                 // The laser's switch-off time counted on the watchdog; a gate restarted since cannot vouch for it.
                 _gateVouchesForCut = false;
@@ -368,7 +368,8 @@ public sealed partial class RunExecutor
         var x = await IdentifyAxisAsync(Stage.X, "X", token);
         var y = await IdentifyAxisAsync(Stage.Y, "Y", token);
         CheckReach(x, y);
-        _resumeX = _gateVouchesForCut ? Options.ResumeFrom?.ResumeXMicrosteps : null;
+        // A gate whose watchdog did not trip heard a command that switched the laser off: the cut at the fault's first OFF.
+        _resumeX = _gateVouchesForCut ? Options.ResumeFrom?.ResumeXMicrosteps : Options.ResumeFrom?.OffResumeXMicrosteps;
         if (Options.ResumeFrom is { ResumeXMicrosteps: not null, ExpectedXMicrosteps: { } expected })
         {
             // The stage could not be asked when the run stopped: it must be found where its motion was taking it, or the

@@ -46,6 +46,26 @@ public sealed class RunSummaryTextTests : IDisposable
     }
 
     [Fact]
+    public void Format_StopPointNamingACutPixelAndTheCutIfTheWatchdogDidNotTrip_SaysBoth()
+    {
+        var stop = new RunStopPoint(5, 31, 117268, 107548)
+        {
+            CutPixel = new PixelIndex(13, 5),
+            OffByGateWatchdog = true,
+            OffResumeXMicrosteps = 117000,
+            OffCutPixel = new PixelIndex(12, 5),
+        };
+        var record = runs.FailedRecord() with { StoppedAt = stop };
+
+        var text = RunSummaryText.Format(record);
+        var read = RunRecordJson.Deserialize(RunRecordJson.Serialize(record), "test.json");
+
+        Assert.Contains("Resumes:            from the run's start; pixel column 13, row 5 (the laser went off in it, or its switch-on was never acknowledged) may get part of its dose twice", text, StringComparison.Ordinal);
+        Assert.Contains("Or resumes:         mid-run at X 117000 microsteps if the gate reports its watchdog did not trip (it heard the OFF); then pixel column 12, row 5 burns twice", text, StringComparison.Ordinal);
+        Assert.Equal(stop, read.StoppedAt);
+    }
+
+    [Fact]
     public void Format_CompletedRun_HasNoFaultOrStopLines()
     {
         var record = runs.FailedRecord() with { Outcome = RunOutcome.Completed, Fault = null, StoppedAt = null, Notes = null };
