@@ -45,6 +45,9 @@ catch (Exception ex) when (ex is IOException or System.Net.Sockets.SocketExcepti
     return 2;
 }
 
+// Ctrl+C, SIGQUIT and SIGTERM stop the host (its console lifetime); a hang-up (SIGHUP: a closed terminal or a dropped
+// remote session; on Windows the console window closed) does the same: a run aborts, laser off first, and writes its log.
+using var hangUp = AppHost.StopOnHangUp(app.Lifetime);
 var addresses = app.Services.GetRequiredService<IServer>().Features.Get<IServerAddressesFeature>()!.Addresses;
 if (addresses.FirstOrDefault(a => !LoopbackAddresses.IsLoopback(a)) is { } open)
 {

@@ -1,4 +1,5 @@
 using System.CommandLine;
+using System.Runtime.InteropServices;
 using LaserEngrave.Cli.Commands;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Logging;
@@ -40,9 +41,16 @@ internal static class CliRunner
             // write its log before the process may end (the default is 2 s).
             ProcessTerminationTimeout = TimeSpan.FromSeconds(30),
         };
+        // Ctrl+C and SIGTERM are System.CommandLine's: they cancel the command's token, and it waits for the command to end.
+        // A hang-up (SIGHUP: a closed terminal or a dropped remote session; on Windows the console window closed) and
+        // SIGQUIT (Windows: Ctrl+Break) do the same here: a run aborts, laser off first, stage stopped, log written.
+        using var signalled = CancellationTokenSource.CreateLinkedTokenSource(cancellationToken);
+        var ended = new TaskCompletionSource(TaskCreationOptions.RunContinuationsAsynchronously);
+        using var hangUp = SignalAbort(PosixSignal.SIGHUP, signalled, ended.Task, config.ProcessTerminationTimeout.Value);
+        using var quit = SignalAbort(PosixSignal.SIGQUIT, signalled, ended.Task, config.ProcessTerminationTimeout.Value);
         try
         {
-            return await parse.InvokeAsync(config, cancellationToken).ConfigureAwait(false);
+            return await parse.InvokeAsync(config, signalled.Token).ConfigureAwait(false);
         }
         catch (Exception ex) when (ex is not OutOfMemoryException)
         {
@@ -54,6 +62,49 @@ internal static class CliRunner
             }
 
             return ExitCodeFor(ex);
+        }
+        finally
+        {
+            ended.TrySetResult();
+        }
+    }
+
+    /// <summary>Turns <paramref name="signal"/> into the command's cancellation, as Ctrl+C is; null where the platform has no such signal.</summary>
+    /// <remarks>
+    /// The handler keeps the process until the command has ended (at most <paramref name="wait"/>): Windows ends a process
+    /// once its console-close handler returns, so the run's abort and log must be done by then.
+    /// </remarks>
+    private static PosixSignalRegistration? SignalAbort(PosixSignal signal, CancellationTokenSource cancel, Task ended, TimeSpan wait)
+    {
+        if (OperatingSystem.IsAndroid() || OperatingSystem.IsIOS() || OperatingSystem.IsTvOS() || OperatingSystem.IsBrowser())
+        {
+            return null;
+        }
+
+        try
+        {
+            return PosixSignalRegistration.Create(signal, context =>
+            {
+                context.Cancel = true;
+                try
+                {
+                    cancel.Cancel();
+                }
+                catch (ObjectDisposedException)
+                {
+                    // The command has ended already.
+                    return;
+                }
+
+                if (OperatingSystem.IsWindows())
+                {
+                    _ = ended.Wait(wait, CancellationToken.None);
+                }
+            });
+        }
+        catch (PlatformNotSupportedException)
+        {
+            return null;
         }
     }
 

@@ -212,6 +212,27 @@ public sealed class EngraveCommandTests : IDisposable
     }
 
     [Fact]
+    public async Task Engrave_LogFolderCannotBeWritten_Exit2WithOneLineBeforeAnythingMoves()
+    {
+        // Root ignores a read-only mode bit: a folder under a file cannot be made by anyone.
+        var file = Path.Combine(LogDir + "-file");
+        await File.WriteAllTextAsync(file, "x", TestContext.Current.CancellationToken);
+        try
+        {
+            var (exit, output, error) = await CliHarness.RunAsync("engrave", QrCode, "--width-mm", "5", "--simulate", "--json", "--log-dir", Path.Combine(file, "logs"));
+
+            Assert.Equal(2, exit);
+            Assert.Equal(string.Empty, output);
+            Assert.StartsWith($"laserengrave: {Path.Combine(file, "logs")}: cannot create the log folder", error, StringComparison.Ordinal);
+            Assert.Single(error.TrimEnd().Split('\n'));
+        }
+        finally
+        {
+            File.Delete(file);
+        }
+    }
+
+    [Fact]
     public async Task Engrave_BadImage_Exit2WithOneLineAndNoLog()
     {
         var image = Path.Combine(folder, "not-an-image.bmp");

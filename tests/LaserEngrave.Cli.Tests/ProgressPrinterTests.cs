@@ -14,6 +14,39 @@ public class ProgressPrinterTests
         Assert.Equal("[########......................]  25.0 %  row 10/40  ETA 1 min 35.0 s   ", ProgressPrinter.Bar(At(25)));
     }
 
+    [Theory]
+    [InlineData(false)]
+    [InlineData(true)]
+    public void Report_TerminalHungUp_WritesFailQuietlySoTheAbortGoesOn(bool terminal)
+    {
+        using var output = new HungUpWriter();
+        var printer = new ProgressPrinter(output, terminal);
+
+        printer.Report(At(10));
+        printer.Report(At(20, RunState.Aborting));
+        printer.Finish();
+
+        Assert.True(output.Attempts >= 2);
+    }
+
+    /// <summary>A terminal that has hung up: every write fails with EIO.</summary>
+    private sealed class HungUpWriter : StringWriter
+    {
+        public int Attempts { get; private set; }
+
+        public override void Write(string? value) => throw Fail();
+
+        public override void WriteLine(string? value) => throw Fail();
+
+        public override void WriteLine() => throw Fail();
+
+        private IOException Fail()
+        {
+            Attempts++;
+            return new IOException("Input/output error");
+        }
+    }
+
     [Fact]
     public void Report_SessionOfTwoPasses_BarAndLinesSayWhichPass()
     {

@@ -11,6 +11,9 @@ public interface IRunLogStore
     /// <summary>Writes the record and its text summary; throws <see cref="RunLogException"/> when the folder cannot take them.</summary>
     RunLogFiles Save(RunRecord record);
 
+    /// <summary>Before a run: the folder takes a file and has room for a log; throws <see cref="RunLogException"/> otherwise.</summary>
+    void CheckWritable();
+
     /// <summary>Newest first; unreadable files are listed with their error.</summary>
     IReadOnlyList<RunLogEntry> History();
 }

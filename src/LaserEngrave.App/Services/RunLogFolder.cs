@@ -11,5 +11,7 @@ public sealed class RunLogFolder(string folder) : IRunLogStore
 
     public RunLogFiles Save(RunRecord record) => _store.Write(record);
 
+    public void CheckWritable() => _store.CheckWritable();
+
     public IReadOnlyList<RunLogEntry> History() => _store.List();
 }

@@ -45,6 +45,9 @@ public sealed partial class LogViewModel : ObservableObject
 
     public string Folder => _store.Folder;
 
+    /// <summary>Before a run, before anything moves: the log folder takes a file and has room for a log; throws <see cref="RunLogException"/> otherwise.</summary>
+    public void CheckWritable() => _store.CheckWritable();
+
     /// <summary>Where a run's log goes (the store's folder), for the run's <see cref="Devices.Execution.EngraveSession"/>.</summary>
     public IRunLogWriter Writer => new StoreWriter(_store);
 

@@ -406,6 +406,18 @@ public sealed partial class RunViewModel : ObservableObject
         }
 
         using var held = lease;
+        try
+        {
+            // A run must not start without a place for its log (a read-only or full disk is found now, not after the burn).
+            _log.CheckWritable();
+        }
+        catch (RunLogException ex)
+        {
+            Error = ex.Message;
+            State = RunState.Failed;
+            return;
+        }
+
         var continuedFrom = resumeFrom is null && resumeLayers is null ? null : _log.LastRun?.Path;
         var (job, layered) = (target.Job, target.Layered);
         _startedTicks = _time.GetTimestamp();
@@ -458,7 +470,10 @@ public sealed partial class RunViewModel : ObservableObject
         var final = result.State;
         if (final == RunState.Failed)
         {
-            Error = record.Fault?.Message ?? "the run failed";
+            // Which path confirmed the laser off is said only when it was not the usual OFF (docs/execution.md).
+            Error = record.Fault is { } fault
+                ? fault.LaserOffBy is null or LaserOffPath.Off ? fault.Message : $"{fault.Message}; laser off: {RunSummaryText.LaserOff(fault)}"
+                : "the run failed";
         }
 
         var stopPoint = record.Outcome is RunOutcome.Failed or RunOutcome.Aborted ? record.StoppedAt : null;

@@ -1,3 +1,4 @@
+using System.Runtime.InteropServices;
 using LaserEngrave.App.Components;
 using LaserEngrave.App.Services;
 using LaserEngrave.App.ViewModels;
@@ -163,6 +164,33 @@ public static class AppHost
     /// took over a second, and with a one-second bound the app exited without the log (a SIGTERM test beside busy loops).
     /// </remarks>
     internal static readonly TimeSpan RunEndWait = TimeSpan.FromSeconds(10);
+
+    /// <summary>Stops the app on a hang-up as on Ctrl+C; null where the platform has no such signal.</summary>
+    /// <remarks>Windows ends the process once its console-close handler returns: the handler holds it until the app has stopped.</remarks>
+    internal static PosixSignalRegistration? StopOnHangUp(IHostApplicationLifetime lifetime)
+    {
+        if (OperatingSystem.IsAndroid() || OperatingSystem.IsIOS() || OperatingSystem.IsTvOS() || OperatingSystem.IsBrowser())
+        {
+            return null;
+        }
+
+        try
+        {
+            return PosixSignalRegistration.Create(PosixSignal.SIGHUP, context =>
+            {
+                context.Cancel = true;
+                lifetime.StopApplication();
+                if (OperatingSystem.IsWindows())
+                {
+                    _ = lifetime.ApplicationStopped.WaitHandle.WaitOne(RunEndWait);
+                }
+            });
+        }
+        catch (PlatformNotSupportedException)
+        {
+            return null;
+        }
+    }
 
     /// <summary>On exit the laser goes off and the ports close, whatever was running; an aborted run writes its log first.</summary>
     private static void Shutdown(IServiceProvider services)

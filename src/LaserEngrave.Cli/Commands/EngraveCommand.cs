@@ -123,8 +123,8 @@ internal static class EngraveCommand
         });
         var store = new RunLogStore(result.GetValue(o.LogDir) ?? RunLogStore.DefaultFolder);
 
-        // A run must not start without a place for its log.
-        store.CreateFolder();
+        // A run must not start without a place for its log: the folder takes a file and has room for one, before anything moves.
+        store.CheckWritable();
         EngraveResult engraved;
         double? wallSeconds = null;
         BurnInspector? inspector = null;
@@ -170,15 +170,20 @@ internal static class EngraveCommand
 
         var record = engraved.Record;
         var error = engraved.Error;
+        await prepareJson.ConfigureAwait(false);
         if (engraved.Files is not { } files)
         {
-            // The run happened: keep what the log would have said on stderr, and fail (not "bad input").
+            // The run happened: keep what the log would have said on stderr (and the object on stdout), and fail (not "bad input").
             stderr.Write(RunSummaryText.Format(record));
+            if (json)
+            {
+                CliJson.Write(stdout, EngraveSummary.From(record, null, null, null, null));
+            }
+
             var why = engraved.LogError?.Message ?? "no log was written";
             throw new InvalidOperationException($"the run ended ({record.Outcome.ToString().ToLowerInvariant()}) but its log could not be written, so the summary is above: {why}", engraved.LogError);
         }
 
-        await prepareJson.ConfigureAwait(false);
         var burn = inspector?.Report;
 
         if (burnedPath is not null && burn is not null)
@@ -208,7 +213,13 @@ internal static class EngraveCommand
 
         if (record.Outcome != RunOutcome.Completed)
         {
+            if (record.Fault is { } fault)
+            {
+                stderr.WriteLine($"laserengrave: laser off: {RunSummaryText.LaserOff(fault)}");
+            }
+
             stderr.WriteLine($"laserengrave: run {summary.Outcome}: {record.Fault?.Message ?? "no reason given"} (log: {files.JsonPath})");
+
             return CliRunner.Failure;
         }
 
@@ -459,8 +470,8 @@ internal sealed record EngraveSummary(
     int RowsTotal,
     long RunsDone,
     long RunsTotal,
-    string LogPath,
-    string SummaryPath,
+    string? LogPath,
+    string? SummaryPath,
     string? BurnedPath,
     string? DosePath,
     int? SimSeed,
@@ -482,7 +493,8 @@ internal sealed record EngraveSummary(
     bool Drawing,
     IReadOnlyList<RunLayer>? Layers)
 {
-    public static EngraveSummary From(RunRecord record, RunLogFiles files, string? burnedPath, string? dosePath, double? wallSeconds) => new(
+    /// <param name="files">The log's files; null when it could not be written (the object still says how the run went).</param>
+    public static EngraveSummary From(RunRecord record, RunLogFiles? files, string? burnedPath, string? dosePath, double? wallSeconds) => new(
         record.Outcome.ToString().ToLowerInvariant(),
         record.Fault?.Message,
         record.StoppedAt?.MoveIndex,
@@ -498,8 +510,8 @@ internal sealed record EngraveSummary(
         record.RowsTotal,
         record.RunsDone,
         record.RunsTotal,
-        files.JsonPath,
-        files.TextPath,
+        files?.JsonPath,
+        files?.TextPath,
         burnedPath is null ? null : Path.GetFullPath(burnedPath),
         dosePath is null ? null : Path.GetFullPath(dosePath),
         record.Simulation?.Seed,

@@ -50,8 +50,11 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
         {
             if (stateChanged || _sinceLastPrint.Elapsed >= RedrawInterval)
             {
-                writer.Write("\r" + Bar(progress, _pass, _layerIsDrawing ?? Drawing));
-                writer.Flush();
+                Print(() =>
+                {
+                    writer.Write("\r" + Bar(progress, _pass, _layerIsDrawing ?? Drawing));
+                    writer.Flush();
+                });
                 _barShown = true;
                 _sinceLastPrint.Restart();
             }
@@ -63,7 +66,7 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
         if (decile != _lastDecile || stateChanged || _sinceLastPrint.Elapsed >= PlainInterval)
         {
             _lastDecile = decile;
-            writer.WriteLine(Line(progress, _pass, _layerIsDrawing ?? Drawing));
+            Print(() => writer.WriteLine(Line(progress, _pass, _layerIsDrawing ?? Drawing)));
             _sinceLastPrint.Restart();
         }
     }
@@ -73,8 +76,21 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
     {
         if (_barShown)
         {
-            writer.WriteLine();
+            Print(writer.WriteLine);
             _barShown = false;
+        }
+    }
+
+    // A terminal hung up (SIGHUP) fails every write: the run's abort, laser off first, must not fail with it.
+    private static void Print(Action write)
+    {
+        try
+        {
+            write();
+        }
+        catch (IOException)
+        {
+            // Nobody is left to read the progress; the run log says how it ended.
         }
     }
 

@@ -72,7 +72,7 @@ internal static class SweepCommand
         OptionChecks.OutputFile(dosePath, "--dose");
 
         var store = new RunLogStore(result.GetValue(o.LogDir) ?? RunLogStore.DefaultFolder);
-        store.CreateFolder();
+        store.CheckWritable();
         if (doseDir is not null)
         {
             Directory.CreateDirectory(doseDir);

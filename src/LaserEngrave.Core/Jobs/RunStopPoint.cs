@@ -30,6 +30,16 @@ public sealed record RunStopPoint(int Row, long MoveIndex, long? XMicrosteps = n
     /// report its watchdog tripped (else the run is burned again from its start).
     /// </summary>
     public bool OffByGateWatchdog { get; init; }
+
+    /// <summary>
+    /// With <see cref="OffByGateWatchdog"/>: where the run resumes when the gate reports its watchdog did not trip, so that a
+    /// command it heard switched the laser off (the fault's first OFF at the earliest: a gate that carried it out without
+    /// acknowledging it); null: the run is then burned again from the move's start.
+    /// </summary>
+    public long? OffResumeXMicrosteps { get; init; }
+
+    /// <summary>The pixel the laser went off in when the gate's watchdog did not trip (<see cref="OffResumeXMicrosteps"/>), burned again on resuming.</summary>
+    public PixelIndex? OffCutPixel { get; init; }
 }
 
 /// <summary>A pixel of the job's image.</summary>

@@ -4,4 +4,5 @@ namespace LaserEngrave.Core.Logging;
 /// <param name="Message">The one-line error, as the operator saw it.</param>
 /// <param name="Kind">The kind of fault, e.g. "timeout", "port lost", "gate silent", "aborted"; free text from the executor.</param>
 /// <param name="LaserOffConfirmed">Whether the gate acknowledged the laser switching off after the fault.</param>
-public sealed record RunFault(string Message, string? Kind = null, bool LaserOffConfirmed = true);
+/// <param name="LaserOffBy">Which command the gate acknowledged to confirm it off (<see cref="LaserOffPath.None"/>: none did); null in older logs.</param>
+public sealed record RunFault(string Message, string? Kind = null, bool LaserOffConfirmed = true, LaserOffPath? LaserOffBy = null);

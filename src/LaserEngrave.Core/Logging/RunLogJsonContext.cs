@@ -28,6 +28,7 @@ namespace LaserEngrave.Core.Logging;
         typeof(CamelCaseEnumConverter<PlanMode>),
         typeof(CamelCaseEnumConverter<Vectors.VectorFillMode>),
         typeof(CamelCaseEnumConverter<LayerMode>),
+        typeof(CamelCaseEnumConverter<LaserOffPath>),
     ])]
 [JsonSerializable(typeof(RunRecord))]
 [JsonSerializable(typeof(SweepRecord))]

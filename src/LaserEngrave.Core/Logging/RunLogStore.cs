@@ -17,10 +17,19 @@ public sealed class RunLogStore : IRunLogWriter, ISweepLogWriter
     private const int MaxSuffix = 10_000;
     private static readonly UTF8Encoding Utf8 = new(encoderShouldEmitUTF8Identifier: false);
 
-    public RunLogStore(string folder)
+    /// <summary>The room a run's log is checked for before the run: a log and its summary take 5-10 kB, a job of many layers more.</summary>
+    public const int LogBudgetBytes = 256 * 1024;
+
+    // A file being written has this suffix until it is complete: never listed, never read as a log.
+    private const string PartialSuffix = ".partial";
+
+    private readonly RunLogFileSystem _files;
+
+    public RunLogStore(string folder, RunLogFileSystem? files = null)
     {
         ArgumentException.ThrowIfNullOrWhiteSpace(folder);
         Folder = Path.GetFullPath(folder);
+        _files = files ?? RunLogFileSystem.Real;
     }
 
     /// <summary>The folder the logs go to.</summary>
@@ -61,6 +70,38 @@ public sealed class RunLogStore : IRunLogWriter, ISweepLogWriter
         }
     }
 
+    /// <summary>
+    /// Before a run (before anything moves): the folder exists or can be made, takes a file, and has room for a log
+    /// (<see cref="LogBudgetBytes"/>, written and removed again); throws <see cref="RunLogException"/> with one line otherwise.
+    /// </summary>
+    public void CheckWritable()
+    {
+        CreateFolder();
+        var probe = Path.Combine(Folder, $".write-check-{Guid.NewGuid():N}{PartialSuffix}");
+        try
+        {
+            using (var stream = _files.CreateNew(probe))
+            {
+                stream.Write(new byte[LogBudgetBytes]);
+                Flush(stream);
+            }
+        }
+        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
+        {
+            throw new RunLogException($"{Folder}: cannot write the run log there: {ex.Message}", ex);
+        }
+        finally
+        {
+            TryDelete(probe);
+        }
+
+        // What the probe took is free again; a disk that had just that much would be full by the log's time.
+        if (_files.AvailableBytes(Folder) is { } free && free < LogBudgetBytes)
+        {
+            throw new RunLogException(string.Create(CultureInfo.InvariantCulture, $"{Folder}: the log folder's disk is full ({free / 1024} kB free, a run log needs up to {LogBudgetBytes / 1024} kB); free some space or choose another --log-dir"));
+        }
+    }
+
     /// <summary>Writes the record and its summary as two new files; throws <see cref="RunLogException"/> when the folder cannot take them.</summary>
     public RunLogFiles Write(RunRecord record)
     {
@@ -82,26 +123,113 @@ public sealed class RunLogStore : IRunLogWriter, ISweepLogWriter
 
     private RunLogFiles WritePair(string stem, string json, string summary, string kind = "")
     {
-        for (var n = 1; n <= MaxSuffix; n++)
+        // Both files are written whole under names no log has, then named: a full disk or a crash never leaves a
+        // partial or empty log, only a .partial file, which is never read as one.
+        var jsonTemp = WriteTemporary(stem + kind + ".json", json);
+        string textTemp;
+        try
         {
-            var name = n == 1 ? stem : string.Create(CultureInfo.InvariantCulture, $"{stem}-{n}");
-            var files = new RunLogFiles(Path.Combine(Folder, name + kind + ".json"), Path.Combine(Folder, name + kind + ".txt"));
-            if (File.Exists(files.JsonPath) || File.Exists(files.TextPath) || !TryCreate(files.JsonPath, json))
-            {
-                continue;
-            }
+            textTemp = WriteTemporary(stem + kind + ".txt", summary);
+        }
+        catch
+        {
+            TryDelete(jsonTemp);
+            throw;
+        }
 
-            if (!TryCreate(files.TextPath, summary))
+        try
+        {
+            for (var n = 1; n <= MaxSuffix; n++)
             {
-                // Another writer took the text name between the checks; give the pair up and take the next name.
-                File.Delete(files.JsonPath);
-                continue;
-            }
+                var name = n == 1 ? stem : string.Create(CultureInfo.InvariantCulture, $"{stem}-{n}");
+                var files = new RunLogFiles(Path.Combine(Folder, name + kind + ".json"), Path.Combine(Folder, name + kind + ".txt"));
+                if (_files.Exists(files.JsonPath) || _files.Exists(files.TextPath) || !TryName(jsonTemp, files.JsonPath))
+                {
+                    continue;
+                }
 
-            return files;
+                if (!TryName(textTemp, files.TextPath))
+                {
+                    // Another writer took the text name between the checks; give the pair up and take the next name.
+                    _files.Move(files.JsonPath, jsonTemp);
+                    continue;
+                }
+
+                return files;
+            }
+        }
+        finally
+        {
+            TryDelete(jsonTemp);
+            TryDelete(textTemp);
         }
 
         throw new RunLogException($"{Folder}: {MaxSuffix} logs are already named {stem}; choose another folder");
+    }
+
+    // Writes the content whole (to the disk) under a temporary name beside the final one; returns that name.
+    private string WriteTemporary(string name, string content)
+    {
+        var path = Path.Combine(Folder, $".{name}.{Guid.NewGuid():N}{PartialSuffix}");
+        try
+        {
+            using var stream = _files.CreateNew(path);
+            stream.Write(Utf8.GetBytes(content));
+            Flush(stream);
+        }
+        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
+        {
+            TryDelete(path);
+            throw new RunLogException($"{Path.Combine(Folder, name)}: cannot write the run log: {ex.Message}", ex);
+        }
+
+        return path;
+    }
+
+    // Gives the complete file its name; false when the name is taken (by another writer since the check).
+    private bool TryName(string temporary, string path)
+    {
+        try
+        {
+            _files.Move(temporary, path);
+            return true;
+        }
+        catch (IOException) when (_files.Exists(path))
+        {
+            return false;
+        }
+        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
+        {
+            throw new RunLogException($"{path}: cannot write the run log: {ex.Message}", ex);
+        }
+    }
+
+    // To the disk itself: a file named as a log is complete on the disk, whatever happens to the computer next.
+    private static void Flush(Stream stream)
+    {
+        if (stream is FileStream file)
+        {
+            file.Flush(flushToDisk: true);
+        }
+        else
+        {
+            stream.Flush();
+        }
+    }
+
+    private void TryDelete(string path)
+    {
+        try
+        {
+            if (_files.Exists(path))
+            {
+                _files.Delete(path);
+            }
+        }
+        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
+        {
+            // A leftover .partial file is never read as a log.
+        }
     }
 
     /// <summary>The runs in the folder, newest first; files that cannot be read are listed with their error, after the others.</summary>
@@ -202,31 +330,5 @@ public sealed class RunLogStore : IRunLogWriter, ISweepLogWriter
 
         // A name of dots only (".", "..") would mean something else to the file system.
         return safe.ToString().Trim('.');
-    }
-
-    private static bool TryCreate(string path, string content)
-    {
-        FileStream stream;
-        try
-        {
-            stream = new FileStream(path, FileMode.CreateNew, FileAccess.Write, FileShare.None);
-        }
-        catch (IOException) when (File.Exists(path))
-        {
-            return false;
-        }
-        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
-        {
-            throw new RunLogException($"{path}: cannot write the run log: {ex.Message}", ex);
-        }
-
-        using (stream)
-        {
-            var bytes = Utf8.GetBytes(content);
-            stream.Write(bytes);
-            stream.Flush(flushToDisk: true);
-        }
-
-        return true;
     }
 }

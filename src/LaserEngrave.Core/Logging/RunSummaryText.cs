@@ -8,6 +8,20 @@ namespace LaserEngrave.Core.Logging;
 /// <summary>The plain-text summary of a run that a person reads and copies into a lab notebook.</summary>
 public static class RunSummaryText
 {
+    /// <summary>The "Laser off" line: which command the gate acknowledged, or that none did and a person must check the laser.</summary>
+    public static string LaserOff(RunFault fault)
+    {
+        ArgumentNullException.ThrowIfNull(fault);
+        return (fault.LaserOffConfirmed, fault.LaserOffBy) switch
+        {
+            (true, LaserOffPath.OffAgain) => "confirmed by the gate acknowledging OFF, late or sent again (it had refused or not answered a switch-off in time; FREQ 0, its shortest watchdog and a stage stop went with it)",
+            (true, LaserOffPath.FrequencyZero) => "confirmed by the gate acknowledging FREQ 0 (it had refused or not answered a switch-off and OFF again)",
+            (true, _) => "confirmed by the gate (it acknowledged OFF)",
+            (false, LaserOffPath.None) => "NOT CONFIRMED: the gate acknowledged neither OFF nor FREQ 0; its port was closed so that its watchdog switches the laser off; a person must check the laser",
+            _ => "NOT CONFIRMED: the gate did not answer; check the laser by hand",
+        };
+    }
+
     public static string Format(RunRecord record)
     {
         ArgumentNullException.ThrowIfNull(record);
@@ -21,7 +35,7 @@ public static class RunSummaryText
         if (record.Fault is { } fault)
         {
             Line("Fault", fault.Message + (fault.Kind is null ? string.Empty : $" ({fault.Kind})"));
-            Line("Laser off", fault.LaserOffConfirmed ? "confirmed by the gate" : "NOT CONFIRMED: the gate did not answer; check the laser by hand");
+            Line("Laser off", LaserOff(fault));
         }
 
         if (record.StoppedAt is { } stop)
@@ -33,6 +47,16 @@ public static class RunSummaryText
                 var check = stop.ExpectedXMicrosteps is { } expected ? string.Create(c, $" if X is found at {expected} microsteps (else from the run's start)") : string.Empty;
                 var watchdog = stop.OffByGateWatchdog ? " (the gate's link was lost: the laser went off by the gate's watchdog, which it must report tripped)" : string.Empty;
                 Line("Resumes", string.Create(c, $"mid-run at X {resumeX} microsteps{check}; pixel column {cut.Column}, row {cut.Row} (the laser went off in it{watchdog}) burns twice"));
+            }
+            else if (stop.CutPixel is { } first)
+            {
+                Line("Resumes", string.Create(c, $"from the run's start; pixel column {first.Column}, row {first.Row} (the laser went off in it, or its switch-on was never acknowledged) may get part of its dose twice"));
+            }
+
+            if (stop is { OffByGateWatchdog: true, OffCutPixel: { } offCut })
+            {
+                var at = stop.OffResumeXMicrosteps is { } offX ? string.Create(c, $"mid-run at X {offX} microsteps") : "from the run's start";
+                Line("Or resumes", string.Create(c, $"{at} if the gate reports its watchdog did not trip (it heard the OFF); then pixel column {offCut.Column}, row {offCut.Row} burns twice"));
             }
         }
 

@@ -199,6 +199,29 @@ public sealed class RasterPlan
         return best;
     }
 
+    /// <summary>The pixel column of a burn run along X that holds <paramref name="x"/> (microsteps, within the run).</summary>
+    public int ColumnAt(in Move burn, double x)
+    {
+        if (burn.Kind != MoveKind.Burn || burn.X0 == burn.X1)
+        {
+            throw new ArgumentException("a burn run along X is needed", nameof(burn));
+        }
+
+        var leftToRight = burn.X1 > burn.X0;
+        var offset = leftToRight ? 0 : StageUnits.UmToMicrosteps(ScanOffsetUm, Geometry.MicrostepUm);
+        var column = 0;
+        for (var c = 0; c <= Geometry.WidthPx; c++)
+        {
+            // The last pixel edge at or before x: x lies in the pixel after it.
+            if (Geometry.RunEdgeX(c, burn.Row, offset) <= x)
+            {
+                column = c;
+            }
+        }
+
+        return Math.Clamp(column, 0, Geometry.WidthPx - 1);
+    }
+
     private RowPlanner NewPlanner() => new(Mask, Geometry, Options, OverscanMicrosteps, StageUnits.UmToMicrosteps(ScanOffsetUm, Geometry.MicrostepUm), Timing);
 
     private List<JobWarning> OverscanWarnings()

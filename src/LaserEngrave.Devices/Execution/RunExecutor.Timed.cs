@@ -261,7 +261,7 @@ public sealed partial class RunExecutor
             }
 
             _lastGateWrite = offWrite;
-            WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off");
+            WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off", switchOff: true);
             ThrowIfSwitchOffLate(offWrite, offWritten, timing);
 
             // A run counts as burned once its switch-on is acknowledged (a silent gate burns nothing).
@@ -351,6 +351,7 @@ public sealed partial class RunExecutor
         ThrowIfAborted();
         var upLate = RunSeconds - upWrite;
         Watch(Stage.X.SetTargetSpeedAsync(_travelSpeedData, token), Sent(start + bump.SpeedUpArrival, RunSeconds, timing) + timing.StageReplySeconds, "Set Target Speed (X, a flown gap)");
+        NoteGapFlown();
         var downWrite = start + bump.SpeedDownArrival - timing.StageCommandSeconds;
         await DelayUntilAsync(downWrite, token);
         var downLate = RunSeconds - downWrite;
@@ -545,9 +546,10 @@ public sealed partial class RunExecutor
     // The actual time when it is later than planned by more than the clock's rounding, else the planned one.
     private static double Later(double planned, double actual) => actual > planned + LateSeconds ? actual : planned;
 
-    private void WatchGate(Task reply, double expectedSeconds, string what)
+    /// <param name="switchOff">A switch-off: refused or unanswered, the laser may still fire, so the fault takes every path to off.</param>
+    private void WatchGate(Task reply, double expectedSeconds, string what, bool switchOff = false)
     {
-        Watch(reply, expectedSeconds, what, gate: true);
+        Watch(reply, expectedSeconds, what, gate: true, switchOff: switchOff);
 
         // When the gate last showed it was alive: its reply left it a reply's wire and adapter time before it came in.
         _ = reply.ContinueWith(
@@ -590,11 +592,11 @@ public sealed partial class RunExecutor
     /// that one in its last moments, the device may never report the earlier end (the protocol leaves it open). So an
     /// earlier move whose reply is missing or says it was replaced counts as done once the later move reports its end.
     /// </remarks>
-    private void Watch(Task reply, double expectedSeconds, string what, bool gate = false, string? axis = null)
+    private void Watch(Task reply, double expectedSeconds, string what, bool gate = false, string? axis = null, bool switchOff = false)
     {
         var jitter = gate ? _timing?.GateJitterSeconds : _timing?.StageJitterSeconds;
         var deadline = expectedSeconds + ((jitter ?? 0) * 2) + (Options.StallMarginMs / 1000);
-        var watched = new Watched(reply, deadline, what);
+        var watched = new Watched(reply, deadline, what) { SwitchOff = switchOff };
         if (axis is not null)
         {
             if (_lastMove.TryGetValue(axis, out var before))
@@ -633,6 +635,11 @@ public sealed partial class RunExecutor
             {
                 await successor.Done.Task;
                 return;
+            }
+
+            if (watched.SwitchOff)
+            {
+                MarkSwitchOffFailed();
             }
 
             if (!reply.IsCompleted)
@@ -753,6 +760,9 @@ public sealed partial class RunExecutor
 
         public string What { get; } = what;
 
+        /// <summary>A switch-off: refused or unanswered, the fault's off sequence takes every path at once.</summary>
+        public bool SwitchOff { get; init; }
+
         /// <summary>The next move of the same axis, which settles this one if this one's end is never reported.</summary>
         public Watched? Successor { get; set; }
 
@@ -769,10 +779,14 @@ public sealed partial class RunExecutor
     private RunStopPoint CutWithin(RunStopPoint stop)
     {
         if (Job?.Plan.Timing is not { } timing || _burning is not { } burning || burning.Index != stop.MoveIndex
-            || !burning.Acknowledged.IsCompletedSuccessfully || _activeStroke is not { } stroke || _stopMatchesMotion == false)
+            || _activeStroke is not { } stroke || _stopMatchesMotion == false || SwitchOnRefused(burning.Acknowledged))
         {
             return stop;
         }
+
+        // A switch-on never acknowledged (its reply lost, garbled or too late) may still have fired: the gate carries
+        // out what it hears. The laser then burned from the run's start to where it went off, and the resumed run burns it again.
+        var fired = burning.Acknowledged.IsCompletedSuccessfully;
 
         // Off when the gate confirmed the fault's switch-off (its lead after it left, at the earliest). With the gate's
         // link lost, it fired on until its watchdog tripped, a watchdog time after the last command it had: at the
@@ -793,25 +807,106 @@ public sealed partial class RunExecutor
             return stop;
         }
 
-        var along = stroke.Plan.OffsetAt(offAt - stroke.Origin) - (timing.BurnSpeed * timing.StageJitterSeconds);
+        var (resumeX, cutPixel) = CutAt(offAt, burning.Move, stroke, timing, fired);
+        if (cutPixel is null)
+        {
+            return stop;
+        }
+
+        // Counting on the watchdog, which a gate that heard the fault's OFF (and carried it out unacknowledged) never
+        // trips: the resumed run then takes the cut at that OFF, the earliest the laser can have gone off.
+        var (offResumeX, offCut) = byWatchdog && _faultOffWrite is { } firstOff
+            ? CutAt(firstOff + timing.OffLeadSeconds - timing.GateJitterSeconds, burning.Move, stroke, timing, fired)
+            : (null, null);
+        return stop with
+        {
+            ResumeXMicrosteps = resumeX,
+            CutPixel = cutPixel,
+            ExpectedXMicrosteps = resumeX is not null && _stopMatchesMotion is null ? stroke.EndX : null,
+            OffByGateWatchdog = byWatchdog,
+            OffResumeXMicrosteps = offResumeX,
+            OffCutPixel = offCut,
+        };
+    }
+
+    /// <summary>
+    /// The cut of a burn run whose laser went off at <paramref name="offAt"/> (s on the run's clock): the first pixel edge
+    /// not completely burned and the pixel the laser went off in; no edge when the run burns again from its start (off
+    /// inside its first pixel, or a switch-on not known to have fired), no pixel when it went off before the run. Caller holds the lock.
+    /// </summary>
+    private (long? ResumeX, PixelIndex? Cut) CutAt(double offAt, Move burn, ActiveStroke stroke, TimedSwitching timing, bool fired)
+    {
+        var along = Along(stroke, offAt - stroke.Origin, timing) - (timing.BurnSpeed * timing.StageJitterSeconds);
         if (_stoppedAtKnownPosition)
         {
             // Stopped while the laser still fired (its gate out of reach): it burned no further than where X stopped.
             along = Math.Min(along, (_x - stroke.StartX) * stroke.Direction);
         }
 
-        if (Job.Plan.ResumeWithin(burning.Move, stroke.StartX + (stroke.Direction * along)) is not { } cut)
+        var burnedTo = stroke.StartX + (stroke.Direction * along);
+        if (fired && Job!.Plan.ResumeWithin(burn, burnedTo) is { } cut)
         {
-            return stop;
+            return (cut.ResumeX, new PixelIndex(cut.Column, burn.Row));
         }
 
-        return stop with
+        // Off within the run's first pixel, or a switch-on not known to have fired: the run burns again from its
+        // start, so the pixel the laser went off in is the one that may get part of its dose twice; the log names it.
+        if ((burnedTo - burn.X0) * stroke.Direction < 0)
         {
-            ResumeXMicrosteps = cut.ResumeX,
-            CutPixel = new PixelIndex(cut.Column, burning.Move.Row),
-            ExpectedXMicrosteps = _stopMatchesMotion is null ? stroke.EndX : null,
-            OffByGateWatchdog = byWatchdog,
-        };
+            return (null, null);
+        }
+
+        var column = Job!.Plan.ColumnAt(burn, Math.Clamp(burnedTo, Math.Min(burn.X0, burn.X1), Math.Max(burn.X0, burn.X1)));
+        return (null, new PixelIndex(column, burn.Row));
+    }
+
+    /// <summary>
+    /// Where the stroke's motion put X <paramref name="seconds"/> after its origin, microsteps from its start: its plan,
+    /// but at the burn speed on from a flown gap whose speed-up was never sent (the run ended first), as the stage went.
+    /// </summary>
+    private static double Along(ActiveStroke stroke, double seconds, TimedSwitching timing)
+    {
+        var unflown = stroke.Plan.Bumps.OrderBy(b => b.Exit).Skip(stroke.GapsFlown).FirstOrDefault();
+        return unflown is not null && seconds > unflown.SpeedUpArrival
+            ? Math.Min(stroke.Plan.Length, stroke.Plan.OffsetAt(unflown.SpeedUpArrival) + (timing.BurnSpeed * (seconds - unflown.SpeedUpArrival)))
+            : stroke.Plan.OffsetAt(seconds);
+    }
+
+    // A flown gap's speed-up has been sent: from here the stroke's plan holds that gap.
+    private void NoteGapFlown()
+    {
+        lock (_lock)
+        {
+            if (_activeStroke is { } stroke)
+            {
+                stroke.GapsFlown++;
+            }
+        }
+    }
+
+    /// <summary>Whether the gate refused the switch-on (an error reply): the laser did not come on for that run.</summary>
+    private bool SwitchOnRefused(Task acknowledged) =>
+        acknowledged.Exception?.InnerException is LaserGate.LaserGateException refusal
+        && _profile.Gate.ErrorPrefix.Length > 0 && refusal.Reply.StartsWith(_profile.Gate.ErrorPrefix, StringComparison.Ordinal);
+
+    /// <summary>
+    /// Before the stop point: a switch-on whose acknowledgement is still on its way (a late reply) is waited for, at
+    /// most the gate's own timeout, so that a late "OK" says the run was burned up to the fault's switch-off.
+    /// </summary>
+    private async Task SettleSwitchOnAsync()
+    {
+        Task? acknowledged;
+        lock (_lock)
+        {
+            acknowledged = _burning?.Acknowledged;
+        }
+
+        if (acknowledged is { IsCompleted: false })
+        {
+            using var stop = new CancellationTokenSource();
+            await Task.WhenAny(acknowledged, PreciseDelay.DelayAsync(TimeProvider, TimeSpan.FromMilliseconds(_profile.Gate.TimeoutMs), stop.Token));
+            stop.Cancel();
+        }
     }
 
     /// <summary>The X axis' reply to the stop after a fault: whether it stopped where the stroke's motion put it (braking from the burn speed).</summary>
@@ -825,7 +920,7 @@ public sealed partial class RunExecutor
             }
 
             var arrival = written + timing.StageCommandSeconds - stroke.Origin;
-            var along = stroke.Plan.OffsetAt(arrival);
+            var along = Along(stroke, arrival, timing);
             var expected = along >= stroke.Plan.Length
                 ? stroke.EndX
                 : stroke.StartX + (stroke.Direction * (along + (timing.BurnSpeed * timing.BurnSpeed / (2 * timing.Acceleration))));
@@ -846,6 +941,9 @@ public sealed partial class RunExecutor
 
         /// <summary>When the stroke's offset 0 is, s on the run's clock (its start, moved by the position queries' findings).</summary>
         public double Origin { get; set; }
+
+        /// <summary>How many of its flown gaps' speed-ups were sent (the others the stage crossed at the burn speed).</summary>
+        public int GapsFlown { get; set; }
     }
 
     private sealed record Segment(bool Stroke, List<(Move Move, long Index)> Moves, long StartX, long StartY, long EndX, long EndY);

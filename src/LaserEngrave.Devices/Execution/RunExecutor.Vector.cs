@@ -195,7 +195,7 @@ public sealed partial class RunExecutor
         {
             (off, var offWritten) = await SendSwitchAsync(on: false);
             _lastGateWrite = offWrite;
-            WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off");
+            WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off", switchOff: true);
             ThrowIfSwitchOffLate(offWrite, offWritten, timing);
         }));
 
@@ -214,6 +214,7 @@ public sealed partial class RunExecutor
         var travel = write + stroke.NextArrivalSeconds;
         if (!await CompletesByAsync(off!, travel, token) || !off!.IsCompletedSuccessfully)
         {
+            MarkSwitchOffFailed();
             throw Fault("the laser gate had not acknowledged the switch-off when the stage was to travel");
         }
 

@@ -1,6 +1,7 @@
 using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Motion;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Core.Vectors;
@@ -53,6 +54,10 @@ public sealed partial class RunExecutor
     private double _laserOnSeconds;
     private bool _laserOffConfirmed = true;
     private string? _laserOffProblem;
+    private LaserOffPath? _laserOffBy;
+
+    // A switch-off refused or not acknowledged in time: the laser may still fire, so every path to off is taken at once.
+    private bool _switchOffFailed;
     private long _startTimestamp;
     private long _engravingStart;
     private bool _engravingStarted;
@@ -346,7 +351,7 @@ public sealed partial class RunExecutor
         try
         {
             gateIdentity = await OnceMoreAfterTimeoutAsync(() => Gate.IdentifyAsync(token));
-            if (Options.ResumeFrom is { OffByGateWatchdog: true, ResumeXMicrosteps: not null } && !(await Gate.GetStateAsync(token)).WatchdogTripped)
+            if (Options.ResumeFrom is { OffByGateWatchdog: true } && !(await Gate.GetStateAsync(token)).WatchdogTripped)
             {
                 // The laser's switch-off time counted on the watchdog; a gate restarted since cannot vouch for it.
                 _gateVouchesForCut = false;
@@ -363,7 +368,8 @@ public sealed partial class RunExecutor
         var x = await IdentifyAxisAsync(Stage.X, "X", token);
         var y = await IdentifyAxisAsync(Stage.Y, "Y", token);
         CheckReach(x, y);
-        _resumeX = _gateVouchesForCut ? Options.ResumeFrom?.ResumeXMicrosteps : null;
+        // A gate whose watchdog did not trip heard a command that switched the laser off: the cut at the fault's first OFF.
+        _resumeX = _gateVouchesForCut ? Options.ResumeFrom?.ResumeXMicrosteps : Options.ResumeFrom?.OffResumeXMicrosteps;
         if (Options.ResumeFrom is { ResumeXMicrosteps: not null, ExpectedXMicrosteps: { } expected })
         {
             // The stage could not be asked when the run stopped: it must be found where its motion was taking it, or the
@@ -874,13 +880,31 @@ public sealed partial class RunExecutor
                     _keepAlive.Active = false;
                 }
 
-                await Gate.OffAsync(CancellationToken.None);
+                try
+                {
+                    await Gate.OffAsync(CancellationToken.None);
+                }
+                catch (DeviceException)
+                {
+                    MarkSwitchOffFailed();
+                    throw;
+                }
+
                 MarkLaserOff();
             }
         }
         finally
         {
             _laserLock.Release();
+        }
+    }
+
+    /// <summary>A switch-off was refused or not acknowledged: the fault's off sequence takes every path at once.</summary>
+    private void MarkSwitchOffFailed()
+    {
+        lock (_lock)
+        {
+            _switchOffFailed = true;
         }
     }
 
@@ -896,7 +920,10 @@ public sealed partial class RunExecutor
         }
     }
 
-    /// <summary>Switches the laser off, trying <see cref="RunOptions.LaserOffAttempts"/> times; records when the gate cannot be reached.</summary>
+    /// <summary>
+    /// Switches the laser off after a fault or an abort: OFF, and when that (or an earlier switch-off) was refused or went
+    /// unanswered, every other path at once (<see cref="EveryWayOffAsync"/>); records which one the gate confirmed.
+    /// </summary>
     private async Task LaserOffSafelyAsync()
     {
         await _laserLock.WaitAsync();
@@ -906,46 +933,108 @@ public sealed partial class RunExecutor
             {
                 _keepAlive.Active = false;
             }
-
-            Exception? last = null;
-            if (_engravingStarted)
+            bool inDoubt;
+            lock (_lock)
             {
-                lock (_lock)
+                if (_engravingStarted)
                 {
                     _faultOffWrite ??= RunSeconds;
                 }
+
+                // Every path was taken once already: the laser is confirmed off, or its port is closed and a person must check it.
+                if (_laserOffBy is LaserOffPath.OffAgain or LaserOffPath.FrequencyZero or LaserOffPath.None)
+                {
+                    return;
+                }
+
+                inDoubt = _switchOffFailed;
             }
 
-            for (var attempt = 0; attempt < Math.Max(1, Options.LaserOffAttempts); attempt++)
+            DeviceException? refused = null;
+            Task? first = null;
+            if (!inDoubt)
             {
-                try
+                first = Gate.OffAsync(CancellationToken.None);
+
+                // Answered within its round trip (and the margin a stage reply gets), or it is in doubt: a gate gone deaf
+                // must not leave the stage sweeping for the whole of the gate's timeout with the laser on.
+                var roundTrip = (_timing?.OffRoundTripSeconds ?? 0.02) + (2 * (_timing?.GateJitterSeconds ?? 0)) + (Options.StallMarginMs / 1000);
+                using (var wait = new CancellationTokenSource())
                 {
-                    await Gate.OffAsync(CancellationToken.None);
+                    await Task.WhenAny(first, PreciseDelay.DelayAsync(TimeProvider, TimeSpan.FromSeconds(roundTrip), wait.Token));
+                    wait.Cancel();
+                }
+
+                if (first.IsCompletedSuccessfully)
+                {
                     MarkLaserOff();
                     lock (_lock)
                     {
                         _laserOffConfirmed = true;
                         _laserOffProblem = null;
+                        _laserOffBy = LaserOffPath.Off;
                     }
 
                     return;
                 }
-                catch (DeviceException ex)
-                {
-                    last = ex;
-                }
+
+                refused = first.Exception?.InnerException as DeviceException;
             }
 
-            MarkLaserOff();
-            lock (_lock)
-            {
-                _laserOffConfirmed = false;
-                _laserOffProblem = $"the laser could not be confirmed off after {Options.LaserOffAttempts} attempts ({last?.Message}); switch it off at the laser";
-            }
+            await EveryWayOffAsync(refused, first);
         }
         finally
         {
             _laserLock.Release();
+        }
+    }
+
+    /// <summary>
+    /// A switch-off was refused or went unanswered: OFF again, FREQ 0 and the gate's shortest watchdog go out together,
+    /// with a stop to both axes so that nothing more is swept; the first the gate acknowledges of OFF and FREQ 0 confirms
+    /// the laser off. When neither is acknowledged the gate's port is closed, so that the gate hears nothing more and its
+    /// watchdog switches the laser off, and the run says a person must check the laser. Caller holds the laser lock.
+    /// </summary>
+    /// <param name="refused">Why the switch-off was refused, when it was.</param>
+    /// <param name="first">The fault's own OFF, still waiting for its answer (a late answer confirms the laser off too).</param>
+    private async Task EveryWayOffAsync(DeviceException? refused, Task? first)
+    {
+        // Gate commands are not cancelled (a late reply would be taken for the next one's): each waits its own timeout.
+        var off = Gate.OffAsync(CancellationToken.None);
+        var zero = Gate.SetFrequencyAsync(0, CancellationToken.None);
+        var watchdog = Gate.SetWatchdogAsync(MachineProfileValidator.MinWatchdogMs, CancellationToken.None);
+        var stopping = StopAxesAsync();
+        await Task.WhenAll(Settled(first ?? Task.CompletedTask), Settled(off), Settled(zero), Settled(watchdog), stopping);
+        var path = off.IsCompletedSuccessfully || first?.IsCompletedSuccessfully == true ? LaserOffPath.OffAgain
+            : zero.IsCompletedSuccessfully ? LaserOffPath.FrequencyZero
+            : LaserOffPath.None;
+        MarkLaserOff();
+        if (path == LaserOffPath.None && Gate is IAsyncDisposable port)
+        {
+            // Silence on its line is the one thing left that switches the laser off: the gate's own watchdog.
+            await port.DisposeAsync();
+        }
+
+        lock (_lock)
+        {
+            _laserOffBy = path;
+            _laserOffConfirmed = path != LaserOffPath.None;
+            var why = (refused ?? off.Exception?.InnerException ?? zero.Exception?.InnerException)?.Message;
+            _laserOffProblem = path != LaserOffPath.None ? null : string.Create(
+                CultureInfo.InvariantCulture,
+                $"the laser could not be confirmed off: the gate acknowledged neither OFF nor FREQ 0 ({why}); its port was closed so that its watchdog ({(watchdog.IsCompletedSuccessfully ? MachineProfileValidator.MinWatchdogMs : _profile.Gate.WatchdogMs)} ms) switches the laser off; a person must check the laser");
+        }
+    }
+
+    private static async Task Settled(Task task)
+    {
+        try
+        {
+            await task;
+        }
+        catch (DeviceException)
+        {
+            // Looked at through the task itself.
         }
     }
 
@@ -1019,6 +1108,11 @@ public sealed partial class RunExecutor
             _estimator?.Finish();
         }
 
+        if (outcome != RunOutcome.Completed)
+        {
+            await SettleSwitchOnAsync();
+        }
+
         var stopPoint = outcome == RunOutcome.Completed ? null : StopPoint();
         RunResult result;
         lock (_lock)
@@ -1033,6 +1127,7 @@ public sealed partial class RunExecutor
                 Recoverable = outcome == RunOutcome.Failed && _recoverableFault && _laserOffProblem is null && _laserOffConfirmed
                     && stopPoint is { CutPixel: null, ResumeXMicrosteps: null },
                 LaserOffConfirmed = _laserOffConfirmed,
+                LaserOffBy = outcome == RunOutcome.Completed ? null : _laserOffBy ?? (_laserOffConfirmed ? LaserOffPath.Off : LaserOffPath.None),
                 StartedAt = startedAt,
                 EndedAt = TimeProvider.GetUtcNow(),
                 EngravingDuration = engraving < TimeSpan.Zero ? TimeSpan.Zero : engraving,

@@ -19,9 +19,6 @@ public sealed record RunOptions
     /// <summary>Keepalive period as a fraction of the gate's watchdog time (the profile's <c>gate.watchdogMs</c>).</summary>
     public double KeepAliveFraction { get; init; } = 0.25;
 
-    /// <summary>How many times the laser-off command is tried after a fault before the gate counts as unreachable.</summary>
-    public int LaserOffAttempts { get; init; } = 3;
-
     /// <summary>How late past its expected arrival a stage reply may come before the run counts the stage as stalled, ms.</summary>
     public double StallMarginMs { get; init; } = 20;
 }

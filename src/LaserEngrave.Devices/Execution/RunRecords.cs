@@ -41,7 +41,7 @@ public static class RunRecords
             Outcome = run.Outcome,
             Fault = run.Outcome == RunOutcome.Completed
                 ? null
-                : new RunFault(run.FaultMessage ?? "no reason given", run.Outcome == RunOutcome.Aborted ? "aborted" : null, run.LaserOffConfirmed),
+                : new RunFault(run.FaultMessage ?? "no reason given", run.Outcome == RunOutcome.Aborted ? "aborted" : null, run.LaserOffConfirmed, run.LaserOffBy),
             StoppedAt = run.StopPoint,
             Devices = run.Machine is { } machine
                 ?

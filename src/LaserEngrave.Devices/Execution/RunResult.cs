@@ -1,4 +1,5 @@
 using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Logging;
 using LaserEngrave.Devices.Abstractions;
 
 namespace LaserEngrave.Devices.Execution;
@@ -30,6 +31,9 @@ public sealed record RunResult
 
     /// <summary>False when the laser could not be confirmed off at the end (the gate did not answer any attempt).</summary>
     public required bool LaserOffConfirmed { get; init; }
+
+    /// <summary>Which command the gate acknowledged to confirm the laser off after a fault or an abort (None: none did); null when completed.</summary>
+    public LaserOffPath? LaserOffBy { get; init; }
 
     public required DateTimeOffset StartedAt { get; init; }
 

@@ -35,7 +35,8 @@ public sealed class SimulationLoop : SynchronizationContext, IDisposable
     private long _foreignPosts;
     private bool _stopping;
     private readonly bool _paced;
-    private readonly long _wallStart = System.Diagnostics.Stopwatch.GetTimestamp();
+    private readonly TimeProvider _wall;
+    private readonly long _wallStart;
 
     /// <param name="name">The loop thread's name.</param>
     /// <param name="paced">
@@ -43,15 +44,18 @@ public sealed class SimulationLoop : SynchronizationContext, IDisposable
     /// waiting for work from another thread (a page's Pause, Resume) waits for it instead of counting as deadlocked. For
     /// a live view (the app): every event still happens at its exact virtual time, so timing is what the model says.
     /// </param>
-    public SimulationLoop(string name = "simulation", bool paced = false)
+    /// <param name="wallClock">The wall clock a paced loop keeps to (the system's by default; a fake one in tests).</param>
+    public SimulationLoop(string name = "simulation", bool paced = false, TimeProvider? wallClock = null)
     {
         _paced = paced;
+        _wall = wallClock ?? TimeProvider.System;
+        _wallStart = _wall.GetTimestamp();
         _scheduler = new LoopTaskScheduler(this);
         _thread = new Thread(Loop) { IsBackground = true, Name = name };
         _thread.Start();
     }
 
-    private long WallTicks => (long)((System.Diagnostics.Stopwatch.GetTimestamp() - _wallStart) * ((double)TimeSpan.TicksPerSecond / System.Diagnostics.Stopwatch.Frequency));
+    private long WallTicks => _wall.GetElapsedTime(_wallStart).Ticks;
 
     /// <summary>Virtual time since the loop started, in ticks of 100 ns.</summary>
     public long NowTicks => Volatile.Read(ref _now);
@@ -80,6 +84,12 @@ public sealed class SimulationLoop : SynchronizationContext, IDisposable
         lock (_lock)
         {
             ObjectDisposedException.ThrowIf(_stopping, this);
+            if (_paced && _roots.Count == 0)
+            {
+                // Virtual time stood still while nothing ran: an operation starts now on the wall clock too, or its first
+                // seconds would race to catch up (a run after an idle minute ran 48 s of the machine's time in 1 s).
+                _now = Math.Max(_now, WallTicks);
+            }
 
             // The operation and its first step go in together: a loop that looked in between would see an operation with
             // nothing to do and report a deadlock (it happened at t = 0 when the loop's thread was slow to start).

@@ -14,10 +14,11 @@ public sealed class VirtualTimeProvider : TimeProvider, ITaskRunner, IDisposable
 
     /// <param name="start">Wall-clock time at virtual time zero (what logs show as the start of a run); now by default.</param>
     /// <param name="paced">Never ahead of the wall clock (<see cref="SimulationLoop"/>), for a live view.</param>
-    public VirtualTimeProvider(DateTimeOffset? start = null, bool paced = false)
+    /// <param name="wallClock">The wall clock a paced loop keeps to (the system's by default; a fake one in tests).</param>
+    public VirtualTimeProvider(DateTimeOffset? start = null, bool paced = false, TimeProvider? wallClock = null)
     {
-        _start = start ?? System.GetUtcNow();
-        Loop = new SimulationLoop(paced: paced);
+        _start = start ?? (wallClock ?? System).GetUtcNow();
+        Loop = new SimulationLoop(paced: paced, wallClock: wallClock);
     }
 
     /// <summary>The loop this clock belongs to.</summary>

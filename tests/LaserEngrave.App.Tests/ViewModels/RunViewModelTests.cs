@@ -58,6 +58,19 @@ public sealed class RunViewModelTests
     }
 
     [Fact]
+    public async Task Start_LogFolderFull_ErrorNamingItAndNoRun()
+    {
+        await ReadyAsync();
+        _store.When(s => s.CheckWritable()).Do(_ => throw new RunLogException("/logs: cannot write the run log there: No space left on device"));
+
+        await _run.StartCommand.ExecuteAsync(null);
+
+        Assert.Equal("/logs: cannot write the run log there: No space left on device", _run.Error);
+        Assert.Equal(RunState.Failed, _run.State);
+        await _runs.DidNotReceive().RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>());
+    }
+
+    [Fact]
     public async Task Start_NotConnected_ErrorAndNoRun()
     {
         _job.LoadImage(TestFiles.Asset("qr-code.bmp"));

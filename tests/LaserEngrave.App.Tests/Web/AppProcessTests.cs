@@ -29,10 +29,10 @@ public sealed partial class AppProcessTests : IDisposable
         _data.Dispose();
     }
 
-    /// <summary>Sends SIGTERM the way a service manager does.</summary>
-    private static async Task TerminateAsync(Process process)
+    /// <summary>Sends SIGTERM the way a service manager does (SIGHUP: a terminal closing; SIGQUIT: Ctrl+\\).</summary>
+    private static async Task TerminateAsync(Process process, string signal = "TERM")
     {
-        using var kill = Process.Start("kill", ["-TERM", process.Id.ToString(System.Globalization.CultureInfo.InvariantCulture)]);
+        using var kill = Process.Start("kill", [$"-{signal}", process.Id.ToString(System.Globalization.CultureInfo.InvariantCulture)]);
         await kill.WaitForExitAsync(Token);
         Assert.Equal(0, kill.ExitCode);
     }
@@ -226,8 +226,11 @@ public sealed partial class AppProcessTests : IDisposable
         Assert.Equal(HttpStatusCode.OK, with.StatusCode);
     }
 
-    [Fact]
-    public async Task SigTerm_RunUnderWayAndPageOpen_ExitsLaserOffAndLogWritten()
+    [Theory]
+    [InlineData("TERM")]
+    [InlineData("HUP")]
+    [InlineData("QUIT")]
+    public async Task Signal_RunUnderWayAndPageOpen_ExitsLaserOffAndLogWritten(string signal)
     {
         var process = Start(["--urls", "http://127.0.0.1:0"]);
         var (address, secret) = await ReadStartLineAsync(process);
@@ -245,7 +248,7 @@ public sealed partial class AppProcessTests : IDisposable
         // The page's connection (Blazor's hub, over a WebSocket, authorised by the token) stays open through the exit.
         using var page = await OpenPageConnectionAsync(address, secret);
 
-        await TerminateAsync(process);
+        await TerminateAsync(process, signal);
         await process.WaitForExitAsync(Token).WaitAsync(Bound, Token);
 
         Assert.Equal(0, process.ExitCode);

@@ -91,6 +91,129 @@ public sealed class RunLogStoreTests : IDisposable
     }
 
     [Fact]
+    public void CheckWritable_FolderUnderAFile_OneLineNamingTheFolder()
+    {
+        var file = Path.Combine(runs.Folder, "a-file");
+        File.WriteAllText(file, "x");
+        var store = new RunLogStore(Path.Combine(file, "logs"));
+
+        var ex = Assert.Throws<RunLogException>(store.CheckWritable);
+
+        Assert.StartsWith($"{store.Folder}: cannot create the log folder", ex.Message, StringComparison.Ordinal);
+        Assert.DoesNotContain('\n', ex.Message);
+    }
+
+    [Theory]
+    [InlineData(true)]
+    [InlineData(false)]
+    public void CheckWritable_ReadOnlyOrFullDisk_OneLineAndNothingLeftInTheFolder(bool full)
+    {
+        var store = new RunLogStore(LogFolder, full ? new FullDisk() : new ReadOnlyDisk());
+
+        var ex = Assert.Throws<RunLogException>(store.CheckWritable);
+
+        Assert.StartsWith($"{store.Folder}: cannot write the run log there: ", ex.Message, StringComparison.Ordinal);
+        Assert.Contains(full ? "No space left on device" : "Read-only file system", ex.Message, StringComparison.Ordinal);
+        Assert.Empty(Directory.GetFiles(LogFolder));
+    }
+
+    [Fact]
+    public void CheckWritable_DiskWithLessRoomThanALog_SaysItIsFull()
+    {
+        var store = new RunLogStore(LogFolder, new AlmostFullDisk());
+
+        var ex = Assert.Throws<RunLogException>(store.CheckWritable);
+
+        Assert.Contains("the log folder's disk is full (10 kB free", ex.Message, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void CheckWritable_WritableFolder_LeavesNothingBehind()
+    {
+        var store = new RunLogStore(LogFolder);
+
+        store.CheckWritable();
+
+        Assert.Empty(Directory.GetFiles(LogFolder));
+    }
+
+    [Fact]
+    public void Write_DiskFillsWhileWriting_NoLogNoEmptySummaryNoPartialFile()
+    {
+        var store = new RunLogStore(LogFolder, new FullDisk { FreeBytes = 3000 });
+
+        var ex = Assert.Throws<RunLogException>(() => store.Write(runs.FailedRecord()));
+
+        Assert.Contains("No space left on device", ex.Message, StringComparison.Ordinal);
+        Assert.DoesNotContain('\n', ex.Message);
+        Assert.Empty(Directory.GetFiles(LogFolder));
+        Assert.Empty(store.List());
+    }
+
+    /// <summary>A disk that takes <see cref="FreeBytes"/> and then fails every write as a full one does.</summary>
+    private sealed class FullDisk : RunLogFileSystem
+    {
+        public long FreeBytes { get; init; }
+
+        public override Stream CreateNew(string path) => new Filling(base.CreateNew(path), this);
+
+        public override long? AvailableBytes(string folder) => FreeBytes;
+
+        private sealed class Filling(Stream inner, FullDisk disk) : Stream
+        {
+            public override bool CanRead => false;
+
+            public override bool CanSeek => false;
+
+            public override bool CanWrite => true;
+
+            public override long Length => inner.Length;
+
+            public override long Position { get => inner.Position; set => throw new NotSupportedException(); }
+
+            public override void Write(byte[] buffer, int offset, int count)
+            {
+                var room = (int)Math.Max(0, Math.Min(count, disk.FreeBytes - inner.Length));
+                inner.Write(buffer, offset, room);
+                if (room < count)
+                {
+                    throw new IOException("No space left on device");
+                }
+            }
+
+            public override void Flush() => inner.Flush();
+
+            public override int Read(byte[] buffer, int offset, int count) => throw new NotSupportedException();
+
+            public override long Seek(long offset, SeekOrigin origin) => throw new NotSupportedException();
+
+            public override void SetLength(long value) => throw new NotSupportedException();
+
+            protected override void Dispose(bool disposing)
+            {
+                if (disposing)
+                {
+                    inner.Dispose();
+                }
+
+                base.Dispose(disposing);
+            }
+        }
+    }
+
+    /// <summary>A read-only mount (which a test run as root cannot get from chmod).</summary>
+    private sealed class ReadOnlyDisk : RunLogFileSystem
+    {
+        public override Stream CreateNew(string path) => throw new IOException("Read-only file system");
+    }
+
+    /// <summary>A disk that takes the check's file but has only 10 kB left for anything after it.</summary>
+    private sealed class AlmostFullDisk : RunLogFileSystem
+    {
+        public override long? AvailableBytes(string folder) => 10 * 1024;
+    }
+
+    [Fact]
     public void List_FolderMissing_IsEmpty()
     {
         Assert.Empty(new RunLogStore(Path.Combine(runs.Folder, "nothing-here")).List());

@@ -29,6 +29,42 @@ public sealed class RunSummaryTextTests : IDisposable
         Assert.Contains("Notes:              first try\n                    focus 2 turns down", text, StringComparison.Ordinal);
     }
 
+    [Theory]
+    [InlineData(true, LaserOffPath.Off, "Laser off:          confirmed by the gate (it acknowledged OFF)")]
+    [InlineData(true, LaserOffPath.OffAgain, "Laser off:          confirmed by the gate acknowledging OFF, late or sent again (it had refused or not answered a switch-off in time")]
+    [InlineData(true, LaserOffPath.FrequencyZero, "Laser off:          confirmed by the gate acknowledging FREQ 0")]
+    [InlineData(false, LaserOffPath.None, "Laser off:          NOT CONFIRMED: the gate acknowledged neither OFF nor FREQ 0; its port was closed so that its watchdog switches the laser off; a person must check the laser")]
+    public void Format_LaserOffPath_SaysWhichCommandConfirmedItOrThatNoneDid(bool confirmed, LaserOffPath path, string line)
+    {
+        var record = runs.FailedRecord() with { Fault = new RunFault("laser gate refused 'OFF': ERR 1", null, confirmed, path) };
+
+        var text = RunSummaryText.Format(record);
+        var read = RunRecordJson.Deserialize(RunRecordJson.Serialize(record), "test.json");
+
+        Assert.Contains(line, text, StringComparison.Ordinal);
+        Assert.Equal(path, read.Fault!.LaserOffBy);
+    }
+
+    [Fact]
+    public void Format_StopPointNamingACutPixelAndTheCutIfTheWatchdogDidNotTrip_SaysBoth()
+    {
+        var stop = new RunStopPoint(5, 31, 117268, 107548)
+        {
+            CutPixel = new PixelIndex(13, 5),
+            OffByGateWatchdog = true,
+            OffResumeXMicrosteps = 117000,
+            OffCutPixel = new PixelIndex(12, 5),
+        };
+        var record = runs.FailedRecord() with { StoppedAt = stop };
+
+        var text = RunSummaryText.Format(record);
+        var read = RunRecordJson.Deserialize(RunRecordJson.Serialize(record), "test.json");
+
+        Assert.Contains("Resumes:            from the run's start; pixel column 13, row 5 (the laser went off in it, or its switch-on was never acknowledged) may get part of its dose twice", text, StringComparison.Ordinal);
+        Assert.Contains("Or resumes:         mid-run at X 117000 microsteps if the gate reports its watchdog did not trip (it heard the OFF); then pixel column 12, row 5 burns twice", text, StringComparison.Ordinal);
+        Assert.Equal(stop, read.StoppedAt);
+    }
+
     [Fact]
     public void Format_CompletedRun_HasNoFaultOrStopLines()
     {

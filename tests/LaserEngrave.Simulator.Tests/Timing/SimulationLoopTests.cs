@@ -125,6 +125,65 @@ public class SimulationLoopTests
     }
 
     [Fact(Timeout = 20_000)]
+    public async Task Run_PacedAfterIdle_StartsAtTheWallClocksTimeAndKeepsItsPace()
+    {
+        // The app's case: a run (aborted), the machine left idle 30 s, then the next run.
+        var wall = new ManualWallClock();
+        using var time = new VirtualTimeProvider(paced: true, wallClock: wall);
+        Task? idle = null;
+        await time.Run(() =>
+        {
+            idle = wall.NextRead();
+            return Task.FromResult(0);
+        });
+
+        // The loop has looked at the wall clock once the run ended, and sleeps: then 30 s pass.
+        await idle!;
+        wall.Advance(TimeSpan.FromSeconds(30));
+
+        var (start, end) = await time.Run(async () =>
+        {
+            var begun = time.Elapsed;
+
+            // The wall clock passes the run's 2 s as the run does (the loop never waits: the clock is a fake).
+            wall.Advance(TimeSpan.FromSeconds(2));
+            await Task.Delay(TimeSpan.FromSeconds(2), time);
+            return (begun, time.Elapsed);
+        });
+
+        // Not 0 and 2 s, 30 s behind the wall clock: the run's first 30 s of the machine's time would pass at once.
+        Assert.Equal(TimeSpan.FromSeconds(30), start);
+        Assert.Equal(TimeSpan.FromSeconds(32), end);
+    }
+
+    /// <summary>A wall clock the test moves by hand.</summary>
+    private sealed class ManualWallClock : TimeProvider
+    {
+        private long _ticks;
+        private TaskCompletionSource? _read;
+
+        public override long TimestampFrequency => TimeSpan.TicksPerSecond;
+
+        public override long GetTimestamp()
+        {
+            Interlocked.Exchange(ref _read, null)?.TrySetResult();
+            return Interlocked.Read(ref _ticks);
+        }
+
+        /// <summary>Completes at the clock's next reading.</summary>
+        public Task NextRead()
+        {
+            var read = new TaskCompletionSource(TaskCreationOptions.RunContinuationsAsynchronously);
+            _read = read;
+            return read.Task;
+        }
+
+        public override DateTimeOffset GetUtcNow() => DateTimeOffset.UnixEpoch + TimeSpan.FromTicks(GetTimestamp());
+
+        public void Advance(TimeSpan by) => Interlocked.Add(ref _ticks, by.Ticks);
+    }
+
+    [Fact(Timeout = 20_000)]
     public async Task Time_BetweenOperations_StandsStill()
     {
         using var time = new VirtualTimeProvider();
