@@ -43,8 +43,12 @@ public sealed record SimulatorOptions
     /// <summary>A partial Zaber frame is dropped when the next byte comes later than this after the previous one.</summary>
     public TimeSpan PartialFrameTimeout { get; init; } = TimeSpan.FromMilliseconds(10);
 
-    /// <summary>Firmware version answered to Return Firmware Version (502 = 5.02).</summary>
-    public int FirmwareVersion { get; init; } = 502;
+    /// <summary>
+    /// Firmware version of both axes (523 = 5.23), answered to Return Firmware Version; the devices refuse what that firmware
+    /// lacks, as the manual says: below 5.20 no Set Home Speed (Home runs at the Target Speed), below 5.04 no Echo Data,
+    /// 5.21-5.22 refuse Target Speed 0 and a Maximum Position below the current position (docs/zaber-protocol.md).
+    /// </summary>
+    public int FirmwareVersion { get; init; } = 523;
 
     /// <summary>Device type ID answered to Return Device ID.</summary>
     /// <remarks>The real T-LA60A ID is not documented in the sources we have; this is a stand-in the host only displays.</remarks>

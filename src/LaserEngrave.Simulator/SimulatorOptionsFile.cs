@@ -53,6 +53,8 @@ public static class SimulatorOptionsFile
             HomeSpeedData = InRange(path, "homeSpeedData", fields.HomeSpeedData, 1, 32767) ?? baseOptions.HomeSpeedData,
             AccelerationData = InRange(path, "accelerationData", fields.AccelerationData, 0, 32767) ?? baseOptions.AccelerationData,
             FaultSpec = fields.Faults ?? baseOptions.FaultSpec,
+            FirmwareVersion = InRange(path, "firmwareVersion", fields.FirmwareVersion, 500, 599) ?? baseOptions.FirmwareVersion,
+            DeviceId = InRange(path, "deviceId", fields.DeviceId, 1, int.MaxValue) ?? baseOptions.DeviceId,
             StartMm = fields.StartMm is { } startMm
                 ? double.IsFinite(startMm) && startMm >= 0 && startMm <= 1000 ? startMm : throw new InvalidDataException($"{path}: startMm must be 0..1000 mm (got {startMm.ToString(System.Globalization.CultureInfo.InvariantCulture)})")
                 : baseOptions.StartMm,
@@ -105,7 +107,7 @@ public static class SimulatorOptionsFile
     }
 
     private static readonly string[] KnownFields =
-        ["seed", "adapterLatency", "gateProcessing", "jitterScale", "targetSpeedData", "homeSpeedData", "accelerationData", "startMm", "faults", "trueFocusOffsetUm", "rayleighLengthUm"];
+        ["seed", "firmwareVersion", "deviceId", "adapterLatency", "gateProcessing", "jitterScale", "targetSpeedData", "homeSpeedData", "accelerationData", "startMm", "faults", "trueFocusOffsetUm", "rayleighLengthUm"];
 
     private static Jitter? Checked(string path, string name, Jitter? jitter)
     {
@@ -125,6 +127,10 @@ public static class SimulatorOptionsFile
     private sealed record Fields
     {
         public int? Seed { get; init; }
+
+        public int? FirmwareVersion { get; init; }
+
+        public int? DeviceId { get; init; }
 
         public Jitter? AdapterLatency { get; init; }
 

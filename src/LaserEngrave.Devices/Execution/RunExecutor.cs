@@ -362,6 +362,8 @@ public sealed partial class RunExecutor
 
         var x = await IdentifyAxisAsync(Stage.X, "X", token);
         var y = await IdentifyAxisAsync(Stage.Y, "Y", token);
+        CheckFirmware(x, "X");
+        CheckFirmware(y, "Y");
         CheckReach(x, y);
         _resumeX = _gateVouchesForCut ? Options.ResumeFrom?.ResumeXMicrosteps : null;
         if (Options.ResumeFrom is { ResumeXMicrosteps: not null, ExpectedXMicrosteps: { } expected })
@@ -441,6 +443,20 @@ public sealed partial class RunExecutor
         }
 
         return identity;
+    }
+
+    /// <summary>Refuses a run whose strategy needs what the axis' firmware does not vouch for (<see cref="ZaberFirmware"/>), naming the axis, the firmware and what is missing.</summary>
+    private void CheckFirmware(AxisIdentity identity, string name)
+    {
+        var drawing = Drawing is not null;
+        var timedRaster = !drawing && Job!.Dots is null && Job.Plan.Timing is not null;
+        var missing = ZaberFirmware.Missing(identity.FirmwareVersion, speedChangeMidMove: timedRaster, constantSpeed: drawing);
+        if (missing.Count > 0)
+        {
+            var instead = timedRaster ? "; engrave it step by step (--strategy paper), which needs neither" : string.Empty;
+            throw new PreflightException(
+                $"the {name} axis (device {identity.DeviceNumber}) has firmware {identity.FirmwareText}, for which the Zaber manual does not vouch for {string.Join(" nor ", missing)}, which this job needs (T-series firmware 5.00-5.99 has it){instead}");
+        }
     }
 
     /// <summary>Asks twice before giving up: the first line after a port opens can be lost (a device still waking, noise on the line).</summary>
