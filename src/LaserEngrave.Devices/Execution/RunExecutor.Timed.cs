@@ -149,9 +149,12 @@ public sealed partial class RunExecutor
         var dir = Math.Sign(last.X1 - first.X0);
         var startX = first.X0;
         var firstBurn = moves.FirstOrDefault(m => m.Move.Kind == MoveKind.Burn);
-        if (firstBurn.Move.Kind == MoveKind.Burn && Math.Abs(firstBurn.Move.X0 - first.X0) < timing.RunUpMicrosteps)
+        // The plan's run-up, also when the run times itself with wider latencies (RunOptions.LatencyScale): the travels
+        // before the strokes end where the plan put them.
+        var runUp = Job!.Plan.Timing?.RunUpMicrosteps ?? timing.RunUpMicrosteps;
+        if (firstBurn.Move.Kind == MoveKind.Burn && Math.Abs(firstBurn.Move.X0 - first.X0) < runUp)
         {
-            startX = Math.Clamp(firstBurn.Move.X0 - (dir * timing.RunUpMicrosteps), 0, Job!.Plan.Geometry.TravelXMicrosteps);
+            startX = Math.Clamp(firstBurn.Move.X0 - (dir * runUp), 0, Job!.Plan.Geometry.TravelXMicrosteps);
         }
 
         return new Segment(true, moves, startX, first.Y0, last.X1, last.Y1);
@@ -385,6 +388,10 @@ public sealed partial class RunExecutor
         var ahead = ((query.Result - start) * direction) - expected;
         if (Math.Abs(ahead) > bump.MaxErrorMicrosteps + 1)
         {
+            // The latencies spread wider than assumed. One check sees one or two draws of them and rarely their largest, so
+            // the run that goes on from here assumes twice what this one found (RunResult.LatencyScale).
+            _latencyScaleSeen = Math.Max(_latencyScaleSeen, Math.Min(MaxLatencyScale, 2 * LatencyScale * Math.Abs(ahead) / Math.Max(bump.MaxErrorMicrosteps, 1)));
+
             throw Fault(string.Create(
                 System.Globalization.CultureInfo.InvariantCulture,
                 $"the X axis reported {query.Result} microsteps after a flown gap, {ahead:0} from its plan (at most {bump.MaxErrorMicrosteps:0} expected): it is not moving as planned, so the laser stays off"),

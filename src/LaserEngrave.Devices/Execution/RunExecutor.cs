@@ -34,7 +34,7 @@ public sealed partial class RunExecutor
     private readonly CancellationTokenSource _fault = new();
     private readonly ProcessSettings _process = ProcessSettings.Default;
     private readonly MachineProfile _profile = MachineProfile.Default;
-    private readonly TimedSwitching? _timing;
+    private TimedSwitching? _timing;
     private readonly int _rowsTotal;
     private readonly long _runsTotal;
     private readonly int _burnSpeedData;
@@ -77,6 +77,8 @@ public sealed partial class RunExecutor
     private long? _resumeX;
     private bool _gateVouchesForCut = true;
     private bool _homed;
+    private double _latencyScaleSeen = 1;
+    private double _latencyScale = 1;
     private PlanEstimator? _estimator;
 
     public RunExecutor(IStage stage, ILaserGate gate, PreparedJob job, TimeProvider? timeProvider = null, RunOptions? options = null)
@@ -204,7 +206,7 @@ public sealed partial class RunExecutor
             {
                 await ExecuteDotsAsync(dotPlan, firstIndex, linked.Token);
             }
-            else if (Job.Plan.Timing is { } timing)
+            else if (Job.Plan.Timing is not null && _timing is { } timing)
             {
                 await ExecuteTimedAsync(moves, firstIndex, timing, linked.Token);
             }
@@ -306,6 +308,46 @@ public sealed partial class RunExecutor
         resumed.TrySetResult();
     }
 
+    /// <summary>
+    /// The latency spread this run assumes, in times the profile's: <see cref="RunOptions.LatencyScale"/>, or more when the
+    /// preflight's own exchanges spread wider than the profile says (<see cref="SpreadSeenScale(long)"/>).
+    /// </summary>
+    private double LatencyScale => _latencyScale;
+
+    /// <summary>
+    /// The preflight's stage exchanges (identification, homing's settings and the positions after it: 14 to 22 commands
+    /// that reply at once, one at a time) against the profile: their
+    /// round trips may spread by the two adapter latencies' jitter, 4 J. Wider, the profile understates the latencies
+    /// (or the computer's lateness) and the guards sized by it would let pulses past the edges; the run then assumes
+    /// twice the ratio seen, since a dozen draws rarely show the largest. 1 when they fit, or for a plan without timing.
+    /// </summary>
+    /// <summary>The widest spread a run assumes, in times the profile's (a profile this far off needs `machine latency`).</summary>
+    private const double MaxLatencyScale = 8;
+
+    private double SpreadSeenScale(long exchangesBefore)
+    {
+        if (_timing is null || Stage.X is not ZaberBinaryDevice zaber)
+        {
+            return 1;
+        }
+
+        // Only the identification's, one at a time: during a run replies queue behind one another on the shared wire.
+        var connection = zaber.Connection;
+        var trips = connection.RecentRoundTripsMs.TakeLast((int)Math.Min(connection.RoundTripsRecorded - exchangesBefore, ZaberConnection.RoundTripsKept)).ToList();
+        var allowed = 4 * _timing.StageJitterSeconds * 1000;
+        if (trips.Count < 8 || allowed <= 0)
+        {
+            return 1;
+        }
+
+        // A reply held up far beyond the spread (a device busy a moment, a fault) is a doubt for the checks to catch, not a
+        // spread to time every edge by. Capped: far wider, the profile is wrong, not the margins.
+        trips.Sort();
+        var median = trips[trips.Count / 2];
+        var spread = trips.Where(t => t <= median + (5 * allowed)).Max() - trips[0];
+        return spread <= allowed ? 1 : Math.Min(MaxLatencyScale, 2 * spread / allowed);
+    }
+
     private static TaskCompletionSource NewSignal() => new(TaskCreationOptions.RunContinuationsAsynchronously);
 
     private static string N(double value) => value.ToString("0.####", CultureInfo.InvariantCulture);
@@ -360,6 +402,7 @@ public sealed partial class RunExecutor
             throw new PreflightException($"the laser gate does not answer as it should: {ex.Message}", ex);
         }
 
+        var exchangesBefore = (Stage.X as ZaberBinaryDevice)?.Connection.RoundTripsRecorded ?? 0;
         var x = await IdentifyAxisAsync(Stage.X, "X", token);
         var y = await IdentifyAxisAsync(Stage.Y, "Y", token);
         CheckFirmware(x, "X");
@@ -414,6 +457,22 @@ public sealed partial class RunExecutor
         catch (DeviceException ex)
         {
             throw new PreflightException($"homing failed: {ex.Message}", ex);
+        }
+
+        _latencyScale = Math.Max(double.IsFinite(Options.LatencyScale) ? Math.Max(1, Options.LatencyScale) : 1, SpreadSeenScale(exchangesBefore));
+        if (_latencyScale > 1 && Drawing is null && Job!.Plan.Timing is { } planned)
+        {
+            // Guards, margins, run-ups and checks all follow from the latencies' spread: the run times itself with the wider one.
+            var latency = _profile.Latency;
+            _timing = TimedSwitching.For(_process, _profile with
+            {
+                Latency = latency with
+                {
+                    StageJitterMs = latency.StageJitterMs * _latencyScale,
+                    GateJitterMs = latency.GateJitterMs * _latencyScale,
+                    GateProcessingJitterMs = latency.GateProcessingJitterMs * _latencyScale,
+                },
+            }, planned.MicrostepUm);
         }
 
         return new MachineIdentity(x, y, gateIdentity);
@@ -1049,6 +1108,7 @@ public sealed partial class RunExecutor
                 Recoverable = outcome == RunOutcome.Failed && _recoverableFault && _laserOffProblem is null && _laserOffConfirmed
                     && stopPoint is { CutPixel: null, ResumeXMicrosteps: null },
                 LaserOffConfirmed = _laserOffConfirmed,
+                LatencyScale = Math.Max(LatencyScale, _latencyScaleSeen),
                 StartedAt = startedAt,
                 EndedAt = TimeProvider.GetUtcNow(),
                 EngravingDuration = engraving < TimeSpan.Zero ? TimeSpan.Zero : engraving,

@@ -22,6 +22,14 @@ public sealed record RunOptions
     /// <summary>How many times the laser-off command is tried after a fault before the gate counts as unreachable.</summary>
     public int LaserOffAttempts { get; init; } = 3;
 
+    /// <summary>
+    /// How many times the profile's latency spread (its jitter) the run assumes, at least 1: its edge guards and its
+    /// position checks widen by it. A session that goes on after a check found the stage further from its plan than the
+    /// profile allows passes on what that run found (<see cref="RunResult.LatencyScale"/>), so that the laser keeps off
+    /// the white with the spread that was seen.
+    /// </summary>
+    public double LatencyScale { get; init; } = 1;
+
     /// <summary>How late past its expected arrival a stage reply may come before the run counts the stage as stalled, ms.</summary>
     public double StallMarginMs { get; init; } = 20;
 }
