@@ -25,6 +25,12 @@ public sealed record SimulatorOptions
     /// <summary>Latency of each USB-serial adapter, per transfer and direction, on top of the wire time.</summary>
     public Jitter AdapterLatency { get; init; } = new(1.0, 0.5);
 
+    /// <summary>
+    /// How late the host's code wakes from each timed wait (in-process, virtual time only): a computer busy with other
+    /// work. None by default; <see cref="Timing.HostLateness.Realistic"/> is a lab PC with other work on it.
+    /// </summary>
+    public HostLateness HostLateness { get; init; } = HostLateness.None;
+
     /// <summary>The laser gate's time from a command's last byte to the Q-switch changing (and its reply leaving).</summary>
     public Jitter GateProcessing { get; init; } = new(0.5, 0.2);
 
