@@ -92,3 +92,92 @@ public class MachineCommandTests
         Assert.StartsWith("laserengrave: ", error, StringComparison.Ordinal);
     }
 }
+
+/// <summary>`machine check` against `laserengrave simulator` on socat ptys: the first day on a machine, through the real serial path.</summary>
+public sealed class MachineCheckOnPortsTests : IAsyncLifetime
+{
+    private SimulatedPorts? _ports;
+
+    public async ValueTask InitializeAsync() => _ports = await SimulatedPorts.StartAsync(TestContext.Current.CancellationToken);
+
+    public async ValueTask DisposeAsync()
+    {
+        if (_ports is not null)
+        {
+            await _ports.DisposeAsync();
+        }
+    }
+
+    [Fact(Timeout = 120_000)]
+    public async Task MachineCheckOnPorts_Yes_EveryStepPassesAndTheReportAndProfileAreWritten()
+    {
+        var profile = CliHarness.TempFile(".json");
+        var report = CliHarness.TempFile(".txt");
+        try
+        {
+            var (exit, output, error) = await CliHarness.RunAsync(
+                "machine", "check", "--stage-port", _ports!.StagePort, "--laser-port", _ports.LaserPort, "--yes", "--count", "10", "--distance-mm", "0.5",
+                "--profile", profile, "--write", "--report", report, "--json");
+
+            Assert.True(exit == 0, $"{error}\n{output}");
+            using var json = JsonDocument.Parse(output);
+            Assert.True(json.RootElement.GetProperty("passed").GetBoolean());
+            var steps = json.RootElement.GetProperty("steps").EnumerateArray().Select(s => (s.GetProperty("name").GetString(), s.GetProperty("result").GetString())).ToList();
+            Assert.Equal(["laser gate", "X axis", "Y axis", "homing", "X move", "Y move", "latencies", "gate watchdog"], steps.Select(s => s.Item1));
+            Assert.All(steps, s => Assert.Equal("passed", s.Item2));
+            Assert.Contains("firmware 5.23", File.ReadAllText(report), StringComparison.Ordinal);
+            Assert.Contains("watchdog tripped", File.ReadAllText(report), StringComparison.Ordinal);
+            Assert.InRange(MachineProfile.Load(profile).Latency.StageMs, 0, 100);
+        }
+        finally
+        {
+            File.Delete(profile);
+            File.Delete(report);
+        }
+    }
+}
+
+/// <summary>`machine check` on the in-process simulator.</summary>
+public class MachineCheckSimulateTests
+{
+    [Fact]
+    public async Task MachineCheckSimulate_NoConfirmation_WatchdogSkippedAndNotPassed()
+    {
+        var (exit, output, _) = await CliHarness.RunAsync("machine", "check", "--simulate", "--count", "10", "--distance-mm", "1");
+
+        Assert.Equal(1, exit);
+        Assert.Contains("skip   gate watchdog: not tripped", output, StringComparison.Ordinal);
+        Assert.Contains("ok     X move: device 1 (X) sent to 10079 microsteps", output, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task MachineCheckSimulate_Firmware506_SaysItHomesAtTheTargetSpeed()
+    {
+        var options = CliHarness.TempFile(".json");
+        try
+        {
+            File.WriteAllText(options, """{ "firmwareVersion": 506 }""");
+            var (exit, output, error) = await CliHarness.RunAsync("machine", "check", "--simulate", "--yes", "--count", "10", "--distance-mm", "1", "--sim-options", options);
+
+            Assert.True(exit == 0, $"{error}\n{output}");
+            Assert.Contains("firmware 5.06 (homes at the Target Speed (no Set Home Speed before 5.20))", output, StringComparison.Ordinal);
+            Assert.Contains("Result: every step passed", output, StringComparison.Ordinal);
+        }
+        finally
+        {
+            File.Delete(options);
+        }
+    }
+
+    [Theory]
+    [InlineData("0")]
+    [InlineData("NaN")]
+    [InlineData("61")]
+    public async Task MachineCheck_DistanceOutOfRange_Exit2NothingOpened(string mm)
+    {
+        var (exit, _, error) = await CliHarness.RunAsync("machine", "check", "--simulate", "--distance-mm", mm);
+
+        Assert.Equal(2, exit);
+        Assert.Contains("--distance-mm", error, StringComparison.Ordinal);
+    }
+}
