@@ -55,6 +55,8 @@ internal static class MachineCommand
             var latency = measured.ToProfile(existing.Latency);
             if (store)
             {
+                // A profile that would not load again is not written (round trips beyond what timed switching can use).
+                (existing with { Latency = latency }).Validate(path!);
                 (existing with { Latency = latency }).Save(path!);
             }
 

@@ -123,8 +123,19 @@ public sealed class MachineCheck
             LatencyMeasurement? latency = null;
             await Step(steps, "latencies", async () =>
             {
-                latency = await new LatencyProbe(_stage, _gate, _time).MeasureAsync(exchanges, cancellationToken);
-                var found = latency.ToProfile(_profile.Latency);
+                var measured = await new LatencyProbe(_stage, _gate, _time).MeasureAsync(exchanges, cancellationToken);
+                var found = measured.ToProfile(_profile.Latency);
+                try
+                {
+                    // What the profile cannot hold is not written: a computer this slow cannot time the laser's switching.
+                    (_profile with { Latency = found }).Validate("the measured latencies");
+                }
+                catch (ProfileException ex)
+                {
+                    throw new DeviceException(string.Create(c, $"round trips up to {Math.Max(measured.X.MaxMs, measured.Gate.MaxMs):0.#} ms: {ex.Message}; free this computer of other work and check again"));
+                }
+
+                latency = measured;
                 return string.Create(c, $"stage {found.StageMs:0.###} ± {found.StageJitterMs:0.###} ms, gate {found.GateMs:0.###} ± {found.GateJitterMs:0.###} ms one way ({exchanges} round trips each; X max {latency.X.MaxMs:0.##} ms, Y max {latency.Y.MaxMs:0.##} ms, gate max {latency.Gate.MaxMs:0.##} ms)");
             });
 
