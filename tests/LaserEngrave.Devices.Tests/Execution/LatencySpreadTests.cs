@@ -78,4 +78,23 @@ public class LatencySpreadTests
         Assert.Equal(RunOutcome.Completed, result.Outcome);
         Assert.InRange(result.LatencyScale, 2, 20);
     }
+
+    [Theory(Timeout = 120_000)]
+    [InlineData(523)]
+    [InlineData(506)]
+    public async Task RunAsync_HostLateSpeedDownInAFlownGap_LaterSwitchingsComeSoonerAndNoPulseOnWhite(int firmware)
+    {
+        // With a busy computer's lateness, a speed-down left 4.9 ms late held a bump of the banner longer: the stage gained
+        // 171 microsteps more than planned, which the check expected but the switchings after it ignored, and the next run
+        // burned 15 µm past its exit edge (30 pulses on white, the run "completed").
+        var job = Sample("text-banner.png");
+        await using var run = SimulatedRun.Create(new SimulatorOptions { HostLateness = LaserEngrave.Simulator.Timing.HostLateness.Realistic, FirmwareVersion = firmware });
+
+        var result = await run.Do(() => run.Executor(job).RunAsync(TestContext.Current.CancellationToken));
+        var report = run.Analyze(job);
+
+        TestContext.Current.TestOutputHelper?.WriteLine($"{result.Outcome} {result.FaultMessage}: on white {report.LaserOnTravelCount}, extra {report.ExtraPixels}");
+        Assert.Equal((0, 0L), (report.LaserOnTravelCount, report.ExtraPixels));
+        Assert.False(run.Machine.Gate.IsFiring);
+    }
 }
