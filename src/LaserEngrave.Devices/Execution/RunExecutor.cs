@@ -459,9 +459,12 @@ public sealed partial class RunExecutor
             throw new PreflightException($"homing failed: {ex.Message}", ex);
         }
 
-        _latencyScale = Math.Max(double.IsFinite(Options.LatencyScale) ? Math.Max(1, Options.LatencyScale) : 1, SpreadSeenScale(exchangesBefore));
-        if (_latencyScale > 1 && Drawing is null && Job!.Plan.Timing is { } planned)
+        // Raster timed switching only: a drawing's schedule and a step-by-step run keep the profile's latencies.
+        var scale = Math.Max(double.IsFinite(Options.LatencyScale) ? Math.Max(1, Options.LatencyScale) : 1, SpreadSeenScale(exchangesBefore));
+        if (scale > 1 && Drawing is null && Job!.Dots is null && Job.Plan.Timing is { } planned)
         {
+            _latencyScale = scale;
+
             // Guards, margins, run-ups and checks all follow from the latencies' spread: the run times itself with the wider one.
             var latency = _profile.Latency;
             _timing = TimedSwitching.For(_process, _profile with
