@@ -53,6 +53,13 @@ public sealed class SimulatedMachine : IAsyncDisposable
         {
             _virtual = new VirtualTimeProvider(options.VirtualStart, options.Paced);
             TimeProvider = _virtual;
+            if (!options.HostLateness.IsNone)
+            {
+                // Its own stream, so the links' draws (and every figure without host lateness) stay as they were.
+                var lateness = options.HostLateness;
+                var random = new Random(unchecked(options.Seed * 7919) ^ 0x4C415445);
+                _virtual.HostLateness = () => TimeSpan.FromSeconds(lateness.SampleSeconds(random));
+            }
         }
         else
         {

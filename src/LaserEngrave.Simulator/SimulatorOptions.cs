@@ -25,6 +25,12 @@ public sealed record SimulatorOptions
     /// <summary>Latency of each USB-serial adapter, per transfer and direction, on top of the wire time.</summary>
     public Jitter AdapterLatency { get; init; } = new(1.0, 0.5);
 
+    /// <summary>
+    /// How late the host's code wakes from each timed wait (in-process, virtual time only): a computer busy with other
+    /// work. None by default; <see cref="Timing.HostLateness.Realistic"/> is a lab PC with other work on it.
+    /// </summary>
+    public HostLateness HostLateness { get; init; } = HostLateness.None;
+
     /// <summary>The laser gate's time from a command's last byte to the Q-switch changing (and its reply leaving).</summary>
     public Jitter GateProcessing { get; init; } = new(0.5, 0.2);
 
@@ -43,8 +49,12 @@ public sealed record SimulatorOptions
     /// <summary>A partial Zaber frame is dropped when the next byte comes later than this after the previous one.</summary>
     public TimeSpan PartialFrameTimeout { get; init; } = TimeSpan.FromMilliseconds(10);
 
-    /// <summary>Firmware version answered to Return Firmware Version (502 = 5.02).</summary>
-    public int FirmwareVersion { get; init; } = 502;
+    /// <summary>
+    /// Firmware version of both axes (523 = 5.23), answered to Return Firmware Version; the devices refuse what that firmware
+    /// lacks, as the manual says: below 5.20 no Set Home Speed (Home runs at the Target Speed), below 5.04 no Echo Data,
+    /// 5.21-5.22 refuse Target Speed 0 and a Maximum Position below the current position (docs/zaber-protocol.md).
+    /// </summary>
+    public int FirmwareVersion { get; init; } = 523;
 
     /// <summary>Device type ID answered to Return Device ID.</summary>
     /// <remarks>The real T-LA60A ID is not documented in the sources we have; this is a stand-in the host only displays.</remarks>

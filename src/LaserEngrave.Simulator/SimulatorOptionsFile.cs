@@ -53,6 +53,9 @@ public static class SimulatorOptionsFile
             HomeSpeedData = InRange(path, "homeSpeedData", fields.HomeSpeedData, 1, 32767) ?? baseOptions.HomeSpeedData,
             AccelerationData = InRange(path, "accelerationData", fields.AccelerationData, 0, 32767) ?? baseOptions.AccelerationData,
             FaultSpec = fields.Faults ?? baseOptions.FaultSpec,
+            HostLateness = CheckedLateness(path, fields.HostLateness) ?? baseOptions.HostLateness,
+            FirmwareVersion = InRange(path, "firmwareVersion", fields.FirmwareVersion, 500, 599) ?? baseOptions.FirmwareVersion,
+            DeviceId = InRange(path, "deviceId", fields.DeviceId, 1, int.MaxValue) ?? baseOptions.DeviceId,
             StartMm = fields.StartMm is { } startMm
                 ? double.IsFinite(startMm) && startMm >= 0 && startMm <= 1000 ? startMm : throw new InvalidDataException($"{path}: startMm must be 0..1000 mm (got {startMm.ToString(System.Globalization.CultureInfo.InvariantCulture)})")
                 : baseOptions.StartMm,
@@ -105,7 +108,7 @@ public static class SimulatorOptionsFile
     }
 
     private static readonly string[] KnownFields =
-        ["seed", "adapterLatency", "gateProcessing", "jitterScale", "targetSpeedData", "homeSpeedData", "accelerationData", "startMm", "faults", "trueFocusOffsetUm", "rayleighLengthUm"];
+        ["seed", "firmwareVersion", "deviceId", "hostLateness", "adapterLatency", "gateProcessing", "jitterScale", "targetSpeedData", "homeSpeedData", "accelerationData", "startMm", "faults", "trueFocusOffsetUm", "rayleighLengthUm"];
 
     private static Jitter? Checked(string path, string name, Jitter? jitter)
     {
@@ -117,6 +120,12 @@ public static class SimulatorOptionsFile
         return jitter;
     }
 
+    private static HostLateness? CheckedLateness(string path, HostLateness? lateness) =>
+        lateness is { } l && (!double.IsFinite(l.TypicalMs) || !double.IsFinite(l.TailMs) || !double.IsFinite(l.TailProbability)
+            || l.TypicalMs < 0 || l.TypicalMs > 1000 || l.TailMs < 0 || l.TailMs > 1000 || l.TailProbability < 0 || l.TailProbability > 1)
+            ? throw new InvalidDataException($"{path}: hostLateness must have typicalMs and tailMs from 0 to 1000 ms and tailProbability from 0 to 1")
+            : lateness;
+
     private static int? InRange(string path, string name, int? value, int min, int max) =>
         value is { } v && (v < min || v > max)
             ? throw new InvalidDataException($"{path}: {name} {v} must be {min} to {max}")
@@ -125,6 +134,12 @@ public static class SimulatorOptionsFile
     private sealed record Fields
     {
         public int? Seed { get; init; }
+
+        public int? FirmwareVersion { get; init; }
+
+        public HostLateness? HostLateness { get; init; }
+
+        public int? DeviceId { get; init; }
 
         public Jitter? AdapterLatency { get; init; }
 

@@ -34,7 +34,7 @@ public sealed class DeviceCommandsTests : IAsyncLifetime
         Assert.Contains("2 Zaber device(s)", output, StringComparison.Ordinal);
         Assert.Contains("device 1", output, StringComparison.Ordinal);
         Assert.Contains("device 2", output, StringComparison.Ordinal);
-        Assert.Contains("firmware 5.02", output, StringComparison.Ordinal);
+        Assert.Contains("firmware 5.23", output, StringComparison.Ordinal);
     }
 
     [Fact(Timeout = 60_000)]

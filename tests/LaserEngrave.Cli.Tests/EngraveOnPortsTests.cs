@@ -52,7 +52,7 @@ public sealed class EngraveOnPortsTests : IAsyncLifetime
         var record = RunLogStore.Read(json.RootElement.GetProperty("logPath").GetString()!);
         Assert.Equal(record.RunsTotal, record.RunsDone);
         Assert.Equal([StagePort, StagePort, LaserPort], record.Devices.Select(d => d.Port));
-        Assert.Equal("5.02", record.Devices[0].Firmware);
+        Assert.Equal("5.23", record.Devices[0].Firmware);
     }
 
     [Fact(Timeout = 60_000)]

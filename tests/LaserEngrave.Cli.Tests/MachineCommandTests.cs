@@ -92,3 +92,124 @@ public class MachineCommandTests
         Assert.StartsWith("laserengrave: ", error, StringComparison.Ordinal);
     }
 }
+
+/// <summary>`machine check` against `laserengrave simulator` on socat ptys: the first day on a machine, through the real serial path.</summary>
+public sealed class MachineCheckOnPortsTests : IAsyncLifetime
+{
+    private SimulatedPorts? _ports;
+
+    public async ValueTask InitializeAsync() => _ports = await SimulatedPorts.StartAsync(TestContext.Current.CancellationToken);
+
+    public async ValueTask DisposeAsync()
+    {
+        if (_ports is not null)
+        {
+            await _ports.DisposeAsync();
+        }
+    }
+
+    [Fact(Timeout = 120_000)]
+    public async Task MachineCheckOnPorts_Yes_EveryStepPassesAndTheReportAndProfileAreWritten()
+    {
+        var profile = CliHarness.TempFile(".json");
+        var report = CliHarness.TempFile(".txt");
+        try
+        {
+            var (exit, output, error) = await CliHarness.RunAsync(
+                "machine", "check", "--stage-port", _ports!.StagePort, "--laser-port", _ports.LaserPort, "--yes", "--count", "10", "--distance-mm", "0.5",
+                "--profile", profile, "--write", "--report", report, "--json");
+
+            using var json = JsonDocument.Parse(output);
+            var steps = json.RootElement.GetProperty("steps").EnumerateArray().Select(s => (s.GetProperty("name").GetString(), s.GetProperty("result").GetString(), s.GetProperty("finding").GetString())).ToList();
+            Assert.Equal(["laser gate", "X axis", "Y axis", "homing", "X move", "Y move", "latencies", "gate watchdog"], steps.Select(s => s.Item1));
+            Assert.All(steps.Where(s => s.Item1 != "latencies"), s => Assert.True(s.Item2 == "passed", $"{s.Item1}: {s.Item3}"));
+            Assert.Contains("firmware 5.23", File.ReadAllText(report), StringComparison.Ordinal);
+            Assert.Contains("watchdog tripped", File.ReadAllText(report), StringComparison.Ordinal);
+            var latency = steps.Single(s => s.Item1 == "latencies");
+            if (latency.Item2 == "passed")
+            {
+                // Timing on the wall clock: a test machine busy enough gives round trips no profile may hold, and then nothing is written.
+                Assert.True(exit == 0, $"{error}\n{output}");
+                Assert.InRange(MachineProfile.Load(profile).Latency.StageMs, 0, 100);
+            }
+            else
+            {
+                Assert.Equal(1, exit);
+                Assert.Contains("free this computer of other work", latency.Item3, StringComparison.Ordinal);
+                Assert.False(File.Exists(profile) && new FileInfo(profile).Length > 0, "a profile was written from latencies it cannot hold");
+            }
+        }
+        finally
+        {
+            File.Delete(profile);
+            File.Delete(report);
+        }
+    }
+}
+
+/// <summary>`machine check` on the in-process simulator.</summary>
+public class MachineCheckSimulateTests
+{
+    [Fact]
+    public async Task MachineCheckSimulate_NoConfirmation_WatchdogSkippedAndNotPassed()
+    {
+        var (exit, output, _) = await CliHarness.RunAsync("machine", "check", "--simulate", "--count", "10", "--distance-mm", "1");
+
+        Assert.Equal(1, exit);
+        Assert.Contains("skip   gate watchdog: not tripped", output, StringComparison.Ordinal);
+        Assert.Contains("ok     X move: device 1 (X) sent to 10079 microsteps", output, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task MachineCheckSimulate_Firmware506_SaysItHomesAtTheTargetSpeed()
+    {
+        var options = CliHarness.TempFile(".json");
+        try
+        {
+            File.WriteAllText(options, """{ "firmwareVersion": 506 }""");
+            var (exit, output, error) = await CliHarness.RunAsync("machine", "check", "--simulate", "--yes", "--count", "10", "--distance-mm", "1", "--sim-options", options);
+
+            Assert.True(exit == 0, $"{error}\n{output}");
+            Assert.Contains("firmware 5.06 (homes at the Target Speed (no Set Home Speed before 5.20))", output, StringComparison.Ordinal);
+            Assert.Contains("Result: every step passed", output, StringComparison.Ordinal);
+        }
+        finally
+        {
+            File.Delete(options);
+        }
+    }
+
+    [Fact]
+    public async Task MachineCheckSimulate_RoundTripsNoProfileCanHold_LatencyFailsAndNothingIsWritten()
+    {
+        var options = CliHarness.TempFile(".json");
+        var profile = CliHarness.TempFile(".json");
+        try
+        {
+            File.WriteAllText(options, """{ "adapterLatency": { "meanMs": 110, "spreadMs": 20 } }""");
+            var (exit, output, _) = await CliHarness.RunAsync("machine", "check", "--simulate", "--yes", "--count", "10", "--distance-mm", "1", "--sim-options", options, "--profile", profile, "--write");
+
+            Assert.Equal(1, exit);
+            Assert.Contains("FAILED latencies: round trips up to", output, StringComparison.Ordinal);
+            Assert.Contains("Not written", output, StringComparison.Ordinal);
+            Assert.False(File.Exists(profile));
+        }
+        finally
+        {
+            File.Delete(options);
+            File.Delete(profile);
+        }
+    }
+
+    [Theory]
+    [InlineData("0")]
+    [InlineData("NaN")]
+    [InlineData("61")]
+    public async Task MachineCheck_DistanceOutOfRange_Exit2NothingOpened(string mm)
+    {
+        var (exit, _, error) = await CliHarness.RunAsync("machine", "check", "--simulate", "--distance-mm", mm);
+
+        Assert.Equal(2, exit);
+        Assert.Contains("--distance-mm", error, StringComparison.Ordinal);
+    }
+}

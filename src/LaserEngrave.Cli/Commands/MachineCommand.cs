@@ -16,6 +16,7 @@ internal static class MachineCommand
     {
         var command = new Command("machine", "Measure the machine itself: its serial latencies (kept in the profile for timed laser switching)");
         command.Subcommands.Add(Latency());
+        command.Subcommands.Add(Check());
         return command;
     }
 
@@ -54,6 +55,8 @@ internal static class MachineCommand
             var latency = measured.ToProfile(existing.Latency);
             if (store)
             {
+                // A profile that would not load again is not written (round trips beyond what timed switching can use).
+                (existing with { Latency = latency }).Validate(path!);
                 (existing with { Latency = latency }).Save(path!);
             }
 
@@ -77,6 +80,100 @@ internal static class MachineCommand
             return CliRunner.Ok;
         });
         return command;
+    }
+
+    private static Command Check()
+    {
+        var machine = new MachineOptions();
+        var profile = new Option<string?>("--profile") { Description = "Machine profile (JSON) of the machine; with --write the measured latency section is stored in it (created from the default when missing)" };
+        var distance = new Option<double>("--distance-mm") { Description = "How far each axis is moved from home and read back, mm", DefaultValueFactory = _ => 10 };
+        var count = new Option<int>("--count") { Description = "Round trips per device for the latencies", DefaultValueFactory = _ => 100 };
+        var write = new Option<bool>("--write") { Description = "Store the measured latencies in --profile's latency section" };
+        var report = new Option<string?>("--report") { Description = "Also write the printable report to this text file" };
+        var yes = new Option<bool>("--yes") { Description = "The beam is blocked: trip the gate's watchdog without asking" };
+        var json = new Option<bool>("--json") { Description = "Print one JSON object" };
+        var command = new Command("check", "The first day on a machine: identify both axes and the gate, home, move each axis a known distance and read it back, measure the latencies, trip the gate's watchdog once (beam blocked), and report (docs/commissioning.md)") { profile, distance, count, write, report, yes, json };
+        machine.AddTo(command);
+        command.SetAction(async (result, ct) =>
+        {
+            var exchanges = result.GetValue(count);
+            OptionChecks.InRange(exchanges, 1, MaxExchanges, "--count", string.Empty, "round trips per device");
+            var mm = result.GetValue(distance);
+            if (!double.IsFinite(mm) || mm <= 0 || mm > 1000)
+            {
+                throw new UsageException($"--distance-mm {mm.ToString(CultureInfo.InvariantCulture)} must be above 0 and at most the travel");
+            }
+
+            var path = result.GetValue(profile);
+            var store = result.GetValue(write);
+            if (store && path is null)
+            {
+                throw new UsageException("--write needs --profile FILE: the profile to store the latency section in");
+            }
+
+            var existing = path is null ? MachineProfile.Default : File.Exists(path) || !store ? MachineProfile.Load(path) : MachineProfile.Default;
+            if (mm > Math.Min(existing.X.TravelMm, existing.Y.TravelMm))
+            {
+                throw new UsageException(string.Create(CultureInfo.InvariantCulture, $"--distance-mm {mm} is beyond the travel ({Math.Min(existing.X.TravelMm, existing.Y.TravelMm)} mm)"));
+            }
+
+            var reportPath = result.GetValue(report);
+            var stdout = result.InvocationConfiguration.Output;
+            var trip = result.GetValue(yes) || Confirm(stdout);
+            using var priority = result.GetValue(machine.Simulate) ? null : RunPriority.Raise();
+            var session = machine.Open(result, existing);
+            MachineCheckReport found;
+            string where;
+            DateTimeOffset at;
+            await using (session)
+            {
+                where = $"stage on {session.StagePort}, laser gate on {session.LaserPort}";
+                at = session.TimeProvider.GetUtcNow();
+                var check = new MachineCheck(session.Stage, session.Gate, existing, session.TimeProvider);
+                found = await session.RunAsync(() => check.RunAsync(mm, exchanges, trip, ct));
+            }
+
+            var written = store && found.Latency is not null;
+            if (written)
+            {
+                (existing with { Latency = found.Latency! }).Save(path!);
+            }
+
+            var lines = found.Lines(where, at).ToList();
+            lines.Add(written ? $"Written: the latency section of {path}" : "Not written: give --profile FILE --write to store the latencies");
+            if (reportPath is not null)
+            {
+                File.WriteAllLines(reportPath, lines);
+            }
+
+            if (result.GetValue(json))
+            {
+                CliJson.Write(stdout, new { passed = found.Passed, steps = found.Steps.Select(s => new { name = s.Name, result = s.Result.ToString().ToLowerInvariant(), finding = s.Finding }), latency = found.Latency, profile = path, written, report = reportPath });
+            }
+            else
+            {
+                foreach (var line in lines)
+                {
+                    stdout.WriteLine(line);
+                }
+            }
+
+            return found.Passed ? CliRunner.Ok : 1;
+        });
+        return command;
+    }
+
+    // The watchdog step fires the laser: only after the person at the machine says the beam is blocked.
+    private static bool Confirm(TextWriter stdout)
+    {
+        if (Console.IsInputRedirected)
+        {
+            return false;
+        }
+
+        stdout.Write("Trip the laser gate's watchdog once? The laser fires at a low frequency until the gate switches it off. Is the beam blocked? [y/N] ");
+        var answer = Console.ReadLine();
+        return answer is not null && answer.Trim().Equals("y", StringComparison.OrdinalIgnoreCase) || (answer?.Trim().Equals("yes", StringComparison.OrdinalIgnoreCase) ?? false);
     }
 
     private static string Describe(RoundTrips trips) => string.Create(

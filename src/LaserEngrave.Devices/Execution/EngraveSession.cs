@@ -28,6 +28,7 @@ public sealed class EngraveSession
     private bool _pauseRequested;
     private bool _abortRequested;
     private readonly List<RunRecovery> _recoveries = [];
+    private double _latencyScale = 1;
     private int _started;
 
     /// <summary>How many timing doubts a session goes on from (<see cref="RunResult.Recoverable"/>); the next one ends the run.</summary>
@@ -474,7 +475,8 @@ public sealed class EngraveSession
 
     private async Task<RunResult> RunPassAsync(PreparedLayer part, int pass, bool firstOfSession, CancellationToken cancellationToken, RunStopPoint? resumeFrom = null)
     {
-        var options = new RunOptions { Home = Options.Home && firstOfSession, ResumeFrom = resumeFrom ?? (firstOfSession ? _resumeFrom : null) };
+        // What an earlier run of this session found of the latencies' spread holds for the rest of it (RunResult.LatencyScale).
+        var options = new RunOptions { Home = Options.Home && firstOfSession, ResumeFrom = resumeFrom ?? (firstOfSession ? _resumeFrom : null), LatencyScale = _latencyScale };
         var executor = part.Drawing is { } drawing
             ? new RunExecutor(Machine.Stage, Machine.Gate, drawing, Machine.TimeProvider, options)
             : new RunExecutor(Machine.Stage, Machine.Gate, part.Image!, Machine.TimeProvider, options);
@@ -501,7 +503,9 @@ public sealed class EngraveSession
             executor.Abort();
         }
 
-        return await executor.RunAsync(cancellationToken);
+        var result = await executor.RunAsync(cancellationToken);
+        _latencyScale = Math.Max(_latencyScale, result.LatencyScale);
+        return result;
     }
 
     private void Report(PassProgress? pass)

@@ -149,9 +149,12 @@ public sealed partial class RunExecutor
         var dir = Math.Sign(last.X1 - first.X0);
         var startX = first.X0;
         var firstBurn = moves.FirstOrDefault(m => m.Move.Kind == MoveKind.Burn);
-        if (firstBurn.Move.Kind == MoveKind.Burn && Math.Abs(firstBurn.Move.X0 - first.X0) < timing.RunUpMicrosteps)
+        // The plan's run-up, also when the run times itself with wider latencies (RunOptions.LatencyScale): the travels
+        // before the strokes end where the plan put them.
+        var runUp = Job!.Plan.Timing?.RunUpMicrosteps ?? timing.RunUpMicrosteps;
+        if (firstBurn.Move.Kind == MoveKind.Burn && Math.Abs(firstBurn.Move.X0 - first.X0) < runUp)
         {
-            startX = Math.Clamp(firstBurn.Move.X0 - (dir * timing.RunUpMicrosteps), 0, Job!.Plan.Geometry.TravelXMicrosteps);
+            startX = Math.Clamp(firstBurn.Move.X0 - (dir * runUp), 0, Job!.Plan.Geometry.TravelXMicrosteps);
         }
 
         return new Segment(true, moves, startX, first.Y0, last.X1, last.Y1);
@@ -357,12 +360,22 @@ public sealed partial class RunExecutor
         var downLate = RunSeconds - downWrite;
         Watch(Stage.X.SetTargetSpeedAsync(_burnSpeedData, token), Sent(start + bump.SpeedDownArrival, RunSeconds, timing) + timing.StageReplySeconds, "Set Target Speed (X, after a flown gap)");
 
-        // The query goes once the stage is surely back at the burn speed: never sooner after the speed-down than planned.
+        // The query goes once the stage is surely back at the burn speed: never sooner after the speed-down than planned,
+        // and later still when the speed-down left late against the speed-up (a busy computer): held longer, the bump
+        // peaks higher and takes that much longer to come back down, and a query before that would find the stage still
+        // fast, take it for behind its plan, and the laser would come on early.
+        var hold = bump.SpeedDownArrival - bump.SpeedUpArrival;
+        var longer = Later(0, downLate) - Later(0, upLate);
+        var rampDown = longer > 0 ? (Rise(timing, hold + longer) - Rise(timing, hold)) / timing.Acceleration : 0;
         var queryWrite = start + bump.QueryArrival - timing.StageCommandSeconds;
-        await DelayUntilAsync(Math.Max(queryWrite, RunSeconds + (bump.QueryArrival - bump.SpeedDownArrival)), token);
+        await DelayUntilAsync(Math.Max(queryWrite, RunSeconds + (bump.QueryArrival - bump.SpeedDownArrival) + rampDown), token);
         var queryLate = RunSeconds - queryWrite;
         return new FlownQuery(Stage.X.GetPositionAsync(token), Later(0, upLate), Later(0, downLate), Later(0, queryLate));
     }
+
+    /// <summary>How far above the burn speed a bump held <paramref name="hold"/> s rises (<see cref="TimedSwitching.FlyGain"/>'s dV).</summary>
+    private static double Rise(TimedSwitching timing, double hold) =>
+        Math.Min(timing.Acceleration * Math.Max(0, hold), Math.Max(0, timing.TravelSpeed - timing.BurnSpeed));
 
     /// <summary>A flown gap's position query, and how late (s) the host wrote the speed-up, the speed-down and the query.</summary>
     private sealed record FlownQuery(Task<long> Query, double UpLate, double DownLate, double QueryLate);
@@ -381,18 +394,24 @@ public sealed partial class RunExecutor
 
         // A host late to write (a loaded computer) held the bump longer or shorter and asked later: where the stage then is.
         var hold = bump.SpeedDownArrival - bump.SpeedUpArrival;
-        var expected = bump.ExpectedOffset + (timing.BurnSpeed * flown.QueryLate)
-            + timing.FlyGain(hold + flown.DownLate - flown.UpLate) - timing.FlyGain(hold);
+        var gainedMore = timing.FlyGain(hold + flown.DownLate - flown.UpLate) - timing.FlyGain(hold);
+        var expected = bump.ExpectedOffset + (timing.BurnSpeed * flown.QueryLate) + gainedMore;
         var ahead = ((query.Result - start) * direction) - expected;
         if (Math.Abs(ahead) > bump.MaxErrorMicrosteps + 1)
         {
+            // The latencies spread wider than assumed. One check sees one or two draws of them and rarely their largest, so
+            // the run that goes on from here assumes twice what this one found (RunResult.LatencyScale).
+            _latencyScaleSeen = Math.Max(_latencyScaleSeen, Math.Min(MaxLatencyScale, 2 * LatencyScale * Math.Abs(ahead) / Math.Max(bump.MaxErrorMicrosteps, 1)));
+
             throw Fault(string.Create(
                 System.Globalization.CultureInfo.InvariantCulture,
                 $"the X axis reported {query.Result} microsteps after a flown gap, {ahead:0} from its plan (at most {bump.MaxErrorMicrosteps:0} expected): it is not moving as planned, so the laser stays off"),
                 recoverable: true);
         }
 
-        return -ahead / timing.BurnSpeed;
+        // What the bump gained beyond its plan (its speed commands' real interval) is the stage ahead of its plan as surely as
+        // what the query found: every later switching comes that much sooner. Asking later is not: it is only time passing.
+        return -(ahead + gainedMore) / timing.BurnSpeed;
     }
 
     /// <summary>Before the first switch-on of a stroke: every earlier move has reported its end, and the position query shows the stage on its way.</summary>

@@ -35,7 +35,7 @@ public sealed partial class RunExecutor
     private readonly CancellationTokenSource _fault = new();
     private readonly ProcessSettings _process = ProcessSettings.Default;
     private readonly MachineProfile _profile = MachineProfile.Default;
-    private readonly TimedSwitching? _timing;
+    private TimedSwitching? _timing;
     private readonly int _rowsTotal;
     private readonly long _runsTotal;
     private readonly int _burnSpeedData;
@@ -82,6 +82,8 @@ public sealed partial class RunExecutor
     private long? _resumeX;
     private bool _gateVouchesForCut = true;
     private bool _homed;
+    private double _latencyScaleSeen = 1;
+    private double _latencyScale = 1;
     private PlanEstimator? _estimator;
 
     public RunExecutor(IStage stage, ILaserGate gate, PreparedJob job, TimeProvider? timeProvider = null, RunOptions? options = null)
@@ -209,7 +211,7 @@ public sealed partial class RunExecutor
             {
                 await ExecuteDotsAsync(dotPlan, firstIndex, linked.Token);
             }
-            else if (Job.Plan.Timing is { } timing)
+            else if (Job.Plan.Timing is not null && _timing is { } timing)
             {
                 await ExecuteTimedAsync(moves, firstIndex, timing, linked.Token);
             }
@@ -311,6 +313,46 @@ public sealed partial class RunExecutor
         resumed.TrySetResult();
     }
 
+    /// <summary>
+    /// The latency spread this run assumes, in times the profile's: <see cref="RunOptions.LatencyScale"/>, or more when the
+    /// preflight's own exchanges spread wider than the profile says (<see cref="SpreadSeenScale(long)"/>).
+    /// </summary>
+    private double LatencyScale => _latencyScale;
+
+    /// <summary>
+    /// The preflight's stage exchanges (identification, homing's settings and the positions after it: 14 to 22 commands
+    /// that reply at once, one at a time) against the profile: their
+    /// round trips may spread by the two adapter latencies' jitter, 4 J. Wider, the profile understates the latencies
+    /// (or the computer's lateness) and the guards sized by it would let pulses past the edges; the run then assumes
+    /// twice the ratio seen, since a dozen draws rarely show the largest. 1 when they fit, or for a plan without timing.
+    /// </summary>
+    /// <summary>The widest spread a run assumes, in times the profile's (a profile this far off needs `machine latency`).</summary>
+    private const double MaxLatencyScale = 8;
+
+    private double SpreadSeenScale(long exchangesBefore)
+    {
+        if (_timing is null || Stage.X is not ZaberBinaryDevice zaber)
+        {
+            return 1;
+        }
+
+        // Only the identification's, one at a time: during a run replies queue behind one another on the shared wire.
+        var connection = zaber.Connection;
+        var trips = connection.RecentRoundTripsMs.TakeLast((int)Math.Min(connection.RoundTripsRecorded - exchangesBefore, ZaberConnection.RoundTripsKept)).ToList();
+        var allowed = 4 * _timing.StageJitterSeconds * 1000;
+        if (trips.Count < 8 || allowed <= 0)
+        {
+            return 1;
+        }
+
+        // A reply held up far beyond the spread (a device busy a moment, a fault) is a doubt for the checks to catch, not a
+        // spread to time every edge by. Capped: far wider, the profile is wrong, not the margins.
+        trips.Sort();
+        var median = trips[trips.Count / 2];
+        var spread = trips.Where(t => t <= median + (5 * allowed)).Max() - trips[0];
+        return spread <= allowed ? 1 : Math.Min(MaxLatencyScale, 2 * spread / allowed);
+    }
+
     private static TaskCompletionSource NewSignal() => new(TaskCreationOptions.RunContinuationsAsynchronously);
 
     private static string N(double value) => value.ToString("0.####", CultureInfo.InvariantCulture);
@@ -365,8 +407,11 @@ public sealed partial class RunExecutor
             throw new PreflightException($"the laser gate does not answer as it should: {ex.Message}", ex);
         }
 
+        var exchangesBefore = (Stage.X as ZaberBinaryDevice)?.Connection.RoundTripsRecorded ?? 0;
         var x = await IdentifyAxisAsync(Stage.X, "X", token);
         var y = await IdentifyAxisAsync(Stage.Y, "Y", token);
+        CheckFirmware(x, "X");
+        CheckFirmware(y, "Y");
         CheckReach(x, y);
         // A gate whose watchdog did not trip heard a command that switched the laser off: the cut at the fault's first OFF.
         _resumeX = _gateVouchesForCut ? Options.ResumeFrom?.ResumeXMicrosteps : Options.ResumeFrom?.OffResumeXMicrosteps;
@@ -420,6 +465,25 @@ public sealed partial class RunExecutor
             throw new PreflightException($"homing failed: {ex.Message}", ex);
         }
 
+        // Raster timed switching only: a drawing's schedule and a step-by-step run keep the profile's latencies.
+        var scale = Math.Max(double.IsFinite(Options.LatencyScale) ? Math.Max(1, Options.LatencyScale) : 1, SpreadSeenScale(exchangesBefore));
+        if (scale > 1 && Drawing is null && Job!.Dots is null && Job.Plan.Timing is { } planned)
+        {
+            _latencyScale = scale;
+
+            // Guards, margins, run-ups and checks all follow from the latencies' spread: the run times itself with the wider one.
+            var latency = _profile.Latency;
+            _timing = TimedSwitching.For(_process, _profile with
+            {
+                Latency = latency with
+                {
+                    StageJitterMs = latency.StageJitterMs * _latencyScale,
+                    GateJitterMs = latency.GateJitterMs * _latencyScale,
+                    GateProcessingJitterMs = latency.GateProcessingJitterMs * _latencyScale,
+                },
+            }, planned.MicrostepUm);
+        }
+
         return new MachineIdentity(x, y, gateIdentity);
     }
 
@@ -447,6 +511,20 @@ public sealed partial class RunExecutor
         }
 
         return identity;
+    }
+
+    /// <summary>Refuses a run whose strategy needs what the axis' firmware does not vouch for (<see cref="ZaberFirmware"/>), naming the axis, the firmware and what is missing.</summary>
+    private void CheckFirmware(AxisIdentity identity, string name)
+    {
+        var drawing = Drawing is not null;
+        var timedRaster = !drawing && Job!.Dots is null && Job.Plan.Timing is not null;
+        var missing = ZaberFirmware.Missing(identity.FirmwareVersion, speedChangeMidMove: timedRaster, constantSpeed: drawing);
+        if (missing.Count > 0)
+        {
+            var instead = timedRaster ? "; engrave it step by step (--strategy paper), which needs neither" : string.Empty;
+            throw new PreflightException(
+                $"the {name} axis (device {identity.DeviceNumber}) has firmware {identity.FirmwareText}, for which the Zaber manual does not vouch for {string.Join(" nor ", missing)}, which this job needs (T-series firmware 5.00-5.99 has it){instead}");
+        }
     }
 
     /// <summary>Asks twice before giving up: the first line after a port opens can be lost (a device still waking, noise on the line).</summary>
@@ -1128,6 +1206,7 @@ public sealed partial class RunExecutor
                     && stopPoint is { CutPixel: null, ResumeXMicrosteps: null },
                 LaserOffConfirmed = _laserOffConfirmed,
                 LaserOffBy = outcome == RunOutcome.Completed ? null : _laserOffBy ?? (_laserOffConfirmed ? LaserOffPath.Off : LaserOffPath.None),
+                LatencyScale = Math.Max(LatencyScale, _latencyScaleSeen),
                 StartedAt = startedAt,
                 EndedAt = TimeProvider.GetUtcNow(),
                 EngravingDuration = engraving < TimeSpan.Zero ? TimeSpan.Zero : engraving,

@@ -19,6 +19,14 @@ public sealed record RunOptions
     /// <summary>Keepalive period as a fraction of the gate's watchdog time (the profile's <c>gate.watchdogMs</c>).</summary>
     public double KeepAliveFraction { get; init; } = 0.25;
 
+    /// <summary>
+    /// How many times the profile's latency spread (its jitter) the run assumes, at least 1: its edge guards and its
+    /// position checks widen by it. A session that goes on after a check found the stage further from its plan than the
+    /// profile allows passes on what that run found (<see cref="RunResult.LatencyScale"/>), so that the laser keeps off
+    /// the white with the spread that was seen.
+    /// </summary>
+    public double LatencyScale { get; init; } = 1;
+
     /// <summary>How late past its expected arrival a stage reply may come before the run counts the stage as stalled, ms.</summary>
     public double StallMarginMs { get; init; } = 20;
 }

@@ -29,6 +29,12 @@ public sealed record RunResult
     /// </summary>
     public bool Recoverable { get; init; }
 
+    /// <summary>
+    /// The latency spread, in times the profile's, that the run assumed or its checks showed (twice the largest ratio a
+    /// failed flown-gap check found): what a run going on from this one must assume (<see cref="RunOptions.LatencyScale"/>).
+    /// </summary>
+    public double LatencyScale { get; init; } = 1;
+
     /// <summary>False when the laser could not be confirmed off at the end (the gate did not answer any attempt).</summary>
     public required bool LaserOffConfirmed { get; init; }
 

@@ -4,7 +4,7 @@ using LaserEngrave.Devices.Zaber;
 
 namespace LaserEngrave.Devices.Machine;
 
-/// <summary>Times round trips to the machine's devices: Zaber Echo Data (command 55) to each axis and the gate's keepalive.</summary>
+/// <summary>Times round trips to the machine's devices: Zaber Echo Data (command 55; Return Firmware Version before firmware 5.04, which has no Echo) to each axis and the gate's keepalive.</summary>
 /// <remarks>
 /// Every exchange waits for its reply before the next goes out, so no two share the wire, and is timed on the session's
 /// clock from just before the write to the reply's arrival (virtual time on the in-process simulator, so the figures are
@@ -37,8 +37,8 @@ public sealed class LatencyProbe
     {
         ArgumentOutOfRangeException.ThrowIfLessThan(exchanges, 1);
         var stageWireMs = WireMs(2 * ZaberFrameBytes, _stage.Profile.StageBaudRate);
-        var x = RoundTrips.Of(_stage.X.Description, await TimeAsync(exchanges, i => EchoAsync(_stage.X, i, cancellationToken), cancellationToken), stageWireMs);
-        var y = RoundTrips.Of(_stage.Y.Description, await TimeAsync(exchanges, i => EchoAsync(_stage.Y, i, cancellationToken), cancellationToken), stageWireMs);
+        var x = RoundTrips.Of(_stage.X.Description, await TimeAsync(exchanges, i => _stage.X.PingAsync(i, cancellationToken), cancellationToken), stageWireMs);
+        var y = RoundTrips.Of(_stage.Y.Description, await TimeAsync(exchanges, i => _stage.Y.PingAsync(i, cancellationToken), cancellationToken), stageWireMs);
 
         var gate = _gate.Profile;
         var reply = string.Empty;
@@ -52,15 +52,6 @@ public sealed class LatencyProbe
 
     /// <summary>Time <paramref name="bytes"/> take on the wire at <paramref name="baudRate"/>, 10 bits a byte (8N1), ms.</summary>
     public static double WireMs(int bytes, int baudRate) => bytes * BitsPerByte * 1000 / baudRate;
-
-    private static async Task EchoAsync(ZaberBinaryDevice axis, int data, CancellationToken cancellationToken)
-    {
-        var echoed = await axis.EchoAsync(data, cancellationToken);
-        if (echoed != data)
-        {
-            throw new DeviceException($"{axis.Connection.PortName}: {axis.Description} echoed {echoed} for Echo Data {data}; the line is garbled");
-        }
-    }
 
     private async Task<double[]> TimeAsync(int exchanges, Func<int, Task> exchange, CancellationToken cancellationToken)
     {

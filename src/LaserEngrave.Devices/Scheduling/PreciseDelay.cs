@@ -20,7 +20,14 @@ public static class PreciseDelay
             return Task.CompletedTask;
         }
 
-        return time == TimeProvider.System ? SystemDelayAsync(delay, cancellationToken) : TimerDelayAsync(time, delay, cancellationToken);
+        if (time == TimeProvider.System)
+        {
+            return SystemDelayAsync(delay, cancellationToken);
+        }
+
+        // A simulated host wakes as late as its model says (a loaded computer); its code then reads the late time as it would.
+        var late = time is IHostLateness host ? host.NextLateness() : TimeSpan.Zero;
+        return TimerDelayAsync(time, late > TimeSpan.Zero ? delay + late : delay, cancellationToken);
     }
 
     // The continuation runs on the pacer's thread, at once: a hop to the thread pool would add its own lateness to the

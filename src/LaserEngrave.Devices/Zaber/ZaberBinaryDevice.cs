@@ -25,6 +25,7 @@ public sealed class ZaberBinaryDevice : IStageAxis
     private int? _deviceMode;
     private long? _maximumPosition;
     private long? _position;
+    private int? _firmware;
 
     public ZaberBinaryDevice(ZaberConnection connection, byte deviceNumber, string? label = null)
     {
@@ -66,6 +67,9 @@ public sealed class ZaberBinaryDevice : IStageAxis
     public int? DeviceMode => Read(() => _deviceMode);
 
     public long? MaximumPosition => Read(() => _maximumPosition);
+
+    /// <summary>Firmware version x 100 once read (<see cref="IdentifyAsync"/>, <see cref="ReturnFirmwareVersionAsync"/>); null until then.</summary>
+    public int? FirmwareVersion => Read(() => _firmware);
 
     /// <summary>Position from the last reply that carried one; null when unknown (after a timeout, Reset, constant-speed move).</summary>
     public long? LastKnownPosition => Read(() => _position);
@@ -177,8 +181,19 @@ public sealed class ZaberBinaryDevice : IStageAxis
         return reply.Data;
     }
 
+    /// <summary>
+    /// Sets the speed the next Home runs at: Set Home Speed from firmware 5.20; before 5.20 the command does not exist
+    /// (error 64) and Home runs at the Target Speed, so the Target Speed is set instead (docs/zaber-protocol.md, firmware).
+    /// </summary>
     public async Task SetHomeSpeedAsync(int speedData, CancellationToken cancellationToken)
     {
+        var firmware = Read(() => _firmware) ?? await ReturnFirmwareVersionAsync(cancellationToken);
+        if (!ZaberFirmware.HasHomeSpeed(firmware))
+        {
+            await SetTargetSpeedAsync(speedData, cancellationToken);
+            return;
+        }
+
         var reply = await RequestAsync(ZaberCommand.SetHomeSpeed, speedData, cancellationToken);
         Write(() => _homeSpeedData = reply.Data);
     }
@@ -196,8 +211,15 @@ public sealed class ZaberBinaryDevice : IStageAxis
     }
 
     /// <summary>Sets the Maximum Position (travel limit) in microsteps; returns the value the device took.</summary>
+    /// <exception cref="DeviceException">Firmware 5.21 or 5.22 and a maximum below the current position, which that firmware refuses.</exception>
     public async Task<long> SetMaximumPositionAsync(long maximumPosition, CancellationToken cancellationToken)
     {
+        if (Read(() => (_firmware, _position)) is ({ } firmware, { } position) && ZaberFirmware.KeepsMaximumAboveCurrent(firmware) && maximumPosition < position)
+        {
+            throw new DeviceException(
+                $"{Connection.PortName}: {Description} has firmware {ZaberFirmware.Text(firmware)}, which cannot set the Maximum Position ({maximumPosition}) below the current position ({position}); move it below that first");
+        }
+
         var reply = await RequestAsync(ZaberCommand.SetMaximumPosition, ToData(maximumPosition, nameof(maximumPosition)), cancellationToken);
         Write(() => _maximumPosition = reply.Data);
         return reply.Data;
@@ -261,8 +283,32 @@ public sealed class ZaberBinaryDevice : IStageAxis
         (await RequestAsync(ZaberCommand.ReturnDeviceId, 0, cancellationToken)).Data;
 
     /// <summary>Firmware version x 100 (502 = 5.02).</summary>
-    public async Task<int> ReturnFirmwareVersionAsync(CancellationToken cancellationToken) =>
-        (await RequestAsync(ZaberCommand.ReturnFirmwareVersion, 0, cancellationToken)).Data;
+    public async Task<int> ReturnFirmwareVersionAsync(CancellationToken cancellationToken)
+    {
+        var firmware = (await RequestAsync(ZaberCommand.ReturnFirmwareVersion, 0, cancellationToken)).Data;
+        Write(() => _firmware = firmware);
+        return firmware;
+    }
+
+    /// <summary>
+    /// A round trip of one frame each way that changes nothing: Echo Data where the firmware has it (5.04 on), else Return
+    /// Firmware Version (also one frame each way, and answered in every 5.xx).
+    /// </summary>
+    public async Task PingAsync(int data, CancellationToken cancellationToken)
+    {
+        var firmware = Read(() => _firmware) ?? await ReturnFirmwareVersionAsync(cancellationToken);
+        if (!ZaberFirmware.HasEchoData(firmware))
+        {
+            await ReturnFirmwareVersionAsync(cancellationToken);
+            return;
+        }
+
+        var echoed = await EchoAsync(data, cancellationToken);
+        if (echoed != data)
+        {
+            throw new DeviceException($"{Connection.PortName}: {Description} echoed {echoed} for Echo Data {data}; the line is garbled");
+        }
+    }
 
     /// <summary>Echo Data: the device sends <paramref name="data"/> back.</summary>
     public async Task<int> EchoAsync(int data, CancellationToken cancellationToken) =>
@@ -328,6 +374,13 @@ public sealed class ZaberBinaryDevice : IStageAxis
         await ReturnSettingAsync(ZaberCommand.SetTargetSpeed, cancellationToken);
         await ReturnSettingAsync(ZaberCommand.SetAcceleration, cancellationToken);
         await ReturnSettingAsync(ZaberCommand.SetMaximumPosition, cancellationToken);
+        if (Read(() => _firmware) is { } firmware && !ZaberFirmware.HasHomeSpeed(firmware))
+        {
+            // Firmware before 5.20 has no Home Speed setting and homes at the target speed: nothing to ask.
+            Write(() => _homeSpeedData = null);
+            return;
+        }
+
         try
         {
             await ReturnSettingAsync(ZaberCommand.SetHomeSpeed, cancellationToken);

@@ -37,6 +37,8 @@ public sealed class ZaberConnection : IAsyncDisposable
     private readonly Dictionary<byte, string> _labels = [];
     private readonly HashSet<byte> _knownDevices = [];
     private readonly HashSet<(byte Device, byte Command)> _expectedReplies = [];
+    private readonly Queue<double> _roundTrips = new();
+    private long _roundTripsRecorded;
     private long _sequence;
     private int _echoNonce = FirstEchoNonce;
     private bool _resyncRunning;
@@ -54,6 +56,37 @@ public sealed class ZaberConnection : IAsyncDisposable
         _sendLock = _channel.SendLock;
         _channel.Start();
     }
+
+    /// <summary>
+    /// The latest round trips of commands that reply at once (settings, Return commands, Echo), ms from the write's end
+    /// to the reply's hand-over, at most <see cref="RoundTripsKept"/>: how far the line's latencies (and the host's own
+    /// lateness) spread, without sending anything more. Preflight compares their spread with the profile's.
+    /// </summary>
+    public IReadOnlyList<double> RecentRoundTripsMs
+    {
+        get
+        {
+            lock (_gate)
+            {
+                return [.. _roundTrips];
+            }
+        }
+    }
+
+    /// <summary>How many round trips have been recorded since the connection opened (the latest are <see cref="RecentRoundTripsMs"/>).</summary>
+    public long RoundTripsRecorded
+    {
+        get
+        {
+            lock (_gate)
+            {
+                return _roundTripsRecorded;
+            }
+        }
+    }
+
+    /// <summary>How many round trips <see cref="RecentRoundTripsMs"/> keeps.</summary>
+    public const int RoundTripsKept = 64;
 
     /// <summary>Reply-only frames (Move Tracking, Limit Active, Manual Move Tracking) and errors no request is waiting for.</summary>
     /// <remarks>Raised on the reader loop: handlers must be quick and must not wait for replies.</remarks>
@@ -303,9 +336,11 @@ public sealed class ZaberConnection : IAsyncDisposable
             }
 
             FailInterrupted(interrupted, request);
+            long written;
             try
             {
                 await WriteFrameAsync(request, cancellationToken);
+                written = _time.GetTimestamp();
             }
             catch
             {
@@ -321,7 +356,13 @@ public sealed class ZaberConnection : IAsyncDisposable
 
             try
             {
-                return await Signals.WaitAsync(pending.Completion, timeout, _time, () => _channel.IsReceiving, cancellationToken);
+                var reply = await Signals.WaitAsync(pending.Completion, timeout, _time, () => _channel.IsReceiving, cancellationToken);
+                if (!RepliesOnCompletion.Contains(request.Command) && !holdLine)
+                {
+                    RecordRoundTrip(_time.GetElapsedTime(written).TotalMilliseconds);
+                }
+
+                return reply;
             }
             catch (TimeoutException)
             {
@@ -346,6 +387,23 @@ public sealed class ZaberConnection : IAsyncDisposable
             if (lineHeld)
             {
                 _sendLock.Release();
+            }
+        }
+    }
+
+    // Moves (and Home, Stop) reply when they end, so their round trips say nothing of the line's latency.
+    private static readonly HashSet<ZaberCommand> RepliesOnCompletion =
+        [ZaberCommand.Home, (ZaberCommand)18, ZaberCommand.MoveAbsolute, ZaberCommand.MoveRelative, ZaberCommand.Stop, ZaberCommand.Renumber];
+
+    private void RecordRoundTrip(double ms)
+    {
+        lock (_gate)
+        {
+            _roundTrips.Enqueue(ms);
+            _roundTripsRecorded++;
+            while (_roundTrips.Count > RoundTripsKept)
+            {
+                _roundTrips.Dequeue();
             }
         }
     }

@@ -8,7 +8,7 @@ namespace LaserEngrave.Simulator.Timing;
 /// keepalive started by device code runs on the loop, and an operation run through it moves virtual time. Timers keep
 /// full 100 ns ticks (<c>Task.Delay</c> itself rounds to whole milliseconds). Timers can only be made on the loop.
 /// </remarks>
-public sealed class VirtualTimeProvider : TimeProvider, ITaskRunner, IDisposable
+public sealed class VirtualTimeProvider : TimeProvider, ITaskRunner, IHostLateness, IDisposable
 {
     private readonly DateTimeOffset _start;
 
@@ -20,6 +20,12 @@ public sealed class VirtualTimeProvider : TimeProvider, ITaskRunner, IDisposable
         _start = start ?? (wallClock ?? System).GetUtcNow();
         Loop = new SimulationLoop(paced: paced, wallClock: wallClock);
     }
+
+    /// <summary>How late the host wakes from each timed wait (<see cref="IHostLateness"/>); null: never late.</summary>
+    public Func<TimeSpan>? HostLateness { get; set; }
+
+    /// <inheritdoc />
+    public TimeSpan NextLateness() => HostLateness?.Invoke() ?? TimeSpan.Zero;
 
     /// <summary>The loop this clock belongs to.</summary>
     public SimulationLoop Loop { get; }

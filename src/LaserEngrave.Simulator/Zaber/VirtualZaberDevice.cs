@@ -75,6 +75,12 @@ public sealed class VirtualZaberDevice
 
     public bool IsHomed => (DeviceMode & HomedBit) != 0;
 
+    /// <summary>Firmware version x 100 (<see cref="SimulatorOptions.FirmwareVersion"/>): what the device accepts follows it.</summary>
+    public int FirmwareVersion => _options.FirmwareVersion;
+
+    /// <summary>Set Home Speed (41) exists, and Home runs at it, from firmware 5.20.</summary>
+    public bool HasHomeSpeed => FirmwareVersion >= 520;
+
     /// <summary>The axis' past and planned motion, microsteps over simulation seconds.</summary>
     public AxisTrajectory Trajectory { get; }
 
@@ -99,7 +105,8 @@ public sealed class VirtualZaberDevice
                 PowerUp(now);
                 break;
             case 1:
-                StartMove(command, 0, StageUnits.SpeedMicrostepsPerS(HomeSpeedData), now);
+                // Home runs at the Home Speed from 5.20, at the Target Speed before (zaber-binary.md §6, [HSPD]).
+                StartMove(command, 0, StageUnits.SpeedMicrostepsPerS(HasHomeSpeed ? HomeSpeedData : TargetSpeedData), now);
                 break;
             case 2:
                 Renumber(frame.Device == 0 ? ChainIndex + 1 : data, now);
@@ -108,6 +115,10 @@ public sealed class VirtualZaberDevice
             case 21 when _activeCommand == 1:
             case 22 when _activeCommand == 1:
                 Refuse(command, ZaberErrorCodes.Busy, now);
+                break;
+            case 20 or 21 when TargetSpeedData == 0:
+                // A Target Speed of 0 (taken by firmware other than 5.21-5.22) makes the moves that use it fail ([TSPD]).
+                Refuse(command, command, now);
                 break;
             case 20:
                 if (data < 0 || data > MaximumPosition)
@@ -147,12 +158,18 @@ public sealed class VirtualZaberDevice
                 }
 
                 break;
+            case 41 when !HasHomeSpeed:
+            case 55 when FirmwareVersion < 504:
+                // Set Home Speed exists from 5.20 [HSPD], Echo Data from 5.04 [ECHO]: "command invalid for this firmware".
+                Refuse(command, ZaberErrorCodes.CommandInvalid, now);
+                break;
             case 41:
                 SetSetting(command, data, data is >= 1 and <= StageUnits.MaxSettingData, () => HomeSpeedData = data);
                 break;
             case 42:
-                SetSetting(command, data, data is >= 1 and <= StageUnits.MaxSettingData, () => TargetSpeedData = data);
-                if (_activeCommand is 20 or 21 && TargetSpeedData == data)
+                // 0 is a valid setting except on 5.21-5.22, which refuse it outright ([TSPD]); a move at 0 is refused.
+                SetSetting(command, data, data is >= 0 and <= StageUnits.MaxSettingData && !(data == 0 && FirmwareVersion is 521 or 522), () => TargetSpeedData = data);
+                if (_activeCommand is 20 or 21 && TargetSpeedData == data && data > 0)
                 {
                     Replan(StageUnits.SpeedMicrostepsPerS(data), now);
                 }
@@ -167,7 +184,8 @@ public sealed class VirtualZaberDevice
 
                 break;
             case 44:
-                SetSetting(command, data, data is >= 1 and <= MaxMaximumPosition, () => MaximumPosition = data);
+                // 5.21-5.22 cannot set the Maximum Position below the current position ([MAXP]).
+                SetSetting(command, data, data is >= 1 and <= MaxMaximumPosition && !(FirmwareVersion is 521 or 522 && data < Round(Trajectory.PositionAt(now))), () => MaximumPosition = data);
                 break;
             case 45 when IsMoving:
                 Refuse(command, ZaberErrorCodes.Busy, now);
@@ -183,7 +201,7 @@ public sealed class VirtualZaberDevice
                 Reply(command, _options.DeviceId);
                 break;
             case 51:
-                Reply(command, _options.FirmwareVersion);
+                Reply(command, FirmwareVersion);
                 break;
             case 53:
                 ReturnSetting(data, now);
@@ -245,7 +263,7 @@ public sealed class VirtualZaberDevice
         int? value = setting switch
         {
             40 => DeviceMode,
-            41 => HomeSpeedData,
+            41 when HasHomeSpeed => HomeSpeedData,
             42 => TargetSpeedData,
             43 => AccelerationData,
             44 => (int)MaximumPosition,

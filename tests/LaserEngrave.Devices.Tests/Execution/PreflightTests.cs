@@ -202,6 +202,36 @@ public class PreflightTests
     }
 
     // An instant fake stage cannot show itself moving to timed switching's position query: these tests run the plan step by step.
+    [Fact(Timeout = 60_000)]
+    public async Task RunAsync_FirmwareTheManualDoesNotCoverAndTimedPlan_RefusesNamingAxisFirmwareAndWhatIsMissing()
+    {
+        var stage = FakeStage(Homed with { FirmwareVersion = 610 });
+        var gate = Substitute.For<ILaserGate>();
+        gate.IdentifyAsync(Arg.Any<CancellationToken>()).ReturnsForAnyArgs("PICGATE 1.0");
+        var job = TestJobs.FromMask(TestJobs.Mask("#.#"), 0.3, new PlanOptions());
+
+        var ex = await Assert.ThrowsAsync<PreflightException>(() => new RunExecutor(stage, gate, job).RunAsync(TestContext.Current.CancellationToken));
+
+        Assert.StartsWith("the X axis (device 1) has firmware 6.10", ex.Message, StringComparison.Ordinal);
+        Assert.Contains("Set Target Speed during a move", ex.Message, StringComparison.Ordinal);
+        Assert.Contains("--strategy paper", ex.Message, StringComparison.Ordinal);
+        await stage.X.DidNotReceiveWithAnyArgs().HomeAsync(Arg.Any<CancellationToken>());
+        await gate.DidNotReceiveWithAnyArgs().SetFrequencyAsync(Arg.Any<int>(), Arg.Any<CancellationToken>());
+    }
+
+    [Fact(Timeout = 60_000)]
+    public async Task RunAsync_FirmwareTheManualDoesNotCoverAndStepByStepPlan_Runs()
+    {
+        var stage = FakeStage(Homed with { FirmwareVersion = 610 });
+        var gate = Substitute.For<ILaserGate>();
+        gate.IdentifyAsync(Arg.Any<CancellationToken>()).ReturnsForAnyArgs("PICGATE 1.0");
+        var job = TestJobs.FromMask(TestJobs.Mask("#"), 0.1, Untimed);
+
+        var result = await new RunExecutor(stage, gate, job).RunAsync(TestContext.Current.CancellationToken);
+
+        Assert.True(result.Outcome == RunOutcome.Completed, $"{result.Outcome}: {result.FaultMessage}");
+    }
+
     private static PlanOptions Untimed => new() { Strategy = PlanStrategy.Paper };
 
     /// <summary>A stage whose axes identify as <paramref name="identity"/> and arrive wherever they are sent.</summary>

@@ -195,6 +195,6 @@ public class RunControlTests
         Assert.True(result.LaserOnSeconds > 0);
         Assert.InRange(result.LaserOnSeconds, run.Analyze(job).LaserOnSeconds * 0.95, run.Analyze(job).LaserOnSeconds * 1.05);
         Assert.Equal("PICGATE SIM-1.0", result.Machine!.Gate);
-        Assert.Equal(502, result.Machine.X.FirmwareVersion);
+        Assert.Equal(523, result.Machine.X.FirmwareVersion);
     }
 }

@@ -38,7 +38,7 @@ public sealed class SocatSimulatorTests : IAsyncDisposable
         var discovery = await _chain.DiscoverAsync(fixAutoReply: false, Token).Within();
 
         Assert.Equal([Profile.X.DeviceNumber, Profile.Y.DeviceNumber], discovery.Devices.Select(d => (int)d.DeviceNumber));
-        Assert.All(discovery.Devices, d => Assert.Equal(502, d.FirmwareVersion));
+        Assert.All(discovery.Devices, d => Assert.Equal(523, d.FirmwareVersion));
     }
 
     [Fact]

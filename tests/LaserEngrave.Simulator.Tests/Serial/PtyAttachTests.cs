@@ -33,8 +33,8 @@ public class PtyAttachTests
         await laser.WriteAsync(Encoding.ASCII.GetBytes("FREQ 1000\n"), ct);
         var ack = Encoding.ASCII.GetString(await ReadExactlyAsync(laser, "OK FREQ 1000\n".Length, ct));
 
-        Assert.Equal(new ZaberFrame(1, ZaberCommand.ReturnFirmwareVersion, 502), first);
-        Assert.Equal(new ZaberFrame(2, ZaberCommand.ReturnFirmwareVersion, 502), second);
+        Assert.Equal(new ZaberFrame(1, ZaberCommand.ReturnFirmwareVersion, 523), first);
+        Assert.Equal(new ZaberFrame(2, ZaberCommand.ReturnFirmwareVersion, 523), second);
         // A short move: on ports the simulator runs on the wall clock.
         Assert.Equal(new ZaberFrame(1, ZaberCommand.MoveAbsolute, 600_000), move);
         Assert.Equal("OK FREQ 1000\n", ack);

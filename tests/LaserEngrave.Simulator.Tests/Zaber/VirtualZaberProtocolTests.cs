@@ -78,7 +78,7 @@ public class VirtualZaberProtocolTests
 
         var reply = await bench.RequestAsync(2, ZaberCommand.ReturnFirmwareVersion, 0);
 
-        Assert.Equal(new ZaberFrame(2, ZaberCommand.ReturnFirmwareVersion, 502), reply);
+        Assert.Equal(new ZaberFrame(2, ZaberCommand.ReturnFirmwareVersion, 523), reply);
         Assert.Null(await bench.TryReceiveAsync(TimeSpan.FromSeconds(1)));
     }
 
@@ -360,7 +360,7 @@ public class VirtualZaberProtocolTests
     }
 
     [Theory(Timeout = 20_000)]
-    [InlineData(ZaberCommand.SetTargetSpeed, 0)]
+    [InlineData(ZaberCommand.SetTargetSpeed, -1)]
     [InlineData(ZaberCommand.SetTargetSpeed, 32768)]
     [InlineData(ZaberCommand.SetHomeSpeed, 0)]
     [InlineData(ZaberCommand.SetAcceleration, -1)]

@@ -1,0 +1,233 @@
+using System.Globalization;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Motion;
+using LaserEngrave.Core.Planning;
+using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Devices.LaserGate;
+using LaserEngrave.Devices.Zaber;
+
+namespace LaserEngrave.Devices.Machine;
+
+/// <summary>
+/// The first day on a machine (`laserengrave machine check`, docs/commissioning.md): identifies both axes and the gate,
+/// homes, moves each axis a known distance and reads it back, measures the latencies, and trips the gate's watchdog once
+/// when the person at the machine has confirmed the beam is blocked.
+/// </summary>
+/// <remarks>Each step is checked against the machine profile; a step that fails is reported as failed and the rest still runs where it safely can.</remarks>
+public sealed class MachineCheck
+{
+    private readonly ZaberChain _stage;
+    private readonly PicLaserGate _gate;
+    private readonly MachineProfile _profile;
+    private readonly TimeProvider _time;
+
+    public MachineCheck(ZaberChain stage, PicLaserGate gate, MachineProfile profile, TimeProvider timeProvider)
+    {
+        ArgumentNullException.ThrowIfNull(stage);
+        ArgumentNullException.ThrowIfNull(gate);
+        ArgumentNullException.ThrowIfNull(profile);
+        ArgumentNullException.ThrowIfNull(timeProvider);
+        _stage = stage;
+        _gate = gate;
+        _profile = profile;
+        _time = timeProvider;
+    }
+
+    /// <summary>Runs every step; the laser is switched off at the end whatever happened.</summary>
+    /// <param name="distanceMm">How far each axis is moved from home and read back.</param>
+    /// <param name="exchanges">Round trips per device for the latencies.</param>
+    /// <param name="tripWatchdog">The person confirmed the beam is blocked: the gate fires at a low frequency until its watchdog switches it off.</param>
+    /// <param name="cancellationToken">Stops the check (the laser is still switched off).</param>
+    public async Task<MachineCheckReport> RunAsync(double distanceMm, int exchanges, bool tripWatchdog, CancellationToken cancellationToken)
+    {
+        var steps = new List<MachineCheckStep>();
+        var c = CultureInfo.InvariantCulture;
+        try
+        {
+            var gateId = await Step(steps, "laser gate", async () =>
+            {
+                var id = await _gate.IdentifyAsync(cancellationToken);
+                await _gate.OffAsync(cancellationToken);
+                return $"{id} on {_gate.PortName}, switched off";
+            });
+            AxisIdentity? x = null;
+            AxisIdentity? y = null;
+            foreach (var (axis, profile, name) in new[] { (_stage.X, _profile.X, "X"), (_stage.Y, _profile.Y, "Y") })
+            {
+                await Step(steps, $"{name} axis", async () =>
+                {
+                    var identity = await axis.IdentifyAsync(cancellationToken);
+                    if (name == "X")
+                    {
+                        x = identity;
+                    }
+                    else
+                    {
+                        y = identity;
+                    }
+
+                    var travelMm = identity.MaximumPosition * profile.MicrostepUm / 1000;
+                    var firmware = identity.FirmwareVersion;
+                    var homing = ZaberFirmware.HasHomeSpeed(firmware) ? "homes at Set Home Speed" : "homes at the Target Speed (no Set Home Speed before 5.20)";
+                    var known = ZaberFirmware.IsKnown(firmware) ? string.Empty : "; a firmware the manual does not describe: engrave step by step (--strategy paper)";
+                    var text = string.Create(c, $"{axis.Description}: device ID {identity.DeviceId}, firmware {identity.FirmwareText} ({homing}{known}), resolution {profile.MicrostepUm:0.########} µm a microstep (the profile's), Maximum Position {identity.MaximumPosition} = {travelMm:0.###} mm of travel");
+                    if (identity.MaximumPosition < profile.TravelMicrosteps)
+                    {
+                        throw new DeviceException(string.Create(c, $"{text}, shorter than the profile's {profile.TravelMm:0.###} mm: correct the profile's travel or the device's Maximum Position"));
+                    }
+
+                    return text;
+                });
+            }
+
+            var homed = await Step(steps, "homing", async () =>
+            {
+                var speed = StageUnits.SpeedData(ProcessSettings.Default.TravelSpeedMmPerS, _profile.X.MicrostepUm);
+                var acceleration = StageUnits.AccelerationData(ProcessSettings.Default.AccelerationMmPerS2, _profile.X.MicrostepUm);
+                foreach (var axis in new[] { _stage.X, _stage.Y })
+                {
+                    await axis.SetAccelerationAsync(acceleration, cancellationToken);
+                    await axis.SetHomeSpeedAsync(speed, cancellationToken);
+                }
+
+                var start = _time.GetTimestamp();
+                var positions = await Task.WhenAll(_stage.X.HomeAsync(cancellationToken), _stage.Y.HomeAsync(cancellationToken));
+                return string.Create(c, $"both axes homed in {_time.GetElapsedTime(start).TotalSeconds:0.0} s, at {positions[0]} and {positions[1]} microsteps");
+            });
+
+            if (homed is not null)
+            {
+                foreach (var (axis, profile, name) in new[] { (_stage.X, _profile.X, "X"), (_stage.Y, _profile.Y, "Y") })
+                {
+                    await Step(steps, $"{name} move", async () =>
+                    {
+                        var target = (long)Math.Round(Math.Min(distanceMm, profile.TravelMm) * 1000 / profile.MicrostepUm, MidpointRounding.AwayFromZero);
+                        await axis.SetTargetSpeedAsync(StageUnits.SpeedData(ProcessSettings.Default.TravelSpeedMmPerS, profile.MicrostepUm), cancellationToken);
+                        var start = _time.GetTimestamp();
+                        var reached = await axis.MoveAbsoluteAsync(target, cancellationToken);
+                        var seconds = _time.GetElapsedTime(start).TotalSeconds;
+                        var read = await axis.GetPositionAsync(cancellationToken);
+                        var expected = new TrapezoidProfile(target, StageUnits.SpeedMicrostepsPerS(axis.SpeedData ?? 1), StageUnits.AccelerationMicrostepsPerS2(axis.AccelerationData ?? 1)).Duration;
+                        var text = string.Create(c, $"{axis.Description} sent to {target} microsteps ({target * profile.MicrostepUm / 1000:0.###} mm): replied {reached}, reads {read}, in {seconds * 1000:0} ms (the motion alone {expected * 1000:0} ms)");
+                        if (reached != target || read != target)
+                        {
+                            throw new DeviceException($"{text}: not where it was sent");
+                        }
+
+                        await axis.MoveAbsoluteAsync(0, cancellationToken);
+                        return text;
+                    });
+                }
+            }
+
+            LatencyMeasurement? latency = null;
+            await Step(steps, "latencies", async () =>
+            {
+                var measured = await new LatencyProbe(_stage, _gate, _time).MeasureAsync(exchanges, cancellationToken);
+                var found = measured.ToProfile(_profile.Latency);
+                try
+                {
+                    // What the profile cannot hold is not written: a computer this slow cannot time the laser's switching.
+                    (_profile with { Latency = found }).Validate("the measured latencies");
+                }
+                catch (ProfileException ex)
+                {
+                    throw new DeviceException(string.Create(c, $"round trips up to {Math.Max(measured.X.MaxMs, measured.Gate.MaxMs):0.#} ms: {ex.Message}; free this computer of other work and check again"));
+                }
+
+                latency = measured;
+                return string.Create(c, $"stage {found.StageMs:0.###} ± {found.StageJitterMs:0.###} ms, gate {found.GateMs:0.###} ± {found.GateJitterMs:0.###} ms one way ({exchanges} round trips each; X max {latency.X.MaxMs:0.##} ms, Y max {latency.Y.MaxMs:0.##} ms, gate max {latency.Gate.MaxMs:0.##} ms)");
+            });
+
+            if (tripWatchdog)
+            {
+                await Step(steps, "gate watchdog", () => TripWatchdogAsync(cancellationToken));
+            }
+            else
+            {
+                steps.Add(new MachineCheckStep("gate watchdog", MachineCheckResult.Skipped, "not tripped: nobody confirmed the beam was blocked (give --yes, or answer the prompt)"));
+            }
+
+            return new MachineCheckReport(steps, x, y, gateId, latency?.ToProfile(_profile.Latency));
+        }
+        finally
+        {
+            try
+            {
+                await _gate.OffAsync(CancellationToken.None);
+            }
+            catch (DeviceException)
+            {
+                // Reported by its step; the watchdog switches it off anyway.
+            }
+        }
+    }
+
+    // Fires at the profile's frame frequency and stays silent past the watchdog time: the gate must switch itself off and say so.
+    private async Task<string> TripWatchdogAsync(CancellationToken cancellationToken)
+    {
+        var watchdog = _profile.Gate.WatchdogMs;
+        await _gate.SetWatchdogAsync(watchdog, cancellationToken);
+        await _gate.GetStateAsync(cancellationToken);
+        var hz = Math.Min(_profile.MaxFrameFrequencyHz, _profile.Gate.MaxFrequencyHz);
+        await _gate.SetFrequencyAsync(hz, cancellationToken);
+        var start = _time.GetTimestamp();
+        await Task.Delay(TimeSpan.FromMilliseconds(watchdog * 1.5), _time, cancellationToken);
+        var state = await _gate.GetStateAsync(cancellationToken);
+        var text = string.Create(CultureInfo.InvariantCulture, $"fired at {hz} Hz and fell silent: after {_time.GetElapsedTime(start).TotalMilliseconds:0} ms the gate reports {(state.Firing ? "still firing" : "off")}, watchdog {(state.WatchdogTripped ? "tripped" : "not tripped")} ({watchdog} ms)");
+        if (state.Firing || !state.WatchdogTripped)
+        {
+            await _gate.OffAsync(cancellationToken);
+            throw new DeviceException($"{text}: the watchdog does not switch the laser off; do not engrave until it does");
+        }
+
+        return text;
+    }
+
+    private static async Task<string?> Step(List<MachineCheckStep> steps, string name, Func<Task<string>> step)
+    {
+        try
+        {
+            var text = await step();
+            steps.Add(new MachineCheckStep(name, MachineCheckResult.Passed, text));
+            return text;
+        }
+        catch (DeviceException ex)
+        {
+            steps.Add(new MachineCheckStep(name, MachineCheckResult.Failed, ex.Message));
+            return null;
+        }
+    }
+}
+
+/// <summary>How a step of <see cref="MachineCheck"/> went.</summary>
+public enum MachineCheckResult
+{
+    Passed,
+    Failed,
+    Skipped,
+}
+
+/// <summary>One step of a machine check and what it found, in one line.</summary>
+public sealed record MachineCheckStep(string Name, MachineCheckResult Result, string Finding);
+
+/// <summary>What a machine check found: its steps, both axes, the gate and the measured latencies (null where a step failed).</summary>
+public sealed record MachineCheckReport(IReadOnlyList<MachineCheckStep> Steps, AxisIdentity? X, AxisIdentity? Y, string? Gate, LatencyProfile? Latency)
+{
+    /// <summary>Every step passed (a skipped watchdog trip is not a pass).</summary>
+    public bool Passed => Steps.All(s => s.Result == MachineCheckResult.Passed);
+
+    /// <summary>The printable report: a heading, the date, one line per step.</summary>
+    public IEnumerable<string> Lines(string machine, DateTimeOffset at)
+    {
+        yield return $"LaserEngrave machine check: {machine}";
+        yield return $"Date: {at.ToString("yyyy-MM-dd HH:mm", CultureInfo.InvariantCulture)}";
+        foreach (var step in Steps)
+        {
+            var mark = step.Result switch { MachineCheckResult.Passed => "ok    ", MachineCheckResult.Failed => "FAILED", _ => "skip  " };
+            yield return $"{mark} {step.Name}: {step.Finding}";
+        }
+
+        yield return Passed ? "Result: every step passed" : "Result: NOT every step passed; fix what failed (docs/commissioning.md) before engraving";
+    }
+}
