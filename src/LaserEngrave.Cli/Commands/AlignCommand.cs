@@ -45,6 +45,7 @@ internal static class AlignCommand
                 throw new UsageException($"give exactly two --mark JX,JY=SX,SY (got {fiducials.Length})");
             }
 
+            OptionChecks.OutputFile(result.GetValue(output), "--out");
             var bits = MaskBuilder.FromFile(result.GetValue(image)!, mask.Bind(result), out _);
             var pitchUm = (result.GetValue(pitch), result.GetValue(width)) switch
             {

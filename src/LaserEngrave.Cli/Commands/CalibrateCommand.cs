@@ -60,7 +60,9 @@ internal static class CalibrateCommand
         {
             var pattern = options.Bind(result);
             var path = result.GetValue(output);
+            OptionChecks.OutputFile(path, "--out");
             var csv = result.GetValue(segments);
+            OptionChecks.OutputFile(csv, "--segments");
             if (path is null && csv is null)
             {
                 throw new UsageException("give --out PATTERN.png (or .bmp) and/or --segments MOVES.csv");

@@ -63,6 +63,22 @@ public static class BadInputTable
         ["z-limits"] = ("""{ "z": { "minMm": 10, "maxMm": 5 } }""", "z.maxMm must be above z.minMm 10 mm"),
         ["z-misspelt"] = ("""{ "z": { "focusUm": 5 } }""", "z.focusUm is not a field of the machine profile"),
         ["unknown-field"] = ("""{ "gate": { "WatchdogMs": 0 } }""", "gate.WatchdogMs is not a field of the machine profile"),
+        ["off-reply-null"] = ("""{ "gate": { "offReply": null } }""", "gate.offReply must not be null"),
+        ["burst-reply-null"] = ("""{ "gate": { "burstReply": null } }""", "gate.burstReply must not be null"),
+        ["watchdog-reply-5"] = ("""{ "gate": { "watchdogReply": "FREQ {5}" } }""", "gate.watchdogReply \"FREQ {5}\" is not a valid reply template"),
+        ["frequency-reply-1"] = ("""{ "gate": { "frequencyReply": "FREQ {1}" } }""", "gate.frequencyReply \"FREQ {1}\" is not a valid reply template"),
+        ["burst-reply-brace"] = ("""{ "gate": { "burstReply": "BURST {0" } }""", "gate.burstReply \"BURST {0\" is not a valid reply template"),
+        ["status-reply-empty"] = ("""{ "gate": { "statusReply": "" } }""", "gate.statusReply must not be empty"),
+        ["keepalive-reply-two-lines"] = ("""{ "gate": { "keepAliveReply": "PONG\nPONG" } }""", "gate.keepAliveReply must be one line"),
+        ["terminator-null"] = ("""{ "gate": { "lineTerminator": null } }""", "gate.lineTerminator must be \"\\n\", \"\\r\\n\" or \"\\r\" (got null)"),
+        ["terminator-two"] = ("""{ "gate": { "lineTerminator": "\n\n" } }""", "gate.lineTerminator must be"),
+        ["latency-null"] = ("""{ "latency": null }""", "latency must not be null"),
+        ["travel-1e308"] = ("""{ "x": { "deviceNumber": 1, "travelMm": 1e308 } }""", "x.travelMm must be above 0 and at most"),
+        ["frequency-1e400"] = ("""{ "laserFrequencyHz": 1e400 }""", "laserFrequencyHz"),
+        ["frequency-text-nan"] = ("""{ "laserFrequencyHz": "NaN" }""", "laserFrequencyHz has a value of the wrong type"),
+        ["device-fraction"] = ("""{ "x": { "deviceNumber": 1.5 } }""", "x.deviceNumber has a value of the wrong type"),
+        ["microstep-negative"] = ("""{ "y": { "deviceNumber": 2, "microstepUm": -0.1 } }""", "y.microstepUm must be above 0"),
+        ["spot-negative-zero"] = ("""{ "spotDiameterUm": -0.0 }""", "spotDiameterUm must be a finite number above 0"),
         ["array"] = ("""[1, 2]""", "not a valid machine profile"),
         ["json-null"] = ("""null""", "the machine profile is empty"),
         ["empty"] = ("", "not a valid machine profile"),
@@ -267,7 +283,7 @@ public static class BadInputTable
         Add("is a folder", "engrave", "--from-log", "@dir", "--simulate", "--log-dir", "@logdir");
         Add("@text", "engrave", "--from-log", "@text", "--simulate", "--log-dir", "@logdir");
         Add("gate.watchdogMs must be 50..60000 ms", "engrave", "--from-log", "@log-watchdog-0", "--simulate", "--log-dir", "@logdir");
-        Add("the logged burn speed 100 mm/s is outside 0.00093..4 mm/s", "engrave", "--from-log", "@log-fast", "--simulate", "--log-dir", "@logdir");
+        Add("@log-fast: process: burn speed 100 mm/s is outside 0.00093..4 mm/s", "engrave", "--from-log", "@log-fast", "--simulate", "--log-dir", "@logdir");
 
         // frame: the laser is on around the whole frame at --visible-hz, so the profile caps it.
         string[] frame = ["frame", "@qr", "--width-mm", "1", "--simulate"];
@@ -379,6 +395,7 @@ public static class BadInputTable
         Add("--burned @fifo: is a named pipe (FIFO)", "engrave", "@qr", "--width-mm", "1", "--simulate", "--log-dir", "@logdir", "--burned", "@fifo");
         Add("named pipe (FIFO)", "bench", "--image", "@fifo");
         Add("Unrecognized command or argument 'frobnicate'", "frobnicate");
+        ValuesByWhatTheyAre.AddRows(Add);
         Add("--bogus", "plan", "@qr", "--width-mm", "1", "--bogus");
         return rows;
     }
@@ -443,6 +460,7 @@ public sealed class BadInputFiles
             Profile = MachineProfile.Default with { Gate = new LaserGateProfile { WatchdogMs = 0 } },
         }).JsonPath;
         _tokens["@log-fast"] = store.Write(record with { SampleId = "fast", Process = record.Process with { BurnSpeedMmPerS = 100 } }).JsonPath;
+        ValuesByWhatTheyAre.WriteFiles(folder, _tokens["@log"], _tokens);
     }
 
     public static BadInputFiles Instance => Shared.Value;

@@ -9,6 +9,19 @@ public class SvgReaderTests
 
     private static List<DrawingPoint> Points(DrawingPath path) => path.Flatten(1e-6);
 
+    [Theory]
+    [InlineData("<g transform=\"scale(1e308)\"><path d=\"M0 0 L5 5 L5 0 Z\"/></g>", "infinity")]
+    [InlineData("<path d=\"M0 0 L1e308 5\"/>", "1e+308")]
+    [InlineData("<path transform=\"translate(2e7)\" d=\"M0 0 L5 5\"/>", "2e+07")]
+    public void Bounds_CoordinatePastTheLimit_RefusedNotNaN(string body, string shown)
+    {
+        var drawing = Parse(body);
+
+        var ex = Assert.Throws<DrawingException>(() => drawing.Bounds());
+
+        Assert.StartsWith($"t.svg: a coordinate of {shown} mm is beyond the drawing limit", ex.Message, StringComparison.OrdinalIgnoreCase);
+    }
+
     [Fact]
     public void Parse_ViewBoxAndWidthInMm_MapsUserUnitsToMillimetres()
     {
