@@ -32,6 +32,7 @@ public static class SvgReader
         XDocument document;
         try
         {
+            CheckShape(path);
             using var stream = File.OpenRead(path);
             using var xml = XmlReader.Create(stream, new XmlReaderSettings { DtdProcessing = DtdProcessing.Ignore, XmlResolver = null });
             document = XDocument.Load(xml, LoadOptions.SetLineInfo);
@@ -52,11 +53,52 @@ public static class SvgReader
     {
         try
         {
+            using (var reader = new StringReader(text))
+            {
+                CheckShape(XmlReader.Create(reader, new XmlReaderSettings { DtdProcessing = DtdProcessing.Ignore, XmlResolver = null }), path);
+            }
+
             return Read(XDocument.Parse(text, LoadOptions.SetLineInfo), path);
         }
         catch (XmlException ex)
         {
             throw new DrawingException($"{path}: not well-formed XML: {ex.Message}", ex);
+        }
+    }
+
+    private static void CheckShape(string path)
+    {
+        using var stream = File.OpenRead(path);
+        CheckShape(XmlReader.Create(stream, new XmlReaderSettings { DtdProcessing = DtdProcessing.Ignore, XmlResolver = null }), path);
+    }
+
+    /// <summary>
+    /// One streaming pass over the XML before it is loaded: refuses nesting deeper than <see cref="DrawingLimits.MaxNestingDepth"/>
+    /// (building the tree of 200 000 nested groups takes minutes) and more elements than the reader may expand.
+    /// </summary>
+    private static void CheckShape(XmlReader xml, string path)
+    {
+        using (xml)
+        {
+            long elements = 0;
+            while (xml.Read())
+            {
+                if (xml.NodeType != XmlNodeType.Element)
+                {
+                    continue;
+                }
+
+                if (xml.Depth > DrawingLimits.MaxNestingDepth)
+                {
+                    var line = ((IXmlLineInfo)xml).LineNumber;
+                    throw DrawingLimits.Exceeded(path, $"line {line}", DrawingLimits.MaxNestingDepth, "levels of nested elements", "flatten the groups in the drawing program");
+                }
+
+                if (++elements > DrawingLimits.MaxExpandedEntities)
+                {
+                    throw DrawingLimits.Exceeded(path, null, DrawingLimits.MaxExpandedEntities, "elements", "split the drawing");
+                }
+            }
         }
     }
 
@@ -163,8 +205,18 @@ public static class SvgReader
             }
         }
 
+        private long _expanded;
+
+        private long _curves;
+
         private void Element(XElement e, Affine parent, string layer, int depth)
         {
+            // Every element visited counts, each copy a <use> makes included: 4^15 copies are refused, not drawn.
+            if (++_expanded > DrawingLimits.MaxExpandedEntities)
+            {
+                throw DrawingLimits.Exceeded(path, null, DrawingLimits.MaxExpandedEntities, "elements once each <use> copy is counted", "<use> copies of copies multiply; use fewer of them");
+            }
+
             if (e.Name.Namespace != Svg && e.Name.Namespace != XNamespace.None)
             {
                 // Editor data (sodipodi:namedview, inkscape:*) and foreign objects hold no SVG geometry.
@@ -228,6 +280,17 @@ public static class SvgReader
 
             foreach (var (curves, closed) in shapes)
             {
+                _curves += curves.Count;
+                if (Paths.Count >= DrawingLimits.MaxPaths)
+                {
+                    throw DrawingLimits.Exceeded(path, null, DrawingLimits.MaxPaths, "paths (subpaths and shapes)", "split the drawing into files");
+                }
+
+                if (_curves > DrawingLimits.MaxCurves)
+                {
+                    throw DrawingLimits.Exceeded(path, null, DrawingLimits.MaxCurves, "segments and curves", "simplify the drawing");
+                }
+
                 Paths.Add(new DrawingPath(curves, closed, layer, id[(path.Length + 2)..]).Transform(transform));
             }
         }
