@@ -58,6 +58,15 @@ public class DecimalCommaTests
         Assert.Contains("\"pulseSpacingUm\": 0.5,", stdout, StringComparison.Ordinal);
     }
 
+    [Theory]
+    [InlineData("Cannot parse argument 'x' for option '--width-mm' as expected type 'System.Nullable`1[System.Double]'.", "--width-mm x: not a number")]
+    [InlineData("Cannot parse argument 'maybe' for option '--invert' as expected type 'System.Boolean'.", "--invert maybe: not true or false")]
+    [InlineData("Cannot parse argument '1,5' for argument 'HZ' as expected type 'System.Int32'.", "HZ 1,5: not a whole number")]
+    public void UserWords_SystemCommandLineTypeName_InTheUsersWords(string message, string expected)
+    {
+        Assert.Equal(expected, CliRunner.UserWords(message));
+    }
+
     [Fact]
     public void EveryNumberOptionAndArgument_ReadByNumberText()
     {
