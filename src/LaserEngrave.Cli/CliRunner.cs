@@ -27,7 +27,7 @@ internal static class CliRunner
         {
             // An unknown word says more than the "required command was not provided" that comes with it.
             var error = parse.Errors.FirstOrDefault(e => e.Message.StartsWith("Unrecognized", StringComparison.Ordinal)) ?? parse.Errors[0];
-            stderr.WriteLine($"laserengrave: {error.Message} (see --help)");
+            stderr.WriteLine($"laserengrave: {UserWords(error.Message)}{DidYouMean(parse, error.Message)} (see --help)");
             return BadInput;
         }
 
@@ -121,4 +121,74 @@ internal static class CliRunner
     };
 
     private static string OneLine(Exception ex) => ex.Message.ReplaceLineEndings(" ");
+
+    /// <summary>System.CommandLine's "as expected type 'System.Nullable`1[System.Double]'" in the user's words.</summary>
+    internal static string UserWords(string message)
+    {
+        var match = System.Text.RegularExpressions.Regex.Match(message, @"^Cannot parse argument '(?<value>.*)' for (option|argument) '(?<name>[^']*)' as expected type '(?<type>[^']*)'");
+        if (!match.Success)
+        {
+            return message;
+        }
+
+        var type = match.Groups["type"].Value;
+        var what = type.Contains("Boolean", StringComparison.Ordinal) ? "true or false"
+            : type.Contains("Int", StringComparison.Ordinal) ? "a whole number"
+            : type.Contains("Double", StringComparison.Ordinal) || type.Contains("Single", StringComparison.Ordinal) || type.Contains("Decimal", StringComparison.Ordinal) ? "a number"
+            : "a value it takes";
+        return $"{match.Groups["name"].Value} {match.Groups["value"].Value}: not {what}";
+    }
+
+    /// <summary>For an unknown word, the nearest command or option of the command it was typed in (" (did you mean plan?)"), or nothing.</summary>
+    private static string DidYouMean(ParseResult parse, string message)
+    {
+        var match = System.Text.RegularExpressions.Regex.Match(message, "^Unrecognized command or argument '(?<word>[^']+)'");
+        if (!match.Success)
+        {
+            return string.Empty;
+        }
+
+        var word = match.Groups["word"].Value;
+        var command = parse.CommandResult.Command;
+        var candidates = word.StartsWith('-')
+            ? command.Options.Where(o => !o.Hidden).SelectMany(o => o.Aliases.Prepend(o.Name))
+            : command.Subcommands.Where(c => !c.Hidden).SelectMany(c => c.Aliases.Prepend(c.Name));
+        var best = candidates
+            .Select(name => (Name: name, Distance: EditDistance(word, name)))
+            .Where(c => c.Distance <= Math.Max(1, word.Length / 3))
+            .OrderBy(c => c.Distance)
+            .ThenBy(c => c.Name, StringComparer.Ordinal)
+            .FirstOrDefault();
+        return best.Name is null ? string.Empty : $" (did you mean {best.Name}?)";
+    }
+
+    /// <summary>Levenshtein distance, a swap of two neighbouring letters counted as one edit.</summary>
+    private static int EditDistance(string a, string b)
+    {
+        var d = new int[a.Length + 1, b.Length + 1];
+        for (var i = 0; i <= a.Length; i++)
+        {
+            d[i, 0] = i;
+        }
+
+        for (var j = 0; j <= b.Length; j++)
+        {
+            d[0, j] = j;
+        }
+
+        for (var i = 1; i <= a.Length; i++)
+        {
+            for (var j = 1; j <= b.Length; j++)
+            {
+                var cost = char.ToLowerInvariant(a[i - 1]) == char.ToLowerInvariant(b[j - 1]) ? 0 : 1;
+                d[i, j] = Math.Min(Math.Min(d[i - 1, j] + 1, d[i, j - 1] + 1), d[i - 1, j - 1] + cost);
+                if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+                {
+                    d[i, j] = Math.Min(d[i, j], d[i - 2, j - 2] + 1);
+                }
+            }
+        }
+
+        return d[a.Length, b.Length];
+    }
 }

@@ -21,6 +21,8 @@ internal static class Program
             root.Subcommands.Add(command);
         }
 
+        NumberParsers.Install(root);
+
         return root;
     }
 }

@@ -94,8 +94,25 @@ public sealed class LogCommandsTests : IDisposable
     }
 
     [Fact]
+    public async Task LogList_AFileOrNoFolder_OneLineExit2()
+    {
+        Directory.CreateDirectory(folder);
+        var file = Path.Combine(folder, "a.json");
+        await File.WriteAllTextAsync(file, "{}", TestContext.Current.CancellationToken);
+
+        var (fileExit, fileOut, fileError) = await CliHarness.RunAsync("log", "list", file);
+        var (dirExit, _, dirError) = await CliHarness.RunAsync("log", "list", "--log-dir", Path.Combine(folder, "missing"));
+
+        Assert.Equal((2, 2), (fileExit, dirExit));
+        Assert.Equal($"laserengrave: {file} is a file, not a log folder: `laserengrave log show {file}` shows one run log", fileError.TrimEnd());
+        Assert.Equal(string.Empty, fileOut);
+        Assert.Contains("no such log folder", dirError, StringComparison.Ordinal);
+    }
+
+    [Fact]
     public async Task LogList_EmptyFolder_SaysSo()
     {
+        Directory.CreateDirectory(folder);
         var (exit, output, _) = await CliHarness.RunAsync("log", "list", "--log-dir", folder);
 
         Assert.Equal(0, exit);

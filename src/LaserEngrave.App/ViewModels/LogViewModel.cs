@@ -120,7 +120,7 @@ public sealed partial class LogViewModel : ObservableObject
 
         try
         {
-            var spec = RunReplay.ToJobSpec(record);
+            var spec = RunReplay.ToJobSpec(record, path);
             _job.Apply(JobSettings.From(spec) with { Passes = 1 });
             // The app plans with its own profile (the one its machine connection uses); a run made with another one
             // would not be repeated exactly, so say so rather than switch the machine's profile behind the user's back.

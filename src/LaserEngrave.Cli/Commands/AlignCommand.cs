@@ -1,4 +1,5 @@
 using System.CommandLine;
+using LaserEngrave.Core.Input;
 using System.Globalization;
 using LaserEngrave.Core.Alignment;
 using LaserEngrave.Core.Geometry;
@@ -44,6 +45,7 @@ internal static class AlignCommand
                 throw new UsageException($"give exactly two --mark JX,JY=SX,SY (got {fiducials.Length})");
             }
 
+            OptionChecks.OutputFile(result.GetValue(output), "--out");
             var bits = MaskBuilder.FromFile(result.GetValue(image)!, mask.Bind(result), out _);
             var pitchUm = (result.GetValue(pitch), result.GetValue(width)) switch
             {
@@ -114,22 +116,18 @@ internal static class AlignCommand
     private static Fiducial ParseMark(string text)
     {
         var halves = text.Split('=');
-        if (halves.Length == 2 && Pair(halves[0]) is { } job && Pair(halves[1]) is { } stage)
+        if (halves.Length != 2)
         {
-            return new Fiducial(job.X, job.Y, stage.X, stage.Y);
+            throw new UsageException($"--mark {text}: expected JX,JY=SX,SY in mm, e.g. 1,1=21.02,16.03 (or 1;1=21,02;16,03 with decimal commas)");
         }
 
-        throw new UsageException($"--mark {text}: expected JX,JY=SX,SY in mm, e.g. 1,1=21.02,16.03");
+        var (jx, jy) = Pair(halves[0], "the job's point");
+        var (sx, sy) = Pair(halves[1], "the stage's point");
+        return new Fiducial(jx, jy, sx, sy);
 
-        static (double X, double Y)? Pair(string part)
-        {
-            var xy = part.Split(',');
-            return xy.Length == 2
-                && double.TryParse(xy[0], NumberStyles.Float, CultureInfo.InvariantCulture, out var x)
-                && double.TryParse(xy[1], NumberStyles.Float, CultureInfo.InvariantCulture, out var y)
-                && double.IsFinite(x) && double.IsFinite(y)
+        (double X, double Y) Pair(string part, string what) =>
+            NumberText.TryParsePair(part, out var x, out var y, out var problem)
                 ? (x, y)
-                : null;
-        }
+                : throw new UsageException($"--mark {text}: {what} '{part}' {problem}");
     }
 }

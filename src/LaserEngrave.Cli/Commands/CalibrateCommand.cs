@@ -1,4 +1,5 @@
 using System.CommandLine;
+using LaserEngrave.Core.Input;
 using System.Globalization;
 using LaserEngrave.Core.Calibration;
 using LaserEngrave.Core.Geometry;
@@ -59,7 +60,9 @@ internal static class CalibrateCommand
         {
             var pattern = options.Bind(result);
             var path = result.GetValue(output);
+            OptionChecks.OutputFile(path, "--out");
             var csv = result.GetValue(segments);
+            OptionChecks.OutputFile(csv, "--segments");
             if (path is null && csv is null)
             {
                 throw new UsageException("give --out PATTERN.png (or .bmp) and/or --segments MOVES.csv");
@@ -265,10 +268,10 @@ internal static class CalibrateCommand
         {
             var parts = text.Split('=');
             return parts.Length == 2
-                && double.TryParse(parts[0], NumberStyles.Float, CultureInfo.InvariantCulture, out var nominal)
-                && double.TryParse(parts[1], NumberStyles.Float, CultureInfo.InvariantCulture, out var measured)
+                && NumberText.TryParse(parts[0], out var nominal, out _)
+                && NumberText.TryParse(parts[1], out var measured, out _)
                 ? new ScaleMeasurement(nominal, measured)
-                : throw new UsageException($"{option} {text}: expected NOMINAL_MM=MEASURED_MM, e.g. 16=16.008");
+                : throw new UsageException($"{option} {text}: expected NOMINAL_MM=MEASURED_MM, e.g. 16=16.008 or 16=16,008");
         })];
 
     private static T Guard<T>(Func<T> action)

@@ -297,14 +297,8 @@ internal static class EngraveCommand
         }
 
         var logged = RunLogStore.Read(fromLog);
-        var spec = RunReplay.ToJobSpec(logged);
-
-        // A log is a file anyone can edit: its profile and process get the same checks as the command line's.
-        MachineProfileValidator.Validate(spec.Profile, $"{fromLog}: profile");
-        if (MachineProfileValidator.ProcessProblem(spec.Profile, spec.Process) is { } problem)
-        {
-            throw new UsageException($"{fromLog}: the logged {problem}");
-        }
+        // A log is a file anyone can edit: ToJobSpec checks every value it takes from it (RunReplay.Check) before anything moves.
+        var spec = RunReplay.ToJobSpec(logged, fromLog);
 
         if (!resume)
         {

@@ -1,4 +1,5 @@
 using System.CommandLine;
+using LaserEngrave.Core.Input;
 using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
@@ -326,16 +327,9 @@ internal sealed class JobOptions
             return Core.Geometry.OriginMm.Zero;
         }
 
-        var parts = text.Split(',');
-        if (parts.Length == 2
-            && double.TryParse(parts[0], NumberStyles.Float, CultureInfo.InvariantCulture, out var x)
-            && double.TryParse(parts[1], NumberStyles.Float, CultureInfo.InvariantCulture, out var y)
-            && double.IsFinite(x) && double.IsFinite(y))
-        {
-            return new OriginMm(x, y);
-        }
-
-        throw new UsageException($"--origin-mm {text}: expected X,Y in mm, e.g. 10,5");
+        return NumberText.TryParsePair(text, out var x, out var y, out var problem)
+            ? new OriginMm(x, y)
+            : throw new UsageException($"--origin-mm {text}: {problem}");
     }
 
     private static void Positive(double? value, string name)

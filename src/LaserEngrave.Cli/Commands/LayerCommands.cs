@@ -3,6 +3,7 @@ using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
+using LaserEngrave.Core.Planning;
 
 namespace LaserEngrave.Cli.Commands;
 
@@ -17,7 +18,20 @@ internal static class LayerCommands
     {
         RefuseJobOptions(result, "--job", job, vector, profileAllowed: true);
         var profile = result.GetValue(job.Profile) is { } path ? MachineProfile.Load(path) : MachineProfile.Default;
-        return Fitting(LayeredJob.Prepare(JobFile.Load(jobFile), profile), jobFile);
+        return Fitting(Named(jobFile, () => LayeredJob.Prepare(JobFile.Load(jobFile), profile)), jobFile);
+    }
+
+    /// <summary>A layer's problem named with its job file, as the job file's own reading problems are.</summary>
+    private static LayeredJob Named(string jobFile, Func<LayeredJob> prepare)
+    {
+        try
+        {
+            return prepare();
+        }
+        catch (PlanException ex) when (!ex.Message.StartsWith(jobFile, StringComparison.Ordinal))
+        {
+            throw new PlanException($"{jobFile}: {ex.Message}", ex) { Layer = ex.Layer };
+        }
     }
 
     /// <summary>
@@ -28,9 +42,9 @@ internal static class LayerCommands
     {
         RefuseJobOptions(result, "--from-log", job, vector, profileAllowed: false);
         var logged = RunLogStore.Read(log);
-        var (layers, from) = RunReplay.ToLayers(logged, resume);
+        var (layers, from) = RunReplay.ToLayers(logged, resume, log);
         MachineProfileValidator.Validate(logged.Profile, $"{log}: profile");
-        return (Fitting(LayeredJob.Prepare(layers, logged.Profile), logged.JobFile!.Path), logged.JobFile.Path, from);
+        return (Fitting(Named(logged.JobFile!.Path, () => LayeredJob.Prepare(layers, logged.Profile)), logged.JobFile.Path), logged.JobFile.Path, from);
     }
 
     /// <summary>Each layer has its own size, place, process and drawing options: the command line's are refused, naming the first.</summary>

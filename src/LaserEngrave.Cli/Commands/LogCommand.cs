@@ -4,7 +4,7 @@ using LaserEngrave.Core.Logging;
 
 namespace LaserEngrave.Cli.Commands;
 
-/// <summary>`laserengrave log show FILE [--json]` and `laserengrave log list [--log-dir DIR]`: the run logs engrave writes.</summary>
+/// <summary>`laserengrave log show FILE [--json]` and `laserengrave log list [DIR | --log-dir DIR]`: the run logs engrave writes.</summary>
 internal static class LogCommand
 {
     public static Command Create()
@@ -39,10 +39,27 @@ internal static class LogCommand
     private static Command List()
     {
         var logDir = LogDirOption();
-        var command = new Command("list", "List the runs in the log folder, newest first") { logDir };
+        var folder = new Argument<string?>("FOLDER") { Description = "The log folder (the same as --log-dir)", Arity = ArgumentArity.ZeroOrOne };
+        var command = new Command("list", "List the runs in the log folder, newest first") { folder, logDir };
         command.SetAction(result =>
         {
-            var store = new RunLogStore(result.GetValue(logDir) ?? RunLogStore.DefaultFolder);
+            if (result.GetValue(folder) is { } given && result.GetValue(logDir) is { } other && given != other)
+            {
+                throw new UsageException($"give the log folder once: {given} or --log-dir {other}");
+            }
+
+            var dir = result.GetValue(folder) ?? result.GetValue(logDir);
+            if (dir is not null && File.Exists(dir))
+            {
+                throw new UsageException($"{dir} is a file, not a log folder: `laserengrave log show {dir}` shows one run log");
+            }
+
+            if (dir is not null && !Directory.Exists(dir))
+            {
+                throw new UsageException($"{dir}: no such log folder");
+            }
+
+            var store = new RunLogStore(dir ?? RunLogStore.DefaultFolder);
             var output = result.InvocationConfiguration.Output;
             var entries = store.List();
             if (entries.Count == 0)

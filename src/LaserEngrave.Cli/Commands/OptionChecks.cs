@@ -36,12 +36,29 @@ internal static class OptionChecks
         }
     }
 
-    /// <summary>Refuses an output path that exists but is not a regular file: writing to a named pipe would block until something reads it.</summary>
+    /// <summary>Refuses an output path that exists but is not a regular file (writing to a named pipe would block until something reads it), or whose folder does not exist.</summary>
     public static void OutputFile(string? path, string name)
     {
-        if (path is not null && Core.IO.RegularFile.Problem(path) is { } problem)
+        if (path is null)
+        {
+            return;
+        }
+
+        if (path.Length == 0)
+        {
+            throw new UsageException($"{name}: give a file name");
+        }
+
+        if (Core.IO.RegularFile.Problem(path) is { } problem)
         {
             throw new UsageException($"{name} {path}: {problem}");
+        }
+
+        // Found now, not when the file is written after minutes of work (or left half written).
+        var folder = Path.GetDirectoryName(Path.GetFullPath(path));
+        if (folder is not null && !Directory.Exists(folder))
+        {
+            throw new UsageException($"{name} {path}: the folder {folder} does not exist{(File.Exists(folder) ? " (it is a file)" : string.Empty)}");
         }
     }
 

@@ -329,9 +329,53 @@ public static class MachineProfileValidator
             problems.Add($"gate.errorPrefix \"{gate.ErrorPrefix}\" and gate.ackPrefix \"{gate.AckPrefix}\" must differ and neither begin with the other");
         }
 
+        // The replies the gate must give: read literally, or formatted with the command's values ({0}, {1}) before
+        // they are compared, so a null or a placeholder past the values would fail only mid-run.
+        var replies = new (string Field, string? Value, int Values, bool MayBeEmpty)[]
+        {
+            ("identifyReply", gate.IdentifyReply, 0, true),
+            ("frequencyReply", gate.FrequencyReply, 1, false),
+            ("offReply", gate.OffReply, 0, false),
+            ("statusReply", gate.StatusReply, 0, false),
+            ("keepAliveReply", gate.KeepAliveReply, 0, false),
+            ("watchdogReply", gate.WatchdogReply, 1, false),
+            ("burstReply", gate.BurstReply, 2, false),
+        };
+        foreach (var (field, value, count, mayBeEmpty) in replies)
+        {
+            if (value is null || (!mayBeEmpty && string.IsNullOrWhiteSpace(value)))
+            {
+                problems.Add($"gate.{field} must not be {(value is null ? "null" : "empty")}: give the gate's reply or leave the field out for the default");
+            }
+            else if (value.AsSpan().IndexOfAny('\r', '\n') >= 0)
+            {
+                problems.Add($"gate.{field} must be one line (got a line break in it)");
+            }
+            else if (count > 0 && ReplyTemplateProblem(value, count) is { } bad)
+            {
+                problems.Add($"gate.{field} \"{value}\" {bad}");
+            }
+        }
+
         if (gate.LineTerminator is not ("\n" or "\r\n" or "\r"))
         {
             problems.Add($"gate.lineTerminator must be \"\\n\", \"\\r\\n\" or \"\\r\" (got {(gate.LineTerminator is null ? "null" : JsonSerializer.Serialize(gate.LineTerminator))})");
+        }
+    }
+
+    /// <summary>Null when a reply template formats with <paramref name="count"/> values (it need not use them all).</summary>
+    private static string? ReplyTemplateProblem(string format, int count)
+    {
+        try
+        {
+            _ = string.Format(CultureInfo.InvariantCulture, format, Enumerable.Range(0, count).Select(i => (object)i).ToArray());
+            return null;
+        }
+        catch (FormatException)
+        {
+            return count == 1
+                ? "is not a valid reply template: only {0} (the command's value) may stand in braces; double any other brace"
+                : "is not a valid reply template: only {0} and {1} (the command's values) may stand in braces; double any other brace";
         }
     }
 

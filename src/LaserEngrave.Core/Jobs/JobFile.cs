@@ -12,6 +12,9 @@ namespace LaserEngrave.Core.Jobs;
 /// </summary>
 public static class JobFile
 {
+    /// <summary>The most layers a job file may have: each is prepared (read, planned and estimated) before anything moves.</summary>
+    public const int MaxLayers = 1000;
+
     private static readonly string[] Fields =
         ["name", "source", "mode", "drawingLayer", "widthMm", "originMm", "speedMmPerS", "frequencyHz", "passes", "toleranceUm", "fillPitchUm", "thresholdPercent", "dither", "invert"];
 
@@ -48,6 +51,11 @@ public static class JobFile
                 {
                     throw new PlanException($"{path}: unknown field \"{property.Name}\" (a job file has only \"layers\")");
                 }
+            }
+
+            if (layers.GetArrayLength() > MaxLayers)
+            {
+                throw new PlanException($"{path}: {layers.GetArrayLength()} layers, more than the {MaxLayers} a job file may have");
             }
 
             var list = new List<JobLayer>();
@@ -207,7 +215,7 @@ public static class JobFile
 
     private static double? Positive(JsonElement element, string name, string where) =>
         Number(element, name, where) is { } v
-            ? v > 0 && double.IsFinite(v) ? v : throw new PlanException($"{where}: {name} {N(v)} must be above 0")
+            ? v > 0 && double.IsFinite(v) ? v : throw new PlanException($"{where}: {name} {N(v)} must be a finite number above 0")
             : null;
 
     private static OriginMm Origin(JsonElement element, string where)

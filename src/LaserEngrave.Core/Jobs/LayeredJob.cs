@@ -63,9 +63,15 @@ public sealed class LayeredJob
             throw new PlanException(string.Create(CultureInfo.InvariantCulture, $"passes {layer.Passes} must be 1..{JobSpec.MaxPasses}"));
         }
 
-        if (!(layer.Origin.X >= 0 && layer.Origin.Y >= 0 && double.IsFinite(layer.Origin.X) && double.IsFinite(layer.Origin.Y)))
+        var limits = MachineLimits.Of(profile);
+        if (!(layer.Origin.X >= 0 && layer.Origin.Y >= 0 && layer.Origin.X <= limits.TravelXMm && layer.Origin.Y <= limits.TravelYMm))
         {
-            throw new PlanException(string.Create(CultureInfo.InvariantCulture, $"originMm {layer.Origin.X}, {layer.Origin.Y} must not be negative"));
+            throw new PlanException(string.Create(CultureInfo.InvariantCulture, $"originMm {layer.Origin.X:G6}, {layer.Origin.Y:G6} must be within the travel 0..{limits.TravelXMm:G6}, 0..{limits.TravelYMm:G6} mm"));
+        }
+
+        if (layer.WidthMm is { } widthMm && !(widthMm > 0 && widthMm <= limits.TravelXMm))
+        {
+            throw new PlanException(string.Create(CultureInfo.InvariantCulture, $"widthMm {widthMm:G6} must be above 0 and at most {limits.TravelXMm:G6} mm, the X travel"));
         }
 
         var process = ProcessSettings.FromProfile(profile) with

@@ -37,7 +37,7 @@ public static class RunRecordJson
         }
         catch (JsonException ex)
         {
-            throw new RunLogException($"{source}: not a run log: {FirstLine(ex.Message)}", ex);
+            throw new RunLogException($"{source}: {IO.JsonProblem.Describe(ex, "run log")}", ex);
         }
 
         if (record is null)
@@ -53,6 +53,4 @@ public static class RunRecordJson
 
         return record;
     }
-
-    private static string FirstLine(string message) => message.ReplaceLineEndings(" ");
 }

@@ -1,3 +1,4 @@
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 
 namespace LaserEngrave.Core.Logging;
@@ -9,9 +10,10 @@ public static class RunReplay
     /// The job of <paramref name="record"/>: same image, mask, size, origin, plan, process and profile. Throws
     /// <see cref="RunLogException"/> when the image is not at its logged path or its SHA-256 differs from the logged one.
     /// </summary>
-    public static JobSpec ToJobSpec(RunRecord record)
+    public static JobSpec ToJobSpec(RunRecord record, string source = "run log")
     {
         ArgumentNullException.ThrowIfNull(record);
+        Check(record, source);
         var image = record.Image;
         CheckUnchanged(image.Path, image.Sha256, "image");
 
@@ -24,9 +26,147 @@ public static class RunReplay
             Plan = record.Plan,
             Process = record.Process,
             Profile = record.Profile,
-            Passes = Math.Clamp(record.Passes, 1, JobSpec.MaxPasses),
+            Passes = record.Passes,
         };
     }
+
+    /// <summary>
+    /// Throws <see cref="RunLogException"/> "SOURCE: FIELD ..." for the first logged value a repeat or resume could not
+    /// use: a log is a file anyone can edit, so its values meet the command line's rules before anything moves.
+    /// </summary>
+    public static void Check(RunRecord record, string source)
+    {
+        ArgumentNullException.ThrowIfNull(record);
+        if (Problem(record) is { } problem)
+        {
+            throw new RunLogException($"{source}: {problem}");
+        }
+    }
+
+    /// <summary>Null when every value a repeat or resume reads from <paramref name="record"/> is usable; otherwise the field and the rule.</summary>
+    public static string? Problem(RunRecord record)
+    {
+        ArgumentNullException.ThrowIfNull(record);
+
+        // Sections given as null in the JSON arrive here as null despite their types.
+        var sections = new (string Name, object? Value)[]
+        {
+            ("image", record.Image), ("mask", record.Mask), ("geometry", record.Geometry), ("plan", record.Plan), ("process", record.Process), ("profile", record.Profile),
+        };
+        if (sections.FirstOrDefault(s => s.Value is null) is { Name: { } missing })
+        {
+            return $"{missing} is missing (null): not a log a run can be repeated from";
+        }
+
+        if (string.IsNullOrWhiteSpace(record.Image.Path))
+        {
+            return "image.path is empty";
+        }
+
+        if (MachineProfileValidator.Problems(record.Profile) is [var first, ..])
+        {
+            return $"profile.{first}";
+        }
+
+        var limits = MachineLimits.Of(record.Profile);
+        try
+        {
+            record.Process.Validate();
+        }
+        catch (Planning.PlanException ex)
+        {
+            return $"process: {ex.Message}";
+        }
+
+        if (MachineProfileValidator.ProcessProblem(record.Profile, record.Process) is { } process)
+        {
+            return $"process: {process}";
+        }
+
+        var travelMicrosteps = Math.Min(record.Profile.X.TravelMicrosteps, record.Profile.Y.TravelMicrosteps);
+        var dots = record.Process;
+        if (dots.PulsesPerDot is < 1 or > MaxPulsesPerDot || !(dots.DotSettleMs is >= 0 and <= MaxDotSettleMs) || dots.DotPitchMicrosteps < 0 || dots.DotPitchMicrosteps > travelMicrosteps)
+        {
+            return $"process: pulsesPerDot {dots.PulsesPerDot}, dotSettleMs {N(dots.DotSettleMs)}, dotPitchMicrosteps {dots.DotPitchMicrosteps} must be 1..{MaxPulsesPerDot}, 0..{MaxDotSettleMs} ms and 0..{travelMicrosteps}";
+        }
+
+        var plan = record.Plan;
+        if (!Enum.IsDefined(plan.Strategy))
+        {
+            return $"plan.strategy {plan.Strategy} is not known (paper or optimized)";
+        }
+
+        if (!(plan.OverscanMm >= 0 && plan.OverscanMm <= limits.TravelXMm))
+        {
+            return $"plan.overscanMm {N(plan.OverscanMm)} must be 0..{N(limits.TravelXMm)} mm (the X travel)";
+        }
+
+        var mask = record.Mask;
+        if (!(mask.ThresholdPercent is >= 0 and <= 100) || !Enum.IsDefined(mask.Dither))
+        {
+            return $"mask.thresholdPercent {N(mask.ThresholdPercent)} must be 0..100 and mask.dither one of the known";
+        }
+
+        var geometry = record.Geometry;
+        if (!(geometry.OriginXMm >= 0 && geometry.OriginXMm <= limits.TravelXMm) || !(geometry.OriginYMm >= 0 && geometry.OriginYMm <= limits.TravelYMm))
+        {
+            return $"geometry.originXMm, originYMm {N(geometry.OriginXMm)}, {N(geometry.OriginYMm)} must be within the travel 0..{N(limits.TravelXMm)}, 0..{N(limits.TravelYMm)} mm";
+        }
+
+        if (geometry.Size is not { } size)
+        {
+            return "geometry.size is missing (null)";
+        }
+
+        var sizes = new (string Field, double? Value, double Max)[]
+        {
+            ("widthMm", size.WidthMm, limits.TravelXMm), ("heightMm", size.HeightMm, limits.TravelYMm),
+            ("pitchUm", size.PitchUm, Math.Min(limits.TravelXMm, limits.TravelYMm) * 1000), ("dpi", size.Dpi, MaxDpi),
+        };
+        if (sizes.FirstOrDefault(v => v.Value is { } x && !(x > 0 && x <= v.Max)) is { Field: { } field } bad)
+        {
+            return $"geometry.size.{field} {N(bad.Value!.Value)} must be above 0 and at most {N(bad.Max)}";
+        }
+
+        if (record.Passes is < 1 or > JobSpec.MaxPasses)
+        {
+            return $"passes {record.Passes} must be 1..{JobSpec.MaxPasses}";
+        }
+
+        return record.StoppedAt is { } stop ? StopProblem(stop, record.Profile) : null;
+    }
+
+    /// <summary>The most pulses a dot may get: the gate's burst range (the command line's --pulses-per-dot).</summary>
+    public const int MaxPulsesPerDot = 1_000_000;
+
+    /// <summary>The longest settle time at a dot, ms (the command line's --dot-settle-ms).</summary>
+    public const double MaxDotSettleMs = 60_000;
+
+    private const double MaxDpi = 1_000_000;
+
+    private static string? StopProblem(RunStopPoint stop, Geometry.MachineProfile profile)
+    {
+        if (stop.Row < 0 || stop.MoveIndex < 0)
+        {
+            return stop.Row < 0 ? $"stoppedAt.row {stop.Row} must not be negative" : $"stoppedAt.moveIndex {stop.MoveIndex} must not be negative";
+        }
+
+        var positions = new (string Field, long? Value, long Travel)[]
+        {
+            ("xMicrosteps", stop.XMicrosteps, profile.X.TravelMicrosteps), ("yMicrosteps", stop.YMicrosteps, profile.Y.TravelMicrosteps),
+            ("resumeXMicrosteps", stop.ResumeXMicrosteps, profile.X.TravelMicrosteps), ("expectedXMicrosteps", stop.ExpectedXMicrosteps, profile.X.TravelMicrosteps),
+        };
+        if (positions.FirstOrDefault(p => p.Value is { } v && (v < 0 || v > p.Travel)) is { Field: { } field } bad)
+        {
+            return $"stoppedAt.{field} {bad.Value} must be within the travel 0..{bad.Travel} microsteps";
+        }
+
+        return stop.CutPixel is { } pixel && (pixel.Column < 0 || pixel.Row < 0)
+            ? $"stoppedAt.cutPixel {pixel.Column}, {pixel.Row} must not be negative"
+            : null;
+    }
+
+    private static string N(double value) => MachineLimits.Text.N(value);
 
     /// <summary>
     /// The layers of a logged run of layers, read again from its job file, and, for <paramref name="resume"/>, where the
@@ -34,9 +174,14 @@ public static class RunReplay
     /// <see cref="RunLogException"/> (one line) when the log names no job file, or the job file or any layer's source is
     /// gone or has changed (SHA-256), or nothing is left to resume.
     /// </summary>
-    public static (IReadOnlyList<JobLayer> Layers, LayerResumePoint? Resume) ToLayers(RunRecord record, bool resume)
+    public static (IReadOnlyList<JobLayer> Layers, LayerResumePoint? Resume) ToLayers(RunRecord record, bool resume, string source = "run log")
     {
         ArgumentNullException.ThrowIfNull(record);
+        if (record.StoppedAt is { } stopped && StopProblem(stopped, record.Profile ?? MachineProfile.Default) is { } problem)
+        {
+            throw new RunLogException($"{source}: {problem}");
+        }
+
         var logged = record.Layers ?? throw new RunLogException("the log is not of a job of layers");
         var jobFile = record.JobFile
             ?? throw new RunLogException("the log does not name its job file (written before resumes of layers were logged); run the job file again with --job");

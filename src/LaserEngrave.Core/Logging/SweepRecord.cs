@@ -73,7 +73,7 @@ public sealed record SweepRecord
         }
         catch (JsonException ex)
         {
-            throw new RunLogException($"{source}: not a sweep log: {ex.Message.ReplaceLineEndings(" ")}", ex);
+            throw new RunLogException($"{source}: {IO.JsonProblem.Describe(ex, "sweep log")}", ex);
         }
     }
 

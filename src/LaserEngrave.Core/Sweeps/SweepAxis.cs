@@ -8,7 +8,7 @@ public sealed record SweepAxis(SweepParameter Parameter, IReadOnlyList<double> V
     /// <summary>The most values along one axis.</summary>
     public const int MaxValues = 50;
 
-    /// <summary>Parses <c>name=v1,v2,...</c> (e.g. <c>speed=0.5,1,2</c>) or <c>name=from..to:step</c> (e.g. <c>focus=-200..200:50</c>); throws <see cref="SweepException"/> naming <paramref name="option"/>.</summary>
+    /// <summary>Parses <c>name=v1,v2,...</c> (e.g. <c>speed=0.5,1,2</c>, or <c>speed=0,5;1;2</c> with decimal commas) or <c>name=from..to:step</c> (e.g. <c>focus=-200..200:50</c>); throws <see cref="SweepException"/> naming <paramref name="option"/>.</summary>
     public static SweepAxis Parse(string text, string option)
     {
         ArgumentNullException.ThrowIfNull(text);
@@ -36,7 +36,7 @@ public sealed record SweepAxis(SweepParameter Parameter, IReadOnlyList<double> V
     {
         ArgumentNullException.ThrowIfNull(list);
         var values = new List<double>();
-        foreach (var value in list.Contains("..", StringComparison.Ordinal) ? Range(list, where) : list.Split(',').Select(part => Number(part, where)))
+        foreach (var value in list.Contains("..", StringComparison.Ordinal) ? Range(list, where) : Input.NumberText.SplitList(list).Select(part => Number(part, where)))
         {
             if (parameter.IsWhole() && value != Math.Round(value))
             {
@@ -55,9 +55,9 @@ public sealed record SweepAxis(SweepParameter Parameter, IReadOnlyList<double> V
     }
 
     private static double Number(string part, string where) =>
-        double.TryParse(part, NumberStyles.Float, CultureInfo.InvariantCulture, out var value) && double.IsFinite(value)
+        Input.NumberText.TryParse(part, out var value, out var problem)
             ? value
-            : throw new SweepException($"{where}: '{part}' is not a number");
+            : throw new SweepException($"{where}: '{part.Trim()}' {problem}");
 
     // from..to:step, from and to both included; each value from + i step computed from the start, so no sum drifts.
     private static IEnumerable<double> Range(string list, string where)

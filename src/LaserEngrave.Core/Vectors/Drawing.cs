@@ -15,9 +15,22 @@ public sealed record Drawing(string Path, IReadOnlyList<DrawingPath> Paths, IRea
             throw new DrawingException($"{Path}: the drawing has nothing to burn");
         }
 
-        var coarse = BoundsOf(Paths.SelectMany(p => p.Curves.SelectMany(c => new[] { c.Start, c.End })));
+        var coarse = Checked(BoundsOf(Paths.SelectMany(p => p.Curves.SelectMany(c => new[] { c.Start, c.End }))));
         var extent = Math.Max(1e-9, Math.Max(coarse.Max.X - coarse.Min.X, coarse.Max.Y - coarse.Min.Y));
-        return BoundsOf(Paths.SelectMany(p => p.Flatten(extent * 1e-7)));
+        return Checked(BoundsOf(Paths.SelectMany(p => p.Flatten(extent * 1e-7))));
+    }
+
+    /// <summary>The largest coordinate a drawing may have, mm (10 km): past it a transform or a number has gone wrong, and sizes turn to NaN.</summary>
+    public const double MaxCoordinateMm = 1e7;
+
+    private (DrawingPoint Min, DrawingPoint Max) Checked((DrawingPoint Min, DrawingPoint Max) box)
+    {
+        var worst = new[] { box.Min.X, box.Min.Y, box.Max.X, box.Max.Y }.MaxBy(v => double.IsNaN(v) ? double.PositiveInfinity : Math.Abs(v));
+        return double.IsFinite(worst) && Math.Abs(worst) <= MaxCoordinateMm
+            ? box
+            : throw new DrawingException(string.Create(
+                System.Globalization.CultureInfo.InvariantCulture,
+                $"{Path}: a coordinate of {(double.IsNaN(worst) ? "NaN" : double.IsInfinity(worst) ? "infinity" : worst.ToString("G4", System.Globalization.CultureInfo.InvariantCulture))} mm is beyond the drawing limit of ±{MaxCoordinateMm:0} mm (a transform or a number too large)"));
     }
 
     /// <summary>The layers its paths lie on, in name order ("" for paths on no layer).</summary>

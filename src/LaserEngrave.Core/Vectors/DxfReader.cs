@@ -79,7 +79,7 @@ public static class DxfReader
 
         // DXF's y grows up; the stage's and LaserEngrave's grow down.
         var toMm = Affine.Scale(mm, -mm);
-        var reader = new Converter(file, warnings);
+        var reader = new Converter(file, warnings, path);
         foreach (var entity in file.Entities)
         {
             reader.Convert(entity, toMm, inheritedLayer: null, depth: 0);
@@ -241,12 +241,22 @@ public static class DxfReader
         public List<DxfEntity> Entities { get; } = [];
     }
 
-    private sealed class Converter(DxfFile file, DrawingWarnings warnings)
+    private sealed class Converter(DxfFile file, DrawingWarnings warnings, string path)
     {
+        private long _expanded;
+
+        private long _curves;
+
         public List<DrawingPath> Paths { get; } = [];
 
         public void Convert(DxfEntity e, Affine transform, string? inheritedLayer, int depth)
         {
+            // Every entity converted counts, each copy an INSERT (its array, its nested blocks) makes included.
+            if (++_expanded > DrawingLimits.MaxExpandedEntities)
+            {
+                throw DrawingLimits.Exceeded(path, null, DrawingLimits.MaxExpandedEntities, "entities once INSERTs are expanded (arrays and nested blocks)", "blocks inserted into blocks multiply; nest fewer");
+            }
+
             var layer = e.Layer == "0" && inheritedLayer is not null ? inheritedLayer : e.Layer;
             if (e.Integer(67, 0) == 1)
             {
@@ -311,6 +321,17 @@ public static class DxfReader
         {
             if (raw is not null)
             {
+                _curves += raw.Curves.Count;
+                if (Paths.Count >= DrawingLimits.MaxPaths)
+                {
+                    throw DrawingLimits.Exceeded(path, null, DrawingLimits.MaxPaths, "paths (entities that draw)", "split the drawing into files");
+                }
+
+                if (_curves > DrawingLimits.MaxCurves)
+                {
+                    throw DrawingLimits.Exceeded(path, null, DrawingLimits.MaxCurves, "segments and curves", "simplify the drawing");
+                }
+
                 Paths.Add(raw.Transform(transform) with { Layer = layer, Source = e.Id });
             }
         }
@@ -335,6 +356,11 @@ public static class DxfReader
             }
 
             int columns = Math.Max(1, e.Integer(70, 1)), rows = Math.Max(1, e.Integer(71, 1));
+            if ((long)columns * rows > DrawingLimits.MaxExpandedEntities)
+            {
+                throw DrawingLimits.Exceeded(path, $"INSERT ({e.ShortId}) arrays block \"{name}\" {columns} x {rows} times", DrawingLimits.MaxExpandedEntities, "entities", "make the array smaller");
+            }
+
             double columnSpacing = e.Number(44, 0), rowSpacing = e.Number(45, 0);
             var at = new DrawingPoint(e.Number(10, 0), e.Number(20, 0));
             for (var r = 0; r < rows; r++)

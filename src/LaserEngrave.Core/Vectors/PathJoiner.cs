@@ -42,12 +42,28 @@ internal static class PathJoiner
                 joined++;
             }
 
-            // Then backwards from the start, for chains whose first piece came later in the drawing.
-            while (Rounded(points[0]) != Rounded(points[^1]) && Next(path.Layer, Rounded(points[0]), out var previous, out var reverse))
+            // Then backwards from the start, for chains whose first piece came later in the drawing; the pieces are put
+            // in front once at the end (inserting each at the front would copy the chain again for every piece).
+            var prefix = new List<List<DrawingPoint>>();
+            var head = points[0];
+            while (Rounded(head) != Rounded(points[^1]) && Next(path.Layer, Rounded(head), out var previous, out var reverse))
             {
                 var before = reverse ? paths[previous].Microsteps : [.. Enumerable.Reverse(paths[previous].Microsteps)];
-                points.InsertRange(0, before.Take(before.Count - 1));
+                prefix.Add([.. before.Take(before.Count - 1)]);
+                head = before[0];
                 joined++;
+            }
+
+            if (prefix.Count > 0)
+            {
+                var all = new List<DrawingPoint>(points.Count + prefix.Sum(p => p.Count));
+                for (var k = prefix.Count - 1; k >= 0; k--)
+                {
+                    all.AddRange(prefix[k]);
+                }
+
+                all.AddRange(points);
+                points = all;
             }
 
             var closed = points.Count > 2 && Rounded(points[0]) == Rounded(points[^1]);

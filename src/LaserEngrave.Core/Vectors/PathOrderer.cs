@@ -15,7 +15,10 @@ namespace LaserEngrave.Core.Vectors;
 /// </remarks>
 public static class PathOrderer
 {
-    /// <summary>Above this many paths 2-opt is left out (finding each path's neighbours grows with the square of the count); nearest neighbour and the starts still apply.</summary>
+    /// <summary>
+    /// Above this many paths 2-opt is left out (finding each path's neighbours grows with the square of the count), and
+    /// nearest neighbour searches a grid of the paths' entry points instead of scanning them all; the starts still apply.
+    /// </summary>
     public const int MaxTwoOptPaths = 4000;
 
     private const int MaxRounds = 10;
@@ -39,43 +42,55 @@ public static class PathOrderer
     }
 
     /// <summary>For each path, the closed paths that enclose it (indices into <paramref name="paths"/>).</summary>
+    /// <remarks>Candidates come from an R-tree of the paths' boxes, so a drawing of many paths is not compared pair by pair.</remarks>
     public static List<int>[] Containers(IReadOnlyList<StagePath> paths)
     {
         ArgumentNullException.ThrowIfNull(paths);
         var factory = new GeometryFactory();
         var envelopes = paths.Select(p => Envelope(p.Points)).ToArray();
         var containers = paths.Select(_ => new List<int>()).ToArray();
+        var rings = new Polygon?[paths.Count];
+        var areas = new double[paths.Count];
+        for (var i = 0; i < paths.Count; i++)
+        {
+            if (paths[i].Closed && paths[i].Points.Count >= 4)
+            {
+                rings[i] = factory.CreatePolygon([.. paths[i].Points.Select(p => new Coordinate(p.X, p.Y))]);
+                areas[i] = rings[i]!.Area;
+            }
+        }
+
+        if (!rings.Any(r => r is not null))
+        {
+            return containers;
+        }
+
+        var tree = new NetTopologySuite.Index.Strtree.STRtree<int>();
+        for (var i = 0; i < paths.Count; i++)
+        {
+            tree.Insert(envelopes[i], i);
+        }
+
+        tree.Build();
         for (var b = 0; b < paths.Count; b++)
         {
-            var outer = paths[b];
-            if (!outer.Closed || outer.Points.Count < 4)
+            if (rings[b] is not { } ring)
             {
                 continue;
             }
 
-            var ring = factory.CreatePolygon([.. outer.Points.Select(p => new Coordinate(p.X, p.Y))]);
-            var area = ring.Area;
             IndexedPointInAreaLocator? locator = null;
-            for (var a = 0; a < paths.Count; a++)
+            var candidates = tree.Query(envelopes[b]).Where(a => a != b && envelopes[b].Covers(envelopes[a])).Order();
+            foreach (var a in candidates)
             {
-                if (a == b || !envelopes[b].Covers(envelopes[a]))
+                // Of two identical contours the earlier counts as inside the later, so the rule never forms a cycle.
+                if (rings[a] is not null && (areas[a] > areas[b] || (areas[a] == areas[b] && a > b)))
                 {
                     continue;
                 }
 
-                // Of two identical contours the earlier counts as inside the later, so the rule never forms a cycle.
-                var inner = paths[a];
-                if (inner.Closed && inner.Points.Count >= 4)
-                {
-                    var innerArea = factory.CreatePolygon([.. inner.Points.Select(p => new Coordinate(p.X, p.Y))]).Area;
-                    if (innerArea > area || (innerArea == area && a > b))
-                    {
-                        continue;
-                    }
-                }
-
                 locator ??= new IndexedPointInAreaLocator(ring);
-                if (Inside(locator, inner))
+                if (Inside(locator, paths[a]))
                 {
                     containers[a].Add(b);
                 }
@@ -95,7 +110,7 @@ public static class PathOrderer
         }
 
         var containers = Containers(paths);
-        var order = NearestNeighbour(paths, containers, start);
+        var order = paths.Count <= MaxTwoOptPaths ? NearestNeighbour(paths, containers, start) : NearestNeighbourIndexed(paths, containers, start);
         for (var round = 0; round < MaxRounds; round++)
         {
             var before = Travel(order.Select(o => o.Path), start);
@@ -207,6 +222,164 @@ public static class PathOrderer
         }
 
         return order;
+    }
+
+    /// <summary>
+    /// Nearest neighbour as <see cref="NearestNeighbour"/> (the same rule: inside before outside, the nearest entry next,
+    /// ties to the lower index), found through a grid of the paths' entry points (an open path's two ends, a closed path's
+    /// vertices) instead of a scan of every path at every step, so 300 000 paths order in about a second, not hours.
+    /// </summary>
+    private static List<(int Index, StagePath Path)> NearestNeighbourIndexed(IReadOnlyList<StagePath> paths, List<int>[] containers, StagePoint start)
+    {
+        var waiting = new int[paths.Count];
+        var enclosing = paths.Select(_ => new List<int>()).ToArray();
+        for (var a = 0; a < paths.Count; a++)
+        {
+            foreach (var b in containers[a])
+            {
+                waiting[b]++;
+                enclosing[a].Add(b);
+            }
+        }
+
+        long entries = 0;
+        double minX = double.PositiveInfinity, minY = double.PositiveInfinity, maxX = double.NegativeInfinity, maxY = double.NegativeInfinity;
+        foreach (var path in paths)
+        {
+            var count = path.Closed ? Math.Max(1, path.Points.Count - 1) : 2;
+            entries += count;
+            for (var i = 0; i < path.Points.Count; i++)
+            {
+                var p = path.Points[i];
+                (minX, minY, maxX, maxY) = (Math.Min(minX, p.X), Math.Min(minY, p.Y), Math.Max(maxX, p.X), Math.Max(maxY, p.Y));
+            }
+        }
+
+        // About two entry points a cell.
+        var width = Math.Max(1, maxX - minX);
+        var height = Math.Max(1, maxY - minY);
+        var cell = Math.Max(1, Math.Sqrt(width * height * 2 / entries));
+        var columns = (int)Math.Min(1 << 15, Math.Floor(width / cell) + 1);
+        var rows = (int)Math.Min(1 << 15, Math.Floor(height / cell) + 1);
+        cell = Math.Max(width / columns, height / rows) * 1.000001;
+        var grid = new List<(int Path, int Vertex)>?[(long)columns * rows];
+        int Column(double x) => (int)Math.Clamp(Math.Floor((x - minX) / cell), 0, columns - 1);
+        int Row(double y) => (int)Math.Clamp(Math.Floor((y - minY) / cell), 0, rows - 1);
+        void Add(int path)
+        {
+            var points = paths[path].Points;
+            var vertices = paths[path].Closed ? Enumerable.Range(0, Math.Max(1, points.Count - 1)) : [0, points.Count - 1];
+            foreach (var v in vertices)
+            {
+                var slot = ((long)Row(points[v].Y) * columns) + Column(points[v].X);
+                (grid[slot] ??= []).Add((path, v));
+            }
+        }
+
+        var taken = new bool[paths.Count];
+        var left = 0;
+        for (var i = 0; i < paths.Count; i++)
+        {
+            if (waiting[i] == 0)
+            {
+                Add(i);
+                left++;
+            }
+        }
+
+        var order = new List<(int, StagePath)>(paths.Count);
+        var at = start;
+        while (left > 0)
+        {
+            var (best, vertex, distance) = Nearest(at);
+            taken[best] = true;
+            left--;
+            var path = paths[best];
+            var oriented = path.Closed ? path.StartingAt(vertex) : vertex == 0 ? path : path.Reversed();
+            order.Add((best, oriented));
+            at = oriented.End;
+            foreach (var b in enclosing[best])
+            {
+                if (--waiting[b] == 0)
+                {
+                    Add(b);
+                    left++;
+                }
+            }
+        }
+
+        if (order.Count != paths.Count)
+        {
+            throw new InvalidOperationException("containment formed a cycle");
+        }
+
+        return order;
+
+        // Rings of cells around the point, until the next ring cannot hold anything nearer than the best found.
+        (int Path, int Vertex, double Distance) Nearest(StagePoint from)
+        {
+            int cx = Column(from.X), cy = Row(from.Y);
+            (int Path, int Vertex, double Distance) found = (-1, -1, double.PositiveInfinity);
+            for (var r = 0; ; r++)
+            {
+                var ringNearest = double.PositiveInfinity;
+                var inGrid = false;
+                for (var y = cy - r; y <= cy + r; y++)
+                {
+                    if (y < 0 || y >= rows)
+                    {
+                        continue;
+                    }
+
+                    var step = y == cy - r || y == cy + r ? 1 : 2 * r;
+                    for (var x = cx - r; x <= cx + r; x += Math.Max(1, step))
+                    {
+                        if (x < 0 || x >= columns)
+                        {
+                            continue;
+                        }
+
+                        inGrid = true;
+                        var dx = Math.Max(0, Math.Max(minX + (x * cell) - from.X, from.X - (minX + ((x + 1) * cell))));
+                        var dy = Math.Max(0, Math.Max(minY + (y * cell) - from.Y, from.Y - (minY + ((y + 1) * cell))));
+                        var near = Math.Sqrt((dx * dx) + (dy * dy));
+                        ringNearest = Math.Min(ringNearest, near);
+                        if (near > found.Distance || grid[((long)y * columns) + x] is not { } list)
+                        {
+                            continue;
+                        }
+
+                        for (var k = list.Count - 1; k >= 0; k--)
+                        {
+                            var (p, v) = list[k];
+                            if (taken[p])
+                            {
+                                // Taken paths leave the cell as it is visited, so each entry is dropped once.
+                                list[k] = list[^1];
+                                list.RemoveAt(list.Count - 1);
+                                continue;
+                            }
+
+                            var d = StagePoint.Distance(from, paths[p].Points[v]);
+                            if (d < found.Distance || (d == found.Distance && (p < found.Path || (p == found.Path && v < found.Vertex))))
+                            {
+                                found = (p, v, d);
+                            }
+                        }
+                    }
+                }
+
+                if (!inGrid || ringNearest > found.Distance)
+                {
+                    if (found.Path < 0)
+                    {
+                        throw new InvalidOperationException("no path left to order");
+                    }
+
+                    return found;
+                }
+            }
+        }
     }
 
     /// <summary>The shortest way into a path from a point: a closed path at its nearest vertex, an open one from its nearer end.</summary>

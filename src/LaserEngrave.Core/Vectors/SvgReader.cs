@@ -9,8 +9,8 @@ namespace LaserEngrave.Core.Vectors;
 /// Written here on System.Xml.Linq because no SVG library restores from this machine's package source (Svg,
 /// SharpVectors and VectSharp were probed, see docs/dependencies.md), and an engraver needs only the outlines:
 /// path, rect, circle, ellipse, line, polyline, polygon, g, use and nested svg, with transforms, viewBox and
-/// physical units. Styles are not read except display and visibility: every visible outline is engraved whatever
-/// its stroke or fill. Text is engraved only once converted to paths; &lt;text&gt;, &lt;image&gt; and the like are named in the warnings.
+/// physical units. Styles are read for display and visibility only (attributes, &lt;style&gt; rules with simple
+/// selectors, style attributes; SvgStyleSheet): every visible outline is engraved whatever its stroke or fill. Text is engraved only once converted to paths; &lt;text&gt;, &lt;image&gt; and the like are named in the warnings.
 /// </remarks>
 public static class SvgReader
 {
@@ -32,6 +32,7 @@ public static class SvgReader
         XDocument document;
         try
         {
+            CheckShape(path);
             using var stream = File.OpenRead(path);
             using var xml = XmlReader.Create(stream, new XmlReaderSettings { DtdProcessing = DtdProcessing.Ignore, XmlResolver = null });
             document = XDocument.Load(xml, LoadOptions.SetLineInfo);
@@ -52,11 +53,52 @@ public static class SvgReader
     {
         try
         {
+            using (var reader = new StringReader(text))
+            {
+                CheckShape(XmlReader.Create(reader, new XmlReaderSettings { DtdProcessing = DtdProcessing.Ignore, XmlResolver = null }), path);
+            }
+
             return Read(XDocument.Parse(text, LoadOptions.SetLineInfo), path);
         }
         catch (XmlException ex)
         {
             throw new DrawingException($"{path}: not well-formed XML: {ex.Message}", ex);
+        }
+    }
+
+    private static void CheckShape(string path)
+    {
+        using var stream = File.OpenRead(path);
+        CheckShape(XmlReader.Create(stream, new XmlReaderSettings { DtdProcessing = DtdProcessing.Ignore, XmlResolver = null }), path);
+    }
+
+    /// <summary>
+    /// One streaming pass over the XML before it is loaded: refuses nesting deeper than <see cref="DrawingLimits.MaxNestingDepth"/>
+    /// (building the tree of 200 000 nested groups takes minutes) and more elements than the reader may expand.
+    /// </summary>
+    private static void CheckShape(XmlReader xml, string path)
+    {
+        using (xml)
+        {
+            long elements = 0;
+            while (xml.Read())
+            {
+                if (xml.NodeType != XmlNodeType.Element)
+                {
+                    continue;
+                }
+
+                if (xml.Depth > DrawingLimits.MaxNestingDepth)
+                {
+                    var line = ((IXmlLineInfo)xml).LineNumber;
+                    throw DrawingLimits.Exceeded(path, $"line {line}", DrawingLimits.MaxNestingDepth, "levels of nested elements", "flatten the groups in the drawing program");
+                }
+
+                if (++elements > DrawingLimits.MaxExpandedEntities)
+                {
+                    throw DrawingLimits.Exceeded(path, null, DrawingLimits.MaxExpandedEntities, "elements", "split the drawing");
+                }
+            }
         }
     }
 
@@ -70,7 +112,7 @@ public static class SvgReader
 
         var warnings = new DrawingWarnings();
         var (toMm, stated) = RootTransform(root, path, warnings);
-        var walker = new Walker(path, warnings, document);
+        var walker = new Walker(path, warnings, document, SvgStyleSheet.Read(document, path));
         walker.Children(root, toMm, string.Empty, 0);
         return new Drawing(path, walker.Paths, warnings.ToList(), stated);
     }
@@ -149,7 +191,7 @@ public static class SvgReader
         return id is null ? $"line {line}" : $"#{id}";
     }
 
-    private sealed class Walker(string path, DrawingWarnings warnings, XDocument document)
+    private sealed class Walker(string path, DrawingWarnings warnings, XDocument document, SvgStyleSheet styles)
     {
         private Dictionary<string, XElement>? _ids;
 
@@ -163,8 +205,18 @@ public static class SvgReader
             }
         }
 
+        private long _expanded;
+
+        private long _curves;
+
         private void Element(XElement e, Affine parent, string layer, int depth)
         {
+            // Every element visited counts, each copy a <use> makes included: 4^15 copies are refused, not drawn.
+            if (++_expanded > DrawingLimits.MaxExpandedEntities)
+            {
+                throw DrawingLimits.Exceeded(path, null, DrawingLimits.MaxExpandedEntities, "elements once each <use> copy is counted", "<use> copies of copies multiply; use fewer of them");
+            }
+
             if (e.Name.Namespace != Svg && e.Name.Namespace != XNamespace.None)
             {
                 // Editor data (sodipodi:namedview, inkscape:*) and foreign objects hold no SVG geometry.
@@ -228,6 +280,17 @@ public static class SvgReader
 
             foreach (var (curves, closed) in shapes)
             {
+                _curves += curves.Count;
+                if (Paths.Count >= DrawingLimits.MaxPaths)
+                {
+                    throw DrawingLimits.Exceeded(path, null, DrawingLimits.MaxPaths, "paths (subpaths and shapes)", "split the drawing into files");
+                }
+
+                if (_curves > DrawingLimits.MaxCurves)
+                {
+                    throw DrawingLimits.Exceeded(path, null, DrawingLimits.MaxCurves, "segments and curves", "simplify the drawing");
+                }
+
                 Paths.Add(new DrawingPath(curves, closed, layer, id[(path.Length + 2)..]).Transform(transform));
             }
         }
@@ -264,33 +327,30 @@ public static class SvgReader
             }
         }
 
-        private static bool Hidden(XElement e)
+        // The cascade for what decides whether an element is drawn: its presentation attribute, then the style
+        // sheet's rules, then its own style attribute, each over the one before.
+        private bool Hidden(XElement e)
         {
-            if (e.Attribute("display")?.Value.Trim() == "none" || e.Attribute("visibility")?.Value.Trim() is "hidden" or "collapse")
+            var display = e.Attribute("display")?.Value.Trim().ToLowerInvariant();
+            var visibility = e.Attribute("visibility")?.Value.Trim().ToLowerInvariant();
+            display = styles.Value(e, "display") ?? display;
+            visibility = styles.Value(e, "visibility") ?? visibility;
+            if (e.Attribute("style")?.Value is { } style)
             {
-                return true;
-            }
-
-            var style = e.Attribute("style")?.Value;
-            if (style is null)
-            {
-                return false;
-            }
-
-            foreach (var declaration in style.Split(';'))
-            {
-                var parts = declaration.Split(':', 2);
-                if (parts.Length == 2)
+                foreach (var (property, value) in SvgStyleSheet.Declarations(style))
                 {
-                    var (property, value) = (parts[0].Trim(), parts[1].Trim());
-                    if ((property == "display" && value == "none") || (property == "visibility" && value is "hidden" or "collapse"))
+                    if (property == "display")
                     {
-                        return true;
+                        display = value;
+                    }
+                    else if (property == "visibility")
+                    {
+                        visibility = value;
                     }
                 }
             }
 
-            return false;
+            return display == "none" || visibility is "hidden" or "collapse";
         }
 
         private List<(List<IDrawingCurve>, bool)>? Shape(XElement e, string name, string id)

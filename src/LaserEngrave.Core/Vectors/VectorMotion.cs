@@ -35,6 +35,16 @@ public static class VectorMotion
         ArgumentNullException.ThrowIfNull(timing);
         ArgumentNullException.ThrowIfNull(profile);
         options ??= VectorMotionOptions.Default;
+
+        // Every stroke's motion is modelled at CheckStepSeconds before the run: the work grows with the burning time.
+        var burnSeconds = plan.Paths.Sum(p => p.LengthMicrosteps) / timing.BurnSpeed;
+        if (burnSeconds > DrawingLimits.MaxBurnHours * 3600)
+        {
+            throw new DrawingException(string.Create(
+                CultureInfo.InvariantCulture,
+                $"{plan.DrawingPath}: its paths take {burnSeconds / 3600:0.#} h to burn at {StageUnits.MicrostepsToMm(timing.BurnSpeed, timing.MicrostepUm):0.###} mm/s, more than the {DrawingLimits.MaxBurnHours} h a drawing job may take; give a smaller --width-mm, a higher speed, or split the drawing into layers"));
+        }
+
         var planner = new StrokePlanner(timing, options);
         var strokes = new List<VectorStroke>();
         var skipped = new List<StagePath>();
@@ -146,7 +156,13 @@ public static class VectorMotion
             var from = 0;
             foreach (var at in splits.Append(points.Count - 1))
             {
-                Add([.. points.Skip(from).Take(at - from + 1)], source, pathIndex, strokes, skipped);
+                var piece = new StagePoint[at - from + 1];
+                for (var k = 0; k < piece.Length; k++)
+                {
+                    piece[k] = points[from + k];
+                }
+
+                Add(piece, source, pathIndex, strokes, skipped);
                 from = at;
             }
         }
@@ -167,7 +183,11 @@ public static class VectorMotion
             {
                 var best = -1;
                 var sharpest = 0.0;
-                for (var k = 1; k < points.Count - 1; k++)
+
+                // Only the vertices within the window: found by bisection (along is sorted), so many corners cost no square.
+                var first = Array.BinarySearch(along, at - window);
+                first = Math.Max(1, first < 0 ? ~first : first);
+                for (var k = first; k < points.Count - 1 && along[k] <= at + window; k++)
                 {
                     if (Math.Abs(along[k] - at) > window || along[k] < ShortestMicrosteps || along[^1] - along[k] < ShortestMicrosteps)
                     {

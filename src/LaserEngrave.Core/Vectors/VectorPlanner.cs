@@ -55,9 +55,16 @@ public static class VectorPlanner
         }
 
         var flat = new List<FlatPath>(selected.Count);
+        long vertices = 0;
         foreach (var path in selected)
         {
             var placed = path.Transform(toStageMm).Flatten(toleranceMm);
+            vertices += placed.Count;
+            if (vertices > DrawingLimits.MaxVertices)
+            {
+                throw DrawingLimits.Exceeded(drawing.Path, null, DrawingLimits.MaxVertices, string.Create(CultureInfo.InvariantCulture, $"vertices once its curves are flattened within {options.ToleranceUm:0.###} µm"), "give a larger --tolerance-um or a smaller --width-mm");
+            }
+
             var microsteps = placed.ConvertAll(p => new DrawingPoint(StageUnits.MmToMicrosteps(p.X, microstepUm), StageUnits.MmToMicrosteps(p.Y, microstepUm)));
             if (path.Closed)
             {

@@ -18,6 +18,42 @@ public sealed class NumberFieldTests : ComponentTest
         Assert.Contains("mm", cut.Find(".unit").TextContent, StringComparison.Ordinal);
     }
 
+    [Theory]
+    [InlineData("5,5", 5.5)]
+    [InlineData("0,5", 0.5)]
+    [InlineData("5.5", 5.5)]
+    public void Change_DecimalCommaOrPoint_CommittedAsTheCommandLineReadsIt(string typed, double expected)
+    {
+        double? committed = null;
+        var cut = Render<NumberField>(p => p.Add(c => c.Id, "w").Add(c => c.Label, "Width").Add(c => c.OnCommit, v => committed = v));
+
+        cut.Find("input").Change(typed);
+
+        Assert.Equal(expected, committed);
+        Assert.Equal("text", cut.Find("input").GetAttribute("type"));
+    }
+
+    [Theory]
+    [InlineData("1.000,5", "more than one decimal mark")]
+    [InlineData("1,000", null)]
+    public void Change_ThousandsSeparator_NeverRead(string typed, string? problem)
+    {
+        double? committed = null;
+        var cut = Render<NumberField>(p => p.Add(c => c.Id, "w").Add(c => c.Label, "Width").Add(c => c.OnCommit, v => committed = v));
+
+        cut.Find("input").Change(typed);
+
+        if (problem is null)
+        {
+            Assert.Equal(1.0, committed);
+        }
+        else
+        {
+            Assert.Null(committed);
+            Assert.Contains(problem, cut.Find("[data-error=w]").TextContent, StringComparison.Ordinal);
+        }
+    }
+
     [Fact]
     public void Change_NotANumber_MessageBesideAndNothingCommitted()
     {

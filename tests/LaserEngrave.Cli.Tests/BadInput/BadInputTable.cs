@@ -63,6 +63,22 @@ public static class BadInputTable
         ["z-limits"] = ("""{ "z": { "minMm": 10, "maxMm": 5 } }""", "z.maxMm must be above z.minMm 10 mm"),
         ["z-misspelt"] = ("""{ "z": { "focusUm": 5 } }""", "z.focusUm is not a field of the machine profile"),
         ["unknown-field"] = ("""{ "gate": { "WatchdogMs": 0 } }""", "gate.WatchdogMs is not a field of the machine profile"),
+        ["off-reply-null"] = ("""{ "gate": { "offReply": null } }""", "gate.offReply must not be null"),
+        ["burst-reply-null"] = ("""{ "gate": { "burstReply": null } }""", "gate.burstReply must not be null"),
+        ["watchdog-reply-5"] = ("""{ "gate": { "watchdogReply": "FREQ {5}" } }""", "gate.watchdogReply \"FREQ {5}\" is not a valid reply template"),
+        ["frequency-reply-1"] = ("""{ "gate": { "frequencyReply": "FREQ {1}" } }""", "gate.frequencyReply \"FREQ {1}\" is not a valid reply template"),
+        ["burst-reply-brace"] = ("""{ "gate": { "burstReply": "BURST {0" } }""", "gate.burstReply \"BURST {0\" is not a valid reply template"),
+        ["status-reply-empty"] = ("""{ "gate": { "statusReply": "" } }""", "gate.statusReply must not be empty"),
+        ["keepalive-reply-two-lines"] = ("""{ "gate": { "keepAliveReply": "PONG\nPONG" } }""", "gate.keepAliveReply must be one line"),
+        ["terminator-null"] = ("""{ "gate": { "lineTerminator": null } }""", "gate.lineTerminator must be \"\\n\", \"\\r\\n\" or \"\\r\" (got null)"),
+        ["terminator-two"] = ("""{ "gate": { "lineTerminator": "\n\n" } }""", "gate.lineTerminator must be"),
+        ["latency-null"] = ("""{ "latency": null }""", "latency must not be null"),
+        ["travel-1e308"] = ("""{ "x": { "deviceNumber": 1, "travelMm": 1e308 } }""", "x.travelMm must be above 0 and at most"),
+        ["frequency-1e400"] = ("""{ "laserFrequencyHz": 1e400 }""", "laserFrequencyHz"),
+        ["frequency-text-nan"] = ("""{ "laserFrequencyHz": "NaN" }""", "laserFrequencyHz has a value of the wrong type"),
+        ["device-fraction"] = ("""{ "x": { "deviceNumber": 1.5 } }""", "x.deviceNumber has a value of the wrong type"),
+        ["microstep-negative"] = ("""{ "y": { "deviceNumber": 2, "microstepUm": -0.1 } }""", "y.microstepUm must be above 0"),
+        ["spot-negative-zero"] = ("""{ "spotDiameterUm": -0.0 }""", "spotDiameterUm must be a finite number above 0"),
         ["array"] = ("""[1, 2]""", "not a valid machine profile"),
         ["json-null"] = ("""null""", "the machine profile is empty"),
         ["empty"] = ("", "not a valid machine profile"),
@@ -102,14 +118,14 @@ public static class BadInputTable
         {
             ("--width-mm 0: must be a finite number above 0", ["--width-mm", "0"]),
             ("--width-mm -5: must be a finite number above 0", ["--width-mm", "-5"]),
-            ("--width-mm NaN: must be a finite number above 0", ["--width-mm", "NaN"]),
-            ("--width-mm Infinity: must be a finite number above 0", ["--width-mm", "Infinity"]),
-            ("--width-mm -Infinity: must be a finite number above 0", ["--width-mm", "-Infinity"]),
+            ("--width-mm NaN: is not a number", ["--width-mm", "NaN"]),
+            ("--width-mm Infinity: is not a number", ["--width-mm", "Infinity"]),
+            ("--width-mm -Infinity: is not a number", ["--width-mm", "-Infinity"]),
             ("--width-mm 1E+300: at most 60 mm, the X travel", ["--width-mm", "1e300"]),
             ("--width-mm 100: at most 60 mm, the X travel", ["--width-mm", "100"]),
             ("--width-mm 1E-300 for 41 x 41 px gives pixels of", ["--width-mm", "1e-300"]),
             ("--width-mm 0.0001 for 41 x 41 px gives pixels of 0.00244 µm, below one microstep", ["--width-mm", "0.0001"]),
-            ("'abc'", ["--width-mm", "abc"]),
+            ("--width-mm abc: is not a number", ["--width-mm", "abc"]),
             ("--height-mm 0: must be a finite number above 0", ["--height-mm", "0"]),
             ("--height-mm NaN", ["--height-mm", "NaN"]),
             ("--height-mm 1E+300: at most 60 mm, the Y travel", ["--height-mm", "1e300"]),
@@ -120,18 +136,18 @@ public static class BadInputTable
             ("--pitch-um NaN", ["--pitch-um", "NaN"]),
             ("one way only", ["--width-mm", "5", "--pitch-um", "40"]),
             ("give the size", []),
-            ("--origin-mm 10: expected X,Y", ["--width-mm", "1", "--origin-mm", "10"]),
+            ("--origin-mm 10: expected two numbers", ["--width-mm", "1", "--origin-mm", "10"]),
             ("--origin-mm: X -1 mm is outside the travel 0..60 mm", ["--width-mm", "1", "--origin-mm", "-1,0"]),
             ("--origin-mm: Y -1 mm is outside the travel 0..60 mm", ["--width-mm", "1", "--origin-mm", "0,-1"]),
             ("--origin-mm: X 61 mm is outside the travel", ["--width-mm", "1", "--origin-mm", "61,0"]),
             ("--origin-mm: X 1E+300 mm is outside the travel", ["--width-mm", "1", "--origin-mm", "1e300,0"]),
-            ("--origin-mm NaN,0: expected X,Y", ["--width-mm", "1", "--origin-mm", "NaN,0"]),
-            ("--origin-mm a,b: expected X,Y", ["--width-mm", "1", "--origin-mm", "a,b"]),
-            ("--origin-mm 1,2,3: expected X,Y", ["--width-mm", "1", "--origin-mm", "1,2,3"]),
+            ("--origin-mm NaN,0: X 'NaN' is not a number", ["--width-mm", "1", "--origin-mm", "NaN,0"]),
+            ("--origin-mm a,b: X 'a' is not a number", ["--width-mm", "1", "--origin-mm", "a,b"]),
+            ("--origin-mm 1,2,3: could be read more than one way", ["--width-mm", "1", "--origin-mm", "1,2,3"]),
             ("--overscan-mm -1: must be 0..60 mm", ["--width-mm", "1", "--overscan-mm", "-1"]),
-            ("--overscan-mm NaN: must be 0..60 mm", ["--width-mm", "1", "--overscan-mm", "NaN"]),
+            ("--overscan-mm NaN: is not a number", ["--width-mm", "1", "--overscan-mm", "NaN"]),
             ("--overscan-mm 1E+300: must be 0..60 mm", ["--width-mm", "1", "--overscan-mm", "1e300"]),
-            ("--overscan-mm Infinity: must be 0..60 mm", ["--width-mm", "1", "--overscan-mm", "Infinity"]),
+            ("--overscan-mm Infinity: is not a number", ["--width-mm", "1", "--overscan-mm", "Infinity"]),
             ("--strategy zigzag", ["--width-mm", "1", "--strategy", "zigzag"]),
             ("--mode spots: use raster or dots", ["--width-mm", "1", "--mode", "spots"]),
             ("--pulses-per-dot applies to --mode dots only", ["--width-mm", "1", "--pulses-per-dot", "5"]),
@@ -139,18 +155,18 @@ public static class BadInputTable
             ("--pulses-per-dot 0: must be 1..1000000", ["--width-mm", "1", "--mode", "dots", "--pulses-per-dot", "0"]),
             ("--pulses-per-dot -3: must be 1..1000000", ["--width-mm", "1", "--mode", "dots", "--pulses-per-dot", "-3"]),
             ("--dot-pitch-microsteps 0: must be 1..", ["--width-mm", "1", "--mode", "dots", "--dot-pitch-microsteps", "0"]),
-            ("--dot-settle-ms NaN: must be 0..60000 ms", ["--width-mm", "1", "--mode", "dots", "--dot-settle-ms", "NaN"]),
+            ("--dot-settle-ms NaN: is not a number", ["--width-mm", "1", "--mode", "dots", "--dot-settle-ms", "NaN"]),
             ("--dot-settle-ms -1: must be 0..60000 ms", ["--width-mm", "1", "--mode", "dots", "--dot-settle-ms", "-1"]),
             ("contradict each other", ["--width-mm", "1", "--bidirectional", "--unidirectional"]),
             ("--speed-mm-s 100: outside what the stage takes, 0.00093..4 mm/s", ["--width-mm", "1", "--speed-mm-s", "100"]),
             ("--speed-mm-s 0: outside what the stage takes", ["--width-mm", "1", "--speed-mm-s", "0"]),
             ("--speed-mm-s -1: outside what the stage takes", ["--width-mm", "1", "--speed-mm-s", "-1"]),
-            ("--speed-mm-s NaN: outside what the stage takes", ["--width-mm", "1", "--speed-mm-s", "NaN"]),
+            ("--speed-mm-s NaN: is not a number", ["--width-mm", "1", "--speed-mm-s", "NaN"]),
             ("--speed-mm-s 1E-09: outside what the stage takes", ["--width-mm", "1", "--speed-mm-s", "1e-9"]),
-            ("--speed-mm-s Infinity: outside what the stage takes", ["--width-mm", "1", "--speed-mm-s", "Infinity"]),
+            ("--speed-mm-s Infinity: is not a number", ["--width-mm", "1", "--speed-mm-s", "Infinity"]),
             ("--travel-speed-mm-s 100: outside what the stage takes", ["--width-mm", "1", "--travel-speed-mm-s", "100"]),
             ("--travel-speed-mm-s 0: outside what the stage takes", ["--width-mm", "1", "--travel-speed-mm-s", "0"]),
-            ("--travel-speed-mm-s NaN: outside what the stage takes", ["--width-mm", "1", "--travel-speed-mm-s", "NaN"]),
+            ("--travel-speed-mm-s NaN: is not a number", ["--width-mm", "1", "--travel-speed-mm-s", "NaN"]),
             ("--acceleration-mm-s2 1000000: outside what the stage takes, 1.11621..200 mm/s²", ["--width-mm", "1", "--acceleration-mm-s2", "1e6"]),
             ("--acceleration-mm-s2 0: outside", ["--width-mm", "1", "--acceleration-mm-s2", "0"]),
             ("--acceleration-mm-s2 -5: outside", ["--width-mm", "1", "--acceleration-mm-s2", "-5"]),
@@ -158,7 +174,7 @@ public static class BadInputTable
             ("--frequency-hz 1E+12: outside what the laser gate takes, 1..100000 Hz", ["--width-mm", "1", "--frequency-hz", "1e12"]),
             ("--frequency-hz 0: outside what the laser gate takes", ["--width-mm", "1", "--frequency-hz", "0"]),
             ("--frequency-hz -1000: outside", ["--width-mm", "1", "--frequency-hz", "-1000"]),
-            ("--frequency-hz NaN: outside", ["--width-mm", "1", "--frequency-hz", "NaN"]),
+            ("--frequency-hz NaN: is not a number", ["--width-mm", "1", "--frequency-hz", "NaN"]),
             ("--frequency-hz 0.2: outside", ["--width-mm", "1", "--frequency-hz", "0.2"]),
             ("--frequency-hz 100001: outside", ["--width-mm", "1", "--frequency-hz", "100001"]),
             ("--threshold 200", ["--width-mm", "1", "--threshold", "200"]),
@@ -267,7 +283,7 @@ public static class BadInputTable
         Add("is a folder", "engrave", "--from-log", "@dir", "--simulate", "--log-dir", "@logdir");
         Add("@text", "engrave", "--from-log", "@text", "--simulate", "--log-dir", "@logdir");
         Add("gate.watchdogMs must be 50..60000 ms", "engrave", "--from-log", "@log-watchdog-0", "--simulate", "--log-dir", "@logdir");
-        Add("the logged burn speed 100 mm/s is outside 0.00093..4 mm/s", "engrave", "--from-log", "@log-fast", "--simulate", "--log-dir", "@logdir");
+        Add("@log-fast: process: burn speed 100 mm/s is outside 0.00093..4 mm/s", "engrave", "--from-log", "@log-fast", "--simulate", "--log-dir", "@logdir");
 
         // frame: the laser is on around the whole frame at --visible-hz, so the profile caps it.
         string[] frame = ["frame", "@qr", "--width-mm", "1", "--simulate"];
@@ -275,8 +291,8 @@ public static class BadInputTable
         Add("--visible-hz 101: must be 1..100 Hz", [.. frame, "--visible-hz", "101"]);
         Add("--visible-hz 0: must be 1..100 Hz", [.. frame, "--visible-hz", "0"]);
         Add("--visible-hz -5: must be 1..100 Hz", [.. frame, "--visible-hz", "-5"]);
-        Add("'abc'", [.. frame, "--visible-hz", "abc"]);
-        Add("'1e12'", [.. frame, "--visible-hz", "1e12"]);
+        Add("--visible-hz abc: is not a whole number", [.. frame, "--visible-hz", "abc"]);
+        Add("--visible-hz 1e12: is not a whole number", [.. frame, "--visible-hz", "1e12"]);
         Add("gate.watchdogMs must be 50..60000 ms", [.. frame, "--profile", "@profile:watchdog-0"]);
         Add("does not fit the stage's travel", [.. frame, "--origin-mm", "59.5,59.5"]);
         Add("give the machine", "frame", "@qr", "--width-mm", "1");
@@ -285,20 +301,20 @@ public static class BadInputTable
         Add("STEP_UM 1E+12: longer than the X travel (60000 µm)", "jog", "x", "1e12", "--simulate");
         Add("STEP_UM -1E+300: longer than the X travel", "jog", "x", "-1e300", "--simulate");
         Add("STEP_UM 70000: longer than the Y travel (60000 µm)", "jog", "y", "70000", "--simulate");
-        Add("STEP_UM NaN: must be a finite number other than 0", "jog", "x", "NaN", "--simulate");
-        Add("STEP_UM Infinity: must be a finite number other than 0", "jog", "x", "Infinity", "--simulate");
+        Add("STEP_UM NaN: is not a number", "jog", "x", "NaN", "--simulate");
+        Add("STEP_UM Infinity: is not a number", "jog", "x", "Infinity", "--simulate");
         Add("STEP_UM 0: must be a finite number other than 0", "jog", "y", "0", "--simulate");
         Add("AXIS z: use x or y", "jog", "z", "100", "--simulate");
-        Add("'abc'", "jog", "x", "abc", "--simulate");
+        Add("STEP_UM abc: is not a number", "jog", "x", "abc", "--simulate");
         Add("give the machine", "jog", "x", "100");
         Add("gate must not be null", "jog", "x", "100", "--simulate", "--profile", "@profile:gate-null");
         Add("X_MM 100: outside the travel 0..60 mm", "goto", "100", "0", "--simulate");
         Add("Y_MM 100: outside the travel 0..60 mm", "goto", "0", "100", "--simulate");
         Add("X_MM -1: outside the travel", "goto", "-1", "0", "--simulate");
-        Add("X_MM NaN: outside the travel", "goto", "NaN", "0", "--simulate");
-        Add("Y_MM Infinity: outside the travel", "goto", "0", "Infinity", "--simulate");
+        Add("X_MM NaN: is not a number", "goto", "NaN", "0", "--simulate");
+        Add("Y_MM Infinity: is not a number", "goto", "0", "Infinity", "--simulate");
         Add("X_MM 1E+300: outside the travel", "goto", "1e300", "0", "--simulate");
-        Add("'a'", "goto", "a", "b", "--simulate");
+        Add("X_MM a: is not a number", "goto", "a", "b", "--simulate");
         Add("give the machine", "goto", "1", "2");
         Add("gate.watchdogMs must be 50..60000 ms", "goto", "1", "2", "--simulate", "--profile", "@profile:watchdog-0");
 
@@ -314,27 +330,27 @@ public static class BadInputTable
         Add("--frequency-hz 0: must be 1..100000 Hz", "fire", "--pulses", "5", "--frequency-hz", "0", "--simulate");
         Add("--frequency-hz -5: must be 1..100000 Hz", "fire", "--pulses", "5", "--frequency-hz", "-5", "--simulate");
         Add("--frequency-hz 200000: must be 1..100000 Hz", "fire", "--pulses", "5", "--frequency-hz", "200000", "--simulate");
-        Add("'1e12'", "fire", "--pulses", "5", "--frequency-hz", "1e12", "--simulate");
-        Add("'abc'", "fire", "--pulses", "abc", "--simulate");
+        Add("--frequency-hz 1e12: is not a whole number", "fire", "--pulses", "5", "--frequency-hz", "1e12", "--simulate");
+        Add("--pulses abc: is not a whole number", "fire", "--pulses", "abc", "--simulate");
         Add("is the same as gate.offCommand \"PING\"", "fire", "--pulses", "5", "--simulate", "--profile", "@profile:off-ping");
         Add("give the machine", "fire", "--pulses", "5");
 
         // The wiring checks: the numbers and the profile are refused before the port (which does not exist) is tried.
         Add("X 1E+300 µm is outside the travel 0..60000 µm", "stage", "--port", "/nonexistent/tty", "move-abs", "1e300", "0");
         Add("X -1 µm is outside the travel", "stage", "--port", "/nonexistent/tty", "move-abs", "-1", "0");
-        Add("X NaN µm is outside the travel", "stage", "--port", "/nonexistent/tty", "move-abs", "NaN", "0");
+        Add("X_UM NaN: is not a number", "stage", "--port", "/nonexistent/tty", "move-abs", "NaN", "0");
         Add("Y 70000 µm is outside the travel", "stage", "--port", "/nonexistent/tty", "move-abs", "0", "70000");
-        Add("'abc'", "stage", "--port", "/nonexistent/tty", "move-abs", "abc", "0");
+        Add("X_UM abc: is not a number", "stage", "--port", "/nonexistent/tty", "move-abs", "abc", "0");
         Add("gate.watchdogMs must be 50..60000 ms", "stage", "--port", "/nonexistent/tty", "identify", "--profile", "@profile:watchdog-0");
         Add("--port", "stage", "identify");
         Add("HZ must be above 0 (got 0)", "laser", "--port", "/nonexistent/tty", "on", "0");
         Add("HZ must be above 0 (got -5)", "laser", "--port", "/nonexistent/tty", "on", "-5");
         Add("HZ 200000: must be 1..100000 Hz", "laser", "--port", "/nonexistent/tty", "on", "200000");
         Add("--seconds 0: must be above 0", "laser", "--port", "/nonexistent/tty", "on", "1000", "--seconds", "0");
-        Add("--seconds NaN: must be above 0", "laser", "--port", "/nonexistent/tty", "on", "1000", "--seconds", "NaN");
+        Add("--seconds NaN: is not a number", "laser", "--port", "/nonexistent/tty", "on", "1000", "--seconds", "NaN");
         Add("--seconds -1: must be above 0", "laser", "--port", "/nonexistent/tty", "on", "1000", "--seconds", "-1");
         Add("--seconds 1E+12: must be above 0 and at most 86400", "laser", "--port", "/nonexistent/tty", "on", "1000", "--seconds", "1e12");
-        Add("'abc'", "laser", "--port", "/nonexistent/tty", "on", "abc");
+        Add("HZ abc: is not a whole number", "laser", "--port", "/nonexistent/tty", "on", "abc");
         Add("is the same as gate.offCommand \"PING\"", "laser", "--port", "/nonexistent/tty", "on", "1000", "--profile", "@profile:off-ping");
         Add("gate must not be null", "laser", "--port", "/nonexistent/tty", "status", "--profile", "@profile:gate-null");
         Add("gate.watchdogMs must be 50..60000 ms", "simulator", "--stage-port", "/nonexistent/a", "--laser-port", "/nonexistent/b", "--profile", "@profile:watchdog-0");
@@ -379,6 +395,7 @@ public static class BadInputTable
         Add("--burned @fifo: is a named pipe (FIFO)", "engrave", "@qr", "--width-mm", "1", "--simulate", "--log-dir", "@logdir", "--burned", "@fifo");
         Add("named pipe (FIFO)", "bench", "--image", "@fifo");
         Add("Unrecognized command or argument 'frobnicate'", "frobnicate");
+        ValuesByWhatTheyAre.AddRows(Add);
         Add("--bogus", "plan", "@qr", "--width-mm", "1", "--bogus");
         return rows;
     }
@@ -443,6 +460,7 @@ public sealed class BadInputFiles
             Profile = MachineProfile.Default with { Gate = new LaserGateProfile { WatchdogMs = 0 } },
         }).JsonPath;
         _tokens["@log-fast"] = store.Write(record with { SampleId = "fast", Process = record.Process with { BurnSpeedMmPerS = 100 } }).JsonPath;
+        ValuesByWhatTheyAre.WriteFiles(folder, _tokens["@log"], _tokens);
     }
 
     public static BadInputFiles Instance => Shared.Value;

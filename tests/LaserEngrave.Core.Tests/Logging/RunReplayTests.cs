@@ -68,5 +68,42 @@ public sealed class RunReplayTests : IDisposable
         Assert.Contains("pitchUm is missing", ex.Message, StringComparison.Ordinal);
     }
 
+    [Fact]
+    public void Check_GoodLog_NoProblem()
+    {
+        Assert.Null(RunReplay.Problem(runs.FailedRecord()));
+    }
+
+    [Fact]
+    public void ToJobSpec_OverscanPastTheTravel_RefusedBeforeAnythingMoves()
+    {
+        var record = runs.FailedRecord();
+        var bad = record with { Plan = record.Plan with { OverscanMm = 1e308 } };
+
+        var ex = Assert.Throws<RunLogException>(() => RunReplay.ToJobSpec(bad, "runs/a.json"));
+
+        Assert.Equal("runs/a.json: plan.overscanMm 1E+308 must be 0..60 mm (the X travel)", ex.Message);
+    }
+
+    [Fact]
+    public void ToJobSpec_StopRowNegative_RefusedNamingTheField()
+    {
+        var record = runs.FailedRecord() with { StoppedAt = new RunStopPoint(-1, 0) };
+
+        var ex = Assert.Throws<RunLogException>(() => RunReplay.ToJobSpec(record, "runs/a.json"));
+
+        Assert.Equal("runs/a.json: stoppedAt.row -1 must not be negative", ex.Message);
+    }
+
+    [Fact]
+    public void ToJobSpec_PassesOutOfRange_RefusedNotClamped()
+    {
+        var record = runs.FailedRecord() with { Passes = 1000 };
+
+        var ex = Assert.Throws<RunLogException>(() => RunReplay.ToJobSpec(record, "runs/a.json"));
+
+        Assert.Equal("runs/a.json: passes 1000 must be 1..100", ex.Message);
+    }
+
     public void Dispose() => runs.Dispose();
 }

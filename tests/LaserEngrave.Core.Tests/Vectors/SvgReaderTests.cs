@@ -9,6 +9,56 @@ public class SvgReaderTests
 
     private static List<DrawingPoint> Points(DrawingPath path) => path.Flatten(1e-6);
 
+    [Theory]
+    [InlineData(".hide { display: none }", "<path class=\"hide\" d=\"M0 0 L5 5\"/><path d=\"M0 10 L5 15\"/>", 1)]
+    [InlineData("path { visibility: hidden } #shown { visibility: visible }", "<path d=\"M0 0 L5 5\"/><path id=\"shown\" d=\"M0 10 L5 15\"/>", 1)]
+    [InlineData("g.off, line { display:none !important; stroke: red }", "<g class=\"off other\"><path d=\"M0 0 L5 5\"/></g><line x1=\"0\" y1=\"0\" x2=\"1\" y2=\"1\"/><path d=\"M0 10 L5 15\"/>", 1)]
+    [InlineData(".a { display: none } .a.b { display: inline }", "<path class=\"a b\" d=\"M0 0 L5 5\"/><path class=\"a\" d=\"M0 10 L5 15\"/>", 1)]
+    [InlineData(".hide { display: none }", "<path class=\"hide\" style=\"display: inline\" d=\"M0 0 L5 5\"/>", 1)]
+    [InlineData("/* .x { display: none } */ path { stroke: blue; fill: none }", "<path class=\"x\" d=\"M0 0 L5 5\"/>", 1)]
+    [InlineData("#gone { display: none }", "<path id=\"gone\" display=\"inline\" d=\"M0 0 L5 5\"/><path d=\"M0 10 L5 15\"/>", 1)]
+    public void Parse_StyleSheetRules_HideWhatTheDrawingHides(string css, string body, int drawn)
+    {
+        var drawing = Parse($"<style>{css}</style>{body}");
+
+        Assert.Equal(drawn, drawing.Paths.Count);
+    }
+
+    [Theory]
+    [InlineData("g .hide { display: none }", "\"g .hide { display: none }\" cannot be applied")]
+    [InlineData("g > path { visibility: hidden }", "\"g > path { visibility: hidden }\" cannot be applied")]
+    [InlineData("path[d] { display: none }", "\"path[d] { display: none }\" cannot be applied")]
+    [InlineData("path:hover, .x { display: none }", "\"path:hover { display: none }\" cannot be applied")]
+    [InlineData("@media print { .x { display: none } }", "at-rules (@media, @import, @supports) are not applied")]
+    public void Parse_StyleRuleItCannotApply_RefusedNamingTheRule(string css, string fragment)
+    {
+        var ex = Assert.Throws<DrawingException>(() => Parse($"<style>{css}</style><path d=\"M0 0 L5 5\"/>"));
+
+        Assert.StartsWith("t.svg: <style> (line 2): ", ex.Message, StringComparison.Ordinal);
+        Assert.Contains(fragment, ex.Message, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void Parse_ComplexSelectorSettingOnlyStroke_ReadPast()
+    {
+        var drawing = Parse("<style>g > path:hover { stroke: red; stroke-width: 2 }</style><path d=\"M0 0 L5 5\"/>");
+
+        Assert.Single(drawing.Paths);
+    }
+
+    [Theory]
+    [InlineData("<g transform=\"scale(1e308)\"><path d=\"M0 0 L5 5 L5 0 Z\"/></g>", "infinity")]
+    [InlineData("<path d=\"M0 0 L1e308 5\"/>", "1e+308")]
+    [InlineData("<path transform=\"translate(2e7)\" d=\"M0 0 L5 5\"/>", "2e+07")]
+    public void Bounds_CoordinatePastTheLimit_RefusedNotNaN(string body, string shown)
+    {
+        var drawing = Parse(body);
+
+        var ex = Assert.Throws<DrawingException>(() => drawing.Bounds());
+
+        Assert.StartsWith($"t.svg: a coordinate of {shown} mm is beyond the drawing limit", ex.Message, StringComparison.OrdinalIgnoreCase);
+    }
+
     [Fact]
     public void Parse_ViewBoxAndWidthInMm_MapsUserUnitsToMillimetres()
     {
