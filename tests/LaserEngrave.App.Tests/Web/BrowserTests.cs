@@ -411,6 +411,26 @@ public sealed class BrowserTests : IAsyncLifetime
     }
 
     [Fact]
+    public void Workspace_NarrowWindowScrolledDown_AbortAndRunStateStayInView()
+    {
+        OpenSample("text-banner.png");
+        foreach (var (width, height) in new[] { (1000, 700), (1099, 700), (1000, 800), (1280, 700) })
+        {
+            Resize(width, height);
+            Driver.ExecuteScript("window.scrollTo(0, document.documentElement.scrollHeight);");
+            foreach (var id in new[] { "abort", "status-run" })
+            {
+                var inView = (bool)Driver.ExecuteScript(
+                    """
+                    const r = arguments[0].getBoundingClientRect();
+                    return r.height > 0 && r.top >= 0 && r.bottom <= window.innerHeight && r.left >= 0 && r.right <= window.innerWidth;
+                    """, Id(id))!;
+                Assert.True(inView, $"at {width} x {height} scrolled down, #{id} is off-screen");
+            }
+        }
+    }
+
+    [Fact]
     public void Workspace_LightAndDark_Screenshots()
     {
         Resize(1440, 1000);
