@@ -31,6 +31,12 @@ public sealed partial class MainViewModel : ObservableObject
         _settingsStore = settings;
         _files = files;
         Settings = settings.Load();
+        if (!Themes.Contains(Settings.Theme))
+        {
+            // A hand-edited settings file's unknown theme: the system's, as at the first start.
+            Settings = Settings with { Theme = Themes[0] };
+        }
+
         SampleImages = files.SampleImages();
         var (profile, profileError) = LoadProfile(Settings.ProfilePath);
         ProfileError = profileError;
@@ -157,12 +163,24 @@ public sealed partial class MainViewModel : ObservableObject
         Save(Settings with { ProfilePath = path });
     }
 
-    public void SetTheme(string theme)
+    /// <summary>The themes offered: the system's light or dark mode, or always light, or always dark.</summary>
+    public static IReadOnlyList<string> Themes { get; } = ["system", "light", "dark"];
+
+    /// <summary>Uses <paramref name="theme"/> (one of <see cref="Themes"/>) from now on and keeps it in the settings.</summary>
+    /// <returns>False, with nothing changed, for any other value.</returns>
+    public bool SetTheme(string? theme)
     {
-        if (theme is "light" or "dark")
+        if (theme is null || !Themes.Contains(theme))
+        {
+            return false;
+        }
+
+        if (theme != Settings.Theme)
         {
             Save(Settings with { Theme = theme });
         }
+
+        return true;
     }
 
     private static (MachineProfile Profile, string? Error) LoadProfile(string? path)

@@ -430,6 +430,69 @@ public sealed class BrowserTests : IAsyncLifetime
         }
     }
 
+    /// <summary>The contrast ratio (WCAG) of an element's text against the first opaque background behind it.</summary>
+    private double Contrast(string selector) => Convert.ToDouble(Driver.ExecuteScript(
+        """
+        const el = document.querySelector(arguments[0]);
+        const rgba = s => { const v = s.match(/[\d.]+/g).map(Number); return v.length === 3 ? [...v, 1] : v; };
+        let bg = [255, 255, 255, 1];
+        for (let e = el; e; e = e.parentElement) {
+          const c = rgba(getComputedStyle(e).backgroundColor);
+          if (c[3] > 0) { bg = c; break; }
+        }
+        const fgRaw = rgba(getComputedStyle(el).color), op = Number(getComputedStyle(el).opacity);
+        const a = fgRaw[3] * op;
+        const fg = fgRaw.slice(0, 3).map((v, i) => v * a + bg[i] * (1 - a));
+        const lum = c => c.slice(0, 3).map(v => { v /= 255; return v <= 0.03928 ? v / 12.92 : Math.pow((v + 0.055) / 1.055, 2.4); })
+          .reduce((s, v, i) => s + v * [0.2126, 0.7152, 0.0722][i], 0);
+        const [x, y] = [lum(fg), lum(bg)];
+        return (Math.max(x, y) + 0.05) / (Math.min(x, y) + 0.05);
+        """, selector), CultureInfo.InvariantCulture);
+
+    [Fact]
+    public void Theme_SwitchedDarkAndLight_PageFollowsSettingsKeepItDisabledControlsDimmed()
+    {
+        OpenSample("qr-code.bmp");
+        var main = _app!.Services.GetRequiredService<MainViewModel>();
+        Assert.Equal("system", main.Settings.Theme);
+        string? BodyTheme() => (string?)Driver.ExecuteScript("return document.body.getAttribute('data-theme');");
+
+        // A test move holds the machine: the job's controls and most machine buttons are disabled, the view's are not.
+        using (main.Activity.Begin(App.Services.MachineOperation.TestMove("a theme check")))
+        {
+            WaitFor(d => d.FindElement(By.CssSelector("#samples button.chip")).GetAttribute("disabled") is not null, "the job's controls disabled");
+            foreach (var theme in new[] { "dark", "light" })
+            {
+                Driver.FindElement(By.CssSelector($"#theme option[value='{theme}']")).Click();
+                WaitFor(_ => (BodyTheme() == "dark") == (theme == "dark"), theme + " applied");
+                WaitFor(_ => main.Settings.Theme == theme, theme + " kept in the settings");
+                WaitFor(d => Convert.ToInt64(((IJavaScriptExecutor)d).ExecuteScript("return document.getAnimations().length;"), CultureInfo.InvariantCulture) == 0, "colours settled");
+
+                // Enabled controls keep their text readable (WCAG 4.5:1); disabled ones are dimmed well below it.
+                foreach (var enabled in new[] { "#zoom-fit", "#theme", "#sampleId", ".steps .chip:not(.on)" })
+                {
+                    Assert.True(Contrast(enabled) >= 4.5, $"{theme}: enabled {enabled} has contrast {Contrast(enabled):0.00}");
+                }
+
+                foreach (var disabled in new[] { "#disconnect", "#start", "#samples button.chip", "#widthMm", "#dither", "#aspectLocked" })
+                {
+                    Assert.True(Id("app").FindElement(By.CssSelector(disabled)).GetAttribute("disabled") is not null, $"{disabled} disabled");
+                    Assert.True(Contrast(disabled == "#aspectLocked" ? "label.check:has(#aspectLocked)" : disabled) <= 3, $"{theme}: disabled {disabled} has contrast {Contrast(disabled):0.00}");
+                }
+            }
+        }
+
+        // The settings, not the browser's storage, decide the theme of a window opened again.
+        Driver.FindElement(By.CssSelector("#theme option[value='dark']")).Click();
+        WaitFor(_ => main.Settings.Theme == "dark", "dark kept in the settings");
+        Driver.ExecuteScript("localStorage.clear();");
+        Open();
+        WaitFor(_ => BodyTheme() == "dark", "dark again after reopening");
+        Assert.Equal("dark", Id("theme").GetDomProperty("value"));
+        Driver.FindElement(By.CssSelector("#theme option[value='system']")).Click();
+        WaitFor(_ => BodyTheme() is null, "the system's (light) mode");
+    }
+
     [Fact]
     public void Workspace_LightAndDark_Screenshots()
     {

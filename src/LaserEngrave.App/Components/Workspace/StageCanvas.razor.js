@@ -8,7 +8,8 @@ export function create(host, dotnet) {
   const cursor = host.querySelector('[data-cursor]');
   const menu = host.querySelector('[data-menu]');
   const ctx = canvas.getContext('2d');
-  const scheme = matchMedia('(prefers-color-scheme: dark)');
+  // Fluent UI's theme marks the body dark (the theme switch's choice, or the system's) and says when that changes.
+  const isDark = () => document.body.getAttribute('data-theme') === 'dark';
   const s = {
     travel: { w: 60, h: 60 }, job: null, layers: [], draggable: false, laser: null, laserOn: false,
     moves: new Float32Array(0), paths: null, burned: null, burnedUpTo: 0, movesDone: 0,
@@ -90,7 +91,7 @@ export function create(host, dotnet) {
       const dx = job.x - s.job.x, dy = job.y - s.job.y;
       if (s.mask && s.mask.complete && s.mask.naturalWidth > 0) {
         // Burned pixels dark on a light stage, light on a dark one, like the plan's burns.
-        ctx.imageSmoothingEnabled = false; ctx.globalAlpha = 0.35; ctx.filter = scheme.matches ? 'invert(1)' : 'none';
+        ctx.imageSmoothingEnabled = false; ctx.globalAlpha = 0.35; ctx.filter = isDark() ? 'invert(1)' : 'none';
         ctx.drawImage(s.mask, job.x, job.y, job.w, job.h); ctx.globalAlpha = 1; ctx.filter = 'none';
       }
       if (s.paths) {
@@ -233,7 +234,7 @@ export function create(host, dotnet) {
     dotnet.invokeMethodAsync('OnJogKey', keys[e.key]);
   };
   document.addEventListener('keydown', onKey);
-  scheme.addEventListener('change', invalidate);
+  document.body.addEventListener('themeChanged', invalidate);
   const observer = new ResizeObserver(resize);
   observer.observe(host);
   resize();
@@ -266,6 +267,6 @@ export function create(host, dotnet) {
     setLaser(x, y, on) { s.laser = x === null ? null : { x, y }; s.laserOn = on; invalidate(); },
     fit,
     zoom(k) { s.userView = true; const r = host.getBoundingClientRect(), cx = r.width / 2, cy = r.height / 2, mm = toMm(cx, cy); s.scale *= k; s.ox = cx - mm.x * s.scale; s.oy = cy - mm.y * s.scale; invalidate(); },
-    dispose() { document.removeEventListener('keydown', onKey); scheme.removeEventListener('change', invalidate); observer.disconnect(); },
+    dispose() { document.removeEventListener('keydown', onKey); document.body.removeEventListener('themeChanged', invalidate); observer.disconnect(); },
   };
 }
