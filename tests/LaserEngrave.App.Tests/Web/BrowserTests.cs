@@ -607,6 +607,51 @@ public sealed class BrowserTests : IAsyncLifetime
         WaitFor(_ => stopping.IsCancellationRequested, "the app ending after its window closed");
     }
 
+    private double[][] BoxLabels() => System.Text.Json.JsonSerializer.Deserialize<double[][]>(Id("stage-host").GetAttribute("data-box-labels") ?? "[]")!;
+
+    private static bool Overlap(double[] a, double[] b) => a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
+
+    [Fact]
+    public void Stage_RulerLabelsWholeAndSweepCellLabelsApart()
+    {
+        WaitFor(_ => View().Scale > 1, "the stage drawn");
+        var canvas = Id("stage-canvas").Size;
+        using var rulers = System.Text.Json.JsonDocument.Parse(Id("stage-host").GetAttribute("data-ruler-labels")!);
+        var labels = rulers.RootElement.EnumerateArray().Select(l => (Axis: l[0].GetString(), Text: l[1].GetString(), Box: Enumerable.Range(2, 4).Select(i => l[i].GetDouble()).ToArray())).ToList();
+        Assert.Contains(labels, l => l.Axis == "y" && l.Text == "60");
+        Assert.Contains(labels, l => l.Axis == "x" && l.Text == "60");
+        Assert.All(labels, l => Assert.True(l.Box[0] >= 0 && l.Box[1] >= 0 && l.Box[2] <= canvas.Width && l.Box[3] <= canvas.Height, $"{l.Axis} {l.Text} at {string.Join(", ", l.Box)} cut off the {canvas.Width} x {canvas.Height} canvas"));
+
+        // A sweep of 1 mm cells (the default) on the stage: its cells' labels never overlap, at the fitted view or zoomed in.
+        OpenSample("qr-code.bmp");
+        SetField("widthMm", "5");
+        Driver.FindElement(By.CssSelector("#panel-sweep summary")).Click();
+        SetField("sweepRows", "speed=0.5,1,2");
+        SetField("sweepColumns", "frequency=500,1000,2000");
+        WaitFor(d => d.FindElement(By.Id("sweep-summary")).Text.StartsWith("3 × 3 cells", StringComparison.Ordinal), "the sweep planned");
+        var jobMoves = DrawnMoves();
+        Id("sweepShow").Click();
+        WaitFor(_ => DrawnMoves() != jobMoves && DrawnMoves() > 0, "the sweep drawn on the stage");
+        for (var zoom = 0; zoom < 6; zoom++)
+        {
+            var boxes = BoxLabels();
+            for (var i = 0; i < boxes.Length; i++)
+            {
+                for (var j = i + 1; j < boxes.Length; j++)
+                {
+                    Assert.False(Overlap(boxes[i], boxes[j]), $"labels {i} and {j} overlap at zoom step {zoom}: {string.Join(",", boxes[i])} and {string.Join(",", boxes[j])}");
+                }
+            }
+
+            var scale = View().Scale;
+            Id("zoom-in").Click();
+            WaitFor(_ => View().Scale > scale, "zoomed in");
+        }
+
+        Assert.True(BoxLabels().Length >= 9, $"{BoxLabels().Length} labels drawn zoomed in");
+        Screenshot("sweep-labels-zoomed");
+    }
+
     [Fact]
     public void Stage_JobDraggedOffTheTravel_Refused()
     {
