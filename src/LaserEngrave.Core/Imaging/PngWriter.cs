@@ -20,29 +20,49 @@ public static class PngWriter
     public static void WriteGray(Stream output, int width, int height, ReadOnlySpan<byte> gray) =>
         Write(output, width, height, gray, colourType: 0, bytesPerPixel: 1);
 
-    /// <summary>Writes a mask as black (burn) on white.</summary>
-    public static void WriteMask(Stream output, BitMask mask)
+    /// <summary>The most pixels a scaled mask may have (256 MB of grey), so a scale cannot exhaust the memory.</summary>
+    public const long MaxScaledPixels = 1L << 28;
+
+    /// <summary>Writes a mask as black (burn) on white, each mask pixel as <paramref name="scale"/> x <paramref name="scale"/> image pixels.</summary>
+    /// <exception cref="ArgumentOutOfRangeException">The scale is below 1 or makes more than <see cref="MaxScaledPixels"/> pixels.</exception>
+    public static void WriteMask(Stream output, BitMask mask, int scale = 1)
     {
         ArgumentNullException.ThrowIfNull(mask);
-        var gray = new byte[(long)mask.Width * mask.Height];
+        ArgumentOutOfRangeException.ThrowIfLessThan(scale, 1);
+        if (ScaledPixels(mask.Width, mask.Height, scale) > MaxScaledPixels)
+        {
+            throw new ArgumentOutOfRangeException(nameof(scale), scale, $"{mask.Width} x {mask.Height} pixels at {scale} x {scale} is more than {MaxScaledPixels} pixels");
+        }
+
+        var width = mask.Width * scale;
+        var gray = new byte[(long)width * mask.Height * scale];
         for (var y = 0; y < mask.Height; y++)
         {
-            var row = gray.AsSpan(y * mask.Width, mask.Width);
+            var row = gray.AsSpan(y * scale * width, width);
             var words = mask.ReadRow(y);
             for (var x = 0; x < mask.Width; x++)
             {
-                row[x] = (words[x >> 6] >> (x & 63) & 1) != 0 ? (byte)0 : (byte)255;
+                row.Slice(x * scale, scale).Fill((words[x >> 6] >> (x & 63) & 1) != 0 ? (byte)0 : (byte)255);
+            }
+
+            for (var copy = 1; copy < scale; copy++)
+            {
+                row.CopyTo(gray.AsSpan((y * scale + copy) * width, width));
             }
         }
 
-        WriteGray(output, mask.Width, mask.Height, gray);
+        WriteGray(output, width, mask.Height * scale, gray);
     }
 
-    public static void WriteMask(string path, BitMask mask)
+    /// <inheritdoc cref="WriteMask(Stream, BitMask, int)"/>
+    public static void WriteMask(string path, BitMask mask, int scale = 1)
     {
         using var file = File.Create(path);
-        WriteMask(file, mask);
+        WriteMask(file, mask, scale);
     }
+
+    /// <summary>How many pixels an image of <paramref name="width"/> x <paramref name="height"/> has at <paramref name="scale"/>.</summary>
+    public static long ScaledPixels(int width, int height, int scale) => (long)width * scale * height * scale;
 
     private static void Write(Stream output, int width, int height, ReadOnlySpan<byte> pixels, byte colourType, int bytesPerPixel)
     {
