@@ -496,24 +496,28 @@ public sealed class BrowserTests : IAsyncLifetime
     [Fact]
     public void Workspace_LightAndDark_Screenshots()
     {
-        Resize(1440, 1000);
+        // The page's own area at exactly 1280 x 720, as docs/user-guide.md shows it.
+        Driver.ExecuteCdpCommand("Emulation.setDeviceMetricsOverride", new Dictionary<string, object?>
+        {
+            ["width"] = 1280, ["height"] = 720, ["deviceScaleFactor"] = 1, ["mobile"] = false,
+        });
+        WaitFor(d => Convert.ToInt64(((IJavaScriptExecutor)d).ExecuteScript("return window.innerHeight;"), CultureInfo.InvariantCulture) == 720, "a 1280 x 720 page");
         OpenSample("qr-code.bmp");
         SetField("widthMm", "12");
         WaitFor(d => d.FindElement(By.Id("status-estimate")).Text.StartsWith("12 × 12 mm", StringComparison.Ordinal), "12 mm job planned");
         Id("connect").Click();
         WaitFor(d => d.FindElement(By.Id("machine-homed")).Displayed && Enabled("jog-x-"), "connected to the simulator, state read");
         WaitFor(d => d.FindElement(By.Id("stage-host")).GetAttribute("data-drawn-moves") != "0", "plan drawn");
-        Assert.True(new FileInfo(Screenshot("workspace-light")).Length > 20_000);
-
-        // The system's dark mode, as the page sees it at load.
-        Driver.ExecuteCdpCommand("Emulation.setEmulatedMedia", new Dictionary<string, object?>
+        foreach (var theme in new[] { "light", "dark" })
         {
-            ["features"] = new[] { new Dictionary<string, string> { ["name"] = "prefers-color-scheme", ["value"] = "dark" } },
-        });
-        Open();
-        WaitFor(d => (string)((IJavaScriptExecutor)d).ExecuteScript("return getComputedStyle(document.body).backgroundColor;")! != "rgb(243, 244, 246)", "dark colours");
-        WaitFor(d => d.FindElement(By.Id("stage-host")).GetAttribute("data-drawn-moves") != "0", "plan drawn");
-        Assert.True(new FileInfo(Screenshot("workspace-dark")).Length > 20_000);
+            Driver.FindElement(By.CssSelector($"#theme option[value='{theme}']")).Click();
+            WaitFor(d => ((string?)((IJavaScriptExecutor)d).ExecuteScript("return document.body.getAttribute('data-theme');") == "dark") == (theme == "dark"), theme + " applied");
+            WaitFor(d => Convert.ToInt64(((IJavaScriptExecutor)d).ExecuteScript("return document.getAnimations().length;"), CultureInfo.InvariantCulture) == 0, "colours settled");
+            // The stage redraws on the theme's change event, at the next frame.
+            Driver.ExecuteAsyncScript("requestAnimationFrame(() => requestAnimationFrame(arguments[arguments.length - 1]));");
+            var path = Screenshot("workspace-" + theme);
+            Assert.True(new FileInfo(path).Length > 20_000);
+        }
     }
 
     [Fact]
