@@ -430,6 +430,12 @@ public sealed class BrowserTests : IAsyncLifetime
         }
     }
 
+    /// <summary>Waits until the theme's colour transitions have ended (endless animations, a busy spinner, do not count).</summary>
+    private void ColoursSettled() => WaitFor(
+        d => Convert.ToInt64(((IJavaScriptExecutor)d).ExecuteScript(
+            "return document.getAnimations().filter(a => a.effect && a.effect.getTiming().iterations !== Infinity).length;"), CultureInfo.InvariantCulture) == 0,
+        "colours settled");
+
     /// <summary>The contrast ratio (WCAG) of an element's text against the first opaque background behind it.</summary>
     private double Contrast(string selector) => Convert.ToDouble(Driver.ExecuteScript(
         """
@@ -466,7 +472,7 @@ public sealed class BrowserTests : IAsyncLifetime
                 Driver.FindElement(By.CssSelector($"#theme option[value='{theme}']")).Click();
                 WaitFor(_ => (BodyTheme() == "dark") == (theme == "dark"), theme + " applied");
                 WaitFor(_ => main.Settings.Theme == theme, theme + " kept in the settings");
-                WaitFor(d => Convert.ToInt64(((IJavaScriptExecutor)d).ExecuteScript("return document.getAnimations().length;"), CultureInfo.InvariantCulture) == 0, "colours settled");
+                ColoursSettled();
 
                 // Enabled controls keep their text readable (WCAG 4.5:1); disabled ones are dimmed well below it.
                 foreach (var enabled in new[] { "#zoom-fit", "#theme", "#sampleId", ".steps .chip:not(.on)" })
@@ -512,7 +518,7 @@ public sealed class BrowserTests : IAsyncLifetime
         {
             Driver.FindElement(By.CssSelector($"#theme option[value='{theme}']")).Click();
             WaitFor(d => ((string?)((IJavaScriptExecutor)d).ExecuteScript("return document.body.getAttribute('data-theme');") == "dark") == (theme == "dark"), theme + " applied");
-            WaitFor(d => Convert.ToInt64(((IJavaScriptExecutor)d).ExecuteScript("return document.getAnimations().length;"), CultureInfo.InvariantCulture) == 0, "colours settled");
+            ColoursSettled();
             // The stage redraws on the theme's change event, at the next frame.
             Driver.ExecuteAsyncScript("requestAnimationFrame(() => requestAnimationFrame(arguments[arguments.length - 1]));");
             var path = Screenshot("workspace-" + theme);
