@@ -1,5 +1,6 @@
 using System.ComponentModel;
 using CommunityToolkit.Mvvm.ComponentModel;
+using CommunityToolkit.Mvvm.Input;
 using LaserEngrave.App.Services;
 using LaserEngrave.Core.Calibration;
 using LaserEngrave.Core.Geometry;
@@ -78,6 +79,41 @@ public sealed partial class MainViewModel : ObservableObject
     public SweepViewModel Sweep { get; }
 
     public LogViewModel Log { get; }
+
+    /// <summary>The job's undo and redo, one step per committed change of its settings.</summary>
+    public JobHistory History { get; } = new();
+
+    private bool CanUndo => History.CanUndo && Job.LockedBecause is null;
+
+    private bool CanRedo => History.CanRedo && Job.LockedBecause is null;
+
+    /// <summary>Puts the job's settings back as they were before its last change (Ctrl+Z).</summary>
+    [RelayCommand(CanExecute = nameof(CanUndo))]
+    private void Undo()
+    {
+        if (History.Undo() is { } settings)
+        {
+            PutBack(settings);
+        }
+    }
+
+    /// <summary>Makes the change undone last again (Ctrl+Y).</summary>
+    [RelayCommand(CanExecute = nameof(CanRedo))]
+    private void Redo()
+    {
+        if (History.Redo() is { } settings)
+        {
+            PutBack(settings);
+        }
+    }
+
+    private void PutBack(JobSettings settings)
+    {
+        // The snapshot is of this image: its path is left out so nothing is read again.
+        Job.Apply(settings with { ImagePath = null });
+        UndoCommand.NotifyCanExecuteChanged();
+        RedoCommand.NotifyCanExecuteChanged();
+    }
 
     [ObservableProperty]
     public partial AppSettings Settings { get; private set; }
@@ -202,6 +238,24 @@ public sealed partial class MainViewModel : ObservableObject
 
     private void OnJobChanged(object? sender, PropertyChangedEventArgs e)
     {
+        if (e.PropertyName == nameof(JobViewModel.LockedBecause))
+        {
+            UndoCommand.NotifyCanExecuteChanged();
+            RedoCommand.NotifyCanExecuteChanged();
+        }
+
+        if (e.PropertyName == nameof(JobViewModel.ImagePath))
+        {
+            History.Reset(null);
+        }
+        else if (e.PropertyName == nameof(JobViewModel.PlanVersion))
+        {
+            // Each plan follows a committed change; putting a snapshot back plans it again, which records nothing new.
+            History.Record(Job.ToSettings());
+            UndoCommand.NotifyCanExecuteChanged();
+            RedoCommand.NotifyCanExecuteChanged();
+        }
+
         if (e.PropertyName == nameof(JobViewModel.ImagePath) && Job.ImagePath is { } path)
         {
             var recent = Settings.RecentFiles.Where(f => f != path).Prepend(path).Take(RecentFileCount).ToList();

@@ -663,6 +663,27 @@ public sealed class BrowserTests : IAsyncLifetime
     }
 
     [Fact]
+    public void Job_ResizedTwice_CtrlZUndoesCtrlYRedoes()
+    {
+        OpenSample("qr-code.bmp");
+        SetField("widthMm", "3");
+        WaitFor(d => d.FindElement(By.Id("status-estimate")).Text.StartsWith("3 × 3 mm", StringComparison.Ordinal), "3 mm job planned");
+        SetField("widthMm", "7");
+        WaitFor(d => d.FindElement(By.Id("status-estimate")).Text.StartsWith("7 × 7 mm", StringComparison.Ordinal), "7 mm job planned");
+        Driver.FindElement(By.ClassName("brand")).Click();
+
+        new Actions(Driver).KeyDown(Keys.Control).SendKeys("z").KeyUp(Keys.Control).Perform();
+        WaitFor(d => d.FindElement(By.Id("status-estimate")).Text.StartsWith("3 × 3 mm", StringComparison.Ordinal), "Ctrl+Z: 3 mm again");
+        Assert.Equal(3, FieldValue("widthMm"));
+
+        new Actions(Driver).KeyDown(Keys.Control).SendKeys("y").KeyUp(Keys.Control).Perform();
+        WaitFor(d => d.FindElement(By.Id("status-estimate")).Text.StartsWith("7 × 7 mm", StringComparison.Ordinal), "Ctrl+Y: 7 mm again");
+        Assert.False(Enabled("redo"));
+        Id("undo").Click();
+        WaitFor(d => d.FindElement(By.Id("status-estimate")).Text.StartsWith("3 × 3 mm", StringComparison.Ordinal), "Undo: 3 mm again");
+    }
+
+    [Fact]
     public void Stage_JobDraggedOffTheTravel_Refused()
     {
         OpenSample("qr-code.bmp");

@@ -256,6 +256,13 @@ export function create(host, dotnet) {
   const keys = { ArrowLeft: 'x-', ArrowRight: 'x+', ArrowUp: 'y-', ArrowDown: 'y+' };
   const onKey = (e) => {
     const t = e.target, typing = t && (t.isContentEditable || /^(INPUT|TEXTAREA|SELECT)$/.test(t.tagName) || t.closest?.('input,textarea,select,fluent-text-input'));
+    // Ctrl+Z and Ctrl+Y (or Ctrl+Shift+Z) undo and redo the job's changes; in a field they stay the field's own.
+    const key = e.key.toLowerCase();
+    if (!typing && (e.ctrlKey || e.metaKey) && !e.altKey && (key === 'z' || key === 'y')) {
+      e.preventDefault();
+      dotnet.invokeMethodAsync('OnShortcutKey', key === 'y' || e.shiftKey ? 'redo' : 'undo');
+      return;
+    }
     if (typing || e.altKey || e.ctrlKey || e.metaKey || !keys[e.key]) return;
     e.preventDefault();
     dotnet.invokeMethodAsync('OnJogKey', keys[e.key]);
