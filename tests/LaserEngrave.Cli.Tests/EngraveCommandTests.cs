@@ -195,6 +195,32 @@ public sealed class EngraveCommandTests : IDisposable
     }
 
     [Fact]
+    public async Task EngraveSimulate_BurnedScale8_EachPixel8By8()
+    {
+        var folder = Path.Combine(LogDir, "scaled");
+        Directory.CreateDirectory(folder);
+        var plain = Path.Combine(folder, "burned.png");
+        var scaled = Path.Combine(folder, "burned-8.png");
+
+        var (exit, _, error) = await CliHarness.RunAsync("engrave", QrCode, "--width-mm", "2", "--simulate", "--log-dir", LogDir, "--burned", plain);
+        var (exitScaled, _, errorScaled) = await CliHarness.RunAsync("engrave", QrCode, "--width-mm", "2", "--simulate", "--log-dir", LogDir, "--burned", scaled, "--burned-scale", "8");
+
+        Assert.True(exit == 0, error);
+        Assert.True(exitScaled == 0, errorScaled);
+        var one = Core.Imaging.MaskBuilder.FromFile(plain, new Core.Imaging.MaskOptions(), out var oneInfo);
+        var eight = Core.Imaging.MaskBuilder.FromFile(scaled, new Core.Imaging.MaskOptions(), out var eightInfo);
+        Assert.Equal((41, 41), (oneInfo.Width, oneInfo.Height));
+        Assert.Equal((328, 328), (eightInfo.Width, eightInfo.Height));
+        for (var y = 0; y < 41; y++)
+        {
+            for (var x = 0; x < 41; x++)
+            {
+                Assert.Equal(one[x, y], eight[(8 * x) + 7, (8 * y) + 3]);
+            }
+        }
+    }
+
+    [Fact]
     public async Task EngraveSimulate_TextOutput_SaysCompletedAndWhereTheLogIs()
     {
         var (exit, output, error) = await CliHarness.RunAsync("engrave", QrCode, "--width-mm", "3", "--simulate", "--log-dir", LogDir);
@@ -267,6 +293,9 @@ public sealed class EngraveCommandTests : IDisposable
     [InlineData(new[] { "--width-mm", "5", "--simulate", "--speed-mm-s", "0" }, "--speed-mm-s 0: outside what the stage takes")]
     [InlineData(new[] { "--width-mm", "5", "--simulate", "--frequency-hz", "-5" }, "--frequency-hz -5: outside what the laser gate takes")]
     [InlineData(new[] { "--width-mm", "5", "--simulate", "--fault", "melt:stage" }, "melt")]
+    [InlineData(new[] { "--width-mm", "5", "--simulate", "--burned-scale", "4" }, "--burned-scale needs --burned")]
+    [InlineData(new[] { "--width-mm", "5", "--simulate", "--burned", "b.png", "--burned-scale", "0" }, "--burned-scale 0: must be 1..16")]
+    [InlineData(new[] { "--width-mm", "5", "--simulate", "--burned", "b.png", "--burned-scale", "17" }, "--burned-scale 17: must be 1..16")]
     [InlineData(new[] { "--width-mm", "5", "--simulate", "--passes", "0" }, "--passes 0: must be 1..100")]
     [InlineData(new[] { "--width-mm", "5", "--simulate", "--passes", "101" }, "--passes 101: must be 1..100")]
     [InlineData(new[] { "--width-mm", "5", "--simulate", "--passes", "1.5" }, "--passes")]

@@ -20,6 +20,6 @@ public sealed record AppSettings
     /// <summary>The last job's size, position and process (its image is the first recent file), restored at the next start.</summary>
     public JobSettings? LastJob { get; init; }
 
-    /// <summary>"light" or "dark".</summary>
-    public string Theme { get; init; } = "light";
+    /// <summary>"system" (the system's light or dark mode), "light" or "dark": the page's colours and Fluent UI's.</summary>
+    public string Theme { get; init; } = "system";
 }

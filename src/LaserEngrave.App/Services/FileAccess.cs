@@ -119,9 +119,23 @@ public sealed class FileAccess(AppFolders folders, long maxUploadBytes = IFileAc
         return path;
     }
 
-    public void OpenFolder(string path)
+    public bool OpenFolder(string path)
     {
         Directory.CreateDirectory(path);
+        if (!HasDesktop(Environment.GetEnvironmentVariable))
+        {
+            return false;
+        }
+
         SystemShell.Open(path);
+        return true;
     }
+
+    /// <summary>
+    /// Whether a file manager's window can appear: always on Windows and macOS; elsewhere only in an X11 or Wayland
+    /// session, since xdg-open without one starts and shows nothing (a server, ssh, a container).
+    /// </summary>
+    internal static bool HasDesktop(Func<string, string?> environment) =>
+        OperatingSystem.IsWindows() || OperatingSystem.IsMacOS()
+        || !string.IsNullOrEmpty(environment("DISPLAY")) || !string.IsNullOrEmpty(environment("WAYLAND_DISPLAY"));
 }

@@ -26,5 +26,7 @@ public interface IFileAccess
     string SavePattern(string name, Core.Imaging.BitMask mask);
 
     /// <summary>Opens a folder in the system's file manager.</summary>
-    void OpenFolder(string path);
+    /// <returns>False when nothing can show it (no desktop session to show a window in).</returns>
+    /// <exception cref="System.ComponentModel.Win32Exception">The system has nothing to open folders with.</exception>
+    bool OpenFolder(string path);
 }

@@ -141,11 +141,13 @@ public sealed partial class LogViewModel : ObservableObject
     {
         try
         {
-            _files.OpenFolder(_store.Folder);
+            Error = _files.OpenFolder(_store.Folder)
+                ? null
+                : $"no file manager can show the log folder here (no desktop session): its path is {_store.Folder}";
         }
         catch (Exception ex) when (ex is IOException or UnauthorizedAccessException or InvalidOperationException or System.ComponentModel.Win32Exception)
         {
-            Error = $"cannot open {_store.Folder}: {ex.Message}";
+            Error = $"no file manager could open the log folder ({ex.Message}): its path is {_store.Folder}";
         }
     }
 

@@ -88,14 +88,22 @@ public sealed partial class MachineViewModel : ObservableObject
     /// <summary>Connected and nothing holds the machine (the interlock decides first).</summary>
     public bool CanUseMachine => !Activity.IsBusy && Connection is not null;
 
+    /// <summary>What the last "List ports" found, one line (the port fields offer the ports too, but only once focused).</summary>
+    [ObservableProperty]
+    public partial string? PortsNote { get; private set; }
+
     public void RefreshPorts()
     {
         try
         {
             Ports = _factory.ListPorts();
+            PortsNote = Ports.Count == 0
+                ? "No serial ports found on this computer: is the USB-serial adapter plugged in and its driver installed?"
+                : $"{Ports.Count} serial port{(Ports.Count == 1 ? "" : "s")} found: {string.Join(", ", Ports)}";
         }
         catch (Exception ex) when (ex is IOException or UnauthorizedAccessException or DeviceException)
         {
+            PortsNote = null;
             Error = $"cannot list the serial ports: {ex.Message}";
         }
     }

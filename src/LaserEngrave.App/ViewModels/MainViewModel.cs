@@ -1,5 +1,6 @@
 using System.ComponentModel;
 using CommunityToolkit.Mvvm.ComponentModel;
+using CommunityToolkit.Mvvm.Input;
 using LaserEngrave.App.Services;
 using LaserEngrave.Core.Calibration;
 using LaserEngrave.Core.Geometry;
@@ -31,6 +32,12 @@ public sealed partial class MainViewModel : ObservableObject
         _settingsStore = settings;
         _files = files;
         Settings = settings.Load();
+        if (!Themes.Contains(Settings.Theme))
+        {
+            // A hand-edited settings file's unknown theme: the system's, as at the first start.
+            Settings = Settings with { Theme = Themes[0] };
+        }
+
         SampleImages = files.SampleImages();
         var (profile, profileError) = LoadProfile(Settings.ProfilePath);
         ProfileError = profileError;
@@ -72,6 +79,41 @@ public sealed partial class MainViewModel : ObservableObject
     public SweepViewModel Sweep { get; }
 
     public LogViewModel Log { get; }
+
+    /// <summary>The job's undo and redo, one step per committed change of its settings.</summary>
+    public JobHistory History { get; } = new();
+
+    private bool CanUndo => History.CanUndo && Job.LockedBecause is null;
+
+    private bool CanRedo => History.CanRedo && Job.LockedBecause is null;
+
+    /// <summary>Puts the job's settings back as they were before its last change (Ctrl+Z).</summary>
+    [RelayCommand(CanExecute = nameof(CanUndo))]
+    private void Undo()
+    {
+        if (History.Undo() is { } settings)
+        {
+            PutBack(settings);
+        }
+    }
+
+    /// <summary>Makes the change undone last again (Ctrl+Y).</summary>
+    [RelayCommand(CanExecute = nameof(CanRedo))]
+    private void Redo()
+    {
+        if (History.Redo() is { } settings)
+        {
+            PutBack(settings);
+        }
+    }
+
+    private void PutBack(JobSettings settings)
+    {
+        // The snapshot is of this image: its path is left out so nothing is read again.
+        Job.Apply(settings with { ImagePath = null });
+        UndoCommand.NotifyCanExecuteChanged();
+        RedoCommand.NotifyCanExecuteChanged();
+    }
 
     [ObservableProperty]
     public partial AppSettings Settings { get; private set; }
@@ -157,12 +199,24 @@ public sealed partial class MainViewModel : ObservableObject
         Save(Settings with { ProfilePath = path });
     }
 
-    public void SetTheme(string theme)
+    /// <summary>The themes offered: the system's light or dark mode, or always light, or always dark.</summary>
+    public static IReadOnlyList<string> Themes { get; } = ["system", "light", "dark"];
+
+    /// <summary>Uses <paramref name="theme"/> (one of <see cref="Themes"/>) from now on and keeps it in the settings.</summary>
+    /// <returns>False, with nothing changed, for any other value.</returns>
+    public bool SetTheme(string? theme)
     {
-        if (theme is "light" or "dark")
+        if (theme is null || !Themes.Contains(theme))
+        {
+            return false;
+        }
+
+        if (theme != Settings.Theme)
         {
             Save(Settings with { Theme = theme });
         }
+
+        return true;
     }
 
     private static (MachineProfile Profile, string? Error) LoadProfile(string? path)
@@ -184,6 +238,24 @@ public sealed partial class MainViewModel : ObservableObject
 
     private void OnJobChanged(object? sender, PropertyChangedEventArgs e)
     {
+        if (e.PropertyName == nameof(JobViewModel.LockedBecause))
+        {
+            UndoCommand.NotifyCanExecuteChanged();
+            RedoCommand.NotifyCanExecuteChanged();
+        }
+
+        if (e.PropertyName == nameof(JobViewModel.ImagePath))
+        {
+            History.Reset(null);
+        }
+        else if (e.PropertyName == nameof(JobViewModel.PlanVersion))
+        {
+            // Each plan follows a committed change; putting a snapshot back plans it again, which records nothing new.
+            History.Record(Job.ToSettings());
+            UndoCommand.NotifyCanExecuteChanged();
+            RedoCommand.NotifyCanExecuteChanged();
+        }
+
         if (e.PropertyName == nameof(JobViewModel.ImagePath) && Job.ImagePath is { } path)
         {
             var recent = Settings.RecentFiles.Where(f => f != path).Prepend(path).Take(RecentFileCount).ToList();

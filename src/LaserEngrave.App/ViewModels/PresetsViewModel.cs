@@ -55,7 +55,11 @@ public sealed partial class PresetsViewModel : ObservableObject
 
     public bool CanSaveCurrent => !string.IsNullOrWhiteSpace(NewName);
 
-    /// <summary>Sets the job's process values and pitch from the selected preset (the pitch then decides the size).</summary>
+    /// <summary>
+    /// Sets the job's process values (frequency, speeds, passes, overscan) from the selected preset. A preset's pitch
+    /// changes the artwork's size, so it is not applied here: when it differs from the job's it is offered as
+    /// <see cref="PitchOffer"/>, with the size it would make, until <see cref="ApplyPitchCommand"/> or <see cref="KeepSizeCommand"/>.
+    /// </summary>
     [RelayCommand(CanExecute = nameof(CanApply))]
     private void Apply()
     {
@@ -65,6 +69,7 @@ public sealed partial class PresetsViewModel : ObservableObject
         }
 
         Error = null;
+        PitchOffer = null;
         try
         {
             _job.Batch(() =>
@@ -74,14 +79,59 @@ public sealed partial class PresetsViewModel : ObservableObject
                 _job.TravelSpeedMmPerS = preset.TravelSpeedMmPerS;
                 _job.Passes = preset.Passes;
                 _job.OverscanMm = preset.OverscanMm;
-                _job.EditPitch(preset.PitchUm);
             });
+        }
+        catch (MachineBusyException ex)
+        {
+            Error = ex.Message;
+            return;
+        }
+
+        if (Math.Abs(preset.PitchUm - _job.PitchUm) > 1e-9)
+        {
+            PitchOffer = new PresetPitchOffer(preset.Name, preset.PitchUm, _job.PitchUm, CurrentSize(), SizeAt(preset.PitchUm));
+        }
+    }
+
+    /// <summary>A preset's pitch not applied yet, shown with the job's size now and the size it would make.</summary>
+    [ObservableProperty]
+    [NotifyCanExecuteChangedFor(nameof(ApplyPitchCommand), nameof(KeepSizeCommand))]
+    public partial PresetPitchOffer? PitchOffer { get; private set; }
+
+    private bool HasPitchOffer => PitchOffer is not null;
+
+    /// <summary>Uses the offered pitch: the job is resized to it (as setting the pitch field does).</summary>
+    [RelayCommand(CanExecute = nameof(HasPitchOffer))]
+    private void ApplyPitch()
+    {
+        if (PitchOffer is not { } offer)
+        {
+            return;
+        }
+
+        try
+        {
+            _job.EditPitch(offer.PitchUm);
+            PitchOffer = null;
         }
         catch (MachineBusyException ex)
         {
             Error = ex.Message;
         }
     }
+
+    /// <summary>Keeps the job's pitch and size; the preset's pitch is dropped.</summary>
+    [RelayCommand(CanExecute = nameof(HasPitchOffer))]
+    private void KeepSize() => PitchOffer = null;
+
+    private (double WidthMm, double HeightMm)? CurrentSize() => _job.Job is { } job
+        ? (job.Geometry.AchievedWidthMm, job.Geometry.AchievedHeightMm)
+        : null;
+
+    /// <summary>An image's size at <paramref name="pitchUm"/>: one pixel a pitch (a drawing keeps its size).</summary>
+    private (double WidthMm, double HeightMm)? SizeAt(double pitchUm) => _job.ImageInfo is { } info && !_job.IsDrawing
+        ? (info.Width * pitchUm / 1000, info.Height * pitchUm / 1000)
+        : null;
 
     /// <summary>Keeps the job's process values under <see cref="NewName"/>, replacing a preset of that name.</summary>
     [RelayCommand(CanExecute = nameof(CanSaveCurrent))]
@@ -157,3 +207,11 @@ public sealed partial class PresetsViewModel : ObservableObject
         return true;
     }
 }
+
+/// <summary>A pitch a preset carries, offered before it resizes the job.</summary>
+/// <param name="Preset">The preset's name.</param>
+/// <param name="PitchUm">The preset's pitch.</param>
+/// <param name="JobPitchUm">The job's pitch now.</param>
+/// <param name="JobSize">The job's size now, if it is planned.</param>
+/// <param name="NewSize">The size the pitch would make, for an image.</param>
+public sealed record PresetPitchOffer(string Preset, double PitchUm, double JobPitchUm, (double WidthMm, double HeightMm)? JobSize, (double WidthMm, double HeightMm)? NewSize);

@@ -172,8 +172,10 @@ internal static class ApiEndpoints
         api.MapGet("/logs/export", (MainViewModel main, string path, string? format) => Export(main, path, format))
             .WithSummary("A logged run's file (format=json or txt); only runs the history lists.");
 
-        api.MapPost("/settings/theme", (MainViewModel main, ThemeRequest request) => Do(main, _ => main.SetTheme(request.Theme)))
-            .WithSummary("The theme: light or dark.");
+        api.MapPost("/settings/theme", (MainViewModel main, ThemeRequest request) => main.SetTheme(request.Theme)
+                ? State(main)
+                : Results.Json(new { error = $"theme '{request.Theme}': use {string.Join(", ", MainViewModel.Themes)}" }, statusCode: StatusCodes.Status400BadRequest))
+            .WithSummary("The theme: system, light or dark.");
     }
 
     private static JsonHttpResult<object> State(MainViewModel main) => TypedResults.Json(StateSnapshot.From(main));

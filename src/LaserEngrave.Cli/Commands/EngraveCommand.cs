@@ -3,6 +3,7 @@ using System.CommandLine;
 using System.Globalization;
 using System.Runtime.ExceptionServices;
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Imaging;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
@@ -19,6 +20,9 @@ namespace LaserEngrave.Cli.Commands;
 /// </remarks>
 internal static class EngraveCommand
 {
+    /// <summary>The largest --burned-scale: 16 x 16 image pixels a job pixel is enough to see one pixel on a screen.</summary>
+    private const int MaxBurnedScale = 16;
+
     public static Command Create()
     {
         var o = new EngraveOptions();
@@ -42,6 +46,13 @@ internal static class EngraveCommand
         }
 
         OptionChecks.OutputFile(burnedPath, "--burned");
+        var burnedScale = result.GetValue(o.BurnedScale);
+        if (burnedScale is not null && burnedPath is null)
+        {
+            throw new UsageException("--burned-scale needs --burned: it sizes that image");
+        }
+
+        OptionChecks.InRange(burnedScale, 1, MaxBurnedScale, "--burned-scale", " image pixels a job pixel", "to look at a small job's burned.png");
         var passes = result.GetValue(o.Passes);
         OptionChecks.InRange(passes, 1, JobSpec.MaxPasses, "--passes", string.Empty, "burns of the plan over the same place");
 
@@ -94,6 +105,11 @@ internal static class EngraveCommand
             spec = spec with { Passes = passes ?? spec.Passes };
             prepared = PreparedJob.Prepare(spec);
             RefuseOutsideTravel(prepared);
+            if (burnedScale is { } scale && PngWriter.ScaledPixels(prepared.Mask.Width, prepared.Mask.Height, scale) > PngWriter.MaxScaledPixels)
+            {
+                throw new UsageException(string.Create(CultureInfo.InvariantCulture, $"--burned-scale {scale}: the {prepared.Mask.Width} x {prepared.Mask.Height} px job would make a burned image of {PngWriter.ScaledPixels(prepared.Mask.Width, prepared.Mask.Height, scale):N0} pixels, more than the {PngWriter.MaxScaledPixels:N0} allowed; use a smaller scale"));
+            }
+
             if (prepared.EngraveProblem is { } tooShort)
             {
                 // Known from the plan alone: refused before any port opens, as preflight would refuse it later.
@@ -188,7 +204,7 @@ internal static class EngraveCommand
 
         if (burnedPath is not null && burn is not null)
         {
-            burn.WritePng(burnedPath);
+            burn.WritePng(burnedPath, burnedScale ?? 1);
         }
 
         if (dosePath is not null && burn is not null)
@@ -416,6 +432,8 @@ internal static class EngraveCommand
 
         public Option<string?> Burned { get; } = new("--burned") { Description = "With --simulate: write what was burned as a PNG on the job's pixel grid (black = burned)" };
 
+        public Option<int?> BurnedScale { get; } = new("--burned-scale") { Description = "With --burned: draw each job pixel as N x N image pixels (1..16, default 1), so a small job's image is big enough to look at" };
+
         public Option<string?> Dose { get; } = new("--dose") { Description = "With --simulate: write the pulse map as a PNG, 4 x 4 cells a pixel, grey = pulses (black = the most), to see overburn" };
 
         public Option<string?> Notes { get; } = new("--notes") { Description = "Notes for the run log (focus, material, anything to remember)" };
@@ -439,7 +457,7 @@ internal static class EngraveCommand
             Job.AddTo(command);
             Vector.AddTo(command);
             Machine.AddTo(command);
-            foreach (var option in new Option[] { LogDir, Burned, Dose, Notes, Sample, Json, FromLog, Resume, Home, Passes, JobFile })
+            foreach (var option in new Option[] { LogDir, Burned, BurnedScale, Dose, Notes, Sample, Json, FromLog, Resume, Home, Passes, JobFile })
             {
                 command.Options.Add(option);
             }

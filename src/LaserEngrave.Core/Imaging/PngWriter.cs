@@ -20,17 +20,34 @@ public static class PngWriter
     public static void WriteGray(Stream output, int width, int height, ReadOnlySpan<byte> gray) =>
         Write(output, width, height, gray, colourType: 0, bytesPerPixel: 1);
 
-    /// <summary>Writes a mask as black (burn) on white: a 1-bit greyscale PNG, compressed row by row.</summary>
+    /// <summary>The most pixels a scaled mask may have (a scale only magnifies for looking at, so it may not fill the disk).</summary>
+    public const long MaxScaledPixels = 1L << 28;
+
+    /// <summary>How many pixels an image of <paramref name="width"/> x <paramref name="height"/> has at <paramref name="scale"/>.</summary>
+    public static long ScaledPixels(int width, int height, int scale) => (long)width * scale * height * scale;
+
+    /// <summary>
+    /// Writes a mask as black (burn) on white: a 1-bit greyscale PNG, compressed row by row, each mask pixel as
+    /// <paramref name="scale"/> x <paramref name="scale"/> image pixels.
+    /// </summary>
     /// <remarks>
     /// Streamed a row at a time into IDAT chunks of at most <see cref="IdatChunkBytes"/>, so a mask of any size the
     /// loader takes (60000 x 60000 pixels: 450 MB as bits) is written without a second copy of it in memory.
     /// </remarks>
-    public static void WriteMask(Stream output, BitMask mask)
+    /// <exception cref="ArgumentOutOfRangeException">The scale is below 1, or above 1 and makes more than <see cref="MaxScaledPixels"/> pixels.</exception>
+    public static void WriteMask(Stream output, BitMask mask, int scale = 1)
     {
         ArgumentNullException.ThrowIfNull(output);
         ArgumentNullException.ThrowIfNull(mask);
-        WriteHeader(output, mask.Width, mask.Height, bitDepth: 1, colourType: 0);
-        var row = new byte[1 + ((mask.Width + 7) / 8)];
+        ArgumentOutOfRangeException.ThrowIfLessThan(scale, 1);
+        if (scale > 1 && ScaledPixels(mask.Width, mask.Height, scale) > MaxScaledPixels)
+        {
+            throw new ArgumentOutOfRangeException(nameof(scale), scale, $"{mask.Width} x {mask.Height} pixels at {scale} x {scale} is more than {MaxScaledPixels} pixels");
+        }
+
+        var width = mask.Width * scale;
+        WriteHeader(output, width, mask.Height * scale, bitDepth: 1, colourType: 0);
+        var row = new byte[1 + ((width + 7) / 8)];
         using (var idat = new ChunkStream(output, IdatChunkBytes))
         {
             using (var zlib = new ZLibStream(idat, CompressionLevel.Fastest, leaveOpen: true))
@@ -38,6 +55,17 @@ public static class PngWriter
                 for (var y = 0; y < mask.Height; y++)
                 {
                     var words = mask.ReadRow(y);
+                    if (scale > 1)
+                    {
+                        WriteScaledRow(row, words, mask.Width, scale);
+                        for (var copy = 0; copy < scale; copy++)
+                        {
+                            zlib.Write(row);
+                        }
+
+                        continue;
+                    }
+
                     for (var i = 1; i < row.Length; i++)
                     {
                         // Eight pixels from the mask's word (first pixel in the lowest bit) to PNG's order (first pixel
@@ -57,7 +85,7 @@ public static class PngWriter
     }
 
     /// <summary>Writes the mask to <paramref name="path"/> through a temporary file beside it, so a failure leaves no partial or empty file.</summary>
-    public static void WriteMask(string path, BitMask mask)
+    public static void WriteMask(string path, BitMask mask, int scale = 1)
     {
         ArgumentException.ThrowIfNullOrEmpty(path);
         var full = Path.GetFullPath(path);
@@ -66,7 +94,7 @@ public static class PngWriter
         {
             using (var file = File.Create(temporary))
             {
-                WriteMask(file, mask);
+                WriteMask(file, mask, scale);
             }
 
             File.Move(temporary, full, overwrite: true);
@@ -78,6 +106,26 @@ public static class PngWriter
     }
 
     private const int IdatChunkBytes = 1 << 16;
+
+    /// <summary>One PNG row (filter byte 0, then 1-bit pixels, first in the highest bit) of a mask row magnified by <paramref name="scale"/>.</summary>
+    private static void WriteScaledRow(byte[] row, ReadOnlySpan<ulong> words, int maskWidth, int scale)
+    {
+        // Start from white (1 bits), padding included, and clear the bits of every burned pixel's copies.
+        Array.Fill(row, (byte)0xFF);
+        row[0] = 0;
+        for (var x = 0; x < maskWidth; x++)
+        {
+            if ((words[x >> 6] >> (x & 63) & 1) == 0)
+            {
+                continue;
+            }
+
+            for (var p = x * scale; p < (x + 1) * scale; p++)
+            {
+                row[1 + (p >> 3)] &= (byte)~(0x80 >> (p & 7));
+            }
+        }
+    }
 
     private static byte ReverseBits(byte b)
     {

@@ -54,10 +54,10 @@ public sealed record BurnReport
     /// <summary>Number of black pixels of the expected image that were not burned (0 without an expected image).</summary>
     public long MissingPixels { get; init; }
 
-    /// <summary>Writes <see cref="Burned"/> as a PNG, black where burned.</summary>
-    public void WritePng(string path) => PngWriter.WriteMask(path, Burned);
+    /// <summary>Writes <see cref="Burned"/> as a PNG, black where burned, each pixel <paramref name="scale"/> x <paramref name="scale"/> image pixels.</summary>
+    public void WritePng(string path, int scale = 1) => PngWriter.WriteMask(path, Burned, scale);
 
-    /// <inheritdoc cref="WritePng(string)"/>
+    /// <inheritdoc cref="WritePng(string, int)"/>
     public void WritePng(Stream output) => PngWriter.WriteMask(output, Burned);
 
     /// <summary>Writes <see cref="Dose"/> as an 8-bit grey PNG at 4 x 4 sub-cells a pixel: white = no pulse, black = the most.</summary>

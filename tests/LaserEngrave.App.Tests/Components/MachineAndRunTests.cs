@@ -39,6 +39,67 @@ public sealed class MachinePanelTests : ComponentTest
         Assert.False(Main.Machine.UseSimulator);
         Assert.NotNull(cut.Find("#stagePort"));
     }
+
+    [Fact]
+    public void ListPorts_NoneFound_SaysSo()
+    {
+        Machine.Factory.ListPorts().Returns([]);
+        var cut = Render<MachinePanel>(p => p.Add(c => c.Machine, Main.Machine));
+        cut.Find("#use-ports").Change(true);
+
+        cut.Find("#refresh-ports").Click();
+
+        Assert.StartsWith("No serial ports found on this computer", cut.Find("#ports-note").TextContent, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void ListPorts_TwoFound_Named()
+    {
+        Machine.Factory.ListPorts().Returns(["COM3", "COM4"]);
+        var cut = Render<MachinePanel>(p => p.Add(c => c.Machine, Main.Machine));
+        cut.Find("#use-ports").Change(true);
+
+        cut.Find("#refresh-ports").Click();
+
+        Assert.Equal("2 serial ports found: COM3, COM4", cut.Find("#ports-note").TextContent);
+        Assert.Equal(2, cut.FindAll("#port-list option").Count);
+    }
+}
+
+public sealed class LogPanelFolderTests : ComponentTest
+{
+    [Fact]
+    public void LogFolder_PathShownToCopy()
+    {
+        var cut = Render<LogPanel>(p => p.Add(c => c.Log, Main.Log));
+
+        Assert.Equal("/logs", cut.Find("#log-folder").GetAttribute("value"));
+        Assert.True(cut.Find("#log-folder").HasAttribute("readonly"));
+        Assert.NotNull(cut.Find("#copy-log-folder"));
+    }
+
+    [Fact]
+    public void OpenLogFolder_NoFileManager_SaysSoWithThePath()
+    {
+        Files.OpenFolder("/logs").Returns(false);
+        var cut = Render<LogPanel>(p => p.Add(c => c.Log, Main.Log));
+
+        cut.Find("#open-log-folder").Click();
+
+        Assert.Equal("no file manager can show the log folder here (no desktop session): its path is /logs", cut.Find("#log-error").TextContent);
+    }
+
+    [Fact]
+    public void OpenLogFolder_Opened_NoError()
+    {
+        Files.OpenFolder("/logs").Returns(true);
+        var cut = Render<LogPanel>(p => p.Add(c => c.Log, Main.Log));
+
+        cut.Find("#open-log-folder").Click();
+
+        Files.Received(1).OpenFolder("/logs");
+        Assert.Empty(cut.FindAll("#log-error"));
+    }
 }
 
 public sealed class JogPadTests : ComponentTest

@@ -22,16 +22,55 @@ public sealed class PresetsPanelTests : ComponentTest
     }
 
     [Fact]
-    public void Apply_Paper001_JobTakesItsProcess()
+    public void Apply_Paper001OnA10mmQr_ProcessTakenWidthStays10mm_PitchAskedFirst()
     {
-        OpenQr();
+        OpenQr(widthMm: 10);
         var cut = RenderPanel();
         cut.Find("#preset").Change(ProcessPreset.Examples[1].Name);
 
         cut.Find("#preset-apply").Click();
 
-        Assert.Equal((20000.0, 2.0, 20.0), (Main.Job.LaserFrequencyHz, Main.Job.BurnSpeedMmPerS, Main.Job.PitchUm));
-        Assert.NotNull(Main.Job.Job);
+        Assert.Equal("Si(100), 20 kHz 150 µJ (paper 001)", ProcessPreset.Examples[1].Name);
+        Assert.Equal((20000.0, 2.0), (Main.Job.LaserFrequencyHz, Main.Job.BurnSpeedMmPerS));
+        Assert.Equal(10, Main.Job.Job!.Geometry.AchievedWidthMm, 2);
+        Assert.Equal(10, Main.Job.WidthMm);
+        var offer = cut.Find("#preset-pitch-offer").TextContent;
+        Assert.Contains("pitch of 20 µm", offer, StringComparison.Ordinal);
+        Assert.Contains("from 10 × 10 mm to 0.82 × 0.82 mm", offer, StringComparison.Ordinal);
+
+        cut.Find("#preset-pitch-keep").Click();
+
+        Assert.Empty(cut.FindAll("#preset-pitch-offer"));
+        Assert.Equal(10, Main.Job.Job!.Geometry.AchievedWidthMm, 2);
+    }
+
+    [Fact]
+    public void Apply_Paper001ThenItsPitchAccepted_JobResizedToThePitch()
+    {
+        OpenQr(widthMm: 10);
+        var cut = RenderPanel();
+        cut.Find("#preset").Change(ProcessPreset.Examples[1].Name);
+        cut.Find("#preset-apply").Click();
+
+        cut.Find("#preset-pitch-apply").Click();
+
+        Assert.Equal(20, Main.Job.PitchUm);
+        Assert.Equal(0.82, Main.Job.Job!.Geometry.AchievedWidthMm, 2);
+        Assert.Empty(cut.FindAll("#preset-pitch-offer"));
+    }
+
+    [Fact]
+    public void Apply_PresetWithTheJobsPitch_NothingAsked()
+    {
+        OpenQr();
+        Main.Job.EditPitch(ProcessPreset.Examples[1].PitchUm);
+        var cut = RenderPanel();
+        cut.Find("#preset").Change(ProcessPreset.Examples[1].Name);
+
+        cut.Find("#preset-apply").Click();
+
+        Assert.Empty(cut.FindAll("#preset-pitch-offer"));
+        Assert.Equal(20000.0, Main.Job.LaserFrequencyHz);
     }
 
     [Fact]

@@ -12,6 +12,19 @@ public sealed class FileAccessTests : IDisposable
 
     public void Dispose() => _folder.Dispose();
 
+    [Theory]
+    [InlineData(null, null, false)]
+    [InlineData(":0", null, true)]
+    [InlineData(null, "wayland-0", true)]
+    [InlineData("", "", false)]
+    public void HasDesktop_Linux_OnlyInAnX11OrWaylandSession(string? display, string? wayland, bool onLinux)
+    {
+        var has = App.Services.FileAccess.HasDesktop(name => name == "DISPLAY" ? display : name == "WAYLAND_DISPLAY" ? wayland : null);
+
+        // Windows and macOS always have a desktop to show the folder on.
+        Assert.Equal(onLinux || OperatingSystem.IsWindows() || OperatingSystem.IsMacOS(), has);
+    }
+
     [Fact]
     public async Task SaveUpload_OverTheLimit_RefusedNamingTheFileAndNothingLeft()
     {

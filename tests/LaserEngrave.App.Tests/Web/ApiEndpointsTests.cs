@@ -56,6 +56,19 @@ public sealed class ApiEndpointsTests : IDisposable
     }
 
     [Fact]
+    public async Task Theme_SystemLightOrDarkKept_AnotherValueRefused()
+    {
+        Assert.Equal("system", (await StateAsync()).GetProperty("settings").GetProperty("theme").GetString());
+
+        var dark = await PostAsync("/api/settings/theme", new { theme = "dark" });
+        var refused = await PostAsync("/api/settings/theme", new { theme = "blue" }, HttpStatusCode.BadRequest);
+
+        Assert.Equal("dark", dark.GetProperty("settings").GetProperty("theme").GetString());
+        Assert.Equal("theme 'blue': use system, light, dark", refused.GetProperty("error").GetString());
+        Assert.Equal("dark", (await StateAsync()).GetProperty("settings").GetProperty("theme").GetString());
+    }
+
+    [Fact]
     public async Task Root_Get_ServesThePage()
     {
         var page = await _client.GetStringAsync("/", Token);

@@ -411,26 +411,119 @@ public sealed class BrowserTests : IAsyncLifetime
     }
 
     [Fact]
+    public void Workspace_NarrowWindowScrolledDown_AbortAndRunStateStayInView()
+    {
+        OpenSample("text-banner.png");
+        foreach (var (width, height) in new[] { (1000, 700), (1099, 700), (1000, 800), (1280, 700) })
+        {
+            Resize(width, height);
+            Driver.ExecuteScript("window.scrollTo(0, document.documentElement.scrollHeight);");
+            foreach (var id in new[] { "abort", "status-run" })
+            {
+                var inView = (bool)Driver.ExecuteScript(
+                    """
+                    const r = arguments[0].getBoundingClientRect();
+                    return r.height > 0 && r.top >= 0 && r.bottom <= window.innerHeight && r.left >= 0 && r.right <= window.innerWidth;
+                    """, Id(id))!;
+                Assert.True(inView, $"at {width} x {height} scrolled down, #{id} is off-screen");
+            }
+        }
+    }
+
+    /// <summary>Waits until the theme's colour transitions have ended (endless animations, a busy spinner, do not count).</summary>
+    private void ColoursSettled() => WaitFor(
+        d => Convert.ToInt64(((IJavaScriptExecutor)d).ExecuteScript(
+            "return document.getAnimations().filter(a => a.effect && a.effect.getTiming().iterations !== Infinity).length;"), CultureInfo.InvariantCulture) == 0,
+        "colours settled");
+
+    /// <summary>The contrast ratio (WCAG) of an element's text against the first opaque background behind it.</summary>
+    private double Contrast(string selector) => Convert.ToDouble(Driver.ExecuteScript(
+        """
+        const el = document.querySelector(arguments[0]);
+        const rgba = s => { const v = s.match(/[\d.]+/g).map(Number); return v.length === 3 ? [...v, 1] : v; };
+        let bg = [255, 255, 255, 1];
+        for (let e = el; e; e = e.parentElement) {
+          const c = rgba(getComputedStyle(e).backgroundColor);
+          if (c[3] > 0) { bg = c; break; }
+        }
+        const fgRaw = rgba(getComputedStyle(el).color), op = Number(getComputedStyle(el).opacity);
+        const a = fgRaw[3] * op;
+        const fg = fgRaw.slice(0, 3).map((v, i) => v * a + bg[i] * (1 - a));
+        const lum = c => c.slice(0, 3).map(v => { v /= 255; return v <= 0.03928 ? v / 12.92 : Math.pow((v + 0.055) / 1.055, 2.4); })
+          .reduce((s, v, i) => s + v * [0.2126, 0.7152, 0.0722][i], 0);
+        const [x, y] = [lum(fg), lum(bg)];
+        return (Math.max(x, y) + 0.05) / (Math.min(x, y) + 0.05);
+        """, selector), CultureInfo.InvariantCulture);
+
+    [Fact]
+    public void Theme_SwitchedDarkAndLight_PageFollowsSettingsKeepItDisabledControlsDimmed()
+    {
+        OpenSample("qr-code.bmp");
+        var main = _app!.Services.GetRequiredService<MainViewModel>();
+        Assert.Equal("system", main.Settings.Theme);
+        string? BodyTheme() => (string?)Driver.ExecuteScript("return document.body.getAttribute('data-theme');");
+
+        // A test move holds the machine: the job's controls and most machine buttons are disabled, the view's are not.
+        using (main.Activity.Begin(App.Services.MachineOperation.TestMove("a theme check")))
+        {
+            WaitFor(d => d.FindElement(By.CssSelector("#samples button.chip")).GetAttribute("disabled") is not null, "the job's controls disabled");
+            foreach (var theme in new[] { "dark", "light" })
+            {
+                Driver.FindElement(By.CssSelector($"#theme option[value='{theme}']")).Click();
+                WaitFor(_ => (BodyTheme() == "dark") == (theme == "dark"), theme + " applied");
+                WaitFor(_ => main.Settings.Theme == theme, theme + " kept in the settings");
+                ColoursSettled();
+
+                // Enabled controls keep their text readable (WCAG 4.5:1); disabled ones are dimmed well below it.
+                foreach (var enabled in new[] { "#zoom-fit", "#theme", "#sampleId", ".steps .chip:not(.on)" })
+                {
+                    Assert.True(Contrast(enabled) >= 4.5, $"{theme}: enabled {enabled} has contrast {Contrast(enabled):0.00}");
+                }
+
+                foreach (var disabled in new[] { "#disconnect", "#start", "#samples button.chip", "#widthMm", "#dither", "#aspectLocked" })
+                {
+                    Assert.True(Id("app").FindElement(By.CssSelector(disabled)).GetAttribute("disabled") is not null, $"{disabled} disabled");
+                    Assert.True(Contrast(disabled == "#aspectLocked" ? "label.check:has(#aspectLocked)" : disabled) <= 3, $"{theme}: disabled {disabled} has contrast {Contrast(disabled):0.00}");
+                }
+            }
+        }
+
+        // The settings, not the browser's storage, decide the theme of a window opened again.
+        Driver.FindElement(By.CssSelector("#theme option[value='dark']")).Click();
+        WaitFor(_ => main.Settings.Theme == "dark", "dark kept in the settings");
+        Driver.ExecuteScript("localStorage.clear();");
+        Open();
+        WaitFor(_ => BodyTheme() == "dark", "dark again after reopening");
+        Assert.Equal("dark", Id("theme").GetDomProperty("value"));
+        Driver.FindElement(By.CssSelector("#theme option[value='system']")).Click();
+        WaitFor(_ => BodyTheme() is null, "the system's (light) mode");
+    }
+
+    [Fact]
     public void Workspace_LightAndDark_Screenshots()
     {
-        Resize(1440, 1000);
+        // The page's own area at exactly 1280 x 720, as docs/user-guide.md shows it.
+        Driver.ExecuteCdpCommand("Emulation.setDeviceMetricsOverride", new Dictionary<string, object?>
+        {
+            ["width"] = 1280, ["height"] = 720, ["deviceScaleFactor"] = 1, ["mobile"] = false,
+        });
+        WaitFor(d => Convert.ToInt64(((IJavaScriptExecutor)d).ExecuteScript("return window.innerHeight;"), CultureInfo.InvariantCulture) == 720, "a 1280 x 720 page");
         OpenSample("qr-code.bmp");
         SetField("widthMm", "12");
         WaitFor(d => d.FindElement(By.Id("status-estimate")).Text.StartsWith("12 × 12 mm", StringComparison.Ordinal), "12 mm job planned");
         Id("connect").Click();
         WaitFor(d => d.FindElement(By.Id("machine-homed")).Displayed && Enabled("jog-x-"), "connected to the simulator, state read");
         WaitFor(d => d.FindElement(By.Id("stage-host")).GetAttribute("data-drawn-moves") != "0", "plan drawn");
-        Assert.True(new FileInfo(Screenshot("workspace-light")).Length > 20_000);
-
-        // The system's dark mode, as the page sees it at load.
-        Driver.ExecuteCdpCommand("Emulation.setEmulatedMedia", new Dictionary<string, object?>
+        foreach (var theme in new[] { "light", "dark" })
         {
-            ["features"] = new[] { new Dictionary<string, string> { ["name"] = "prefers-color-scheme", ["value"] = "dark" } },
-        });
-        Open();
-        WaitFor(d => (string)((IJavaScriptExecutor)d).ExecuteScript("return getComputedStyle(document.body).backgroundColor;")! != "rgb(243, 244, 246)", "dark colours");
-        WaitFor(d => d.FindElement(By.Id("stage-host")).GetAttribute("data-drawn-moves") != "0", "plan drawn");
-        Assert.True(new FileInfo(Screenshot("workspace-dark")).Length > 20_000);
+            Driver.FindElement(By.CssSelector($"#theme option[value='{theme}']")).Click();
+            WaitFor(d => ((string?)((IJavaScriptExecutor)d).ExecuteScript("return document.body.getAttribute('data-theme');") == "dark") == (theme == "dark"), theme + " applied");
+            ColoursSettled();
+            // The stage redraws on the theme's change event, at the next frame.
+            Driver.ExecuteAsyncScript("requestAnimationFrame(() => requestAnimationFrame(arguments[arguments.length - 1]));");
+            var path = Screenshot("workspace-" + theme);
+            Assert.True(new FileInfo(path).Length > 20_000);
+        }
     }
 
     [Fact]
@@ -522,6 +615,72 @@ public sealed class BrowserTests : IAsyncLifetime
         Driver.Navigate().GoToUrl("about:blank");
 
         WaitFor(_ => stopping.IsCancellationRequested, "the app ending after its window closed");
+    }
+
+    private double[][] BoxLabels() => System.Text.Json.JsonSerializer.Deserialize<double[][]>(Id("stage-host").GetAttribute("data-box-labels") ?? "[]")!;
+
+    private static bool Overlap(double[] a, double[] b) => a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
+
+    [Fact]
+    public void Stage_RulerLabelsWholeAndSweepCellLabelsApart()
+    {
+        WaitFor(_ => View().Scale > 1, "the stage drawn");
+        var canvas = Id("stage-canvas").Size;
+        using var rulers = System.Text.Json.JsonDocument.Parse(Id("stage-host").GetAttribute("data-ruler-labels")!);
+        var labels = rulers.RootElement.EnumerateArray().Select(l => (Axis: l[0].GetString(), Text: l[1].GetString(), Box: Enumerable.Range(2, 4).Select(i => l[i].GetDouble()).ToArray())).ToList();
+        Assert.Contains(labels, l => l.Axis == "y" && l.Text == "60");
+        Assert.Contains(labels, l => l.Axis == "x" && l.Text == "60");
+        Assert.All(labels, l => Assert.True(l.Box[0] >= 0 && l.Box[1] >= 0 && l.Box[2] <= canvas.Width && l.Box[3] <= canvas.Height, $"{l.Axis} {l.Text} at {string.Join(", ", l.Box)} cut off the {canvas.Width} x {canvas.Height} canvas"));
+
+        // A sweep of 1 mm cells (the default) on the stage: its cells' labels never overlap, at the fitted view or zoomed in.
+        OpenSample("qr-code.bmp");
+        SetField("widthMm", "5");
+        Driver.FindElement(By.CssSelector("#panel-sweep summary")).Click();
+        SetField("sweepRows", "speed=0.5,1,2");
+        SetField("sweepColumns", "frequency=500,1000,2000");
+        WaitFor(d => d.FindElement(By.Id("sweep-summary")).Text.StartsWith("3 × 3 cells", StringComparison.Ordinal), "the sweep planned");
+        var jobMoves = DrawnMoves();
+        Id("sweepShow").Click();
+        WaitFor(_ => DrawnMoves() != jobMoves && DrawnMoves() > 0, "the sweep drawn on the stage");
+        for (var zoom = 0; zoom < 6; zoom++)
+        {
+            var boxes = BoxLabels();
+            for (var i = 0; i < boxes.Length; i++)
+            {
+                for (var j = i + 1; j < boxes.Length; j++)
+                {
+                    Assert.False(Overlap(boxes[i], boxes[j]), $"labels {i} and {j} overlap at zoom step {zoom}: {string.Join(",", boxes[i])} and {string.Join(",", boxes[j])}");
+                }
+            }
+
+            var scale = View().Scale;
+            Id("zoom-in").Click();
+            WaitFor(_ => View().Scale > scale, "zoomed in");
+        }
+
+        Assert.True(BoxLabels().Length >= 9, $"{BoxLabels().Length} labels drawn zoomed in");
+        Screenshot("sweep-labels-zoomed");
+    }
+
+    [Fact]
+    public void Job_ResizedTwice_CtrlZUndoesCtrlYRedoes()
+    {
+        OpenSample("qr-code.bmp");
+        SetField("widthMm", "3");
+        WaitFor(d => d.FindElement(By.Id("status-estimate")).Text.StartsWith("3 × 3 mm", StringComparison.Ordinal), "3 mm job planned");
+        SetField("widthMm", "7");
+        WaitFor(d => d.FindElement(By.Id("status-estimate")).Text.StartsWith("7 × 7 mm", StringComparison.Ordinal), "7 mm job planned");
+        Driver.FindElement(By.ClassName("brand")).Click();
+
+        new Actions(Driver).KeyDown(Keys.Control).SendKeys("z").KeyUp(Keys.Control).Perform();
+        WaitFor(d => d.FindElement(By.Id("status-estimate")).Text.StartsWith("3 × 3 mm", StringComparison.Ordinal), "Ctrl+Z: 3 mm again");
+        Assert.Equal(3, FieldValue("widthMm"));
+
+        new Actions(Driver).KeyDown(Keys.Control).SendKeys("y").KeyUp(Keys.Control).Perform();
+        WaitFor(d => d.FindElement(By.Id("status-estimate")).Text.StartsWith("7 × 7 mm", StringComparison.Ordinal), "Ctrl+Y: 7 mm again");
+        Assert.False(Enabled("redo"));
+        Id("undo").Click();
+        WaitFor(d => d.FindElement(By.Id("status-estimate")).Text.StartsWith("3 × 3 mm", StringComparison.Ordinal), "Undo: 3 mm again");
     }
 
     [Fact]

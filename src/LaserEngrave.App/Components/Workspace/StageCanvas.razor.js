@@ -8,7 +8,8 @@ export function create(host, dotnet) {
   const cursor = host.querySelector('[data-cursor]');
   const menu = host.querySelector('[data-menu]');
   const ctx = canvas.getContext('2d');
-  const scheme = matchMedia('(prefers-color-scheme: dark)');
+  // Fluent UI's theme marks the body dark (the theme switch's choice, or the system's) and says when that changes.
+  const isDark = () => document.body.getAttribute('data-theme') === 'dark';
   const s = {
     travel: { w: 60, h: 60 }, job: null, layers: [], draggable: false, laser: null, laserOn: false,
     moves: new Float32Array(0), paths: null, burned: null, burnedUpTo: 0, movesDone: 0,
@@ -90,7 +91,7 @@ export function create(host, dotnet) {
       const dx = job.x - s.job.x, dy = job.y - s.job.y;
       if (s.mask && s.mask.complete && s.mask.naturalWidth > 0) {
         // Burned pixels dark on a light stage, light on a dark one, like the plan's burns.
-        ctx.imageSmoothingEnabled = false; ctx.globalAlpha = 0.35; ctx.filter = scheme.matches ? 'invert(1)' : 'none';
+        ctx.imageSmoothingEnabled = false; ctx.globalAlpha = 0.35; ctx.filter = isDark() ? 'invert(1)' : 'none';
         ctx.drawImage(s.mask, job.x, job.y, job.w, job.h); ctx.globalAlpha = 1; ctx.filter = 'none';
       }
       if (s.paths) {
@@ -118,11 +119,27 @@ export function create(host, dotnet) {
       const key = `${l.x},${l.y}`, label = labels.get(key);
       labels.set(key, label ? { ...label, name: `${label.name} · ${l.name}`, fits: label.fits && l.fits } : { x: l.x, y: l.y, name: l.name, fits: l.fits });
     }
-    for (const l of labels.values()) {
+    // Each label as large as fits before the next box's label to its right and the label row above (a sweep's 1 mm
+    // cells leave little room); one that would be smaller than 7 px is left out until the view is zoomed in.
+    const placed = [...labels.values()];
+    const rows = [...new Set(placed.map((l) => l.y))].sort((a, b) => a - b);
+    const rowStepMm = rows.length > 1 ? Math.min(...rows.slice(1).map((y, i) => y - rows[i])) : Infinity;
+    const drawn = [];
+    for (const l of placed) {
+      const next = Math.min(...placed.filter((o) => o.y === l.y && o.x > l.x).map((o) => o.x));
+      ctx.font = `${11 / s.scale}px system-ui, sans-serif`;
+      const widthMm = ctx.measureText(l.name).width, roomMm = next - l.x - 3 / s.scale;
+      const px = Math.min(11, 11 * roomMm / widthMm, rowStepMm * s.scale - 3);
+      if (!(px >= 7)) continue;
+      ctx.font = `${px / s.scale}px system-ui, sans-serif`;
       ctx.fillStyle = l.fits ? css('--accent') : css('--danger');
       ctx.fillText(l.name, l.x, l.y - 2 / s.scale);
+      const w = ctx.measureText(l.name).width;
+      drawn.push([s.ox + l.x * s.scale, s.oy + (l.y - 2 / s.scale) * s.scale - px, s.ox + (l.x + w) * s.scale, s.oy + (l.y - 2 / s.scale) * s.scale]);
     }
     ctx.restore();
+    // The boxes' labels as drawn (px: left, top, right, bottom), for tests that check none overlaps another.
+    host.dataset.boxLabels = JSON.stringify(drawn.map((b) => b.map((v) => Math.round(v * 10) / 10)));
 
     // The laser: a cross, filled while it fires.
     if (s.laser) {
@@ -142,19 +159,30 @@ export function create(host, dotnet) {
     ctx.font = '10px system-ui, sans-serif'; ctx.textBaseline = 'top';
     ctx.beginPath();
     const label = (v) => (Math.round(v * 100) / 100).toString();
+    // A label goes after its tick, or before it where it would run off the canvas (the travel's last mark, "60").
+    const rulerLabels = [];
     for (let v = Math.max(0, Math.ceil(((RULER - s.ox) / s.scale) / minor) * minor); v <= s.travel.w + 1e-9; v += minor) {
       const px = Math.round(s.ox + v * s.scale) + 0.5; if (px > W) break;
       const isMajor = Math.abs(v / major - Math.round(v / major)) < 1e-6;
       ctx.moveTo(px, RULER); ctx.lineTo(px, isMajor ? 4 : RULER - 6);
-      if (isMajor) ctx.fillText(label(v), px + 2, 2);
+      if (isMajor) {
+        const t = label(v), w = ctx.measureText(t).width, x = px + 2 + w <= W ? px + 2 : px - 2 - w;
+        ctx.fillText(t, x, 2); rulerLabels.push(['x', t, x, 2, x + w, 12]);
+      }
     }
     for (let v = Math.max(0, Math.ceil(((RULER - s.oy) / s.scale) / minor) * minor); v <= s.travel.h + 1e-9; v += minor) {
       const py = Math.round(s.oy + v * s.scale) + 0.5; if (py > H) break;
       const isMajor = Math.abs(v / major - Math.round(v / major)) < 1e-6;
       ctx.moveTo(RULER, py); ctx.lineTo(isMajor ? 4 : RULER - 6, py);
-      if (isMajor) { ctx.save(); ctx.translate(2, py + 2); ctx.rotate(Math.PI / 2); ctx.fillText(label(v), 0, -10); ctx.restore(); }
+      if (isMajor) {
+        const t = label(v), w = ctx.measureText(t).width, y = py + 2 + w <= H ? py + 2 : py - 2 - w;
+        ctx.save(); ctx.translate(2, y); ctx.rotate(Math.PI / 2); ctx.fillText(t, 0, -10); ctx.restore();
+        rulerLabels.push(['y', t, 2, y, 12, y + w]);
+      }
     }
     ctx.stroke();
+    // The rulers' labels as drawn (axis, text, px box), for tests that check none is cut off.
+    host.dataset.rulerLabels = JSON.stringify(rulerLabels.map((l) => l.map((v) => typeof v === 'number' ? Math.round(v * 10) / 10 : v)));
     ctx.fillStyle = css('--ruler-bg'); ctx.fillRect(0, 0, RULER, RULER);
     ctx.fillStyle = css('--ruler-text'); ctx.fillText('mm', 2, 6);
   }
@@ -228,12 +256,19 @@ export function create(host, dotnet) {
   const keys = { ArrowLeft: 'x-', ArrowRight: 'x+', ArrowUp: 'y-', ArrowDown: 'y+' };
   const onKey = (e) => {
     const t = e.target, typing = t && (t.isContentEditable || /^(INPUT|TEXTAREA|SELECT)$/.test(t.tagName) || t.closest?.('input,textarea,select,fluent-text-input'));
+    // Ctrl+Z and Ctrl+Y (or Ctrl+Shift+Z) undo and redo the job's changes; in a field they stay the field's own.
+    const key = e.key.toLowerCase();
+    if (!typing && (e.ctrlKey || e.metaKey) && !e.altKey && (key === 'z' || key === 'y')) {
+      e.preventDefault();
+      dotnet.invokeMethodAsync('OnShortcutKey', key === 'y' || e.shiftKey ? 'redo' : 'undo');
+      return;
+    }
     if (typing || e.altKey || e.ctrlKey || e.metaKey || !keys[e.key]) return;
     e.preventDefault();
     dotnet.invokeMethodAsync('OnJogKey', keys[e.key]);
   };
   document.addEventListener('keydown', onKey);
-  scheme.addEventListener('change', invalidate);
+  document.body.addEventListener('themeChanged', invalidate);
   const observer = new ResizeObserver(resize);
   observer.observe(host);
   resize();
@@ -266,6 +301,6 @@ export function create(host, dotnet) {
     setLaser(x, y, on) { s.laser = x === null ? null : { x, y }; s.laserOn = on; invalidate(); },
     fit,
     zoom(k) { s.userView = true; const r = host.getBoundingClientRect(), cx = r.width / 2, cy = r.height / 2, mm = toMm(cx, cy); s.scale *= k; s.ox = cx - mm.x * s.scale; s.oy = cy - mm.y * s.scale; invalidate(); },
-    dispose() { document.removeEventListener('keydown', onKey); scheme.removeEventListener('change', invalidate); observer.disconnect(); },
+    dispose() { document.removeEventListener('keydown', onKey); document.body.removeEventListener('themeChanged', invalidate); observer.disconnect(); },
   };
 }
