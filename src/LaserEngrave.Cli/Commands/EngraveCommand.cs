@@ -7,6 +7,7 @@ using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Execution;
+using LaserEngrave.Devices.Serial;
 using LaserEngrave.Simulator;
 using LaserEngrave.Simulator.Burn;
 
@@ -128,7 +129,9 @@ internal static class EngraveCommand
         EngraveResult engraved;
         double? wallSeconds = null;
         BurnInspector? inspector = null;
-        var machineSession = o.Machine.Open(result, profile);
+        // On real ports every byte in and out is recorded beside the log, so the run's burn can be replayed (`laserengrave replay`).
+        using var recorder = simulate ? null : new WireRecorder(Path.Combine(store.Folder, $"wire_{DateTime.UtcNow:yyyy-MM-dd_HHmmss}_{Guid.NewGuid().ToString("N")[..8]}.jsonl"), TimeProvider.System);
+        var machineSession = o.Machine.Open(result, profile, recorder);
         await using (machineSession.ConfigureAwait(false))
         {
             inspector = machineSession.Owner is SimulatedMachine simulator ? new BurnInspector(simulator) : null;
@@ -147,6 +150,7 @@ internal static class EngraveCommand
                 JobFile = layeredFile,
                 Home = result.GetValue(o.Home),
                 Log = store,
+                Recorder = recorder,
             };
             var session = layered is not null ? new EngraveSession(machine, layered, sessionOptions)
                 : drawing is not null ? new EngraveSession(machine, drawing, sessionOptions)
