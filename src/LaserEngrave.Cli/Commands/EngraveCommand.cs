@@ -309,7 +309,7 @@ internal static class EngraveCommand
         return (spec, Path.GetFullPath(fromLog), stop);
     }
 
-    private static void WriteText(TextWriter output, EngraveSummary s)
+    internal static void WriteText(TextWriter output, EngraveSummary s)
     {
         var c = CultureInfo.InvariantCulture;
         var clock = s.Simulated ? " (simulated time)" : string.Empty;
