@@ -78,7 +78,8 @@ internal static class ReplayCommand
 
         // The devices the run spoke to: the stage's firmware as it reported it (a 5.06 refuses what a 5.23 takes). The host's
         // lateness is in the recorded times already, so the replaying host is never late.
-        var options = baseOptions with { HostLateness = HostLateness.None, RealTime = false, FaultSpec = null };
+        // The stages start where they reported they stood, so homing takes the time it took.
+        var options = baseOptions with { HostLateness = HostLateness.None, RealTime = false, FaultSpec = null, StartMicrosteps = WireReplay.StartMicrosteps(spec.Profile, events) };
         if (record.Devices.FirstOrDefault(d => d.Role == "x axis") is { } x && decimal.TryParse(x.Firmware, NumberStyles.AllowDecimalPoint, CultureInfo.InvariantCulture, out var firmware))
         {
             options = options with { FirmwareVersion = (int)Math.Round(firmware * 100) };

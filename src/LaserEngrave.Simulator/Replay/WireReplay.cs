@@ -1,5 +1,7 @@
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Scheduling;
 using LaserEngrave.Devices.Serial;
+using LaserEngrave.Devices.Zaber;
 
 namespace LaserEngrave.Simulator.Replay;
 
@@ -49,6 +51,64 @@ public static class WireReplay
 
             await WaitUntilAsync(time, start, end + Settle.TotalSeconds, cancellationToken);
         });
+    }
+
+    /// <summary>
+    /// Where each axis of <paramref name="profile"/> (X, Y, Z) stood when the recording began, as its device reported it
+    /// (its first reply to Return Current Position before any move was sent to it); null when an axis never said.
+    /// </summary>
+    /// <remarks>The twin's devices start there, so a run that homes takes as long as it took, and one that did not moves from the same place.</remarks>
+    public static IReadOnlyList<long>? StartMicrosteps(MachineProfile profile, IReadOnlyList<WireEvent> events)
+    {
+        ArgumentNullException.ThrowIfNull(profile);
+        ArgumentNullException.ThrowIfNull(events);
+        var axes = new List<byte> { profile.X.DeviceNumber, profile.Y.DeviceNumber };
+        if (profile.Z is { } z)
+        {
+            axes.Add(z.DeviceNumber);
+        }
+
+        var start = new long?[axes.Count];
+        var moved = new HashSet<byte>();
+        var pending = new List<byte>();
+        foreach (var e in events.Where(e => e.Stage))
+        {
+            if (e.Write)
+            {
+                for (var i = 0; i + ZaberFrame.Length <= e.Data.Length; i += ZaberFrame.Length)
+                {
+                    if ((ZaberCommand)e.Data[i + 1] is ZaberCommand.Home or ZaberCommand.MoveAbsolute or ZaberCommand.MoveRelative or ZaberCommand.MoveAtConstantSpeed)
+                    {
+                        // Device 0 is every device.
+                        if (e.Data[i] == 0)
+                        {
+                            moved.UnionWith(axes);
+                        }
+                        else
+                        {
+                            moved.Add(e.Data[i]);
+                        }
+                    }
+                }
+
+                continue;
+            }
+
+            pending.AddRange(e.Data);
+            while (pending.Count >= ZaberFrame.Length)
+            {
+                var device = pending[0];
+                var command = (ZaberCommand)pending[1];
+                var data = BitConverter.ToInt32([pending[2], pending[3], pending[4], pending[5]]);
+                pending.RemoveRange(0, ZaberFrame.Length);
+                if (command == ZaberCommand.ReturnCurrentPosition && !moved.Contains(device) && axes.IndexOf(device) is >= 0 and var axis && start[axis] is null)
+                {
+                    start[axis] = data;
+                }
+            }
+        }
+
+        return start.All(s => s is not null) ? [.. start.Select(s => s!.Value)] : null;
     }
 
     private static async Task WaitUntilAsync(TimeProvider time, long start, double seconds, CancellationToken cancellationToken)

@@ -28,7 +28,7 @@ public sealed class WireReplayTests : IDisposable
         var (record, twin, path) = await RecordedRunAsync(job, options);
 
         var events = WireRecording.Read(path);
-        await using var replayMachine = SimulatedMachine.CreateInProcess(job.Spec.Profile, options with { HostLateness = HostLateness.None });
+        await using var replayMachine = SimulatedMachine.CreateInProcess(job.Spec.Profile, options with { HostLateness = HostLateness.None, StartMicrosteps = WireReplay.StartMicrosteps(job.Spec.Profile, events) });
         var inspector = new BurnInspector(replayMachine);
         inspector.Begin();
         await WireReplay.RunAsync(replayMachine, events, TestContext.Current.CancellationToken);
