@@ -39,7 +39,7 @@ public sealed class WireReplayTests : IDisposable
         var recording = Assert.IsType<RunRecording>(record.Recording);
         Assert.Equal((Path.GetFileName(path), false), (recording.File, recording.Truncated));
         Assert.Equal(recording.Events, events.Count);
-        TestContext.Current.TestOutputHelper?.WriteLine($"twin: {record.Simulation}\nreplay: {replayed}");
+        TestContext.Current.TestOutputHelper?.WriteLine($"recording {new FileInfo(path).Length} bytes, {events.Count} events\ntwin: {record.Simulation}\nreplay: {replayed}");
         Assert.True(twin.Burned.ContentEquals(inspector.Report!.Burned), "the replay's burned pixels differ from the twin's");
         Assert.Equal(record.Simulation! with { Focus = null }, replayed with { Focus = null });
         Assert.False(replayMachine.Gate.IsFiring);
