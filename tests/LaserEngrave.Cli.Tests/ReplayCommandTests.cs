@@ -68,6 +68,19 @@ public sealed class ReplayCommandTests : IDisposable
     }
 
     [Fact]
+    public async Task EngraveOnPortsThatDoNotOpen_LeavesNoRecordingBehind()
+    {
+        var missing = Path.Combine(_logDir, "no-such-port");
+
+        var (exit, _, error) = await CliHarness.RunAsync(
+            "engrave", Path.Combine(CliHarness.RepositoryRoot, "assets", "qr-code.bmp"), "--width-mm", "2", "--stage-port", missing, "--laser-port", missing + "2", "--log-dir", _logDir);
+
+        Assert.NotEqual(0, exit);
+        Assert.Contains("no-such-port", error, StringComparison.Ordinal);
+        Assert.Empty(Directory.GetFiles(_logDir, "wire_*"));
+    }
+
+    [Fact]
     public async Task Replay_ALogWithoutARecording_IsRefusedInOneLine()
     {
         var (exit, output, _) = await CliHarness.RunAsync(

@@ -7,6 +7,7 @@ using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Execution;
+using LaserEngrave.Devices.Machine;
 using LaserEngrave.Devices.Serial;
 using LaserEngrave.Simulator;
 using LaserEngrave.Simulator.Burn;
@@ -131,7 +132,18 @@ internal static class EngraveCommand
         BurnInspector? inspector = null;
         // On real ports every byte in and out is recorded beside the log, so the run's burn can be replayed (`laserengrave replay`).
         using var recorder = simulate ? null : new WireRecorder(Path.Combine(store.Folder, $"wire_{DateTime.UtcNow:yyyy-MM-dd_HHmmss}_{Guid.NewGuid().ToString("N")[..8]}.jsonl"), TimeProvider.System);
-        var machineSession = o.Machine.Open(result, profile, recorder);
+        MachineSession machineSession;
+        try
+        {
+            machineSession = o.Machine.Open(result, profile, recorder);
+        }
+        catch
+        {
+            recorder?.Discard();
+            throw;
+        }
+
+
         await using (machineSession.ConfigureAwait(false))
         {
             inspector = machineSession.Owner is SimulatedMachine simulator ? new BurnInspector(simulator) : null;

@@ -29,6 +29,7 @@ public sealed class WireRecorder : IDisposable
     private long _events;
     private bool _truncated;
     private bool _finished;
+    private bool _failed;
 
     /// <param name="path">The file, created new.</param>
     /// <param name="time">The clock of the times recorded.</param>
@@ -60,12 +61,19 @@ public sealed class WireRecorder : IDisposable
             if (!_finished)
             {
                 _finished = true;
-                if (!_truncated)
+                try
                 {
-                    _writer.WriteLine(string.Create(CultureInfo.InvariantCulture, $"{{\"end\":{_events}}}"));
-                }
+                    if (!_truncated && !_failed)
+                    {
+                        _writer.WriteLine(string.Create(CultureInfo.InvariantCulture, $"{{\"end\":{_events}}}"));
+                    }
 
-                _writer.Dispose();
+                    _writer.Dispose();
+                }
+                catch (IOException)
+                {
+                    // Without its end mark replay calls the file cut off; the run's log is written all the same.
+                }
             }
 
             return new RunRecording(System.IO.Path.GetFileName(Path), _events, _truncated);
@@ -74,11 +82,18 @@ public sealed class WireRecorder : IDisposable
 
     public void Dispose() => Finish();
 
+    /// <summary>Closes and deletes the file: the ports never opened, so there is no run to go with it.</summary>
+    public void Discard()
+    {
+        Finish();
+        File.Delete(Path);
+    }
+
     private void Record(char port, char direction, long timestamp, ReadOnlySpan<byte> data)
     {
         lock (_sync)
         {
-            if (_finished || _truncated || data.IsEmpty)
+            if (_finished || _failed || _truncated || data.IsEmpty)
             {
                 return;
             }
@@ -91,12 +106,30 @@ public sealed class WireRecorder : IDisposable
             if (_bytes + _line.Length + 1 > _capBytes)
             {
                 _truncated = true;
-                _writer.WriteLine(string.Create(CultureInfo.InvariantCulture, $"{{\"truncated\":{_events}}}"));
-                _writer.Flush();
+                try
+                {
+                    _writer.WriteLine(string.Create(CultureInfo.InvariantCulture, $"{{\"truncated\":{_events}}}"));
+                    _writer.Flush();
+                }
+                catch (IOException)
+                {
+                    // The record says truncated all the same.
+                }
+
                 return;
             }
 
-            _writer.WriteLine(_line);
+            try
+            {
+                _writer.WriteLine(_line);
+            }
+            catch (IOException)
+            {
+                // A full disk must not stop the run: the recording stops, and without its end mark replay calls it cut off.
+                _failed = true;
+                return;
+            }
+
             _bytes += _line.Length + 1;
             _events++;
         }
