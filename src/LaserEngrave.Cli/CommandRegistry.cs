@@ -23,6 +23,7 @@ internal static class CommandRegistry
         yield return SimulatorCommand.Create();
         yield return MachineCommand.Create();
         yield return EngraveCommand.Create();
+        yield return ReplayCommand.Create();
         yield return SweepCommand.Create();
         yield return SweepCommand.CreateFocusSeries();
         yield return LogCommand.Create();

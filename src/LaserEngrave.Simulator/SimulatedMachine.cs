@@ -71,11 +71,11 @@ public sealed class SimulatedMachine : IAsyncDisposable
         _clock = new SimulationClock(TimeProvider);
         Faults = FaultInjector.Parse(options.FaultSpec);
         Faults.Triggered += (_, rule) => Raise(rule.Target == FaultTarget.Stage ? StagePort : LaserPort, $"fault injected: {rule}");
-        var x = new Motion.AxisTrajectory(StartPosition(profile.X, options));
-        var y = new Motion.AxisTrajectory(StartPosition(profile.Y, options));
+        var x = new Motion.AxisTrajectory(StartPosition(profile.X, options, 0));
+        var y = new Motion.AxisTrajectory(StartPosition(profile.Y, options, 1));
         Recorder = new BurnRecorder(x, y, profile.X.MicrostepUm, profile.Y.MicrostepUm, options.DwellTolerance, () => _clock.NowSeconds)
         {
-            Z = profile.Z is { } z ? new Motion.AxisTrajectory(StartPosition(z, options)) : null,
+            Z = profile.Z is { } z ? new Motion.AxisTrajectory(StartPosition(z, options, 2)) : null,
         };
         Stage = new VirtualZaberChain(profile, options, _clock, Faults, Recorder);
         Gate = new VirtualLaserGate(profile.Gate, options, _clock, Faults, Recorder);
@@ -286,8 +286,9 @@ public sealed class SimulatedMachine : IAsyncDisposable
         return task;
     }
 
-    private static long StartPosition(AxisProfile axis, SimulatorOptions options) =>
-        options.StartMm is { } mm ? Math.Clamp((long)Math.Round(StageUnits.MmToMicrosteps(mm, axis.MicrostepUm)), 0, axis.TravelMicrosteps) : axis.TravelMicrosteps;
+    private static long StartPosition(AxisProfile axis, SimulatorOptions options, int index) =>
+        options.StartMicrosteps is { } start && index < start.Count ? Math.Clamp(start[index], 0, axis.TravelMicrosteps)
+        : options.StartMm is { } mm ? Math.Clamp((long)Math.Round(StageUnits.MmToMicrosteps(mm, axis.MicrostepUm)), 0, axis.TravelMicrosteps) : axis.TravelMicrosteps;
 
     private void Raise(string port, string message) => EventRaised?.Invoke(this, new SimulatorEvent(TimeProvider.GetUtcNow(), port, message));
 }

@@ -40,6 +40,9 @@ public sealed record SimulatorOptions
     /// </summary>
     public double? StartMm { get; init; }
 
+    /// <summary>Where each axis (X, Y, then Z) starts, in microsteps, over <see cref="StartMm"/>: a replay's start, as the recorded devices reported it. Not in the options file.</summary>
+    public IReadOnlyList<long>? StartMicrosteps { get; init; }
+
     /// <summary>Faults to inject from the start, in the grammar of <see cref="Faults.FaultInjector.Parse"/>.</summary>
     public string? FaultSpec { get; init; }
 

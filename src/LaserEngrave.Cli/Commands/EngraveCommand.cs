@@ -8,6 +8,8 @@ using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Execution;
+using LaserEngrave.Devices.Machine;
+using LaserEngrave.Devices.Serial;
 using LaserEngrave.Simulator;
 using LaserEngrave.Simulator.Burn;
 
@@ -144,7 +146,20 @@ internal static class EngraveCommand
         EngraveResult engraved;
         double? wallSeconds = null;
         BurnInspector? inspector = null;
-        var machineSession = o.Machine.Open(result, profile);
+        // On real ports every byte in and out is recorded beside the log, so the run's burn can be replayed (`laserengrave replay`).
+        using var recorder = simulate ? null : new WireRecorder(Path.Combine(store.Folder, $"wire_{DateTime.UtcNow:yyyy-MM-dd_HHmmss}_{Guid.NewGuid().ToString("N")[..8]}.jsonl"), TimeProvider.System);
+        MachineSession machineSession;
+        try
+        {
+            machineSession = o.Machine.Open(result, profile, recorder);
+        }
+        catch
+        {
+            recorder?.Discard();
+            throw;
+        }
+
+
         await using (machineSession.ConfigureAwait(false))
         {
             inspector = machineSession.Owner is SimulatedMachine simulator ? new BurnInspector(simulator) : null;
@@ -163,6 +178,7 @@ internal static class EngraveCommand
                 JobFile = layeredFile,
                 Home = result.GetValue(o.Home),
                 Log = store,
+                Recorder = recorder,
             };
             var session = layered is not null ? new EngraveSession(machine, layered, sessionOptions)
                 : drawing is not null ? new EngraveSession(machine, drawing, sessionOptions)
@@ -326,7 +342,7 @@ internal static class EngraveCommand
         return (spec, Path.GetFullPath(fromLog), stop);
     }
 
-    private static void WriteText(TextWriter output, EngraveSummary s)
+    internal static void WriteText(TextWriter output, EngraveSummary s)
     {
         var c = CultureInfo.InvariantCulture;
         var clock = s.Simulated ? " (simulated time)" : string.Empty;

@@ -2,6 +2,7 @@ using System.CommandLine;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Machine;
+using LaserEngrave.Devices.Serial;
 using LaserEngrave.Simulator;
 using LaserEngrave.Simulator.Faults;
 
@@ -119,12 +120,15 @@ internal sealed class MachineOptions
     internal static AsyncLocal<Action?> Opening { get; } = new();
 
     /// <summary>Opens the machine the options name; the caller disposes it (devices first, then the simulator).</summary>
-    public MachineSession Open(ParseResult result, MachineProfile profile)
+    /// <param name="result">The parsed options.</param>
+    /// <param name="profile">The machine.</param>
+    /// <param name="recorder">On real ports, the flight recorder the links write through; the simulator records nothing.</param>
+    public MachineSession Open(ParseResult result, MachineProfile profile, WireRecorder? recorder = null)
     {
         Validate(result);
         Opening.Value?.Invoke();
         return result.GetValue(Simulate)
             ? SimulatedMachine.OpenInProcess(profile, SimulatorOptionsFor(result))
-            : MachineSession.OpenPorts(result.GetValue(StagePort)!, result.GetValue(LaserPort)!, profile);
+            : MachineSession.OpenPorts(result.GetValue(StagePort)!, result.GetValue(LaserPort)!, profile, recorder);
     }
 }

@@ -122,6 +122,9 @@ public sealed record RunRecord
     /// <summary>On the simulator: what the twin measured of the edges and pulses (null on the machine).</summary>
     public RunSimulation? Simulation { get; init; }
 
+    /// <summary>On real ports: the flight recorder's file beside this log (null on the simulator, or when nothing was recorded).</summary>
+    public RunRecording? Recording { get; init; }
+
     /// <summary>The version of the LaserEngrave.Core assembly, as built (its informational version, with the source revision when known).</summary>
     public static string CurrentSoftwareVersion { get; } = ReadSoftwareVersion();
 

@@ -392,6 +392,11 @@ public sealed class EngraveSession
             record = record with { EstimatedSeconds = layers.Sum(l => l.EstimatedSeconds), EstimatedEngravingSeconds = layers.Sum(l => l.EstimatedEngravingSeconds) };
         }
 
+        if (Options.Recorder is { } recorder)
+        {
+            record = record with { Recording = recorder.Finish() };
+        }
+
         RunLogFiles? files = null;
         Exception? logError = null;
         if (Options.Log is { } log)

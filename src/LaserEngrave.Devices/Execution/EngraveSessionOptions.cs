@@ -35,6 +35,9 @@ public sealed record EngraveSessionOptions
     /// <summary>Where the log is written; null writes none (the result still has the record).</summary>
     public IRunLogWriter? Log { get; init; }
 
+    /// <summary>The flight recorder of the run's links (real ports); finished and named in the log when the run ends.</summary>
+    public Serial.WireRecorder? Recorder { get; init; }
+
     /// <summary>The image's hash for the log when the job's mask was made in memory (a sweep's cell); null: the image file's SHA-256.</summary>
     public string? ImageSha256 { get; init; }
 

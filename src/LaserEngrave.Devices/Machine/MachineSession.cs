@@ -37,9 +37,18 @@ public sealed class MachineSession : IAsyncDisposable
     public IAsyncDisposable? Owner { get; }
 
     /// <summary>Opens two serial ports at the profile's baud rates; the stage's port is closed again if the gate's cannot be opened.</summary>
-    public static MachineSession OpenPorts(string stagePort, string laserPort, MachineProfile profile)
+    /// <param name="stagePort">The stage's port.</param>
+    /// <param name="laserPort">The laser gate's port.</param>
+    /// <param name="profile">The machine.</param>
+    /// <param name="recorder">The flight recorder both links write through; null records nothing.</param>
+    public static MachineSession OpenPorts(string stagePort, string laserPort, MachineProfile profile, WireRecorder? recorder = null)
     {
         ArgumentNullException.ThrowIfNull(profile);
+        if (recorder is not null)
+        {
+            return OpenRecorded(stagePort, laserPort, profile, recorder);
+        }
+
         var stage = ZaberChain.Open(stagePort, profile);
         try
         {
@@ -50,6 +59,25 @@ public sealed class MachineSession : IAsyncDisposable
             stage.DisposeAsync().AsTask().GetAwaiter().GetResult();
             throw;
         }
+    }
+
+    private static MachineSession OpenRecorded(string stagePort, string laserPort, MachineProfile profile, WireRecorder recorder)
+    {
+        var stageLink = SerialPortLink.Open(new SerialPortSettings(stagePort) { BaudRate = profile.StageBaudRate });
+        ISerialLink laserLink;
+        try
+        {
+            laserLink = SerialPortLink.Open(new SerialPortSettings(laserPort) { BaudRate = profile.Gate.BaudRate });
+        }
+        catch
+        {
+            stageLink.DisposeAsync().AsTask().GetAwaiter().GetResult();
+            throw;
+        }
+
+        var stage = new ZaberChain(new ZaberConnection(recorder.Wrap(stageLink, stage: true), TimeProvider.System), profile);
+        var gate = new PicLaserGate(recorder.Wrap(laserLink, stage: false), profile.Gate, TimeProvider.System);
+        return new MachineSession(stage, gate, TimeProvider.System, stagePort, laserPort, null);
     }
 
     /// <summary>The machine on two links already open (in-process links to the simulator), named <paramref name="name"/>.</summary>
