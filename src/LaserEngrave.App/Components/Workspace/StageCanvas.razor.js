@@ -256,9 +256,28 @@ export function create(host, dotnet) {
   const keys = { ArrowLeft: 'x-', ArrowRight: 'x+', ArrowUp: 'y-', ArrowDown: 'y+' };
   const onKey = (e) => {
     const t = e.target, typing = t && (t.isContentEditable || /^(INPUT|TEXTAREA|SELECT)$/.test(t.tagName) || t.closest?.('input,textarea,select,fluent-text-input'));
+    // F1 (help) and Esc (stop a test move, close the help) act everywhere, even while typing; Esc never touches a run.
+    if (e.key === 'F1' && !e.ctrlKey && !e.altKey && !e.metaKey) {
+      e.preventDefault();
+      dotnet.invokeMethodAsync('OnShortcutKey', 'help');
+      return;
+    }
+    if (e.key === 'Escape' && !e.ctrlKey && !e.altKey && !e.metaKey) {
+      dotnet.invokeMethodAsync('OnShortcutKey', 'escape');
+      return;
+    }
+    const key = e.key.toLowerCase(), ctrl = (e.ctrlKey || e.metaKey) && !e.altKey;
+    // Ctrl+O and Ctrl+S are the app's, never the browser's (open a file, save the page), even in a field.
+    if (ctrl && (key === 'o' || key === 's')) {
+      e.preventDefault();
+      if (typing) return;
+      // Clicked here, within the key press, because a file chooser opens only on the user's own gesture.
+      if (key === 'o') { const file = document.getElementById('file'); if (file && !file.disabled) file.click(); }
+      else dotnet.invokeMethodAsync('OnShortcutKey', 'save');
+      return;
+    }
     // Ctrl+Z and Ctrl+Y (or Ctrl+Shift+Z) undo and redo the job's changes; in a field they stay the field's own.
-    const key = e.key.toLowerCase();
-    if (!typing && (e.ctrlKey || e.metaKey) && !e.altKey && (key === 'z' || key === 'y')) {
+    if (!typing && ctrl && (key === 'z' || key === 'y')) {
       e.preventDefault();
       dotnet.invokeMethodAsync('OnShortcutKey', key === 'y' || e.shiftKey ? 'redo' : 'undo');
       return;
