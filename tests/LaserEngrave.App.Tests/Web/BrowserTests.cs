@@ -684,6 +684,44 @@ public sealed class BrowserTests : IAsyncLifetime
     }
 
     [Fact]
+    public void Keys_F1ShowsTheHelpEscClosesIt_CtrlOOpensTheChooser_BrowserKeepsNeither()
+    {
+        // Whether the browser's own Ctrl+O/Ctrl+S were prevented (a window listener sees the key after the page's);
+        // and the file input's click noted instead of a chooser opening, which headless Chromium cannot show.
+        Driver.ExecuteScript("""
+            window.__keys = [];
+            window.addEventListener('keydown', (e) => window.__keys.push(e.key + (e.defaultPrevented ? ':prevented' : '')));
+            document.getElementById('file').addEventListener('click', (e) => { e.preventDefault(); window.__chooser = true; });
+            """);
+        Driver.FindElement(By.ClassName("brand")).Click();
+
+        new Actions(Driver).SendKeys(Keys.F1).Perform();
+        WaitFor(d => d.FindElements(By.Id("help-overlay")).Count == 1, "F1: the help overlay");
+        Assert.Contains("Ctrl+O", Text("help-keys"), StringComparison.Ordinal);
+        Assert.Contains("Esc", Text("help-keys"), StringComparison.Ordinal);
+        Screenshot("help-overlay");
+        new Actions(Driver).SendKeys(Keys.Escape).Perform();
+        WaitFor(d => d.FindElements(By.Id("help-overlay")).Count == 0, "Esc: the help overlay closed");
+
+        // F1 and Esc act in a field too.
+        Id("widthMm").Click();
+        new Actions(Driver).SendKeys(Keys.F1).Perform();
+        WaitFor(d => d.FindElements(By.Id("help-overlay")).Count == 1, "F1 in a field: the help overlay");
+        new Actions(Driver).SendKeys(Keys.Escape).Perform();
+        WaitFor(d => d.FindElements(By.Id("help-overlay")).Count == 0, "Esc in a field: the help overlay closed");
+
+        Driver.FindElement(By.ClassName("brand")).Click();
+        new Actions(Driver).KeyDown(Keys.Control).SendKeys("o").KeyUp(Keys.Control).Perform();
+        WaitFor(d => ((IJavaScriptExecutor)d).ExecuteScript("return window.__chooser === true;") is true, "Ctrl+O: the file chooser");
+        new Actions(Driver).KeyDown(Keys.Control).SendKeys("s").KeyUp(Keys.Control).Perform();
+        WaitFor(d => d.FindElements(By.Id("layers-file-error")).Count == 1, "Ctrl+S: the layers panel says why nothing was saved");
+        var keys = ((IEnumerable<object>)Driver.ExecuteScript("return window.__keys;")!).Select(k => k.ToString()).ToArray();
+        Assert.Contains("F1:prevented", keys);
+        Assert.Contains("o:prevented", keys);
+        Assert.Contains("s:prevented", keys);
+    }
+
+    [Fact]
     public void Stage_JobDraggedOffTheTravel_Refused()
     {
         OpenSample("qr-code.bmp");
