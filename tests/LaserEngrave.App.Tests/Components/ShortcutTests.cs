@@ -12,7 +12,7 @@ public sealed class ShortcutTests : ComponentTest
         cut.InvokeAsync(() => cut.FindComponent<StageCanvas>().Instance.OnShortcutKey(shortcut));
 
     [Fact]
-    public async Task F1_ShowsEveryShortcut_F1OrEscHidesIt()
+    public async Task F1_Pressed_EveryShortcutListedF1OrEscHidesThem()
     {
         var cut = Render<Workspace>();
         Assert.Empty(cut.FindAll("#help-overlay"));

@@ -684,7 +684,7 @@ public sealed class BrowserTests : IAsyncLifetime
     }
 
     [Fact]
-    public void Keys_F1ShowsTheHelpEscClosesIt_CtrlOOpensTheChooser_BrowserKeepsNeither()
+    public void Keys_F1EscCtrlOCtrlS_HelpShownAndClosedChooserOpenedBrowserKeysPrevented()
     {
         // Whether the browser's own Ctrl+O/Ctrl+S were prevented (a window listener sees the key after the page's);
         // and the file input's click noted instead of a chooser opening, which headless Chromium cannot show.
