@@ -14,8 +14,17 @@ WebApplication app;
 try
 {
     options = AppOptions.Parse(args);
+    // Read before the server starts, so a bad file is one line and exit 2, as on the command line.
+    var simulator = options.SimulatorOptionsFile is { } simulatorFile
+        ? LaserEngrave.Simulator.SimulatorOptionsFile.Load(simulatorFile, MachineConnectionFactory.DefaultSimulatorOptions)
+        : null;
     app = AppHost.Build([.. options.HostArgs], options.Url, services =>
     {
+        if (simulator is not null)
+        {
+            services.AddSingleton<IMachineConnectionFactory>(new MachineConnectionFactory(simulator));
+        }
+
         if (options.DataFolder is { } folder)
         {
             services.AddSingleton(new AppFolders(Path.GetFullPath(folder)));
@@ -28,7 +37,7 @@ try
         }
     });
 }
-catch (ArgumentException ex)
+catch (Exception ex) when (ex is ArgumentException or InvalidDataException)
 {
     Console.Error.WriteLine(ex.Message);
     return 2;

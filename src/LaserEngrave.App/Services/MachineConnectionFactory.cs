@@ -12,7 +12,10 @@ namespace LaserEngrave.App.Services;
 /// <param name="simulatorOptions">How the simulator runs; by default paced virtual time. Tests pass unpaced virtual time.</param>
 public sealed class MachineConnectionFactory(SimulatorOptions? simulatorOptions = null) : IMachineConnectionFactory
 {
-    private readonly SimulatorOptions _simulatorOptions = simulatorOptions ?? new SimulatorOptions { Paced = true };
+    /// <summary>The simulator the app opens: paced virtual time, so the page shows a run at the machine's pace.</summary>
+    public static SimulatorOptions DefaultSimulatorOptions { get; } = new() { Paced = true };
+
+    private readonly SimulatorOptions _simulatorOptions = simulatorOptions ?? DefaultSimulatorOptions;
 
     public Task<IMachineConnection> ConnectAsync(MachineChoice choice, MachineProfile profile, CancellationToken cancellationToken)
     {

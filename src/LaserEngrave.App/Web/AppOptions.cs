@@ -7,6 +7,9 @@ namespace LaserEngrave.App.Web;
 /// <param name="IdleExit">How long the app outlives its closed window (--idle-exit SECONDS); used only when it opened the window itself.</param>
 public sealed record AppOptions(bool OpenBrowser, string? Url, string? DataFolder, TimeSpan IdleExit)
 {
+    /// <summary>The built-in simulator's options file (--sim-options FILE, as the CLI's): firmware, latency, faults, start position.</summary>
+    public string? SimulatorOptionsFile { get; init; }
+
     public static readonly TimeSpan DefaultIdleExit = TimeSpan.FromSeconds(10);
 
     /// <summary>Options in ASP.NET Core's --key=value form, passed on to the host (test hosts set the content root this way).</summary>
@@ -14,7 +17,7 @@ public sealed record AppOptions(bool OpenBrowser, string? Url, string? DataFolde
 
     public const string DefaultUrl = "http://127.0.0.1:0";
 
-    /// <summary>Reads --no-browser, --urls URL, --data-folder PATH and --idle-exit SECONDS; throws <see cref="ArgumentException"/> with one line for a bad value.</summary>
+    /// <summary>Reads --no-browser, --urls URL, --data-folder PATH, --sim-options FILE and --idle-exit SECONDS; throws <see cref="ArgumentException"/> with one line for a bad value.</summary>
     public static AppOptions Parse(IReadOnlyList<string> args)
     {
         ArgumentNullException.ThrowIfNull(args);
@@ -31,6 +34,9 @@ public sealed record AppOptions(bool OpenBrowser, string? Url, string? DataFolde
                     break;
                 case "--data-folder":
                     options = options with { DataFolder = Value(i++) };
+                    break;
+                case "--sim-options":
+                    options = options with { SimulatorOptionsFile = Value(i++) };
                     break;
                 case "--idle-exit":
                     var text = Value(i++);
@@ -61,6 +67,7 @@ public sealed record AppOptions(bool OpenBrowser, string? Url, string? DataFolde
         string Value(int at) => at + 1 < args.Count ? args[at + 1] : throw new ArgumentException($"{args[at]} needs a value");
     }
 
-    public const string Usage = "usage: LaserEngrave.App [--no-browser] [--urls http://127.0.0.1:PORT] [--data-folder PATH] [--idle-exit SECONDS]\n" +
-        "  the app opens its own window and ends SECONDS (default 10) after it is closed, unless a run is under way; with --no-browser it runs until stopped";
+    public const string Usage = "usage: LaserEngrave.App [--no-browser] [--urls http://127.0.0.1:PORT] [--data-folder PATH] [--sim-options FILE] [--idle-exit SECONDS]\n" +
+        "  the app opens its own window and ends SECONDS (default 10) after it is closed, unless a run is under way; with --no-browser it runs until stopped\n" +
+        "  --sim-options FILE: the built-in simulator's options (firmware, latency, faults, start position; docs/simulator.md)";
 }

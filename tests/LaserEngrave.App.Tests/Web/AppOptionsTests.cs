@@ -23,6 +23,14 @@ public sealed class AppOptionsTests
     }
 
     [Fact]
+    public void Parse_SimulatorOptions_FileNamedOrNone()
+    {
+        Assert.Null(AppOptions.Parse([]).SimulatorOptionsFile);
+        Assert.Equal("twin.json", AppOptions.Parse(["--sim-options", "twin.json"]).SimulatorOptionsFile);
+        Assert.Throws<ArgumentException>(() => AppOptions.Parse(["--sim-options"]));
+    }
+
+    [Fact]
     public void Parse_HostOption_PassedOn()
     {
         var options = AppOptions.Parse(["--environment=Development", "--no-browser"]);

@@ -37,6 +37,17 @@ public sealed partial class AppProcessTests : IDisposable
         Assert.Equal(0, kill.ExitCode);
     }
 
+    /// <summary>
+    /// The app's arguments for a run on its simulator that starts near home (the simulator's --sim-options), so the
+    /// homing before a run takes a fraction of a second at the machine's pace instead of 15 s from the far end.
+    /// </summary>
+    private string[] NearHome()
+    {
+        var file = Path.Combine(_data.Path, "near-home.json");
+        File.WriteAllText(file, "{ \"startMm\": 0.5 }");
+        return ["--urls", "http://127.0.0.1:0", "--sim-options", file];
+    }
+
     [GeneratedRegex(@"^LaserEngrave is running at (http://127\.0\.0\.1:\d+)/\?token=([A-Za-z0-9_-]{43})$")]
     private static partial Regex StartLine();
 
@@ -160,7 +171,7 @@ public sealed partial class AppProcessTests : IDisposable
     [Fact]
     public async Task PythonClient_TestGridOnTheSimulator_EachCellRunAndItsLogCollected()
     {
-        var process = Start(["--urls", "http://127.0.0.1:0"]);
+        var process = Start(NearHome());
         await ReadStartLineAsync(process);
         using var logs = TestFiles.NewFolder();
 
@@ -201,6 +212,40 @@ public sealed partial class AppProcessTests : IDisposable
     }
 
     [Fact]
+    public async Task Start_SimulatorOptionsFile_TheTwinIsAsTheFileSays()
+    {
+        var file = Path.Combine(_data.Path, "old-firmware.json");
+        await File.WriteAllTextAsync(file, "{ \"firmwareVersion\": 506, \"startMm\": 0.5 }", Token);
+        var process = Start(["--urls", "http://127.0.0.1:0", "--sim-options", file]);
+        var (address, secret) = await ReadStartLineAsync(process);
+        using var client = new HttpClient { BaseAddress = new Uri(address), Timeout = Bound };
+        client.DefaultRequestHeaders.Authorization = new("Bearer", secret);
+
+        (await client.PostAsJsonAsync("/api/machine/connect", new { useSimulator = true }, Token)).EnsureSuccessStatusCode();
+        await WaitForAsync(client, s => s.GetProperty("machine").GetProperty("identity").ValueKind == JsonValueKind.String);
+        var machine = (await client.GetFromJsonAsync<JsonElement>("/api/state", Token)).GetProperty("machine");
+
+        Assert.Contains("X: device 1, id 4212, firmware 5.06", machine.GetProperty("identity").GetString(), StringComparison.Ordinal);
+        Assert.Equal(0.5, machine.GetProperty("xMm").GetDouble(), 3);
+    }
+
+    [Fact]
+    public async Task Start_BadSimulatorOptionsFile_OneLineNamingTheFileExit2()
+    {
+        var file = Path.Combine(_data.Path, "bad.json");
+        await File.WriteAllTextAsync(file, "{ \"firmwareVersion\": 9 }", Token);
+        var process = Start(["--urls", "http://127.0.0.1:0", "--sim-options", file]);
+
+        await process.WaitForExitAsync(Token).WaitAsync(Bound, Token);
+
+        Assert.Equal(2, process.ExitCode);
+        var error = (await process.StandardError.ReadToEndAsync(Token)).TrimEnd();
+        Assert.DoesNotContain('\n', error);
+        Assert.StartsWith($"{file}: firmwareVersion", error, StringComparison.Ordinal);
+        Assert.Empty(await process.StandardOutput.ReadToEndAsync(Token));
+    }
+
+    [Fact]
     public async Task Start_NetworkAddressInAspNetCoreUrls_RefusedExit2()
     {
         var process = Start([], ("ASPNETCORE_URLS", "http://0.0.0.0:5098"));
@@ -232,7 +277,7 @@ public sealed partial class AppProcessTests : IDisposable
     [InlineData("QUIT")]
     public async Task Signal_RunUnderWayAndPageOpen_ExitsLaserOffAndLogWritten(string signal)
     {
-        var process = Start(["--urls", "http://127.0.0.1:0"]);
+        var process = Start(NearHome());
         var (address, secret) = await ReadStartLineAsync(process);
         using var client = new HttpClient { BaseAddress = new Uri(address), Timeout = Bound };
         client.DefaultRequestHeaders.Authorization = new("Bearer", secret);
