@@ -23,6 +23,9 @@ public sealed class MotionTimeline
     // When each reply still to come leaves its device: replies share the wire back to the host, one frame each, in order.
     private readonly List<double> _replies = [];
 
+    // Replies mostly come in the order they leave, so the sort is skipped while they do.
+    private bool _repliesSorted = true;
+
     public MotionTimeline(TimedSwitching timing, double startSeconds, int xSpeedData)
     {
         ArgumentNullException.ThrowIfNull(timing);
@@ -124,7 +127,7 @@ public sealed class MotionTimeline
         AddReply(arrival + t.FrameSeconds);
 
         // A flown gap's two speed changes and its position query, each answered as it arrives.
-        foreach (var bump in stroke.Bumps)
+        foreach (ref readonly var bump in stroke.BumpTimings)
         {
             AddReply(arrival + bump.SpeedUpArrival);
             AddReply(arrival + bump.SpeedDownArrival);
@@ -159,6 +162,7 @@ public sealed class MotionTimeline
     {
         if (readyAt is { } ready)
         {
+            _repliesSorted = _repliesSorted && (_replies.Count == 0 || _replies[^1] <= ready);
             _replies.Add(ready);
         }
     }
@@ -166,7 +170,12 @@ public sealed class MotionTimeline
     // When the wire back is free of every reply that is ready before `at` (they leave in the order they are ready).
     private double ReplyWireClear(double at)
     {
-        _replies.Sort();
+        if (!_repliesSorted)
+        {
+            _replies.Sort();
+            _repliesSorted = true;
+        }
+
         var free = double.NegativeInfinity;
         var keepFrom = 0;
         for (var i = 0; i < _replies.Count && _replies[i] < at; i++)

@@ -16,15 +16,39 @@ namespace LaserEngrave.Core.Planning;
 /// </remarks>
 public sealed class StrokePlan
 {
-    private readonly TrapezoidProfile _profile;
-    private readonly double _burnSpeed;
+    private TrapezoidProfile _profile;
+    private double _burnSpeed;
+
+    // The flown gaps as values, so that the estimator can plan millions of strokes into one reused plan without
+    // allocating; Bumps makes the records from them when a caller asks.
+    private BumpTimes[] _bumps = [];
+    private int _bumpCount;
+    private IReadOnlyList<Bump>? _bumpRecords;
 
     internal StrokePlan(TimedSwitching timing, long length, IReadOnlyList<(long Exit, long Entry)> gaps)
+    {
+        var buffer = new (long Exit, long Entry)[gaps.Count];
+        for (var i = 0; i < buffer.Length; i++)
+        {
+            buffer[i] = gaps[i];
+        }
+
+        Replan(timing, length, buffer);
+    }
+
+    /// <summary>An empty plan for <see cref="Replan"/> to fill.</summary>
+    internal StrokePlan()
+    {
+    }
+
+    /// <summary>Makes this the plan of another stroke (only for a plan its owner reuses, never one handed out).</summary>
+    internal void Replan(TimedSwitching timing, long length, ReadOnlySpan<(long Exit, long Entry)> gaps)
     {
         _profile = timing.Stroke(length);
         _burnSpeed = timing.BurnSpeed;
         Length = length;
-        var bumps = new List<Bump>();
+        _bumpCount = 0;
+        _bumpRecords = null;
         var gained = 0.0;
         foreach (var (exit, entry) in gaps)
         {
@@ -39,10 +63,14 @@ public sealed class StrokePlan
             var speedUp = exitTime + fly.SpeedUpDelaySeconds;
             var speedDown = speedUp + fly.HoldSeconds;
             var query = speedDown + fly.QueryDelaySeconds;
-            bumps.Add(new Bump(exit, entry, speedUp, speedDown, query, entry - (_burnSpeed * (entryTime - query)), fly.MaxErrorMicrosteps, gained));
+            if (_bumpCount == _bumps.Length)
+            {
+                Array.Resize(ref _bumps, Math.Max(8, _bumps.Length * 2));
+            }
+
+            _bumps[_bumpCount++] = new BumpTimes(exit, entry, speedUp, speedDown, query, entry - (_burnSpeed * (entryTime - query)), fly.MaxErrorMicrosteps, gained);
         }
 
-        Bumps = bumps;
         Gained = gained;
     }
 
@@ -65,10 +93,13 @@ public sealed class StrokePlan
     }
 
     /// <summary>The stroke's length, microsteps.</summary>
-    public long Length { get; }
+    public long Length { get; private set; }
 
     /// <summary>The flown gaps, in stroke order.</summary>
-    public IReadOnlyList<Bump> Bumps { get; }
+    public IReadOnlyList<Bump> Bumps => _bumpRecords ??= BumpRecords();
+
+    /// <summary>The flown gaps, in stroke order, as values.</summary>
+    internal ReadOnlySpan<BumpTimes> BumpTimings => _bumps.AsSpan(0, _bumpCount);
 
     /// <summary>From the start to the end of the motion, s.</summary>
     public double Duration => _profile.Duration - (Gained / _burnSpeed);
@@ -76,13 +107,24 @@ public sealed class StrokePlan
     /// <summary>The highest speed the stroke brakes from at its end (the burn speed, or less for a short stroke), microsteps/s.</summary>
     public double PeakSpeed => _profile.PeakSpeed;
 
-    private double Gained { get; }
+    private double Gained { get; set; }
+
+    private Bump[] BumpRecords()
+    {
+        var records = new Bump[_bumpCount];
+        for (var i = 0; i < records.Length; i++)
+        {
+            records[i] = _bumps[i].ToRecord();
+        }
+
+        return records;
+    }
 
     /// <summary>When the stage crosses <paramref name="offset"/> (an edge, or any point outside the bumps), s from the start.</summary>
     public double TimeAt(long offset)
     {
         var gained = 0.0;
-        foreach (var bump in Bumps)
+        foreach (ref readonly var bump in BumpTimings)
         {
             if (offset < bump.Entry)
             {
@@ -133,6 +175,12 @@ public sealed class StrokePlan
     /// <param name="MaxErrorMicrosteps">How far from <paramref name="ExpectedOffset"/> the latencies can put it.</param>
     /// <param name="GainedUpTo">What this bump and those before it gained on the burn speed, microsteps.</param>
     public sealed record Bump(long Exit, long Entry, double SpeedUpArrival, double SpeedDownArrival, double QueryArrival, double ExpectedOffset, double MaxErrorMicrosteps, double GainedUpTo);
+
+    /// <summary>A <see cref="Bump"/> as a value.</summary>
+    internal readonly record struct BumpTimes(long Exit, long Entry, double SpeedUpArrival, double SpeedDownArrival, double QueryArrival, double ExpectedOffset, double MaxErrorMicrosteps, double GainedUpTo)
+    {
+        public Bump ToRecord() => new(Exit, Entry, SpeedUpArrival, SpeedDownArrival, QueryArrival, ExpectedOffset, MaxErrorMicrosteps, GainedUpTo);
+    }
 }
 
 /// <summary>How a gap is flown: the speed bump's timing and what it gains (see <see cref="TimedSwitching.Fly"/>).</summary>
