@@ -1,3 +1,5 @@
+using System.Runtime.CompilerServices;
+
 namespace LaserEngrave.Core.Planning;
 
 /// <summary>
@@ -20,11 +22,9 @@ public sealed class MotionTimeline
 {
     private readonly TimedSwitching _timing;
 
-    // When each reply still to come leaves its device: replies share the wire back to the host, one frame each, in order.
+    // When each reply still to come leaves its device, in order: replies share the wire back to the host, one frame
+    // each. Kept sorted as they are added, which is nearly always at the end.
     private readonly List<double> _replies = [];
-
-    // Replies mostly come in the order they leave, so the sort is skipped while they do.
-    private bool _repliesSorted = true;
 
     public MotionTimeline(TimedSwitching timing, double startSeconds, int xSpeedData)
     {
@@ -98,6 +98,7 @@ public sealed class MotionTimeline
     /// <paramref name="firstEdgeSeconds"/> after it starts and whose last exit edge <paramref name="lastOffSeconds"/>
     /// after; returns when its commands arrive.
     /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public StrokeTimes Stroke(StrokePlan stroke, double firstEdgeSeconds, double lastOffSeconds)
     {
         ArgumentNullException.ThrowIfNull(stroke);
@@ -158,24 +159,35 @@ public sealed class MotionTimeline
         }
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     private void AddReply(double? readyAt)
     {
-        if (readyAt is { } ready)
+        if (readyAt is not { } ready)
         {
-            _repliesSorted = _repliesSorted && (_replies.Count == 0 || _replies[^1] <= ready);
-            _replies.Add(ready);
+            return;
         }
+
+        var count = _replies.Count;
+        if (count == 0 || _replies[count - 1] <= ready)
+        {
+            _replies.Add(ready);
+            return;
+        }
+
+        // In List.Sort's order, in which NaN comes first.
+        var i = double.IsNaN(ready) ? 0 : count;
+        while (i > 0 && _replies[i - 1] > ready)
+        {
+            i--;
+        }
+
+        _replies.Insert(i, ready);
     }
 
     // When the wire back is free of every reply that is ready before `at` (they leave in the order they are ready).
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     private double ReplyWireClear(double at)
     {
-        if (!_repliesSorted)
-        {
-            _replies.Sort();
-            _repliesSorted = true;
-        }
-
         var free = double.NegativeInfinity;
         var keepFrom = 0;
         for (var i = 0; i < _replies.Count && _replies[i] < at; i++)

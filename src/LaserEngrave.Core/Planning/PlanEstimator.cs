@@ -167,6 +167,7 @@ public sealed class PlanEstimator
 
     // A stroke is one move from rest to rest at the burn speed over its run-up, runs, crossed gaps and run-out; a travel
     // is a stop-go move of one or both axes; MotionTimeline says when each starts and ends.
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     private double AddTimed(in Move move, TimedSwitching timing)
     {
         var before = ElapsedSeconds;
@@ -218,6 +219,7 @@ public sealed class PlanEstimator
         return ElapsedSeconds - before;
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     private double EndStroke(TimedSwitching timing, MotionTimeline timeline)
     {
         if (!_inStroke)

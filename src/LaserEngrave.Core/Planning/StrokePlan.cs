@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using LaserEngrave.Core.Motion;
 
 namespace LaserEngrave.Core.Planning;
@@ -42,6 +43,7 @@ public sealed class StrokePlan
     }
 
     /// <summary>Makes this the plan of another stroke (only for a plan its owner reuses, never one handed out).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     internal void Replan(TimedSwitching timing, long length, ReadOnlySpan<(long Exit, long Entry)> gaps)
     {
         _profile = timing.Stroke(length);
@@ -52,11 +54,12 @@ public sealed class StrokePlan
         var gained = 0.0;
         foreach (var (exit, entry) in gaps)
         {
-            if (timing.Fly(entry - exit) is not { } fly || !WithinDeviceRamp(timing, length, exit, fly))
+            if (timing.Flown(entry - exit) is not { } flown || !WithinDeviceRamp(timing, length, exit, flown))
             {
                 continue;
             }
 
+            var fly = flown.Fly;
             var exitTime = _profile.TimeAt(exit) - (gained / _burnSpeed);
             gained += fly.GainMicrosteps;
             var entryTime = _profile.TimeAt(entry) - (gained / _burnSpeed);
@@ -79,17 +82,23 @@ public sealed class StrokePlan
     /// when the speed-down arrives (near the end it would already brake towards the target, and the bump would not be
     /// the one planned).
     /// </summary>
-    private static bool WithinDeviceRamp(TimedSwitching timing, long length, long exit, FlyingGap fly)
+    private static bool WithinDeviceRamp(TimedSwitching timing, long length, long exit, in FlownGap gap)
     {
         var a = timing.Acceleration;
         var burn = timing.BurnSpeed;
-        var start = exit + (burn * fly.SpeedUpDelaySeconds);
-        var remaining = length - start;
-        var peak = Math.Min(timing.TravelSpeed, Math.Sqrt((a * remaining) + (burn * burn / 2)));
-        var rise = Math.Min(a * fly.HoldSeconds, timing.TravelSpeed - burn);
-        var ramp = rise / a;
-        var covered = (burn * fly.HoldSeconds) + (0.5 * rise * ramp) + (rise * (fly.HoldSeconds - ramp));
-        return burn + rise <= peak + 1e-9 && covered <= remaining - (peak * peak / (2 * a));
+        var travel = timing.TravelSpeed;
+        var remaining = length - (exit + gap.SpeedUpOffset);
+        var peakSquared = (a * remaining) + (burn * burn / 2);
+
+        // Far from the stroke's end the replanned move reaches the travel speed: no square root is needed to say so
+        // (the margin keeps the rounded root at or above it), and the braking distance is the travel speed's.
+        if (peakSquared >= travel * travel * (1 + 1e-12))
+        {
+            return gap.PeakSpeed <= travel + 1e-9 && gap.Covered <= remaining - (travel * travel / (2 * a));
+        }
+
+        var peak = Math.Min(travel, Math.Sqrt(peakSquared));
+        return gap.PeakSpeed <= peak + 1e-9 && gap.Covered <= remaining - (peak * peak / (2 * a));
     }
 
     /// <summary>The stroke's length, microsteps.</summary>
@@ -190,3 +199,21 @@ public sealed class StrokePlan
 /// <param name="GainMicrosteps">Distance gained on the burn speed: the gap is crossed this much sooner, divided by the burn speed.</param>
 /// <param name="MaxErrorMicrosteps">The most the latencies can move the stage from its nominal position after the bump.</param>
 public readonly record struct FlyingGap(double SpeedUpDelaySeconds, double HoldSeconds, double QueryDelaySeconds, double GainMicrosteps, double MaxErrorMicrosteps);
+
+/// <summary>
+/// A gap that can be flown, with what the check against the device's own ramp needs of it (<see cref="StrokePlan"/>),
+/// worked out once per gap length: where the speed-up starts after the exit edge, the speed it rises to, and the
+/// distance covered until the speed-down arrives.
+/// </summary>
+internal readonly record struct FlownGap(FlyingGap Fly, double SpeedUpOffset, double PeakSpeed, double Covered)
+{
+    public static FlownGap Of(TimedSwitching timing, FlyingGap fly)
+    {
+        var a = timing.Acceleration;
+        var burn = timing.BurnSpeed;
+        var rise = Math.Min(a * fly.HoldSeconds, timing.TravelSpeed - burn);
+        var ramp = rise / a;
+        var covered = (burn * fly.HoldSeconds) + (0.5 * rise * ramp) + (rise * (fly.HoldSeconds - ramp));
+        return new FlownGap(fly, burn * fly.SpeedUpDelaySeconds, burn + rise, covered);
+    }
+}

@@ -36,7 +36,7 @@ public sealed class TimedSwitching
     private readonly MachineProfile _profile;
 
     // A plan asks these of every gap; they depend on the gap's length alone.
-    private readonly GapMemo<FlyingGap?> _fly;
+    private readonly GapMemo<FlownGap?> _flown;
     private readonly GapMemo<bool> _crossesGap;
 
     public TimedSwitching(ProcessSettings process, MachineProfile profile, double microstepUm)
@@ -99,7 +99,7 @@ public sealed class TimedSwitching
         OnWireSeconds = OnCommand.Length * gateByte;
         MinOnSeconds = (2 * EdgeGuardSeconds) + OffWireSeconds + (2 * GateJitterSeconds) + ReactionSeconds;
         MinOffSeconds = OnWireSeconds + (2 * GateJitterSeconds) + ReactionSeconds - (2 * EdgeGuardSeconds);
-        _fly = new GapMemo<FlyingGap?>(ComputeFly);
+        _flown = new GapMemo<FlownGap?>(gap => ComputeFly(gap) is { } fly ? FlownGap.Of(this, fly) : null);
         _crossesGap = new GapMemo<bool>(gap => CrossSeconds(gap) <= StopGoSeconds(gap));
     }
 
@@ -349,7 +349,10 @@ public sealed class TimedSwitching
     /// that, and the switchings after it are re-timed, so the edges keep the accuracy of a stroke's start. The gap must hold
     /// <c>v_b (2J + T + query delay + reply and switch-on lead + error / v_b) + A</c>; the longest <c>T</c> that fits is taken.
     /// </remarks>
-    public FlyingGap? Fly(long gapMicrosteps) => _fly.Get(gapMicrosteps);
+    public FlyingGap? Fly(long gapMicrosteps) => _flown.Get(gapMicrosteps)?.Fly;
+
+    /// <summary><see cref="Fly"/> with what a stroke's check against the device's ramp needs of the gap.</summary>
+    internal FlownGap? Flown(long gapMicrosteps) => _flown.Get(gapMicrosteps);
 
     private FlyingGap? ComputeFly(long gapMicrosteps)
     {
