@@ -159,29 +159,32 @@ public sealed class MotionTimeline
         }
     }
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     private void AddReply(double? readyAt)
     {
-        if (readyAt is not { } ready)
+        if (readyAt is { } ready)
         {
+            InsertSorted(_replies, ready);
+        }
+    }
+
+    /// <summary>Inserts <paramref name="value"/> into the sorted <paramref name="list"/> where <see cref="List{T}.Sort()"/> would put it (NaN first).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    internal static void InsertSorted(List<double> list, double value)
+    {
+        var count = list.Count;
+        if (count == 0 || list[count - 1] <= value)
+        {
+            list.Add(value);
             return;
         }
 
-        var count = _replies.Count;
-        if (count == 0 || _replies[count - 1] <= ready)
-        {
-            _replies.Add(ready);
-            return;
-        }
-
-        // In List.Sort's order, in which NaN comes first.
-        var i = double.IsNaN(ready) ? 0 : count;
-        while (i > 0 && _replies[i - 1] > ready)
+        var i = double.IsNaN(value) ? 0 : count;
+        while (i > 0 && list[i - 1] > value)
         {
             i--;
         }
 
-        _replies.Insert(i, ready);
+        list.Insert(i, value);
     }
 
     // When the wire back is free of every reply that is ready before `at` (they leave in the order they are ready).

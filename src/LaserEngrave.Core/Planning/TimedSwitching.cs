@@ -354,7 +354,8 @@ public sealed class TimedSwitching
     /// <summary><see cref="Fly"/> with what a stroke's check against the device's ramp needs of the gap.</summary>
     internal FlownGap? Flown(long gapMicrosteps) => _flown.Get(gapMicrosteps);
 
-    private FlyingGap? ComputeFly(long gapMicrosteps)
+    /// <summary><see cref="Fly"/> worked out afresh, not remembered (the tests' reference).</summary>
+    internal FlyingGap? ComputeFly(long gapMicrosteps)
     {
         var rise = TravelSpeed - BurnSpeed;
         if (rise <= 0 || gapMicrosteps <= 0)
