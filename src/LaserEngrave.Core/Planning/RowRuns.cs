@@ -63,6 +63,23 @@ internal static class RowRuns
         }
     }
 
+    /// <summary>The first set pixel of a packed row and the end of its last run (its last set pixel + 1); false for a blank row.</summary>
+    /// <remarks>What <see cref="Find"/>'s first and last edges would be, without finding the runs between them.</remarks>
+    public static bool Extent(ReadOnlySpan<ulong> words, out int start, out int end)
+    {
+        var first = words.IndexOfAnyExcept(0UL);
+        if (first < 0)
+        {
+            (start, end) = (0, 0);
+            return false;
+        }
+
+        var last = words.LastIndexOfAnyExcept(0UL);
+        start = (first << 6) + BitOperations.TrailingZeroCount(words[first]);
+        end = (last << 6) + 64 - BitOperations.LeadingZeroCount(words[last]);
+        return true;
+    }
+
     /// <summary>The index of the first word at or after <paramref name="from"/> that is not <paramref name="value"/>, or -1.</summary>
     /// <remarks>A few words are looked at one by one first: most runs are short, and a vectorised search costs a call.</remarks>
     private static int NextExcept(ReadOnlySpan<ulong> words, int from, ulong value)

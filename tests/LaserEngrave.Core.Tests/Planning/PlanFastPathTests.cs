@@ -119,7 +119,7 @@ public class PlanFastPathTests
     }
 
     [Fact]
-    public void RowRunsFind_RowsOfLongWholeWordStretches_MatchABitByBitScan()
+    public void RowRunsFindAndExtent_RowsOfLongWholeWordStretches_MatchABitByBitScan()
     {
         var rng = new Random(67);
         var runs = new int[2];
@@ -159,6 +159,11 @@ public class PlanFastPathTests
 
             var count = RowRuns.Find(mask.ReadRow(0), ref runs);
             Assert.Equal(expected, Enumerable.Range(0, count).Select(i => (runs[2 * i], runs[(2 * i) + 1])).ToList());
+
+            // The row's extent, for the timed-room warning: the first run's start and the last one's end.
+            var found = RowRuns.Extent(mask.ReadRow(0), out var start, out var end);
+            Assert.Equal(expected.Count > 0, found);
+            Assert.Equal(expected.Count > 0 ? (expected[0].Item1, expected[^1].Item2) : (0, 0), (start, end));
         }
     }
 
