@@ -147,13 +147,13 @@ public class PlanFastPathTests
             {
                 if (mask[i, 0] && (i == 0 || !mask[i - 1, 0]))
                 {
-                    var end = i;
-                    while (end < width && mask[end, 0])
+                    var runEnd = i;
+                    while (runEnd < width && mask[runEnd, 0])
                     {
-                        end++;
+                        runEnd++;
                     }
 
-                    expected.Add((i, end));
+                    expected.Add((i, runEnd));
                 }
             }
 
