@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Motion;
 
@@ -18,6 +19,9 @@ public struct LowerBound
     private readonly double _burnSpeed;
     private readonly double _travelSpeed;
     private readonly double _acceleration;
+
+    // The bound of a gap within a row depends on its length alone.
+    private readonly GapMemo<double>? _gapSeconds;
     private bool _hasBurn;
     private long _lastX;
     private long _lastY;
@@ -30,6 +34,8 @@ public struct LowerBound
         _burnSpeed = StageUnits.SpeedMicrostepsPerS(StageUnits.SpeedData(process.BurnSpeedMmPerS, microstepUm));
         _travelSpeed = StageUnits.SpeedMicrostepsPerS(StageUnits.SpeedData(process.TravelSpeedMmPerS, microstepUm));
         _acceleration = StageUnits.AccelerationMicrostepsPerS2(StageUnits.AccelerationData(process.AccelerationMmPerS2, microstepUm));
+        var (burn, travel, acceleration) = (_burnSpeed, _travelSpeed, _acceleration);
+        _gapSeconds = new GapMemo<double>(dx => GapSeconds(dx, burn, travel, acceleration));
     }
 
     /// <summary>The bound so far, s.</summary>
@@ -49,6 +55,7 @@ public struct LowerBound
     }
 
     /// <summary>Counts one move of the plan, in order; only burns count, with what lies between them.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public void Add(in Move move)
     {
         if (move.Kind != MoveKind.Burn)
@@ -60,26 +67,31 @@ public struct LowerBound
         {
             long dx = Math.Abs(move.X0 - _lastX), dy = Math.Abs(move.Y0 - _lastY);
             Seconds += move.Row == _lastRow && dy == 0
-                ? Math.Min(Math.Min(dx / _burnSpeed, Flown(dx)), StopGo(dx))
-                : Math.Max(StopGo(dx), StopGo(dy));
+                ? _gapSeconds?.Get(dx) ?? GapSeconds(dx, _burnSpeed, _travelSpeed, _acceleration)
+                : Math.Max(StopGo(dx, _travelSpeed, _acceleration), StopGo(dy, _travelSpeed, _acceleration));
         }
 
         Seconds += move.LengthX / _burnSpeed;
         (_hasBurn, _lastX, _lastY, _lastRow) = (true, move.X1, move.Y1, move.Row);
     }
 
+    // A gap between two runs of a row: the shortest of crossing it at the burn speed, flying it and a stop-go move.
+    private static double GapSeconds(long dx, double burnSpeed, double travelSpeed, double acceleration) =>
+        Math.Min(Math.Min(dx / burnSpeed, Flown(dx, burnSpeed, travelSpeed, acceleration)), StopGo(dx, travelSpeed, acceleration));
+
     // Speeding up from the burn speed (towards the travel speed) and back to it at the next edge, without stopping.
-    private readonly double Flown(long distance)
+    private static double Flown(long distance, double burnSpeed, double travelSpeed, double acceleration)
     {
-        if (_travelSpeed <= _burnSpeed)
+        if (travelSpeed <= burnSpeed)
         {
-            return distance / _burnSpeed;
+            return distance / burnSpeed;
         }
 
-        var peak = Math.Min(_travelSpeed, Math.Sqrt((_burnSpeed * _burnSpeed) + (_acceleration * distance)));
-        var ramps = ((peak * peak) - (_burnSpeed * _burnSpeed)) / _acceleration;
-        return (2 * (peak - _burnSpeed) / _acceleration) + ((distance - ramps) / peak);
+        var peak = Math.Min(travelSpeed, Math.Sqrt((burnSpeed * burnSpeed) + (acceleration * distance)));
+        var ramps = ((peak * peak) - (burnSpeed * burnSpeed)) / acceleration;
+        return (2 * (peak - burnSpeed) / acceleration) + ((distance - ramps) / peak);
     }
 
-    private readonly double StopGo(long distance) => distance == 0 ? 0 : new TrapezoidProfile(distance, _travelSpeed, _acceleration).Duration;
+    private static double StopGo(long distance, double travelSpeed, double acceleration) =>
+        distance == 0 ? 0 : new TrapezoidProfile(distance, travelSpeed, acceleration).Duration;
 }

@@ -1,3 +1,5 @@
+using System.Runtime.CompilerServices;
+
 namespace LaserEngrave.Core.Planning;
 
 /// <summary>
@@ -20,7 +22,8 @@ public sealed class MotionTimeline
 {
     private readonly TimedSwitching _timing;
 
-    // When each reply still to come leaves its device: replies share the wire back to the host, one frame each, in order.
+    // When each reply still to come leaves its device, in order: replies share the wire back to the host, one frame
+    // each. Kept sorted as they are added, which is nearly always at the end.
     private readonly List<double> _replies = [];
 
     public MotionTimeline(TimedSwitching timing, double startSeconds, int xSpeedData)
@@ -95,6 +98,7 @@ public sealed class MotionTimeline
     /// <paramref name="firstEdgeSeconds"/> after it starts and whose last exit edge <paramref name="lastOffSeconds"/>
     /// after; returns when its commands arrive.
     /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public StrokeTimes Stroke(StrokePlan stroke, double firstEdgeSeconds, double lastOffSeconds)
     {
         ArgumentNullException.ThrowIfNull(stroke);
@@ -124,7 +128,7 @@ public sealed class MotionTimeline
         AddReply(arrival + t.FrameSeconds);
 
         // A flown gap's two speed changes and its position query, each answered as it arrives.
-        foreach (var bump in stroke.Bumps)
+        foreach (ref readonly var bump in stroke.BumpTimings)
         {
             AddReply(arrival + bump.SpeedUpArrival);
             AddReply(arrival + bump.SpeedDownArrival);
@@ -159,14 +163,34 @@ public sealed class MotionTimeline
     {
         if (readyAt is { } ready)
         {
-            _replies.Add(ready);
+            InsertSorted(_replies, ready);
         }
     }
 
+    /// <summary>Inserts <paramref name="value"/> into the sorted <paramref name="list"/> where <see cref="List{T}.Sort()"/> would put it (NaN first).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    internal static void InsertSorted(List<double> list, double value)
+    {
+        var count = list.Count;
+        if (count == 0 || list[count - 1] <= value)
+        {
+            list.Add(value);
+            return;
+        }
+
+        var i = double.IsNaN(value) ? 0 : count;
+        while (i > 0 && list[i - 1] > value)
+        {
+            i--;
+        }
+
+        list.Insert(i, value);
+    }
+
     // When the wire back is free of every reply that is ready before `at` (they leave in the order they are ready).
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     private double ReplyWireClear(double at)
     {
-        _replies.Sort();
         var free = double.NegativeInfinity;
         var keepFrom = 0;
         for (var i = 0; i < _replies.Count && _replies[i] < at; i++)

@@ -1,5 +1,6 @@
 using System.Globalization;
 using System.Runtime.CompilerServices;
+using System.Runtime.InteropServices;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Motion;
 
@@ -48,6 +49,9 @@ public sealed class PlanEstimator
     private double _strokeStartGuess;
     private readonly List<(long Exit, long Entry)> _strokeGaps = [];
     private long _strokeGapStart = -1;
+
+    // Every stroke is planned into this one, so a plan of millions of strokes allocates nothing per stroke.
+    private readonly StrokePlan _stroke = new();
 
     /// <param name="process">Speeds, acceleration, frequency and baud rates.</param>
     /// <param name="strategy">The plan's strategy.</param>
@@ -163,6 +167,7 @@ public sealed class PlanEstimator
 
     // A stroke is one move from rest to rest at the burn speed over its run-up, runs, crossed gaps and run-out; a travel
     // is a stop-go move of one or both axes; MotionTimeline says when each starts and ends.
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     private double AddTimed(in Move move, TimedSwitching timing)
     {
         var before = ElapsedSeconds;
@@ -214,6 +219,7 @@ public sealed class PlanEstimator
         return ElapsedSeconds - before;
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     private double EndStroke(TimedSwitching timing, MotionTimeline timeline)
     {
         if (!_inStroke)
@@ -224,7 +230,8 @@ public sealed class PlanEstimator
         _inStroke = false;
         var before = ElapsedSeconds;
         var speed = timeline.XSpeedData;
-        var stroke = timing.Stroke(_strokeLength, _strokeGaps);
+        var stroke = _stroke;
+        stroke.Replan(timing, _strokeLength, CollectionsMarshal.AsSpan(_strokeGaps));
         timeline.Stroke(stroke, stroke.TimeAt(_strokeRunUp), stroke.TimeAt(_strokeLastOff));
         SpeedChanges += speed != timeline.XSpeedData ? 1 : 0;
         ElapsedSeconds = timeline.End;

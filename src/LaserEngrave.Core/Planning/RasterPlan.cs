@@ -282,15 +282,13 @@ public sealed class RasterPlan
     // black reaches nearer the end of the travel than that brakes (or starts) over its outermost pixels there.
     private JobWarning? TimedRoomWarning()
     {
-        var runs = new int[64];
         long left = long.MaxValue, right = long.MinValue;
         for (var row = 0; row < Mask.Height; row++)
         {
-            var count = RowRuns.Find(Mask.ReadRow(row), ref runs);
-            if (count > 0)
+            if (RowRuns.Extent(Mask.ReadRow(row), out var start, out var end))
             {
-                left = Math.Min(left, Geometry.RunEdgeX(runs[0], row));
-                right = Math.Max(right, Geometry.RunEdgeX(runs[(2 * count) - 1], row));
+                left = Math.Min(left, Geometry.RunEdgeX(start, row));
+                right = Math.Max(right, Geometry.RunEdgeX(end, row));
             }
         }
 

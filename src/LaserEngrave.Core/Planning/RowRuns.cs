@@ -29,14 +29,13 @@ internal static class RowRuns
         {
             if (word == 0)
             {
-                // Whole blank words are skipped in one vectorised search.
-                var next = words[(index + 1)..].IndexOfAnyExcept(0UL);
-                if (next < 0)
+                // Whole blank words are skipped.
+                index = NextExcept(words, index + 1, 0UL);
+                if (index < 0)
                 {
                     return count;
                 }
 
-                index += next + 1;
                 word = words[index];
             }
 
@@ -47,15 +46,14 @@ internal static class RowRuns
             var clear = ~word & (ulong.MaxValue << startBit);
             if (clear == 0)
             {
-                // Whole black words are skipped in one vectorised search too.
-                var next = words[(index + 1)..].IndexOfAnyExcept(ulong.MaxValue);
-                if (next < 0)
+                // Whole black words are skipped too.
+                index = NextExcept(words, index + 1, ulong.MaxValue);
+                if (index < 0)
                 {
                     Add(ref runs, ref count, start, words.Length << 6);
                     return count;
                 }
 
-                index += next + 1;
                 clear = ~words[index];
             }
 
@@ -63,6 +61,44 @@ internal static class RowRuns
             Add(ref runs, ref count, start, (index << 6) + endBit);
             word = words[index] & (ulong.MaxValue << endBit);
         }
+    }
+
+    /// <summary>The first set pixel of a packed row and the end of its last run (its last set pixel + 1); false for a blank row.</summary>
+    /// <remarks>What <see cref="Find"/>'s first and last edges would be, without finding the runs between them.</remarks>
+    public static bool Extent(ReadOnlySpan<ulong> words, out int start, out int end)
+    {
+        var first = words.IndexOfAnyExcept(0UL);
+        if (first < 0)
+        {
+            (start, end) = (0, 0);
+            return false;
+        }
+
+        var last = words.LastIndexOfAnyExcept(0UL);
+        start = (first << 6) + BitOperations.TrailingZeroCount(words[first]);
+        end = (last << 6) + 64 - BitOperations.LeadingZeroCount(words[last]);
+        return true;
+    }
+
+    /// <summary>The index of the first word at or after <paramref name="from"/> that is not <paramref name="value"/>, or -1.</summary>
+    /// <remarks>A few words are looked at one by one first: most runs are short, and a vectorised search costs a call.</remarks>
+    private static int NextExcept(ReadOnlySpan<ulong> words, int from, ulong value)
+    {
+        for (var end = Math.Min(words.Length, from + 4); from < end; from++)
+        {
+            if (words[from] != value)
+            {
+                return from;
+            }
+        }
+
+        if (from >= words.Length)
+        {
+            return -1;
+        }
+
+        var next = words[from..].IndexOfAnyExcept(value);
+        return next < 0 ? -1 : from + next;
     }
 
     private static void Add(ref int[] runs, ref int count, int start, int end)

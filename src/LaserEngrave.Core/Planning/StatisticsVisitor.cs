@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using LaserEngrave.Core.Geometry;
 
 namespace LaserEngrave.Core.Planning;
@@ -25,6 +26,7 @@ internal struct StatisticsVisitor : IMoveVisitor
         _lowerBound = lowerBound;
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public void Visit(in Move move)
     {
         _moves++;

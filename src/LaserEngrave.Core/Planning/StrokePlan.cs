@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using LaserEngrave.Core.Motion;
 
 namespace LaserEngrave.Core.Planning;
@@ -16,33 +17,63 @@ namespace LaserEngrave.Core.Planning;
 /// </remarks>
 public sealed class StrokePlan
 {
-    private readonly TrapezoidProfile _profile;
-    private readonly double _burnSpeed;
+    private TrapezoidProfile _profile;
+    private double _burnSpeed;
+
+    // The flown gaps as values, so that the estimator can plan millions of strokes into one reused plan without
+    // allocating; Bumps makes the records from them when a caller asks.
+    private BumpTimes[] _bumps = [];
+    private int _bumpCount;
+    private IReadOnlyList<Bump>? _bumpRecords;
 
     internal StrokePlan(TimedSwitching timing, long length, IReadOnlyList<(long Exit, long Entry)> gaps)
+    {
+        var buffer = new (long Exit, long Entry)[gaps.Count];
+        for (var i = 0; i < buffer.Length; i++)
+        {
+            buffer[i] = gaps[i];
+        }
+
+        Replan(timing, length, buffer);
+    }
+
+    /// <summary>An empty plan for <see cref="Replan"/> to fill.</summary>
+    internal StrokePlan()
+    {
+    }
+
+    /// <summary>Makes this the plan of another stroke (only for a plan its owner reuses, never one handed out).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    internal void Replan(TimedSwitching timing, long length, ReadOnlySpan<(long Exit, long Entry)> gaps)
     {
         _profile = timing.Stroke(length);
         _burnSpeed = timing.BurnSpeed;
         Length = length;
-        var bumps = new List<Bump>();
+        _bumpCount = 0;
+        _bumpRecords = null;
         var gained = 0.0;
         foreach (var (exit, entry) in gaps)
         {
-            if (timing.Fly(entry - exit) is not { } fly || !WithinDeviceRamp(timing, length, exit, fly))
+            if (timing.Flown(entry - exit) is not { } flown || !WithinDeviceRamp(timing, length, exit, flown))
             {
                 continue;
             }
 
+            var fly = flown.Fly;
             var exitTime = _profile.TimeAt(exit) - (gained / _burnSpeed);
             gained += fly.GainMicrosteps;
             var entryTime = _profile.TimeAt(entry) - (gained / _burnSpeed);
             var speedUp = exitTime + fly.SpeedUpDelaySeconds;
             var speedDown = speedUp + fly.HoldSeconds;
             var query = speedDown + fly.QueryDelaySeconds;
-            bumps.Add(new Bump(exit, entry, speedUp, speedDown, query, entry - (_burnSpeed * (entryTime - query)), fly.MaxErrorMicrosteps, gained));
+            if (_bumpCount == _bumps.Length)
+            {
+                Array.Resize(ref _bumps, Math.Max(8, _bumps.Length * 2));
+            }
+
+            _bumps[_bumpCount++] = new BumpTimes(exit, entry, speedUp, speedDown, query, entry - (_burnSpeed * (entryTime - query)), fly.MaxErrorMicrosteps, gained);
         }
 
-        Bumps = bumps;
         Gained = gained;
     }
 
@@ -51,24 +82,33 @@ public sealed class StrokePlan
     /// when the speed-down arrives (near the end it would already brake towards the target, and the bump would not be
     /// the one planned).
     /// </summary>
-    private static bool WithinDeviceRamp(TimedSwitching timing, long length, long exit, FlyingGap fly)
+    private static bool WithinDeviceRamp(TimedSwitching timing, long length, long exit, in FlownGap gap)
     {
         var a = timing.Acceleration;
         var burn = timing.BurnSpeed;
-        var start = exit + (burn * fly.SpeedUpDelaySeconds);
-        var remaining = length - start;
-        var peak = Math.Min(timing.TravelSpeed, Math.Sqrt((a * remaining) + (burn * burn / 2)));
-        var rise = Math.Min(a * fly.HoldSeconds, timing.TravelSpeed - burn);
-        var ramp = rise / a;
-        var covered = (burn * fly.HoldSeconds) + (0.5 * rise * ramp) + (rise * (fly.HoldSeconds - ramp));
-        return burn + rise <= peak + 1e-9 && covered <= remaining - (peak * peak / (2 * a));
+        var travel = timing.TravelSpeed;
+        var remaining = length - (exit + gap.SpeedUpOffset);
+        var peakSquared = (a * remaining) + (burn * burn / 2);
+
+        // Far from the stroke's end the replanned move reaches the travel speed: no square root is needed to say so
+        // (the margin keeps the rounded root at or above it), and the braking distance is the travel speed's.
+        if (peakSquared >= travel * travel * (1 + 1e-12))
+        {
+            return gap.PeakSpeed <= travel + 1e-9 && gap.Covered <= remaining - (travel * travel / (2 * a));
+        }
+
+        var peak = Math.Min(travel, Math.Sqrt(peakSquared));
+        return gap.PeakSpeed <= peak + 1e-9 && gap.Covered <= remaining - (peak * peak / (2 * a));
     }
 
     /// <summary>The stroke's length, microsteps.</summary>
-    public long Length { get; }
+    public long Length { get; private set; }
 
     /// <summary>The flown gaps, in stroke order.</summary>
-    public IReadOnlyList<Bump> Bumps { get; }
+    public IReadOnlyList<Bump> Bumps => _bumpRecords ??= BumpRecords();
+
+    /// <summary>The flown gaps, in stroke order, as values.</summary>
+    internal ReadOnlySpan<BumpTimes> BumpTimings => _bumps.AsSpan(0, _bumpCount);
 
     /// <summary>From the start to the end of the motion, s.</summary>
     public double Duration => _profile.Duration - (Gained / _burnSpeed);
@@ -76,13 +116,24 @@ public sealed class StrokePlan
     /// <summary>The highest speed the stroke brakes from at its end (the burn speed, or less for a short stroke), microsteps/s.</summary>
     public double PeakSpeed => _profile.PeakSpeed;
 
-    private double Gained { get; }
+    private double Gained { get; set; }
+
+    private Bump[] BumpRecords()
+    {
+        var records = new Bump[_bumpCount];
+        for (var i = 0; i < records.Length; i++)
+        {
+            records[i] = _bumps[i].ToRecord();
+        }
+
+        return records;
+    }
 
     /// <summary>When the stage crosses <paramref name="offset"/> (an edge, or any point outside the bumps), s from the start.</summary>
     public double TimeAt(long offset)
     {
         var gained = 0.0;
-        foreach (var bump in Bumps)
+        foreach (ref readonly var bump in BumpTimings)
         {
             if (offset < bump.Entry)
             {
@@ -133,6 +184,12 @@ public sealed class StrokePlan
     /// <param name="MaxErrorMicrosteps">How far from <paramref name="ExpectedOffset"/> the latencies can put it.</param>
     /// <param name="GainedUpTo">What this bump and those before it gained on the burn speed, microsteps.</param>
     public sealed record Bump(long Exit, long Entry, double SpeedUpArrival, double SpeedDownArrival, double QueryArrival, double ExpectedOffset, double MaxErrorMicrosteps, double GainedUpTo);
+
+    /// <summary>A <see cref="Bump"/> as a value.</summary>
+    internal readonly record struct BumpTimes(long Exit, long Entry, double SpeedUpArrival, double SpeedDownArrival, double QueryArrival, double ExpectedOffset, double MaxErrorMicrosteps, double GainedUpTo)
+    {
+        public Bump ToRecord() => new(Exit, Entry, SpeedUpArrival, SpeedDownArrival, QueryArrival, ExpectedOffset, MaxErrorMicrosteps, GainedUpTo);
+    }
 }
 
 /// <summary>How a gap is flown: the speed bump's timing and what it gains (see <see cref="TimedSwitching.Fly"/>).</summary>
@@ -142,3 +199,21 @@ public sealed class StrokePlan
 /// <param name="GainMicrosteps">Distance gained on the burn speed: the gap is crossed this much sooner, divided by the burn speed.</param>
 /// <param name="MaxErrorMicrosteps">The most the latencies can move the stage from its nominal position after the bump.</param>
 public readonly record struct FlyingGap(double SpeedUpDelaySeconds, double HoldSeconds, double QueryDelaySeconds, double GainMicrosteps, double MaxErrorMicrosteps);
+
+/// <summary>
+/// A gap that can be flown, with what the check against the device's own ramp needs of it (<see cref="StrokePlan"/>),
+/// worked out once per gap length: where the speed-up starts after the exit edge, the speed it rises to, and the
+/// distance covered until the speed-down arrives.
+/// </summary>
+internal readonly record struct FlownGap(FlyingGap Fly, double SpeedUpOffset, double PeakSpeed, double Covered)
+{
+    public static FlownGap Of(TimedSwitching timing, FlyingGap fly)
+    {
+        var a = timing.Acceleration;
+        var burn = timing.BurnSpeed;
+        var rise = Math.Min(a * fly.HoldSeconds, timing.TravelSpeed - burn);
+        var ramp = rise / a;
+        var covered = (burn * fly.HoldSeconds) + (0.5 * rise * ramp) + (rise * (fly.HoldSeconds - ramp));
+        return new FlownGap(fly, burn * fly.SpeedUpDelaySeconds, burn + rise, covered);
+    }
+}

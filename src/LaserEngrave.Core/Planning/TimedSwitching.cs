@@ -35,6 +35,10 @@ public sealed class TimedSwitching
     private readonly double _gateProcessingSeconds;
     private readonly MachineProfile _profile;
 
+    // A plan asks these of every gap; they depend on the gap's length alone.
+    private readonly GapMemo<FlownGap?> _flown;
+    private readonly GapMemo<bool> _crossesGap;
+
     public TimedSwitching(ProcessSettings process, MachineProfile profile, double microstepUm)
     {
         ArgumentNullException.ThrowIfNull(process);
@@ -95,6 +99,8 @@ public sealed class TimedSwitching
         OnWireSeconds = OnCommand.Length * gateByte;
         MinOnSeconds = (2 * EdgeGuardSeconds) + OffWireSeconds + (2 * GateJitterSeconds) + ReactionSeconds;
         MinOffSeconds = OnWireSeconds + (2 * GateJitterSeconds) + ReactionSeconds - (2 * EdgeGuardSeconds);
+        _flown = new GapMemo<FlownGap?>(gap => ComputeFly(gap) is { } fly ? FlownGap.Of(this, fly) : null);
+        _crossesGap = new GapMemo<bool>(gap => CrossSeconds(gap) <= StopGoSeconds(gap));
     }
 
     public double MicrostepUm { get; }
@@ -316,7 +322,7 @@ public sealed class TimedSwitching
     }
 
     /// <summary>Whether a gap between two runs of a row is crossed at the burn speed (faster than stopping and travelling).</summary>
-    public bool CrossesGap(long gapMicrosteps) => CrossSeconds(gapMicrosteps) <= StopGoSeconds(gapMicrosteps);
+    public bool CrossesGap(long gapMicrosteps) => _crossesGap.Get(gapMicrosteps);
 
     /// <summary>Time from one run's exit edge to the next one's entry edge when the gap is crossed without stopping: flown if it can be, else at the burn speed.</summary>
     public double CrossSeconds(long gapMicrosteps) => (gapMicrosteps - (Fly(gapMicrosteps)?.GainMicrosteps ?? 0)) / BurnSpeed;
@@ -343,7 +349,13 @@ public sealed class TimedSwitching
     /// that, and the switchings after it are re-timed, so the edges keep the accuracy of a stroke's start. The gap must hold
     /// <c>v_b (2J + T + query delay + reply and switch-on lead + error / v_b) + A</c>; the longest <c>T</c> that fits is taken.
     /// </remarks>
-    public FlyingGap? Fly(long gapMicrosteps)
+    public FlyingGap? Fly(long gapMicrosteps) => _flown.Get(gapMicrosteps)?.Fly;
+
+    /// <summary><see cref="Fly"/> with what a stroke's check against the device's ramp needs of the gap.</summary>
+    internal FlownGap? Flown(long gapMicrosteps) => _flown.Get(gapMicrosteps);
+
+    /// <summary><see cref="Fly"/> worked out afresh, not remembered (the tests' reference).</summary>
+    internal FlyingGap? ComputeFly(long gapMicrosteps)
     {
         var rise = TravelSpeed - BurnSpeed;
         if (rise <= 0 || gapMicrosteps <= 0)

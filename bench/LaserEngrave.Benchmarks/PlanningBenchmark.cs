@@ -1,0 +1,101 @@
+using BenchmarkDotNet.Attributes;
+using BenchmarkDotNet.Configs;
+using BenchmarkDotNet.Jobs;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Imaging;
+using LaserEngrave.Core.Planning;
+
+namespace LaserEngrave.Benchmarks;
+
+/// <summary>
+/// Plan generation and the estimate of a 20000 x 20000 mask planned as `laserengrave plan MASK --width-mm 50 --origin-mm 5,5`
+/// does it (optimized, timed switching): the rings (13 M moves, every gap flown) and the QR-like mask (460 k moves).
+/// </summary>
+/// <remarks>
+/// <see cref="Moves"/> generates every move; <see cref="Estimate"/> and <see cref="LowerBoundOnly"/> generate them and feed
+/// one consumer, so the difference to <see cref="Moves"/> is that consumer's cost; <see cref="Statistics"/> is the whole
+/// pass `plan` makes. A fresh timing model each time, so that no answer is remembered from the iteration before.
+/// </remarks>
+[Config(typeof(Config))]
+[MemoryDiagnoser]
+public class PlanningBenchmark
+{
+    public const int Side = 20_000;
+
+    private BitMask _mask = null!;
+    private JobGeometry _geometry = null!;
+    private ProcessSettings _process = null!;
+
+    [Params("rings", "qr-like")]
+    public string Mask { get; set; } = "rings";
+
+    [GlobalSetup]
+    public void Setup()
+    {
+        _mask = Mask == "rings" ? RingsMask.Create(Side) : QrLikeMask.Create(Side);
+        _geometry = GeometryResolver.Resolve(SizeSpec.Width(50), Side, Side, new OriginMm(5, 5), MachineProfile.Default).Geometry;
+        _process = ProcessSettings.Default;
+    }
+
+    [Benchmark(Baseline = true)]
+    public long Moves()
+    {
+        var counter = default(MoveCounter);
+        Plan().Visit(ref counter);
+        return counter.Count;
+    }
+
+    [Benchmark]
+    public double Estimate()
+    {
+        var plan = Plan();
+        var estimator = new EstimatingVisitor(new PlanEstimator(_process, PlanStrategy.Optimized, _geometry.MicrostepUm, timing: plan.Timing));
+        plan.Visit(ref estimator);
+        estimator.Estimator.Finish();
+        return estimator.Estimator.ElapsedSeconds;
+    }
+
+    [Benchmark]
+    public double LowerBoundOnly()
+    {
+        var bound = new BoundingVisitor(new LowerBound(_process, _geometry.MicrostepUm));
+        Plan().Visit(ref bound);
+        return bound.Bound.Seconds;
+    }
+
+    [Benchmark]
+    public PlanStatistics Statistics() => Plan().ComputeStatistics(_process);
+
+    private RasterPlan Plan() => new(_mask, _geometry, PlanOptions.Default, 0, TimedSwitching.For(_process, MachineProfile.Default, _geometry.MicrostepUm));
+
+    private struct MoveCounter : IMoveVisitor
+    {
+        public long Count;
+
+        public void Visit(in Move move) => Count++;
+    }
+
+    private struct EstimatingVisitor(PlanEstimator estimator) : IMoveVisitor
+    {
+        public readonly PlanEstimator Estimator = estimator;
+
+        public readonly void Visit(in Move move) => Estimator.Add(move);
+    }
+
+    private struct BoundingVisitor(LowerBound bound) : IMoveVisitor
+    {
+        public LowerBound Bound = bound;
+
+        public void Visit(in Move move) => Bound.Add(move);
+    }
+
+    private sealed class Config : ManualConfig
+    {
+        // A few iterations: one takes a second, and the machine it runs on is shared.
+        public Config()
+        {
+            AddJob(Job.Default.WithLaunchCount(1).WithWarmupCount(2).WithIterationCount(7));
+            AddColumn(new GigapixelsPerSecondColumn((long)Side * Side));
+        }
+    }
+}
