@@ -647,13 +647,13 @@ public sealed partial class JobViewModel : ObservableObject
 
             if (job is not null && JobRules.Check(job) is { } refused)
             {
-                // The engine would refuse this job at preflight: an error beside the field to change, so Start stays disabled.
+                // The command line or the engine would refuse this job: an error beside the field to change, so Start stays disabled.
                 errors[refused.Field] = refused.Message;
             }
 
             if (job is not null)
             {
-                foreach (var warning in job.Warnings.Where(w => w.Kind is not (JobWarningKind.PixelTooShortForTheGate or JobWarningKind.BurstTooLongForTheWatchdog)))
+                foreach (var warning in job.Warnings.Where(w => w.Kind is not (JobWarningKind.PitchBelowMicrostep or JobWarningKind.PixelTooShortForTheGate or JobWarningKind.BurstTooLongForTheWatchdog)))
                 {
                     var field = warning.Kind switch
                     {

@@ -177,8 +177,7 @@ internal sealed class JobOptions
         PreparedJob.RefuseDrawing(image);
         var info = ImageLoader.ReadInfo(image);
         var pitch = GeometryResolver.Resolve(size, info.Width, info.Height, origin, profile).PitchUm;
-        var microstep = Math.Max(profile.X.MicrostepUm, profile.Y.MicrostepUm);
-        if (!(pitch >= microstep))
+        if (JobRules.ResolvedPitch(pitch, MachineLimits.Of(profile)) is { } rule)
         {
             var given = size switch
             {
@@ -188,8 +187,7 @@ internal sealed class JobOptions
                 SizeSpec.ByResolution r => $"--image-dpi ({OptionChecks.N(r.Dpi)} dpi)",
                 _ => size.Describe(),
             };
-            throw new UsageException(
-                $"{given} for {info.Width} x {info.Height} px gives pixels of {OptionChecks.N(pitch)} µm, below one microstep ({OptionChecks.N(microstep)} µm), the smallest step the stage makes; make the job larger");
+            throw new UsageException($"{given} for {info.Width} x {info.Height} px {rule}");
         }
     }
 

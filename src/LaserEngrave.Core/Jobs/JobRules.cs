@@ -97,16 +97,38 @@ public static class JobRules
     }
 
     /// <summary>
-    /// What the planned job itself refuses, as a problem of the field to change: a pixel too short for the laser gate to
-    /// switch (the burn speed), a burst too long for its watchdog (the pulses per dot); null when it can be engraved.
+    /// What the planned job itself refuses, as a problem of the field to change: pixels smaller than a microstep (the size
+    /// field), a pixel too short for the laser gate to switch (the burn speed), a burst too long for its watchdog (the
+    /// pulses per dot); null when it can be engraved.
     /// </summary>
-    /// <remarks>The engine refuses the same job at preflight (<see cref="PreparedJob.EngraveProblem"/>): found here, nothing starts.</remarks>
+    /// <remarks>The command line refuses the first before planning, the engine the others at preflight (<see cref="PreparedJob.EngraveProblem"/>): found here, nothing starts.</remarks>
     public static FieldProblem? Check(PreparedJob job)
     {
         ArgumentNullException.ThrowIfNull(job);
+        var spec = job.Spec;
+        if (ResolvedPitch(job.Geometry.PitchUm, MachineLimits.Of(spec.Profile)) is { } small)
+        {
+            var (field, value) = spec.Size switch
+            {
+                SizeSpec.ByWidth w => (JobField.Width, w.WidthMm),
+                SizeSpec.ByHeight h => (JobField.Height, h.HeightMm),
+                SizeSpec.ByWidthAndHeight b => (JobField.Width, b.WidthMm),
+                _ => (JobField.Pitch, job.Geometry.PitchUm),
+            };
+            return new FieldProblem(field, value, small);
+        }
+
         return job.EngraveProblem is not { } problem ? null
-            : job.Dots is null ? new FieldProblem(JobField.BurnSpeed, job.Spec.Process.BurnSpeedMmPerS, problem)
-            : new FieldProblem(JobField.PulsesPerDot, job.Spec.Process.PulsesPerDot, problem);
+            : job.Dots is null ? new FieldProblem(JobField.BurnSpeed, spec.Process.BurnSpeedMmPerS, problem)
+            : new FieldProblem(JobField.PulsesPerDot, spec.Process.PulsesPerDot, problem);
+    }
+
+    /// <summary>Null when the pitch a size gives (by width, height or resolution) is at least a microstep, the smallest step the stage makes.</summary>
+    public static string? ResolvedPitch(double pitchUm, MachineLimits limits)
+    {
+        ArgumentNullException.ThrowIfNull(limits);
+        return pitchUm >= limits.MicrostepUm ? null
+            : $"gives pixels of {N(pitchUm)} µm, below one microstep ({N(limits.MicrostepUm)} µm), the smallest step the stage makes; make the job larger";
     }
 
     /// <summary>Null when <paramref name="percent"/> is a threshold (the command line's mask command asks it without a machine).</summary>

@@ -457,4 +457,16 @@ public sealed class JobViewModelTests
         Assert.Empty(job.Errors);
         Assert.NotNull(job.Job);
     }
+
+    [Fact]
+    public void Width_GivingPixelsBelowAMicrostep_RefusedAsTheCommandLineRefusesIt()
+    {
+        // Once only a warning here, while the command line refused the same size before planning.
+        var job = Loaded();
+
+        job.EditWidth(0.001);
+
+        Assert.Equal("width 0.001 mm: gives pixels of 0.02439 µm, below one microstep (0.09922 µm), the smallest step the stage makes; make the job larger", job.Errors[JobViewModel.WidthField]);
+        Assert.DoesNotContain("microstep", job.Warnings.GetValueOrDefault(JobViewModel.PitchField) ?? string.Empty, StringComparison.Ordinal);
+    }
 }
