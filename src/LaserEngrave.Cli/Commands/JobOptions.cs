@@ -92,8 +92,14 @@ internal sealed class JobOptions
             Profile = profile,
         };
 
-        // Every value once more together, as the app's fields and a run log are checked.
-        OptionChecks.Refuse(JobSettings.From(spec), limits);
+        // Every value once more together, as the app's fields and a run log are checked; a pitch from the image's resolution is named by it.
+        if (JobRules.Check(JobSettings.From(spec), limits).FirstOrDefault() is { } problem)
+        {
+            throw new UsageException(problem.Field == JobField.Pitch && size is SizeSpec.ByResolution r
+                ? $"--image-dpi ({OptionChecks.N(r.Dpi)} dpi) gives pixels of {problem.ValueText} µm: {problem.Rule}"
+                : OptionChecks.Describe(problem));
+        }
+
         return spec;
     }
 
