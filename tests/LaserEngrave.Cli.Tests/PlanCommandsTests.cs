@@ -135,4 +135,38 @@ public class PlanCommandsTests
             Assert.Contains("Usage:", output, StringComparison.Ordinal);
         }
     }
+
+    [Fact]
+    public async Task Plan_DotPitchZero_OneDotAPixelAsTheAppAndTheLogsTakeIt()
+    {
+        // Once refused here ("must be 1.."), while the app's field and a run log took 0 as one dot at each pixel's centre.
+        var qr = Path.Combine(CliHarness.RepositoryRoot, "assets", "qr-code.bmp");
+
+        var (exit, _, error) = await CliHarness.RunAsync("plan", qr, "--width-mm", "5", "--mode", "dots", "--dot-pitch-microsteps", "0");
+
+        Assert.True(exit == 0, error);
+    }
+
+    [Fact]
+    public async Task Plan_BurnSpeedAboveTheSlowerAxis_RefusedInTheJobRulesWords()
+    {
+        var qr = Path.Combine(CliHarness.RepositoryRoot, "assets", "qr-code.bmp");
+        var profile = CliHarness.TempFile(".json");
+        new Core.Geometry.MachineProfile
+        {
+            Y = new Core.Geometry.AxisProfile { DeviceNumber = 2, MaxSpeedMmPerS = 2 },
+            TravelSpeedMmPerS = 2,
+        }.Save(profile);
+        try
+        {
+            var (exit, _, error) = await CliHarness.RunAsync("plan", qr, "--width-mm", "5", "--profile", profile, "--speed-mm-s", "3");
+
+            Assert.Equal(2, exit);
+            Assert.Contains("--speed-mm-s 3: outside what the stage takes, 0.00093..2 mm/s (the profile's maxSpeedMmPerS)", error, StringComparison.Ordinal);
+        }
+        finally
+        {
+            File.Delete(profile);
+        }
+    }
 }

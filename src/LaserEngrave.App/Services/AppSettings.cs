@@ -1,3 +1,4 @@
+using LaserEngrave.Core.Jobs;
 namespace LaserEngrave.App.Services;
 
 /// <summary>What the app keeps between starts.</summary>

@@ -1,3 +1,4 @@
+using LaserEngrave.Core.Jobs;
 namespace LaserEngrave.App.Services;
 
 /// <summary>

@@ -1,4 +1,5 @@
 using System.Text.Json;
+using LaserEngrave.Core.Jobs;
 
 namespace LaserEngrave.App.Services;
 

@@ -19,34 +19,25 @@ public sealed partial class JobViewModel : ObservableObject
 {
     /// <summary>Field names the page places messages beside.</summary>
     public const string ImageField = "image";
-    public const string WidthField = "widthMm";
-    public const string HeightField = "heightMm";
-    public const string PitchField = "pitchUm";
+    public const string WidthField = JobField.Width;
+    public const string HeightField = JobField.Height;
+    public const string PitchField = JobField.Pitch;
     public const string OriginField = "origin";
-    public const string FrequencyField = "laserFrequencyHz";
-    public const string BurnSpeedField = "burnSpeedMmPerS";
-    public const string TravelSpeedField = "travelSpeedMmPerS";
-    public const string AccelerationField = "accelerationMmPerS2";
-    public const string OverscanField = "overscanMm";
-    public const string PassesField = "passes";
-    public const string ThresholdField = "thresholdPercent";
-    public const string PulsesPerDotField = "pulsesPerDot";
-    public const string DotPitchField = "dotPitchMicrosteps";
-    public const string DotSettleField = "dotSettleMs";
+    public const string FrequencyField = JobField.Frequency;
+    public const string BurnSpeedField = JobField.BurnSpeed;
+    public const string TravelSpeedField = JobField.TravelSpeed;
+    public const string AccelerationField = JobField.Acceleration;
+    public const string OverscanField = JobField.Overscan;
+    public const string PassesField = JobField.Passes;
+    public const string ThresholdField = JobField.Threshold;
+    public const string PulsesPerDotField = JobField.PulsesPerDot;
+    public const string DotPitchField = JobField.DotPitch;
+    public const string DotSettleField = JobField.DotSettle;
     public const string PulsesField = "pulses";
-    public const string PulseEnergyField = "pulseEnergyUj";
-    public const string ToleranceField = "toleranceUm";
-    public const string FillPitchField = "fillPitchUm";
+    public const string PulseEnergyField = JobField.PulseEnergy;
+    public const string ToleranceField = JobField.Tolerance;
+    public const string FillPitchField = JobField.FillPitch;
     public const string DrawingLayerField = "drawingLayer";
-
-    /// <summary>The most pulses a dot may get: the gate's burst range.</summary>
-    public const int MaxPulsesPerDot = 1_000_000;
-
-    /// <summary>The largest pixel pitch offered, µm (a 1 mm pixel).</summary>
-    public const double MaxPitchUm = 1000;
-
-    /// <summary>The laser gate's highest burst frequency, Hz.</summary>
-    public const double MaxLaserFrequencyHz = 100_000;
 
     private static readonly HashSet<string> MaskInputs = [nameof(ThresholdPercent), nameof(Dither), nameof(Invert)];
 
@@ -654,9 +645,15 @@ public sealed partial class JobViewModel : ObservableObject
                 }
             }
 
+            if (job is not null && JobRules.Check(job) is { } refused)
+            {
+                // The command line or the engine would refuse this job: an error beside the field to change, so Start stays disabled.
+                errors[refused.Field] = refused.Message;
+            }
+
             if (job is not null)
             {
-                foreach (var warning in job.Warnings)
+                foreach (var warning in job.Warnings.Where(w => w.Kind is not (JobWarningKind.PitchBelowMicrostep or JobWarningKind.PixelTooShortForTheGate or JobWarningKind.BurstTooLongForTheWatchdog)))
                 {
                     var field = warning.Kind switch
                     {
@@ -713,17 +710,6 @@ public sealed partial class JobViewModel : ObservableObject
         lock (_lock)
         {
             var errors = FieldErrors();
-            errors.Remove(PitchField);
-            errors.Remove(HeightField);
-            if (VectorOptions.ToleranceProblem(ToleranceUm) is { } tolerance)
-            {
-                errors[ToleranceField] = tolerance;
-            }
-
-            if (VectorOptions.FillPitchProblem(FillPitchUm) is { } pitch)
-            {
-                errors[FillPitchField] = pitch;
-            }
 
             var warnings = new Dictionary<string, string>();
             PreparedDrawing? drawing = null;
@@ -839,108 +825,18 @@ public sealed partial class JobViewModel : ObservableObject
         _ => WidthField,
     };
 
-    /// <summary>Each process value checked on its own, so its message stands beside it.</summary>
+    /// <summary>Each value checked by the job rules (the command line's and the files' too), so its message stands beside its field.</summary>
     private Dictionary<string, string> FieldErrors()
     {
         var errors = new Dictionary<string, string>();
-        Positive(LaserFrequencyHz, FrequencyField, "laser frequency", "Hz", 1);
-        Positive(BurnSpeedMmPerS, BurnSpeedField, "burn speed", "mm/s", double.Epsilon);
-        Positive(TravelSpeedMmPerS, TravelSpeedField, "travel speed", "mm/s", double.Epsilon);
-        Positive(AccelerationMmPerS2, AccelerationField, "acceleration", "mm/s²", double.Epsilon);
-        if (BurnSpeedMmPerS > _profile.X.MaxSpeedMmPerS)
+        foreach (var problem in JobRules.Check(ToSettings(), MachineLimits.Of(_profile)))
         {
-            errors[BurnSpeedField] = $"burn speed {N(BurnSpeedMmPerS)} mm/s is above the stage's {N(_profile.X.MaxSpeedMmPerS)} mm/s";
-        }
-
-        if (TravelSpeedMmPerS > _profile.X.MaxSpeedMmPerS)
-        {
-            errors[TravelSpeedField] = $"travel speed {N(TravelSpeedMmPerS)} mm/s is above the stage's {N(_profile.X.MaxSpeedMmPerS)} mm/s";
-        }
-
-        // The machine's limits, so a typo (1e9 mm) is refused where it is typed, not planned into a job of years.
-        var travelXMm = _profile.X.TravelMm;
-        var travelYMm = _profile.Y.TravelMm;
-        if (SizeMode is SizeMode.Width or SizeMode.WidthAndHeight)
-        {
-            Within(WidthMm, WidthField, "width", "mm", travelXMm, "the stage's X travel");
-        }
-
-        if (SizeMode is SizeMode.Height or SizeMode.WidthAndHeight)
-        {
-            Within(HeightMm, HeightField, "height", "mm", travelYMm, "the stage's Y travel");
-        }
-
-        if (SizeMode == SizeMode.Pitch)
-        {
-            Within(PitchUm, PitchField, "pixel pitch", "µm", MaxPitchUm, "the largest pitch");
-        }
-
-        if (!(OriginXMm >= 0 && OriginXMm <= travelXMm) || !(OriginYMm >= 0 && OriginYMm <= travelYMm))
-        {
-            errors[OriginField] = $"origin {N(OriginXMm)}, {N(OriginYMm)} mm must lie on the stage (0 to {N(travelXMm)} × 0 to {N(travelYMm)} mm)";
-        }
-
-        if (AccelerationMmPerS2 > _profile.X.MaxAccelerationMmPerS2)
-        {
-            errors[AccelerationField] = $"acceleration {N(AccelerationMmPerS2)} mm/s² is above the stage's {N(_profile.X.MaxAccelerationMmPerS2)} mm/s²";
-        }
-
-        if (LaserFrequencyHz > MaxLaserFrequencyHz)
-        {
-            errors[FrequencyField] = $"laser frequency {N(LaserFrequencyHz)} Hz is above the gate's {N(MaxLaserFrequencyHz)} Hz";
-        }
-
-        if (!(OverscanMm >= 0) || double.IsInfinity(OverscanMm))
-        {
-            errors[OverscanField] = $"overscan {N(OverscanMm)} mm must be 0 or more";
-        }
-
-        if (Passes is < 1 or > 100)
-        {
-            errors[PassesField] = $"passes {Passes} must be 1 to 100";
-        }
-
-        if (!(PulseEnergyUj >= 0) || double.IsInfinity(PulseEnergyUj))
-        {
-            errors[PulseEnergyField] = $"pulse energy {N(PulseEnergyUj)} µJ must be 0 (not known) or more";
-        }
-
-        if (Mode == PlanMode.Dots)
-        {
-            if (PulsesPerDot is < 1 or > MaxPulsesPerDot)
-            {
-                errors[PulsesPerDotField] = $"pulses per dot {PulsesPerDot} must be 1 to {MaxPulsesPerDot}";
-            }
-
-            var travel = Math.Min(_profile.X.TravelMicrosteps, _profile.Y.TravelMicrosteps);
-            if (DotPitchMicrosteps < 0 || DotPitchMicrosteps > travel)
-            {
-                errors[DotPitchField] = $"dot pitch {DotPitchMicrosteps} microsteps must be 0 (every pixel) to {travel}";
-            }
-
-            if (!(DotSettleMs >= 0 && DotSettleMs <= 60_000))
-            {
-                errors[DotSettleField] = $"settle time {N(DotSettleMs)} ms must be 0 to 60000 ms";
-            }
+            // The page has one origin field for both coordinates.
+            var field = problem.Field is JobField.OriginX or JobField.OriginY ? OriginField : problem.Field;
+            errors[field] = errors.TryGetValue(field, out var before) ? before + "; " + problem.Message : problem.Message;
         }
 
         return errors;
-
-        void Within(double value, string field, string what, string unit, double most, string limit)
-        {
-            if (!(value > 0) || value > most)
-            {
-                errors[field] = $"{what} {N(value)} {unit} must be above 0 and at most {N(most)} {unit} ({limit})";
-            }
-        }
-
-        void Positive(double value, string field, string what, string unit, double least)
-        {
-            if (!(value >= least) || double.IsInfinity(value))
-            {
-                errors[field] = least >= 1 ? $"{what} {N(value)} {unit} must be at least {N(least)} {unit}" : $"{what} {N(value)} {unit} must be above 0";
-            }
-        }
     }
 
     private void SetErrors(Dictionary<string, string> errors) => Errors = errors;

@@ -1,6 +1,7 @@
 using CommunityToolkit.Mvvm.ComponentModel;
 using CommunityToolkit.Mvvm.Input;
 using LaserEngrave.App.Services;
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 
 namespace LaserEngrave.App.ViewModels;

@@ -4,6 +4,7 @@ using CommunityToolkit.Mvvm.Input;
 using LaserEngrave.App.Services;
 using LaserEngrave.Core.Calibration;
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
 
 namespace LaserEngrave.App.ViewModels;

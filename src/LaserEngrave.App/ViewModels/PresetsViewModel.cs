@@ -2,6 +2,7 @@ using System.Text.Json;
 using CommunityToolkit.Mvvm.ComponentModel;
 using CommunityToolkit.Mvvm.Input;
 using LaserEngrave.App.Services;
+using LaserEngrave.Core.Jobs;
 
 namespace LaserEngrave.App.ViewModels;
 
@@ -70,6 +71,13 @@ public sealed partial class PresetsViewModel : ObservableObject
 
         Error = null;
         PitchOffer = null;
+        if (Refusal(preset) is { } refused)
+        {
+            // The job rules answer as they do for the fields: a preset the machine cannot run changes nothing.
+            Error = refused;
+            return;
+        }
+
         try
         {
             _job.Batch(() =>
@@ -183,9 +191,20 @@ public sealed partial class PresetsViewModel : ObservableObject
             return false;
         }
 
+        if (imported.Select(Refusal).FirstOrDefault(r => r is not null) is { } refused)
+        {
+            Error = $"not imported: {refused}";
+            return false;
+        }
+
         var names = imported.Select(p => p.Name).ToHashSet();
         return Store([.. Presets.Where(p => !names.Contains(p.Name)), .. imported]);
     }
+
+    /// <summary>What the job rules refuse in <paramref name="preset"/> on this machine, one line naming the preset; null when nothing.</summary>
+    private string? Refusal(ProcessPreset preset) => preset.Check(Core.Geometry.MachineLimits.Of(_job.Profile)) is [_, ..] problems
+        ? $"preset \"{preset.Name}\": {string.Join("; ", problems.Select(p => p.Message))}"
+        : null;
 
     private bool Store(IReadOnlyList<ProcessPreset> presets)
     {

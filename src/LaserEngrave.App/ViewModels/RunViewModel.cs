@@ -137,12 +137,12 @@ public sealed partial class RunViewModel : ObservableObject
 
     /// <summary>
     /// Whether <see cref="StartCommand"/> would run: nothing holds the machine (the interlock decides first), a planned job
-    /// with something to burn inside the travel, a machine.
+    /// with something to burn inside the travel and no field the job rules refuse, a machine.
     /// </summary>
     public bool CanStart => !_machine.Activity.IsBusy && !IsActive
         && (RunsLayers
             ? _layers!.Job is { FitsTravel: true } && _layers.Error is null
-            : _job.Job is { Geometry.FitsTravel: true, Statistics.BurnRuns: > 0 } || _job.Drawing is { FitsTravel: true, Schedule.Strokes.Count: > 0 })
+            : _job.Errors.Count == 0 && (_job.Job is { Geometry.FitsTravel: true, Statistics.BurnRuns: > 0 } || _job.Drawing is { FitsTravel: true, Schedule.Strokes.Count: > 0 }))
         && _machine.Connection is not null;
 
     /// <summary>Whether Start runs the job of layers (the Layers view has some) rather than the single job.</summary>

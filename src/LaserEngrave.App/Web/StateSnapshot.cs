@@ -1,5 +1,6 @@
-using LaserEngrave.Core.Logging;
 using LaserEngrave.App.ViewModels;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Logging;
 
 namespace LaserEngrave.App.Web;
 

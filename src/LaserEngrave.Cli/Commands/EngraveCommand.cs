@@ -56,7 +56,10 @@ internal static class EngraveCommand
 
         OptionChecks.InRange(burnedScale, 1, MaxBurnedScale, "--burned-scale", " image pixels a job pixel", "to look at a small job's burned.png");
         var passes = result.GetValue(o.Passes);
-        OptionChecks.InRange(passes, 1, JobSpec.MaxPasses, "--passes", string.Empty, "burns of the plan over the same place");
+        if (passes is { } n && JobRules.Passes(n) is { } rule)
+        {
+            throw new UsageException($"--passes {n}: {rule}");
+        }
 
         PreparedJob? prepared = null;
         PreparedDrawing? drawing = null;

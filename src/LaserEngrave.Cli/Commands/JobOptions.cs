@@ -78,11 +78,10 @@ internal sealed class JobOptions
         var limits = MachineLimits.Of(profile);
         var process = BindProcess(result, profile);
         var origin = ParseOrigin(result.GetValue(OriginMm));
-        OptionChecks.WithinTravel(origin.X, limits.TravelXMm, "--origin-mm", "X");
-        OptionChecks.WithinTravel(origin.Y, limits.TravelYMm, "--origin-mm", "Y");
-        var size = BindSize(result, image, profile);
+        OptionChecks.Refuse(JobSettings.From(process) with { OriginXMm = origin.X, OriginYMm = origin.Y }, limits, JobField.OriginX, JobField.OriginY);
+        var size = BindSize(result, image, limits);
         RefusePitchBelowMicrostep(size, image, origin, profile);
-        return new JobSpec
+        var spec = new JobSpec
         {
             ImagePath = image,
             Mask = Mask.Bind(result),
@@ -92,6 +91,16 @@ internal sealed class JobOptions
             Process = process,
             Profile = profile,
         };
+
+        // Every value once more together, as the app's fields and a run log are checked; a pitch from the image's resolution is named by it.
+        if (JobRules.Check(JobSettings.From(spec), limits).FirstOrDefault() is { } problem)
+        {
+            throw new UsageException(problem.Field == JobField.Pitch && size is SizeSpec.ByResolution r
+                ? $"--image-dpi ({OptionChecks.N(r.Dpi)} dpi) gives pixels of {problem.ValueText} µm: {problem.Rule}"
+                : OptionChecks.Describe(problem));
+        }
+
+        return spec;
     }
 
     /// <summary>The machine profile the options name (the default one without --profile).</summary>
@@ -101,15 +110,15 @@ internal sealed class JobOptions
     /// <summary>Speeds, acceleration, frequency and the dot-mode values, each checked against the profile's limits.</summary>
     public ProcessSettings BindProcess(ParseResult result, MachineProfile profile)
     {
-        var limits = MachineLimits.Of(profile);
-        var process = ProcessSettings.FromProfile(profile) with
+        var process = BindDots(result, ProcessSettings.FromProfile(profile) with
         {
-            BurnSpeedMmPerS = Speed(result.GetValue(SpeedMmS), "--speed-mm-s", limits) ?? profile.BurnSpeedMmPerS,
-            TravelSpeedMmPerS = Speed(result.GetValue(TravelSpeedMmS), "--travel-speed-mm-s", limits) ?? profile.TravelSpeedMmPerS,
-            AccelerationMmPerS2 = Acceleration(result.GetValue(AccelerationMmS2), limits) ?? profile.AccelerationMmPerS2,
-            LaserFrequencyHz = Frequency(result.GetValue(FrequencyHz), limits) ?? profile.LaserFrequencyHz,
-        };
-        return BindDots(result, process, profile);
+            BurnSpeedMmPerS = result.GetValue(SpeedMmS) ?? profile.BurnSpeedMmPerS,
+            TravelSpeedMmPerS = result.GetValue(TravelSpeedMmS) ?? profile.TravelSpeedMmPerS,
+            AccelerationMmPerS2 = result.GetValue(AccelerationMmS2) ?? profile.AccelerationMmPerS2,
+            LaserFrequencyHz = result.GetValue(FrequencyHz) ?? profile.LaserFrequencyHz,
+        });
+        OptionChecks.Refuse(JobSettings.From(process), MachineLimits.Of(profile), OptionChecks.ProcessFields);
+        return process;
     }
 
     /// <summary>Adds the process options (not the image, size or mask ones) to a command that makes its own jobs.</summary>
@@ -144,17 +153,19 @@ internal sealed class JobOptions
         }
 
         var width = result.GetValue(WidthMm);
-        if (width is { } w && !(w > 0 && double.IsFinite(w)))
-        {
-            throw new UsageException($"--width-mm {OptionChecks.N(w)}: must be above 0");
-        }
-
         var profile = BindProfile(result);
-        var limits = MachineLimits.Of(profile);
         var process = BindProcess(result, profile);
         var origin = ParseOrigin(result.GetValue(OriginMm));
-        OptionChecks.WithinTravel(origin.X, limits.TravelXMm, "--origin-mm", "X");
-        OptionChecks.WithinTravel(origin.Y, limits.TravelYMm, "--origin-mm", "Y");
+        OptionChecks.Refuse(
+            JobSettings.From(process) with
+            {
+                ImagePath = drawing,
+                SizeMode = width is null ? SizeMode.Height : SizeMode.Width,
+                WidthMm = width ?? 0,
+                OriginXMm = origin.X,
+                OriginYMm = origin.Y,
+            },
+            MachineLimits.Of(profile));
         var spec = new JobSpec
         {
             ImagePath = drawing,
@@ -172,8 +183,7 @@ internal sealed class JobOptions
         PreparedJob.RefuseDrawing(image);
         var info = ImageLoader.ReadInfo(image);
         var pitch = GeometryResolver.Resolve(size, info.Width, info.Height, origin, profile).PitchUm;
-        var microstep = Math.Max(profile.X.MicrostepUm, profile.Y.MicrostepUm);
-        if (!(pitch >= microstep))
+        if (JobRules.ResolvedPitch(pitch, MachineLimits.Of(profile)) is { } rule)
         {
             var given = size switch
             {
@@ -183,8 +193,7 @@ internal sealed class JobOptions
                 SizeSpec.ByResolution r => $"--image-dpi ({OptionChecks.N(r.Dpi)} dpi)",
                 _ => size.Describe(),
             };
-            throw new UsageException(
-                $"{given} for {info.Width} x {info.Height} px gives pixels of {OptionChecks.N(pitch)} µm, below one microstep ({OptionChecks.N(microstep)} µm), the smallest step the stage makes; make the job larger");
+            throw new UsageException($"{given} for {info.Width} x {info.Height} px {rule}");
         }
     }
 
@@ -197,7 +206,7 @@ internal sealed class JobOptions
         }.Where(option => OptionChecks.IsGiven(result, option)).Select(option => option.Name);
 
     /// <summary>The dot-mode options; refused with one line when out of range or given without <c>--mode dots</c>.</summary>
-    private ProcessSettings BindDots(ParseResult result, ProcessSettings process, MachineProfile profile)
+    private ProcessSettings BindDots(ParseResult result, ProcessSettings process)
     {
         var mode = ParseMode(result.GetValue(Mode));
         var pulses = result.GetValue(PulsesPerDot);
@@ -209,27 +218,8 @@ internal sealed class JobOptions
             return stray is null ? process : throw new UsageException($"{stray.Name} applies to --mode dots only");
         }
 
-        if (pulses is { } n && n is < 1 or > MaxPulsesPerDot)
-        {
-            throw new UsageException($"--pulses-per-dot {n}: must be 1..{MaxPulsesPerDot}");
-        }
-
-        var travel = Math.Min(profile.X.TravelMicrosteps, profile.Y.TravelMicrosteps);
-        if (pitch is { } k && (k < 1 || k > travel))
-        {
-            throw new UsageException($"--dot-pitch-microsteps {k}: must be 1..{travel} (the travel), or left out for one dot a pixel");
-        }
-
-        if (settle is { } ms && !(ms >= 0 && ms <= 60_000))
-        {
-            throw new UsageException($"--dot-settle-ms {OptionChecks.N(ms)}: must be 0..60000 ms");
-        }
-
         return process with { Mode = PlanMode.Dots, PulsesPerDot = pulses ?? 1, DotPitchMicrosteps = pitch ?? 0, DotSettleMs = settle ?? 0 };
     }
-
-    /// <summary>The most pulses a dot may get: the gate's burst range.</summary>
-    internal const int MaxPulsesPerDot = 1_000_000;
 
     internal static PlanMode ParseMode(string? text) => text?.Trim().ToLowerInvariant() switch
     {
@@ -238,22 +228,7 @@ internal sealed class JobOptions
         _ => throw new UsageException($"--mode {text}: use raster or dots"),
     };
 
-    private static double? Speed(double? value, string name, MachineLimits limits) =>
-        value is { } v && !limits.SpeedAllowed(v)
-            ? throw new UsageException($"{name} {OptionChecks.N(v)}: outside what the stage takes, {limits.SpeedRange} (the profile's maxSpeedMmPerS)")
-            : value;
-
-    private static double? Acceleration(double? value, MachineLimits limits) =>
-        value is { } v && !limits.AccelerationAllowed(v)
-            ? throw new UsageException($"--acceleration-mm-s2 {OptionChecks.N(v)}: outside what the stage takes, {limits.AccelerationRange} (the profile's maxAccelerationMmPerS2)")
-            : value;
-
-    private static double? Frequency(double? value, MachineLimits limits) =>
-        value is { } v && !limits.FrequencyAllowed(v)
-            ? throw new UsageException($"--frequency-hz {OptionChecks.N(v)}: outside what the laser gate takes, 1..{limits.MaxFrequencyHz} Hz (the profile's gate.maxFrequencyHz)")
-            : value;
-
-    private SizeSpec BindSize(ParseResult result, string image, MachineProfile profile)
+    private SizeSpec BindSize(ParseResult result, string image, MachineLimits limits)
     {
         var width = result.GetValue(WidthMm);
         var height = result.GetValue(HeightMm);
@@ -270,15 +245,15 @@ internal sealed class JobOptions
             throw new UsageException("give the size one way only: --width-mm/--height-mm, --pitch-um or --image-dpi");
         }
 
-        Positive(width, "--width-mm");
-        Positive(height, "--height-mm");
-        Positive(pitch, "--pitch-um");
-        OptionChecks.AtMost(width, profile.X.TravelMm, "--width-mm", "mm, the X travel");
-        OptionChecks.AtMost(height, profile.Y.TravelMm, "--height-mm", "mm, the Y travel");
-        OptionChecks.AtMost(pitch, Math.Min(profile.X.TravelMm, profile.Y.TravelMm) * 1000, "--pitch-um", "µm, the travel");
-        if (pitch is { } p && p < Math.Max(profile.X.MicrostepUm, profile.Y.MicrostepUm))
+        // Each size given, before the image is read for its resolution.
+        OptionChecks.Refuse(
+            new JobSettings { SizeMode = SizeMode.WidthAndHeight, WidthMm = width ?? 1, HeightMm = height ?? 1 },
+            limits,
+            JobField.Width,
+            JobField.Height);
+        if (pitch is { } p)
         {
-            throw new UsageException($"--pitch-um {OptionChecks.N(p)}: below one microstep ({OptionChecks.N(Math.Max(profile.X.MicrostepUm, profile.Y.MicrostepUm))} µm), the smallest step the stage makes");
+            OptionChecks.Refuse(new JobSettings { SizeMode = SizeMode.Pitch, PitchUm = p }, limits, JobField.Pitch);
         }
 
         if (dpi)
@@ -312,10 +287,7 @@ internal sealed class JobOptions
         }
 
         var overscan = result.GetValue(OverscanMm);
-        if (!(overscan >= 0 && overscan <= limits.TravelXMm))
-        {
-            throw new UsageException($"--overscan-mm {OptionChecks.N(overscan)}: must be 0..{OptionChecks.N(limits.TravelXMm)} mm (the X travel)");
-        }
+        OptionChecks.Refuse(new JobSettings { OverscanMm = overscan }, limits, JobField.Overscan);
 
         return new PlanOptions { Strategy = strategy, Bidirectional = !result.GetValue(Unidirectional), OverscanMm = overscan };
     }
@@ -330,14 +302,6 @@ internal sealed class JobOptions
         return NumberText.TryParsePair(text, out var x, out var y, out var problem)
             ? new OriginMm(x, y)
             : throw new UsageException($"--origin-mm {text}: {problem}");
-    }
-
-    private static void Positive(double? value, string name)
-    {
-        if (value is { } v && !(v > 0 && double.IsFinite(v)))
-        {
-            throw new UsageException($"{name} {OptionChecks.N(v)}: must be a finite number above 0");
-        }
     }
 }
 
@@ -368,9 +332,9 @@ internal sealed class MaskOptionSet
     public MaskOptions Bind(ParseResult result)
     {
         var threshold = result.GetValue(Threshold) ?? 50;
-        if (!(threshold >= 0 && threshold <= 100))
+        if (JobRules.Threshold(threshold) is { } rule)
         {
-            throw new UsageException($"--threshold {threshold.ToString(CultureInfo.InvariantCulture)}: must be between 0 and 100");
+            throw new UsageException($"--threshold {threshold.ToString(CultureInfo.InvariantCulture)}: {rule}");
         }
 
         return new MaskOptions { ThresholdPercent = threshold, Dither = ParseDither(result.GetValue(Dither)), Invert = result.GetValue(Invert) };

@@ -1,5 +1,7 @@
 using System.CommandLine;
 using System.Globalization;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
 
 namespace LaserEngrave.Cli.Commands;
 
@@ -8,6 +10,55 @@ internal static class OptionChecks
 {
     /// <summary>Whether <paramref name="option"/> was typed on the command line (not just its default).</summary>
     public static bool IsGiven(ParseResult result, Option option) => result.GetResult(option) is { Implicit: false };
+
+    /// <summary>The fields the process options set (speeds, acceleration, frequency and the dot values).</summary>
+    public static readonly string[] ProcessFields =
+    [
+        JobField.Frequency, JobField.BurnSpeed, JobField.TravelSpeed, JobField.Acceleration, JobField.PulseEnergy,
+        JobField.PulsesPerDot, JobField.DotPitch, JobField.DotSettle,
+    ];
+
+    /// <summary>
+    /// Refuses the first value the job rules (<see cref="JobRules.Check(JobSettings, MachineLimits)"/>, the app's and the
+    /// files' too) refuse, naming its option; only <paramref name="fields"/> are asked when given.
+    /// </summary>
+    public static void Refuse(JobSettings settings, MachineLimits limits, params string[] fields)
+    {
+        var problem = JobRules.Check(settings, limits).FirstOrDefault(p => fields.Length == 0 || fields.Contains(p.Field));
+        if (problem is not null)
+        {
+            throw new UsageException(Describe(problem));
+        }
+    }
+
+    /// <summary>A job rule's problem in the command line's words: the option and the value as typed.</summary>
+    public static string Describe(FieldProblem problem) => problem.Field switch
+    {
+        JobField.OriginX => $"--origin-mm: X {problem.ValueText} mm is {problem.Rule}",
+        JobField.OriginY => $"--origin-mm: Y {problem.ValueText} mm is {problem.Rule}",
+        _ => problem.MessageFor(OptionName(problem.Field)),
+    };
+
+    /// <summary>The option that sets a job field.</summary>
+    public static string OptionName(string field) => field switch
+    {
+        JobField.Threshold => "--threshold",
+        JobField.Width => "--width-mm",
+        JobField.Height => "--height-mm",
+        JobField.Pitch => "--pitch-um",
+        JobField.Frequency => "--frequency-hz",
+        JobField.BurnSpeed => "--speed-mm-s",
+        JobField.TravelSpeed => "--travel-speed-mm-s",
+        JobField.Acceleration => "--acceleration-mm-s2",
+        JobField.Overscan => "--overscan-mm",
+        JobField.Passes => "--passes",
+        JobField.PulsesPerDot => "--pulses-per-dot",
+        JobField.DotPitch => "--dot-pitch-microsteps",
+        JobField.DotSettle => "--dot-settle-ms",
+        JobField.Tolerance => "--tolerance-um",
+        JobField.FillPitch => "--fill-pitch-um",
+        _ => field,
+    };
 
     /// <summary>Refuses a position outside 0..<paramref name="travelMm"/>, NaN included.</summary>
     public static void WithinTravel(double mm, double travelMm, string name, string axis)

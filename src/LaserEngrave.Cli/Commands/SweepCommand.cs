@@ -279,8 +279,7 @@ internal static class SweepCommand
             // Through the image loader every engraving uses: one line naming the file when it cannot be read.
             var cellImage = cellImagePath is null ? null : Core.Imaging.MaskBuilder.FromFile(cellImagePath, Core.Imaging.MaskOptions.Default, out _);
             var origin = result.GetValue(OriginMm) is { } text ? JobOptions.ParseOrigin(text) : new Core.Geometry.OriginMm(1, 1);
-            OptionChecks.WithinTravel(origin.X, limits.TravelXMm, "--origin-mm", "X");
-            OptionChecks.WithinTravel(origin.Y, limits.TravelYMm, "--origin-mm", "Y");
+            OptionChecks.Refuse(new Core.Jobs.JobSettings { OriginXMm = origin.X, OriginYMm = origin.Y }, limits, Core.Jobs.JobField.OriginX, Core.Jobs.JobField.OriginY);
             return new SweepSpec
             {
                 Pattern = pattern,

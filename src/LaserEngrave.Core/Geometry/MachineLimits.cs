@@ -24,7 +24,7 @@ public sealed record MachineLimits(
     {
         ArgumentNullException.ThrowIfNull(profile);
         var coarse = Math.Max(profile.X.MicrostepUm, profile.Y.MicrostepUm);
-        return new MachineLimits(
+        var limits = new MachineLimits(
             StageUnits.MicrostepsToMm(StageUnits.SpeedUnitMicrostepsPerS, coarse),
             Math.Min(profile.X.MaxSpeedMmPerS, profile.Y.MaxSpeedMmPerS),
             StageUnits.MicrostepsToMm(StageUnits.AccelerationUnitMicrostepsPerS2, coarse),
@@ -33,7 +33,22 @@ public sealed record MachineLimits(
             profile.MaxFrameFrequencyHz,
             profile.X.TravelMm,
             profile.Y.TravelMm);
+        return limits with
+        {
+            MicrostepUm = coarse,
+            TravelXMicrosteps = profile.X.TravelMicrosteps,
+            TravelYMicrosteps = profile.Y.TravelMicrosteps,
+        };
     }
+
+    /// <summary>The coarser axis' microstep, µm: the smallest step the stage makes on both axes, so the smallest pixel pitch.</summary>
+    public double MicrostepUm { get; init; }
+
+    /// <summary>X travel in whole microsteps.</summary>
+    public long TravelXMicrosteps { get; init; }
+
+    /// <summary>Y travel in whole microsteps.</summary>
+    public long TravelYMicrosteps { get; init; }
 
     /// <summary>The speed range, for messages: "0.00093..4 mm/s".</summary>
     public string SpeedRange => $"{Text.N(MinSpeedMmPerS)}..{Text.N(MaxSpeedMmPerS)} mm/s";

@@ -222,22 +222,6 @@ public static class MachineProfileValidator
         }
     }
 
-    /// <summary>
-    /// Null when a job's process settings are within <paramref name="profile"/>'s limits (a run repeated from a log brings
-    /// its own); otherwise what is out of range.
-    /// </summary>
-    public static string? ProcessProblem(MachineProfile profile, Planning.ProcessSettings process)
-    {
-        ArgumentNullException.ThrowIfNull(profile);
-        ArgumentNullException.ThrowIfNull(process);
-        var limits = MachineLimits.Of(profile);
-        return !limits.SpeedAllowed(process.BurnSpeedMmPerS) ? $"burn speed {N(process.BurnSpeedMmPerS)} mm/s is outside {limits.SpeedRange}"
-            : !limits.SpeedAllowed(process.TravelSpeedMmPerS) ? $"travel speed {N(process.TravelSpeedMmPerS)} mm/s is outside {limits.SpeedRange}"
-            : !limits.AccelerationAllowed(process.AccelerationMmPerS2) ? $"acceleration {N(process.AccelerationMmPerS2)} mm/s² is outside {limits.AccelerationRange}"
-            : !limits.FrequencyAllowed(process.LaserFrequencyHz) ? $"laser frequency {N(process.LaserFrequencyHz)} Hz is outside 1..{limits.MaxFrequencyHz} Hz"
-            : null;
-    }
-
     /// <summary>One line for a profile the JSON reader refused: the field (from the JSON path) and what is wrong there.</summary>
     public static string DescribeJsonError(JsonException ex)
     {

@@ -166,7 +166,9 @@ public static class JobFile
             }
             : Vectors.DrawingReader.IsDrawing(source) ? LayerMode.Outline : LayerMode.Raster;
         var passes = Number(element, "passes", where) is { } p
-            ? p == Math.Floor(p) && p is >= 1 and <= JobSpec.MaxPasses ? (int)p : throw new PlanException($"{where}: passes {N(p)} must be a whole number 1..{JobSpec.MaxPasses}")
+            ? p != Math.Floor(p) ? throw new PlanException($"{where}: passes {N(p)} must be a whole number 1..{JobSpec.MaxPasses}")
+            : JobRules.Passes((int)Math.Clamp(p, int.MinValue, int.MaxValue)) is { } rule ? throw new PlanException($"{where}: passes {N(p)}: {rule}")
+            : (int)p
             : 1;
         return new JobLayer
         {
@@ -188,7 +190,7 @@ public static class JobFile
     private static Imaging.MaskOptions Mask(JsonElement element, string where)
     {
         var threshold = Number(element, "thresholdPercent", where) is { } t
-            ? t is >= 0 and <= 100 ? t : throw new PlanException($"{where}: thresholdPercent {N(t)} must be 0..100")
+            ? JobRules.Threshold(t) is { } rule ? throw new PlanException($"{where}: thresholdPercent {N(t)}: {rule}") : t
             : Imaging.MaskOptions.Default.ThresholdPercent;
         var ditherText = String(element, "dither", where);
         var dither = Imaging.DitherNames.Parse(ditherText, out var unknown);

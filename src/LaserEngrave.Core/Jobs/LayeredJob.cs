@@ -48,6 +48,16 @@ public sealed class LayeredJob
         return new LayeredJob(prepared);
     }
 
+    /// <summary>Where a job field stands in a job file's layer.</summary>
+    private static string FileField(string field) => field switch
+    {
+        JobField.BurnSpeed => "speedMmPerS",
+        JobField.Frequency => "frequencyHz",
+        JobField.OriginX => "originMm X",
+        JobField.OriginY => "originMm Y",
+        _ => field,
+    };
+
     private static PreparedLayer PrepareLayer(JobLayer layer, MachineProfile profile)
     {
         var drawing = DrawingReader.IsDrawing(layer.Source);
@@ -58,30 +68,30 @@ public sealed class LayeredJob
                 : $"{layer.Source} is an image: its mode is raster, not {layer.Mode.ToString().ToLowerInvariant()}");
         }
 
-        if (layer.Passes is < 1 or > JobSpec.MaxPasses)
-        {
-            throw new PlanException(string.Create(CultureInfo.InvariantCulture, $"passes {layer.Passes} must be 1..{JobSpec.MaxPasses}"));
-        }
-
-        var limits = MachineLimits.Of(profile);
-        if (!(layer.Origin.X >= 0 && layer.Origin.Y >= 0 && layer.Origin.X <= limits.TravelXMm && layer.Origin.Y <= limits.TravelYMm))
-        {
-            throw new PlanException(string.Create(CultureInfo.InvariantCulture, $"originMm {layer.Origin.X:G6}, {layer.Origin.Y:G6} must be within the travel 0..{limits.TravelXMm:G6}, 0..{limits.TravelYMm:G6} mm"));
-        }
-
-        if (layer.WidthMm is { } widthMm && !(widthMm > 0 && widthMm <= limits.TravelXMm))
-        {
-            throw new PlanException(string.Create(CultureInfo.InvariantCulture, $"widthMm {widthMm:G6} must be above 0 and at most {limits.TravelXMm:G6} mm, the X travel"));
-        }
-
         var process = ProcessSettings.FromProfile(profile) with
         {
             BurnSpeedMmPerS = layer.SpeedMmPerS ?? profile.BurnSpeedMmPerS,
             LaserFrequencyHz = layer.FrequencyHz ?? profile.LaserFrequencyHz,
         };
-        if (MachineProfileValidator.ProcessProblem(profile, process) is { } problem)
+
+        // The job's own rules, as the command line and the app apply them; only the names are the job file's.
+        var settings = JobSettings.From(process) with
         {
-            throw new PlanException(problem);
+            ImagePath = layer.Source,
+            ThresholdPercent = layer.Mask.ThresholdPercent,
+            Dither = layer.Mask.Dither,
+            Invert = layer.Mask.Invert,
+            SizeMode = layer.WidthMm is null ? SizeMode.Height : SizeMode.Width,
+            WidthMm = layer.WidthMm ?? 0,
+            OriginXMm = layer.Origin.X,
+            OriginYMm = layer.Origin.Y,
+            Passes = layer.Passes,
+            ToleranceUm = layer.ToleranceUm ?? VectorOptions.Default.ToleranceUm,
+            FillPitchUm = layer.FillPitchUm ?? VectorOptions.Default.FillPitchUm,
+        };
+        if (JobRules.Check(settings, MachineLimits.Of(profile)) is [var problem, ..])
+        {
+            throw new PlanException(problem.MessageFor(FileField(problem.Field)));
         }
 
         if (!drawing)
@@ -91,9 +101,9 @@ public sealed class LayeredJob
                 throw new PlanException("drawingLayer, toleranceUm and fillPitchUm are for drawings");
             }
 
-            if (!(layer.Mask.ThresholdPercent is >= 0 and <= 100) || !Enum.IsDefined(layer.Mask.Dither))
+            if (!Enum.IsDefined(layer.Mask.Dither))
             {
-                throw new PlanException(string.Create(CultureInfo.InvariantCulture, $"thresholdPercent {layer.Mask.ThresholdPercent} must be 0..100 (and dither one of the known)"));
+                throw new PlanException($"dither {layer.Mask.Dither} is not one of the known");
             }
 
             var width = layer.WidthMm ?? throw new PlanException($"{layer.Source}: an image layer needs widthMm");

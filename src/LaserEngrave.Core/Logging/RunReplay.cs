@@ -68,7 +68,52 @@ public static class RunReplay
             return $"profile.{first}";
         }
 
-        var limits = MachineLimits.Of(record.Profile);
+        var plan = record.Plan;
+        if (!Enum.IsDefined(plan.Strategy))
+        {
+            return $"plan.strategy {plan.Strategy} is not known (paper or optimized)";
+        }
+
+        if (!Enum.IsDefined(record.Mask.Dither))
+        {
+            return $"mask.dither {record.Mask.Dither} is not one of the known";
+        }
+
+        if (record.Geometry.Size is not { } size)
+        {
+            return "geometry.size is missing (null)";
+        }
+
+        SizeSpec asked;
+        try
+        {
+            asked = size.ToSizeSpec();
+        }
+        catch (RunLogException ex)
+        {
+            return $"geometry.size: {ex.Message}";
+        }
+
+        // The job's own rules, as the command line and the app apply them; only the names are the log's.
+        var settings = JobSettings.From(new JobSpec
+        {
+            ImagePath = record.Image.Path,
+            Mask = record.Mask,
+            Size = asked,
+            Origin = new OriginMm(record.Geometry.OriginXMm, record.Geometry.OriginYMm),
+            Plan = plan,
+            Process = record.Process,
+            Passes = record.Passes,
+        });
+        // The dot values are checked in raster mode too: the repeated job carries them as logged.
+        if (JobRules.Check(settings with { Mode = Planning.PlanMode.Dots }, MachineLimits.Of(record.Profile)) is [var problem, ..])
+        {
+            return problem.Field == JobField.Pitch && size.PitchUm is null && size.Dpi is { } resolution
+                ? $"geometry.size.dpi {N(resolution)} gives pixels of {problem.ValueText} µm: {problem.Rule}"
+                : problem.MessageFor(LogField(problem.Field));
+        }
+
+        // What the rules do not ask (the baud rates, a mode by number) before the process is used.
         try
         {
             record.Process.Validate();
@@ -78,71 +123,19 @@ public static class RunReplay
             return $"process: {ex.Message}";
         }
 
-        if (MachineProfileValidator.ProcessProblem(record.Profile, record.Process) is { } process)
-        {
-            return $"process: {process}";
-        }
-
-        var travelMicrosteps = Math.Min(record.Profile.X.TravelMicrosteps, record.Profile.Y.TravelMicrosteps);
-        var dots = record.Process;
-        if (dots.PulsesPerDot is < 1 or > MaxPulsesPerDot || !(dots.DotSettleMs is >= 0 and <= MaxDotSettleMs) || dots.DotPitchMicrosteps < 0 || dots.DotPitchMicrosteps > travelMicrosteps)
-        {
-            return $"process: pulsesPerDot {dots.PulsesPerDot}, dotSettleMs {N(dots.DotSettleMs)}, dotPitchMicrosteps {dots.DotPitchMicrosteps} must be 1..{MaxPulsesPerDot}, 0..{MaxDotSettleMs} ms and 0..{travelMicrosteps}";
-        }
-
-        var plan = record.Plan;
-        if (!Enum.IsDefined(plan.Strategy))
-        {
-            return $"plan.strategy {plan.Strategy} is not known (paper or optimized)";
-        }
-
-        if (!(plan.OverscanMm >= 0 && plan.OverscanMm <= limits.TravelXMm))
-        {
-            return $"plan.overscanMm {N(plan.OverscanMm)} must be 0..{N(limits.TravelXMm)} mm (the X travel)";
-        }
-
-        var mask = record.Mask;
-        if (!(mask.ThresholdPercent is >= 0 and <= 100) || !Enum.IsDefined(mask.Dither))
-        {
-            return $"mask.thresholdPercent {N(mask.ThresholdPercent)} must be 0..100 and mask.dither one of the known";
-        }
-
-        var geometry = record.Geometry;
-        if (!(geometry.OriginXMm >= 0 && geometry.OriginXMm <= limits.TravelXMm) || !(geometry.OriginYMm >= 0 && geometry.OriginYMm <= limits.TravelYMm))
-        {
-            return $"geometry.originXMm, originYMm {N(geometry.OriginXMm)}, {N(geometry.OriginYMm)} must be within the travel 0..{N(limits.TravelXMm)}, 0..{N(limits.TravelYMm)} mm";
-        }
-
-        if (geometry.Size is not { } size)
-        {
-            return "geometry.size is missing (null)";
-        }
-
-        var sizes = new (string Field, double? Value, double Max)[]
-        {
-            ("widthMm", size.WidthMm, limits.TravelXMm), ("heightMm", size.HeightMm, limits.TravelYMm),
-            ("pitchUm", size.PitchUm, Math.Min(limits.TravelXMm, limits.TravelYMm) * 1000), ("dpi", size.Dpi, MaxDpi),
-        };
-        if (sizes.FirstOrDefault(v => v.Value is { } x && !(x > 0 && x <= v.Max)) is { Field: { } field } bad)
-        {
-            return $"geometry.size.{field} {N(bad.Value!.Value)} must be above 0 and at most {N(bad.Max)}";
-        }
-
-        if (record.Passes is < 1 or > JobSpec.MaxPasses)
-        {
-            return $"passes {record.Passes} must be 1..{JobSpec.MaxPasses}";
-        }
-
         return record.StoppedAt is { } stop ? StopProblem(stop, record.Profile) : null;
     }
 
-    /// <summary>The most pulses a dot may get: the gate's burst range (the command line's --pulses-per-dot).</summary>
-    public const int MaxPulsesPerDot = 1_000_000;
-
-    /// <summary>The longest settle time at a dot, ms (the command line's --dot-settle-ms).</summary>
-    public const double MaxDotSettleMs = 60_000;
-
-    private const double MaxDpi = 1_000_000;
+    /// <summary>Where a job field stands in a run log.</summary>
+    private static string LogField(string field) => field switch
+    {
+        JobField.Threshold => "mask.thresholdPercent",
+        JobField.Width or JobField.Height or JobField.Pitch => $"geometry.size.{field}",
+        JobField.OriginX or JobField.OriginY => $"geometry.{field}",
+        JobField.Overscan => "plan.overscanMm",
+        JobField.Passes => "passes",
+        _ => $"process.{field}",
+    };
 
     private static string? StopProblem(RunStopPoint stop, Geometry.MachineProfile profile)
     {

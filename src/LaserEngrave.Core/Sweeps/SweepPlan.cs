@@ -361,9 +361,23 @@ public sealed class SweepPlan
             CheckPitch(spec.PitchUm, "--pitch-um");
         }
 
-        if (spec.Passes is < 1 or > JobSpec.MaxPasses)
+        if (JobRules.Passes(spec.Passes) is { } passes)
         {
-            throw new SweepException($"--passes {spec.Passes}: must be 1..{JobSpec.MaxPasses}");
+            throw new SweepException($"--passes {spec.Passes}: {passes}");
+        }
+
+        // The base of every cell meets the job rules (the command line and the app check it so before; a spec built otherwise is checked here).
+        var basis = JobSettings.From(spec.Process, spec.Plan) with
+        {
+            OriginXMm = spec.Origin.X,
+            OriginYMm = spec.Origin.Y,
+            Passes = spec.Passes,
+            SizeMode = SizeMode.Pitch,
+            PitchUm = spec.Pattern == SweepPattern.Image ? microstepUm : spec.PitchUm,
+        };
+        if (JobRules.Check(basis, limits) is [var wrong, ..])
+        {
+            throw new SweepException(wrong.Message);
         }
 
         if (spec.Columns is { } columns && columns.Parameter == spec.Rows.Parameter)
@@ -391,14 +405,19 @@ public sealed class SweepPlan
 
             foreach (var value in axis.Values)
             {
-                var problem = axis.Parameter switch
+                var cell = axis.Parameter switch
                 {
-                    SweepParameter.Speed when !limits.SpeedAllowed(value) => $"outside what the stage takes, {limits.SpeedRange}",
-                    SweepParameter.Frequency when !limits.FrequencyAllowed(value) => $"outside what the laser gate takes, 1..{limits.MaxFrequencyHz} Hz",
-                    SweepParameter.Passes when value is < 1 or > JobSpec.MaxPasses => $"must be 1..{JobSpec.MaxPasses}",
-                    SweepParameter.PulsesPerDot when value is < 1 or > 1_000_000 => "must be 1..1000000",
+                    SweepParameter.Speed => basis with { BurnSpeedMmPerS = value },
+                    SweepParameter.Frequency => basis with { LaserFrequencyHz = value },
+                    SweepParameter.Passes => basis with { Passes = (int)Math.Clamp(value, int.MinValue, int.MaxValue) },
+                    SweepParameter.PulsesPerDot => basis with { PulsesPerDot = (int)Math.Clamp(value, int.MinValue, int.MaxValue), Mode = PlanMode.Dots },
+                    SweepParameter.Pitch => basis with { PitchUm = value },
+                    _ => basis,
+                };
+                var problem = JobRules.Check(cell, limits).FirstOrDefault()?.Rule ?? axis.Parameter switch
+                {
                     SweepParameter.PulsesPerDot when spec.Process.Mode != PlanMode.Dots => "pulses per dot are swept in dot mode only: add --mode dots",
-                    SweepParameter.Pitch when !(value >= microstepUm && value <= spec.CellMm * 1000) => $"must be {N(microstepUm)} µm (a microstep) .. {N(spec.CellMm * 1000)} µm (the cell)",
+                    SweepParameter.Pitch when !(value <= spec.CellMm * 1000) => $"must be {N(microstepUm)} µm (a microstep) .. {N(spec.CellMm * 1000)} µm (the cell)",
                     SweepParameter.Focus when spec.Profile.Z is null => "the machine has no Z axis: add a \"z\" section to the machine profile (docs/machine-profile.md) to sweep the focus",
                     SweepParameter.Focus when spec.Profile.Z.OffsetProblem(value) is { } outside => outside,
                     _ => null,

@@ -30,11 +30,21 @@ public sealed record VectorOptions
 
     /// <summary>Why a chord tolerance cannot be used, one line; null when it can (the command line and the app ask the same).</summary>
     public static string? ToleranceProblem(double toleranceUm) =>
-        toleranceUm is >= 0.01 and <= 1000 ? null : $"chord tolerance {Text(toleranceUm)} µm must be between 0.01 and 1000 µm";
+        ToleranceAllowed(toleranceUm) ? null : $"chord tolerance {Text(toleranceUm)} µm {ToleranceRule}";
 
     /// <summary>Why a fill pitch cannot be used, one line; null when it can.</summary>
     public static string? FillPitchProblem(double fillPitchUm) =>
-        fillPitchUm is >= 0.1 and <= 10_000 ? null : $"fill pitch {Text(fillPitchUm)} µm must be between 0.1 and 10000 µm";
+        FillPitchAllowed(fillPitchUm) ? null : $"fill pitch {Text(fillPitchUm)} µm {FillPitchRule}";
+
+    /// <summary>The chord tolerance's range, as the job rules say it.</summary>
+    public const string ToleranceRule = "must be between 0.01 and 1000 µm";
+
+    /// <summary>The fill pitch's range, as the job rules say it.</summary>
+    public const string FillPitchRule = "must be between 0.1 and 10000 µm";
+
+    public static bool ToleranceAllowed(double toleranceUm) => toleranceUm is >= 0.01 and <= 1000;
+
+    public static bool FillPitchAllowed(double fillPitchUm) => fillPitchUm is >= 0.1 and <= 10_000;
 
     /// <summary>Throws a <see cref="GeometryException"/> naming the first unusable value.</summary>
     public void Validate()

@@ -3,6 +3,7 @@ using LaserEngrave.App.Services;
 using LaserEngrave.App.Tests.ViewModels;
 using LaserEngrave.App.ViewModels;
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using Microsoft.AspNetCore.Components;
 using Microsoft.Extensions.DependencyInjection;

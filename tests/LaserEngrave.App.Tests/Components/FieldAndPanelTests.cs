@@ -118,7 +118,7 @@ public sealed class ImagePanelTests : ComponentTest
 
         cut.Find($"#{JobViewModel.ToleranceField}").Change("0");
 
-        cut.WaitForAssertion(() => Assert.Contains("chord tolerance 0 µm must be between", cut.Find($"[data-error={JobViewModel.ToleranceField}]").TextContent, StringComparison.Ordinal));
+        cut.WaitForAssertion(() => Assert.Contains("chord tolerance 0 µm: must be between", cut.Find($"[data-error={JobViewModel.ToleranceField}]").TextContent, StringComparison.Ordinal));
         Assert.Null(Main.Job.Drawing);
     }
 
@@ -152,7 +152,7 @@ public sealed class SizePanelTests : ComponentTest
     [Theory]
     [InlineData("widthMm", "1e9", "at most 60 mm")]
     [InlineData("widthMm", "0", "above 0")]
-    [InlineData("pitchUm", "5000", "at most 1000 µm")]
+    [InlineData("pitchUm", "1e9", "at most 60000 µm, the travel")]
     public void Size_BeyondTheMachine_RefusedBesideTheField(string field, string value, string expected)
     {
         OpenQr();
@@ -172,7 +172,7 @@ public sealed class SizePanelTests : ComponentTest
 
         cut.Find("#originXMm").Change("-3");
 
-        cut.WaitForAssertion(() => Assert.Contains("must lie on the stage", cut.Find("[data-error=origin]").TextContent, StringComparison.Ordinal));
+        cut.WaitForAssertion(() => Assert.Contains("origin X -3 mm: outside the travel 0..60 mm", cut.Find("[data-error=origin]").TextContent, StringComparison.Ordinal));
     }
 }
 
@@ -186,7 +186,7 @@ public sealed class ProcessPanelTests : ComponentTest
 
         cut.Find("#burnSpeedMmPerS").Change("10");
 
-        cut.WaitForAssertion(() => Assert.Contains("above the stage's 4 mm/s", cut.Find("[data-error=burnSpeedMmPerS]").TextContent, StringComparison.Ordinal));
+        cut.WaitForAssertion(() => Assert.Contains("burn speed 10 mm/s: outside what the stage takes, 0.00093..4 mm/s", cut.Find("[data-error=burnSpeedMmPerS]").TextContent, StringComparison.Ordinal));
         Assert.Empty(cut.FindAll("#estimate"));
     }
 
@@ -233,7 +233,7 @@ public sealed class ProcessPanelTests : ComponentTest
 
         cut.Find("#pulsesPerDot").Change("0");
 
-        cut.WaitForAssertion(() => Assert.Contains("pulses per dot 0 must be 1", cut.Find("[data-error=pulsesPerDot]").TextContent, StringComparison.Ordinal));
+        cut.WaitForAssertion(() => Assert.Contains("pulses per dot 0: must be 1..1000000", cut.Find("[data-error=pulsesPerDot]").TextContent, StringComparison.Ordinal));
         Assert.Null(Main.Job.Job);
     }
 

@@ -32,7 +32,7 @@ public sealed class LayersPanelTests : ComponentTest
 
         cut.Find("#layer-3-passes").Change("101");
 
-        cut.WaitForAssertion(() => Assert.Equal("layer \"cut\": passes 101 must be 1..100", cut.Find("[data-error=layer-3]").TextContent));
+        cut.WaitForAssertion(() => Assert.Equal("layer \"cut\": passes 101: must be 1..100 (burns of the plan over the same place)", cut.Find("[data-error=layer-3]").TextContent));
         Assert.Empty(cut.FindAll("#layer-3-estimate"));
         Assert.Contains("a layer cannot run", cut.Find("#layers-error").TextContent, StringComparison.Ordinal);
         Assert.False(Main.Run.CanStart);

@@ -1,6 +1,7 @@
 using Bunit;
 using LaserEngrave.App.Components.Workspace;
 using LaserEngrave.App.Services;
+using LaserEngrave.Core.Jobs;
 using NSubstitute;
 
 namespace LaserEngrave.App.Tests.Components;
@@ -97,8 +98,42 @@ public sealed class PresetsPanelTests : ComponentTest
 
         Assert.Equal(3, Presets.Presets.Count);
         Assert.False(Presets.Import("""[{"name":"x","passes":0}]"""));
-        cut.WaitForAssertion(() => Assert.Contains("out of range", cut.Find("#preset-error").TextContent, StringComparison.Ordinal));
+        cut.WaitForAssertion(() => Assert.Contains("not imported: preset \"x\": passes 0: must be 1..100", cut.Find("#preset-error").TextContent, StringComparison.Ordinal));
         Assert.Equal(3, Presets.Presets.Count);
         Assert.StartsWith("data:application/json;base64,", cut.Find("#preset-export").GetAttribute("href"), StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task Apply_Seed001WithItsPitch_BurnSpeedRefusedBesideItsFieldAndStartDisabled()
+    {
+        // Seed 001's preset at its 20 µm pitch makes 10 ms pixels, too short for the gate: the engine refuses the job, so
+        // the fields say so before Start (which once stayed enabled until the run failed).
+        OpenQr(widthMm: 10);
+        await ConnectAsync();
+        Assert.True(Main.Run.CanStart);
+        var cut = RenderPanel();
+        var process = Render<ProcessPanel>(p => p.Add(c => c.Job, Main.Job));
+        cut.Find("#preset").Change(ProcessPreset.Examples[1].Name);
+        cut.Find("#preset-apply").Click();
+
+        cut.Find("#preset-pitch-apply").Click();
+
+        process.WaitForAssertion(() => Assert.Contains("burn speed 2 mm/s: a pixel of 19.94 µm lasts 10 ms at the burn speed, shorter than", process.Find("[data-error=burnSpeedMmPerS]").TextContent, StringComparison.Ordinal));
+        Assert.False(Main.Run.CanStart);
+        Assert.False(Main.Run.StartCommand.CanExecute(null));
+
+        Main.Job.BurnSpeedMmPerS = 1.5;
+
+        Assert.Empty(Main.Job.Errors);
+        Assert.True(Main.Run.CanStart);
+    }
+
+    [Fact]
+    public void Apply_PresetAboveTheMachine_RefusedByTheJobRulesNothingChanged()
+    {
+        // A preset once passed with any frequency of 1 Hz or more; the fields then refused it. Now the preset is refused as the fields would.
+        Presets.Import("""[{"name":"hot","laserFrequencyHz":200000}]""");
+        Assert.Contains("laser frequency 200000 Hz: outside what the laser gate takes, 1..100000 Hz", Presets.Error, StringComparison.Ordinal);
+        Assert.DoesNotContain(Presets.Presets, p => p.Name == "hot");
     }
 }

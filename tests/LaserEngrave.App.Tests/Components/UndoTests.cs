@@ -1,4 +1,5 @@
 using LaserEngrave.App.Services;
+using LaserEngrave.Core.Jobs;
 
 namespace LaserEngrave.App.Tests.Components;
 

@@ -2,8 +2,9 @@ using LaserEngrave.App.Services;
 using LaserEngrave.App.ViewModels;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
-using NSubstitute;
+using LaserEngrave.Core.Jobs;
 using NSubstitute.ExceptionExtensions;
+using NSubstitute;
 
 namespace LaserEngrave.App.Tests.ViewModels;
 
@@ -94,8 +95,8 @@ public sealed class JobViewModelTests
     }
 
     [Theory]
-    [InlineData(JobViewModel.ToleranceField, 0.001, "chord tolerance 0.001 µm must be between 0.01 and 1000 µm")]
-    [InlineData(JobViewModel.FillPitchField, 0, "fill pitch 0 µm must be between 0.1 and 10000 µm")]
+    [InlineData(JobViewModel.ToleranceField, 0.001, "chord tolerance 0.001 µm: must be between 0.01 and 1000 µm")]
+    [InlineData(JobViewModel.FillPitchField, 0, "fill pitch 0 µm: must be between 0.1 and 10000 µm")]
     public void DrawingOption_OutOfRange_FieldSaysWhyAndNothingIsPlanned(string field, double value, string message)
     {
         var job = Drawing("hexagons.dxf");
@@ -407,5 +408,65 @@ public sealed class JobViewModelTests
 
         Assert.Single(images.Decoded);
         Assert.NotNull(job.Image);
+    }
+
+    /// <summary>A stage whose Y axis is slower and gentler than X, on a gate that takes at most 500 Hz.</summary>
+    private static readonly MachineProfile SlowY = new()
+    {
+        Y = new AxisProfile { DeviceNumber = 2, MaxSpeedMmPerS = 2, MaxAccelerationMmPerS2 = 100 },
+        Gate = new LaserGateProfile { MaxFrequencyHz = 500 },
+        LaserFrequencyHz = 400,
+        TravelSpeedMmPerS = 2,
+    };
+
+    [Theory]
+    [InlineData(nameof(JobViewModel.BurnSpeedMmPerS), 3, JobViewModel.BurnSpeedField)]
+    [InlineData(nameof(JobViewModel.BurnSpeedMmPerS), 1e-9, JobViewModel.BurnSpeedField)]
+    [InlineData(nameof(JobViewModel.LaserFrequencyHz), 1000, JobViewModel.FrequencyField)]
+    [InlineData(nameof(JobViewModel.AccelerationMmPerS2), 150, JobViewModel.AccelerationField)]
+    [InlineData(nameof(JobViewModel.OverscanMm), 100, JobViewModel.OverscanField)]
+    [InlineData(nameof(JobViewModel.PitchUm), 0.05, JobViewModel.PitchField)]
+    public void Field_ValueTheCommandLineRefuses_RefusedBesideItNow(string property, double value, string field)
+    {
+        // Each once passed the app's own checks (X's speed alone, a fixed 100 kHz, any overscan or pitch above 0) while the command line refused it.
+        var job = new JobViewModel(new ImageService(), SlowY);
+        Assert.True(job.LoadImage(TestFiles.Asset("qr-code.bmp")));
+        Assert.Empty(job.Errors);
+
+        if (property == nameof(JobViewModel.PitchUm))
+        {
+            job.EditPitch(value);
+        }
+        else
+        {
+            typeof(JobViewModel).GetProperty(property)!.SetValue(job, value);
+        }
+
+        Assert.Equal(JobRules.Check(job.ToSettings(), MachineLimits.Of(SlowY)).Single().Message, job.Errors[field]);
+        Assert.Null(job.Job);
+    }
+
+    [Fact]
+    public void Pitch_AboveAMillimetre_PlannedAsTheCommandLineDoes()
+    {
+        // The app once refused a pitch above 1000 µm that the command line and the run logs took.
+        var job = Loaded();
+
+        job.EditPitch(1400);
+
+        Assert.Empty(job.Errors);
+        Assert.NotNull(job.Job);
+    }
+
+    [Fact]
+    public void Width_GivingPixelsBelowAMicrostep_RefusedAsTheCommandLineRefusesIt()
+    {
+        // Once only a warning here, while the command line refused the same size before planning.
+        var job = Loaded();
+
+        job.EditWidth(0.001);
+
+        Assert.Equal("width 0.001 mm: gives pixels of 0.02439 µm, below one microstep (0.09922 µm), the smallest step the stage makes; make the job larger", job.Errors[JobViewModel.WidthField]);
+        Assert.DoesNotContain("microstep", job.Warnings.GetValueOrDefault(JobViewModel.PitchField) ?? string.Empty, StringComparison.Ordinal);
     }
 }

@@ -115,7 +115,7 @@ public sealed class LayersViewModelTests : IDisposable
 
         _layers.Update(1, _layers.Layers[1] with { Passes = 0 });
 
-        Assert.Equal("layer \"logo\": passes 0 must be 1..100", _layers.Error);
+        Assert.Equal("layer \"logo\": passes 0: must be 1..100 (burns of the plan over the same place)", _layers.Error);
         Assert.Equal(1, _layers.ErrorLayer);
         Assert.Null(_layers.Job);
         Assert.Null(_layers.EstimatedSeconds);

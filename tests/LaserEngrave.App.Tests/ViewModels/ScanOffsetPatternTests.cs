@@ -1,6 +1,7 @@
 using LaserEngrave.App.Services;
 using LaserEngrave.App.ViewModels;
 using LaserEngrave.Core.Imaging;
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
 using NSubstitute;
 

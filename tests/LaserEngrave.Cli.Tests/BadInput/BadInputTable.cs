@@ -154,7 +154,7 @@ public static class BadInputTable
             ("--dot-pitch-microsteps applies to --mode dots only", ["--width-mm", "1", "--mode", "raster", "--dot-pitch-microsteps", "100"]),
             ("--pulses-per-dot 0: must be 1..1000000", ["--width-mm", "1", "--mode", "dots", "--pulses-per-dot", "0"]),
             ("--pulses-per-dot -3: must be 1..1000000", ["--width-mm", "1", "--mode", "dots", "--pulses-per-dot", "-3"]),
-            ("--dot-pitch-microsteps 0: must be 1..", ["--width-mm", "1", "--mode", "dots", "--dot-pitch-microsteps", "0"]),
+            ("--dot-pitch-microsteps -1: must be 0 (one dot at each pixel's centre) to", ["--width-mm", "1", "--mode", "dots", "--dot-pitch-microsteps", "-1"]),
             ("--dot-settle-ms NaN: is not a number", ["--width-mm", "1", "--mode", "dots", "--dot-settle-ms", "NaN"]),
             ("--dot-settle-ms -1: must be 0..60000 ms", ["--width-mm", "1", "--mode", "dots", "--dot-settle-ms", "-1"]),
             ("contradict each other", ["--width-mm", "1", "--bidirectional", "--unidirectional"]),
@@ -283,7 +283,7 @@ public static class BadInputTable
         Add("is a folder", "engrave", "--from-log", "@dir", "--simulate", "--log-dir", "@logdir");
         Add("@text", "engrave", "--from-log", "@text", "--simulate", "--log-dir", "@logdir");
         Add("gate.watchdogMs must be 50..60000 ms", "engrave", "--from-log", "@log-watchdog-0", "--simulate", "--log-dir", "@logdir");
-        Add("@log-fast: process: burn speed 100 mm/s is outside 0.00093..4 mm/s", "engrave", "--from-log", "@log-fast", "--simulate", "--log-dir", "@logdir");
+        Add("@log-fast: process.burnSpeedMmPerS 100: outside what the stage takes, 0.00093..4 mm/s", "engrave", "--from-log", "@log-fast", "--simulate", "--log-dir", "@logdir");
 
         // frame: the laser is on around the whole frame at --visible-hz, so the profile caps it.
         string[] frame = ["frame", "@qr", "--width-mm", "1", "--simulate"];

@@ -84,22 +84,22 @@ public static class ValuesByWhatTheyAre
         // Run logs: every value a repeat or a resume takes is checked as the command line's would be, naming the field.
         foreach (var (name, fragment) in new[]
         {
-            ("overscan-1e308", "@log:overscan-1e308: plan.overscanMm 1E+308 must be 0..60 mm (the X travel)"),
-            ("overscan-negative", "plan.overscanMm -1 must be 0..60 mm"),
+            ("overscan-1e308", "@log:overscan-1e308: plan.overscanMm 1E+308: must be 0..60 mm (the X travel)"),
+            ("overscan-negative", "plan.overscanMm -1: must be 0..60 mm"),
             ("overscan-text", "plan.overscanMm has a value of the wrong type"),
-            ("passes-1000", "passes 1000 must be 1..100"),
-            ("passes-0", "passes 0 must be 1..100"),
+            ("passes-1000", "passes 1000: must be 1..100"),
+            ("passes-0", "passes 0: must be 1..100"),
             ("plan-null", "plan must not be null"),
             ("process-null", "process must not be null"),
             ("image-missing", "a required field is missing: 'image'"),
-            ("threshold-500", "mask.thresholdPercent 500 must be 0..100"),
-            ("origin-negative", "geometry.originXMm, originYMm -5, 0 must be within the travel"),
-            ("origin-1e308", "must be within the travel"),
-            ("width-0", "geometry.size.widthMm 0 must be above 0"),
-            ("width-huge", "geometry.size.widthMm 1E+09 must be above 0 and at most 60"),
-            ("pulses-0", "process: pulses per dot 0 must be 1 or more"),
-            ("settle-huge", "dotSettleMs 1E+12"),
-            ("speed-1e308", "process: burn speed 1E+308 mm/s is outside"),
+            ("threshold-500", "mask.thresholdPercent 500: must be between 0 and 100"),
+            ("origin-negative", "geometry.originXMm -5: outside the travel 0..60 mm"),
+            ("origin-1e308", "geometry.originYMm 1E+308: outside the travel"),
+            ("width-0", "geometry.size.widthMm 0: must be a finite number above 0"),
+            ("width-huge", "geometry.size.widthMm 1E+09: at most 60 mm, the X travel"),
+            ("pulses-0", "process.pulsesPerDot 0: must be 1..1000000"),
+            ("settle-huge", "process.dotSettleMs 1E+12: must be 0..60000 ms"),
+            ("speed-1e308", "process.burnSpeedMmPerS 1E+308: outside what the stage takes"),
             ("strategy-unknown", "plan.strategy has a value of the wrong type"),
             ("profile-off-reply-null", "profile.gate.offReply must not be null"),
         })
@@ -129,9 +129,9 @@ public static class ValuesByWhatTheyAre
         // Job files: each layer's values against the machine, the file named.
         add("@f:layers-2000.json: 2000 layers, more than the 1000 a job file may have", ["plan", "--job", "@f:layers-2000.json"]);
         add("@f:layer-width-1e400.json: layer 1 \"layer 1\": widthMm Infinity must be a finite number above 0", ["plan", "--job", "@f:layer-width-1e400.json"]);
-        add("@f:layer-width-1e308.json: layer \"layer 1\": widthMm 1E+308 must be above 0 and at most 60 mm", ["plan", "--job", "@f:layer-width-1e308.json"]);
-        add("@f:layer-origin-1e308.json: layer \"layer 1\": originMm 1E+308, 0 must be within the travel", ["plan", "--job", "@f:layer-origin-1e308.json"]);
-        add("@f:layer-speed-1e308.json: layer \"layer 1\": burn speed 1E+308 mm/s is outside", ["plan", "--job", "@f:layer-speed-1e308.json"]);
+        add("@f:layer-width-1e308.json: layer \"layer 1\": widthMm 1E+308: at most 60 mm, the X travel", ["plan", "--job", "@f:layer-width-1e308.json"]);
+        add("@f:layer-origin-1e308.json: layer \"layer 1\": originMm X 1E+308: outside the travel 0..60 mm", ["plan", "--job", "@f:layer-origin-1e308.json"]);
+        add("@f:layer-speed-1e308.json: layer \"layer 1\": speedMmPerS 1E+308: outside what the stage takes", ["plan", "--job", "@f:layer-speed-1e308.json"]);
         add("passes 1.5 must be a whole number 1..100", ["plan", "--job", "@f:layer-passes-fraction.json"]);
         add("\"widthMm\" must be a number", ["plan", "--job", "@f:layer-width-text.json"]);
 

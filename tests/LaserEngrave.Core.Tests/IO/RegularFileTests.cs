@@ -42,7 +42,7 @@ public class RegularFileTests
             Assert.Contains("named pipe", Assert.Throws<ImageLoadException>(() => ImageLoader.ReadInfo(fifo)).Message, StringComparison.Ordinal);
             Assert.Contains("named pipe", Assert.Throws<ProfileException>(() => MachineProfile.Load(fifo)).Message, StringComparison.Ordinal);
             Assert.Contains("named pipe", Assert.Throws<RunLogException>(() => RunLogStore.Read(fifo)).Message, StringComparison.Ordinal);
-            Assert.Contains("named pipe", Assert.Throws<ImageLoadException>(() => Jobs.PreparedJob.HashFile(fifo)).Message, StringComparison.Ordinal);
+            Assert.Contains("named pipe", Assert.Throws<ImageLoadException>(() => LaserEngrave.Core.Jobs.PreparedJob.HashFile(fifo)).Message, StringComparison.Ordinal);
         }
         finally
         {

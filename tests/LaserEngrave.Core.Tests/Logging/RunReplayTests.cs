@@ -82,7 +82,7 @@ public sealed class RunReplayTests : IDisposable
 
         var ex = Assert.Throws<RunLogException>(() => RunReplay.ToJobSpec(bad, "runs/a.json"));
 
-        Assert.Equal("runs/a.json: plan.overscanMm 1E+308 must be 0..60 mm (the X travel)", ex.Message);
+        Assert.Equal("runs/a.json: plan.overscanMm 1E+308: must be 0..60 mm (the X travel)", ex.Message);
     }
 
     [Fact]
@@ -102,7 +102,7 @@ public sealed class RunReplayTests : IDisposable
 
         var ex = Assert.Throws<RunLogException>(() => RunReplay.ToJobSpec(record, "runs/a.json"));
 
-        Assert.Equal("runs/a.json: passes 1000 must be 1..100", ex.Message);
+        Assert.Equal("runs/a.json: passes 1000: must be 1..100 (burns of the plan over the same place)", ex.Message);
     }
 
     public void Dispose() => runs.Dispose();

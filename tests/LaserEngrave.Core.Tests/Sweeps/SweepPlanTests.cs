@@ -146,7 +146,7 @@ public class SweepPlanTests
     [InlineData("frequency=0", null, "outside what the laser gate takes")]
     [InlineData("passes=0,2", null, "passes 0: must be 1..100")]
     [InlineData("pulses-per-dot=3", null, "add --mode dots")]
-    [InlineData("pitch=0.01", null, "a microstep")]
+    [InlineData("pitch=0.01", null, "below one microstep")]
     [InlineData("pitch=2000", null, "(the cell)")]
     [InlineData("speed=1", "speed=2", "both vary speed")]
     public void Build_BadValue_RefusedNamingIt(string rows, string? columns, string fragment)

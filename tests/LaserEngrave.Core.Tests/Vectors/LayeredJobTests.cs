@@ -74,7 +74,7 @@ public sealed class LayeredJobTests : IDisposable
 
     [Theory]
     [InlineData("\"dither\": \"sierra\"", "dither \"sierra\" is not none, floyd-steinberg, atkinson or bayer")]
-    [InlineData("\"thresholdPercent\": 120", "thresholdPercent 120 must be 0..100")]
+    [InlineData("\"thresholdPercent\": 120", "thresholdPercent 120: must be between 0 and 100")]
     [InlineData("\"invert\": 1", "\"invert\" must be true or false")]
     public void Load_BadMaskField_OneLineNamingTheLayerAndField(string field, string expected)
     {
@@ -129,7 +129,7 @@ public sealed class LayeredJobTests : IDisposable
     [InlineData("""{"layers":[{"name":"a","source":"x.svg","speed":1}]}""", "layer 1: unknown field \"speed\"")]
     [InlineData("""{"layers":[{"name":"a"}]}""", "layer 1 \"a\": \"source\" (the image or drawing file) is missing")]
     [InlineData("""{"layers":[{"name":"a","source":"x.svg","mode":"hatch"}]}""", "mode \"hatch\" is not raster, outline, fill or both")]
-    [InlineData("""{"layers":[{"name":"a","source":"x.svg","passes":0}]}""", "passes 0 must be a whole number 1..100")]
+    [InlineData("""{"layers":[{"name":"a","source":"x.svg","passes":0}]}""", "passes 0: must be 1..100 (burns of the plan over the same place)")]
     [InlineData("""{"layers":[{"name":"a","source":"x.svg","originMm":[1]}]}""", "\"originMm\" must be [x, y] in mm")]
     [InlineData("""{"layers":[]}""", "\"layers\" is empty")]
     [InlineData("""{"jobs":[]}""", "a job file is an object with \"layers\"")]

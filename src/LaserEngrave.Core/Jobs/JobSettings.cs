@@ -1,11 +1,14 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
-using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
 
-namespace LaserEngrave.App.Services;
+namespace LaserEngrave.Core.Jobs;
 
-/// <summary>Every value the user sets for a job, as the page shows it; a run log keeps it so the run can be loaded again.</summary>
+/// <summary>
+/// Every value the user sets for a job, as the app's fields, the command line's options, a job file's layer, a sweep's
+/// cell and a run log give it; <see cref="JobRules.Check"/> answers for all of them. A <see cref="ProcessPreset"/> is a
+/// named subset of it.
+/// </summary>
 public sealed record JobSettings
 {
     public string? ImagePath { get; init; }
@@ -79,7 +82,7 @@ public sealed record JobSettings
     public static JobSettings From(JobSpec spec)
     {
         ArgumentNullException.ThrowIfNull(spec);
-        var settings = new JobSettings
+        var settings = From(spec.Process, spec.Plan) with
         {
             ImagePath = spec.ImagePath,
             ThresholdPercent = spec.Mask.ThresholdPercent,
@@ -87,18 +90,7 @@ public sealed record JobSettings
             Invert = spec.Mask.Invert,
             OriginXMm = spec.Origin.X,
             OriginYMm = spec.Origin.Y,
-            LaserFrequencyHz = spec.Process.LaserFrequencyHz,
-            BurnSpeedMmPerS = spec.Process.BurnSpeedMmPerS,
-            TravelSpeedMmPerS = spec.Process.TravelSpeedMmPerS,
-            AccelerationMmPerS2 = spec.Process.AccelerationMmPerS2,
-            Strategy = spec.Plan.Strategy,
-            Bidirectional = spec.Plan.Bidirectional,
-            OverscanMm = spec.Plan.OverscanMm,
-            PulseEnergyUj = spec.Process.PulseEnergyUj,
-            Mode = spec.Process.Mode,
-            PulsesPerDot = spec.Process.PulsesPerDot,
-            DotPitchMicrosteps = spec.Process.DotPitchMicrosteps,
-            DotSettleMs = spec.Process.DotSettleMs,
+            Passes = spec.Passes,
         };
         return spec.Size switch
         {
@@ -112,20 +104,26 @@ public sealed record JobSettings
             _ => settings,
         };
     }
-}
 
-/// <summary>Which size field the user set last, and so which one the others follow.</summary>
-public enum SizeMode
-{
-    /// <summary>Width in mm; height follows the aspect.</summary>
-    Width,
-
-    /// <summary>Height in mm; width follows the aspect.</summary>
-    Height,
-
-    /// <summary>Both sides given, aspect unlocked.</summary>
-    WidthAndHeight,
-
-    /// <summary>Pixel pitch in µm (or microsteps per pixel).</summary>
-    Pitch,
+    /// <summary>The process and plan values of a job (a sweep's base, a job file's layer), every other value the default.</summary>
+    public static JobSettings From(ProcessSettings process, PlanOptions? plan = null)
+    {
+        ArgumentNullException.ThrowIfNull(process);
+        plan ??= PlanOptions.Default;
+        return new JobSettings
+        {
+            LaserFrequencyHz = process.LaserFrequencyHz,
+            BurnSpeedMmPerS = process.BurnSpeedMmPerS,
+            TravelSpeedMmPerS = process.TravelSpeedMmPerS,
+            AccelerationMmPerS2 = process.AccelerationMmPerS2,
+            PulseEnergyUj = process.PulseEnergyUj,
+            Mode = process.Mode,
+            PulsesPerDot = process.PulsesPerDot,
+            DotPitchMicrosteps = process.DotPitchMicrosteps,
+            DotSettleMs = process.DotSettleMs,
+            Strategy = plan.Strategy,
+            Bidirectional = plan.Bidirectional,
+            OverscanMm = plan.OverscanMm,
+        };
+    }
 }

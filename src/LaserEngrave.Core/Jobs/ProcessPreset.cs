@@ -1,9 +1,10 @@
 using System.Text.Json;
 using System.Text.Json.Serialization;
+using LaserEngrave.Core.Geometry;
 
-namespace LaserEngrave.App.Services;
+namespace LaserEngrave.Core.Jobs;
 
-/// <summary>A named set of process values to burn a material with, kept in the preset library.</summary>
+/// <summary>A named set of process values to burn a material with, kept in the preset library: a named subset of <see cref="JobSettings"/>.</summary>
 public sealed record ProcessPreset
 {
     public required string Name { get; init; }
@@ -45,11 +46,34 @@ public sealed record ProcessPreset
         },
     ];
 
+    /// <summary>The fields of <see cref="JobSettings"/> a preset holds.</summary>
+    public static IReadOnlyList<string> Fields { get; } = [JobField.Frequency, JobField.BurnSpeed, JobField.TravelSpeed, JobField.Passes, JobField.Pitch, JobField.Overscan];
+
+    /// <summary><paramref name="settings"/> with the preset's values; its pitch too when <paramref name="withPitch"/> (which sizes the job by pitch).</summary>
+    public JobSettings ApplyTo(JobSettings settings, bool withPitch = true)
+    {
+        ArgumentNullException.ThrowIfNull(settings);
+        var applied = settings with
+        {
+            LaserFrequencyHz = LaserFrequencyHz,
+            BurnSpeedMmPerS = BurnSpeedMmPerS,
+            TravelSpeedMmPerS = TravelSpeedMmPerS,
+            Passes = Passes,
+            OverscanMm = OverscanMm,
+        };
+        return withPitch ? applied with { SizeMode = SizeMode.Pitch, PitchUm = PitchUm } : applied;
+    }
+
+    /// <summary>The preset's values the job rules refuse on a machine of <paramref name="limits"/> (<see cref="JobRules.Check(JobSettings, MachineLimits)"/>).</summary>
+    public IReadOnlyList<FieldProblem> Check(MachineLimits limits) =>
+        [.. JobRules.Check(ApplyTo(new JobSettings()), limits).Where(p => Fields.Contains(p.Field))];
+
     private static readonly JsonSerializerOptions Json = new(JsonSerializerDefaults.Web) { WriteIndented = true, DefaultIgnoreCondition = JsonIgnoreCondition.WhenWritingNull };
 
     public static string ToJson(IEnumerable<ProcessPreset> presets) => JsonSerializer.Serialize(presets.ToList(), Json);
 
     /// <summary>Reads a list of presets; throws <see cref="JsonException"/> or <see cref="ArgumentException"/> naming what is wrong.</summary>
+    /// <remarks>Its values are the machine's to judge: <see cref="Check"/> with the machine's limits before a preset is used.</remarks>
     public static IReadOnlyList<ProcessPreset> FromJson(string json)
     {
         var presets = JsonSerializer.Deserialize<List<ProcessPreset>>(json, Json) ?? throw new JsonException("not a list of presets");
@@ -58,11 +82,6 @@ public sealed record ProcessPreset
             if (string.IsNullOrWhiteSpace(preset.Name))
             {
                 throw new ArgumentException("a preset without a name");
-            }
-
-            if (!(preset.LaserFrequencyHz >= 1) || !(preset.BurnSpeedMmPerS > 0) || !(preset.TravelSpeedMmPerS > 0) || preset.Passes is < 1 or > 100 || !(preset.PitchUm > 0) || !(preset.OverscanMm >= 0))
-            {
-                throw new ArgumentException($"preset \"{preset.Name}\": a value is out of range (frequency ≥ 1 Hz, speeds and pitch above 0, passes 1 to 100, overscan ≥ 0)");
             }
         }
 
