@@ -16,6 +16,11 @@ public static class MarkFile
     public static MarkSpec Load(string path)
     {
         ArgumentException.ThrowIfNullOrWhiteSpace(path);
+        if (!File.Exists(path) && !Directory.Exists(path))
+        {
+            throw new MarkException($"{path}: no such file");
+        }
+
         if (IO.RegularFile.Problem(path) is { } problem)
         {
             throw new MarkException($"{path}: {problem}");
