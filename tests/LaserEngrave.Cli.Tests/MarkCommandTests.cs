@@ -63,6 +63,22 @@ public sealed class MarkCommandTests : IDisposable
         Assert.Contains("Data Matrix \\\"ID2\\\"", log, StringComparison.Ordinal);
     }
 
+    [Fact]
+    public async Task Mark_CodeThatDoesNotReadWhereAJobWasMade_RefusesAndLeavesNoJobToBurn()
+    {
+        var (exit, _, error) = await CliHarness.RunAsync("mark", "S-{n:000}", "--code", "datamatrix", "--module-um", "60", "--out", Out, "--counter", Counter, "--check");
+        Assert.True(exit == 0, error);
+        Assert.True(File.Exists(Path.Combine(Out, MarkLayout.JobFileName)));
+
+        (exit, var output, error) = await CliHarness.RunAsync("mark", "S-{n:000}", "--code", "datamatrix", "--module-um", "20", "--out", Out, "--counter", Counter, "--check");
+
+        Assert.Equal(2, exit);
+        Assert.Contains("does NOT read", output, StringComparison.Ordinal);
+        Assert.Contains("\"S-001\" does not read on the twin (124 of 144 modules right", error, StringComparison.Ordinal);
+        Assert.False(File.Exists(Path.Combine(Out, MarkLayout.JobFileName)), "the earlier job was taken away");
+        Assert.False(File.Exists(Path.Combine(Out, MarkLayout.ManifestFileName)));
+    }
+
     [Theory]
     [InlineData("mark|S|--code|datamatrix|--size-mm|0.15|--out|@out", "smaller than the spot's 20 µm diameter")]
     [InlineData("mark|S|--code|datamatrix|--out|@out", "one of the two")]

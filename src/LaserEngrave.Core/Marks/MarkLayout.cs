@@ -62,6 +62,10 @@ public sealed class MarkLayout
             .Select(text => (Text: text, Copy: Draw(spec, text, profile)))
             .ToList();
         Directory.CreateDirectory(folder);
+
+        // A job made here before is taken away first: if these marks are refused (a code that does not read), no old job stays to be burned by mistake.
+        File.Delete(Path.Combine(folder, JobFileName));
+        File.Delete(Path.Combine(folder, ManifestFileName));
         var marks = new List<PlacedMark>();
         var layers = new List<JobLayer>();
         var codes = new List<CodeRaster>();
