@@ -101,6 +101,8 @@ public sealed class MarkCommandTests : IDisposable
     [InlineData("mark|--marks|@missing|--out|@out", "missing.json: no such file")]
     [InlineData("mark|--marks|@bad|--out|@out", "unknown field \"colour\"")]
     [InlineData("mark|S|--marks|@bad|--out|@out", "not both")]
+    [InlineData("mark|S|--out|/proc/no-such/marks", "the marks' folder cannot be made there")]
+    [InlineData("mark|S|--counter|@folder|--out|@out", "is a folder, not the sample counter's file")]
     public async Task Mark_BadInput_OneLineExitTwoNothingWritten(string line, string fragment)
     {
         File.WriteAllText(Path.Combine(_folder, "bad.json"), """{ "text": "S", "colour": "red" }""");
@@ -109,10 +111,16 @@ public sealed class MarkCommandTests : IDisposable
             "@out" => Out,
             "@missing" => Path.Combine(_folder, "missing.json"),
             "@bad" => Path.Combine(_folder, "bad.json"),
+            "@folder" => _folder,
             _ => a,
-        }).Concat(["--counter", Counter]).ToArray();
+        }).ToList();
+        if (!args.Contains("--counter"))
+        {
+            args.AddRange(["--counter", Counter]);
+        }
 
-        var (exit, output, error) = await CliHarness.RunAsync(args);
+
+        var (exit, output, error) = await CliHarness.RunAsync([.. args]);
 
         Assert.True(exit == 2, $"exit {exit}: {error}");
         Assert.Single(error.TrimEnd().Split('\n'));

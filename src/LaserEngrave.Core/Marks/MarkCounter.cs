@@ -28,6 +28,11 @@ public sealed class MarkCounter
     /// <exception cref="MarkException">The file is not a counter.</exception>
     public int Next()
     {
+        if (Directory.Exists(Path))
+        {
+            throw new MarkException($"{Path}: is a folder, not the sample counter's file");
+        }
+
         if (!File.Exists(Path))
         {
             return 1;

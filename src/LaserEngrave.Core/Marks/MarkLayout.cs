@@ -61,7 +61,14 @@ public sealed class MarkLayout
             .Select(i => MarkText.Resolve(spec.Text, context with { Number = first + i }))
             .Select(text => (Text: text, Copy: Draw(spec, text, profile)))
             .ToList();
-        Directory.CreateDirectory(folder);
+        try
+        {
+            Directory.CreateDirectory(folder);
+        }
+        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException or ArgumentException or NotSupportedException)
+        {
+            throw new MarkException($"{folder}: the marks' folder cannot be made there ({ex.Message})", ex);
+        }
 
         // A job made here before is taken away first: if these marks are refused (a code that does not read), no old job stays to be burned by mistake.
         File.Delete(Path.Combine(folder, JobFileName));
