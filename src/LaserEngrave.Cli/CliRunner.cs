@@ -114,6 +114,7 @@ internal static class CliRunner
         _ when ex.GetType().Name == "ImageLoadException" => BadInput,
         Core.Vectors.DrawingException => BadInput,
         Core.Sweeps.SweepException => BadInput,
+        Core.Marks.MarkException => BadInput,
         TestMoveException => BadInput,
         DeviceException => Failure,
         OperationCanceledException => Failure,

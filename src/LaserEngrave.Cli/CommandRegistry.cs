@@ -26,6 +26,7 @@ internal static class CommandRegistry
         yield return ReplayCommand.Create();
         yield return SweepCommand.Create();
         yield return SweepCommand.CreateFocusSeries();
+        yield return MarkCommand.Create();
         yield return LogCommand.Create();
         foreach (var command in TestMoveCommands.All())
         {

@@ -205,6 +205,11 @@ internal static class EngraveCommand
 
         var record = engraved.Record;
         var error = engraved.Error;
+        if (layeredFile is not null)
+        {
+            MarkCommand.AfterRun(layeredFile, record.Outcome, stderr);
+        }
+
         await prepareJson.ConfigureAwait(false);
         if (engraved.Files is not { } files)
         {

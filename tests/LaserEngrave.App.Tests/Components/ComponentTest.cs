@@ -33,6 +33,8 @@ public abstract class ComponentTest : BunitContext
         Services.AddSingleton(Calibration);
         Alignment = new AlignmentViewModel(Main, DataFolder.Path);
         Services.AddSingleton(Alignment);
+        Marks = new MarkViewModel(new MarkService(new AppFolders(DataFolder.Path), () => Main.Job.Profile, TimeProvider.System), path => Main.Layers.Open(path));
+        Services.AddSingleton(Marks);
         JSInterop.Mode = JSRuntimeMode.Loose;
         SetRendererInfo(new RendererInfo("Server", isInteractive: true));
     }
@@ -59,6 +61,9 @@ public abstract class ComponentTest : BunitContext
     private protected CalibrationViewModel Calibration { get; }
 
     private protected AlignmentViewModel Alignment { get; }
+
+    /// <summary>The Mark panel's view-model, over the real marks service in <see cref="DataFolder"/>.</summary>
+    private protected MarkViewModel Marks { get; }
 
     protected override void Dispose(bool disposing)
     {

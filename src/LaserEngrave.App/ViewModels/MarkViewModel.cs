@@ -1,0 +1,174 @@
+using System.Globalization;
+using CommunityToolkit.Mvvm.ComponentModel;
+using CommunityToolkit.Mvvm.Input;
+using LaserEngrave.App.Services;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Marks;
+using LaserEngrave.Simulator.Marks;
+
+namespace LaserEngrave.App.ViewModels;
+
+/// <summary>
+/// The Mark panel: sample IDs (a code with its text beneath, or a text alone) in copies on a grid, numbered from the
+/// counter, each code proven readable on the twin; the job it makes opens as the job of layers, which Start runs.
+/// </summary>
+public sealed partial class MarkViewModel : ObservableObject
+{
+    private readonly IMarkService _marks;
+    private readonly Func<string, bool> _openJob;
+
+    /// <param name="marks">Makes and checks the marks.</param>
+    /// <param name="openJob">Opens a job file as the job of layers (the Layers panel's Open); false when it could not.</param>
+    public MarkViewModel(IMarkService marks, Func<string, bool> openJob)
+    {
+        ArgumentNullException.ThrowIfNull(marks);
+        ArgumentNullException.ThrowIfNull(openJob);
+        _marks = marks;
+        _openJob = openJob;
+        RefreshCounter();
+    }
+
+    /// <summary>The codes offered: value and label.</summary>
+    public static IReadOnlyList<(string Value, string Label)> Codes { get; } = [("datamatrix", "Data Matrix"), ("qr", "QR code"), ("none", "Text alone")];
+
+    [ObservableProperty]
+    public partial string Text { get; set; } = "S-{n:000}";
+
+    [ObservableProperty]
+    public partial string Code { get; set; } = "datamatrix";
+
+    /// <summary>The code's side without its quiet zone, mm.</summary>
+    [ObservableProperty]
+    public partial double SizeMm { get; set; } = 2;
+
+    [ObservableProperty]
+    public partial bool Label { get; set; } = true;
+
+    [ObservableProperty]
+    public partial double TextHeightMm { get; set; } = 0.4;
+
+    [ObservableProperty]
+    public partial double Copies { get; set; } = 10;
+
+    [ObservableProperty]
+    public partial double Columns { get; set; } = 5;
+
+    /// <summary>From copy to copy along X and Y, mm.</summary>
+    [ObservableProperty]
+    public partial double PitchMm { get; set; } = 4;
+
+    [ObservableProperty]
+    public partial double OriginXMm { get; set; } = 10;
+
+    [ObservableProperty]
+    public partial double OriginYMm { get; set; } = 10;
+
+    /// <summary>What {sample} stands for.</summary>
+    [ObservableProperty]
+    public partial string? Sample { get; set; }
+
+    /// <summary>The counter's next number (the first copy's).</summary>
+    [ObservableProperty]
+    public partial int NextNumber { get; private set; } = 1;
+
+    [ObservableProperty]
+    public partial IReadOnlyList<PlacedMark> Marks { get; private set; } = [];
+
+    [ObservableProperty]
+    public partial IReadOnlyList<ReadabilityVerdict> Verdicts { get; private set; } = [];
+
+    [ObservableProperty]
+    public partial double? EstimatedSeconds { get; private set; }
+
+    /// <summary>The job made, opened as the job of layers; null before, or when a code did not read.</summary>
+    [ObservableProperty]
+    public partial string? JobFile { get; private set; }
+
+    [ObservableProperty]
+    public partial string? Error { get; private set; }
+
+    /// <summary>One line beside the estimate: every code reads on the twin, or which does not.</summary>
+    public string? Verdict => Verdicts.Count == 0
+        ? null
+        : Verdicts.FirstOrDefault(v => !v.Reads) is { } bad
+            ? string.Create(CultureInfo.InvariantCulture, $"\"{bad.Text}\" does not read on the twin ({bad.ModulesRight} of {bad.Modules} modules right): make the mark larger")
+            : string.Create(CultureInfo.InvariantCulture, $"all {Verdicts.Count} codes read on the twin; worst module {Verdicts.Min(v => v.WorstModulePercent):0} % as it should be, modules {Verdicts[0].ModuleUm:0.#} µm = {Verdicts[0].ModuleUm / Verdicts[0].SpotDiameterUm:0.#} spots");
+
+    /// <summary>Makes the marks, burns every code on the twin and reads it back; when all read, opens the job as the job of layers.</summary>
+    [RelayCommand(IncludeCancelCommand = true)]
+    private async Task MakeAsync(CancellationToken cancellationToken)
+    {
+        Error = null;
+        JobFile = null;
+        RefreshCounter();
+        MarkSpec spec;
+        try
+        {
+            spec = Spec();
+        }
+        catch (MarkException ex)
+        {
+            Error = ex.Message;
+            return;
+        }
+
+        try
+        {
+            var result = await _marks.MakeAsync(spec, Sample, check: true, cancellationToken);
+            Marks = result.Marks;
+            Verdicts = result.Verdicts;
+            EstimatedSeconds = result.EstimatedSeconds;
+            OnPropertyChanged(nameof(Verdict));
+            if (result.JobFile is { } job)
+            {
+                JobFile = job;
+                if (!_openJob(job))
+                {
+                    Error = $"{job}: made, but the Layers panel could not open it";
+                }
+            }
+        }
+        catch (MarkException ex)
+        {
+            Error = ex.Message;
+        }
+    }
+
+    /// <summary>Reads the counter again (a run of marks that completed has advanced it).</summary>
+    public void RefreshCounter()
+    {
+        try
+        {
+            NextNumber = _marks.NextNumber();
+        }
+        catch (MarkException ex)
+        {
+            Error = ex.Message;
+        }
+    }
+
+    private MarkSpec Spec()
+    {
+        var code = MarkFile.ParseCode(Code);
+        var pitch = Positive(PitchMm, "pitch");
+        return new MarkSpec
+        {
+            Text = string.IsNullOrEmpty(Text) ? throw new MarkException("give the mark's text") : Text,
+            Code = code,
+            SizeMm = code is null ? null : Positive(SizeMm, "code size"),
+            Label = Label,
+            TextHeightMm = Positive(TextHeightMm, "text height"),
+            Copies = Whole(Copies, "copies"),
+            Columns = Whole(Columns, "columns"),
+            PitchXMm = pitch,
+            PitchYMm = pitch,
+            Origin = new OriginMm(OriginXMm, OriginYMm),
+        };
+    }
+
+    private static double Positive(double value, string name) =>
+        value > 0 && double.IsFinite(value) ? value : throw new MarkException($"the {name} must be a number above 0");
+
+    private static int Whole(double value, string name) =>
+        value == Math.Floor(value) && value is >= 1 and <= MarkSpec.MaxCopies ? (int)value : throw new MarkException(string.Create(CultureInfo.InvariantCulture, $"{name} {value:G6} must be a whole number 1..{MarkSpec.MaxCopies}"));
+}

@@ -1,0 +1,244 @@
+using System.Globalization;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Imaging;
+using LaserEngrave.Core.Jobs;
+
+namespace LaserEngrave.Core.Marks;
+
+/// <summary>
+/// Marks made into a job of layers: each copy's code as an image layer (a 1-bit BMP at a pitch the spot fills) and its
+/// text as a drawing layer (the engraving font's strokes as an SVG) or an image layer (a system font), written into one
+/// folder with the job file, so the run engine burns them as any other job. The layers' names carry the resolved
+/// texts, so the run log records every mark's text and where it was burned.
+/// </summary>
+public sealed class MarkLayout
+{
+    private MarkLayout(MarkSpec spec, int first, IReadOnlyList<PlacedMark> marks, IReadOnlyList<JobLayer> layers, IReadOnlyList<CodeRaster> codes)
+    {
+        Spec = spec;
+        FirstNumber = first;
+        Marks = marks;
+        Layers = layers;
+        Codes = codes;
+    }
+
+    public MarkSpec Spec { get; }
+
+    /// <summary>The first copy's number.</summary>
+    public int FirstNumber { get; }
+
+    /// <summary>Every copy in burn order, with its code and its text when the mark has both.</summary>
+    public IReadOnlyList<PlacedMark> Marks { get; }
+
+    /// <summary>The job's layers, sources in the folder.</summary>
+    public IReadOnlyList<JobLayer> Layers { get; }
+
+    /// <summary>Each copy's code as drawn (empty for a text alone).</summary>
+    public IReadOnlyList<CodeRaster> Codes { get; }
+
+    /// <summary>How a code's image file ends (mark-001-code.bmp).</summary>
+    public const string CodeFileSuffix = "-code.bmp";
+
+    /// <summary>The job file's name in the folder.</summary>
+    public const string JobFileName = "job.json";
+
+    /// <summary>The marks' record beside the job file: the counter, the first number, and each mark.</summary>
+    public const string ManifestFileName = "marks.json";
+
+    /// <summary>Checks <paramref name="spec"/>, resolves every copy's text and draws its code and text into <paramref name="folder"/>.</summary>
+    /// <param name="first">The first copy's number (the counter's next).</param>
+    /// <param name="context">The run's sample, the time and the profile (its number is set per copy).</param>
+    /// <exception cref="MarkException">A value is out of range, a text does not fit, or a module is smaller than the spot.</exception>
+    public static MarkLayout Make(MarkSpec spec, int first, MarkContext context, MachineProfile profile, string folder)
+    {
+        ArgumentNullException.ThrowIfNull(spec);
+        ArgumentNullException.ThrowIfNull(context);
+        ArgumentNullException.ThrowIfNull(profile);
+        Check(spec, first);
+
+        // Every copy is drawn before a file is written: a copy whose text does not fit refuses the whole array.
+        var copies = Enumerable.Range(0, spec.Copies)
+            .Select(i => MarkText.Resolve(spec.Text, context with { Number = first + i }))
+            .Select(text => (Text: text, Copy: Draw(spec, text, profile)))
+            .ToList();
+        try
+        {
+            Directory.CreateDirectory(folder);
+        }
+        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException or ArgumentException or NotSupportedException)
+        {
+            throw new MarkException($"{folder}: the marks' folder cannot be made there ({ex.Message})", ex);
+        }
+
+        // A job made here before is taken away first: if these marks are refused (a code that does not read), no old job stays to be burned by mistake.
+        File.Delete(Path.Combine(folder, JobFileName));
+        File.Delete(Path.Combine(folder, ManifestFileName));
+        var marks = new List<PlacedMark>();
+        var layers = new List<JobLayer>();
+        var codes = new List<CodeRaster>();
+        var columns = spec.Columns ?? Math.Min(spec.Copies, 10);
+        double? pitchX = spec.PitchXMm, pitchY = spec.PitchYMm;
+        for (var i = 0; i < spec.Copies; i++)
+        {
+            var number = first + i;
+            var (text, copy) = copies[i];
+
+            // The grid's pitch comes from the first copy unless given: later copies' texts may differ in width.
+            pitchX ??= copy.WidthMm + 1;
+            pitchY ??= copy.HeightMm + 1;
+            var x = spec.Origin.X + ((i % columns) * pitchX.Value);
+            var y = spec.Origin.Y + ((i / columns) * pitchY.Value);
+            var tag = number.ToString("000", CultureInfo.InvariantCulture);
+            if (copy.Code is { } code)
+            {
+                var source = Path.Combine(folder, $"mark-{tag}{CodeFileSuffix}");
+                BmpMaskWriter.Write(source, code.Mask, code.PitchUm);
+                var quietMm = code.QuietModules * code.ModuleUm / 1000;
+                layers.Add(Layer(spec, $"{KindName(code.Symbol.Kind)} \"{text}\"", source, LayerMode.Raster, code.WidthMm, new OriginMm(x, y)));
+                marks.Add(new PlacedMark(number, text, KindKey(code.Symbol.Kind), x + quietMm, y + quietMm, code.SymbolMm, code.SymbolMm, code.ModuleUm));
+                codes.Add(code);
+            }
+
+            if (copy.Strokes is { } strokes)
+            {
+                var source = Path.Combine(folder, $"mark-{tag}-text.svg");
+                var (inkMin, inkMax) = strokes.InkBounds();
+                strokes.WriteSvg(source, -inkMin.X, -inkMin.Y);
+                var left = x + copy.TextLeftMm;
+                var top = y + copy.TextTopMm;
+                layers.Add(Layer(spec, $"text \"{text}\"", source, LayerMode.Outline, null, new OriginMm(left + inkMin.X, top + inkMin.Y)));
+                marks.Add(new PlacedMark(number, text, "text", left + inkMin.X, top + inkMin.Y, inkMax.X - inkMin.X, inkMax.Y - inkMin.Y, null));
+            }
+            else if (copy.Raster is { } raster)
+            {
+                var source = Path.Combine(folder, $"mark-{tag}-text.bmp");
+                var pitchUm = profile.SpotDiameterUm;
+                BmpMaskWriter.Write(source, raster, pitchUm);
+                var widthMm = raster.Width * pitchUm / 1000;
+                var left = x + copy.TextLeftMm;
+                var top = y + copy.TextTopMm;
+                layers.Add(Layer(spec, $"text \"{text}\"", source, LayerMode.Raster, widthMm, new OriginMm(left, top)));
+                marks.Add(new PlacedMark(number, text, "text", left, top, widthMm, raster.Height * pitchUm / 1000, null));
+            }
+        }
+
+        return new MarkLayout(spec, first, marks, layers, codes);
+    }
+
+    /// <summary>Writes the job file and the marks' record into <paramref name="folder"/>.</summary>
+    /// <param name="counterPath">The counter a completed run of this job advances.</param>
+    /// <returns>The job file's path.</returns>
+    public string Save(string folder, string counterPath)
+    {
+        var job = Path.Combine(folder, JobFileName);
+        JobFile.Save(job, Layers);
+        MarkManifest.Write(Path.Combine(folder, ManifestFileName), new MarkManifest(Path.GetFullPath(counterPath), FirstNumber, Spec.Copies, Marks));
+        return job;
+    }
+
+    private static JobLayer Layer(MarkSpec spec, string name, string source, LayerMode mode, double? widthMm, OriginMm origin) => new()
+    {
+        Name = name,
+        Source = source,
+        Mode = mode,
+        WidthMm = widthMm,
+        Origin = origin,
+        SpeedMmPerS = spec.SpeedMmPerS,
+        FrequencyHz = spec.FrequencyHz,
+        Passes = spec.Passes,
+    };
+
+    private sealed record Copy(CodeRaster? Code, StrokeText? Strokes, BitMask? Raster, double TextLeftMm, double TextTopMm, double WidthMm, double HeightMm);
+
+    private static Copy Draw(MarkSpec spec, string text, MachineProfile profile)
+    {
+        CodeRaster? code = null;
+        if (spec.Code is { } kind)
+        {
+            var symbol = CodeSymbol.Encode(kind, text, spec.ErrorCorrection);
+            var moduleUm = spec.ModuleUm ?? (spec.SizeMm!.Value * 1000 / symbol.Size);
+            code = CodeRaster.Render(symbol, moduleUm, spec.Quiet, profile.SpotDiameterUm);
+        }
+
+        var codeMm = code?.WidthMm ?? 0;
+        var wantText = code is null || spec.Label;
+        var textTop = code is null ? 0 : codeMm + spec.GapMm;
+        if (!wantText)
+        {
+            return new Copy(code, null, null, 0, 0, codeMm, codeMm);
+        }
+
+        if (spec.Font is { } family)
+        {
+            var raster = SystemFontText.Render(text, family, spec.TextHeightMm, profile.SpotDiameterUm, spec.Align, spec.LineSpacing);
+            var widthMm = raster.Width * profile.SpotDiameterUm / 1000;
+            var left = Math.Max(0, (codeMm - widthMm) / 2);
+            return new Copy(code, null, raster, left, textTop, Math.Max(codeMm, widthMm), textTop + (raster.Height * profile.SpotDiameterUm / 1000));
+        }
+
+        var strokes = StrokeText.Layout(text, spec.TextHeightMm, spec.Align, spec.LineSpacing);
+        var textLeft = code is null ? 0 : spec.Align switch
+        {
+            TextAlign.Left => 0,
+            TextAlign.Right => codeMm - strokes.WidthMm,
+            // Centred by the ink, not the letters' advances: a label looks centred under its code when its strokes are.
+            _ => (codeMm - (strokes.InkBounds().Min.X + strokes.InkBounds().Max.X)) / 2,
+        };
+
+        // Text wider than the code sticks out to the left when centred or flush right; the copy's box starts at its left.
+        var shift = Math.Min(0, textLeft);
+        return new Copy(code, strokes, null, textLeft - shift, textTop, Math.Max(codeMm, strokes.WidthMm), textTop + strokes.InkBounds().Max.Y);
+    }
+
+    private static void Check(MarkSpec spec, int first)
+    {
+        if (spec.Code is not null && (spec.ModuleUm is null) == (spec.SizeMm is null))
+        {
+            throw new MarkException("a code needs its module size (moduleUm, µm) or its size (sizeMm, mm), one of the two");
+        }
+
+        if (spec.Code is null && (spec.ModuleUm is not null || spec.SizeMm is not null || spec.ErrorCorrection is not null || spec.QuietModules is not null))
+        {
+            throw new MarkException("moduleUm, sizeMm, quietModules and errorCorrection are for codes; this mark is a text alone");
+        }
+
+        if (spec.SizeMm is { } size && !(size > 0 && size <= 100))
+        {
+            throw new MarkException(N($"sizeMm {size:G6} must be above 0 and at most 100 mm"));
+        }
+
+        if (spec.Copies is < 1 or > MarkSpec.MaxCopies)
+        {
+            throw new MarkException(N($"copies {spec.Copies} must be 1..{MarkSpec.MaxCopies}"));
+        }
+
+        if (spec.Columns is { } columns && (columns < 1 || columns > spec.Copies))
+        {
+            throw new MarkException(N($"columns {columns} must be 1..{spec.Copies} (the copies)"));
+        }
+
+        foreach (var (name, value) in new[] { ("pitchMm X", spec.PitchXMm), ("pitchMm Y", spec.PitchYMm) })
+        {
+            if (value is { } v && !(v > 0 && v <= 1000))
+            {
+                throw new MarkException(N($"{name} {v:G6} must be above 0 and at most 1000 mm"));
+            }
+        }
+
+        if (!(spec.GapMm >= 0 && spec.GapMm <= 100))
+        {
+            throw new MarkException(N($"gapMm {spec.GapMm:G6} must be 0..100 mm"));
+        }
+
+        if (first < 1 || (long)first + spec.Copies - 1 > MarkCounter.MaxNumber)
+        {
+            throw new MarkException(N($"numbers {first}..{(long)first + spec.Copies - 1} must lie within 1..{MarkCounter.MaxNumber}"));
+        }
+    }
+
+    private static string KindName(CodeKind kind) => kind == CodeKind.Qr ? "QR" : "Data Matrix";
+
+    private static string KindKey(CodeKind kind) => kind == CodeKind.Qr ? "qr" : "datamatrix";
+
+    private static string N(FormattableString text) => text.ToString(CultureInfo.InvariantCulture);
+}

@@ -1,0 +1,90 @@
+using LaserEngrave.App.Services;
+using LaserEngrave.App.ViewModels;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Logging;
+using LaserEngrave.Core.Marks;
+using LaserEngrave.Devices.Execution;
+using LaserEngrave.Simulator;
+using NSubstitute;
+
+namespace LaserEngrave.App.Tests.Services;
+
+/// <summary>Marks made in the Mark panel and run from the Layers on the in-process simulator: the counter advances only when the run completes.</summary>
+public sealed class MarkRunTests : IAsyncDisposable
+{
+    private readonly TestFiles.TempFolder _folder = TestFiles.NewFolder();
+    private readonly IRunLogStore _store = Substitute.For<IRunLogStore>();
+    private readonly MachineViewModel _machine;
+    private readonly LayersViewModel _layers;
+    private readonly RunViewModel _run;
+    private readonly MarkViewModel _mark;
+    private readonly MarkService _service;
+
+    public MarkRunTests()
+    {
+        var activity = new MachineActivity();
+        _machine = new MachineViewModel(new MachineConnectionFactory(new SimulatorOptions()), MachineProfile.Default, activity);
+        var job = new JobViewModel(new ImageService(), MachineProfile.Default, activity);
+        _store.History().Returns([]);
+        _store.Save(Arg.Any<RunRecord>()).Returns(new RunLogFiles("/logs/run.json", "/logs/run.txt"));
+        _layers = new LayersViewModel(new JobFiles(new AppFolders(_folder.Path)), job, activity);
+        _run = new RunViewModel(new EngraveRunService(), job, _machine, new LogViewModel(_store, Substitute.For<IFileAccess>(), job), TimeProvider.System, _layers);
+        _service = new MarkService(new AppFolders(_folder.Path), () => MachineProfile.Default, TimeProvider.System);
+        _mark = new MarkViewModel(_service, _layers.Open) { SizeMm = 0.6, Copies = 2, Columns = 2, Label = false };
+    }
+
+    private async Task MakeAndConnectAsync()
+    {
+        await _mark.MakeCommand.ExecuteAsync(null);
+        Assert.True(_mark.JobFile is not null, _mark.Error ?? _mark.Verdict);
+        Assert.Equal(2, _layers.Layers.Count);
+        await _machine.ConnectCommand.ExecuteAsync(null);
+        Assert.True(_run.StartCommand.CanExecute(null), _run.Error ?? _machine.Error);
+    }
+
+    [Fact(Timeout = 120_000)]
+    public async Task Start_MarksRunToCompletion_CounterAdvancesPastTheirNumbers()
+    {
+        await MakeAndConnectAsync();
+
+        await _run.StartCommand.ExecuteAsync(null);
+
+        Assert.Equal(RunState.Completed, _run.State);
+        Assert.Equal(3, _service.NextNumber());
+        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Layers!.Select(l => l.Name).SequenceEqual(new[] { "Data Matrix \"S-001\"", "Data Matrix \"S-002\"" })));
+    }
+
+    [Fact(Timeout = 120_000)]
+    public async Task Start_MarksAborted_CounterKeepsItsNumberUntilTheContinueCompletes()
+    {
+        await MakeAndConnectAsync();
+        var aborted = 0;
+        _run.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName == nameof(RunViewModel.Progress) && _run.Progress is { MovesDone: > 3 } && Interlocked.Exchange(ref aborted, 1) == 0)
+            {
+                _run.AbortCommand.Execute(null);
+            }
+        };
+
+        await _run.StartCommand.ExecuteAsync(null);
+        Assert.Equal(RunState.Aborted, _run.State);
+        Assert.Equal(1, _service.NextNumber());
+
+        await _run.ContinueCommand.ExecuteAsync(null);
+
+        Assert.Equal(RunState.Completed, _run.State);
+        Assert.Equal(3, _service.NextNumber());
+    }
+
+    public async ValueTask DisposeAsync()
+    {
+        if (_machine.Connection is { } connection)
+        {
+            await connection.DisposeAsync();
+        }
+
+        _folder.Dispose();
+    }
+}
