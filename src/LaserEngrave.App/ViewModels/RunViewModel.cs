@@ -329,6 +329,7 @@ public sealed partial class RunViewModel : ObservableObject
             .Where(p => !now.TryGetProperty(p.Name, out var value) || value.GetRawText() != p.Value.GetRawText())
             .Select(p => p.Name)
             .Where(name => name != "passes")
+            .Select(JobSettings.FieldLabel)
             .ToList();
         if (changed.Count == 0 && stopped.Target.Job is { } job && (_job.Mask is not { } mask || !mask.ContentEquals(job.Mask)))
         {
@@ -557,6 +558,11 @@ public sealed partial class RunViewModel : ObservableObject
         public void Report(EngraveProgress value)
         {
             owner.Mirror(session, value);
+            if (value.State is RunState.Running && (owner._machine.XHomed is not true || owner._machine.YHomed is not true))
+            {
+                owner._machine.PreflightHomed();
+            }
+
             owner._machine.XMicrosteps = value.Run.XMicrosteps;
             owner._machine.YMicrosteps = value.Run.YMicrosteps;
         }

@@ -327,7 +327,7 @@ public sealed class StageCanvasTests : ComponentTest
             Assert.True(box.Fits);
         }
 
-        var (bytes, drawn, total) = StageCanvas.SweepBytes(plan);
+        var (bytes, drawn, total) = StageCanvas.SweepBytes(plan, out _);
         Assert.Equal(plan.Jobs().Sum(j => j.Statistics.Moves), total);
         Assert.Equal(total, drawn);
         Assert.Equal(drawn * 5 * sizeof(float), bytes.Length);
