@@ -148,7 +148,20 @@ public sealed class JogPadTests : ComponentTest
         var cut = Render<JogPad>(p => p.Add(c => c.Moves, Main.TestMoves).Add(c => c.Machine, Main.Machine));
 
         Assert.True(Disabled(cut.Find("#frame")));
+        Assert.Equal("open an image or drawing first", cut.Find("#frame").GetAttribute("title"));
         Assert.False(Disabled(cut.Find("#goto")));
+    }
+
+    [Fact]
+    public async Task Frame_Drawing_Enabled()
+    {
+        await ConnectAsync();
+        Main.Job.LoadImage(TestFiles.Asset(Path.Combine("drawings", "hexagons.dxf")));
+
+        var cut = Render<JogPad>(p => p.Add(c => c.Moves, Main.TestMoves).Add(c => c.Machine, Main.Machine));
+
+        Assert.False(Disabled(cut.Find("#frame")));
+        Assert.False(Disabled(cut.Find("#goto-origin")));
     }
 }
 
@@ -169,6 +182,24 @@ public sealed class RunBarTests : ComponentTest
         cut.WaitForAssertion(() => Assert.False(Disabled(cut.Find("#start"))));
         Assert.True(Disabled(cut.Find("#pause")));
         Assert.True(Disabled(cut.Find("#continue")));
+    }
+
+    [Fact]
+    public async Task TestMove_UnderWay_RunBarSaysWhatAndStopsIt()
+    {
+        await ConnectAsync();
+        var cut = Render<RunBar>(p => p.Add(c => c.Run, Main.Run).Add(c => c.Moves, Main.TestMoves).Add(c => c.Sweep, Main.Sweep));
+        Assert.Empty(cut.FindAll("#runbar-stop"));
+
+        using (var lease = Main.Machine.Activity.Begin(MachineOperation.TestMove("frame", "Tracing the job's frame, laser off…")))
+        {
+            cut.WaitForAssertion(() => Assert.Contains("Tracing the job's frame, laser off…", cut.Find("#status-run").TextContent, StringComparison.Ordinal));
+            cut.Find("#runbar-stop").Click();
+            Assert.True(lease.CancellationToken.IsCancellationRequested);
+        }
+
+        cut.WaitForAssertion(() => Assert.Equal("idle", cut.Find("#status-run").TextContent));
+        Assert.Empty(cut.FindAll("#runbar-stop"));
     }
 
     [Fact]
