@@ -172,6 +172,9 @@ internal static class ApiEndpoints
         api.MapGet("/logs/export", (MainViewModel main, string path, string? format) => Export(main, path, format))
             .WithSummary("A logged run's file (format=json or txt); only runs the history lists.");
 
+        api.MapGet("/logs/history", (MainViewModel main, string? format, string? decimalMark) => ExportHistory(main, format, decimalMark))
+            .WithSummary("The runs ticked in the history table as CSV (decimalMark=comma: decimal commas, fields between semicolons) or format=json.");
+
         api.MapPost("/settings/theme", (MainViewModel main, ThemeRequest request) => main.SetTheme(request.Theme)
                 ? State(main)
                 : Results.Json(new { error = $"theme '{request.Theme}': use {string.Join(", ", MainViewModel.Themes)}" }, statusCode: StatusCodes.Status400BadRequest))
@@ -373,6 +376,23 @@ internal static class ApiEndpoints
         return json
             ? Results.File(Encoding.UTF8.GetBytes(RunRecordJson.Serialize(record)), "application/json", name)
             : Results.File(Encoding.UTF8.GetBytes(RunSummaryText.Format(record)), "text/plain; charset=utf-8", name);
+    }
+
+    private static IResult ExportHistory(MainViewModel main, string? format, string? decimalMark)
+    {
+        if (main.Log.SelectedRows.Count == 0)
+        {
+            return Results.NotFound(new { error = "no run is ticked in the history table: tick the runs to export first" });
+        }
+
+        var json = string.Equals(format, "json", StringComparison.OrdinalIgnoreCase);
+        var text = main.Log.Export(json ? "json" : "csv", string.Equals(decimalMark, "comma", StringComparison.OrdinalIgnoreCase));
+        var name = $"runs-{DateTimeOffset.Now:yyyy-MM-dd_HHmm}.{(json ? "json" : "csv")}";
+
+        // Excel reads a CSV as UTF-8 (µ, sample IDs in any script) only after the byte order mark.
+        return json
+            ? Results.File(Encoding.UTF8.GetBytes(text), "application/json", name)
+            : Results.File([.. Encoding.UTF8.Preamble, .. Encoding.UTF8.GetBytes(text)], "text/csv; charset=utf-8", name);
     }
 
     internal sealed record PathRequest(string? Path);

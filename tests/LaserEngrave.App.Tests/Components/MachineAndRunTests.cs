@@ -102,6 +102,36 @@ public sealed class LogPanelFolderTests : ComponentTest
     }
 }
 
+public sealed class RunHistoryTests : ComponentTest
+{
+    [Fact]
+    public void History_OpenedSearchedTicked_ExportLinksOffered()
+    {
+        var image = TestFiles.Asset("qr-code.bmp");
+        var job = PreparedJob.Prepare(new JobSpec { ImagePath = image, Size = Core.Geometry.SizeSpec.Width(3) });
+        Store.History().Returns(
+        [
+            new RunLogEntry("/logs/b.json", RunRecord.ForJob(job, "0", DateTimeOffset.UnixEpoch.AddDays(2)) with { Outcome = RunOutcome.Completed, SampleId = "Si-2" }, null),
+            new RunLogEntry("/logs/a.json", RunRecord.ForJob(job, "0", DateTimeOffset.UnixEpoch.AddDays(1)) with { Outcome = RunOutcome.Aborted, SampleId = "Glass-1" }, null),
+        ]);
+        Main.Log.RefreshCommand.Execute(null);
+        var cut = Render<LogPanel>(p => p.Add(c => c.Log, Main.Log));
+
+        cut.Find("#open-history").Click();
+
+        Assert.Equal(2, cut.FindAll("#history-table tbody tr").Count);
+        Assert.NotNull(cut.Find("#history-export-hint"));
+        cut.Find("#history-search").Input("glass");
+        cut.WaitForAssertion(() => Assert.Single(cut.FindAll("#history-table tbody tr")));
+        cut.Find(".history-tick").Change(true);
+        cut.WaitForAssertion(() => Assert.Equal("api/logs/history?format=csv&decimalMark=comma", cut.Find("#history-csv-comma").GetAttribute("href")));
+        Assert.NotNull(cut.Find("#history-json"));
+        Assert.Equal("/logs/a.json", Assert.Single(Main.Log.SelectedRows).Path);
+        cut.Find("#history-close").Click();
+        Assert.Empty(cut.FindAll("#history-overlay"));
+    }
+}
+
 public sealed class JogPadTests : ComponentTest
 {
     [Fact]
