@@ -243,8 +243,11 @@ public sealed partial class JobViewModel : ObservableObject
 
     public MachineProfile Profile => _profile;
 
-    /// <summary>Microsteps per pixel of the current pitch (need not be whole).</summary>
-    public double MicrostepsPerPixel => PitchUm / _profile.X.MicrostepUm;
+    /// <summary>
+    /// Microsteps per pixel (need not be whole): the planned job's own figure, which the command line and the log give,
+    /// else that of the pitch field.
+    /// </summary>
+    public double MicrostepsPerPixel => Job?.Geometry.MicrostepsPerPixel ?? PitchUm / _profile.X.MicrostepUm;
 
     /// <summary>The decoded image while it is small enough to keep (<see cref="RetainedImageBytes"/>); null for a large one, whose pixels are dropped once its mask is built.</summary>
     public LoadedImage? Image => _image;

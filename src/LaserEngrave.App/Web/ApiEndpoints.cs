@@ -137,11 +137,17 @@ internal static class ApiEndpoints
                 return refused;
             }
 
+            // A job of over an hour, or of pixels much smaller than the spot, asks as the page's Start does.
+            if (!request.Confirm && main.Run.StartQuestion is { } question)
+            {
+                return Busy($"{question} Send \"confirm\": true to start anyway");
+            }
+
             main.Log.Notes = request.Notes;
             main.Log.SampleId = request.SampleId;
-            return Start(main, main.Run.StartCommand);
+            return Start(main, main.Run.ConfirmStartCommand);
         })
-            .WithSummary("202; runs the planned job (all passes); a second start during a run is ignored (200 with a note).");
+            .WithSummary("202; runs the planned job (all passes); a second start during a run is ignored (200 with a note); 409 with the question for a job of over an hour or of pixels much smaller than the spot, unless confirm is true.");
         api.MapPost("/run/continue", (MainViewModel main) =>
         {
             if (main.Run.IsActive)
@@ -405,7 +411,7 @@ internal static class ApiEndpoints
 
     internal sealed record FireRequest(int Pulses);
 
-    internal sealed record RunStartRequest(string? Notes, string? SampleId);
+    internal sealed record RunStartRequest(string? Notes, string? SampleId, bool Confirm = false);
 
     internal sealed record ThemeRequest(string Theme);
 }

@@ -215,6 +215,39 @@ public sealed class RunBarTests : ComponentTest
     }
 
     [Fact]
+    public async Task Start_PixelsMuchSmallerThanTheSpot_AsksOnceWithTheNumbers()
+    {
+        OpenQr();
+        Main.Job.EditPitch(5);
+        await ConnectAsync();
+        var cut = RenderBar();
+        cut.WaitForAssertion(() => Assert.False(Disabled(cut.Find("#start"))));
+
+        cut.Find("#start").Click();
+
+        cut.WaitForAssertion(() => Assert.Contains("Its pixels of 5 µm are much smaller than the 20 µm laser spot, so each burns about 4 times wider", cut.Find("#start-question").TextContent, StringComparison.Ordinal));
+        await Runs.DidNotReceive().RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>());
+        cut.Find("#start-cancel").Click();
+        Assert.Empty(cut.FindAll("#start-question"));
+        cut.Find("#start").Click();
+        cut.Find("#start-confirm").Click();
+        cut.WaitForAssertion(() => Runs.Received(1).RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>()));
+        Assert.Empty(cut.FindAll("#start-question"));
+    }
+
+    [Fact]
+    public void StartQuestion_OverAnHour_SaysHowLong()
+    {
+        OpenQr(widthMm: 20);
+        Assert.Null(Main.Run.StartQuestion);
+
+        Main.Job.Passes = 100;
+
+        Assert.True(Main.Job.EstimatedSeconds > RunViewModel.AskAboveSeconds, $"{Main.Job.EstimatedSeconds} s");
+        Assert.StartsWith($"Start anyway? It takes about {App.Components.Format.Duration(Main.Job.EstimatedSeconds!.Value)}", Main.Run.StartQuestion, StringComparison.Ordinal);
+    }
+
+    [Fact]
     public async Task TestMove_UnderWay_RunBarSaysWhatAndStopsIt()
     {
         await ConnectAsync();
