@@ -230,6 +230,7 @@ public sealed class RunBarTests : ComponentTest
         cut.Find("#start-cancel").Click();
         Assert.Empty(cut.FindAll("#start-question"));
         cut.Find("#start").Click();
+        cut.WaitForAssertion(() => Assert.NotNull(cut.Find("#start-confirm")));
         cut.Find("#start-confirm").Click();
         cut.WaitForAssertion(() => Runs.Received(1).RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>()));
         Assert.Empty(cut.FindAll("#start-question"));
