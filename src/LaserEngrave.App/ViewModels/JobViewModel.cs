@@ -288,6 +288,18 @@ public sealed partial class JobViewModel : ObservableObject
         return true;
     }
 
+    /// <summary>
+    /// An upload that did not open: its error names the file as the user chose it, not the app's copy of it in
+    /// images/ (which is removed again).
+    /// </summary>
+    public void NameUploadInError(string copyPath, string userFileName)
+    {
+        if (Errors.TryGetValue(ImageField, out var error) && error.Contains(copyPath, StringComparison.Ordinal))
+        {
+            SetErrors(new Dictionary<string, string>(Errors) { [ImageField] = error.Replace(copyPath, userFileName, StringComparison.Ordinal) });
+        }
+    }
+
     /// <summary>A drawing has no pixels: the image and mask go, and the plan reads it (its errors stand beside the image).</summary>
     private bool OpenDrawing(string path)
     {

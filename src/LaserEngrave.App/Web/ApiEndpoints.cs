@@ -259,6 +259,7 @@ internal static class ApiEndpoints
         if (!main.Job.LoadImage(path))
         {
             // Only files that open stay in images/; why it did not open is in the state's errors.
+            main.Job.NameUploadInError(path, fileName);
             files.RemoveUpload(path);
         }
 

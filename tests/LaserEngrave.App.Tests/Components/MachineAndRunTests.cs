@@ -385,6 +385,28 @@ public sealed class StageCanvasTests : ComponentTest
     }
 
     [Fact]
+    public async Task DropRefused_ThenResized_TheLineGoesWithItsCause()
+    {
+        OpenQr(widthMm: 10);
+        var cut = RenderStage();
+        await cut.InvokeAsync(() => cut.Instance.OnJobDropped(55, 1));
+        Assert.NotEmpty(cut.FindAll("#drop-refused"));
+
+        Main.Job.EditWidth(4);
+
+        cut.WaitForAssertion(() => Assert.Empty(cut.FindAll("#drop-refused")));
+    }
+
+    [Fact]
+    public void MicrostepsPerPixel_SizeLeads_ThePlannedJobsOwnFigure()
+    {
+        OpenQr(widthMm: 10);
+
+        // The figure the command line and the run log give, not one from the pitch field's rounded value.
+        Assert.Equal(Main.Job.Job!.Geometry.MicrostepsPerPixel, Main.Job.MicrostepsPerPixel);
+    }
+
+    [Fact]
     public async Task MoveLaserHere_Connected_GoesThere()
     {
         await ConnectAsync();

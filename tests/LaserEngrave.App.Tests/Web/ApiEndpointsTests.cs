@@ -129,7 +129,10 @@ public sealed class ApiEndpointsTests : IDisposable
 
         var state = await UploadAsync(path);
 
-        Assert.Contains("notes.png", state.GetProperty("job").GetProperty("errors").GetProperty("image").GetString(), StringComparison.Ordinal);
+        // The user's file by the name it had, never the app's copy of it in images/.
+        var error = state.GetProperty("job").GetProperty("errors").GetProperty("image").GetString();
+        Assert.StartsWith("notes.png: not a BMP, PNG", error, StringComparison.Ordinal);
+        Assert.DoesNotContain(_app.DataFolder, error, StringComparison.Ordinal);
         Assert.Equal(JsonValueKind.Null, state.GetProperty("estimate").ValueKind);
         // Only files that open stay in images/.
         Assert.Empty(Directory.GetFiles(Path.Combine(_app.DataFolder, "images")));
