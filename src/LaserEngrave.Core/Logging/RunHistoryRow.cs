@@ -12,7 +12,7 @@ namespace LaserEngrave.Core.Logging;
 /// <param name="Path">The run log's JSON file.</param>
 /// <param name="Source">The image's or drawing's file name; for a job of layers, the job file's name.</param>
 /// <param name="Kind">image, dots, drawing or layers.</param>
-/// <param name="PitchUm">Pixel pitch, µm (an image's; a drawing's fill pitch is in its log).</param>
+/// <param name="PitchUm">Pixel pitch, µm, of an image (or dots); null for a drawing or a job of layers, which have none of their own.</param>
 public sealed record RunHistoryRow(
     string Path,
     DateTimeOffset StartedAt,
@@ -23,7 +23,7 @@ public sealed record RunHistoryRow(
     double HeightMm,
     double OriginXMm,
     double OriginYMm,
-    double PitchUm,
+    double? PitchUm,
     double BurnSpeedMmPerS,
     double LaserFrequencyHz,
     int Passes,
@@ -52,7 +52,7 @@ public sealed record RunHistoryRow(
             ? record.JobFile is { } file ? System.IO.Path.GetFileName(file.Path) : $"{layers.Count} layers"
             : System.IO.Path.GetFileName(record.Image.Path);
         return new RunHistoryRow(
-            path, record.StartedAt, record.SampleId, source, kind, g.WidthMm, g.HeightMm, g.OriginXMm, g.OriginYMm, g.PitchUm,
+            path, record.StartedAt, record.SampleId, source, kind, g.WidthMm, g.HeightMm, g.OriginXMm, g.OriginYMm, kind is "image" or "dots" ? g.PitchUm : null,
             record.Process.BurnSpeedMmPerS, record.Process.LaserFrequencyHz, record.Passes, record.Outcome, record.ActualSeconds,
             record.EstimatedSeconds, record.Notes);
     }
@@ -62,7 +62,7 @@ public sealed record RunHistoryRow(
         [.. (entries ?? throw new ArgumentNullException(nameof(entries))).Where(e => e.Record is not null).Select(e => From(e.Path, e.Record!))];
 
     /// <summary>The process in one line, as the table shows it: "1 mm/s · 1000 Hz · 50 µm".</summary>
-    public string ProcessText => string.Create(CultureInfo.InvariantCulture, $"{BurnSpeedMmPerS:0.###} mm/s · {LaserFrequencyHz:0.###} Hz · {PitchUm:0.##} µm");
+    public string ProcessText => string.Create(CultureInfo.InvariantCulture, $"{BurnSpeedMmPerS:0.###} mm/s · {LaserFrequencyHz:0.###} Hz{(PitchUm is { } pitch ? $" · {pitch:0.##} µm" : string.Empty)}");
 
     /// <summary>Whether the row holds <paramref name="text"/> in its sample ID, file, kind, outcome, notes or date (any case); an empty search matches all.</summary>
     public bool Matches(string? text) => string.IsNullOrWhiteSpace(text)
@@ -88,7 +88,7 @@ public sealed record RunHistoryRow(
             string[] fields =
             [
                 row.StartedAt.ToString("yyyy-MM-dd HH:mm:ss", CultureInfo.InvariantCulture), Text(row.SampleId), Text(row.Source), row.Kind,
-                N(row.WidthMm), N(row.HeightMm), N(row.OriginXMm), N(row.OriginYMm), N(row.PitchUm), N(row.BurnSpeedMmPerS), N(row.LaserFrequencyHz),
+                N(row.WidthMm), N(row.HeightMm), N(row.OriginXMm), N(row.OriginYMm), row.PitchUm is { } pitch ? N(pitch) : string.Empty, N(row.BurnSpeedMmPerS), N(row.LaserFrequencyHz),
                 row.Passes.ToString(culture), row.Outcome.ToString().ToLowerInvariant(), N(row.ActualSeconds, "0.#"), N(row.EstimatedSeconds, "0.#"),
                 Text(row.Notes), Text(row.Path),
             ];
@@ -122,7 +122,15 @@ public sealed record RunHistoryRow(
                 json.WriteNumber("heightMm", row.HeightMm);
                 json.WriteNumber("originXMm", row.OriginXMm);
                 json.WriteNumber("originYMm", row.OriginYMm);
-                json.WriteNumber("pitchUm", row.PitchUm);
+                if (row.PitchUm is { } pitch)
+                {
+                    json.WriteNumber("pitchUm", pitch);
+                }
+                else
+                {
+                    json.WriteNull("pitchUm");
+                }
+
                 json.WriteNumber("burnSpeedMmPerS", row.BurnSpeedMmPerS);
                 json.WriteNumber("laserFrequencyHz", row.LaserFrequencyHz);
                 json.WriteNumber("passes", row.Passes);

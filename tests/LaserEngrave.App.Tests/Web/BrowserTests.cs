@@ -400,7 +400,7 @@ public sealed class BrowserTests : IAsyncLifetime
 
         // Then the job towards the middle: drag the empty stage right and down (the job lies near the top-left corner).
         var zoomed = View();
-        new Actions(Driver).MoveToElement(canvas, 150, 150).ClickAndHold().MoveByOffset(220, 180).Release().Perform();
+        new Actions(Driver).MoveToElement(canvas, 150, 150).ClickAndHold().MoveByOffset(130, 90).Release().Perform();
         WaitFor(_ => View().X > zoomed.X + 100, "panned");
     }
 
@@ -461,6 +461,14 @@ public sealed class BrowserTests : IAsyncLifetime
         Id("continue").Click();
         WaitFor(d => d.FindElement(By.Id("status-run")).Text == "completed", "the continued drawing completed", 240);
         Assert.Equal(100, Progress());
+
+        // Both runs in the history table, ticked for the export.
+        Id("open-history").Click();
+        WaitFor(d => d.FindElements(By.CssSelector("#history-table tbody tr")).Count == 2, "both runs in the history");
+        Id("history-select-shown").Click();
+        WaitFor(d => d.FindElements(By.Id("history-csv")).Count == 1, "the export offered");
+        Assert.True(new FileInfo(Screenshot("run-history")).Length > 20_000);
+        Id("history-close").Click();
         Assert.DoesNotContain(Driver.Manage().Logs.GetLog(LogType.Browser), e => e.Level == LogLevel.Severe);
     }
 
