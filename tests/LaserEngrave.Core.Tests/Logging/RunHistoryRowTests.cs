@@ -26,6 +26,20 @@ public sealed class RunHistoryRowTests : IDisposable
     }
 
     [Fact]
+    public void From_Drawing_KindDrawingAndNoPitch()
+    {
+        var path = TestRuns.Asset(Path.Combine("drawings", "hexagons.dxf"));
+        var drawing = Jobs.PreparedDrawing.Prepare(new Jobs.JobSpec { ImagePath = path, Size = Core.Geometry.SizeSpec.Width(5) }, new Core.Vectors.VectorOptions());
+
+        var row = RunHistoryRow.From("/logs/d.json", RunRecord.ForDrawing(drawing, "0", TestRuns.Start));
+
+        Assert.Equal(("hexagons.dxf", "drawing"), (row.Source, row.Kind));
+        Assert.Null(row.PitchUm);
+        Assert.DoesNotContain("µm", row.ProcessText, StringComparison.Ordinal);
+        Assert.Contains(",hexagons.dxf,drawing,", RunHistoryRow.ToCsv([row], decimalComma: false), StringComparison.Ordinal);
+    }
+
+    [Fact]
     public void ToCsv_DecimalPoint_CommasBetweenFieldsNotesQuoted()
     {
         var lines = RunHistoryRow.ToCsv([Row()], decimalComma: false).Split("\r\n");
