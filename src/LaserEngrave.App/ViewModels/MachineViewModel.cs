@@ -164,8 +164,9 @@ public sealed partial class MachineViewModel : ObservableObject
                 while (!motion.IsCompleted)
                 {
                     var tick = Task.Delay(FollowInterval, connection.TimeProvider, stop.Token);
-                    if (await Task.WhenAny(motion, tick) == motion)
+                    if (await Task.WhenAny(motion, tick) == motion || tick.IsCanceled)
                     {
+                        // Ended, or stopped: the motion's end is awaited below.
                         break;
                     }
 

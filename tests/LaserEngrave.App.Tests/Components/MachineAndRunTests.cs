@@ -167,7 +167,9 @@ public sealed class JogPadTests : ComponentTest
         Assert.True(Disabled(cut.Find("[id='jog-x+']")));
         cut.Find("#moves-stop").Click();
         cut.WaitForAssertion(() => Assert.Empty(cut.FindAll("#moves-busy")));
-        Assert.Equal("cancelled", Main.TestMoves.Error);
+
+        // The line goes when the machine is free; the move's outcome is taken just after.
+        cut.WaitForAssertion(() => Assert.Equal("cancelled", Main.TestMoves.Error));
     }
 
     [Fact]
