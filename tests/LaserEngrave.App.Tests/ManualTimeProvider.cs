@@ -4,24 +4,46 @@ namespace LaserEngrave.App.Tests;
 internal sealed class ManualTimeProvider : TimeProvider
 {
     private readonly List<Timer> _timers = [];
+
+    // Timers may be made on the pool while the test reads or advances the clock.
+    private readonly Lock _lock = new();
     private DateTimeOffset _now = new(2026, 11, 23, 12, 0, 0, TimeSpan.Zero);
 
     public override DateTimeOffset GetUtcNow() => _now;
 
-    public int ActiveTimers => _timers.Count(t => t.Due is not null);
+    public int ActiveTimers
+    {
+        get
+        {
+            lock (_lock)
+            {
+                return _timers.Count(t => t.Due is not null);
+            }
+        }
+    }
 
     public override ITimer CreateTimer(TimerCallback callback, object? state, TimeSpan dueTime, TimeSpan period)
     {
         var timer = new Timer(this, callback, state);
         timer.Change(dueTime, period);
-        _timers.Add(timer);
+        lock (_lock)
+        {
+            _timers.Add(timer);
+        }
+
         return timer;
     }
 
     public void Advance(TimeSpan by)
     {
         _now += by;
-        foreach (var timer in _timers.ToList())
+        List<Timer> timers;
+        lock (_lock)
+        {
+            timers = [.. _timers];
+        }
+
+        foreach (var timer in timers)
         {
             while (timer.Due is { } due && due <= _now)
             {

@@ -94,6 +94,48 @@ public sealed class LogCommandsTests : IDisposable
     }
 
     [Fact]
+    public async Task LogListCsv_TwoRuns_HeaderThenARowEachNewestFirst()
+    {
+        var store = new RunLogStore(folder);
+        var older = store.Write(Record("OLD", DateTimeOffset.Now.AddHours(-2)));
+        var newer = store.Write(Record("NEW", DateTimeOffset.Now));
+
+        var (exit, output, _) = await CliHarness.RunAsync("log", "list", "--log-dir", folder, "--csv");
+
+        Assert.Equal(0, exit);
+        var lines = output.TrimEnd().Split("\r\n");
+        Assert.Equal(3, lines.Length);
+        Assert.StartsWith("started,sample ID,image or drawing,kind,width mm,", lines[0], StringComparison.Ordinal);
+        Assert.Contains(",NEW,qr-code.bmp,image,", lines[1], StringComparison.Ordinal);
+        Assert.Contains(",completed,12.5,", lines[1], StringComparison.Ordinal);
+        Assert.EndsWith(newer.JsonPath, lines[1], StringComparison.Ordinal);
+        Assert.EndsWith(older.JsonPath, lines[2], StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task LogListCsvDecimalComma_Run_SemicolonsAndDecimalCommas()
+    {
+        new RunLogStore(folder).Write(Record("S-9", DateTimeOffset.Now));
+
+        var (exit, output, _) = await CliHarness.RunAsync("log", "list", folder, "--csv", "--decimal-comma");
+
+        Assert.Equal(0, exit);
+        Assert.StartsWith("started;sample ID;", output, StringComparison.Ordinal);
+        Assert.Contains(";completed;12,5;", output, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task LogListDecimalComma_WithoutCsv_Exit2()
+    {
+        Directory.CreateDirectory(folder);
+
+        var (exit, _, error) = await CliHarness.RunAsync("log", "list", folder, "--decimal-comma");
+
+        Assert.Equal(2, exit);
+        Assert.Contains("--decimal-comma is for the CSV: add --csv", error, StringComparison.Ordinal);
+    }
+
+    [Fact]
     public async Task LogList_AFileOrNoFolder_OneLineExit2()
     {
         Directory.CreateDirectory(folder);

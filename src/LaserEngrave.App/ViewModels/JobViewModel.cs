@@ -234,8 +234,11 @@ public sealed partial class JobViewModel : ObservableObject
 
     public MachineProfile Profile => _profile;
 
-    /// <summary>Microsteps per pixel of the current pitch (need not be whole).</summary>
-    public double MicrostepsPerPixel => PitchUm / _profile.X.MicrostepUm;
+    /// <summary>
+    /// Microsteps per pixel (need not be whole): the planned job's own figure, which the command line and the log give,
+    /// else that of the pitch field.
+    /// </summary>
+    public double MicrostepsPerPixel => Job?.Geometry.MicrostepsPerPixel ?? PitchUm / _profile.X.MicrostepUm;
 
     /// <summary>The decoded image while it is small enough to keep (<see cref="RetainedImageBytes"/>); null for a large one, whose pixels are dropped once its mask is built.</summary>
     public LoadedImage? Image => _image;
@@ -274,6 +277,18 @@ public sealed partial class JobViewModel : ObservableObject
 
         RebuildMask();
         return true;
+    }
+
+    /// <summary>
+    /// An upload that did not open: its error names the file as the user chose it, not the app's copy of it in
+    /// images/ (which is removed again).
+    /// </summary>
+    public void NameUploadInError(string copyPath, string userFileName)
+    {
+        if (Errors.TryGetValue(ImageField, out var error) && error.Contains(copyPath, StringComparison.Ordinal))
+        {
+            SetErrors(new Dictionary<string, string>(Errors) { [ImageField] = error.Replace(copyPath, userFileName, StringComparison.Ordinal) });
+        }
     }
 
     /// <summary>A drawing has no pixels: the image and mask go, and the plan reads it (its errors stand beside the image).</summary>

@@ -35,7 +35,97 @@ public sealed partial class LogViewModel : ObservableObject
     public partial RunLogEntry? LastRun { get; private set; }
 
     [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(Rows), nameof(SelectedRows))]
     public partial IReadOnlyList<RunLogEntry> History { get; private set; } = [];
+
+    /// <summary>What the history table is searched for (sample ID, file, kind, outcome, notes, date); empty: every run.</summary>
+    [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(Rows), nameof(SelectedRows))]
+    public partial string? Search { get; set; }
+
+    /// <summary>The column the history table is sorted by (one of <see cref="RunHistoryRow.Columns"/>'s first twelve).</summary>
+    [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(Rows))]
+    public partial string SortColumn { get; private set; } = "started";
+
+    [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(Rows))]
+    public partial bool SortDescending { get; private set; } = true;
+
+    /// <summary>The runs ticked in the history table, by their log's path, for the export.</summary>
+    [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(SelectedRows))]
+    [NotifyCanExecuteChangedFor(nameof(ClearSelectionCommand))]
+    public partial IReadOnlySet<string> Selected { get; private set; } = new HashSet<string>();
+
+    /// <summary>The history as the table shows it: every readable run that matches <see cref="Search"/>, in the chosen order.</summary>
+    public IReadOnlyList<RunHistoryRow> Rows
+    {
+        get
+        {
+            var rows = RunHistoryRow.From(History).Where(r => r.Matches(Search));
+            Func<RunHistoryRow, object?> key = SortColumn switch
+            {
+                "sample ID" => r => r.SampleId,
+                "image or drawing" => r => r.Source,
+                "size" => r => r.WidthMm * r.HeightMm,
+                "origin" => r => (r.OriginXMm, r.OriginYMm),
+                "process" => r => (r.BurnSpeedMmPerS, r.LaserFrequencyHz, r.PitchUm),
+                "passes" => r => r.Passes,
+                "outcome" => r => r.Outcome.ToString(),
+                "duration" => r => r.ActualSeconds,
+                "estimate" => r => r.EstimatedSeconds,
+                _ => r => r.StartedAt,
+            };
+            return [.. SortDescending ? rows.OrderByDescending(key) : rows.OrderBy(key)];
+        }
+    }
+
+    /// <summary>The ticked runs still shown, in the table's order: what the CSV and JSON exports hold.</summary>
+    public IReadOnlyList<RunHistoryRow> SelectedRows => [.. Rows.Where(r => Selected.Contains(r.Path))];
+
+    /// <summary>The columns the table sorts by, as its headers name them.</summary>
+    public static IReadOnlyList<string> SortColumns { get; } = ["started", "sample ID", "image or drawing", "size", "origin", "process", "passes", "outcome", "duration", "estimate"];
+
+    /// <summary>Sorts the table by <paramref name="column"/>; the same column again turns the order round.</summary>
+    [RelayCommand]
+    private void Sort(string column)
+    {
+        if (!SortColumns.Contains(column))
+        {
+            return;
+        }
+
+        SortDescending = column == SortColumn ? !SortDescending : column is "started" or "duration" or "estimate";
+        SortColumn = column;
+    }
+
+    /// <summary>Ticks or unticks the run logged at <paramref name="path"/> for the export.</summary>
+    [RelayCommand]
+    private void ToggleSelected(string path)
+    {
+        var selected = new HashSet<string>(Selected);
+        if (!selected.Remove(path))
+        {
+            selected.Add(path);
+        }
+
+        Selected = selected;
+    }
+
+    /// <summary>Ticks every run the table shows (after the search).</summary>
+    [RelayCommand]
+    private void SelectShown() => Selected = new HashSet<string>(Selected.Concat(Rows.Select(r => r.Path)));
+
+    [RelayCommand(CanExecute = nameof(HasSelection))]
+    private void ClearSelection() => Selected = new HashSet<string>();
+
+    private bool HasSelection() => Selected.Count > 0;
+
+    /// <summary>The ticked runs as CSV (decimal comma: fields between semicolons) or as JSON, for the export.</summary>
+    public string Export(string format, bool decimalComma) => string.Equals(format, "json", StringComparison.OrdinalIgnoreCase)
+        ? RunHistoryRow.ToJson(SelectedRows)
+        : RunHistoryRow.ToCsv(SelectedRows, decimalComma);
 
     [ObservableProperty]
     public partial string? Error { get; private set; }

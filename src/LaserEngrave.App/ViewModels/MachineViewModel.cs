@@ -141,9 +141,61 @@ public sealed partial class MachineViewModel : ObservableObject
     {
         var connection = RequireConnection();
         await connection.Gate.OffAsync(cancellationToken);
-        await Task.WhenAll(connection.Stage.X.HomeAsync(cancellationToken), connection.Stage.Y.HomeAsync(cancellationToken));
+        await FollowAsync(Task.WhenAll(connection.Stage.X.HomeAsync(cancellationToken), connection.Stage.Y.HomeAsync(cancellationToken)), cancellationToken);
         await ReadStateAsync(connection, cancellationToken);
     });
+
+    /// <summary>How often the positions are read while the stage moves (a test move, a jog, homing).</summary>
+    public static TimeSpan FollowInterval { get; } = TimeSpan.FromMilliseconds(200);
+
+    /// <summary>
+    /// Waits for <paramref name="motion"/>, reading both positions every <see cref="FollowInterval"/> of the machine's
+    /// clock meanwhile, so the position and the laser's cross move at the stage's own pace instead of jumping at the end.
+    /// </summary>
+    /// <remarks>A position the stage does not give (a fault) only ends the following: the motion's own end says what went wrong.</remarks>
+    internal async Task FollowAsync(Task motion, CancellationToken cancellationToken)
+    {
+        ArgumentNullException.ThrowIfNull(motion);
+        if (Connection is { } connection)
+        {
+            using var stop = CancellationTokenSource.CreateLinkedTokenSource(cancellationToken);
+            try
+            {
+                while (!motion.IsCompleted)
+                {
+                    var tick = Task.Delay(FollowInterval, connection.TimeProvider, stop.Token);
+                    if (await Task.WhenAny(motion, tick) == motion || tick.IsCanceled)
+                    {
+                        // Ended, or stopped: the motion's end is awaited below.
+                        break;
+                    }
+
+                    XMicrosteps = await connection.Stage.X.GetPositionAsync(stop.Token);
+                    YMicrosteps = await connection.Stage.Y.GetPositionAsync(stop.Token);
+                }
+            }
+            catch (Exception ex) when (ex is DeviceException or OperationCanceledException or TimeoutException or IOException or InvalidOperationException or ObjectDisposedException)
+            {
+                // The motion decides the outcome below.
+            }
+            finally
+            {
+                await stop.CancelAsync();
+            }
+        }
+
+        await motion;
+    }
+
+    /// <summary>
+    /// A run or sweep got past its preflight, which homes every axis that is not homed (docs/execution.md): the panel says
+    /// so at once, not only once the run has ended.
+    /// </summary>
+    internal void PreflightHomed()
+    {
+        XHomed = true;
+        YHomed = true;
+    }
 
     /// <summary>Closes the connection whatever holds the machine: for the app's exit, after the run was aborted.</summary>
     internal async Task CloseAsync()

@@ -1,3 +1,4 @@
+using System.Globalization;
 using System.Text.Json;
 using CommunityToolkit.Mvvm.ComponentModel;
 using CommunityToolkit.Mvvm.Input;
@@ -184,10 +185,72 @@ public sealed partial class RunViewModel : ObservableObject
         }
     }
 
+    /// <summary>A run longer than this asks before it starts (the estimate, all passes).</summary>
+    public const double AskAboveSeconds = 3600;
+
+    /// <summary>
+    /// What to ask before Start runs this job, with its numbers: a run of over an hour, or pixels less than half the laser
+    /// spot (each burns several times wider than it is); null when Start need not ask.
+    /// </summary>
+    public string? StartQuestion
+    {
+        get
+        {
+            var estimate = RunsLayers ? _layers!.Job?.EstimatedSeconds : _job.EstimatedSeconds;
+            var spot = _job.Profile.SpotDiameterUm;
+            var pitch = RunsLayers
+                ? _layers!.Job?.Layers.Where(l => l.Image is not null).Select(l => (double?)l.Image!.Geometry.PitchUm).Min()
+                : _job.Job?.Geometry.PitchUm;
+            var reasons = new List<string>();
+            if (estimate > AskAboveSeconds)
+            {
+                reasons.Add($"it takes about {Components.Format.Duration(estimate.Value)}");
+            }
+
+            if (pitch < spot / 2)
+            {
+                reasons.Add(string.Create(CultureInfo.InvariantCulture, $"its pixels of {pitch:0.###} µm are much smaller than the {spot:0.#} µm laser spot, so each burns about {spot / pitch:0} times wider than it is"));
+            }
+
+            return reasons.Count == 0 ? null : $"Start anyway? {char.ToUpperInvariant(reasons[0][0])}{string.Join("; and ", reasons)[1..]}.";
+        }
+    }
+
+    /// <summary>The question Start asked (<see cref="StartQuestion"/>), waiting for Start anyway or Cancel; null when none waits.</summary>
+    [ObservableProperty]
+    public partial string? PendingQuestion { get; private set; }
+
     /// <summary>Runs the planned job on the connected machine; <see cref="AbortCommand"/> stops it.</summary>
-    /// <remarks>A second Start while a run is under way is ignored (never taken as an abort); <see cref="Notice"/> says so.</remarks>
+    /// <remarks>
+    /// A second Start while a run is under way is ignored (never taken as an abort); <see cref="Notice"/> says so. A job
+    /// of over an hour, or of pixels much smaller than the spot, asks first (<see cref="PendingQuestion"/>).
+    /// </remarks>
     [RelayCommand(CanExecute = nameof(CanStart))]
     private async Task StartAsync()
+    {
+        if (!IsActive && StartQuestion is { } question)
+        {
+            PendingQuestion = question;
+            return;
+        }
+
+        await StartNowAsync();
+    }
+
+    /// <summary>Starts the job Start asked about: the answer "Start anyway".</summary>
+    [RelayCommand(CanExecute = nameof(CanStart))]
+    private Task ConfirmStartAsync()
+    {
+        PendingQuestion = null;
+        return StartNowAsync();
+    }
+
+    /// <summary>The answer "Cancel": nothing starts.</summary>
+    [RelayCommand]
+    private void CancelStart() => PendingQuestion = null;
+
+    /// <summary>Starts without asking (the API's start with "confirm": true, or the answer to the question).</summary>
+    internal async Task StartNowAsync()
     {
         if (IsActive)
         {
@@ -329,6 +392,7 @@ public sealed partial class RunViewModel : ObservableObject
             .Where(p => !now.TryGetProperty(p.Name, out var value) || value.GetRawText() != p.Value.GetRawText())
             .Select(p => p.Name)
             .Where(name => name != "passes")
+            .Select(JobSettings.FieldLabel)
             .ToList();
         if (changed.Count == 0 && stopped.Target.Job is { } job && (_job.Mask is not { } mask || !mask.ContentEquals(job.Mask)))
         {
@@ -505,6 +569,7 @@ public sealed partial class RunViewModel : ObservableObject
     private void RefreshCommands()
     {
         StartCommand.NotifyCanExecuteChanged();
+        ConfirmStartCommand.NotifyCanExecuteChanged();
         ContinueCommand.NotifyCanExecuteChanged();
         PauseCommand.NotifyCanExecuteChanged();
         ResumeCommand.NotifyCanExecuteChanged();
@@ -557,6 +622,11 @@ public sealed partial class RunViewModel : ObservableObject
         public void Report(EngraveProgress value)
         {
             owner.Mirror(session, value);
+            if (value.State is RunState.Running && (owner._machine.XHomed is not true || owner._machine.YHomed is not true))
+            {
+                owner._machine.PreflightHomed();
+            }
+
             owner._machine.XMicrosteps = value.Run.XMicrosteps;
             owner._machine.YMicrosteps = value.Run.YMicrosteps;
         }

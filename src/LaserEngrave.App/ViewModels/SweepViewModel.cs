@@ -147,8 +147,8 @@ public sealed partial class SweepViewModel : ObservableObject
                 SpacingMm = SpacingMm,
                 PitchUm = PitchUm,
                 Origin = new OriginMm(_job.OriginXMm, _job.OriginYMm),
-                Rows = SweepAxis.Parse(Rows ?? string.Empty, "rows"),
-                Columns = string.IsNullOrWhiteSpace(Columns) ? null : SweepAxis.Parse(Columns, "columns"),
+                Rows = SweepAxis.Parse(Rows ?? string.Empty, "Rows"),
+                Columns = string.IsNullOrWhiteSpace(Columns) ? null : SweepAxis.Parse(Columns, "Columns"),
                 Labels = Labels,
                 Process = _job.Process(),
                 Plan = _job.PlanOptions(),
@@ -159,7 +159,7 @@ public sealed partial class SweepViewModel : ObservableObject
         catch (Exception ex) when (ex is SweepException or PlanException or GeometryException)
         {
             Plan = null;
-            Error = ex.Message;
+            Error = InPanelWords(ex.Message);
         }
 
         OnPropertyChanged(nameof(FocusAvailable));
@@ -169,12 +169,42 @@ public sealed partial class SweepViewModel : ObservableObject
         FocalSeriesCommand.NotifyCanExecuteChanged();
     }
 
+    /// <summary>The sweep's rules name the command line's options; the panel says its own fields' names instead.</summary>
+    internal static string InPanelWords(string message) =>
+        OptionWords.Aggregate(message, (text, pair) => text.Replace(pair.Option, pair.Field, StringComparison.Ordinal));
+
+    private static readonly (string Option, string Field)[] OptionWords =
+    [
+        ("--pattern image needs the cell's image: --cell-image FILE", "the cells burn the job's image: load an image first (Image panel)"),
+        ("--pattern image", "Cells \"the job's image\""),
+        ("--cell-image", "the job's image"),
+        ("--cell-mm", "Cell"),
+        ("--spacing-mm", "Spacing"),
+        ("--pitch-um", "Pitch"),
+        ("--passes", "Passes (Process panel)"),
+        ("move the sweep (--origin-mm)", "move the sweep (the job's Origin X and Y)"),
+        ("--labels", "Burn the values beside rows and columns"),
+        ("--focus-um", "Rows"),
+        ("--rows", "Rows"),
+        ("--columns", "Columns"),
+        ("add --mode dots", "choose Mode: dots in the Process panel"),
+    ];
+
     /// <summary>The plan in one line: cells, place and estimate.</summary>
     public string? Summary => Plan is { } plan
-        ? string.Create(CultureInfo.InvariantCulture, $"{plan.RowCount} × {plan.ColumnCount} cells from {plan.Spec.Origin.X:0.##}, {plan.Spec.Origin.Y:0.##} mm · est. {plan.EstimatedSeconds:0} s")
+        ? string.Create(CultureInfo.InvariantCulture, $"{plan.RowCount} × {plan.ColumnCount} cells from {plan.Spec.Origin.X:0.##}, {plan.Spec.Origin.Y:0.##} mm · est. {Components.Format.Duration(plan.EstimatedSeconds)}")
         : null;
 
-    partial void OnPlanChanged(SweepPlan? value) => OnPropertyChanged(nameof(Summary));
+    partial void OnPlanChanged(SweepPlan? value)
+    {
+        OnPropertyChanged(nameof(Summary));
+
+        // The last sweep's progress belongs to its plan, not to this one.
+        if (!IsRunning)
+        {
+            Progress = null;
+        }
+    }
 
     partial void OnPatternChanged(SweepPattern value) => Replan();
 
@@ -189,6 +219,27 @@ public sealed partial class SweepViewModel : ObservableObject
     partial void OnColumnsChanged(string value) => Replan();
 
     partial void OnLabelsChanged(bool value) => Replan();
+
+    /// <summary>The sweep under way: which job (the labels or a cell) and that job's own progress; null before the first report.</summary>
+    [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(Fraction), nameof(ProgressText), nameof(RemainingSeconds))]
+    public partial SweepProgress? Progress { get; private set; }
+
+    /// <summary>Share of the sweep done, 0..1: the jobs (labels and cells) ended, plus the share of the one under way.</summary>
+    public double Fraction => Progress is { Jobs: > 0 } p ? Math.Clamp((p.Index + p.Run.Fraction) / p.Jobs, 0, 1) : 0;
+
+    /// <summary>The plan's estimate of what is left, by the share of the sweep done (0 when none runs).</summary>
+    public double RemainingSeconds => IsRunning && Plan is { } plan ? plan.EstimatedSeconds * (1 - Fraction) : 0;
+
+    /// <summary>What burns now, counted as the panel's grid counts its cells: "cell 4 of 9: row 2, column 1 (speed 1 mm/s, …)", or the labels.</summary>
+    public string? ProgressText => Progress is { } p && Plan is { } plan
+        ? p.Cell is { } cell
+            ? $"cell {CellNumber(p.Index, plan)} of {plan.Cells.Count}: {cell.Describe()["cell ".Length..]}"
+            : $"the labels, then {plan.Cells.Count} cells"
+        : null;
+
+    /// <summary>The cell's number, from 1, in burn order; the labels (when there are labels) burn first and are no cell.</summary>
+    private static int CellNumber(int jobIndex, SweepPlan plan) => jobIndex + 1 - (plan.Labels is null ? 0 : 1);
 
     /// <summary>Runs the sweep on the connected machine (the simulator's burn check per cell), then writes its log.</summary>
     [RelayCommand(CanExecute = nameof(CanRun))]
@@ -213,28 +264,60 @@ public sealed partial class SweepViewModel : ObservableObject
             Inspector = connection.IsSimulated ? connection.Inspector : null,
         };
         var session = new SweepSession(machine, plan, new SweepSessionOptions { Log = new RunLogStore(_logs.Folder), WallClock = _time });
-        var jobs = plan.Cells.Count + (plan.Labels is null ? 0 : 1);
+        var cells = plan.Cells.Count;
         var done = 0;
-        session.JobEnded += (_, e) => Status = string.Create(CultureInfo.InvariantCulture, $"{++done} of {jobs} done: {e.Cell?.Describe() ?? "the labels"}: {e.Result.Record.Outcome.ToString().ToLowerInvariant()}");
+        session.JobEnded += (_, e) =>
+        {
+            var outcome = e.Result.Record.Outcome.ToString().ToLowerInvariant();
+            Status = e.Cell is { } cell
+                ? $"{++done} of {cells} cells done; {cell.Describe()}: {outcome}"
+                : $"the labels: {outcome}; 0 of {cells} cells done";
+        };
         _session = session;
+        Progress = null;
         IsRunning = true;
-        Status = $"0 of {jobs} done";
+        Status = $"0 of {cells} cells done";
         try
         {
-            var result = await session.RunAsync(null, lease.CancellationToken);
+            var result = await session.RunAsync(new LatestProgress(this), lease.CancellationToken);
             LastSweep = result.Record;
             Status = result.Record.Outcome == RunOutcome.Completed
-                ? $"completed: {jobs} of {jobs}; log {result.Files?.JsonPath ?? result.LogError?.Message}"
-                : $"{result.Record.Outcome.ToString().ToLowerInvariant()}: {result.Record.Fault}";
+                ? $"completed: {cells} of {cells} cells; log {result.Files?.JsonPath ?? result.LogError?.Message}"
+                : $"{result.Record.Outcome.ToString().ToLowerInvariant()} after {done} of {cells} cells: {result.Record.Fault}";
         }
         finally
         {
             _session = null;
             IsRunning = false;
+            try
+            {
+                // Each cell's preflight may have homed the stage: the Machine panel reads the state again.
+                await _machine.RefreshStateAsync(CancellationToken.None);
+            }
+            catch (Exception ex) when (ex is Devices.Abstractions.DeviceException or InvalidOperationException or ObjectDisposedException or TimeoutException or IOException)
+            {
+                _machine.Error = ex.Message;
+            }
         }
     }
 
     /// <summary>Laser off, stage stopped, no further cell.</summary>
     [RelayCommand(CanExecute = nameof(IsRunning))]
     private void AbortSweep() => _session?.Abort();
+
+    /// <summary>Keeps only the newest report, and moves the laser's cross with it.</summary>
+    private sealed class LatestProgress(SweepViewModel owner) : IProgress<SweepProgress>
+    {
+        public void Report(SweepProgress value)
+        {
+            owner.Progress = value;
+            if (value.Run.State is RunState.Running && (owner._machine.XHomed is not true || owner._machine.YHomed is not true))
+            {
+                owner._machine.PreflightHomed();
+            }
+
+            owner._machine.XMicrosteps = value.Run.Run.XMicrosteps;
+            owner._machine.YMicrosteps = value.Run.Run.YMicrosteps;
+        }
+    }
 }

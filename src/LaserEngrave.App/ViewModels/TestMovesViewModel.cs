@@ -39,6 +39,7 @@ public sealed partial class TestMovesViewModel : ObservableObject
             if (e.PropertyName == nameof(MachineActivity.Current))
             {
                 RefreshCommands();
+                OnPropertyChanged(nameof(MotionText));
             }
         };
         _machine.PropertyChanged += (_, e) =>
@@ -50,9 +51,10 @@ public sealed partial class TestMovesViewModel : ObservableObject
         };
         _job.PropertyChanged += (_, e) =>
         {
-            if (e.PropertyName == nameof(JobViewModel.Job))
+            if (e.PropertyName is nameof(JobViewModel.Job) or nameof(JobViewModel.Drawing))
             {
                 RefreshCommands();
+                OnPropertyChanged(nameof(JobMoveUnavailableReason));
             }
         };
     }
@@ -164,7 +166,7 @@ public sealed partial class TestMovesViewModel : ObservableObject
 
                 try
                 {
-                    await moves.GoToAsync(startXMm + (target.X / 1000), startYMm + (target.Y / 1000), lease.CancellationToken);
+                    await _machine.FollowAsync(moves.GoToAsync(startXMm + (target.X / 1000), startYMm + (target.Y / 1000), lease.CancellationToken), lease.CancellationToken);
                 }
                 finally
                 {
@@ -197,19 +199,52 @@ public sealed partial class TestMovesViewModel : ObservableObject
     }
 
     [RelayCommand(CanExecute = nameof(CanMove))]
-    private Task GoToAsync() => Move("go to", (moves, ct) => moves.GoToAsync(GoToXMm, GoToYMm, ct));
+    private Task GoToAsync() => Move("go to", string.Create(CultureInfo.InvariantCulture, $"Going to {GoToXMm:0.###}, {GoToYMm:0.###} mm, laser off…"), (moves, ct) => moves.GoToAsync(GoToXMm, GoToYMm, ct));
 
-    /// <summary>Moves to the job's top-left corner, where the first pixel edge lies.</summary>
+    /// <summary>Moves to the job's top-left corner: an image's first pixel edge, a drawing's bounding box's corner.</summary>
     [RelayCommand(CanExecute = nameof(CanMoveToJob))]
-    private Task GoToOriginAsync() => Move("go to the job's origin", (moves, ct) => moves.GoToOriginAsync(RequireJob().Geometry.Geometry, ct));
+    private Task GoToOriginAsync() => Move("go to the job's origin", "Going to the job's origin, laser off…", (moves, ct) =>
+    {
+        if (_job.Drawing is { } drawing)
+        {
+            var (left, top, _, _) = Box(drawing);
+            return moves.GoToAsync(StageUnits.MicrostepsToMm(left, drawing.Spec.Profile.X.MicrostepUm), StageUnits.MicrostepsToMm(top, drawing.Spec.Profile.Y.MicrostepUm), ct);
+        }
 
-    /// <summary>Traces the job's outline with the laser off, so the user sees where it will land.</summary>
+        return moves.GoToOriginAsync(RequireJob().Geometry.Geometry, ct);
+    });
+
+    /// <summary>
+    /// Traces the job's outline with the laser off, so the user sees where it will land: an image's pixel grid, or the
+    /// box around a drawing's planned paths (as <c>laserengrave frame</c> traces it).
+    /// </summary>
     [RelayCommand(CanExecute = nameof(CanMoveToJob))]
-    private Task FrameAsync() => Move("frame", (moves, ct) => moves.FrameAsync(RequireJob().Geometry.Geometry, visibleFrequencyHz: null, ct));
+    private Task FrameAsync() => Move("frame", "Tracing the job's frame, laser off…", (moves, ct) =>
+    {
+        if (_job.Drawing is { } drawing)
+        {
+            var (left, top, right, bottom) = Box(drawing);
+            return moves.FrameAsync(left, top, right, bottom, visibleFrequencyHz: null, ct);
+        }
+
+        return moves.FrameAsync(RequireJob().Geometry.Geometry, visibleFrequencyHz: null, ct);
+    });
+
+    /// <summary>The box around a drawing's planned paths, microsteps, as the command line's frame takes it.</summary>
+    private static (long Left, long Top, long Right, long Bottom) Box(Core.Jobs.PreparedDrawing drawing)
+    {
+        var points = drawing.Plan.Paths.SelectMany(p => p.Points).ToList();
+        if (points.Count == 0)
+        {
+            throw new ArgumentException("the drawing has no path to frame");
+        }
+
+        return (points.Min(p => p.X), points.Min(p => p.Y), points.Max(p => p.X), points.Max(p => p.Y));
+    }
 
     /// <summary>Fires a burst where the stage stands (the stage does not move), at the job's frequency.</summary>
     [RelayCommand(CanExecute = nameof(CanMove))]
-    private Task TestFireAsync() => Run("test fire", async (moves, ct) =>
+    private Task TestFireAsync() => Run("test fire", $"Firing {TestFirePulses} pulses…", async (moves, ct) =>
     {
         if (TestFirePulses is < 1 or > 100000)
         {
@@ -239,8 +274,16 @@ public sealed partial class TestMovesViewModel : ObservableObject
     /// <summary>A machine, and nothing holding it (the interlock decides first).</summary>
     public bool CanMove => !Activity.IsBusy && _machine.IsConnected;
 
-    /// <summary>As <see cref="CanMove"/>, with a planned job to go to or trace.</summary>
-    public bool CanMoveToJob => CanMove && _job.Job is not null;
+    /// <summary>As <see cref="CanMove"/>, with a planned image or drawing to go to or trace.</summary>
+    public bool CanMoveToJob => CanMove && JobMoveUnavailableReason is null;
+
+    /// <summary>Why Job origin and Frame have nothing to go to, one line for their tooltips; null when a job is planned.</summary>
+    public string? JobMoveUnavailableReason => _job.Job is not null || _job.Drawing is not null ? null
+        : _job.ImageInfo is null && !_job.IsDrawing ? "open an image or drawing first"
+        : "the job does not plan: see the fields marked in red";
+
+    /// <summary>What the test move, jog, homing or connecting under way is doing, in words, for the run bar and this panel; null when none is.</summary>
+    public string? MotionText => Activity.Current is { Kind: not MachineOperationKind.Run } op ? op.Doing : null;
 
     /// <summary>A test move, jog, homing or connect holds the machine and can be stopped (a run has its own Abort).</summary>
     public bool CanStop => Activity.Current is { Kind: not MachineOperationKind.Run };
@@ -259,11 +302,11 @@ public sealed partial class TestMovesViewModel : ObservableObject
         _job.Job ?? throw new ArgumentException("no job planned: open an image and give it a usable size first");
 
     /// <summary>A move (the Devices test moves switch the laser off first); the positions are read afterwards.</summary>
-    private Task Move(string what, Func<StageTestMoves, CancellationToken, Task<StagePosition>> move) => Run(what, async (moves, ct) =>
+    private Task Move(string what, string doing, Func<StageTestMoves, CancellationToken, Task<StagePosition>> move) => Run(what, doing, async (moves, ct) =>
     {
         try
         {
-            await move(moves, ct);
+            await _machine.FollowAsync(move(moves, ct), ct);
         }
         finally
         {
@@ -271,10 +314,10 @@ public sealed partial class TestMovesViewModel : ObservableObject
         }
     });
 
-    private async Task Run(string what, Func<StageTestMoves, CancellationToken, Task> action)
+    private async Task Run(string what, string doing, Func<StageTestMoves, CancellationToken, Task> action)
     {
         Error = null;
-        var ran = await _machine.Guard(MachineOperation.TestMove(what), async cancellationToken =>
+        var ran = await _machine.Guard(MachineOperation.TestMove(what, doing), async cancellationToken =>
         {
             var connection = _machine.RequireConnection();
             var moves = new StageTestMoves(connection.Stage, connection.Gate, connection.Profile, timeProvider: connection.TimeProvider);

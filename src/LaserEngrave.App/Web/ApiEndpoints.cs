@@ -137,11 +137,17 @@ internal static class ApiEndpoints
                 return refused;
             }
 
+            // A job of over an hour, or of pixels much smaller than the spot, asks as the page's Start does.
+            if (!request.Confirm && main.Run.StartQuestion is { } question)
+            {
+                return Busy($"{question} Send \"confirm\": true to start anyway");
+            }
+
             main.Log.Notes = request.Notes;
             main.Log.SampleId = request.SampleId;
-            return Start(main, main.Run.StartCommand);
+            return Start(main, main.Run.ConfirmStartCommand);
         })
-            .WithSummary("202; runs the planned job (all passes); a second start during a run is ignored (200 with a note).");
+            .WithSummary("202; runs the planned job (all passes); a second start during a run is ignored (200 with a note); 409 with the question for a job of over an hour or of pixels much smaller than the spot, unless confirm is true.");
         api.MapPost("/run/continue", (MainViewModel main) =>
         {
             if (main.Run.IsActive)
@@ -171,6 +177,9 @@ internal static class ApiEndpoints
             .WithSummary("Opens the log folder on this computer's screen.");
         api.MapGet("/logs/export", (MainViewModel main, string path, string? format) => Export(main, path, format))
             .WithSummary("A logged run's file (format=json or txt); only runs the history lists.");
+
+        api.MapGet("/logs/history", (MainViewModel main, string? format, string? decimalMark) => ExportHistory(main, format, decimalMark))
+            .WithSummary("The runs ticked in the history table as CSV (decimalMark=comma: decimal commas, fields between semicolons) or format=json.");
 
         api.MapPost("/settings/theme", (MainViewModel main, ThemeRequest request) => main.SetTheme(request.Theme)
                 ? State(main)
@@ -250,6 +259,7 @@ internal static class ApiEndpoints
         if (!main.Job.LoadImage(path))
         {
             // Only files that open stay in images/; why it did not open is in the state's errors.
+            main.Job.NameUploadInError(path, fileName);
             files.RemoveUpload(path);
         }
 
@@ -375,6 +385,23 @@ internal static class ApiEndpoints
             : Results.File(Encoding.UTF8.GetBytes(RunSummaryText.Format(record)), "text/plain; charset=utf-8", name);
     }
 
+    private static IResult ExportHistory(MainViewModel main, string? format, string? decimalMark)
+    {
+        if (main.Log.SelectedRows.Count == 0)
+        {
+            return Results.NotFound(new { error = "no run is ticked in the history table: tick the runs to export first" });
+        }
+
+        var json = string.Equals(format, "json", StringComparison.OrdinalIgnoreCase);
+        var text = main.Log.Export(json ? "json" : "csv", string.Equals(decimalMark, "comma", StringComparison.OrdinalIgnoreCase));
+        var name = $"runs-{DateTimeOffset.Now:yyyy-MM-dd_HHmm}.{(json ? "json" : "csv")}";
+
+        // Excel reads a CSV as UTF-8 (µ, sample IDs in any script) only after the byte order mark.
+        return json
+            ? Results.File(Encoding.UTF8.GetBytes(text), "application/json", name)
+            : Results.File([.. Encoding.UTF8.Preamble, .. Encoding.UTF8.GetBytes(text)], "text/csv; charset=utf-8", name);
+    }
+
     internal sealed record PathRequest(string? Path);
 
     internal sealed record ConnectRequest(bool UseSimulator, string? StagePort, string? LaserPort);
@@ -385,7 +412,7 @@ internal static class ApiEndpoints
 
     internal sealed record FireRequest(int Pulses);
 
-    internal sealed record RunStartRequest(string? Notes, string? SampleId);
+    internal sealed record RunStartRequest(string? Notes, string? SampleId, bool Confirm = false);
 
     internal sealed record ThemeRequest(string Theme);
 }

@@ -4,7 +4,7 @@ using LaserEngrave.Core.Logging;
 
 namespace LaserEngrave.Cli.Commands;
 
-/// <summary>`laserengrave log show FILE [--json]` and `laserengrave log list [DIR | --log-dir DIR]`: the run logs engrave writes.</summary>
+/// <summary>`laserengrave log show FILE [--json]` and `laserengrave log list [DIR | --log-dir DIR] [--csv]`: the run logs engrave writes.</summary>
 internal static class LogCommand
 {
     public static Command Create()
@@ -40,12 +40,25 @@ internal static class LogCommand
     {
         var logDir = LogDirOption();
         var folder = new Argument<string?>("FOLDER") { Description = "The log folder (the same as --log-dir)", Arity = ArgumentArity.ZeroOrOne };
-        var command = new Command("list", "List the runs in the log folder, newest first") { folder, logDir };
+        var csv = new Option<bool>("--csv")
+        {
+            Description = "Print the runs as CSV for a spreadsheet (date, sample ID, image or drawing, size, origin, process, passes, outcome, duration, estimate, notes, log), decimal points, fields between commas",
+        };
+        var decimalComma = new Option<bool>("--decimal-comma")
+        {
+            Description = "With --csv: decimal commas and fields between semicolons, as Excel reads them where 1,5 is one and a half",
+        };
+        var command = new Command("list", "List the runs in the log folder, newest first") { folder, logDir, csv, decimalComma };
         command.SetAction(result =>
         {
             if (result.GetValue(folder) is { } given && result.GetValue(logDir) is { } other && given != other)
             {
                 throw new UsageException($"give the log folder once: {given} or --log-dir {other}");
+            }
+
+            if (result.GetValue(decimalComma) && !result.GetValue(csv))
+            {
+                throw new UsageException("--decimal-comma is for the CSV: add --csv");
             }
 
             var dir = result.GetValue(folder) ?? result.GetValue(logDir);
@@ -62,6 +75,18 @@ internal static class LogCommand
             var store = new RunLogStore(dir ?? RunLogStore.DefaultFolder);
             var output = result.InvocationConfiguration.Output;
             var entries = store.List();
+            if (result.GetValue(csv))
+            {
+                foreach (var unreadable in entries.Where(e => e.Record is null))
+                {
+                    result.InvocationConfiguration.Error.WriteLine($"warning: {unreadable.Error}");
+                }
+
+                // The header alone when there are no runs: a spreadsheet still gets its columns.
+                output.Write(RunHistoryRow.ToCsv(RunHistoryRow.From(entries), result.GetValue(decimalComma)));
+                return CliRunner.Ok;
+            }
+
             if (entries.Count == 0)
             {
                 output.WriteLine($"no run logs in {store.Folder}");

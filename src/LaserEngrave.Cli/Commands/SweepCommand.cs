@@ -188,7 +188,7 @@ internal static class SweepCommand
         output.WriteLine("row col  parameters                                at (mm)          pixels  pulses/pixel  engrave s");
         foreach (var cell in plan.Cells)
         {
-            var parameters = string.Join(", ", cell.Parameters.Select(p => string.Create(c, $"{p.Key} {p.Value:0.######}")));
+            var parameters = SweepParameters.Describe(cell.Parameters);
             var job = cell.Job;
             output.WriteLine(string.Create(c, $"{cell.Row + 1,3} {cell.Column + 1,3}  {parameters,-40}  {cell.OriginXMm,7:0.###}, {cell.OriginYMm,7:0.###}  {job.Mask.Width,6}  {job.Pulses.PulsesPerPixel ?? 0,12:0.##}  {job.Statistics.EngravingSeconds * job.Spec.Passes,6:0.#}{(cell.FocusZMicrosteps is { } z ? $"  Z {z}" : string.Empty)}"));
         }

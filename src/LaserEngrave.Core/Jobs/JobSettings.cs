@@ -78,6 +78,43 @@ public sealed record JobSettings
     /// <summary>A drawing's paths in its own order, unoptimised.</summary>
     public bool DrawingOrder { get; init; }
 
+    /// <summary>
+    /// A value's name as the page's field says it ("Width", "Pixel pitch"), from its name in the settings' JSON
+    /// (<c>widthMm</c>); the JSON name itself for one the page has no field for.
+    /// </summary>
+    public static string FieldLabel(string jsonName) => jsonName switch
+    {
+        "imagePath" => "image",
+        "thresholdPercent" => "Threshold",
+        "dither" => "Dither",
+        "invert" => "Invert",
+        "sizeMode" => "which size field leads",
+        "widthMm" => "Width",
+        "heightMm" => "Height",
+        "pitchUm" => "Pixel pitch",
+        "originXMm" => "Origin X",
+        "originYMm" => "Origin Y",
+        "laserFrequencyHz" => "Laser frequency",
+        "burnSpeedMmPerS" => "Burn speed",
+        "travelSpeedMmPerS" => "Travel speed",
+        "accelerationMmPerS2" => "Acceleration",
+        "strategy" => "Strategy",
+        "bidirectional" => "Bidirectional",
+        "overscanMm" => "Overscan",
+        "passes" => "Passes",
+        "pulseEnergyUj" => "Pulse energy",
+        "mode" => "Mode",
+        "pulsesPerDot" => "Pulses per dot",
+        "dotPitchMicrosteps" => "Dot pitch",
+        "dotSettleMs" => "Settle at each dot",
+        "drawingFill" => "the drawing's fill",
+        "toleranceUm" => "Chord tolerance",
+        "fillPitchUm" => "Fill pitch",
+        "drawingLayer" => "the drawing's layer",
+        "drawingOrder" => "the drawing's order",
+        _ => jsonName,
+    };
+
     /// <summary>The values of a job (e.g. one a run log repeats), as the page shows them.</summary>
     public static JobSettings From(JobSpec spec)
     {

@@ -22,5 +22,5 @@ public sealed record SweepCell(int Row, int Column, IReadOnlyDictionary<string, 
 
     /// <inheritdoc cref="Describe()"/>
     public static string Describe(int row, int column, IReadOnlyDictionary<string, double> parameters) =>
-        $"cell row {row + 1}, column {column + 1} ({string.Join(", ", parameters.Select(p => $"{p.Key} {p.Value.ToString("0.######", System.Globalization.CultureInfo.InvariantCulture)}"))})";
+        $"cell row {row + 1}, column {column + 1} ({SweepParameters.Describe(parameters)})";
 }

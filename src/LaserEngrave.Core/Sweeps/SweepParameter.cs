@@ -57,6 +57,19 @@ public static class SweepParameters
         _ => string.Empty,
     };
 
+    /// <summary>The parameter a log key names (<see cref="LogKey"/>); null for a key this version does not know.</summary>
+    public static SweepParameter? FromLogKey(string key) =>
+        Enum.GetValues<SweepParameter>().Select(p => (SweepParameter?)p).FirstOrDefault(p => p!.Value.LogKey() == key);
+
+    /// <summary>
+    /// A cell's values as the screen says them, e.g. "speed 0.5 mm/s, frequency 500 Hz" (the log's keys, such as
+    /// <c>speedMmPerS</c>, are for files, not for people).
+    /// </summary>
+    public static string Describe(IEnumerable<KeyValuePair<string, double>> parameters) =>
+        string.Join(", ", parameters.Select(p => FromLogKey(p.Key) is { } known
+            ? string.Create(System.Globalization.CultureInfo.InvariantCulture, $"{known.CliName().Replace('-', ' ')} {p.Value:0.######}{(known.Unit().Length > 0 ? " " + known.Unit() : string.Empty)}")
+            : string.Create(System.Globalization.CultureInfo.InvariantCulture, $"{p.Key} {p.Value:0.######}")));
+
     /// <summary>Whether the value must be a whole number.</summary>
     public static bool IsWhole(this SweepParameter parameter) => parameter is SweepParameter.Passes or SweepParameter.PulsesPerDot;
 

@@ -102,6 +102,36 @@ public sealed class LogPanelFolderTests : ComponentTest
     }
 }
 
+public sealed class RunHistoryTests : ComponentTest
+{
+    [Fact]
+    public void History_OpenedSearchedTicked_ExportLinksOffered()
+    {
+        var image = TestFiles.Asset("qr-code.bmp");
+        var job = PreparedJob.Prepare(new JobSpec { ImagePath = image, Size = Core.Geometry.SizeSpec.Width(3) });
+        Store.History().Returns(
+        [
+            new RunLogEntry("/logs/b.json", RunRecord.ForJob(job, "0", DateTimeOffset.UnixEpoch.AddDays(2)) with { Outcome = RunOutcome.Completed, SampleId = "Si-2" }, null),
+            new RunLogEntry("/logs/a.json", RunRecord.ForJob(job, "0", DateTimeOffset.UnixEpoch.AddDays(1)) with { Outcome = RunOutcome.Aborted, SampleId = "Glass-1" }, null),
+        ]);
+        Main.Log.RefreshCommand.Execute(null);
+        var cut = Render<LogPanel>(p => p.Add(c => c.Log, Main.Log));
+
+        cut.Find("#open-history").Click();
+
+        Assert.Equal(2, cut.FindAll("#history-table tbody tr").Count);
+        Assert.NotNull(cut.Find("#history-export-hint"));
+        cut.Find("#history-search").Input("glass");
+        cut.WaitForAssertion(() => Assert.Single(cut.FindAll("#history-table tbody tr")));
+        cut.Find(".history-tick").Change(true);
+        cut.WaitForAssertion(() => Assert.Equal("api/logs/history?format=csv&decimalMark=comma", cut.Find("#history-csv-comma").GetAttribute("href")));
+        Assert.NotNull(cut.Find("#history-json"));
+        Assert.Equal("/logs/a.json", Assert.Single(Main.Log.SelectedRows).Path);
+        cut.Find("#history-close").Click();
+        Assert.Empty(cut.FindAll("#history-overlay"));
+    }
+}
+
 public sealed class JogPadTests : ComponentTest
 {
     [Fact]
@@ -137,7 +167,9 @@ public sealed class JogPadTests : ComponentTest
         Assert.True(Disabled(cut.Find("[id='jog-x+']")));
         cut.Find("#moves-stop").Click();
         cut.WaitForAssertion(() => Assert.Empty(cut.FindAll("#moves-busy")));
-        Assert.Equal("cancelled", Main.TestMoves.Error);
+
+        // The line goes when the machine is free; the move's outcome is taken just after.
+        cut.WaitForAssertion(() => Assert.Equal("cancelled", Main.TestMoves.Error));
     }
 
     [Fact]
@@ -148,7 +180,20 @@ public sealed class JogPadTests : ComponentTest
         var cut = Render<JogPad>(p => p.Add(c => c.Moves, Main.TestMoves).Add(c => c.Machine, Main.Machine));
 
         Assert.True(Disabled(cut.Find("#frame")));
+        Assert.Equal("open an image or drawing first", cut.Find("#frame").GetAttribute("title"));
         Assert.False(Disabled(cut.Find("#goto")));
+    }
+
+    [Fact]
+    public async Task Frame_Drawing_Enabled()
+    {
+        await ConnectAsync();
+        Main.Job.LoadImage(TestFiles.Asset(Path.Combine("drawings", "hexagons.dxf")));
+
+        var cut = Render<JogPad>(p => p.Add(c => c.Moves, Main.TestMoves).Add(c => c.Machine, Main.Machine));
+
+        Assert.False(Disabled(cut.Find("#frame")));
+        Assert.False(Disabled(cut.Find("#goto-origin")));
     }
 }
 
@@ -169,6 +214,58 @@ public sealed class RunBarTests : ComponentTest
         cut.WaitForAssertion(() => Assert.False(Disabled(cut.Find("#start"))));
         Assert.True(Disabled(cut.Find("#pause")));
         Assert.True(Disabled(cut.Find("#continue")));
+    }
+
+    [Fact]
+    public async Task Start_PixelsMuchSmallerThanTheSpot_AsksOnceWithTheNumbers()
+    {
+        OpenQr();
+        Main.Job.EditPitch(5);
+        await ConnectAsync();
+        var cut = RenderBar();
+        cut.WaitForAssertion(() => Assert.False(Disabled(cut.Find("#start"))));
+
+        cut.Find("#start").Click();
+
+        cut.WaitForAssertion(() => Assert.Contains("Its pixels of 5 µm are much smaller than the 20 µm laser spot, so each burns about 4 times wider", cut.Find("#start-question").TextContent, StringComparison.Ordinal));
+        await Runs.DidNotReceive().RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>());
+        cut.Find("#start-cancel").Click();
+        Assert.Empty(cut.FindAll("#start-question"));
+        cut.Find("#start").Click();
+        cut.WaitForAssertion(() => Assert.NotNull(cut.Find("#start-confirm")));
+        cut.Find("#start-confirm").Click();
+        cut.WaitForAssertion(() => Runs.Received(1).RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>()));
+        Assert.Empty(cut.FindAll("#start-question"));
+    }
+
+    [Fact]
+    public void StartQuestion_OverAnHour_SaysHowLong()
+    {
+        OpenQr(widthMm: 20);
+        Assert.Null(Main.Run.StartQuestion);
+
+        Main.Job.Passes = 100;
+
+        Assert.True(Main.Job.EstimatedSeconds > RunViewModel.AskAboveSeconds, $"{Main.Job.EstimatedSeconds} s");
+        Assert.StartsWith($"Start anyway? It takes about {App.Components.Format.Duration(Main.Job.EstimatedSeconds!.Value)}", Main.Run.StartQuestion, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task TestMove_UnderWay_RunBarSaysWhatAndStopsIt()
+    {
+        await ConnectAsync();
+        var cut = Render<RunBar>(p => p.Add(c => c.Run, Main.Run).Add(c => c.Moves, Main.TestMoves).Add(c => c.Sweep, Main.Sweep));
+        Assert.Empty(cut.FindAll("#runbar-stop"));
+
+        using (var lease = Main.Machine.Activity.Begin(MachineOperation.TestMove("frame", "Tracing the job's frame, laser off…")))
+        {
+            cut.WaitForAssertion(() => Assert.Contains("Tracing the job's frame, laser off…", cut.Find("#status-run").TextContent, StringComparison.Ordinal));
+            cut.Find("#runbar-stop").Click();
+            Assert.True(lease.CancellationToken.IsCancellationRequested);
+        }
+
+        cut.WaitForAssertion(() => Assert.Equal("idle", cut.Find("#status-run").TextContent));
+        Assert.Empty(cut.FindAll("#runbar-stop"));
     }
 
     [Fact]
@@ -290,6 +387,28 @@ public sealed class StageCanvasTests : ComponentTest
     }
 
     [Fact]
+    public async Task DropRefused_ThenResized_TheLineGoesWithItsCause()
+    {
+        OpenQr(widthMm: 10);
+        var cut = RenderStage();
+        await cut.InvokeAsync(() => cut.Instance.OnJobDropped(55, 1));
+        Assert.NotEmpty(cut.FindAll("#drop-refused"));
+
+        Main.Job.EditWidth(4);
+
+        cut.WaitForAssertion(() => Assert.Empty(cut.FindAll("#drop-refused")));
+    }
+
+    [Fact]
+    public void MicrostepsPerPixel_SizeLeads_ThePlannedJobsOwnFigure()
+    {
+        OpenQr(widthMm: 10);
+
+        // The figure the command line and the run log give, not one from the pitch field's rounded value.
+        Assert.Equal(Main.Job.Job!.Geometry.MicrostepsPerPixel, Main.Job.MicrostepsPerPixel);
+    }
+
+    [Fact]
     public async Task MoveLaserHere_Connected_GoesThere()
     {
         await ConnectAsync();
@@ -327,7 +446,7 @@ public sealed class StageCanvasTests : ComponentTest
             Assert.True(box.Fits);
         }
 
-        var (bytes, drawn, total) = StageCanvas.SweepBytes(plan);
+        var (bytes, drawn, total) = StageCanvas.SweepBytes(plan, out _);
         Assert.Equal(plan.Jobs().Sum(j => j.Statistics.Moves), total);
         Assert.Equal(total, drawn);
         Assert.Equal(drawn * 5 * sizeof(float), bytes.Length);

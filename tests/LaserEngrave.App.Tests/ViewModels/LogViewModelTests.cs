@@ -116,4 +116,61 @@ public sealed class LogViewModelTests
 
         Assert.Contains("no file manager", _log.Error, StringComparison.Ordinal);
     }
+
+    private void ThreeRuns()
+    {
+        var image = TestFiles.Asset("qr-code.bmp");
+        var sha = PreparedJob.HashFile(image);
+        _store.History().Returns(
+        [
+            new RunLogEntry("/logs/c.json", Record(image, sha) with { SampleId = "Si-3", StartedAt = DateTimeOffset.UnixEpoch.AddDays(3), ActualSeconds = 30 }, null),
+            new RunLogEntry("/logs/bad.json", null, "not a run log"),
+            new RunLogEntry("/logs/b.json", Record(image, sha) with { SampleId = "Si-2", StartedAt = DateTimeOffset.UnixEpoch.AddDays(2), ActualSeconds = 90, Outcome = RunOutcome.Aborted }, null),
+            new RunLogEntry("/logs/a.json", Record(image, sha) with { SampleId = "Glass-1", StartedAt = DateTimeOffset.UnixEpoch.AddDays(1), ActualSeconds = 60 }, null),
+        ]);
+        _log.RefreshCommand.Execute(null);
+    }
+
+    [Fact]
+    public void Rows_SearchedAndSorted_TheTableFollows()
+    {
+        ThreeRuns();
+        Assert.Equal(["/logs/c.json", "/logs/b.json", "/logs/a.json"], _log.Rows.Select(r => r.Path));
+
+        _log.Search = "si-";
+        Assert.Equal(["/logs/c.json", "/logs/b.json"], _log.Rows.Select(r => r.Path));
+
+        _log.Search = "aborted";
+        Assert.Equal("/logs/b.json", Assert.Single(_log.Rows).Path);
+
+        _log.Search = null;
+        _log.SortCommand.Execute("duration");
+        Assert.Equal([90.0, 60, 30], _log.Rows.Select(r => r.ActualSeconds));
+        _log.SortCommand.Execute("duration");
+        Assert.Equal([30.0, 60, 90], _log.Rows.Select(r => r.ActualSeconds));
+        _log.SortCommand.Execute("sample ID");
+        Assert.Equal(["Glass-1", "Si-2", "Si-3"], _log.Rows.Select(r => r.SampleId));
+    }
+
+    [Fact]
+    public void Export_TickedRuns_OnlyThoseInTheTablesOrder()
+    {
+        ThreeRuns();
+        _log.ToggleSelectedCommand.Execute("/logs/a.json");
+        _log.ToggleSelectedCommand.Execute("/logs/c.json");
+        _log.ToggleSelectedCommand.Execute("/logs/b.json");
+        _log.ToggleSelectedCommand.Execute("/logs/b.json");
+
+        var lines = _log.Export("csv", decimalComma: true).TrimEnd().Split("\r\n");
+
+        Assert.Equal(3, lines.Length);
+        Assert.Contains(";Si-3;", lines[1], StringComparison.Ordinal);
+        Assert.Contains(";Glass-1;", lines[2], StringComparison.Ordinal);
+        Assert.Equal(2, System.Text.Json.JsonDocument.Parse(_log.Export("json", decimalComma: false)).RootElement.GetArrayLength());
+        _log.ClearSelectionCommand.Execute(null);
+        Assert.Empty(_log.SelectedRows);
+        _log.Search = "si";
+        _log.SelectShownCommand.Execute(null);
+        Assert.Equal(2, _log.SelectedRows.Count);
+    }
 }

@@ -564,7 +564,7 @@ public sealed class RunViewModelTests
         _job.OriginXMm = origin + 2;
         Assert.False(_run.CanContinue);
         Assert.False(_run.ContinueCommand.CanExecute(null));
-        Assert.Contains("originXMm", _run.ContinueUnavailableReason, StringComparison.Ordinal);
+        Assert.Contains("(Origin X)", _run.ContinueUnavailableReason, StringComparison.Ordinal);
         Assert.Equal(stop, _run.StoppedAt);
         _job.OriginXMm = origin;
 

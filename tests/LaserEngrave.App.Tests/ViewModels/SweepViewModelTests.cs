@@ -80,9 +80,34 @@ public sealed class SweepViewModelTests : IDisposable
         _sweep.Columns = "frequency=500,1000";
         await _machine.ConnectCommand.ExecuteAsync(null);
         Assert.True(_sweep.RunSweepCommand.CanExecute(null), _sweep.Error ?? _machine.Error);
+        var texts = new List<string>();
+        var fractions = new List<double>();
+        var positions = new HashSet<long?>();
+        _sweep.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName == nameof(SweepViewModel.Progress) && _sweep.ProgressText is { } text)
+            {
+                texts.Add(text);
+                fractions.Add(_sweep.Fraction);
+                positions.Add(_machine.XMicrosteps);
+            }
+            else if (e.PropertyName == nameof(SweepViewModel.Status) && _sweep.Status is { } status)
+            {
+                texts.Add(status);
+            }
+        };
 
         await _sweep.RunSweepCommand.ExecuteAsync(null);
 
+        // Counted as the grid counts them: the labels apart, then 4 cells (not "2 of 5 done" for a 2 x 2 grid).
+        Assert.Contains(texts, t => t.StartsWith("the labels, then 4 cells", StringComparison.Ordinal));
+        Assert.Contains(texts, t => t.StartsWith("cell 1 of 4: row 1, column 1 (speed 1 mm/s, frequency 500 Hz)", StringComparison.Ordinal));
+        Assert.Contains(texts, t => t.StartsWith("cell 4 of 4: row 2, column 2 (speed 2 mm/s, frequency 1000 Hz)", StringComparison.Ordinal));
+        Assert.Contains(texts, t => t.StartsWith("3 of 4 cells done", StringComparison.Ordinal));
+        Assert.DoesNotContain(texts, t => t.Contains("of 5", StringComparison.Ordinal));
+        Assert.Equal(fractions.Order(), fractions);
+        Assert.True(positions.Count > 4, "the laser's cross moves with the sweep");
+        Assert.Equal((true, true), (_machine.XHomed, _machine.YHomed));
         var record = Assert.IsType<Core.Logging.SweepRecord>(_sweep.LastSweep);
         Assert.Equal(RunOutcome.Completed, record.Outcome);
         Assert.All(record.Cells, c => Assert.Equal(RunOutcome.Completed, c.Run!.Outcome));
@@ -91,8 +116,20 @@ public sealed class SweepViewModelTests : IDisposable
         var cell = record.Cells.Single(c => c.Parameters["speedMmPerS"] == 2 && c.Parameters["frequencyHz"] == 500);
         Assert.InRange(cell.Run!.Simulation!.PulsesPerPixel.Mean, 11.5, 13.5);
         Assert.Single(Directory.GetFiles(_folder.Path, "*.sweep.json"));
-        Assert.StartsWith("completed", _sweep.Status, StringComparison.Ordinal);
+        Assert.StartsWith("completed: 4 of 4 cells", _sweep.Status, StringComparison.Ordinal);
         Assert.False(_sweep.IsRunning);
+    }
+
+    [Fact]
+    public void Plan_BadCellAndRows_ThePanelsFieldNamesNotTheCommandLines()
+    {
+        _sweep.CellMm = 0;
+        Assert.StartsWith("Cell 0: must be above 0", _sweep.Error, StringComparison.Ordinal);
+
+        _sweep.CellMm = 1;
+        _sweep.Rows = "speed";
+        Assert.StartsWith("Rows speed: expected PARAMETER=", _sweep.Error, StringComparison.Ordinal);
+        Assert.DoesNotContain("--", _sweep.Error, StringComparison.Ordinal);
     }
 
     private static readonly MachineProfile ThreeAxis = MachineProfile.Default with { Z = new ZAxisProfile { FocusMm = 12.5, MinMm = 5, MaxMm = 20 } };

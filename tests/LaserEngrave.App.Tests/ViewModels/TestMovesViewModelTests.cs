@@ -132,6 +132,103 @@ public sealed class TestMovesViewModelTests
     }
 
     [Fact]
+    public async Task Frame_Drawing_TracesTheBoxAroundItsPlannedPaths()
+    {
+        await ConnectAsync();
+        Assert.True(_job.LoadImage(TestFiles.Asset(Path.Combine("drawings", "hexagons.dxf"))));
+        var points = _job.Drawing!.Plan.Paths.SelectMany(p => p.Points).ToList();
+        var (left, top, right, bottom) = (points.Min(p => p.X), points.Min(p => p.Y), points.Max(p => p.X), points.Max(p => p.Y));
+        Assert.True(_moves.FrameCommand.CanExecute(null));
+        Assert.True(_moves.GoToOriginCommand.CanExecute(null));
+        Assert.Null(_moves.JobMoveUnavailableReason);
+
+        await _moves.FrameCommand.ExecuteAsync(null);
+
+        Assert.Null(_moves.Error);
+        await _fakes.X.Received(2).MoveAbsoluteAsync(left, Arg.Any<CancellationToken>());
+        await _fakes.X.Received(1).MoveAbsoluteAsync(right, Arg.Any<CancellationToken>());
+        await _fakes.Y.Received(1).MoveAbsoluteAsync(bottom, Arg.Any<CancellationToken>());
+        await _fakes.Y.Received(2).MoveAbsoluteAsync(top, Arg.Any<CancellationToken>());
+    }
+
+    [Fact]
+    public async Task GoToOrigin_Drawing_MovesToItsTopLeftCorner()
+    {
+        await ConnectAsync();
+        _job.LoadImage(TestFiles.Asset(Path.Combine("drawings", "hexagons.dxf")));
+        var points = _job.Drawing!.Plan.Paths.SelectMany(p => p.Points).ToList();
+
+        await _moves.GoToOriginCommand.ExecuteAsync(null);
+
+        Assert.Null(_moves.Error);
+        await _fakes.X.Received(1).MoveAbsoluteAsync(points.Min(p => p.X), Arg.Any<CancellationToken>());
+        await _fakes.Y.Received(1).MoveAbsoluteAsync(points.Min(p => p.Y), Arg.Any<CancellationToken>());
+    }
+
+    [Fact]
+    public async Task Frame_NothingOpen_DisabledSayingWhy()
+    {
+        await ConnectAsync();
+
+        Assert.False(_moves.FrameCommand.CanExecute(null));
+        Assert.Equal("open an image or drawing first", _moves.JobMoveUnavailableReason);
+    }
+
+    [Fact]
+    public async Task MotionText_FrameUnderWay_SaysSoUntilItEnds()
+    {
+        await ConnectAsync();
+        _job.LoadImage(TestFiles.Asset("qr-code.bmp"));
+        var release = new TaskCompletionSource<long>(TaskCreationOptions.RunContinuationsAsynchronously);
+        _fakes.X.MoveAbsoluteAsync(Arg.Any<long>(), Arg.Any<CancellationToken>()).Returns(release.Task);
+
+        var framing = _moves.FrameCommand.ExecuteAsync(null);
+        await WaitUntil(() => _moves.MotionText is not null);
+
+        Assert.Equal("Tracing the job's frame, laser off…", _moves.MotionText);
+        release.SetResult(0);
+        await framing;
+        Assert.Null(_moves.MotionText);
+    }
+
+    [Fact]
+    public async Task Frame_StageMoving_PositionReadWhileItMoves()
+    {
+        // A stage that takes 2 s of the machine's clock per move: the position is read meanwhile, not only at the end.
+        var time = new ManualTimeProvider();
+        _fakes.Connection.TimeProvider.Returns(time);
+        await ConnectAsync();
+        _job.LoadImage(TestFiles.Asset("qr-code.bmp"));
+        var release = new TaskCompletionSource<long>(TaskCreationOptions.RunContinuationsAsynchronously);
+        _fakes.X.MoveAbsoluteAsync(Arg.Any<long>(), Arg.Any<CancellationToken>()).Returns(release.Task);
+        _fakes.X.GetPositionAsync(Arg.Any<CancellationToken>()).Returns(1234L);
+        _fakes.X.ClearReceivedCalls();
+
+        var framing = _moves.FrameCommand.ExecuteAsync(null);
+        await WaitUntil(() => _moves.MotionText is not null);
+        for (var i = 0; i < 3; i++)
+        {
+            await WaitUntil(() => time.ActiveTimers > 0);
+            time.Advance(MachineViewModel.FollowInterval);
+            await WaitUntil(() => _fakes.X.ReceivedCalls().Count(c => c.GetMethodInfo().Name == nameof(IStageAxis.GetPositionAsync)) > i);
+        }
+
+        Assert.Equal(1234L, _machine.XMicrosteps);
+        release.SetResult(0);
+        await framing;
+        Assert.Null(_moves.Error);
+    }
+
+    private static async Task WaitUntil(Func<bool> condition)
+    {
+        // Waits for the move's task on the pool; what is asserted never depends on how long that takes.
+        while (!condition())
+        {
+            await Task.Delay(5, TestContext.Current.CancellationToken);
+        }
+    }
+
+    [Fact]
     public async Task Frame_JobOutsideTravel_ErrorAndNoMove()
     {
         await ConnectAsync();

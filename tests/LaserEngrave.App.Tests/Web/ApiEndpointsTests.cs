@@ -129,7 +129,10 @@ public sealed class ApiEndpointsTests : IDisposable
 
         var state = await UploadAsync(path);
 
-        Assert.Contains("notes.png", state.GetProperty("job").GetProperty("errors").GetProperty("image").GetString(), StringComparison.Ordinal);
+        // The user's file by the name it had, never the app's copy of it in images/.
+        var error = state.GetProperty("job").GetProperty("errors").GetProperty("image").GetString();
+        Assert.StartsWith("notes.png: not a BMP, PNG", error, StringComparison.Ordinal);
+        Assert.DoesNotContain(_app.DataFolder, error, StringComparison.Ordinal);
         Assert.Equal(JsonValueKind.Null, state.GetProperty("estimate").ValueKind);
         // Only files that open stay in images/.
         Assert.Empty(Directory.GetFiles(Path.Combine(_app.DataFolder, "images")));
@@ -253,6 +256,34 @@ public sealed class ApiEndpointsTests : IDisposable
         var json = await _client.GetFromJsonAsync<JsonElement>($"/api/logs/export?format=json&path={Uri.EscapeDataString(path)}", Token);
         Assert.Equal("completed", json.GetProperty("outcome").GetString(), ignoreCase: true);
         Assert.Single(state.GetProperty("log").GetProperty("history").EnumerateArray());
+    }
+
+    [Fact]
+    public async Task RunStart_PixelsMuchSmallerThanTheSpot_409WithTheQuestionUnlessConfirmed()
+    {
+        using var folder = TestFiles.NewFolder();
+        await UploadAsync(TestFiles.WriteChecker(folder.Path, 8, 6));
+        await PostAsync("/api/job", new { pitchUm = 5, originXMm = 0, originYMm = 0, burnSpeedMmPerS = 0.4 });
+        await PostAsync("/api/machine/connect", new { useSimulator = true }, HttpStatusCode.Accepted);
+        await WaitForAsync(s => s.GetProperty("machine").GetProperty("connected").GetBoolean() && !s.GetProperty("activity").GetProperty("busy").GetBoolean(), TimeSpan.FromSeconds(20));
+
+        var answer = await PostAsync("/api/run/start", new { sampleId = "T-2" }, HttpStatusCode.Conflict);
+
+        var question = answer.GetProperty("error").GetString();
+        Assert.StartsWith("Start anyway? Its pixels of 5 µm are much smaller than the 20 µm laser spot", question, StringComparison.Ordinal);
+        Assert.EndsWith("Send \"confirm\": true to start anyway", question, StringComparison.Ordinal);
+        await PostAsync("/api/run/start", new { sampleId = "T-2", confirm = true }, HttpStatusCode.Accepted);
+        var state = await WaitForAsync(s => !s.GetProperty("run").GetProperty("active").GetBoolean() && s.GetProperty("run").GetProperty("state").GetString() != "Idle", TimeSpan.FromSeconds(120));
+        Assert.True("Completed" == state.GetProperty("run").GetProperty("state").GetString(), state.GetProperty("run").ToString());
+    }
+
+    [Fact]
+    public async Task HistoryExport_NothingTicked_NotFoundSayingSo()
+    {
+        using var response = await _client.GetAsync("/api/logs/history?format=csv", Token);
+
+        Assert.Equal(HttpStatusCode.NotFound, response.StatusCode);
+        Assert.Contains("tick the runs to export first", await response.Content.ReadAsStringAsync(Token), StringComparison.Ordinal);
     }
 
     [Fact]

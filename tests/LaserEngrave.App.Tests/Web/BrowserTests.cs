@@ -369,6 +369,149 @@ public sealed class BrowserTests : IAsyncLifetime
         Assert.Empty(Driver.FindElements(By.Id("no-image")));
     }
 
+    /// <summary>The page's own area at exactly 1280 x 720, as docs/user-guide.md shows it.</summary>
+    private void Size1280x720()
+    {
+        Driver.ExecuteCdpCommand("Emulation.setDeviceMetricsOverride", new Dictionary<string, object?>
+        {
+            ["width"] = 1280, ["height"] = 720, ["deviceScaleFactor"] = 1, ["mobile"] = false,
+        });
+        WaitFor(d => Convert.ToInt64(((IJavaScriptExecutor)d).ExecuteScript("return window.innerHeight;"), CultureInfo.InvariantCulture) == 720, "a 1280 x 720 page");
+    }
+
+    /// <summary>Zooms the stage in with the wheel around (<paramref name="xMm"/>, <paramref name="yMm"/>), to show a small job.</summary>
+    private void ZoomAround(double xMm, double yMm, int steps)
+    {
+        WaitFor(_ => View().Scale > 1, "the stage drawn");
+        var canvas = Id("stage-canvas");
+        var (scale, ox, oy) = View();
+        var at = new WheelInputDevice.ScrollOrigin
+        {
+            Element = canvas,
+            XOffset = (int)(ox + (xMm * scale) - (canvas.Size.Width / 2.0)),
+            YOffset = (int)(oy + (yMm * scale) - (canvas.Size.Height / 2.0)),
+        };
+        for (var i = 0; i < steps; i++)
+        {
+            new Actions(Driver).ScrollFromOrigin(at, 0, -100).Perform();
+        }
+
+        WaitFor(_ => View().Scale > scale * 2, "zoomed in");
+
+        // Then the job towards the middle: drag the empty stage right and down (the job lies near the top-left corner).
+        var zoomed = View();
+        new Actions(Driver).MoveToElement(canvas, 150, 150).ClickAndHold().MoveByOffset(130, 90).Release().Perform();
+        WaitFor(_ => View().X > zoomed.X + 100, "panned");
+    }
+
+    [Fact]
+    public void Drawing_FramedThenRunAbortedAndContinued_TheRunBarShowsTheFrameAndTheRun()
+    {
+        Size1280x720();
+        WaitFor(d => d.FindElements(By.CssSelector("#samples button[data-path$='hexagons.dxf']")).Count == 1, "hexagons.dxf offered");
+        Driver.FindElement(By.CssSelector("#samples button[data-path$='hexagons.dxf']")).Click();
+        WaitFor(d => d.FindElement(By.Id("drawing-meta")).Text.Contains("strokes", StringComparison.Ordinal), "the drawing planned");
+        Id("connect").Click();
+        WaitFor(_ => Enabled("frame") && Enabled("goto-origin"), "Frame and Job origin offered for the drawing");
+        ZoomAround(3.5, 3.5, 6);
+
+        // The twin runs in virtual time: the frame is held (its position reading waits on the simulation's loop) once
+        // the laser's cross traces the drawing's box, until the page has shown it under way.
+        var main = _app!.Services.GetRequiredService<MainViewModel>();
+        using var shown = new ManualResetEventSlim();
+        var heldFrame = 0;
+        main.Machine.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName == nameof(MachineViewModel.YMicrosteps) && main.Machine.Activity.Current?.Kind == App.Services.MachineOperationKind.TestMove
+                && main.Machine.XMicrosteps * main.Machine.Profile.X.MicrostepUm / 1000 is > 4 and < 6.5
+                && main.Machine.YMicrosteps * main.Machine.Profile.Y.MicrostepUm / 1000 is > 2 and < 6.5
+                && Interlocked.Exchange(ref heldFrame, 1) == 0)
+            {
+                shown.Wait(TimeSpan.FromSeconds(60));
+            }
+        };
+        Id("frame").Click();
+        WaitFor(d => d.FindElement(By.Id("status-run")).Text.Contains("Tracing the job's frame, laser off", StringComparison.Ordinal), "the frame shown in the run bar");
+        Assert.True(Id("runbar-stop").Displayed && Enabled("runbar-stop"));
+        Assert.True(new FileInfo(Screenshot("frame-under-way")).Length > 20_000);
+        shown.Set();
+        WaitFor(_ => Enabled("frame") && Enabled("start"), "the frame traced");
+        Assert.Empty(Driver.FindElements(By.Id("moves-error")));
+        Assert.Equal("idle", Text("status-run"));
+
+        // The run is held a third of the way until the page's Abort has landed, then continued to its end.
+        using var abortLanded = new ManualResetEventSlim();
+        var held = 0;
+        main.Run.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName == nameof(RunViewModel.State) && main.Run.State is RunState.Aborting)
+            {
+                abortLanded.Set();
+            }
+            else if (e.PropertyName == nameof(RunViewModel.Progress) && main.Run.Fraction >= 0.3 && Interlocked.Exchange(ref held, 1) == 0)
+            {
+                abortLanded.Wait(TimeSpan.FromSeconds(60));
+            }
+        };
+        Id("start").Click();
+        WaitFor(_ => Progress() >= 30, "a third of the drawing burned", 120);
+        Id("abort").Click();
+        WaitFor(d => d.FindElement(By.Id("status-run")).Text == "aborted", "aborted");
+        WaitFor(_ => Enabled("continue"), "the stopped drawing can be continued");
+        Id("continue").Click();
+        WaitFor(d => d.FindElement(By.Id("status-run")).Text == "completed", "the continued drawing completed", 240);
+        Assert.Equal(100, Progress());
+
+        // Both runs in the history table, ticked for the export.
+        Id("open-history").Click();
+        WaitFor(d => d.FindElements(By.CssSelector("#history-table tbody tr")).Count == 2, "both runs in the history");
+        Id("history-select-shown").Click();
+        WaitFor(d => d.FindElements(By.Id("history-csv")).Count == 1, "the export offered");
+        Assert.True(new FileInfo(Screenshot("run-history")).Length > 20_000);
+        Id("history-close").Click();
+        Assert.DoesNotContain(Driver.Manage().Logs.GetLog(LogType.Browser), e => e.Level == LogLevel.Severe);
+    }
+
+    [Fact]
+    public void Sweep_Run_TheRunBarCountsItsCells()
+    {
+        Size1280x720();
+        Driver.FindElement(By.CssSelector("#panel-sweep summary")).Click();
+        SetField("sweepCellMm", "0.5");
+        SetField("sweepSpacingMm", "0.3");
+        WaitFor(d => d.FindElement(By.Id("sweep-summary")).Text.StartsWith("3 × 3 cells", StringComparison.Ordinal), "a 3 x 3 sweep planned");
+        Id("connect").Click();
+        WaitFor(_ => Enabled("sweepRun"), "the sweep can run");
+        Id("sweepShow").Click();
+        ZoomAround(2.5, 2.5, 8);
+
+        // Held at its fifth cell (virtual time) until the page has shown it.
+        var sweep = _app!.Services.GetRequiredService<MainViewModel>().Sweep;
+        using var shown = new ManualResetEventSlim();
+        var held = 0;
+        sweep.PropertyChanged += (_, e) =>
+        {
+            if (e.PropertyName == nameof(SweepViewModel.Progress) && sweep.ProgressText?.StartsWith("cell 5 of 9", StringComparison.Ordinal) == true
+                && sweep.Progress!.Run.MovesDone > 10 && Interlocked.Exchange(ref held, 1) == 0)
+            {
+                shown.Wait(TimeSpan.FromSeconds(60));
+            }
+        };
+        Id("sweepRun").Click();
+        WaitFor(d => d.FindElement(By.Id("progress-figures")).Text.StartsWith("cell 5 of 9: row 2, column 2 (speed 1 mm/s, frequency 1000 Hz)", StringComparison.Ordinal), "the fifth cell in the run bar", 120);
+
+        Assert.Equal("sweep running", Text("status-run"));
+        Assert.InRange(Progress(), 40, 60);
+        Assert.True(Enabled("abort"));
+        Assert.Contains("left", Text("time-left"), StringComparison.Ordinal);
+        Driver.ExecuteScript("document.getElementById('panel-sweep').scrollIntoView();");
+        Assert.True(new FileInfo(Screenshot("sweep-under-way")).Length > 20_000);
+        shown.Set();
+        WaitFor(d => d.FindElement(By.Id("sweep-status")).Text.StartsWith("completed: 9 of 9 cells", StringComparison.Ordinal), "the sweep completed", 240);
+        Assert.Equal("idle", Text("status-run"));
+        Assert.DoesNotContain(Driver.Manage().Logs.GetLog(LogType.Browser), e => e.Level == LogLevel.Severe);
+    }
+
     [Fact]
     public void Layers_SampleJobOpenedAndRunOnTheTwin_EachLayerDrawnAndTheRunCompletes()
     {

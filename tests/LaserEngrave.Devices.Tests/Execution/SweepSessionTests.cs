@@ -202,7 +202,7 @@ public class SweepSessionTests
         var record = Assert.Single(log.Records);
         Assert.False(result.Completed);
         Assert.Equal(RunOutcome.Failed, record.Outcome);
-        Assert.StartsWith("cell row 1, column 1 (focusUm -50): moving the focus to", record.Fault, StringComparison.Ordinal);
+        Assert.StartsWith("cell row 1, column 1 (focus -50 µm): moving the focus to", record.Fault, StringComparison.Ordinal);
         Assert.All(record.Cells, c => Assert.Null(c.Run));
         Assert.False(run.Machine.Gate.IsFiring);
         Assert.Empty(run.Machine.Recorder.LaserOnIntervals(run.Machine.NowSeconds));
