@@ -21,7 +21,7 @@ public sealed class RunHistoryRowTests : IDisposable
         Assert.Equal((10.5, 7.25), (row.OriginXMm, row.OriginYMm));
         Assert.Equal((0.8, 1500.0), (row.BurnSpeedMmPerS, row.LaserFrequencyHz));
         Assert.Equal((61.5, 70.3), (row.ActualSeconds, row.EstimatedSeconds));
-        Assert.Equal(Jobs.RunOutcome.Failed, row.Outcome);
+        Assert.Equal(Core.Jobs.RunOutcome.Failed, row.Outcome);
         Assert.StartsWith("0.8 mm/s · 1500 Hz · ", row.ProcessText, StringComparison.Ordinal);
     }
 
@@ -29,7 +29,7 @@ public sealed class RunHistoryRowTests : IDisposable
     public void From_Drawing_KindDrawingAndNoPitch()
     {
         var path = TestRuns.Asset(Path.Combine("drawings", "hexagons.dxf"));
-        var drawing = Jobs.PreparedDrawing.Prepare(new Jobs.JobSpec { ImagePath = path, Size = Core.Geometry.SizeSpec.Width(5) }, new Core.Vectors.VectorOptions());
+        var drawing = Core.Jobs.PreparedDrawing.Prepare(new Core.Jobs.JobSpec { ImagePath = path, Size = Core.Geometry.SizeSpec.Width(5) }, new Core.Vectors.VectorOptions());
 
         var row = RunHistoryRow.From("/logs/d.json", RunRecord.ForDrawing(drawing, "0", TestRuns.Start));
 
