@@ -6,7 +6,8 @@
 # Per job JOB: digests/JOB.txt (per port and direction: byte count and SHA-256 of the bytes; then the SHA-256 of the
 # whole timed recording), digests/JOB.json (the --json summary without wall time and paths), digests/JOB.progress (the
 # progress lines), wire/JOB.jsonl (the recording itself, to find a difference). Build first: dotnet build src/LaserEngrave.Cli
-# Environment: CLI (laserengrave.dll; default: this tree's Debug build).
+# Environment: CLI (laserengrave.dll; default: this tree's Debug build); NORMALIZE_ONLY=1 re-derives the .json and
+# .progress digests of an earlier capture in OUT from its raw output (when this filter has changed).
 set -u
 root=$(cd "$(dirname "$0")/.." && pwd)
 CLI=${CLI:-$root/src/LaserEngrave.Cli/bin/Debug/net10.0/laserengrave.dll}
@@ -34,12 +35,8 @@ print(f"timed recording sha256 {timed.hexdigest()}")
 EOF
 }
 
-run() { # JOB COMMAND ARGS...: runs one job on the twin, records its wire traffic and digests it
-  local job=$1; shift
-  rm -f "$out/wire/$job.jsonl"
-  dotnet "$CLI" "$@" --simulate --log-dir "$out/logs" --sim-wire "$out/wire/$job.jsonl" --json \
-    > "$out/$job.stdout" 2> "$out/$job.stderr"
-  echo "exit $?" > "$out/digests/$job.exit"
+normalize() { # JOB: the --json summary and the progress lines without what differs from run to run
+  local job=$1
   python3 - "$out/$job.stdout" > "$out/digests/$job.json" <<'EOF'
 import json, sys
 try:
@@ -48,16 +45,32 @@ except Exception:
     print(open(sys.argv[1]).read()); sys.exit()
 def strip(o):
     if isinstance(o, dict):
-        return {k: strip(v) for k, v in o.items() if k not in ("wallSeconds",) and not k.endswith("Path")}
+        # What differs from run to run of the same build: wall time, clock dates, the build's version, file paths.
+        return {k: strip(v) for k, v in o.items() if k not in ("wallSeconds", "startedAt", "endedAt", "softwareVersion") and not k.endswith("Path")}
     if isinstance(o, list):
         return [strip(v) for v in o]
     return o
 print(json.dumps(strip(j), indent=1, sort_keys=True))
 EOF
-  grep -v "^preflight" "$out/$job.stderr" | tr '\r' '\n' > "$out/digests/$job.progress"
+  grep -v "^preflight" "$out/$job.stderr" | tr '\r' '\n' | sed -E 's/\(log: [^)]*\)/(log: LOG)/' > "$out/digests/$job.progress"
+}
+
+run() { # JOB COMMAND ARGS...: runs one job on the twin, records its wire traffic and digests it
+  local job=$1; shift
+  rm -f "$out/wire/$job.jsonl"
+  dotnet "$CLI" "$@" --simulate --log-dir "$out/logs" --sim-wire "$out/wire/$job.jsonl" --json \
+    > "$out/$job.stdout" 2> "$out/$job.stderr"
+  echo "exit $?" > "$out/digests/$job.exit"
+  normalize "$job"
   digest "$job"
   echo "$job: $(head -c 200 "$out/digests/$job.exit")"
 }
+
+if [ "${NORMALIZE_ONLY:-0}" = 1 ]; then
+  # Re-derives digests/*.json and *.progress of an earlier capture from its raw output (after this filter changed).
+  for f in "$out"/*.stdout; do normalize "$(basename "$f" .stdout)"; done
+  exit 0
+fi
 
 logof() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['logPath'])" "$out/$1.stdout"; }
 

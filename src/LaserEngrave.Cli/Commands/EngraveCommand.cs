@@ -401,8 +401,8 @@ internal static class EngraveCommand
             }
             if (s.Resumed)
             {
-                // Each --simulate starts a fresh simulator, so what the resumed run burned is not on this one.
-                output.WriteLine("                  (this run resumed another: the pixels that run burned count as missing here)");
+                // Each --simulate starts a fresh simulator: what the stopped run burned is not on this one, so it is not checked here.
+                output.WriteLine("                  (this run resumed another: the pixels that run burned are not checked here)");
             }
         }
 

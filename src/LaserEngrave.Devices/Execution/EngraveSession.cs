@@ -358,7 +358,7 @@ public sealed class EngraveSession
                             Outcome = layerRun?.Outcome,
                             EngravingSeconds = layerRun?.EngravingDuration.TotalSeconds ?? 0,
                             LaserOnSeconds = layerRun?.LaserOnSeconds ?? 0,
-                            Simulation = Machine.Inspector is { } layerInspector && layerRun is not null ? Inspect(layerInspector, part) : null,
+                            Simulation = Machine.Inspector is { } layerInspector && layerRun is not null ? Inspect(layerInspector, part, index == _firstLayer ? _resumeFrom : null) : null,
                         };
                     }
                 }
@@ -377,7 +377,7 @@ public sealed class EngraveSession
 
         if (Machine.Inspector is { } inspector && !_layered)
         {
-            record = record with { Simulation = Inspect(inspector, _parts[0]) };
+            record = record with { Simulation = Inspect(inspector, _parts[0], _resumeFrom) };
         }
 
         record = RunRecords.Complete(record, run, error, Machine.StagePort, Machine.LaserPort, Options.WallClock.GetLocalNow(), time.GetElapsedTime(clockStart)) with
@@ -475,8 +475,9 @@ public sealed class EngraveSession
         }
     }
 
-    private static RunSimulation Inspect(IRunInspector inspector, PreparedLayer part) =>
-        part.Drawing is { } drawing ? inspector.InspectDrawing(drawing) : inspector.Inspect(part.Image!);
+    // A continued run is checked against what it had still to burn, not what the run it continues burned.
+    private static RunSimulation Inspect(IRunInspector inspector, PreparedLayer part, RunStopPoint? resumedFrom) =>
+        part.Drawing is { } drawing ? inspector.InspectDrawing(drawing) : inspector.Inspect(part.Image!, resumedFrom);
 
     private async Task<RunResult> RunPassAsync(PreparedLayer part, int pass, bool firstOfSession, CancellationToken cancellationToken, RunStopPoint? resumeFrom = null)
     {
