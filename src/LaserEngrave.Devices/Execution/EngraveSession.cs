@@ -34,34 +34,24 @@ public sealed class EngraveSession
     /// <summary>How many timing doubts a session goes on from (<see cref="RunResult.Recoverable"/>); the next one ends the run.</summary>
     public const int MaxRecoveries = 3;
 
-    public EngraveSession(EngraveMachine machine, PreparedJob job, EngraveSessionOptions? options = null)
-        : this(machine, job?.Spec!, [Single(job?.Spec, job, null)], false, options)
-    {
-        Job = job;
-    }
-
-    /// <summary>A session that engraves a drawing: its strokes (docs/vectors.md), the passes, the twin's path check and the log.</summary>
-    public EngraveSession(EngraveMachine machine, PreparedDrawing drawing, EngraveSessionOptions? options = null)
-        : this(machine, drawing?.Spec!, [Single(drawing?.Spec, null, drawing)], false, options)
-    {
-        Drawing = drawing;
-    }
-
-    /// <summary>A session that engraves the layers of a job one after the other, each with its own process and passes, all in one log.</summary>
-    /// <remarks>A stopped run of layers is continued with <see cref="EngraveSessionOptions.ResumeLayers"/>, not <see cref="EngraveSessionOptions.ResumeFrom"/>.</remarks>
-    public EngraveSession(EngraveMachine machine, LayeredJob job, EngraveSessionOptions? options = null)
-        : this(machine, First(job), job?.Layers!, true, options)
-    {
-        Job = job!.Layers[0].Image;
-        Drawing = job.Layers[0].Drawing;
-    }
-
-    private EngraveSession(EngraveMachine machine, JobSpec spec, IReadOnlyList<PreparedLayer> parts, bool layered, EngraveSessionOptions? options)
+    /// <summary>A session that engraves <paramref name="job"/>: an image (raster or dots), a drawing, or a job of layers one layer after the other, each with its own process and passes, all in one log.</summary>
+    /// <remarks>A stopped run of layers is continued with <see cref="EngraveSessionOptions.ResumeLayers"/>, not <see cref="EngraveSessionOptions.ResumeFrom"/>. A sweep runs cell by cell through <see cref="SweepSession"/>, each cell a session of its own.</remarks>
+    public EngraveSession(EngraveMachine machine, EngraveJob job, EngraveSessionOptions? options = null)
     {
         ArgumentNullException.ThrowIfNull(machine);
-        ArgumentNullException.ThrowIfNull(spec);
+        ArgumentNullException.ThrowIfNull(job);
+        if (job is SweepJob)
+        {
+            throw new ArgumentException("a sweep runs cell by cell through SweepSession, each cell its own session and log", nameof(job));
+        }
+
+        var parts = job.Parts;
+        var layered = job is LayersJob;
+        Engraving = job;
+        Job = parts[0].Image;
+        Drawing = parts[0].Drawing;
         Machine = machine;
-        Spec = spec;
+        Spec = job.Spec;
         Options = options ?? EngraveSessionOptions.Default;
         _parts = parts;
         _layered = layered;
@@ -106,6 +96,9 @@ public sealed class EngraveSession
     }
 
     public EngraveMachine Machine { get; }
+
+    /// <summary>The job this session engraves.</summary>
+    public EngraveJob Engraving { get; }
 
     /// <summary>The image job (a layered job's first layer's); null for a drawing.</summary>
     public PreparedJob? Job { get; }
@@ -232,15 +225,6 @@ public sealed class EngraveSession
         {
             return "unreadable: " + ex.Message;
         }
-    }
-
-    private static PreparedLayer Single(JobSpec? spec, PreparedJob? job, PreparedDrawing? drawing) =>
-        new(new JobLayer { Name = string.Empty, Source = spec?.ImagePath ?? string.Empty, Passes = spec?.Passes ?? 1, Mode = drawing is null ? LayerMode.Raster : LayerMode.Outline }, job, drawing);
-
-    private static JobSpec First(LayeredJob job)
-    {
-        ArgumentNullException.ThrowIfNull(job);
-        return job.Layers[0].Spec;
     }
 
     private static long Moves(PreparedLayer part) => part.Image?.Statistics.Moves ?? part.Drawing!.Schedule.Strokes.Count;
