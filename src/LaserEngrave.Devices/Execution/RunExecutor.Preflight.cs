@@ -95,7 +95,7 @@ public sealed partial class RunExecutor
 
         // Raster timed switching only: a drawing's schedule and a step-by-step run keep the profile's latencies.
         var scale = Math.Max(double.IsFinite(Options.LatencyScale) ? Math.Max(1, Options.LatencyScale) : 1, SpreadSeenScale(exchangesBefore));
-        if (scale > 1 && Drawing is null && Job!.Dots is null && Job.Plan.Timing is { } planned)
+        if (scale > 1 && _motion == Motion.Timed && Job!.Plan.Timing is { } planned)
         {
             _latencyScale = scale;
 
@@ -144,8 +144,8 @@ public sealed partial class RunExecutor
     /// <summary>Refuses a run whose strategy needs what the axis' firmware does not vouch for (<see cref="ZaberFirmware"/>), naming the axis, the firmware and what is missing.</summary>
     private void CheckFirmware(AxisIdentity identity, string name)
     {
-        var drawing = Drawing is not null;
-        var timedRaster = !drawing && Job!.Dots is null && Job.Plan.Timing is not null;
+        var drawing = _motion == Motion.Strokes;
+        var timedRaster = _motion == Motion.Timed;
         var missing = ZaberFirmware.Missing(identity.FirmwareVersion, speedChangeMidMove: timedRaster, constantSpeed: drawing);
         if (missing.Count > 0)
         {

@@ -35,6 +35,7 @@ public sealed partial class RunExecutor
     private readonly CancellationTokenSource _fault = new();
     private readonly ProcessSettings _process = ProcessSettings.Default;
     private readonly MachineProfile _profile = MachineProfile.Default;
+    private readonly Motion _motion;
     private TimedSwitching? _timing;
     private readonly int _rowsTotal;
     private readonly long _runsTotal;
@@ -98,12 +99,12 @@ public sealed partial class RunExecutor
         TimeProvider = timeProvider ?? TimeProvider.System;
         Options = options ?? RunOptions.Default;
 
-        // The one place the executor tells the kinds apart: what it counts, the timing it follows and its units.
-        (Job, Drawing) = job switch
+        // The one place the executor tells the kinds apart: the motion strategy it runs, what it counts, its timing and units.
+        (Job, Drawing, _motion) = job switch
         {
-            RasterJob raster => (raster.Prepared, null),
-            DotJob dots => (dots.Prepared, null),
-            DrawingJob drawing => ((PreparedJob?)null, drawing.Drawing),
+            RasterJob raster => (raster.Prepared, null, raster.Prepared.Plan.Timing is null ? Motion.StepByStep : Motion.Timed),
+            DotJob dots => (dots.Prepared, null, Motion.Dots),
+            DrawingJob drawing => ((PreparedJob?)null, drawing.Drawing, Motion.Strokes),
             LayersJob or SweepJob => throw new ArgumentException("an executor runs one image or drawing: a job of layers runs through EngraveSession, a sweep through SweepSession", nameof(job)),
             _ => throw new ArgumentException($"unknown job kind {job.GetType().Name}", nameof(job)),
         };
@@ -202,30 +203,37 @@ public sealed partial class RunExecutor
         {
             SetState(RunState.Preflight);
             identity = await PreflightAsync(token);
-            var (moves, firstIndex) = Drawing is not null ? ([], 0) : Job!.Dots is { } dots ? ([], PrepareDots(dots)) : Prepare();
-            var firstStroke = Drawing is null ? 0 : PrepareStrokes();
-            _estimatePreparation = Drawing is not null ? EstimateDrawingPreparation(firstStroke)
-                : Job!.Dots is { } dotPlan0 ? EstimateDotsPreparation(dotPlan0, firstIndex)
-                : EstimatePreparation(moves);
+            IEnumerable<Move> moves = [];
+            long firstIndex = 0;
+            var firstStroke = 0;
+            switch (_motion)
+            {
+                case Motion.Strokes:
+                    firstStroke = PrepareStrokes();
+                    _estimatePreparation = EstimateDrawingPreparation(firstStroke);
+                    break;
+                case Motion.Dots:
+                    firstIndex = PrepareDots(Job!.Dots!);
+                    _estimatePreparation = EstimateDotsPreparation(Job.Dots!, firstIndex);
+                    break;
+                default:
+                    (moves, firstIndex) = Prepare();
+                    _estimatePreparation = EstimatePreparation(moves);
+                    break;
+            }
+
             SetState(RunState.Running);
             _keepAlive = new GateKeepAlive(Gate, GateKeepAlive.PeriodFor(_profile.Gate.WatchdogMs, Options.KeepAliveFraction), TimeProvider, OnKeepAliveFailed);
             using var linked = CancellationTokenSource.CreateLinkedTokenSource(token, _fault.Token);
-            if (Drawing is { } drawing)
+            // One motion strategy per kind of plan: strokes (RunExecutor.Vector), dots (.Dots), timed switching (.Timed) or step by step (.StepByStep).
+            var motion = _motion switch
             {
-                await ExecuteVectorAsync(drawing, firstStroke, linked.Token);
-            }
-            else if (Job!.Dots is { } dotPlan)
-            {
-                await ExecuteDotsAsync(dotPlan, firstIndex, linked.Token);
-            }
-            else if (Job.Plan.Timing is not null && _timing is { } timing)
-            {
-                await ExecuteTimedAsync(moves, firstIndex, timing, linked.Token);
-            }
-            else
-            {
-                await ExecuteAsync(moves, firstIndex, linked.Token);
-            }
+                Motion.Strokes => ExecuteVectorAsync(Drawing!, firstStroke, linked.Token),
+                Motion.Dots => ExecuteDotsAsync(Job!.Dots!, firstIndex, linked.Token),
+                Motion.Timed => ExecuteTimedAsync(moves, firstIndex, _timing!, linked.Token),
+                _ => ExecuteAsync(moves, firstIndex, linked.Token),
+            };
+            await motion;
 
             await SwitchLaserAsync(on: false);
             return await FinishAsync(RunOutcome.Completed, null, identity, startedAt);
@@ -474,5 +482,21 @@ public sealed partial class RunExecutor
 
         StateChanged?.Invoke(this, new RunStateChangedEventArgs(previous, state));
         ProgressChanged?.Invoke(this, progress);
+    }
+
+    /// <summary>The motion strategies, one per kind of plan.</summary>
+    private enum Motion
+    {
+        /// <summary>Each move awaits its reply before the next (a paper plan, or one without a timing model).</summary>
+        StepByStep,
+
+        /// <summary>Strokes and travels sent at times computed in advance, the laser switched by time.</summary>
+        Timed,
+
+        /// <summary>Stop at each dot and fire a counted burst.</summary>
+        Dots,
+
+        /// <summary>A drawing's strokes, each axis streaming its speed.</summary>
+        Strokes,
     }
 }
