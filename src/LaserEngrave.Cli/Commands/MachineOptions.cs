@@ -106,6 +106,16 @@ internal sealed class MachineOptions
             throw new UsageException("--fault works only with --simulate");
         }
 
+        if (!simulate && result.GetValue(SimWire) is not null)
+        {
+            throw new UsageException("--sim-wire works only with --simulate: on real ports the flight recorder writes wire_*.jsonl beside the log");
+        }
+
+        if (simulate && result.GetValue(SimWire) is { } wire && (File.Exists(wire) || Directory.Exists(wire)))
+        {
+            throw new UsageException($"--sim-wire {wire}: the file exists; give a new one");
+        }
+
         if (!simulate && (result.GetValue(SimOptions) is not null || result.GetValue(SimSeed) is not null))
         {
             throw new UsageException("--sim-options and --sim-seed work only with --simulate");
