@@ -208,15 +208,17 @@ public sealed partial class RunExecutor
         await MoveAxesAsync(move.LengthX != 0 ? move.X1 : null, move.LengthY != 0 ? move.Y1 : null, token);
     }
 
-    private async Task MoveToAsync(long x, long y, int speedData, CancellationToken token)
+    /// <summary>A travel to (<paramref name="x"/>, <paramref name="y"/>); an axis already there is left alone unless <paramref name="unsure"/> says its position is the model's, not a reply's.</summary>
+    private async Task MoveToAsync(long x, long y, int speedData, CancellationToken token, (bool X, bool Y) unsure = default)
     {
         if (_laserOn)
         {
             await SwitchLaserAsync(on: false);
         }
 
-        await SetSpeedsAsync(x != _x, y != _y, speedData, token);
-        await MoveAxesAsync(x != _x ? x : null, y != _y ? y : null, token);
+        bool moveX = x != _x || unsure.X, moveY = y != _y || unsure.Y;
+        await SetSpeedsAsync(moveX, moveY, speedData, token);
+        await MoveAxesAsync(moveX ? x : null, moveY ? y : null, token);
     }
 
     private async Task SetSpeedsAsync(bool x, bool y, int speedData, CancellationToken token)
