@@ -25,8 +25,9 @@ public sealed class EngraveSession
     private RunState _state = RunState.Idle;
     private EngraveProgress _progress;
     private IProgress<EngraveProgress>? _sink;
-    private bool _pauseRequested;
-    private bool _abortRequested;
+
+    // Pause and abort as asked, held once for every pass (each pass's executor acts on the same one); the session only mirrors it.
+    private readonly RunControl _control = new();
     private readonly List<RunRecovery> _recoveries = [];
     private double _latencyScale = 1;
     private int _started;
@@ -158,12 +159,13 @@ public sealed class EngraveSession
         RunExecutor? current;
         lock (_lock)
         {
-            if (_abortRequested || RunStateMachine.IsEnd(_state) || _pauseRequested)
+            if (_control.AbortRequested || RunStateMachine.IsEnd(_state) || _control.PauseRequested)
             {
                 return;
             }
 
-            _pauseRequested = true;
+            // Asked here as well as of the pass: a pass that has just ended leaves it for the next one.
+            _control.RequestPause();
             current = _current;
         }
 
@@ -175,18 +177,24 @@ public sealed class EngraveSession
     public void Resume()
     {
         RunExecutor? current;
+        TaskCompletionSource? resumed = null;
         lock (_lock)
         {
-            if (!_pauseRequested)
+            if (!_control.PauseRequested)
             {
                 return;
             }
 
-            _pauseRequested = false;
             current = _current;
+            if (current is null)
+            {
+                resumed = _control.RequestResume();
+            }
         }
 
+        // The pass withdraws the pause itself, so that it can leave Pausing before its wait is released.
         current?.Resume();
+        resumed?.TrySetResult();
         Report(null);
     }
 
@@ -196,12 +204,13 @@ public sealed class EngraveSession
         RunExecutor? current;
         lock (_lock)
         {
-            if (_abortRequested || RunStateMachine.IsEnd(_state))
+            if (_control.AbortRequested || RunStateMachine.IsEnd(_state))
             {
                 return;
             }
 
-            _abortRequested = true;
+            // Recorded at once, so that no further pass starts; the pass that runs carries it out (laser off first).
+            _control.RequestAbort();
             current = _current;
 
             // Aborting at once, also between passes or before the first: the executor's own Aborting follows.
@@ -453,10 +462,7 @@ public sealed class EngraveSession
 
     private bool AbortRequested()
     {
-        lock (_lock)
-        {
-            return _abortRequested;
-        }
+        return _control.AbortRequested;
     }
 
     // A continued run is checked against what it had still to burn, not what the run it continues burned.
@@ -468,8 +474,8 @@ public sealed class EngraveSession
         // What an earlier run of this session found of the latencies' spread holds for the rest of it (RunResult.LatencyScale).
         var options = new RunOptions { Home = Options.Home && firstOfSession, ResumeFrom = resumeFrom ?? (firstOfSession ? _resumeFrom : null), LatencyScale = _latencyScale };
         var executor = part.Drawing is { } drawing
-            ? new RunExecutor(Machine.Stage, Machine.Gate, drawing, Machine.TimeProvider, options)
-            : new RunExecutor(Machine.Stage, Machine.Gate, part.Image!, Machine.TimeProvider, options);
+            ? new RunExecutor(Machine.Stage, Machine.Gate, drawing, Machine.TimeProvider, options, _control)
+            : new RunExecutor(Machine.Stage, Machine.Gate, part.Image!, Machine.TimeProvider, options, _control);
         var movesDone = options.ResumeFrom?.MoveIndex ?? 0;
         executor.MoveCompleted += (_, e) => Interlocked.Exchange(ref movesDone, e.MoveIndex + 1);
         executor.ProgressChanged += (_, p) => Report(new PassProgress(pass, Interlocked.Read(ref movesDone), p));
@@ -478,8 +484,8 @@ public sealed class EngraveSession
         lock (_lock)
         {
             _current = executor;
-            pause = _pauseRequested;
-            abort = _abortRequested;
+            pause = _control.PauseRequested;
+            abort = _control.AbortRequested;
         }
 
         // A pause or an abort asked between passes holds or stops this one before it moves.
@@ -512,12 +518,12 @@ public sealed class EngraveSession
             if (pass is { } p)
             {
                 // A pass's end is not the session's: that comes once every pass has run, the burn is checked and the log written.
-                _state = RunStateMachine.IsEnd(p.Run.State) || (_abortRequested && p.Run.State is not RunState.Aborting) ? _state : p.Run.State;
-                _progress = new EngraveProgress(_state, p.Pass, Passes, p.MovesDone, _moves, _pauseRequested, p.Run, _layer);
+                _state = RunStateMachine.IsEnd(p.Run.State) || (_control.AbortRequested && p.Run.State is not RunState.Aborting) ? _state : p.Run.State;
+                _progress = new EngraveProgress(_state, p.Pass, Passes, p.MovesDone, _moves, _control.PauseRequested, p.Run, _layer);
             }
             else
             {
-                _progress = _progress with { State = _state, PauseRequested = _pauseRequested };
+                _progress = _progress with { State = _state, PauseRequested = _control.PauseRequested };
             }
 
             progress = _progress;

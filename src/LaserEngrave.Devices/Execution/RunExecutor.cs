@@ -45,10 +45,12 @@ public sealed partial class RunExecutor
     private RunState _state = RunState.Idle;
     private RunProgress _progress;
     private int _started;
-    private bool _abortRequested;
-    private bool _pauseRequested;
-    private TaskCompletionSource _resumed = NewSignal();
-    private Task _abortSequence = Task.CompletedTask;
+
+    // What was asked of the run (pause, abort): held once, shared with the session that runs this pass (RunControl).
+    private readonly RunControl _control;
+
+    // The abort's off sequence once this executor was told of the abort: from then on the run only goes towards its end.
+    private Task? _abortSequence;
     private GateKeepAlive? _keepAlive;
     private bool _laserOn;
     private long _laserOnSince;
@@ -90,10 +92,18 @@ public sealed partial class RunExecutor
     /// <summary>An executor for one image (raster or dots) or one drawing: it runs that job's plan once.</summary>
     /// <remarks>Layers and passes are the session's (<see cref="EngraveSession"/>, one executor a pass of a layer); a sweep's cells are each a job.</remarks>
     public RunExecutor(IStage stage, ILaserGate gate, EngraveJob job, TimeProvider? timeProvider = null, RunOptions? options = null)
+        : this(stage, gate, job, timeProvider, options, new RunControl())
+    {
+    }
+
+    /// <summary>An executor for one pass of a session, acting on the session's <paramref name="control"/> (its pause and abort requests).</summary>
+    internal RunExecutor(IStage stage, ILaserGate gate, EngraveJob job, TimeProvider? timeProvider, RunOptions? options, RunControl control)
     {
         ArgumentNullException.ThrowIfNull(stage);
         ArgumentNullException.ThrowIfNull(gate);
         ArgumentNullException.ThrowIfNull(job);
+        ArgumentNullException.ThrowIfNull(control);
+        _control = control;
         Stage = stage;
         Gate = gate;
         TimeProvider = timeProvider ?? TimeProvider.System;
@@ -270,12 +280,10 @@ public sealed partial class RunExecutor
     {
         lock (_lock)
         {
-            if (_abortRequested || RunStateMachine.IsEnd(_state) || _state is RunState.Paused or RunState.Pausing)
+            if (_abortSequence is not null || RunStateMachine.IsEnd(_state) || _state is RunState.Paused or RunState.Pausing || !_control.RequestPause())
             {
                 return;
             }
-
-            _pauseRequested = true;
         }
 
         if (State is RunState.Running)
@@ -287,17 +295,10 @@ public sealed partial class RunExecutor
     /// <summary>Continues a paused (or pausing) run.</summary>
     public void Resume()
     {
-        TaskCompletionSource resumed;
-        lock (_lock)
+        var resumed = _control.RequestResume();
+        if (resumed is null)
         {
-            if (!_pauseRequested)
-            {
-                return;
-            }
-
-            _pauseRequested = false;
-            resumed = _resumed;
-            _resumed = NewSignal();
+            return;
         }
 
         if (State is RunState.Pausing)
@@ -314,13 +315,12 @@ public sealed partial class RunExecutor
         TaskCompletionSource resumed;
         lock (_lock)
         {
-            if (_abortRequested || RunStateMachine.IsEnd(_state))
+            if (_abortSequence is not null || RunStateMachine.IsEnd(_state))
             {
                 return;
             }
 
-            _abortRequested = true;
-            resumed = _resumed;
+            resumed = _control.RequestAbort();
             _abortSequence = TaskRunner.For(TimeProvider).Start(AbortSequenceAsync);
         }
 
@@ -344,8 +344,6 @@ public sealed partial class RunExecutor
     /// <summary>The widest spread a run assumes, in times the profile's (a profile this far off needs `machine latency`).</summary>
     private const double MaxLatencyScale = 8;
 
-    private static TaskCompletionSource NewSignal() => new(TaskCreationOptions.RunContinuationsAsynchronously);
-
     private static string N(double value) => value.ToString("0.####", CultureInfo.InvariantCulture);
 
     private bool IsAbortRequested
@@ -354,7 +352,7 @@ public sealed partial class RunExecutor
         {
             lock (_lock)
             {
-                return _abortRequested;
+                return _abortSequence is not null;
             }
         }
     }
@@ -369,15 +367,15 @@ public sealed partial class RunExecutor
 
     private async Task PauseIfAskedAsync(CancellationToken token)
     {
-        TaskCompletionSource resumed;
+        TaskCompletionSource? resumed;
         lock (_lock)
         {
-            if (!_pauseRequested || _abortRequested)
-            {
-                return;
-            }
+            resumed = _abortSequence is null ? _control.PauseSignal() : null;
+        }
 
-            resumed = _resumed;
+        if (resumed is null)
+        {
+            return;
         }
 
         if (_laserOn)
@@ -411,7 +409,7 @@ public sealed partial class RunExecutor
         {
             // Through Aborting even when the run noticed the abort before Abort() had set it: the table's only way to Aborted.
             SetState(RunState.Aborting);
-            await _abortSequence;
+            await (_abortSequence ?? Task.CompletedTask);
 
             // A move may have been sent in the moment between the abort and the run noticing it: stop again.
             await StopAxesAsync();
@@ -470,7 +468,7 @@ public sealed partial class RunExecutor
             previous = _state;
             // Only the table's transitions; once an abort is asked, only towards its end.
             if (!RunStateMachine.IsLegal(previous, state)
-                || (_abortRequested && state is not RunState.Aborting && !RunStateMachine.IsEnd(state)))
+                || (_abortSequence is not null && state is not RunState.Aborting && !RunStateMachine.IsEnd(state)))
             {
                 return;
             }
