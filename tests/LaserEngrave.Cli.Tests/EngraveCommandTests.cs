@@ -371,7 +371,11 @@ public sealed class EngraveCommandTests : IDisposable
         Assert.True(again.RootElement.GetProperty("resumed").GetBoolean());
         Assert.Equal(Path.GetFullPath(logPath), resumedRecord.RepeatOf);
         var text = await CliHarness.RunAsync("engrave", "--from-log", logPath, "--resume", "--simulate", "--log-dir", LogDir);
-        Assert.Contains("(this run resumed another: the pixels that run burned count as missing here)", text.Out, StringComparison.Ordinal);
+        Assert.Contains("(this run resumed another: the pixels that run burned are not checked here)", text.Out, StringComparison.Ordinal);
+
+        // Issue 23: what the stopped run burned is not "missing" in the continued run's check, and nothing is burned twice but the cut pixel.
+        Assert.True(record.Simulation!.MissingPixels > 0);
+        Assert.Equal((0L, 0L), (resumedRecord.Simulation!.MissingPixels, resumedRecord.Simulation.ExtraPixels));
     }
 
     [Fact]

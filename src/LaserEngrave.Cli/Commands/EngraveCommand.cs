@@ -61,9 +61,8 @@ internal static class EngraveCommand
             throw new UsageException($"--passes {n}: {rule}");
         }
 
-        PreparedJob? prepared = null;
-        PreparedDrawing? drawing = null;
-        LayeredJob? layered = null;
+        // The one job the session runs, whichever kind the options name.
+        EngraveJob job;
         string? repeatOf = null;
         RunStopPoint? resumeFrom = null;
         LayerResumePoint? resumeLayers = null;
@@ -76,9 +75,10 @@ internal static class EngraveCommand
                 throw new UsageException($"{other.Name} with --job: {(other == o.Passes ? "each layer has its own passes" : other == o.Burned || other == o.Dose ? "--burned and --dose are for one image" : "a job of layers is repeated or resumed by --from-log LOG alone (the log names its job file)")}");
             }
 
-            layered = LayerCommands.Prepare(result, jobFile, o.Job, o.Vector);
+            var layered = LayerCommands.Prepare(result, jobFile, o.Job, o.Vector);
             layeredFile = jobFile;
             warnings = LayerCommands.Warnings(layered);
+            job = layered;
         }
         // With IMAGE too, the image's way refuses the pair before any log is read.
         else if (result.GetValue(o.Job.Image) is null && result.GetValue(o.FromLog) is { } layersLog && RunLogStore.Read(layersLog).Layers is not null)
@@ -88,9 +88,11 @@ internal static class EngraveCommand
                 throw new UsageException($"{other.Name} with --from-log of a job of layers: {(other == o.Passes ? "each layer has its own passes" : "--burned and --dose are for one image")}");
             }
 
+            LayeredJob layered;
             (layered, layeredFile, resumeLayers) = LayerCommands.FromLog(result, layersLog, result.GetValue(o.Resume), o.Job, o.Vector);
             repeatOf = Path.GetFullPath(layersLog);
             warnings = LayerCommands.Warnings(layered);
+            job = layered;
         }
         else if (IsDrawingJob(result, o))
         {
@@ -99,16 +101,18 @@ internal static class EngraveCommand
                 throw new UsageException("--burned and --dose are for images; a drawing's figures are in the log and in --json (pathDeviationUm, pulseSpacingUm)");
             }
 
+            PreparedDrawing drawing;
             (drawing, repeatOf, resumeFrom) = BindDrawingJob(result, o, passes);
             VectorCommands.RefuseUnrunnable(drawing);
             warnings = drawing.Warnings;
+            job = drawing;
         }
         else
         {
             JobSpec spec;
             (spec, repeatOf, resumeFrom) = BindJob(result, o);
             spec = spec with { Passes = passes ?? spec.Passes };
-            prepared = PreparedJob.Prepare(spec);
+            var prepared = PreparedJob.Prepare(spec);
             RefuseOutsideTravel(prepared);
             if (burnedScale is { } scale && PngWriter.ScaledPixels(prepared.Mask.Width, prepared.Mask.Height, scale) > PngWriter.MaxScaledPixels)
             {
@@ -122,6 +126,7 @@ internal static class EngraveCommand
             }
 
             warnings = prepared.Warnings.Select(w => w.Message);
+            job = prepared;
         }
 
         foreach (var warning in warnings)
@@ -129,7 +134,7 @@ internal static class EngraveCommand
             stderr.WriteLine($"warning: {warning}");
         }
 
-        var profile = layered?.Layers[0].Spec.Profile ?? drawing?.Spec.Profile ?? prepared!.Spec.Profile;
+        var profile = job.Spec.Profile;
 
         // While the machine opens and runs (the simulation on one thread), another thread prepares the JSON writers of
         // the log and the summary, which would otherwise add their compiling time (a tenth of a second) after the run.
@@ -183,13 +188,11 @@ internal static class EngraveCommand
                 Log = store,
                 Recorder = recorder,
             };
-            var session = layered is not null ? new EngraveSession(machine, layered, sessionOptions)
-                : drawing is not null ? new EngraveSession(machine, drawing, sessionOptions)
-                : new EngraveSession(machine, prepared!, sessionOptions);
+            var session = new EngraveSession(machine, job, sessionOptions);
             var printer = new ProgressPrinter(stderr, terminal: ReferenceEquals(stderr, Console.Error) && !Console.IsErrorRedirected)
             {
-                Drawing = drawing is not null,
-                Layers = layered?.Layers.Select(l => (l.Layer.Name, l.Drawing is not null)).ToList(),
+                Drawing = job is DrawingJob,
+                Layers = job is LayersJob layers ? layers.Parts.Select(l => (l.Layer.Name, l.Drawing is not null)).ToList() : null,
             };
             var wall = Stopwatch.StartNew();
             try
@@ -409,8 +412,8 @@ internal static class EngraveCommand
             }
             if (s.Resumed)
             {
-                // Each --simulate starts a fresh simulator, so what the resumed run burned is not on this one.
-                output.WriteLine("                  (this run resumed another: the pixels that run burned count as missing here)");
+                // Each --simulate starts a fresh simulator: what the stopped run burned is not on this one, so it is not checked here.
+                output.WriteLine("                  (this run resumed another: the pixels that run burned are not checked here)");
             }
         }
 

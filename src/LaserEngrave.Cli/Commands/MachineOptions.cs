@@ -35,6 +35,13 @@ internal sealed class MachineOptions
 
     public Option<int?> SimSeed { get; } = SimSeedOption();
 
+    /// <summary>Hidden: the twin's wire traffic as a flight recording (tools/wire-capture.sh compares builds with it).</summary>
+    public Option<string?> SimWire { get; } = new("--sim-wire")
+    {
+        Description = "With --simulate: record every byte on the simulated links to this new file (flight-recorder format)",
+        Hidden = true,
+    };
+
     public void AddTo(Command command)
     {
         command.Options.Add(Simulate);
@@ -43,6 +50,7 @@ internal sealed class MachineOptions
         command.Options.Add(Fault);
         command.Options.Add(SimOptions);
         command.Options.Add(SimSeed);
+        command.Options.Add(SimWire);
     }
 
     internal static Option<string?> SimOptionsOption() => new("--sim-options")
@@ -98,6 +106,16 @@ internal sealed class MachineOptions
             throw new UsageException("--fault works only with --simulate");
         }
 
+        if (!simulate && result.GetValue(SimWire) is not null)
+        {
+            throw new UsageException("--sim-wire works only with --simulate: on real ports the flight recorder writes wire_*.jsonl beside the log");
+        }
+
+        if (simulate && result.GetValue(SimWire) is { } wire && (File.Exists(wire) || Directory.Exists(wire)))
+        {
+            throw new UsageException($"--sim-wire {wire}: the file exists; give a new one");
+        }
+
         if (!simulate && (result.GetValue(SimOptions) is not null || result.GetValue(SimSeed) is not null))
         {
             throw new UsageException("--sim-options and --sim-seed work only with --simulate");
@@ -127,6 +145,12 @@ internal sealed class MachineOptions
     {
         Validate(result);
         Opening.Value?.Invoke();
+        if (result.GetValue(Simulate) && result.GetValue(SimWire) is { } wire)
+        {
+            var machine = SimulatedMachine.CreateInProcess(profile, SimulatorOptionsFor(result));
+            return MachineSession.OverLinks(machine.StageLink, machine.LaserLink, profile, machine.TimeProvider, "simulator", owner: machine, new WireRecorder(wire, machine.TimeProvider, long.MaxValue));
+        }
+
         return result.GetValue(Simulate)
             ? SimulatedMachine.OpenInProcess(profile, SimulatorOptionsFor(result))
             : MachineSession.OpenPorts(result.GetValue(StagePort)!, result.GetValue(LaserPort)!, profile, recorder);

@@ -41,7 +41,10 @@ public static class RunSummaryText
         if (record.StoppedAt is { } stop)
         {
             var position = stop.XMicrosteps is { } x && stop.YMicrosteps is { } y ? string.Create(c, $", stage at {x}, {y} microsteps") : string.Empty;
-            Line("Stopped at", string.Create(c, $"row {stop.Row}, move {stop.MoveIndex}{position}"));
+            // Counted as the run bar and the "Done" line count (the engine's rows or strokes done), so that they agree; the
+            // image row (or stroke) of the move it stopped in follows, as the stop point holds it.
+            var (unit, within) = record.Drawing is null ? ("rows", "image row") : ("strokes", "stroke");
+            Line("Stopped at", string.Create(c, $"after {record.RowsDone} of {record.RowsTotal} {unit}, move {stop.MoveIndex} ({within} {stop.Row}){position}"));
             if (stop is { ResumeXMicrosteps: { } resumeX, CutPixel: { } cut })
             {
                 var check = stop.ExpectedXMicrosteps is { } expected ? string.Create(c, $" if X is found at {expected} microsteps (else from the run's start)") : string.Empty;

@@ -42,19 +42,24 @@ public sealed class VectorSchedule
     /// <summary>From the host's write of a stroke's first command to its travel's write (the next stroke's run-up start reached or not).</summary>
     public static double StrokeSeconds(VectorStroke stroke) => stroke.NextArrivalSeconds;
 
-    /// <summary>A travel's time from its write until the host has both replies and may write the next stroke.</summary>
-    public double TravelSeconds(StagePoint from, StagePoint to)
+    /// <summary>
+    /// A travel's time from its write until the host has both replies and may write the next stroke: an axis the stroke
+    /// before streamed is moved even when the model has it at the run-up's start already (<see cref="VectorStroke.Streams"/>).
+    /// </summary>
+    public double TravelSeconds(VectorStroke from, StagePoint to)
     {
-        long dx = Math.Abs(to.X - from.X), dy = Math.Abs(to.Y - from.Y);
-        if (dx == 0 || dy == 0)
+        ArgumentNullException.ThrowIfNull(from);
+        long dx = Math.Abs(to.X - from.RestEnd.X), dy = Math.Abs(to.Y - from.RestEnd.Y);
+        bool moveX = dx != 0 || from.Streams(VectorAxis.X), moveY = dy != 0 || from.Streams(VectorAxis.Y);
+        if (!moveX || !moveY)
         {
-            return dx == 0 && dy == 0 ? ReactionSeconds : Timing.StageCommandSeconds + Timing.TravelSeconds(dx, dy) + Timing.StageReplySeconds + ReactionSeconds;
+            return !moveX && !moveY ? ReactionSeconds : Timing.StageCommandSeconds + Timing.TravelSeconds(dx, dy) + Timing.StageReplySeconds + ReactionSeconds;
         }
 
         // X is written first, Y right behind it on the wire (a frame later); the replies queue one behind the other coming back.
         var frame = Timing.FrameSeconds;
-        var xEnd = Timing.Travel(dx).Duration;
-        var yEnd = frame + Timing.Travel(dy).Duration;
+        var xEnd = dx == 0 ? 0 : Timing.Travel(dx).Duration;
+        var yEnd = frame + (dy == 0 ? 0 : Timing.Travel(dy).Duration);
         var first = Math.Min(xEnd, yEnd) + frame;
         var last = Math.Max(Math.Max(xEnd, yEnd) + frame, first + frame);
         return Timing.StageCommandSeconds + last + Timing.StageAdapterSeconds + ReactionSeconds;
@@ -71,7 +76,7 @@ public sealed class VectorSchedule
             if (k + 1 < Strokes.Count)
             {
                 // The travel is written when the stroke's NextArrivalSeconds is reached, counted from its own first write.
-                total += TravelSeconds(stroke.RestEnd, Strokes[k + 1].RunUpStart);
+                total += TravelSeconds(stroke, Strokes[k + 1].RunUpStart);
             }
         }
 

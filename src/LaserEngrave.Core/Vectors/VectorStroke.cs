@@ -24,6 +24,12 @@ public sealed record VectorStroke
     /// <summary>Every axis command in time order.</summary>
     public required IReadOnlyList<AxisCommand> Commands { get; init; }
 
+    /// <summary>
+    /// Whether the stroke streams <paramref name="axis"/>' speed: where that axis then rests depends on when each command
+    /// arrived (the latencies' spread), so <see cref="RestEnd"/> is the model's, not a position to start the next stroke from.
+    /// </summary>
+    public bool Streams(VectorAxis axis) => Commands.Any(c => c.Axis == axis && c.Kind != AxisCommandKind.Query);
+
     /// <summary>The position the query (<see cref="AxisCommandKind.Query"/>) should see, microsteps.</summary>
     public required long QueryExpected { get; init; }
 

@@ -25,8 +25,9 @@ public sealed class EngraveSession
     private RunState _state = RunState.Idle;
     private EngraveProgress _progress;
     private IProgress<EngraveProgress>? _sink;
-    private bool _pauseRequested;
-    private bool _abortRequested;
+
+    // Pause and abort as asked, held once for every pass (each pass's executor acts on the same one); the session only mirrors it.
+    private readonly RunControl _control = new();
     private readonly List<RunRecovery> _recoveries = [];
     private double _latencyScale = 1;
     private int _started;
@@ -34,34 +35,24 @@ public sealed class EngraveSession
     /// <summary>How many timing doubts a session goes on from (<see cref="RunResult.Recoverable"/>); the next one ends the run.</summary>
     public const int MaxRecoveries = 3;
 
-    public EngraveSession(EngraveMachine machine, PreparedJob job, EngraveSessionOptions? options = null)
-        : this(machine, job?.Spec!, [Single(job?.Spec, job, null)], false, options)
-    {
-        Job = job;
-    }
-
-    /// <summary>A session that engraves a drawing: its strokes (docs/vectors.md), the passes, the twin's path check and the log.</summary>
-    public EngraveSession(EngraveMachine machine, PreparedDrawing drawing, EngraveSessionOptions? options = null)
-        : this(machine, drawing?.Spec!, [Single(drawing?.Spec, null, drawing)], false, options)
-    {
-        Drawing = drawing;
-    }
-
-    /// <summary>A session that engraves the layers of a job one after the other, each with its own process and passes, all in one log.</summary>
-    /// <remarks>A stopped run of layers is continued with <see cref="EngraveSessionOptions.ResumeLayers"/>, not <see cref="EngraveSessionOptions.ResumeFrom"/>.</remarks>
-    public EngraveSession(EngraveMachine machine, LayeredJob job, EngraveSessionOptions? options = null)
-        : this(machine, First(job), job?.Layers!, true, options)
-    {
-        Job = job!.Layers[0].Image;
-        Drawing = job.Layers[0].Drawing;
-    }
-
-    private EngraveSession(EngraveMachine machine, JobSpec spec, IReadOnlyList<PreparedLayer> parts, bool layered, EngraveSessionOptions? options)
+    /// <summary>A session that engraves <paramref name="job"/>: an image (raster or dots), a drawing, or a job of layers one layer after the other, each with its own process and passes, all in one log.</summary>
+    /// <remarks>A stopped run of layers is continued with <see cref="EngraveSessionOptions.ResumeLayers"/>, not <see cref="EngraveSessionOptions.ResumeFrom"/>. A sweep runs cell by cell through <see cref="SweepSession"/>, each cell a session of its own.</remarks>
+    public EngraveSession(EngraveMachine machine, EngraveJob job, EngraveSessionOptions? options = null)
     {
         ArgumentNullException.ThrowIfNull(machine);
-        ArgumentNullException.ThrowIfNull(spec);
+        ArgumentNullException.ThrowIfNull(job);
+        if (job is SweepJob)
+        {
+            throw new ArgumentException("a sweep runs cell by cell through SweepSession, each cell its own session and log", nameof(job));
+        }
+
+        var parts = job.Parts;
+        var layered = job is LayersJob;
+        Engraving = job;
+        Job = parts[0].Image;
+        Drawing = parts[0].Drawing;
         Machine = machine;
-        Spec = spec;
+        Spec = job.Spec;
         Options = options ?? EngraveSessionOptions.Default;
         _parts = parts;
         _layered = layered;
@@ -106,6 +97,9 @@ public sealed class EngraveSession
     }
 
     public EngraveMachine Machine { get; }
+
+    /// <summary>The job this session engraves.</summary>
+    public EngraveJob Engraving { get; }
 
     /// <summary>The image job (a layered job's first layer's); null for a drawing.</summary>
     public PreparedJob? Job { get; }
@@ -165,12 +159,13 @@ public sealed class EngraveSession
         RunExecutor? current;
         lock (_lock)
         {
-            if (_abortRequested || RunStateMachine.IsEnd(_state) || _pauseRequested)
+            if (_control.AbortRequested || RunStateMachine.IsEnd(_state) || _control.PauseRequested)
             {
                 return;
             }
 
-            _pauseRequested = true;
+            // Asked here as well as of the pass: a pass that has just ended leaves it for the next one.
+            _control.RequestPause();
             current = _current;
         }
 
@@ -182,18 +177,24 @@ public sealed class EngraveSession
     public void Resume()
     {
         RunExecutor? current;
+        TaskCompletionSource? resumed = null;
         lock (_lock)
         {
-            if (!_pauseRequested)
+            if (!_control.PauseRequested)
             {
                 return;
             }
 
-            _pauseRequested = false;
             current = _current;
+            if (current is null)
+            {
+                resumed = _control.RequestResume();
+            }
         }
 
+        // The pass withdraws the pause itself, so that it can leave Pausing before its wait is released.
         current?.Resume();
+        resumed?.TrySetResult();
         Report(null);
     }
 
@@ -203,12 +204,13 @@ public sealed class EngraveSession
         RunExecutor? current;
         lock (_lock)
         {
-            if (_abortRequested || RunStateMachine.IsEnd(_state))
+            if (_control.AbortRequested || RunStateMachine.IsEnd(_state))
             {
                 return;
             }
 
-            _abortRequested = true;
+            // Recorded at once, so that no further pass starts; the pass that runs carries it out (laser off first).
+            _control.RequestAbort();
             current = _current;
 
             // Aborting at once, also between passes or before the first: the executor's own Aborting follows.
@@ -232,15 +234,6 @@ public sealed class EngraveSession
         {
             return "unreadable: " + ex.Message;
         }
-    }
-
-    private static PreparedLayer Single(JobSpec? spec, PreparedJob? job, PreparedDrawing? drawing) =>
-        new(new JobLayer { Name = string.Empty, Source = spec?.ImagePath ?? string.Empty, Passes = spec?.Passes ?? 1, Mode = drawing is null ? LayerMode.Raster : LayerMode.Outline }, job, drawing);
-
-    private static JobSpec First(LayeredJob job)
-    {
-        ArgumentNullException.ThrowIfNull(job);
-        return job.Layers[0].Spec;
     }
 
     private static long Moves(PreparedLayer part) => part.Image?.Statistics.Moves ?? part.Drawing!.Schedule.Strokes.Count;
@@ -358,7 +351,7 @@ public sealed class EngraveSession
                             Outcome = layerRun?.Outcome,
                             EngravingSeconds = layerRun?.EngravingDuration.TotalSeconds ?? 0,
                             LaserOnSeconds = layerRun?.LaserOnSeconds ?? 0,
-                            Simulation = Machine.Inspector is { } layerInspector && layerRun is not null ? Inspect(layerInspector, part) : null,
+                            Simulation = Machine.Inspector is { } layerInspector && layerRun is not null ? Inspect(layerInspector, part, index == _firstLayer ? _resumeFrom : null) : null,
                         };
                     }
                 }
@@ -377,7 +370,7 @@ public sealed class EngraveSession
 
         if (Machine.Inspector is { } inspector && !_layered)
         {
-            record = record with { Simulation = Inspect(inspector, _parts[0]) };
+            record = record with { Simulation = Inspect(inspector, _parts[0], _resumeFrom) };
         }
 
         record = RunRecords.Complete(record, run, error, Machine.StagePort, Machine.LaserPort, Options.WallClock.GetLocalNow(), time.GetElapsedTime(clockStart)) with
@@ -469,22 +462,20 @@ public sealed class EngraveSession
 
     private bool AbortRequested()
     {
-        lock (_lock)
-        {
-            return _abortRequested;
-        }
+        return _control.AbortRequested;
     }
 
-    private static RunSimulation Inspect(IRunInspector inspector, PreparedLayer part) =>
-        part.Drawing is { } drawing ? inspector.InspectDrawing(drawing) : inspector.Inspect(part.Image!);
+    // A continued run is checked against what it had still to burn, not what the run it continues burned.
+    private static RunSimulation Inspect(IRunInspector inspector, PreparedLayer part, RunStopPoint? resumedFrom) =>
+        part.Drawing is { } drawing ? inspector.InspectDrawing(drawing) : inspector.Inspect(part.Image!, resumedFrom);
 
     private async Task<RunResult> RunPassAsync(PreparedLayer part, int pass, bool firstOfSession, CancellationToken cancellationToken, RunStopPoint? resumeFrom = null)
     {
         // What an earlier run of this session found of the latencies' spread holds for the rest of it (RunResult.LatencyScale).
         var options = new RunOptions { Home = Options.Home && firstOfSession, ResumeFrom = resumeFrom ?? (firstOfSession ? _resumeFrom : null), LatencyScale = _latencyScale };
         var executor = part.Drawing is { } drawing
-            ? new RunExecutor(Machine.Stage, Machine.Gate, drawing, Machine.TimeProvider, options)
-            : new RunExecutor(Machine.Stage, Machine.Gate, part.Image!, Machine.TimeProvider, options);
+            ? new RunExecutor(Machine.Stage, Machine.Gate, drawing, Machine.TimeProvider, options, _control)
+            : new RunExecutor(Machine.Stage, Machine.Gate, part.Image!, Machine.TimeProvider, options, _control);
         var movesDone = options.ResumeFrom?.MoveIndex ?? 0;
         executor.MoveCompleted += (_, e) => Interlocked.Exchange(ref movesDone, e.MoveIndex + 1);
         executor.ProgressChanged += (_, p) => Report(new PassProgress(pass, Interlocked.Read(ref movesDone), p));
@@ -493,8 +484,8 @@ public sealed class EngraveSession
         lock (_lock)
         {
             _current = executor;
-            pause = _pauseRequested;
-            abort = _abortRequested;
+            pause = _control.PauseRequested;
+            abort = _control.AbortRequested;
         }
 
         // A pause or an abort asked between passes holds or stops this one before it moves.
@@ -527,12 +518,12 @@ public sealed class EngraveSession
             if (pass is { } p)
             {
                 // A pass's end is not the session's: that comes once every pass has run, the burn is checked and the log written.
-                _state = RunStateMachine.IsEnd(p.Run.State) || (_abortRequested && p.Run.State is not RunState.Aborting) ? _state : p.Run.State;
-                _progress = new EngraveProgress(_state, p.Pass, Passes, p.MovesDone, _moves, _pauseRequested, p.Run, _layer);
+                _state = RunStateMachine.IsEnd(p.Run.State) || (_control.AbortRequested && p.Run.State is not RunState.Aborting) ? _state : p.Run.State;
+                _progress = new EngraveProgress(_state, p.Pass, Passes, p.MovesDone, _moves, _control.PauseRequested, p.Run, _layer);
             }
             else
             {
-                _progress = _progress with { State = _state, PauseRequested = _pauseRequested };
+                _progress = _progress with { State = _state, PauseRequested = _control.PauseRequested };
             }
 
             progress = _progress;

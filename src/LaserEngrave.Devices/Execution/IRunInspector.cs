@@ -10,7 +10,9 @@ public interface IRunInspector
     void Begin();
 
     /// <summary>What was burned against <paramref name="job"/>'s mask since <see cref="Begin"/>, after every pass has ended.</summary>
-    RunSimulation Inspect(PreparedJob job);
+    /// <param name="job">The job.</param>
+    /// <param name="resumedFrom">The stop point the run continued from: what the stopped run burned before it is then neither expected nor missing (<see cref="ResumedBurn"/>).</param>
+    RunSimulation Inspect(PreparedJob job, RunStopPoint? resumedFrom = null);
 
     /// <summary>What was burned against <paramref name="drawing"/>'s paths since <see cref="Begin"/>, after every pass has ended.</summary>
     RunSimulation InspectDrawing(PreparedDrawing drawing);

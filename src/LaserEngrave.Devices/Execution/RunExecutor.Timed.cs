@@ -99,7 +99,7 @@ public sealed partial class RunExecutor
         {
             lock (_lock)
             {
-                return _pauseRequested && !_abortRequested;
+                return _abortSequence is null && _control.PauseRequested;
             }
         }
     }

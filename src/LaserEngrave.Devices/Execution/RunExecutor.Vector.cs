@@ -114,7 +114,11 @@ public sealed partial class RunExecutor
                     await PauseIfAskedAsync(token);
                 }
 
-                await MoveToAsync(stroke.RunUpStart.X, stroke.RunUpStart.Y, _travelSpeedData, token);
+                // Where a streamed axis rests depends on when each of its commands arrived (the latencies' spread), not on
+                // the model alone: it is moved to the run-up's start even when the model has it there already, so the
+                // stroke starts from a position the stage has reported (skipped, the spread added up stroke after stroke).
+                var before = schedule.Strokes[k - 1];
+                await MoveToAsync(stroke.RunUpStart.X, stroke.RunUpStart.Y, _travelSpeedData, token, (before.Streams(VectorAxis.X), before.Streams(VectorAxis.Y)));
             }
 
             await DelayUntilAsync(RunSeconds + VectorReactionSeconds, token);

@@ -33,6 +33,8 @@ public sealed class MachineSession : IAsyncDisposable
     /// <summary>The laser gate's port, as logs and messages name it.</summary>
     public string LaserPort { get; }
 
+    private WireRecorder? _recorder;
+
     /// <summary>What the links belong to and is closed last (the in-process simulator); null on real ports.</summary>
     public IAsyncDisposable? Owner { get; }
 
@@ -81,12 +83,13 @@ public sealed class MachineSession : IAsyncDisposable
     }
 
     /// <summary>The machine on two links already open (in-process links to the simulator), named <paramref name="name"/>.</summary>
-    public static MachineSession OverLinks(ISerialLink stageLink, ISerialLink laserLink, MachineProfile profile, TimeProvider timeProvider, string name, IAsyncDisposable? owner)
+    /// <param name="recorder">A flight recorder both links write through (the twin's wire traffic, to compare builds), finished when the session closes; null records nothing.</param>
+    public static MachineSession OverLinks(ISerialLink stageLink, ISerialLink laserLink, MachineProfile profile, TimeProvider timeProvider, string name, IAsyncDisposable? owner, WireRecorder? recorder = null)
     {
         ArgumentNullException.ThrowIfNull(profile);
-        var stage = new ZaberChain(new ZaberConnection(stageLink, timeProvider), profile);
-        var gate = new PicLaserGate(laserLink, profile.Gate, timeProvider);
-        return new MachineSession(stage, gate, timeProvider, name, name, owner);
+        var stage = new ZaberChain(new ZaberConnection(recorder?.Wrap(stageLink, stage: true) ?? stageLink, timeProvider), profile);
+        var gate = new PicLaserGate(recorder?.Wrap(laserLink, stage: false) ?? laserLink, profile.Gate, timeProvider);
+        return new MachineSession(stage, gate, timeProvider, name, name, owner) { _recorder = recorder };
     }
 
     /// <summary>Runs an operation on the machine (a run, a test move) where its clock says: on the simulation's loop in virtual time, else as it is.</summary>
@@ -103,6 +106,7 @@ public sealed class MachineSession : IAsyncDisposable
             await Gate.DisposeAsync();
             await Stage.DisposeAsync();
         });
+        _recorder?.Finish();
         if (Owner is not null)
         {
             await Owner.DisposeAsync();

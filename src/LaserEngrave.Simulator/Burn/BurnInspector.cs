@@ -17,12 +17,13 @@ public sealed class BurnInspector(SimulatedMachine machine) : IRunInspector
 
     public void Begin() => machine.Recorder.Restart(machine.NowSeconds);
 
-    public RunSimulation Inspect(PreparedJob job)
+    public RunSimulation Inspect(PreparedJob job, RunStopPoint? resumedFrom = null)
     {
         ArgumentNullException.ThrowIfNull(job);
+        var expected = resumedFrom is null ? job.Mask : ResumedBurn.StillToBurn(job, resumedFrom);
         // In dot mode nothing burns in motion: no edges or dwells to measure against a burn speed, only the pulses while moving (none).
         var dots = job.Dots is not null;
-        var burn = machine.Recorder.Analyze(BurnGrid.For(job.Plan.Geometry), job.Mask, dots ? null : job.Spec.Process.BurnSpeedMmPerS);
+        var burn = machine.Recorder.Analyze(BurnGrid.For(job.Plan.Geometry), expected, dots ? null : job.Spec.Process.BurnSpeedMmPerS);
         Report = burn;
         var simulation = new RunSimulation(
             machine.Options.Seed,

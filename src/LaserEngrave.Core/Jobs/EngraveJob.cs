@@ -1,0 +1,143 @@
+using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Sweeps;
+
+namespace LaserEngrave.Core.Jobs;
+
+/// <summary>
+/// A job that can be run, of one of five kinds: <see cref="RasterJob"/>, <see cref="DotJob"/>, <see cref="DrawingJob"/>,
+/// <see cref="LayersJob"/> and <see cref="SweepJob"/> (a job of cells). The hierarchy is closed (the constructor is
+/// private to Core), so a <c>switch</c> over it is exhaustive; the front ends and the run session take this one type
+/// instead of one nullable per kind.
+/// </summary>
+/// <remarks>
+/// Every job is a sequence of <see cref="Parts"/>, each one image or drawing with its own process and passes, run one
+/// after the other (a single job has one part; a job of layers one per layer; a sweep one per cell, its labels first).
+/// </remarks>
+public abstract class EngraveJob
+{
+    private protected EngraveJob(IReadOnlyList<PreparedLayer> parts)
+    {
+        if (parts.Count == 0)
+        {
+            throw new ArgumentException("a job has at least one part", nameof(parts));
+        }
+
+        Parts = parts;
+    }
+
+    /// <summary>The parts, in the order they run.</summary>
+    public IReadOnlyList<PreparedLayer> Parts { get; }
+
+    /// <summary>The (first part's) job: file, size, origin, process and machine.</summary>
+    public JobSpec Spec => Parts[0].Spec;
+
+    /// <summary>The passes of the whole job: every part's added up.</summary>
+    public int Passes => Parts.Sum(p => p.Layer.Passes);
+
+    /// <summary>What the user should know before it runs, in one line each.</summary>
+    public IReadOnlyList<string> Warnings => [.. Parts.SelectMany(p => p.Warnings)];
+
+    /// <summary>Whether every part (with its run-ups and run-outs) lies inside the stage's travel.</summary>
+    public bool FitsTravel => Parts.All(p => p.FitsTravel);
+
+    /// <summary>The whole run, every part's passes with their preflight and positioning, s.</summary>
+    public double EstimatedSeconds => Parts.Sum(p => p.EstimatedSeconds);
+
+    /// <summary>The job of one prepared image: a raster, or dots when its process is in dot mode.</summary>
+    public static EngraveJob Of(PreparedJob job)
+    {
+        ArgumentNullException.ThrowIfNull(job);
+        return job.Dots is null ? new RasterJob(job) : new DotJob(job);
+    }
+
+    /// <summary>The job of one prepared drawing.</summary>
+    public static EngraveJob Of(PreparedDrawing drawing) => new DrawingJob(drawing);
+
+    /// <summary>The job of layers.</summary>
+    public static EngraveJob Of(LayeredJob layers) => new LayersJob(layers);
+
+    /// <summary>The job of a built sweep: one job per cell.</summary>
+    public static SweepJob Of(SweepPlan sweep)
+    {
+        ArgumentNullException.ThrowIfNull(sweep);
+        return new SweepJob(sweep);
+    }
+
+    // A prepared image, drawing or job of layers is a job: callers that hold one pass it where a job is taken.
+    public static implicit operator EngraveJob(PreparedJob job) => Of(job);
+
+    public static implicit operator EngraveJob(PreparedDrawing drawing) => Of(drawing);
+
+    public static implicit operator EngraveJob(LayeredJob layers) => Of(layers);
+
+    /// <summary>One part of a single image or drawing, named after nothing and burned its spec's passes.</summary>
+    private protected static PreparedLayer Single(JobSpec spec, PreparedJob? image, PreparedDrawing? drawing) =>
+        new(new JobLayer { Name = string.Empty, Source = spec.ImagePath, Passes = spec.Passes, Mode = drawing is null ? LayerMode.Raster : LayerMode.Outline }, image, drawing);
+}
+
+/// <summary>An image burned row by row while the stage moves (timed switching, or step by step for a paper plan).</summary>
+public sealed class RasterJob : EngraveJob
+{
+    internal RasterJob(PreparedJob job)
+        : base([Single(job.Spec, job, null)])
+    {
+        Prepared = job;
+    }
+
+    public PreparedJob Prepared { get; }
+}
+
+/// <summary>An image burned as dots: the stage stops at each and the gate fires a counted burst.</summary>
+public sealed class DotJob : EngraveJob
+{
+    internal DotJob(PreparedJob job)
+        : base([Single(job.Spec, job, null)])
+    {
+        Prepared = job;
+        Plan = job.Dots ?? throw new ArgumentException("a dot job needs a dot plan", nameof(job));
+    }
+
+    public PreparedJob Prepared { get; }
+
+    public DotPlan Plan { get; }
+}
+
+/// <summary>A drawing's paths burned as strokes, each axis streaming its speed.</summary>
+public sealed class DrawingJob : EngraveJob
+{
+    internal DrawingJob(PreparedDrawing drawing)
+        : base([Single((drawing ?? throw new ArgumentNullException(nameof(drawing))).Spec, null, drawing)])
+    {
+        Drawing = drawing;
+    }
+
+    public PreparedDrawing Drawing { get; }
+}
+
+/// <summary>Several images and drawings, each with its own process, passes and mode, run in order into one log.</summary>
+public sealed class LayersJob : EngraveJob
+{
+    internal LayersJob(LayeredJob layers)
+        : base((layers ?? throw new ArgumentNullException(nameof(layers))).Layers)
+    {
+        Layered = layers;
+    }
+
+    public LayeredJob Layered { get; }
+}
+
+/// <summary>A test grid: one raster or dot job per cell (the labels' first), each run and logged on its own.</summary>
+public sealed class SweepJob : EngraveJob
+{
+    internal SweepJob(SweepPlan plan)
+        : base([.. plan.Jobs().Select(j => Single(j.Spec, j, null))])
+    {
+        Plan = plan;
+        Cells = [.. plan.Jobs().Select(j => EngraveJob.Of(j))];
+    }
+
+    public SweepPlan Plan { get; }
+
+    /// <summary>The jobs of the labels (when there are) and of every cell, in the order they burn.</summary>
+    public IReadOnlyList<EngraveJob> Cells { get; }
+}
