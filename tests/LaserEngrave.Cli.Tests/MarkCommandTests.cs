@@ -93,7 +93,7 @@ public sealed class MarkCommandTests : IDisposable
     [InlineData("mark|S|--align|middle|--out|@out", "--align middle")]
     [InlineData("mark|Süß|--out|@out", "the engraving font has no 'ü'")]
     [InlineData("mark|S|--font|No Such Font|--out|@out", "\"No Such Font\" is not installed")]
-    [InlineData("mark|S|--origin-mm|59,59|--copies|10|--out|@out", "must be within the travel")]
+    [InlineData("mark|S|--origin-mm|59,59|--copies|10|--out|@out", "outside the travel 0..60 mm")]
     [InlineData("mark|S|--pitch-mm|4|--out|@out", "--pitch-mm 4")]
     [InlineData("mark|--out|@out", "give the mark's TEXT")]
     [InlineData("mark|S|--smallest|--out|@out", "--smallest needs --check")]

@@ -221,6 +221,8 @@ public sealed class RunBarTests : ComponentTest
     {
         OpenQr();
         Main.Job.EditPitch(5);
+        // Slow enough that a 5 µm pixel lasts the gate's switching time: a job the rules take, only its pixels are fine.
+        Main.Job.BurnSpeedMmPerS = 0.25;
         await ConnectAsync();
         var cut = RenderBar();
         cut.WaitForAssertion(() => Assert.False(Disabled(cut.Find("#start"))));

@@ -222,8 +222,13 @@ public sealed partial class AppProcessTests : IDisposable
         client.DefaultRequestHeaders.Authorization = new("Bearer", secret);
 
         (await client.PostAsJsonAsync("/api/machine/connect", new { useSimulator = true }, Token)).EnsureSuccessStatusCode();
-        await WaitForAsync(client, s => s.GetProperty("machine").GetProperty("identity").ValueKind == JsonValueKind.String);
-        var machine = (await client.GetFromJsonAsync<JsonElement>("/api/state", Token)).GetProperty("machine");
+        // Identified and its position read: the two show up in separate updates, so one state is waited for that has both.
+        var machine = default(JsonElement);
+        await WaitForAsync(client, s =>
+        {
+            machine = s.GetProperty("machine");
+            return machine.GetProperty("identity").ValueKind == JsonValueKind.String && machine.GetProperty("xMm").ValueKind == JsonValueKind.Number;
+        });
 
         Assert.Contains("X: device 1, id 4212, firmware 5.06", machine.GetProperty("identity").GetString(), StringComparison.Ordinal);
         Assert.Equal(0.5, machine.GetProperty("xMm").GetDouble(), 3);
