@@ -41,7 +41,7 @@ public abstract class EngraveJob
     public bool FitsTravel => Parts.All(p => p.FitsTravel);
 
     /// <summary>The whole run, every part's passes with their preflight and positioning, s.</summary>
-    public double EstimatedSeconds => Parts.Sum(p => p.EstimatedSeconds);
+    public double EstimatedSeconds => PreparedLayer.RunSeconds(Parts).Sum();
 
     /// <summary>The job of one prepared image: a raster, or dots when its process is in dot mode.</summary>
     public static EngraveJob Of(PreparedJob job)

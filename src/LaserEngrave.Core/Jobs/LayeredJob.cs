@@ -13,7 +13,7 @@ public sealed class LayeredJob
     public IReadOnlyList<PreparedLayer> Layers { get; }
 
     /// <summary>The whole run: every layer's passes with their preflight and positioning, s.</summary>
-    public double EstimatedSeconds => Layers.Sum(l => l.EstimatedSeconds);
+    public double EstimatedSeconds => PreparedLayer.RunSeconds(Layers).Sum();
 
     /// <summary>The engraving part: every layer's engraving times its passes, s.</summary>
     public double EstimatedEngravingSeconds => Layers.Sum(l => l.EngravingSeconds * l.Layer.Passes);
@@ -157,8 +157,49 @@ public sealed record PreparedLayer(JobLayer Layer, PreparedJob? Image, PreparedD
     /// <summary>One pass's engraving, s.</summary>
     public double EngravingSeconds => Image?.Statistics.EngravingSeconds ?? Drawing!.Schedule.EstimatedSeconds;
 
-    /// <summary>The layer's whole run, all its passes with their preflight and positioning, s.</summary>
+    /// <summary>The layer's whole run, all its passes with their preflight and positioning, s, when it runs first (homing from the far end).</summary>
     public double EstimatedSeconds => Image?.Statistics.WholeRunSeconds(Layer.Passes) ?? Drawing!.WholeRunSeconds(Layer.Passes);
+
+    /// <summary>Where the layer's plan starts and ends, microsteps; null for a plan without moves.</summary>
+    public ((long X, long Y) First, (long X, long Y) Last)? Ends =>
+        Image is { } image ? image.Statistics.Ends
+        : Drawing!.Schedule.Strokes is { Count: > 0 } strokes ? ((strokes[0].RunUpStart.X, strokes[0].RunUpStart.Y), (strokes[^1].RestEnd.X, strokes[^1].RestEnd.Y))
+        : null;
+
+    /// <summary>
+    /// Each layer's whole run as a job of layers runs them: the first homes (<see cref="EstimatedSeconds"/>), every later
+    /// one starts where the one before it ended, with the preflight of a later pass and no homing, as the executor does.
+    /// </summary>
+    public static IReadOnlyList<double> RunSeconds(IReadOnlyList<PreparedLayer> layers)
+    {
+        ArgumentNullException.ThrowIfNull(layers);
+        var seconds = new double[layers.Count];
+        for (var i = 0; i < layers.Count; i++)
+        {
+            seconds[i] = i > 0 && layers[i - 1].Ends is { } before && layers[i].Ends is not null
+                ? layers[i].SecondsFrom(before.Last)
+                : layers[i].EstimatedSeconds;
+        }
+
+        return seconds;
+    }
+
+    // The layer's passes when the stage stands homed at `from`: a later pass' preflight and the travel to the first position.
+    private double SecondsFrom((long X, long Y) from)
+    {
+        var first = Ends!.Value.First;
+        if (Image is { } image)
+        {
+            var timing = TimedSwitching.For(image.Spec.Process, image.Spec.Profile, image.Plan.Geometry.MicrostepUm);
+            var statistics = image.Statistics;
+            return timing.PreparationSeconds(first.X, first.Y, home: false, from: from)
+                + (Math.Max(1, Layer.Passes) * statistics.EngravingSeconds) + (Math.Max(0, Layer.Passes - 1) * statistics.PassSetupSeconds);
+        }
+
+        var drawing = Drawing!;
+        return drawing.Schedule.Timing.PreparationSeconds(first.X, first.Y, home: false, from: from)
+            + (Math.Max(1, Layer.Passes) * drawing.Schedule.EstimatedSeconds) + (Math.Max(0, Layer.Passes - 1) * drawing.PassSetupSeconds);
+    }
 
     public bool FitsTravel => Image?.Geometry.FitsTravel ?? Drawing!.FitsTravel;
 

@@ -113,6 +113,7 @@ public sealed class PreparedJob
                 EngravingSeconds = dots.Estimate.TotalSeconds,
                 PreparationSeconds = first is { } a ? timing.PreparationSeconds(a.X, a.Y, home: true, from: (0, 0)) : 0,
                 PassSetupSeconds = first is { } b && last is { } z ? timing.PreparationSeconds(b.X, b.Y, home: false, from: (z.X, z.Y)) : 0,
+                Ends = first is { } f && last is { } l ? ((f.X, f.Y), (l.X, l.Y)) : null,
             };
         }
 

@@ -39,6 +39,9 @@ public sealed record PlanStatistics
     /// <summary>Estimated time before each later pass: preflight without homing and the travel back from the plan's end to its start, s.</summary>
     public double PassSetupSeconds { get; init; }
 
+    /// <summary>Where the plan starts and ends, microsteps (null for a plan without moves): a later layer of a job travels from one's end to the next one's start.</summary>
+    public ((long X, long Y) First, (long X, long Y) Last)? Ends { get; init; }
+
     /// <summary>The estimate of a whole run of <paramref name="passes"/> passes: preparation, engraving, and each later pass' setup, s.</summary>
     public double WholeRunSeconds(int passes = 1) =>
         PreparationSeconds + (Math.Max(1, passes) * EngravingSeconds) + (Math.Max(0, passes - 1) * PassSetupSeconds);

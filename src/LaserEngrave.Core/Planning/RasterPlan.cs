@@ -146,6 +146,7 @@ public sealed class RasterPlan
         {
             PreparationSeconds = Timing.PreparationSeconds(start.X, start.Y, home: true, from: (0, 0)),
             PassSetupSeconds = Timing.PreparationSeconds(start.X, start.Y, home: false, from: visitor.End),
+            Ends = (start, visitor.End),
         };
     }
 

@@ -245,7 +245,7 @@ public sealed class EngraveSession
         return part.Drawing is { } drawing ? RunRecord.ForDrawing(drawing, hash, started) : RunRecord.ForJob(part.Image!, hash, started);
     }
 
-    private static RunLayer LayerEntry(PreparedLayer part)
+    private static RunLayer LayerEntry(PreparedLayer part, double estimatedSeconds)
     {
         var spec = part.Spec;
         var (width, height) = part.SizeMm;
@@ -263,7 +263,7 @@ public sealed class EngraveSession
             spec.Process.LaserFrequencyHz,
             part.Layer.Passes)
         {
-            EstimatedSeconds = part.EstimatedSeconds,
+            EstimatedSeconds = estimatedSeconds,
             EstimatedEngravingSeconds = part.EngravingSeconds * part.Layer.Passes,
         };
     }
@@ -281,7 +281,8 @@ public sealed class EngraveSession
             JobFile = Options.JobFile is { } jobFile ? new RunJobFile(Path.GetFullPath(jobFile), HashOrMissing(jobFile)) : null,
             Passes = Passes,
         };
-        var layers = _layered ? _parts.Select(LayerEntry).ToList() : null;
+        // Each layer's estimate as the job runs it: the first homes, every later one starts where the one before ended.
+        var layers = _layered ? _parts.Zip(PreparedLayer.RunSeconds(_parts), LayerEntry).ToList() : null;
         if (layers is not null)
         {
             record = record with { EstimatedSeconds = layers.Sum(l => l.EstimatedSeconds), EstimatedEngravingSeconds = layers.Sum(l => l.EstimatedEngravingSeconds) };
