@@ -94,7 +94,9 @@ public sealed class LayeredJobTests : IDisposable
         Assert.Equal(0.5, job.Layers[0].Drawing!.Spec.Process.BurnSpeedMmPerS);
         Assert.Equal(1, job.Layers[2].Drawing!.Spec.Process.BurnSpeedMmPerS);
         Assert.NotNull(job.Layers[1].Image);
-        Assert.Equal(job.Layers.Sum(l => l.EstimatedSeconds), job.EstimatedSeconds, 9);
+        // One homing: the first layer's whole run, then each later one from where the one before ended (less than alone).
+        Assert.Equal(PreparedLayer.RunSeconds(job.Layers).Sum(), job.EstimatedSeconds, 9);
+        Assert.True(job.EstimatedSeconds < job.Layers.Sum(l => l.EstimatedSeconds));
         Assert.Equal(job.Layers.Sum(l => l.EngravingSeconds * l.Layer.Passes), job.EstimatedEngravingSeconds, 9);
 
         // The cut's two passes: twice the engraving, with the preflight before each.
