@@ -374,7 +374,16 @@ public sealed partial class JobViewModel : ObservableObject
         }
 
         OnPropertyChanged(nameof(IsDrawing));
-        Replan();
+        if (opened.MaskOptions != new MaskOptions { ThresholdPercent = ThresholdPercent, Dither = Dither, Invert = Invert })
+        {
+            // The threshold, dither or invert changed while the image was read: its mask is made again as they say now.
+            RebuildMask();
+        }
+        else
+        {
+            Replan();
+        }
+
         return true;
     }
 
@@ -431,11 +440,11 @@ public sealed partial class JobViewModel : ObservableObject
 
         // Only the 1-bit mask stays of a large image, as after a mask is built (see RetainedImageBytes).
         var kept = (long)image.Stride * image.Height > RetainedImageBytes ? null : image;
-        return new Opened(kept, image.Info, preview, mask, maskError, job);
+        return new Opened(kept, image.Info, preview, spec.Mask, mask, maskError, job);
     }
 
     /// <summary>An image read, masked and planned in the background, ready to become the job.</summary>
-    private sealed record Opened(LoadedImage? Image, ImageInfo Info, byte[] Preview, BitMask? Mask, string? MaskError, Prepared? Job);
+    private sealed record Opened(LoadedImage? Image, ImageInfo Info, byte[] Preview, MaskOptions MaskOptions, BitMask? Mask, string? MaskError, Prepared? Job);
 
     /// <summary>A plan made in the background, used by the next plan only when its spec and mask are still the job's.</summary>
     private sealed record Prepared(JobSpec Spec, BitMask Mask, PreparedJob Job);

@@ -57,6 +57,25 @@ public sealed class ImageLoadingTests : ComponentTest
         Assert.Equal(0, _images.GatedPlans);
     }
 
+    [Fact]
+    public async Task InvertTickedWhileReading_TheMaskFollowsIt()
+    {
+        var (job, _) = OpenQrThenRender();
+        var banner = TestFiles.Asset("text-banner.png");
+
+        var opening = job.LoadImageAsync(banner, Xunit.TestContext.Current.CancellationToken);
+        job.Invert = true;
+        _images.Gate.SetResult();
+
+        Assert.True(await opening);
+        var expected = new JobViewModel(new ImageService(), MachineProfile.Default) { Invert = true };
+        Assert.True(expected.LoadImage(banner));
+        Assert.Equal(expected.Mask!.CountSet(), job.Mask!.CountSet());
+        var atDefault = new JobViewModel(new ImageService(), MachineProfile.Default);
+        Assert.True(atDefault.LoadImage(banner));
+        Assert.NotEqual(atDefault.Mask!.CountSet(), job.Mask.CountSet());
+    }
+
     private (JobViewModel Job, IRenderedComponent<ImagePanel> Cut) OpenQrThenRender()
     {
         var job = new JobViewModel(_images, MachineProfile.Default);
