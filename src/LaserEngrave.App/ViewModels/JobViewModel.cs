@@ -64,6 +64,8 @@ public sealed partial class JobViewModel : ObservableObject
     private byte[]? _originalPreview;
     private int _suspended;
     private int _following;
+    private CancellationTokenSource? _loading;
+    private Prepared? _prepared;
 
     /// <param name="activity">What holds the machine: while a run, homing or a test move is under way the job cannot change.</param>
     public JobViewModel(IImageService images, MachineProfile profile, MachineActivity? activity = null)
@@ -278,6 +280,174 @@ public sealed partial class JobViewModel : ObservableObject
         RebuildMask();
         return true;
     }
+
+    /// <summary>
+    /// Opens an image off the caller's path: reads it, makes its mask and plans it on the thread pool, saying which in
+    /// <see cref="LoadingLine"/>. The job shown stays the last good one (its name, size and estimate) until the new one
+    /// is ready; <see cref="CancelLoad"/> or a later open drops it and keeps that job. A drawing opens at once, as in
+    /// <see cref="LoadImage"/>.
+    /// </summary>
+    /// <returns>True when the image opened; false when it did not (why stands beside the image) or the open was cancelled.</returns>
+    /// <exception cref="MachineBusyException">A run, homing or a test move is under way.</exception>
+    public async Task<bool> LoadImageAsync(string path, CancellationToken cancellationToken = default)
+    {
+        ArgumentException.ThrowIfNullOrWhiteSpace(path);
+        _activity.ThrowIfJobLocked();
+        if (DrawingReader.IsDrawing(path))
+        {
+            return LoadImage(path);
+        }
+
+        CancelLoad();
+        using var loading = CancellationTokenSource.CreateLinkedTokenSource(cancellationToken);
+        _loading = loading;
+        var name = Path.GetFileName(path);
+        var spec = Spec(path);
+        var progress = new Progress<string>(line =>
+        {
+            if (ReferenceEquals(Volatile.Read(ref _loading), loading))
+            {
+                LoadingLine = line;
+            }
+        });
+        LoadingLine = $"Reading {name}…";
+        Opened opened;
+        try
+        {
+            var work = Task.Run(() => Decode(spec, name, progress, loading.Token), loading.Token);
+            opened = await work.WaitAsync(loading.Token).ConfigureAwait(true);
+        }
+        catch (OperationCanceledException)
+        {
+            return false;
+        }
+        catch (ImageLoadException ex)
+        {
+            SetErrors(new Dictionary<string, string>(Errors) { [ImageField] = ex.Message });
+            return false;
+        }
+        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException or ArgumentException)
+        {
+            SetErrors(new Dictionary<string, string>(Errors) { [ImageField] = $"{path}: {ex.Message}" });
+            return false;
+        }
+        finally
+        {
+            if (ReferenceEquals(Interlocked.CompareExchange(ref _loading, null, loading), loading))
+            {
+                LoadingLine = null;
+            }
+        }
+
+        if (LockedBecause is { } locked)
+        {
+            // A run or a move began while the image was read: the job it holds stays.
+            SetErrors(new Dictionary<string, string>(Errors) { [ImageField] = $"{name} was not opened: {locked}" });
+            return false;
+        }
+
+        lock (_lock)
+        {
+            _image = opened.Image;
+            _originalPreview = opened.Preview;
+            ImagePath = path;
+            ImageInfo = opened.Info;
+            DrawingLayers = [];
+            Mask = opened.Mask;
+            MaskVersion++;
+            var errors = new Dictionary<string, string>(Errors);
+            errors.Remove(ImageField);
+            errors.Remove(ThresholdField);
+            if (opened.MaskError is { } maskError)
+            {
+                errors[ThresholdField] = maskError;
+            }
+
+            SetErrors(errors);
+            _prepared = opened.Job;
+        }
+
+        if (opened.Image is null)
+        {
+            // A large image's pixels went with the background's frame: give them back to the system now, as after a mask.
+            GC.Collect(GC.MaxGeneration, GCCollectionMode.Aggressive, blocking: true, compacting: true);
+        }
+
+        OnPropertyChanged(nameof(IsDrawing));
+        if (opened.MaskOptions != new MaskOptions { ThresholdPercent = ThresholdPercent, Dither = Dither, Invert = Invert })
+        {
+            // The threshold, dither or invert changed while the image was read: its mask is made again as they say now.
+            RebuildMask();
+        }
+        else
+        {
+            Replan();
+        }
+
+        return true;
+    }
+
+    /// <summary>Stops an image being opened by <see cref="LoadImageAsync"/>; the job shown stays. Nothing happens when none is.</summary>
+    public void CancelLoad()
+    {
+        if (Interlocked.Exchange(ref _loading, null) is { } loading)
+        {
+            loading.Cancel();
+            LoadingLine = null;
+        }
+    }
+
+    /// <summary>What an image being opened in the background is doing now ("Reading big.png…"); null when none is.</summary>
+    [ObservableProperty]
+    public partial string? LoadingLine { get; private set; }
+
+    /// <summary>The heavy part of opening an image, on the thread pool: decode, preview, mask and plan, checking for a cancel between them.</summary>
+    private Opened Decode(JobSpec spec, string name, IProgress<string> progress, CancellationToken cancellationToken)
+    {
+        var image = _images.Load(spec.ImagePath);
+        cancellationToken.ThrowIfCancellationRequested();
+        var preview = _images.RenderOriginalPng(image, PreviewSidePx);
+        cancellationToken.ThrowIfCancellationRequested();
+        progress.Report($"Making the mask of {name}…");
+        BitMask? mask = null;
+        string? maskError = null;
+        try
+        {
+            mask = _images.BuildMask(image, spec.Mask);
+        }
+        catch (Exception ex) when (ex is ArgumentException or InvalidOperationException)
+        {
+            maskError = ex.Message;
+        }
+
+        cancellationToken.ThrowIfCancellationRequested();
+        Prepared? job = null;
+        if (mask is not null)
+        {
+            progress.Report($"Planning {name}…");
+            spec = spec with { ImagePath = image.Info.Path };
+            try
+            {
+                job = new Prepared(spec, mask, _images.Prepare(spec, image.Info, mask));
+            }
+            catch (Exception ex) when (ex is GeometryException or PlanException)
+            {
+                // The plan made on the page's path says why, beside the field to change.
+            }
+        }
+
+        cancellationToken.ThrowIfCancellationRequested();
+
+        // Only the 1-bit mask stays of a large image, as after a mask is built (see RetainedImageBytes).
+        var kept = (long)image.Stride * image.Height > RetainedImageBytes ? null : image;
+        return new Opened(kept, image.Info, preview, spec.Mask, mask, maskError, job);
+    }
+
+    /// <summary>An image read, masked and planned in the background, ready to become the job.</summary>
+    private sealed record Opened(LoadedImage? Image, ImageInfo Info, byte[] Preview, MaskOptions MaskOptions, BitMask? Mask, string? MaskError, Prepared? Job);
+
+    /// <summary>A plan made in the background, used by the next plan only when its spec and mask are still the job's.</summary>
+    private sealed record Prepared(JobSpec Spec, BitMask Mask, PreparedJob Job);
 
     /// <summary>
     /// An upload that did not open: its error names the file as the user chose it, not the app's copy of it in
@@ -644,11 +814,16 @@ public sealed partial class JobViewModel : ObservableObject
 
             var warnings = new Dictionary<string, string>();
             PreparedJob? job = null;
+
+            // A plan made while the image was opened serves once; it is not kept beside the job.
+            var prepared = _prepared;
+            _prepared = null;
             if (Mask is { } mask && ImageInfo is { } info && errors.Count == 0)
             {
                 try
                 {
-                    job = _images.Prepare(Spec(info.Path), info, mask);
+                    var spec = Spec(info.Path);
+                    job = prepared is { } ready && ReferenceEquals(ready.Mask, mask) && ready.Spec == spec ? ready.Job : _images.Prepare(spec, info, mask);
                 }
                 catch (GeometryException ex)
                 {

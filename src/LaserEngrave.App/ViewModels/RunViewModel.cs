@@ -33,6 +33,13 @@ public sealed partial class RunViewModel : ObservableObject
     private long _startedTicks;
     private double _estimatedSeconds;
     private double[] _passSeconds = [];
+    private LaserPace? _pace;
+
+    // The pace's timer ticks on the pool: a tick never sets the drawn laser again once the run has cleared it.
+    private readonly Lock _paceLock = new();
+
+    /// <summary>How often the laser's drawn position is moved on between the engine's reports, on the app's clock.</summary>
+    public static readonly TimeSpan PaceInterval = TimeSpan.FromMilliseconds(100);
 
     /// <param name="layers">The job of layers: while it has layers, Start runs them instead of the single job.</param>
     public RunViewModel(IRunService runs, JobViewModel job, MachineViewModel machine, LogViewModel log, TimeProvider time, LayersViewModel? layers = null)
@@ -92,6 +99,13 @@ public sealed partial class RunViewModel : ObservableObject
     [ObservableProperty]
     [NotifyPropertyChangedFor(nameof(StateName))]
     public partial RunState State { get; private set; }
+
+    /// <summary>
+    /// Where the stage drawing puts the laser while an image job runs: the move in flight at its planned pace between the
+    /// engine's reports (see <see cref="LaserPace"/>); null when no such run is under way (the machine's own position then).
+    /// </summary>
+    [ObservableProperty]
+    public partial (long X, long Y)? LaserMicrosteps { get; private set; }
 
     /// <summary>The latest progress of the run under way (or of the last one).</summary>
     [ObservableProperty]
@@ -520,12 +534,24 @@ public sealed partial class RunViewModel : ObservableObject
         // Abort (or the app's exit) cancels this; a second Start or Continue never does.
         using var abort = CancellationTokenSource.CreateLinkedTokenSource(lease.CancellationToken);
         _abort = abort;
+
+        // A raster image job's moves are the plan's own, one for one with the engine's count: its laser is drawn at their pace.
+        var pace = job is { Dots: null } && layered is null && target.Drawing is null ? new LaserPace(job, _time) : null;
+        _pace = pace;
+        var paceTimer = pace is null ? null : _time.CreateTimer(_ => MoveLaser(), null, PaceInterval, PaceInterval);
         try
         {
             result = await _runs.RunAsync(running, new LatestProgress(this, running), abort.Token);
         }
         finally
         {
+            paceTimer?.Dispose();
+            lock (_paceLock)
+            {
+                _pace = null;
+                LaserMicrosteps = null;
+            }
+
             _abort = null;
             ElapsedSecondsAtEnd = _time.GetElapsedTime(_startedTicks).TotalSeconds;
         }
@@ -564,6 +590,18 @@ public sealed partial class RunViewModel : ObservableObject
         // The run counts as ended only once its log is written, so whoever waits for the end finds the log.
         _session = null;
         State = final;
+    }
+
+    /// <summary>Moves the drawn laser on along the move in flight; it stands where the engine last put it unless the run is moving.</summary>
+    private void MoveLaser()
+    {
+        lock (_paceLock)
+        {
+            if (_pace is { } pace && Progress is { } progress)
+            {
+                LaserMicrosteps = pace.Now(progress.State == RunState.Running);
+            }
+        }
     }
 
     private void RefreshCommands()
@@ -629,6 +667,11 @@ public sealed partial class RunViewModel : ObservableObject
 
             owner._machine.XMicrosteps = value.Run.XMicrosteps;
             owner._machine.YMicrosteps = value.Run.YMicrosteps;
+            if (owner._pace is { } pace)
+            {
+                pace.Report(value.Pass, value.MovesDone, value.Run.XMicrosteps, value.Run.YMicrosteps);
+                owner.MoveLaser();
+            }
         }
     }
 }

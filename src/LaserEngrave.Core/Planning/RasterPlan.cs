@@ -70,7 +70,7 @@ public sealed class RasterPlan
     public TimedSwitching? Timing { get; }
 
     /// <summary>Null when timed switching can switch one pixel exactly at the burn speed; otherwise why not, in one line.</summary>
-    public string? SwitchingProblem => Timing?.PixelTooShort((long)Math.Floor(Geometry.PitchXMicrosteps));
+    public string? SwitchingProblem => Timing?.PixelTooShort((long)Math.Floor(Geometry.PitchXMicrosteps), Geometry.PitchUm);
 
     /// <summary>Run-up before each row's first burn run, microsteps: the overscan, or longer when timed switching needs it.</summary>
     public long RunUpMicrosteps { get; }

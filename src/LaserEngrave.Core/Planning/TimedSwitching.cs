@@ -208,9 +208,10 @@ public sealed class TimedSwitching
 
     /// <summary>
     /// Null when one pixel at the burn speed lasts long enough for the gate to switch it exactly, otherwise the reason in
-    /// one line (which says how slow the burn must be).
+    /// one line (which says how slow the burn must be). The time is the shortest pixel on the wire (whole microsteps), but
+    /// the line names the pitch the user set, so it never shows a second, rounded pitch beside theirs.
     /// </summary>
-    public string? PixelTooShort(long pixelMicrosteps)
+    public string? PixelTooShort(long pixelMicrosteps, double pitchUm)
     {
         var seconds = pixelMicrosteps / BurnSpeed;
         var needed = Math.Max(MinOnSeconds, MinOffSeconds);
@@ -223,7 +224,7 @@ public sealed class TimedSwitching
         var slowest = pixelUm / 1000 / needed;
         return string.Create(
             CultureInfo.InvariantCulture,
-            $"a pixel of {pixelUm:0.##} µm lasts {seconds * 1000:0.#} ms at the burn speed, shorter than the {needed * 1000:0.#} ms the laser gate needs to switch it exactly: burn at {slowest:0.###} mm/s or slower, or use a coarser pitch");
+            $"at a pitch of {pitchUm:0.###} µm a pixel lasts {seconds * 1000:0.#} ms at the burn speed, shorter than the {needed * 1000:0.#} ms the laser gate needs to switch it exactly: burn at {slowest:0.###} mm/s or slower, or use a coarser pitch");
     }
 
     /// <summary>The built-in model for a process on a profile at the geometry's microstep.</summary>

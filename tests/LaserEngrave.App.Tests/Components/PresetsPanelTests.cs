@@ -118,7 +118,7 @@ public sealed class PresetsPanelTests : ComponentTest
 
         cut.Find("#preset-pitch-apply").Click();
 
-        process.WaitForAssertion(() => Assert.Contains("burn speed 2 mm/s: a pixel of 19.94 µm lasts 10 ms at the burn speed, shorter than", process.Find("[data-error=burnSpeedMmPerS]").TextContent, StringComparison.Ordinal));
+        process.WaitForAssertion(() => Assert.Contains("burn speed 2 mm/s: at a pitch of 20 µm a pixel lasts 10 ms at the burn speed, shorter than", process.Find("[data-error=burnSpeedMmPerS]").TextContent, StringComparison.Ordinal));
         Assert.False(Main.Run.CanStart);
         Assert.False(Main.Run.StartCommand.CanExecute(null));
 

@@ -31,6 +31,21 @@ public class TimedSwitchingTests
     }
 
     [Theory]
+    [InlineData(20)]
+    [InlineData(5)]
+    public void PixelTooShort_NamesThePitchTheUserSetNotTheWholeMicrostepsBelowIt(double pitchUm)
+    {
+        var t = TimedSwitching.For(ProcessSettings.Default with { BurnSpeedMmPerS = 4 }, MachineProfile.Default, MachineProfile.Default.X.MicrostepUm);
+        var pixel = (long)Math.Floor(pitchUm / t.MicrostepUm);
+
+        var problem = t.PixelTooShort(pixel, pitchUm);
+
+        Assert.NotNull(problem);
+        Assert.StartsWith($"at a pitch of {pitchUm} µm a pixel lasts ", problem, StringComparison.Ordinal);
+        Assert.DoesNotContain("a pixel of", problem, StringComparison.Ordinal);
+    }
+
+    [Theory]
     [InlineData(1, true)]
     [InlineData(3, true)]
     [InlineData(8, true)]

@@ -77,7 +77,7 @@ public class TimedSwitchingTests
 
         var ex = await Assert.ThrowsAsync<PreflightException>(() => run.Do(() => run.Executor(job).RunAsync(TestContext.Current.CancellationToken)));
 
-        Assert.StartsWith("a pixel of 9.92 µm lasts 2.5 ms at the burn speed", ex.Message, StringComparison.Ordinal);
+        Assert.StartsWith("at a pitch of 10 µm a pixel lasts 2.5 ms at the burn speed", ex.Message, StringComparison.Ordinal);
         Assert.Contains("burn at ", ex.Message, StringComparison.Ordinal);
         Assert.False(run.Machine.Stage.X.IsMoving);
     }

@@ -1,0 +1,106 @@
+using LaserEngrave.App.Services;
+using LaserEngrave.App.ViewModels;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Logging;
+using LaserEngrave.Core.Planning;
+using LaserEngrave.Devices.Execution;
+using NSubstitute;
+
+namespace LaserEngrave.App.Tests.ViewModels;
+
+/// <summary>The laser drawn at the machine's pace during a run: between the engine's reports, from the plan and the app's clock only.</summary>
+public sealed class LaserPaceTests
+{
+    private readonly ManualTimeProvider _clock = new();
+    private readonly Fakes _fakes = new();
+    private readonly IRunService _runs = Substitute.For<IRunService>();
+    private readonly IRunLogStore _store = Substitute.For<IRunLogStore>();
+    private readonly MachineActivity _activity = new();
+    private readonly MachineViewModel _machine;
+    private readonly JobViewModel _job;
+    private readonly RunViewModel _run;
+
+    public LaserPaceTests()
+    {
+        _machine = new MachineViewModel(_fakes.Factory, MachineProfile.Default, _activity);
+        _job = new JobViewModel(new ImageService(), MachineProfile.Default, _activity);
+        var log = new LogViewModel(_store, Substitute.For<IFileAccess>(), _job);
+        _run = new RunViewModel(_runs, _job, _machine, log, _clock);
+        _store.History().Returns([]);
+        _store.Save(Arg.Any<RunRecord>()).Returns(new RunLogFiles("/logs/run.json", "/logs/run.txt"));
+    }
+
+    [Fact]
+    public async Task Run_BurnUnderWay_TheLaserMovesAlongItAtTheBurnSpeedBetweenReportsAndStopsAtItsEnd()
+    {
+        _job.LoadImage(TestFiles.Asset("qr-code.bmp"));
+        _job.EditWidth(10);
+        await _machine.ConnectCommand.ExecuteAsync(null);
+        var moves = _job.Job!.Plan.Moves().ToList();
+        var index = moves.FindIndex(m => m.Kind == MoveKind.Burn && m.LengthX >= 1000);
+        var burn = moves[index];
+        var perSecond = _job.BurnSpeedMmPerS * 1000 / MachineProfile.Default.X.MicrostepUm;
+        var seconds = burn.LengthX / perSecond;
+        var reported = new TaskCompletionSource<IProgress<EngraveProgress>>();
+        var finish = new TaskCompletionSource();
+        _runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(async c =>
+            {
+                var progress = c.Arg<IProgress<EngraveProgress>>();
+                progress.Report(SessionResults.Report(RunState.Running, index, moves.Count, burn.Row, 41, x: burn.X0, y: burn.Y0, laserOn: true));
+                reported.SetResult(progress);
+                await finish.Task;
+                return SessionResults.Ended(c.Arg<EngraveSession>(), SessionResults.Result(RunOutcome.Completed));
+            });
+        var run = _run.StartCommand.ExecuteAsync(null);
+        var progress = await reported.Task.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+
+        var atReport = _run.LaserMicrosteps;
+        _clock.Advance(TimeSpan.FromSeconds(seconds / 2));
+        var halfway = _run.LaserMicrosteps;
+        _clock.Advance(TimeSpan.FromSeconds(seconds));
+        var past = _run.LaserMicrosteps;
+        progress.Report(SessionResults.Report(RunState.Paused, index + 1, moves.Count, burn.Row, 41, x: burn.X1, y: burn.Y1));
+        _clock.Advance(TimeSpan.FromSeconds(seconds));
+        var paused = _run.LaserMicrosteps;
+        finish.SetResult();
+        await run.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+
+        Assert.Equal((burn.X0, burn.Y0), atReport);
+        Assert.InRange(halfway!.Value.X, Math.Min(burn.X0, burn.X1) + (burn.LengthX / 2) - 60, Math.Min(burn.X0, burn.X1) + (burn.LengthX / 2) + 60);
+        Assert.Equal(burn.Y0, halfway.Value.Y);
+        Assert.Equal((burn.X1, burn.Y1), past);
+        Assert.Equal((burn.X1, burn.Y1), paused);
+        Assert.Null(_run.LaserMicrosteps);
+        Assert.Equal(0, _clock.ActiveTimers);
+    }
+
+    [Fact]
+    public void Now_TravelUnderWay_FollowsItsRampsAndArrivesAtItsEnd()
+    {
+        _job.LoadImage(TestFiles.Asset("qr-code.bmp"));
+        _job.EditWidth(10);
+        var job = _job.Job!;
+        var moves = job.Plan.Moves().ToList();
+        var index = moves.FindIndex(m => m.Kind == MoveKind.Travel && m.LengthY > 0);
+        var travel = moves[index];
+        var pace = new LaserPace(job, _clock);
+        var perMm = 1000 / MachineProfile.Default.X.MicrostepUm;
+        var length = Math.Max(travel.LengthX, travel.LengthY);
+        var profile = new Core.Motion.TrapezoidProfile(length, job.Spec.Process.TravelSpeedMmPerS * perMm, job.Spec.Process.AccelerationMmPerS2 * perMm);
+
+        Assert.Null(pace.Now(moving: true));
+        pace.Report(1, index, travel.X0, travel.Y0);
+        _clock.Advance(TimeSpan.FromSeconds(profile.RampTime / 2));
+        var early = pace.Now(moving: true)!.Value;
+        _clock.Advance(TimeSpan.FromSeconds(profile.Duration));
+        var end = pace.Now(moving: true);
+
+        // Half the ramp's time covers a quarter of the ramp's distance: slower than a straight line at the travel speed.
+        var expected = profile.DistanceAt(profile.RampTime / 2) / length;
+        Assert.Equal(travel.Y0 + ((travel.Y1 - travel.Y0) * expected), early.Y, 1.0);
+        Assert.Equal((travel.X1, travel.Y1), end);
+        Assert.Equal((travel.X0, travel.Y0), pace.Now(moving: false));
+    }
+}
