@@ -43,6 +43,23 @@ public sealed class MarkRunTests : IAsyncDisposable
         Assert.True(_run.StartCommand.CanExecute(null), _run.Error ?? _machine.Error);
     }
 
+    [Fact]
+    public async Task Make_CopiesPastTheTravel_OneLineNamesTheCopyAndThePanelsBoxesNothingOpens()
+    {
+        _mark.OriginXMm = 59;
+        _mark.OriginYMm = 59;
+        _mark.Copies = 10;
+        _mark.Columns = 10;
+
+        await _mark.MakeCommand.ExecuteAsync(null);
+
+        Assert.Null(_mark.JobFile);
+        Assert.StartsWith("copy 2 of 10 (number 1", _mark.Error ?? string.Empty, StringComparison.Ordinal);
+        Assert.Contains("past the stage's travel 0..60 mm (origin 59, 59): move origin to at most", _mark.Error, StringComparison.Ordinal);
+        Assert.Contains("or give fewer columns or a smaller pitch", _mark.Error, StringComparison.Ordinal);
+        Assert.DoesNotContain("originMm", _mark.Error, StringComparison.Ordinal);
+    }
+
     [Fact(Timeout = 120_000)]
     public async Task Start_MarksRunToCompletion_CounterAdvancesPastTheirNumbers()
     {
