@@ -54,7 +54,7 @@ public sealed class MarkRunTests : IAsyncDisposable
         await _mark.MakeCommand.ExecuteAsync(null);
 
         Assert.Null(_mark.JobFile);
-        Assert.StartsWith("copy 2 of 10 (number 1", _mark.Error ?? string.Empty, StringComparison.Ordinal);
+        Assert.StartsWith("copy 2 of 10 (number 2", _mark.Error ?? string.Empty, StringComparison.Ordinal);
         Assert.Contains("past the stage's travel 0..60 mm (origin 59, 59): move origin to at most", _mark.Error, StringComparison.Ordinal);
         Assert.Contains("or give fewer columns or a smaller pitch", _mark.Error, StringComparison.Ordinal);
         Assert.DoesNotContain("originMm", _mark.Error, StringComparison.Ordinal);
