@@ -186,11 +186,11 @@ internal static class MarkCommand
     }
 
     /// <summary>After `engrave --job FILE`: a job of marks advances its counter when, and only when, the run completed.</summary>
-    public static void AfterRun(string jobFile, RunOutcome outcome, TextWriter stderr)
+    public static void AfterRun(string jobFile, Core.Logging.RunRecord record, TextWriter stderr)
     {
         try
         {
-            if (MarkManifest.AfterRun(jobFile, outcome) is { } next)
+            if (MarkManifest.AfterRun(jobFile, record.Outcome, record.JobFile?.Marks) is { } next)
             {
                 stderr.WriteLine(string.Create(CultureInfo.InvariantCulture, $"marks: the sample counter's next number is {next}"));
             }
