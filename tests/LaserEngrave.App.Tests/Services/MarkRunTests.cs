@@ -73,6 +73,29 @@ public sealed class MarkRunTests : IAsyncDisposable
     }
 
     [Fact(Timeout = 120_000)]
+    public async Task Start_JobFileWithAnImageAndAMarkLayer_BurnsTheNumberedTextAndAdvancesTheCounter()
+    {
+        var image = Path.Combine(_folder.Path, "logo.bmp");
+        File.Copy(TestFiles.Asset("qr-code.bmp"), image);
+        var job = Path.Combine(_folder.Path, "plate.json");
+        File.WriteAllText(job, """
+            { "layers": [
+              { "name": "logo", "source": "logo.bmp", "widthMm": 0.5, "originMm": [5, 5] },
+              { "mark": { "text": "S-{n:000}", "textHeightMm": 0.2, "originMm": [5, 6] } }
+            ] }
+            """);
+
+        Assert.True(_layers.Open(job), _layers.FileError);
+        Assert.Equal(["logo", "text \"S-001\""], _layers.Layers.Select(l => l.Name));
+        await _machine.ConnectCommand.ExecuteAsync(null);
+        await _run.StartCommand.ExecuteAsync(null);
+
+        Assert.Equal(RunState.Completed, _run.State);
+        Assert.Equal(2, _service.NextNumber());
+        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.JobFile!.Marks!.FirstNumber == 1 && r.Layers![1].Name == "text \"S-001\""));
+    }
+
+    [Fact(Timeout = 120_000)]
     public async Task Start_MarksAborted_CounterKeepsItsNumberUntilTheContinueCompletes()
     {
         await MakeAndConnectAsync();
