@@ -275,6 +275,26 @@ public sealed class MarkLayout
         var pitchY = spec.PitchYMm ?? copies[0].HeightMm + 1;
         double travelX = profile.X.TravelMm, travelY = profile.Y.TravelMm;
 
+        if (Largest(copies) is var (w, h) && (w > travelX || h > travelY))
+        {
+            var (axis, size, travel) = w > travelX ? ("X", w, travelX) : ("Y", h, travelY);
+            throw new MarkException($"{(copies.Count == 1 ? "the mark" : "a copy")} is {T(size)} mm in {axis}, more than the stage's travel 0..{T(travel)} mm: make it smaller ({(spec.Code is null ? name("textHeightMm") : $"{name("sizeMm")} or {name("moduleUm")}")})");
+        }
+
+        // Copies closer than their own size would burn over each other: a pitch is at least the widest (tallest) copy.
+        var rows = ((copies.Count - 1) / columns) + 1;
+        var widest = copies.Max(c => c.WidthMm);
+        var tallest = copies.Max(c => c.HeightMm);
+        if (columns > 1 && pitchX < widest)
+        {
+            throw new MarkException($"{name("pitchMm")} X {T(pitchX)} mm is less than a copy's width, {T(widest)} mm: the copies would burn over each other");
+        }
+
+        if (rows > 1 && pitchY < tallest)
+        {
+            throw new MarkException($"{name("pitchMm")} Y {T(pitchY)} mm is less than a copy's height, {T(tallest)} mm: the copies would burn over each other");
+        }
+
         // How far past the origin the whole array reaches: the origin may move by the travel less that.
         var spanX = copies.Select((c, i) => ((i % columns) * pitchX) + c.WidthMm).Max();
         var spanY = copies.Select((c, i) => ((i / columns) * pitchY) + c.HeightMm).Max();
@@ -289,15 +309,19 @@ public sealed class MarkLayout
 
             var (axis, reach, travel, span) = right > travelX ? ("X", right, travelX, spanX) : ("Y", bottom, travelY, spanY);
             var which = copies.Count == 1 ? $"the mark \"{copies[i].Text}\"" : $"copy {i + 1} of {copies.Count} (number {first + i}, \"{copies[i].Text}\")";
-            var originFix = span <= travel
-                ? N($"move {name("originMm")} to at most {travel - span:0.###} mm in {axis}")
-                : N($"the whole array is {span:0.###} mm in {axis}, more than the travel");
-            var arrayFix = copies.Count == 1 ? string.Empty
-                : axis == "X" ? $", or give fewer {name("columns")} or a smaller {name("pitchMm")}"
-                : $", or give fewer {name("copies")} (or more {name("columns")}) or a smaller {name("pitchMm")}";
-            throw new MarkException(N($"{which} would reach {reach:0.###} mm in {axis}, past the stage's travel 0..{travel:0.###} mm ({name("originMm")} {spec.Origin.X:0.###}, {spec.Origin.Y:0.###}): {originFix}{arrayFix}"));
+            var arrayFix = axis == "X" ? $"fewer {name("columns")} or a smaller {name("pitchMm")}" : $"fewer {name("copies")} (or more {name("columns")}) or a smaller {name("pitchMm")}";
+            var fix = span <= travel
+                ? $"move {name("originMm")} to at most {T(travel - span)} mm in {axis}{(copies.Count == 1 ? string.Empty : $", or give {arrayFix}")}"
+                : $"the array is {T(span)} mm in {axis}, more than the travel: give {arrayFix}";
+            throw new MarkException($"{which} would reach {T(reach)} mm in {axis}, past the stage's travel 0..{T(travel)} mm ({name("originMm")} {T(spec.Origin.X)}, {T(spec.Origin.Y)}): {fix}");
         }
     }
+
+    // Millimetres as messages show them: three decimals, in exponent form when huge.
+    private static string T(double mm) => Math.Abs(mm) is >= 0.001 and < 1e6 ? mm.ToString("0.###", CultureInfo.InvariantCulture) : MachineLimits.Text.N(mm);
+
+    private static (double WidthMm, double HeightMm) Largest(IReadOnlyList<(string Text, double WidthMm, double HeightMm)> copies) =>
+        (copies.Max(c => c.WidthMm), copies.Max(c => c.HeightMm));
 
     private static string KindName(CodeKind kind) => kind == CodeKind.Qr ? "QR" : "Data Matrix";
 
