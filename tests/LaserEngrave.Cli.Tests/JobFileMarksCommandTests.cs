@@ -130,6 +130,20 @@ public sealed class JobFileMarksCommandTests : IDisposable
     }
 
     [Fact]
+    public async Task Engrave_MarksMakingTooManyLayers_RefusedBeforeAnyFileIsMade()
+    {
+        var job = WriteJob();
+        var marks = string.Join(", ", Enumerable.Range(0, 3).Select(_ => """{ "mark": { "text": "S", "code": "qr", "moduleUm": 50, "copies": 400 } }"""));
+        File.WriteAllText(job, $$"""{ "layers": [ {{marks}} ] }""");
+
+        var (exit, _, error) = await CliHarness.RunAsync("engrave", "--job", job, "--simulate", "--log-dir", Logs, "--counter", Counter);
+
+        Assert.True(exit == 2, error);
+        Assert.Contains("job.json: its marks would make 2400 layers, more than the 1000 a job may have", error, StringComparison.Ordinal);
+        Assert.False(Directory.Exists(MarkManifest.MarksFolder(job)), "no mark was made");
+    }
+
+    [Fact]
     public async Task Engrave_FieldBesideTheMark_IsRefusedNamingIt()
     {
         var job = WriteJob();

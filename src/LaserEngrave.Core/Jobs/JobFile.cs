@@ -125,6 +125,13 @@ public static class JobFile
             throw new PlanException($"{path}: layer {firstMark.Index} is a mark, which needs the sample counter; run the file with engrave --job or open it in the app");
         }
 
+        // Counted before a file is made: a hostile file of many large arrays is refused without writing them.
+        var planned = entries.Sum(e => e.Mark is { } m ? (long)m.Copies * ((m.Code is null ? 0 : 1) + (m.Code is null || m.Label ? 1 : 0)) : 1);
+        if (planned > MaxLayers)
+        {
+            throw new PlanException($"{path}: its marks would make {planned} layers, more than the {MaxLayers} a job may have; make fewer copies");
+        }
+
         int first;
         try
         {
@@ -158,11 +165,6 @@ public static class JobFile
             {
                 throw new PlanException($"{where}: {ex.Message}", ex);
             }
-        }
-
-        if (layers.Count > MaxLayers)
-        {
-            throw new PlanException($"{path}: its marks make {layers.Count} layers, more than the {MaxLayers} a job may have");
         }
 
         MarkManifest.Write(manifest, new MarkManifest(Path.GetFullPath(marks.CounterPath), first, count, placed, marks.Now));
