@@ -93,24 +93,39 @@ public sealed class MarkCommandTests : IDisposable
     [InlineData("mark|S|--align|middle|--out|@out", "--align middle")]
     [InlineData("mark|Süß|--out|@out", "the engraving font has no 'ü'")]
     [InlineData("mark|S|--font|No Such Font|--out|@out", "\"No Such Font\" is not installed")]
-    [InlineData("mark|S|--origin-mm|59,59|--copies|10|--out|@out", "outside the travel 0..60 mm")]
+    [InlineData("mark|S|--origin-mm|59,59|--copies|10|--out|@out", "copy 2 of 10 (number 2, \"S\") would reach 60.762 mm in X, past the stage's travel 0..60 mm (--origin-mm 59, 59): move --origin-mm to at most 47.19 mm in X, or give fewer --columns or a smaller --pitch-mm")]
+    [InlineData("mark|S-{n}|--origin-mm|10,58|--copies|12|--columns|4|--pitch-mm|2,2|--out|@out", "(number 5, \"S-5\") would reach 60.4 mm in Y")]
+    [InlineData("mark|S-{n}|--origin-mm|10,58|--copies|12|--columns|4|--pitch-mm|2,2|--out|@out", "give fewer --copies (or more --columns) or a smaller --pitch-mm")]
+    [InlineData("mark|S|--origin-mm|59.9,10|--out|@out", "the mark \"S\" would reach")]
+    [InlineData("mark|S|--copies|3|--pitch-mm|0.0001,1|--out|@out", "--pitch-mm X 0.0001 mm is less than a copy's width, 0.381 mm: the copies would burn over each other")]
+    [InlineData("mark|S|--copies|30|--columns|3|--pitch-mm|1,0.1|--out|@out", "--pitch-mm Y 0.1 mm is less than a copy's height")]
+    [InlineData("mark|S|--code|qr|--size-mm|70|--out|@out", "the mark is 96.667 mm in X, more than the stage's travel 0..60 mm: make it smaller (--size-mm or --module-um)")]
+    [InlineData("mark|S|--code|qr|--size-mm|30|--copies|2|--out|@out", "the array is 83.857 mm in X, more than the travel: give fewer --columns or a smaller --pitch-mm")]
+    [InlineData("mark|S|--origin-mm|1e308,5|--out|@out", "would reach 1E+308 mm in X")]
+    [InlineData("mark|S|--speed-mm-s|99|--out|@out", "--speed-mm-s 99: outside what the stage takes")]
+    [InlineData("mark|S|--passes|0|--out|@out", "--passes 0: must be 1..")]
+    [InlineData("mark|S|--code|qr|--size-mm|200|--out|@out", "--size-mm 200 must be above 0")]
+    [InlineData("mark|S|--code|qr|--out|@out", "its module size (--module-um, µm) or its size (--size-mm, mm)")]
     [InlineData("mark|S|--pitch-mm|4|--out|@out", "--pitch-mm 4")]
     [InlineData("mark|--out|@out", "give the mark's TEXT")]
     [InlineData("mark|S|--smallest|--out|@out", "--smallest needs --check")]
     [InlineData("mark|S|--start|0|--out|@out", "counter 0")]
     [InlineData("mark|--marks|@missing|--out|@out", "missing.json: no such file")]
     [InlineData("mark|--marks|@bad|--out|@out", "unknown field \"colour\"")]
+    [InlineData("mark|--marks|@far|--out|@out", "far.json: the mark \"S\" would reach 60.381 mm in X, past the stage's travel 0..60 mm (originMm 60, 10): move originMm to at most 59.619 mm in X")]
     [InlineData("mark|S|--marks|@bad|--out|@out", "not both")]
     [InlineData("mark|S|--out|/proc/no-such/marks", "the marks' folder cannot be made there")]
     [InlineData("mark|S|--counter|@folder|--out|@out", "is a folder, not the sample counter's file")]
     public async Task Mark_BadInput_OneLineExitTwoNothingWritten(string line, string fragment)
     {
         File.WriteAllText(Path.Combine(_folder, "bad.json"), """{ "text": "S", "colour": "red" }""");
+        File.WriteAllText(Path.Combine(_folder, "far.json"), """{ "text": "S", "originMm": [60, 10] }""");
         var args = line.Split('|').Select(a => a switch
         {
             "@out" => Out,
             "@missing" => Path.Combine(_folder, "missing.json"),
             "@bad" => Path.Combine(_folder, "bad.json"),
+            "@far" => Path.Combine(_folder, "far.json"),
             "@folder" => _folder,
             _ => a,
         }).ToList();

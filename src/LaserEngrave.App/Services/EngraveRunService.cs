@@ -15,7 +15,7 @@ public sealed class EngraveRunService : IRunService
             try
             {
                 // A job of marks advances the sample counter when, and only when, its run completed (docs/marking.md).
-                Core.Marks.MarkManifest.AfterRun(jobFile, result.Record.Outcome);
+                Core.Marks.MarkManifest.AfterRun(jobFile, result.Record.Outcome, result.Record.JobFile?.Marks);
             }
             catch (Exception ex) when (ex is Core.Marks.MarkException or IOException or UnauthorizedAccessException)
             {

@@ -4,11 +4,17 @@ using LaserEngrave.Core.Jobs;
 namespace LaserEngrave.App.Services;
 
 /// <summary>Jobs of layers through Core's <see cref="JobFile"/> and <see cref="LayeredJob"/>: the command line's reader, writer and planner.</summary>
-public sealed class JobFiles(AppFolders folders) : IJobFiles
+/// <param name="folders">The app's folders: the jobs, and the sample counter a job file's marks number from.</param>
+/// <param name="profile">The machine profile in force, which a job file's marks are drawn for; null: the default.</param>
+/// <param name="time">The lab's clock, for a mark's {date} and {time}; null: the system's.</param>
+public sealed class JobFiles(AppFolders folders, Func<MachineProfile>? profile = null, TimeProvider? time = null) : IJobFiles
 {
     public string DefaultFolder => Path.Combine(folders.DataFolder, "jobs");
 
-    public IReadOnlyList<JobLayer> Load(string path) => JobFile.Load(path);
+    /// <remarks>A mark layer is made with the counter beside the settings, as the Mark panel's; {sample} is refused (no run's sample yet).</remarks>
+    public IReadOnlyList<JobLayer> Load(string path) =>
+        JobFile.Load(path, new Core.Marks.JobMarks(
+            Path.Combine(folders.DataFolder, Core.Marks.MarkCounter.FileName), profile?.Invoke() ?? MachineProfile.Default, (time ?? TimeProvider.System).GetLocalNow(), null));
 
     public void Save(string path, IReadOnlyList<JobLayer> layers)
     {

@@ -16,6 +16,19 @@ public sealed class MarkService(AppFolders folders, Func<MachineProfile> profile
 
     public int NextNumber() => Counter.Next();
 
+    /// <summary>A marks file's field as the Mark panel labels it, so a refusal names the box to change.</summary>
+    internal static string PanelName(string field) => field switch
+    {
+        "sizeMm" => "code size",
+        "moduleUm" => "module size",
+        "textHeightMm" => "text height",
+        "originMm" => "origin",
+        "pitchMm" => "pitch",
+        "speedMmPerS" => "burn speed",
+        "frequencyHz" => "laser frequency",
+        _ => field,
+    };
+
     public async Task<MarkResult> MakeAsync(MarkSpec spec, string? sample, bool check, CancellationToken cancellationToken)
     {
         ArgumentNullException.ThrowIfNull(spec);
@@ -23,7 +36,7 @@ public sealed class MarkService(AppFolders folders, Func<MachineProfile> profile
         var now = time.GetLocalNow();
         var folder = Path.Combine(folders.DataFolder, "marks", $"{now:yyyy-MM-dd_HHmmss}_{Guid.NewGuid().ToString("N")[..6]}");
         var counter = Counter;
-        var layout = MarkLayout.Make(spec, counter.Next(), new MarkContext(0, sample, now, machine.Name), machine, folder);
+        var layout = MarkLayout.Make(spec, counter.Next(), new MarkContext(0, sample, now, machine.Name), machine, folder, PanelName);
         LayeredJob job;
         try
         {

@@ -46,7 +46,7 @@ public static class AppHost
         services.AddSingleton<IMachineConnectionFactory>(new MachineConnectionFactory());
         services.AddSingleton<IRunService, EngraveRunService>();
         services.AddSingleton<IFileAccess>(sp => new Services.FileAccess(sp.GetRequiredService<AppFolders>()));
-        services.AddSingleton<IJobFiles>(sp => new JobFiles(sp.GetRequiredService<AppFolders>()));
+        services.AddSingleton<IJobFiles>(sp => new JobFiles(sp.GetRequiredService<AppFolders>(), () => sp.GetRequiredService<MainViewModel>().Job.Profile, sp.GetRequiredService<TimeProvider>()));
         services.AddSingleton<ISettingsStore>(sp => new JsonSettingsStore(sp.GetRequiredService<AppFolders>().SettingsFile));
         services.AddSingleton<IRunLogStore>(sp => new RunLogFolder(sp.GetRequiredService<AppFolders>().RunLogFolder));
         services.AddSingleton<IPresetStore>(sp => new JsonPresetStore(sp.GetRequiredService<AppFolders>().PresetsFile));

@@ -68,6 +68,11 @@ internal static class EngraveCommand
         LayerResumePoint? resumeLayers = null;
         string? layeredFile = null;
         IEnumerable<string> warnings;
+        if (result.GetValue(o.JobFile) is null && OptionChecks.IsGiven(result, o.Counter))
+        {
+            throw new UsageException("--counter is for --job: a job file's marks number from it (a repeated or resumed run's log names its own)");
+        }
+
         if (result.GetValue(o.JobFile) is { } jobFile)
         {
             if (new Option[] { o.FromLog, o.Resume, o.Passes, o.Burned, o.Dose }.FirstOrDefault(option => OptionChecks.IsGiven(result, option)) is { } other)
@@ -75,7 +80,7 @@ internal static class EngraveCommand
                 throw new UsageException($"{other.Name} with --job: {(other == o.Passes ? "each layer has its own passes" : other == o.Burned || other == o.Dose ? "--burned and --dose are for one image" : "a job of layers is repeated or resumed by --from-log LOG alone (the log names its job file)")}");
             }
 
-            var layered = LayerCommands.Prepare(result, jobFile, o.Job, o.Vector);
+            var layered = LayerCommands.Prepare(result, jobFile, o.Job, o.Vector, result.GetValue(o.Counter), result.GetValue(o.Sample));
             layeredFile = jobFile;
             warnings = LayerCommands.Warnings(layered);
             job = layered;
@@ -210,7 +215,7 @@ internal static class EngraveCommand
         var error = engraved.Error;
         if (layeredFile is not null)
         {
-            MarkCommand.AfterRun(layeredFile, record.Outcome, stderr);
+            MarkCommand.AfterRun(layeredFile, record, stderr);
         }
 
         await prepareJson.ConfigureAwait(false);
@@ -477,6 +482,8 @@ internal static class EngraveCommand
 
         public Option<string?> JobFile { get; } = LayerCommands.JobOption();
 
+        public Option<string?> Counter { get; } = new("--counter") { Description = $"With --job: the sample counter its marks number from (default {Core.Marks.MarkCounter.FileName} with the app's settings)" };
+
         public Option<int?> Passes { get; } = new("--passes") { Description = "Burn the plan N times over the same place, one pass after the other (1..100, default 1)" };
 
         public void AddTo(Command command)
@@ -484,7 +491,7 @@ internal static class EngraveCommand
             Job.AddTo(command);
             Vector.AddTo(command);
             Machine.AddTo(command);
-            foreach (var option in new Option[] { LogDir, Burned, BurnedScale, Dose, Notes, Sample, Json, FromLog, Resume, Home, Passes, JobFile })
+            foreach (var option in new Option[] { LogDir, Burned, BurnedScale, Dose, Notes, Sample, Json, FromLog, Resume, Home, Passes, JobFile, Counter })
             {
                 command.Options.Add(option);
             }

@@ -14,11 +14,14 @@ internal static class LayerCommands
         new("--job") { Description = "A job of layers (JSON: images and drawings, each with its own mode, speed, frequency and passes), run in order; instead of IMAGE" };
 
     /// <summary>The layers of the job file, prepared; the job's own options (size, process, drawing options) are refused: each layer has its own.</summary>
-    public static LayeredJob Prepare(ParseResult result, string jobFile, JobOptions job, VectorOptionSet vector)
+    /// <param name="counter">The sample counter a mark layer numbers from; null: the app's (<see cref="MarkCommand.DefaultCounterPath"/>).</param>
+    /// <param name="sample">The run's sample ID, for a mark's {sample}.</param>
+    public static LayeredJob Prepare(ParseResult result, string jobFile, JobOptions job, VectorOptionSet vector, string? counter = null, string? sample = null)
     {
         RefuseJobOptions(result, "--job", job, vector, profileAllowed: true);
         var profile = result.GetValue(job.Profile) is { } path ? MachineProfile.Load(path) : MachineProfile.Default;
-        return Fitting(Named(jobFile, () => LayeredJob.Prepare(JobFile.Load(jobFile), profile)), jobFile);
+        var marks = new Core.Marks.JobMarks(counter ?? MarkCommand.DefaultCounterPath(), profile, DateTimeOffset.Now, sample);
+        return Fitting(Named(jobFile, () => LayeredJob.Prepare(JobFile.Load(jobFile, marks), profile)), jobFile);
     }
 
     /// <summary>A layer's problem named with its job file, as the job file's own reading problems are.</summary>

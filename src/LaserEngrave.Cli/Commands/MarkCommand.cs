@@ -119,7 +119,18 @@ internal static class MarkCommand
             }
 
             var context = new MarkContext(0, result.GetValue(sample), DateTimeOffset.Now, machine.Name);
-            var layout = MarkLayout.Make(spec, counterFile.Next(), context, machine, folder);
+            var marksPath = result.GetValue(marks);
+            MarkLayout layout;
+            try
+            {
+                // A mark from the command line is refused in its options' names; one from a marks file in the file's.
+                layout = MarkLayout.Make(spec, counterFile.Next(), context, machine, folder, marksPath is null ? OptionName : null);
+            }
+            catch (MarkException ex) when (marksPath is not null)
+            {
+                throw new MarkException($"{marksPath}: {ex.Message}", ex);
+            }
+
             var job = LayeredJob.Prepare(layout.Layers, machine);
             if (!job.FitsTravel)
             {
@@ -175,11 +186,11 @@ internal static class MarkCommand
     }
 
     /// <summary>After `engrave --job FILE`: a job of marks advances its counter when, and only when, the run completed.</summary>
-    public static void AfterRun(string jobFile, RunOutcome outcome, TextWriter stderr)
+    public static void AfterRun(string jobFile, Core.Logging.RunRecord record, TextWriter stderr)
     {
         try
         {
-            if (MarkManifest.AfterRun(jobFile, outcome) is { } next)
+            if (MarkManifest.AfterRun(jobFile, record.Outcome, record.JobFile?.Marks) is { } next)
             {
                 stderr.WriteLine(string.Create(CultureInfo.InvariantCulture, $"marks: the sample counter's next number is {next}"));
             }
@@ -194,6 +205,25 @@ internal static class MarkCommand
     /// <summary>The counter beside the app's settings, so the command line and the app count the same samples.</summary>
     public static string DefaultCounterPath() =>
         Path.Combine(Environment.GetFolderPath(Environment.SpecialFolder.ApplicationData, Environment.SpecialFolderOption.Create), "LaserEngrave", MarkCounter.FileName);
+
+    /// <summary>A marks file's field as the command line names it: the option that gives it.</summary>
+    internal static string OptionName(string field) => field switch
+    {
+        "moduleUm" => "--module-um",
+        "sizeMm" => "--size-mm",
+        "quietModules" => "--quiet",
+        "errorCorrection" => "--ecc",
+        "textHeightMm" => "--text-height-mm",
+        "lineSpacing" => "--line-spacing",
+        "originMm" => "--origin-mm",
+        "copies" => "--copies",
+        "columns" => "--columns",
+        "pitchMm" => "--pitch-mm",
+        "speedMmPerS" => "--speed-mm-s",
+        "frequencyHz" => "--frequency-hz",
+        "passes" => "--passes",
+        _ => field,
+    };
 
     private static (double, double) Pair(string text, string name) =>
         NumberText.TryParsePair(text, out var x, out var y, out var problem) ? (x, y) : throw new UsageException($"{name} {text}: {problem}");

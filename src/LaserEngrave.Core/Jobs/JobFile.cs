@@ -1,6 +1,7 @@
 using System.Globalization;
 using System.Text.Json;
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Marks;
 using LaserEngrave.Core.Planning;
 
 namespace LaserEngrave.Core.Jobs;
@@ -8,7 +9,8 @@ namespace LaserEngrave.Core.Jobs;
 /// <summary>
 /// A job's layers from a JSON file: <c>{"layers": [{"name": ..., "source": ..., "mode": ..., ...}, ...]}</c>
 /// (docs/vectors.md, "Layers"); a source is relative to the file's folder. Unknown or bad values are refused with one line
-/// naming the file, the layer and the field.
+/// naming the file, the layer and the field. A layer may be a mark, <c>{"mark": { ...a marks file's fields... }}</c>
+/// (docs/marking.md): it is made, when the file is read, into its codes' and texts' layers, numbered from the sample counter.
 /// </summary>
 public static class JobFile
 {
@@ -16,9 +18,11 @@ public static class JobFile
     public const int MaxLayers = 1000;
 
     private static readonly string[] Fields =
-        ["name", "source", "mode", "drawingLayer", "widthMm", "originMm", "speedMmPerS", "frequencyHz", "passes", "toleranceUm", "fillPitchUm", "thresholdPercent", "dither", "invert"];
+        ["name", "source", "mark", "mode", "drawingLayer", "widthMm", "originMm", "speedMmPerS", "frequencyHz", "passes", "toleranceUm", "fillPitchUm", "thresholdPercent", "dither", "invert"];
 
-    public static IReadOnlyList<JobLayer> Load(string path)
+    /// <summary>Reads the job file's layers; its marks, if any, made into their layers with <paramref name="marks"/>.</summary>
+    /// <param name="marks">The counter, machine, time and sample a mark layer is made with; a file with a mark layer needs them.</param>
+    public static IReadOnlyList<JobLayer> Load(string path, JobMarks? marks = null)
     {
         ArgumentException.ThrowIfNullOrWhiteSpace(path);
         if (IO.RegularFile.Problem(path) is { } problem)
@@ -58,16 +62,113 @@ public static class JobFile
                 throw new PlanException($"{path}: {layers.GetArrayLength()} layers, more than the {MaxLayers} a job file may have");
             }
 
-            var list = new List<JobLayer>();
+            var list = new List<(JobLayer? Layer, MarkSpec? Mark, int Index, string Where)>();
             var index = 0;
             foreach (var element in layers.EnumerateArray())
             {
                 index++;
-                list.Add(ReadLayer(path, folder, index, element));
+                list.Add(element.ValueKind == JsonValueKind.Object && element.TryGetProperty("mark", out _)
+                    ? ReadMark(path, index, element)
+                    : (ReadLayer(path, folder, index, element), null, index, string.Empty));
             }
 
-            return list.Count > 0 ? list : throw new PlanException($"{path}: \"layers\" is empty");
+            return list.Count > 0 ? MakeMarks(path, list, marks) : throw new PlanException($"{path}: \"layers\" is empty");
         }
+    }
+
+    // A mark layer has the mark's own fields (a marks file's, read by the same reader) and, beside them, only a name.
+    private static (JobLayer? Layer, MarkSpec Mark, int Index, string Where) ReadMark(string path, int index, JsonElement element)
+    {
+        var where = $"{path}: layer {index}";
+        foreach (var property in element.EnumerateObject())
+        {
+            if (property.Name is not ("mark" or "name"))
+            {
+                throw new PlanException($"{where}: \"{property.Name}\" beside \"mark\": a mark layer has only \"mark\" (a marks file's fields, originMm and the process among them) and \"name\"");
+            }
+        }
+
+        var name = String(element, "name", where);
+        where = name is null ? $"{where} (mark)" : $"{where} \"{name}\" (mark)";
+        try
+        {
+            return (null, MarkFile.Read(element.GetProperty("mark"), where), index, where);
+        }
+        catch (MarkException ex)
+        {
+            throw new PlanException(ex.Message, ex);
+        }
+    }
+
+    /// <summary>
+    /// The job's layers with each mark made into its layers, in <see cref="MarkManifest.MarksFolder"/>: every mark layer
+    /// numbers its copies from the same first number (the counter's next, or a resumed run's), so a code and a text elsewhere
+    /// carry the same sample's number; the job burns as many numbers as its largest mark has copies.
+    /// </summary>
+    private static List<JobLayer> MakeMarks(string path, List<(JobLayer? Layer, MarkSpec? Mark, int Index, string Where)> entries, JobMarks? marks)
+    {
+        var manifest = Path.Combine(MarkManifest.MarksFolder(path), MarkLayout.ManifestFileName);
+        if (entries.All(e => e.Mark is null))
+        {
+            // A record left from when the file had marks must not advance the counter for a run that burns none.
+            if (File.Exists(manifest))
+            {
+                File.Delete(manifest);
+            }
+
+            return [.. entries.Select(e => e.Layer!)];
+        }
+
+        var firstMark = entries.First(e => e.Mark is not null);
+        if (marks is null)
+        {
+            throw new PlanException($"{path}: layer {firstMark.Index} is a mark, which needs the sample counter; run the file with engrave --job or open it in the app");
+        }
+
+        // Counted before a file is made: a hostile file of many large arrays is refused without writing them.
+        var planned = entries.Sum(e => e.Mark is { } m ? (long)m.Copies * ((m.Code is null ? 0 : 1) + (m.Code is null || m.Label ? 1 : 0)) : 1);
+        if (planned > MaxLayers)
+        {
+            throw new PlanException($"{path}: its marks would make {planned} layers, more than the {MaxLayers} a job may have; make fewer copies");
+        }
+
+        int first;
+        try
+        {
+            first = marks.FirstNumber ?? new MarkCounter(marks.CounterPath).Next();
+        }
+        catch (MarkException ex)
+        {
+            throw new PlanException($"{path}: {ex.Message}", ex);
+        }
+
+        var context = new MarkContext(0, marks.Sample, marks.Now, marks.Profile.Name);
+        var layers = new List<JobLayer>();
+        var placed = new List<PlacedMark>();
+        var count = 0;
+        foreach (var (layer, mark, index, where) in entries)
+        {
+            if (mark is null)
+            {
+                layers.Add(layer!);
+                continue;
+            }
+
+            try
+            {
+                var layout = MarkLayout.Make(mark, first, context, marks.Profile, Path.Combine(MarkManifest.MarksFolder(path), $"layer-{index}"));
+                layers.AddRange(layout.Layers);
+                placed.AddRange(layout.Marks);
+                count = Math.Max(count, mark.Copies);
+            }
+            catch (MarkException ex)
+            {
+                throw new PlanException($"{where}: {ex.Message}", ex);
+            }
+        }
+
+        MarkManifest.Write(manifest, new MarkManifest(Path.GetFullPath(marks.CounterPath), first, count, placed, marks.Now));
+        return layers;
     }
 
     /// <summary>

@@ -179,10 +179,19 @@ public static class RunReplay
         var jobFile = record.JobFile
             ?? throw new RunLogException("the log does not name its job file (written before resumes of layers were logged); run the job file again with --job");
         CheckUnchanged(jobFile.Path, jobFile.Sha256, "job file");
+        if (!resume && record.Outcome == RunOutcome.Completed && jobFile.Marks is { MadeAt: not null } burned)
+        {
+            throw new RunLogException($"{jobFile.Path}: that run completed and burned its marks' numbers {burned.FirstNumber}..{burned.FirstNumber + burned.Count - 1}; run the job file again with --job for the next numbers");
+        }
+
         IReadOnlyList<JobLayer> layers;
         try
         {
-            layers = JobFile.Load(jobFile.Path);
+            // The job file's marks made again as the run made them: from its first number and its time, so the files are the ones logged.
+            var marks = jobFile.Marks is { MadeAt: { } madeAt } made
+                ? new Marks.JobMarks(made.Counter, record.Profile ?? MachineProfile.Default, madeAt, record.SampleId) { FirstNumber = made.FirstNumber }
+                : null;
+            layers = JobFile.Load(jobFile.Path, marks);
         }
         catch (Planning.PlanException ex)
         {

@@ -48,19 +48,25 @@ public sealed class MarkLayout
     /// <summary>Checks <paramref name="spec"/>, resolves every copy's text and draws its code and text into <paramref name="folder"/>.</summary>
     /// <param name="first">The first copy's number (the counter's next).</param>
     /// <param name="context">The run's sample, the time and the profile (its number is set per copy).</param>
-    /// <exception cref="MarkException">A value is out of range, a text does not fit, or a module is smaller than the spot.</exception>
-    public static MarkLayout Make(MarkSpec spec, int first, MarkContext context, MachineProfile profile, string folder)
+    /// <param name="name">
+    /// How the front end names a marks file's field (<c>originMm</c> as <c>--origin-mm</c> on the command line, "origin" in
+    /// the app), so a refusal says what the user gave and what to change; null keeps the marks file's names.
+    /// </param>
+    /// <exception cref="MarkException">A value is out of range, a text does not fit, a module is smaller than the spot, or a copy lies off the travel.</exception>
+    public static MarkLayout Make(MarkSpec spec, int first, MarkContext context, MachineProfile profile, string folder, Func<string, string>? name = null)
     {
         ArgumentNullException.ThrowIfNull(spec);
         ArgumentNullException.ThrowIfNull(context);
         ArgumentNullException.ThrowIfNull(profile);
-        Check(spec, first);
+        name ??= field => field;
+        Check(spec, first, profile, name);
 
         // Every copy is drawn before a file is written: a copy whose text does not fit refuses the whole array.
         var copies = Enumerable.Range(0, spec.Copies)
             .Select(i => MarkText.Resolve(spec.Text, context with { Number = first + i }))
             .Select(text => (Text: text, Copy: Draw(spec, text, profile)))
             .ToList();
+        CheckTravel(spec, copies.Select(c => (c.Text, c.Copy.WidthMm, c.Copy.HeightMm)).ToList(), first, profile, name);
         try
         {
             Directory.CreateDirectory(folder);
@@ -190,44 +196,66 @@ public sealed class MarkLayout
         return new Copy(code, strokes, null, textLeft - shift, textTop, Math.Max(codeMm, strokes.WidthMm), textTop + strokes.InkBounds().Max.Y);
     }
 
-    private static void Check(MarkSpec spec, int first)
+    private static void Check(MarkSpec spec, int first, MachineProfile profile, Func<string, string> name)
     {
         if (spec.Code is not null && (spec.ModuleUm is null) == (spec.SizeMm is null))
         {
-            throw new MarkException("a code needs its module size (moduleUm, µm) or its size (sizeMm, mm), one of the two");
+            throw new MarkException($"a code needs its module size ({name("moduleUm")}, µm) or its size ({name("sizeMm")}, mm), one of the two");
         }
 
         if (spec.Code is null && (spec.ModuleUm is not null || spec.SizeMm is not null || spec.ErrorCorrection is not null || spec.QuietModules is not null))
         {
-            throw new MarkException("moduleUm, sizeMm, quietModules and errorCorrection are for codes; this mark is a text alone");
+            throw new MarkException($"{name("moduleUm")}, {name("sizeMm")}, {name("quietModules")} and {name("errorCorrection")} are for codes; this mark is a text alone");
         }
 
         if (spec.SizeMm is { } size && !(size > 0 && size <= 100))
         {
-            throw new MarkException(N($"sizeMm {size:G6} must be above 0 and at most 100 mm"));
+            throw new MarkException(N($"{name("sizeMm")} {size:G6} must be above 0 and at most 100 mm"));
         }
 
         if (spec.Copies is < 1 or > MarkSpec.MaxCopies)
         {
-            throw new MarkException(N($"copies {spec.Copies} must be 1..{MarkSpec.MaxCopies}"));
+            throw new MarkException(N($"{name("copies")} {spec.Copies} must be 1..{MarkSpec.MaxCopies}"));
         }
 
         if (spec.Columns is { } columns && (columns < 1 || columns > spec.Copies))
         {
-            throw new MarkException(N($"columns {columns} must be 1..{spec.Copies} (the copies)"));
+            throw new MarkException(N($"{name("columns")} {columns} must be 1..{spec.Copies} (the copies)"));
         }
 
-        foreach (var (name, value) in new[] { ("pitchMm X", spec.PitchXMm), ("pitchMm Y", spec.PitchYMm) })
+        foreach (var (field, value) in new[] { ($"{name("pitchMm")} X", spec.PitchXMm), ($"{name("pitchMm")} Y", spec.PitchYMm) })
         {
             if (value is { } v && !(v > 0 && v <= 1000))
             {
-                throw new MarkException(N($"{name} {v:G6} must be above 0 and at most 1000 mm"));
+                throw new MarkException(N($"{field} {v:G6} must be above 0 and at most 1000 mm"));
             }
         }
 
         if (!(spec.GapMm >= 0 && spec.GapMm <= 100))
         {
-            throw new MarkException(N($"gapMm {spec.GapMm:G6} must be 0..100 mm"));
+            throw new MarkException(N($"{name("gapMm")} {spec.GapMm:G6} must be 0..100 mm"));
+        }
+
+        if (!(spec.Origin.X >= 0 && spec.Origin.Y >= 0 && double.IsFinite(spec.Origin.X) && double.IsFinite(spec.Origin.Y)))
+        {
+            throw new MarkException(N($"{name("originMm")} {spec.Origin.X:G6}, {spec.Origin.Y:G6} must not be negative (the stage's travel starts at 0)"));
+        }
+
+        // The process's rules, said of the mark (every layer of it has the same) rather than of its first layer.
+        var limits = MachineLimits.Of(profile);
+        if (spec.SpeedMmPerS is { } speed && JobRules.Speed(speed, limits) is { } speedRule)
+        {
+            throw new MarkException(N($"{name("speedMmPerS")} {speed:G6}: {speedRule}"));
+        }
+
+        if (spec.FrequencyHz is { } hz && JobRules.Frequency(hz, limits) is { } frequencyRule)
+        {
+            throw new MarkException(N($"{name("frequencyHz")} {hz:G6}: {frequencyRule}"));
+        }
+
+        if (JobRules.Passes(spec.Passes) is { } passesRule)
+        {
+            throw new MarkException(N($"{name("passes")} {spec.Passes}: {passesRule}"));
         }
 
         if (first < 1 || (long)first + spec.Copies - 1 > MarkCounter.MaxNumber)
@@ -235,6 +263,65 @@ public sealed class MarkLayout
             throw new MarkException(N($"numbers {first}..{(long)first + spec.Copies - 1} must lie within 1..{MarkCounter.MaxNumber}"));
         }
     }
+
+    /// <summary>
+    /// Refuses an array whose copies would reach past the stage's travel, before any layer is built, naming the first copy
+    /// that would, where it would end, and what to change: the origin, the columns or copies, the pitch.
+    /// </summary>
+    private static void CheckTravel(MarkSpec spec, IReadOnlyList<(string Text, double WidthMm, double HeightMm)> copies, int first, MachineProfile profile, Func<string, string> name)
+    {
+        var columns = spec.Columns ?? Math.Min(spec.Copies, 10);
+        var pitchX = spec.PitchXMm ?? copies[0].WidthMm + 1;
+        var pitchY = spec.PitchYMm ?? copies[0].HeightMm + 1;
+        double travelX = profile.X.TravelMm, travelY = profile.Y.TravelMm;
+
+        if (Largest(copies) is var (w, h) && (w > travelX || h > travelY))
+        {
+            var (axis, size, travel) = w > travelX ? ("X", w, travelX) : ("Y", h, travelY);
+            throw new MarkException($"{(copies.Count == 1 ? "the mark" : "a copy")} is {T(size)} mm in {axis}, more than the stage's travel 0..{T(travel)} mm: make it smaller ({(spec.Code is null ? name("textHeightMm") : $"{name("sizeMm")} or {name("moduleUm")}")})");
+        }
+
+        // Copies closer than their own size would burn over each other: a pitch is at least the widest (tallest) copy.
+        var rows = ((copies.Count - 1) / columns) + 1;
+        var widest = copies.Max(c => c.WidthMm);
+        var tallest = copies.Max(c => c.HeightMm);
+        if (columns > 1 && pitchX < widest)
+        {
+            throw new MarkException($"{name("pitchMm")} X {T(pitchX)} mm is less than a copy's width, {T(widest)} mm: the copies would burn over each other");
+        }
+
+        if (rows > 1 && pitchY < tallest)
+        {
+            throw new MarkException($"{name("pitchMm")} Y {T(pitchY)} mm is less than a copy's height, {T(tallest)} mm: the copies would burn over each other");
+        }
+
+        // How far past the origin the whole array reaches: the origin may move by the travel less that.
+        var spanX = copies.Select((c, i) => ((i % columns) * pitchX) + c.WidthMm).Max();
+        var spanY = copies.Select((c, i) => ((i / columns) * pitchY) + c.HeightMm).Max();
+        for (var i = 0; i < copies.Count; i++)
+        {
+            var right = spec.Origin.X + ((i % columns) * pitchX) + copies[i].WidthMm;
+            var bottom = spec.Origin.Y + ((i / columns) * pitchY) + copies[i].HeightMm;
+            if (right <= travelX && bottom <= travelY)
+            {
+                continue;
+            }
+
+            var (axis, reach, travel, span) = right > travelX ? ("X", right, travelX, spanX) : ("Y", bottom, travelY, spanY);
+            var which = copies.Count == 1 ? $"the mark \"{copies[i].Text}\"" : $"copy {i + 1} of {copies.Count} (number {first + i}, \"{copies[i].Text}\")";
+            var arrayFix = axis == "X" ? $"fewer {name("columns")} or a smaller {name("pitchMm")}" : $"fewer {name("copies")} (or more {name("columns")}) or a smaller {name("pitchMm")}";
+            var fix = span <= travel
+                ? $"move {name("originMm")} to at most {T(travel - span)} mm in {axis}{(copies.Count == 1 ? string.Empty : $", or give {arrayFix}")}"
+                : $"the array is {T(span)} mm in {axis}, more than the travel: give {arrayFix}";
+            throw new MarkException($"{which} would reach {T(reach)} mm in {axis}, past the stage's travel 0..{T(travel)} mm ({name("originMm")} {T(spec.Origin.X)}, {T(spec.Origin.Y)}): {fix}");
+        }
+    }
+
+    // Millimetres as messages show them: three decimals, in exponent form when huge.
+    private static string T(double mm) => Math.Abs(mm) is >= 0.001 and < 1e6 ? mm.ToString("0.###", CultureInfo.InvariantCulture) : MachineLimits.Text.N(mm);
+
+    private static (double WidthMm, double HeightMm) Largest(IReadOnlyList<(string Text, double WidthMm, double HeightMm)> copies) =>
+        (copies.Max(c => c.WidthMm), copies.Max(c => c.HeightMm));
 
     private static string KindName(CodeKind kind) => kind == CodeKind.Qr ? "QR" : "Data Matrix";
 

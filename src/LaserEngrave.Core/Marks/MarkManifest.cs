@@ -11,7 +11,8 @@ namespace LaserEngrave.Core.Marks;
 /// <param name="FirstNumber">The first copy's number.</param>
 /// <param name="Count">How many numbers the job burns.</param>
 /// <param name="Marks">Every copy's code and text as placed.</param>
-public sealed record MarkManifest(string Counter, int FirstNumber, int Count, IReadOnlyList<PlacedMark> Marks)
+/// <param name="MadeAt">For a job file's marks: when they were made ({date}, {time}), so a resumed run makes them again the same.</param>
+public sealed record MarkManifest(string Counter, int FirstNumber, int Count, IReadOnlyList<PlacedMark> Marks, DateTimeOffset? MadeAt = null)
 {
     private static readonly JsonSerializerOptions Options = new()
     {
@@ -22,11 +23,29 @@ public sealed record MarkManifest(string Counter, int FirstNumber, int Count, IR
 
     public static void Write(string path, MarkManifest manifest) => File.WriteAllText(path, JsonSerializer.Serialize(manifest, Options) + "\n");
 
-    /// <summary>The record beside <paramref name="jobFile"/>, or null when that job is not one of marks.</summary>
+    /// <summary>
+    /// Where a job file's own marks are made when it is read: the folder <c>NAME.marks</c> beside <c>NAME.json</c>, with a
+    /// folder for each mark layer and this record.
+    /// </summary>
+    public static string MarksFolder(string jobFile)
+    {
+        var full = Path.GetFullPath(jobFile);
+        return Path.Combine(Path.GetDirectoryName(full) ?? ".", Path.GetFileNameWithoutExtension(full) + ".marks");
+    }
+
+    /// <summary>
+    /// The record of <paramref name="jobFile"/>'s marks: of the marks in the file itself as last read (in
+    /// <see cref="MarksFolder"/>), or of the marks `mark` made the job of (beside it); null when the job has no marks.
+    /// </summary>
     /// <exception cref="MarkException">The record is there but unreadable.</exception>
     public static MarkManifest? Beside(string jobFile)
     {
-        var path = Path.Combine(Path.GetDirectoryName(Path.GetFullPath(jobFile)) ?? ".", MarkLayout.ManifestFileName);
+        var path = Path.Combine(MarksFolder(jobFile), MarkLayout.ManifestFileName);
+        if (!File.Exists(path))
+        {
+            path = Path.Combine(Path.GetDirectoryName(Path.GetFullPath(jobFile)) ?? ".", MarkLayout.ManifestFileName);
+        }
+
         if (!File.Exists(path))
         {
             return null;
@@ -44,8 +63,19 @@ public sealed record MarkManifest(string Counter, int FirstNumber, int Count, IR
 
     /// <summary>After a run of the job beside it: advances the counter when the run completed, and only then.</summary>
     /// <returns>The counter's next number after a completed run; null otherwise.</returns>
+    /// <remarks>The numbers are the ones the run's log carries when it has them (a resumed run's), else the record's.</remarks>
+    public static int? AfterRun(string jobFile, Jobs.RunOutcome outcome, Logging.RunJobMarks? logged) =>
+        outcome == Jobs.RunOutcome.Completed && logged is { } marks
+            ? new MarkCounter(marks.Counter).Complete(marks.FirstNumber, marks.Count)
+            : AfterRun(jobFile, outcome);
+
+    /// <inheritdoc cref="AfterRun(string, Jobs.RunOutcome, Logging.RunJobMarks?)"/>
     public static int? AfterRun(string jobFile, Jobs.RunOutcome outcome) =>
         outcome == Jobs.RunOutcome.Completed && Beside(jobFile) is { } manifest
             ? new MarkCounter(manifest.Counter).Complete(manifest.FirstNumber, manifest.Count)
             : null;
+
+    /// <summary>The record as a run's log carries it; null when <paramref name="jobFile"/> has no marks.</summary>
+    public static Logging.RunJobMarks? ForLog(string jobFile) =>
+        Beside(jobFile) is { } manifest ? new Logging.RunJobMarks(manifest.Counter, manifest.FirstNumber, manifest.Count, manifest.MadeAt) : null;
 }

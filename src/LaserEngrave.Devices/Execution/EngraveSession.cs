@@ -224,6 +224,20 @@ public sealed class EngraveSession
         Report(null);
     }
 
+    // The numbers the job's marks burn, as the file's reading made them, so the log carries them for the counter and a resume.
+    private static RunJobMarks? MarksOf(string jobFile)
+    {
+        try
+        {
+            return Core.Marks.MarkManifest.ForLog(jobFile);
+        }
+        catch (Exception ex) when (ex is Core.Marks.MarkException or IOException or UnauthorizedAccessException)
+        {
+            // An unreadable record stops no run; the counter is then left as it is and the run's end says so.
+            return null;
+        }
+    }
+
     private static string HashOrMissing(string path)
     {
         try
@@ -278,7 +292,7 @@ public sealed class EngraveSession
             SampleId = Options.SampleId,
             RepeatOf = Options.RepeatOf,
             Resumed = _resumeFrom is not null || Options.ResumeLayers is not null,
-            JobFile = Options.JobFile is { } jobFile ? new RunJobFile(Path.GetFullPath(jobFile), HashOrMissing(jobFile)) : null,
+            JobFile = Options.JobFile is { } jobFile ? new RunJobFile(Path.GetFullPath(jobFile), HashOrMissing(jobFile)) { Marks = MarksOf(jobFile) } : null,
             Passes = Passes,
         };
         // Each layer's estimate as the job runs it: the first homes, every later one starts where the one before ended.

@@ -43,6 +43,23 @@ public sealed class MarkRunTests : IAsyncDisposable
         Assert.True(_run.StartCommand.CanExecute(null), _run.Error ?? _machine.Error);
     }
 
+    [Fact]
+    public async Task Make_CopiesPastTheTravel_OneLineNamesTheCopyAndThePanelsBoxesNothingOpens()
+    {
+        _mark.OriginXMm = 59;
+        _mark.OriginYMm = 59;
+        _mark.Copies = 10;
+        _mark.Columns = 10;
+
+        await _mark.MakeCommand.ExecuteAsync(null);
+
+        Assert.Null(_mark.JobFile);
+        Assert.StartsWith("copy 2 of 10 (number 2", _mark.Error ?? string.Empty, StringComparison.Ordinal);
+        Assert.Contains("past the stage's travel 0..60 mm (origin 59, 59): move origin to at most", _mark.Error, StringComparison.Ordinal);
+        Assert.Contains("or give fewer columns or a smaller pitch", _mark.Error, StringComparison.Ordinal);
+        Assert.DoesNotContain("originMm", _mark.Error, StringComparison.Ordinal);
+    }
+
     [Fact(Timeout = 120_000)]
     public async Task Start_MarksRunToCompletion_CounterAdvancesPastTheirNumbers()
     {
@@ -53,6 +70,29 @@ public sealed class MarkRunTests : IAsyncDisposable
         Assert.Equal(RunState.Completed, _run.State);
         Assert.Equal(3, _service.NextNumber());
         _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Layers!.Select(l => l.Name).SequenceEqual(new[] { "Data Matrix \"S-001\"", "Data Matrix \"S-002\"" })));
+    }
+
+    [Fact(Timeout = 120_000)]
+    public async Task Start_JobFileWithAnImageAndAMarkLayer_BurnsTheNumberedTextAndAdvancesTheCounter()
+    {
+        var image = Path.Combine(_folder.Path, "logo.bmp");
+        File.Copy(TestFiles.Asset("qr-code.bmp"), image);
+        var job = Path.Combine(_folder.Path, "plate.json");
+        File.WriteAllText(job, """
+            { "layers": [
+              { "name": "logo", "source": "logo.bmp", "widthMm": 0.5, "originMm": [5, 5] },
+              { "mark": { "text": "S-{n:000}", "textHeightMm": 0.2, "originMm": [5, 6] } }
+            ] }
+            """);
+
+        Assert.True(_layers.Open(job), _layers.FileError);
+        Assert.Equal(["logo", "text \"S-001\""], _layers.Layers.Select(l => l.Name));
+        await _machine.ConnectCommand.ExecuteAsync(null);
+        await _run.StartCommand.ExecuteAsync(null);
+
+        Assert.Equal(RunState.Completed, _run.State);
+        Assert.Equal(2, _service.NextNumber());
+        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.JobFile!.Marks!.FirstNumber == 1 && r.Layers![1].Name == "text \"S-001\""));
     }
 
     [Fact(Timeout = 120_000)]
