@@ -64,6 +64,35 @@ public sealed class MarkCommandTests : IDisposable
     }
 
     [Fact]
+    public async Task EngraveJob_OfMarksAlreadyBurned_RefusedBeforeAnythingMovesSoNoTwoSamplesShareANumber()
+    {
+        var (exit, _, error) = await CliHarness.RunAsync("mark", "ID{n}", "--code", "datamatrix", "--module-um", "40", "--no-label", "--out", Out, "--counter", Counter);
+        Assert.True(exit == 0, error);
+        // A second job made from the same counter before the first burned: the same number.
+        var other = Path.Combine(_folder, "other");
+        (exit, _, error) = await CliHarness.RunAsync("mark", "ID{n}", "--code", "datamatrix", "--module-um", "40", "--no-label", "--out", other, "--counter", Counter);
+        Assert.True(exit == 0, error);
+        var logs = Path.Combine(_folder, "logs");
+        var job = Path.Combine(Out, MarkLayout.JobFileName);
+        (exit, _, error) = await CliHarness.RunAsync("engrave", "--job", job, "--simulate", "--log-dir", logs);
+        Assert.True(exit == 0, error);
+
+        var again = await CliHarness.RunAsync("engrave", "--job", job, "--simulate", "--log-dir", logs);
+        var twin = await CliHarness.RunAsync("engrave", "--job", Path.Combine(other, MarkLayout.JobFileName), "--simulate", "--log-dir", logs);
+
+        foreach (var (code, output, message) in new[] { again, twin })
+        {
+            Assert.Equal(2, code);
+            Assert.Empty(output);
+            Assert.Contains("its marks carry the numbers 1..1, which a completed run has burned already", message, StringComparison.Ordinal);
+            Assert.Single(message.TrimEnd().Split('\n'));
+        }
+
+        Assert.Single(Directory.GetFiles(logs, "*.json"), f => !f.Contains("wire", StringComparison.Ordinal));
+        Assert.Equal(2, new MarkCounter(Counter).Next());
+    }
+
+    [Fact]
     public async Task Mark_CodeThatDoesNotReadWhereAJobWasMade_RefusesAndLeavesNoJobToBurn()
     {
         var (exit, _, error) = await CliHarness.RunAsync("mark", "S-{n:000}", "--code", "datamatrix", "--module-um", "60", "--out", Out, "--counter", Counter, "--check");

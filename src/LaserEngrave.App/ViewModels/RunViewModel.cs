@@ -496,6 +496,24 @@ public sealed partial class RunViewModel : ObservableObject
             return;
         }
 
+        try
+        {
+            // Marks whose numbers a completed run burned already are not burned again (two samples, one number); a continue is.
+            if (resumeLayers is null && target.Layered is not null && _layers?.UnchangedJobFile is { } marked
+                && Core.Marks.MarkManifest.BurnedAlready(marked) is { } burned)
+            {
+                Error = burned;
+                State = RunState.Failed;
+                return;
+            }
+        }
+        catch (Core.Marks.MarkException ex)
+        {
+            Error = ex.Message;
+            State = RunState.Failed;
+            return;
+        }
+
         var continuedFrom = resumeFrom is null && resumeLayers is null ? null : _log.LastRun?.Path;
         var (job, layered) = (target.Job, target.Layered);
         _startedTicks = _time.GetTimestamp();

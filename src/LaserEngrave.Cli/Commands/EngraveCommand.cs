@@ -82,6 +82,11 @@ internal static class EngraveCommand
 
             var layered = LayerCommands.Prepare(result, jobFile, o.Job, o.Vector, result.GetValue(o.Counter), result.GetValue(o.Sample));
             layeredFile = jobFile;
+            if (Core.Marks.MarkManifest.BurnedAlready(jobFile) is { } burned)
+            {
+                throw new Core.Marks.MarkException(burned);
+            }
+
             warnings = LayerCommands.Warnings(layered);
             job = layered;
         }

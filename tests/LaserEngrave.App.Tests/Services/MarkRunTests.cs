@@ -73,6 +73,21 @@ public sealed class MarkRunTests : IAsyncDisposable
     }
 
     [Fact(Timeout = 120_000)]
+    public async Task Start_AgainAfterTheMarksCompleted_RefusedNamingTheBurnedNumbers()
+    {
+        await MakeAndConnectAsync();
+        await _run.StartCommand.ExecuteAsync(null);
+        Assert.Equal(RunState.Completed, _run.State);
+
+        await _run.StartCommand.ExecuteAsync(null);
+
+        Assert.Equal(RunState.Failed, _run.State);
+        Assert.Contains("its marks carry the numbers 1..2, which a completed run has burned already", _run.Error, StringComparison.Ordinal);
+        _store.Received(1).Save(Arg.Any<RunRecord>());
+        Assert.Equal(3, _service.NextNumber());
+    }
+
+    [Fact(Timeout = 120_000)]
     public async Task Start_JobFileWithAnImageAndAMarkLayer_BurnsTheNumberedTextAndAdvancesTheCounter()
     {
         var image = Path.Combine(_folder.Path, "logo.bmp");
