@@ -27,6 +27,7 @@ public sealed partial class RunViewModel : ObservableObject
     private readonly LayersViewModel? _layers;
     private EngraveSession? _session;
     private IReadOnlyList<PreparedLayer>? _runLayers;
+    private bool _runsDrawing;
     private CancellationTokenSource? _abort;
     private StoppedRun? _stopped;
     private ((int Job, int Layers) PlanVersion, string? Reason) _continueCheck = ((-1, -1), null);
@@ -109,7 +110,7 @@ public sealed partial class RunViewModel : ObservableObject
 
     /// <summary>The latest progress of the run under way (or of the last one).</summary>
     [ObservableProperty]
-    [NotifyPropertyChangedFor(nameof(LayerText))]
+    [NotifyPropertyChangedFor(nameof(LayerText), nameof(ProgressUnit))]
     public partial EngraveProgress? Progress { get; private set; }
 
     /// <summary>
@@ -164,6 +165,11 @@ public sealed partial class RunViewModel : ObservableObject
     public bool RunsLayers => _layers is { IsActive: true };
 
     /// <summary>The layer under way as "layer 2 of 3 “logo”"; null when the run is not one of layers.</summary>
+    /// <summary>What the run counts, as the command line and the log say it: strokes for a drawing (or a drawing's layer), else rows.</summary>
+    public string ProgressUnit => (_runLayers is { Count: > 0 } layers && Progress is { } p && p.Layer >= 1 && p.Layer <= layers.Count
+        ? layers[p.Layer - 1].Drawing is not null
+        : _runsDrawing) ? "stroke" : "row";
+
     public string? LayerText => _runLayers is { Count: > 0 } layers && Progress is { } p && p.Layer >= 1 && p.Layer <= layers.Count
         ? $"layer {p.Layer} of {layers.Count} “{layers[p.Layer - 1].Layer.Name}”"
         : null;
@@ -519,6 +525,7 @@ public sealed partial class RunViewModel : ObservableObject
         _startedTicks = _time.GetTimestamp();
         _estimatedSeconds = layered?.EstimatedSeconds ?? _job.EstimatedSeconds ?? 0;
         _runLayers = layered?.Layers;
+        _runsDrawing = target.Drawing is not null;
 
         // Each pass's engraving with what goes before it, in run order: what is left once a pass is under way.
         _passSeconds = layered is not null

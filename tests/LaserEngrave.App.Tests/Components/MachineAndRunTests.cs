@@ -305,6 +305,32 @@ public sealed class RunBarTests : ComponentTest
     }
 
     [Fact]
+    public async Task Run_OfADrawing_CountsStrokesAsTheCommandLineAndTheLogDo()
+    {
+        Assert.True(Main.Job.LoadImage(TestFiles.Asset(Path.Combine("drawings", "hexagons.dxf"))));
+        await ConnectAsync();
+        var release = new TaskCompletionSource<RunResult>();
+        Runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>()).Returns(async c =>
+        {
+            c.Arg<IProgress<EngraveProgress>>().Report(SessionResults.Report(RunState.Running, 50, 100, 20, 39));
+            return SessionResults.Ended(c.Arg<EngraveSession>(), await release.Task);
+        });
+        var cut = RenderBar();
+
+        cut.Find("#start").Click();
+
+        cut.WaitForAssertion(() => Assert.StartsWith("stroke 20 of 39", cut.Find("#progress-figures").TextContent, StringComparison.Ordinal));
+        release.SetResult(new RunResult
+        {
+            Outcome = RunOutcome.Completed, LaserOffConfirmed = true, StartedAt = DateTimeOffset.UnixEpoch, EndedAt = DateTimeOffset.UnixEpoch,
+            EngravingDuration = TimeSpan.Zero, EstimatedSeconds = 1, LaserOnSeconds = 0, RowsDone = 39, RowsTotal = 39, RunsDone = 9, RunsTotal = 9,
+        });
+        cut.WaitForAssertion(() => Assert.Equal("completed", cut.Find("#status-run").TextContent));
+        var log = Render<LogPanel>(p => p.Add(c => c.Log, Main.Log));
+        Assert.Contains("strokes 39 of 39", log.Find("#last-run").TextContent, StringComparison.Ordinal);
+    }
+
+    [Fact]
     public async Task NewJob_AfterARun_StaleProgressCleared()
     {
         OpenQr();
