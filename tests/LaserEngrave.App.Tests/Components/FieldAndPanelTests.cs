@@ -99,8 +99,12 @@ public sealed class ImagePanelTests : ComponentTest
 
         cut.Find("#samples button[data-path$='qr-code.bmp']").Click();
 
-        cut.WaitForAssertion(() => Assert.Contains("41 × 41 px", cut.Find("#image-meta").TextContent, StringComparison.Ordinal));
-        Assert.Equal("563", cut.Find("#burn-pixels").TextContent);
+        // The image is read, masked and planned off the page's path: its name and its mask's count show when it is ready.
+        cut.WaitForAssertion(() =>
+        {
+            Assert.Contains("41 × 41 px", cut.Find("#image-meta").TextContent, StringComparison.Ordinal);
+            Assert.Equal("563", cut.Find("#burn-pixels").TextContent);
+        });
     }
 
     [Fact]
