@@ -106,6 +106,26 @@ public sealed class JobFileMarksCommandTests : IDisposable
         Assert.Equal(2, new MarkCounter(Counter).Next());
     }
 
+    [Fact]
+    public async Task Engrave_StoppedRunContinuedToItsEndThenContinuedAgain_RefusedSoNoNumberBurnsTwice()
+    {
+        var job = WriteJob();
+        var (exit, _, error) = await CliHarness.RunAsync(
+            "engrave", "--job", job, "--simulate", "--log-dir", Logs, "--counter", Counter, "--fault", "silent:stage:after=600");
+        Assert.True(exit == 1, error);
+        var log = Directory.EnumerateFiles(Logs, "*.json").Single();
+        (exit, _, error) = await CliHarness.RunAsync("engrave", "--from-log", log, "--resume", "--simulate", "--log-dir", Logs);
+        Assert.True(exit == 0, error);
+
+        (exit, var output, error) = await CliHarness.RunAsync("engrave", "--from-log", log, "--resume", "--simulate", "--log-dir", Logs);
+
+        Assert.Equal(2, exit);
+        Assert.Empty(output);
+        Assert.Contains("a completed run burned its marks' numbers 1..1", error, StringComparison.Ordinal);
+        Assert.Equal(2, Directory.EnumerateFiles(Logs, "*.json").Count());
+        Assert.Equal(2, new MarkCounter(Counter).Next());
+    }
+
     [Theory]
     [InlineData("""{ "text": "S", "colour": "red" }""", "job.json: layer 2 \"id\" (mark): unknown field \"colour\"")]
     [InlineData("""{ "text": "S", "code": "aztec" }""", "job.json: layer 2 \"id\" (mark): code \"aztec\" is not qr, datamatrix or none")]

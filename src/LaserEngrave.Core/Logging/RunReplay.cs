@@ -179,9 +179,10 @@ public static class RunReplay
         var jobFile = record.JobFile
             ?? throw new RunLogException("the log does not name its job file (written before resumes of layers were logged); run the job file again with --job");
         CheckUnchanged(jobFile.Path, jobFile.Sha256, "job file");
-        if (!resume && record.Outcome == RunOutcome.Completed && jobFile.Marks is { MadeAt: not null } burned)
+        // A repeat of a completed run, or a second continue of a stopped one, would burn numbers a completed run burned.
+        if (jobFile.Marks is { Count: > 0 } burned && new Marks.MarkCounter(burned.Counter).Burned(burned.FirstNumber, burned.Count))
         {
-            throw new RunLogException($"{jobFile.Path}: that run completed and burned its marks' numbers {burned.FirstNumber}..{burned.FirstNumber + burned.Count - 1}; run the job file again with --job for the next numbers");
+            throw new RunLogException($"{jobFile.Path}: a completed run burned its marks' numbers {burned.FirstNumber}..{burned.FirstNumber + burned.Count - 1}; run the job file again with --job for the next numbers (or laserengrave mark for a new folder), so no two samples carry one number");
         }
 
         IReadOnlyList<JobLayer> layers;

@@ -76,25 +76,18 @@ public sealed record MarkManifest(string Counter, int FirstNumber, int Count, IR
             : null;
 
     /// <summary>
-    /// Why the marks of <paramref name="jobFile"/> must not burn (again): a completed run has already burned their numbers,
-    /// so the counter is past the first of them; null when the job has no marks or they are still to burn. A run that
-    /// continues a stopped one (whose numbers were never counted) is not asked.
+    /// Why the marks of <paramref name="jobFile"/> must not burn (again): a completed run has already burned some of their
+    /// numbers (the counter records each completed run's); null when the job has no marks or they are still to burn.
     /// </summary>
     /// <remarks>Two jobs made from the same counter before either burned carry the same numbers: the second is refused once the first completes.</remarks>
     /// <exception cref="MarkException">The record or the counter is unreadable.</exception>
-    public static string? BurnedAlready(string jobFile)
-    {
-        if (Beside(jobFile) is not { Count: > 0 } manifest)
-        {
-            return null;
-        }
+    public static string? BurnedAlready(string jobFile) =>
+        Beside(jobFile) is { Count: > 0 } manifest ? BurnedAlready(jobFile, manifest.Counter, manifest.FirstNumber, manifest.Count) : null;
 
-        var next = new MarkCounter(manifest.Counter).Next();
-        var last = (long)manifest.FirstNumber + manifest.Count - 1;
-        return next > manifest.FirstNumber
-            ? string.Create(System.Globalization.CultureInfo.InvariantCulture, $"{jobFile}: its marks carry the numbers {manifest.FirstNumber}..{last}, which a completed run has burned already (the counter {manifest.Counter} is at {next}); make the next ones with laserengrave mark into a new folder (or open the job file of marks again), so no two samples carry one number")
+    private static string? BurnedAlready(string what, string counter, int first, int count) =>
+        new MarkCounter(counter).Burned(first, count)
+            ? string.Create(System.Globalization.CultureInfo.InvariantCulture, $"{what}: its marks carry the numbers {first}..{(long)first + count - 1}, which a completed run has burned already (the counter {counter} records them); make the next ones with laserengrave mark into a new folder (or open the job file of marks again), so no two samples carry one number")
             : null;
-    }
 
     /// <summary>The record as a run's log carries it; null when <paramref name="jobFile"/> has no marks.</summary>
     public static Logging.RunJobMarks? ForLog(string jobFile) =>

@@ -26,6 +26,35 @@ public sealed class MarkCounterTests : IDisposable
     }
 
     [Fact]
+    public void Burned_CompletedRunsOnly_ANewBatchStartIsNotABurn()
+    {
+        Counter.Complete(1, 10);
+        Counter.Complete(11, 5);
+        Counter.Set(100);
+
+        Assert.True(Counter.Burned(1, 1));
+        Assert.True(Counter.Burned(15, 3));
+        Assert.False(Counter.Burned(16, 84));
+        Assert.False(Counter.Burned(100, 1));
+        Assert.Equal(100, Counter.Next());
+        Assert.Contains("\"burned\": [[1, 15]]", File.ReadAllText(Counter.Path), StringComparison.Ordinal);
+    }
+
+    [Theory]
+    [InlineData("{ \"next\": 3, \"burned\": 7 }")]
+    [InlineData("{ \"next\": 3, \"burned\": [[5, 2]] }")]
+    [InlineData("{ \"next\": 3, \"burned\": [[1]] }")]
+    public void Burned_BadList_OneLineNamingTheFile(string text)
+    {
+        Directory.CreateDirectory(Path.GetDirectoryName(Counter.Path)!);
+        File.WriteAllText(Counter.Path, text);
+
+        var error = Assert.Throws<MarkException>(() => Counter.Burned(1, 1));
+
+        Assert.Equal($"{Counter.Path}: \"burned\" must be a list of [first, last] pairs", error.Message);
+    }
+
+    [Fact]
     public void Complete_AnOlderRunCompletingLate_NeverMovesTheCounterBack()
     {
         Counter.Complete(1, 10);
