@@ -41,7 +41,7 @@ public sealed class MarkCounter
         try
         {
             using var document = JsonDocument.Parse(File.ReadAllText(Path));
-            return document.RootElement.TryGetProperty("next", out var next) && next.TryGetInt32(out var n) && n is >= 1 and <= MaxNumber
+            return document.RootElement.ValueKind == JsonValueKind.Object && document.RootElement.TryGetProperty("next", out var next) && next.TryGetInt32(out var n) && n is >= 1 and <= MaxNumber
                 ? n
                 : throw new MarkException($"{Path}: \"next\" must be a whole number 1..{MaxNumber}");
         }
@@ -65,12 +65,17 @@ public sealed class MarkCounter
     /// <summary>Sets the next number (the technician's own start, e.g. after a new batch of wafers).</summary>
     public void Set(int next)
     {
+        Check(next);
+        Write(next);
+    }
+
+    /// <summary>Refuses a next number out of 1..<see cref="MaxNumber"/> without writing anything (so a refused job leaves the counter).</summary>
+    public static void Check(int next)
+    {
         if (next is < 1 or > MaxNumber)
         {
             throw new MarkException(string.Create(CultureInfo.InvariantCulture, $"counter {next} must be 1..{MaxNumber}"));
         }
-
-        Write(next);
     }
 
     private void Write(int next)
