@@ -47,7 +47,7 @@ public sealed class MarkCounter
         }
         catch (JsonException ex)
         {
-            throw new MarkException($"{Path}: not valid JSON ({ex.Message})", ex);
+            throw new MarkException($"{Path}: {IO.JsonProblem.Describe(ex, "sample counter")}", ex);
         }
     }
 

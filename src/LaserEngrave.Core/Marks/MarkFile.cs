@@ -38,7 +38,7 @@ public static class MarkFile
         }
         catch (JsonException ex)
         {
-            throw new MarkException($"{path}: not valid JSON ({ex.Message})", ex);
+            throw new MarkException($"{path}: {IO.JsonProblem.Describe(ex, "marks file")}", ex);
         }
     }
 

@@ -21,4 +21,16 @@ public sealed class MarkFileTests : IDisposable
 
         Assert.Contains($"\"{field}\" must be [x, y] in mm", ex.Message, StringComparison.Ordinal);
     }
+
+    [Fact]
+    public void Load_TruncatedFile_IsRefusedInTheFilesWordsNotTheParsers()
+    {
+        var path = Path.Combine(_folder, "marks.json");
+        File.WriteAllText(path, "{ \"text\": \"S\",\n  \"copies\": ");
+
+        var ex = Assert.Throws<MarkException>(() => MarkFile.Load(path));
+
+        Assert.StartsWith($"{path}: not a marks file: not valid JSON", ex.Message, StringComparison.Ordinal);
+        Assert.DoesNotContain("BytePositionInLine", ex.Message, StringComparison.Ordinal);
+    }
 }
