@@ -172,4 +172,17 @@ public sealed class MarkCommandTests : IDisposable
         Assert.Equal(string.Empty, output);
         Assert.False(File.Exists(Path.Combine(Out, MarkLayout.JobFileName)), "no job was written");
     }
+
+    [Fact]
+    public async Task Mark_StartWithARefusedMark_LeavesTheCounterUnwritten()
+    {
+        var file = Path.Combine(_folder, "a-file");
+        File.WriteAllText(file, "x");
+
+        var (exit, _, error) = await CliHarness.RunAsync("mark", "S-{n}", "--start", "7", "--out", file, "--counter", Counter);
+
+        Assert.True(exit == 2, $"exit {exit}: {error}");
+        Assert.Contains("is a file", error, StringComparison.Ordinal);
+        Assert.False(File.Exists(Counter), "the counter was written for a refused mark");
+    }
 }

@@ -57,7 +57,7 @@ internal static class MarkCommand
             MarkSpec spec;
             if (result.GetValue(marks) is { } marksFile)
             {
-                if (result.GetValue(text) is not null || specOptions.FirstOrDefault(o => OptionChecks.IsGiven(result, o)) is { } other && other is not null)
+                if (result.GetValue(text) is not null || specOptions.Any(o => OptionChecks.IsGiven(result, o)))
                 {
                     throw new UsageException($"--marks {marksFile}: give the mark in the file or on the command line, not both");
                 }
@@ -102,9 +102,11 @@ internal static class MarkCommand
 
             var machine = result.GetValue(profile) is { } profilePath ? MachineProfile.Load(profilePath) : MachineProfile.Default;
             var counterFile = new MarkCounter(result.GetValue(counter) ?? DefaultCounterPath());
-            if (result.GetValue(start) is { } first)
+            // --start is written only with the job: a refused mark leaves the counter as it was.
+            var startAt = result.GetValue(start);
+            if (startAt is { } first)
             {
-                counterFile.Set(first);
+                MarkCounter.Check(first);
             }
 
             var folder = result.GetValue(output)!;
@@ -124,7 +126,7 @@ internal static class MarkCommand
             try
             {
                 // A mark from the command line is refused in its options' names; one from a marks file in the file's.
-                layout = MarkLayout.Make(spec, counterFile.Next(), context, machine, folder, marksPath is null ? OptionName : null);
+                layout = MarkLayout.Make(spec, startAt ?? counterFile.Next(), context, machine, folder, marksPath is null ? OptionName : null);
             }
             catch (MarkException ex) when (marksPath is not null)
             {
@@ -156,6 +158,11 @@ internal static class MarkCommand
             }
 
             var unreadable = verdicts.FirstOrDefault(v => !v.Reads);
+            if (unreadable is null && startAt is { } startNumber)
+            {
+                counterFile.Set(startNumber);
+            }
+
             var jobFile = unreadable is null ? layout.Save(folder, counterFile.Path) : null;
             var summary = new MarkSummary(
                 jobFile,

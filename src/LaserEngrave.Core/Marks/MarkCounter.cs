@@ -69,7 +69,7 @@ public sealed class MarkCounter
         }
         catch (JsonException ex)
         {
-            throw new MarkException($"{Path}: not valid JSON ({ex.Message})", ex);
+            throw new MarkException($"{Path}: {IO.JsonProblem.Describe(ex, "sample counter")}", ex);
         }
     }
 
@@ -93,12 +93,17 @@ public sealed class MarkCounter
     /// <summary>Sets the next number (the technician's own start, e.g. after a new batch of wafers).</summary>
     public void Set(int next)
     {
+        Check(next);
+        Write(next, Read().Burned);
+    }
+
+    /// <summary>Refuses a next number out of 1..<see cref="MaxNumber"/> without writing anything (so a refused job leaves the counter).</summary>
+    public static void Check(int next)
+    {
         if (next is < 1 or > MaxNumber)
         {
             throw new MarkException(string.Create(CultureInfo.InvariantCulture, $"counter {next} must be 1..{MaxNumber}"));
         }
-
-        Write(next, Read().Burned);
     }
 
     private void Write(int next, List<(int First, int Last)> burned)

@@ -38,7 +38,7 @@ public static class MarkFile
         }
         catch (JsonException ex)
         {
-            throw new MarkException($"{path}: not valid JSON ({ex.Message})", ex);
+            throw new MarkException($"{path}: {IO.JsonProblem.Describe(ex, "marks file")}", ex);
         }
     }
 
@@ -138,7 +138,7 @@ public static class MarkFile
             return null;
         }
 
-        return value.ValueKind == JsonValueKind.Array && value.GetArrayLength() == 2 && value.EnumerateArray().All(v => v.ValueKind == JsonValueKind.Number)
+        return value.ValueKind == JsonValueKind.Array && value.GetArrayLength() == 2 && value.EnumerateArray().All(v => v.ValueKind == JsonValueKind.Number && double.IsFinite(v.GetDouble()))
             ? (value[0].GetDouble(), value[1].GetDouble())
             : throw new MarkException($"{where}: \"{name}\" must be [x, y] in mm");
     }

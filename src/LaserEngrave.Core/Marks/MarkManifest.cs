@@ -57,7 +57,7 @@ public sealed record MarkManifest(string Counter, int FirstNumber, int Count, IR
         }
         catch (JsonException ex)
         {
-            throw new MarkException($"{path}: not a marks record ({ex.Message})", ex);
+            throw new MarkException($"{path}: {IO.JsonProblem.Describe(ex, "marks record")}", ex);
         }
     }
 

@@ -74,6 +74,20 @@ public sealed class MarkCounterTests : IDisposable
     }
 
     [Theory]
+    [InlineData("[5]")]
+    [InlineData("7")]
+    public void Next_FileThatIsNotAnObject_IsRefusedNamingIt(string text)
+    {
+        Directory.CreateDirectory(Path.GetDirectoryName(Counter.Path)!);
+        File.WriteAllText(Counter.Path, text);
+
+        var ex = Assert.Throws<MarkException>(() => Counter.Next());
+
+        Assert.Contains(MarkCounter.FileName, ex.Message);
+        Assert.Contains("\"next\" must be a whole number", ex.Message);
+    }
+
+    [Theory]
     [InlineData(RunOutcome.Completed, 11)]
     [InlineData(RunOutcome.Aborted, 1)]
     [InlineData(RunOutcome.Failed, 1)]
