@@ -132,6 +132,11 @@ public sealed partial class MarkViewModel : ObservableObject
         {
             Error = ex.Message;
         }
+        catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
+        {
+            // A full disk or a read-only data folder: said in the panel, not left to end the page's connection.
+            Error = $"the marks could not be saved: {ex.Message}";
+        }
     }
 
     /// <summary>Reads the counter again (a run of marks that completed has advanced it).</summary>

@@ -69,6 +69,19 @@ public sealed class MarkPanelTests : ComponentTest
     }
 
     [Fact]
+    public void Make_DataFolderCannotBeWritten_SaidInThePanel()
+    {
+        var service = Substitute.For<IMarkService>();
+        service.MakeAsync(Arg.Any<MarkSpec>(), Arg.Any<string?>(), true, Arg.Any<CancellationToken>())
+            .Returns<Task<MarkResult>>(_ => throw new IOException("No space left on device"));
+        var cut = RenderPanel(new MarkViewModel(service, _ => true));
+
+        cut.Find("#mark-make").Click();
+
+        cut.WaitForAssertion(() => Assert.Equal("the marks could not be saved: No space left on device", cut.Find("#mark-error").TextContent));
+    }
+
+    [Fact]
     public void Make_CopiesNotWhole_IsRefusedInOneLine()
     {
         var cut = RenderPanel();
