@@ -8,12 +8,18 @@ namespace LaserEngrave.Core.Jobs;
 /// <summary>A job of several layers, each an image or a drawing with its own process, passes and mode, run in order.</summary>
 public sealed class LayeredJob
 {
-    private LayeredJob(IReadOnlyList<PreparedLayer> layers) => Layers = layers;
+    private LayeredJob(IReadOnlyList<PreparedLayer> layers)
+    {
+        Layers = layers;
+
+        // The layers never change and the app reads this on every render: work it out once.
+        EstimatedSeconds = PreparedLayer.RunSeconds(layers).Sum();
+    }
 
     public IReadOnlyList<PreparedLayer> Layers { get; }
 
     /// <summary>The whole run: every layer's passes with their preflight and positioning, s.</summary>
-    public double EstimatedSeconds => PreparedLayer.RunSeconds(Layers).Sum();
+    public double EstimatedSeconds { get; }
 
     /// <summary>The engraving part: every layer's engraving times its passes, s.</summary>
     public double EstimatedEngravingSeconds => Layers.Sum(l => l.EngravingSeconds * l.Layer.Passes);
@@ -190,7 +196,8 @@ public sealed record PreparedLayer(JobLayer Layer, PreparedJob? Image, PreparedD
         var first = Ends!.Value.First;
         if (Image is { } image)
         {
-            var timing = TimedSwitching.For(image.Spec.Process, image.Spec.Profile, image.Plan.Geometry.MicrostepUm);
+            // The plan's own model when it has one (a dot plan keeps none): the same inputs give the same model.
+            var timing = image.Plan.Timing ?? TimedSwitching.For(image.Spec.Process, image.Spec.Profile, image.Plan.Geometry.MicrostepUm);
             var statistics = image.Statistics;
             return timing.PreparationSeconds(first.X, first.Y, home: false, from: from)
                 + (Math.Max(1, Layer.Passes) * statistics.EngravingSeconds) + (Math.Max(0, Layer.Passes - 1) * statistics.PassSetupSeconds);

@@ -50,16 +50,7 @@ public static class ResumedBurn
             }
         }
 
-        for (var y = 0; y < before.Height; y++)
-        {
-            var b = before.Row(y);
-            var a = after.ReadRow(y);
-            for (var w = 0; w < b.Length; w++)
-            {
-                b[w] &= ~a[w];
-            }
-        }
-
+        Clear(before, after);
         return before;
     }
 
@@ -68,17 +59,22 @@ public static class ResumedBurn
     {
         var expected = job.Mask.Clone();
         var burned = BurnedBefore(job, stop);
-        for (var y = 0; y < expected.Height; y++)
+        Clear(expected, burned);
+        return expected;
+    }
+
+    // Clears in `mask` every pixel set in `bits` (masks of the same size).
+    private static void Clear(BitMask mask, BitMask bits)
+    {
+        for (var y = 0; y < mask.Height; y++)
         {
-            var e = expected.Row(y);
-            var b = burned.ReadRow(y);
-            for (var w = 0; w < e.Length; w++)
+            var m = mask.Row(y);
+            var b = bits.ReadRow(y);
+            for (var w = 0; w < m.Length; w++)
             {
-                e[w] &= ~b[w];
+                m[w] &= ~b[w];
             }
         }
-
-        return expected;
     }
 
     // The columns a burn covers between two X positions along it (either way round).

@@ -71,7 +71,7 @@ public sealed class SweepPlan
                 var (start, stop) = Ends(job);
                 var statistics = job.Statistics;
                 total += end is { } from
-                    ? TimedSwitching.For(job.Spec.Process, job.Spec.Profile, job.Plan.Geometry.MicrostepUm).PreparationSeconds(start.X, start.Y, home: false, from: from)
+                    ? (job.Plan.Timing ?? TimedSwitching.For(job.Spec.Process, job.Spec.Profile, job.Plan.Geometry.MicrostepUm)).PreparationSeconds(start.X, start.Y, home: false, from: from)
                     : statistics.PreparationSeconds;
                 total += (job.Spec.Passes * statistics.EngravingSeconds) + ((job.Spec.Passes - 1) * statistics.PassSetupSeconds);
                 end = stop;
@@ -222,6 +222,12 @@ public sealed class SweepPlan
     // Where a job's plan starts and ends on the stage, microsteps (its first and last dot in dot mode).
     private static ((long X, long Y) Start, (long X, long Y) End) Ends(PreparedJob job)
     {
+        // The plan's statistics hold its ends already; the app reads the estimate on every render, so no walk of the plan.
+        if (job.Statistics.Ends is { } ends)
+        {
+            return ends;
+        }
+
         if (job.Dots is { } dots)
         {
             var first = dots.Dots().First();

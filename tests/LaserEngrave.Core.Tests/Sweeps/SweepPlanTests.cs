@@ -57,6 +57,34 @@ public class SweepPlanTests
             9);
     }
 
+    [Theory]
+    [InlineData(PlanMode.Raster)]
+    [InlineData(PlanMode.Dots)]
+    public void Statistics_Ends_AreThePlansFirstAndLastPositions(PlanMode mode)
+    {
+        // The sweep's estimate chains cells from these ends without walking the plans again.
+        var plan = SweepPlan.Build(Spec("speed=1,2") with
+        {
+            Pattern = mode == PlanMode.Dots ? SweepPattern.Dots : SweepPattern.Lines,
+            Process = ProcessSettings.Default with { Mode = mode },
+        });
+
+        foreach (var job in plan.Jobs())
+        {
+            var ends = Assert.NotNull(job.Statistics.Ends);
+            if (job.Dots is { } dots)
+            {
+                Assert.Equal((dots.Dots().First().X, dots.Dots().First().Y), ends.First);
+                Assert.Equal((dots.Dots().Last().X, dots.Dots().Last().Y), ends.Last);
+            }
+            else
+            {
+                Assert.Equal((job.Plan.Moves().First().X0, job.Plan.Moves().First().Y0), ends.First);
+                Assert.Equal((job.Plan.Moves().Last().X1, job.Plan.Moves().Last().Y1), ends.Last);
+            }
+        }
+    }
+
     [Fact]
     public void Build_PulsesPerDotInDotMode_DotArrayCellsFireTheirCount()
     {
