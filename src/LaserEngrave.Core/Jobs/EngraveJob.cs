@@ -41,7 +41,7 @@ public abstract class EngraveJob
     public bool FitsTravel => Parts.All(p => p.FitsTravel);
 
     /// <summary>The whole run, every part's passes with their preflight and positioning, s.</summary>
-    public double EstimatedSeconds => PreparedLayer.RunSeconds(Parts).Sum();
+    public virtual double EstimatedSeconds => PreparedLayer.RunSeconds(Parts).Sum();
 
     /// <summary>The job of one prepared image: a raster, or dots when its process is in dot mode.</summary>
     public static EngraveJob Of(PreparedJob job)
@@ -124,6 +124,9 @@ public sealed class LayersJob : EngraveJob
     }
 
     public LayeredJob Layered { get; }
+
+    /// <summary>The job of layers' own estimate (one homing, each later layer from where the one before ended).</summary>
+    public override double EstimatedSeconds => Layered.EstimatedSeconds;
 }
 
 /// <summary>A test grid: one raster or dot job per cell (the labels' first), each run and logged on its own.</summary>
@@ -137,6 +140,9 @@ public sealed class SweepJob : EngraveJob
     }
 
     public SweepPlan Plan { get; }
+
+    /// <summary>The sweep's own estimate, focus moves between cells included.</summary>
+    public override double EstimatedSeconds => Plan.EstimatedSeconds;
 
     /// <summary>The jobs of the labels (when there are) and of every cell, in the order they burn.</summary>
     public IReadOnlyList<EngraveJob> Cells { get; }
