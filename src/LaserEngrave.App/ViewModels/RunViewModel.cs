@@ -164,12 +164,12 @@ public sealed partial class RunViewModel : ObservableObject
     /// <summary>Whether Start runs the job of layers (the Layers view has some) rather than the single job.</summary>
     public bool RunsLayers => _layers is { IsActive: true };
 
-    /// <summary>The layer under way as "layer 2 of 3 “logo”"; null when the run is not one of layers.</summary>
     /// <summary>What the run counts, as the command line and the log say it: strokes for a drawing (or a drawing's layer), else rows.</summary>
     public string ProgressUnit => (_runLayers is { Count: > 0 } layers && Progress is { } p && p.Layer >= 1 && p.Layer <= layers.Count
         ? layers[p.Layer - 1].Drawing is not null
         : _runsDrawing) ? "stroke" : "row";
 
+    /// <summary>The layer under way as "layer 2 of 3 “logo”"; null when the run is not one of layers.</summary>
     public string? LayerText => _runLayers is { Count: > 0 } layers && Progress is { } p && p.Layer >= 1 && p.Layer <= layers.Count
         ? $"layer {p.Layer} of {layers.Count} “{layers[p.Layer - 1].Layer.Name}”"
         : null;
