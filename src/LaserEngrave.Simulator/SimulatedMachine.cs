@@ -1,13 +1,12 @@
 using LaserEngrave.Core.Geometry;
-using LaserEngrave.Devices.Machine;
-using LaserEngrave.Devices.Scheduling;
-using LaserEngrave.Devices.Serial;
 using LaserEngrave.Simulator.Burn;
 using LaserEngrave.Simulator.Faults;
 using LaserEngrave.Simulator.LaserGate;
 using LaserEngrave.Simulator.Serial;
 using LaserEngrave.Simulator.Timing;
 using LaserEngrave.Simulator.Zaber;
+using LaserEngrave.Wire.Scheduling;
+using LaserEngrave.Wire.Serial;
 
 namespace LaserEngrave.Simulator;
 
@@ -15,7 +14,7 @@ namespace LaserEngrave.Simulator;
 /// <remarks>
 /// In-process (<see cref="CreateInProcess"/>) the host talks to <see cref="StageLink"/> and <see cref="LaserLink"/>; in
 /// virtual time (the default) host and devices run on one <see cref="SimulationLoop"/>, and every operation of the host
-/// goes through <see cref="RunAsync{T}"/> (or <see cref="Devices.Scheduling.TaskRunner.For"/> with <see cref="TimeProvider"/>),
+/// goes through <see cref="RunAsync{T}"/> (or <see cref="Wire.Scheduling.TaskRunner.For"/> with <see cref="TimeProvider"/>),
 /// so the run is deterministic and as fast as the machine can compute it. With <see cref="SimulatorOptions.RealTime"/>
 /// it runs on the wall clock. Attached (<see cref="Attach"/>) it serves the device ends of real ports or ptys for a host
 /// in another process, always on the wall clock. Runs until disposed.
@@ -138,13 +137,6 @@ public sealed class SimulatedMachine : IAsyncDisposable
     public static SimulatedMachine CreateInProcess(MachineProfile profile, SimulatorOptions? options = null)
     {
         return new SimulatedMachine(profile, options ?? new SimulatorOptions(), inProcess: true);
-    }
-
-    /// <summary>A machine on in-memory links with the host's stage and gate already on them; the session's <see cref="MachineSession.Owner"/> is the machine, disposed with it.</summary>
-    public static MachineSession OpenInProcess(MachineProfile profile, SimulatorOptions? options = null)
-    {
-        var machine = CreateInProcess(profile, options);
-        return MachineSession.OverLinks(machine.StageLink, machine.LaserLink, profile, machine.TimeProvider, "simulator", owner: machine);
     }
 
     /// <summary>A machine serving the device ends of two links, e.g. ptys made by socat or real serial ports.</summary>

@@ -1,7 +1,7 @@
 using System.Text;
 using LaserEngrave.Core.Geometry;
-using LaserEngrave.Devices.Serial;
-using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Wire.Serial;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Simulator.Tests;
 

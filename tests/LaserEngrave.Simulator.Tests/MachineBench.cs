@@ -1,8 +1,8 @@
 using System.Text;
 using System.Threading.Channels;
 using LaserEngrave.Core.Geometry;
-using LaserEngrave.Devices.Serial;
-using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Wire.Serial;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Simulator.Tests;
 

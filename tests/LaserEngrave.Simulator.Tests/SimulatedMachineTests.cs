@@ -1,8 +1,8 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
-using LaserEngrave.Devices.Zaber;
 using LaserEngrave.Simulator.Burn;
 using LaserEngrave.Simulator.Timing;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Simulator.Tests;
 
@@ -100,25 +100,10 @@ public class SimulatedMachineTests
     }
 
     [Fact(Timeout = 20_000)]
-    public async Task OpenInProcess_Session_TalksToTheMachineItOwnsAndClosesIt()
-    {
-        var ct = TestContext.Current.CancellationToken;
-        var session = SimulatedMachine.OpenInProcess(MachineProfile.Default);
-        var machine = Assert.IsType<SimulatedMachine>(session.Owner);
-
-        var identity = await session.RunAsync(() => session.Stage.X.IdentifyAsync(ct));
-        await session.DisposeAsync();
-
-        Assert.Equal(1, identity.DeviceNumber);
-        Assert.Same(machine.TimeProvider, session.TimeProvider);
-        await machine.StageServed.WaitAsync(TimeSpan.FromSeconds(10), ct);
-    }
-
-    [Fact(Timeout = 20_000)]
     public async Task Attach_HostEndLinks_AreNotAvailable()
     {
-        var (_, stage) = LaserEngrave.Devices.Serial.InMemorySerialLink.CreatePair();
-        var (_, laser) = LaserEngrave.Devices.Serial.InMemorySerialLink.CreatePair();
+        var (_, stage) = LaserEngrave.Wire.Serial.InMemorySerialLink.CreatePair();
+        var (_, laser) = LaserEngrave.Wire.Serial.InMemorySerialLink.CreatePair();
         await using var machine = SimulatedMachine.Attach(stage, laser, MachineProfile.Default);
 
         Assert.Throws<InvalidOperationException>(() => machine.StageLink);
@@ -151,7 +136,7 @@ public class SimulatedMachineTests
         Assert.Equal(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 5000), position);
     }
 
-    private static async Task<ZaberFrame> ReadFrameAsync(LaserEngrave.Devices.Serial.ISerialLink link, CancellationToken ct)
+    private static async Task<ZaberFrame> ReadFrameAsync(LaserEngrave.Wire.Serial.ISerialLink link, CancellationToken ct)
     {
         var buffer = new byte[6];
         var read = 0;

@@ -1,6 +1,6 @@
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Logging;
 using LaserEngrave.Devices.Abstractions;
-using LaserEngrave.Devices.Execution;
 
 namespace LaserEngrave.App.Services;
 

@@ -1,8 +1,9 @@
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Logging;
 using LaserEngrave.Devices.Abstractions;
-using LaserEngrave.Devices.Execution;
 using LaserEngrave.Devices.Machine;
 using LaserEngrave.Devices.Serial;
+using LaserEngrave.Machines;
 using LaserEngrave.Simulator;
 using LaserEngrave.Simulator.Burn;
 
@@ -26,7 +27,7 @@ public sealed class MachineConnectionFactory(SimulatorOptions? simulatorOptions 
         {
             var description = _simulatorOptions.RealTime ? "simulator (in-process, real time)"
                 : _simulatorOptions.Paced ? "simulator (in-process, at the machine's pace)" : "simulator (in-process, virtual time)";
-            return Task.FromResult<IMachineConnection>(new Connection(description, profile, SimulatedMachine.OpenInProcess(profile, _simulatorOptions)));
+            return Task.FromResult<IMachineConnection>(new Connection(description, profile, MachineFactory.OpenTwin(profile, _simulatorOptions)));
         }
 
         var stagePort = Required(choice.StagePort, "stage");

@@ -2,6 +2,7 @@ using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Marks;
 using LaserEngrave.Core.Planning;
+using LaserEngrave.Machines.Marks;
 using LaserEngrave.Simulator.Marks;
 
 namespace LaserEngrave.App.Services;

@@ -1,9 +1,9 @@
-using LaserEngrave.Devices.Scheduling;
 using CommunityToolkit.Mvvm.ComponentModel;
 using CommunityToolkit.Mvvm.Input;
 using LaserEngrave.App.Services;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Wire.Scheduling;
 
 namespace LaserEngrave.App.ViewModels;
 

@@ -4,7 +4,7 @@ using CommunityToolkit.Mvvm.Input;
 using LaserEngrave.App.Services;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Execution;
-using LaserEngrave.Devices.Scheduling;
+using LaserEngrave.Wire.Scheduling;
 
 namespace LaserEngrave.App.ViewModels;
 

@@ -9,9 +9,9 @@ using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Execution;
 using LaserEngrave.Devices.Machine;
-using LaserEngrave.Devices.Serial;
 using LaserEngrave.Simulator;
 using LaserEngrave.Simulator.Burn;
+using LaserEngrave.Wire.Serial;
 
 namespace LaserEngrave.Cli.Commands;
 

@@ -2,9 +2,10 @@ using System.CommandLine;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Machine;
-using LaserEngrave.Devices.Serial;
+using LaserEngrave.Machines;
 using LaserEngrave.Simulator;
 using LaserEngrave.Simulator.Faults;
+using LaserEngrave.Wire.Serial;
 
 namespace LaserEngrave.Cli.Commands;
 
@@ -152,7 +153,7 @@ internal sealed class MachineOptions
         }
 
         return result.GetValue(Simulate)
-            ? SimulatedMachine.OpenInProcess(profile, SimulatorOptionsFor(result))
+            ? MachineFactory.OpenTwin(profile, SimulatorOptionsFor(result))
             : MachineSession.OpenPorts(result.GetValue(StagePort)!, result.GetValue(LaserPort)!, profile, recorder);
     }
 }

@@ -5,6 +5,7 @@ using LaserEngrave.Core.Input;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Marks;
 using LaserEngrave.Core.Planning;
+using LaserEngrave.Machines.Marks;
 using LaserEngrave.Simulator.Marks;
 
 namespace LaserEngrave.Cli.Commands;

@@ -3,11 +3,11 @@ using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
-using LaserEngrave.Devices.Serial;
 using LaserEngrave.Simulator;
 using LaserEngrave.Simulator.Burn;
 using LaserEngrave.Simulator.Replay;
 using LaserEngrave.Simulator.Timing;
+using LaserEngrave.Wire.Serial;
 
 namespace LaserEngrave.Cli.Commands;
 

@@ -5,6 +5,7 @@ using LaserEngrave.Devices.Scheduling;
 using LaserEngrave.Devices.Serial;
 using LaserEngrave.Simulator;
 using LaserEngrave.Simulator.Faults;
+using LaserEngrave.Wire.Serial;
 
 namespace LaserEngrave.Cli.Commands;
 

@@ -1,3 +1,4 @@
+using LaserEngrave.Core.Logging;
 using LaserEngrave.Devices.Abstractions;
 
 namespace LaserEngrave.Devices.Execution;

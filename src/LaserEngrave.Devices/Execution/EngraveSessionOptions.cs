@@ -1,5 +1,6 @@
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
+using LaserEngrave.Wire.Serial;
 
 namespace LaserEngrave.Devices.Execution;
 
@@ -36,7 +37,7 @@ public sealed record EngraveSessionOptions
     public IRunLogWriter? Log { get; init; }
 
     /// <summary>The flight recorder of the run's links (real ports); finished and named in the log when the run ends.</summary>
-    public Serial.WireRecorder? Recorder { get; init; }
+    public WireRecorder? Recorder { get; init; }
 
     /// <summary>The image's hash for the log when the job's mask was made in memory (a sweep's cell); null: the image file's SHA-256.</summary>
     public string? ImageSha256 { get; init; }

@@ -1,5 +1,5 @@
 using LaserEngrave.Devices.Abstractions;
-using LaserEngrave.Devices.Scheduling;
+using LaserEngrave.Wire.Scheduling;
 
 namespace LaserEngrave.Devices.Execution;
 

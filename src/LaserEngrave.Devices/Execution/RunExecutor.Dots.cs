@@ -1,5 +1,5 @@
 using LaserEngrave.Core.Planning;
-using LaserEngrave.Devices.Scheduling;
+using LaserEngrave.Wire.Scheduling;
 
 namespace LaserEngrave.Devices.Execution;
 

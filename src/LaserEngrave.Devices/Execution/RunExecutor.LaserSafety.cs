@@ -6,8 +6,8 @@ using LaserEngrave.Core.Motion;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Core.Vectors;
 using LaserEngrave.Devices.Abstractions;
-using LaserEngrave.Devices.Scheduling;
 using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Wire.Scheduling;
 
 namespace LaserEngrave.Devices.Execution;
 

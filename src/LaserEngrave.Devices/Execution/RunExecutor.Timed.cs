@@ -2,8 +2,8 @@ using System.Globalization;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Abstractions;
-using LaserEngrave.Devices.Scheduling;
 using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Wire.Scheduling;
 
 namespace LaserEngrave.Devices.Execution;
 

@@ -9,6 +9,7 @@ using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Zaber;
 
 using LaserEngrave.Devices.Scheduling;
+using LaserEngrave.Wire.Scheduling;
 
 namespace LaserEngrave.Devices.Execution;
 

@@ -2,7 +2,7 @@ using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Sweeps;
 using LaserEngrave.Devices.Abstractions;
-using LaserEngrave.Devices.Scheduling;
+using LaserEngrave.Wire.Scheduling;
 
 namespace LaserEngrave.Devices.Execution;
 

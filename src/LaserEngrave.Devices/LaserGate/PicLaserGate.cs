@@ -4,6 +4,7 @@ using LaserEngrave.Devices.Scheduling;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Serial;
+using LaserEngrave.Wire.Serial;
 
 namespace LaserEngrave.Devices.LaserGate;
 

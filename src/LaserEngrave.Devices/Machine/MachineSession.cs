@@ -1,8 +1,9 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.LaserGate;
-using LaserEngrave.Devices.Scheduling;
 using LaserEngrave.Devices.Serial;
 using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Wire.Scheduling;
+using LaserEngrave.Wire.Serial;
 
 namespace LaserEngrave.Devices.Machine;
 

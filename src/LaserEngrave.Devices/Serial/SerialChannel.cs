@@ -1,5 +1,7 @@
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Scheduling;
+using LaserEngrave.Wire.Scheduling;
+using LaserEngrave.Wire.Serial;
 
 namespace LaserEngrave.Devices.Serial;
 

@@ -1,6 +1,7 @@
 using System.Diagnostics;
 using System.IO.Ports;
 using System.Threading.Channels;
+using LaserEngrave.Wire.Serial;
 using Microsoft.Win32.SafeHandles;
 
 namespace LaserEngrave.Devices.Serial;

@@ -1,6 +1,7 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Motion;
 using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Devices.Zaber;
 

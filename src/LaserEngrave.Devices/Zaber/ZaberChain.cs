@@ -1,6 +1,7 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Serial;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Devices.Zaber;
 

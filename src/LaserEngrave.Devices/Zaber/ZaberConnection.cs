@@ -3,6 +3,9 @@ using System.Threading.Channels;
 using LaserEngrave.Devices.Scheduling;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Serial;
+using LaserEngrave.Wire.Scheduling;
+using LaserEngrave.Wire.Serial;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Devices.Zaber;
 

@@ -1,4 +1,5 @@
 using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Devices.Zaber;
 

@@ -1,11 +1,10 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
-using LaserEngrave.Devices.Execution;
 
 namespace LaserEngrave.Simulator.Burn;
 
-/// <summary>The simulator's burn check for an <see cref="EngraveSession"/>: what its recorder saw, against the job's mask, for the log.</summary>
+/// <summary>The simulator's burn check for a run (the host's EngraveSession asks it through <see cref="IRunInspector"/>): what its recorder saw, against the job's mask, for the log.</summary>
 /// <remarks>Only what happened since <see cref="Begin"/> counts, so a run on a simulator that has burned before (the app's) is checked alone.</remarks>
 public sealed class BurnInspector(SimulatedMachine machine) : IRunInspector
 {

@@ -1,11 +1,11 @@
 using System.Globalization;
 using System.Text;
 using LaserEngrave.Core.Geometry;
-using LaserEngrave.Devices.Serial;
 using LaserEngrave.Simulator.Burn;
 using LaserEngrave.Simulator.Faults;
 using LaserEngrave.Simulator.Serial;
 using LaserEngrave.Simulator.Timing;
+using LaserEngrave.Wire.Serial;
 
 namespace LaserEngrave.Simulator.LaserGate;
 

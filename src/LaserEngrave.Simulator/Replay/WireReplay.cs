@@ -1,7 +1,7 @@
 using LaserEngrave.Core.Geometry;
-using LaserEngrave.Devices.Scheduling;
-using LaserEngrave.Devices.Serial;
-using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Wire.Scheduling;
+using LaserEngrave.Wire.Serial;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Simulator.Replay;
 

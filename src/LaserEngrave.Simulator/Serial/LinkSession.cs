@@ -1,6 +1,6 @@
 using System.Threading.Channels;
-using LaserEngrave.Devices.Serial;
 using LaserEngrave.Simulator.Timing;
+using LaserEngrave.Wire.Serial;
 
 namespace LaserEngrave.Simulator.Serial;
 

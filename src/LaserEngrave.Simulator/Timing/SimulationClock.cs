@@ -1,5 +1,5 @@
 using System.Diagnostics;
-using LaserEngrave.Devices.Scheduling;
+using LaserEngrave.Wire.Scheduling;
 
 namespace LaserEngrave.Simulator.Timing;
 

@@ -1,4 +1,5 @@
-using LaserEngrave.Devices.Scheduling;
+using LaserEngrave.Wire.Scheduling;
+
 
 namespace LaserEngrave.Simulator.Timing;
 

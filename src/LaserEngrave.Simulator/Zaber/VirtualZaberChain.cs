@@ -1,11 +1,11 @@
 using LaserEngrave.Core.Geometry;
-using LaserEngrave.Devices.Serial;
-using LaserEngrave.Devices.Zaber;
 using LaserEngrave.Simulator.Burn;
 using LaserEngrave.Simulator.Faults;
 using LaserEngrave.Simulator.Motion;
 using LaserEngrave.Simulator.Serial;
 using LaserEngrave.Simulator.Timing;
+using LaserEngrave.Wire.Serial;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Simulator.Zaber;
 

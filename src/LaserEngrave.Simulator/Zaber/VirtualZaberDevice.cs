@@ -1,7 +1,7 @@
 using LaserEngrave.Core.Geometry;
-using LaserEngrave.Devices.Zaber;
 using LaserEngrave.Simulator.Burn;
 using LaserEngrave.Simulator.Motion;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Simulator.Zaber;
 

@@ -3,11 +3,11 @@ using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Execution;
 using LaserEngrave.Devices.Machine;
-using LaserEngrave.Devices.Serial;
 using LaserEngrave.Simulator;
 using LaserEngrave.Simulator.Burn;
 using LaserEngrave.Simulator.Replay;
 using LaserEngrave.Simulator.Timing;
+using LaserEngrave.Wire.Serial;
 
 namespace LaserEngrave.Devices.Tests.Execution;
 

@@ -1,9 +1,9 @@
 using System.Globalization;
 using System.Text;
 using System.Threading.Channels;
-using LaserEngrave.Devices.Scheduling;
-using LaserEngrave.Devices.Serial;
 using LaserEngrave.Simulator.Timing;
+using LaserEngrave.Wire.Scheduling;
+using LaserEngrave.Wire.Serial;
 
 namespace LaserEngrave.Devices.Tests.Fakes;
 

@@ -1,8 +1,9 @@
 using System.Threading.Channels;
 using LaserEngrave.Devices.Scheduling;
-using LaserEngrave.Devices.Serial;
-using LaserEngrave.Devices.Zaber;
 using LaserEngrave.Simulator.Timing;
+using LaserEngrave.Wire.Scheduling;
+using LaserEngrave.Wire.Serial;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Devices.Tests.Fakes;
 

@@ -1,4 +1,5 @@
-using LaserEngrave.Devices.Serial;
+using LaserEngrave.Wire.Serial;
+
 
 namespace LaserEngrave.Devices.Tests.Fakes;
 

@@ -1,6 +1,6 @@
-using LaserEngrave.Devices.Serial;
 using LaserEngrave.Devices.Zaber;
 using LaserEngrave.Simulator.Timing;
+using LaserEngrave.Wire.Serial;
 
 namespace LaserEngrave.Devices.Tests.Fakes;
 

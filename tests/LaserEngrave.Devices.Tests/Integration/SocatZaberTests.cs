@@ -3,6 +3,7 @@ using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Serial;
 using LaserEngrave.Devices.Tests.Fakes;
 using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Devices.Tests.Integration;
 

@@ -1,9 +1,9 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.LaserGate;
-using LaserEngrave.Devices.Serial;
 using LaserEngrave.Devices.Tests.Fakes;
 using LaserEngrave.Simulator.Timing;
+using LaserEngrave.Wire.Serial;
 using Microsoft.Extensions.Time.Testing;
 
 namespace LaserEngrave.Devices.Tests.LaserGate;

@@ -1,5 +1,6 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Machine;
+using LaserEngrave.Machines;
 using LaserEngrave.Simulator;
 using LaserEngrave.Simulator.Timing;
 
@@ -10,7 +11,7 @@ public class LatencyProbeTests
     private static async Task<LatencyMeasurement> MeasureAsync(SimulatorOptions options, int exchanges = 300)
     {
         var ct = TestContext.Current.CancellationToken;
-        var session = SimulatedMachine.OpenInProcess(MachineProfile.Default, options);
+        var session = MachineFactory.OpenTwin(MachineProfile.Default, options);
         await using (session)
         {
             var probe = new LatencyProbe(session.Stage, session.Gate, session.TimeProvider);

@@ -3,6 +3,7 @@ using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Serial;
 using LaserEngrave.Devices.Tests.Fakes;
 using LaserEngrave.Simulator.Timing;
+using LaserEngrave.Wire.Serial;
 
 namespace LaserEngrave.Devices.Tests.Serial;
 

@@ -3,6 +3,7 @@ using LaserEngrave.Core.Motion;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Tests.Fakes;
 using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Wire.Zaber;
 using Microsoft.Extensions.Time.Testing;
 
 namespace LaserEngrave.Devices.Tests.Zaber;

@@ -1,8 +1,9 @@
 using LaserEngrave.Core.Geometry;
-using LaserEngrave.Devices.Serial;
 using LaserEngrave.Devices.Tests.Fakes;
 using LaserEngrave.Devices.Zaber;
 using LaserEngrave.Simulator.Timing;
+using LaserEngrave.Wire.Serial;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Devices.Tests.Zaber;
 

@@ -1,8 +1,9 @@
 using LaserEngrave.Devices.Abstractions;
-using LaserEngrave.Devices.Serial;
 using LaserEngrave.Devices.Tests.Fakes;
 using LaserEngrave.Devices.Zaber;
 using LaserEngrave.Simulator.Timing;
+using LaserEngrave.Wire.Serial;
+using LaserEngrave.Wire.Zaber;
 using Microsoft.Extensions.Time.Testing;
 
 namespace LaserEngrave.Devices.Tests.Zaber;

@@ -1,5 +1,5 @@
-using LaserEngrave.Devices.Zaber;
 using LaserEngrave.Simulator.Faults;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Simulator.Tests.Faults;
 

@@ -1,9 +1,9 @@
 using System.Text;
 using LaserEngrave.Core.Geometry;
-using LaserEngrave.Devices.Zaber;
 using LaserEngrave.Devices.Serial;
 
 using LaserEngrave.Testing;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Simulator.Tests.Serial;
 

@@ -1,5 +1,5 @@
-using LaserEngrave.Devices.Scheduling;
 using LaserEngrave.Simulator.Timing;
+using LaserEngrave.Wire.Scheduling;
 
 namespace LaserEngrave.Simulator.Tests.Timing;
 

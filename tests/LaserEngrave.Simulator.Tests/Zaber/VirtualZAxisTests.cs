@@ -1,7 +1,7 @@
 using LaserEngrave.Core.Geometry;
-using LaserEngrave.Devices.Zaber;
 using LaserEngrave.Simulator.Motion;
 using LaserEngrave.Simulator.Zaber;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Simulator.Tests.Zaber;
 

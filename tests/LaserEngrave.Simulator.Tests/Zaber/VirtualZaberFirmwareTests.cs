@@ -1,4 +1,5 @@
-using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Wire.Zaber;
+
 
 namespace LaserEngrave.Simulator.Tests.Zaber;
 

@@ -1,6 +1,6 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Motion;
-using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Simulator.Tests.Zaber;
 

@@ -1,5 +1,5 @@
 using LaserEngrave.Core.Geometry;
-using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Simulator.Tests.Zaber;
 

@@ -1,4 +1,4 @@
-namespace LaserEngrave.Devices.Serial;
+namespace LaserEngrave.Wire.Serial;
 
 /// <summary>Cuts the bytes a link delivers into messages (Zaber frames, text lines).</summary>
 /// <remarks>Called only by the reader loop of one <see cref="SerialChannel{TMessage}"/>, in the order the bytes came.</remarks>

@@ -1,4 +1,4 @@
-namespace LaserEngrave.Devices.Serial;
+namespace LaserEngrave.Wire.Serial;
 
 /// <summary>A byte link to one device: a real serial port, a pty, or an in-memory pipe to the simulator.</summary>
 /// <remarks>

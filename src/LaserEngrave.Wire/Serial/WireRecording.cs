@@ -1,7 +1,7 @@
 using System.Text.Json;
 using LaserEngrave.Core.Logging;
 
-namespace LaserEngrave.Devices.Serial;
+namespace LaserEngrave.Wire.Serial;
 
 /// <summary>One write or read of a <see cref="WireRecorder"/> file.</summary>
 /// <param name="Seconds">Since the recorder started: when the host wrote, or when the bytes arrived.</param>

@@ -1,6 +1,6 @@
 using System.Buffers.Binary;
 
-namespace LaserEngrave.Devices.Zaber;
+namespace LaserEngrave.Wire.Zaber;
 
 /// <summary>One 6-byte Zaber binary frame: device number, command number, signed 32-bit little-endian data.</summary>
 public readonly record struct ZaberFrame(byte Device, ZaberCommand Command, int Data)

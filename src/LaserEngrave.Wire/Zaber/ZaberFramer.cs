@@ -1,6 +1,6 @@
-using LaserEngrave.Devices.Serial;
+using LaserEngrave.Wire.Serial;
 
-namespace LaserEngrave.Devices.Zaber;
+namespace LaserEngrave.Wire.Zaber;
 
 /// <summary>Cuts received bytes into 6-byte Zaber frames under the protocol's inter-byte rule, judged on arrival times.</summary>
 /// <remarks>

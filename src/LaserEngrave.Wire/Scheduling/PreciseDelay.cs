@@ -1,6 +1,6 @@
 using System.Diagnostics;
 
-namespace LaserEngrave.Devices.Scheduling;
+namespace LaserEngrave.Wire.Scheduling;
 
 /// <summary>Waits to the tick on a <see cref="TimeProvider"/>: what timed laser switching needs.</summary>
 /// <remarks>

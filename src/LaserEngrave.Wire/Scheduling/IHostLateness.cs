@@ -1,4 +1,4 @@
-namespace LaserEngrave.Devices.Scheduling;
+namespace LaserEngrave.Wire.Scheduling;
 
 /// <summary>
 /// A clock that also says how late the host's code wakes from a timed wait: the simulation's model of a computer busy

@@ -1,7 +1,7 @@
-using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Wire.Zaber;
 using Microsoft.Extensions.Time.Testing;
 
-namespace LaserEngrave.Devices.Tests.Zaber;
+namespace LaserEngrave.Wire.Tests.Zaber;
 
 /// <summary>Zaber framing on arrival times: the 10 ms inter-byte rule judges when bytes arrived, not when they were read.</summary>
 public class ZaberFramerTests

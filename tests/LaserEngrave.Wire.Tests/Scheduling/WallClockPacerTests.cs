@@ -1,7 +1,7 @@
 using System.Diagnostics;
-using LaserEngrave.Devices.Scheduling;
+using LaserEngrave.Wire.Scheduling;
 
-namespace LaserEngrave.Devices.Tests.Scheduling;
+namespace LaserEngrave.Wire.Tests.Scheduling;
 
 /// <summary>The wall clock's pacer and the precise wait built on it: order, cancellation, never early.</summary>
 /// <remarks>Nothing here depends on how late the computer runs an action: only on order and on the instants themselves.</remarks>

@@ -1,4 +1,4 @@
-namespace LaserEngrave.Devices.Zaber;
+namespace LaserEngrave.Wire.Zaber;
 
 /// <summary>Zaber binary protocol command numbers used by LaserEngrave (T-series firmware 5.xx).</summary>
 public enum ZaberCommand : byte

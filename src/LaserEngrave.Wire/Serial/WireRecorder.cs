@@ -2,7 +2,7 @@ using System.Globalization;
 using System.Text;
 using LaserEngrave.Core.Logging;
 
-namespace LaserEngrave.Devices.Serial;
+namespace LaserEngrave.Wire.Serial;
 
 /// <summary>The flight recorder: every byte written to and read from the machine's links, with its time, as JSON lines.</summary>
 /// <remarks>

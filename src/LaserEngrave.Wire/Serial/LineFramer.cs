@@ -1,6 +1,6 @@
 using System.Text;
 
-namespace LaserEngrave.Devices.Serial;
+namespace LaserEngrave.Wire.Serial;
 
 /// <summary>ASCII lines ended by '\n', '\r' or both; empty lines are skipped and a line is cut at a maximum length.</summary>
 public sealed class LineFramer : ISerialFramer<string>

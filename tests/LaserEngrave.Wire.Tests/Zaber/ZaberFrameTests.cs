@@ -1,6 +1,7 @@
-using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Wire.Zaber;
 
-namespace LaserEngrave.Devices.Tests.Zaber;
+
+namespace LaserEngrave.Wire.Tests.Zaber;
 
 public class ZaberFrameTests
 {

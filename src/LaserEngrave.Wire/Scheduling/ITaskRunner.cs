@@ -1,4 +1,4 @@
-namespace LaserEngrave.Devices.Scheduling;
+namespace LaserEngrave.Wire.Scheduling;
 
 /// <summary>Where the host's code runs: the thread pool against real ports, the simulation's loop in virtual time.</summary>
 /// <remarks>

@@ -1,4 +1,4 @@
-namespace LaserEngrave.Devices.Serial;
+namespace LaserEngrave.Wire.Serial;
 
 /// <summary>What one read of a link returned: how many bytes, and when they arrived.</summary>
 /// <param name="Count">Bytes read; 0 when the link is closed.</param>

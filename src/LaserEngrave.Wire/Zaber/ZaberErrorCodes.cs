@@ -1,4 +1,4 @@
-namespace LaserEngrave.Devices.Zaber;
+namespace LaserEngrave.Wire.Zaber;
 
 /// <summary>Meanings of the data of an Error (255) reply, T-series firmware 5.xx.</summary>
 public static class ZaberErrorCodes

@@ -1,9 +1,9 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Marks;
 using LaserEngrave.Core.Planning;
-using LaserEngrave.Simulator.Marks;
+using LaserEngrave.Machines.Marks;
 
-namespace LaserEngrave.Simulator.Tests.Marks;
+namespace LaserEngrave.Machines.Tests.Marks;
 
 /// <summary>A code burned on the twin (its motion, switching and latencies in virtual time, every pulse a spot) read back by ZXing.</summary>
 public class MarkReadabilityTests

@@ -1,4 +1,4 @@
-namespace LaserEngrave.Devices.Scheduling;
+namespace LaserEngrave.Wire.Scheduling;
 
 /// <summary>Finds the runner that goes with a clock: a clock that is also a runner (the simulation's) runs its own work.</summary>
 public static class TaskRunner

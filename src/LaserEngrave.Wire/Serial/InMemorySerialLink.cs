@@ -1,6 +1,6 @@
 using System.Threading.Channels;
 
-namespace LaserEngrave.Devices.Serial;
+namespace LaserEngrave.Wire.Serial;
 
 /// <summary>One end of an in-process byte pipe: what one end writes, the other reads.</summary>
 /// <remarks>

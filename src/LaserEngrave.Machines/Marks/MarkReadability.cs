@@ -6,9 +6,11 @@ using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Execution;
 using LaserEngrave.Devices.LaserGate;
 using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Simulator;
 using LaserEngrave.Simulator.Burn;
+using LaserEngrave.Simulator.Marks;
 
-namespace LaserEngrave.Simulator.Marks;
+namespace LaserEngrave.Machines.Marks;
 
 /// <summary>
 /// Proves a code readable before it is burned: the code alone is run on a fresh twin (its motion, timed switching and

@@ -1,7 +1,7 @@
 using System.Globalization;
 using System.Text;
 
-namespace LaserEngrave.Devices.Zaber;
+namespace LaserEngrave.Wire.Zaber;
 
 /// <summary>Names of Zaber commands and requests as they appear in messages ("Move Absolute 1000").</summary>
 public static class ZaberCommandText

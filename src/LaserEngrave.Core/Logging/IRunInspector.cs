@@ -1,7 +1,6 @@
 using LaserEngrave.Core.Jobs;
-using LaserEngrave.Core.Logging;
 
-namespace LaserEngrave.Devices.Execution;
+namespace LaserEngrave.Core.Logging;
 
 /// <summary>Looks at what a run did to the sample, for the log; only the simulator can (it records every pulse).</summary>
 public interface IRunInspector

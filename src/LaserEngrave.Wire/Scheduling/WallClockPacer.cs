@@ -1,6 +1,6 @@
 using System.Diagnostics;
 
-namespace LaserEngrave.Devices.Scheduling;
+namespace LaserEngrave.Wire.Scheduling;
 
 /// <summary>
 /// Runs actions at their instants on the wall clock to a fraction of a millisecond: one thread for the process that
