@@ -1,11 +1,9 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Devices.Abstractions;
-using LaserEngrave.Devices.Machine;
 using LaserEngrave.Devices.Serial;
 using LaserEngrave.Machines;
 using LaserEngrave.Simulator;
-using LaserEngrave.Simulator.Burn;
 
 namespace LaserEngrave.App.Services;
 
@@ -32,7 +30,7 @@ public sealed class MachineConnectionFactory(SimulatorOptions? simulatorOptions 
 
         var stagePort = Required(choice.StagePort, "stage");
         var laserPort = Required(choice.LaserPort, "laser gate");
-        return Task.FromResult<IMachineConnection>(new Connection($"stage {stagePort}, laser {laserPort}", profile, MachineSession.OpenPorts(stagePort, laserPort, profile)));
+        return Task.FromResult<IMachineConnection>(new Connection($"stage {stagePort}, laser {laserPort}", profile, MachineFactory.OpenPorts(stagePort, laserPort, profile)));
     }
 
     public IReadOnlyList<string> ListPorts() => SerialPortNames.List();
@@ -40,22 +38,22 @@ public sealed class MachineConnectionFactory(SimulatorOptions? simulatorOptions 
     private static string Required(string? port, string what) =>
         string.IsNullOrWhiteSpace(port) ? throw new DeviceException($"no port chosen for the {what}") : port.Trim();
 
-    private sealed class Connection(string description, MachineProfile profile, MachineSession session) : IMachineConnection
+    private sealed class Connection(string description, MachineProfile profile, OpenMachine machine) : IMachineConnection
     {
         public string Description => description;
 
         public MachineProfile Profile => profile;
 
-        public TimeProvider TimeProvider => session.TimeProvider;
+        public TimeProvider TimeProvider => machine.Session.TimeProvider;
 
-        public bool IsSimulated => session.Owner is SimulatedMachine;
+        public bool IsSimulated => machine.IsSimulated;
 
-        public IStage Stage => session.Stage;
+        public IStage Stage => machine.Session.Stage;
 
-        public ILaserGate Gate => session.Gate;
+        public ILaserGate Gate => machine.Session.Gate;
 
-        public IRunInspector? Inspector => session.Owner is SimulatedMachine simulator ? new BurnInspector(simulator) : null;
+        public IRunInspector? Inspector => machine.Twin;
 
-        public ValueTask DisposeAsync() => session.DisposeAsync();
+        public ValueTask DisposeAsync() => machine.DisposeAsync();
     }
 }

@@ -8,8 +8,7 @@ using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Execution;
-using LaserEngrave.Devices.Machine;
-using LaserEngrave.Simulator;
+using LaserEngrave.Machines;
 using LaserEngrave.Simulator.Burn;
 using LaserEngrave.Wire.Serial;
 
@@ -163,13 +162,13 @@ internal static class EngraveCommand
         store.CheckWritable();
         EngraveResult engraved;
         double? wallSeconds = null;
-        BurnInspector? inspector = null;
+        ITwinInspector? inspector = null;
         // On real ports every byte in and out is recorded beside the log, so the run's burn can be replayed (`laserengrave replay`).
         using var recorder = simulate ? null : new WireRecorder(Path.Combine(store.Folder, $"wire_{DateTime.UtcNow:yyyy-MM-dd_HHmmss}_{Guid.NewGuid().ToString("N")[..8]}.jsonl"), TimeProvider.System);
-        MachineSession machineSession;
+        OpenMachine opened;
         try
         {
-            machineSession = o.Machine.Open(result, profile, recorder);
+            opened = o.Machine.Open(result, profile, recorder);
         }
         catch
         {
@@ -178,9 +177,10 @@ internal static class EngraveCommand
         }
 
 
-        await using (machineSession.ConfigureAwait(false))
+        await using (opened.ConfigureAwait(false))
         {
-            inspector = machineSession.Owner is SimulatedMachine simulator ? new BurnInspector(simulator) : null;
+            var machineSession = opened.Session;
+            inspector = opened.Twin;
             var machine = new EngraveMachine(machineSession.Stage, machineSession.Gate, machineSession.TimeProvider, machineSession.StagePort, machineSession.LaserPort)
             {
                 Simulated = simulate,

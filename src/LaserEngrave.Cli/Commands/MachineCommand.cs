@@ -45,7 +45,7 @@ internal static class MachineCommand
 
             // Measured at the priority a run gets, so that the profile describes what a run will see.
             using var priority = result.GetValue(machine.Simulate) ? null : RunPriority.Raise();
-            var session = machine.Open(result, existing);
+            var session = machine.Open(result, existing).Session;
             await using (session)
             {
                 var probe = new LatencyProbe(session.Stage, session.Gate, session.TimeProvider);
@@ -121,7 +121,7 @@ internal static class MachineCommand
             var stdout = result.InvocationConfiguration.Output;
             var trip = result.GetValue(yes) || Confirm(stdout);
             using var priority = result.GetValue(machine.Simulate) ? null : RunPriority.Raise();
-            var session = machine.Open(result, existing);
+            var session = machine.Open(result, existing).Session;
             MachineCheckReport found;
             string where;
             DateTimeOffset at;

@@ -1,7 +1,6 @@
 using System.CommandLine;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Abstractions;
-using LaserEngrave.Devices.Machine;
 using LaserEngrave.Machines;
 using LaserEngrave.Simulator;
 using LaserEngrave.Simulator.Faults;
@@ -138,22 +137,16 @@ internal sealed class MachineOptions
     /// <remarks>The seam through which tests prove that bad input is refused before anything opens, so nothing can move.</remarks>
     internal static AsyncLocal<Action?> Opening { get; } = new();
 
-    /// <summary>Opens the machine the options name; the caller disposes it (devices first, then the simulator).</summary>
+    /// <summary>Opens the machine the options name through the one <see cref="MachineFactory"/>; the caller disposes it (devices first, then the simulator).</summary>
     /// <param name="result">The parsed options.</param>
     /// <param name="profile">The machine.</param>
-    /// <param name="recorder">On real ports, the flight recorder the links write through; the simulator records nothing.</param>
-    public MachineSession Open(ParseResult result, MachineProfile profile, WireRecorder? recorder = null)
+    /// <param name="recorder">On real ports, the flight recorder the links write through; the simulator records only to --sim-wire.</param>
+    public OpenMachine Open(ParseResult result, MachineProfile profile, WireRecorder? recorder = null)
     {
         Validate(result);
         Opening.Value?.Invoke();
-        if (result.GetValue(Simulate) && result.GetValue(SimWire) is { } wire)
-        {
-            var machine = SimulatedMachine.CreateInProcess(profile, SimulatorOptionsFor(result));
-            return MachineSession.OverLinks(machine.StageLink, machine.LaserLink, profile, machine.TimeProvider, "simulator", owner: machine, new WireRecorder(wire, machine.TimeProvider, long.MaxValue));
-        }
-
         return result.GetValue(Simulate)
-            ? MachineFactory.OpenTwin(profile, SimulatorOptionsFor(result))
-            : MachineSession.OpenPorts(result.GetValue(StagePort)!, result.GetValue(LaserPort)!, profile, recorder);
+            ? MachineFactory.OpenTwin(profile, SimulatorOptionsFor(result), result.GetValue(SimWire))
+            : MachineFactory.OpenPorts(result.GetValue(StagePort)!, result.GetValue(LaserPort)!, profile, recorder);
     }
 }

@@ -4,7 +4,7 @@ using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Sweeps;
 using LaserEngrave.Devices.Execution;
-using LaserEngrave.Simulator;
+using LaserEngrave.Machines;
 using LaserEngrave.Simulator.Burn;
 
 namespace LaserEngrave.Cli.Commands;
@@ -79,10 +79,11 @@ internal static class SweepCommand
         }
 
         SweepResult swept;
-        var machineSession = o.Machine.Open(result, plan.Spec.Profile);
-        await using (machineSession.ConfigureAwait(false))
+        var opened = o.Machine.Open(result, plan.Spec.Profile);
+        await using (opened.ConfigureAwait(false))
         {
-            var inspector = machineSession.Owner is SimulatedMachine simulator ? new BurnInspector(simulator) : null;
+            var machineSession = opened.Session;
+            var inspector = opened.Twin;
             var machine = new EngraveMachine(machineSession.Stage, machineSession.Gate, machineSession.TimeProvider, machineSession.StagePort, machineSession.LaserPort)
             {
                 Simulated = simulate,
@@ -109,11 +110,11 @@ internal static class SweepCommand
                     report.WriteDosePng(Path.Combine(doseDir, string.Create(CultureInfo.InvariantCulture, $"cell-r{cell.Row + 1}-c{cell.Column + 1}.png")));
                 }
             };
-            var start = (machineSession.Owner as SimulatedMachine)?.NowSeconds ?? 0;
+            var start = inspector?.NowSeconds ?? 0;
             swept = await session.RunAsync(null, cancellationToken).ConfigureAwait(false);
-            if (dosePath is not null && machineSession.Owner is SimulatedMachine twin)
+            if (dosePath is not null && inspector is not null)
             {
-                WholeDose(twin, plan, start).WriteDosePng(dosePath);
+                WholeDose(inspector, plan, start).WriteDosePng(dosePath);
             }
         }
 
@@ -147,7 +148,7 @@ internal static class SweepCommand
     }
 
     /// <summary>The pulse map of the whole sweep, labels and cells, on a grid of at most 200 cells a side over its area.</summary>
-    private static BurnReport WholeDose(SimulatedMachine twin, SweepPlan plan, double startSeconds)
+    private static BurnReport WholeDose(ITwinInspector twin, SweepPlan plan, double startSeconds)
     {
         const int MaxSide = 200;
         var spec = plan.Spec;
@@ -169,8 +170,7 @@ internal static class SweepCommand
             Math.Max(1, (int)Math.Ceiling((bottom - spec.Origin.Y) * 1000 / pitchUm)));
 
         // Every job's check started its own window; the whole sweep's starts where the sweep did.
-        twin.Recorder.Restart(startSeconds);
-        return twin.Recorder.Analyze(grid);
+        return twin.AnalyzeSince(grid, startSeconds);
     }
 
     private static void WritePlan(TextWriter output, SweepPlan plan)

@@ -165,7 +165,7 @@ internal static class TestMoveCommands
 
     private static async Task<int> WithMovesAsync(ParseResult result, MachineOptions machine, MachineProfile profile, Core.Planning.ProcessSettings? process, Func<StageTestMoves, Task<string>> move)
     {
-        var session = machine.Open(result, profile);
+        var session = machine.Open(result, profile).Session;
         await using (session)
         {
             var moves = new StageTestMoves(session.Stage, session.Gate, profile, process, session.TimeProvider);

@@ -6,13 +6,20 @@ namespace LaserEngrave.Simulator.Burn;
 
 /// <summary>The simulator's burn check for a run (the host's EngraveSession asks it through <see cref="IRunInspector"/>): what its recorder saw, against the job's mask, for the log.</summary>
 /// <remarks>Only what happened since <see cref="Begin"/> counts, so a run on a simulator that has burned before (the app's) is checked alone.</remarks>
-public sealed class BurnInspector(SimulatedMachine machine) : IRunInspector
+public sealed class BurnInspector(SimulatedMachine machine) : ITwinInspector
 {
-    /// <summary>The last drawing check's report; null before the first.</summary>
     public PathReport? PathReport { get; private set; }
 
-    /// <summary>The last check's whole report (the burned image, the pulse map); null before the first.</summary>
     public BurnReport? Report { get; private set; }
+
+    public double NowSeconds => machine.NowSeconds;
+
+    public BurnReport AnalyzeSince(BurnGrid grid, double startSeconds)
+    {
+        // Every job's check started its own window; this one starts where the caller says.
+        machine.Recorder.Restart(startSeconds);
+        return machine.Recorder.Analyze(grid);
+    }
 
     public void Begin() => machine.Recorder.Restart(machine.NowSeconds);
 

@@ -11,7 +11,7 @@ public class LatencyProbeTests
     private static async Task<LatencyMeasurement> MeasureAsync(SimulatorOptions options, int exchanges = 300)
     {
         var ct = TestContext.Current.CancellationToken;
-        var session = MachineFactory.OpenTwin(MachineProfile.Default, options);
+        var session = MachineFactory.OpenTwin(MachineProfile.Default, options).Session;
         await using (session)
         {
             var probe = new LatencyProbe(session.Stage, session.Gate, session.TimeProvider);
