@@ -76,14 +76,13 @@ public sealed partial class RunExecutor
 
     private double SpreadSeenScale(long exchangesBefore)
     {
-        if (_timing is null || Stage.X is not ZaberBinaryDevice zaber)
+        if (_timing is null || Stage.X is not IAxisFirmware firmware)
         {
             return 1;
         }
 
         // Only the identification's, one at a time: during a run replies queue behind one another on the shared wire.
-        var connection = zaber.Connection;
-        var trips = connection.RecentRoundTripsMs.TakeLast((int)Math.Min(connection.RoundTripsRecorded - exchangesBefore, ZaberConnection.RoundTripsKept)).ToList();
+        var trips = firmware.RoundTripsMsSince(exchangesBefore);
         var allowed = 4 * _timing.StageJitterSeconds * 1000;
         if (trips.Count < 8 || allowed <= 0)
         {

@@ -35,7 +35,7 @@ public sealed partial class RunExecutor
             throw new PreflightException($"the laser gate does not answer as it should: {ex.Message}", ex);
         }
 
-        var exchangesBefore = (Stage.X as ZaberBinaryDevice)?.Connection.RoundTripsRecorded ?? 0;
+        var exchangesBefore = (Stage.X as IAxisFirmware)?.RoundTripsRecorded ?? 0;
         var x = await IdentifyAxisAsync(Stage.X, "X", token);
         var y = await IdentifyAxisAsync(Stage.Y, "Y", token);
         CheckFirmware(x, "X");
@@ -123,13 +123,13 @@ public sealed partial class RunExecutor
             identity = await OnceMoreAfterTimeoutAsync(() => axis.IdentifyAsync(token));
             if (identity.AutoReplyDisabled)
             {
-                if (!Options.FixAutoReply || axis is not ZaberBinaryDevice zaber)
+                if (!Options.FixAutoReply || axis is not IAxisFirmware firmware)
                 {
                     throw new PreflightException(
                         $"the {name} axis (device {axis.DeviceNumber}) has auto-reply disabled (Device Mode bit 0), so it would never confirm a move; clear bit 0 first");
                 }
 
-                await zaber.SetDeviceModeAsync(0, ZaberBinaryDevice.AutoReplyDisabledBit, token);
+                await firmware.ClearAutoReplyDisabledAsync(token);
                 identity = await axis.IdentifyAsync(token);
             }
         }

@@ -11,7 +11,7 @@ namespace LaserEngrave.Devices.Zaber;
 /// device holds: they are read at <see cref="IdentifyAsync"/> (or before the first move) and remembered whenever
 /// they are set. Positions and distances are microsteps.
 /// </remarks>
-public sealed class ZaberBinaryDevice : IStageAxis
+public sealed class ZaberBinaryDevice : IStageAxis, IAxisFirmware
 {
     /// <summary>Device Mode bit 0: the device does not reply to most commands.</summary>
     public const int AutoReplyDisabledBit = 0x01;
@@ -237,6 +237,13 @@ public sealed class ZaberBinaryDevice : IStageAxis
         });
         return reply.Data;
     }
+
+    public Task ClearAutoReplyDisabledAsync(CancellationToken cancellationToken) => SetDeviceModeAsync(0, AutoReplyDisabledBit, cancellationToken);
+
+    public long RoundTripsRecorded => Connection.RoundTripsRecorded;
+
+    public List<double> RoundTripsMsSince(long since) =>
+        Connection.RecentRoundTripsMs.TakeLast((int)Math.Min(Connection.RoundTripsRecorded - since, ZaberConnection.RoundTripsKept)).ToList();
 
     /// <summary>Sets and clears Device Mode bits, keeping the others: Set Device Mode overwrites the whole word, so
     /// the current word is read first (Return Setting 40).</summary>
