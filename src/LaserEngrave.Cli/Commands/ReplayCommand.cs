@@ -14,7 +14,8 @@ namespace LaserEngrave.Cli.Commands;
 /// <summary>`laserengrave replay LOG`: what a recorded run on real ports actually burned, by its recorded bytes and times through the twin.</summary>
 /// <remarks>
 /// The run's job comes from its log (the image checked against its SHA-256, as --from-log does), the bytes and times from
-/// the flight recorder beside it; the devices are the twin's, the figures those of `engrave --simulate`. Exit 2 for a log
+/// the flight recorder beside it; the devices are the twin's, the figures those of `engrave --simulate` (a job of layers:
+/// each layer's, from its recorded start to the next's, its layers read again from the job file). Exit 2 for a log
 /// without a recording and a truncated, cut-off or corrupt recording.
 /// </remarks>
 internal static class ReplayCommand
@@ -53,48 +54,47 @@ internal static class ReplayCommand
             throw new UsageException($"{logPath}: the recording is truncated (it reached its size cap), so the rest of the run is not in it and its burn cannot be replayed");
         }
 
-        if (record.Layers is not null)
-        {
-            throw new UsageException($"{logPath}: a job of layers cannot be replayed yet; replay is for one image or drawing");
-        }
-
-        var spec = RunReplay.ToJobSpec(record);
-        MachineProfileValidator.Validate(spec.Profile, $"{logPath}: profile");
         var events = WireRecording.Read(Path.Combine(Path.GetDirectoryName(Path.GetFullPath(jsonPath))!, recording.File));
-        PreparedJob? job = null;
-        PreparedDrawing? drawing = null;
-        if (record.Drawing is { } loggedDrawing)
+        BurnReport? burn = null;
+        SimulatorOptions options;
+        if (record.Layers is { } loggedLayers)
         {
-            drawing = PreparedDrawing.Prepare(spec, loggedDrawing.ToVectorOptions());
             if (burnedPath is not null || dosePath is not null)
             {
-                throw new UsageException("--burned and --dose are for images; a drawing's figures are in --json (pathDeviationUm, pulseSpacingUm)");
+                throw new UsageException("--burned and --dose are for one image; a job of layers has its figures layer by layer in --json (layers[].simulation)");
             }
+
+            // Each layer read again from the job file the log names, checked against its SHA-256, as a repeat of the run does.
+            var profile = record.Profile ?? MachineProfile.Default;
+            MachineProfileValidator.Validate(profile, $"{logPath}: profile");
+            var (layers, _) = RunReplay.ToLayers(record, resume: false, logPath, burning: false);
+            var parts = LayeredJob.Prepare(layers, profile).Layers;
+            options = RecordedRunReplay.OptionsFor(record, profile, events, baseOptions);
+            var simulations = await RecordedRunReplay.ReplayLayersAsync(parts, profile, events, options, cancellationToken).ConfigureAwait(false);
+            record = record with { Layers = [.. loggedLayers.Select((l, i) => l with { Simulation = simulations[i] })] };
         }
         else
         {
-            job = PreparedJob.Prepare(spec);
-        }
+            var spec = RunReplay.ToJobSpec(record);
+            MachineProfileValidator.Validate(spec.Profile, $"{logPath}: profile");
+            PreparedJob? job = null;
+            PreparedDrawing? drawing = null;
+            if (record.Drawing is { } loggedDrawing)
+            {
+                drawing = PreparedDrawing.Prepare(spec, loggedDrawing.ToVectorOptions());
+                if (burnedPath is not null || dosePath is not null)
+                {
+                    throw new UsageException("--burned and --dose are for images; a drawing's figures are in --json (pathDeviationUm, pulseSpacingUm)");
+                }
+            }
+            else
+            {
+                job = PreparedJob.Prepare(spec);
+            }
 
-        // The devices the run spoke to: the stage's firmware as it reported it (a 5.06 refuses what a 5.23 takes). The host's
-        // lateness is in the recorded times already, so the replaying host is never late.
-        // The stages start where they reported they stood, so homing takes the time it took.
-        var options = baseOptions with { HostLateness = HostLateness.None, RealTime = false, FaultSpec = null, StartMicrosteps = WireReplay.StartMicrosteps(spec.Profile, events) };
-        if (record.Devices.FirstOrDefault(d => d.Role == "x axis") is { } x && decimal.TryParse(x.Firmware, NumberStyles.AllowDecimalPoint, CultureInfo.InvariantCulture, out var firmware))
-        {
-            options = options with { FirmwareVersion = (int)Math.Round(firmware * 100) };
-        }
-
-        RunSimulation simulation;
-        BurnReport? burn = null;
-        var machine = SimulatedMachine.CreateInProcess(spec.Profile, options);
-        await using (machine.ConfigureAwait(false))
-        {
-            var inspector = new BurnInspector(machine);
-            inspector.Begin();
-            await WireReplay.RunAsync(machine, events, cancellationToken).ConfigureAwait(false);
-            simulation = job is not null ? inspector.Inspect(job) : inspector.InspectDrawing(drawing!);
-            burn = inspector.Report;
+            options = RecordedRunReplay.OptionsFor(record, spec.Profile, events, baseOptions);
+            (var simulation, burn) = await RecordedRunReplay.ReplayAsync(job, drawing, spec.Profile, events, options, cancellationToken).ConfigureAwait(false);
+            record = record with { Simulation = simulation };
         }
 
         if (burnedPath is not null && burn is not null)
@@ -108,7 +108,7 @@ internal static class ReplayCommand
         }
 
         var files = new RunLogFiles(Path.GetFullPath(jsonPath), Path.ChangeExtension(Path.GetFullPath(jsonPath), ".txt"));
-        var summary = EngraveSummary.From(record with { Simulation = simulation }, files, burnedPath, burn is null ? null : dosePath, null);
+        var summary = EngraveSummary.From(record, files, burnedPath, burn is null ? null : dosePath, null);
         var stdout = result.InvocationConfiguration.Output;
         if (json)
         {

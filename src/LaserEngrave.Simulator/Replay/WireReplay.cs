@@ -18,7 +18,11 @@ public static class WireReplay
     public static readonly TimeSpan Settle = TimeSpan.FromSeconds(2);
 
     /// <summary>Feeds the writes of <paramref name="events"/> into <paramref name="machine"/> (in-process, virtual time) and waits until the last has settled.</summary>
-    public static Task RunAsync(SimulatedMachine machine, IReadOnlyList<WireEvent> events, CancellationToken cancellationToken)
+    /// <param name="machine">The twin, in-process on virtual time.</param>
+    /// <param name="events">The recording.</param>
+    /// <param name="cancellationToken">Stops the replay.</param>
+    /// <param name="layerStarts">Called with each layer's index at its recorded start, on the simulation's loop (a layer's burn is checked alone).</param>
+    public static Task RunAsync(SimulatedMachine machine, IReadOnlyList<WireEvent> events, CancellationToken cancellationToken, Action<int>? layerStarts = null)
     {
         ArgumentNullException.ThrowIfNull(machine);
         ArgumentNullException.ThrowIfNull(events);
@@ -40,6 +44,13 @@ public static class WireReplay
             foreach (var e in events)
             {
                 end = Math.Max(end, e.Seconds);
+                if (e.Layer is { } layer)
+                {
+                    await WaitUntilAsync(time, start, e.Seconds, cancellationToken);
+                    layerStarts?.Invoke(layer);
+                    continue;
+                }
+
                 if (!e.Write)
                 {
                     continue;

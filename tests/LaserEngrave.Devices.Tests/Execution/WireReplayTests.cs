@@ -1,3 +1,4 @@
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
@@ -45,6 +46,43 @@ public sealed class WireReplayTests : IDisposable
         Assert.False(replayMachine.Gate.IsFiring);
     }
 
+    [Fact(Timeout = 300_000)]
+    public async Task ReplayLayers_OfATwinRunsRecording_EachLayerBurnsExactlyWhatTheTwinBurnedInIt()
+    {
+        // A raster layer and a drawing of two passes, apart on the stage.
+        var job = LayeredJob.Prepare(
+            [
+                new JobLayer { Name = "logo", Source = TestJobs.AssetPath("qr-code.bmp"), Mode = LayerMode.Raster, WidthMm = 1.5, Origin = new OriginMm(5, 5) },
+                new JobLayer { Name = "hexagons", Source = TestJobs.AssetPath(Path.Combine("drawings", "hexagons.dxf")), Mode = LayerMode.Outline, WidthMm = 3, Origin = new OriginMm(10, 5), Passes = 2 },
+            ],
+            MachineProfile.Default);
+        var options = new SimulatorOptions { Seed = 3 };
+        var (record, _, path) = await RecordedRunAsync(job, MachineProfile.Default, options);
+        var events = WireRecording.Read(path);
+
+        var replayed = await RecordedRunReplay.ReplayLayersAsync(job.Layers, MachineProfile.Default, events, RecordedRunReplay.OptionsFor(record, MachineProfile.Default, events, options), TestContext.Current.CancellationToken);
+
+        Assert.True(record.Outcome == RunOutcome.Completed, record.Fault?.Message);
+        Assert.Equal([0, 1], events.Where(e => e.Layer is not null).Select(e => e.Layer!.Value));
+        TestContext.Current.TestOutputHelper?.WriteLine($"twin: {string.Join(" | ", record.Layers!.Select(l => l.Simulation))}\nreplay: {string.Join(" | ", replayed)}");
+        for (var i = 0; i < 2; i++)
+        {
+            Assert.Equal(record.Layers![i].Simulation! with { Focus = null }, replayed[i]! with { Focus = null });
+        }
+    }
+
+    [Fact]
+    public async Task ReplayLayers_ARecordingWithoutLayerStarts_IsRefusedInOneLine()
+    {
+        var path = Path.Combine(_folder, "old.jsonl");
+        await File.WriteAllTextAsync(path, "{\"wire\":1}\n{\"t\":0.1,\"p\":\"s\",\"d\":\"w\",\"x\":\"013200000000\"}\n{\"end\":1}\n", TestContext.Current.CancellationToken);
+        var job = LayeredJob.Prepare([new JobLayer { Name = "logo", Source = TestJobs.AssetPath("qr-code.bmp"), Mode = LayerMode.Raster, WidthMm = 1.5, Origin = new OriginMm(5, 5) }], MachineProfile.Default);
+
+        var error = await Assert.ThrowsAsync<RunLogException>(() => RecordedRunReplay.ReplayLayersAsync(job.Layers, MachineProfile.Default, WireRecording.Read(path), new SimulatorOptions(), TestContext.Current.CancellationToken));
+
+        Assert.Contains("does not say where each layer began", error.Message, StringComparison.Ordinal);
+    }
+
     [Fact(Timeout = 120_000)]
     public async Task Recorder_AtItsCap_EndsWithTheTruncatedMark_AndReadRefusesIt()
     {
@@ -84,12 +122,14 @@ public sealed class WireReplayTests : IDisposable
         Assert.DoesNotContain('\n', error.Message);
     }
 
-    private async Task<(RunRecord Record, BurnReport Burn, string Path)> RecordedRunAsync(PreparedJob job, SimulatorOptions options)
+    private Task<(RunRecord Record, BurnReport Burn, string Path)> RecordedRunAsync(PreparedJob job, SimulatorOptions options) => RecordedRunAsync(job, job.Spec.Profile, options);
+
+    private async Task<(RunRecord Record, BurnReport Burn, string Path)> RecordedRunAsync(EngraveJob job, MachineProfile profile, SimulatorOptions options)
     {
-        var machine = SimulatedMachine.CreateInProcess(job.Spec.Profile, options);
+        var machine = SimulatedMachine.CreateInProcess(profile, options);
         var path = Path.Combine(_folder, "run.wire.jsonl");
         using var recorder = new WireRecorder(path, machine.TimeProvider);
-        var session = MachineSession.OverLinks(recorder.Wrap(machine.StageLink, stage: true), recorder.Wrap(machine.LaserLink, stage: false), job.Spec.Profile, machine.TimeProvider, "simulator", owner: machine);
+        var session = MachineSession.OverLinks(recorder.Wrap(machine.StageLink, stage: true), recorder.Wrap(machine.LaserLink, stage: false), profile, machine.TimeProvider, "simulator", owner: machine);
         await using (session)
         {
             var inspector = new BurnInspector(machine);
