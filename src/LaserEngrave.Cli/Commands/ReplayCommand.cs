@@ -26,17 +26,18 @@ internal static class ReplayCommand
         var json = new Option<bool>("--json") { Description = "Print one JSON object: the run's outcome and times from its log, the burn figures from the replay (as engrave --simulate --json)" };
         var burned = new Option<string?>("--burned") { Description = "Write what the run burned as a PNG on the job's pixel grid (black = burned)" };
         var dose = new Option<string?>("--dose") { Description = "Write the run's pulse map as a PNG, 4 x 4 cells a pixel, grey = pulses (black = the most)" };
+        var model = new Option<bool>("--model-latency") { Description = "Let the twin's adapters draw their latency (--sim-options adapterLatency) instead of taking each write's delay from its recorded reply" };
         var simOptions = MachineOptions.SimOptionsOption();
         var simSeed = MachineOptions.SimSeedOption();
         var command = new Command("replay", "Replay a recorded run's bytes at their times through the twin: the dose map, edges and pulses on white it actually burned")
         {
-            log, json, burned, dose, simOptions, simSeed,
+            log, json, burned, dose, model, simOptions, simSeed,
         };
-        command.SetAction((result, ct) => RunAsync(result, result.GetRequiredValue(log), result.GetValue(json), result.GetValue(burned), result.GetValue(dose), MachineOptions.SimulatorOptions(result, simOptions, simSeed, string.Empty), ct));
+        command.SetAction((result, ct) => RunAsync(result, result.GetRequiredValue(log), result.GetValue(json), result.GetValue(burned), result.GetValue(dose), result.GetValue(model), MachineOptions.SimulatorOptions(result, simOptions, simSeed, string.Empty), ct));
         return command;
     }
 
-    private static async Task<int> RunAsync(ParseResult result, string logPath, bool json, string? burnedPath, string? dosePath, SimulatorOptions baseOptions, CancellationToken cancellationToken)
+    private static async Task<int> RunAsync(ParseResult result, string logPath, bool json, string? burnedPath, string? dosePath, bool modelLatency, SimulatorOptions baseOptions, CancellationToken cancellationToken)
     {
         OptionChecks.OutputFile(burnedPath, "--burned");
         OptionChecks.OutputFile(dosePath, "--dose");
@@ -56,7 +57,7 @@ internal static class ReplayCommand
 
         var events = WireRecording.Read(Path.Combine(Path.GetDirectoryName(Path.GetFullPath(jsonPath))!, recording.File));
         BurnReport? burn = null;
-        SimulatorOptions options;
+        ReplaySetup setup;
         if (record.Layers is { } loggedLayers)
         {
             if (burnedPath is not null || dosePath is not null)
@@ -69,8 +70,8 @@ internal static class ReplayCommand
             MachineProfileValidator.Validate(profile, $"{logPath}: profile");
             var (layers, _) = RunReplay.ToLayers(record, resume: false, logPath, burning: false);
             var parts = LayeredJob.Prepare(layers, profile).Layers;
-            options = RecordedRunReplay.OptionsFor(record, profile, events, baseOptions);
-            var simulations = await RecordedRunReplay.ReplayLayersAsync(parts, profile, events, options, cancellationToken).ConfigureAwait(false);
+            setup = RecordedRunReplay.Setup(record, profile, events, baseOptions, !modelLatency);
+            var simulations = await RecordedRunReplay.ReplayLayersAsync(parts, profile, events, setup, cancellationToken).ConfigureAwait(false);
             record = record with { Layers = [.. loggedLayers.Select((l, i) => l with { Simulation = simulations[i] })] };
         }
         else
@@ -92,8 +93,8 @@ internal static class ReplayCommand
                 job = PreparedJob.Prepare(spec);
             }
 
-            options = RecordedRunReplay.OptionsFor(record, spec.Profile, events, baseOptions);
-            (var simulation, burn) = await RecordedRunReplay.ReplayAsync(job, drawing, spec.Profile, events, options, cancellationToken).ConfigureAwait(false);
+            setup = RecordedRunReplay.Setup(record, spec.Profile, events, baseOptions, !modelLatency);
+            (var simulation, burn) = await RecordedRunReplay.ReplayAsync(job, drawing, spec.Profile, events, setup, cancellationToken).ConfigureAwait(false);
             record = record with { Simulation = simulation };
         }
 
@@ -116,7 +117,7 @@ internal static class ReplayCommand
         }
         else
         {
-            stdout.WriteLine($"Replayed {events.Count} recorded writes and reads of {files.JsonPath} through the twin (seed {options.Seed}):");
+            stdout.WriteLine($"Replayed {events.Count} recorded writes and reads of {files.JsonPath} through the twin (seed {setup.Options.Seed}; {(setup.Delays is null ? "the twin's adapter latency" : "each write's delay from its reply")}):");
             EngraveCommand.WriteText(stdout, summary);
         }
 

@@ -15,37 +15,47 @@ namespace LaserEngrave.Simulator.Replay;
 public static class RecordedRunReplay
 {
     /// <summary>
-    /// The twin the run spoke to: the stages' firmware as the log says they reported it (a 5.06 refuses what a 5.23 takes),
+    /// The twin the run spoke to (with <paramref name="recordedDelays"/>, adapters without latency of their own: each write
+    /// goes in as late as its reply says it reached its device, <see cref="RecordedLatency"/>): the stages' firmware as the log says they reported it (a 5.06 refuses what a 5.23 takes),
     /// standing where they reported they stood (so homing takes the time it took), on virtual time, with no injected
     /// faults and a host that is never late (its lateness is in the recorded times already).
     /// </summary>
-    public static SimulatorOptions OptionsFor(RunRecord record, MachineProfile profile, IReadOnlyList<WireEvent> events, SimulatorOptions baseOptions)
+    /// <returns>The twin's options, and each event's delay (null: the twin's adapters draw theirs).</returns>
+    public static ReplaySetup Setup(RunRecord record, MachineProfile profile, IReadOnlyList<WireEvent> events, SimulatorOptions baseOptions, bool recordedDelays = true)
     {
         ArgumentNullException.ThrowIfNull(record);
         ArgumentNullException.ThrowIfNull(baseOptions);
         var options = baseOptions with { HostLateness = HostLateness.None, RealTime = false, Paced = false, FaultSpec = null, StartMicrosteps = WireReplay.StartMicrosteps(profile, events) };
+        double[]? delays = null;
+        if (recordedDelays)
+        {
+            options = options with { AdapterLatency = Jitter.None };
+            delays = RecordedLatency.OneWaySeconds(profile, events, options.GateProcessing.MeanMs);
+        }
+
         if (record.Devices.FirstOrDefault(d => d.Role == "x axis") is { } x && decimal.TryParse(x.Firmware, NumberStyles.AllowDecimalPoint, CultureInfo.InvariantCulture, out var firmware))
         {
             options = options with { FirmwareVersion = (int)Math.Round(firmware * 100) };
         }
 
-        return options;
+        return new ReplaySetup(options, delays);
     }
 
     /// <summary>Replays the run of one image (<paramref name="job"/>) or drawing; its figures and, for an image, the burn report (burned pixels, dose).</summary>
-    public static async Task<(RunSimulation Simulation, BurnReport? Burn)> ReplayAsync(PreparedJob? job, PreparedDrawing? drawing, MachineProfile profile, IReadOnlyList<WireEvent> events, SimulatorOptions options, CancellationToken cancellationToken)
+    public static async Task<(RunSimulation Simulation, BurnReport? Burn)> ReplayAsync(PreparedJob? job, PreparedDrawing? drawing, MachineProfile profile, IReadOnlyList<WireEvent> events, ReplaySetup setup, CancellationToken cancellationToken)
     {
         if ((job is null) == (drawing is null))
         {
             throw new ArgumentException("one image or one drawing");
         }
 
-        var machine = SimulatedMachine.CreateInProcess(profile, options);
+        ArgumentNullException.ThrowIfNull(setup);
+        var machine = SimulatedMachine.CreateInProcess(profile, setup.Options);
         await using (machine.ConfigureAwait(false))
         {
             var inspector = new BurnInspector(machine);
             inspector.Begin();
-            await WireReplay.RunAsync(machine, events, cancellationToken).ConfigureAwait(false);
+            await WireReplay.RunAsync(machine, events, cancellationToken, delays: setup.Delays).ConfigureAwait(false);
             return (Inspect(inspector, job, drawing), inspector.Report);
         }
     }
@@ -55,7 +65,7 @@ public static class RecordedRunReplay
     /// a layer the recording does not start (it never ran, or an earlier run completed it).
     /// </summary>
     /// <exception cref="RunLogException">The recording notes no layer's start (made before layers were noted).</exception>
-    public static async Task<IReadOnlyList<RunSimulation?>> ReplayLayersAsync(IReadOnlyList<PreparedLayer> parts, MachineProfile profile, IReadOnlyList<WireEvent> events, SimulatorOptions options, CancellationToken cancellationToken)
+    public static async Task<IReadOnlyList<RunSimulation?>> ReplayLayersAsync(IReadOnlyList<PreparedLayer> parts, MachineProfile profile, IReadOnlyList<WireEvent> events, ReplaySetup setup, CancellationToken cancellationToken)
     {
         ArgumentNullException.ThrowIfNull(parts);
         ArgumentNullException.ThrowIfNull(events);
@@ -70,7 +80,8 @@ public static class RecordedRunReplay
         }
 
         var results = new RunSimulation?[parts.Count];
-        var machine = SimulatedMachine.CreateInProcess(profile, options);
+        ArgumentNullException.ThrowIfNull(setup);
+        var machine = SimulatedMachine.CreateInProcess(profile, setup.Options);
         await using (machine.ConfigureAwait(false))
         {
             var inspector = new BurnInspector(machine);
@@ -85,7 +96,7 @@ public static class RecordedRunReplay
 
                 inspector.Begin();
                 current = layer;
-            }).ConfigureAwait(false);
+            }, setup.Delays).ConfigureAwait(false);
             if (current is { } last)
             {
                 results[last] = Inspect(inspector, parts[last].Image, parts[last].Drawing);
@@ -98,3 +109,6 @@ public static class RecordedRunReplay
     private static RunSimulation Inspect(BurnInspector inspector, PreparedJob? job, PreparedDrawing? drawing) =>
         job is not null ? inspector.Inspect(job) : inspector.InspectDrawing(drawing!);
 }
+
+/// <summary>How a recording is replayed: the twin's options, and each event's delay from the recording (null: the twin's adapters draw their own).</summary>
+public sealed record ReplaySetup(SimulatorOptions Options, IReadOnlyList<double>? Delays);

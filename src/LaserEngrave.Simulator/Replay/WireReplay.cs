@@ -22,7 +22,8 @@ public static class WireReplay
     /// <param name="events">The recording.</param>
     /// <param name="cancellationToken">Stops the replay.</param>
     /// <param name="layerStarts">Called with each layer's index at its recorded start, on the simulation's loop (a layer's burn is checked alone).</param>
-    public static Task RunAsync(SimulatedMachine machine, IReadOnlyList<WireEvent> events, CancellationToken cancellationToken, Action<int>? layerStarts = null)
+    /// <param name="delays">How much later than recorded each event's write goes in, seconds (<see cref="RecordedLatency"/>; null: none, the twin's adapters add theirs). Writes keep their order.</param>
+    public static Task RunAsync(SimulatedMachine machine, IReadOnlyList<WireEvent> events, CancellationToken cancellationToken, Action<int>? layerStarts = null, IReadOnlyList<double>? delays = null)
     {
         ArgumentNullException.ThrowIfNull(machine);
         ArgumentNullException.ThrowIfNull(events);
@@ -41,8 +42,9 @@ public static class WireReplay
             _ = runner.Start(() => DrainAsync(laser));
             var start = time.GetTimestamp();
             var end = 0.0;
-            foreach (var e in events)
+            for (var i = 0; i < events.Count; i++)
             {
+                var e = events[i];
                 end = Math.Max(end, e.Seconds);
                 if (e.Layer is { } layer)
                 {
@@ -56,7 +58,7 @@ public static class WireReplay
                     continue;
                 }
 
-                await WaitUntilAsync(time, start, e.Seconds, cancellationToken);
+                await WaitUntilAsync(time, start, e.Seconds + (delays?[i] ?? 0), cancellationToken);
                 await (e.Stage ? stage : laser).WriteAsync(e.Data, cancellationToken);
             }
 

@@ -60,7 +60,7 @@ public sealed class WireReplayTests : IDisposable
         var (record, _, path) = await RecordedRunAsync(job, MachineProfile.Default, options);
         var events = WireRecording.Read(path);
 
-        var replayed = await RecordedRunReplay.ReplayLayersAsync(job.Layers, MachineProfile.Default, events, RecordedRunReplay.OptionsFor(record, MachineProfile.Default, events, options), TestContext.Current.CancellationToken);
+        var replayed = await RecordedRunReplay.ReplayLayersAsync(job.Layers, MachineProfile.Default, events, RecordedRunReplay.Setup(record, MachineProfile.Default, events, options, recordedDelays: false), TestContext.Current.CancellationToken);
 
         Assert.True(record.Outcome == RunOutcome.Completed, record.Fault?.Message);
         Assert.Equal([0, 1], events.Where(e => e.Layer is not null).Select(e => e.Layer!.Value));
@@ -71,6 +71,33 @@ public sealed class WireReplayTests : IDisposable
         }
     }
 
+    [Fact(Timeout = 300_000)]
+    public async Task Replay_RecordedDelays_AdaptersSlowerThanTheTwinsModel_BurnsWhatTheRunBurned()
+    {
+        // The run's adapters take 3 ms each way where the replaying twin's model says 1 ± 0.5 ms: the delays must come from the recording.
+        var profile = MachineProfile.Default with { Latency = MachineProfile.Default.Latency with { StageMs = 3, StageJitterMs = 0.1, GateMs = 3, GateJitterMs = 0.1 } };
+        var job = PreparedJob.Prepare(new JobSpec { Profile = profile, ImagePath = TestJobs.AssetPath("qr-code.bmp"), Size = SizeSpec.Width(5), Origin = TestJobs.Origin, Plan = new PlanOptions() });
+        var gate = new Jitter(0.5, 0);
+        var (record, twin, path) = await RecordedRunAsync(job, new SimulatorOptions { Seed = 5, AdapterLatency = new Jitter(3, 0), GateProcessing = gate });
+        var events = WireRecording.Read(path);
+        var replayTwin = new SimulatorOptions { Seed = 9, GateProcessing = gate };
+
+        var (recorded, burn) = await RecordedRunReplay.ReplayAsync(job, null, job.Spec.Profile, events, RecordedRunReplay.Setup(record, job.Spec.Profile, events, replayTwin), TestContext.Current.CancellationToken);
+        var (modelled, _) = await RecordedRunReplay.ReplayAsync(job, null, job.Spec.Profile, events, RecordedRunReplay.Setup(record, job.Spec.Profile, events, replayTwin, recordedDelays: false), TestContext.Current.CancellationToken);
+
+        TestContext.Current.TestOutputHelper?.WriteLine($"run: {record.Simulation}\nrecorded delays: {recorded}\ntwin's model: {modelled}");
+        // The run need not complete (3 ms adapters stop it within its first strokes): what it burned is what must come back.
+        Assert.InRange(record.Simulation!.Pulses, 1000, long.MaxValue);
+        Assert.True(twin.Burned.ContentEquals(burn!.Burned), "the replay's burned pixels differ from the run's");
+        var run = record.Simulation!;
+        Assert.Equal((run.MissingPixels, run.ExtraPixels, run.LaserOnTravelCount, run.Pulses), (recorded.MissingPixels, recorded.ExtraPixels, recorded.LaserOnTravelCount, recorded.Pulses));
+        Assert.Equal(run.Edges!.MeanErrorUm, recorded.Edges!.MeanErrorUm, 0.005);
+        Assert.Equal(run.Edges.MaxErrorUm, recorded.Edges.MaxErrorUm, 0.005);
+
+        // The twin's own latency model would have burned something else: the recorded delays are what makes the replay true.
+        Assert.NotEqual((run.LaserOnTravelCount, run.ExtraPixels), (modelled.LaserOnTravelCount, modelled.ExtraPixels));
+    }
+
     [Fact]
     public async Task ReplayLayers_ARecordingWithoutLayerStarts_IsRefusedInOneLine()
     {
@@ -78,7 +105,7 @@ public sealed class WireReplayTests : IDisposable
         await File.WriteAllTextAsync(path, "{\"wire\":1}\n{\"t\":0.1,\"p\":\"s\",\"d\":\"w\",\"x\":\"013200000000\"}\n{\"end\":1}\n", TestContext.Current.CancellationToken);
         var job = LayeredJob.Prepare([new JobLayer { Name = "logo", Source = TestJobs.AssetPath("qr-code.bmp"), Mode = LayerMode.Raster, WidthMm = 1.5, Origin = new OriginMm(5, 5) }], MachineProfile.Default);
 
-        var error = await Assert.ThrowsAsync<RunLogException>(() => RecordedRunReplay.ReplayLayersAsync(job.Layers, MachineProfile.Default, WireRecording.Read(path), new SimulatorOptions(), TestContext.Current.CancellationToken));
+        var error = await Assert.ThrowsAsync<RunLogException>(() => RecordedRunReplay.ReplayLayersAsync(job.Layers, MachineProfile.Default, WireRecording.Read(path), new ReplaySetup(new SimulatorOptions(), null), TestContext.Current.CancellationToken));
 
         Assert.Contains("does not say where each layer began", error.Message, StringComparison.Ordinal);
     }
