@@ -179,6 +179,19 @@ public sealed class MachineCheck
             {
                 // Reported by its step; the watchdog switches it off anyway.
             }
+
+            if (cancellationToken.IsCancellationRequested)
+            {
+                // Stopped by the person: an axis homing or moving for the check stops where it is, not at its target.
+                try
+                {
+                    await Task.WhenAll(_stage.X.StopAsync(CancellationToken.None), _stage.Y.StopAsync(CancellationToken.None));
+                }
+                catch (DeviceException)
+                {
+                    // Nothing more to do from here: the axis is reported by the panel's next reading.
+                }
+            }
         }
     }
 

@@ -138,6 +138,7 @@ public sealed class CommissionPanelTests : ComponentTest
 
         cut.WaitForAssertion(() => Assert.Contains("stopped", cut.Find("[data-error='commission']").TextContent, StringComparison.Ordinal));
         Assert.False(Main.Activity.IsBusy);
+        Assert.False(Commission.IsChecking);
         Assert.Null(Commission.ReportPath);
         Assert.False(File.Exists(Path.Combine(DataFolder.Path, "machine-profile.json")));
     }
