@@ -27,25 +27,45 @@ public static class RecordedLatency
     {
         ArgumentNullException.ThrowIfNull(profile);
         ArgumentNullException.ThrowIfNull(events);
-        var delays = new double?[events.Count];
-        StageDelays(profile, events, delays);
-        GateDelays(profile, events, delays, gateProcessingMs / 1000);
+        var roundTrips = new double?[events.Count];
+        var rest = new double[events.Count];
+        StageRoundTrips(profile, events, roundTrips, rest);
+        GateRoundTrips(profile, events, roundTrips, rest, gateProcessingMs / 1000);
         var result = new double[events.Count];
-        foreach (var stage in new[] { true, false })
+        foreach (var (stage, baud) in new[] { (true, profile.StageBaudRate), (false, profile.Gate.BaudRate) })
         {
+            var secondsPerByte = BitsPerByte / baud;
             var writes = Enumerable.Range(0, events.Count).Where(i => events[i].Write && events[i].Stage == stage).ToList();
-            double? last = writes.Select(i => delays[i]).FirstOrDefault(d => d is not null);
+            double? last = null;
+            var wireFreeAt = double.NegativeInfinity;
+            foreach (var i in writes.Where(i => roundTrips[i] is not null).Take(1))
+            {
+                // Before the first estimate: the first one's, ignoring any queue.
+                last = Math.Max(0, (roundTrips[i]!.Value - rest[i]) / 2);
+            }
+
             foreach (var i in writes)
             {
-                last = delays[i] ?? last;
+                var e = events[i];
+                if (roundTrips[i] is { } roundTrip)
+                {
+                    // Half the round trip each way, unless the write then still waited for the wire (the bytes before it
+                    // on their way out): then the wait explains part of the round trip, and the adapter the rest.
+                    var queue = wireFreeAt - e.Seconds;
+                    var half = Math.Max(0, (roundTrip - rest[i]) / 2);
+                    last = half >= queue ? half : Math.Max(0, roundTrip - rest[i] - queue);
+                }
+
                 result[i] = last ?? 0;
+                wireFreeAt = Math.Max(e.Seconds + result[i], wireFreeAt) + (e.Data.Length * secondsPerByte);
             }
         }
 
         return result;
     }
 
-    private static void StageDelays(MachineProfile profile, IReadOnlyList<WireEvent> events, double?[] delays)
+    // Each Zaber write's round trip to its reply (a command that replies at once), and the wire's part of it.
+    private static void StageRoundTrips(MachineProfile profile, IReadOnlyList<WireEvent> events, double?[] roundTrips, double[] rest)
     {
         var wire = 2 * ZaberFrame.Length * BitsPerByte / profile.StageBaudRate;
         var pending = new List<(byte Device, byte Command, int Index)>();
@@ -84,12 +104,14 @@ public static class RecordedLatency
 
                 var write = pending[match].Index;
                 pending.RemoveAt(match);
-                delays[write] ??= Math.Max(0, (e.Seconds - events[write].Seconds - wire) / 2);
+                roundTrips[write] ??= e.Seconds - events[write].Seconds;
+                rest[write] = wire;
             }
         }
     }
 
-    private static void GateDelays(MachineProfile profile, IReadOnlyList<WireEvent> events, double?[] delays, double processingSeconds)
+    // Each gate command's round trip to its reply line (in order), and the wire's and the gate's processing part of it.
+    private static void GateRoundTrips(MachineProfile profile, IReadOnlyList<WireEvent> events, double?[] roundTrips, double[] rest, double processingSeconds)
     {
         var terminator = (byte)profile.Gate.LineTerminator[^1];
         var secondsPerByte = BitsPerByte / profile.Gate.BaudRate;
@@ -119,8 +141,8 @@ public static class RecordedLatency
 
                 if (pending.TryDequeue(out var write))
                 {
-                    var wire = (events[write].Data.Length + line) * secondsPerByte;
-                    delays[write] = Math.Max(0, (e.Seconds - events[write].Seconds - wire - processingSeconds) / 2);
+                    roundTrips[write] = e.Seconds - events[write].Seconds;
+                    rest[write] = ((events[write].Data.Length + line) * secondsPerByte) + processingSeconds;
                 }
 
                 line = 0;
