@@ -34,12 +34,12 @@ public sealed class MachineConnectionFactory(SimulatorOptions? simulatorOptions 
         return Task.FromResult<IMachineConnection>(OpenPorts(stagePort, laserPort, profile));
     }
 
-    /// <summary>The machine on two links opened already (real ports; a test's ptys), each run recorded by its flight recorder.</summary>
+    /// <summary>The machine on two real ports opened already, each run recorded by its flight recorder.</summary>
     /// <param name="description">For the page, e.g. "stage COM3, laser COM4".</param>
     /// <param name="stageLink">The stage's link, closed with the connection.</param>
     /// <param name="laserLink">The laser gate's link, closed with the connection.</param>
     /// <param name="profile">The machine.</param>
-    public static IMachineConnection OverRecordedLinks(string description, ISerialLink stageLink, ISerialLink laserLink, MachineProfile profile)
+    private static IMachineConnection OverRecordedLinks(string description, ISerialLink stageLink, ISerialLink laserLink, MachineProfile profile)
     {
         ArgumentNullException.ThrowIfNull(stageLink);
         ArgumentNullException.ThrowIfNull(laserLink);
