@@ -1,5 +1,6 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Machine;
+using LaserEngrave.Devices.Serial;
 using LaserEngrave.Simulator;
 using LaserEngrave.Simulator.Burn;
 using LaserEngrave.Wire.Serial;
@@ -16,6 +17,31 @@ public static class MachineFactory
     /// <param name="recorder">The flight recorder both links write through; null records nothing.</param>
     public static OpenMachine OpenPorts(string stagePort, string laserPort, MachineProfile profile, WireRecorder? recorder = null) =>
         new(MachineSession.OpenPorts(stagePort, laserPort, profile, recorder), null);
+
+    /// <summary>
+    /// Two serial ports kept open from run to run (the app's machine), each run recorded by its own flight recorder
+    /// (<see cref="OpenMachine.StartRecording"/>).
+    /// </summary>
+    public static OpenMachine OpenRecordablePorts(string stagePort, string laserPort, MachineProfile profile)
+    {
+        ArgumentNullException.ThrowIfNull(profile);
+        var stageLink = SerialPortLink.Open(new SerialPortSettings(stagePort) { BaudRate = profile.StageBaudRate });
+        ISerialLink laserLink;
+        try
+        {
+            laserLink = SerialPortLink.Open(new SerialPortSettings(laserPort) { BaudRate = profile.Gate.BaudRate });
+        }
+        catch
+        {
+            stageLink.DisposeAsync().AsTask().GetAwaiter().GetResult();
+            throw;
+        }
+
+        var stage = new RecordedLink(stageLink, stage: true);
+        var laser = new RecordedLink(laserLink, stage: false);
+        var description = $"stage {stagePort}, laser {laserPort}";
+        return new OpenMachine(MachineSession.OverLinks(stage, laser, profile, TimeProvider.System, description, owner: null), null, (stage, laser));
+    }
 
     /// <summary>A twin on in-memory links with the host's stage and gate already on them; the session's <see cref="MachineSession.Owner"/> is the twin, disposed with it.</summary>
     /// <param name="options">The twin's options; the defaults when null.</param>

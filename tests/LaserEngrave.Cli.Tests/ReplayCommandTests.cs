@@ -67,6 +67,53 @@ public sealed class ReplayCommandTests : IDisposable
         Assert.Equal(simulatedPng.ToArray(), await File.ReadAllBytesAsync(burned, ct));
     }
 
+    [Fact(Timeout = 180_000)]
+    public async Task ReplayOfAPortsRunOfLayers_GivesEachLayerThatRanItsOwnFigures()
+    {
+        var ct = TestContext.Current.CancellationToken;
+        var profile = MachineProfile.Default;
+        await using var stage = await SocatPtyPair.StartAsync(ct);
+        await using var laser = await SocatPtyPair.StartAsync(ct);
+        var simulator = SimulatedMachine.Attach(
+            SerialPortLink.Open(stage.A, profile.StageBaudRate), SerialPortLink.Open(laser.A, profile.Gate.BaudRate), profile, new SimulatorOptions { StartMm = 1 });
+        string logPath;
+        await using (simulator)
+        {
+            await File.WriteAllTextAsync(Path.Combine(_logDir, "small.pbm"), "P1\n6 3\n1 1 0 0 1 1\n0 1 1 1 1 0\n1 0 1 0 1 0\n", ct);
+            var job = Path.Combine(_logDir, "job.json");
+            await File.WriteAllTextAsync(job, """
+                { "layers": [
+                  { "name": "left", "source": "small.pbm", "widthMm": 0.6, "originMm": [1, 1] },
+                  { "name": "right", "source": "small.pbm", "widthMm": 0.6, "originMm": [2, 1] }
+                ] }
+                """, ct);
+
+            // On a loaded test machine the wall-clock simulator may stop the run: what ran is replayed either way.
+            var (_, output, error) = await CliHarness.RunAsync("engrave", "--job", job, "--stage-port", stage.B, "--laser-port", laser.B, "--json", "--log-dir", _logDir);
+            using var json = JsonDocument.Parse(output);
+            logPath = json.RootElement.GetProperty("logPath").GetString()!;
+            TestContext.Current.TestOutputHelper?.WriteLine(error);
+        }
+
+        var record = RunLogStore.Read(logPath);
+        var (exit, replayOutput, replayError) = await CliHarness.RunAsync("replay", logPath, "--json");
+        var (burnedExit, _, burnedError) = await CliHarness.RunAsync("replay", logPath, "--burned", Path.Combine(_logDir, "b.png"));
+
+        Assert.True(exit == 0, replayError);
+        using var replay = JsonDocument.Parse(replayOutput);
+        var layers = replay.RootElement.GetProperty("layers").EnumerateArray().ToList();
+        Assert.Equal(2, layers.Count);
+        for (var i = 0; i < 2; i++)
+        {
+            // A layer that ran has the replay's figures, one that never started has none.
+            var simulation = layers[i].GetProperty("simulation");
+            Assert.Equal(record.Layers![i].Outcome is not null, simulation.ValueKind == JsonValueKind.Object);
+        }
+
+        Assert.Equal(2, burnedExit);
+        Assert.Contains("a job of layers has its figures layer by layer", burnedError, StringComparison.Ordinal);
+    }
+
     [Fact]
     public async Task EngraveOnPortsThatDoNotOpen_LeavesNoRecordingBehind()
     {

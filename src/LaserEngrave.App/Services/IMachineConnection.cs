@@ -1,6 +1,9 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Devices.Execution;
+using LaserEngrave.Devices.Machine;
+using LaserEngrave.Wire.Serial;
 
 namespace LaserEngrave.App.Services;
 
@@ -22,6 +25,16 @@ public interface IMachineConnection : IAsyncDisposable
 
     ILaserGate Gate { get; }
 
+    /// <summary>Times round trips to both axes and the gate (the machine check's latencies).</summary>
+    ILatencyProbe Latency { get; }
+
     /// <summary>The simulator's burn check for a run's log; null on a real machine.</summary>
     IRunInspector? Inspector { get; }
+
+    /// <summary>
+    /// On real ports, starts a run's flight recorder in <paramref name="folder"/> (the run logs' folder, so it is kept with
+    /// the run's log): every byte in and out with its time, until the run finishes it (docs/run-log.md). Null where nothing
+    /// is recorded (the simulator, whose burn is checked directly).
+    /// </summary>
+    WireRecorder? StartRecording(string folder) => null;
 }

@@ -1,7 +1,9 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Devices.Machine;
 using LaserEngrave.Devices.Serial;
+using LaserEngrave.Wire.Serial;
 using LaserEngrave.Machines;
 using LaserEngrave.Simulator;
 
@@ -30,7 +32,7 @@ public sealed class MachineConnectionFactory(SimulatorOptions? simulatorOptions 
 
         var stagePort = Required(choice.StagePort, "stage");
         var laserPort = Required(choice.LaserPort, "laser gate");
-        return Task.FromResult<IMachineConnection>(new Connection($"stage {stagePort}, laser {laserPort}", profile, MachineFactory.OpenPorts(stagePort, laserPort, profile)));
+        return Task.FromResult<IMachineConnection>(new Connection($"stage {stagePort}, laser {laserPort}", profile, MachineFactory.OpenRecordablePorts(stagePort, laserPort, profile)));
     }
 
     public IReadOnlyList<string> ListPorts() => SerialPortNames.List();
@@ -52,7 +54,11 @@ public sealed class MachineConnectionFactory(SimulatorOptions? simulatorOptions 
 
         public ILaserGate Gate => machine.Session.Gate;
 
+        public ILatencyProbe Latency { get; } = new LatencyProbe(machine.Session.Stage, machine.Session.Gate, machine.Session.TimeProvider);
+
         public IRunInspector? Inspector => machine.Twin;
+
+        public WireRecorder? StartRecording(string folder) => machine.StartRecording(folder);
 
         public ValueTask DisposeAsync() => machine.DisposeAsync();
     }

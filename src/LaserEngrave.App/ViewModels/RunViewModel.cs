@@ -548,6 +548,9 @@ public sealed partial class RunViewModel : ObservableObject
             JobFile = layered is null ? null : _layers?.UnchangedJobFile,
             Log = _log.Writer,
             WallClock = _time,
+
+            // On real ports every byte in and out is recorded beside the log, as the command line's runs are (`laserengrave replay`).
+            Recorder = connection.StartRecording(_log.Folder),
         });
         StoppedAt = null;
         RunPlanVersion = _job.PlanVersion;

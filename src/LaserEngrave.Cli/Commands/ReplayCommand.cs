@@ -14,7 +14,8 @@ namespace LaserEngrave.Cli.Commands;
 /// <summary>`laserengrave replay LOG`: what a recorded run on real ports actually burned, by its recorded bytes and times through the twin.</summary>
 /// <remarks>
 /// The run's job comes from its log (the image checked against its SHA-256, as --from-log does), the bytes and times from
-/// the flight recorder beside it; the devices are the twin's, the figures those of `engrave --simulate`. Exit 2 for a log
+/// the flight recorder beside it; the devices are the twin's, the figures those of `engrave --simulate` (a job of layers:
+/// each layer's, from its recorded start to the next's, its layers read again from the job file). Exit 2 for a log
 /// without a recording and a truncated, cut-off or corrupt recording.
 /// </remarks>
 internal static class ReplayCommand
@@ -25,17 +26,18 @@ internal static class ReplayCommand
         var json = new Option<bool>("--json") { Description = "Print one JSON object: the run's outcome and times from its log, the burn figures from the replay (as engrave --simulate --json)" };
         var burned = new Option<string?>("--burned") { Description = "Write what the run burned as a PNG on the job's pixel grid (black = burned)" };
         var dose = new Option<string?>("--dose") { Description = "Write the run's pulse map as a PNG, 4 x 4 cells a pixel, grey = pulses (black = the most)" };
+        var model = new Option<bool>("--model-latency") { Description = "Let the twin's adapters draw their latency (--sim-options adapterLatency) instead of taking each write's delay from its recorded reply" };
         var simOptions = MachineOptions.SimOptionsOption();
         var simSeed = MachineOptions.SimSeedOption();
         var command = new Command("replay", "Replay a recorded run's bytes at their times through the twin: the dose map, edges and pulses on white it actually burned")
         {
-            log, json, burned, dose, simOptions, simSeed,
+            log, json, burned, dose, model, simOptions, simSeed,
         };
-        command.SetAction((result, ct) => RunAsync(result, result.GetRequiredValue(log), result.GetValue(json), result.GetValue(burned), result.GetValue(dose), MachineOptions.SimulatorOptions(result, simOptions, simSeed, string.Empty), ct));
+        command.SetAction((result, ct) => RunAsync(result, result.GetRequiredValue(log), result.GetValue(json), result.GetValue(burned), result.GetValue(dose), result.GetValue(model), MachineOptions.SimulatorOptions(result, simOptions, simSeed, string.Empty), ct));
         return command;
     }
 
-    private static async Task<int> RunAsync(ParseResult result, string logPath, bool json, string? burnedPath, string? dosePath, SimulatorOptions baseOptions, CancellationToken cancellationToken)
+    private static async Task<int> RunAsync(ParseResult result, string logPath, bool json, string? burnedPath, string? dosePath, bool modelLatency, SimulatorOptions baseOptions, CancellationToken cancellationToken)
     {
         OptionChecks.OutputFile(burnedPath, "--burned");
         OptionChecks.OutputFile(dosePath, "--dose");
@@ -53,48 +55,47 @@ internal static class ReplayCommand
             throw new UsageException($"{logPath}: the recording is truncated (it reached its size cap), so the rest of the run is not in it and its burn cannot be replayed");
         }
 
-        if (record.Layers is not null)
-        {
-            throw new UsageException($"{logPath}: a job of layers cannot be replayed yet; replay is for one image or drawing");
-        }
-
-        var spec = RunReplay.ToJobSpec(record);
-        MachineProfileValidator.Validate(spec.Profile, $"{logPath}: profile");
         var events = WireRecording.Read(Path.Combine(Path.GetDirectoryName(Path.GetFullPath(jsonPath))!, recording.File));
-        PreparedJob? job = null;
-        PreparedDrawing? drawing = null;
-        if (record.Drawing is { } loggedDrawing)
+        BurnReport? burn = null;
+        ReplaySetup setup;
+        if (record.Layers is { } loggedLayers)
         {
-            drawing = PreparedDrawing.Prepare(spec, loggedDrawing.ToVectorOptions());
             if (burnedPath is not null || dosePath is not null)
             {
-                throw new UsageException("--burned and --dose are for images; a drawing's figures are in --json (pathDeviationUm, pulseSpacingUm)");
+                throw new UsageException("--burned and --dose are for one image; a job of layers has its figures layer by layer in --json (layers[].simulation)");
             }
+
+            // Each layer read again from the job file the log names, checked against its SHA-256, as a repeat of the run does.
+            var profile = record.Profile ?? MachineProfile.Default;
+            MachineProfileValidator.Validate(profile, $"{logPath}: profile");
+            var (layers, _) = RunReplay.ToLayers(record, resume: false, logPath, burning: false);
+            var parts = LayeredJob.Prepare(layers, profile).Layers;
+            setup = RecordedRunReplay.Setup(record, profile, events, baseOptions, !modelLatency);
+            var simulations = await RecordedRunReplay.ReplayLayersAsync(parts, profile, events, setup, cancellationToken).ConfigureAwait(false);
+            record = record with { Layers = [.. loggedLayers.Select((l, i) => l with { Simulation = simulations[i] })] };
         }
         else
         {
-            job = PreparedJob.Prepare(spec);
-        }
+            var spec = RunReplay.ToJobSpec(record);
+            MachineProfileValidator.Validate(spec.Profile, $"{logPath}: profile");
+            PreparedJob? job = null;
+            PreparedDrawing? drawing = null;
+            if (record.Drawing is { } loggedDrawing)
+            {
+                drawing = PreparedDrawing.Prepare(spec, loggedDrawing.ToVectorOptions());
+                if (burnedPath is not null || dosePath is not null)
+                {
+                    throw new UsageException("--burned and --dose are for images; a drawing's figures are in --json (pathDeviationUm, pulseSpacingUm)");
+                }
+            }
+            else
+            {
+                job = PreparedJob.Prepare(spec);
+            }
 
-        // The devices the run spoke to: the stage's firmware as it reported it (a 5.06 refuses what a 5.23 takes). The host's
-        // lateness is in the recorded times already, so the replaying host is never late.
-        // The stages start where they reported they stood, so homing takes the time it took.
-        var options = baseOptions with { HostLateness = HostLateness.None, RealTime = false, FaultSpec = null, StartMicrosteps = WireReplay.StartMicrosteps(spec.Profile, events) };
-        if (record.Devices.FirstOrDefault(d => d.Role == "x axis") is { } x && decimal.TryParse(x.Firmware, NumberStyles.AllowDecimalPoint, CultureInfo.InvariantCulture, out var firmware))
-        {
-            options = options with { FirmwareVersion = (int)Math.Round(firmware * 100) };
-        }
-
-        RunSimulation simulation;
-        BurnReport? burn = null;
-        var machine = SimulatedMachine.CreateInProcess(spec.Profile, options);
-        await using (machine.ConfigureAwait(false))
-        {
-            var inspector = new BurnInspector(machine);
-            inspector.Begin();
-            await WireReplay.RunAsync(machine, events, cancellationToken).ConfigureAwait(false);
-            simulation = job is not null ? inspector.Inspect(job) : inspector.InspectDrawing(drawing!);
-            burn = inspector.Report;
+            setup = RecordedRunReplay.Setup(record, spec.Profile, events, baseOptions, !modelLatency);
+            (var simulation, burn) = await RecordedRunReplay.ReplayAsync(job, drawing, spec.Profile, events, setup, cancellationToken).ConfigureAwait(false);
+            record = record with { Simulation = simulation };
         }
 
         if (burnedPath is not null && burn is not null)
@@ -108,7 +109,7 @@ internal static class ReplayCommand
         }
 
         var files = new RunLogFiles(Path.GetFullPath(jsonPath), Path.ChangeExtension(Path.GetFullPath(jsonPath), ".txt"));
-        var summary = EngraveSummary.From(record with { Simulation = simulation }, files, burnedPath, burn is null ? null : dosePath, null);
+        var summary = EngraveSummary.From(record, files, burnedPath, burn is null ? null : dosePath, null);
         var stdout = result.InvocationConfiguration.Output;
         if (json)
         {
@@ -116,7 +117,7 @@ internal static class ReplayCommand
         }
         else
         {
-            stdout.WriteLine($"Replayed {events.Count} recorded writes and reads of {files.JsonPath} through the twin (seed {options.Seed}):");
+            stdout.WriteLine($"Replayed {events.Count} recorded writes and reads of {files.JsonPath} through the twin (seed {setup.Options.Seed}; {(setup.Delays is null ? "the twin's adapter latency" : "each write's delay from its reply")}):");
             EngraveCommand.WriteText(stdout, summary);
         }
 

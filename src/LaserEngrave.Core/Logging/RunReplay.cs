@@ -167,7 +167,11 @@ public static class RunReplay
     /// <see cref="RunLogException"/> (one line) when the log names no job file, or the job file or any layer's source is
     /// gone or has changed (SHA-256), or nothing is left to resume.
     /// </summary>
-    public static (IReadOnlyList<JobLayer> Layers, LayerResumePoint? Resume) ToLayers(RunRecord record, bool resume, string source = "run log")
+    /// <param name="record">The log.</param>
+    /// <param name="resume">Also where the run goes on.</param>
+    /// <param name="source">How messages name the log.</param>
+    /// <param name="burning">The layers are to be burned (a repeat, a resume): marks whose numbers a completed run burned are refused. A replay burns nothing.</param>
+    public static (IReadOnlyList<JobLayer> Layers, LayerResumePoint? Resume) ToLayers(RunRecord record, bool resume, string source = "run log", bool burning = true)
     {
         ArgumentNullException.ThrowIfNull(record);
         if (record.StoppedAt is { } stopped && StopProblem(stopped, record.Profile ?? MachineProfile.Default) is { } problem)
@@ -180,7 +184,7 @@ public static class RunReplay
             ?? throw new RunLogException("the log does not name its job file (written before resumes of layers were logged); run the job file again with --job");
         CheckUnchanged(jobFile.Path, jobFile.Sha256, "job file");
         // A repeat of a completed run, or a second continue of a stopped one, would burn numbers a completed run burned.
-        if (jobFile.Marks is { Count: > 0 } burned && new Marks.MarkCounter(burned.Counter).Burned(burned.FirstNumber, burned.Count))
+        if (burning && jobFile.Marks is { Count: > 0 } burned && new Marks.MarkCounter(burned.Counter).Burned(burned.FirstNumber, burned.Count))
         {
             throw new RunLogException($"{jobFile.Path}: a completed run burned its marks' numbers {burned.FirstNumber}..{burned.FirstNumber + burned.Count - 1}; run the job file again with --job for the next numbers (or laserengrave mark for a new folder), so no two samples carry one number");
         }

@@ -330,6 +330,12 @@ public sealed class EngraveSession
                     _layer = index + 1;
                 }
 
+                if (_layered)
+                {
+                    // The flight recorder notes where each layer begins, so a replay checks each layer's burn alone.
+                    Options.Recorder?.MarkLayer(index);
+                }
+
                 if (index > _firstLayer)
                 {
                     // Each layer's burn is checked on its own.

@@ -11,7 +11,7 @@ namespace LaserEngrave.Devices.Machine;
 /// the same for the same seed). The first exchange with each device is not timed and is tried twice, as preflight does:
 /// the first line after a port opens can be lost.
 /// </remarks>
-public sealed class LatencyProbe
+public sealed class LatencyProbe : ILatencyProbe
 {
     private const int ZaberFrameBytes = 6;
     private const double BitsPerByte = 10;

@@ -16,31 +16,49 @@ namespace LaserEngrave.Devices.Machine;
 /// <remarks>Each step is checked against the machine profile; a step that fails is reported as failed and the rest still runs where it safely can.</remarks>
 public sealed class MachineCheck
 {
-    private readonly ZaberChain _stage;
-    private readonly PicLaserGate _gate;
+    private readonly IStage _stage;
+    private readonly ILaserGate _gate;
+    private readonly ILatencyProbe _latency;
     private readonly MachineProfile _profile;
     private readonly TimeProvider _time;
+    private readonly string _laserPort;
 
+    /// <summary>The check of the machine on a Zaber chain and a PIC gate, its latencies by <see cref="LatencyProbe"/>.</summary>
     public MachineCheck(ZaberChain stage, PicLaserGate gate, MachineProfile profile, TimeProvider timeProvider)
+        : this(stage, gate, new LatencyProbe(stage, gate, timeProvider), profile, timeProvider, gate?.PortName ?? string.Empty)
+    {
+    }
+
+    /// <summary>The check of any stage and gate (the app's connection, a test's fakes).</summary>
+    /// <param name="laserPort">The gate's port, as the gate's step names it.</param>
+    public MachineCheck(IStage stage, ILaserGate gate, ILatencyProbe latency, MachineProfile profile, TimeProvider timeProvider, string laserPort)
     {
         ArgumentNullException.ThrowIfNull(stage);
         ArgumentNullException.ThrowIfNull(gate);
+        ArgumentNullException.ThrowIfNull(latency);
         ArgumentNullException.ThrowIfNull(profile);
         ArgumentNullException.ThrowIfNull(timeProvider);
+        ArgumentNullException.ThrowIfNull(laserPort);
         _stage = stage;
         _gate = gate;
+        _latency = latency;
         _profile = profile;
         _time = timeProvider;
+        _laserPort = laserPort;
     }
+
+    /// <summary>The steps in the order they run, as the report names them.</summary>
+    public static IReadOnlyList<string> StepNames { get; } = ["laser gate", "X axis", "Y axis", "homing", "X move", "Y move", "latencies", "gate watchdog"];
 
     /// <summary>Runs every step; the laser is switched off at the end whatever happened.</summary>
     /// <param name="distanceMm">How far each axis is moved from home and read back.</param>
     /// <param name="exchanges">Round trips per device for the latencies.</param>
     /// <param name="tripWatchdog">The person confirmed the beam is blocked: the gate fires at a low frequency until its watchdog switches it off.</param>
     /// <param name="cancellationToken">Stops the check (the laser is still switched off).</param>
-    public async Task<MachineCheckReport> RunAsync(double distanceMm, int exchanges, bool tripWatchdog, CancellationToken cancellationToken)
+    /// <param name="progress">Told each step as it ends, in order.</param>
+    public async Task<MachineCheckReport> RunAsync(double distanceMm, int exchanges, bool tripWatchdog, CancellationToken cancellationToken, IProgress<MachineCheckStep>? progress = null)
     {
-        var steps = new List<MachineCheckStep>();
+        var steps = new StepList(progress);
         var c = CultureInfo.InvariantCulture;
         try
         {
@@ -48,7 +66,7 @@ public sealed class MachineCheck
             {
                 var id = await _gate.IdentifyAsync(cancellationToken);
                 await _gate.OffAsync(cancellationToken);
-                return $"{id} on {_gate.PortName}, switched off";
+                return $"{id} on {_laserPort}, switched off";
             });
             AxisIdentity? x = null;
             AxisIdentity? y = null;
@@ -70,7 +88,7 @@ public sealed class MachineCheck
                     var firmware = identity.FirmwareVersion;
                     var homing = ZaberFirmware.HasHomeSpeed(firmware) ? "homes at Set Home Speed" : "homes at the Target Speed (no Set Home Speed before 5.20)";
                     var known = ZaberFirmware.IsKnown(firmware) ? string.Empty : "; a firmware the manual does not describe: engrave step by step (--strategy paper)";
-                    var text = string.Create(c, $"{axis.Description}: device ID {identity.DeviceId}, firmware {identity.FirmwareText} ({homing}{known}), resolution {profile.MicrostepUm:0.########} µm a microstep (the profile's), Maximum Position {identity.MaximumPosition} = {travelMm:0.###} mm of travel");
+                    var text = string.Create(c, $"{Describe(axis, name)}: device ID {identity.DeviceId}, firmware {identity.FirmwareText} ({homing}{known}), resolution {profile.MicrostepUm:0.########} µm a microstep (the profile's), Maximum Position {identity.MaximumPosition} = {travelMm:0.###} mm of travel");
                     if (identity.MaximumPosition < profile.TravelMicrosteps)
                     {
                         throw new DeviceException(string.Create(c, $"{text}, shorter than the profile's {profile.TravelMm:0.###} mm: correct the profile's travel or the device's Maximum Position"));
@@ -80,10 +98,10 @@ public sealed class MachineCheck
                 });
             }
 
+            var speed = StageUnits.SpeedData(ProcessSettings.Default.TravelSpeedMmPerS, _profile.X.MicrostepUm);
+            var acceleration = StageUnits.AccelerationData(ProcessSettings.Default.AccelerationMmPerS2, _profile.X.MicrostepUm);
             var homed = await Step(steps, "homing", async () =>
             {
-                var speed = StageUnits.SpeedData(ProcessSettings.Default.TravelSpeedMmPerS, _profile.X.MicrostepUm);
-                var acceleration = StageUnits.AccelerationData(ProcessSettings.Default.AccelerationMmPerS2, _profile.X.MicrostepUm);
                 foreach (var axis in new[] { _stage.X, _stage.Y })
                 {
                     await axis.SetAccelerationAsync(acceleration, cancellationToken);
@@ -102,13 +120,14 @@ public sealed class MachineCheck
                     await Step(steps, $"{name} move", async () =>
                     {
                         var target = (long)Math.Round(Math.Min(distanceMm, profile.TravelMm) * 1000 / profile.MicrostepUm, MidpointRounding.AwayFromZero);
-                        await axis.SetTargetSpeedAsync(StageUnits.SpeedData(ProcessSettings.Default.TravelSpeedMmPerS, profile.MicrostepUm), cancellationToken);
+                        var moveSpeed = StageUnits.SpeedData(ProcessSettings.Default.TravelSpeedMmPerS, profile.MicrostepUm);
+                        await axis.SetTargetSpeedAsync(moveSpeed, cancellationToken);
                         var start = _time.GetTimestamp();
                         var reached = await axis.MoveAbsoluteAsync(target, cancellationToken);
                         var seconds = _time.GetElapsedTime(start).TotalSeconds;
                         var read = await axis.GetPositionAsync(cancellationToken);
-                        var expected = new TrapezoidProfile(target, StageUnits.SpeedMicrostepsPerS(axis.SpeedData ?? 1), StageUnits.AccelerationMicrostepsPerS2(axis.AccelerationData ?? 1)).Duration;
-                        var text = string.Create(c, $"{axis.Description} sent to {target} microsteps ({target * profile.MicrostepUm / 1000:0.###} mm): replied {reached}, reads {read}, in {seconds * 1000:0} ms (the motion alone {expected * 1000:0} ms)");
+                        var expected = new TrapezoidProfile(target, StageUnits.SpeedMicrostepsPerS(moveSpeed), StageUnits.AccelerationMicrostepsPerS2(acceleration)).Duration;
+                        var text = string.Create(c, $"{Describe(axis, name)} sent to {target} microsteps ({target * profile.MicrostepUm / 1000:0.###} mm): replied {reached}, reads {read}, in {seconds * 1000:0} ms (the motion alone {expected * 1000:0} ms)");
                         if (reached != target || read != target)
                         {
                             throw new DeviceException($"{text}: not where it was sent");
@@ -123,7 +142,7 @@ public sealed class MachineCheck
             LatencyMeasurement? latency = null;
             await Step(steps, "latencies", async () =>
             {
-                var measured = await new LatencyProbe(_stage, _gate, _time).MeasureAsync(exchanges, cancellationToken);
+                var measured = await _latency.MeasureAsync(exchanges, cancellationToken);
                 var found = measured.ToProfile(_profile.Latency);
                 try
                 {
@@ -145,10 +164,10 @@ public sealed class MachineCheck
             }
             else
             {
-                steps.Add(new MachineCheckStep("gate watchdog", MachineCheckResult.Skipped, "not tripped: nobody confirmed the beam was blocked (give --yes, or answer the prompt)"));
+                steps.Add(new MachineCheckStep("gate watchdog", MachineCheckResult.Skipped, "not tripped: nobody confirmed the beam was blocked"));
             }
 
-            return new MachineCheckReport(steps, x, y, gateId, latency?.ToProfile(_profile.Latency));
+            return new MachineCheckReport(steps.Steps, x, y, gateId, latency?.ToProfile(_profile.Latency));
         }
         finally
         {
@@ -159,6 +178,19 @@ public sealed class MachineCheck
             catch (DeviceException)
             {
                 // Reported by its step; the watchdog switches it off anyway.
+            }
+
+            if (cancellationToken.IsCancellationRequested)
+            {
+                // Stopped by the person: an axis homing or moving for the check stops where it is, not at its target.
+                try
+                {
+                    await Task.WhenAll(_stage.X.StopAsync(CancellationToken.None), _stage.Y.StopAsync(CancellationToken.None));
+                }
+                catch (DeviceException)
+                {
+                    // Nothing more to do from here: the axis is reported by the panel's next reading.
+                }
             }
         }
     }
@@ -184,7 +216,10 @@ public sealed class MachineCheck
         return text;
     }
 
-    private static async Task<string?> Step(List<MachineCheckStep> steps, string name, Func<Task<string>> step)
+    // As the Zaber chain names its devices ("device 1 (X)").
+    private static string Describe(IStageAxis axis, string name) => $"device {axis.DeviceNumber} ({name})";
+
+    private static async Task<string?> Step(StepList steps, string name, Func<Task<string>> step)
     {
         try
         {
@@ -196,6 +231,18 @@ public sealed class MachineCheck
         {
             steps.Add(new MachineCheckStep(name, MachineCheckResult.Failed, ex.Message));
             return null;
+        }
+    }
+
+    // The steps so far, each told to the progress as it is added.
+    private sealed class StepList(IProgress<MachineCheckStep>? progress)
+    {
+        public List<MachineCheckStep> Steps { get; } = [];
+
+        public void Add(MachineCheckStep step)
+        {
+            Steps.Add(step);
+            progress?.Report(step);
         }
     }
 }

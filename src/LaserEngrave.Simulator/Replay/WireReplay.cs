@@ -18,7 +18,12 @@ public static class WireReplay
     public static readonly TimeSpan Settle = TimeSpan.FromSeconds(2);
 
     /// <summary>Feeds the writes of <paramref name="events"/> into <paramref name="machine"/> (in-process, virtual time) and waits until the last has settled.</summary>
-    public static Task RunAsync(SimulatedMachine machine, IReadOnlyList<WireEvent> events, CancellationToken cancellationToken)
+    /// <param name="machine">The twin, in-process on virtual time.</param>
+    /// <param name="events">The recording.</param>
+    /// <param name="cancellationToken">Stops the replay.</param>
+    /// <param name="layerStarts">Called with each layer's index at its recorded start, on the simulation's loop (a layer's burn is checked alone).</param>
+    /// <param name="delays">How much later than recorded each event's write goes in, seconds (<see cref="RecordedLatency"/>; null: none, the twin's adapters add theirs). Writes keep their order.</param>
+    public static Task RunAsync(SimulatedMachine machine, IReadOnlyList<WireEvent> events, CancellationToken cancellationToken, Action<int>? layerStarts = null, IReadOnlyList<double>? delays = null)
     {
         ArgumentNullException.ThrowIfNull(machine);
         ArgumentNullException.ThrowIfNull(events);
@@ -37,15 +42,23 @@ public static class WireReplay
             _ = runner.Start(() => DrainAsync(laser));
             var start = time.GetTimestamp();
             var end = 0.0;
-            foreach (var e in events)
+            for (var i = 0; i < events.Count; i++)
             {
+                var e = events[i];
                 end = Math.Max(end, e.Seconds);
+                if (e.Layer is { } layer)
+                {
+                    await WaitUntilAsync(time, start, e.Seconds, cancellationToken);
+                    layerStarts?.Invoke(layer);
+                    continue;
+                }
+
                 if (!e.Write)
                 {
                     continue;
                 }
 
-                await WaitUntilAsync(time, start, e.Seconds, cancellationToken);
+                await WaitUntilAsync(time, start, e.Seconds + (delays?[i] ?? 0), cancellationToken);
                 await (e.Stage ? stage : laser).WriteAsync(e.Data, cancellationToken);
             }
 

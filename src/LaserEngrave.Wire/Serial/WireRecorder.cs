@@ -9,7 +9,8 @@ namespace LaserEngrave.Wire.Serial;
 /// <para>
 /// One line a write or a read: <c>{"t":SECONDS,"p":"s"|"l","d":"w"|"r","x":"HEX"}</c>, <c>t</c> the seconds since the
 /// recorder started on its clock (a write: when the host wrote; a read: when the bytes arrived), <c>p</c> the stage or
-/// laser link. The file starts with <c>{"wire":1}</c> and ends with <c>{"end":EVENTS}</c>, or with <c>{"truncated":EVENTS}</c>
+/// laser link; <c>{"t":SECONDS,"layer":N}</c> where layer N (from 0) of a job of layers begins, so a replay checks each
+/// layer's burn alone. The file starts with <c>{"wire":1}</c> and ends with <c>{"end":EVENTS}</c>, or with <c>{"truncated":EVENTS}</c>
 /// when it reached its cap (the rest of the run is then not in it); a file with neither was cut off (the process died).
 /// </para>
 /// <para>Thread-safe: the host writes on its thread and each link's reader loop records its arrivals on its own.</para>
@@ -53,6 +54,13 @@ public sealed class WireRecorder : IDisposable
     /// <summary>A link that records what passes through <paramref name="link"/>; <paramref name="stage"/> says which link it is.</summary>
     public ISerialLink Wrap(ISerialLink link, bool stage) => new RecordingLink(link, this, stage ? 's' : 'l');
 
+    /// <summary>Notes that layer <paramref name="index"/> (from 0) of a job of layers begins now.</summary>
+    public void MarkLayer(int index)
+    {
+        ArgumentOutOfRangeException.ThrowIfNegative(index);
+        Append(_time.GetTimestamp(), (seconds, line) => line.Append(CultureInfo.InvariantCulture, $"{{\"t\":{seconds:0.0000000},\"layer\":{index}}}"));
+    }
+
     /// <summary>Ends the file with its end (or truncated) mark and closes it; what the run log says of it.</summary>
     public RunRecording Finish()
     {
@@ -91,18 +99,33 @@ public sealed class WireRecorder : IDisposable
 
     private void Record(char port, char direction, long timestamp, ReadOnlySpan<byte> data)
     {
+        if (data.IsEmpty)
+        {
+            return;
+        }
+
+        var hex = Convert.ToHexString(data);
+        Append(timestamp, (seconds, line) =>
+        {
+            line.Append(CultureInfo.InvariantCulture, $"{{\"t\":{seconds:0.0000000},\"p\":\"{port}\",\"d\":\"{direction}\",\"x\":\"");
+            line.Append(hex);
+            line.Append("\"}");
+        });
+    }
+
+    // One event's line, at its time, unless the recording has ended, failed or reached its cap.
+    private void Append(long timestamp, Action<double, StringBuilder> write)
+    {
         lock (_sync)
         {
-            if (_finished || _failed || _truncated || data.IsEmpty)
+            if (_finished || _failed || _truncated)
             {
                 return;
             }
 
             var seconds = (timestamp - _start) / (double)_time.TimestampFrequency;
             _line.Clear();
-            _line.Append(CultureInfo.InvariantCulture, $"{{\"t\":{seconds:0.0000000},\"p\":\"{port}\",\"d\":\"{direction}\",\"x\":\"");
-            _line.Append(Convert.ToHexString(data));
-            _line.Append("\"}");
+            write(seconds, _line);
             if (_bytes + _line.Length + 1 > _capBytes)
             {
                 _truncated = true;

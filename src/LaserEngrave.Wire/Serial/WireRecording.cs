@@ -8,7 +8,11 @@ namespace LaserEngrave.Wire.Serial;
 /// <param name="Stage">The stage's link (else the laser gate's).</param>
 /// <param name="Write">Host to device (else device to host).</param>
 /// <param name="Data">The bytes.</param>
-public sealed record WireEvent(double Seconds, bool Stage, bool Write, byte[] Data);
+public sealed record WireEvent(double Seconds, bool Stage, bool Write, byte[] Data)
+{
+    /// <summary>Not bytes but the start of this layer (from 0) of a job of layers, at <see cref="Seconds"/>; then no data.</summary>
+    public int? Layer { get; init; }
+}
 
 /// <summary>Reads a flight recorder's file back, whole and checked: a truncated, cut-off or corrupt file is refused in one line.</summary>
 public static class WireRecording
@@ -61,6 +65,19 @@ public static class WireRecording
                 }
 
                 var seconds = root.GetProperty("t").GetDouble();
+                if (root.TryGetProperty("layer", out var layer))
+                {
+                    // Noted by the host as a layer began, so on its clock as its writes are.
+                    if (!double.IsFinite(seconds) || seconds < previous || layer.GetInt32() < 0)
+                    {
+                        throw new RunLogException($"{where}: not a layer's start (a time not before the writes after it, a layer from 0): the recording is corrupt");
+                    }
+
+                    previous = seconds;
+                    events.Add(new WireEvent(seconds, false, false, []) { Layer = layer.GetInt32() });
+                    continue;
+                }
+
                 var port = root.GetProperty("p").GetString();
                 var direction = root.GetProperty("d").GetString();
                 var data = Convert.FromHexString(root.GetProperty("x").GetString() ?? string.Empty);

@@ -35,11 +35,18 @@ public abstract class ComponentTest : BunitContext
         Services.AddSingleton(Alignment);
         Marks = new MarkViewModel(new MarkService(new AppFolders(DataFolder.Path), () => Main.Job.Profile, TimeProvider.System), path => Main.Layers.Open(path));
         Services.AddSingleton(Marks);
+        Commission = new CommissionViewModel(Main, Checks, DataFolder.Path, TimeProvider.System);
+        Services.AddSingleton(Commission);
         JSInterop.Mode = JSRuntimeMode.Loose;
         SetRendererInfo(new RendererInfo("Server", isInteractive: true));
     }
 
     private protected Fakes Machine { get; } = new();
+
+    /// <summary>The machine check the Commission panel runs (a fake: the steps are what a test reports).</summary>
+    private protected IMachineCheckService Checks { get; } = Substitute.For<IMachineCheckService>();
+
+    private protected CommissionViewModel Commission { get; }
 
     private protected IRunService Runs { get; } = Substitute.For<IRunService>();
 

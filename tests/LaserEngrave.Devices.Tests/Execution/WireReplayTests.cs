@@ -1,3 +1,4 @@
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
@@ -45,6 +46,70 @@ public sealed class WireReplayTests : IDisposable
         Assert.False(replayMachine.Gate.IsFiring);
     }
 
+    [Fact(Timeout = 300_000)]
+    public async Task ReplayLayers_OfATwinRunsRecording_EachLayerBurnsExactlyWhatTheTwinBurnedInIt()
+    {
+        // A raster layer and a drawing of two passes, apart on the stage.
+        var job = LayeredJob.Prepare(
+            [
+                new JobLayer { Name = "logo", Source = TestJobs.AssetPath("qr-code.bmp"), Mode = LayerMode.Raster, WidthMm = 1.5, Origin = new OriginMm(5, 5) },
+                new JobLayer { Name = "hexagons", Source = TestJobs.AssetPath(Path.Combine("drawings", "hexagons.dxf")), Mode = LayerMode.Outline, WidthMm = 3, Origin = new OriginMm(10, 5), Passes = 2 },
+            ],
+            MachineProfile.Default);
+        var options = new SimulatorOptions { Seed = 3 };
+        var (record, _, path) = await RecordedRunAsync(job, MachineProfile.Default, options);
+        var events = WireRecording.Read(path);
+
+        var replayed = await RecordedRunReplay.ReplayLayersAsync(job.Layers, MachineProfile.Default, events, RecordedRunReplay.Setup(record, MachineProfile.Default, events, options, recordedDelays: false), TestContext.Current.CancellationToken);
+
+        Assert.True(record.Outcome == RunOutcome.Completed, record.Fault?.Message);
+        Assert.Equal([0, 1], events.Where(e => e.Layer is not null).Select(e => e.Layer!.Value));
+        TestContext.Current.TestOutputHelper?.WriteLine($"twin: {string.Join(" | ", record.Layers!.Select(l => l.Simulation))}\nreplay: {string.Join(" | ", replayed)}");
+        for (var i = 0; i < 2; i++)
+        {
+            Assert.Equal(record.Layers![i].Simulation! with { Focus = null }, replayed[i]! with { Focus = null });
+        }
+    }
+
+    [Fact(Timeout = 300_000)]
+    public async Task Replay_RecordedDelays_AdaptersSlowerThanTheTwinsModel_BurnsWhatTheRunBurned()
+    {
+        // The run's adapters take 3 ms each way where the replaying twin's model says 1 ± 0.5 ms: the delays must come from the recording.
+        var profile = MachineProfile.Default with { Latency = MachineProfile.Default.Latency with { StageMs = 3, StageJitterMs = 0.1, GateMs = 3, GateJitterMs = 0.1 } };
+        var job = PreparedJob.Prepare(new JobSpec { Profile = profile, ImagePath = TestJobs.AssetPath("qr-code.bmp"), Size = SizeSpec.Width(5), Origin = TestJobs.Origin, Plan = new PlanOptions() });
+        var gate = new Jitter(0.5, 0);
+        var (record, twin, path) = await RecordedRunAsync(job, new SimulatorOptions { Seed = 5, AdapterLatency = new Jitter(3, 0), GateProcessing = gate });
+        var events = WireRecording.Read(path);
+        var replayTwin = new SimulatorOptions { Seed = 9, GateProcessing = gate };
+
+        var (recorded, burn) = await RecordedRunReplay.ReplayAsync(job, null, job.Spec.Profile, events, RecordedRunReplay.Setup(record, job.Spec.Profile, events, replayTwin), TestContext.Current.CancellationToken);
+        var (modelled, _) = await RecordedRunReplay.ReplayAsync(job, null, job.Spec.Profile, events, RecordedRunReplay.Setup(record, job.Spec.Profile, events, replayTwin, recordedDelays: false), TestContext.Current.CancellationToken);
+
+        TestContext.Current.TestOutputHelper?.WriteLine($"run: {record.Simulation}\nrecorded delays: {recorded}\ntwin's model: {modelled}");
+        // The run need not complete (3 ms adapters stop it within its first strokes): what it burned is what must come back.
+        Assert.InRange(record.Simulation!.Pulses, 1000, long.MaxValue);
+        Assert.True(twin.Burned.ContentEquals(burn!.Burned), "the replay's burned pixels differ from the run's");
+        var run = record.Simulation!;
+        Assert.Equal((run.MissingPixels, run.ExtraPixels, run.LaserOnTravelCount, run.Pulses), (recorded.MissingPixels, recorded.ExtraPixels, recorded.LaserOnTravelCount, recorded.Pulses));
+        Assert.Equal(run.Edges!.MeanErrorUm, recorded.Edges!.MeanErrorUm, 0.005);
+        Assert.Equal(run.Edges.MaxErrorUm, recorded.Edges.MaxErrorUm, 0.005);
+
+        // The twin's own latency model would have burned something else: the recorded delays are what makes the replay true.
+        Assert.NotEqual((run.LaserOnTravelCount, run.ExtraPixels), (modelled.LaserOnTravelCount, modelled.ExtraPixels));
+    }
+
+    [Fact]
+    public async Task ReplayLayers_ARecordingWithoutLayerStarts_IsRefusedInOneLine()
+    {
+        var path = Path.Combine(_folder, "old.jsonl");
+        await File.WriteAllTextAsync(path, "{\"wire\":1}\n{\"t\":0.1,\"p\":\"s\",\"d\":\"w\",\"x\":\"013200000000\"}\n{\"end\":1}\n", TestContext.Current.CancellationToken);
+        var job = LayeredJob.Prepare([new JobLayer { Name = "logo", Source = TestJobs.AssetPath("qr-code.bmp"), Mode = LayerMode.Raster, WidthMm = 1.5, Origin = new OriginMm(5, 5) }], MachineProfile.Default);
+
+        var error = await Assert.ThrowsAsync<RunLogException>(() => RecordedRunReplay.ReplayLayersAsync(job.Layers, MachineProfile.Default, WireRecording.Read(path), new ReplaySetup(new SimulatorOptions(), null), TestContext.Current.CancellationToken));
+
+        Assert.Contains("does not say where each layer began", error.Message, StringComparison.Ordinal);
+    }
+
     [Fact(Timeout = 120_000)]
     public async Task Recorder_AtItsCap_EndsWithTheTruncatedMark_AndReadRefusesIt()
     {
@@ -84,12 +149,14 @@ public sealed class WireReplayTests : IDisposable
         Assert.DoesNotContain('\n', error.Message);
     }
 
-    private async Task<(RunRecord Record, BurnReport Burn, string Path)> RecordedRunAsync(PreparedJob job, SimulatorOptions options)
+    private Task<(RunRecord Record, BurnReport Burn, string Path)> RecordedRunAsync(PreparedJob job, SimulatorOptions options) => RecordedRunAsync(job, job.Spec.Profile, options);
+
+    private async Task<(RunRecord Record, BurnReport Burn, string Path)> RecordedRunAsync(EngraveJob job, MachineProfile profile, SimulatorOptions options)
     {
-        var machine = SimulatedMachine.CreateInProcess(job.Spec.Profile, options);
+        var machine = SimulatedMachine.CreateInProcess(profile, options);
         var path = Path.Combine(_folder, "run.wire.jsonl");
         using var recorder = new WireRecorder(path, machine.TimeProvider);
-        var session = MachineSession.OverLinks(recorder.Wrap(machine.StageLink, stage: true), recorder.Wrap(machine.LaserLink, stage: false), job.Spec.Profile, machine.TimeProvider, "simulator", owner: machine);
+        var session = MachineSession.OverLinks(recorder.Wrap(machine.StageLink, stage: true), recorder.Wrap(machine.LaserLink, stage: false), profile, machine.TimeProvider, "simulator", owner: machine);
         await using (session)
         {
             var inspector = new BurnInspector(machine);

@@ -1,0 +1,114 @@
+using System.Globalization;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Logging;
+using LaserEngrave.Wire.Serial;
+using LaserEngrave.Simulator.Burn;
+using LaserEngrave.Simulator.Timing;
+
+namespace LaserEngrave.Simulator.Replay;
+
+/// <summary>
+/// What a recorded run on real ports burned: its recording through a fresh twin (<see cref="WireReplay"/>), checked as
+/// `engrave --simulate` checks a run, one image or drawing whole, a job of layers layer by layer.
+/// </summary>
+public static class RecordedRunReplay
+{
+    /// <summary>
+    /// The twin the run spoke to (with <paramref name="recordedDelays"/>, adapters without latency of their own: each write
+    /// goes in as late as its reply says it reached its device, <see cref="RecordedLatency"/>): the stages' firmware as the log says they reported it (a 5.06 refuses what a 5.23 takes),
+    /// standing where they reported they stood (so homing takes the time it took), on virtual time, with no injected
+    /// faults and a host that is never late (its lateness is in the recorded times already).
+    /// </summary>
+    /// <returns>The twin's options, and each event's delay (null: the twin's adapters draw theirs).</returns>
+    public static ReplaySetup Setup(RunRecord record, MachineProfile profile, IReadOnlyList<WireEvent> events, SimulatorOptions baseOptions, bool recordedDelays = true)
+    {
+        ArgumentNullException.ThrowIfNull(record);
+        ArgumentNullException.ThrowIfNull(baseOptions);
+        var options = baseOptions with { HostLateness = HostLateness.None, RealTime = false, Paced = false, FaultSpec = null, StartMicrosteps = WireReplay.StartMicrosteps(profile, events) };
+        double[]? delays = null;
+        if (recordedDelays)
+        {
+            options = options with { AdapterLatency = Jitter.None };
+            delays = RecordedLatency.OneWaySeconds(profile, events, options.GateProcessing.MeanMs);
+        }
+
+        if (record.Devices.FirstOrDefault(d => d.Role == "x axis") is { } x && decimal.TryParse(x.Firmware, NumberStyles.AllowDecimalPoint, CultureInfo.InvariantCulture, out var firmware))
+        {
+            options = options with { FirmwareVersion = (int)Math.Round(firmware * 100) };
+        }
+
+        return new ReplaySetup(options, delays);
+    }
+
+    /// <summary>Replays the run of one image (<paramref name="job"/>) or drawing; its figures and, for an image, the burn report (burned pixels, dose).</summary>
+    public static async Task<(RunSimulation Simulation, BurnReport? Burn)> ReplayAsync(PreparedJob? job, PreparedDrawing? drawing, MachineProfile profile, IReadOnlyList<WireEvent> events, ReplaySetup setup, CancellationToken cancellationToken)
+    {
+        if ((job is null) == (drawing is null))
+        {
+            throw new ArgumentException("one image or one drawing");
+        }
+
+        ArgumentNullException.ThrowIfNull(setup);
+        var machine = SimulatedMachine.CreateInProcess(profile, setup.Options);
+        await using (machine.ConfigureAwait(false))
+        {
+            var inspector = new BurnInspector(machine);
+            inspector.Begin();
+            await WireReplay.RunAsync(machine, events, cancellationToken, delays: setup.Delays).ConfigureAwait(false);
+            return (Inspect(inspector, job, drawing), inspector.Report);
+        }
+    }
+
+    /// <summary>
+    /// Replays the run of a job of layers: each layer's burn checked alone, from its recorded start to the next's; null for
+    /// a layer the recording does not start (it never ran, or an earlier run completed it).
+    /// </summary>
+    /// <exception cref="RunLogException">The recording notes no layer's start (made before layers were noted).</exception>
+    public static async Task<IReadOnlyList<RunSimulation?>> ReplayLayersAsync(IReadOnlyList<PreparedLayer> parts, MachineProfile profile, IReadOnlyList<WireEvent> events, ReplaySetup setup, CancellationToken cancellationToken)
+    {
+        ArgumentNullException.ThrowIfNull(parts);
+        ArgumentNullException.ThrowIfNull(events);
+        if (events.All(e => e.Layer is null))
+        {
+            throw new RunLogException("the recording does not say where each layer began (it was made before replay of layers), so its layers' burns cannot be told apart");
+        }
+
+        if (events.FirstOrDefault(e => e.Layer >= parts.Count) is { } beyond)
+        {
+            throw new RunLogException(string.Create(CultureInfo.InvariantCulture, $"the recording starts layer {beyond.Layer + 1} but the job has {parts.Count}: it is not this run's recording"));
+        }
+
+        var results = new RunSimulation?[parts.Count];
+        ArgumentNullException.ThrowIfNull(setup);
+        var machine = SimulatedMachine.CreateInProcess(profile, setup.Options);
+        await using (machine.ConfigureAwait(false))
+        {
+            var inspector = new BurnInspector(machine);
+            int? current = null;
+            await WireReplay.RunAsync(machine, events, cancellationToken, layer =>
+            {
+                // As the run checks it: the layer before is over when the next begins.
+                if (current is { } before)
+                {
+                    results[before] = Inspect(inspector, parts[before].Image, parts[before].Drawing);
+                }
+
+                inspector.Begin();
+                current = layer;
+            }, setup.Delays).ConfigureAwait(false);
+            if (current is { } last)
+            {
+                results[last] = Inspect(inspector, parts[last].Image, parts[last].Drawing);
+            }
+        }
+
+        return results;
+    }
+
+    private static RunSimulation Inspect(BurnInspector inspector, PreparedJob? job, PreparedDrawing? drawing) =>
+        job is not null ? inspector.Inspect(job) : inspector.InspectDrawing(drawing!);
+}
+
+/// <summary>How a recording is replayed: the twin's options, and each event's delay from the recording (null: the twin's adapters draw their own).</summary>
+public sealed record ReplaySetup(SimulatorOptions Options, IReadOnlyList<double>? Delays);
