@@ -13,9 +13,9 @@ public static class StageUnits
     /// <summary>Highest speed or acceleration data at 64 microsteps per step (512 x 64 - 1).</summary>
     public const int MaxSettingData = 32767;
 
-    public static double MmToMicrosteps(double mm, double microstepUm) => mm * 1000.0 / microstepUm;
+    public static double MmToMicrosteps(double mm, double microstepUm) => Units.MmToSteps(mm, microstepUm);
 
-    public static double MicrostepsToMm(double microsteps, double microstepUm) => microsteps * microstepUm / 1000.0;
+    public static double MicrostepsToMm(double microsteps, double microstepUm) => Units.StepsToMm(microsteps, microstepUm);
 
     public static double UmToMicrosteps(double um, double microstepUm) => um / microstepUm;
 
