@@ -25,6 +25,13 @@ public static class StageUnits
     public static int SpeedData(double mmPerS, double microstepUm) =>
         (int)Math.Clamp(Math.Round(MmToMicrosteps(mmPerS, microstepUm) / SpeedUnitMicrostepsPerS), 1, MaxSettingData);
 
+    /// <summary>
+    /// Move At Constant Speed data for a signed speed in microsteps/s, kept in ±32767 (0: stand still); rounded half away
+    /// from zero where <see cref="SpeedData"/> rounds half to even, as the vector motion has always sent it (same bytes).
+    /// </summary>
+    public static int SignedSpeedData(double microstepsPerS) =>
+        (int)Math.Clamp(Math.Round(microstepsPerS / SpeedUnitMicrostepsPerS, MidpointRounding.AwayFromZero), -MaxSettingData, MaxSettingData);
+
     /// <summary>Set Acceleration data for an acceleration in mm/s², rounded to the nearest unit and kept in 1..32767.</summary>
     public static int AccelerationData(double mmPerS2, double microstepUm) =>
         (int)Math.Clamp(Math.Round(MmToMicrosteps(mmPerS2, microstepUm) / AccelerationUnitMicrostepsPerS2), 1, MaxSettingData);
