@@ -198,6 +198,11 @@ public sealed class MarkLayout
 
     private static void Check(MarkSpec spec, int first, MachineProfile profile, Func<string, string> name)
     {
+        if (string.IsNullOrEmpty(spec.Text))
+        {
+            throw new MarkException("give the mark's text");
+        }
+
         if (spec.Code is not null && (spec.ModuleUm is null) == (spec.SizeMm is null))
         {
             throw new MarkException($"a code needs its module size ({name("moduleUm")}, µm) or its size ({name("sizeMm")}, mm), one of the two");
