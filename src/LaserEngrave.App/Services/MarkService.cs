@@ -1,9 +1,6 @@
 using LaserEngrave.Core.Geometry;
-using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Marks;
-using LaserEngrave.Core.Planning;
 using LaserEngrave.Machines.Marks;
-using LaserEngrave.Simulator.Marks;
 
 namespace LaserEngrave.App.Services;
 
@@ -36,34 +33,8 @@ public sealed class MarkService(AppFolders folders, Func<MachineProfile> profile
         var machine = profile();
         var now = time.GetLocalNow();
         var folder = Path.Combine(folders.DataFolder, "marks", $"{now:yyyy-MM-dd_HHmmss}_{Guid.NewGuid().ToString("N")[..6]}");
-        var counter = Counter;
-        var layout = MarkLayout.Make(spec, counter.Next(), new MarkContext(0, sample, now, machine.Name), machine, folder, PanelName);
-        LayeredJob job;
-        try
-        {
-            job = LayeredJob.Prepare(layout.Layers, machine);
-        }
-        catch (PlanException ex)
-        {
-            throw new MarkException(ex.Message, ex);
-        }
-
-        if (!job.FitsTravel)
-        {
-            throw new MarkException("the marks reach past the stage's travel; move the origin or make fewer columns");
-        }
-
-        var verdicts = new List<ReadabilityVerdict>();
-        if (check)
-        {
-            var codeLayers = job.Layers.Where(l => l.Layer.Source.EndsWith(MarkLayout.CodeFileSuffix, StringComparison.Ordinal)).ToList();
-            foreach (var (code, layer) in layout.Codes.Zip(codeLayers))
-            {
-                verdicts.Add(await MarkReadability.CheckAsync(code, machine, layer.Spec.Process, layer.Spec.Origin, cancellationToken: cancellationToken).ConfigureAwait(false));
-            }
-        }
-
-        var jobFile = verdicts.All(v => v.Reads) ? layout.Save(folder, counter.Path) : null;
-        return new MarkResult(jobFile, layout.Marks, job.EstimatedSeconds, verdicts);
+        var order = new MarkOrder(spec, Counter, new MarkContext(0, sample, now, machine.Name), machine, folder) { Name = PanelName, Check = check };
+        var made = await MarkMaking.MakeAsync(order, cancellationToken).ConfigureAwait(false);
+        return new MarkResult(made.JobFile, made.Layout.Marks, made.Job.EstimatedSeconds, made.Verdicts);
     }
 }

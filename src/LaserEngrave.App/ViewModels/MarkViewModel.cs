@@ -152,28 +152,28 @@ public sealed partial class MarkViewModel : ObservableObject
         }
     }
 
+    /// <summary>
+    /// The panel's boxes as a mark. Only what a number box cannot say is refused here (a count that is not whole); every
+    /// range is MarkLayout's rule, refused by the service in the panel's words, as the command line and marks files are.
+    /// </summary>
     private MarkSpec Spec()
     {
         var code = MarkFile.ParseCode(Code);
-        var pitch = Positive(PitchMm, "pitch");
         return new MarkSpec
         {
-            Text = string.IsNullOrEmpty(Text) ? throw new MarkException("give the mark's text") : Text,
+            Text = Text ?? string.Empty,
             Code = code,
-            SizeMm = code is null ? null : Positive(SizeMm, "code size"),
+            SizeMm = code is null ? null : SizeMm,
             Label = Label,
-            TextHeightMm = Positive(TextHeightMm, "text height"),
+            TextHeightMm = TextHeightMm,
             Copies = Whole(Copies, "copies"),
             Columns = Whole(Columns, "columns"),
-            PitchXMm = pitch,
-            PitchYMm = pitch,
+            PitchXMm = PitchMm,
+            PitchYMm = PitchMm,
             Origin = new OriginMm(OriginXMm, OriginYMm),
         };
     }
 
-    private static double Positive(double value, string name) =>
-        value > 0 && double.IsFinite(value) ? value : throw new MarkException($"the {name} must be a number above 0");
-
     private static int Whole(double value, string name) =>
-        value == Math.Floor(value) && value is >= 1 and <= MarkSpec.MaxCopies ? (int)value : throw new MarkException(string.Create(CultureInfo.InvariantCulture, $"{name} {value:G6} must be a whole number 1..{MarkSpec.MaxCopies}"));
+        value == Math.Floor(value) && Math.Abs(value) <= int.MaxValue ? (int)value : throw new MarkException(string.Create(CultureInfo.InvariantCulture, $"{name} {value:G6} must be a whole number 1..{MarkSpec.MaxCopies}"));
 }

@@ -1,4 +1,5 @@
 using LaserEngrave.App.ViewModels;
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 
@@ -110,8 +111,8 @@ internal static class StateSnapshot
                 machine.Identity,
                 machine.XMicrosteps,
                 machine.YMicrosteps,
-                xMm = machine.XMicrosteps * machine.Profile.X.MicrostepUm / 1000,
-                yMm = machine.YMicrosteps * machine.Profile.Y.MicrostepUm / 1000,
+                xMm = machine.XMicrosteps is { } x ? StageUnits.MicrostepsToMm(x, machine.Profile.X.MicrostepUm) : (double?)null,
+                yMm = machine.YMicrosteps is { } y ? StageUnits.MicrostepsToMm(y, machine.Profile.Y.MicrostepUm) : (double?)null,
                 machine.XHomed,
                 machine.YHomed,
                 machine.GateState,

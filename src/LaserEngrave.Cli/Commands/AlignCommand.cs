@@ -50,7 +50,7 @@ internal static class AlignCommand
             var pitchUm = (result.GetValue(pitch), result.GetValue(width)) switch
             {
                 ({ } given, null) when given > 0 && double.IsFinite(given) => given,
-                (null, { } w) when w > 0 && double.IsFinite(w) => w * 1000 / bits.Width,
+                (null, { } w) when w > 0 && double.IsFinite(w) => Units.MmToUm(w) / bits.Width,
                 (null, null) => throw new UsageException("give the job's size: --pitch-um or --width-mm"),
                 ({ }, { }) => throw new UsageException("give --pitch-um or --width-mm, not both"),
                 _ => throw new UsageException("--pitch-um and --width-mm must be above 0"),

@@ -2,9 +2,7 @@ using System.CommandLine;
 using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Input;
-using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Marks;
-using LaserEngrave.Core.Planning;
 using LaserEngrave.Machines.Marks;
 using LaserEngrave.Simulator.Marks;
 
@@ -103,9 +101,7 @@ internal static class MarkCommand
 
             var machine = result.GetValue(profile) is { } profilePath ? MachineProfile.Load(profilePath) : MachineProfile.Default;
             var counterFile = new MarkCounter(result.GetValue(counter) ?? DefaultCounterPath());
-            // --start is written only with the job: a refused mark leaves the counter as it was.
-            var startAt = result.GetValue(start);
-            if (startAt is { } first)
+            if (result.GetValue(start) is { } first)
             {
                 MarkCounter.Check(first);
             }
@@ -121,59 +117,35 @@ internal static class MarkCommand
                 throw new UsageException($"--out {folder}: holds a job that is not one of marks; give another folder");
             }
 
-            var context = new MarkContext(0, result.GetValue(sample), DateTimeOffset.Now, machine.Name);
             var marksPath = result.GetValue(marks);
-            MarkLayout layout;
+            var order = new MarkOrder(spec, counterFile, new MarkContext(0, result.GetValue(sample), DateTimeOffset.Now, machine.Name), machine, folder)
+            {
+                StartAt = result.GetValue(start),
+                // A mark from the command line is refused in its options' names; one from a marks file in the file's.
+                Name = marksPath is null ? OptionName : null,
+                Check = result.GetValue(check),
+                Smallest = result.GetValue(smallest),
+            };
+            MadeMarks made;
             try
             {
-                // A mark from the command line is refused in its options' names; one from a marks file in the file's.
-                layout = MarkLayout.Make(spec, startAt ?? counterFile.Next(), context, machine, folder, marksPath is null ? OptionName : null);
+                made = await MarkMaking.MakeAsync(order, ct).ConfigureAwait(false);
             }
             catch (MarkException ex) when (marksPath is not null)
             {
                 throw new MarkException($"{marksPath}: {ex.Message}", ex);
             }
 
-            var job = LayeredJob.Prepare(layout.Layers, machine);
-            if (!job.FitsTravel)
-            {
-                throw new UsageException($"the marks reach past the stage's travel ({machine.X.TravelMm:0.###} x {machine.Y.TravelMm:0.###} mm); move --origin-mm or make fewer columns");
-            }
-
-            var verdicts = new List<ReadabilityVerdict>();
-            (double ModuleUm, ReadabilityVerdict Verdict)? smallestReadable = null;
-            if (result.GetValue(check))
-            {
-                var codeLayers = job.Layers.Where(l => l.Layer.Source.EndsWith(MarkLayout.CodeFileSuffix, StringComparison.Ordinal)).ToList();
-                foreach (var (raster, layer) in layout.Codes.Zip(codeLayers))
-                {
-                    verdicts.Add(await MarkReadability.CheckAsync(raster, machine, layer.Spec.Process, layer.Spec.Origin, cancellationToken: ct).ConfigureAwait(false));
-                }
-
-                if (result.GetValue(smallest) && layout.Codes.Count > 0)
-                {
-                    var firstCode = layout.Codes[0];
-                    smallestReadable = await MarkReadability.SmallestReadableAsync(
-                        firstCode.Symbol.Kind, firstCode.Symbol.Text, spec.ErrorCorrection, firstCode.QuietModules, machine, codeLayers[0].Spec.Process, codeLayers[0].Spec.Origin, cancellationToken: ct).ConfigureAwait(false);
-                }
-            }
-
-            var unreadable = verdicts.FirstOrDefault(v => !v.Reads);
-            if (unreadable is null && startAt is { } startNumber)
-            {
-                counterFile.Set(startNumber);
-            }
-
-            var jobFile = unreadable is null ? layout.Save(folder, counterFile.Path) : null;
+            var unreadable = made.Unreadable;
             var summary = new MarkSummary(
-                jobFile,
-                layout.FirstNumber,
+                made.JobFile,
+                made.Layout.FirstNumber,
                 spec.Copies,
                 Path.GetFullPath(counterFile.Path),
-                layout.Marks,
-                job.EstimatedSeconds,
-                verdicts,
-                smallestReadable?.ModuleUm);
+                made.Layout.Marks,
+                made.Job.EstimatedSeconds,
+                made.Verdicts,
+                made.SmallestReadableModuleUm);
             if (result.GetValue(json))
             {
                 CliJson.Write(stdout, summary);

@@ -1,5 +1,6 @@
 using System.CommandLine;
 using System.Globalization;
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
 
@@ -173,7 +174,7 @@ internal sealed record JobSummary(
         if (job.Dots is { } dots)
         {
             output.WriteLine(string.Create(c, $"Mode:             dots, {dots.PulsesPerDot} pulses at {job.Spec.Process.LaserFrequencyWholeHz} Hz per dot, a dot at {dots.DescribePitch()}, {dots.Estimate.Dots} dots ({dots.Estimate.Pulses} pulses)"));
-            output.WriteLine(string.Create(c, $"Per dot:          {dots.Estimate.AtDotSeconds * 1000:0.##} ms standing (settle {dots.Estimate.SettleSeconds * 1000:0.##} ms, burst {dots.Estimate.BurstSeconds * 1000:0.##} ms, commands and the wait for its end), steps {dots.Estimate.StepsSeconds:0.##} s in all"));
+            output.WriteLine(string.Create(c, $"Per dot:          {Units.SecondsToMs(dots.Estimate.AtDotSeconds):0.##} ms standing (settle {Units.SecondsToMs(dots.Estimate.SettleSeconds):0.##} ms, burst {Units.SecondsToMs(dots.Estimate.BurstSeconds):0.##} ms, commands and the wait for its end), steps {dots.Estimate.StepsSeconds:0.##} s in all"));
         }
 
         output.WriteLine(string.Create(c, $"Rows:             {s.Rows}"));

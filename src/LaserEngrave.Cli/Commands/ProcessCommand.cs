@@ -86,7 +86,7 @@ internal static class ProcessCommand
         var f = solution.Figures;
         var c = CultureInfo.InvariantCulture;
         string Mark(ProcessQuantity q) => solution.Solved == q ? "   (solved)" : string.Empty;
-        output.WriteLine(string.Create(c, $"Speed:            {f.SpeedMmPerS:0.######} mm/s = {f.SpeedMmPerS / 1000:0.######} m/s{Mark(ProcessQuantity.Speed)}"));
+        output.WriteLine(string.Create(c, $"Speed:            {f.SpeedMmPerS:0.######} mm/s = {Units.MmToM(f.SpeedMmPerS):0.######} m/s{Mark(ProcessQuantity.Speed)}"));
         output.WriteLine(string.Create(c, $"Frequency:        {f.FrequencyHz:0.###} Hz{Mark(ProcessQuantity.Frequency)}"));
         output.WriteLine(string.Create(c, $"Pulses per dot:   {f.PulsesPerDot}{Mark(ProcessQuantity.PulsesPerDot)}"));
         output.WriteLine(string.Create(c, $"Pulse spacing:    {f.PulseSpacingUm:0.######} µm{Mark(ProcessQuantity.Spacing)}"));

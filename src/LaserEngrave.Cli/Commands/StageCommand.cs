@@ -121,15 +121,15 @@ internal static class StageCommand
     /// <summary>Whole microsteps from an absolute position in µm, rounded once, inside the travel.</summary>
     private static long ToMicrosteps(string axisName, double um, AxisProfile axis)
     {
-        if (!(um >= 0 && um <= axis.TravelMm * 1000))
+        if (!(um >= 0 && um <= Units.MmToUm(axis.TravelMm)))
         {
-            throw new UsageException(string.Create(C, $"{axisName} {um} µm is outside the travel 0..{axis.TravelMm * 1000:0} µm"));
+            throw new UsageException(string.Create(C, $"{axisName} {um} µm is outside the travel 0..{Units.MmToUm(axis.TravelMm):0} µm"));
         }
 
         var microsteps = (long)Math.Round(StageUnits.UmToMicrosteps(um, axis.MicrostepUm), MidpointRounding.AwayFromZero);
         if (microsteps < 0 || microsteps > axis.TravelMicrosteps)
         {
-            throw new UsageException(string.Create(C, $"{axisName} {um} µm is outside the travel 0..{axis.TravelMm * 1000:0} µm"));
+            throw new UsageException(string.Create(C, $"{axisName} {um} µm is outside the travel 0..{Units.MmToUm(axis.TravelMm):0} µm"));
         }
 
         return microsteps;

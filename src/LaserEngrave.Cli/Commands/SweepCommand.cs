@@ -161,13 +161,13 @@ internal static class SweepCommand
         }
 
         var microstepUm = spec.Profile.X.MicrostepUm;
-        var pitchUm = Math.Max(Math.Max(right - spec.Origin.X, bottom - spec.Origin.Y) * 1000 / MaxSide, microstepUm);
+        var pitchUm = Math.Max(Units.MmToUm(Math.Max(right - spec.Origin.X, bottom - spec.Origin.Y)) / MaxSide, microstepUm);
         var grid = new BurnGrid(
-            spec.Origin.X * 1000 / microstepUm,
-            spec.Origin.Y * 1000 / microstepUm,
+            StageUnits.MmToMicrosteps(spec.Origin.X, microstepUm),
+            StageUnits.MmToMicrosteps(spec.Origin.Y, microstepUm),
             pitchUm / microstepUm,
-            Math.Max(1, (int)Math.Ceiling((right - spec.Origin.X) * 1000 / pitchUm)),
-            Math.Max(1, (int)Math.Ceiling((bottom - spec.Origin.Y) * 1000 / pitchUm)));
+            Math.Max(1, (int)Math.Ceiling(Units.MmToSteps(right - spec.Origin.X, pitchUm))),
+            Math.Max(1, (int)Math.Ceiling(Units.MmToSteps(bottom - spec.Origin.Y, pitchUm))));
 
         // Every job's check started its own window; the whole sweep's starts where the sweep did.
         return twin.AnalyzeSince(grid, startSeconds);

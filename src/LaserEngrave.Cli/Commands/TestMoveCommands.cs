@@ -81,7 +81,7 @@ internal static class TestMoveCommands
             }
 
             var machineProfile = LoadProfile(result, profile);
-            var travelUm = (name == StageAxisName.X ? machineProfile.X : machineProfile.Y).TravelMm * 1000;
+            var travelUm = Units.MmToUm((name == StageAxisName.X ? machineProfile.X : machineProfile.Y).TravelMm);
             if (Math.Abs(stepUm) > travelUm)
             {
                 throw new UsageException($"STEP_UM {OptionChecks.N(stepUm)}: longer than the {name} travel ({OptionChecks.N(travelUm)} µm)");

@@ -1,5 +1,6 @@
 using System.Globalization;
 using LaserEngrave.Core.Calibration;
+using LaserEngrave.Core.Geometry;
 
 namespace LaserEngrave.Core.Alignment;
 
@@ -52,7 +53,7 @@ public sealed record FiducialAlignment
             throw new AlignmentException($"the marks are {N(nominal)} mm apart in the job; pick two at least {N(MinSeparationMm)} mm apart (farther is better)");
         }
 
-        var mismatchUm = (measured - nominal) * 1000;
+        var mismatchUm = Units.MmToUm(measured - nominal);
         if (!(Math.Abs(mismatchUm) <= toleranceUm))
         {
             throw new AlignmentException(

@@ -1,4 +1,5 @@
 using LaserEngrave.Core.Calibration;
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
 
 namespace LaserEngrave.Core.Alignment;
@@ -26,7 +27,7 @@ public static class MaskResampler
             throw new AlignmentException($"pitch {pitchUm} µm must be a finite number above 0");
         }
 
-        var p = pitchUm / 1000;
+        var p = Units.UmToMm(pitchUm);
         double w = mask.Width * p, h = mask.Height * p;
         var corners = new[] { transform.Apply(0, 0), transform.Apply(w, 0), transform.Apply(w, h), transform.Apply(0, h) };
         var minX = corners.Min(c => c.X);

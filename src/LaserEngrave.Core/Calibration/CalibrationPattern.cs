@@ -1,4 +1,5 @@
 using System.Globalization;
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
 
 namespace LaserEngrave.Core.Calibration;
@@ -94,7 +95,7 @@ public sealed class CalibrationPattern
             Positive(spacing, "mark spacing", "mm");
         }
 
-        var n = sizeMm * 1000 / pitchUm;
+        var n = Units.MmToSteps(sizeMm, pitchUm);
         if (n < MinSidePx || n > BitMask.MaxSide)
         {
             throw new CalibrationException(
@@ -104,16 +105,16 @@ public sealed class CalibrationPattern
         var side = (int)Math.Round(n);
         var width = Math.Max(1, (int)Math.Round(lineWidthUm / pitchUm));
         var margin = Math.Max(width * 4, (int)Math.Round(0.05 * side));
-        var markSpacing = (int)Math.Round((markSpacingMm ?? (sizeMm / 10)) * 1000 / pitchUm);
+        var markSpacing = (int)Math.Round(Units.MmToSteps(markSpacingMm ?? (sizeMm / 10), pitchUm));
         if (markSpacing < 4 * width)
         {
-            throw new CalibrationException($"scale marks {N(markSpacing * pitchUm / 1000)} mm apart are too close for {N(width * pitchUm)} µm lines");
+            throw new CalibrationException($"scale marks {N(Units.StepsToMm(markSpacing, pitchUm))} mm apart are too close for {N(width * pitchUm)} µm lines");
         }
 
         var marks = (side - margin - margin - width) / markSpacing;
         if (marks < 1)
         {
-            throw new CalibrationException($"scale marks {N(markSpacing * pitchUm / 1000)} mm apart do not fit a {N(sizeMm)} mm pattern");
+            throw new CalibrationException($"scale marks {N(Units.StepsToMm(markSpacing, pitchUm))} mm apart do not fit a {N(sizeMm)} mm pattern");
         }
 
         var offset = (int)Math.Round(0.15 * side);
@@ -168,7 +169,7 @@ public sealed class CalibrationPattern
         yield return string.Create(c, $"Square: side {SquareSideMm:0.####} mm, diagonals {SquareSideMm * Math.Sqrt(2):0.####} mm; corner A carries the filled marker, B is along X, D along Y, C opposite A");
     }
 
-    private double Mm(double px) => px * PitchUm / 1000;
+    private double Mm(double px) => Units.StepsToMm(px, PitchUm);
 
     private static void Fill(BitMask mask, int x, int y, int width, int height)
     {

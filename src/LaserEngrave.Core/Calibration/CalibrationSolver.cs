@@ -1,4 +1,5 @@
 using System.Globalization;
+using LaserEngrave.Core.Geometry;
 
 namespace LaserEngrave.Core.Calibration;
 
@@ -87,11 +88,11 @@ public static class CalibrationSolver
             var isAngle = row.Unit == "°";
             if (!isAngle)
             {
-                lengthSquares += r * 1000 * r * 1000;
+                lengthSquares += Units.MmToUm(Units.MmToUm(r) * r);
                 lengths++;
             }
 
-            residuals.Add(new MeasurementResidual(row.Name, row.Measured, predicted, row.Unit, isAngle ? r : r * 1000));
+            residuals.Add(new MeasurementResidual(row.Name, row.Measured, predicted, row.Unit, isAngle ? r : Units.MmToUm(r)));
         }
 
         var dof = rows.Count - 3;
@@ -125,7 +126,7 @@ public static class CalibrationSolver
             throw new CalibrationException($"angle uncertainty {N(m.AngleUncertaintyDegrees)}° must be a finite number above 0");
         }
 
-        var sigma = m.LengthUncertaintyUm / 1000;
+        var sigma = Units.UmToMm(m.LengthUncertaintyUm);
         var rows = new List<Row>();
         foreach (var (axis, list, index) in new[] { ("x", m.X, 0), ("y", m.Y, 1) })
         {

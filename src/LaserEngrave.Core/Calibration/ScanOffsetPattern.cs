@@ -1,4 +1,5 @@
 using System.Globalization;
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
 
 namespace LaserEngrave.Core.Calibration;
@@ -42,9 +43,9 @@ public sealed class ScanOffsetPattern
 
     public int HeightPx => BarHeightPx;
 
-    public double WidthMm => WidthPx * PitchUm / 1000;
+    public double WidthMm => Units.StepsToMm(WidthPx, PitchUm);
 
-    public double HeightMm => HeightPx * PitchUm / 1000;
+    public double HeightMm => Units.StepsToMm(HeightPx, PitchUm);
 
     /// <summary>Lays out <paramref name="bars"/> bars on a grid of <paramref name="pitchUm"/>; sizes are rounded to whole pixels, the height to an even number of rows.</summary>
     public static ScanOffsetPattern Create(double pitchUm, double barWidthUm, double barHeightUm, int bars, double gapUm)

@@ -93,21 +93,21 @@ public static class GeometryResolver
         {
             case SizeSpec.ByWidth w:
                 RequirePositive(w.WidthMm, size);
-                return FromPitch(w.WidthMm * 1000 / widthPx);
+                return FromPitch(Units.MmToUm(w.WidthMm) / widthPx);
             case SizeSpec.ByHeight h:
                 RequirePositive(h.HeightMm, size);
-                return FromPitch(h.HeightMm * 1000 / heightPx);
+                return FromPitch(Units.MmToUm(h.HeightMm) / heightPx);
             case SizeSpec.ByPitch p:
                 RequirePositive(p.PitchUm, size);
                 return FromPitch(p.PitchUm);
             case SizeSpec.ByResolution r:
                 RequirePositive(r.Dpi, size);
-                return FromPitch(MmPerInch * 1000 / r.Dpi);
+                return FromPitch(Units.MmToUm(MmPerInch) / r.Dpi);
             case SizeSpec.ByWidthAndHeight b:
                 RequirePositive(b.WidthMm, size);
                 RequirePositive(b.HeightMm, size);
-                var fromWidth = b.WidthMm * 1000 / widthPx;
-                var fromHeight = b.HeightMm * 1000 / heightPx;
+                var fromWidth = Units.MmToUm(b.WidthMm) / widthPx;
+                var fromHeight = Units.MmToUm(b.HeightMm) / heightPx;
                 var pitch = Math.Min(fromWidth, fromHeight);
                 if ((Math.Max(fromWidth, fromHeight) / pitch) - 1 > AspectTolerance)
                 {
@@ -121,7 +121,7 @@ public static class GeometryResolver
                 throw new GeometryException($"{size.Describe()}: not a size this version knows");
         }
 
-        (double, double, double) FromPitch(double pitchUm) => (pitchUm, widthPx * pitchUm / 1000, heightPx * pitchUm / 1000);
+        (double, double, double) FromPitch(double pitchUm) => (pitchUm, Units.StepsToMm(widthPx, pitchUm), Units.StepsToMm(heightPx, pitchUm));
     }
 
     private static void RequirePositive(double value, SizeSpec size)

@@ -25,7 +25,7 @@ public record AxisProfile
 
     /// <summary>Travel in whole microsteps (the device's Maximum Position).</summary>
     [JsonIgnore]
-    public long TravelMicrosteps => (long)Math.Floor(TravelMm * 1000 / MicrostepUm);
+    public long TravelMicrosteps => (long)Math.Floor(StageUnits.MmToMicrosteps(TravelMm, MicrostepUm));
 }
 
 /// <summary>How the laser gate is spoken to; every string is overridable for a PIC that speaks differently.</summary>

@@ -13,9 +13,9 @@ public static class StageUnits
     /// <summary>Highest speed or acceleration data at 64 microsteps per step (512 x 64 - 1).</summary>
     public const int MaxSettingData = 32767;
 
-    public static double MmToMicrosteps(double mm, double microstepUm) => mm * 1000.0 / microstepUm;
+    public static double MmToMicrosteps(double mm, double microstepUm) => Units.MmToSteps(mm, microstepUm);
 
-    public static double MicrostepsToMm(double microsteps, double microstepUm) => microsteps * microstepUm / 1000.0;
+    public static double MicrostepsToMm(double microsteps, double microstepUm) => Units.StepsToMm(microsteps, microstepUm);
 
     public static double UmToMicrosteps(double um, double microstepUm) => um / microstepUm;
 
@@ -24,6 +24,13 @@ public static class StageUnits
     /// <summary>Set Target Speed data for a speed in mm/s, rounded to the nearest unit and kept in 1..32767.</summary>
     public static int SpeedData(double mmPerS, double microstepUm) =>
         (int)Math.Clamp(Math.Round(MmToMicrosteps(mmPerS, microstepUm) / SpeedUnitMicrostepsPerS), 1, MaxSettingData);
+
+    /// <summary>
+    /// Move At Constant Speed data for a signed speed in microsteps/s, kept in ±32767 (0: stand still); rounded half away
+    /// from zero where <see cref="SpeedData"/> rounds half to even, as the vector motion has always sent it (same bytes).
+    /// </summary>
+    public static int SignedSpeedData(double microstepsPerS) =>
+        (int)Math.Clamp(Math.Round(microstepsPerS / SpeedUnitMicrostepsPerS, MidpointRounding.AwayFromZero), -MaxSettingData, MaxSettingData);
 
     /// <summary>Set Acceleration data for an acceleration in mm/s², rounded to the nearest unit and kept in 1..32767.</summary>
     public static int AccelerationData(double mmPerS2, double microstepUm) =>

@@ -42,12 +42,12 @@ public sealed record ZAxisProfile : AxisProfile
 
     /// <summary>The absolute Z position, whole microsteps, of the focus <paramref name="offsetUm"/> µm from <see cref="FocusMm"/> (rounded once, from absolute µm).</summary>
     public long MicrostepsAt(double offsetUm) =>
-        (long)Math.Round(StageUnits.UmToMicrosteps((FocusMm * 1000) + offsetUm, MicrostepUm));
+        (long)Math.Round(StageUnits.UmToMicrosteps(Units.MmToUm(FocusMm) + offsetUm, MicrostepUm));
 
     /// <summary>Null when the focus <paramref name="offsetUm"/> µm from <see cref="FocusMm"/> lies in <see cref="MinMm"/>..<see cref="UpperMm"/>; otherwise why not.</summary>
     public string? OffsetProblem(double offsetUm)
     {
-        var atMm = FocusMm + (offsetUm / 1000);
+        var atMm = FocusMm + Units.UmToMm(offsetUm);
         return double.IsFinite(offsetUm) && atMm >= MinMm && atMm <= UpperMm
             ? null
             : $"puts Z at {MachineLimits.Text.N(atMm)} mm, outside z.minMm..z.maxMm {MachineLimits.Text.N(MinMm)}..{MachineLimits.Text.N(UpperMm)} mm (the visible focus z.focusMm is {MachineLimits.Text.N(FocusMm)} mm)";

@@ -153,7 +153,7 @@ public static class JobRules
     public static string? Pitch(double pitchUm, MachineLimits limits)
     {
         ArgumentNullException.ThrowIfNull(limits);
-        var most = Math.Min(limits.TravelXMm, limits.TravelYMm) * 1000;
+        var most = Units.MmToUm(Math.Min(limits.TravelXMm, limits.TravelYMm));
         return !(pitchUm > 0 && double.IsFinite(pitchUm)) ? "must be a finite number above 0"
             : pitchUm > most ? $"at most {N(most)} µm, the travel"
             : pitchUm < limits.MicrostepUm ? $"below one microstep ({N(limits.MicrostepUm)} µm), the smallest step the stage makes"

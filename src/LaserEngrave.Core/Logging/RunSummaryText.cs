@@ -1,5 +1,6 @@
 using System.Globalization;
 using System.Text;
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
 
@@ -197,7 +198,7 @@ public static class RunSummaryText
         var t = TimeSpan.FromSeconds(Math.Round(seconds, 1));
         return t.TotalHours >= 1
             ? string.Create(c, $"{(int)t.TotalHours} h {t.Minutes:00} min {t.Seconds:00} s")
-            : string.Create(c, $"{t.Minutes} min {t.Seconds + (t.Milliseconds / 1000.0):00.0} s");
+            : string.Create(c, $"{t.Minutes} min {t.Seconds + Units.MsToSeconds(t.Milliseconds):00.0} s");
     }
 
     private static string Outcome(RunRecord record) => record.Outcome switch

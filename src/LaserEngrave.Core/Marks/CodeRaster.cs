@@ -1,4 +1,5 @@
 using System.Globalization;
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
 
 namespace LaserEngrave.Core.Marks;
@@ -15,10 +16,10 @@ public sealed record CodeRaster(CodeSymbol Symbol, BitMask Mask, int PixelsPerMo
     public double PitchUm => ModuleUm / PixelsPerModule;
 
     /// <summary>The whole mask's side with its quiet zone, mm.</summary>
-    public double WidthMm => Mask.Width * PitchUm / 1000;
+    public double WidthMm => Units.StepsToMm(Mask.Width, PitchUm);
 
     /// <summary>The code's side without its quiet zone, mm.</summary>
-    public double SymbolMm => Symbol.Size * ModuleUm / 1000;
+    public double SymbolMm => Units.StepsToMm(Symbol.Size, ModuleUm);
 
     /// <summary>Draws <paramref name="symbol"/> with modules of <paramref name="moduleUm"/>; refuses a module the spot cannot resolve.</summary>
     /// <exception cref="MarkException">The module is smaller than the spot or larger than a sane mark, or the quiet zone is out of range.</exception>

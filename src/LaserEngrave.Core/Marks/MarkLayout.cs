@@ -99,7 +99,7 @@ public sealed class MarkLayout
             {
                 var source = Path.Combine(folder, $"mark-{tag}{CodeFileSuffix}");
                 BmpMaskWriter.Write(source, code.Mask, code.PitchUm);
-                var quietMm = code.QuietModules * code.ModuleUm / 1000;
+                var quietMm = Units.StepsToMm(code.QuietModules, code.ModuleUm);
                 layers.Add(Layer(spec, $"{KindName(code.Symbol.Kind)} \"{text}\"", source, LayerMode.Raster, code.WidthMm, new OriginMm(x, y)));
                 marks.Add(new PlacedMark(number, text, KindKey(code.Symbol.Kind), x + quietMm, y + quietMm, code.SymbolMm, code.SymbolMm, code.ModuleUm));
                 codes.Add(code);
@@ -120,11 +120,11 @@ public sealed class MarkLayout
                 var source = Path.Combine(folder, $"mark-{tag}-text.bmp");
                 var pitchUm = profile.SpotDiameterUm;
                 BmpMaskWriter.Write(source, raster, pitchUm);
-                var widthMm = raster.Width * pitchUm / 1000;
+                var widthMm = Units.StepsToMm(raster.Width, pitchUm);
                 var left = x + copy.TextLeftMm;
                 var top = y + copy.TextTopMm;
                 layers.Add(Layer(spec, $"text \"{text}\"", source, LayerMode.Raster, widthMm, new OriginMm(left, top)));
-                marks.Add(new PlacedMark(number, text, "text", left, top, widthMm, raster.Height * pitchUm / 1000, null));
+                marks.Add(new PlacedMark(number, text, "text", left, top, widthMm, Units.StepsToMm(raster.Height, pitchUm), null));
             }
         }
 
@@ -162,7 +162,7 @@ public sealed class MarkLayout
         if (spec.Code is { } kind)
         {
             var symbol = CodeSymbol.Encode(kind, text, spec.ErrorCorrection);
-            var moduleUm = spec.ModuleUm ?? (spec.SizeMm!.Value * 1000 / symbol.Size);
+            var moduleUm = spec.ModuleUm ?? (Units.MmToUm(spec.SizeMm!.Value) / symbol.Size);
             code = CodeRaster.Render(symbol, moduleUm, spec.Quiet, profile.SpotDiameterUm);
         }
 
@@ -177,9 +177,9 @@ public sealed class MarkLayout
         if (spec.Font is { } family)
         {
             var raster = SystemFontText.Render(text, family, spec.TextHeightMm, profile.SpotDiameterUm, spec.Align, spec.LineSpacing);
-            var widthMm = raster.Width * profile.SpotDiameterUm / 1000;
+            var widthMm = Units.StepsToMm(raster.Width, profile.SpotDiameterUm);
             var left = Math.Max(0, (codeMm - widthMm) / 2);
-            return new Copy(code, null, raster, left, textTop, Math.Max(codeMm, widthMm), textTop + (raster.Height * profile.SpotDiameterUm / 1000));
+            return new Copy(code, null, raster, left, textTop, Math.Max(codeMm, widthMm), textTop + Units.StepsToMm(raster.Height, profile.SpotDiameterUm));
         }
 
         var strokes = StrokeText.Layout(text, spec.TextHeightMm, spec.Align, spec.LineSpacing);
@@ -198,6 +198,11 @@ public sealed class MarkLayout
 
     private static void Check(MarkSpec spec, int first, MachineProfile profile, Func<string, string> name)
     {
+        if (string.IsNullOrEmpty(spec.Text))
+        {
+            throw new MarkException("give the mark's text");
+        }
+
         if (spec.Code is not null && (spec.ModuleUm is null) == (spec.SizeMm is null))
         {
             throw new MarkException($"a code needs its module size ({name("moduleUm")}, µm) or its size ({name("sizeMm")}, mm), one of the two");

@@ -1,4 +1,5 @@
 using System.Globalization;
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
 using SkiaSharp;
 
@@ -43,7 +44,7 @@ public static class SystemFontText
             throw new MarkException($"font \"{family}\" is not installed{(typeface is null || typeface.FamilyName.Length == 0 ? string.Empty : $" (the nearest is \"{typeface.FamilyName}\")")}");
         }
 
-        var heightPx = heightMm * 1000 / pitchUm;
+        var heightPx = Units.MmToSteps(heightMm, pitchUm);
         using var font = new SKFont(typeface, 100);
         var capHeight = font.Metrics.CapHeight > 0 ? font.Metrics.CapHeight : 70;
         font.Size = (float)(100 * heightPx / capHeight);

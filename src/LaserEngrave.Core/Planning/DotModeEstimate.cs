@@ -1,3 +1,5 @@
+using LaserEngrave.Core.Geometry;
+
 namespace LaserEngrave.Core.Planning;
 
 /// <summary>What a dot-mode plan (<see cref="PlanMode.Dots"/>) costs: its dots and rows, and the time the executor takes, part by part.</summary>
@@ -76,7 +78,7 @@ public sealed record DotModeEstimate
             AtDotSeconds = timing.AtDotSeconds,
             StepsSeconds = steps,
             StartEndSeconds = timing.StartSeconds + timing.OffRoundTripSeconds,
-            TravelLengthMm = travel * plan.Geometry.MicrostepUm / 1000,
+            TravelLengthMm = StageUnits.MicrostepsToMm(travel, plan.Geometry.MicrostepUm),
         };
 
         static double Square(double v) => v * v;

@@ -44,25 +44,25 @@ public sealed class DotTiming
 
         var stageByte = BitsPerByte / process.StageBaudRate;
         FrameSeconds = TimedSwitching.FrameBytes * stageByte;
-        StageAdapterSeconds = latency.StageMs / 1000;
+        StageAdapterSeconds = Units.MsToSeconds(latency.StageMs);
         StageRoundTripSeconds = (2 * StageAdapterSeconds) + (2 * FrameSeconds);
 
         var gateByte = BitsPerByte / process.GateBaudRate;
-        var gateAdapter = latency.GateMs / 1000;
-        var processing = latency.GateProcessingMs / 1000;
+        var gateAdapter = Units.MsToSeconds(latency.GateMs);
+        var processing = Units.MsToSeconds(latency.GateProcessingMs);
         BurstCommand = string.Format(CultureInfo.InvariantCulture, gate.BurstCommand, PulsesPerDot, FrequencyHz) + gate.LineTerminator;
         var reply = gate.AckPrefix + " " + string.Format(CultureInfo.InvariantCulture, gate.BurstReply, PulsesPerDot, FrequencyHz) + gate.LineTerminator;
         var replyWire = reply.Length * gateByte;
         BurstSeconds = (double)PulsesPerDot / FrequencyHz;
         BurstLeadSeconds = gateAdapter + (BurstCommand.Length * gateByte) + processing;
         BurstReplySeconds = replyWire + gateAdapter;
-        var leastAdapter = Math.Max(0, latency.GateMs - latency.GateJitterMs) / 1000;
+        var leastAdapter = Units.MsToSeconds(Math.Max(0, latency.GateMs - latency.GateJitterMs));
         AfterAckSeconds = Math.Max(0, BurstSeconds - replyWire - leastAdapter) + ReactionSeconds;
-        SettleSeconds = process.DotSettleMs / 1000;
+        SettleSeconds = Units.MsToSeconds(process.DotSettleMs);
 
         var offReply = gate.AckPrefix + " " + gate.OffReply + gate.LineTerminator;
         OffRoundTripSeconds = (2 * gateAdapter) + processing + ((gate.OffCommand.Length + gate.LineTerminator.Length + offReply.Length) * gateByte);
-        WatchdogSeconds = gate.WatchdogMs / 1000.0;
+        WatchdogSeconds = Units.MsToSeconds(gate.WatchdogMs);
     }
 
     public int PulsesPerDot { get; }
@@ -119,7 +119,7 @@ public sealed class DotTiming
     /// <summary>Null when a burst fits the gate's watchdog; otherwise why not, in one line (the watchdog would cut every burst short).</summary>
     public string? BurstProblem =>
         WatchdogSeconds > 0 && BurstSeconds > WatchdogSeconds / 2
-            ? string.Create(CultureInfo.InvariantCulture, $"a burst of {PulsesPerDot} pulses at {FrequencyHz} Hz lasts {BurstSeconds * 1000:0.###} ms, more than half the gate's watchdog time ({WatchdogSeconds * 1000:0} ms), which would cut it short; fire fewer pulses per dot or at a higher frequency")
+            ? string.Create(CultureInfo.InvariantCulture, $"a burst of {PulsesPerDot} pulses at {FrequencyHz} Hz lasts {Units.SecondsToMs(BurstSeconds):0.###} ms, more than half the gate's watchdog time ({Units.SecondsToMs(WatchdogSeconds):0} ms), which would cut it short; fire fewer pulses per dot or at a higher frequency")
             : null;
 
     /// <summary>The step from one dot to the next: Move Absolute of each moving axis (X first, Y right behind it on the shared line), the motions, and the replies.</summary>

@@ -143,7 +143,7 @@ public sealed class SweepPlan
         var microstepUm = Math.Max(profile.X.MicrostepUm, profile.Y.MicrostepUm);
         Validate(spec, limits, microstepUm);
 
-        var cellUm = spec.CellMm * 1000;
+        var cellUm = Units.MmToUm(spec.CellMm);
         var columns = spec.Columns;
         var rowTexts = spec.Rows.Values.Select(Label).ToList();
         var columnTexts = columns?.Values.Select(Label).ToList() ?? [];
@@ -156,7 +156,7 @@ public sealed class SweepPlan
             labelPitchUm = cellUm * LabelHeightShare / TinyFont.GlyphHeight;
             foreach (var text in columnTexts)
             {
-                labelPitchUm = Math.Min(labelPitchUm, (spec.CellMm + spec.SpacingMm) * 1000 / (TinyFont.Width(text) + 1));
+                labelPitchUm = Math.Min(labelPitchUm, Units.MmToUm(spec.CellMm + spec.SpacingMm) / (TinyFont.Width(text) + 1));
             }
 
             if (labelPitchUm < microstepUm)
@@ -164,9 +164,9 @@ public sealed class SweepPlan
                 throw new SweepException($"--labels: cells of {N(spec.CellMm)} mm leave labels pixels of {N(labelPitchUm)} µm, below one microstep; make the cells larger or leave the labels out");
             }
 
-            var gap = Math.Max(spec.SpacingMm, 2 * labelPitchUm / 1000);
-            stripXMm = (rowTexts.Max(TinyFont.Width) * labelPitchUm / 1000) + gap;
-            stripYMm = columns is null ? 0 : (TinyFont.GlyphHeight * labelPitchUm / 1000) + gap;
+            var gap = Math.Max(spec.SpacingMm, Units.UmToMm(2 * labelPitchUm));
+            stripXMm = Units.StepsToMm(rowTexts.Max(TinyFont.Width), labelPitchUm) + gap;
+            stripYMm = columns is null ? 0 : Units.StepsToMm(TinyFont.GlyphHeight, labelPitchUm) + gap;
         }
 
         var gridX = spec.Origin.X + stripXMm;
@@ -192,7 +192,7 @@ public sealed class SweepPlan
         if (spec.Labels)
         {
             // Each label centred on its row or column, in label pixels from the grid's corner; the mask holds them all.
-            int Px(double mm) => (int)Math.Round(mm * 1000 / labelPitchUm);
+            int Px(double mm) => (int)Math.Round(Units.MmToSteps(mm, labelPitchUm));
             var placed = new List<(string Text, int X, int Y)>();
             for (var r = 0; r < rowTexts.Count; r++)
             {
@@ -289,7 +289,7 @@ public sealed class SweepPlan
         }
         else
         {
-            mask = CellMask(spec.Pattern, Math.Max(1, (int)Math.Round(spec.CellMm * 1000 / pitch)));
+            mask = CellMask(spec.Pattern, Math.Max(1, (int)Math.Round(Units.MmToSteps(spec.CellMm, pitch))));
         }
 
         var job = Prepare(spec, $"sweep cell r{row + 1} c{column + 1}", mask, SizeSpec.Pitch(pitch), origin, process, passes, SweepCell.Describe(row, column, parameters));
@@ -423,7 +423,7 @@ public sealed class SweepPlan
                 var problem = JobRules.Check(cell, limits).FirstOrDefault()?.Rule ?? axis.Parameter switch
                 {
                     SweepParameter.PulsesPerDot when spec.Process.Mode != PlanMode.Dots => "pulses per dot are swept in dot mode only: add --mode dots",
-                    SweepParameter.Pitch when !(value <= spec.CellMm * 1000) => $"must be {N(microstepUm)} µm (a microstep) .. {N(spec.CellMm * 1000)} µm (the cell)",
+                    SweepParameter.Pitch when !(value <= Units.MmToUm(spec.CellMm)) => $"must be {N(microstepUm)} µm (a microstep) .. {N(Units.MmToUm(spec.CellMm))} µm (the cell)",
                     SweepParameter.Focus when spec.Profile.Z is null => "the machine has no Z axis: add a \"z\" section to the machine profile (docs/machine-profile.md) to sweep the focus",
                     SweepParameter.Focus when spec.Profile.Z.OffsetProblem(value) is { } outside => outside,
                     _ => null,
@@ -438,15 +438,15 @@ public sealed class SweepPlan
 
         void CheckPitch(double pitch, string option)
         {
-            if (!(pitch >= microstepUm && pitch <= spec.CellMm * 1000))
+            if (!(pitch >= microstepUm && pitch <= Units.MmToUm(spec.CellMm)))
             {
-                throw new SweepException($"{option} {N(pitch)}: must be {N(microstepUm)} µm (a microstep) .. {N(spec.CellMm * 1000)} µm (the cell)");
+                throw new SweepException($"{option} {N(pitch)}: must be {N(microstepUm)} µm (a microstep) .. {N(Units.MmToUm(spec.CellMm))} µm (the cell)");
             }
         }
     }
 
     // The image's larger side spans the cell.
-    private static double ImagePitchUm(SweepSpec spec, BitMask image) => spec.CellMm * 1000 / Math.Max(image.Width, image.Height);
+    private static double ImagePitchUm(SweepSpec spec, BitMask image) => Units.MmToUm(spec.CellMm) / Math.Max(image.Width, image.Height);
 
     /// <summary>A value as its label burns it: up to three decimals, no trailing zeros.</summary>
     private static string Label(double value) => value.ToString("0.###", CultureInfo.InvariantCulture);

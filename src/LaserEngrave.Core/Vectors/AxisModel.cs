@@ -29,7 +29,7 @@ internal struct AxisModel(double position, double acceleration)
         switch (command.Kind)
         {
             case AxisCommandKind.Speed:
-                Command = command.SpeedData * Geometry.StageUnits.SpeedUnitMicrostepsPerS;
+                Command = Geometry.StageUnits.SpeedMicrostepsPerS(command.SpeedData);
                 Stopping = false;
                 break;
             case AxisCommandKind.Stop:

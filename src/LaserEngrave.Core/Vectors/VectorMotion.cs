@@ -340,7 +340,7 @@ public static class VectorMotion
                 }
 
                 var speed = model.SpeedToReach(Coordinate(next), next - update);
-                var wanted = (int)Math.Clamp(Math.Round(speed / StageUnits.SpeedUnitMicrostepsPerS, MidpointRounding.AwayFromZero), -StageUnits.MaxSettingData, StageUnits.MaxSettingData);
+                var wanted = StageUnits.SignedSpeedData(speed);
                 if (wanted != data)
                 {
                     var command = wanted == 0 ? new AxisCommand(update, axis, AxisCommandKind.Stop) : new AxisCommand(update, axis, AxisCommandKind.Speed, wanted);

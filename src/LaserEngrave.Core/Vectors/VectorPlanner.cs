@@ -41,7 +41,7 @@ public static class VectorPlanner
         var toStageMm = Affine.Compose(
             Affine.Compose(Affine.Translate(-min.X, -min.Y), Affine.Scale(scale, scale)),
             Affine.Translate(options.Origin.X, options.Origin.Y));
-        var toleranceMm = options.ToleranceUm / 1000;
+        var toleranceMm = Units.UmToMm(options.ToleranceUm);
         var selected = drawing.Paths;
         if (options.Layer is { } layer)
         {

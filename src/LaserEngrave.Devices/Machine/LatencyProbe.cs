@@ -1,3 +1,4 @@
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.LaserGate;
 using LaserEngrave.Devices.Zaber;
@@ -51,7 +52,7 @@ public sealed class LatencyProbe : ILatencyProbe
     }
 
     /// <summary>Time <paramref name="bytes"/> take on the wire at <paramref name="baudRate"/>, 10 bits a byte (8N1), ms.</summary>
-    public static double WireMs(int bytes, int baudRate) => bytes * BitsPerByte * 1000 / baudRate;
+    public static double WireMs(int bytes, int baudRate) => Units.SecondsToMs(bytes * BitsPerByte) / baudRate;
 
     private async Task<double[]> TimeAsync(int exchanges, Func<int, Task> exchange, CancellationToken cancellationToken)
     {

@@ -53,7 +53,7 @@ public sealed class BurnInspector(SimulatedMachine machine) : ITwinInspector
         }
 
         var zUm = StageUnits.MicrostepsToUm((firing.MinMicrosteps + firing.MaxMicrosteps) / 2, z.MicrostepUm);
-        var defocusUm = zUm - ((z.FocusMm * 1000) + machine.Options.TrueFocusOffsetUm);
+        var defocusUm = zUm - (Units.MmToUm(z.FocusMm) + machine.Options.TrueFocusOffsetUm);
         double? spot = machine.Options.RayleighLengthUm is { } zR
             ? machine.Profile.SpotDiameterUm * Math.Sqrt(1 + Math.Pow(defocusUm / zR, 2))
             : null;

@@ -1,3 +1,5 @@
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Process;
 using LaserEngrave.Core.Vectors;
 using LaserEngrave.Simulator.Motion;
 
@@ -57,7 +59,7 @@ internal sealed class PathAnalysis
         long pulses = 0, offPath = 0, dwellPulses = 0, spacings = 0;
         int dwells = 0;
         double deviationSum = 0, deviationMax = 0, spacingSum = 0, spacingMin = double.PositiveInfinity, spacingMax = 0, laserOn = 0;
-        var slowUmPerS = burnSpeedMmPerS * 1000 / 10;
+        var slowUmPerS = Units.MmToUm(burnSpeedMmPerS) / 10;
         var stretch = new List<(double X, double Y)>();
         var hz = 0.0;
         foreach (var period in periods)
@@ -119,7 +121,7 @@ internal sealed class PathAnalysis
             spacings == 0 ? 0 : spacingMin,
             spacings == 0 ? 0 : spacingSum / spacings,
             spacingMax,
-            hz > 0 ? burnSpeedMmPerS * 1000 / hz : 0,
+            hz > 0 ? PulseArithmetic.SpacingUm(burnSpeedMmPerS, hz) : 0,
             dwells,
             dwellPulses,
             offPath,

@@ -1,4 +1,5 @@
 using System.Runtime.CompilerServices;
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
 using LaserEngrave.Simulator.Motion;
 
@@ -47,7 +48,7 @@ internal sealed class PulseAnalysis
         _xUm = xMicrostepUm;
         _yUm = yMicrostepUm;
         _dwellToleranceSeconds = dwellToleranceSeconds;
-        _burnSpeedUmPerS = burnSpeedMmPerS * 1000;
+        _burnSpeedUmPerS = burnSpeedMmPerS is { } speed ? Units.MmToUm(speed) : null;
         _edges = expected is not null && burnSpeedMmPerS is not null ? new EdgeMeter(grid, expected) : null;
         _dose = new int[checked((long)grid.WidthPx * grid.HeightPx * DoseMap.SubcellsPerPixel * DoseMap.SubcellsPerPixel)];
         _columnEdges = [.. Enumerable.Range(0, grid.WidthPx + 1).Select(grid.ColumnEdge)];

@@ -261,7 +261,7 @@ public sealed class VirtualLaserGate
 
         var generation = _generation;
         var heard = _lastHeard;
-        _watchdog = _clock.At(heard + (WatchdogMs / 1000.0), () =>
+        _watchdog = _clock.At(heard + Units.MsToSeconds(WatchdogMs), () =>
         {
             lock (_lock)
             {

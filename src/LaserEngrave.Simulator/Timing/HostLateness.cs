@@ -1,4 +1,5 @@
 using System.Text.Json.Serialization;
+using LaserEngrave.Core.Geometry;
 
 namespace LaserEngrave.Simulator.Timing;
 
@@ -35,7 +36,7 @@ public readonly record struct HostLateness(
         var ms = random.NextDouble() < TailProbability
             ? typical + (random.NextDouble() * Math.Max(0, TailMs - typical))
             : random.NextDouble() * typical;
-        return ms / 1000.0;
+        return Units.MsToSeconds(ms);
     }
 
     public override string ToString() => FormattableString.Invariant($"up to {TypicalMs} ms, {TailProbability:P1} up to {TailMs} ms");

@@ -1,4 +1,5 @@
 using System.Text.Json.Serialization;
+using LaserEngrave.Core.Geometry;
 
 namespace LaserEngrave.Simulator.Timing;
 
@@ -15,7 +16,7 @@ public readonly record struct Jitter([property: JsonPropertyName("meanMs")] doub
     {
         ArgumentNullException.ThrowIfNull(random);
         var ms = SpreadMs > 0 ? MeanMs + (((random.NextDouble() * 2) - 1) * SpreadMs) : MeanMs;
-        return Math.Max(0, ms) / 1000.0;
+        return Units.MsToSeconds(Math.Max(0, ms));
     }
 
     /// <summary>The same jitter with its spread multiplied by <paramref name="factor"/>.</summary>

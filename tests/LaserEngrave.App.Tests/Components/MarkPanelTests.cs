@@ -91,4 +91,30 @@ public sealed class MarkPanelTests : ComponentTest
 
         Assert.Contains("copies 2.5 must be a whole number", cut.Find("#mark-error").TextContent, StringComparison.Ordinal);
     }
+
+    [Fact]
+    public void Make_CodeSizeZero_RefusedByMarkLayoutsRuleInThePanelsWords()
+    {
+        // The panel keeps no ranges of its own: the rule is MarkLayout's (the command line's), named as the panel's box.
+        var cut = RenderPanel();
+        cut.Find("#mark-size").Change("0");
+
+        cut.Find("#mark-make").Click();
+
+        cut.WaitForAssertion(() => Assert.Equal("code size 0 must be above 0 and at most 100 mm", cut.Find("#mark-error").TextContent));
+        Assert.Empty(Main.Layers.Layers);
+    }
+
+    [Fact]
+    public void Make_ColumnsMoreThanCopies_RefusedAsTheCommandLineRefusesThem()
+    {
+        var cut = RenderPanel();
+        cut.Find("#mark-copies").Change("3");
+        cut.Find("#mark-columns").Change("5");
+
+        cut.Find("#mark-make").Click();
+
+        cut.WaitForAssertion(() => Assert.Equal("columns 5 must be 1..3 (the copies)", cut.Find("#mark-error").TextContent));
+        Assert.Empty(Main.Layers.Layers);
+    }
 }

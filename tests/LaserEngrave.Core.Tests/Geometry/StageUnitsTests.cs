@@ -20,6 +20,17 @@ public class StageUnitsTests
     }
 
     [Fact]
+    public void SignedSpeedData_HalfUnitsAndReverse_RoundAwayFromZeroWithinTheLimit()
+    {
+        // 2.5 units rounds away from zero (SpeedData rounds it to even, 2); the sign is kept; 0 is standing still.
+        Assert.Equal(3, StageUnits.SignedSpeedData(2.5 * 9.375));
+        Assert.Equal(-3, StageUnits.SignedSpeedData(-2.5 * 9.375));
+        Assert.Equal(0, StageUnits.SignedSpeedData(0.4 * 9.375));
+        Assert.Equal(-StageUnits.MaxSettingData, StageUnits.SignedSpeedData(-1e9));
+        Assert.Equal(2, StageUnits.SpeedData(StageUnits.MicrostepsToMm(2.5 * 9.375, 0.09921875), 0.09921875));
+    }
+
+    [Fact]
     public void Profile_RoundTripsThroughJson()
     {
         var path = Path.Combine(Path.GetTempPath(), $"profile-{Guid.NewGuid():N}.json");
