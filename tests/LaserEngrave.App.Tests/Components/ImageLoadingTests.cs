@@ -58,6 +58,23 @@ public sealed class ImageLoadingTests : ComponentTest
     }
 
     [Fact]
+    public async Task SlowImageThenAnotherOpenedAtOnce_TheLaterOpenWins()
+    {
+        var (job, _) = OpenQrThenRender();
+        var drawing = TestFiles.Asset("line-drawing.png");
+
+        var slow = job.LoadImageAsync(TestFiles.Asset("text-banner.png"), Xunit.TestContext.Current.CancellationToken);
+        Assert.True(job.LoadImage(drawing));
+        _images.Gate.SetResult();
+
+        // Dropped before its plan, however far its reading got.
+        Assert.False(await slow.WaitAsync(TimeSpan.FromSeconds(30), Xunit.TestContext.Current.CancellationToken));
+        Assert.Equal(drawing, job.ImagePath);
+        Assert.Null(job.LoadingLine);
+        Assert.Equal(0, _images.GatedPlans);
+    }
+
+    [Fact]
     public async Task InvertTickedWhileReading_TheMaskFollowsIt()
     {
         var (job, _) = OpenQrThenRender();
