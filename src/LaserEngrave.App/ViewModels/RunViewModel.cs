@@ -250,6 +250,8 @@ public sealed partial class RunViewModel : ObservableObject
     {
         if (!IsActive && StartQuestion is { } question)
         {
+            Notice = null;
+            _askedAbout = AskedJob();
             PendingQuestion = question;
             return;
         }
@@ -257,10 +259,25 @@ public sealed partial class RunViewModel : ObservableObject
         await StartNowAsync();
     }
 
-    /// <summary>Starts the job Start asked about: the answer "Start anyway".</summary>
+    /// <summary>
+    /// Starts the job Start asked about: the answer "Start anyway". A job changed while the question showed is not
+    /// started: the question is asked again for the job as it is now, or, when that one need not ask, nothing starts
+    /// and <see cref="Notice"/> says so.
+    /// </summary>
     [RelayCommand(CanExecute = nameof(CanStart))]
     private Task ConfirmStartAsync()
     {
+        if (PendingQuestion is not null && _askedAbout != AskedJob())
+        {
+            var question = StartQuestion;
+            PendingQuestion = question;
+            _askedAbout = AskedJob();
+            Notice = question is null
+                ? "the job changed while Start was asking: nothing started; press Start to run the job as it is now"
+                : "the job changed while Start was asking: the question is asked again for the job as it is now";
+            return Task.CompletedTask;
+        }
+
         PendingQuestion = null;
         return StartNowAsync();
     }
@@ -268,6 +285,11 @@ public sealed partial class RunViewModel : ObservableObject
     /// <summary>The answer "Cancel": nothing starts.</summary>
     [RelayCommand]
     private void CancelStart() => PendingQuestion = null;
+
+    // The job the pending question was asked about: the plan's and the layers' versions, and which of them Start runs.
+    private (int Job, int Layers, bool RunsLayers) _askedAbout;
+
+    private (int Job, int Layers, bool RunsLayers) AskedJob() => (_job.PlanVersion, _layers?.PlanVersion ?? 0, RunsLayers);
 
     /// <summary>Starts without asking (the API's start with "confirm": true, or the answer to the question).</summary>
     internal async Task StartNowAsync()

@@ -242,6 +242,34 @@ public sealed class RunBarTests : ComponentTest
     }
 
     [Fact]
+    public async Task StartAnyway_JobChangedWhileAsking_AsksAgainOrRefusesNeverStartsTheNewJobUnasked()
+    {
+        OpenQr();
+        Main.Job.EditPitch(5);
+        Main.Job.BurnSpeedMmPerS = 0.25;
+        await ConnectAsync();
+        var cut = RenderBar();
+        cut.WaitForAssertion(() => Assert.False(Disabled(cut.Find("#start"))));
+        cut.Find("#start").Click();
+        cut.WaitForAssertion(() => Assert.Contains("pixels of 5 µm", cut.Find("#start-question").TextContent, StringComparison.Ordinal));
+
+        Main.Job.EditPitch(4);
+        cut.Find("#start-confirm").Click();
+
+        cut.WaitForAssertion(() => Assert.Contains("pixels of 4 µm", cut.Find("#start-question").TextContent, StringComparison.Ordinal));
+        Assert.Contains("the job changed while Start was asking", cut.Find("#run-notice").TextContent, StringComparison.Ordinal);
+        await Runs.DidNotReceive().RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>());
+
+        Main.Job.EditPitch(20);
+        Main.Job.BurnSpeedMmPerS = 1;
+        cut.Find("#start-confirm").Click();
+
+        cut.WaitForAssertion(() => Assert.Empty(cut.FindAll("#start-question")));
+        Assert.Contains("nothing started; press Start", cut.Find("#run-notice").TextContent, StringComparison.Ordinal);
+        await Runs.DidNotReceive().RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>());
+    }
+
+    [Fact]
     public void StartQuestion_OverAnHour_SaysHowLong()
     {
         OpenQr(widthMm: 20);
