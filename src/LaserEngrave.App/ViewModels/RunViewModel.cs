@@ -387,6 +387,89 @@ public sealed partial class RunViewModel : ObservableObject
         await RunAsync(stopped!.Target, stopped.Settings, connection!, stopped.Target.Layered is null ? stopped.StopPoint : null, stopped.LayerResume);
     }
 
+    /// <summary>
+    /// Why the logged run at <paramref name="path"/> cannot be continued from the run history now, one line; null when it
+    /// can (a run that stopped with a stop point, made with the app's machine profile, a machine connected and free).
+    /// </summary>
+    public string? WhyNotContinueLogged(string path)
+    {
+        if (_log.Find(path)?.Record is not { } record)
+        {
+            return "not a run in the history";
+        }
+
+        if (record.Outcome == RunOutcome.Completed)
+        {
+            return "the run completed: nothing is left to burn (Repeat runs it again)";
+        }
+
+        if (record.StoppedAt is null)
+        {
+            return "its log has no stop point (it stopped before its first move): Repeat runs it whole";
+        }
+
+        if (record.Layers is not null)
+        {
+            return "a job of layers continues from the run bar's Continue, or laserengrave engrave --from-log LOG --resume";
+        }
+
+        if (record.Profile != _job.Profile)
+        {
+            return $"it ran with the machine profile \"{record.Profile.Name}\", the app plans with \"{_job.Profile.Name}\": continue it with laserengrave engrave --from-log LOG --resume";
+        }
+
+        if (IsActive)
+        {
+            return "a run is already under way";
+        }
+
+        return _machine.Activity.BusyMessage ?? (_machine.Connection is null ? "not connected: connect to the machine the run stopped on first" : null);
+    }
+
+    /// <summary>
+    /// Continues a logged run that stopped (a fault or an abort) from the run history, as
+    /// <c>laserengrave engrave --from-log LOG --resume</c> does: its image and values are put back (as Repeat does, the
+    /// image checked against its SHA-256), planned again, and run from the log's stop point by the same path as
+    /// <see cref="ContinueCommand"/>; the new log says it resumed that one. Refused with one line when
+    /// <see cref="WhyNotContinueLogged"/> says why, or when the job planned now is not the logged run's.
+    /// </summary>
+    [RelayCommand]
+    private async Task ContinueLoggedAsync(string path)
+    {
+        Error = null;
+        Notice = null;
+        if (WhyNotContinueLogged(path) is { } why)
+        {
+            Error = $"{Path.GetFileName(path)} cannot be continued: {why}";
+            return;
+        }
+
+        var record = _log.Find(path)!.Record!;
+        _log.LoadCommand.Execute(path);
+        if (_log.Error is { } loadError)
+        {
+            Error = loadError;
+            return;
+        }
+
+        RunTarget? target = record.Drawing is not null
+            ? _job.Drawing is { } drawing ? new RunTarget(null, drawing, null) : null
+            : _job.Job is { } job ? new RunTarget(job, null, null) : null;
+        var planned = target?.Drawing is { } d ? (d.Schedule.Strokes.Count, record.RunsTotal)
+            : target?.Job is { } j ? (j.Statistics.Rows, j.Statistics.BurnRuns)
+            : (-1, -1L);
+
+        // The stop point counts the logged plan's moves: only the same plan, made again, can go on from it.
+        if (target is null || planned != (record.RowsTotal, record.RunsTotal))
+        {
+            var unit = record.Drawing is null ? "rows" : "strokes";
+            Error = $"{Path.GetFileName(path)} cannot be continued: the job planned from its log is not the one that ran ({(target is null ? "it does not plan" : $"{planned.Item1} {unit} and {planned.Item2} runs, not {record.RowsTotal} and {record.RunsTotal}")}); Repeat runs it again";
+            return;
+        }
+
+        await RunAsync(target, _job.ToSettings(), _machine.Connection!, record.StoppedAt, continuedFrom: path);
+    }
+
     /// <summary>One line for the user on a request that did nothing, e.g. a second Start during a run.</summary>
     [ObservableProperty]
     public partial string? Notice { get; private set; }
@@ -503,7 +586,8 @@ public sealed partial class RunViewModel : ObservableObject
     /// <param name="target">What runs: an image job, a drawing or a job of layers.</param>
     /// <param name="resumeFrom">Continue a stopped image job or drawing from here (its stopped pass only).</param>
     /// <param name="resumeLayers">Continue a stopped job of layers from here (its layer and pass, then the rest).</param>
-    private async Task RunAsync(RunTarget target, JobSettings settings, IMachineConnection connection, RunStopPoint? resumeFrom = null, LayerResumePoint? resumeLayers = null)
+    /// <param name="continuedFrom">The log of the run this one continues (the last run's when none is given).</param>
+    private async Task RunAsync(RunTarget target, JobSettings settings, IMachineConnection connection, RunStopPoint? resumeFrom = null, LayerResumePoint? resumeLayers = null, string? continuedFrom = null)
     {
         if (!_machine.Activity.TryBegin(MachineOperation.Run, out var lease, out var refusal))
         {
@@ -542,7 +626,7 @@ public sealed partial class RunViewModel : ObservableObject
             return;
         }
 
-        var continuedFrom = resumeFrom is null && resumeLayers is null ? null : _log.LastRun?.Path;
+        continuedFrom = resumeFrom is null && resumeLayers is null ? null : continuedFrom ?? _log.LastRun?.Path;
         var (job, layered) = (target.Job, target.Layered);
         _startedTicks = _time.GetTimestamp();
         _estimatedSeconds = layered?.EstimatedSeconds ?? _job.EstimatedSeconds ?? 0;

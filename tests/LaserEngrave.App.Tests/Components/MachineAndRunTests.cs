@@ -402,6 +402,44 @@ public sealed class LogPanelTests : ComponentTest
     }
 
     [Fact]
+    public async Task HistoryContinue_StoppedRun_ContinuedFromItsLogsStopPointOthersSayWhyNot()
+    {
+        OpenQr();
+        var image = TestFiles.Asset("qr-code.bmp");
+        var logged = RunRecord.ForJob(Main.Job.Job!, PreparedJob.HashFile(image), DateTimeOffset.UnixEpoch);
+        var stop = new RunStopPoint(3, 10, null, null);
+        Store.History().Returns(
+        [
+            new RunLogEntry("/logs/a.json", logged with { Outcome = RunOutcome.Aborted, StoppedAt = stop, SampleId = "A-1" }, null),
+            new RunLogEntry("/logs/b.json", logged with { Outcome = RunOutcome.Failed }, null),
+            new RunLogEntry("/logs/c.json", logged with { Outcome = RunOutcome.Completed }, null),
+        ]);
+        Main.Log.RefreshCommand.Execute(null);
+        Main.Job.EditWidth(8);
+        await ConnectAsync();
+        EngraveSession? ran = null;
+        Runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(c => SessionResults.Ends(SessionResults.Result(RunOutcome.Completed))(c))
+            .AndDoes(c => ran = c.Arg<EngraveSession>());
+        var cut = Render<RunHistoryDialog>(p => p.Add(c => c.Log, Main.Log).Add(c => c.Run, Main.Run));
+
+        Assert.Empty(cut.FindAll("tr[data-path='/logs/c.json'] .history-continue"));
+        var failed = cut.Find("tr[data-path='/logs/b.json'] .history-continue");
+        Assert.True(Disabled(failed));
+        Assert.Contains("no stop point", failed.GetAttribute("title"), StringComparison.Ordinal);
+        var aborted = cut.Find("tr[data-path='/logs/a.json'] .history-continue");
+        Assert.False(Disabled(aborted));
+        aborted.Click();
+
+        cut.WaitForAssertion(() => Assert.NotNull(ran));
+        Assert.Equal(stop, ran!.Options.ResumeFrom);
+        Assert.Equal("/logs/a.json", ran.Options.RepeatOf);
+        Assert.Equal(5, Main.Job.WidthMm, 6);
+        Assert.Equal("A-1", ran.Options.SampleId);
+        Assert.Null(Main.Run.Error);
+    }
+
+    [Fact]
     public void SampleId_Typed_KeptForTheNextRun()
     {
         var cut = Render<LogPanel>(p => p.Add(c => c.Log, Main.Log));
