@@ -102,8 +102,9 @@ public sealed partial class RunViewModel : ObservableObject
     public partial RunState State { get; private set; }
 
     /// <summary>
-    /// Where the stage drawing puts the laser while an image job runs: the move in flight at its planned pace between the
-    /// engine's reports (see <see cref="LaserPace"/>); null when no such run is under way (the machine's own position then).
+    /// Where the stage drawing puts the laser while a run is under way (any kind of job): the motion in flight at its
+    /// planned pace between the engine's reports (see <see cref="LaserPace"/>); null when no run is under way (the
+    /// machine's own position then).
     /// </summary>
     [ObservableProperty]
     public partial (long X, long Y)? LaserMicrosteps { get; private set; }
@@ -666,17 +667,17 @@ public sealed partial class RunViewModel : ObservableObject
         using var abort = CancellationTokenSource.CreateLinkedTokenSource(lease.CancellationToken);
         _abort = abort;
 
-        // A raster image job's moves are the plan's own, one for one with the engine's count: its laser is drawn at their pace.
-        var pace = job is { Dots: null } && layered is null && target.Drawing is null ? new LaserPace(job, _time) : null;
+        // Every kind of job counts its moves (plan moves, dots, strokes) one for one with the engine: its laser is drawn at their pace.
+        var pace = new LaserPace(target.Engraving, _time);
         _pace = pace;
-        var paceTimer = pace is null ? null : _time.CreateTimer(_ => MoveLaser(), null, PaceInterval, PaceInterval);
+        var paceTimer = _time.CreateTimer(_ => MoveLaser(), null, PaceInterval, PaceInterval);
         try
         {
             result = await _runs.RunAsync(running, new LatestProgress(this, running), abort.Token);
         }
         finally
         {
-            paceTimer?.Dispose();
+            paceTimer.Dispose();
             lock (_paceLock)
             {
                 _pace = null;
@@ -773,10 +774,12 @@ public sealed partial class RunViewModel : ObservableObject
     /// <summary>What a run engraves: an image job, a drawing, or a job of layers (one of them).</summary>
     private sealed record RunTarget(PreparedJob? Job, PreparedDrawing? Drawing, LayeredJob? Layered)
     {
-        public EngraveSession Session(EngraveMachine machine, EngraveSessionOptions options) =>
-            Layered is { } layered ? new EngraveSession(machine, layered, options)
-            : Drawing is { } drawing ? new EngraveSession(machine, drawing, options)
-            : new EngraveSession(machine, Job!, options);
+        /// <summary>The job as the run engine takes it.</summary>
+        public EngraveJob Engraving => Layered is { } layered ? EngraveJob.Of(layered)
+            : Drawing is { } drawing ? EngraveJob.Of(drawing)
+            : EngraveJob.Of(Job!);
+
+        public EngraveSession Session(EngraveMachine machine, EngraveSessionOptions options) => new(machine, Engraving, options);
     }
 
     /// <summary>
@@ -800,7 +803,7 @@ public sealed partial class RunViewModel : ObservableObject
             owner._machine.YMicrosteps = value.Run.YMicrosteps;
             if (owner._pace is { } pace)
             {
-                pace.Report(value.Pass, value.MovesDone, value.Run.XMicrosteps, value.Run.YMicrosteps);
+                pace.Report(value.Layer, value.Pass, value.MovesDone, value.Run.XMicrosteps, value.Run.YMicrosteps);
                 owner.MoveLaser();
             }
         }
