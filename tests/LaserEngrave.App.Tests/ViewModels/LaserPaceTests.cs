@@ -196,4 +196,27 @@ public sealed class LaserPaceTests
         Assert.NotEqual(atReport, later);
         Assert.Null(_run.LaserMicrosteps);
     }
+
+    [Fact]
+    public void Now_SecondPartUnderWay_ItsOwnMovesAtItsOwnBurnSpeed()
+    {
+        _job.LoadImage(TestFiles.Asset("qr-code.bmp"));
+        _job.EditWidth(10);
+        var sweep = new SweepViewModel(_job, _machine, _store, _clock) { Labels = false, Columns = string.Empty, Rows = "speed=0.5,2" };
+        var plan = sweep.Plan!;
+        var cell = plan.Cells[1].Job;
+        var moves = cell.Plan.Moves().ToList();
+        var index = moves.FindIndex(m => m.Kind == MoveKind.Burn && m.LengthX >= 1000);
+        var burn = moves[index];
+        var perSecond = 2 * 1000 / MachineProfile.Default.X.MicrostepUm;
+        var pace = new LaserPace(EngraveJob.Of(plan), _clock);
+
+        // The second cell (a sweep's part, as a layer of a job of layers) is reported: its burn, at its 2 mm/s.
+        pace.Report(2, 1, index, burn.X0, burn.Y0);
+        _clock.Advance(TimeSpan.FromSeconds(burn.LengthX / perSecond / 2));
+        var halfway = pace.Now(moving: true)!.Value;
+
+        Assert.InRange(halfway.X, Math.Min(burn.X0, burn.X1) + (burn.LengthX / 2) - 60, Math.Min(burn.X0, burn.X1) + (burn.LengthX / 2) + 60);
+        Assert.Equal(burn.Y0, halfway.Y);
+    }
 }
