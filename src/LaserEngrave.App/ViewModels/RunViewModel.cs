@@ -414,6 +414,12 @@ public sealed partial class RunViewModel : ObservableObject
             return "a job of layers continues from the run bar's Continue, or laserengrave engrave --from-log LOG --resume";
         }
 
+        // Continuing it twice would burn twice what the first continue burned.
+        if (_log.History.FirstOrDefault(e => e.Record is { Resumed: true } later && later.RepeatOf == path) is { Record: { } continued } by)
+        {
+            return $"it was continued already ({Path.GetFileName(by.Path)}, {continued.Outcome.ToString().ToLowerInvariant()}){(continued.Outcome == RunOutcome.Completed ? string.Empty : ": continue that run instead")}";
+        }
+
         if (record.Profile != _job.Profile)
         {
             return $"it ran with the machine profile \"{record.Profile.Name}\", the app plans with \"{_job.Profile.Name}\": continue it with laserengrave engrave --from-log LOG --resume";

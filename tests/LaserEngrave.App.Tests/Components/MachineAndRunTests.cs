@@ -413,6 +413,8 @@ public sealed class LogPanelTests : ComponentTest
             new RunLogEntry("/logs/a.json", logged with { Outcome = RunOutcome.Aborted, StoppedAt = stop, SampleId = "A-1" }, null),
             new RunLogEntry("/logs/b.json", logged with { Outcome = RunOutcome.Failed }, null),
             new RunLogEntry("/logs/c.json", logged with { Outcome = RunOutcome.Completed }, null),
+            new RunLogEntry("/logs/d.json", logged with { Outcome = RunOutcome.Aborted, StoppedAt = stop }, null),
+            new RunLogEntry("/logs/e.json", logged with { Outcome = RunOutcome.Completed, Resumed = true, RepeatOf = "/logs/d.json" }, null),
         ]);
         Main.Log.RefreshCommand.Execute(null);
         Main.Job.EditWidth(8);
@@ -427,6 +429,7 @@ public sealed class LogPanelTests : ComponentTest
         var failed = cut.Find("tr[data-path='/logs/b.json'] .history-continue");
         Assert.True(Disabled(failed));
         Assert.Contains("no stop point", failed.GetAttribute("title"), StringComparison.Ordinal);
+        Assert.Contains("continued already (e.json, completed)", cut.Find("tr[data-path='/logs/d.json'] .history-continue").GetAttribute("title"), StringComparison.Ordinal);
         var aborted = cut.Find("tr[data-path='/logs/a.json'] .history-continue");
         Assert.False(Disabled(aborted));
         aborted.Click();
