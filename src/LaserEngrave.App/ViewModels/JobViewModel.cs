@@ -262,11 +262,13 @@ public sealed partial class JobViewModel : ObservableObject
     }
 
     /// <summary>Opens an image; a file that cannot be read leaves the previous image and shows the error beside the image.</summary>
+    /// <remarks>An image still being opened in the background is dropped first: the later open wins, however slow the earlier.</remarks>
     /// <exception cref="MachineBusyException">A run, homing or a test move is under way.</exception>
     public bool LoadImage(string path)
     {
         ArgumentException.ThrowIfNullOrWhiteSpace(path);
         _activity.ThrowIfJobLocked();
+        CancelLoad();
         if (DrawingReader.IsDrawing(path))
         {
             return OpenDrawing(path);
@@ -337,6 +339,12 @@ public sealed partial class JobViewModel : ObservableObject
             {
                 LoadingLine = null;
             }
+        }
+
+        if (loading.IsCancellationRequested)
+        {
+            // Dropped after its work had ended: a later open (or Cancel) came first and keeps its job.
+            return false;
         }
 
         if (LockedBecause is { } locked)

@@ -1,128 +1,192 @@
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Motion;
 using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Vectors;
 
 namespace LaserEngrave.App.ViewModels;
 
 /// <summary>
-/// Where the laser is drawn between two progress reports of an image job's run: the move in flight, from where the last
-/// report put the stage towards that move's end, at the move's planned pace (a travel's ramps at the travel speed, a
-/// burn or overscan at the burn speed). It reads only the plan and the app's clock, never the ports: a run owns them.
+/// Where the laser is drawn between two progress reports of a run: along the motion under way, from where the last
+/// report put the stage, at its planned pace (a travel's ramps at the travel speed, a burn or overscan at the burn
+/// speed). Every kind of job: a raster's plan move by move, a dot job's travel to its next dot, a drawing's travel to its
+/// next stroke and the stroke itself, and each layer of a job of layers with its own process. It reads only the job and
+/// the app's clock, never the ports: a run owns them.
 /// </summary>
-/// <remarks>The engine reports when a move ends; without this the cross stood still for a whole row and then jumped.</remarks>
+/// <remarks>
+/// The engine reports when a move (a dot, a stroke) ends; without this the cross stood still for a whole row or stroke
+/// and then jumped. A stroke is drawn at the burn speed from its run-up's start (its ramps are not drawn).
+/// </remarks>
 public sealed class LaserPace
 {
-    private readonly PreparedJob _job;
+    private readonly IReadOnlyList<PreparedLayer> _parts;
     private readonly TimeProvider _time;
 
     // The engine reports on its thread and the page's timer asks on another.
     private readonly Lock _lock = new();
-    private readonly double _burnPerS;
-    private readonly double _travelPerS;
-    private readonly double _accelerationPerS2;
-    private IEnumerator<Move>? _moves;
-    private long _index = -1;
-    private long _movesDone = -1;
+    private Part? _part;
+    private int _layer;
     private int _pass;
+    private long _movesDone = -1;
     private (long X, long Y) _from;
-    private Move? _next;
+    private IReadOnlyList<Leg> _legs = [];
     private DateTimeOffset _reportedAt;
 
-    public LaserPace(PreparedJob job, TimeProvider time)
+    public LaserPace(EngraveJob job, TimeProvider time)
     {
         ArgumentNullException.ThrowIfNull(job);
         ArgumentNullException.ThrowIfNull(time);
-        _job = job;
+        _parts = job.Parts;
         _time = time;
-
-        // Speeds in X microsteps: the plan's moves run along X (burns) or both axes at once (travels, the longer one sets the time).
-        var perMm = 1000 / job.Spec.Profile.X.MicrostepUm;
-        _burnPerS = job.Spec.Process.BurnSpeedMmPerS * perMm;
-        _travelPerS = job.Spec.Process.TravelSpeedMmPerS * perMm;
-        _accelerationPerS2 = job.Spec.Process.AccelerationMmPerS2 * perMm;
     }
 
-    /// <summary>A progress report: <paramref name="movesDone"/> of the pass's moves are done and the stage stood at (x, y).</summary>
-    public void Report(int pass, long movesDone, long x, long y)
+    /// <summary>A progress report of a single job: <paramref name="movesDone"/> of the pass's moves are done and the stage stood at (x, y).</summary>
+    public void Report(int pass, long movesDone, long x, long y) => Report(1, pass, movesDone, x, y);
+
+    /// <summary>A progress report: in layer <paramref name="layer"/> (from 1), <paramref name="movesDone"/> of the pass's moves (dots, strokes) are done and the stage stood at (x, y).</summary>
+    public void Report(int layer, int pass, long movesDone, long x, long y)
     {
         lock (_lock)
         {
-            ReportLocked(pass, movesDone, x, y);
+            if (layer == _layer && pass == _pass && movesDone == _movesDone)
+            {
+                // The same move still in flight: its clock keeps running from when it began.
+                return;
+            }
+
+            if (layer != _layer || pass != _pass || _part is null || movesDone < _movesDone)
+            {
+                // A new layer or pass starts its part's moves again.
+                _part = layer >= 1 && layer <= _parts.Count ? new Part(_parts[layer - 1]) : null;
+            }
+
+            _layer = layer;
+            _pass = pass;
+            _movesDone = movesDone;
+            _from = (x, y);
+            _reportedAt = _time.GetUtcNow();
+            _legs = _part?.LegsAt(movesDone) ?? [];
         }
     }
 
-    /// <summary>The laser now: on the move in flight at its planned pace; where the last report put it when no move is in flight or the run is not moving; null before the first report.</summary>
+    /// <summary>The laser now: on the motion in flight at its planned pace; where the last report put it when none is in flight or the run is not moving; null before the first report.</summary>
     public (long X, long Y)? Now(bool moving)
     {
         lock (_lock)
         {
-            return NowLocked(moving);
-        }
-    }
-
-    private void ReportLocked(int pass, long movesDone, long x, long y)
-    {
-        if (pass == _pass && movesDone == _movesDone)
-        {
-            // The same move still in flight: its clock keeps running from when it began.
-            return;
-        }
-
-        if (pass != _pass || movesDone <= _index)
-        {
-            // A new pass starts the plan again.
-            _moves?.Dispose();
-            _moves = null;
-            _index = -1;
-        }
-
-        _pass = pass;
-        _movesDone = movesDone;
-        _from = (x, y);
-        _reportedAt = _time.GetUtcNow();
-        _next = MoveAt(movesDone);
-    }
-
-    private (long X, long Y)? NowLocked(bool moving)
-    {
-        if (_movesDone < 0)
-        {
-            return null;
-        }
-
-        if (!moving || _next is not { } move)
-        {
-            return _from;
-        }
-
-        var length = Math.Max(Math.Abs(move.X1 - _from.X), Math.Abs(move.Y1 - _from.Y));
-        if (length == 0)
-        {
-            return _from;
-        }
-
-        var seconds = (_time.GetUtcNow() - _reportedAt).TotalSeconds;
-        var covered = move.Kind == MoveKind.Travel
-            ? new TrapezoidProfile(length, _travelPerS, _accelerationPerS2).DistanceAt(seconds)
-            : Math.Min(length, seconds * _burnPerS);
-        var share = covered / length;
-        return (_from.X + (long)Math.Round((move.X1 - _from.X) * share), _from.Y + (long)Math.Round((move.Y1 - _from.Y) * share));
-    }
-
-    /// <summary>The plan's move at <paramref name="index"/> (from 0), walking the plan forward only; null past its end.</summary>
-    private Move? MoveAt(long index)
-    {
-        _moves ??= _job.Plan.Moves().GetEnumerator();
-        while (_index < index)
-        {
-            if (!_moves.MoveNext())
+            if (_movesDone < 0)
             {
                 return null;
             }
 
-            _index++;
+            if (!moving || _part is not { } part)
+            {
+                return _from;
+            }
+
+            var seconds = (_time.GetUtcNow() - _reportedAt).TotalSeconds;
+            var at = _from;
+            foreach (var leg in _legs)
+            {
+                var length = Math.Max(Math.Abs(leg.X - at.X), Math.Abs(leg.Y - at.Y));
+                if (length == 0)
+                {
+                    continue;
+                }
+
+                var profile = leg.Travel ? new TrapezoidProfile(length, part.TravelPerS, part.AccelerationPerS2) : (TrapezoidProfile?)null;
+                var duration = profile?.Duration ?? length / part.BurnPerS;
+                if (seconds < duration)
+                {
+                    var share = (profile?.DistanceAt(seconds) ?? seconds * part.BurnPerS) / length;
+                    return (at.X + (long)Math.Round((leg.X - at.X) * share), at.Y + (long)Math.Round((leg.Y - at.Y) * share));
+                }
+
+                seconds -= duration;
+                at = (leg.X, leg.Y);
+            }
+
+            return at;
+        }
+    }
+
+    /// <summary>One straight stretch of a motion: to (X, Y), as a travel (ramps, travel speed) or at the burn speed.</summary>
+    private readonly record struct Leg(bool Travel, long X, long Y);
+
+    /// <summary>One part (a layer, or the whole single job): its speeds in X microsteps and its moves, walked forward only.</summary>
+    private sealed class Part
+    {
+        private readonly PreparedLayer _layer;
+        private IEnumerator<Move>? _moves;
+        private IEnumerator<Dot>? _dots;
+        private long _index = -1;
+
+        public Part(PreparedLayer layer)
+        {
+            _layer = layer;
+
+            // Speeds in X microsteps: burns run along X (or along the path), travels move both axes at once (the longer one sets the time).
+            var spec = layer.Spec;
+            var perMm = 1000 / spec.Profile.X.MicrostepUm;
+            BurnPerS = spec.Process.BurnSpeedMmPerS * perMm;
+            TravelPerS = spec.Process.TravelSpeedMmPerS * perMm;
+            AccelerationPerS2 = spec.Process.AccelerationMmPerS2 * perMm;
         }
 
-        return _moves.Current;
+        public double BurnPerS { get; }
+
+        public double TravelPerS { get; }
+
+        public double AccelerationPerS2 { get; }
+
+        /// <summary>The motion after <paramref name="done"/> moves (dots, strokes) of this part: what the engine does until it reports the next.</summary>
+        public IReadOnlyList<Leg> LegsAt(long done)
+        {
+            if (_layer.Drawing is { } drawing)
+            {
+                // A stroke: the travel to its run-up, then along its path to where it rests.
+                var strokes = drawing.Schedule.Strokes;
+                if (done < 0 || done >= strokes.Count)
+                {
+                    return [];
+                }
+
+                var stroke = strokes[(int)done];
+                return [new(true, stroke.RunUpStart.X, stroke.RunUpStart.Y), .. stroke.Path.Points.Select(p => new Leg(false, p.X, p.Y)), new(false, stroke.RestEnd.X, stroke.RestEnd.Y)];
+            }
+
+            var image = _layer.Image!;
+            if (image.Dots is { } dots)
+            {
+                // A dot: the travel to it, then the stage stands while the gate fires.
+                return Next(ref _dots, () => dots.Dots(), done) is { } dot ? [new(true, dot.X, dot.Y)] : [];
+            }
+
+            return Next(ref _moves, () => image.Plan.Moves(), done) is { } move ? [new(move.Kind == MoveKind.Travel, move.X1, move.Y1)] : [];
+        }
+
+        /// <summary>The item at <paramref name="index"/> (from 0), walking forward only (a new pass makes a new part); null past the end.</summary>
+        private T? Next<T>(ref IEnumerator<T>? items, Func<IEnumerable<T>> all, long index)
+            where T : struct
+        {
+            if (index < _index)
+            {
+                items?.Dispose();
+                items = null;
+                _index = -1;
+            }
+
+            items ??= all().GetEnumerator();
+            while (_index < index)
+            {
+                if (!items.MoveNext())
+                {
+                    return null;
+                }
+
+                _index++;
+            }
+
+            return _index < 0 ? null : items.Current;
+        }
     }
 }

@@ -59,30 +59,72 @@ public sealed partial class LogViewModel : ObservableObject
     public partial IReadOnlySet<string> Selected { get; private set; } = new HashSet<string>();
 
     /// <summary>The history as the table shows it: every readable run that matches <see cref="Search"/>, in the chosen order.</summary>
+    /// <remarks>Made once per change of the history, the search or the order: a render reads it several times.</remarks>
     public IReadOnlyList<RunHistoryRow> Rows
     {
         get
         {
-            var rows = RunHistoryRow.From(History).Where(r => r.Matches(Search));
-            Func<RunHistoryRow, object?> key = SortColumn switch
+            lock (_rowsLock)
             {
-                "sample ID" => r => r.SampleId,
-                "image or drawing" => r => r.Source,
-                "size" => r => r.WidthMm * r.HeightMm,
-                "origin" => r => (r.OriginXMm, r.OriginYMm),
-                "process" => r => (r.BurnSpeedMmPerS, r.LaserFrequencyHz, r.PitchUm),
-                "passes" => r => r.Passes,
-                "outcome" => r => r.Outcome.ToString(),
-                "duration" => r => r.ActualSeconds,
-                "estimate" => r => r.EstimatedSeconds,
-                _ => r => r.StartedAt,
-            };
-            return [.. SortDescending ? rows.OrderByDescending(key) : rows.OrderBy(key)];
+                return _rows ??= MakeRows();
+            }
         }
     }
 
     /// <summary>The ticked runs still shown, in the table's order: what the CSV and JSON exports hold.</summary>
-    public IReadOnlyList<RunHistoryRow> SelectedRows => [.. Rows.Where(r => Selected.Contains(r.Path))];
+    public IReadOnlyList<RunHistoryRow> SelectedRows
+    {
+        get
+        {
+            lock (_rowsLock)
+            {
+                return _selectedRows ??= [.. Rows.Where(r => Selected.Contains(r.Path))];
+            }
+        }
+    }
+
+    // A run's end sets the history on its own thread while a render may be reading the rows.
+    private readonly Lock _rowsLock = new();
+    private IReadOnlyList<RunHistoryRow>? _rows;
+    private IReadOnlyList<RunHistoryRow>? _selectedRows;
+
+    partial void OnHistoryChanged(IReadOnlyList<RunLogEntry> value) => ForgetRows(all: true);
+
+    partial void OnSearchChanged(string? value) => ForgetRows(all: true);
+
+    partial void OnSortColumnChanged(string value) => ForgetRows(all: true);
+
+    partial void OnSortDescendingChanged(bool value) => ForgetRows(all: true);
+
+    partial void OnSelectedChanged(IReadOnlySet<string> value) => ForgetRows(all: false);
+
+    private void ForgetRows(bool all)
+    {
+        lock (_rowsLock)
+        {
+            _rows = all ? null : _rows;
+            _selectedRows = null;
+        }
+    }
+
+    private List<RunHistoryRow> MakeRows()
+    {
+        var rows = RunHistoryRow.From(History).Where(r => r.Matches(Search));
+        Func<RunHistoryRow, object?> key = SortColumn switch
+        {
+            "sample ID" => r => r.SampleId,
+            "image or drawing" => r => r.Source,
+            "size" => r => r.WidthMm * r.HeightMm,
+            "origin" => r => (r.OriginXMm, r.OriginYMm),
+            "process" => r => (r.BurnSpeedMmPerS, r.LaserFrequencyHz, r.PitchUm),
+            "passes" => r => r.Passes,
+            "outcome" => r => r.Outcome.ToString(),
+            "duration" => r => r.ActualSeconds,
+            "estimate" => r => r.EstimatedSeconds,
+            _ => r => r.StartedAt,
+        };
+        return [.. SortDescending ? rows.OrderByDescending(key) : rows.OrderBy(key)];
+    }
 
     /// <summary>The columns the table sorts by, as its headers name them.</summary>
     public static IReadOnlyList<string> SortColumns { get; } = ["started", "sample ID", "image or drawing", "size", "origin", "process", "passes", "outcome", "duration", "estimate"];

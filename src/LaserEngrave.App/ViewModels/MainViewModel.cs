@@ -173,8 +173,9 @@ public sealed partial class MainViewModel : ObservableObject
         return true;
     }
 
-    /// <summary>Opens the last image again, if it is still there.</summary>
-    public void Restore()
+    /// <summary>Opens the last image again, if it is still there: read and planned in the background, as the page opens one.</summary>
+    /// <returns>The open under way (its progress in <see cref="JobViewModel.LoadingLine"/>); the app's start does not wait for it.</returns>
+    public Task Restore()
     {
         Log.RefreshCommand.Execute(null);
         if (Settings.LastJob is { } lastJob)
@@ -182,10 +183,7 @@ public sealed partial class MainViewModel : ObservableObject
             Job.Apply(lastJob with { ImagePath = null });
         }
 
-        if (Settings.RecentFiles.FirstOrDefault() is { } last && _files.Exists(last))
-        {
-            Job.LoadImage(last);
-        }
+        return Settings.RecentFiles.FirstOrDefault() is { } last && _files.Exists(last) ? Job.LoadImageAsync(last) : Task.CompletedTask;
     }
 
     /// <summary>Uses <paramref name="profile"/>, saved at <paramref name="path"/>, from now on: the job plans with it, the next connection uses it, the settings remember it.</summary>

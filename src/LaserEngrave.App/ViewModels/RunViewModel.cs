@@ -102,8 +102,9 @@ public sealed partial class RunViewModel : ObservableObject
     public partial RunState State { get; private set; }
 
     /// <summary>
-    /// Where the stage drawing puts the laser while an image job runs: the move in flight at its planned pace between the
-    /// engine's reports (see <see cref="LaserPace"/>); null when no such run is under way (the machine's own position then).
+    /// Where the stage drawing puts the laser while a run is under way (any kind of job): the motion in flight at its
+    /// planned pace between the engine's reports (see <see cref="LaserPace"/>); null when no run is under way (the
+    /// machine's own position then).
     /// </summary>
     [ObservableProperty]
     public partial (long X, long Y)? LaserMicrosteps { get; private set; }
@@ -250,6 +251,8 @@ public sealed partial class RunViewModel : ObservableObject
     {
         if (!IsActive && StartQuestion is { } question)
         {
+            Notice = null;
+            _askedAbout = AskedJob();
             PendingQuestion = question;
             return;
         }
@@ -257,10 +260,25 @@ public sealed partial class RunViewModel : ObservableObject
         await StartNowAsync();
     }
 
-    /// <summary>Starts the job Start asked about: the answer "Start anyway".</summary>
+    /// <summary>
+    /// Starts the job Start asked about: the answer "Start anyway". A job changed while the question showed is not
+    /// started: the question is asked again for the job as it is now, or, when that one need not ask, nothing starts
+    /// and <see cref="Notice"/> says so.
+    /// </summary>
     [RelayCommand(CanExecute = nameof(CanStart))]
     private Task ConfirmStartAsync()
     {
+        if (PendingQuestion is not null && _askedAbout != AskedJob())
+        {
+            var question = StartQuestion;
+            PendingQuestion = question;
+            _askedAbout = AskedJob();
+            Notice = question is null
+                ? "the job changed while Start was asking: nothing started; press Start to run the job as it is now"
+                : "the job changed while Start was asking: the question is asked again for the job as it is now";
+            return Task.CompletedTask;
+        }
+
         PendingQuestion = null;
         return StartNowAsync();
     }
@@ -268,6 +286,11 @@ public sealed partial class RunViewModel : ObservableObject
     /// <summary>The answer "Cancel": nothing starts.</summary>
     [RelayCommand]
     private void CancelStart() => PendingQuestion = null;
+
+    // The job the pending question was asked about: the plan's and the layers' versions, and which of them Start runs.
+    private (int Job, int Layers, bool RunsLayers) _askedAbout;
+
+    private (int Job, int Layers, bool RunsLayers) AskedJob() => (_job.PlanVersion, _layers?.PlanVersion ?? 0, RunsLayers);
 
     /// <summary>Starts without asking (the API's start with "confirm": true, or the answer to the question).</summary>
     internal async Task StartNowAsync()
@@ -363,6 +386,95 @@ public sealed partial class RunViewModel : ObservableObject
         }
 
         await RunAsync(stopped!.Target, stopped.Settings, connection!, stopped.Target.Layered is null ? stopped.StopPoint : null, stopped.LayerResume);
+    }
+
+    /// <summary>
+    /// Why the logged run at <paramref name="path"/> cannot be continued from the run history now, one line; null when it
+    /// can (a run that stopped with a stop point, made with the app's machine profile, a machine connected and free).
+    /// </summary>
+    public string? WhyNotContinueLogged(string path)
+    {
+        if (_log.Find(path)?.Record is not { } record)
+        {
+            return "not a run in the history";
+        }
+
+        if (record.Outcome == RunOutcome.Completed)
+        {
+            return "the run completed: nothing is left to burn (Repeat runs it again)";
+        }
+
+        if (record.StoppedAt is null)
+        {
+            return "its log has no stop point (it stopped before its first move): Repeat runs it whole";
+        }
+
+        if (record.Layers is not null)
+        {
+            return "a job of layers continues from the run bar's Continue, or laserengrave engrave --from-log LOG --resume";
+        }
+
+        // Continuing it twice would burn twice what the first continue burned.
+        if (_log.History.FirstOrDefault(e => e.Record is { Resumed: true } later && later.RepeatOf == path) is { Record: { } continued } by)
+        {
+            return $"it was continued already ({Path.GetFileName(by.Path)}, {continued.Outcome.ToString().ToLowerInvariant()}){(continued.Outcome == RunOutcome.Completed ? string.Empty : ": continue that run instead")}";
+        }
+
+        if (record.Profile != _job.Profile)
+        {
+            return $"it ran with the machine profile \"{record.Profile.Name}\", the app plans with \"{_job.Profile.Name}\": continue it with laserengrave engrave --from-log LOG --resume";
+        }
+
+        if (IsActive)
+        {
+            return "a run is already under way";
+        }
+
+        return _machine.Activity.BusyMessage ?? (_machine.Connection is null ? "not connected: connect to the machine the run stopped on first" : null);
+    }
+
+    /// <summary>
+    /// Continues a logged run that stopped (a fault or an abort) from the run history, as
+    /// <c>laserengrave engrave --from-log LOG --resume</c> does: its image and values are put back (as Repeat does, the
+    /// image checked against its SHA-256), planned again, and run from the log's stop point by the same path as
+    /// <see cref="ContinueCommand"/>; the new log says it resumed that one. Refused with one line when
+    /// <see cref="WhyNotContinueLogged"/> says why, or when the job planned now is not the logged run's.
+    /// </summary>
+    [RelayCommand]
+    private async Task ContinueLoggedAsync(string path)
+    {
+        Error = null;
+        Notice = null;
+        if (WhyNotContinueLogged(path) is { } why)
+        {
+            Error = $"{Path.GetFileName(path)} cannot be continued: {why}";
+            return;
+        }
+
+        var record = _log.Find(path)!.Record!;
+        _log.LoadCommand.Execute(path);
+        if (_log.Error is { } loadError)
+        {
+            Error = loadError;
+            return;
+        }
+
+        RunTarget? target = record.Drawing is not null
+            ? _job.Drawing is { } drawing ? new RunTarget(null, drawing, null) : null
+            : _job.Job is { } job ? new RunTarget(job, null, null) : null;
+        var planned = target?.Drawing is { } d ? (d.Schedule.Strokes.Count, record.RunsTotal)
+            : target?.Job is { } j ? (j.Statistics.Rows, j.Statistics.BurnRuns)
+            : (-1, -1L);
+
+        // The stop point counts the logged plan's moves: only the same plan, made again, can go on from it.
+        if (target is null || planned != (record.RowsTotal, record.RunsTotal))
+        {
+            var unit = record.Drawing is null ? "rows" : "strokes";
+            Error = $"{Path.GetFileName(path)} cannot be continued: the job planned from its log is not the one that ran ({(target is null ? "it does not plan" : $"{planned.Item1} {unit} and {planned.Item2} runs, not {record.RowsTotal} and {record.RunsTotal}")}); Repeat runs it again";
+            return;
+        }
+
+        await RunAsync(target, _job.ToSettings(), _machine.Connection!, record.StoppedAt, continuedFrom: path);
     }
 
     /// <summary>One line for the user on a request that did nothing, e.g. a second Start during a run.</summary>
@@ -481,7 +593,8 @@ public sealed partial class RunViewModel : ObservableObject
     /// <param name="target">What runs: an image job, a drawing or a job of layers.</param>
     /// <param name="resumeFrom">Continue a stopped image job or drawing from here (its stopped pass only).</param>
     /// <param name="resumeLayers">Continue a stopped job of layers from here (its layer and pass, then the rest).</param>
-    private async Task RunAsync(RunTarget target, JobSettings settings, IMachineConnection connection, RunStopPoint? resumeFrom = null, LayerResumePoint? resumeLayers = null)
+    /// <param name="continuedFrom">The log of the run this one continues (the last run's when none is given).</param>
+    private async Task RunAsync(RunTarget target, JobSettings settings, IMachineConnection connection, RunStopPoint? resumeFrom = null, LayerResumePoint? resumeLayers = null, string? continuedFrom = null)
     {
         if (!_machine.Activity.TryBegin(MachineOperation.Run, out var lease, out var refusal))
         {
@@ -520,7 +633,7 @@ public sealed partial class RunViewModel : ObservableObject
             return;
         }
 
-        var continuedFrom = resumeFrom is null && resumeLayers is null ? null : _log.LastRun?.Path;
+        continuedFrom = resumeFrom is null && resumeLayers is null ? null : continuedFrom ?? _log.LastRun?.Path;
         var (job, layered) = (target.Job, target.Layered);
         _startedTicks = _time.GetTimestamp();
         _estimatedSeconds = layered?.EstimatedSeconds ?? _job.EstimatedSeconds ?? 0;
@@ -563,17 +676,17 @@ public sealed partial class RunViewModel : ObservableObject
         using var abort = CancellationTokenSource.CreateLinkedTokenSource(lease.CancellationToken);
         _abort = abort;
 
-        // A raster image job's moves are the plan's own, one for one with the engine's count: its laser is drawn at their pace.
-        var pace = job is { Dots: null } && layered is null && target.Drawing is null ? new LaserPace(job, _time) : null;
+        // Every kind of job counts its moves (plan moves, dots, strokes) one for one with the engine: its laser is drawn at their pace.
+        var pace = new LaserPace(target.Engraving, _time);
         _pace = pace;
-        var paceTimer = pace is null ? null : _time.CreateTimer(_ => MoveLaser(), null, PaceInterval, PaceInterval);
+        var paceTimer = _time.CreateTimer(_ => MoveLaser(), null, PaceInterval, PaceInterval);
         try
         {
             result = await _runs.RunAsync(running, new LatestProgress(this, running), abort.Token);
         }
         finally
         {
-            paceTimer?.Dispose();
+            paceTimer.Dispose();
             lock (_paceLock)
             {
                 _pace = null;
@@ -670,10 +783,12 @@ public sealed partial class RunViewModel : ObservableObject
     /// <summary>What a run engraves: an image job, a drawing, or a job of layers (one of them).</summary>
     private sealed record RunTarget(PreparedJob? Job, PreparedDrawing? Drawing, LayeredJob? Layered)
     {
-        public EngraveSession Session(EngraveMachine machine, EngraveSessionOptions options) =>
-            Layered is { } layered ? new EngraveSession(machine, layered, options)
-            : Drawing is { } drawing ? new EngraveSession(machine, drawing, options)
-            : new EngraveSession(machine, Job!, options);
+        /// <summary>The job as the run engine takes it.</summary>
+        public EngraveJob Engraving => Layered is { } layered ? EngraveJob.Of(layered)
+            : Drawing is { } drawing ? EngraveJob.Of(drawing)
+            : EngraveJob.Of(Job!);
+
+        public EngraveSession Session(EngraveMachine machine, EngraveSessionOptions options) => new(machine, Engraving, options);
     }
 
     /// <summary>
@@ -697,7 +812,7 @@ public sealed partial class RunViewModel : ObservableObject
             owner._machine.YMicrosteps = value.Run.YMicrosteps;
             if (owner._pace is { } pace)
             {
-                pace.Report(value.Pass, value.MovesDone, value.Run.XMicrosteps, value.Run.YMicrosteps);
+                pace.Report(value.Layer, value.Pass, value.MovesDone, value.Run.XMicrosteps, value.Run.YMicrosteps);
                 owner.MoveLaser();
             }
         }

@@ -277,6 +277,10 @@ public sealed partial class SweepViewModel : ObservableObject
         Progress = null;
         IsRunning = true;
         Status = $"0 of {cells} cells done";
+
+        // The cells are the sweep job's parts in the order they burn (the labels first): the cross goes at their pace, as in a run.
+        _pace = new LaserPace(EngraveJob.Of(plan), _time);
+        var paceTimer = _time.CreateTimer(_ => MoveLaser(), null, RunViewModel.PaceInterval, RunViewModel.PaceInterval);
         try
         {
             var result = await session.RunAsync(new LatestProgress(this), lease.CancellationToken);
@@ -287,6 +291,13 @@ public sealed partial class SweepViewModel : ObservableObject
         }
         finally
         {
+            paceTimer.Dispose();
+            lock (_paceLock)
+            {
+                _pace = null;
+                LaserMicrosteps = null;
+            }
+
             _session = null;
             IsRunning = false;
             try
@@ -297,6 +308,29 @@ public sealed partial class SweepViewModel : ObservableObject
             catch (Exception ex) when (ex is Devices.Abstractions.DeviceException or InvalidOperationException or ObjectDisposedException or TimeoutException or IOException)
             {
                 _machine.Error = ex.Message;
+            }
+        }
+    }
+
+    /// <summary>
+    /// Where the stage drawing puts the laser while the sweep runs: the motion in flight at its planned pace between the
+    /// engine's reports (see <see cref="LaserPace"/>); null when no sweep runs.
+    /// </summary>
+    [ObservableProperty]
+    public partial (long X, long Y)? LaserMicrosteps { get; private set; }
+
+    private LaserPace? _pace;
+
+    // The pace's timer ticks on the pool: a tick never sets the drawn laser again once the sweep has cleared it.
+    private readonly Lock _paceLock = new();
+
+    private void MoveLaser()
+    {
+        lock (_paceLock)
+        {
+            if (_pace is { } pace && Progress is { } progress)
+            {
+                LaserMicrosteps = pace.Now(progress.Run.State == RunState.Running);
             }
         }
     }
@@ -318,6 +352,12 @@ public sealed partial class SweepViewModel : ObservableObject
 
             owner._machine.XMicrosteps = value.Run.Run.XMicrosteps;
             owner._machine.YMicrosteps = value.Run.Run.YMicrosteps;
+            if (owner._pace is { } pace)
+            {
+                // Each cell (the labels first) is a session of its own: its index picks the sweep job's part.
+                pace.Report(value.Index + 1, value.Run.Pass, value.Run.MovesDone, value.Run.Run.XMicrosteps, value.Run.Run.YMicrosteps);
+                owner.MoveLaser();
+            }
         }
     }
 }

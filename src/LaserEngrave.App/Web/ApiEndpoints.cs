@@ -40,8 +40,8 @@ internal static class ApiEndpoints
 
         api.MapPost("/image", UploadAsync)
             .WithSummary("Keeps the request body (the file's bytes) under the data folder's images/ and opens it; ?name= is its file name.");
-        api.MapPost("/image/open", (MainViewModel main, PathRequest request) => OpenImage(main, request.Path))
-            .WithSummary("Opens an image or drawing file on this computer (regular files only).");
+        api.MapPost("/image/open", (MainViewModel main, PathRequest request, CancellationToken cancellationToken) => OpenImageAsync(main, request.Path, cancellationToken))
+            .WithSummary("Opens an image or drawing file on this computer (regular files only); answers once it is read and planned.");
         api.MapGet("/image/original.png", (MainViewModel main) =>
             main.Job.OriginalPreviewPng() is { } png ? Results.File(png, "image/png") : Results.NotFound())
             .WithSummary("The image, at most 1024 px on its longer side.");
@@ -221,10 +221,11 @@ internal static class ApiEndpoints
         return TypedResults.Json(StateSnapshot.From(main), statusCode: StatusCodes.Status202Accepted);
     }
 
-    private static IResult OpenImage(MainViewModel main, string? path)
+    /// <summary>Opens the file as the page does, read and planned in the background with its progress in the state; the request waits for it.</summary>
+    private static async Task<IResult> OpenImageAsync(MainViewModel main, string? path, CancellationToken cancellationToken)
     {
         main.Activity.ThrowIfJobLocked();
-        main.Job.LoadImage(path ?? string.Empty);
+        await main.Job.LoadImageAsync(path ?? string.Empty, cancellationToken).ConfigureAwait(false);
         return State(main);
     }
 
@@ -256,7 +257,7 @@ internal static class ApiEndpoints
                 : Results.Json(new { error = ex.Message }, statusCode: StatusCodes.Status400BadRequest);
         }
 
-        if (!main.Job.LoadImage(path))
+        if (!await main.Job.LoadImageAsync(path, request.HttpContext.RequestAborted).ConfigureAwait(false))
         {
             // Only files that open stay in images/; why it did not open is in the state's errors.
             main.Job.NameUploadInError(path, fileName);

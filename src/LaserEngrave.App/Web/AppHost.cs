@@ -60,7 +60,8 @@ public static class AppHost
         services.AddSingleton(sp =>
         {
             var main = ActivatorUtilities.CreateInstance<MainViewModel>(sp);
-            main.Restore();
+            // The last image opens in the background: a big one never holds up the first page (its progress shows there).
+            _ = main.Restore().ContinueWith(t => _ = t.Exception, TaskScheduler.Default);
             return main;
         });
         services.AddOpenApi(ApiDescription.Configure);

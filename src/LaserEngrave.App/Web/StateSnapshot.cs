@@ -50,6 +50,7 @@ internal static class StateSnapshot
                 },
                 maskVersion = job.MaskVersion,
                 burnPixels = job.Mask?.CountSet(),
+                loading = job.LoadingLine,
             },
             job = new
             {

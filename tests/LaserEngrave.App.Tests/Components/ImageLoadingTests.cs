@@ -58,6 +58,23 @@ public sealed class ImageLoadingTests : ComponentTest
     }
 
     [Fact]
+    public async Task SlowImageThenAnotherOpenedAtOnce_TheLaterOpenWins()
+    {
+        var (job, _) = OpenQrThenRender();
+        var drawing = TestFiles.Asset("line-drawing.png");
+
+        var slow = job.LoadImageAsync(TestFiles.Asset("text-banner.png"), Xunit.TestContext.Current.CancellationToken);
+        Assert.True(job.LoadImage(drawing));
+        _images.Gate.SetResult();
+
+        // Dropped before its plan, however far its reading got.
+        Assert.False(await slow.WaitAsync(TimeSpan.FromSeconds(30), Xunit.TestContext.Current.CancellationToken));
+        Assert.Equal(drawing, job.ImagePath);
+        Assert.Null(job.LoadingLine);
+        Assert.Equal(0, _images.GatedPlans);
+    }
+
+    [Fact]
     public async Task InvertTickedWhileReading_TheMaskFollowsIt()
     {
         var (job, _) = OpenQrThenRender();
@@ -83,50 +100,5 @@ public sealed class ImageLoadingTests : ComponentTest
         job.EditWidth(10);
         Assert.NotNull(job.EstimatedSeconds);
         return (job, Render<ImagePanel>(p => p.Add(c => c.Job, job).Add(c => c.Samples, Main.SampleImages)));
-    }
-
-    /// <summary>The real image service, whose reading of one file waits until the test opens <see cref="Gate"/>.</summary>
-    private sealed class GatedImages : IImageService
-    {
-        private readonly ImageService _real = new();
-        private int _gatedPlans;
-
-        public required string GatedName { get; init; }
-
-        public TaskCompletionSource Gate { get; } = new(TaskCreationOptions.RunContinuationsAsynchronously);
-
-        /// <summary>Set once the gated file has been read (after the gate opened).</summary>
-        public TaskCompletionSource Read { get; } = new(TaskCreationOptions.RunContinuationsAsynchronously);
-
-        public int GatedPlans => Volatile.Read(ref _gatedPlans);
-
-        public LoadedImage Load(string path)
-        {
-            if (Path.GetFileName(path) != GatedName)
-            {
-                return _real.Load(path);
-            }
-
-            Gate.Task.Wait(Xunit.TestContext.Current.CancellationToken);
-            var image = _real.Load(path);
-            Read.TrySetResult();
-            return image;
-        }
-
-        public BitMask BuildMask(LoadedImage image, MaskOptions options) => _real.BuildMask(image, options);
-
-        public PreparedJob Prepare(JobSpec spec, ImageInfo info, BitMask mask)
-        {
-            if (Path.GetFileName(spec.ImagePath) == GatedName)
-            {
-                Interlocked.Increment(ref _gatedPlans);
-            }
-
-            return _real.Prepare(spec, info, mask);
-        }
-
-        public byte[] RenderOriginalPng(LoadedImage image, int maxSidePx) => _real.RenderOriginalPng(image, maxSidePx);
-
-        public byte[] RenderMaskPng(BitMask mask, int maxSidePx) => _real.RenderMaskPng(mask, maxSidePx);
     }
 }

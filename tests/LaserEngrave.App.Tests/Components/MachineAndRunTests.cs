@@ -242,6 +242,34 @@ public sealed class RunBarTests : ComponentTest
     }
 
     [Fact]
+    public async Task StartAnyway_JobChangedWhileAsking_AsksAgainOrRefusesNeverStartsTheNewJobUnasked()
+    {
+        OpenQr();
+        Main.Job.EditPitch(5);
+        Main.Job.BurnSpeedMmPerS = 0.25;
+        await ConnectAsync();
+        var cut = RenderBar();
+        cut.WaitForAssertion(() => Assert.False(Disabled(cut.Find("#start"))));
+        cut.Find("#start").Click();
+        cut.WaitForAssertion(() => Assert.Contains("pixels of 5 µm", cut.Find("#start-question").TextContent, StringComparison.Ordinal));
+
+        Main.Job.EditPitch(4);
+        cut.Find("#start-confirm").Click();
+
+        cut.WaitForAssertion(() => Assert.Contains("pixels of 4 µm", cut.Find("#start-question").TextContent, StringComparison.Ordinal));
+        Assert.Contains("the job changed while Start was asking", cut.Find("#run-notice").TextContent, StringComparison.Ordinal);
+        await Runs.DidNotReceive().RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>());
+
+        Main.Job.EditPitch(20);
+        Main.Job.BurnSpeedMmPerS = 1;
+        cut.Find("#start-confirm").Click();
+
+        cut.WaitForAssertion(() => Assert.Empty(cut.FindAll("#start-question")));
+        Assert.Contains("nothing started; press Start", cut.Find("#run-notice").TextContent, StringComparison.Ordinal);
+        await Runs.DidNotReceive().RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>());
+    }
+
+    [Fact]
     public void StartQuestion_OverAnHour_SaysHowLong()
     {
         OpenQr(widthMm: 20);
@@ -371,6 +399,47 @@ public sealed class LogPanelTests : ComponentTest
         cut.WaitForAssertion(() => Assert.Contains("B-7", cut.Find("#last-run").TextContent, StringComparison.Ordinal));
         Assert.Contains("format=json", cut.Find("#export-json").GetAttribute("href"), StringComparison.Ordinal);
         Assert.Contains(Uri.EscapeDataString("/logs/run.json"), cut.Find("#export-txt").GetAttribute("href"), StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task HistoryContinue_StoppedRun_ContinuedFromItsLogsStopPointOthersSayWhyNot()
+    {
+        OpenQr();
+        var image = TestFiles.Asset("qr-code.bmp");
+        var logged = RunRecord.ForJob(Main.Job.Job!, PreparedJob.HashFile(image), DateTimeOffset.UnixEpoch);
+        var stop = new RunStopPoint(3, 10, null, null);
+        Store.History().Returns(
+        [
+            new RunLogEntry("/logs/a.json", logged with { Outcome = RunOutcome.Aborted, StoppedAt = stop, SampleId = "A-1" }, null),
+            new RunLogEntry("/logs/b.json", logged with { Outcome = RunOutcome.Failed }, null),
+            new RunLogEntry("/logs/c.json", logged with { Outcome = RunOutcome.Completed }, null),
+            new RunLogEntry("/logs/d.json", logged with { Outcome = RunOutcome.Aborted, StoppedAt = stop }, null),
+            new RunLogEntry("/logs/e.json", logged with { Outcome = RunOutcome.Completed, Resumed = true, RepeatOf = "/logs/d.json" }, null),
+        ]);
+        Main.Log.RefreshCommand.Execute(null);
+        Main.Job.EditWidth(8);
+        await ConnectAsync();
+        EngraveSession? ran = null;
+        Runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(c => SessionResults.Ends(SessionResults.Result(RunOutcome.Completed))(c))
+            .AndDoes(c => ran = c.Arg<EngraveSession>());
+        var cut = Render<RunHistoryDialog>(p => p.Add(c => c.Log, Main.Log).Add(c => c.Run, Main.Run));
+
+        Assert.Empty(cut.FindAll("tr[data-path='/logs/c.json'] .history-continue"));
+        var failed = cut.Find("tr[data-path='/logs/b.json'] .history-continue");
+        Assert.True(Disabled(failed));
+        Assert.Contains("no stop point", failed.GetAttribute("title"), StringComparison.Ordinal);
+        Assert.Contains("continued already (e.json, completed)", cut.Find("tr[data-path='/logs/d.json'] .history-continue").GetAttribute("title"), StringComparison.Ordinal);
+        var aborted = cut.Find("tr[data-path='/logs/a.json'] .history-continue");
+        Assert.False(Disabled(aborted));
+        aborted.Click();
+
+        cut.WaitForAssertion(() => Assert.NotNull(ran));
+        Assert.Equal(stop, ran!.Options.ResumeFrom);
+        Assert.Equal("/logs/a.json", ran.Options.RepeatOf);
+        Assert.Equal(5, Main.Job.WidthMm, 6);
+        Assert.Equal("A-1", ran.Options.SampleId);
+        Assert.Null(Main.Run.Error);
     }
 
     [Fact]

@@ -103,4 +103,120 @@ public sealed class LaserPaceTests
         Assert.Equal((travel.X1, travel.Y1), end);
         Assert.Equal((travel.X0, travel.Y0), pace.Now(moving: false));
     }
+
+    [Fact]
+    public void Now_DrawingStrokeUnderWay_TravelsToItsRunUpThenFollowsItsPathToItsRest()
+    {
+        _job.OriginXMm = 5;
+        _job.OriginYMm = 5;
+        _job.WidthMm = 10;
+        Assert.True(_job.LoadImage(TestFiles.Asset(Path.Combine("drawings", "hexagons.dxf"))));
+        var drawing = _job.Drawing!;
+        var (before, stroke) = (drawing.Schedule.Strokes[0], drawing.Schedule.Strokes[1]);
+        var pace = new LaserPace(drawing, _clock);
+        var perMm = 1000 / MachineProfile.Default.X.MicrostepUm;
+        var travel = new Core.Motion.TrapezoidProfile(
+            Math.Max(Math.Abs(stroke.RunUpStart.X - before.RestEnd.X), Math.Abs(stroke.RunUpStart.Y - before.RestEnd.Y)),
+            drawing.Spec.Process.TravelSpeedMmPerS * perMm,
+            drawing.Spec.Process.AccelerationMmPerS2 * perMm);
+
+        pace.Report(1, 1, before.RestEnd.X, before.RestEnd.Y);
+        var atReport = pace.Now(moving: true);
+        _clock.Advance(TimeSpan.FromSeconds(travel.Duration));
+        var atRunUp = pace.Now(moving: true);
+        _clock.Advance(TimeSpan.FromSeconds(0.2));
+        var burning = pace.Now(moving: true)!.Value;
+        _clock.Advance(TimeSpan.FromSeconds(drawing.Schedule.EstimatedSeconds));
+        var rested = pace.Now(moving: true);
+
+        Assert.Equal((before.RestEnd.X, before.RestEnd.Y), atReport);
+        Assert.Equal((stroke.RunUpStart.X, stroke.RunUpStart.Y), atRunUp);
+        Assert.NotEqual((stroke.RunUpStart.X, stroke.RunUpStart.Y), burning);
+        Assert.NotEqual((stroke.RestEnd.X, stroke.RestEnd.Y), burning);
+        Assert.Equal((stroke.RestEnd.X, stroke.RestEnd.Y), rested);
+    }
+
+    [Fact]
+    public void Now_DotJob_TravelsToTheNextDotAndStandsThere()
+    {
+        _job.LoadImage(TestFiles.Asset("qr-code.bmp"));
+        _job.EditWidth(10);
+        _job.Mode = PlanMode.Dots;
+        var job = _job.Job!;
+        var dots = job.Dots!.Dots().Take(2).ToList();
+        var pace = new LaserPace(job, _clock);
+
+        var perMm = 1000 / MachineProfile.Default.X.MicrostepUm;
+        var travel = new Core.Motion.TrapezoidProfile(
+            Math.Max(Math.Abs(dots[1].X - dots[0].X), Math.Abs(dots[1].Y - dots[0].Y)),
+            job.Spec.Process.TravelSpeedMmPerS * perMm,
+            job.Spec.Process.AccelerationMmPerS2 * perMm);
+
+        pace.Report(1, 1, dots[0].X, dots[0].Y);
+        _clock.Advance(TimeSpan.FromSeconds(travel.Duration / 2));
+        var early = pace.Now(moving: true)!.Value;
+        _clock.Advance(TimeSpan.FromSeconds(10));
+        var there = pace.Now(moving: true);
+
+        Assert.NotEqual((dots[0].X, dots[0].Y), early);
+        Assert.NotEqual((dots[1].X, dots[1].Y), early);
+        Assert.Equal((dots[1].X, dots[1].Y), there);
+    }
+
+    [Fact]
+    public async Task Run_Drawing_TheLaserMovesBetweenTheEnginesStrokeReports()
+    {
+        _job.OriginXMm = 5;
+        _job.OriginYMm = 5;
+        _job.WidthMm = 10;
+        Assert.True(_job.LoadImage(TestFiles.Asset(Path.Combine("drawings", "hexagons.dxf"))));
+        await _machine.ConnectCommand.ExecuteAsync(null);
+        var before = _job.Drawing!.Schedule.Strokes[0];
+        var reported = new TaskCompletionSource();
+        var finish = new TaskCompletionSource();
+        _runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(async c =>
+            {
+                c.Arg<IProgress<EngraveProgress>>().Report(SessionResults.Report(RunState.Running, 1, _job.Drawing!.Schedule.Strokes.Count, 1, 2, x: before.RestEnd.X, y: before.RestEnd.Y));
+                reported.SetResult();
+                await finish.Task;
+                return SessionResults.Ended(c.Arg<EngraveSession>(), SessionResults.Result(RunOutcome.Completed));
+            });
+        var run = _run.StartCommand.ExecuteAsync(null);
+        await reported.Task.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+
+        var atReport = _run.LaserMicrosteps;
+        _clock.Advance(TimeSpan.FromSeconds(0.5));
+        var later = _run.LaserMicrosteps;
+        finish.SetResult();
+        await run.WaitAsync(TimeSpan.FromSeconds(10), TestContext.Current.CancellationToken);
+
+        Assert.Equal((before.RestEnd.X, before.RestEnd.Y), atReport);
+        Assert.NotNull(later);
+        Assert.NotEqual(atReport, later);
+        Assert.Null(_run.LaserMicrosteps);
+    }
+
+    [Fact]
+    public void Now_SecondPartUnderWay_ItsOwnMovesAtItsOwnBurnSpeed()
+    {
+        _job.LoadImage(TestFiles.Asset("qr-code.bmp"));
+        _job.EditWidth(10);
+        var sweep = new SweepViewModel(_job, _machine, _store, _clock) { Labels = false, Columns = string.Empty, Rows = "speed=0.5,2" };
+        var plan = sweep.Plan!;
+        var cell = plan.Cells[1].Job;
+        var moves = cell.Plan.Moves().ToList();
+        var index = moves.FindIndex(m => m.Kind == MoveKind.Burn && m.LengthX >= 1000);
+        var burn = moves[index];
+        var perSecond = 2 * 1000 / MachineProfile.Default.X.MicrostepUm;
+        var pace = new LaserPace(EngraveJob.Of(plan), _clock);
+
+        // The second cell (a sweep's part, as a layer of a job of layers) is reported: its burn, at its 2 mm/s.
+        pace.Report(2, 1, index, burn.X0, burn.Y0);
+        _clock.Advance(TimeSpan.FromSeconds(burn.LengthX / perSecond / 2));
+        var halfway = pace.Now(moving: true)!.Value;
+
+        Assert.InRange(halfway.X, Math.Min(burn.X0, burn.X1) + (burn.LengthX / 2) - 60, Math.Min(burn.X0, burn.X1) + (burn.LengthX / 2) + 60);
+        Assert.Equal(burn.Y0, halfway.Y);
+    }
 }

@@ -7,7 +7,7 @@ namespace LaserEngrave.App.Tests.ViewModels;
 public sealed class LastJobTests
 {
     [Fact]
-    public void Restart_LastJobsSizePositionAndProcessRemembered()
+    public async Task Restart_LastJobsSizePositionAndProcessRemembered()
     {
         using var folder = TestFiles.NewFolder();
         var store = new JsonSettingsStore(Path.Combine(folder.Path, "settings.json"));
@@ -16,14 +16,14 @@ public sealed class LastJobTests
         files.SampleImages().Returns([]);
         var logs = Substitute.For<IRunLogStore>();
         logs.History().Returns([]);
-        MainViewModel Start()
+        async Task<MainViewModel> Start()
         {
             var main = new MainViewModel(new ImageService(), new Fakes().Factory, Substitute.For<IRunService>(), logs, store, files, TimeProvider.System, new MachineActivity());
-            main.Restore();
+            await main.Restore();
             return main;
         }
 
-        var first = Start();
+        var first = await Start();
         first.Job.LoadImage(TestFiles.Asset("qr-code.bmp"));
         first.Job.EditWidth(7.5);
         first.Job.Batch(() =>
@@ -33,10 +33,38 @@ public sealed class LastJobTests
             first.Job.Passes = 3;
         });
 
-        var second = Start();
+        var second = await Start();
 
         Assert.Equal(TestFiles.Asset("qr-code.bmp"), second.Job.ImagePath);
         Assert.Equal((7.5, 20.25, 2.0, 3), (second.Job.WidthMm, second.Job.OriginXMm, second.Job.BurnSpeedMmPerS, second.Job.Passes));
         Assert.NotNull(second.Job.Job);
+    }
+
+    [Fact]
+    public async Task Restart_LastImageSlowToRead_OpensInTheBackgroundWithItsProgress()
+    {
+        using var folder = TestFiles.NewFolder();
+        var store = new JsonSettingsStore(Path.Combine(folder.Path, "settings.json"));
+        var banner = TestFiles.Asset("text-banner.png");
+        store.Save(new AppSettings { RecentFiles = [banner] });
+        var files = Substitute.For<IFileAccess>();
+        files.Exists(Arg.Any<string>()).Returns(c => File.Exists(c.Arg<string>()));
+        files.SampleImages().Returns([]);
+        var logs = Substitute.For<IRunLogStore>();
+        logs.History().Returns([]);
+        var images = new GatedImages { GatedName = "text-banner.png" };
+        var main = new MainViewModel(images, new Fakes().Factory, Substitute.For<IRunService>(), logs, store, files, TimeProvider.System, new MachineActivity());
+
+        var restoring = main.Restore();
+
+        // The app's start (and its first page) does not wait for the image: it shows what is being read.
+        Assert.False(restoring.IsCompleted);
+        Assert.Equal("Reading text-banner.png…", main.Job.LoadingLine);
+        Assert.Null(main.Job.ImagePath);
+        images.Gate.SetResult();
+        await restoring.WaitAsync(TimeSpan.FromSeconds(30), TestContext.Current.CancellationToken);
+        Assert.Equal(banner, main.Job.ImagePath);
+        Assert.Null(main.Job.LoadingLine);
+        Assert.NotNull(main.Job.Job);
     }
 }

@@ -153,6 +153,29 @@ public sealed class LogViewModelTests
     }
 
     [Fact]
+    public void Rows_ReadAgain_TheSameTableUntilTheHistorySearchOrSortChanges()
+    {
+        ThreeRuns();
+        var rows = _log.Rows;
+        _log.ToggleSelectedCommand.Execute("/logs/a.json");
+        var selected = _log.SelectedRows;
+
+        // A render reads the rows several times: they are made once, not once per read.
+        Assert.Same(rows, _log.Rows);
+        Assert.Same(selected, _log.SelectedRows);
+        _log.Search = "si-";
+        var searched = _log.Rows;
+        Assert.NotSame(rows, searched);
+        Assert.Empty(_log.SelectedRows);
+        _log.SortCommand.Execute("duration");
+        var sorted = _log.Rows;
+        Assert.NotSame(searched, sorted);
+        ThreeRuns();
+        Assert.NotSame(sorted, _log.Rows);
+        Assert.Equal(2, _log.Rows.Count);
+    }
+
+    [Fact]
     public void Export_TickedRuns_OnlyThoseInTheTablesOrder()
     {
         ThreeRuns();

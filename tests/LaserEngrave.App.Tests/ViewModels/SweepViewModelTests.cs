@@ -83,6 +83,7 @@ public sealed class SweepViewModelTests : IDisposable
         var texts = new List<string>();
         var fractions = new List<double>();
         var positions = new HashSet<long?>();
+        var paced = new HashSet<(long X, long Y)>();
         _sweep.PropertyChanged += (_, e) =>
         {
             if (e.PropertyName == nameof(SweepViewModel.Progress) && _sweep.ProgressText is { } text)
@@ -94,6 +95,10 @@ public sealed class SweepViewModelTests : IDisposable
             else if (e.PropertyName == nameof(SweepViewModel.Status) && _sweep.Status is { } status)
             {
                 texts.Add(status);
+            }
+            else if (e.PropertyName == nameof(SweepViewModel.LaserMicrosteps) && _sweep.LaserMicrosteps is { } laser)
+            {
+                paced.Add(laser);
             }
         };
 
@@ -107,6 +112,8 @@ public sealed class SweepViewModelTests : IDisposable
         Assert.DoesNotContain(texts, t => t.Contains("of 5", StringComparison.Ordinal));
         Assert.Equal(fractions.Order(), fractions);
         Assert.True(positions.Count > 4, "the laser's cross moves with the sweep");
+        Assert.True(paced.Count > 4, "the cross is drawn at the sweep's pace, from its cells' plans");
+        Assert.Null(_sweep.LaserMicrosteps);
         Assert.Equal((true, true), (_machine.XHomed, _machine.YHomed));
         var record = Assert.IsType<Core.Logging.SweepRecord>(_sweep.LastSweep);
         Assert.Equal(RunOutcome.Completed, record.Outcome);

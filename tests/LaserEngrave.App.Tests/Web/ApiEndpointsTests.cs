@@ -2,6 +2,7 @@ using System.Net;
 using System.Net.Http.Json;
 using System.Text.Json;
 using LaserEngrave.App.Web;
+using Microsoft.Extensions.DependencyInjection;
 
 namespace LaserEngrave.App.Tests.Web;
 
@@ -40,12 +41,14 @@ public sealed class ApiEndpointsTests : IDisposable
         return await response.Content.ReadFromJsonAsync<JsonElement>(Token);
     }
 
-    private async Task<JsonElement> WaitForAsync(Func<JsonElement, bool> condition, TimeSpan timeout)
+    private Task<JsonElement> WaitForAsync(Func<JsonElement, bool> condition, TimeSpan timeout) => WaitForAsync(_client, condition, timeout);
+
+    private static async Task<JsonElement> WaitForAsync(HttpClient client, Func<JsonElement, bool> condition, TimeSpan timeout)
     {
         var end = DateTime.UtcNow + timeout;
         while (true)
         {
-            var state = await StateAsync();
+            var state = await client.GetFromJsonAsync<JsonElement>("/api/state", Token);
             if (condition(state) || DateTime.UtcNow > end)
             {
                 return state;
@@ -93,6 +96,27 @@ public sealed class ApiEndpointsTests : IDisposable
         Assert.Equal(41, state.GetProperty("image").GetProperty("info").GetProperty("width").GetInt32());
     }
 
+
+    [Fact]
+    public async Task OpenImage_SlowToRead_ReadInTheBackgroundWithItsProgressAndAnsweredOnceOpen()
+    {
+        var images = new GatedImages { GatedName = "text-banner.png" };
+        using var app = new AppFactory(s => s.AddSingleton<App.Services.IImageService>(images));
+        using var client = app.NewClient();
+        var banner = TestFiles.Asset("text-banner.png");
+
+        var opening = client.PostAsJsonAsync("/api/image/open", new { path = banner }, Token);
+
+        // Another request is answered meanwhile, and the state says what is being read.
+        var during = await WaitForAsync(client, s => s.GetProperty("image").GetProperty("loading").GetString() is not null, TimeSpan.FromSeconds(20));
+        Assert.Equal("Reading text-banner.png…", during.GetProperty("image").GetProperty("loading").GetString());
+        Assert.False(opening.IsCompleted);
+        images.Gate.SetResult();
+        using var response = await opening.WaitAsync(TimeSpan.FromSeconds(30), Token);
+        var state = await response.Content.ReadFromJsonAsync<JsonElement>(Token);
+        Assert.Equal(banner, state.GetProperty("image").GetProperty("path").GetString());
+        Assert.Equal(JsonValueKind.Null, state.GetProperty("image").GetProperty("loading").ValueKind);
+    }
 
     [Fact]
     public async Task Upload_Asset_StateHasImageMaskAndEstimate()

@@ -197,6 +197,15 @@ public sealed class BrowserLayoutTests : BrowserTest
         var readyMs = Convert.ToDouble(Driver.ExecuteScript("return performance.getEntriesByName('laserengrave-ready')[0].startTime;"), CultureInfo.InvariantCulture);
         TestContext.Current.TestOutputHelper?.WriteLine($"page weight {weight / 1024} KB in {files} files; usable {readyMs:0} ms after navigation");
 
+        // What weighs what, decoded and as sent (compressed), to see what dominates.
+        var parts = Convert.ToString(Driver.ExecuteScript(
+            """
+            return [...performance.getEntriesByType('navigation'), ...performance.getEntriesByType('resource')]
+                .map(e => `${Math.round((e.decodedBodySize || 0) / 1024)} KB (${Math.round((e.transferSize || 0) / 1024)} KB sent) ${e.name.split('?')[0].split('/').slice(-1)[0]}`)
+                .join('\n');
+            """), CultureInfo.InvariantCulture);
+        TestContext.Current.TestOutputHelper?.WriteLine(parts ?? string.Empty);
+
         Assert.InRange(weight, 50_000, 2_000_000);
     }
 
