@@ -207,7 +207,7 @@ internal static class EngraveCommand
             // The tolerance a late switch-on is judged by, as the profile gives it (docs/execution.md, "Late switchings").
             stderr.WriteLine(string.Create(
                 CultureInfo.InvariantCulture,
-                $"preflight: edge tolerance {profile.EdgeToleranceUm:0.###} µm: a switch-on this computer sends later than that at the burn speed leaves its run unburned and stops the run, laser off"));
+                $"preflight: edge tolerance {profile.EdgeToleranceUm:0.###} µm: a switch-on this computer sends later than that at the burn speed is not sent: that run stays unburned and the run goes on from it, laser off"));
             var wall = Stopwatch.StartNew();
             try
             {
