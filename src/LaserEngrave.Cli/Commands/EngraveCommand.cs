@@ -204,6 +204,10 @@ internal static class EngraveCommand
                 Drawing = job is DrawingJob,
                 Layers = job is LayersJob layers ? layers.Parts.Select(l => (l.Layer.Name, l.Drawing is not null)).ToList() : null,
             };
+            // The tolerance a late switch-on is judged by, as the profile gives it (docs/execution.md, "Late switchings").
+            stderr.WriteLine(string.Create(
+                CultureInfo.InvariantCulture,
+                $"preflight: edge tolerance {profile.EdgeToleranceUm:0.###} µm: a switch-on this computer sends later than that at the burn speed is not sent: that run stays unburned and the run goes on from it, laser off"));
             var wall = Stopwatch.StartNew();
             try
             {
@@ -542,7 +546,8 @@ internal sealed record EngraveSummary(
     SpacingRange? PulseSpacingUm,
     double? ExpectedSpacingUm,
     bool Drawing,
-    IReadOnlyList<RunLayer>? Layers)
+    IReadOnlyList<RunLayer>? Layers,
+    LateSwitches? LateSwitches)
 {
     /// <param name="files">The log's files; null when it could not be written (the object still says how the run went).</param>
     public static EngraveSummary From(RunRecord record, RunLogFiles? files, string? burnedPath, string? dosePath, double? wallSeconds) => new(
@@ -582,5 +587,6 @@ internal sealed record EngraveSummary(
         record.Simulation?.Path?.PulseSpacingUm,
         record.Simulation?.Path?.ExpectedSpacingUm,
         record.Drawing is not null,
-        record.Layers);
+        record.Layers,
+        record.LateSwitches);
 }

@@ -163,6 +163,13 @@ public sealed record MachineProfile
 
     public LaserGateProfile Gate { get; init; } = new();
 
+    /// <summary>
+    /// How far a switching may land from its place at the burn speed, µm, when the computer is late to send it: within it
+    /// the switch is counted and logged; beyond it the laser stays off for that run and the run stops as a timing doubt
+    /// (which a session recovers from). The default keeps every edge within 3 µm on the twin's defaults.
+    /// </summary>
+    public double EdgeToleranceUm { get; init; } = 1.5;
+
     /// <summary>Serial latencies besides the wire time, measured by `laserengrave machine latency`.</summary>
     public LatencyProfile Latency { get; init; } = new();
 

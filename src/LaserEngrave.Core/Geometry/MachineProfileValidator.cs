@@ -40,6 +40,9 @@ public static class MachineProfileValidator
 
     private const double MaxLatencyMs = 100;
 
+    /// <summary>Largest edge tolerance a profile may give, µm: a tenth of a millimetre is no edge any more.</summary>
+    public const double MaxEdgeToleranceUm = 100;
+
     /// <summary>Every problem of <paramref name="profile"/>, each "field: what is wrong (got value)", in the order of the file.</summary>
     public static IReadOnlyList<string> Problems(MachineProfile profile)
     {
@@ -125,6 +128,9 @@ public static class MachineProfileValidator
             gate.WatchdogMs is >= MinWatchdogMs and <= MaxWatchdogMs,
             $"gate.watchdogMs must be {MinWatchdogMs}..{MaxWatchdogMs} ms: the watchdog switches the laser off when the host falls silent, and a run never burns without it (got {gate.WatchdogMs})");
         CheckGateStrings(gate, problems);
+        Require(
+            profile.EdgeToleranceUm is > 0 and <= MaxEdgeToleranceUm,
+            $"edgeToleranceUm must be above 0 and at most {MaxEdgeToleranceUm} µm: how far a late switching may land from its edge (got {N(profile.EdgeToleranceUm)})");
         var latency = profile.Latency;
         foreach (var (name, ms) in new[]
                  {

@@ -79,6 +79,9 @@ public sealed record RunRecord
     /// <summary>How long the laser was on, s.</summary>
     public double LaserOnSeconds { get; init; }
 
+    /// <summary>Switchings sent late but within the profile's edge tolerance; null when none was (and in older logs).</summary>
+    public LateSwitches? LateSwitches { get; init; }
+
     public int RowsDone { get; init; }
 
     public required int RowsTotal { get; init; }

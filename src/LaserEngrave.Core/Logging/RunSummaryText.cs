@@ -13,6 +13,14 @@ public static class RunSummaryText
     public static string LaserOff(RunFault fault)
     {
         ArgumentNullException.ThrowIfNull(fault);
+        var confirmed = ConfirmedBy(fault);
+        return fault.BurstEnded
+            ? $"the burst had ended by itself at the run's end (the gate counts its pulses) before the switch-off was refused or went unanswered; then {confirmed}"
+            : confirmed;
+    }
+
+    private static string ConfirmedBy(RunFault fault)
+    {
         return (fault.LaserOffConfirmed, fault.LaserOffBy) switch
         {
             (true, LaserOffPath.OffAgain) => "confirmed by the gate acknowledging OFF, late or sent again (it had refused or not answered a switch-off in time; FREQ 0, its shortest watchdog and a stage stop went with it)",

@@ -46,6 +46,7 @@ public sealed class RasterPlan
             ? 0
             : JobGeometry.Round(StageUnits.MmToMicrosteps(options.OverscanMm, geometry.MicrostepUm));
         Timing = options.Strategy == PlanStrategy.Optimized ? timing : null;
+        _switchingProblem = new Lazy<string?>(FindSwitchingProblem);
         RunUpMicrosteps = Math.Max(OverscanMicrosteps, Timing?.RunUpMicrosteps ?? 0);
         RunOutMicrosteps = Math.Max(OverscanMicrosteps, Timing?.RunOutMicrosteps ?? 0);
         Warnings = [.. OverscanWarnings(), .. ScanOffsetWarnings()];
@@ -67,10 +68,46 @@ public sealed class RasterPlan
     /// The timing model the plan was made for (run-ups long enough for timed laser switching, gaps crossed or travelled
     /// whichever is faster); null for <see cref="PlanStrategy.Paper"/> or when planned without one (moves only).
     /// </summary>
+    private readonly Lazy<string?> _switchingProblem;
+
     public TimedSwitching? Timing { get; }
 
     /// <summary>Null when timed switching can switch one pixel exactly at the burn speed; otherwise why not, in one line.</summary>
-    public string? SwitchingProblem => Timing?.PixelTooShort((long)Math.Floor(Geometry.PitchXMicrosteps), Geometry.PitchUm);
+    /// <remarks>
+    /// Every switch-on is a counted burst whose line grows with its count (docs/execution.md, "The burst"): the gap before
+    /// a switch-on must carry the longest such line of the job, that of its longest run, and no run may need more pulses
+    /// than the gate counts in one burst.
+    /// </remarks>
+    public string? SwitchingProblem => _switchingProblem.Value;
+
+    private string? FindSwitchingProblem()
+    {
+        if (Timing is not { } timing)
+        {
+            return null;
+        }
+
+        var longest = (long)Math.Ceiling(LongestRunPixels() * Geometry.PitchXMicrosteps);
+        return timing.RunTooLongForBurst(longest)
+            ?? timing.PixelTooShort((long)Math.Floor(Geometry.PitchXMicrosteps), Geometry.PitchUm, longest);
+    }
+
+    // The widest run of black pixels of any row.
+    private int LongestRunPixels()
+    {
+        var runs = new int[64];
+        var longest = 0;
+        for (var y = 0; y < Mask.Height; y++)
+        {
+            var count = RowRuns.Find(Mask.ReadRow(y), ref runs);
+            for (var i = 0; i < count; i++)
+            {
+                longest = Math.Max(longest, runs[(2 * i) + 1] - runs[2 * i]);
+            }
+        }
+
+        return longest;
+    }
 
     /// <summary>Run-up before each row's first burn run, microsteps: the overscan, or longer when timed switching needs it.</summary>
     public long RunUpMicrosteps { get; }

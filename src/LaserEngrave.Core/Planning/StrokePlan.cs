@@ -163,6 +163,19 @@ public sealed class StrokePlan
             return Length;
         }
 
+        // TimeAt drops at each flown gap's entry edge by what the bump gained, so just after an entry the same time is also
+        // reached inside the gap before it: search from the last entry crossed by then, where the times rise again. (A search
+        // over the whole stroke could land in the gap and put the stage before a run it was already burning: issue 19, item 4.)
+        foreach (ref readonly var bump in BumpTimings)
+        {
+            if (TimeAt(bump.Entry) > seconds)
+            {
+                break;
+            }
+
+            low = bump.Entry;
+        }
+
         while (high - low > 1)
         {
             var mid = low + ((high - low) / 2);

@@ -25,6 +25,9 @@ public sealed class TimedSwitching
     /// <summary>Bytes of a Zaber binary frame.</summary>
     public const int FrameBytes = 6;
 
+    /// <summary>Most pulses one <c>BURST</c> may count (docs/laser-gate-protocol.md); a longer burn run is refused before anything moves.</summary>
+    public const int MaxBurstPulses = 1_000_000;
+
     private const double BitsPerByte = 10;
 
     // Time the host allows itself to react to a reply before acting on it.
@@ -62,23 +65,31 @@ public sealed class TimedSwitching
 
         var gateByte = BitsPerByte / process.GateBaudRate;
         var frequency = process.LaserFrequencyWholeHz;
-        OnCommand = Format(gate.FrequencyCommand, frequency) + gate.LineTerminator;
+        FrequencyHz = frequency;
+        _profile = profile;
+        _gateByteSeconds = gateByte;
+
+        // Every timed switch-on is a counted burst (docs/execution.md, "The burst"): the planning bounds (run-up, flown
+        // gaps, shortest gap) take the longest burst a run across the whole X travel can need; each switch-on is then
+        // timed by its own line's length.
+        var longestRun = profile.X.TravelMicrosteps / Math.Max(1, StageUnits.SpeedMicrostepsPerS(BurnSpeedData)) * Math.Max(1, frequency);
+        LongestBurstPulses = (int)Math.Clamp(Math.Ceiling(longestRun), 1, MaxBurstPulses);
+        OnCommand = BurstCommand(LongestBurstPulses);
         OffCommand = gate.OffCommand + gate.LineTerminator;
-        var onReply = gate.AckPrefix + " " + Format(gate.FrequencyReply, frequency) + gate.LineTerminator;
+        var onReply = BurstReply(LongestBurstPulses);
         var offReply = gate.AckPrefix + " " + gate.OffReply + gate.LineTerminator;
         var ping = gate.KeepAliveCommand + gate.LineTerminator;
         var pong = gate.AckPrefix + " " + gate.KeepAliveReply + gate.LineTerminator;
         var gateAdapter = latency.GateMs / 1000;
         var processing = latency.GateProcessingMs / 1000;
-        _gateByteSeconds = gateByte;
         _gateAdapterSeconds = gateAdapter;
         _gateProcessingSeconds = processing;
-        _profile = profile;
         GateJitterSeconds = (latency.GateJitterMs + latency.GateProcessingJitterMs) / 1000;
         HalfPulseSeconds = 0.5 / Math.Max(1, frequency);
         OnLeadSeconds = gateAdapter + (OnCommand.Length * gateByte) + processing;
         OffLeadSeconds = gateAdapter + (OffCommand.Length * gateByte) + processing;
         OnRoundTripSeconds = OnLeadSeconds + (onReply.Length * gateByte) + gateAdapter;
+        KeepAliveBytes = ping.Length;
         OffRoundTripSeconds = OffLeadSeconds + (offReply.Length * gateByte) + gateAdapter;
         KeepAliveRoundTripSeconds = gateAdapter + (ping.Length * gateByte) + processing + (pong.Length * gateByte) + gateAdapter;
 
@@ -98,7 +109,7 @@ public sealed class TimedSwitching
         OffWireSeconds = OffCommand.Length * gateByte;
         OnWireSeconds = OnCommand.Length * gateByte;
         MinOnSeconds = (2 * EdgeGuardSeconds) + OffWireSeconds + (2 * GateJitterSeconds) + ReactionSeconds;
-        MinOffSeconds = OnWireSeconds + (2 * GateJitterSeconds) + ReactionSeconds - (2 * EdgeGuardSeconds);
+        MinOffSeconds = MinOffFor(LongestBurstPulses);
         _flown = new GapMemo<FlownGap?>(gap => ComputeFly(gap) is { } fly ? FlownGap.Of(this, fly) : null);
         _crossesGap = new GapMemo<bool>(gap => CrossSeconds(gap) <= StopGoSeconds(gap));
     }
@@ -134,10 +145,96 @@ public sealed class TimedSwitching
     /// <summary>From a device sending a reply to the host having it.</summary>
     public double StageReplySeconds { get; }
 
+    /// <summary>The gate's processing, from a line's last byte to the Q-switch changing.</summary>
+    public double GateProcessingSeconds => _gateProcessingSeconds;
+
     /// <summary>Half-width of the spread of a gate command's lead (adapter and processing).</summary>
     public double GateJitterSeconds { get; }
 
+    /// <summary>The longest switch-on line a run can need: the burst over the whole X travel (the planning bounds use it).</summary>
     public string OnCommand { get; }
+
+    /// <summary>The laser's pulse frequency, whole Hz.</summary>
+    public int FrequencyHz { get; }
+
+    /// <summary>The pulses of a burst across the whole X travel at the burn speed (at most <see cref="MaxBurstPulses"/>).</summary>
+    public int LongestBurstPulses { get; }
+
+    /// <summary>The keepalive line's bytes.</summary>
+    public int KeepAliveBytes { get; }
+
+    /// <summary>The switch-on line of a burst of <paramref name="pulses"/> at the process' frequency.</summary>
+    public string BurstCommand(int pulses) =>
+        string.Format(CultureInfo.InvariantCulture, _profile.Gate.BurstCommand, pulses, FrequencyHz) + _profile.Gate.LineTerminator;
+
+    /// <summary>From writing a burst's line (its wire free) to the gate firing its first pulse.</summary>
+    public double BurstLeadSeconds(int pulses) => _gateAdapterSeconds + (BurstCommand(pulses).Length * _gateByteSeconds) + _gateProcessingSeconds;
+
+    /// <summary>From writing a burst's line (its wire free) to its acknowledgement being in.</summary>
+    public double BurstRoundTripSeconds(int pulses) => BurstLeadSeconds(pulses) + (BurstReply(pulses).Length * _gateByteSeconds) + _gateAdapterSeconds;
+
+    /// <summary>
+    /// The pulses a burst fires in <paramref name="seconds"/>: its instants k / f strictly before the window's end, so the
+    /// count is rounded down to the pulses that fall inside (a pulse due at the end itself is not one) and the burst fires
+    /// no pulse the timed switch-off would not have let through.
+    /// </summary>
+    public int PulsesWithin(double seconds) =>
+        seconds <= 0 ? 0 : (int)Math.Min(MaxBurstPulses, Math.Floor((seconds * FrequencyHz) - 1e-6) + 1);
+
+    /// <summary>
+    /// The burst of a switch-on written at <paramref name="writtenSeconds"/> behind a gate wire busy until
+    /// <paramref name="wireFreeSeconds"/>, sized so that its last pulse comes before the run's planned switch-off takes effect
+    /// (<paramref name="offEffectSeconds"/>): the largest count whose own line (its length grows with the count's digits)
+    /// still fits; 0 when not one pulse does. All times on one clock.
+    /// </summary>
+    public int BurstPulses(double writtenSeconds, double wireFreeSeconds, double offEffectSeconds)
+    {
+        var onWire = Math.Max(writtenSeconds + _gateAdapterSeconds, wireFreeSeconds);
+        var best = 0;
+        for (int digits = 1, least = 1; least <= MaxBurstPulses; digits++, least *= 10)
+        {
+            var most = (int)Math.Min(MaxBurstPulses, ((long)least * 10) - 1);
+            var firing = onWire + (BurstCommand(least).Length * _gateByteSeconds) + _gateProcessingSeconds;
+            var pulses = Math.Min(most, PulsesWithin(offEffectSeconds - firing));
+            if (pulses >= least)
+            {
+                best = Math.Max(best, pulses);
+            }
+        }
+
+        return best;
+    }
+
+    /// <summary>
+    /// Whether the switch-off taking effect at <paramref name="offEffectSeconds"/> leaves the wire in time for the next
+    /// burst of <paramref name="nextPulses"/>, taking effect at <paramref name="nextOnEffectSeconds"/>: the next line's bytes
+    /// go on the wire behind the switch-off's, whatever both latencies drew. When not, the switch-off is left out.
+    /// </summary>
+    public bool OffFitsBefore(double offEffectSeconds, double nextOnEffectSeconds, int nextPulses) =>
+        nextOnEffectSeconds - offEffectSeconds >= (BurstCommand(Math.Max(1, nextPulses)).Length * _gateByteSeconds) + (2 * GateJitterSeconds) + ReactionSeconds;
+
+    /// <summary>When the switch-on of a burn run is written so that its burst fires from <paramref name="onEffectSeconds"/> to the switch-off's effect, the wire free.</summary>
+    public double BurstWriteSeconds(double onEffectSeconds, double offEffectSeconds) =>
+        onEffectSeconds - BurstLeadSeconds(Math.Max(1, PulsesWithin(offEffectSeconds - onEffectSeconds)));
+
+    /// <summary>When the gate's wire is free again after <paramref name="bytes"/> written at <paramref name="writtenSeconds"/> behind a wire busy until <paramref name="wireFreeSeconds"/>.</summary>
+    public double GateWireFreeAfter(double writtenSeconds, double wireFreeSeconds, int bytes) =>
+        Math.Max(writtenSeconds + _gateAdapterSeconds, wireFreeSeconds) + (bytes * _gateByteSeconds);
+
+    /// <summary>
+    /// Null when a burn run of <paramref name="lengthMicrosteps"/> fits in one burst, otherwise the reason in one line: the
+    /// gate counts at most <see cref="MaxBurstPulses"/> pulses in a burst, and a run is never left to a timed switch-off alone.
+    /// </summary>
+    public string? RunTooLongForBurst(long lengthMicrosteps)
+    {
+        var pulses = Math.Ceiling(lengthMicrosteps / BurnSpeed * FrequencyHz);
+        return pulses <= MaxBurstPulses ? null : string.Create(
+            CultureInfo.InvariantCulture,
+            $"a burn run of {lengthMicrosteps * MicrostepUm / 1000:0.###} mm at the burn speed is {pulses:0} pulses at {FrequencyHz} Hz, more than the {MaxBurstPulses} the laser gate counts in one burst: burn faster, at a lower frequency, or split the run");
+    }
+
+    private string BurstReply(int pulses) =>
+        _profile.Gate.AckPrefix + " " + string.Format(CultureInfo.InvariantCulture, _profile.Gate.BurstReply, pulses, FrequencyHz) + _profile.Gate.LineTerminator;
 
     public string OffCommand { get; }
 
@@ -203,18 +300,35 @@ public sealed class TimedSwitching
     /// <summary>Shortest burn run the gate can switch exactly, as time at the burn speed (the guards at both edges and the switch-off's bytes).</summary>
     public double MinOnSeconds { get; }
 
-    /// <summary>Shortest gap between two runs of one stroke the gate can switch exactly, as time at the burn speed.</summary>
+    /// <summary>Shortest gap between two runs of one stroke that carries both the switch-off and the longest burst line of <see cref="OnCommand"/>, as time at the burn speed.</summary>
     public double MinOffSeconds { get; }
+
+    /// <summary>
+    /// Shortest gap before a switch-on whose burst counts <paramref name="pulses"/> that also carries the switch-off's line
+    /// ahead of it; in a shorter gap the executor leaves the switch-off out, the burst having ended the run by itself.
+    /// </summary>
+    public double MinOffFor(int pulses) =>
+        (BurstCommand(Math.Max(1, pulses)).Length * _gateByteSeconds) + (2 * GateJitterSeconds) + ReactionSeconds - (2 * EdgeGuardSeconds);
 
     /// <summary>
     /// Null when one pixel at the burn speed lasts long enough for the gate to switch it exactly, otherwise the reason in
     /// one line (which says how slow the burn must be). The time is the shortest pixel on the wire (whole microsteps), but
     /// the line names the pitch the user set, so it never shows a second, rounded pitch beside theirs.
     /// </summary>
-    public string? PixelTooShort(long pixelMicrosteps, double pitchUm)
+    /// <param name="pixelMicrosteps">The shortest pixel, whole microsteps.</param>
+    /// <param name="pitchUm">The pitch the user set.</param>
+    /// <param name="longestRunMicrosteps">The job's longest burn run, whose burst line is the longest a gap must carry; absent: one across the whole X travel.</param>
+    public string? PixelTooShort(long pixelMicrosteps, double pitchUm, long longestRunMicrosteps = -1)
     {
         var seconds = pixelMicrosteps / BurnSpeed;
-        var needed = Math.Max(MinOnSeconds, MinOffSeconds);
+        // A gap too short for the switch-off's line and the next burst's goes without the switch-off (the burst has ended
+        // the run by itself): what remains is that the next burst's line follows the last one's on the wire, across a run
+        // and a gap, two pixels at the least.
+        var pulses = longestRunMicrosteps < 0 ? LongestBurstPulses : PulsesWithin(longestRunMicrosteps / BurnSpeed);
+        // Never shorter than FREQ's switching needed: shorter pixels have not been shown to keep their edges on the twin.
+        var frequencyLine = Format(_profile.Gate.FrequencyCommand, FrequencyHz).Length + _profile.Gate.LineTerminator.Length;
+        var floor = (frequencyLine * _gateByteSeconds) + (2 * GateJitterSeconds) + ReactionSeconds - (2 * EdgeGuardSeconds);
+        var needed = Math.Max(Math.Max(MinOnSeconds, floor), ((BurstCommand(Math.Max(1, pulses)).Length * _gateByteSeconds) + (2 * GateJitterSeconds) + ReactionSeconds) / 2);
         if (seconds >= needed)
         {
             return null;

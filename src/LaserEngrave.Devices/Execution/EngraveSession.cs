@@ -33,8 +33,15 @@ public sealed class EngraveSession
     private double _latencyScale = 1;
     private int _started;
 
-    /// <summary>How many timing doubts a session goes on from (<see cref="RunResult.Recoverable"/>); the next one ends the run.</summary>
+    /// <summary>
+    /// How many timing doubts (<see cref="RunResult.Recoverable"/>) a session goes on from at one place of the job, each no
+    /// further than the one before; the next one ends the run. A doubt further on (a busy computer late to switch the laser
+    /// on now and then, docs/execution.md, "Late switchings") counts afresh, up to <see cref="MaxRecoveriesInAll"/>.
+    /// </summary>
     public const int MaxRecoveries = 3;
+
+    /// <summary>How many timing doubts a session goes on from in all.</summary>
+    public const int MaxRecoveriesInAll = 100;
 
     /// <summary>A session that engraves <paramref name="job"/>: an image (raster or dots), a drawing, or a job of layers one layer after the other, each with its own process and passes, all in one log.</summary>
     /// <remarks>A stopped run of layers is continued with <see cref="EngraveSessionOptions.ResumeLayers"/>, not <see cref="EngraveSessionOptions.ResumeFrom"/>. A sweep runs cell by cell through <see cref="SweepSession"/>, each cell a session of its own.</remarks>
@@ -442,20 +449,25 @@ public sealed class EngraveSession
             EstimatedSeconds = sum.EstimatedSeconds + result.EstimatedSeconds,
             EstimatedEngravingSeconds = sum.EstimatedEngravingSeconds + result.EstimatedEngravingSeconds,
             LaserOnSeconds = sum.LaserOnSeconds + result.LaserOnSeconds,
+            LateSwitches = LateSwitches.Add(sum.LateSwitches, result.LateSwitches),
         };
     }
 
     /// <summary>
     /// A pass that failed on a timing doubt (<see cref="RunResult.Recoverable"/>: a position query too late with the
     /// laser off, nothing burned wrongly, a busy computer) goes on from its stop point, as a resume would, through the
-    /// resumed run's own checks; at most <see cref="MaxRecoveries"/> times a session, never after an abort. Anything
+    /// resumed run's own checks; at most <see cref="MaxRecoveries"/> times at one place, never after an abort. Anything
     /// else ends the run.
     /// </summary>
     private async Task<RunResult> RecoverAsync(PreparedLayer part, int pass, RunResult result, CancellationToken cancellationToken)
     {
-        while (result is { Outcome: RunOutcome.Failed, Recoverable: true, StopPoint: { } stop } && _recoveries.Count < MaxRecoveries
+        var atOnePlace = 0;
+        long? lastStop = null;
+        while (result is { Outcome: RunOutcome.Failed, Recoverable: true, StopPoint: { } stop } && _recoveries.Count < MaxRecoveriesInAll
+            && (atOnePlace = lastStop is { } last && stop.MoveIndex <= last ? atOnePlace + 1 : 1) <= MaxRecoveries
             && !cancellationToken.IsCancellationRequested && !AbortRequested())
         {
+            lastStop = stop.MoveIndex;
             _recoveries.Add(new RunRecovery(pass, result.FaultMessage ?? "a timing doubt", stop.MoveIndex, stop.Row));
             RunResult again;
             try
@@ -476,6 +488,7 @@ public sealed class EngraveSession
                 EstimatedSeconds = result.EstimatedSeconds,
                 EstimatedEngravingSeconds = result.EstimatedEngravingSeconds,
                 LaserOnSeconds = result.LaserOnSeconds + again.LaserOnSeconds,
+                LateSwitches = LateSwitches.Add(result.LateSwitches, again.LateSwitches),
             };
         }
 

@@ -126,6 +126,10 @@ public sealed partial class RunExecutor
                 }
 
                 inDoubt = _switchOffFailed;
+
+                // A switch-off refused or unanswered after the burn run's burst had stopped the laser by itself: the run's
+                // last pulse was the burst's, inside the run; the paths to off below still go, and say which confirmed it.
+                _burstEndedItself |= inDoubt && RunSeconds >= _burstEndsAt;
             }
 
             DeviceException? refused = null;

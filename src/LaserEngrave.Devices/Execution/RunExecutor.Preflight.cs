@@ -183,11 +183,6 @@ public sealed partial class RunExecutor
 
         var strategy = Job?.Plan.Options.Strategy ?? PlanStrategy.Optimized;
         var microstepUm = Job?.Plan.Geometry.MicrostepUm ?? _timing!.MicrostepUm;
-        if (Job?.EngraveProblem is { } tooShort)
-        {
-            throw new PreflightException(tooShort);
-        }
-
         CheckSpeed("burn speed", _process.SpeedMmPerS(MoveKind.Burn, strategy));
         CheckSpeed("travel speed", _process.SpeedMmPerS(MoveKind.Travel, strategy));
         var accelerationUnits = Math.Round(StageUnits.MmToMicrosteps(_process.AccelerationMmPerS2, microstepUm) / StageUnits.AccelerationUnitMicrostepsPerS2);
@@ -196,6 +191,12 @@ public sealed partial class RunExecutor
         {
             throw new PreflightException(
                 $"acceleration {N(_process.AccelerationMmPerS2)} mm/s² is outside what the stage takes ({N(Unit(StageUnits.AccelerationUnitMicrostepsPerS2))}..{N(maxAcceleration)} mm/s²)");
+        }
+
+        // After the speeds: a pixel too short for the gate names a burn speed that would work, which must be one the stage runs.
+        if (Job?.EngraveProblem is { } tooShort)
+        {
+            throw new PreflightException(tooShort);
         }
 
         void CheckSpeed(string what, double mmPerS)

@@ -1,5 +1,6 @@
 using System.Globalization;
 using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Zaber;
@@ -24,6 +25,13 @@ public sealed partial class RunExecutor
     private string? _timedFault;
     private bool _recoverableFault;
     private double _lastGateWrite;
+
+    // When the gate's wire is free of the lines written so far (the host's estimate at the adapter's mean), and when the
+    // last burst stops by itself at the latest (run seconds).
+    private double _gateWireFree = double.NegativeInfinity;
+    private double _burstEndsAt = double.NegativeInfinity;
+    private bool _burstEndedItself;
+    private LateSwitches? _lateSwitches;
     private long _queuedUpTo = -1;
 
     // Where the run was when a fault or an abort cut it: the stroke under way, the burn run whose switch-on was sent and
@@ -209,6 +217,8 @@ public sealed partial class RunExecutor
         var earlier = _watched.ToList();
         var move = Stage.X.MoveAbsoluteAfterAsync(segment.EndX, token);
         Watch(Arrive(move, "X", segment.EndX, x => _x = x), times.End + timing.StageReplySeconds, "the end of a stroke (X)", axis: "X");
+        var strokeEnd = _lastMove["X"];
+        var strokeEndDeadline = strokeEnd.Deadline;
         var poll = burns.Count > 0 ? Stage.X.GetPositionAsync(token) : null;
         var direction = Math.Sign(segment.EndX - start);
 
@@ -217,8 +227,9 @@ public sealed partial class RunExecutor
         (StrokePlan.Bump Bump, FlownQuery Query)? flown = null;
         var bumps = plan.Bumps.ToDictionary(b => b.Exit);
         var index = 0;
-        foreach (var (burn, burnIndex) in burns)
+        for (var k = 0; k < burns.Count; k++)
         {
+            var (burn, burnIndex) = burns[k];
             var onWrite = times.Arrival + Offset(burn.X0) + shift + timing.OnDelaySeconds - timing.OnLeadSeconds;
             if (index++ == 0)
             {
@@ -228,6 +239,9 @@ public sealed partial class RunExecutor
             {
                 shift += await MeasureFlownGapAsync(gap.Bump, gap.Query, start, direction, timing, onWrite, token);
                 active.Origin = times.Arrival + shift;
+
+                // Behind its plan (a bump held shorter by a late speed-up), the stroke also ends that much later.
+                strokeEnd.Deadline = strokeEndDeadline + Math.Max(0, shift);
                 onWrite = times.Arrival + Offset(burn.X0) + shift + timing.OnDelaySeconds - timing.OnLeadSeconds;
                 flown = null;
             }
@@ -235,8 +249,13 @@ public sealed partial class RunExecutor
             var offWrite = times.Arrival + Offset(burn.X1) + shift - timing.OffAdvanceSeconds - timing.OffLeadSeconds;
 
             CompleteUpTo(segment, burnIndex - 1, null);
+
+            // The burst fills the run from its switch-on to its planned switch-off; its line's length depends on its count.
+            var onEffect = onWrite + timing.OnLeadSeconds;
+            var offEffect = offWrite + timing.OffLeadSeconds;
+            onWrite = timing.BurstWriteSeconds(onEffect, offEffect);
             await DelayUntilAsync(onWrite, token);
-            var (on, onWritten) = await SendSwitchAsync(on: true);
+            var (on, onWritten) = await SendSwitchOnAsync(onEffect, offEffect, timing);
             lock (_lock)
             {
                 _burning = (burn, burnIndex, on);
@@ -257,15 +276,27 @@ public sealed partial class RunExecutor
 
             await KeepAlivesUntilAsync(offWrite, timing, token);
             await DelayUntilAsync(offWrite, token);
-            var (off, offWritten) = await SendSwitchAsync(on: false);
-            lock (_lock)
+            if (k + 1 < burns.Count && !bumps.ContainsKey(Distance(burn.X1)) && !OffFitsBefore(burns[k + 1].Move, offEffect))
             {
-                _burning = null;
+                // A gap too short for the switch-off's line and the next burst's: the burst ends this run by itself.
+                MarkLaserOff(timing.OffLeadSeconds);
+                lock (_lock)
+                {
+                    _burning = null;
+                }
             }
+            else
+            {
+                var (off, offWritten) = await SendSwitchOffAsync(timing);
+                lock (_lock)
+                {
+                    _burning = null;
+                }
 
-            _lastGateWrite = offWrite;
-            WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off", switchOff: true);
-            ThrowIfSwitchOffLate(offWrite, offWritten, timing);
+                _lastGateWrite = offWrite;
+                WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off", switchOff: true);
+                NoteSwitchOffLate(offWrite, offWritten, timing);
+            }
 
             // A run counts as burned once its switch-on is acknowledged (a silent gate burns nothing).
             CompleteUpTo(segment, burnIndex, on);
@@ -274,6 +305,14 @@ public sealed partial class RunExecutor
             {
                 flown = (bump, await FlyGapAsync(bump, times.Arrival + shift, timing, token));
             }
+        }
+
+        // Whether the gap after a run carries the switch-off's line ahead of the next burst's (docs/execution.md, "The burst").
+        bool OffFitsBefore(Move next, double offEffect)
+        {
+            var nextOn = times.Arrival + Offset(next.X0) + shift + timing.OnDelaySeconds;
+            var nextOff = times.Arrival + Offset(next.X1) + shift - timing.OffAdvanceSeconds;
+            return timing.OffFitsBefore(offEffect, nextOn, timing.PulsesWithin(nextOff - nextOn));
         }
 
         // Behind its plan, the stroke also ends later: the next move must not catch it braking.
@@ -504,40 +543,56 @@ public sealed partial class RunExecutor
 
             await DelayUntilAsync(next, token);
             _lastGateWrite = RunSeconds;
+            _gateWireFree = timing.GateWireFreeAfter(_lastGateWrite, _gateWireFree, timing.KeepAliveBytes);
             WatchGate(Gate.KeepAliveAsync(CancellationToken.None), _lastGateWrite + timing.KeepAliveRoundTripSeconds, "the laser gate did not answer the keepalive");
         }
     }
 
     /// <summary>
-    /// Sends a timed switching under the laser lock (a switch-on checks for an abort first) and returns its acknowledgement
-    /// without waiting for it, and when it was written: the lock is free again at once, so an abort's or a fault's
-    /// switch-off never waits behind it.
+    /// Sends a timed switch-on under the laser lock (after checking for an abort) and returns its acknowledgement without
+    /// waiting for it, and when it was written: the lock is free again at once, so an abort's or a fault's switch-off never
+    /// waits behind it. The switch-on is the gate's counted burst, sized now, from the real write time and the gate's wire
+    /// queue, to stop by itself before <paramref name="offEffect"/> (docs/execution.md, "The burst"): a switch-off that is
+    /// late, refused or lost then costs no pulse past the edge. A host so late that it is beyond the profile's edge
+    /// tolerance (or that no pulse fits any more) leaves the laser off and ends the run as a timing doubt.
     /// </summary>
-    private async Task<(Task Acknowledged, double WrittenSeconds)> SendSwitchAsync(bool on)
+    private async Task<(Task Acknowledged, double WrittenSeconds)> SendSwitchOnAsync(double onEffect, double offEffect, TimedSwitching timing)
     {
         await _laserLock.WaitAsync();
         try
         {
-            var written = RunSeconds;
-            if (!on)
-            {
-                // Counted from effect to effect: the switch-off takes effect its lead after it is sent, as the switch-on did.
-                var off = Gate.OffAsync(CancellationToken.None);
-                MarkLaserOff(_timing!.OffLeadSeconds);
-                return (off, written);
-            }
-
             ThrowIfAborted();
             if (_fault.IsCancellationRequested)
             {
                 throw new DeviceException(_timedFault ?? "a fault ended the run");
             }
 
-            var ack = Gate.SetFrequencyAsync(_process.LaserFrequencyWholeHz, CancellationToken.None);
+            // Late is when the gate will start firing against when it was to: the host's own lateness and any line still
+            // on the gate's wire ahead of this one.
+            var written = RunSeconds;
+            var pulses = timing.BurstPulses(written, _gateWireFree, offEffect);
+            var late = timing.GateWireFreeAfter(written, _gateWireFree, timing.BurstCommand(Math.Max(1, pulses)).Length) + timing.GateProcessingSeconds - onEffect;
+            var lateUm = late * timing.BurnSpeed * timing.MicrostepUm;
+            if (lateUm > _profile.EdgeToleranceUm || pulses < 1)
+            {
+                throw Fault(
+                    string.Create(CultureInfo.InvariantCulture, $"this computer was {late * 1000:0.0} ms late to switch the laser on, {lateUm:0.0} µm at the burn speed, beyond the profile's edge tolerance of {_profile.EdgeToleranceUm:0.###} µm: the laser stayed off for that run"),
+                    recoverable: true);
+            }
+
+            if (late > LateSeconds)
+            {
+                NoteLateSwitch(lateUm);
+            }
+
+            var ack = Gate.BurstAsync(pulses, timing.FrequencyHz, CancellationToken.None);
+            _gateWireFree = timing.GateWireFreeAfter(written, _gateWireFree, timing.BurstCommand(pulses).Length);
+            var firing = _gateWireFree + timing.GateProcessingSeconds;
             lock (_lock)
             {
                 _laserOn = true;
-                _laserOnSince = TimeProvider.GetTimestamp() + (long)(_timing!.OnLeadSeconds * TimeProvider.TimestampFrequency);
+                _laserOnSince = TimeProvider.GetTimestamp() + (long)((firing - written) * TimeProvider.TimestampFrequency);
+                _burstEndsAt = firing + ((double)pulses / timing.FrequencyHz) + timing.GateJitterSeconds;
             }
 
             return (ack, written);
@@ -548,12 +603,45 @@ public sealed partial class RunExecutor
         }
     }
 
-    /// <summary>A switch-off written later than the edge guard allows: the laser stayed on past its time, so its last pulses may have crossed the edge.</summary>
-    private void ThrowIfSwitchOffLate(double planned, double written, TimedSwitching timing)
+    /// <summary>Sends a timed switch-off under the laser lock and returns its acknowledgement without waiting for it, and when it was written.</summary>
+    private async Task<(Task Acknowledged, double WrittenSeconds)> SendSwitchOffAsync(TimedSwitching timing)
     {
-        if (written - planned > timing.EdgeGuardSeconds)
+        await _laserLock.WaitAsync();
+        try
         {
-            throw Fault(string.Create(CultureInfo.InvariantCulture, $"this computer sent the switch-off {(written - planned) * 1000:0.0} ms late, more than the {timing.EdgeGuardSeconds * 1000:0.00} ms the edge guard allows, so pulses may have landed past the edge (a loaded computer: free it of other work, or measure its latency with `laserengrave machine latency` so that the plan allows for it)"));
+            var written = RunSeconds;
+
+            // Counted from effect to effect: the switch-off takes effect its lead after it is sent, as the switch-on did.
+            var off = Gate.OffAsync(CancellationToken.None);
+            _gateWireFree = timing.GateWireFreeAfter(written, _gateWireFree, timing.OffCommand.Length);
+            MarkLaserOff(timing.OffLeadSeconds);
+            return (off, written);
+        }
+        finally
+        {
+            _laserLock.Release();
+        }
+    }
+
+    /// <summary>A switch-on sent late but within the edge tolerance, or a late switch-off: counted for the run's log and summary.</summary>
+    private void NoteLateSwitch(double lateUm, bool off = false)
+    {
+        lock (_lock)
+        {
+            _lateSwitches = LateSwitches.Add(_lateSwitches, off ? new LateSwitches(0, 0, _profile.EdgeToleranceUm, 1) : new LateSwitches(1, lateUm, _profile.EdgeToleranceUm));
+        }
+    }
+
+    /// <summary>
+    /// A switch-off written late: the burst has stopped the laser by itself at the run's end already, so no pulse crossed
+    /// the edge; it is counted and logged, beside the late switch-ons.
+    /// </summary>
+    private void NoteSwitchOffLate(double planned, double written, TimedSwitching timing)
+    {
+        var late = written - planned;
+        if (late > LateSeconds)
+        {
+            NoteLateSwitch(late * timing.BurnSpeed * timing.MicrostepUm, off: true);
         }
     }
 
@@ -635,14 +723,20 @@ public sealed partial class RunExecutor
         try
         {
             var reply = watched.Reply;
-            using (var stop = new CancellationTokenSource())
+
+            // Waits again when the deadline moved later meanwhile (a stroke found behind its plan), never for the same one twice.
+            for (var deadline = double.NegativeInfinity; watched.Deadline > deadline && !reply.IsCompleted;)
             {
-                var wait = watched.Deadline - RunSeconds;
-                if (wait > 0 && !reply.IsCompleted)
+                deadline = watched.Deadline;
+                var wait = deadline - RunSeconds;
+                if (wait <= 0)
                 {
-                    await Task.WhenAny(reply, PreciseDelay.DelayAsync(TimeProvider, TimeSpan.FromSeconds(wait), stop.Token));
-                    stop.Cancel();
+                    break;
                 }
+
+                using var stop = new CancellationTokenSource();
+                await Task.WhenAny(reply, PreciseDelay.DelayAsync(TimeProvider, TimeSpan.FromSeconds(wait), stop.Token));
+                stop.Cancel();
             }
 
             if (reply.IsCompletedSuccessfully)
@@ -775,7 +869,8 @@ public sealed partial class RunExecutor
     {
         public Task Reply { get; } = reply;
 
-        public double Deadline { get; } = deadline;
+        /// <summary>When the reply is due at the latest (s on the run's clock); a stroke found behind its plan moves it later.</summary>
+        public double Deadline { get; set; } = deadline;
 
         public string What { get; } = what;
 

@@ -139,7 +139,7 @@ public sealed partial class RunExecutor
     {
         var write = RunSeconds;
         var origin = write + timing.StageCommandSeconds;
-        var onWrite = origin + stroke.LaserOnSeconds - timing.OnLeadSeconds;
+        var onWrite = timing.BurstWriteSeconds(origin + stroke.LaserOnSeconds, origin + stroke.LaserOffSeconds);
         var offWrite = origin + stroke.LaserOffSeconds - timing.OffLeadSeconds;
         var events = new List<(double Write, int Order, Func<Task> Send)>();
         var due = new List<(Task Reply, double Due, string What)>();
@@ -178,7 +178,7 @@ public sealed partial class RunExecutor
         {
             await ConfirmStrokeAsync(poll, polled, stroke, timing, onWrite, token);
             await DelayUntilAsync(onWrite, token);
-            var (on, onWritten) = await SendSwitchAsync(on: true);
+            var (on, onWritten) = await SendSwitchOnAsync(origin + stroke.LaserOnSeconds, origin + stroke.LaserOffSeconds, timing);
             _lastGateWrite = onWrite;
             WatchGate(on, Later(onWrite, onWritten) + timing.OnRoundTripSeconds, "the laser gate did not acknowledge the switch-on");
         }));
@@ -190,6 +190,7 @@ public sealed partial class RunExecutor
             events.Add((at, 2, () =>
             {
                 _lastGateWrite = at;
+                _gateWireFree = timing.GateWireFreeAfter(RunSeconds, _gateWireFree, timing.KeepAliveBytes);
                 WatchGate(Gate.KeepAliveAsync(CancellationToken.None), at + timing.KeepAliveRoundTripSeconds, "the laser gate did not answer the keepalive");
                 return Task.CompletedTask;
             }));
@@ -197,10 +198,10 @@ public sealed partial class RunExecutor
 
         events.Add((offWrite, 3, async () =>
         {
-            (off, var offWritten) = await SendSwitchAsync(on: false);
+            (off, var offWritten) = await SendSwitchOffAsync(timing);
             _lastGateWrite = offWrite;
             WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off", switchOff: true);
-            ThrowIfSwitchOffLate(offWrite, offWritten, timing);
+            NoteSwitchOffLate(offWrite, offWritten, timing);
         }));
 
         foreach (var (at, _, send) in events.OrderBy(e => e.Write).ThenBy(e => e.Order))

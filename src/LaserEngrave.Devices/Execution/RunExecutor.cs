@@ -448,6 +448,8 @@ public sealed partial class RunExecutor
                 EstimatedSeconds = _estimatePreparation + _estimateTotal - _estimateBefore,
                 EstimatedEngravingSeconds = _estimateTotal - _estimateBefore,
                 LaserOnSeconds = _laserOnSeconds,
+                LateSwitches = _lateSwitches,
+                BurstEndedItself = _burstEndedItself,
                 RowsDone = _rowsDone,
                 RowsTotal = _rowsTotal,
                 RunsDone = _runsDone,

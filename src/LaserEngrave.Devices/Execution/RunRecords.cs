@@ -41,7 +41,7 @@ public static class RunRecords
             Outcome = run.Outcome,
             Fault = run.Outcome == RunOutcome.Completed
                 ? null
-                : new RunFault(run.FaultMessage ?? "no reason given", run.Outcome == RunOutcome.Aborted ? "aborted" : null, run.LaserOffConfirmed, run.LaserOffBy),
+                : new RunFault(run.FaultMessage ?? "no reason given", run.Outcome == RunOutcome.Aborted ? "aborted" : null, run.LaserOffConfirmed, run.LaserOffBy, run.BurstEndedItself),
             StoppedAt = run.StopPoint,
             Devices = run.Machine is { } machine
                 ?
@@ -56,6 +56,7 @@ public static class RunRecords
             ActualSeconds = run.Duration.TotalSeconds,
             EngravingSeconds = run.EngravingDuration.TotalSeconds,
             LaserOnSeconds = run.LaserOnSeconds,
+            LateSwitches = run.LateSwitches,
             RowsDone = run.RowsDone,
             RowsTotal = run.RowsTotal,
             RunsDone = run.RunsDone,

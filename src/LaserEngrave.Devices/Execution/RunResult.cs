@@ -60,6 +60,12 @@ public sealed record RunResult
     /// <summary>Time the laser was on (from each switch-on's acknowledgement to the switch-off's), s.</summary>
     public required double LaserOnSeconds { get; init; }
 
+    /// <summary>Switchings the computer sent late but within the profile's edge tolerance (docs/execution.md, "The burst"): how many, and the latest as µm at the burn speed.</summary>
+    public LateSwitches? LateSwitches { get; init; }
+
+    /// <summary>Whether the burn run's burst had stopped the laser by itself before a switch-off was refused or went unanswered.</summary>
+    public bool BurstEndedItself { get; init; }
+
     /// <summary>Visited rows finished over the whole plan (with those done before a resume).</summary>
     public required int RowsDone { get; init; }
 

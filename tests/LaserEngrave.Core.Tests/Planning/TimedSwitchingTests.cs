@@ -153,6 +153,64 @@ public class TimedSwitchingTests
         Assert.Equal(entry - (t.BurnSpeed * (plan.TimeAt(entry) - bump.QueryArrival)), bump.ExpectedOffset, 6);
     }
 
+    [Theory]
+    [InlineData(1)]
+    [InlineData(3)]
+    public void StrokePlan_OffsetAtJustAfterAFlownEntry_IsInTheRunNotTheGapBefore(int pixels)
+    {
+        var t = Defaults;
+        var pixel = (long)Math.Round(121.95 / t.MicrostepUm);
+        var exit = t.RunUpMicrosteps + (3 * pixel);
+        var entry = exit + (pixels * pixel);
+        var exit2 = entry + pixel;
+        var entry2 = exit2 + pixel;
+        var length = entry2 + (3 * pixel) + t.RunOutMicrosteps;
+
+        var plan = t.Stroke(length, [(exit, entry), (exit2, entry2)]);
+
+        Assert.Equal(2, plan.Bumps.Count);
+        foreach (var edge in new[] { entry, entry2 })
+        {
+            // Before the fix the search found the same time inside the gap, up to the bump's gain before the edge.
+            foreach (var into in new long[] { 1, 50, 200, pixel / 2 })
+            {
+                Assert.Equal(edge + into, plan.OffsetAt(plan.TimeAt(edge + into)), 3);
+            }
+        }
+    }
+
+    [Fact]
+    public void Burst_SizedToTheRun_EndsBeforeThePlannedSwitchOffAndItsLineTimesItself()
+    {
+        var t = Defaults;
+
+        // 120.4 ms at 1 kHz: pulses at 0, 1, ..., 120 ms; the one due at 121 ms is past the switch-off.
+        Assert.Equal(121, t.PulsesWithin(0.1204));
+        // A pulse due at the switch-off itself is not fired.
+        Assert.Equal(120, t.PulsesWithin(0.120));
+        Assert.Equal(0, t.PulsesWithin(0));
+        Assert.Equal("BURST 121 1000\n", t.BurstCommand(121));
+
+        // Written on time on a free wire, the burst fills the window exactly; written later, or behind a busy wire, it
+        // counts fewer pulses so that it still stops before the switch-off (its shorter line leaves a little sooner).
+        var onEffect = 1.0;
+        var offEffect = 1.1204;
+        var write = t.BurstWriteSeconds(onEffect, offEffect);
+        Assert.Equal(onEffect - t.BurstLeadSeconds(121), write, 12);
+        Assert.Equal(121, t.BurstPulses(write, double.NegativeInfinity, offEffect));
+        Assert.Equal(119, t.BurstPulses(write + 0.0015, double.NegativeInfinity, offEffect));
+        var busy = write + 0.005;
+        var pulses = t.BurstPulses(write, busy, offEffect);
+        var firing = t.GateWireFreeAfter(write, busy, t.BurstCommand(pulses).Length) + t.GateProcessingSeconds;
+        Assert.True(firing + ((pulses - 1) / 1000.0) < offEffect, "its last pulse comes before the switch-off");
+        Assert.True(firing + (pulses / 1000.0) >= offEffect - 1e-9, "and no pulse more would have");
+
+        // A count whose line gains a digit is only taken if the longer line still fits.
+        Assert.Equal(9, t.BurstPulses(0, double.NegativeInfinity, t.BurstLeadSeconds(9) + 0.0095));
+        Assert.Null(t.RunTooLongForBurst(60_000 * 10));
+        Assert.Contains("more than the 1000000", t.RunTooLongForBurst(long.MaxValue / 4), StringComparison.Ordinal);
+    }
+
     [Fact]
     public void Timeline_ATravelLeftLate_MovesBothAxesEndsAndTheNextStrokeLater()
     {

@@ -19,17 +19,15 @@ public sealed class ResumeFaultTableTests(ITestOutputHelper output)
     private static readonly int[] StageAfter = [33, 100, 250];
     private static readonly string[] Kinds = ["drop-reply", "corrupt", "delay", "error", "silent", "disconnect", "no-ack"];
 
-    // Open (docs/execution.md, "Resume after a fault"): a garbled switch-on reply that ends the run between a flown gap's
-    // speed-up and its speed-down: X ran on at the travel speed, its stop does not match the motion, so the run burns
-    // again from its start with no pixel named, and the one the laser went off in is dosed twice.
-    private static readonly string[] Open = ["corrupt:gate:after=40"];
-
     public static TheoryData<string> Faults()
     {
         var data = new TheoryData<string>();
         foreach (var kind in Kinds)
         {
-            foreach (var after in GateAfter.Where(a => !Open.Contains(Spec(kind, "gate", a))))
+            // corrupt:gate:after=40 was left out until 2026-11-27: a garbled switch-on reply just after a flown gap's entry
+            // edge, where the stroke's time-to-place search landed in the gap, so the cut was put before the run and no
+            // pixel named (StrokePlan.OffsetAt).
+            foreach (var after in GateAfter)
             {
                 data.Add(Spec(kind, "gate", after));
             }
@@ -70,7 +68,7 @@ public sealed class ResumeFaultTableTests(ITestOutputHelper output)
         var resumed = await run.Do(() => run.Executor(job, new RunOptions { ResumeFrom = stop }).RunAsync(ct));
         var both = run.Analyze(job);
         var twice = DosedInBoth(job, first, both);
-        output.WriteLine($"{fault}: stop {stop}; first run {first.LaserOnTravelCount} pulses off the black; both runs: {both.ExtraPixels} extra, {both.MissingPixels} missing; dosed in both: {string.Join(" ", twice)}");
+        output.WriteLine($"{fault}: {failed.FaultMessage}; stop {stop}; first run {first.LaserOnTravelCount} pulses off the black; both runs: {both.ExtraPixels} extra, {both.MissingPixels} missing; dosed in both: {string.Join(" ", twice)}");
 
         Assert.Equal(RunOutcome.Completed, resumed.Outcome);
         Assert.True(both.Burned.ContentEquals(job.Mask), $"{both.ExtraPixels} extra, {both.MissingPixels} missing");

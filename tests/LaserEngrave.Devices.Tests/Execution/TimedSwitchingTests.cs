@@ -25,7 +25,9 @@ public class TimedSwitchingTests
         Assert.True(report.Burned.ContentEquals(job.Mask), $"{report.ExtraPixels} extra, {report.MissingPixels} missing");
         Assert.Equal(0, report.LaserOnTravelCount);
         Assert.Equal(0, report.Dwells!.Count);
-        Assert.InRange(report.Edges!.MeanErrorUm, 0, 1);
+        // The burst fires the pulses due before the planned switch-off, never the one more that the timed switch-off's own
+        // jitter let through half the time: exit edges lie a little further in (mean 0.96 µm before the burst, about 1.04 now).
+        Assert.InRange(report.Edges!.MeanErrorUm, 0, 1.1);
         Assert.InRange(report.Edges.MaxErrorUm, 0, 3);
         Assert.InRange(result.EngravingDuration.TotalSeconds, result.EstimatedEngravingSeconds * 0.99, result.EstimatedEngravingSeconds * 1.01);
 
