@@ -205,9 +205,7 @@ internal static class EngraveCommand
                 Layers = job is LayersJob layers ? layers.Parts.Select(l => (l.Layer.Name, l.Drawing is not null)).ToList() : null,
             };
             // The tolerance a late switch-on is judged by, as the profile gives it (docs/execution.md, "Late switchings").
-            stderr.WriteLine(string.Create(
-                CultureInfo.InvariantCulture,
-                $"preflight: edge tolerance {profile.EdgeToleranceUm:0.###} µm: a switch-on this computer sends later than that at the burn speed is not sent: that run stays unburned and the run goes on from it, laser off"));
+            stderr.WriteLine("preflight: " + RunSummaryText.EdgeTolerance(profile.EdgeToleranceUm));
             var wall = Stopwatch.StartNew();
             try
             {

@@ -31,6 +31,57 @@ public static class RunSummaryText
         };
     }
 
+    /// <summary>
+    /// The switchings sent late and the timing doubts the run went on from, in one line ("late switch-ons: 4 within the
+    /// 1.5 µm edge tolerance (latest 1.42 µm); went on after 2 timing doubts"), for where a run's outcome is read in a
+    /// glance (the app's last run and run history); null when there were none.
+    /// </summary>
+    public static string? Timing(RunRecord record)
+    {
+        ArgumentNullException.ThrowIfNull(record);
+        var late = LateSwitches(record.LateSwitches);
+        var wentOn = WentOnAfter(record.Recoveries?.Count ?? 0);
+        return (late, wentOn) switch
+        {
+            (null, null) => null,
+            (null, _) => wentOn,
+            (_, null) => "late " + late,
+            _ => $"late {late}; {wentOn}",
+        };
+    }
+
+    /// <summary>The switchings sent late, as the summary's "Late switches" line says them ("switch-ons: 4 within ..."); null when none.</summary>
+    public static string? LateSwitches(LateSwitches? late)
+    {
+        if (late is null || (late.Count == 0 && late.LateOffs == 0))
+        {
+            return null;
+        }
+
+        var c = CultureInfo.InvariantCulture;
+        var parts = new List<string>(2);
+        if (late.Count > 0)
+        {
+            parts.Add(string.Create(c, $"switch-ons: {late.Count} within the {late.ToleranceUm:0.###} µm edge tolerance (latest {late.LatestUm:0.##} µm)"));
+        }
+
+        if (late.LateOffs > 0)
+        {
+            parts.Add(string.Create(c, $"switch-offs: {late.LateOffs} (the burst had ended the run by itself)"));
+        }
+
+        return string.Join("; ", parts);
+    }
+
+    /// <summary>How many timing doubts the run went on from (each a "Went on after" line of the summary); null when none.</summary>
+    public static string? WentOnAfter(int recoveries) =>
+        recoveries <= 0 ? null : string.Create(CultureInfo.InvariantCulture, $"went on after {recoveries} timing doubt{(recoveries == 1 ? string.Empty : "s")}");
+
+    /// <summary>The profile's edge tolerance and what it does, as preflight says it (docs/execution.md, "Late switchings").</summary>
+    public static string EdgeTolerance(double toleranceUm) => string.Create(
+        CultureInfo.InvariantCulture,
+        $"edge tolerance {toleranceUm:0.###} µm: a switch-on this computer sends later than that at the burn speed is not sent: that run stays unburned and the run goes on from it, laser off");
+
     public static string Format(RunRecord record)
     {
         ArgumentNullException.ThrowIfNull(record);
@@ -120,6 +171,11 @@ public static class RunSummaryText
         if (record.HostPriority is { } priority)
         {
             Line("Host priority", priority);
+        }
+
+        if (LateSwitches(record.LateSwitches) is { } late)
+        {
+            Line("Late switches", late);
         }
 
         foreach (var recovery in record.Recoveries ?? [])

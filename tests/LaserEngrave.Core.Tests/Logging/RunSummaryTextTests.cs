@@ -98,6 +98,34 @@ public sealed class RunSummaryTextTests : IDisposable
         Assert.DoesNotContain("Passes:", text, StringComparison.Ordinal);
     }
 
+    [Fact]
+    public void Format_LateSwitchesAndRecoveries_CountsThemInOneLineAndTheTimingSaysBoth()
+    {
+        // Issue 22 item 3: late switches are counted and logged, in the summary as in the app's last run.
+        var record = runs.FailedRecord() with
+        {
+            LateSwitches = new LateSwitches(4, 1.4213, 1.5, 1),
+            Recoveries = [new RunRecovery(1, "x axis: switch-on 2.1 µm late", 40, 12), new RunRecovery(1, "x axis: reply late", 90, 20)],
+        };
+
+        var text = RunSummaryText.Format(record);
+
+        Assert.Contains("Late switches:      switch-ons: 4 within the 1.5 µm edge tolerance (latest 1.42 µm); switch-offs: 1 (the burst had ended the run by itself)\n", text, StringComparison.Ordinal);
+        Assert.Contains("Went on after:      pass 1, row 13 (move 40)", text, StringComparison.Ordinal);
+        Assert.Equal(
+            "late switch-ons: 4 within the 1.5 µm edge tolerance (latest 1.42 µm); switch-offs: 1 (the burst had ended the run by itself); went on after 2 timing doubts",
+            RunSummaryText.Timing(record));
+    }
+
+    [Fact]
+    public void Format_NoLateSwitches_HasNoLineAndNoTiming()
+    {
+        var record = runs.FailedRecord() with { LateSwitches = new LateSwitches(0, 0, 1.5), Recoveries = [] };
+
+        Assert.DoesNotContain("Late switches:", RunSummaryText.Format(record), StringComparison.Ordinal);
+        Assert.Null(RunSummaryText.Timing(record));
+    }
+
     [Theory]
     [InlineData(61.5, "1 min 01.5 s")]
     [InlineData(3723, "1 h 02 min 03 s")]
