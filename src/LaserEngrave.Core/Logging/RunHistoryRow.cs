@@ -54,8 +54,14 @@ public sealed record RunHistoryRow(
         return new RunHistoryRow(
             path, record.StartedAt, record.SampleId, source, kind, g.WidthMm, g.HeightMm, g.OriginXMm, g.OriginYMm, kind is "image" or "dots" ? g.PitchUm : null,
             record.Process.BurnSpeedMmPerS, record.Process.LaserFrequencyHz, record.Passes, record.Outcome, record.ActualSeconds,
-            record.EstimatedSeconds, record.Notes);
+            record.EstimatedSeconds, record.Notes)
+        {
+            Timing = RunSummaryText.Timing(record),
+        };
     }
+
+    /// <summary>The late switchings and timing doubts gone on from, as the summary says them (<see cref="RunSummaryText.Timing"/>); null when none.</summary>
+    public string? Timing { get; init; }
 
     /// <summary>The rows of every readable entry, in the entries' order (unreadable logs are left out: the history lists them with their error).</summary>
     public static IReadOnlyList<RunHistoryRow> From(IEnumerable<RunLogEntry> entries) =>

@@ -53,6 +53,17 @@ public sealed class MachinePanelTests : ComponentTest
     }
 
     [Fact]
+    public void Facts_ShowTheProfilesEdgeToleranceAsPreflightSaysIt()
+    {
+        var cut = Render<MachinePanel>(p => p.Add(c => c.Machine, Main.Machine));
+
+        Assert.StartsWith(
+            $"edge tolerance {Main.Machine.Profile.EdgeToleranceUm.ToString(System.Globalization.CultureInfo.InvariantCulture)} µm: a switch-on this computer sends later than that",
+            cut.Find("#machine-edge-tolerance").TextContent,
+            StringComparison.Ordinal);
+    }
+
+    [Fact]
     public void ListPorts_TwoFound_Named()
     {
         Machine.Factory.ListPorts().Returns(["COM3", "COM4"]);
@@ -129,6 +140,26 @@ public sealed class RunHistoryTests : ComponentTest
         Assert.Equal("/logs/a.json", Assert.Single(Main.Log.SelectedRows).Path);
         cut.Find("#history-close").Click();
         Assert.Empty(cut.FindAll("#history-overlay"));
+    }
+
+    [Fact]
+    public void History_RunWithLateSwitchesAndRecoveries_SaysThemUnderItsOutcomeOthersNot()
+    {
+        var image = TestFiles.Asset("qr-code.bmp");
+        var job = PreparedJob.Prepare(new JobSpec { ImagePath = image, Size = Core.Geometry.SizeSpec.Width(3) });
+        var record = RunRecord.ForJob(job, "0", DateTimeOffset.UnixEpoch) with { Outcome = RunOutcome.Completed };
+        Store.History().Returns(
+        [
+            new RunLogEntry("/logs/late.json", record with { LateSwitches = new LateSwitches(4, 1.42, 1.5), Recoveries = [new RunRecovery(1, "late", 40, 12), new RunRecovery(1, "late", 90, 20)] }, null),
+            new RunLogEntry("/logs/clean.json", record, null),
+        ]);
+        Main.Log.RefreshCommand.Execute(null);
+        var cut = Render<RunHistoryDialog>(p => p.Add(c => c.Log, Main.Log));
+
+        Assert.Equal(
+            "late switch-ons: 4 within the 1.5 µm edge tolerance (latest 1.42 µm); went on after 2 timing doubts",
+            cut.Find("tr[data-path='/logs/late.json'] .history-timing").TextContent);
+        Assert.Empty(cut.FindAll("tr[data-path='/logs/clean.json'] .history-timing"));
     }
 }
 
@@ -399,6 +430,26 @@ public sealed class LogPanelTests : ComponentTest
         cut.WaitForAssertion(() => Assert.Contains("B-7", cut.Find("#last-run").TextContent, StringComparison.Ordinal));
         Assert.Contains("format=json", cut.Find("#export-json").GetAttribute("href"), StringComparison.Ordinal);
         Assert.Contains(Uri.EscapeDataString("/logs/run.json"), cut.Find("#export-txt").GetAttribute("href"), StringComparison.Ordinal);
+        Assert.Empty(cut.FindAll("#last-run-timing"));
+    }
+
+    [Fact]
+    public void RunRecorded_LateSwitches_TheLastRunLineCountsThem()
+    {
+        OpenQr();
+        var record = RunRecord.ForJob(Main.Job.Job!, "hash", DateTimeOffset.UnixEpoch) with
+        {
+            Outcome = RunOutcome.Completed,
+            LateSwitches = new LateSwitches(4, 1.4213, 1.5),
+            Recoveries = [new RunRecovery(1, "switch-on later than the edge tolerance", 40, 12)],
+        };
+        var cut = Render<LogPanel>(p => p.Add(c => c.Log, Main.Log));
+
+        Main.Log.Record(record);
+
+        cut.WaitForAssertion(() => Assert.Equal(
+            "late switch-ons: 4 within the 1.5 µm edge tolerance (latest 1.42 µm); went on after 1 timing doubt",
+            cut.Find("#last-run #last-run-timing").TextContent));
     }
 
     [Fact]
