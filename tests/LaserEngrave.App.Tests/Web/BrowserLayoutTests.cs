@@ -23,11 +23,14 @@ public sealed class BrowserLayoutTests : BrowserTest
     public void Workspace_CommonWindowSizes_NoHorizontalScrolling()
     {
         OpenSample("text-banner.png");
-        foreach (var (width, height) in new[] { (1280, 720), (1920, 1080), (800, 600) })
+        foreach (var (width, height) in new[] { (1280, 720), (1920, 1080), (1000, 700), (800, 600) })
         {
             Resize(width, height);
             Assert.True(HorizontalOverflow() <= 0, $"at {width} x {height} the page scrolls sideways by {HorizontalOverflow()} px");
             Assert.True(Id("runbar").Displayed && Id("stage-canvas").Displayed);
+            // The log folder's Copy beside its path reads whole (it was cut to "C…" at 1280 wide).
+            var copyCut = Convert.ToInt64(Driver.ExecuteScript("var b = document.getElementById('copy-log-folder'); return b.scrollWidth - b.clientWidth;"), CultureInfo.InvariantCulture);
+            Assert.True(copyCut <= 0, $"at {width} x {height} the log folder's Copy is cut by {copyCut} px");
         }
     }
 
