@@ -5,6 +5,13 @@ namespace LaserEngrave.Simulator;
 /// <summary>How the simulated machine behaves where the hardware leaves a choice or the documentation is silent.</summary>
 public sealed record SimulatorOptions
 {
+    /// <summary>
+    /// The twin the front ends start from (the CLI's <c>--simulate</c> and <c>simulator</c>, the app's in-process
+    /// simulator): a host as late as a lab PC with other work on it (<see cref="Timing.HostLateness.Realistic"/>), so that
+    /// what a user sees does not flatter the host; an options file's <c>hostLateness</c> overrides it (zeros: never late).
+    /// </summary>
+    public static SimulatorOptions FrontEnd { get; } = new() { HostLateness = HostLateness.Realistic };
+
     /// <summary>Run on the wall clock (<see cref="TimeProvider.System"/>) instead of virtual time, e.g. for the app's live view.</summary>
     /// <remarks>A simulator attached to ports always runs on the wall clock: its host lives in real time in another process.</remarks>
     public bool RealTime { get; init; }
@@ -27,8 +34,13 @@ public sealed record SimulatorOptions
 
     /// <summary>
     /// How late the host's code wakes from each timed wait (in-process, virtual time only): a computer busy with other
-    /// work. None by default; <see cref="Timing.HostLateness.Realistic"/> is a lab PC with other work on it.
+    /// work. <see cref="Timing.HostLateness.Realistic"/> is a lab PC with other work on it, what the front ends start
+    /// from (<see cref="FrontEnd"/>).
     /// </summary>
+    /// <remarks>
+    /// None here, so that the library's own tests of the protocol (a single executor, which stops at its first switch-on
+    /// later than the edge tolerance) measure the protocol alone.
+    /// </remarks>
     public HostLateness HostLateness { get; init; } = HostLateness.None;
 
     /// <summary>The laser gate's time from a command's last byte to the Q-switch changing (and its reply leaving).</summary>

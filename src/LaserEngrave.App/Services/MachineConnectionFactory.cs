@@ -13,8 +13,8 @@ namespace LaserEngrave.App.Services;
 /// <param name="simulatorOptions">How the simulator runs; by default paced virtual time. Tests pass unpaced virtual time.</param>
 public sealed class MachineConnectionFactory(SimulatorOptions? simulatorOptions = null) : IMachineConnectionFactory
 {
-    /// <summary>The simulator the app opens: paced virtual time, so the page shows a run at the machine's pace.</summary>
-    public static SimulatorOptions DefaultSimulatorOptions { get; } = new() { Paced = true };
+    /// <summary>The simulator the app opens: the front ends' twin (a realistically late host) in paced virtual time, so the page shows a run at the machine's pace.</summary>
+    public static SimulatorOptions DefaultSimulatorOptions { get; } = SimulatorOptions.FrontEnd with { Paced = true };
 
     private readonly SimulatorOptions _simulatorOptions = simulatorOptions ?? DefaultSimulatorOptions;
 

@@ -63,10 +63,13 @@ internal sealed class MachineOptions
         Description = "With the simulator: the seed of its random draws (latency jitter); the same seed repeats a run exactly (default 1)",
     };
 
-    /// <summary>The simulator options the command line gives: the options file, then the seed and the faults over it.</summary>
+    /// <summary>
+    /// The simulator options the command line gives: the front ends' twin (a realistically late host), the options file
+    /// over it, then the seed and the faults over that.
+    /// </summary>
     internal static SimulatorOptions SimulatorOptions(ParseResult result, Option<string?> file, Option<int?> seed, string faultSpec)
     {
-        var options = new SimulatorOptions();
+        var options = LaserEngrave.Simulator.SimulatorOptions.FrontEnd;
         if (result.GetValue(file) is { } path)
         {
             options = SimulatorOptionsFile.Load(path, options);

@@ -16,11 +16,11 @@ public readonly record struct HostLateness(
     [property: JsonPropertyName("tailProbability")] double TailProbability,
     [property: JsonPropertyName("tailMs")] double TailMs)
 {
-    /// <summary>A host that wakes exactly on time (the twin's default: its figures are the protocol's alone).</summary>
+    /// <summary>A host that wakes exactly on time (the library's default, for tests of the protocol alone).</summary>
     public static HostLateness None => default;
 
     /// <summary>
-    /// A lab PC with other work on it: up to 0.5 ms late, one wait in a hundred up to 5 ms (the ports bench's busy loops
+    /// A lab PC with other work on it (the front ends' default, <see cref="SimulatorOptions.FrontEnd"/>): up to 0.5 ms late, one wait in a hundred up to 5 ms (the ports bench's busy loops
     /// gave 2 ms typical and tails of 6-14 ms: <c>"hostLateness"</c> raises it).
     /// </summary>
     public static HostLateness Realistic => new(0.5, 0.01, 5);

@@ -77,4 +77,25 @@ public class HostLatenessTests
             File.Delete(path);
         }
     }
+
+    [Theory]
+    [InlineData("""{ "seed": 3 }""", 0.5, 0.01, 5)]
+    [InlineData("""{ "hostLateness": { "typicalMs": 0, "tailProbability": 0, "tailMs": 0 } }""", 0, 0, 0)]
+    [InlineData("""{ "hostLateness": { "typicalMs": 2, "tailProbability": 0.05, "tailMs": 14 } }""", 2, 0.05, 14)]
+    public void FrontEnd_RealisticByDefault_TheFileOverridesItEitherWay(string json, double typicalMs, double tailProbability, double tailMs)
+    {
+        var path = Path.Combine(Path.GetTempPath(), $"sim-{Guid.NewGuid():N}.json");
+        try
+        {
+            File.WriteAllText(path, json);
+
+            Assert.Equal(HostLateness.Realistic, SimulatorOptions.FrontEnd.HostLateness);
+            Assert.True(new SimulatorOptions().HostLateness.IsNone, "the library's default stays never late, for tests of the protocol alone");
+            Assert.Equal(new HostLateness(typicalMs, tailProbability, tailMs), SimulatorOptionsFile.Load(path, SimulatorOptions.FrontEnd).HostLateness);
+        }
+        finally
+        {
+            File.Delete(path);
+        }
+    }
 }
