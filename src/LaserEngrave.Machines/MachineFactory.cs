@@ -1,6 +1,5 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Machine;
-using LaserEngrave.Devices.Serial;
 using LaserEngrave.Simulator;
 using LaserEngrave.Simulator.Burn;
 using LaserEngrave.Wire.Serial;
@@ -24,19 +23,7 @@ public static class MachineFactory
     /// </summary>
     public static OpenMachine OpenRecordablePorts(string stagePort, string laserPort, MachineProfile profile)
     {
-        ArgumentNullException.ThrowIfNull(profile);
-        var stageLink = SerialPortLink.Open(new SerialPortSettings(stagePort) { BaudRate = profile.StageBaudRate });
-        ISerialLink laserLink;
-        try
-        {
-            laserLink = SerialPortLink.Open(new SerialPortSettings(laserPort) { BaudRate = profile.Gate.BaudRate });
-        }
-        catch
-        {
-            stageLink.DisposeAsync().AsTask().GetAwaiter().GetResult();
-            throw;
-        }
-
+        var (stageLink, laserLink) = MachineSession.OpenLinks(stagePort, laserPort, profile);
         var stage = new RecordedLink(stageLink, stage: true);
         var laser = new RecordedLink(laserLink, stage: false);
         var description = $"stage {stagePort}, laser {laserPort}";

@@ -64,20 +64,25 @@ public sealed class MachineSession : IAsyncDisposable
         }
     }
 
-    private static MachineSession OpenRecorded(string stagePort, string laserPort, MachineProfile profile, WireRecorder recorder)
+    /// <summary>The stage's and the gate's serial ports, each at the profile's baud rate; the stage's is closed again if the gate's cannot open.</summary>
+    public static (ISerialLink Stage, ISerialLink Laser) OpenLinks(string stagePort, string laserPort, MachineProfile profile)
     {
+        ArgumentNullException.ThrowIfNull(profile);
         var stageLink = SerialPortLink.Open(new SerialPortSettings(stagePort) { BaudRate = profile.StageBaudRate });
-        ISerialLink laserLink;
         try
         {
-            laserLink = SerialPortLink.Open(new SerialPortSettings(laserPort) { BaudRate = profile.Gate.BaudRate });
+            return (stageLink, SerialPortLink.Open(new SerialPortSettings(laserPort) { BaudRate = profile.Gate.BaudRate }));
         }
         catch
         {
             stageLink.DisposeAsync().AsTask().GetAwaiter().GetResult();
             throw;
         }
+    }
 
+    private static MachineSession OpenRecorded(string stagePort, string laserPort, MachineProfile profile, WireRecorder recorder)
+    {
+        var (stageLink, laserLink) = OpenLinks(stagePort, laserPort, profile);
         var stage = new ZaberChain(new ZaberConnection(recorder.Wrap(stageLink, stage: true), TimeProvider.System), profile);
         var gate = new PicLaserGate(recorder.Wrap(laserLink, stage: false), profile.Gate, TimeProvider.System);
         return new MachineSession(stage, gate, TimeProvider.System, stagePort, laserPort, null);
