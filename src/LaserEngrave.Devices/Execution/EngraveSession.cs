@@ -40,7 +40,10 @@ public sealed class EngraveSession
     /// </summary>
     public const int MaxRecoveries = 3;
 
-    /// <summary>How many timing doubts a session goes on from in all.</summary>
+    /// <summary>
+    /// How many timing doubts a session goes on from in one pass (of one layer): a bound on a pass that would otherwise
+    /// go on for ever, counted per pass so that a job of many passes on a busy computer is not cut short by its length.
+    /// </summary>
     public const int MaxRecoveriesInAll = 100;
 
     /// <summary>A session that engraves <paramref name="job"/>: an image (raster or dots), a drawing, or a job of layers one layer after the other, each with its own process and passes, all in one log.</summary>
@@ -462,8 +465,9 @@ public sealed class EngraveSession
     private async Task<RunResult> RecoverAsync(PreparedLayer part, int pass, RunResult result, CancellationToken cancellationToken)
     {
         var atOnePlace = 0;
+        var inThisPass = 0;
         long? lastStop = null;
-        while (result is { Outcome: RunOutcome.Failed, Recoverable: true, StopPoint: { } stop } && _recoveries.Count < MaxRecoveriesInAll
+        while (result is { Outcome: RunOutcome.Failed, Recoverable: true, StopPoint: { } stop } && inThisPass++ < MaxRecoveriesInAll
             && (atOnePlace = lastStop is { } last && stop.MoveIndex <= last ? atOnePlace + 1 : 1) <= MaxRecoveries
             && !cancellationToken.IsCancellationRequested && !AbortRequested())
         {

@@ -4,6 +4,7 @@ using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Execution;
 using LaserEngrave.Simulator;
+using LaserEngrave.Simulator.Timing;
 using LaserEngrave.Simulator.Burn;
 
 namespace LaserEngrave.Devices.Tests.Execution;
@@ -248,6 +249,25 @@ public class EngraveSessionTests
         Assert.Equal(RunState.Failed, result.State);
         Assert.Equal(EngraveSession.MaxRecoveries, record.Recoveries!.Count);
         Assert.Contains("position query", record.Fault!.Message, StringComparison.Ordinal);
+        Assert.Equal((0L, 0), (record.Simulation!.ExtraPixels, record.Simulation.LaserOnTravelCount));
+        Assert.False(run.Machine.Gate.IsFiring);
+    }
+
+    [Fact(Timeout = 120_000)]
+    public async Task RunAsync_ManyPassesOnABusyComputer_GoesOnFromMoreDoubtsThanOnePassMayHaveAndCompletes()
+    {
+        // A late host gives the QR a few doubts a pass; 30 passes need more than MaxRecoveriesInAll in all, which once
+        // ended such a job at pass 28 although no pass came near the bound.
+        await using var run = SimulatedRun.Create(new SimulatorOptions { HostLateness = HostLateness.Realistic });
+        var job = TestJobs.FromAsset("qr-code.bmp", 5, new PlanOptions());
+        var log = new RecordingLog();
+
+        await Session(run, PreparedJob.Prepare(job.Spec with { Passes = 30 }, job.Image, job.Mask), log).RunAsync(null, TestContext.Current.CancellationToken);
+
+        var record = Assert.Single(log.Records);
+        Assert.True(record.Outcome == RunOutcome.Completed, $"{record.Outcome}: {record.Fault?.Message}");
+        Assert.InRange(record.Recoveries!.Count, EngraveSession.MaxRecoveriesInAll + 1, int.MaxValue);
+        Assert.All(record.Recoveries.GroupBy(r => r.Pass), pass => Assert.InRange(pass.Count(), 1, EngraveSession.MaxRecoveriesInAll));
         Assert.Equal((0L, 0), (record.Simulation!.ExtraPixels, record.Simulation.LaserOnTravelCount));
         Assert.False(run.Machine.Gate.IsFiring);
     }
