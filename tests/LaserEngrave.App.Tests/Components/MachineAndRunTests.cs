@@ -247,18 +247,24 @@ public sealed class RunBarTests : ComponentTest
         Assert.True(Disabled(cut.Find("#continue")));
     }
 
-    [Fact]
-    public async Task Start_PixelsMuchSmallerThanTheSpot_AsksOnceWithTheNumbers()
+    // The QR at a 5 µm pitch, connected, Start pressed: slow enough that a 5 µm pixel lasts the gate's switching time (a
+    // job the rules take), so only its pixels, much smaller than the spot, make Start ask.
+    private async Task<IRenderedComponent<RunBar>> StartSmallPixelJobAsync()
     {
         OpenQr();
         Main.Job.EditPitch(5);
-        // Slow enough that a 5 µm pixel lasts the gate's switching time: a job the rules take, only its pixels are fine.
         Main.Job.BurnSpeedMmPerS = 0.25;
         await ConnectAsync();
         var cut = RenderBar();
         cut.WaitForAssertion(() => Assert.False(Disabled(cut.Find("#start"))));
-
         cut.Find("#start").Click();
+        return cut;
+    }
+
+    [Fact]
+    public async Task Start_PixelsMuchSmallerThanTheSpot_AsksOnceWithTheNumbers()
+    {
+        var cut = await StartSmallPixelJobAsync();
 
         cut.WaitForAssertion(() => Assert.Contains("Its pixels of 5 µm are much smaller than the 20 µm laser spot, so each burns about 4 times wider", cut.Find("#start-question").TextContent, StringComparison.Ordinal));
         await Runs.DidNotReceive().RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>());
@@ -275,13 +281,7 @@ public sealed class RunBarTests : ComponentTest
     [Fact]
     public async Task StartAnyway_JobChangedWhileAsking_AsksAgainOrRefusesNeverStartsTheNewJobUnasked()
     {
-        OpenQr();
-        Main.Job.EditPitch(5);
-        Main.Job.BurnSpeedMmPerS = 0.25;
-        await ConnectAsync();
-        var cut = RenderBar();
-        cut.WaitForAssertion(() => Assert.False(Disabled(cut.Find("#start"))));
-        cut.Find("#start").Click();
+        var cut = await StartSmallPixelJobAsync();
         cut.WaitForAssertion(() => Assert.Contains("pixels of 5 µm", cut.Find("#start-question").TextContent, StringComparison.Ordinal));
 
         Main.Job.EditPitch(4);
