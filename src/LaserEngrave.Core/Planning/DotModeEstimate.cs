@@ -1,10 +1,11 @@
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Programs;
 
 namespace LaserEngrave.Core.Planning;
 
 /// <summary>What a dot-mode plan (<see cref="PlanMode.Dots"/>) costs: its dots and rows, and the time the executor takes, part by part.</summary>
 /// <remarks>
-/// <see cref="DotTiming"/> is the model, and the executor does exactly what it says: the start settings, then for each dot
+/// It adds up the steps of the plan's <see cref="DotProgram"/>, the ones the executor sends, by the model of <see cref="DotTiming"/>: the start settings, then for each dot
 /// after the first the step from the dot before (travel speed, commands and replies), and at every dot the settle time, the
 /// burst command, its acknowledgement and the wait for the burst's end; at the end the switch-off. The travel to the first
 /// dot is not part of the engraving (as in raster mode).
@@ -44,21 +45,21 @@ public sealed record DotModeEstimate
     /// <summary>Pulses the plan fires in all.</summary>
     public long Pulses => Dots * PulsesPerDot;
 
-    /// <summary>Adds up <paramref name="plan"/>'s dots in one pass.</summary>
-    public static DotModeEstimate For(DotPlan plan)
+    /// <summary>Adds up the steps of <paramref name="program"/> in one pass, as the executor runs them.</summary>
+    public static DotModeEstimate For(DotProgram program)
     {
-        ArgumentNullException.ThrowIfNull(plan);
-        var timing = plan.Timing;
+        ArgumentNullException.ThrowIfNull(program);
+        var timing = program.Timing;
         long dots = 0;
         var rows = 0;
         var lastRow = -1;
         double steps = 0, travel = 0;
-        Dot previous = default;
-        foreach (var dot in plan.Dots())
+        DotStep previous = default;
+        foreach (var dot in program.Steps())
         {
             if (dots > 0)
             {
-                steps += timing.StepSeconds(dot.X - previous.X, dot.Y - previous.Y);
+                steps += program.MoveSeconds(previous, dot);
                 travel += Math.Sqrt(Square(dot.X - previous.X) + Square(dot.Y - previous.Y));
             }
 
@@ -78,7 +79,7 @@ public sealed record DotModeEstimate
             AtDotSeconds = timing.AtDotSeconds,
             StepsSeconds = steps,
             StartEndSeconds = timing.StartSeconds + timing.OffRoundTripSeconds,
-            TravelLengthMm = StageUnits.MicrostepsToMm(travel, plan.Geometry.MicrostepUm),
+            TravelLengthMm = StageUnits.MicrostepsToMm(travel, program.MicrostepUm),
         };
 
         static double Square(double v) => v * v;

@@ -1,6 +1,7 @@
 using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
+using LaserEngrave.Core.Programs;
 
 namespace LaserEngrave.Core.Planning;
 
@@ -26,6 +27,8 @@ public readonly record struct Dot(long X, long Y, int Row);
 /// </remarks>
 public sealed class DotPlan
 {
+    private readonly int _speedData;
+
     public DotPlan(BitMask mask, JobGeometry geometry, ProcessSettings process, MachineProfile profile, PlanOptions? options = null)
     {
         ArgumentNullException.ThrowIfNull(mask);
@@ -44,7 +47,10 @@ public sealed class DotPlan
         PulsesPerDot = process.PulsesPerDot;
         DotPitchMicrosteps = process.DotPitchMicrosteps;
         Timing = new DotTiming(process, profile, geometry.MicrostepUm);
-        Estimate = DotModeEstimate.For(this);
+
+        // The speed the executor has always moved between dots at: the travel speed (the burn speed under a paper plan).
+        _speedData = StageUnits.SpeedData(process.SpeedMmPerS(MoveKind.Travel, Options.Strategy), geometry.MicrostepUm);
+        Estimate = DotModeEstimate.For(Program());
         Warnings = Timing.BurstProblem is { } problem
             ? [new JobWarning(JobWarningKind.BurstTooLongForTheWatchdog, problem + " (engraving is refused)")]
             : [];
@@ -74,6 +80,9 @@ public sealed class DotPlan
 
     /// <summary>The distance between dots along a run, µm (the pixel pitch when a dot sits on every pixel).</summary>
     public double DotSpacingUm => DotPitchMicrosteps > 0 ? DotPitchMicrosteps * Geometry.MicrostepUm : Geometry.PitchUm;
+
+    /// <summary>The device-unit program of this plan: every dot's target and burst, in order (what is sent, estimated and resumed).</summary>
+    public DotProgram Program() => new(this, _speedData);
 
     /// <summary>Every dot in order.</summary>
     public IEnumerable<Dot> Dots() => Dots(0);

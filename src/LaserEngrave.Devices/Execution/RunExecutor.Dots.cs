@@ -1,12 +1,13 @@
 using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Programs;
 using LaserEngrave.Wire.Scheduling;
 
 namespace LaserEngrave.Devices.Execution;
 
 /// <summary>Dot mode: stop at each dot, fire exactly N pulses with the gate's burst, move on only once the burst has surely ended.</summary>
 /// <remarks>
-/// The steps are those <see cref="DotTiming"/> models and <see cref="DotModeEstimate"/> adds up (docs/process.md, "Dot
-/// mode"). The laser fires only while the stage stands: a burst is sent after every axis has reported its arrival (and
+/// The steps are the plan's <see cref="DotProgram"/>, timed as <see cref="DotTiming"/> models and added up by
+/// <see cref="DotModeEstimate"/> (docs/process.md, "Dot mode"). The laser fires only while the stage stands: a burst is sent after every axis has reported its arrival (and
 /// the settle time), and the next move only after the burst's end. Each dot is a <see cref="MoveKind.Burn"/> of zero
 /// length in <see cref="MoveCompleted"/> and in the counters (runs = dots); a stop point's index is the first dot not fired.
 /// </remarks>
@@ -14,19 +15,20 @@ public sealed partial class RunExecutor
 {
     private async Task ExecuteDotsAsync(DotPlan plan, long firstIndex, CancellationToken token)
     {
-        var timing = plan.Timing;
+        var program = plan.Program();
+        var timing = program.Timing;
         // Every move between dots is a travel.
         await BeginEngravingAsync(firstIndex, Options.ResumeFrom?.Row ?? 0, token);
         var settle = TimeSpan.FromSeconds(timing.SettleSeconds);
         var index = firstIndex;
         var first = true;
-        foreach (var dot in plan.Dots(firstIndex))
+        foreach (var step in program.Steps(firstIndex))
         {
             lock (_lock)
             {
                 _moveIndex = index;
                 _currentIndex = index;
-                _moveRow = dot.Row;
+                _moveRow = step.Row;
             }
 
             await PauseIfAskedAsync(token);
@@ -34,18 +36,18 @@ public sealed partial class RunExecutor
             {
                 // Reaching the first dot (or the resume point's) is not part of the estimate.
                 var positioning = TimeProvider.GetTimestamp();
-                await MoveToAsync(dot.X, dot.Y, _travelSpeedData, token);
+                await MoveToAsync(step.X, step.Y, step.SpeedData, token);
                 _notEngraving += TimeProvider.GetElapsedTime(positioning);
                 first = false;
             }
             else
             {
-                await MoveToAsync(dot.X, dot.Y, _travelSpeedData, token);
+                await MoveToAsync(step.X, step.Y, step.SpeedData, token);
             }
 
             await PreciseDelay.DelayAsync(TimeProvider, settle, token);
-            await FireDotAsync(timing, token);
-            Completed(new Move(MoveKind.Burn, dot.X, dot.Y, dot.X, dot.Y, dot.Row), index);
+            await FireDotAsync(step, timing, token);
+            Completed(new Move(MoveKind.Burn, step.X, step.Y, step.X, step.Y, step.Row), index);
             index++;
         }
 
@@ -61,8 +63,8 @@ public sealed partial class RunExecutor
         }
     }
 
-    /// <summary>One burst at the stage's standing position; returns once the laser is surely off again.</summary>
-    private async Task FireDotAsync(DotTiming timing, CancellationToken token)
+    /// <summary>The step's burst at the stage's standing position; returns once the laser is surely off again.</summary>
+    private async Task FireDotAsync(DotStep step, DotTiming timing, CancellationToken token)
     {
         await _laserLock.WaitAsync();
         try
@@ -76,7 +78,7 @@ public sealed partial class RunExecutor
             }
 
             // Not cancelled: a reply arriving after a cancelled command would be taken for the next one's.
-            await Gate.BurstAsync(timing.PulsesPerDot, timing.FrequencyHz, CancellationToken.None);
+            await Gate.BurstAsync(step.Pulses, step.FrequencyHz, CancellationToken.None);
         }
         finally
         {
@@ -94,7 +96,7 @@ public sealed partial class RunExecutor
 
     /// <summary>Preflight's share of the estimate before the first dot: the exchanges, homing if it homed, and the travel to the dot.</summary>
     private double EstimateDotsPreparation(DotPlan plan, long firstIndex) =>
-        plan.Dots(firstIndex).Take(1).ToList() is [var first]
+        plan.Program().Steps(firstIndex).Take(1).ToList() is [var first]
             ? TimedSwitching.For(_process, _profile, plan.Geometry.MicrostepUm).PreparationSeconds(first.X, first.Y, _homed, from: (_x, _y))
             : 0;
 
@@ -114,30 +116,19 @@ public sealed partial class RunExecutor
             throw new PreflightException($"the resume point (row {resume.Row}, dot {resume.MoveIndex}) is not in this job's plan of {estimate.Dots} dots");
         }
 
-        // The time the dots before took, as the estimate counts it (the start settings included).
-        var before = plan.Timing.StartSeconds;
-        long index = 0;
-        Dot previous = default;
-        foreach (var dot in plan.Dots())
+        // The dots before, counted as the run counts them; their time as the estimate counts it (the start settings included).
+        var program = plan.Program();
+        foreach (var step in program.Steps().TakeWhile(s => s.Index < start))
         {
-            if (index == start)
-            {
-                break;
-            }
-
-            before += (index > 0 ? plan.Timing.StepSeconds(dot.X - previous.X, dot.Y - previous.Y) : 0) + plan.Timing.AtDotSeconds;
             _runsDone++;
-            if (dot.Row != _lastRow)
+            if (step.Row != _lastRow)
             {
                 _rowsDone += _lastRow >= 0 ? 1 : 0;
-                _lastRow = dot.Row;
+                _lastRow = step.Row;
             }
-
-            previous = dot;
-            index++;
         }
 
-        _estimateBefore = before;
+        _estimateBefore = program.SecondsBefore(start);
         return start;
     }
 }
