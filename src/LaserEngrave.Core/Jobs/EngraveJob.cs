@@ -1,4 +1,5 @@
 using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Programs;
 using LaserEngrave.Core.Sweeps;
 
 namespace LaserEngrave.Core.Jobs;
@@ -100,6 +101,9 @@ public sealed class DotJob : EngraveJob
     public PreparedJob Prepared { get; }
 
     public DotPlan Plan { get; }
+
+    /// <summary>What runs: every dot's target and burst in device units.</summary>
+    public DotProgram Program() => Plan.Program();
 }
 
 /// <summary>A drawing's paths burned as strokes, each axis streaming its speed.</summary>
@@ -112,6 +116,9 @@ public sealed class DrawingJob : EngraveJob
     }
 
     public PreparedDrawing Drawing { get; }
+
+    /// <summary>What runs: per stroke the travel to it and its axis commands and laser edges in device units.</summary>
+    public DrawingProgram Program() => Drawing.Schedule.Program();
 }
 
 /// <summary>Several images and drawings, each with its own process, passes and mode, run in order into one log.</summary>

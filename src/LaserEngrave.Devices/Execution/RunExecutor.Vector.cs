@@ -1,13 +1,14 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Programs;
 using LaserEngrave.Core.Vectors;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Zaber;
 
 namespace LaserEngrave.Devices.Execution;
 
-/// <summary>Vector jobs: each stroke of a <see cref="VectorSchedule"/> sent by time, both axes streaming their speeds, the laser switched by time.</summary>
+/// <summary>Vector jobs: each step of a drawing's <see cref="DrawingProgram"/> sent by time, both axes streaming their speeds, the laser switched by time.</summary>
 /// <remarks>
 /// Every command leaves so that it arrives when the schedule says (the adapter's latency and a frame ahead). Before the
 /// laser comes on, the stroke's position query must show the stage where the model has it, give or take the latencies;
@@ -24,35 +25,30 @@ public sealed partial class RunExecutor
     private int PrepareStrokes()
     {
         var schedule = Drawing!.Schedule;
+        var program = schedule.Program();
         var first = 0;
         if (Options.ResumeFrom is { } resume)
         {
-            if (resume.MoveIndex < 0 || resume.MoveIndex > schedule.Strokes.Count)
+            if (resume.MoveIndex < 0 || resume.MoveIndex > program.StrokeCount)
             {
-                throw new PreflightException($"the resume point (stroke {resume.MoveIndex}) is not in this drawing's {schedule.Strokes.Count} strokes");
+                throw new PreflightException($"the resume point (stroke {resume.MoveIndex}) is not in this drawing's {program.StrokeCount} strokes");
             }
 
             first = (int)resume.MoveIndex;
             _rowsDone = first;
-            _runsDone = first == 0 ? 0 : schedule.Strokes.Take(first).Count(s => IsLastOfPath(schedule, s.Index));
+            _runsDone = program.Steps().Take(first).Count(s => s.LastOfPath);
         }
 
         _estimateTotal = schedule.EstimatedSeconds;
-        _estimateBefore = schedule.EstimatedSeconds - schedule.SecondsFrom(first);
+        _estimateBefore = schedule.EstimatedSeconds - program.SecondsFrom(first);
         return first;
     }
 
     /// <summary>Preflight, homing if it homes, and the travel to the first stroke's run-up, as for images (<c>TimedSwitching.PreparationSeconds</c>).</summary>
-    private double EstimateDrawingPreparation(int firstStroke)
-    {
-        var strokes = Drawing!.Schedule.Strokes;
-        return firstStroke < strokes.Count
-            ? Drawing.Schedule.Timing.PreparationSeconds(strokes[firstStroke].RunUpStart.X, strokes[firstStroke].RunUpStart.Y, _homed, from: (_x, _y))
+    private double EstimateDrawingPreparation(int firstStroke) =>
+        Drawing!.Schedule.Program().Steps(firstStroke).Take(1).ToList() is [var step]
+            ? Drawing.Schedule.Timing.PreparationSeconds(step.Travel.To.X, step.Travel.To.Y, _homed, from: (_x, _y))
             : 0;
-    }
-
-    private static bool IsLastOfPath(VectorSchedule schedule, int index) =>
-        index + 1 >= schedule.Strokes.Count || schedule.Strokes[index + 1].PathIndex != schedule.Strokes[index].PathIndex;
 
     private void CheckDrawing(PreparedDrawing drawing)
     {
@@ -85,24 +81,25 @@ public sealed partial class RunExecutor
 
     private async Task ExecuteVectorAsync(PreparedDrawing drawing, int first, CancellationToken token)
     {
-        var schedule = drawing.Schedule;
-        var timing = schedule.Timing;
+        var program = drawing.Schedule.Program();
+        var timing = program.Timing;
         await BeginEngravingAsync(first, first, token);
         var travelWrite = double.NaN;
-        for (var k = first; k < schedule.Strokes.Count; k++)
+        foreach (var step in program.Steps(first))
         {
-            var stroke = schedule.Strokes[k];
+            var k = step.Index;
+            var travel = step.Travel;
             lock (_lock)
             {
                 _moveIndex = k;
                 _moveRow = k;
             }
 
-            if (k == first)
+            if (travel.From is null)
             {
                 // Reaching the first run-up (the plan's or the resume point's) is not part of the estimate.
                 var positioning = TimeProvider.GetTimestamp();
-                await MoveToAsync(stroke.RunUpStart.X, stroke.RunUpStart.Y, _travelSpeedData, token);
+                await MoveToAsync(travel.To.X, travel.To.Y, travel.SpeedData, token);
                 _notEngraving += TimeProvider.GetElapsedTime(positioning);
             }
             else
@@ -117,20 +114,19 @@ public sealed partial class RunExecutor
                 // Where a streamed axis rests depends on when each of its commands arrived (the latencies' spread), not on
                 // the model alone: it is moved to the run-up's start even when the model has it there already, so the
                 // stroke starts from a position the stage has reported (skipped, the spread added up stroke after stroke).
-                var before = schedule.Strokes[k - 1];
-                await MoveToAsync(stroke.RunUpStart.X, stroke.RunUpStart.Y, _travelSpeedData, token, (before.Streams(VectorAxis.X), before.Streams(VectorAxis.Y)));
+                await MoveToAsync(travel.To.X, travel.To.Y, travel.SpeedData, token, (travel.StreamedX, travel.StreamedY));
             }
 
             await DelayUntilAsync(RunSeconds + VectorReactionSeconds, token);
-            travelWrite = await VectorStrokeAsync(stroke, timing, token);
-            StrokeDone(schedule, stroke);
+            travelWrite = await VectorStrokeAsync(step.Stroke, timing, token);
+            StrokeDone(step);
         }
 
         await DelayUntilAsync(travelWrite, token);
         lock (_lock)
         {
-            _moveIndex = schedule.Strokes.Count;
-            _moveRow = schedule.Strokes.Count;
+            _moveIndex = program.StrokeCount;
+            _moveRow = program.StrokeCount;
         }
     }
 
@@ -143,7 +139,7 @@ public sealed partial class RunExecutor
         var offWrite = origin + stroke.LaserOffSeconds - timing.OffLeadSeconds;
         var events = new List<(double Write, int Order, Func<Task> Send)>();
         var due = new List<(Task Reply, double Due, string What)>();
-        var stall = (2 * timing.StageJitterSeconds) + (Options.StallMarginMs / 1000);
+        var stall = (2 * timing.StageJitterSeconds) + Units.MsToSeconds(Options.StallMarginMs);
         Task<long>? poll = null;
         IStageAxis? polled = null;
         Task? off = null;
@@ -283,13 +279,14 @@ public sealed partial class RunExecutor
         }
     }
 
-    private void StrokeDone(VectorSchedule schedule, VectorStroke stroke)
+    private void StrokeDone(DrawingStep step)
     {
+        var stroke = step.Stroke;
         RunProgress progress;
         lock (_lock)
         {
             _rowsDone++;
-            if (IsLastOfPath(schedule, stroke.Index))
+            if (step.LastOfPath)
             {
                 _runsDone++;
             }
