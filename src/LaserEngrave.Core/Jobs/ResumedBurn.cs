@@ -22,11 +22,11 @@ public static class ResumedBurn
         long index = 0;
         if (job.Dots is { } dots)
         {
-            foreach (var dot in dots.Dots())
+            // A dot run's stop point is the index of the program's first dot not fired.
+            foreach (var step in dots.Program().Steps())
             {
-                var column = Column(plan, dot.Row, dot.X, 0);
-                (index < stop.MoveIndex ? before : after)[column, dot.Row] = true;
-                index++;
+                var column = Column(plan, step.Row, step.X, 0);
+                (step.Index < stop.MoveIndex ? before : after)[column, step.Row] = true;
             }
         }
         else
