@@ -123,7 +123,10 @@ public sealed class DotTiming
             : null;
 
     /// <summary>The step from one dot to the next: Move Absolute of each moving axis (X first, Y right behind it on the shared line), the motions, and the replies.</summary>
-    public double StepSeconds(long dx, long dy)
+    /// <param name="dx">The X distance, microsteps.</param>
+    /// <param name="dy">The Y distance, microsteps.</param>
+    /// <param name="speedData">The Set Target Speed data the axes move at (the travel speed, or the burn speed of a paper plan).</param>
+    public double StepSeconds(long dx, long dy, int speedData)
     {
         dx = Math.Abs(dx);
         dy = Math.Abs(dy);
@@ -132,10 +135,11 @@ public sealed class DotTiming
             return 0;
         }
 
-        var x = dx == 0 ? 0 : FrameSeconds + Motion(dx);
-        var y = dy == 0 ? 0 : (dx == 0 ? FrameSeconds : 2 * FrameSeconds) + Motion(dy);
+        var speed = speedData == TravelSpeedData ? TravelSpeed : StageUnits.SpeedMicrostepsPerS(speedData);
+        var x = dx == 0 ? 0 : FrameSeconds + Motion(dx, speed);
+        var y = dy == 0 ? 0 : (dx == 0 ? FrameSeconds : 2 * FrameSeconds) + Motion(dy, speed);
         return StageAdapterSeconds + Math.Max(x, y) + FrameSeconds + StageAdapterSeconds;
     }
 
-    private double Motion(long distance) => new TrapezoidProfile(distance, TravelSpeed, Acceleration).Duration;
+    private double Motion(long distance, double speed) => new TrapezoidProfile(distance, speed, Acceleration).Duration;
 }

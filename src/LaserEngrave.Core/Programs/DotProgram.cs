@@ -48,7 +48,7 @@ public sealed class DotProgram
     }
 
     /// <summary>The step from one dot to the next as the motion model has it: the move's commands, motion and replies, s.</summary>
-    public double MoveSeconds(DotStep from, DotStep to) => Timing.StepSeconds(to.X - from.X, to.Y - from.Y);
+    public double MoveSeconds(DotStep from, DotStep to) => Timing.StepSeconds(to.X - from.X, to.Y - from.Y, to.SpeedData);
 
     /// <summary>What the dots before <paramref name="first"/> took by the estimate, the start settings included, s.</summary>
     public double SecondsBefore(long first)

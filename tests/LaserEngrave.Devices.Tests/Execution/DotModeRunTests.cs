@@ -74,11 +74,14 @@ public class DotModeRunTests
         Assert.Equal(job.Pulses.PulsesPerPixel!.Value, sim.PulsesPerPixel.Mean, 0.1);
     }
 
-    [Fact(Timeout = 120_000)]
-    public async Task Session_QrSampleTenPulsesADot_EstimateWithinTwoPercentOfTheTwin()
+    // A paper plan moves between dots at the burn speed: its estimate was 20 % short when it assumed the travel speed.
+    [Theory(Timeout = 120_000)]
+    [InlineData(PlanStrategy.Optimized)]
+    [InlineData(PlanStrategy.Paper)]
+    public async Task Session_QrSampleTenPulsesADot_EstimateWithinTwoPercentOfTheTwin(PlanStrategy strategy)
     {
         await using var run = SimulatedRun.Create();
-        var job = TestJobs.FromAsset("qr-code.bmp", 5, new PlanOptions(), Dots(10));
+        var job = TestJobs.FromAsset("qr-code.bmp", 5, new PlanOptions { Strategy = strategy }, Dots(10));
         var log = new RecordingLog();
 
         await Session(run, job, log).RunAsync(null, TestContext.Current.CancellationToken);
@@ -90,9 +93,14 @@ public class DotModeRunTests
         Assert.Equal(0L, sim.PulsesWhileMoving);
         var engraving = job.Statistics.EngravingSeconds;
         Assert.True(Math.Abs(record.EngravingSeconds - engraving) < 0.02 * engraving, $"engraving {record.EngravingSeconds:0.###} s against the estimate {engraving:0.###} s");
-        Assert.True(
-            Math.Abs(record.ActualSeconds - record.EstimatedSeconds) < 0.02 * record.EstimatedSeconds,
-            $"the whole run {record.ActualSeconds:0.###} s against the estimate {record.EstimatedSeconds:0.###} s");
+        if (strategy == PlanStrategy.Optimized)
+        {
+            // The homing and the move to the first dot are modelled at the travel speed only (a paper plan's, at the
+            // burn speed, is not: docs/process.md).
+            Assert.True(
+                Math.Abs(record.ActualSeconds - record.EstimatedSeconds) < 0.02 * record.EstimatedSeconds,
+                $"the whole run {record.ActualSeconds:0.###} s against the estimate {record.EstimatedSeconds:0.###} s");
+        }
     }
 
     [Fact(Timeout = 120_000)]
