@@ -178,9 +178,9 @@ public sealed class PlanEstimator
         ArgumentNullException.ThrowIfNull(step);
         var timeline = Timeline();
         var before = ElapsedSeconds;
-        for (var i = 0; i < step.MoveCount; i++)
+        foreach (ref readonly var move in step.Moves)
         {
-            var burn = step.MoveAt(i).Kind == MoveKind.Burn;
+            var burn = move.Kind == MoveKind.Burn;
             if (burn != LaserOn)
             {
                 LaserOn = burn;
@@ -205,9 +205,9 @@ public sealed class PlanEstimator
         ArgumentNullException.ThrowIfNull(step);
         var timing = _timing ?? throw new InvalidOperationException("only a timed program has strokes");
         var length = 0L;
-        for (var i = 0; i < moveCount; i++)
+        foreach (ref readonly var move in step.Moves[..moveCount])
         {
-            length += step.MoveAt(i).LengthX;
+            length += move.LengthX;
         }
 
         return Timeline().End + timing.MarginSeconds + (length / timing.BurnSpeed);

@@ -36,9 +36,9 @@ internal struct StatisticsVisitor : IRasterStepVisitor
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public void Stroke(StrokeStep stroke)
     {
-        for (var i = 0; i < stroke.MoveCount; i++)
+        foreach (ref readonly var move in stroke.Moves)
         {
-            Count(stroke.MoveAt(i));
+            Count(move);
         }
 
         _estimator.Stroke(stroke);

@@ -61,6 +61,9 @@ public sealed class StrokeStep
     /// <summary>When the last run's switch-off edge is crossed, s from the stroke's start (0 without a run).</summary>
     public double LastOffSeconds { get; private set; }
 
+    /// <summary>The plan's moves the stroke runs, in order.</summary>
+    public ReadOnlySpan<Move> Moves => _moves.AsSpan(0, MoveCount);
+
     /// <summary>The plan's <paramref name="i"/>-th move of the stroke.</summary>
     public Move MoveAt(int i) => (uint)i < (uint)MoveCount ? _moves[i] : throw new ArgumentOutOfRangeException(nameof(i));
 

@@ -1,4 +1,5 @@
 using System.Globalization;
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
@@ -512,7 +513,7 @@ public sealed partial class RunExecutor
             if (lateUm > _profile.EdgeToleranceUm || pulses < 1)
             {
                 throw Fault(
-                    string.Create(CultureInfo.InvariantCulture, $"this computer was {late * 1000:0.0} ms late to switch the laser on, {lateUm:0.0} µm at the burn speed, beyond the profile's edge tolerance of {_profile.EdgeToleranceUm:0.###} µm: the laser stayed off for that run"),
+                    string.Create(CultureInfo.InvariantCulture, $"this computer was {Units.SecondsToMs(late):0.0} ms late to switch the laser on, {lateUm:0.0} µm at the burn speed, beyond the profile's edge tolerance of {_profile.EdgeToleranceUm:0.###} µm: the laser stayed off for that run"),
                     recoverable: true);
             }
 
@@ -638,7 +639,7 @@ public sealed partial class RunExecutor
     private void Watch(Task reply, double expectedSeconds, string what, bool gate = false, string? axis = null, bool switchOff = false)
     {
         var jitter = gate ? _timing?.GateJitterSeconds : _timing?.StageJitterSeconds;
-        var deadline = expectedSeconds + ((jitter ?? 0) * 2) + (Options.StallMarginMs / 1000);
+        var deadline = expectedSeconds + ((jitter ?? 0) * 2) + Units.MsToSeconds(Options.StallMarginMs);
         var watched = new Watched(reply, deadline, what) { SwitchOff = switchOff };
         if (axis is not null)
         {
@@ -855,7 +856,7 @@ public sealed partial class RunExecutor
         }
         else if (!_laserOffConfirmed && _gateAliveAt > double.NegativeInfinity)
         {
-            offAt = _gateAliveAt + (_profile.Gate.WatchdogMs / 1000.0) - timing.GateJitterSeconds;
+            offAt = _gateAliveAt + Units.MsToSeconds(_profile.Gate.WatchdogMs) - timing.GateJitterSeconds;
             byWatchdog = true;
         }
         else
