@@ -4,6 +4,7 @@ using BenchmarkDotNet.Jobs;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
 using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Programs;
 
 namespace LaserEngrave.Benchmarks;
 
@@ -12,8 +13,9 @@ namespace LaserEngrave.Benchmarks;
 /// does it (optimized, timed switching): the rings (13 M moves, every gap flown) and the QR-like mask (460 k moves).
 /// </summary>
 /// <remarks>
-/// <see cref="Moves"/> generates every move; <see cref="Estimate"/> and <see cref="LowerBoundOnly"/> generate them and feed
-/// one consumer, so the difference to <see cref="Moves"/> is that consumer's cost; <see cref="Statistics"/> is the whole
+/// <see cref="Moves"/> generates every move; <see cref="Program"/> makes the program's steps from them (strokes planned);
+/// <see cref="Estimate"/> interprets that program and <see cref="LowerBoundOnly"/> feeds the moves to the bound, so the
+/// difference to the one before is that consumer's cost; <see cref="Statistics"/> is the whole
 /// pass `plan` makes. A fresh timing model each time, so that no answer is remembered from the iteration before.
 /// </remarks>
 [Config(typeof(Config))]
@@ -45,12 +47,22 @@ public class PlanningBenchmark
         return counter.Count;
     }
 
+    /// <summary>The program (travels and strokes, each stroke planned with its flown gaps) made from the moves, read by a counter.</summary>
+    [Benchmark]
+    public long Program()
+    {
+        var counter = default(StepCounter);
+        new RasterProgram(Plan(), _process).Visit(ref counter);
+        return counter.Count;
+    }
+
+    /// <summary>The program interpreted against the motion model, as the plan's estimate is made.</summary>
     [Benchmark]
     public double Estimate()
     {
-        var plan = Plan();
-        var estimator = new EstimatingVisitor(new PlanEstimator(_process, PlanStrategy.Optimized, _geometry.MicrostepUm, timing: plan.Timing));
-        plan.Visit(ref estimator);
+        var program = new RasterProgram(Plan(), _process);
+        var estimator = new EstimatingVisitor(new PlanEstimator(program));
+        program.Visit(ref estimator);
         estimator.Estimator.Finish();
         return estimator.Estimator.ElapsedSeconds;
     }
@@ -75,11 +87,26 @@ public class PlanningBenchmark
         public void Visit(in Move move) => Count++;
     }
 
-    private struct EstimatingVisitor(PlanEstimator estimator) : IMoveVisitor
+    private struct StepCounter : IRasterStepVisitor
+    {
+        public long Count;
+
+        public void Travel(in TravelStep travel) => Count++;
+
+        public void Stroke(StrokeStep stroke) => Count++;
+
+        public void Move(in MoveStep move) => Count++;
+    }
+
+    private readonly struct EstimatingVisitor(PlanEstimator estimator) : IRasterStepVisitor
     {
         public readonly PlanEstimator Estimator = estimator;
 
-        public readonly void Visit(in Move move) => Estimator.Add(move);
+        public void Travel(in TravelStep travel) => Estimator.Travel(travel);
+
+        public void Stroke(StrokeStep stroke) => Estimator.Stroke(stroke);
+
+        public void Move(in MoveStep move) => Estimator.Move(move);
     }
 
     private struct BoundingVisitor(LowerBound bound) : IMoveVisitor

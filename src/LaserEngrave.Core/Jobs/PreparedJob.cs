@@ -3,6 +3,7 @@ using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Core.Process;
+using LaserEngrave.Core.Programs;
 
 namespace LaserEngrave.Core.Jobs;
 
@@ -35,6 +36,10 @@ public sealed class PreparedJob
 
     /// <summary>The plan's figures; in dot mode the dot plan's (its engraving estimate <see cref="DotModeEstimate.TotalSeconds"/>).</summary>
     public PlanStatistics Statistics { get; }
+
+    /// <summary>The program of a raster pass of this job: what the executor sends and the estimate interprets.</summary>
+    /// <param name="timing">The timing model to plan strokes by (default: the plan's; a run that times itself with wider latencies gives its own).</param>
+    public RasterProgram Program(TimedSwitching? timing = null) => new(Plan, Spec.Process, Spec.Profile.Gate, timing);
 
     /// <summary>The dot plan in <see cref="PlanMode.Dots"/> (what the executor runs then); null in raster mode.</summary>
     public DotPlan? Dots { get; }

@@ -1,8 +1,8 @@
 using System.Globalization;
 using System.Runtime.CompilerServices;
-using System.Runtime.InteropServices;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Motion;
+using LaserEngrave.Core.Programs;
 
 namespace LaserEngrave.Core.Planning;
 
@@ -40,18 +40,8 @@ public sealed class PlanEstimator
     private int _xSpeedData;
     private int _ySpeedData;
 
-    // Timed switching: the stroke being added (length so far, time provisionally counted) and the last motion's peak speed.
+    // Timed switching: the motion model the strokes and travels are timed by.
     private MotionTimeline? _timeline;
-    private bool _inStroke;
-    private long _strokeLength;
-    private long _strokeRunUp;
-    private long _strokeLastOff;
-    private double _strokeStartGuess;
-    private readonly List<(long Exit, long Entry)> _strokeGaps = [];
-    private long _strokeGapStart = -1;
-
-    // Every stroke is planned into this one, so a plan of millions of strokes allocates nothing per stroke.
-    private readonly StrokePlan _stroke = new();
 
     /// <param name="process">Speeds, acceleration, frequency and baud rates.</param>
     /// <param name="strategy">The plan's strategy.</param>
@@ -74,9 +64,10 @@ public sealed class PlanEstimator
         _laserOnSeconds = (onCommand.Length + onReply.Length) * gateByteSeconds;
         _laserOffSeconds = (offCommand.Length + offReply.Length) * gateByteSeconds;
 
-        _accelerationMicrostepsPerS2 = StageUnits.AccelerationMicrostepsPerS2(StageUnits.AccelerationData(process.AccelerationMmPerS2, microstepUm));
-        _burnSpeedData = StageUnits.SpeedData(process.SpeedMmPerS(MoveKind.Burn, strategy), microstepUm);
-        _travelSpeedData = StageUnits.SpeedData(process.SpeedMmPerS(MoveKind.Travel, strategy), microstepUm);
+        var motion = MotionData.Of(process, strategy, microstepUm);
+        _burnSpeedData = motion.BurnSpeedData;
+        _travelSpeedData = motion.TravelSpeedData;
+        _accelerationMicrostepsPerS2 = StageUnits.AccelerationMicrostepsPerS2(motion.AccelerationData);
 
         _xSpeedData = _travelSpeedData;
         _ySpeedData = _travelSpeedData;
@@ -97,17 +88,31 @@ public sealed class PlanEstimator
 
     public long SpeedChanges { get; private set; }
 
-    /// <summary>Advances over one move; returns its time (laser command, speed changes and motion).</summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    /// <summary>An estimator that interprets <paramref name="program"/>'s steps against its motion model.</summary>
+    public PlanEstimator(RasterProgram program)
+        : this(Checked(program).Process, program.Strategy, program.MicrostepUm, program.Gate, program.Timing)
+    {
+    }
+
+    /// <summary>Advances over one move run step by step (the laser on for a burn, the strategy's speed); returns its time.</summary>
+    /// <exception cref="InvalidOperationException">The estimator times strokes (a timed program): give it the program's steps.</exception>
     public double Add(in Move move)
     {
         if (_timing is not null)
         {
-            return AddTimed(move, _timing);
+            throw new InvalidOperationException("a timed plan is estimated from its program's strokes and travels (RasterProgram)");
         }
 
+        var speedData = _strategy == PlanStrategy.Optimized && move.Kind == MoveKind.Travel ? _travelSpeedData : _burnSpeedData;
+        return Move(new MoveStep(move.Kind == MoveKind.Burn, move.X1, move.Y1, speedData, move, 0));
+    }
+
+    /// <summary>Advances over a plain move of a step-by-step program; returns its time (laser command, speed changes and motion).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    public double Move(in MoveStep step)
+    {
         var seconds = 0.0;
-        if (move.Kind == MoveKind.Burn)
+        if (step.LaserOn)
         {
             if (!LaserOn)
             {
@@ -123,9 +128,9 @@ public sealed class PlanEstimator
             LaserSwitches++;
         }
 
-        var speedData = _strategy == PlanStrategy.Optimized && move.Kind == MoveKind.Travel ? _travelSpeedData : _burnSpeedData;
-        var dx = move.LengthX;
-        var dy = move.LengthY;
+        var speedData = step.SpeedData;
+        var dx = step.Move.LengthX;
+        var dy = step.Move.LengthY;
         var motion = 0.0;
         if (dx != 0)
         {
@@ -144,14 +149,79 @@ public sealed class PlanEstimator
         return seconds;
     }
 
+    /// <summary>Advances over a travel of a timed program: a stop-go move of one or both axes on the motion model; returns its time.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    public double Travel(in TravelStep step)
+    {
+        var timeline = Timeline();
+        var before = ElapsedSeconds;
+        if (LaserOn)
+        {
+            LaserOn = false;
+            LaserSwitches++;
+        }
+
+        var speed = timeline.XSpeedData;
+        timeline.Travel(step.Move.LengthX, step.Move.LengthY);
+        SpeedChanges += speed != timeline.XSpeedData ? 1 : 0;
+        ElapsedSeconds = timeline.End;
+        return ElapsedSeconds - before;
+    }
+
+    /// <summary>
+    /// Advances over a stroke of a timed program: one move from rest to rest at the burn speed over its run-up, runs, flown
+    /// gaps and run-out, on the motion model; returns its time.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    public double Stroke(StrokeStep step)
+    {
+        ArgumentNullException.ThrowIfNull(step);
+        var timeline = Timeline();
+        var before = ElapsedSeconds;
+        foreach (ref readonly var move in step.Moves)
+        {
+            var burn = move.Kind == MoveKind.Burn;
+            if (burn != LaserOn)
+            {
+                LaserOn = burn;
+                LaserSwitches++;
+            }
+        }
+
+        var speed = timeline.XSpeedData;
+        timeline.Stroke(step.Plan, step.FirstEdgeSeconds, step.LastOffSeconds);
+        SpeedChanges += speed != timeline.XSpeedData ? 1 : 0;
+        ElapsedSeconds = timeline.End;
+        return ElapsedSeconds - before;
+    }
+
+    /// <summary>
+    /// The elapsed time after the first <paramref name="moveCount"/> moves of a stroke not yet ended, as a run that has done
+    /// them counts it: the stroke from a margin after the motion before, at the burn speed (its ramps and flown gaps are
+    /// settled when it ends). Adds nothing.
+    /// </summary>
+    public double Provisional(StrokeStep step, int moveCount)
+    {
+        ArgumentNullException.ThrowIfNull(step);
+        var timing = _timing ?? throw new InvalidOperationException("only a timed program has strokes");
+        var length = 0L;
+        foreach (ref readonly var move in step.Moves[..moveCount])
+        {
+            length += move.LengthX;
+        }
+
+        return Timeline().End + timing.MarginSeconds + (length / timing.BurnSpeed);
+    }
+
     /// <summary>Ends the run: switches the laser off if it is on; returns the time that took.</summary>
     public double Finish()
     {
         if (_timing is not null)
         {
+            // A stroke ends with its run's switch-off, taken into its time.
             LaserSwitches += LaserOn ? 1 : 0;
             LaserOn = false;
-            return _timeline is null ? 0 : EndStroke(_timing, _timeline);
+            return 0;
         }
 
         if (!LaserOn)
@@ -165,77 +235,16 @@ public sealed class PlanEstimator
         return _laserOffSeconds;
     }
 
-    // A stroke is one move from rest to rest at the burn speed over its run-up, runs, crossed gaps and run-out; a travel
-    // is a stop-go move of one or both axes; MotionTimeline says when each starts and ends.
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    private double AddTimed(in Move move, TimedSwitching timing)
+    private MotionTimeline Timeline()
     {
-        var before = ElapsedSeconds;
-        var timeline = _timeline ??= new MotionTimeline(timing, StartSeconds, timing.TravelSpeedData);
-        var burn = move.Kind == MoveKind.Burn;
-        if (burn != LaserOn)
-        {
-            LaserOn = burn;
-            LaserSwitches++;
-        }
-
-        if (move.Kind == MoveKind.Travel)
-        {
-            EndStroke(timing, timeline);
-            var speed = timeline.XSpeedData;
-            timeline.Travel(move.LengthX, move.LengthY);
-            SpeedChanges += speed != timeline.XSpeedData ? 1 : 0;
-            ElapsedSeconds = timeline.End;
-        }
-        else
-        {
-            if (!_inStroke)
-            {
-                _inStroke = true;
-                _strokeLength = 0;
-                _strokeRunUp = move.Kind == MoveKind.Overscan ? move.LengthX : 0;
-                _strokeLastOff = 0;
-                _strokeStartGuess = timeline.End + timing.MarginSeconds;
-                _strokeGaps.Clear();
-                _strokeGapStart = -1;
-            }
-
-            // Provisionally at the burn speed; the ramps, the flown gaps and the start are settled when the stroke ends.
-            if (burn && _strokeGapStart >= 0)
-            {
-                _strokeGaps.Add((_strokeGapStart, _strokeLength));
-            }
-
-            _strokeGapStart = !burn && _strokeLastOff == _strokeLength && _strokeLength > 0 ? _strokeLength : -1;
-            _strokeLength += move.LengthX;
-            if (burn)
-            {
-                _strokeLastOff = _strokeLength;
-            }
-
-            ElapsedSeconds = _strokeStartGuess + (_strokeLength / timing.BurnSpeed);
-        }
-
-        return ElapsedSeconds - before;
+        var timing = _timing ?? throw new InvalidOperationException("a step-by-step plan has no strokes or travels: its program is plain moves");
+        return _timeline ??= new MotionTimeline(timing, StartSeconds, timing.TravelSpeedData);
     }
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    private double EndStroke(TimedSwitching timing, MotionTimeline timeline)
+    private static RasterProgram Checked(RasterProgram program)
     {
-        if (!_inStroke)
-        {
-            return 0;
-        }
-
-        _inStroke = false;
-        var before = ElapsedSeconds;
-        var speed = timeline.XSpeedData;
-        var stroke = _stroke;
-        stroke.Replan(timing, _strokeLength, CollectionsMarshal.AsSpan(_strokeGaps));
-        timeline.Stroke(stroke, stroke.TimeAt(_strokeRunUp), stroke.TimeAt(_strokeLastOff));
-        SpeedChanges += speed != timeline.XSpeedData ? 1 : 0;
-        ElapsedSeconds = timeline.End;
-        return ElapsedSeconds - before;
+        ArgumentNullException.ThrowIfNull(program);
+        return program;
     }
 
     private double SetSpeed(ref int axisSpeedData, int wanted)

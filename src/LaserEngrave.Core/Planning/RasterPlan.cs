@@ -1,6 +1,7 @@
 using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
+using LaserEngrave.Core.Programs;
 
 namespace LaserEngrave.Core.Planning;
 
@@ -134,6 +135,10 @@ public sealed class RasterPlan
 
     /// <summary>Passes every move in order to <paramref name="visitor"/>; with a struct visitor nothing is allocated per move.</summary>
     public void Visit<TVisitor>(ref TVisitor visitor)
+        where TVisitor : IMoveVisitor => VisitRows(ref visitor);
+
+    /// <summary><see cref="Visit{TVisitor}(ref TVisitor)"/>; returns the number of rows visited.</summary>
+    internal int VisitRows<TVisitor>(ref TVisitor visitor)
         where TVisitor : IMoveVisitor
     {
         var planner = NewPlanner();
@@ -141,6 +146,8 @@ public sealed class RasterPlan
         {
             planner.PlanNextRow(ref visitor);
         }
+
+        return planner.VisitedRows;
     }
 
     /// <summary>The visited rows in order with the index and count of their moves (progress, and the move index to row map for resume).</summary>
@@ -166,14 +173,11 @@ public sealed class RasterPlan
     /// <param name="gate">The gate's command strings (default: <see cref="LaserGateProfile"/>'s defaults).</param>
     public PlanStatistics ComputeStatistics(ProcessSettings process, LaserGateProfile? gate = null)
     {
-        var visitor = new StatisticsVisitor(new PlanEstimator(process, Options.Strategy, Geometry.MicrostepUm, gate, Timing), new LowerBound(process, Geometry.MicrostepUm));
-        var planner = NewPlanner();
-        while (planner.NextRow < Mask.Height)
-        {
-            planner.PlanNextRow(ref visitor);
-        }
-
-        var statistics = visitor.Finish(planner.VisitedRows, Geometry.MicrostepUm);
+        // The estimate interprets the program the executor sends (Programs/RasterProgram), step by step.
+        var program = new RasterProgram(this, process, gate);
+        var visitor = new StatisticsVisitor(new PlanEstimator(program), new LowerBound(process, Geometry.MicrostepUm));
+        var rows = program.Visit(ref visitor);
+        var statistics = visitor.Finish(rows, Geometry.MicrostepUm);
         if (Timing is null || visitor.Start is not { } start)
         {
             return statistics;

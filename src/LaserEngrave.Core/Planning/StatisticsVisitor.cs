@@ -1,10 +1,11 @@
 using System.Runtime.CompilerServices;
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Programs;
 
 namespace LaserEngrave.Core.Planning;
 
-/// <summary>Adds up a plan's statistics move by move without allocating.</summary>
-internal struct StatisticsVisitor : IMoveVisitor
+/// <summary>Adds up a plan's statistics over its program's steps (each step's moves, and the step's time) without allocating.</summary>
+internal struct StatisticsVisitor : IRasterStepVisitor
 {
     private readonly PlanEstimator _estimator;
     private LowerBound _lowerBound;
@@ -26,8 +27,31 @@ internal struct StatisticsVisitor : IMoveVisitor
         _lowerBound = lowerBound;
     }
 
+    public void Travel(in TravelStep travel)
+    {
+        Count(travel.Move);
+        _estimator.Travel(travel);
+    }
+
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    public void Visit(in Move move)
+    public void Stroke(StrokeStep stroke)
+    {
+        foreach (ref readonly var move in stroke.Moves)
+        {
+            Count(move);
+        }
+
+        _estimator.Stroke(stroke);
+    }
+
+    public void Move(in MoveStep move)
+    {
+        Count(move.Move);
+        _estimator.Move(move);
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    private void Count(in Move move)
     {
         _moves++;
         Start ??= (move.X0, move.Y0);
@@ -48,7 +72,6 @@ internal struct StatisticsVisitor : IMoveVisitor
                 break;
         }
 
-        _estimator.Add(move);
         _lowerBound.Add(move);
     }
 

@@ -1,6 +1,7 @@
 using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Motion;
+using LaserEngrave.Core.Programs;
 
 namespace LaserEngrave.Core.Planning;
 
@@ -49,17 +50,15 @@ public sealed class TimedSwitching
         var latency = profile.Latency;
         var gate = profile.Gate;
         MicrostepUm = microstepUm;
-        BurnSpeedData = StageUnits.SpeedData(process.SpeedMmPerS(MoveKind.Burn, PlanStrategy.Optimized), microstepUm);
-        TravelSpeedData = StageUnits.SpeedData(process.SpeedMmPerS(MoveKind.Travel, PlanStrategy.Optimized), microstepUm);
-        AccelerationData = StageUnits.AccelerationData(process.AccelerationMmPerS2, microstepUm);
+        (BurnSpeedData, TravelSpeedData, AccelerationData) = MotionData.Of(process, PlanStrategy.Optimized, microstepUm);
         BurnSpeed = StageUnits.SpeedMicrostepsPerS(BurnSpeedData);
         TravelSpeed = StageUnits.SpeedMicrostepsPerS(TravelSpeedData);
         Acceleration = StageUnits.AccelerationMicrostepsPerS2(AccelerationData);
 
         var stageByte = BitsPerByte / process.StageBaudRate;
         FrameSeconds = FrameBytes * stageByte;
-        StageAdapterSeconds = latency.StageMs / 1000;
-        StageJitterSeconds = latency.StageJitterMs / 1000;
+        StageAdapterSeconds = Units.MsToSeconds(latency.StageMs);
+        StageJitterSeconds = Units.MsToSeconds(latency.StageJitterMs);
         StageCommandSeconds = StageAdapterSeconds + FrameSeconds;
         StageReplySeconds = FrameSeconds + StageAdapterSeconds;
 
@@ -72,7 +71,7 @@ public sealed class TimedSwitching
         // Every timed switch-on is a counted burst (docs/execution.md, "The burst"): the planning bounds (run-up, flown
         // gaps, shortest gap) take the longest burst a run across the whole X travel can need; each switch-on is then
         // timed by its own line's length.
-        var longestRun = profile.X.TravelMicrosteps / Math.Max(1, StageUnits.SpeedMicrostepsPerS(BurnSpeedData)) * Math.Max(1, frequency);
+        var longestRun = profile.X.TravelMicrosteps / Math.Max(1, BurnSpeed) * Math.Max(1, frequency);
         LongestBurstPulses = (int)Math.Clamp(Math.Ceiling(longestRun), 1, MaxBurstPulses);
         OnCommand = BurstCommand(LongestBurstPulses);
         OffCommand = gate.OffCommand + gate.LineTerminator;
@@ -80,11 +79,11 @@ public sealed class TimedSwitching
         var offReply = gate.AckPrefix + " " + gate.OffReply + gate.LineTerminator;
         var ping = gate.KeepAliveCommand + gate.LineTerminator;
         var pong = gate.AckPrefix + " " + gate.KeepAliveReply + gate.LineTerminator;
-        var gateAdapter = latency.GateMs / 1000;
-        var processing = latency.GateProcessingMs / 1000;
+        var gateAdapter = Units.MsToSeconds(latency.GateMs);
+        var processing = Units.MsToSeconds(latency.GateProcessingMs);
         _gateAdapterSeconds = gateAdapter;
         _gateProcessingSeconds = processing;
-        GateJitterSeconds = (latency.GateJitterMs + latency.GateProcessingJitterMs) / 1000;
+        GateJitterSeconds = Units.MsToSeconds(latency.GateJitterMs + latency.GateProcessingJitterMs);
         HalfPulseSeconds = 0.5 / Math.Max(1, frequency);
         OnLeadSeconds = gateAdapter + (OnCommand.Length * gateByte) + processing;
         OffLeadSeconds = gateAdapter + (OffCommand.Length * gateByte) + processing;
@@ -230,7 +229,7 @@ public sealed class TimedSwitching
         var pulses = Math.Ceiling(lengthMicrosteps / BurnSpeed * FrequencyHz);
         return pulses <= MaxBurstPulses ? null : string.Create(
             CultureInfo.InvariantCulture,
-            $"a burn run of {lengthMicrosteps * MicrostepUm / 1000:0.###} mm at the burn speed is {pulses:0} pulses at {FrequencyHz} Hz, more than the {MaxBurstPulses} the laser gate counts in one burst: burn faster, at a lower frequency, or split the run");
+            $"a burn run of {Units.StepsToMm(lengthMicrosteps, MicrostepUm):0.###} mm at the burn speed is {pulses:0} pulses at {FrequencyHz} Hz, more than the {MaxBurstPulses} the laser gate counts in one burst: burn faster, at a lower frequency, or split the run");
     }
 
     private string BurstReply(int pulses) =>
@@ -335,10 +334,10 @@ public sealed class TimedSwitching
         }
 
         var pixelUm = pixelMicrosteps * MicrostepUm;
-        var slowest = pixelUm / 1000 / needed;
+        var slowest = Units.UmToMm(pixelUm) / needed;
         return string.Create(
             CultureInfo.InvariantCulture,
-            $"at a pitch of {pitchUm:0.###} µm a pixel lasts {seconds * 1000:0.#} ms at the burn speed, shorter than the {needed * 1000:0.#} ms the laser gate needs to switch it exactly: burn at {slowest:0.###} mm/s or slower, or use a coarser pitch");
+            $"at a pitch of {pitchUm:0.###} µm a pixel lasts {Units.SecondsToMs(seconds):0.#} ms at the burn speed, shorter than the {Units.SecondsToMs(needed):0.#} ms the laser gate needs to switch it exactly: burn at {slowest:0.###} mm/s or slower, or use a coarser pitch");
     }
 
     /// <summary>The built-in model for a process on a profile at the geometry's microstep.</summary>

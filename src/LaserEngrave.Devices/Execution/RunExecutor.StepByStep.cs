@@ -4,6 +4,7 @@ using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Motion;
 using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Programs;
 using LaserEngrave.Core.Vectors;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Scheduling;
@@ -37,13 +38,14 @@ public sealed partial class RunExecutor
         (_xSpeedData, _ySpeedData) = (_travelSpeedData, _travelSpeedData);
     }
 
-    private async Task ExecuteAsync(IEnumerable<Move> moves, long firstIndex, CancellationToken token)
+    private async Task ExecuteAsync(IEnumerable<RasterStep> steps, long firstIndex, CancellationToken token)
     {
         await BeginEngravingAsync(firstIndex, Options.ResumeFrom?.Row ?? 0, token);
         var index = firstIndex;
         var first = true;
-        foreach (var move in moves)
+        foreach (var step in steps)
         {
+            var (move, moveIndex) = (step.Move.Move, step.Move.MoveIndex);
             if (first)
             {
                 // Reaching the plan's (or the resume point's) first position is not part of the estimate.
@@ -55,16 +57,16 @@ public sealed partial class RunExecutor
 
             lock (_lock)
             {
-                _moveIndex = index;
-                _currentIndex = index;
+                _moveIndex = moveIndex;
+                _currentIndex = moveIndex;
                 _moveRow = move.Row;
                 _currentMove = move;
             }
 
             await PauseIfAskedAsync(token);
-            await ExecuteMoveAsync(move, token);
-            Completed(move, index);
-            index++;
+            await ExecuteMoveAsync(step.Move, token);
+            Completed(move, moveIndex);
+            index = moveIndex + 1;
         }
 
         lock (_lock)
@@ -80,108 +82,49 @@ public sealed partial class RunExecutor
         }
     }
 
-    /// <summary>The moves to execute and the index of the first; for a resumed run also the counters and estimates of what was done before.</summary>
+    /// <summary>The program's steps to execute and the index of the first move; for a resumed run also the counters and estimates of what was done before.</summary>
     /// <exception cref="PreflightException">The resume point is not in this job's plan.</exception>
-    private (IEnumerable<Move> Moves, long FirstIndex) Prepare()
+    private (IEnumerable<RasterStep> Steps, long FirstIndex) Prepare()
     {
-        var plan = Job!.Plan;
-        var microstepUm = plan.Geometry.MicrostepUm;
-        var strategy = plan.Options.Strategy;
-        _estimator = new PlanEstimator(_process, strategy, microstepUm, _profile.Gate, plan.Timing);
-        if (Options.ResumeFrom is not { } resume)
+        // The run's own timing model plans its strokes (wider latencies when preflight found them); the estimate is the plan's.
+        var program = Job!.Program(_timing);
+        var estimated = Job.Program();
+        _estimator = program.Timing is null ? new PlanEstimator(estimated) : null;
+        if (Options.ResumeFrom is not { } stop)
         {
             _estimateTotal = Job.Statistics.EngravingSeconds;
-            return (plan.Moves(), 0);
+            return (program.Steps(), 0);
         }
 
-        // A burn run is resumed with its run-up, as it was planned; one cut off midway, from its first pixel not
-        // completely burned (the stroke then gets its run-up before that edge).
-        var start = resume.MoveIndex;
-        long index = 0;
-        Move? previous = null;
-        Move? trimmed = null;
-        foreach (var move in plan.Moves())
+        RasterResume resume;
+        try
         {
-            if (index == resume.MoveIndex)
-            {
-                if (_resumeX is { } x)
-                {
-                    var dir = Math.Sign(move.X1 - move.X0);
-                    if (move.Kind != MoveKind.Burn || (x - move.X0) * dir <= 0 || (move.X1 - x) * dir <= 0)
-                    {
-                        throw new PreflightException($"the resume point (row {resume.Row}, move {resume.MoveIndex}, X {x}) is not inside a burn run of this job's plan");
-                    }
-
-                    trimmed = move with { X0 = x };
-                }
-                else if (move.Kind == MoveKind.Burn && previous is { Kind: MoveKind.Overscan } runUp && runUp.Row == move.Row)
-                {
-                    start--;
-                }
-
-                break;
-            }
-
-            previous = move;
-            index++;
+            resume = program.ResumeAt(stop, _resumeX);
         }
-
-        // What was done before the resume point, where its row starts, and the estimate of what is left.
-        var before = new PlanEstimator(_process, strategy, microstepUm, _profile.Gate, plan.Timing);
-        var remaining = new PlanEstimator(_process, strategy, microstepUm, _profile.Gate, plan.Timing);
-        long rowStart = -1;
-        index = 0;
-        foreach (var move in plan.Moves())
+        catch (PlanException ex)
         {
-            if (rowStart < 0 && move.Row >= resume.Row)
-            {
-                rowStart = index;
-            }
-
-            if (index < start)
-            {
-                before.Add(move);
-                _runsDone += move.Kind == MoveKind.Burn ? 1 : 0;
-                if (move.Row != _lastRow)
-                {
-                    _rowsDone += _lastRow >= 0 ? 1 : 0;
-                    _lastRow = move.Row;
-                }
-            }
-            else
-            {
-                remaining.Add(move);
-            }
-
-            index++;
+            throw new PreflightException(ex.Message);
         }
 
-        remaining.Finish();
-        if (start < 0 || start > index || (start < index && (rowStart < 0 || rowStart > start)))
-        {
-            throw new PreflightException($"the resume point (row {resume.Row}, move {resume.MoveIndex}) is not in this job's plan of {index} moves");
-        }
-
-        _estimateBefore = before.ElapsedSeconds - before.StartSeconds;
-        _estimateTotal = _estimateBefore + remaining.ElapsedSeconds;
-        if (start == index)
-        {
-            return ([], index);
-        }
-
-        var moves = plan.Moves(resume.Row).Skip(checked((int)(start - rowStart)));
-        return (trimmed is { } first ? moves.Skip(1).Prepend(first) : moves, start);
+        _runsDone = resume.RunsBefore;
+        _rowsDone = resume.RowsBefore;
+        _lastRow = resume.LastRowBefore;
+        var (before, remaining) = estimated.EstimateResumed(resume);
+        _estimateBefore = before;
+        _estimateTotal = _estimateBefore + remaining;
+        return (program.Steps(resume), resume.FirstMoveIndex);
     }
 
     /// <summary>The estimate of what preflight did and the travel to the first move will take, as the plan's figure is made.</summary>
-    private double EstimatePreparation(IEnumerable<Move> moves) =>
-        Job?.Plan.Timing is { } timing && moves.Take(1).ToList() is [var first]
-            ? timing.PreparationSeconds(first.X0, first.Y0, _homed, from: (_x, _y))
+    private double EstimatePreparation(IEnumerable<RasterStep> steps) =>
+        Job?.Plan.Timing is { } timing && steps.Take(1).ToList() is [var first]
+            ? timing.PreparationSeconds(first.FirstMove.X0, first.FirstMove.Y0, _homed, from: (_x, _y))
             : 0;
 
-    private async Task ExecuteMoveAsync(Move move, CancellationToken token)
+    private async Task ExecuteMoveAsync(MoveStep step, CancellationToken token)
     {
-        var burn = move.Kind == MoveKind.Burn;
+        var move = step.Move;
+        var burn = step.LaserOn;
 
         // Off before anything else, so the laser never stands still on while speeds are set.
         if (!burn && _laserOn)
@@ -190,7 +133,7 @@ public sealed partial class RunExecutor
         }
 
         // Speeds before switching on, for the same reason (docs/simulator.md: dwell).
-        var speedData = burn || move.Kind == MoveKind.Overscan ? _burnSpeedData : _travelSpeedData;
+        var speedData = step.SpeedData;
         await SetSpeedsAsync(move.LengthX != 0, move.LengthY != 0, speedData, token);
         if (burn && !_laserOn)
         {
@@ -205,7 +148,7 @@ public sealed partial class RunExecutor
             _keepAlive!.QuietFrom = TimeProvider.GetTimestamp() + (long)(quietAfterSeconds * TimeProvider.TimestampFrequency);
         }
 
-        await MoveAxesAsync(move.LengthX != 0 ? move.X1 : null, move.LengthY != 0 ? move.Y1 : null, token);
+        await MoveAxesAsync(move.LengthX != 0 ? step.X : null, move.LengthY != 0 ? step.Y : null, token);
     }
 
     /// <summary>A travel to (<paramref name="x"/>, <paramref name="y"/>); an axis already there is left alone unless <paramref name="unsure"/> says its position is the model's, not a reply's.</summary>

@@ -1,7 +1,9 @@
 using System.Globalization;
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Programs;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Zaber;
 using LaserEngrave.Wire.Scheduling;
@@ -52,38 +54,39 @@ public sealed partial class RunExecutor
 
     private double RunSeconds => TimeProvider.GetElapsedTime(_engravingStart).TotalSeconds;
 
-    private async Task ExecuteTimedAsync(IEnumerable<Move> moves, long firstIndex, TimedSwitching timing, CancellationToken token)
+    private async Task ExecuteTimedAsync(IEnumerable<RasterStep> steps, long firstIndex, TimedSwitching timing, CancellationToken token)
     {
         _queuedUpTo = firstIndex - 1;
         await BeginEngravingAsync(firstIndex, Options.ResumeFrom?.Row ?? 0, token);
         MotionTimeline? timeline = null;
-        foreach (var segment in Segments(moves, firstIndex, timing))
+        foreach (var step in steps)
         {
             if (timeline is null)
             {
-                // Reaching the first segment's start (the plan's or the resume point's) is not part of the estimate.
+                // Reaching the first step's start (the plan's or the resume point's) is not part of the estimate.
                 var positioning = TimeProvider.GetTimestamp();
-                await MoveToAsync(segment.StartX, segment.StartY, _travelSpeedData, token);
+                var (startX, startY) = step.Stroke is { } first ? (first.StartX, first.Y) : (step.Travel.Move.X0, step.Travel.Move.Y0);
+                await MoveToAsync(startX, startY, _travelSpeedData, token);
                 _notEngraving += TimeProvider.GetElapsedTime(positioning);
                 timeline = new MotionTimeline(timing, RunSeconds, _xSpeedData);
             }
 
             if (IsPauseRequested)
             {
-                // Pauses come between segments, with the laser off and the stage at rest.
+                // Pauses come between steps, with the laser off and the stage at rest.
                 await WatchedRepliesAsync(token);
                 CompleteAcknowledged();
                 await PauseIfAskedAsync(token);
                 timeline = new MotionTimeline(timing, RunSeconds, _xSpeedData);
             }
 
-            if (segment.Stroke)
+            if (step.Stroke is { } stroke)
             {
-                await StrokeAsync(segment, timing, timeline, token);
+                await StrokeAsync(stroke, timing, timeline, token);
             }
             else
             {
-                await TravelAsync(segment, timing, timeline, token);
+                await TravelAsync(step.Travel, timing, timeline, token);
             }
         }
 
@@ -112,78 +115,12 @@ public sealed partial class RunExecutor
         }
     }
 
-    /// <summary>The plan's moves as strokes (runs with their run-ups, crossed gaps and run-outs) and travels.</summary>
-    private IEnumerable<Segment> Segments(IEnumerable<Move> moves, long firstIndex, TimedSwitching timing)
+    private async Task StrokeAsync(StrokeStep stroke, TimedSwitching timing, MotionTimeline timeline, CancellationToken token)
     {
-        var index = firstIndex;
-        List<(Move Move, long Index)>? stroke = null;
-        foreach (var move in moves)
-        {
-            if (move.Kind == MoveKind.Travel)
-            {
-                if (stroke is not null)
-                {
-                    yield return StrokeSegment(stroke, timing);
-                    stroke = null;
-                }
-
-                yield return new Segment(false, [(move, index)], move.X0, move.Y0, move.X1, move.Y1);
-            }
-            else if (stroke is not null && (stroke[^1].Move.Row != move.Row || stroke[^1].Move.X1 != move.X0 || stroke[^1].Move.Y1 != move.Y0
-                     || Math.Sign(stroke[^1].Move.X1 - stroke[^1].Move.X0) != Math.Sign(move.X1 - move.X0)))
-            {
-                yield return StrokeSegment(stroke, timing);
-                stroke = [(move, index)];
-            }
-            else
-            {
-                (stroke ??= []).Add((move, index));
-            }
-
-            index++;
-        }
-
-        if (stroke is not null)
-        {
-            yield return StrokeSegment(stroke, timing);
-        }
-    }
-
-    // A stroke starts a run-up before its first edge (when its first move is shorter, e.g. when resuming mid-row), within the travel.
-    private Segment StrokeSegment(List<(Move Move, long Index)> moves, TimedSwitching timing)
-    {
-        var first = moves[0].Move;
-        var last = moves[^1].Move;
-        var dir = Math.Sign(last.X1 - first.X0);
-        var startX = first.X0;
-        var firstBurn = moves.FirstOrDefault(m => m.Move.Kind == MoveKind.Burn);
-        // The plan's run-up, also when the run times itself with wider latencies (RunOptions.LatencyScale): the travels
-        // before the strokes end where the plan put them.
-        var runUp = Job!.Plan.Timing?.RunUpMicrosteps ?? timing.RunUpMicrosteps;
-        if (firstBurn.Move.Kind == MoveKind.Burn && Math.Abs(firstBurn.Move.X0 - first.X0) < runUp)
-        {
-            startX = Math.Clamp(firstBurn.Move.X0 - (dir * runUp), 0, Job!.Plan.Geometry.TravelXMicrosteps);
-        }
-
-        return new Segment(true, moves, startX, first.Y0, last.X1, last.Y1);
-    }
-
-    private async Task StrokeAsync(Segment segment, TimedSwitching timing, MotionTimeline timeline, CancellationToken token)
-    {
-        var length = Math.Abs(segment.EndX - segment.StartX);
-        var burns = segment.Moves.Where(m => m.Move.Kind == MoveKind.Burn).ToList();
-        long Distance(long x) => Math.Abs(x - segment.StartX);
-        var gaps = new List<(long Exit, long Entry)>();
-        for (var i = 1; i < burns.Count; i++)
-        {
-            gaps.Add((Distance(burns[i - 1].Move.X1), Distance(burns[i].Move.X0)));
-        }
-
-        var plan = timing.Stroke(length, gaps);
-        double Offset(long x) => plan.TimeAt(Distance(x));
-        var firstEdge = burns.Count > 0 ? Offset(burns[0].Move.X0) : 0;
-        var lastOff = burns.Count > 0 ? Offset(burns[^1].Move.X1) : 0;
-        var times = timeline.Stroke(plan, firstEdge, lastOff);
+        var plan = stroke.Plan;
+        double Offset(long x) => stroke.TimeAt(x);
+        long Distance(long x) => stroke.Distance(x);
+        var times = timeline.Stroke(plan, stroke.FirstEdgeSeconds, stroke.LastOffSeconds);
 
         var speedWritten = double.NegativeInfinity;
         if (times.SpeedArrival is { } speedArrival)
@@ -205,8 +142,8 @@ public sealed partial class RunExecutor
             times = times with { Arrival = arrival, End = times.End + (arrival - times.Arrival) };
         }
 
-        var start = segment.StartX;
-        var active = new ActiveStroke(start, Math.Sign(segment.EndX - start), segment.EndX, plan) { Origin = times.Arrival };
+        var start = stroke.StartX;
+        var active = new ActiveStroke(start, stroke.Direction, stroke.EndX, plan) { Origin = times.Arrival };
         lock (_lock)
         {
             _activeStroke = active;
@@ -215,21 +152,21 @@ public sealed partial class RunExecutor
         // Settled replies need no more looking at (their watchers report any fault): the list stays short.
         _watched.RemoveAll(w => w.Reply.IsCompletedSuccessfully || (w.Successor?.Reply.IsCompletedSuccessfully ?? false));
         var earlier = _watched.ToList();
-        var move = Stage.X.MoveAbsoluteAfterAsync(segment.EndX, token);
-        Watch(Arrive(move, "X", segment.EndX, x => _x = x), times.End + timing.StageReplySeconds, "the end of a stroke (X)", axis: "X");
+        var move = Stage.X.MoveAbsoluteAfterAsync(stroke.EndX, token);
+        Watch(Arrive(move, "X", stroke.EndX, x => _x = x), times.End + timing.StageReplySeconds, "the end of a stroke (X)", axis: "X");
         var strokeEnd = _lastMove["X"];
         var strokeEndDeadline = strokeEnd.Deadline;
-        var poll = burns.Count > 0 ? Stage.X.GetPositionAsync(token) : null;
-        var direction = Math.Sign(segment.EndX - start);
+        var poll = stroke.RunCount > 0 ? Stage.X.GetPositionAsync(token) : null;
+        var direction = stroke.Direction;
 
         // Where the position queries after flown gaps found the stage ahead (-) or behind (+) its plan, as time at the burn speed.
         var shift = 0.0;
         (StrokePlan.Bump Bump, FlownQuery Query)? flown = null;
         var bumps = plan.Bumps.ToDictionary(b => b.Exit);
         var index = 0;
-        for (var k = 0; k < burns.Count; k++)
+        for (var k = 0; k < stroke.RunCount; k++)
         {
-            var (burn, burnIndex) = burns[k];
+            var (burn, burnIndex) = stroke.RunAt(k);
             var onWrite = times.Arrival + Offset(burn.X0) + shift + timing.OnDelaySeconds - timing.OnLeadSeconds;
             if (index++ == 0)
             {
@@ -248,7 +185,7 @@ public sealed partial class RunExecutor
 
             var offWrite = times.Arrival + Offset(burn.X1) + shift - timing.OffAdvanceSeconds - timing.OffLeadSeconds;
 
-            CompleteUpTo(segment, burnIndex - 1, null);
+            CompleteUpTo(stroke, burnIndex - 1, null);
 
             // The burst fills the run from its switch-on to its planned switch-off; its line's length depends on its count.
             var onEffect = onWrite + timing.OnLeadSeconds;
@@ -276,7 +213,7 @@ public sealed partial class RunExecutor
 
             await KeepAlivesUntilAsync(offWrite, timing, token);
             await DelayUntilAsync(offWrite, token);
-            if (k + 1 < burns.Count && !bumps.ContainsKey(Distance(burn.X1)) && !OffFitsBefore(burns[k + 1].Move, offEffect))
+            if (k + 1 < stroke.RunCount && !bumps.ContainsKey(Distance(burn.X1)) && !OffFitsBefore(stroke.RunAt(k + 1).Move, offEffect))
             {
                 // A gap too short for the switch-off's line and the next burst's: the burst ends this run by itself.
                 MarkLaserOff(timing.OffLeadSeconds);
@@ -299,7 +236,7 @@ public sealed partial class RunExecutor
             }
 
             // A run counts as burned once its switch-on is acknowledged (a silent gate burns nothing).
-            CompleteUpTo(segment, burnIndex, on);
+            CompleteUpTo(stroke, burnIndex, on);
 
             if (bumps.TryGetValue(Distance(burn.X1), out var bump))
             {
@@ -321,19 +258,19 @@ public sealed partial class RunExecutor
             timeline.Delay(shift);
         }
 
-        CompleteUpTo(segment, segment.Moves[^1].Index, null);
+        CompleteUpTo(stroke, stroke.FirstMoveIndex + stroke.MoveCount - 1, null);
     }
 
-    private async Task TravelAsync(Segment segment, TimedSwitching timing, MotionTimeline timeline, CancellationToken token)
+    private async Task TravelAsync(TravelStep travel, TimedSwitching timing, MotionTimeline timeline, CancellationToken token)
     {
-        var (move, index) = segment.Moves[0];
+        var (move, index) = (travel.Move, travel.MoveIndex);
         var times = timeline.Travel(move.LengthX, move.LengthY);
         var sends = new List<(double Write, Func<Task> Send)>();
         if (times.YArrival is { } yArrival)
         {
             sends.Add((yArrival - timing.StageCommandSeconds, () =>
             {
-                Watch(Arrive(Stage.Y.MoveAbsoluteAfterAsync(move.Y1, token), "Y", move.Y1, y => _y = y), times.YEnd + TravelLate + timing.StageReplySeconds, "the end of a travel (Y)", axis: "Y");
+                Watch(Arrive(Stage.Y.MoveAbsoluteAfterAsync(travel.Y, token), "Y", travel.Y, y => _y = y), times.YEnd + TravelLate + timing.StageReplySeconds, "the end of a travel (Y)", axis: "Y");
                 return Task.CompletedTask;
             }));
         }
@@ -342,8 +279,8 @@ public sealed partial class RunExecutor
         {
             sends.Add((speedArrival - timing.StageCommandSeconds, () =>
             {
-                Watch(Stage.X.SetTargetSpeedAsync(_travelSpeedData, token), speedArrival + TravelLate + timing.StageReplySeconds, "Set Target Speed (X)");
-                _xSpeedData = _travelSpeedData;
+                Watch(Stage.X.SetTargetSpeedAsync(travel.SpeedData, token), speedArrival + TravelLate + timing.StageReplySeconds, "Set Target Speed (X)");
+                _xSpeedData = travel.SpeedData;
                 return Task.CompletedTask;
             }));
         }
@@ -352,7 +289,7 @@ public sealed partial class RunExecutor
         {
             sends.Add((xArrival - timing.StageCommandSeconds, () =>
             {
-                Watch(Arrive(Stage.X.MoveAbsoluteAfterAsync(move.X1, token), "X", move.X1, x => _x = x), times.XEnd + TravelLate + timing.StageReplySeconds, "the end of a travel (X)", axis: "X");
+                Watch(Arrive(Stage.X.MoveAbsoluteAfterAsync(travel.X, token), "X", travel.X, x => _x = x), times.XEnd + TravelLate + timing.StageReplySeconds, "the end of a travel (X)", axis: "X");
                 return Task.CompletedTask;
             }));
         }
@@ -379,7 +316,7 @@ public sealed partial class RunExecutor
             _currentIndex = index;
         }
 
-        CompleteUpTo(segment, index, null);
+        CompleteUp(move, index, null);
     }
 
     /// <summary>
@@ -576,7 +513,7 @@ public sealed partial class RunExecutor
             if (lateUm > _profile.EdgeToleranceUm || pulses < 1)
             {
                 throw Fault(
-                    string.Create(CultureInfo.InvariantCulture, $"this computer was {late * 1000:0.0} ms late to switch the laser on, {lateUm:0.0} µm at the burn speed, beyond the profile's edge tolerance of {_profile.EdgeToleranceUm:0.###} µm: the laser stayed off for that run"),
+                    string.Create(CultureInfo.InvariantCulture, $"this computer was {Units.SecondsToMs(late):0.0} ms late to switch the laser on, {lateUm:0.0} µm at the burn speed, beyond the profile's edge tolerance of {_profile.EdgeToleranceUm:0.###} µm: the laser stayed off for that run"),
                     recoverable: true);
             }
 
@@ -702,7 +639,7 @@ public sealed partial class RunExecutor
     private void Watch(Task reply, double expectedSeconds, string what, bool gate = false, string? axis = null, bool switchOff = false)
     {
         var jitter = gate ? _timing?.GateJitterSeconds : _timing?.StageJitterSeconds;
-        var deadline = expectedSeconds + ((jitter ?? 0) * 2) + (Options.StallMarginMs / 1000);
+        var deadline = expectedSeconds + ((jitter ?? 0) * 2) + Units.MsToSeconds(Options.StallMarginMs);
         var watched = new Watched(reply, deadline, what) { SwitchOff = switchOff };
         if (axis is not null)
         {
@@ -835,23 +772,29 @@ public sealed partial class RunExecutor
         return new DeviceException(reason);
     }
 
-    private void CompleteUpTo(Segment segment, long index, Task? lastAcknowledged)
+    private void CompleteUpTo(StrokeStep stroke, long index, Task? lastAcknowledged)
     {
-        foreach (var (move, moveIndex) in segment.Moves)
+        for (var i = 0; i < stroke.MoveCount && stroke.FirstMoveIndex + i <= index; i++)
         {
-            if (moveIndex > index)
-            {
-                break;
-            }
-
-            if (moveIndex > _queuedUpTo)
-            {
-                _toComplete.Enqueue((move, moveIndex, moveIndex == index ? lastAcknowledged : null));
-                _queuedUpTo = moveIndex;
-            }
+            Queue(stroke.MoveAt(i), stroke.FirstMoveIndex + i, index, lastAcknowledged);
         }
 
         CompleteAcknowledged();
+    }
+
+    private void CompleteUp(Move move, long index, Task? lastAcknowledged)
+    {
+        Queue(move, index, index, lastAcknowledged);
+        CompleteAcknowledged();
+    }
+
+    private void Queue(Move move, long moveIndex, long index, Task? lastAcknowledged)
+    {
+        if (moveIndex > _queuedUpTo)
+        {
+            _toComplete.Enqueue((move, moveIndex, moveIndex == index ? lastAcknowledged : null));
+            _queuedUpTo = moveIndex;
+        }
     }
 
     /// <summary>Raises completion, in order, for every queued move whose switch-on (if it has one) is acknowledged.</summary>
@@ -913,7 +856,7 @@ public sealed partial class RunExecutor
         }
         else if (!_laserOffConfirmed && _gateAliveAt > double.NegativeInfinity)
         {
-            offAt = _gateAliveAt + (_profile.Gate.WatchdogMs / 1000.0) - timing.GateJitterSeconds;
+            offAt = _gateAliveAt + Units.MsToSeconds(_profile.Gate.WatchdogMs) - timing.GateJitterSeconds;
             byWatchdog = true;
         }
         else
@@ -1059,6 +1002,4 @@ public sealed partial class RunExecutor
         /// <summary>How many of its flown gaps' speed-ups were sent (the others the stage crossed at the burn speed).</summary>
         public int GapsFlown { get; set; }
     }
-
-    private sealed record Segment(bool Stroke, List<(Move Move, long Index)> Moves, long StartX, long StartY, long EndX, long EndY);
 }

@@ -4,6 +4,7 @@ using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Motion;
 using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Programs;
 using LaserEngrave.Core.Vectors;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Zaber;
@@ -144,9 +145,7 @@ public sealed partial class RunExecutor
         var spec = job.Spec;
         _process = spec.Process;
         _profile = spec.Profile;
-        _burnSpeedData = StageUnits.SpeedData(_process.SpeedMmPerS(MoveKind.Burn, strategy), microstepUm);
-        _travelSpeedData = StageUnits.SpeedData(_process.SpeedMmPerS(MoveKind.Travel, strategy), microstepUm);
-        _accelerationData = StageUnits.AccelerationData(_process.AccelerationMmPerS2, microstepUm);
+        (_burnSpeedData, _travelSpeedData, _accelerationData) = MotionData.Of(_process, strategy, microstepUm);
     }
 
     /// <summary>Raised on every state change.</summary>
@@ -214,7 +213,7 @@ public sealed partial class RunExecutor
         {
             SetState(RunState.Preflight);
             identity = await PreflightAsync(token);
-            IEnumerable<Move> moves = [];
+            IEnumerable<RasterStep> steps = [];
             long firstIndex = 0;
             var firstStroke = 0;
             switch (_motion)
@@ -228,8 +227,8 @@ public sealed partial class RunExecutor
                     _estimatePreparation = EstimateDotsPreparation(Job.Dots!, firstIndex);
                     break;
                 default:
-                    (moves, firstIndex) = Prepare();
-                    _estimatePreparation = EstimatePreparation(moves);
+                    (steps, firstIndex) = Prepare();
+                    _estimatePreparation = EstimatePreparation(steps);
                     break;
             }
 
@@ -241,8 +240,8 @@ public sealed partial class RunExecutor
             {
                 Motion.Strokes => ExecuteVectorAsync(Drawing!, firstStroke, linked.Token),
                 Motion.Dots => ExecuteDotsAsync(Job!.Dots!, firstIndex, linked.Token),
-                Motion.Timed => ExecuteTimedAsync(moves, firstIndex, _timing!, linked.Token),
-                _ => ExecuteAsync(moves, firstIndex, linked.Token),
+                Motion.Timed => ExecuteTimedAsync(steps, firstIndex, _timing!, linked.Token),
+                _ => ExecuteAsync(steps, firstIndex, linked.Token),
             };
             await motion;
 

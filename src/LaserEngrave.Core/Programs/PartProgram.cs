@@ -1,0 +1,36 @@
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Planning;
+
+namespace LaserEngrave.Core.Programs;
+
+/// <summary>
+/// The device-unit program of one part's pass: its motion data, converted once from the process, and its steps
+/// (absolute microsteps, speed data, timed laser edges), which the estimate interprets and the executor sends.
+/// </summary>
+/// <remarks>Closed: the kinds of program are Core's own, so a <c>switch</c> over them is exhaustive.</remarks>
+public abstract class PartProgram
+{
+    private protected PartProgram(ProcessSettings process, PlanStrategy strategy, double microstepUm, LaserGateProfile gate)
+    {
+        ArgumentNullException.ThrowIfNull(process);
+        ArgumentNullException.ThrowIfNull(gate);
+        Process = process;
+        Strategy = strategy;
+        MicrostepUm = microstepUm;
+        Gate = gate;
+        Motion = MotionData.Of(process, strategy, microstepUm);
+    }
+
+    /// <summary>The process the program was converted from.</summary>
+    public ProcessSettings Process { get; }
+
+    public PlanStrategy Strategy { get; }
+
+    public double MicrostepUm { get; }
+
+    /// <summary>The gate's command strings (their lengths time the laser's switchings).</summary>
+    public LaserGateProfile Gate { get; }
+
+    /// <summary>Burn and travel speed data and acceleration data.</summary>
+    public MotionData Motion { get; }
+}
