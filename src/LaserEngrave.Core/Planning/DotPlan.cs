@@ -27,7 +27,8 @@ public readonly record struct Dot(long X, long Y, int Row);
 /// </remarks>
 public sealed class DotPlan
 {
-    private readonly int _speedData;
+    private readonly ProcessSettings _process;
+    private readonly LaserGateProfile _gate;
 
     public DotPlan(BitMask mask, JobGeometry geometry, ProcessSettings process, MachineProfile profile, PlanOptions? options = null)
     {
@@ -48,8 +49,8 @@ public sealed class DotPlan
         DotPitchMicrosteps = process.DotPitchMicrosteps;
         Timing = new DotTiming(process, profile, geometry.MicrostepUm);
 
-        // The speed the executor has always moved between dots at: the travel speed (the burn speed under a paper plan).
-        _speedData = StageUnits.SpeedData(process.SpeedMmPerS(MoveKind.Travel, Options.Strategy), geometry.MicrostepUm);
+        _process = process;
+        _gate = profile.Gate;
         Estimate = DotModeEstimate.For(Program());
         Warnings = Timing.BurstProblem is { } problem
             ? [new JobWarning(JobWarningKind.BurstTooLongForTheWatchdog, problem + " (engraving is refused)")]
@@ -82,7 +83,7 @@ public sealed class DotPlan
     public double DotSpacingUm => DotPitchMicrosteps > 0 ? DotPitchMicrosteps * Geometry.MicrostepUm : Geometry.PitchUm;
 
     /// <summary>The device-unit program of this plan: every dot's target and burst, in order (what is sent, estimated and resumed).</summary>
-    public DotProgram Program() => new(this, _speedData);
+    public DotProgram Program() => new(this, _process, _gate);
 
     /// <summary>Every dot in order.</summary>
     public IEnumerable<Dot> Dots() => Dots(0);

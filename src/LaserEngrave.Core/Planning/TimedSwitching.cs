@@ -43,6 +43,12 @@ public sealed class TimedSwitching
     private readonly GapMemo<FlownGap?> _flown;
     private readonly GapMemo<bool> _crossesGap;
 
+    /// <summary>The process this model times.</summary>
+    public ProcessSettings Process { get; }
+
+    /// <summary>The machine whose latencies and gate commands it times.</summary>
+    public MachineProfile Profile { get; }
+
     public TimedSwitching(ProcessSettings process, MachineProfile profile, double microstepUm)
     {
         ArgumentNullException.ThrowIfNull(process);
@@ -50,6 +56,8 @@ public sealed class TimedSwitching
         var latency = profile.Latency;
         var gate = profile.Gate;
         MicrostepUm = microstepUm;
+        Process = process;
+        Profile = profile;
         (BurnSpeedData, TravelSpeedData, AccelerationData) = MotionData.Of(process, PlanStrategy.Optimized, microstepUm);
         BurnSpeed = StageUnits.SpeedMicrostepsPerS(BurnSpeedData);
         TravelSpeed = StageUnits.SpeedMicrostepsPerS(TravelSpeedData);

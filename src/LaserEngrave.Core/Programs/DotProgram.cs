@@ -1,3 +1,4 @@
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Planning;
 
 namespace LaserEngrave.Core.Programs;
@@ -18,27 +19,27 @@ public readonly record struct DotStep(long Index, long X, long Y, int Row, int S
 /// (<see cref="DotTiming"/>). The executor (Devices/Execution/RunExecutor.Dots.cs) sends these steps, a stop point is an
 /// index into them, a resume continues from it, and the estimate (<see cref="DotModeEstimate"/>) adds up the same steps.
 /// </summary>
-public sealed class DotProgram
+public sealed class DotProgram : PartProgram
 {
     private readonly DotPlan _plan;
 
-    internal DotProgram(DotPlan plan, int speedData)
+    internal DotProgram(DotPlan plan, ProcessSettings process, LaserGateProfile gate)
+        : base(process, plan.Options.Strategy, plan.Geometry.MicrostepUm, gate)
     {
         _plan = plan;
-        SpeedData = speedData;
     }
 
     /// <summary>The timing model every step follows.</summary>
     public DotTiming Timing => _plan.Timing;
 
     /// <summary>Set Acceleration data of both axes, set before the first dot.</summary>
-    public int AccelerationData => Timing.AccelerationData;
+    public int AccelerationData => Motion.AccelerationData;
 
     /// <summary>Set Target Speed data of both axes, set before the first dot; every move between dots runs at it.</summary>
-    public int SpeedData { get; }
+    /// <remarks>The travel speed's (the burn speed's under a paper plan).</remarks>
+    public int SpeedData => Motion.TravelSpeedData;
 
     /// <summary>The size of a microstep, µm.</summary>
-    public double MicrostepUm => _plan.Geometry.MicrostepUm;
 
     /// <summary>Every dot from index <paramref name="first"/> on (a stop point's), in order.</summary>
     public IEnumerable<DotStep> Steps(long first = 0)

@@ -29,7 +29,7 @@ public sealed record DrawingStep(int Index, bool LastOfPath, DrawingTravel Trave
 /// from it, and the estimate (<see cref="SecondsFrom"/>, <see cref="VectorSchedule.EstimatedSeconds"/>) adds up the same
 /// steps by the motion model.
 /// </summary>
-public sealed class DrawingProgram
+public sealed class DrawingProgram : PartProgram
 {
     // Time the host allows itself to react to a reply before acting on it (as TimedSwitching).
     private const double ReactionSeconds = 0.0005;
@@ -37,6 +37,7 @@ public sealed class DrawingProgram
     private readonly IReadOnlyList<VectorStroke> _strokes;
 
     internal DrawingProgram(IReadOnlyList<VectorStroke> strokes, TimedSwitching timing)
+        : base(timing.Process, PlanStrategy.Optimized, timing.MicrostepUm, timing.Profile.Gate)
     {
         _strokes = strokes;
         Timing = timing;
@@ -46,10 +47,10 @@ public sealed class DrawingProgram
     public TimedSwitching Timing { get; }
 
     /// <summary>Set Acceleration data of both axes, set before the first stroke.</summary>
-    public int AccelerationData => Timing.AccelerationData;
+    public int AccelerationData => Motion.AccelerationData;
 
     /// <summary>Set Target Speed data of both axes, set before the first stroke; every travel runs at it.</summary>
-    public int TravelSpeedData => Timing.TravelSpeedData;
+    public int TravelSpeedData => Motion.TravelSpeedData;
 
     /// <summary>How many strokes the program has.</summary>
     public int StrokeCount => _strokes.Count;
