@@ -73,27 +73,4 @@ public sealed partial class RunExecutor
         var remaining = Math.Max(0, _estimateTotal - done) * ratio;
         return new RunProgress(_state, _rowsDone, _rowsTotal, _runsDone, _runsTotal, percent, elapsed, TimeSpan.FromSeconds(remaining), _x, _y, _laserOn);
     }
-
-    private double SpreadSeenScale(long exchangesBefore)
-    {
-        if (_timing is null || Stage.X is not IAxisFirmware firmware)
-        {
-            return 1;
-        }
-
-        // Only the identification's, one at a time: during a run replies queue behind one another on the shared wire.
-        var trips = firmware.RoundTripsMsSince(exchangesBefore);
-        var allowed = 4 * _timing.StageJitterSeconds * 1000;
-        if (trips.Count < 8 || allowed <= 0)
-        {
-            return 1;
-        }
-
-        // A reply held up far beyond the spread (a device busy a moment, a fault) is a doubt for the checks to catch, not a
-        // spread to time every edge by. Capped: far wider, the profile is wrong, not the margins.
-        trips.Sort();
-        var median = trips[trips.Count / 2];
-        var spread = trips.Where(t => t <= median + (5 * allowed)).Max() - trips[0];
-        return spread <= allowed ? 1 : Math.Min(MaxLatencyScale, 2 * spread / allowed);
-    }
 }

@@ -54,7 +54,7 @@ public sealed partial class RunExecutor
     private static bool IsLastOfPath(VectorSchedule schedule, int index) =>
         index + 1 >= schedule.Strokes.Count || schedule.Strokes[index + 1].PathIndex != schedule.Strokes[index].PathIndex;
 
-    private void CheckDrawing(PreparedDrawing drawing)
+    internal static void CheckDrawing(PreparedDrawing drawing)
     {
         if (!drawing.FitsTravel)
         {
@@ -67,7 +67,7 @@ public sealed partial class RunExecutor
         }
     }
 
-    private void CheckDrawingReach(PreparedDrawing drawing, AxisIdentity x, AxisIdentity y)
+    internal static void CheckDrawingReach(PreparedDrawing drawing, AxisIdentity x, AxisIdentity y)
     {
         var strokes = drawing.Schedule.Strokes;
         var right = strokes.Max(s => Math.Max(Math.Max(s.RunUpStart.X, s.RestEnd.X), s.Path.Points.Max(p => p.X)));

@@ -36,7 +36,7 @@ public sealed partial class RunExecutor
     private readonly CancellationTokenSource _fault = new();
     private readonly ProcessSettings _process = ProcessSettings.Default;
     private readonly MachineProfile _profile = MachineProfile.Default;
-    private readonly Motion _motion;
+    private readonly RunMotion _motion;
     private TimedSwitching? _timing;
     private readonly int _rowsTotal;
     private readonly long _runsTotal;
@@ -84,7 +84,6 @@ public sealed partial class RunExecutor
     private double _estimateTotal;
     private double _estimatePreparation;
     private long? _resumeX;
-    private bool _gateVouchesForCut = true;
     private bool _homed;
     private double _latencyScaleSeen = 1;
     private double _latencyScale = 1;
@@ -113,9 +112,9 @@ public sealed partial class RunExecutor
         // The one place the executor tells the kinds apart: the motion strategy it runs, what it counts, its timing and units.
         (Job, Drawing, _motion) = job switch
         {
-            RasterJob raster => (raster.Prepared, null, raster.Prepared.Plan.Timing is null ? Motion.StepByStep : Motion.Timed),
-            DotJob dots => (dots.Prepared, null, Motion.Dots),
-            DrawingJob drawing => ((PreparedJob?)null, drawing.Drawing, Motion.Strokes),
+            RasterJob raster => (raster.Prepared, null, raster.Prepared.Plan.Timing is null ? RunMotion.StepByStep : RunMotion.Timed),
+            DotJob dots => (dots.Prepared, null, RunMotion.Dots),
+            DrawingJob drawing => ((PreparedJob?)null, drawing.Drawing, RunMotion.Strokes),
             LayersJob or SweepJob => throw new ArgumentException("an executor runs one image or drawing: a job of layers runs through EngraveSession, a sweep through SweepSession", nameof(job)),
             _ => throw new ArgumentException($"unknown job kind {job.GetType().Name}", nameof(job)),
         };
@@ -219,11 +218,11 @@ public sealed partial class RunExecutor
             var firstStroke = 0;
             switch (_motion)
             {
-                case Motion.Strokes:
+                case RunMotion.Strokes:
                     firstStroke = PrepareStrokes();
                     _estimatePreparation = EstimateDrawingPreparation(firstStroke);
                     break;
-                case Motion.Dots:
+                case RunMotion.Dots:
                     firstIndex = PrepareDots(Job!.Dots!);
                     _estimatePreparation = EstimateDotsPreparation(Job.Dots!, firstIndex);
                     break;
@@ -239,9 +238,9 @@ public sealed partial class RunExecutor
             // One motion strategy per kind of plan: strokes (RunExecutor.Vector), dots (.Dots), timed switching (.Timed) or step by step (.StepByStep).
             var motion = _motion switch
             {
-                Motion.Strokes => ExecuteVectorAsync(Drawing!, firstStroke, linked.Token),
-                Motion.Dots => ExecuteDotsAsync(Job!.Dots!, firstIndex, linked.Token),
-                Motion.Timed => ExecuteTimedAsync(moves, firstIndex, _timing!, linked.Token),
+                RunMotion.Strokes => ExecuteVectorAsync(Drawing!, firstStroke, linked.Token),
+                RunMotion.Dots => ExecuteDotsAsync(Job!.Dots!, firstIndex, linked.Token),
+                RunMotion.Timed => ExecuteTimedAsync(moves, firstIndex, _timing!, linked.Token),
                 _ => ExecuteAsync(moves, firstIndex, linked.Token),
             };
             await motion;
@@ -331,21 +330,28 @@ public sealed partial class RunExecutor
 
     /// <summary>
     /// The latency spread this run assumes, in times the profile's: <see cref="RunOptions.LatencyScale"/>, or more when the
-    /// preflight's own exchanges spread wider than the profile says (<see cref="SpreadSeenScale(long)"/>).
+    /// preflight's own exchanges spread wider than the profile says (<see cref="RunPreflight"/>).
     /// </summary>
     private double LatencyScale => _latencyScale;
 
-    /// <summary>
-    /// The preflight's stage exchanges (identification, homing's settings and the positions after it: 14 to 22 commands
-    /// that reply at once, one at a time) against the profile: their
-    /// round trips may spread by the two adapter latencies' jitter, 4 J. Wider, the profile understates the latencies
-    /// (or the computer's lateness) and the guards sized by it would let pulses past the edges; the run then assumes
-    /// twice the ratio seen, since a dozen draws rarely show the largest. 1 when they fit, or for a plan without timing.
-    /// </summary>
     /// <summary>The widest spread a run assumes, in times the profile's (a profile this far off needs `machine latency`).</summary>
-    private const double MaxLatencyScale = 8;
+    private const double MaxLatencyScale = RunPreflight.MaxLatencyScale;
 
     private static string N(double value) => value.ToString("0.####", CultureInfo.InvariantCulture);
+
+    /// <summary>Preflight, once (<see cref="RunPreflight"/>): the run starts from what it found.</summary>
+    private async Task<MachineIdentity> PreflightAsync(CancellationToken token)
+    {
+        var preflight = new RunPreflight(Stage, Gate, _motion, Job, Drawing, _process, _profile, _timing, _travelSpeedData, _accelerationData, Options);
+        var found = await preflight.RunAsync(token);
+        _resumeX = found.ResumeX;
+        _homed = found.Homed;
+        _x = found.X;
+        _y = found.Y;
+        _latencyScale = found.LatencyScale;
+        _timing = found.Timing;
+        return found.Identity;
+    }
 
     private bool IsAbortRequested
     {
@@ -483,21 +489,5 @@ public sealed partial class RunExecutor
 
         StateChanged?.Invoke(this, new RunStateChangedEventArgs(previous, state));
         ProgressChanged?.Invoke(this, progress);
-    }
-
-    /// <summary>The motion strategies, one per kind of plan.</summary>
-    private enum Motion
-    {
-        /// <summary>Each move awaits its reply before the next (a paper plan, or one without a timing model).</summary>
-        StepByStep,
-
-        /// <summary>Strokes and travels sent at times computed in advance, the laser switched by time.</summary>
-        Timed,
-
-        /// <summary>Stop at each dot and fire a counted burst.</summary>
-        Dots,
-
-        /// <summary>A drawing's strokes, each axis streaming its speed.</summary>
-        Strokes,
     }
 }
