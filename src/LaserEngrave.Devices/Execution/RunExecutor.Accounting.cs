@@ -71,6 +71,6 @@ public sealed partial class RunExecutor
         var engraving = !_engravingStarted ? 0 : (TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving).TotalSeconds;
         var ratio = estimateDone > 1 && engraving > 0 ? engraving / estimateDone : 1;
         var remaining = Math.Max(0, _estimateTotal - done) * ratio;
-        return new RunProgress(_state, _rowsDone, _rowsTotal, _runsDone, _runsTotal, percent, elapsed, TimeSpan.FromSeconds(remaining), _x, _y, _laserOn);
+        return new RunProgress(_state, _rowsDone, _rowsTotal, _runsDone, _runsTotal, percent, elapsed, TimeSpan.FromSeconds(remaining), _x, _y, _laser.On);
     }
 }

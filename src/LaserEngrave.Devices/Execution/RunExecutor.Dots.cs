@@ -64,32 +64,24 @@ public sealed partial class RunExecutor
     /// <summary>One burst at the stage's standing position; returns once the laser is surely off again.</summary>
     private async Task FireDotAsync(DotTiming timing, CancellationToken token)
     {
-        await _laserLock.WaitAsync();
+        await _laser.Lock.WaitAsync();
         try
         {
             // Inside the lock: an abort's switch-off is either already sent (and we stop here) or comes after the burst.
             ThrowIfAborted();
-            lock (_lock)
-            {
-                _laserOn = true;
-                _laserOnSince = TimeProvider.GetTimestamp();
-            }
+            _laser.MarkOn(TimeProvider.GetTimestamp());
 
             // Not cancelled: a reply arriving after a cancelled command would be taken for the next one's.
             await Gate.BurstAsync(timing.PulsesPerDot, timing.FrequencyHz, CancellationToken.None);
         }
         finally
         {
-            _laserLock.Release();
+            _laser.Lock.Release();
         }
 
         // The gate answers as the burst starts; nothing moves before it has surely ended. An abort meanwhile switches the laser off.
         await PreciseDelay.DelayAsync(TimeProvider, TimeSpan.FromSeconds(timing.AfterAckSeconds), token);
-        lock (_lock)
-        {
-            _laserOn = false;
-            _laserOnSeconds += timing.BurstSeconds;
-        }
+        _laser.MarkBurstOver(timing.BurstSeconds);
     }
 
     /// <summary>Preflight's share of the estimate before the first dot: the exchanges, homing if it homed, and the travel to the dot.</summary>

@@ -184,17 +184,17 @@ public sealed partial class RunExecutor
         var burn = move.Kind == MoveKind.Burn;
 
         // Off before anything else, so the laser never stands still on while speeds are set.
-        if (!burn && _laserOn)
+        if (!burn && _laser.On)
         {
-            await SwitchLaserAsync(on: false);
+            await _laser.SwitchAsync(on: false);
         }
 
         // Speeds before switching on, for the same reason (docs/simulator.md: dwell).
         var speedData = burn || move.Kind == MoveKind.Overscan ? _burnSpeedData : _travelSpeedData;
         await SetSpeedsAsync(move.LengthX != 0, move.LengthY != 0, speedData, token);
-        if (burn && !_laserOn)
+        if (burn && !_laser.On)
         {
-            await SwitchLaserAsync(on: true);
+            await _laser.SwitchAsync(on: true);
         }
 
         if (burn)
@@ -202,7 +202,7 @@ public sealed partial class RunExecutor
             // No keepalive in the last moments of the run: a switch-off queued behind one would leave the laser standing on.
             var motion = new TrapezoidProfile(move.LengthX, StageUnits.SpeedMicrostepsPerS(speedData), StageUnits.AccelerationMicrostepsPerS2(_accelerationData));
             var quietAfterSeconds = Math.Max(0, motion.Duration - KeepAliveQuietSeconds);
-            _keepAlive!.QuietFrom = TimeProvider.GetTimestamp() + (long)(quietAfterSeconds * TimeProvider.TimestampFrequency);
+            _laser.KeepAlive!.QuietFrom = TimeProvider.GetTimestamp() + (long)(quietAfterSeconds * TimeProvider.TimestampFrequency);
         }
 
         await MoveAxesAsync(move.LengthX != 0 ? move.X1 : null, move.LengthY != 0 ? move.Y1 : null, token);
@@ -211,9 +211,9 @@ public sealed partial class RunExecutor
     /// <summary>A travel to (<paramref name="x"/>, <paramref name="y"/>); an axis already there is left alone unless <paramref name="unsure"/> says its position is the model's, not a reply's.</summary>
     private async Task MoveToAsync(long x, long y, int speedData, CancellationToken token, (bool X, bool Y) unsure = default)
     {
-        if (_laserOn)
+        if (_laser.On)
         {
-            await SwitchLaserAsync(on: false);
+            await _laser.SwitchAsync(on: false);
         }
 
         bool moveX = x != _x || unsure.X, moveY = y != _y || unsure.Y;

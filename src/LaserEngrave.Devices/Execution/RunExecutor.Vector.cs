@@ -219,11 +219,11 @@ public sealed partial class RunExecutor
         var travel = write + stroke.NextArrivalSeconds;
         if (!await CompletesByAsync(off!, travel, token) || !off!.IsCompletedSuccessfully)
         {
-            MarkSwitchOffFailed();
+            _laser.MarkSwitchOffFailed();
             throw Fault("the laser gate had not acknowledged the switch-off when the stage was to travel");
         }
 
-        MarkLaserOff();
+        _laser.MarkOff();
         lock (_lock)
         {
             _x = stroke.RestEnd.X;

@@ -20,7 +20,7 @@ namespace LaserEngrave.Devices.Execution;
 /// <see cref="Pause"/>, <see cref="Resume"/> and <see cref="Abort"/> may be called from any thread at any time.
 /// The protocol is the one <see cref="PlanEstimator"/> models; docs/execution.md describes it.
 /// </remarks>
-public sealed partial class RunExecutor
+public sealed partial class RunExecutor : ILaserSafetyRun
 {
     private const string AbortedMessage = "aborted by the operator";
 
@@ -28,10 +28,6 @@ public sealed partial class RunExecutor
     private const double KeepAliveQuietSeconds = 0.05;
 
     private readonly Lock _lock = new();
-
-    // Every laser command goes under this lock, and a switch-on checks for an abort inside it: so once Abort has sent
-    // its switch-off, no switch-on can follow it on the wire.
-    private readonly AsyncLock _laserLock = new();
     private readonly CancellationTokenSource _abortDone = new();
     private readonly CancellationTokenSource _fault = new();
     private readonly ProcessSettings _process = ProcessSettings.Default;
@@ -52,16 +48,9 @@ public sealed partial class RunExecutor
 
     // The abort's off sequence once this executor was told of the abort: from then on the run only goes towards its end.
     private Task? _abortSequence;
-    private GateKeepAlive? _keepAlive;
-    private bool _laserOn;
-    private long _laserOnSince;
-    private double _laserOnSeconds;
-    private bool _laserOffConfirmed = true;
-    private string? _laserOffProblem;
-    private LaserOffPath? _laserOffBy;
 
-    // A switch-off refused or not acknowledged in time: the laser may still fire, so every path to off is taken at once.
-    private bool _switchOffFailed;
+    // The laser: its lock, keepalive, state and off sequence.
+    private readonly LaserSafety _laser;
     private long _startTimestamp;
     private long _engravingStart;
     private bool _engravingStarted;
@@ -146,6 +135,7 @@ public sealed partial class RunExecutor
         _burnSpeedData = StageUnits.SpeedData(_process.SpeedMmPerS(MoveKind.Burn, strategy), microstepUm);
         _travelSpeedData = StageUnits.SpeedData(_process.SpeedMmPerS(MoveKind.Travel, strategy), microstepUm);
         _accelerationData = StageUnits.AccelerationData(_process.AccelerationMmPerS2, microstepUm);
+        _laser = new LaserSafety(Gate, TimeProvider, _process.LaserFrequencyWholeHz, _profile.Gate.WatchdogMs, Options.StallMarginMs, this);
     }
 
     /// <summary>Raised on every state change.</summary>
@@ -233,7 +223,7 @@ public sealed partial class RunExecutor
             }
 
             SetState(RunState.Running);
-            _keepAlive = new GateKeepAlive(Gate, GateKeepAlive.PeriodFor(_profile.Gate.WatchdogMs, Options.KeepAliveFraction), TimeProvider, OnKeepAliveFailed);
+            _laser.StartKeepAlive(GateKeepAlive.PeriodFor(_profile.Gate.WatchdogMs, Options.KeepAliveFraction), whileOn: _timing is null, OnKeepAliveFailed);
             using var linked = CancellationTokenSource.CreateLinkedTokenSource(token, _fault.Token);
             // One motion strategy per kind of plan: strokes (RunExecutor.Vector), dots (.Dots), timed switching (.Timed) or step by step (.StepByStep).
             var motion = _motion switch
@@ -245,12 +235,12 @@ public sealed partial class RunExecutor
             };
             await motion;
 
-            await SwitchLaserAsync(on: false);
+            await _laser.SwitchAsync(on: false);
             return await FinishAsync(RunOutcome.Completed, null, identity, startedAt);
         }
         catch (PreflightException) when (!IsAbortRequested)
         {
-            await LaserOffSafelyAsync();
+            await _laser.OffSafelyAsync();
             SetState(RunState.Failed);
             throw;
         }
@@ -263,15 +253,12 @@ public sealed partial class RunExecutor
             }
 
             var reason = _timedFault
-                ?? (_keepAlive?.Fault is { } keepAliveFault ? $"the laser gate did not answer the keepalive: {keepAliveFault.Message}" : ex.Message);
+                ?? (_laser.KeepAlive?.Fault is { } keepAliveFault ? $"the laser gate did not answer the keepalive: {keepAliveFault.Message}" : ex.Message);
             return await FailAsync(reason, identity, startedAt);
         }
         finally
         {
-            if (_keepAlive is not null)
-            {
-                await _keepAlive.DisposeAsync();
-            }
+            await _laser.DisposeAsync();
         }
     }
 
@@ -385,9 +372,9 @@ public sealed partial class RunExecutor
             return;
         }
 
-        if (_laserOn)
+        if (_laser.On)
         {
-            await SwitchLaserAsync(on: false);
+            await _laser.SwitchAsync(on: false);
         }
 
         var pausedAt = TimeProvider.GetTimestamp();
@@ -400,7 +387,7 @@ public sealed partial class RunExecutor
 
     private async Task<RunResult> FailAsync(string reason, MachineIdentity? identity, DateTimeOffset startedAt)
     {
-        await LaserOffSafelyAsync();
+        await _laser.OffSafelyAsync();
         await StopAxesAsync();
         if (IsAbortRequested)
         {
@@ -436,24 +423,25 @@ public sealed partial class RunExecutor
         RunResult result;
         lock (_lock)
         {
-            var fault = _laserOffProblem is null ? message : message is null ? _laserOffProblem : $"{message}; {_laserOffProblem}";
+            var (offProblem, offConfirmed) = (_laser.OffProblem, _laser.OffConfirmed);
+            var fault = offProblem is null ? message : message is null ? offProblem : $"{message}; {offProblem}";
             var engraving = !_engravingStarted ? TimeSpan.Zero : TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving;
             result = new RunResult
             {
                 Outcome = outcome,
                 FaultMessage = fault,
                 StopPoint = stopPoint,
-                Recoverable = outcome == RunOutcome.Failed && _recoverableFault && _laserOffProblem is null && _laserOffConfirmed
+                Recoverable = outcome == RunOutcome.Failed && _recoverableFault && offProblem is null && offConfirmed
                     && stopPoint is { CutPixel: null, ResumeXMicrosteps: null },
-                LaserOffConfirmed = _laserOffConfirmed,
-                LaserOffBy = outcome == RunOutcome.Completed ? null : _laserOffBy ?? (_laserOffConfirmed ? LaserOffPath.Off : LaserOffPath.None),
+                LaserOffConfirmed = offConfirmed,
+                LaserOffBy = outcome == RunOutcome.Completed ? null : _laser.OffBy ?? (offConfirmed ? LaserOffPath.Off : LaserOffPath.None),
                 LatencyScale = Math.Max(LatencyScale, _latencyScaleSeen),
                 StartedAt = startedAt,
                 EndedAt = TimeProvider.GetUtcNow(),
                 EngravingDuration = engraving < TimeSpan.Zero ? TimeSpan.Zero : engraving,
                 EstimatedSeconds = _estimatePreparation + _estimateTotal - _estimateBefore,
                 EstimatedEngravingSeconds = _estimateTotal - _estimateBefore,
-                LaserOnSeconds = _laserOnSeconds,
+                LaserOnSeconds = _laser.OnSeconds,
                 LateSwitches = _lateSwitches,
                 BurstEndedItself = _burstEndedItself,
                 RowsDone = _rowsDone,
@@ -489,5 +477,87 @@ public sealed partial class RunExecutor
 
         StateChanged?.Invoke(this, new RunStateChangedEventArgs(previous, state));
         ProgressChanged?.Invoke(this, progress);
+    }
+
+    TimedSwitching? ILaserSafetyRun.Timing => _timing;
+
+    void ILaserSafetyRun.ThrowIfAborted() => ThrowIfAborted();
+
+    void ILaserSafetyRun.OffSequenceStarting(bool? inDoubt)
+    {
+        lock (_lock)
+        {
+            // When the fault's switch-off left: a burn run cut by it is burned up to there (the stop point's cut pixel).
+            if (_engravingStarted)
+            {
+                _faultOffWrite ??= RunSeconds;
+            }
+
+            // A switch-off refused or unanswered after the burn run's burst had stopped the laser by itself: the run's
+            // last pulse was the burst's, inside the run; the paths to off still go, and say which confirmed it.
+            if (inDoubt == true)
+            {
+                _burstEndedItself |= RunSeconds >= _burstEndsAt;
+            }
+        }
+    }
+
+    Task ILaserSafetyRun.StopStageAsync() => StopAxesAsync();
+
+    /// <summary>An abort: the laser off first, then the stage stopped.</summary>
+    private async Task AbortSequenceAsync()
+    {
+        try
+        {
+            await _laser.OffSafelyAsync();
+            await StopAxesAsync();
+        }
+        finally
+        {
+            // Releases whatever the run is waiting for (a move the stop did not interrupt, a pause).
+            _abortDone.Cancel();
+        }
+    }
+
+    private void OnKeepAliveFailed(Exception ex) => _fault.Cancel();
+
+    /// <summary>Stops both axes and records where they stopped (when they say); a stage gone silent leaves the stop point without a position.</summary>
+    private async Task StopAxesAsync()
+    {
+        var known = true;
+        foreach (var axis in new[] { Stage.X, Stage.Y })
+        {
+            try
+            {
+                var written = _engravingStarted ? RunSeconds : double.NaN;
+                var position = await axis.StopAsync(CancellationToken.None);
+                if (axis == Stage.X)
+                {
+                    NoteStopped(written, position);
+                }
+
+                lock (_lock)
+                {
+                    if (axis == Stage.X)
+                    {
+                        _x = position;
+                    }
+                    else
+                    {
+                        _y = position;
+                    }
+                }
+            }
+            catch (DeviceException)
+            {
+                // The stage may be gone (port lost, silent): the stop point then has no position.
+                known = false;
+            }
+        }
+
+        lock (_lock)
+        {
+            _stoppedAtKnownPosition = known;
+        }
     }
 }
