@@ -22,12 +22,7 @@ public sealed partial class RunExecutor
         var first = true;
         foreach (var dot in plan.Dots(firstIndex))
         {
-            lock (_lock)
-            {
-                _moveIndex = index;
-                _currentIndex = index;
-                _moveRow = dot.Row;
-            }
+            _accounting.Executing(index, dot.Row);
 
             await PauseIfAskedAsync(token);
             if (first)
@@ -49,16 +44,7 @@ public sealed partial class RunExecutor
             index++;
         }
 
-        lock (_lock)
-        {
-            _moveIndex = index;
-            _moveRow = Job!.Plan.Mask.Height;
-            if (_lastRow >= 0)
-            {
-                _rowsDone++;
-                _lastRow = -1;
-            }
-        }
+        _accounting.Ended(index, Job!.Plan.Mask.Height);
     }
 
     /// <summary>One burst at the stage's standing position; returns once the laser is surely off again.</summary>
@@ -94,7 +80,7 @@ public sealed partial class RunExecutor
     private long PrepareDots(DotPlan plan)
     {
         var estimate = plan.Estimate;
-        _estimateTotal = estimate.TotalSeconds;
+        _accounting.EstimateTotal = estimate.TotalSeconds;
         if (Options.ResumeFrom is not { } resume)
         {
             return 0;
@@ -118,18 +104,13 @@ public sealed partial class RunExecutor
             }
 
             before += (index > 0 ? plan.Timing.StepSeconds(dot.X - previous.X, dot.Y - previous.Y) : 0) + plan.Timing.AtDotSeconds;
-            _runsDone++;
-            if (dot.Row != _lastRow)
-            {
-                _rowsDone += _lastRow >= 0 ? 1 : 0;
-                _lastRow = dot.Row;
-            }
+            _accounting.CountDone(MoveKind.Burn, dot.Row);
 
             previous = dot;
             index++;
         }
 
-        _estimateBefore = before;
+        _accounting.EstimateBefore = before;
         return start;
     }
 }

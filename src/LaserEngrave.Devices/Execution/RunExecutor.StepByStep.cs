@@ -20,11 +20,7 @@ public sealed partial class RunExecutor
     /// </summary>
     private async Task BeginEngravingAsync(long firstIndex, int row, CancellationToken token)
     {
-        lock (_lock)
-        {
-            _moveIndex = firstIndex;
-            _moveRow = row;
-        }
+        _accounting.At(firstIndex, row);
 
         _engravingStart = TimeProvider.GetTimestamp();
         _engravingStarted = true;
@@ -53,13 +49,7 @@ public sealed partial class RunExecutor
                 first = false;
             }
 
-            lock (_lock)
-            {
-                _moveIndex = index;
-                _currentIndex = index;
-                _moveRow = move.Row;
-                _currentMove = move;
-            }
+            _accounting.Executing(index, move.Row, move);
 
             await PauseIfAskedAsync(token);
             await ExecuteMoveAsync(move, token);
@@ -67,17 +57,7 @@ public sealed partial class RunExecutor
             index++;
         }
 
-        lock (_lock)
-        {
-            _moveIndex = index;
-            _moveRow = Job!.Plan.Mask.Height;
-            _currentMove = null;
-            if (_lastRow >= 0)
-            {
-                _rowsDone++;
-                _lastRow = -1;
-            }
-        }
+        _accounting.Ended(index, Job!.Plan.Mask.Height);
     }
 
     /// <summary>The moves to execute and the index of the first; for a resumed run also the counters and estimates of what was done before.</summary>
@@ -87,10 +67,10 @@ public sealed partial class RunExecutor
         var plan = Job!.Plan;
         var microstepUm = plan.Geometry.MicrostepUm;
         var strategy = plan.Options.Strategy;
-        _estimator = new PlanEstimator(_process, strategy, microstepUm, _profile.Gate, plan.Timing);
+        _accounting.Estimator = new PlanEstimator(_process, strategy, microstepUm, _profile.Gate, plan.Timing);
         if (Options.ResumeFrom is not { } resume)
         {
-            _estimateTotal = Job.Statistics.EngravingSeconds;
+            _accounting.EstimateTotal = Job.Statistics.EngravingSeconds;
             return (plan.Moves(), 0);
         }
 
@@ -141,12 +121,7 @@ public sealed partial class RunExecutor
             if (index < start)
             {
                 before.Add(move);
-                _runsDone += move.Kind == MoveKind.Burn ? 1 : 0;
-                if (move.Row != _lastRow)
-                {
-                    _rowsDone += _lastRow >= 0 ? 1 : 0;
-                    _lastRow = move.Row;
-                }
+                _accounting.CountDone(move.Kind, move.Row);
             }
             else
             {
@@ -162,8 +137,8 @@ public sealed partial class RunExecutor
             throw new PreflightException($"the resume point (row {resume.Row}, move {resume.MoveIndex}) is not in this job's plan of {index} moves");
         }
 
-        _estimateBefore = before.ElapsedSeconds - before.StartSeconds;
-        _estimateTotal = _estimateBefore + remaining.ElapsedSeconds;
+        _accounting.EstimateBefore = before.ElapsedSeconds - before.StartSeconds;
+        _accounting.EstimateTotal = _accounting.EstimateBefore + remaining.ElapsedSeconds;
         if (start == index)
         {
             return ([], index);

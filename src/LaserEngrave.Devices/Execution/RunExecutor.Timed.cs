@@ -89,16 +89,7 @@ public sealed partial class RunExecutor
 
         await WatchedRepliesAsync(token);
         CompleteAcknowledged();
-        lock (_lock)
-        {
-            _moveRow = Job!.Plan.Mask.Height;
-            _currentMove = null;
-            if (_lastRow >= 0)
-            {
-                _rowsDone++;
-                _lastRow = -1;
-            }
-        }
+        _accounting.Ended(null, Job!.Plan.Mask.Height);
     }
 
     private bool IsPauseRequested
@@ -266,8 +257,7 @@ public sealed partial class RunExecutor
             RunProgress progress;
             lock (_lock)
             {
-                _currentMove = burn;
-                _currentIndex = burnIndex;
+                _accounting.Current(burn, burnIndex);
                 _progress = Snapshot();
                 progress = _progress;
             }
@@ -373,11 +363,7 @@ public sealed partial class RunExecutor
 
         _travelLate = 0;
 
-        lock (_lock)
-        {
-            _currentMove = move;
-            _currentIndex = index;
-        }
+        _accounting.Current(move, index);
 
         CompleteUpTo(segment, index, null);
     }

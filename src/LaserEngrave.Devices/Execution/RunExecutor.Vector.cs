@@ -33,12 +33,11 @@ public sealed partial class RunExecutor
             }
 
             first = (int)resume.MoveIndex;
-            _rowsDone = first;
-            _runsDone = first == 0 ? 0 : schedule.Strokes.Take(first).Count(s => IsLastOfPath(schedule, s.Index));
+            _accounting.DoneBefore(first, first == 0 ? 0 : schedule.Strokes.Take(first).Count(s => IsLastOfPath(schedule, s.Index)));
         }
 
-        _estimateTotal = schedule.EstimatedSeconds;
-        _estimateBefore = schedule.EstimatedSeconds - schedule.SecondsFrom(first);
+        _accounting.EstimateTotal = schedule.EstimatedSeconds;
+        _accounting.EstimateBefore = schedule.EstimatedSeconds - schedule.SecondsFrom(first);
         return first;
     }
 
@@ -92,11 +91,7 @@ public sealed partial class RunExecutor
         for (var k = first; k < schedule.Strokes.Count; k++)
         {
             var stroke = schedule.Strokes[k];
-            lock (_lock)
-            {
-                _moveIndex = k;
-                _moveRow = k;
-            }
+            _accounting.At(k, k);
 
             if (k == first)
             {
@@ -127,11 +122,7 @@ public sealed partial class RunExecutor
         }
 
         await DelayUntilAsync(travelWrite, token);
-        lock (_lock)
-        {
-            _moveIndex = schedule.Strokes.Count;
-            _moveRow = schedule.Strokes.Count;
-        }
+        _accounting.At(schedule.Strokes.Count, schedule.Strokes.Count);
     }
 
     /// <summary>One stroke by time; returns when (run seconds) the travel to the next stroke may be written.</summary>
@@ -288,13 +279,7 @@ public sealed partial class RunExecutor
         RunProgress progress;
         lock (_lock)
         {
-            _rowsDone++;
-            if (IsLastOfPath(schedule, stroke.Index))
-            {
-                _runsDone++;
-            }
-
-            _moveIndex = stroke.Index + 1;
+            _accounting.StrokeDone(stroke.Index, IsLastOfPath(schedule, stroke.Index));
             _progress = Snapshot();
             progress = _progress;
         }

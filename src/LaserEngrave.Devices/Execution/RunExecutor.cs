@@ -34,8 +34,6 @@ public sealed partial class RunExecutor : ILaserSafetyRun
     private readonly MachineProfile _profile = MachineProfile.Default;
     private readonly RunMotion _motion;
     private TimedSwitching? _timing;
-    private readonly int _rowsTotal;
-    private readonly long _runsTotal;
     private readonly int _burnSpeedData;
     private readonly int _travelSpeedData;
     private readonly int _accelerationData;
@@ -60,23 +58,15 @@ public sealed partial class RunExecutor : ILaserSafetyRun
     private int _xSpeedData;
     private int _ySpeedData;
 
-    // The move being executed (the first not completed) and the counters over the whole plan.
-    private long _moveIndex;
-    private int _moveRow;
-    private Move? _currentMove;
-    private long _currentIndex = -1;
+    // Whether both axes said where they stopped after a fault or an abort (the stop point's position).
     private bool _stoppedAtKnownPosition;
-    private int _rowsDone;
-    private int _lastRow = -1;
-    private long _runsDone;
-    private double _estimateBefore;
-    private double _estimateTotal;
-    private double _estimatePreparation;
+
+    // The count of moves, rows and runs done, and the estimate: what progress, the stop point and the log read.
+    private readonly RunAccounting _accounting;
     private long? _resumeX;
     private bool _homed;
     private double _latencyScaleSeen = 1;
     private double _latencyScale = 1;
-    private PlanEstimator? _estimator;
 
     /// <summary>An executor for one image (raster or dots) or one drawing: it runs that job's plan once.</summary>
     /// <remarks>Layers and passes are the session's (<see cref="EngraveSession"/>, one executor a pass of a layer); a sweep's cells are each a job.</remarks>
@@ -114,9 +104,8 @@ public sealed partial class RunExecutor : ILaserSafetyRun
             microstepUm = image.Plan.Geometry.MicrostepUm;
             strategy = image.Plan.Options.Strategy;
             _timing = image.Plan.Timing;
-            _rowsTotal = image.Statistics.Rows;
-            _runsTotal = image.Statistics.BurnRuns;
-            _progress = new RunProgress(RunState.Idle, 0, _rowsTotal, 0, _runsTotal, 0, TimeSpan.Zero, TimeSpan.FromSeconds(image.Statistics.EngravingSeconds), 0, 0, false);
+            _accounting = new RunAccounting(image.Statistics.Rows, image.Statistics.BurnRuns);
+            _progress = new RunProgress(RunState.Idle, 0, _accounting.RowsTotal, 0, _accounting.RunsTotal, 0, TimeSpan.Zero, TimeSpan.FromSeconds(image.Statistics.EngravingSeconds), 0, 0, false);
         }
         else
         {
@@ -124,9 +113,8 @@ public sealed partial class RunExecutor : ILaserSafetyRun
             microstepUm = drawing.Schedule.Timing.MicrostepUm;
             strategy = PlanStrategy.Optimized;
             _timing = drawing.Schedule.Timing;
-            _rowsTotal = drawing.Schedule.Strokes.Count;
-            _runsTotal = drawing.Plan.Paths.Count;
-            _progress = new RunProgress(RunState.Idle, 0, _rowsTotal, 0, _runsTotal, 0, TimeSpan.Zero, TimeSpan.FromSeconds(drawing.Schedule.EstimatedSeconds), 0, 0, false);
+            _accounting = new RunAccounting(drawing.Schedule.Strokes.Count, drawing.Plan.Paths.Count);
+            _progress = new RunProgress(RunState.Idle, 0, _accounting.RowsTotal, 0, _accounting.RunsTotal, 0, TimeSpan.Zero, TimeSpan.FromSeconds(drawing.Schedule.EstimatedSeconds), 0, 0, false);
         }
 
         var spec = job.Spec;
@@ -210,15 +198,15 @@ public sealed partial class RunExecutor : ILaserSafetyRun
             {
                 case RunMotion.Strokes:
                     firstStroke = PrepareStrokes();
-                    _estimatePreparation = EstimateDrawingPreparation(firstStroke);
+                    _accounting.EstimatePreparation = EstimateDrawingPreparation(firstStroke);
                     break;
                 case RunMotion.Dots:
                     firstIndex = PrepareDots(Job!.Dots!);
-                    _estimatePreparation = EstimateDotsPreparation(Job.Dots!, firstIndex);
+                    _accounting.EstimatePreparation = EstimateDotsPreparation(Job.Dots!, firstIndex);
                     break;
                 default:
                     (moves, firstIndex) = Prepare();
-                    _estimatePreparation = EstimatePreparation(moves);
+                    _accounting.EstimatePreparation = EstimatePreparation(moves);
                     break;
             }
 
@@ -411,7 +399,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun
 
         if (outcome == RunOutcome.Completed)
         {
-            _estimator?.Finish();
+            _accounting.Finish();
         }
 
         if (outcome != RunOutcome.Completed)
@@ -439,15 +427,15 @@ public sealed partial class RunExecutor : ILaserSafetyRun
                 StartedAt = startedAt,
                 EndedAt = TimeProvider.GetUtcNow(),
                 EngravingDuration = engraving < TimeSpan.Zero ? TimeSpan.Zero : engraving,
-                EstimatedSeconds = _estimatePreparation + _estimateTotal - _estimateBefore,
-                EstimatedEngravingSeconds = _estimateTotal - _estimateBefore,
+                EstimatedSeconds = _accounting.EstimatePreparation + _accounting.EstimateTotal - _accounting.EstimateBefore,
+                EstimatedEngravingSeconds = _accounting.EstimateTotal - _accounting.EstimateBefore,
                 LaserOnSeconds = _laser.OnSeconds,
                 LateSwitches = _lateSwitches,
                 BurstEndedItself = _burstEndedItself,
-                RowsDone = _rowsDone,
-                RowsTotal = _rowsTotal,
-                RunsDone = _runsDone,
-                RunsTotal = _runsTotal,
+                RowsDone = _accounting.RowsDone,
+                RowsTotal = _accounting.RowsTotal,
+                RunsDone = _accounting.RunsDone,
+                RunsTotal = _accounting.RunsTotal,
                 Machine = identity,
             };
         }
@@ -559,5 +547,39 @@ public sealed partial class RunExecutor : ILaserSafetyRun
         {
             _stoppedAtKnownPosition = known;
         }
+    }
+
+    /// <summary>A move of the plan completed: counted (<see cref="RunAccounting"/>), then reported.</summary>
+    private void Completed(Move move, long index)
+    {
+        RunProgress progress;
+        lock (_lock)
+        {
+            _accounting.Completed(move, index);
+            _progress = Snapshot();
+            progress = _progress;
+        }
+
+        MoveCompleted?.Invoke(this, new MoveCompletedEventArgs(move, index));
+        ProgressChanged?.Invoke(this, progress);
+    }
+
+    /// <summary>The stop point: the first move not completed, where the stage stopped, and a timed run's cut pixel.</summary>
+    private RunStopPoint StopPoint()
+    {
+        lock (_lock)
+        {
+            return CutWithin(_accounting.StopPoint(_stoppedAtKnownPosition ? (_x, _y) : null));
+        }
+    }
+
+    /// <summary>A progress snapshot; caller holds the lock.</summary>
+    private RunProgress Snapshot()
+    {
+        var elapsed = TimeProvider.GetElapsedTime(_startTimestamp);
+        double? engraving = _engravingStarted ? (TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving).TotalSeconds : null;
+
+        // Timed runs and dots keep to their estimate (the same timeline), so the clock says how much of it is done.
+        return _accounting.Snapshot(_state, elapsed, engraving, byClock: _timing is not null || Job?.Dots is not null, _x, _y, _laser.On);
     }
 }
