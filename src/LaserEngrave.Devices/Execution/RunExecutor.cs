@@ -459,6 +459,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun
             }
 
             _state = state;
+            _control.Entered(state);
             _progress = Snapshot();
             progress = _progress;
         }
