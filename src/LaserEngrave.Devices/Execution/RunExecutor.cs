@@ -41,7 +41,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun
     private RunProgress _progress;
     private int _started;
 
-    // What was asked of the run (pause, abort): held once, shared with the session that runs this pass (RunControl).
+    // The run's phase and what was asked of it (pause, abort): held once, shared with the session that runs this pass.
     private readonly RunControl _control;
 
     // The abort's off sequence once this executor was told of the abort: from then on the run only goes towards its end.
@@ -49,6 +49,8 @@ public sealed partial class RunExecutor : ILaserSafetyRun
 
     // The laser: its lock, keepalive, state and off sequence.
     private readonly LaserSafety _laser;
+
+    // The run's clock: when it started, when the engraving started, and the pauses and positioning that are not engraving.
     private long _startTimestamp;
     private long _engravingStart;
     private bool _engravingStarted;
@@ -63,6 +65,8 @@ public sealed partial class RunExecutor : ILaserSafetyRun
 
     // The count of moves, rows and runs done, and the estimate: what progress, the stop point and the log read.
     private readonly RunAccounting _accounting;
+
+    // What preflight found (RunPreflight) and what the run saw of the latencies' spread since.
     private long? _resumeX;
     private bool _homed;
     private double _latencyScaleSeen = 1;
