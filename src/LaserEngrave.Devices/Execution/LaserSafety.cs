@@ -96,26 +96,14 @@ internal sealed class LaserSafety : IAsyncDisposable
         }
     }
 
-    /// <summary>Why the laser could not be confirmed off (a person must check it), or null.</summary>
-    public string? OffProblem
+    /// <summary>What the off sequence found, read at once: whether the laser is confirmed off, why not, and which path confirmed it.</summary>
+    public (bool Confirmed, string? Problem, LaserOffPath? By) OffState
     {
         get
         {
             lock (_lock)
             {
-                return _offProblem;
-            }
-        }
-    }
-
-    /// <summary>Which path of the off sequence the gate confirmed; null before an off sequence.</summary>
-    public LaserOffPath? OffBy
-    {
-        get
-        {
-            lock (_lock)
-            {
-                return _offBy;
+                return (_offConfirmed, _offProblem, _offBy);
             }
         }
     }

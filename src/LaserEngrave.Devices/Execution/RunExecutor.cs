@@ -415,7 +415,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun
         RunResult result;
         lock (_lock)
         {
-            var (offProblem, offConfirmed) = (_laser.OffProblem, _laser.OffConfirmed);
+            var (offConfirmed, offProblem, offBy) = _laser.OffState;
             var fault = offProblem is null ? message : message is null ? offProblem : $"{message}; {offProblem}";
             var engraving = !_engravingStarted ? TimeSpan.Zero : TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving;
             result = new RunResult
@@ -426,7 +426,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun
                 Recoverable = outcome == RunOutcome.Failed && _recoverableFault && offProblem is null && offConfirmed
                     && stopPoint is { CutPixel: null, ResumeXMicrosteps: null },
                 LaserOffConfirmed = offConfirmed,
-                LaserOffBy = outcome == RunOutcome.Completed ? null : _laser.OffBy ?? (offConfirmed ? LaserOffPath.Off : LaserOffPath.None),
+                LaserOffBy = outcome == RunOutcome.Completed ? null : offBy ?? (offConfirmed ? LaserOffPath.Off : LaserOffPath.None),
                 LatencyScale = Math.Max(LatencyScale, _latencyScaleSeen),
                 StartedAt = startedAt,
                 EndedAt = TimeProvider.GetUtcNow(),

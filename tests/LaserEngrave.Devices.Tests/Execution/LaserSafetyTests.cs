@@ -25,9 +25,9 @@ public class LaserSafetyTests
 
         await laser.OffSafelyAsync();
 
-        Assert.Equal(LaserOffPath.Off, laser.OffBy);
+        Assert.Equal(LaserOffPath.Off, laser.OffState.By);
         Assert.True(laser.OffConfirmed);
-        Assert.Null(laser.OffProblem);
+        Assert.Null(laser.OffState.Problem);
         Assert.Equal(0, run.Stops);
         Assert.Equal([false], run.Starts);
         await gate.Received(1).OffAsync(Arg.Any<CancellationToken>());
@@ -45,7 +45,7 @@ public class LaserSafetyTests
 
         await laser.OffSafelyAsync();
 
-        Assert.Equal(LaserOffPath.FrequencyZero, laser.OffBy);
+        Assert.Equal(LaserOffPath.FrequencyZero, laser.OffState.By);
         Assert.True(laser.OffConfirmed);
         Assert.Equal(1, run.Stops);
         Assert.Equal([true], run.Starts);
@@ -67,9 +67,9 @@ public class LaserSafetyTests
         await laser.OffSafelyAsync();
         await laser.OffSafelyAsync();
 
-        Assert.Equal(LaserOffPath.None, laser.OffBy);
+        Assert.Equal(LaserOffPath.None, laser.OffState.By);
         Assert.False(laser.OffConfirmed);
-        Assert.Contains("its watchdog (1000 ms) switches the laser off; a person must check the laser", laser.OffProblem, StringComparison.Ordinal);
+        Assert.Contains("its watchdog (1000 ms) switches the laser off; a person must check the laser", laser.OffState.Problem, StringComparison.Ordinal);
         await ((IAsyncDisposable)gate).Received(1).DisposeAsync();
         Assert.Equal(1, run.Stops);
         Assert.Equal([false, null], run.Starts);
@@ -93,7 +93,7 @@ public class LaserSafetyTests
 
         await time.RunTestAsync(laser.OffSafelyAsync);
 
-        Assert.Equal(LaserOffPath.OffAgain, laser.OffBy);
+        Assert.Equal(LaserOffPath.OffAgain, laser.OffState.By);
         Assert.True(laser.OffConfirmed);
         Assert.Equal(1, run.Stops);
     }
