@@ -23,11 +23,11 @@ public sealed class EngraveSession
     private readonly int _firstLayer;
     private readonly RunStopPoint? _resumeFrom;
     private RunExecutor? _current;
-    private RunState _state = RunState.Idle;
     private EngraveProgress _progress;
     private IProgress<EngraveProgress>? _sink;
 
-    // Pause and abort as asked, held once for every pass (each pass's executor acts on the same one); the session only mirrors it.
+    // The run's phase and its pause and abort as asked, held once for every pass (each pass's executor acts on the same one and
+    // moves its phase); the session reads it.
     private readonly RunControl _control = new();
     private readonly List<RunRecovery> _recoveries = [];
     private double _latencyScale = 1;
@@ -126,16 +126,8 @@ public sealed class EngraveSession
     /// <summary>The passes this session runs: the job's (every layer's added up), or 1 when it continues a stopped run.</summary>
     public int Passes { get; }
 
-    public RunState State
-    {
-        get
-        {
-            lock (_lock)
-            {
-                return _state;
-            }
-        }
-    }
+    /// <summary>The run's state over all its passes, as its <see cref="RunControl"/> holds it.</summary>
+    public RunState State => _control.Phase;
 
     /// <summary>The latest snapshot.</summary>
     public EngraveProgress Progress
@@ -170,7 +162,7 @@ public sealed class EngraveSession
         RunExecutor? current;
         lock (_lock)
         {
-            if (_control.AbortRequested || RunStateMachine.IsEnd(_state) || _control.PauseRequested)
+            if (_control.AbortRequested || RunStateMachine.IsEnd(_control.Phase) || _control.PauseRequested)
             {
                 return;
             }
@@ -215,20 +207,14 @@ public sealed class EngraveSession
         RunExecutor? current;
         lock (_lock)
         {
-            if (_control.AbortRequested || RunStateMachine.IsEnd(_state))
+            if (_control.AbortRequested || RunStateMachine.IsEnd(_control.Phase))
             {
                 return;
             }
 
-            // Recorded at once, so that no further pass starts; the pass that runs carries it out (laser off first).
+            // Recorded at once, so that no further pass starts, and Aborting at once; the pass that runs carries it out (laser off first).
             _control.RequestAbort();
             current = _current;
-
-            // Aborting at once, also between passes or before the first: the executor's own Aborting follows.
-            if (RunStateMachine.IsLegal(_state, RunState.Aborting))
-            {
-                _state = RunState.Aborting;
-            }
         }
 
         current?.Abort();
@@ -439,7 +425,7 @@ public sealed class EngraveSession
         lock (_lock)
         {
             _current = null;
-            _state = RunStateMachine.EndState(record.Outcome);
+            _control.End(RunStateMachine.EndState(record.Outcome));
         }
 
         Report(null);
@@ -548,22 +534,17 @@ public sealed class EngraveSession
         EngraveProgress progress;
         lock (_lock)
         {
-            if (RunStateMachine.IsEnd(_state) && pass is not null)
+            var state = _control.Phase;
+            if (RunStateMachine.IsEnd(state) && pass is not null)
             {
                 // A pass's report that comes after the session's end (an abort's, from another thread) changes nothing.
                 return;
             }
 
-            if (pass is { } p)
-            {
-                // A pass's end is not the session's: that comes once every pass has run, the burn is checked and the log written.
-                _state = RunStateMachine.IsEnd(p.Run.State) || (_control.AbortRequested && p.Run.State is not RunState.Aborting) ? _state : p.Run.State;
-                _progress = new EngraveProgress(_state, p.Pass, Passes, p.MovesDone, _moves, _control.PauseRequested, p.Run, _layer);
-            }
-            else
-            {
-                _progress = _progress with { State = _state, PauseRequested = _control.PauseRequested };
-            }
+            // The state is the run's phase, which a pass's end does not end (RunControl.Entered).
+            _progress = pass is { } p
+                ? new EngraveProgress(state, p.Pass, Passes, p.MovesDone, _moves, _control.PauseRequested, p.Run, _layer)
+                : _progress with { State = state, PauseRequested = _control.PauseRequested };
 
             progress = _progress;
         }

@@ -24,12 +24,7 @@ public sealed partial class RunExecutor
         var first = true;
         foreach (var step in program.Steps(firstIndex))
         {
-            lock (_lock)
-            {
-                _moveIndex = index;
-                _currentIndex = index;
-                _moveRow = step.Row;
-            }
+            _accounting.Executing(index, step.Row);
 
             await PauseIfAskedAsync(token);
             if (first)
@@ -51,47 +46,30 @@ public sealed partial class RunExecutor
             index++;
         }
 
-        lock (_lock)
-        {
-            _moveIndex = index;
-            _moveRow = Job!.Plan.Mask.Height;
-            if (_lastRow >= 0)
-            {
-                _rowsDone++;
-                _lastRow = -1;
-            }
-        }
+        _accounting.Ended(index, Job!.Plan.Mask.Height);
     }
 
     /// <summary>The step's burst at the stage's standing position; returns once the laser is surely off again.</summary>
     private async Task FireDotAsync(DotStep step, DotTiming timing, CancellationToken token)
     {
-        await _laserLock.WaitAsync();
+        await _laser.Lock.WaitAsync();
         try
         {
             // Inside the lock: an abort's switch-off is either already sent (and we stop here) or comes after the burst.
             ThrowIfAborted();
-            lock (_lock)
-            {
-                _laserOn = true;
-                _laserOnSince = TimeProvider.GetTimestamp();
-            }
+            _laser.MarkOn(TimeProvider.GetTimestamp());
 
             // Not cancelled: a reply arriving after a cancelled command would be taken for the next one's.
             await Gate.BurstAsync(step.Pulses, step.FrequencyHz, CancellationToken.None);
         }
         finally
         {
-            _laserLock.Release();
+            _laser.Lock.Release();
         }
 
         // The gate answers as the burst starts; nothing moves before it has surely ended. An abort meanwhile switches the laser off.
         await PreciseDelay.DelayAsync(TimeProvider, TimeSpan.FromSeconds(timing.AfterAckSeconds), token);
-        lock (_lock)
-        {
-            _laserOn = false;
-            _laserOnSeconds += timing.BurstSeconds;
-        }
+        _laser.MarkBurstOver(timing.BurstSeconds);
     }
 
     /// <summary>Preflight's share of the estimate before the first dot: the exchanges, homing if it homed, and the travel to the dot.</summary>
@@ -104,7 +82,7 @@ public sealed partial class RunExecutor
     private long PrepareDots(DotPlan plan)
     {
         var estimate = plan.Estimate;
-        _estimateTotal = estimate.TotalSeconds;
+        _accounting.EstimateTotal = estimate.TotalSeconds;
         if (Options.ResumeFrom is not { } resume)
         {
             return 0;
@@ -120,15 +98,10 @@ public sealed partial class RunExecutor
         var program = plan.Program();
         foreach (var step in program.Steps().TakeWhile(s => s.Index < start))
         {
-            _runsDone++;
-            if (step.Row != _lastRow)
-            {
-                _rowsDone += _lastRow >= 0 ? 1 : 0;
-                _lastRow = step.Row;
-            }
+            _accounting.CountDone(MoveKind.Burn, step.Row);
         }
 
-        _estimateBefore = program.SecondsBefore(start);
+        _accounting.EstimateBefore = program.SecondsBefore(start);
         return start;
     }
 }

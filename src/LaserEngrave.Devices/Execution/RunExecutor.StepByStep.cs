@@ -21,11 +21,7 @@ public sealed partial class RunExecutor
     /// </summary>
     private async Task BeginEngravingAsync(long firstIndex, int row, CancellationToken token)
     {
-        lock (_lock)
-        {
-            _moveIndex = firstIndex;
-            _moveRow = row;
-        }
+        _accounting.At(firstIndex, row);
 
         _engravingStart = TimeProvider.GetTimestamp();
         _engravingStarted = true;
@@ -55,13 +51,7 @@ public sealed partial class RunExecutor
                 first = false;
             }
 
-            lock (_lock)
-            {
-                _moveIndex = moveIndex;
-                _currentIndex = moveIndex;
-                _moveRow = move.Row;
-                _currentMove = move;
-            }
+            _accounting.Executing(moveIndex, move.Row, move);
 
             await PauseIfAskedAsync(token);
             await ExecuteMoveAsync(step.Move, token);
@@ -69,17 +59,7 @@ public sealed partial class RunExecutor
             index = moveIndex + 1;
         }
 
-        lock (_lock)
-        {
-            _moveIndex = index;
-            _moveRow = Job!.Plan.Mask.Height;
-            _currentMove = null;
-            if (_lastRow >= 0)
-            {
-                _rowsDone++;
-                _lastRow = -1;
-            }
-        }
+        _accounting.Ended(index, Job!.Plan.Mask.Height);
     }
 
     /// <summary>The program's steps to execute and the index of the first move; for a resumed run also the counters and estimates of what was done before.</summary>
@@ -89,10 +69,10 @@ public sealed partial class RunExecutor
         // The run's own timing model plans its strokes (wider latencies when preflight found them); the estimate is the plan's.
         var program = Job!.Program(_timing);
         var estimated = Job.Program();
-        _estimator = program.Timing is null ? new PlanEstimator(estimated) : null;
+        _accounting.Estimator = program.Timing is null ? new PlanEstimator(estimated) : null;
         if (Options.ResumeFrom is not { } stop)
         {
-            _estimateTotal = Job.Statistics.EngravingSeconds;
+            _accounting.EstimateTotal = Job.Statistics.EngravingSeconds;
             return (program.Steps(), 0);
         }
 
@@ -106,12 +86,10 @@ public sealed partial class RunExecutor
             throw new PreflightException(ex.Message);
         }
 
-        _runsDone = resume.RunsBefore;
-        _rowsDone = resume.RowsBefore;
-        _lastRow = resume.LastRowBefore;
+        _accounting.DoneBefore(resume.RowsBefore, resume.RunsBefore, resume.LastRowBefore);
         var (before, remaining) = estimated.EstimateResumed(resume);
-        _estimateBefore = before;
-        _estimateTotal = _estimateBefore + remaining;
+        _accounting.EstimateBefore = before;
+        _accounting.EstimateTotal = before + remaining;
         return (program.Steps(resume), resume.FirstMoveIndex);
     }
 
@@ -127,17 +105,17 @@ public sealed partial class RunExecutor
         var burn = step.LaserOn;
 
         // Off before anything else, so the laser never stands still on while speeds are set.
-        if (!burn && _laserOn)
+        if (!burn && _laser.On)
         {
-            await SwitchLaserAsync(on: false);
+            await _laser.SwitchAsync(on: false);
         }
 
         // Speeds before switching on, for the same reason (docs/simulator.md: dwell).
         var speedData = step.SpeedData;
         await SetSpeedsAsync(move.LengthX != 0, move.LengthY != 0, speedData, token);
-        if (burn && !_laserOn)
+        if (burn && !_laser.On)
         {
-            await SwitchLaserAsync(on: true);
+            await _laser.SwitchAsync(on: true);
         }
 
         if (burn)
@@ -145,7 +123,7 @@ public sealed partial class RunExecutor
             // No keepalive in the last moments of the run: a switch-off queued behind one would leave the laser standing on.
             var motion = new TrapezoidProfile(move.LengthX, StageUnits.SpeedMicrostepsPerS(speedData), StageUnits.AccelerationMicrostepsPerS2(_accelerationData));
             var quietAfterSeconds = Math.Max(0, motion.Duration - KeepAliveQuietSeconds);
-            _keepAlive!.QuietFrom = TimeProvider.GetTimestamp() + (long)(quietAfterSeconds * TimeProvider.TimestampFrequency);
+            _laser.KeepAlive!.QuietFrom = TimeProvider.GetTimestamp() + (long)(quietAfterSeconds * TimeProvider.TimestampFrequency);
         }
 
         await MoveAxesAsync(move.LengthX != 0 ? step.X : null, move.LengthY != 0 ? step.Y : null, token);
@@ -154,9 +132,9 @@ public sealed partial class RunExecutor
     /// <summary>A travel to (<paramref name="x"/>, <paramref name="y"/>); an axis already there is left alone unless <paramref name="unsure"/> says its position is the model's, not a reply's.</summary>
     private async Task MoveToAsync(long x, long y, int speedData, CancellationToken token, (bool X, bool Y) unsure = default)
     {
-        if (_laserOn)
+        if (_laser.On)
         {
-            await SwitchLaserAsync(on: false);
+            await _laser.SwitchAsync(on: false);
         }
 
         bool moveX = x != _x || unsure.X, moveY = y != _y || unsure.Y;

@@ -92,16 +92,7 @@ public sealed partial class RunExecutor
 
         await WatchedRepliesAsync(token);
         CompleteAcknowledged();
-        lock (_lock)
-        {
-            _moveRow = Job!.Plan.Mask.Height;
-            _currentMove = null;
-            if (_lastRow >= 0)
-            {
-                _rowsDone++;
-                _lastRow = -1;
-            }
-        }
+        _accounting.Ended(null, Job!.Plan.Mask.Height);
     }
 
     private bool IsPauseRequested
@@ -203,8 +194,7 @@ public sealed partial class RunExecutor
             RunProgress progress;
             lock (_lock)
             {
-                _currentMove = burn;
-                _currentIndex = burnIndex;
+                _accounting.Current(burn, burnIndex);
                 _progress = Snapshot();
                 progress = _progress;
             }
@@ -216,7 +206,7 @@ public sealed partial class RunExecutor
             if (k + 1 < stroke.RunCount && !bumps.ContainsKey(Distance(burn.X1)) && !OffFitsBefore(stroke.RunAt(k + 1).Move, offEffect))
             {
                 // A gap too short for the switch-off's line and the next burst's: the burst ends this run by itself.
-                MarkLaserOff(timing.OffLeadSeconds);
+                _laser.MarkOff(timing.OffLeadSeconds);
                 lock (_lock)
                 {
                     _burning = null;
@@ -310,11 +300,7 @@ public sealed partial class RunExecutor
 
         _travelLate = 0;
 
-        lock (_lock)
-        {
-            _currentMove = move;
-            _currentIndex = index;
-        }
+        _accounting.Current(move, index);
 
         CompleteUp(move, index, null);
     }
@@ -495,7 +481,7 @@ public sealed partial class RunExecutor
     /// </summary>
     private async Task<(Task Acknowledged, double WrittenSeconds)> SendSwitchOnAsync(double onEffect, double offEffect, TimedSwitching timing)
     {
-        await _laserLock.WaitAsync();
+        await _laser.Lock.WaitAsync();
         try
         {
             ThrowIfAborted();
@@ -527,8 +513,7 @@ public sealed partial class RunExecutor
             var firing = _gateWireFree + timing.GateProcessingSeconds;
             lock (_lock)
             {
-                _laserOn = true;
-                _laserOnSince = TimeProvider.GetTimestamp() + (long)((firing - written) * TimeProvider.TimestampFrequency);
+                _laser.MarkOn(TimeProvider.GetTimestamp() + (long)((firing - written) * TimeProvider.TimestampFrequency));
                 _burstEndsAt = firing + ((double)pulses / timing.FrequencyHz) + timing.GateJitterSeconds;
             }
 
@@ -536,14 +521,14 @@ public sealed partial class RunExecutor
         }
         finally
         {
-            _laserLock.Release();
+            _laser.Lock.Release();
         }
     }
 
     /// <summary>Sends a timed switch-off under the laser lock and returns its acknowledgement without waiting for it, and when it was written.</summary>
     private async Task<(Task Acknowledged, double WrittenSeconds)> SendSwitchOffAsync(TimedSwitching timing)
     {
-        await _laserLock.WaitAsync();
+        await _laser.Lock.WaitAsync();
         try
         {
             var written = RunSeconds;
@@ -551,12 +536,12 @@ public sealed partial class RunExecutor
             // Counted from effect to effect: the switch-off takes effect its lead after it is sent, as the switch-on did.
             var off = Gate.OffAsync(CancellationToken.None);
             _gateWireFree = timing.GateWireFreeAfter(written, _gateWireFree, timing.OffCommand.Length);
-            MarkLaserOff(timing.OffLeadSeconds);
+            _laser.MarkOff(timing.OffLeadSeconds);
             return (off, written);
         }
         finally
         {
-            _laserLock.Release();
+            _laser.Lock.Release();
         }
     }
 
@@ -689,7 +674,7 @@ public sealed partial class RunExecutor
 
             if (watched.SwitchOff)
             {
-                MarkSwitchOffFailed();
+                _laser.MarkSwitchOffFailed();
             }
 
             if (!reply.IsCompleted)
@@ -765,7 +750,7 @@ public sealed partial class RunExecutor
 
         if (first)
         {
-            _ = TaskRunner.For(TimeProvider).Start(LaserOffSafelyAsync);
+            _ = TaskRunner.For(TimeProvider).Start(_laser.OffSafelyAsync);
             _fault.Cancel();
         }
 
@@ -850,11 +835,11 @@ public sealed partial class RunExecutor
         // earliest after the last one it answered (the resumed run checks that the watchdog did trip).
         double offAt;
         var byWatchdog = false;
-        if (_laserOffConfirmed && _faultOffWrite is { } offWrite)
+        if (_laser.OffConfirmed && _faultOffWrite is { } offWrite)
         {
             offAt = offWrite + timing.OffLeadSeconds - timing.GateJitterSeconds;
         }
-        else if (!_laserOffConfirmed && _gateAliveAt > double.NegativeInfinity)
+        else if (!_laser.OffConfirmed && _gateAliveAt > double.NegativeInfinity)
         {
             offAt = _gateAliveAt + Units.MsToSeconds(_profile.Gate.WatchdogMs) - timing.GateJitterSeconds;
             byWatchdog = true;

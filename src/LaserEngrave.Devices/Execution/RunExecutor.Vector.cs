@@ -35,12 +35,11 @@ public sealed partial class RunExecutor
             }
 
             first = (int)resume.MoveIndex;
-            _rowsDone = first;
-            _runsDone = program.Steps().Take(first).Count(s => s.LastOfPath);
+            _accounting.DoneBefore(first, program.Steps().Take(first).Count(s => s.LastOfPath));
         }
 
-        _estimateTotal = schedule.EstimatedSeconds;
-        _estimateBefore = schedule.EstimatedSeconds - program.SecondsFrom(first);
+        _accounting.EstimateTotal = schedule.EstimatedSeconds;
+        _accounting.EstimateBefore = schedule.EstimatedSeconds - program.SecondsFrom(first);
         return first;
     }
 
@@ -50,7 +49,7 @@ public sealed partial class RunExecutor
             ? Drawing.Schedule.Timing.PreparationSeconds(step.Travel.To.X, step.Travel.To.Y, _homed, from: (_x, _y))
             : 0;
 
-    private void CheckDrawing(PreparedDrawing drawing)
+    internal static void CheckDrawing(PreparedDrawing drawing)
     {
         if (!drawing.FitsTravel)
         {
@@ -63,7 +62,7 @@ public sealed partial class RunExecutor
         }
     }
 
-    private void CheckDrawingReach(PreparedDrawing drawing, AxisIdentity x, AxisIdentity y)
+    internal static void CheckDrawingReach(PreparedDrawing drawing, AxisIdentity x, AxisIdentity y)
     {
         var strokes = drawing.Schedule.Strokes;
         var right = strokes.Max(s => Math.Max(Math.Max(s.RunUpStart.X, s.RestEnd.X), s.Path.Points.Max(p => p.X)));
@@ -89,11 +88,7 @@ public sealed partial class RunExecutor
         {
             var k = step.Index;
             var travel = step.Travel;
-            lock (_lock)
-            {
-                _moveIndex = k;
-                _moveRow = k;
-            }
+            _accounting.At(k, k);
 
             if (travel.From is null)
             {
@@ -123,11 +118,7 @@ public sealed partial class RunExecutor
         }
 
         await DelayUntilAsync(travelWrite, token);
-        lock (_lock)
-        {
-            _moveIndex = program.StrokeCount;
-            _moveRow = program.StrokeCount;
-        }
+        _accounting.At(program.StrokeCount, program.StrokeCount);
     }
 
     /// <summary>One stroke by time; returns when (run seconds) the travel to the next stroke may be written.</summary>
@@ -215,11 +206,11 @@ public sealed partial class RunExecutor
         var travel = write + stroke.NextArrivalSeconds;
         if (!await CompletesByAsync(off!, travel, token) || !off!.IsCompletedSuccessfully)
         {
-            MarkSwitchOffFailed();
+            _laser.MarkSwitchOffFailed();
             throw Fault("the laser gate had not acknowledged the switch-off when the stage was to travel");
         }
 
-        MarkLaserOff();
+        _laser.MarkOff();
         lock (_lock)
         {
             _x = stroke.RestEnd.X;
@@ -285,13 +276,7 @@ public sealed partial class RunExecutor
         RunProgress progress;
         lock (_lock)
         {
-            _rowsDone++;
-            if (step.LastOfPath)
-            {
-                _runsDone++;
-            }
-
-            _moveIndex = stroke.Index + 1;
+            _accounting.StrokeDone(stroke.Index, step.LastOfPath);
             _progress = Snapshot();
             progress = _progress;
         }

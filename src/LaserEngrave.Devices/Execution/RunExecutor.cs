@@ -21,7 +21,7 @@ namespace LaserEngrave.Devices.Execution;
 /// <see cref="Pause"/>, <see cref="Resume"/> and <see cref="Abort"/> may be called from any thread at any time.
 /// The protocol is the one <see cref="PlanEstimator"/> models; docs/execution.md describes it.
 /// </remarks>
-public sealed partial class RunExecutor
+public sealed partial class RunExecutor : ILaserSafetyRun
 {
     private const string AbortedMessage = "aborted by the operator";
 
@@ -29,18 +29,12 @@ public sealed partial class RunExecutor
     private const double KeepAliveQuietSeconds = 0.05;
 
     private readonly Lock _lock = new();
-
-    // Every laser command goes under this lock, and a switch-on checks for an abort inside it: so once Abort has sent
-    // its switch-off, no switch-on can follow it on the wire.
-    private readonly AsyncLock _laserLock = new();
     private readonly CancellationTokenSource _abortDone = new();
     private readonly CancellationTokenSource _fault = new();
     private readonly ProcessSettings _process = ProcessSettings.Default;
     private readonly MachineProfile _profile = MachineProfile.Default;
-    private readonly Motion _motion;
+    private readonly RunMotion _motion;
     private TimedSwitching? _timing;
-    private readonly int _rowsTotal;
-    private readonly long _runsTotal;
     private readonly int _burnSpeedData;
     private readonly int _travelSpeedData;
     private readonly int _accelerationData;
@@ -48,21 +42,16 @@ public sealed partial class RunExecutor
     private RunProgress _progress;
     private int _started;
 
-    // What was asked of the run (pause, abort): held once, shared with the session that runs this pass (RunControl).
+    // The run's phase and what was asked of it (pause, abort): held once, shared with the session that runs this pass.
     private readonly RunControl _control;
 
     // The abort's off sequence once this executor was told of the abort: from then on the run only goes towards its end.
     private Task? _abortSequence;
-    private GateKeepAlive? _keepAlive;
-    private bool _laserOn;
-    private long _laserOnSince;
-    private double _laserOnSeconds;
-    private bool _laserOffConfirmed = true;
-    private string? _laserOffProblem;
-    private LaserOffPath? _laserOffBy;
 
-    // A switch-off refused or not acknowledged in time: the laser may still fire, so every path to off is taken at once.
-    private bool _switchOffFailed;
+    // The laser: its lock, keepalive, state and off sequence.
+    private readonly LaserSafety _laser;
+
+    // The run's clock: when it started, when the engraving started, and the pauses and positioning that are not engraving.
     private long _startTimestamp;
     private long _engravingStart;
     private bool _engravingStarted;
@@ -72,24 +61,17 @@ public sealed partial class RunExecutor
     private int _xSpeedData;
     private int _ySpeedData;
 
-    // The move being executed (the first not completed) and the counters over the whole plan.
-    private long _moveIndex;
-    private int _moveRow;
-    private Move? _currentMove;
-    private long _currentIndex = -1;
+    // Whether both axes said where they stopped after a fault or an abort (the stop point's position).
     private bool _stoppedAtKnownPosition;
-    private int _rowsDone;
-    private int _lastRow = -1;
-    private long _runsDone;
-    private double _estimateBefore;
-    private double _estimateTotal;
-    private double _estimatePreparation;
+
+    // The count of moves, rows and runs done, and the estimate: what progress, the stop point and the log read.
+    private readonly RunAccounting _accounting;
+
+    // What preflight found (RunPreflight) and what the run saw of the latencies' spread since.
     private long? _resumeX;
-    private bool _gateVouchesForCut = true;
     private bool _homed;
     private double _latencyScaleSeen = 1;
     private double _latencyScale = 1;
-    private PlanEstimator? _estimator;
 
     /// <summary>An executor for one image (raster or dots) or one drawing: it runs that job's plan once.</summary>
     /// <remarks>Layers and passes are the session's (<see cref="EngraveSession"/>, one executor a pass of a layer); a sweep's cells are each a job.</remarks>
@@ -114,9 +96,9 @@ public sealed partial class RunExecutor
         // The one place the executor tells the kinds apart: the motion strategy it runs, what it counts, its timing and units.
         (Job, Drawing, _motion) = job switch
         {
-            RasterJob raster => (raster.Prepared, null, raster.Prepared.Plan.Timing is null ? Motion.StepByStep : Motion.Timed),
-            DotJob dots => (dots.Prepared, null, Motion.Dots),
-            DrawingJob drawing => ((PreparedJob?)null, drawing.Drawing, Motion.Strokes),
+            RasterJob raster => (raster.Prepared, null, raster.Prepared.Plan.Timing is null ? RunMotion.StepByStep : RunMotion.Timed),
+            DotJob dots => (dots.Prepared, null, RunMotion.Dots),
+            DrawingJob drawing => ((PreparedJob?)null, drawing.Drawing, RunMotion.Strokes),
             LayersJob or SweepJob => throw new ArgumentException("an executor runs one image or drawing: a job of layers runs through EngraveSession, a sweep through SweepSession", nameof(job)),
             _ => throw new ArgumentException($"unknown job kind {job.GetType().Name}", nameof(job)),
         };
@@ -127,9 +109,8 @@ public sealed partial class RunExecutor
             microstepUm = image.Plan.Geometry.MicrostepUm;
             strategy = image.Plan.Options.Strategy;
             _timing = image.Plan.Timing;
-            _rowsTotal = image.Statistics.Rows;
-            _runsTotal = image.Statistics.BurnRuns;
-            _progress = new RunProgress(RunState.Idle, 0, _rowsTotal, 0, _runsTotal, 0, TimeSpan.Zero, TimeSpan.FromSeconds(image.Statistics.EngravingSeconds), 0, 0, false);
+            _accounting = new RunAccounting(image.Statistics.Rows, image.Statistics.BurnRuns);
+            _progress = new RunProgress(RunState.Idle, 0, _accounting.RowsTotal, 0, _accounting.RunsTotal, 0, TimeSpan.Zero, TimeSpan.FromSeconds(image.Statistics.EngravingSeconds), 0, 0, false);
         }
         else
         {
@@ -137,15 +118,15 @@ public sealed partial class RunExecutor
             microstepUm = drawing.Schedule.Timing.MicrostepUm;
             strategy = PlanStrategy.Optimized;
             _timing = drawing.Schedule.Timing;
-            _rowsTotal = drawing.Schedule.Strokes.Count;
-            _runsTotal = drawing.Plan.Paths.Count;
-            _progress = new RunProgress(RunState.Idle, 0, _rowsTotal, 0, _runsTotal, 0, TimeSpan.Zero, TimeSpan.FromSeconds(drawing.Schedule.EstimatedSeconds), 0, 0, false);
+            _accounting = new RunAccounting(drawing.Schedule.Strokes.Count, drawing.Plan.Paths.Count);
+            _progress = new RunProgress(RunState.Idle, 0, _accounting.RowsTotal, 0, _accounting.RunsTotal, 0, TimeSpan.Zero, TimeSpan.FromSeconds(drawing.Schedule.EstimatedSeconds), 0, 0, false);
         }
 
         var spec = job.Spec;
         _process = spec.Process;
         _profile = spec.Profile;
         (_burnSpeedData, _travelSpeedData, _accelerationData) = MotionData.Of(_process, strategy, microstepUm);
+        _laser = new LaserSafety(Gate, TimeProvider, _process.LaserFrequencyWholeHz, _profile.Gate.WatchdogMs, Options.StallMarginMs, this);
     }
 
     /// <summary>Raised on every state change.</summary>
@@ -218,39 +199,39 @@ public sealed partial class RunExecutor
             var firstStroke = 0;
             switch (_motion)
             {
-                case Motion.Strokes:
+                case RunMotion.Strokes:
                     firstStroke = PrepareStrokes();
-                    _estimatePreparation = EstimateDrawingPreparation(firstStroke);
+                    _accounting.EstimatePreparation = EstimateDrawingPreparation(firstStroke);
                     break;
-                case Motion.Dots:
+                case RunMotion.Dots:
                     firstIndex = PrepareDots(Job!.Dots!);
-                    _estimatePreparation = EstimateDotsPreparation(Job.Dots!, firstIndex);
+                    _accounting.EstimatePreparation = EstimateDotsPreparation(Job.Dots!, firstIndex);
                     break;
                 default:
                     (steps, firstIndex) = Prepare();
-                    _estimatePreparation = EstimatePreparation(steps);
+                    _accounting.EstimatePreparation = EstimatePreparation(steps);
                     break;
             }
 
             SetState(RunState.Running);
-            _keepAlive = new GateKeepAlive(Gate, GateKeepAlive.PeriodFor(_profile.Gate.WatchdogMs, Options.KeepAliveFraction), TimeProvider, OnKeepAliveFailed);
+            _laser.StartKeepAlive(GateKeepAlive.PeriodFor(_profile.Gate.WatchdogMs, Options.KeepAliveFraction), whileOn: _timing is null, OnKeepAliveFailed);
             using var linked = CancellationTokenSource.CreateLinkedTokenSource(token, _fault.Token);
             // One motion strategy per kind of plan: strokes (RunExecutor.Vector), dots (.Dots), timed switching (.Timed) or step by step (.StepByStep).
             var motion = _motion switch
             {
-                Motion.Strokes => ExecuteVectorAsync(Drawing!, firstStroke, linked.Token),
-                Motion.Dots => ExecuteDotsAsync(Job!.Dots!, firstIndex, linked.Token),
-                Motion.Timed => ExecuteTimedAsync(steps, firstIndex, _timing!, linked.Token),
+                RunMotion.Strokes => ExecuteVectorAsync(Drawing!, firstStroke, linked.Token),
+                RunMotion.Dots => ExecuteDotsAsync(Job!.Dots!, firstIndex, linked.Token),
+                RunMotion.Timed => ExecuteTimedAsync(steps, firstIndex, _timing!, linked.Token),
                 _ => ExecuteAsync(steps, firstIndex, linked.Token),
             };
             await motion;
 
-            await SwitchLaserAsync(on: false);
+            await _laser.SwitchAsync(on: false);
             return await FinishAsync(RunOutcome.Completed, null, identity, startedAt);
         }
         catch (PreflightException) when (!IsAbortRequested)
         {
-            await LaserOffSafelyAsync();
+            await _laser.OffSafelyAsync();
             SetState(RunState.Failed);
             throw;
         }
@@ -263,15 +244,12 @@ public sealed partial class RunExecutor
             }
 
             var reason = _timedFault
-                ?? (_keepAlive?.Fault is { } keepAliveFault ? $"the laser gate did not answer the keepalive: {keepAliveFault.Message}" : ex.Message);
+                ?? (_laser.KeepAlive?.Fault is { } keepAliveFault ? $"the laser gate did not answer the keepalive: {keepAliveFault.Message}" : ex.Message);
             return await FailAsync(reason, identity, startedAt);
         }
         finally
         {
-            if (_keepAlive is not null)
-            {
-                await _keepAlive.DisposeAsync();
-            }
+            await _laser.DisposeAsync();
         }
     }
 
@@ -330,21 +308,28 @@ public sealed partial class RunExecutor
 
     /// <summary>
     /// The latency spread this run assumes, in times the profile's: <see cref="RunOptions.LatencyScale"/>, or more when the
-    /// preflight's own exchanges spread wider than the profile says (<see cref="SpreadSeenScale(long)"/>).
+    /// preflight's own exchanges spread wider than the profile says (<see cref="RunPreflight"/>).
     /// </summary>
     private double LatencyScale => _latencyScale;
 
-    /// <summary>
-    /// The preflight's stage exchanges (identification, homing's settings and the positions after it: 14 to 22 commands
-    /// that reply at once, one at a time) against the profile: their
-    /// round trips may spread by the two adapter latencies' jitter, 4 J. Wider, the profile understates the latencies
-    /// (or the computer's lateness) and the guards sized by it would let pulses past the edges; the run then assumes
-    /// twice the ratio seen, since a dozen draws rarely show the largest. 1 when they fit, or for a plan without timing.
-    /// </summary>
     /// <summary>The widest spread a run assumes, in times the profile's (a profile this far off needs `machine latency`).</summary>
-    private const double MaxLatencyScale = 8;
+    private const double MaxLatencyScale = RunPreflight.MaxLatencyScale;
 
     private static string N(double value) => value.ToString("0.####", CultureInfo.InvariantCulture);
+
+    /// <summary>Preflight, once (<see cref="RunPreflight"/>): the run starts from what it found.</summary>
+    private async Task<MachineIdentity> PreflightAsync(CancellationToken token)
+    {
+        var preflight = new RunPreflight(Stage, Gate, _motion, Job, Drawing, _process, _profile, _timing, _travelSpeedData, _accelerationData, Options);
+        var found = await preflight.RunAsync(token);
+        _resumeX = found.ResumeX;
+        _homed = found.Homed;
+        _x = found.X;
+        _y = found.Y;
+        _latencyScale = found.LatencyScale;
+        _timing = found.Timing;
+        return found.Identity;
+    }
 
     private bool IsAbortRequested
     {
@@ -378,9 +363,9 @@ public sealed partial class RunExecutor
             return;
         }
 
-        if (_laserOn)
+        if (_laser.On)
         {
-            await SwitchLaserAsync(on: false);
+            await _laser.SwitchAsync(on: false);
         }
 
         var pausedAt = TimeProvider.GetTimestamp();
@@ -393,7 +378,7 @@ public sealed partial class RunExecutor
 
     private async Task<RunResult> FailAsync(string reason, MachineIdentity? identity, DateTimeOffset startedAt)
     {
-        await LaserOffSafelyAsync();
+        await _laser.OffSafelyAsync();
         await StopAxesAsync();
         if (IsAbortRequested)
         {
@@ -417,7 +402,7 @@ public sealed partial class RunExecutor
 
         if (outcome == RunOutcome.Completed)
         {
-            _estimator?.Finish();
+            _accounting.Finish();
         }
 
         if (outcome != RunOutcome.Completed)
@@ -429,30 +414,31 @@ public sealed partial class RunExecutor
         RunResult result;
         lock (_lock)
         {
-            var fault = _laserOffProblem is null ? message : message is null ? _laserOffProblem : $"{message}; {_laserOffProblem}";
+            var (offConfirmed, offProblem, offBy) = _laser.OffState;
+            var fault = offProblem is null ? message : message is null ? offProblem : $"{message}; {offProblem}";
             var engraving = !_engravingStarted ? TimeSpan.Zero : TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving;
             result = new RunResult
             {
                 Outcome = outcome,
                 FaultMessage = fault,
                 StopPoint = stopPoint,
-                Recoverable = outcome == RunOutcome.Failed && _recoverableFault && _laserOffProblem is null && _laserOffConfirmed
+                Recoverable = outcome == RunOutcome.Failed && _recoverableFault && offProblem is null && offConfirmed
                     && stopPoint is { CutPixel: null, ResumeXMicrosteps: null },
-                LaserOffConfirmed = _laserOffConfirmed,
-                LaserOffBy = outcome == RunOutcome.Completed ? null : _laserOffBy ?? (_laserOffConfirmed ? LaserOffPath.Off : LaserOffPath.None),
+                LaserOffConfirmed = offConfirmed,
+                LaserOffBy = outcome == RunOutcome.Completed ? null : offBy ?? (offConfirmed ? LaserOffPath.Off : LaserOffPath.None),
                 LatencyScale = Math.Max(LatencyScale, _latencyScaleSeen),
                 StartedAt = startedAt,
                 EndedAt = TimeProvider.GetUtcNow(),
                 EngravingDuration = engraving < TimeSpan.Zero ? TimeSpan.Zero : engraving,
-                EstimatedSeconds = _estimatePreparation + _estimateTotal - _estimateBefore,
-                EstimatedEngravingSeconds = _estimateTotal - _estimateBefore,
-                LaserOnSeconds = _laserOnSeconds,
+                EstimatedSeconds = _accounting.EstimatePreparation + _accounting.EstimateTotal - _accounting.EstimateBefore,
+                EstimatedEngravingSeconds = _accounting.EstimateTotal - _accounting.EstimateBefore,
+                LaserOnSeconds = _laser.OnSeconds,
                 LateSwitches = _lateSwitches,
                 BurstEndedItself = _burstEndedItself,
-                RowsDone = _rowsDone,
-                RowsTotal = _rowsTotal,
-                RunsDone = _runsDone,
-                RunsTotal = _runsTotal,
+                RowsDone = _accounting.RowsDone,
+                RowsTotal = _accounting.RowsTotal,
+                RunsDone = _accounting.RunsDone,
+                RunsTotal = _accounting.RunsTotal,
                 Machine = identity,
             };
         }
@@ -476,6 +462,7 @@ public sealed partial class RunExecutor
             }
 
             _state = state;
+            _control.Entered(state);
             _progress = Snapshot();
             progress = _progress;
         }
@@ -484,19 +471,119 @@ public sealed partial class RunExecutor
         ProgressChanged?.Invoke(this, progress);
     }
 
-    /// <summary>The motion strategies, one per kind of plan.</summary>
-    private enum Motion
+    TimedSwitching? ILaserSafetyRun.Timing => _timing;
+
+    void ILaserSafetyRun.ThrowIfAborted() => ThrowIfAborted();
+
+    void ILaserSafetyRun.OffSequenceStarting(bool? inDoubt)
     {
-        /// <summary>Each move awaits its reply before the next (a paper plan, or one without a timing model).</summary>
-        StepByStep,
+        lock (_lock)
+        {
+            // When the fault's switch-off left: a burn run cut by it is burned up to there (the stop point's cut pixel).
+            if (_engravingStarted)
+            {
+                _faultOffWrite ??= RunSeconds;
+            }
 
-        /// <summary>Strokes and travels sent at times computed in advance, the laser switched by time.</summary>
-        Timed,
+            // A switch-off refused or unanswered after the burn run's burst had stopped the laser by itself: the run's
+            // last pulse was the burst's, inside the run; the paths to off still go, and say which confirmed it.
+            if (inDoubt == true)
+            {
+                _burstEndedItself |= RunSeconds >= _burstEndsAt;
+            }
+        }
+    }
 
-        /// <summary>Stop at each dot and fire a counted burst.</summary>
-        Dots,
+    Task ILaserSafetyRun.StopStageAsync() => StopAxesAsync();
 
-        /// <summary>A drawing's strokes, each axis streaming its speed.</summary>
-        Strokes,
+    /// <summary>An abort: the laser off first, then the stage stopped.</summary>
+    private async Task AbortSequenceAsync()
+    {
+        try
+        {
+            await _laser.OffSafelyAsync();
+            await StopAxesAsync();
+        }
+        finally
+        {
+            // Releases whatever the run is waiting for (a move the stop did not interrupt, a pause).
+            _abortDone.Cancel();
+        }
+    }
+
+    private void OnKeepAliveFailed(Exception ex) => _fault.Cancel();
+
+    /// <summary>Stops both axes and records where they stopped (when they say); a stage gone silent leaves the stop point without a position.</summary>
+    private async Task StopAxesAsync()
+    {
+        var known = true;
+        foreach (var axis in new[] { Stage.X, Stage.Y })
+        {
+            try
+            {
+                var written = _engravingStarted ? RunSeconds : double.NaN;
+                var position = await axis.StopAsync(CancellationToken.None);
+                if (axis == Stage.X)
+                {
+                    NoteStopped(written, position);
+                }
+
+                lock (_lock)
+                {
+                    if (axis == Stage.X)
+                    {
+                        _x = position;
+                    }
+                    else
+                    {
+                        _y = position;
+                    }
+                }
+            }
+            catch (DeviceException)
+            {
+                // The stage may be gone (port lost, silent): the stop point then has no position.
+                known = false;
+            }
+        }
+
+        lock (_lock)
+        {
+            _stoppedAtKnownPosition = known;
+        }
+    }
+
+    /// <summary>A move of the plan completed: counted (<see cref="RunAccounting"/>), then reported.</summary>
+    private void Completed(Move move, long index)
+    {
+        RunProgress progress;
+        lock (_lock)
+        {
+            _accounting.Completed(move, index);
+            _progress = Snapshot();
+            progress = _progress;
+        }
+
+        MoveCompleted?.Invoke(this, new MoveCompletedEventArgs(move, index));
+        ProgressChanged?.Invoke(this, progress);
+    }
+
+    /// <summary>The stop point: the first move not completed, where the stage stopped, and a timed run's cut pixel.</summary>
+    private RunStopPoint StopPoint()
+    {
+        lock (_lock)
+        {
+            return CutWithin(_accounting.StopPoint(_stoppedAtKnownPosition ? (_x, _y) : null));
+        }
+    }
+
+    /// <summary>A progress snapshot; caller holds the lock.</summary>
+    private RunProgress Snapshot()
+    {
+        var elapsed = TimeProvider.GetElapsedTime(_startTimestamp);
+        double? engraving = _engravingStarted ? (TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving).TotalSeconds : null;
+
+        // Timed runs and dots keep to their estimate (the same timeline), so the clock says how much of it is done.
+        return _accounting.Snapshot(_state, elapsed, engraving, byClock: _timing is not null || Job?.Dots is not null, _x, _y, _laser.On);
     }
 }

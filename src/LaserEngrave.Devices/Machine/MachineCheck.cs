@@ -84,7 +84,7 @@ public sealed class MachineCheck
                         y = identity;
                     }
 
-                    var travelMm = identity.MaximumPosition * profile.MicrostepUm / 1000;
+                    var travelMm = Units.StepsToMm(identity.MaximumPosition, profile.MicrostepUm);
                     var firmware = identity.FirmwareVersion;
                     var homing = ZaberFirmware.HasHomeSpeed(firmware) ? "homes at Set Home Speed" : "homes at the Target Speed (no Set Home Speed before 5.20)";
                     var known = ZaberFirmware.IsKnown(firmware) ? string.Empty : "; a firmware the manual does not describe: engrave step by step (--strategy paper)";
@@ -119,7 +119,7 @@ public sealed class MachineCheck
                 {
                     await Step(steps, $"{name} move", async () =>
                     {
-                        var target = (long)Math.Round(Math.Min(distanceMm, profile.TravelMm) * 1000 / profile.MicrostepUm, MidpointRounding.AwayFromZero);
+                        var target = (long)Math.Round(Units.MmToSteps(Math.Min(distanceMm, profile.TravelMm), profile.MicrostepUm), MidpointRounding.AwayFromZero);
                         var moveSpeed = StageUnits.SpeedData(ProcessSettings.Default.TravelSpeedMmPerS, profile.MicrostepUm);
                         await axis.SetTargetSpeedAsync(moveSpeed, cancellationToken);
                         var start = _time.GetTimestamp();
@@ -127,7 +127,7 @@ public sealed class MachineCheck
                         var seconds = _time.GetElapsedTime(start).TotalSeconds;
                         var read = await axis.GetPositionAsync(cancellationToken);
                         var expected = new TrapezoidProfile(target, StageUnits.SpeedMicrostepsPerS(moveSpeed), StageUnits.AccelerationMicrostepsPerS2(acceleration)).Duration;
-                        var text = string.Create(c, $"{Describe(axis, name)} sent to {target} microsteps ({target * profile.MicrostepUm / 1000:0.###} mm): replied {reached}, reads {read}, in {seconds * 1000:0} ms (the motion alone {expected * 1000:0} ms)");
+                        var text = string.Create(c, $"{Describe(axis, name)} sent to {target} microsteps ({Units.StepsToMm(target, profile.MicrostepUm):0.###} mm): replied {reached}, reads {read}, in {Units.SecondsToMs(seconds):0} ms (the motion alone {Units.SecondsToMs(expected):0} ms)");
                         if (reached != target || read != target)
                         {
                             throw new DeviceException($"{text}: not where it was sent");
