@@ -181,7 +181,7 @@ public sealed record RunRecord
             EstimatedSeconds = drawing.WholeRunSeconds(spec.Passes),
             EstimatedEngravingSeconds = schedule.EstimatedSeconds * Math.Max(1, spec.Passes),
             RowsTotal = schedule.Strokes.Count,
-            RunsTotal = schedule.Strokes.Select(s => s.PathIndex).Distinct().Count(),
+            RunsTotal = drawing.PathsBurned,
             Drawing = new RunDrawing(
                 drawing.Vector.ToleranceUm,
                 drawing.Vector.Fill,
