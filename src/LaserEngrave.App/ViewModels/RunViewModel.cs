@@ -167,7 +167,7 @@ public sealed partial class RunViewModel : ObservableObject
     public bool RunsLayers => _layers is { IsActive: true };
 
     /// <summary>What the run counts, as the command line and the log say it: strokes for a drawing (or a drawing's layer), else rows.</summary>
-    public string ProgressUnit => _running?.UnitOf(Progress?.Layer ?? 0) ?? "row";
+    public string ProgressUnit => _running?.UnitOf(Progress?.Layer ?? 0) ?? PreparedLayer.RowUnit;
 
     /// <summary>The layer under way as "layer 2 of 3 “logo”"; null when the run is not one of layers.</summary>
     public string? LayerText => _running?.Layers is { Count: > 0 } layers && Progress is { } p && p.Layer >= 1 && p.Layer <= layers.Count

@@ -180,7 +180,7 @@ public sealed class LayersJob : EngraveJob
     public override IReadOnlyList<PreparedLayer> Layers => Parts;
 
     /// <summary>The unit of the layer under way; "row" outside the layers (before the first report).</summary>
-    public override string UnitOf(int layer) => layer >= 1 && layer <= Parts.Count ? Parts[layer - 1].Unit : "row";
+    public override string UnitOf(int layer) => layer >= 1 && layer <= Parts.Count ? Parts[layer - 1].Unit : PreparedLayer.RowUnit;
 
     /// <summary>A job of layers starts while every layer lies inside the travel (a layer's other problems are the Layers view's to say).</summary>
     public override string? StartProblem => FitsTravel ? null : "a layer lies outside the stage's travel: move its origin or make it smaller";

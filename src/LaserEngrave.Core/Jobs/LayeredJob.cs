@@ -219,8 +219,14 @@ public sealed record PreparedLayer(JobLayer Layer, PreparedJob? Image, PreparedD
 
     public IEnumerable<string> Warnings => Image?.Warnings.Select(w => w.Message) ?? Drawing!.Warnings;
 
-    /// <summary>What a run of this part counts, as the command line and the log say it: "stroke" for a drawing, else "row".</summary>
-    public string Unit => Drawing is null ? "row" : "stroke";
+    /// <summary>What a run of a drawing counts: its strokes.</summary>
+    public const string StrokeUnit = "stroke";
+
+    /// <summary>What a run of an image counts: its rows.</summary>
+    public const string RowUnit = "row";
+
+    /// <summary>What a run of this part counts, as the command line and the log say it: <see cref="StrokeUnit"/> for a drawing, else <see cref="RowUnit"/>.</summary>
+    public string Unit => Drawing is null ? RowUnit : StrokeUnit;
 
     /// <summary>One pass's engraving with what goes before a further pass (preflight, the travel back), s.</summary>
     public double PassSeconds => EngravingSeconds + (Image?.Statistics.PassSetupSeconds ?? Drawing!.PassSetupSeconds);
