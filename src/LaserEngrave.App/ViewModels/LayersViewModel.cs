@@ -112,7 +112,7 @@ public sealed partial class LayersViewModel : ObservableObject
             return false;
         }
 
-        if (_job.Job is null && _job.Drawing is null)
+        if (_job.Engraving is null)
         {
             FileError = "the open job does not plan (see the fields marked in red): set it right before adding it as a layer";
             return false;
