@@ -437,8 +437,7 @@ public sealed partial class RunViewModel : ObservableObject
         // The stop point counts the logged plan's moves: only the same plan, made again, can go on from it.
         if (target is null || counts != (record.RowsTotal, record.RunsTotal))
         {
-            var unit = record.Drawing is null ? "rows" : "strokes";
-            Error = $"{Path.GetFileName(path)} cannot be continued: the job planned from its log is not the one that ran ({(target is null ? "it does not plan" : $"{counts.Units} {unit} and {counts.Runs} runs, not {record.RowsTotal} and {record.RunsTotal}")}); Repeat runs it again";
+            Error = $"{Path.GetFileName(path)} cannot be continued: the job planned from its log is not the one that ran ({(target is null ? "it does not plan" : $"{counts.Units} {record.RowsCounted} and {counts.Runs} runs, not {record.RowsTotal} and {record.RunsTotal}")}); Repeat runs it again";
             return;
         }
 

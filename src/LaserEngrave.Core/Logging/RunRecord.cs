@@ -84,6 +84,10 @@ public sealed record RunRecord
 
     public int RowsDone { get; init; }
 
+    /// <summary>What <see cref="RowsDone"/> and <see cref="RowsTotal"/> count, as the log's reader says it: "strokes" for a drawing, else "rows" (not written: the log's kind says it).</summary>
+    [System.Text.Json.Serialization.JsonIgnore]
+    public string RowsCounted => Drawing is null ? "rows" : "strokes";
+
     public required int RowsTotal { get; init; }
 
     /// <summary>Burn runs completed.</summary>
