@@ -66,7 +66,9 @@ public class ProgressPrinterTests
     public void Report_JobOfLayers_LinesNameTheLayerAndCountADrawingsStrokes()
     {
         using var output = new StringWriter();
-        var printer = new ProgressPrinter(output, terminal: false) { Layers = [("marks", true), ("logo", false)] };
+        // The plate's first two layers: "marks", a drawing, then "logo", an image.
+        var plate = Core.Jobs.JobFile.Load(Path.Combine(CliHarness.RepositoryRoot, "assets", "jobs", "plate.json"));
+        var printer = new ProgressPrinter(output, terminal: false) { Job = Core.Jobs.LayeredJob.Prepare([.. plate.Take(2)], Core.Geometry.MachineProfile.Default) };
 
         printer.Report(new EngraveProgress(RunState.Running, 1, 2, 10, 100, false, At(10), Layer: 1));
         printer.Report(new EngraveProgress(RunState.Running, 2, 2, 10, 100, false, At(20), Layer: 2));

@@ -211,6 +211,28 @@ public sealed partial class JobViewModel : ObservableObject
     [ObservableProperty]
     public partial PreparedDrawing? Drawing { get; private set; }
 
+    /// <summary>The planned image or drawing as the one job type the run, the stage and the test moves take; null without a plan.</summary>
+    public EngraveJob? Engraving
+    {
+        get
+        {
+            // Made once per plan (at most one of the two is set), so whoever asks gets the same job.
+            var (job, drawing) = (Job, Drawing);
+            if (_engraving is { } made && ReferenceEquals(made.Job, job) && ReferenceEquals(made.Drawing, drawing))
+            {
+                return made.Engraving;
+            }
+
+            var engraving = drawing is not null ? EngraveJob.Of(drawing) : job is not null ? EngraveJob.Of(job) : null;
+            _engraving = new MadeJob(job, drawing, engraving);
+            return engraving;
+        }
+    }
+
+    private MadeJob? _engraving;
+
+    private sealed record MadeJob(PreparedJob? Job, PreparedDrawing? Drawing, EngraveJob? Engraving);
+
     /// <summary>Whether the open file is a drawing rather than an image.</summary>
     public bool IsDrawing => ImagePath is { } path && DrawingReader.IsDrawing(path);
 

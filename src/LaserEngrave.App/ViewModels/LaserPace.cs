@@ -139,6 +139,10 @@ public sealed class LaserPace
         public double AccelerationPerS2 { get; }
 
         /// <summary>The motion after <paramref name="done"/> moves (dots, strokes) of this part: what the engine does until it reports the next.</summary>
+        /// <remarks>
+        /// Each kind moves differently between reports (a stroke's path, a dot's stop, a plan move), so the kinds part
+        /// here until the job's program (issue 23, item 1) gives every kind one stream of moves to walk.
+        /// </remarks>
         public IReadOnlyList<Leg> LegsAt(long done)
         {
             if (_layer.Drawing is { } drawing)

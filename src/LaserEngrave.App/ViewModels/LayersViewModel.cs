@@ -60,6 +60,12 @@ public sealed partial class LayersViewModel : ObservableObject
     [NotifyPropertyChangedFor(nameof(EstimatedSeconds))]
     public partial LayeredJob? Job { get; private set; }
 
+    /// <summary>The layers planned as the one job type the run takes; null when <see cref="Job"/> is.</summary>
+    public EngraveJob? Engraving { get; private set; }
+
+    // Made once per plan, so whoever asks (Start's rule, the stage) gets the same job.
+    partial void OnJobChanged(LayeredJob? value) => Engraving = value is null ? null : EngraveJob.Of(value);
+
     /// <summary>Why the layers cannot be planned or run, one line naming the layer and the value; null when they can.</summary>
     [ObservableProperty]
     public partial string? Error { get; private set; }
@@ -106,7 +112,7 @@ public sealed partial class LayersViewModel : ObservableObject
             return false;
         }
 
-        if (_job.Job is null && _job.Drawing is null)
+        if (_job.Engraving is null)
         {
             FileError = "the open job does not plan (see the fields marked in red): set it right before adding it as a layer";
             return false;

@@ -26,8 +26,7 @@ public sealed partial class RunViewModel : ObservableObject
     private readonly TimeProvider _time;
     private readonly LayersViewModel? _layers;
     private EngraveSession? _session;
-    private IReadOnlyList<PreparedLayer>? _runLayers;
-    private bool _runsDrawing;
+    private EngraveJob? _running;
     private CancellationTokenSource? _abort;
     private StoppedRun? _stopped;
     private ((int Job, int Layers) PlanVersion, string? Reason) _continueCheck = ((-1, -1), null);
@@ -157,21 +156,21 @@ public sealed partial class RunViewModel : ObservableObject
     /// with something to burn inside the travel and no field the job rules refuse, a machine.
     /// </summary>
     public bool CanStart => !_machine.Activity.IsBusy && !IsActive
-        && (RunsLayers
-            ? _layers!.Job is { FitsTravel: true } && _layers.Error is null
-            : _job.Errors.Count == 0 && (_job.Job is { Geometry.FitsTravel: true, Statistics.BurnRuns: > 0 } || _job.Drawing is { FitsTravel: true, Schedule.Strokes.Count: > 0 }))
+        && (RunsLayers ? _layers!.Error is null : _job.Errors.Count == 0)
+        && Planned is { StartProblem: null }
         && _machine.Connection is not null;
+
+    /// <summary>What Start would run: the job of layers while there are layers, else the image or drawing; null when it does not plan.</summary>
+    private EngraveJob? Planned => RunsLayers ? _layers!.Engraving : _job.Engraving;
 
     /// <summary>Whether Start runs the job of layers (the Layers view has some) rather than the single job.</summary>
     public bool RunsLayers => _layers is { IsActive: true };
 
     /// <summary>What the run counts, as the command line and the log say it: strokes for a drawing (or a drawing's layer), else rows.</summary>
-    public string ProgressUnit => (_runLayers is { Count: > 0 } layers && Progress is { } p && p.Layer >= 1 && p.Layer <= layers.Count
-        ? layers[p.Layer - 1].Drawing is not null
-        : _runsDrawing) ? "stroke" : "row";
+    public string ProgressUnit => _running?.UnitOf(Progress?.Layer ?? 0) ?? PreparedLayer.RowUnit;
 
     /// <summary>The layer under way as "layer 2 of 3 “logo”"; null when the run is not one of layers.</summary>
-    public string? LayerText => _runLayers is { Count: > 0 } layers && Progress is { } p && p.Layer >= 1 && p.Layer <= layers.Count
+    public string? LayerText => _running?.Layers is { Count: > 0 } layers && Progress is { } p && p.Layer >= 1 && p.Layer <= layers.Count
         ? $"layer {p.Layer} of {layers.Count} “{layers[p.Layer - 1].Layer.Name}”"
         : null;
 
@@ -217,11 +216,9 @@ public sealed partial class RunViewModel : ObservableObject
     {
         get
         {
-            var estimate = RunsLayers ? _layers!.Job?.EstimatedSeconds : _job.EstimatedSeconds;
+            var estimate = Planned?.EstimatedSeconds;
             var spot = _job.Profile.SpotDiameterUm;
-            var pitch = RunsLayers
-                ? _layers!.Job?.Layers.Where(l => l.Image is not null).Select(l => (double?)l.Image!.Geometry.PitchUm).Min()
-                : _job.Job?.Geometry.PitchUm;
+            var pitch = Planned?.SmallestPixelUm;
             var reasons = new List<string>();
             if (estimate > AskAboveSeconds)
             {
@@ -310,39 +307,13 @@ public sealed partial class RunViewModel : ObservableObject
         }
 
         var connection = _machine.Connection;
-        const string NotConnected = "not connected: connect to the simulator or the machine first";
-        if (RunsLayers)
+        var job = Planned;
+        var unplanned = RunsLayers
+            ? _layers!.Error ?? (job is null ? "the layers do not plan" : null)
+            : job is null ? "no job planned: open an image and give it a usable size first" : null;
+        if (!Refused(unplanned ?? job!.StartProblem ?? (connection is null ? "not connected: connect to the simulator or the machine first" : null)))
         {
-            var layered = _layers!.Job;
-            if (!Refused(_layers.Error ?? (layered is null ? "the layers do not plan" : connection is null ? NotConnected : null)))
-            {
-                await RunAsync(new RunTarget(null, null, layered), _job.ToSettings(), connection!);
-            }
-
-            return;
-        }
-
-        if (_job.Drawing is { } drawing)
-        {
-            if (!Refused(!drawing.FitsTravel ? "the drawing lies outside the stage's travel: move the origin or make it smaller"
-                : drawing.Schedule.Strokes.Count == 0 ? "the drawing has no path long enough to burn"
-                : connection is null ? NotConnected
-                : null))
-            {
-                await RunAsync(new RunTarget(null, drawing, null), _job.ToSettings(), connection!);
-            }
-
-            return;
-        }
-
-        var job = _job.Job;
-        if (!Refused(job is null ? "no job planned: open an image and give it a usable size first"
-            : !job.Geometry.FitsTravel ? "the job lies outside the stage's travel: move the origin or make it smaller"
-            : job.Statistics.BurnRuns == 0 ? "the mask has no pixel to burn: change the threshold or invert it"
-            : connection is null ? NotConnected
-            : null))
-        {
-            await RunAsync(new RunTarget(job, null, null), _job.ToSettings(), connection!);
+            await RunAsync(job!, _job.ToSettings(), connection!);
         }
 
         // A run refused before it starts: the reason stands in the run bar.
@@ -385,7 +356,7 @@ public sealed partial class RunViewModel : ObservableObject
             return;
         }
 
-        await RunAsync(stopped!.Target, stopped.Settings, connection!, stopped.Target.Layered is null ? stopped.StopPoint : null, stopped.LayerResume);
+        await RunAsync(stopped!.Job, stopped.Settings, connection!, stopped.Job.Layers is null ? stopped.StopPoint : null, stopped.LayerResume);
     }
 
     /// <summary>
@@ -459,18 +430,14 @@ public sealed partial class RunViewModel : ObservableObject
             return;
         }
 
-        RunTarget? target = record.Drawing is not null
-            ? _job.Drawing is { } drawing ? new RunTarget(null, drawing, null) : null
-            : _job.Job is { } job ? new RunTarget(job, null, null) : null;
-        var planned = target?.Drawing is { } d ? (d.Schedule.Strokes.Count, record.RunsTotal)
-            : target?.Job is { } j ? (j.Statistics.Rows, j.Statistics.BurnRuns)
-            : (-1, -1L);
+        // A drawing's stop point counts strokes, an image's rows: only a job of the logged kind can go on from it.
+        var target = _job.Engraving is { } planned && planned is DrawingJob == record.Drawing is not null ? planned : null;
+        var counts = target?.Planned ?? (-1, -1L);
 
         // The stop point counts the logged plan's moves: only the same plan, made again, can go on from it.
-        if (target is null || planned != (record.RowsTotal, record.RunsTotal))
+        if (target is null || counts != (record.RowsTotal, record.RunsTotal))
         {
-            var unit = record.Drawing is null ? "rows" : "strokes";
-            Error = $"{Path.GetFileName(path)} cannot be continued: the job planned from its log is not the one that ran ({(target is null ? "it does not plan" : $"{planned.Item1} {unit} and {planned.Item2} runs, not {record.RowsTotal} and {record.RunsTotal}")}); Repeat runs it again";
+            Error = $"{Path.GetFileName(path)} cannot be continued: the job planned from its log is not the one that ran ({(target is null ? "it does not plan" : $"{counts.Units} {record.RowsCounted} and {counts.Runs} runs, not {record.RowsTotal} and {record.RunsTotal}")}); Repeat runs it again";
             return;
         }
 
@@ -506,7 +473,7 @@ public sealed partial class RunViewModel : ObservableObject
     /// <summary>What about the job differs from the one the run stopped on, as one line; null when nothing does.</summary>
     private string? JobDifference(StoppedRun stopped)
     {
-        if (stopped.Target.Layered is not null)
+        if (stopped.Job.Layers is not null)
         {
             return RunsLayers && _layers!.Layers.SequenceEqual(stopped.Layers ?? [])
                 ? null
@@ -526,7 +493,7 @@ public sealed partial class RunViewModel : ObservableObject
             .Where(name => name != "passes")
             .Select(JobSettings.FieldLabel)
             .ToList();
-        if (changed.Count == 0 && stopped.Target.Job is { } job && (_job.Mask is not { } mask || !mask.ContentEquals(job.Mask)))
+        if (changed.Count == 0 && stopped.Job.Mask is { } burned && (_job.Mask is not { } mask || !mask.ContentEquals(burned)))
         {
             changed.Add("image");
         }
@@ -590,11 +557,11 @@ public sealed partial class RunViewModel : ObservableObject
         }
     }
 
-    /// <param name="target">What runs: an image job, a drawing or a job of layers.</param>
+    /// <param name="job">What runs: an image job, a drawing or a job of layers.</param>
     /// <param name="resumeFrom">Continue a stopped image job or drawing from here (its stopped pass only).</param>
     /// <param name="resumeLayers">Continue a stopped job of layers from here (its layer and pass, then the rest).</param>
     /// <param name="continuedFrom">The log of the run this one continues (the last run's when none is given).</param>
-    private async Task RunAsync(RunTarget target, JobSettings settings, IMachineConnection connection, RunStopPoint? resumeFrom = null, LayerResumePoint? resumeLayers = null, string? continuedFrom = null)
+    private async Task RunAsync(EngraveJob job, JobSettings settings, IMachineConnection connection, RunStopPoint? resumeFrom = null, LayerResumePoint? resumeLayers = null, string? continuedFrom = null)
     {
         if (!_machine.Activity.TryBegin(MachineOperation.Run, out var lease, out var refusal))
         {
@@ -618,7 +585,7 @@ public sealed partial class RunViewModel : ObservableObject
         try
         {
             // Marks whose numbers a completed run burned already are not burned again (two samples, one number); a continue is.
-            if (resumeLayers is null && target.Layered is not null && _layers?.UnchangedJobFile is { } marked
+            if (resumeLayers is null && job.Layers is not null && _layers?.UnchangedJobFile is { } marked
                 && Core.Marks.MarkManifest.BurnedAlready(marked) is { } burned)
             {
                 Error = burned;
@@ -634,31 +601,26 @@ public sealed partial class RunViewModel : ObservableObject
         }
 
         continuedFrom = resumeFrom is null && resumeLayers is null ? null : continuedFrom ?? _log.LastRun?.Path;
-        var (job, layered) = (target.Job, target.Layered);
+        var layered = job.Layers is not null;
         _startedTicks = _time.GetTimestamp();
-        _estimatedSeconds = layered?.EstimatedSeconds ?? _job.EstimatedSeconds ?? 0;
-        _runLayers = layered?.Layers;
-        _runsDrawing = target.Drawing is not null;
+        _estimatedSeconds = job.EstimatedSeconds;
+        _running = job;
 
         // Each pass's engraving with what goes before it, in run order: what is left once a pass is under way.
-        _passSeconds = layered is not null
-            ? [.. layered.Layers.SelectMany(l => Enumerable.Repeat(l.EngravingSeconds + (l.Image?.Statistics.PassSetupSeconds ?? l.Drawing!.PassSetupSeconds), l.Layer.Passes)).Skip(resumeLayers is { } from ? layered.Layers.Take(from.Layer).Sum(l => l.Layer.Passes) + from.PassesDone : 0)]
-            : job is not null ? [.. Enumerable.Repeat(job.Statistics.EngravingSeconds + job.Statistics.PassSetupSeconds, resumeFrom is null ? job.Spec.Passes : 1)]
-            : target.Drawing is { } drawing ? [.. Enumerable.Repeat(drawing.Schedule.EstimatedSeconds + drawing.PassSetupSeconds, resumeFrom is null ? drawing.Spec.Passes : 1)]
-            : [];
+        _passSeconds = [.. job.PassSeconds(resumeFrom, resumeLayers)];
         var machine = new EngraveMachine(connection.Stage, connection.Gate, connection.TimeProvider, connection.Description, connection.Description)
         {
             Simulated = connection.IsSimulated,
             Inspector = connection.IsSimulated ? connection.Inspector : null,
         };
-        var running = target.Session(machine, new EngraveSessionOptions
+        var running = new EngraveSession(machine, job, new EngraveSessionOptions
         {
             Notes = _log.Notes,
             SampleId = _log.SampleId,
             RepeatOf = string.IsNullOrEmpty(continuedFrom) ? null : continuedFrom,
             ResumeFrom = resumeFrom,
             ResumeLayers = resumeLayers,
-            JobFile = layered is null ? null : _layers?.UnchangedJobFile,
+            JobFile = layered ? _layers?.UnchangedJobFile : null,
             Log = _log.Writer,
             WallClock = _time,
 
@@ -677,7 +639,7 @@ public sealed partial class RunViewModel : ObservableObject
         _abort = abort;
 
         // Every kind of job counts its moves (plan moves, dots, strokes) one for one with the engine: its laser is drawn at their pace.
-        var pace = new LaserPace(target.Engraving, _time);
+        var pace = new LaserPace(job, _time);
         _pace = pace;
         var paceTimer = _time.CreateTimer(_ => MoveLaser(), null, PaceInterval, PaceInterval);
         try
@@ -708,13 +670,13 @@ public sealed partial class RunViewModel : ObservableObject
         }
 
         var stopPoint = record.Outcome is RunOutcome.Failed or RunOutcome.Aborted ? record.StoppedAt : null;
-        var layerResume = layered is null ? null : LayerResume(record);
-        if (layered is not null && layerResume is null)
+        var layerResume = layered ? LayerResume(record) : null;
+        if (layered && layerResume is null)
         {
             stopPoint = null;
         }
 
-        _stopped = stopPoint is null ? null : new StoppedRun(target, settings, stopPoint, layerResume, layered is null ? null : _layers?.Layers);
+        _stopped = stopPoint is null ? null : new StoppedRun(job, settings, stopPoint, layerResume, layered ? _layers?.Layers : null);
         _continueCheck = ((-1, -1), null);
         StoppedAt = stopPoint;
         _log.Recorded(record, result.Files, result.LogError);
@@ -780,22 +742,11 @@ public sealed partial class RunViewModel : ObservableObject
         }
     }
 
-    /// <summary>What a run engraves: an image job, a drawing, or a job of layers (one of them).</summary>
-    private sealed record RunTarget(PreparedJob? Job, PreparedDrawing? Drawing, LayeredJob? Layered)
-    {
-        /// <summary>The job as the run engine takes it.</summary>
-        public EngraveJob Engraving => Layered is { } layered ? EngraveJob.Of(layered)
-            : Drawing is { } drawing ? EngraveJob.Of(drawing)
-            : EngraveJob.Of(Job!);
-
-        public EngraveSession Session(EngraveMachine machine, EngraveSessionOptions options) => new(machine, Engraving, options);
-    }
-
     /// <summary>
     /// A run that stopped before its end: what it ran, the job's values then, where it stopped, and for a job of layers
     /// its layers then and where it goes on.
     /// </summary>
-    private sealed record StoppedRun(RunTarget Target, JobSettings Settings, RunStopPoint StopPoint, LayerResumePoint? LayerResume, IReadOnlyList<JobLayer>? Layers);
+    private sealed record StoppedRun(EngraveJob Job, JobSettings Settings, RunStopPoint StopPoint, LayerResumePoint? LayerResume, IReadOnlyList<JobLayer>? Layers);
 
     /// <summary>Keeps only the newest report: assigning a reference is all a serial reply costs the UI.</summary>
     private sealed class LatestProgress(RunViewModel owner, EngraveSession session) : IProgress<EngraveProgress>

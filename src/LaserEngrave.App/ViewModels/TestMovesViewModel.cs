@@ -3,6 +3,7 @@ using CommunityToolkit.Mvvm.ComponentModel;
 using CommunityToolkit.Mvvm.Input;
 using LaserEngrave.App.Services;
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Devices.Execution;
 using LaserEngrave.Wire.Scheduling;
 
@@ -201,17 +202,12 @@ public sealed partial class TestMovesViewModel : ObservableObject
     [RelayCommand(CanExecute = nameof(CanMove))]
     private Task GoToAsync() => Move("go to", string.Create(CultureInfo.InvariantCulture, $"Going to {GoToXMm:0.###}, {GoToYMm:0.###} mm, laser off…"), (moves, ct) => moves.GoToAsync(GoToXMm, GoToYMm, ct));
 
-    /// <summary>Moves to the job's top-left corner: an image's first pixel edge, a drawing's bounding box's corner.</summary>
+    /// <summary>Moves to the job's top-left corner (<see cref="EngraveJob.FrameBox"/>): an image's first pixel edge, a drawing's bounding box's corner.</summary>
     [RelayCommand(CanExecute = nameof(CanMoveToJob))]
     private Task GoToOriginAsync() => Move("go to the job's origin", "Going to the job's origin, laser off…", (moves, ct) =>
     {
-        if (_job.Drawing is { } drawing)
-        {
-            var (left, top, _, _) = Box(drawing);
-            return moves.GoToAsync(StageUnits.MicrostepsToMm(left, drawing.Spec.Profile.X.MicrostepUm), StageUnits.MicrostepsToMm(top, drawing.Spec.Profile.Y.MicrostepUm), ct);
-        }
-
-        return moves.GoToOriginAsync(RequireJob().Geometry.Geometry, ct);
+        var (job, (left, top, _, _)) = RequireBox();
+        return moves.GoToAsync(StageUnits.MicrostepsToMm(left, job.Spec.Profile.X.MicrostepUm), StageUnits.MicrostepsToMm(top, job.Spec.Profile.Y.MicrostepUm), ct);
     });
 
     /// <summary>
@@ -221,26 +217,9 @@ public sealed partial class TestMovesViewModel : ObservableObject
     [RelayCommand(CanExecute = nameof(CanMoveToJob))]
     private Task FrameAsync() => Move("frame", "Tracing the job's frame, laser off…", (moves, ct) =>
     {
-        if (_job.Drawing is { } drawing)
-        {
-            var (left, top, right, bottom) = Box(drawing);
-            return moves.FrameAsync(left, top, right, bottom, visibleFrequencyHz: null, ct);
-        }
-
-        return moves.FrameAsync(RequireJob().Geometry.Geometry, visibleFrequencyHz: null, ct);
+        var (_, (left, top, right, bottom)) = RequireBox();
+        return moves.FrameAsync(left, top, right, bottom, visibleFrequencyHz: null, ct);
     });
-
-    /// <summary>The box around a drawing's planned paths, microsteps, as the command line's frame takes it.</summary>
-    private static (long Left, long Top, long Right, long Bottom) Box(Core.Jobs.PreparedDrawing drawing)
-    {
-        var points = drawing.Plan.Paths.SelectMany(p => p.Points).ToList();
-        if (points.Count == 0)
-        {
-            throw new ArgumentException("the drawing has no path to frame");
-        }
-
-        return (points.Min(p => p.X), points.Min(p => p.Y), points.Max(p => p.X), points.Max(p => p.Y));
-    }
 
     /// <summary>Fires a burst where the stage stands (the stage does not move), at the job's frequency.</summary>
     [RelayCommand(CanExecute = nameof(CanMove))]
@@ -278,7 +257,7 @@ public sealed partial class TestMovesViewModel : ObservableObject
     public bool CanMoveToJob => CanMove && JobMoveUnavailableReason is null;
 
     /// <summary>Why Job origin and Frame have nothing to go to, one line for their tooltips; null when a job is planned.</summary>
-    public string? JobMoveUnavailableReason => _job.Job is not null || _job.Drawing is not null ? null
+    public string? JobMoveUnavailableReason => _job.Engraving is not null ? null
         : _job.ImageInfo is null && !_job.IsDrawing ? "open an image or drawing first"
         : "the job does not plan: see the fields marked in red";
 
@@ -298,8 +277,12 @@ public sealed partial class TestMovesViewModel : ObservableObject
         StopCommand.NotifyCanExecuteChanged();
     }
 
-    private Core.Jobs.PreparedJob RequireJob() =>
-        _job.Job ?? throw new ArgumentException("no job planned: open an image and give it a usable size first");
+    /// <summary>The planned job and the rectangle it burns in, microsteps, as the command line's frame takes it.</summary>
+    private (EngraveJob Job, (long Left, long Top, long Right, long Bottom) Box) RequireBox()
+    {
+        var job = _job.Engraving ?? throw new ArgumentException("no job planned: open an image and give it a usable size first");
+        return (job, job.FrameBox ?? throw new ArgumentException("the drawing has no path to frame"));
+    }
 
     /// <summary>A move (the Devices test moves switch the laser off first); the positions are read afterwards.</summary>
     private Task Move(string what, string doing, Func<StageTestMoves, CancellationToken, Task<StagePosition>> move) => Run(what, doing, async (moves, ct) =>

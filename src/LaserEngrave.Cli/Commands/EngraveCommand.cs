@@ -201,8 +201,7 @@ internal static class EngraveCommand
             var session = new EngraveSession(machine, job, sessionOptions);
             var printer = new ProgressPrinter(stderr, terminal: ReferenceEquals(stderr, Console.Error) && !Console.IsErrorRedirected)
             {
-                Drawing = job is DrawingJob,
-                Layers = job is LayersJob layers ? layers.Parts.Select(l => (l.Layer.Name, l.Drawing is not null)).ToList() : null,
+                Job = job,
             };
             // The tolerance a late switch-on is judged by, as the profile gives it (docs/execution.md, "Late switchings").
             stderr.WriteLine("preflight: " + RunSummaryText.EdgeTolerance(profile.EdgeToleranceUm));

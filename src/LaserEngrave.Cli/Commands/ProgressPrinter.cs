@@ -1,5 +1,6 @@
 using System.Diagnostics;
 using System.Globalization;
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Devices.Execution;
 
@@ -18,25 +19,25 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
     private RunState? _lastState;
     private bool _barShown;
     private string? _pass;
-    private bool? _layerIsDrawing;
+    private bool _drawing;
 
-    /// <summary>A drawing's run: its rows are strokes and its burn runs paths.</summary>
-    public bool Drawing { get; init; }
-
-    /// <summary>A job of layers: each layer's name and whether it is a drawing, in burn order; the progress names the layer under way.</summary>
-    public IReadOnlyList<(string Name, bool Drawing)>? Layers { get; init; }
+    /// <summary>
+    /// The job that runs: a drawing's rows are strokes and its burn runs paths (<see cref="EngraveJob.UnitOf"/>), and a
+    /// job of layers names the layer under way; null shows rows.
+    /// </summary>
+    public EngraveJob? Job { get; init; }
 
     /// <summary>A session's progress: its pass's figures under the session's state (a pass's end is not the run's).</summary>
     public void Report(EngraveProgress value)
     {
         ArgumentNullException.ThrowIfNull(value);
         _pass = value.Passes > 1 ? string.Create(CultureInfo.InvariantCulture, $"{value.Pass} of {value.Passes}") : null;
-        if (Layers is { Count: > 0 } layers && value.Layer >= 1 && value.Layer <= layers.Count)
+        if (Job?.Layers is { Count: > 0 } layers && value.Layer >= 1 && value.Layer <= layers.Count)
         {
-            var (name, drawing) = layers[value.Layer - 1];
-            _pass = string.Create(CultureInfo.InvariantCulture, $"{_pass ?? "1 of 1"}, layer {value.Layer} of {layers.Count} \"{name}\"");
-            _layerIsDrawing = drawing;
+            _pass = string.Create(CultureInfo.InvariantCulture, $"{_pass ?? "1 of 1"}, layer {value.Layer} of {layers.Count} \"{layers[value.Layer - 1].Layer.Name}\"");
         }
+
+        _drawing = Job?.UnitOf(value.Layer) == PreparedLayer.StrokeUnit;
 
         Report(value.Run with { State = value.State });
     }
@@ -52,7 +53,7 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
             {
                 Print(() =>
                 {
-                    writer.Write("\r" + Bar(progress, _pass, _layerIsDrawing ?? Drawing));
+                    writer.Write("\r" + Bar(progress, _pass, _drawing));
                     writer.Flush();
                 });
                 _barShown = true;
@@ -66,7 +67,7 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
         if (decile != _lastDecile || stateChanged || _sinceLastPrint.Elapsed >= PlainInterval)
         {
             _lastDecile = decile;
-            Print(() => writer.WriteLine(Line(progress, _pass, _layerIsDrawing ?? Drawing)));
+            Print(() => writer.WriteLine(Line(progress, _pass, _drawing)));
             _sinceLastPrint.Restart();
         }
     }

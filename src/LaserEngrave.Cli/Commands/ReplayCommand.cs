@@ -78,11 +78,11 @@ internal static class ReplayCommand
         {
             var spec = RunReplay.ToJobSpec(record);
             MachineProfileValidator.Validate(spec.Profile, $"{logPath}: profile");
-            PreparedJob? job = null;
-            PreparedDrawing? drawing = null;
+            // The log says which kind ran: the one place the replay chooses how to plan it again.
+            EngraveJob job;
             if (record.Drawing is { } loggedDrawing)
             {
-                drawing = PreparedDrawing.Prepare(spec, loggedDrawing.ToVectorOptions());
+                job = PreparedDrawing.Prepare(spec, loggedDrawing.ToVectorOptions());
                 if (burnedPath is not null || dosePath is not null)
                 {
                     throw new UsageException("--burned and --dose are for images; a drawing's figures are in --json (pathDeviationUm, pulseSpacingUm)");
@@ -94,7 +94,7 @@ internal static class ReplayCommand
             }
 
             setup = RecordedRunReplay.Setup(record, spec.Profile, events, baseOptions, !modelLatency);
-            (var simulation, burn) = await RecordedRunReplay.ReplayAsync(job, drawing, spec.Profile, events, setup, cancellationToken).ConfigureAwait(false);
+            (var simulation, burn) = await RecordedRunReplay.ReplayAsync(job, spec.Profile, events, setup, cancellationToken).ConfigureAwait(false);
             record = record with { Simulation = simulation };
         }
 

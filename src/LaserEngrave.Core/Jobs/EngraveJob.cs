@@ -44,6 +44,58 @@ public abstract class EngraveJob
     /// <summary>The whole run, every part's passes with their preflight and positioning, s.</summary>
     public virtual double EstimatedSeconds => PreparedLayer.RunSeconds(Parts).Sum();
 
+    /// <summary>
+    /// The layers a run names in its progress ("layer 2 of 3") and a stopped run continues from
+    /// (<see cref="LayerResumePoint"/>); null for a job that is not one of layers.
+    /// </summary>
+    public virtual IReadOnlyList<PreparedLayer>? Layers => null;
+
+    /// <summary>What the run counts while layer <paramref name="layer"/> (from 1, as progress reports it) runs: "stroke" for a drawing, else "row".</summary>
+    public virtual string UnitOf(int layer) => Parts[0].Unit;
+
+    /// <summary>Why the job cannot start, one line in the user's words (outside the travel, nothing to burn); null when it can.</summary>
+    public virtual string? StartProblem => Parts.Select(p => p.StartProblem).FirstOrDefault(p => p is not null);
+
+    /// <summary>What its log counts, every part's added up: rows and burn runs of an image, strokes and paths of a drawing.</summary>
+    public (int Units, long Runs) Planned => (Parts.Sum(p => p.Planned.Units), Parts.Sum(p => p.Planned.Runs));
+
+    /// <summary>The smallest pixel of its images, µm (what a laser spot much larger burns wider than it is); null without an image.</summary>
+    public double? SmallestPixelUm => Parts.Where(p => p.Image is not null).Select(p => (double?)p.Image!.Geometry.PitchUm).Min();
+
+    /// <summary>The image's mask a single image job burns (to tell whether the image changed since); null for any other kind.</summary>
+    public Imaging.BitMask? Mask => this switch
+    {
+        RasterJob raster => raster.Prepared.Mask,
+        DotJob dots => dots.Prepared.Mask,
+        _ => null,
+    };
+
+    /// <summary>
+    /// The rectangle around every part, microsteps, as Frame traces it and Job origin goes to its top-left corner; null
+    /// when nothing is to be traced (a drawing without a path).
+    /// </summary>
+    public (long Left, long Top, long Right, long Bottom)? FrameBox
+    {
+        get
+        {
+            var boxes = Parts.Select(p => p.FrameBox).OfType<(long Left, long Top, long Right, long Bottom)>().ToList();
+            return boxes.Count == 0 ? null : (boxes.Min(b => b.Left), boxes.Min(b => b.Top), boxes.Max(b => b.Right), boxes.Max(b => b.Bottom));
+        }
+    }
+
+    /// <summary>
+    /// Each pass's engraving with what goes before it, s, in run order: what is left of the run once a pass is under way.
+    /// </summary>
+    /// <param name="resumeFrom">A stopped single job goes on from here: its stopped pass only.</param>
+    /// <param name="resumeLayers">A stopped job of layers goes on from here: the layers and passes done are left out.</param>
+    public IReadOnlyList<double> PassSeconds(RunStopPoint? resumeFrom = null, LayerResumePoint? resumeLayers = null)
+    {
+        var all = Parts.SelectMany(p => Enumerable.Repeat(p.PassSeconds, p.Layer.Passes));
+        return resumeLayers is { } from ? [.. all.Skip(Parts.Take(from.Layer).Sum(l => l.Layer.Passes) + from.PassesDone)]
+            : resumeFrom is not null ? [.. all.Take(1)]
+            : [.. all];
+    }
+
     /// <summary>The job of one prepared image: a raster, or dots when its process is in dot mode.</summary>
     public static EngraveJob Of(PreparedJob job)
     {
@@ -131,6 +183,14 @@ public sealed class LayersJob : EngraveJob
     }
 
     public LayeredJob Layered { get; }
+
+    public override IReadOnlyList<PreparedLayer> Layers => Parts;
+
+    /// <summary>The unit of the layer under way; "row" outside the layers (before the first report).</summary>
+    public override string UnitOf(int layer) => layer >= 1 && layer <= Parts.Count ? Parts[layer - 1].Unit : PreparedLayer.RowUnit;
+
+    /// <summary>A job of layers starts while every layer lies inside the travel (a layer's other problems are the Layers view's to say).</summary>
+    public override string? StartProblem => FitsTravel ? null : "a layer lies outside the stage's travel: move its origin or make it smaller";
 
     /// <summary>The job of layers' own estimate (one homing, each later layer from where the one before ended).</summary>
     public override double EstimatedSeconds => Layered.EstimatedSeconds;

@@ -218,4 +218,49 @@ public sealed record PreparedLayer(JobLayer Layer, PreparedJob? Image, PreparedD
         Image is { } image ? (image.Geometry.AchievedWidthMm, image.Geometry.AchievedHeightMm) : (Drawing!.Plan.WidthMm, Drawing.Plan.HeightMm);
 
     public IEnumerable<string> Warnings => Image?.Warnings.Select(w => w.Message) ?? Drawing!.Warnings;
+
+    /// <summary>What a run of a drawing counts: its strokes.</summary>
+    public const string StrokeUnit = "stroke";
+
+    /// <summary>What a run of an image counts: its rows.</summary>
+    public const string RowUnit = "row";
+
+    /// <summary>What a run of this part counts, as the command line and the log say it: <see cref="StrokeUnit"/> for a drawing, else <see cref="RowUnit"/>.</summary>
+    public string Unit => Drawing is null ? RowUnit : StrokeUnit;
+
+    /// <summary>One pass's engraving with what goes before a further pass (preflight, the travel back), s.</summary>
+    public double PassSeconds => EngravingSeconds + (Image?.Statistics.PassSetupSeconds ?? Drawing!.PassSetupSeconds);
+
+    /// <summary>What its log counts: an image's rows and burn runs, a drawing's strokes and the paths they burn (<see cref="Logging.RunRecord.RowsTotal"/>, <see cref="Logging.RunRecord.RunsTotal"/>).</summary>
+    public (int Units, long Runs) Planned => Image is { } image
+        ? (image.Statistics.Rows, image.Statistics.BurnRuns)
+        : (Drawing!.Schedule.Strokes.Count, Drawing.PathsBurned);
+
+    /// <summary>Why it cannot start as planned, one line in the user's words; null when it can.</summary>
+    public string? StartProblem => Image is { } image
+        ? !image.Geometry.FitsTravel ? "the job lies outside the stage's travel: move the origin or make it smaller"
+            : image.Statistics.BurnRuns == 0 ? "the mask has no pixel to burn: change the threshold or invert it"
+            : null
+        : !Drawing!.FitsTravel ? "the drawing lies outside the stage's travel: move the origin or make it smaller"
+            : Drawing.Schedule.Strokes.Count == 0 ? "the drawing has no path long enough to burn"
+            : null;
+
+    /// <summary>
+    /// The rectangle it burns in, microsteps, as Frame traces it and Job origin goes to its top-left corner: an image's
+    /// pixel grid's outer edges, the box around a drawing's planned paths; null for a drawing without a path.
+    /// </summary>
+    public (long Left, long Top, long Right, long Bottom)? FrameBox
+    {
+        get
+        {
+            if (Image is { } image)
+            {
+                var g = image.Geometry.Geometry;
+                return (g.EdgeX(0), g.EdgeY(0), g.EdgeX(g.WidthPx), g.EdgeY(g.HeightPx));
+            }
+
+            var points = Drawing!.Plan.Paths.SelectMany(p => p.Points).ToList();
+            return points.Count == 0 ? null : (points.Min(p => p.X), points.Min(p => p.Y), points.Max(p => p.X), points.Max(p => p.Y));
+        }
+    }
 }

@@ -49,6 +49,9 @@ public sealed class PreparedDrawing
     public double WholeRunSeconds(int passes = 1) =>
         PreparationSeconds + (Math.Max(1, passes) * Schedule.EstimatedSeconds) + (Math.Max(0, passes - 1) * PassSetupSeconds);
 
+    /// <summary>How many of the drawing's paths its strokes burn (a path cut into several strokes counts once), as the log counts its runs.</summary>
+    public int PathsBurned => Schedule.Strokes.Select(s => s.PathIndex).Distinct().Count();
+
     /// <summary>Whether the paths and every stroke's run-up and run-out stay inside the travel.</summary>
     public bool FitsTravel => Plan.FitsTravel && Schedule.FitsTravel;
 

@@ -84,6 +84,10 @@ public sealed record RunRecord
 
     public int RowsDone { get; init; }
 
+    /// <summary>What <see cref="RowsDone"/> and <see cref="RowsTotal"/> count, as the log's reader says it: "strokes" for a drawing, else "rows" (not written: the log's kind says it).</summary>
+    [System.Text.Json.Serialization.JsonIgnore]
+    public string RowsCounted => Drawing is null ? "rows" : "strokes";
+
     public required int RowsTotal { get; init; }
 
     /// <summary>Burn runs completed.</summary>
@@ -181,7 +185,7 @@ public sealed record RunRecord
             EstimatedSeconds = drawing.WholeRunSeconds(spec.Passes),
             EstimatedEngravingSeconds = schedule.EstimatedSeconds * Math.Max(1, spec.Passes),
             RowsTotal = schedule.Strokes.Count,
-            RunsTotal = schedule.Strokes.Select(s => s.PathIndex).Distinct().Count(),
+            RunsTotal = drawing.PathsBurned,
             Drawing = new RunDrawing(
                 drawing.Vector.ToleranceUm,
                 drawing.Vector.Fill,

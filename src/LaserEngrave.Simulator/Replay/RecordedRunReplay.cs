@@ -41,12 +41,13 @@ public static class RecordedRunReplay
         return new ReplaySetup(options, delays);
     }
 
-    /// <summary>Replays the run of one image (<paramref name="job"/>) or drawing; its figures and, for an image, the burn report (burned pixels, dose).</summary>
-    public static async Task<(RunSimulation Simulation, BurnReport? Burn)> ReplayAsync(PreparedJob? job, PreparedDrawing? drawing, MachineProfile profile, IReadOnlyList<WireEvent> events, ReplaySetup setup, CancellationToken cancellationToken)
+    /// <summary>Replays the run of one image or drawing (<paramref name="job"/>); its figures and, for an image, the burn report (burned pixels, dose).</summary>
+    public static async Task<(RunSimulation Simulation, BurnReport? Burn)> ReplayAsync(EngraveJob job, MachineProfile profile, IReadOnlyList<WireEvent> events, ReplaySetup setup, CancellationToken cancellationToken)
     {
-        if ((job is null) == (drawing is null))
+        ArgumentNullException.ThrowIfNull(job);
+        if (job.Parts.Count != 1)
         {
-            throw new ArgumentException("one image or one drawing");
+            throw new ArgumentException("one image or one drawing (a job of layers replays by ReplayLayersAsync)", nameof(job));
         }
 
         ArgumentNullException.ThrowIfNull(setup);
@@ -56,7 +57,7 @@ public static class RecordedRunReplay
             var inspector = new BurnInspector(machine);
             inspector.Begin();
             await WireReplay.RunAsync(machine, events, cancellationToken, delays: setup.Delays).ConfigureAwait(false);
-            return (Inspect(inspector, job, drawing), inspector.Report);
+            return (Inspect(inspector, job.Parts[0]), inspector.Report);
         }
     }
 
@@ -91,7 +92,7 @@ public static class RecordedRunReplay
                 // As the run checks it: the layer before is over when the next begins.
                 if (current is { } before)
                 {
-                    results[before] = Inspect(inspector, parts[before].Image, parts[before].Drawing);
+                    results[before] = Inspect(inspector, parts[before]);
                 }
 
                 inspector.Begin();
@@ -99,15 +100,16 @@ public static class RecordedRunReplay
             }, setup.Delays).ConfigureAwait(false);
             if (current is { } last)
             {
-                results[last] = Inspect(inspector, parts[last].Image, parts[last].Drawing);
+                results[last] = Inspect(inspector, parts[last]);
             }
         }
 
         return results;
     }
 
-    private static RunSimulation Inspect(BurnInspector inspector, PreparedJob? job, PreparedDrawing? drawing) =>
-        job is not null ? inspector.Inspect(job) : inspector.InspectDrawing(drawing!);
+    // The twin checks an image's burn pixel by pixel and a drawing's along its paths: the one place the kinds part here.
+    private static RunSimulation Inspect(BurnInspector inspector, PreparedLayer part) =>
+        part.Image is { } image ? inspector.Inspect(image) : inspector.InspectDrawing(part.Drawing!);
 }
 
 /// <summary>How a recording is replayed: the twin's options, and each event's delay from the recording (null: the twin's adapters draw their own).</summary>

@@ -580,9 +580,10 @@ public sealed class StageCanvasTests : ComponentTest
         Main.Sweep.Labels = true;
         var plan = Assert.IsType<LaserEngrave.Core.Sweeps.SweepPlan>(Main.Sweep.Plan);
 
-        var boxes = StageCanvas.SweepBoxes(plan);
+        var picture = new LaserEngrave.Core.Preview.StagePicture(LaserEngrave.Core.Jobs.EngraveJob.Of(plan));
+        var boxes = picture.Boxes;
 
-        Assert.Equal(5, boxes.Length);
+        Assert.Equal(5, boxes.Count);
         Assert.Equal("labels", boxes[0].Name);
         Assert.Equal(["0.5 · 1000", "0.5 · 500", "2 · 1000", "2 · 500"], boxes.Skip(1).Select(b => b.Name).Order(StringComparer.Ordinal));
         foreach (var (box, cell) in boxes.Skip(1).Zip(plan.Cells))
@@ -595,7 +596,7 @@ public sealed class StageCanvasTests : ComponentTest
             Assert.True(box.Fits);
         }
 
-        var (bytes, drawn, total) = StageCanvas.SweepBytes(plan, out _);
+        var (bytes, drawn, total) = (picture.Moves, picture.Drawn, picture.Total);
         Assert.Equal(plan.Jobs().Sum(j => j.Statistics.Moves), total);
         Assert.Equal(total, drawn);
         Assert.Equal(drawn * 5 * sizeof(float), bytes.Length);
@@ -621,7 +622,7 @@ public sealed class StageCanvasTests : ComponentTest
         Assert.True(Main.Job.LoadImage(path));
         Main.Job.EditWidth(50);
 
-        var (bytes, drawn, total) = StageCanvas.PlanBytes(Main.Job.Job);
+        var (bytes, drawn, total) = LaserEngrave.Core.Preview.StagePicture.PlanMoves(Main.Job.Job);
 
         Assert.True(total > StageCanvas.MaxDrawnMoves, $"only {total} moves");
         Assert.Equal(StageCanvas.MaxDrawnMoves, drawn);
@@ -635,7 +636,7 @@ public sealed class StageCanvasTests : ComponentTest
         Main.Job.Mode = LaserEngrave.Core.Planning.PlanMode.Dots;
         var job = Assert.IsType<PreparedJob>(Main.Job.Job);
 
-        var (bytes, drawn, total) = StageCanvas.PlanBytes(job);
+        var (bytes, drawn, total) = LaserEngrave.Core.Preview.StagePicture.PlanMoves(job);
 
         // Its statistics count the dots as moves too; the page draws every move the plan has, so nothing is "partly drawn".
         Assert.Equal(job.Plan.Moves().Count(), drawn);
@@ -648,7 +649,7 @@ public sealed class StageCanvasTests : ComponentTest
     {
         OpenQr();
 
-        var (bytes, drawn, total) = StageCanvas.PlanBytes(Main.Job.Job);
+        var (bytes, drawn, total) = LaserEngrave.Core.Preview.StagePicture.PlanMoves(Main.Job.Job);
 
         Assert.Equal(Main.Job.Job!.Statistics.Moves, total);
         Assert.Equal(total, drawn);

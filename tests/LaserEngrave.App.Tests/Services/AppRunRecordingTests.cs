@@ -78,7 +78,7 @@ public sealed class AppRunRecordingTests : IDisposable
 
         var spec = RunReplay.ToJobSpec(record);
         var (replayed, burn) = await RecordedRunReplay.ReplayAsync(
-            PreparedJob.Prepare(spec), null, spec.Profile, events, RecordedRunReplay.Setup(record, spec.Profile, events, new SimulatorOptions()), ct);
+            PreparedJob.Prepare(spec), spec.Profile, events, RecordedRunReplay.Setup(record, spec.Profile, events, new SimulatorOptions()), ct);
 
         TestContext.Current.TestOutputHelper?.WriteLine($"simulator: {simulated.Pulses} pulses, missing {simulated.MissingPixels}, extra {simulated.ExtraPixels}, on white {simulated.LaserOnTravelCount}\nreplay: {replayed}");
         Assert.Equal((simulated.MissingPixels, simulated.ExtraPixels, (long)simulated.LaserOnTravelCount), (replayed.MissingPixels, replayed.ExtraPixels, replayed.LaserOnTravelCount));

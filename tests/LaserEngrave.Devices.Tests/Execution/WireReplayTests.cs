@@ -84,8 +84,8 @@ public sealed class WireReplayTests : IDisposable
         var events = WireRecording.Read(path);
         var replayTwin = new SimulatorOptions { Seed = 9, GateProcessing = gate };
 
-        var (recorded, burn) = await RecordedRunReplay.ReplayAsync(job, null, job.Spec.Profile, events, RecordedRunReplay.Setup(record, job.Spec.Profile, events, replayTwin), TestContext.Current.CancellationToken);
-        var (modelled, _) = await RecordedRunReplay.ReplayAsync(job, null, job.Spec.Profile, events, RecordedRunReplay.Setup(record, job.Spec.Profile, events, replayTwin, recordedDelays: false), TestContext.Current.CancellationToken);
+        var (recorded, burn) = await RecordedRunReplay.ReplayAsync(job, job.Spec.Profile, events, RecordedRunReplay.Setup(record, job.Spec.Profile, events, replayTwin), TestContext.Current.CancellationToken);
+        var (modelled, _) = await RecordedRunReplay.ReplayAsync(job, job.Spec.Profile, events, RecordedRunReplay.Setup(record, job.Spec.Profile, events, replayTwin, recordedDelays: false), TestContext.Current.CancellationToken);
 
         TestContext.Current.TestOutputHelper?.WriteLine($"run: {record.Simulation}\nrecorded delays: {recorded}\ntwin's model: {modelled}");
         // The run need not complete (3 ms adapters stop it within its first strokes): what it burned is what must come back.
