@@ -43,13 +43,21 @@ internal static class BrowserLauncher
         }
     }
 
+    /// <summary>
+    /// The window's first size, in the screen's scaled pixels: it fits the usable area of common laptop screens (1280 x 800,
+    /// 1366 x 768, and 1920 x 1080 at 150 %, which is 1280 x 720, less a taskbar or menu bar); 1400 x 900 overflowed
+    /// them. The page is laid out for 1280 x 720 and down to 800 x 600, and the window can be made larger by hand.
+    /// </summary>
+    public static (int Width, int Height) WindowSize { get; } = (1280, 660);
+
     /// <summary>The arguments of an app-mode window with its own profile (so it opens a window of its own, not a tab).</summary>
     /// <remarks>
     /// Chromium refuses to start as root on Linux unless told to run without its sandbox: then (a lab PC where the app
     /// runs as root for the serial ports) the window shows only the app's own page on this computer, so it is told.
     /// </remarks>
     public static IReadOnlyList<string> AppModeArguments(string url, string profileFolder, bool asRoot = false) =>
-        ["--app=" + url, "--user-data-dir=" + profileFolder, "--no-first-run", "--no-default-browser-check", "--window-size=1400,900", .. asRoot ? ["--no-sandbox"] : Array.Empty<string>()];
+        ["--app=" + url, "--user-data-dir=" + profileFolder, "--no-first-run", "--no-default-browser-check",
+            $"--window-size={WindowSize.Width},{WindowSize.Height}", .. asRoot ? ["--no-sandbox"] : Array.Empty<string>()];
 
     /// <summary>The first candidate that exists.</summary>
     public static string? FindAppBrowser(IEnumerable<string> candidates, Func<string, bool> exists) => candidates.FirstOrDefault(exists);

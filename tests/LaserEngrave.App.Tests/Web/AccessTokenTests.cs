@@ -7,15 +7,30 @@ using Microsoft.Extensions.DependencyInjection;
 namespace LaserEngrave.App.Tests.Web;
 
 /// <summary>The start's secret: required by the page and every API call; the old fixed header alone is not enough.</summary>
-public sealed class AccessTokenTests : IDisposable
+/// <remarks>
+/// The class's tests share one app (<see cref="OneApp"/>, a class fixture): each asks how a request is answered, and
+/// none changes what another's answer depends on; an app for each of the 29 cost about half a second of CPU each.
+/// </remarks>
+public sealed class AccessTokenTests : IClassFixture<AccessTokenTests.OneApp>, IAsyncLifetime
 {
-    private readonly AppFactory _app = new();
+    private AppFactory _app = null!;
 
     private static CancellationToken Token => TestContext.Current.CancellationToken;
 
     private string Secret => _app.Services.GetRequiredService<AccessToken>().Value;
 
-    public void Dispose() => _app.Dispose();
+    public async ValueTask InitializeAsync() =>
+        _app = (await TestContext.Current.GetFixture<OneApp>() ?? throw new InvalidOperationException("no app: the class fixture is missing")).App;
+
+    public ValueTask DisposeAsync() => ValueTask.CompletedTask;
+
+    /// <summary>The app the class's tests ask.</summary>
+    internal sealed class OneApp : IDisposable
+    {
+        public AppFactory App { get; } = new();
+
+        public void Dispose() => App.Dispose();
+    }
 
     private HttpClient Client(bool cookies = false) =>
         _app.CreateClient(new WebApplicationFactoryClientOptions { AllowAutoRedirect = false, HandleCookies = cookies });

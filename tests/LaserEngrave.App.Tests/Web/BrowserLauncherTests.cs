@@ -37,6 +37,20 @@ public sealed class BrowserLauncherTests
         Assert.Contains("--app=http://127.0.0.1:5080/", arguments);
     }
 
+    [Theory]
+    [InlineData(1280, 800, 40)] // a 13" laptop, the Windows taskbar at the bottom
+    [InlineData(1366, 768, 48)] // the commonest laptop screen, the Windows 11 taskbar
+    [InlineData(1280, 720, 48)] // 1920 x 1080 at 150 %, the usual scaling of a 15" laptop
+    [InlineData(1280, 800, 25)] // a MacBook at its default scaling, the menu bar
+    public void AppModeArguments_CommonLaptopScreen_TheWindowFitsBesideTheTaskbar(int screenWidth, int screenHeight, int taskbar)
+    {
+        var arguments = BrowserLauncher.AppModeArguments("http://127.0.0.1:5080/", "/data/window");
+
+        var size = Assert.Single(arguments, a => a.StartsWith("--window-size=", StringComparison.Ordinal))["--window-size=".Length..].Split(',').Select(v => int.Parse(v, System.Globalization.CultureInfo.InvariantCulture)).ToArray();
+        Assert.InRange(size[0], 800, screenWidth);
+        Assert.InRange(size[1], 600, screenHeight - taskbar);
+    }
+
     [Fact]
     public void Candidates_ThisSystem_EdgeChromeOrChromium()
     {

@@ -190,7 +190,7 @@ public sealed class BrowserLayoutTests : BrowserTest
     [Fact]
     public void Page_Loaded_WeighsLessThan2MB()
     {
-        // The first load of a fresh profile: the page and everything it loaded, as the browser decoded it.
+        // The first load with an empty cache: the page and everything it loaded, as the browser decoded it.
         var weight = Convert.ToInt64(Driver.ExecuteScript(
             """
             const all = [...performance.getEntriesByType('navigation'), ...performance.getEntriesByType('resource')];

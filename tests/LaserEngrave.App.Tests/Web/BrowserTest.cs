@@ -16,15 +16,12 @@ using OpenQA.Selenium.Support.UI;
 namespace LaserEngrave.App.Tests.Web;
 
 /// <summary>What every browser test stands on: the workspace in headless Chromium against the app on a real port, the simulator in virtual time.</summary>
-/// <remarks>No sleeps: every step waits for a condition the page shows.</remarks>
-public abstract class BrowserTest : IAsyncLifetime
+/// <remarks>No sleeps: every step waits for a condition the page shows. Each test has its own app; the class's tests share one Chromium (<see cref="SharedBrowser"/>).</remarks>
+public abstract class BrowserTest : IAsyncLifetime, IClassFixture<SharedBrowser>
 {
-    private const string ChromiumPath = "/usr/bin/chromium";
-    private const string DriverFolder = "/usr/bin";
-
     private readonly TestFiles.TempFolder _folder = TestFiles.NewFolder();
-    private readonly TestFiles.TempFolder _profile = TestFiles.NewFolder();
     private WebApplication? _app;
+    private SharedBrowser? _browser;
     private ChromeDriver? _driver;
     private string _url = string.Empty;
     private string _token = string.Empty;
@@ -60,29 +57,20 @@ public abstract class BrowserTest : IAsyncLifetime
         _url = _app.Services.GetRequiredService<IServer>().Features.Get<IServerAddressesFeature>()!.Addresses.First();
         _token = _app.Services.GetRequiredService<AccessToken>().Value;
 
-        var options = new ChromeOptions { BinaryLocation = ChromiumPath };
-        options.AddArguments(
-            "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking",
-            "--disable-component-update", "--disable-sync", "--disable-dev-shm-usage", "--window-size=1280,720", "--user-data-dir=" + _profile.Path);
-        options.SetLoggingPreference(LogType.Browser, LogLevel.Severe);
-        var service = ChromeDriverService.CreateDefaultService(DriverFolder, "chromedriver");
-        service.HideCommandPromptWindow = true;
-        service.SuppressInitialDiagnosticInformation = true;
-        _driver = new ChromeDriver(service, options, TimeSpan.FromSeconds(60));
+        _browser = await TestContext.Current.GetFixture<SharedBrowser>() ?? throw new InvalidOperationException("no browser: the class fixture is missing");
+        _driver = _browser.Fresh();
         Open();
     }
 
     public async ValueTask DisposeAsync()
     {
-        _driver?.Quit();
-        _driver?.Dispose();
+        _browser?.Leave(_url.TrimEnd('/'));
         if (_app is not null)
         {
             await _app.StopAsync(CancellationToken.None);
             await _app.DisposeAsync();
         }
 
-        _profile.Dispose();
         _folder.Dispose();
     }
 
@@ -96,9 +84,12 @@ public abstract class BrowserTest : IAsyncLifetime
 
     protected IWebElement Id(string id) => Driver.FindElement(By.Id(id));
 
+    private static readonly TimeSpan PollInterval = TimeSpan.FromMilliseconds(50);
+
     protected void WaitFor(Func<IWebDriver, bool> condition, string what, double seconds = 30)
     {
-        var wait = new WebDriverWait(Driver, TimeSpan.FromSeconds(seconds)) { Message = "waiting for: " + what };
+        // Polled every 50 ms, not Selenium's default 500: a condition met just after a poll no longer costs half a second.
+        var wait = new WebDriverWait(Driver, TimeSpan.FromSeconds(seconds)) { Message = "waiting for: " + what, PollingInterval = PollInterval };
         wait.IgnoreExceptionTypes(typeof(NoSuchElementException), typeof(StaleElementReferenceException));
         try
         {
