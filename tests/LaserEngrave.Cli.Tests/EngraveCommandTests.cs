@@ -150,6 +150,25 @@ public sealed class EngraveCommandTests : IDisposable
     }
 
     [Fact]
+    public async Task EngraveSimulate_BusyHostRecovers_SaysRecoveringOncePerDoubtNotPreflightAgain()
+    {
+        // A host often late (a busy computer): switch-ons later than the edge tolerance are timing doubts the session goes on from.
+        var options = Path.Combine(folder, "busy.json");
+        await File.WriteAllTextAsync(options, """{ "hostLateness": { "typicalMs": 0.5, "tailProbability": 0.05, "tailMs": 5 } }""", TestContext.Current.CancellationToken);
+
+        var (_, output, error) = await CliHarness.RunAsync(
+            "engrave", QrCode, "--width-mm", "5", "--origin-mm", "10,10", "--speed-mm-s", "4", "--simulate", "--sim-options", options, "--json", "--log-dir", LogDir);
+
+        using var json = JsonDocument.Parse(output);
+        var log = RunLogStore.Read(json.RootElement.GetProperty("logPath").GetString()!);
+        var recoveries = log.Recoveries?.Count ?? 0;
+        Assert.True(recoveries > 0, "the busy host must cause a timing doubt the run goes on from");
+        var lines = error.Split('\n', StringSplitOptions.RemoveEmptyEntries);
+        Assert.Single(lines, l => l.StartsWith("preflight: checking the machine and the job", StringComparison.Ordinal));
+        Assert.Equal(recoveries, lines.Count(l => l.StartsWith("recovering: the run fell behind its timing, laser off; checking the machine again, then going on from row ", StringComparison.Ordinal)));
+    }
+
+    [Fact]
     public async Task EngraveSimulate_SameSeedTwice_GivesTheSameFiguresAndImages()
     {
         var first = await RunSeededAsync("a", seed: 5);

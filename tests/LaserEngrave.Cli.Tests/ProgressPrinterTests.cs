@@ -63,6 +63,50 @@ public class ProgressPrinterTests
     }
 
     [Fact]
+    public void Report_PreflightAgainForThePassUnderWay_SaysOnceThatTheRunIsRecoveringAndFromWhichRow()
+    {
+        using var output = new StringWriter();
+        var printer = new ProgressPrinter(output, terminal: false);
+
+        printer.Report(new EngraveProgress(RunState.Preflight, 1, 2, 0, 100, false, At(0, RunState.Preflight)));
+        printer.Report(new EngraveProgress(RunState.Running, 1, 2, 10, 100, false, At(10)));
+        // The session goes on after a timing doubt: the same pass's preflight again, reported more than once, then running.
+        printer.Report(new EngraveProgress(RunState.Preflight, 1, 2, 10, 100, false, At(0, RunState.Preflight) with { RowsDone = 0 }));
+        printer.Report(new EngraveProgress(RunState.Preflight, 1, 2, 10, 100, false, At(0, RunState.Preflight) with { RowsDone = 0 }));
+        printer.Report(new EngraveProgress(RunState.Running, 1, 2, 10, 100, false, At(10)));
+        // The next pass's preflight is a new start, said as the first one.
+        printer.Report(new EngraveProgress(RunState.Preflight, 2, 2, 0, 100, false, At(0, RunState.Preflight)));
+
+        Assert.Equal(
+            [
+                "preflight: checking the machine and the job (pass 1 of 2)",
+                "running: 10 %, row 10 of 40, 50 of 200 burn runs, pass 1 of 2, 1 min 35.0 s left",
+                "recovering: the run fell behind its timing, laser off; checking the machine again, then going on from row 11 of 40, pass 1 of 2",
+                "running: 10 %, row 10 of 40, 50 of 200 burn runs, pass 1 of 2, 1 min 35.0 s left",
+                "preflight: checking the machine and the job (pass 2 of 2)",
+            ],
+            output.ToString().TrimEnd().Split(Environment.NewLine));
+    }
+
+    [Fact]
+    public void Report_TerminalRecovering_EndsTheBarsLineAndSaysItOnItsOwnLine()
+    {
+        using var output = new StringWriter();
+        var printer = new ProgressPrinter(output, terminal: true);
+
+        printer.Report(new EngraveProgress(RunState.Running, 1, 1, 10, 100, false, At(25)));
+        printer.Report(new EngraveProgress(RunState.Preflight, 1, 1, 10, 100, false, At(0, RunState.Preflight)));
+        printer.Report(new EngraveProgress(RunState.Running, 1, 1, 10, 100, false, At(25)));
+        printer.Finish();
+
+        Assert.Equal(
+            "\r" + ProgressPrinter.Bar(At(25)) + Environment.NewLine
+            + "recovering: the run fell behind its timing, laser off; checking the machine again, then going on from row 11 of 40" + Environment.NewLine
+            + "\r" + ProgressPrinter.Bar(At(25)) + Environment.NewLine,
+            output.ToString());
+    }
+
+    [Fact]
     public void Report_JobOfLayers_LinesNameTheLayerAndCountADrawingsStrokes()
     {
         using var output = new StringWriter();

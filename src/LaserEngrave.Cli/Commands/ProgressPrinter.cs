@@ -21,6 +21,12 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
     private string? _pass;
     private bool _drawing;
 
+    // The last pass seen past its preflight, and its rows done then: a preflight for that same pass is the session going
+    // on after a timing doubt (EngraveSession re-runs the pass's preflight from its stop point), not a new start.
+    private int _passUnderWay;
+    private int _rowsDoneUnderWay;
+    private bool _recovering;
+
     /// <summary>
     /// The job that runs: a drawing's rows are strokes and its burn runs paths (<see cref="EngraveJob.UnitOf"/>), and a
     /// job of layers names the layer under way; null shows rows.
@@ -38,6 +44,38 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
         }
 
         _drawing = Job?.UnitOf(value.Layer) == PreparedLayer.StrokeUnit;
+        if (value.State == RunState.Preflight && value.Pass == _passUnderWay)
+        {
+            // Said once per recovery; the preflight's own figures (a fresh count, 0 %) would only make the bar jump back.
+            if (!_recovering)
+            {
+                _recovering = true;
+                _lastState = RunState.Preflight;
+                var total = Math.Max(1, value.Run.RowsTotal);
+                var row = Math.Min(_rowsDoneUnderWay + 1, total);
+                Print(() =>
+                {
+                    if (_barShown)
+                    {
+                        writer.WriteLine();
+                        _barShown = false;
+                    }
+
+                    writer.WriteLine(Recovering(row, total, _pass, _drawing));
+                    writer.Flush();
+                });
+                _sinceLastPrint.Restart();
+            }
+
+            return;
+        }
+
+        if (value.State != RunState.Preflight)
+        {
+            _recovering = false;
+            _passUnderWay = value.Pass;
+            _rowsDoneUnderWay = value.Run.RowsDone;
+        }
 
         Report(value.Run with { State = value.State });
     }
@@ -112,6 +150,15 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
         : string.Create(
             CultureInfo.InvariantCulture,
             $"{StateLabel(p)}: {p.Percent:0} %, {(drawing ? "stroke" : "row")} {p.RowsDone} of {p.RowsTotal}, {p.RunsDone} of {p.RunsTotal} {(drawing ? "paths" : "burn runs")}{(pass is null ? string.Empty : $", pass {pass}")}, {Eta(p)} left");
+
+    /// <summary>The session going on after a timing doubt, as the technician reads it: what happened, what it does now, and from where.</summary>
+    /// <param name="row">The row under way (a drawing's stroke), from 1, counted as the progress counts them (rows with something to burn).</param>
+    /// <param name="rows">The rows the progress counts.</param>
+    /// <param name="pass">"1 of 2" when the job has several passes.</param>
+    /// <param name="drawing">A drawing's run: strokes instead of rows.</param>
+    internal static string Recovering(int row, int rows, string? pass = null, bool drawing = false) => string.Create(
+        CultureInfo.InvariantCulture,
+        $"recovering: the run fell behind its timing, laser off; checking the machine again, then going on from {(drawing ? "stroke" : "row")} {row} of {rows}{(pass is null ? string.Empty : $", pass {pass}")}");
 
     /// <summary>The state as the operator reads it: "done" only when every run was burned, "stopped" for an aborted or failed run.</summary>
     internal static string StateLabel(RunProgress p) => p.State switch

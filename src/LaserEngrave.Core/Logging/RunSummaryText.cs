@@ -78,9 +78,11 @@ public static class RunSummaryText
         recoveries <= 0 ? null : string.Create(CultureInfo.InvariantCulture, $"went on after {recoveries} timing doubt{(recoveries == 1 ? string.Empty : "s")}");
 
     /// <summary>The profile's edge tolerance and what it does, as preflight says it (docs/execution.md, "Late switchings").</summary>
-    public static string EdgeTolerance(double toleranceUm) => string.Create(
-        CultureInfo.InvariantCulture,
-        $"edge tolerance {toleranceUm:0.###} µm: a switch-on this computer sends later than that at the burn speed is not sent: that run stays unburned and the run goes on from it, laser off");
+    public static string EdgeTolerance(double toleranceUm) =>
+        EdgeToleranceInBrief(toleranceUm) + ": a switch-on this computer sends later than that at the burn speed is not sent: that run stays unburned and the run goes on from it, laser off";
+
+    /// <summary>The tolerance in a few words ("edge tolerance 1.5 µm"), where a row has no room for what it means (the app's Machine panel, with <see cref="EdgeTolerance"/> as its tooltip).</summary>
+    public static string EdgeToleranceInBrief(double toleranceUm) => string.Create(CultureInfo.InvariantCulture, $"edge tolerance {toleranceUm:0.###} µm");
 
     public static string Format(RunRecord record)
     {

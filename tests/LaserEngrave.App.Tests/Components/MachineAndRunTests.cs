@@ -53,14 +53,14 @@ public sealed class MachinePanelTests : ComponentTest
     }
 
     [Fact]
-    public void Facts_ShowTheProfilesEdgeToleranceAsPreflightSaysIt()
+    public void Facts_ShowTheProfilesEdgeToleranceInAFewWordsAndAsPreflightSaysItInTheTooltip()
     {
         var cut = Render<MachinePanel>(p => p.Add(c => c.Machine, Main.Machine));
 
-        Assert.StartsWith(
-            $"edge tolerance {Main.Machine.Profile.EdgeToleranceUm.ToString(System.Globalization.CultureInfo.InvariantCulture)} µm: a switch-on this computer sends later than that",
-            cut.Find("#machine-edge-tolerance").TextContent,
-            StringComparison.Ordinal);
+        var fact = cut.Find("#machine-edge-tolerance");
+        var tolerance = Main.Machine.Profile.EdgeToleranceUm.ToString(System.Globalization.CultureInfo.InvariantCulture);
+        Assert.Equal($"edge tolerance {tolerance} µm", fact.TextContent);
+        Assert.StartsWith($"edge tolerance {tolerance} µm: a switch-on this computer sends later than that", fact.GetAttribute("title"), StringComparison.Ordinal);
     }
 
     [Fact]

@@ -35,6 +35,22 @@ public sealed class BrowserLayoutTests : BrowserTest
     }
 
     [Fact]
+    public void MachinePanel_1280Wide_PreflightFactFitsOneLineWithTheSentenceAsItsTooltip()
+    {
+        Size1280x720();
+        WaitFor(d => d.FindElement(By.Id("machine-edge-tolerance")).Displayed, "the Machine panel's facts");
+        var fact = Id("machine-edge-tolerance");
+
+        // Its text's line boxes, and how far it is cut: one line, whole (the CLI's sentence took five lines there).
+        var lines = Convert.ToInt64(Driver.ExecuteScript("const r = document.createRange(); r.selectNodeContents(arguments[0]); return r.getClientRects().length;", fact), CultureInfo.InvariantCulture);
+        var cut = Convert.ToInt64(Driver.ExecuteScript("return arguments[0].scrollWidth - arguments[0].clientWidth;", fact), CultureInfo.InvariantCulture);
+        Assert.True(lines == 1, $"the Preflight fact takes {lines} lines at 1280 wide: \"{fact.Text}\"");
+        Assert.True(cut <= 0, $"the Preflight fact is cut by {cut} px at 1280 wide");
+        Assert.StartsWith(fact.Text + ": a switch-on this computer sends later than that", fact.GetAttribute("title"), StringComparison.Ordinal);
+        Screenshot("machine-panel-preflight");
+    }
+
+    [Fact]
     public void Workspace_NarrowWindowScrolledDown_AbortAndRunStateStayInView()
     {
         OpenSample("text-banner.png");
