@@ -1,7 +1,7 @@
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Motion;
 using LaserEngrave.Core.Planning;
-using LaserEngrave.Core.Vectors;
+using LaserEngrave.Core.Programs;
 
 namespace LaserEngrave.App.ViewModels;
 
@@ -115,14 +115,14 @@ public sealed class LaserPace
     /// <summary>One part (a layer, or the whole single job): its speeds in X microsteps and its moves, walked forward only.</summary>
     private sealed class Part
     {
-        private readonly PreparedLayer _layer;
+        private readonly PartProgram _program;
         private IEnumerator<Move>? _moves;
-        private IEnumerator<Dot>? _dots;
+        private IEnumerator<DotStep>? _dots;
         private long _index = -1;
 
         public Part(PreparedLayer layer)
         {
-            _layer = layer;
+            _program = layer.Program();
 
             // Speeds in X microsteps: burns run along X (or along the path), travels move both axes at once (the longer one sets the time).
             var spec = layer.Spec;
@@ -140,32 +140,54 @@ public sealed class LaserPace
 
         /// <summary>The motion after <paramref name="done"/> moves (dots, strokes) of this part: what the engine does until it reports the next.</summary>
         /// <remarks>
-        /// Each kind moves differently between reports (a stroke's path, a dot's stop, a plan move), so the kinds part
-        /// here until the job's program (issue 23, item 1) gives every kind one stream of moves to walk.
+        /// Read from the part's program, whose kind says what the engine counts between reports: a drawing's strokes, a
+        /// dot job's dots, a raster's plan moves (those of its travels, strokes and plain moves).
         /// </remarks>
         public IReadOnlyList<Leg> LegsAt(long done)
         {
-            if (_layer.Drawing is { } drawing)
+            switch (_program)
             {
-                // A stroke: the travel to its run-up, then along its path to where it rests.
-                var strokes = drawing.Schedule.Strokes;
-                if (done < 0 || done >= strokes.Count)
-                {
+                case DrawingProgram drawing:
+                    if (done < 0 || done >= drawing.StrokeCount)
+                    {
+                        return [];
+                    }
+
+                    // A stroke: the travel to its run-up, then along its path to where it rests.
+                    var step = drawing.Steps((int)done).First();
+                    var stroke = step.Stroke;
+                    return [new(true, step.Travel.To.X, step.Travel.To.Y), .. stroke.Path.Points.Select(p => new Leg(false, p.X, p.Y)), new(false, stroke.RestEnd.X, stroke.RestEnd.Y)];
+
+                case DotProgram dots:
+                    // A dot: the travel to it, then the stage stands while the gate fires.
+                    return Next(ref _dots, () => dots.Steps(), done) is { } dot ? [new(true, dot.X, dot.Y)] : [];
+
+                case RasterProgram raster:
+                    return Next(ref _moves, () => MovesOf(raster), done) is { } move ? [new(move.Kind == MoveKind.Travel, move.X1, move.Y1)] : [];
+
+                default:
+                    // No other kind of program: the hierarchy is Core's own.
                     return [];
-                }
-
-                var stroke = strokes[(int)done];
-                return [new(true, stroke.RunUpStart.X, stroke.RunUpStart.Y), .. stroke.Path.Points.Select(p => new Leg(false, p.X, p.Y)), new(false, stroke.RestEnd.X, stroke.RestEnd.Y)];
             }
+        }
 
-            var image = _layer.Image!;
-            if (image.Dots is { } dots)
+        // The plan's moves a raster program runs, step by step, in order.
+        private static IEnumerable<Move> MovesOf(RasterProgram program)
+        {
+            foreach (var step in program.Steps())
             {
-                // A dot: the travel to it, then the stage stands while the gate fires.
-                return Next(ref _dots, () => dots.Dots(), done) is { } dot ? [new(true, dot.X, dot.Y)] : [];
+                if (step.Stroke is { } stroke)
+                {
+                    for (var i = 0; i < stroke.MoveCount; i++)
+                    {
+                        yield return stroke.MoveAt(i);
+                    }
+                }
+                else
+                {
+                    yield return step.IsTravel ? step.Travel.Move : step.Move.Move;
+                }
             }
-
-            return Next(ref _moves, () => image.Plan.Moves(), done) is { } move ? [new(move.Kind == MoveKind.Travel, move.X1, move.Y1)] : [];
         }
 
         /// <summary>The item at <paramref name="index"/> (from 0), walking forward only (a new pass makes a new part); null past the end.</summary>

@@ -29,6 +29,9 @@ public abstract class EngraveJob
     /// <summary>The parts, in the order they run.</summary>
     public IReadOnlyList<PreparedLayer> Parts { get; }
 
+    /// <summary>Each part's program (<see cref="PreparedLayer.Program"/>), in the order they run.</summary>
+    public IReadOnlyList<PartProgram> Programs => [.. Parts.Select(p => p.Program())];
+
     /// <summary>The (first part's) job: file, size, origin, process and machine.</summary>
     public JobSpec Spec => Parts[0].Spec;
 

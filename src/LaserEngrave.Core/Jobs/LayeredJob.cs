@@ -1,6 +1,7 @@
 using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Programs;
 using LaserEngrave.Core.Vectors;
 
 namespace LaserEngrave.Core.Jobs;
@@ -209,6 +210,14 @@ public sealed record PreparedLayer(JobLayer Layer, PreparedJob? Image, PreparedD
     }
 
     public bool FitsTravel => Image?.Geometry.FitsTravel ?? Drawing!.FitsTravel;
+
+    /// <summary>
+    /// The part's program, what a pass of it runs in device units: a drawing's strokes, a dot job's dots, an image's
+    /// raster pass. The one place a part's kind chooses its program; the preview, the estimate and the run read it.
+    /// </summary>
+    public PartProgram Program() => Drawing is { } drawing ? drawing.Schedule.Program()
+        : Image!.Dots is { } dots ? dots.Program()
+        : Image.Program();
 
     /// <summary>The layer's job: its file, size, origin, process and profile.</summary>
     public JobSpec Spec => Image?.Spec ?? Drawing!.Spec;

@@ -1,6 +1,8 @@
+using System.Diagnostics;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Programs;
 using LaserEngrave.Core.Sweeps;
 using LaserEngrave.Core.Vectors;
 
@@ -8,7 +10,7 @@ namespace LaserEngrave.Core.Preview;
 
 /// <summary>
 /// The stage's picture of a job, in mm, as the app's stage canvas draws it: every part's moves in burn order (kind and
-/// both ends), the boxes of a job's layers or a sweep's cells, the job's rectangle, and which moves a run's progress has
+/// both ends) from the part's program (<see cref="PreparedLayer.Program"/>), what is sent, the boxes of a job's layers or a sweep's cells, the job's rectangle, and which moves a run's progress has
 /// burned. The page only draws it.
 /// </summary>
 /// <remarks>
@@ -85,25 +87,33 @@ public sealed class StagePicture
     }
 
     /// <summary>An image's plan as moves, at most <see cref="MaxDrawnMoves"/>: what was drawn, and how many moves the plan has.</summary>
-    public static (byte[] Bytes, int Drawn, long Total) PlanMoves(PreparedJob? job)
+    /// <remarks>Drawn from its raster program (a dot job's too: its raster plan, kept for the preview, shows the runs its dots burn).</remarks>
+    public static (byte[] Bytes, int Drawn, long Total) PlanMoves(PreparedJob? job) =>
+        job is null ? ([], 0, 0) : RasterMoves(job.Program(), job.Spec.Profile, job.Statistics.Moves);
+
+    /// <summary>A drawing's strokes as moves (travel, run-up, the path's segments, run-out), and where each stroke's moves end.</summary>
+    public static (byte[] Bytes, int Drawn, long Total) DrawingMoves(PreparedDrawing drawing, out int[] strokeMoveEnds)
     {
-        if (job is null)
-        {
-            return ([], 0, 0);
-        }
+        ArgumentNullException.ThrowIfNull(drawing);
+        return DrawingMoves(drawing.Schedule.Program(), drawing.Plan.Start, drawing.Spec.Profile, out strokeMoveEnds);
+    }
 
-        var um = Units.UmToMm(job.Spec.Profile.X.MicrostepUm);
-        var vm = Units.UmToMm(job.Spec.Profile.Y.MicrostepUm);
+    // A raster program's steps as the plan's moves they run: a travel's, a stroke's (run-ups, burn runs, gaps, run-outs),
+    // a plain move's. Past the cap the rest is not walked: the plan's figures say how many moves there are.
+    private static (byte[] Bytes, int Drawn, long Total) RasterMoves(RasterProgram program, MachineProfile profile, long planned)
+    {
+        var um = Units.UmToMm(profile.X.MicrostepUm);
+        var vm = Units.UmToMm(profile.Y.MicrostepUm);
 
-        // Sized by the statistics, but filled from the plan itself: a dot job's statistics count its dots, not its moves.
-        var values = new List<float>((int)Math.Min(job.Statistics.Moves, MaxDrawnMoves) * FloatsPerMove);
+        // Sized by the figures, but filled from the program itself: a dot job's figures count its dots, not its moves.
+        var values = new List<float>((int)Math.Min(planned, MaxDrawnMoves) * FloatsPerMove);
         var capped = false;
-        foreach (var move in job.Plan.Moves())
+        bool Add(in Move move)
         {
             if (values.Count >= MaxDrawnMoves * FloatsPerMove)
             {
                 capped = true;
-                break;
+                return false;
             }
 
             values.Add((float)move.Kind);
@@ -111,23 +121,44 @@ public sealed class StagePicture
             values.Add((float)(move.Y0 * vm));
             values.Add((float)(move.X1 * um));
             values.Add((float)(move.Y1 * vm));
+            return true;
+        }
+
+        foreach (var step in program.Steps())
+        {
+            if (step.Stroke is { } stroke)
+            {
+                foreach (ref readonly var move in stroke.Moves)
+                {
+                    if (!Add(move))
+                    {
+                        break;
+                    }
+                }
+            }
+            else
+            {
+                Add(step.IsTravel ? step.Travel.Move : step.Move.Move);
+            }
+
+            if (capped)
+            {
+                break;
+            }
         }
 
         var drawn = values.Count / FloatsPerMove;
-
-        // Past the cap the rest is not walked: the statistics say how many there are.
-        return (Bytes(values), drawn, capped ? Math.Max(job.Statistics.Moves, drawn + 1L) : drawn);
+        return (Bytes(values), drawn, capped ? Math.Max(planned, drawn + 1L) : drawn);
     }
 
-    /// <summary>A drawing's strokes as moves (travel, run-up, the path's segments, run-out), and where each stroke's moves end.</summary>
-    public static (byte[] Bytes, int Drawn, long Total) DrawingMoves(PreparedDrawing drawing, out int[] strokeMoveEnds)
+    // A drawing program's steps as moves: each stroke's travel (the run's first from the plan's start: the positioning goes
+    // from wherever the stage stands), its run-up, its path's segments and its run-out; where each stroke's moves end.
+    private static (byte[] Bytes, int Drawn, long Total) DrawingMoves(DrawingProgram program, StagePoint start, MachineProfile profile, out int[] strokeMoveEnds)
     {
-        ArgumentNullException.ThrowIfNull(drawing);
-        var um = Units.UmToMm(drawing.Spec.Profile.X.MicrostepUm);
-        var vm = Units.UmToMm(drawing.Spec.Profile.Y.MicrostepUm);
+        var um = Units.UmToMm(profile.X.MicrostepUm);
+        var vm = Units.UmToMm(profile.Y.MicrostepUm);
         var values = new List<float>();
-        var ends = new int[drawing.Schedule.Strokes.Count];
-        var at = drawing.Plan.Start;
+        var ends = new int[program.StrokeCount];
         var moves = 0;
         long total = 0;
         void Add(MoveKind kind, StagePoint a, StagePoint b)
@@ -145,19 +176,19 @@ public sealed class StagePicture
             }
         }
 
-        foreach (var stroke in drawing.Schedule.Strokes)
+        foreach (var step in program.Steps())
         {
+            var stroke = step.Stroke;
             var points = stroke.Path.Points;
-            Add(MoveKind.Travel, at, stroke.RunUpStart);
-            Add(MoveKind.Overscan, stroke.RunUpStart, points[0]);
+            Add(MoveKind.Travel, step.Travel.From ?? start, step.Travel.To);
+            Add(MoveKind.Overscan, step.Travel.To, points[0]);
             for (var k = 1; k < points.Count; k++)
             {
                 Add(MoveKind.Burn, points[k - 1], points[k]);
             }
 
             Add(MoveKind.Overscan, points[^1], stroke.RestEnd);
-            ends[stroke.Index] = moves;
-            at = stroke.RestEnd;
+            ends[step.Index] = moves;
         }
 
         strokeMoveEnds = ends;
@@ -176,7 +207,7 @@ public sealed class StagePicture
         return (left, top, (g.EdgeX(g.WidthPx) * um) - left, (g.EdgeY(g.HeightPx) * vm) - top);
     }
 
-    // Every part's moves one after the other, each kept within what is left of the cap.
+    // Every part's moves from its program, one part after the other, each kept within what is left of the cap.
     private static DrawnMoves Draw(EngraveJob? job)
     {
         if (job is null)
@@ -191,7 +222,15 @@ public sealed class StagePicture
         foreach (var part in job.Parts)
         {
             int[]? ends = null;
-            var (bytes, count, moves) = part.Drawing is { } drawing ? DrawingMoves(drawing, out ends) : PlanMoves(part.Image);
+            var (bytes, count, moves) = part.Program() switch
+            {
+                RasterProgram raster => RasterMoves(raster, part.Spec.Profile, part.Image!.Statistics.Moves),
+
+                // A dot job is pictured by its raster plan (kept for the preview): the runs its dots burn, not the dots alone.
+                DotProgram => PlanMoves(part.Image),
+                DrawingProgram drawing => DrawingMoves(drawing, part.Drawing!.Plan.Start, part.Spec.Profile, out ends),
+                var other => throw new UnreachableException($"no picture of a {other.GetType().Name}"),
+            };
             var kept = Math.Max(0, Math.Min(count, MaxDrawnMoves - drawn));
             all.Write(bytes, 0, kept * FloatsPerMove * sizeof(float));
             parts.Add(new StagePart(drawn, kept, ends));

@@ -2,6 +2,7 @@ using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Programs;
 using LaserEngrave.Core.Tests.Vectors;
 using LaserEngrave.Core.Vectors;
 
@@ -34,6 +35,22 @@ public sealed class EngraveJobTests
         Assert.Equal(["stroke", "row", "stroke"], Enumerable.Range(1, 3).Select(layers.UnitOf));
         Assert.Equal("row", layers.UnitOf(0));
         Assert.Equal("row", layers.UnitOf(4));
+    }
+
+    [Fact]
+    public void Programs_EachPartsProgramOfItsKind()
+    {
+        var image = Image();
+        var dots = PreparedJob.Prepare(image.Spec with { Process = image.Spec.Process with { Mode = PlanMode.Dots } });
+
+        var raster = Assert.IsType<RasterProgram>(Assert.Single(EngraveJob.Of(image).Programs));
+        Assert.Same(image.Plan, raster.Plan);
+        Assert.Equal(dots.Dots!.Program().Steps().Count(), Assert.IsType<DotProgram>(Assert.Single(EngraveJob.Of(dots).Programs)).Steps().Count());
+        var drawing = Drawing();
+        Assert.Same(drawing.Schedule.Program(), Assert.Single(EngraveJob.Of(drawing).Programs));
+
+        // The plate's layers: marks (outline), logo (raster), cut (outline).
+        Assert.Equal([typeof(DrawingProgram), typeof(RasterProgram), typeof(DrawingProgram)], Layers().Programs.Select(p => p.GetType()));
     }
 
     [Fact]
