@@ -92,9 +92,9 @@ public class RunPreflightTests
         await stage.Y.DidNotReceiveWithAnyArgs().HomeAsync(Arg.Any<CancellationToken>());
     }
 
-    /// <summary>The preflight of a raster job, with the motion the engine picks for it (timed when its plan has a timing model).</summary>
+    /// <summary>The preflight of a raster job, with the program the engine runs (timed when its plan has a timing model).</summary>
     private static RunPreflight Preflight(IStage stage, ILaserGate gate, PreparedJob job, RunOptions options) =>
-        new(stage, gate, job.Plan.Timing is null ? RunMotion.StepByStep : RunMotion.Timed, job, null, job.Spec.Process, job.Spec.Profile, job.Plan.Timing, TravelSpeedData, AccelerationData, options);
+        new(stage, gate, job.Program(), job, null, job.Spec.Process, job.Spec.Profile, job.Plan.Timing, TravelSpeedData, AccelerationData, options);
 
     private static (IStage Stage, ILaserGate Gate) Fakes(AxisIdentity x, AxisIdentity y)
     {
