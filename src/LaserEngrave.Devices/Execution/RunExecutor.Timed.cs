@@ -584,7 +584,7 @@ public sealed partial class RunExecutor
         _ = reply.ContinueWith(
             answered =>
             {
-                if (answered.IsCompletedSuccessfully && Job?.Plan.Timing is { } timing)
+                if (answered.IsCompletedSuccessfully && _program is RasterProgram { Timing: { } timing })
                 {
                     var left = RunSeconds - (timing.OnRoundTripSeconds - timing.OnLeadSeconds) - timing.GateJitterSeconds;
                     lock (_lock)
@@ -820,7 +820,7 @@ public sealed partial class RunExecutor
     /// </summary>
     private RunStopPoint CutWithin(RunStopPoint stop)
     {
-        if (Job?.Plan.Timing is not { } timing || _burning is not { } burning || burning.Index != stop.MoveIndex
+        if (_program is not RasterProgram { Timing: { } timing } || _burning is not { } burning || burning.Index != stop.MoveIndex
             || _activeStroke is not { } stroke || _stopMatchesMotion == false || SwitchOnRefused(burning.Acknowledged))
         {
             return stop;
@@ -956,7 +956,7 @@ public sealed partial class RunExecutor
     {
         lock (_lock)
         {
-            if (Job?.Plan.Timing is not { } timing || _activeStroke is not { } stroke || double.IsNaN(written))
+            if (_program is not RasterProgram { Timing: { } timing } || _activeStroke is not { } stroke || double.IsNaN(written))
             {
                 return;
             }

@@ -101,24 +101,35 @@ public sealed partial class RunExecutor : ILaserSafetyRun
             LayersJob or SweepJob => throw new ArgumentException("an executor runs one image or drawing: a job of layers runs through EngraveSession, a sweep through SweepSession", nameof(job)),
             _ => throw new ArgumentException($"unknown job kind {job.GetType().Name}", nameof(job)),
         };
-        if (Job is { } image)
-        {
-            _timing = image.Plan.Timing;
-            _accounting = new RunAccounting(image.Statistics.Rows, image.Statistics.BurnRuns);
-            _progress = new RunProgress(RunState.Idle, 0, _accounting.RowsTotal, 0, _accounting.RunsTotal, 0, TimeSpan.Zero, TimeSpan.FromSeconds(image.Statistics.EngravingSeconds), 0, 0, false);
-        }
-        else
-        {
-            var drawing = Drawing!;
-            _timing = drawing.Schedule.Timing;
-            _accounting = new RunAccounting(drawing.Schedule.Strokes.Count, drawing.Plan.Paths.Count);
-            _progress = new RunProgress(RunState.Idle, 0, _accounting.RowsTotal, 0, _accounting.RunsTotal, 0, TimeSpan.Zero, TimeSpan.FromSeconds(drawing.Schedule.EstimatedSeconds), 0, 0, false);
-        }
 
+        // The timing model the run starts from: a timed raster's or the drawing's (dots and step by step keep none).
+        _timing = _program switch
+        {
+            RasterProgram raster => raster.Timing,
+            DrawingProgram drawing => drawing.Timing,
+            _ => null,
+        };
+        _progress = IdleProgress(job);
+        _accounting = new RunAccounting(_progress.RowsTotal, _progress.RunsTotal);
         var spec = job.Spec;
         _process = spec.Process;
         _profile = spec.Profile;
         _laser = new LaserSafety(Gate, TimeProvider, _process.LaserFrequencyWholeHz, _profile.Gate.WatchdogMs, Options.StallMarginMs, this);
+    }
+
+    /// <summary>What a run of a single image or drawing shows before it starts: its rows (strokes) and burn runs (paths) to do, and its estimate.</summary>
+    internal static RunProgress IdleProgress(EngraveJob job)
+    {
+        var (units, runs, seconds) = job switch
+        {
+            RasterJob { Prepared.Statistics: var s } => (s.Rows, s.BurnRuns, s.EngravingSeconds),
+            DotJob { Prepared.Statistics: var s } => (s.Rows, s.BurnRuns, s.EngravingSeconds),
+
+            // Every path of the plan, as the run counts them (the log's RunsTotal counts the paths burned, PathsBurned).
+            DrawingJob { Drawing: var d } => (d.Schedule.Strokes.Count, (long)d.Plan.Paths.Count, d.Schedule.EstimatedSeconds),
+            _ => throw new ArgumentException($"an executor runs one image or drawing, not a {job.GetType().Name}", nameof(job)),
+        };
+        return new RunProgress(RunState.Idle, 0, units, 0, runs, 0, TimeSpan.Zero, TimeSpan.FromSeconds(seconds), 0, 0, false);
     }
 
     /// <summary>Raised on every state change.</summary>
