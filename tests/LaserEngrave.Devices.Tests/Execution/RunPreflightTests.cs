@@ -1,6 +1,7 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Vectors;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Execution;
 using NSubstitute;
@@ -88,6 +89,23 @@ public class RunPreflightTests
         var ex = await Assert.ThrowsAsync<PreflightException>(() => Preflight(stage, gate, job, RunOptions.Default).RunAsync(TestContext.Current.CancellationToken));
 
         Assert.StartsWith("the job reaches X = ", ex.Message, StringComparison.Ordinal);
+        await stage.X.DidNotReceiveWithAnyArgs().HomeAsync(Arg.Any<CancellationToken>());
+        await stage.Y.DidNotReceiveWithAnyArgs().HomeAsync(Arg.Any<CancellationToken>());
+    }
+
+    [Fact(Timeout = 60_000)]
+    public async Task RunAsync_DrawingReachesPastAnAxisMaximum_RefusesBeforeHoming()
+    {
+        var (stage, gate) = Fakes(NotHomed with { MaximumPosition = 1000 }, NotHomed);
+        var drawing = PreparedDrawing.Prepare(
+            new JobSpec { ImagePath = TestJobs.AssetPath(Path.Combine("drawings", "hexagons.dxf")), Size = SizeSpec.Width(4), Origin = new OriginMm(5, 5) },
+            VectorOptions.Default);
+        var preflight = new RunPreflight(stage, gate, drawing.Schedule.Program(), null, drawing, drawing.Spec.Process, drawing.Spec.Profile, drawing.Schedule.Timing, TravelSpeedData, AccelerationData, RunOptions.Default);
+
+        var ex = await Assert.ThrowsAsync<PreflightException>(() => preflight.RunAsync(TestContext.Current.CancellationToken));
+
+        Assert.StartsWith("the job reaches X = ", ex.Message, StringComparison.Ordinal);
+        Assert.EndsWith("mm but the X axis stops at 0.0992 mm (its Maximum Position)", ex.Message, StringComparison.Ordinal);
         await stage.X.DidNotReceiveWithAnyArgs().HomeAsync(Arg.Any<CancellationToken>());
         await stage.Y.DidNotReceiveWithAnyArgs().HomeAsync(Arg.Any<CancellationToken>());
     }
