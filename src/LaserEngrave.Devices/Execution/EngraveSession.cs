@@ -101,10 +101,7 @@ public sealed class EngraveSession
         _moves = Moves(parts[_firstLayer]);
         _layer = _firstLayer + 1;
         var first = parts[_firstLayer];
-        var idle = first.Image is { } image
-            ? new RunProgress(RunState.Idle, 0, image.Statistics.Rows, 0, image.Statistics.BurnRuns, 0, TimeSpan.Zero, TimeSpan.FromSeconds(image.Statistics.EngravingSeconds), 0, 0, false)
-            : new RunProgress(RunState.Idle, 0, first.Drawing!.Schedule.Strokes.Count, 0, first.Drawing.Plan.Paths.Count, 0, TimeSpan.Zero, TimeSpan.FromSeconds(first.Drawing.Schedule.EstimatedSeconds), 0, 0, false);
-        _progress = new EngraveProgress(RunState.Idle, 1, Passes, 0, _moves, false, idle);
+        _progress = new EngraveProgress(RunState.Idle, 1, Passes, 0, _moves, false, RunExecutor.IdleProgress(PartJob(first)));
     }
 
     public EngraveMachine Machine { get; }
@@ -247,12 +244,20 @@ public sealed class EngraveSession
         }
     }
 
+    // The moves a pass reports: an image's plan's moves, a drawing's strokes (what MoveCompleted's index counts); the
+    // part's job does not hold this count, so the part's kind answers here.
     private static long Moves(PreparedLayer part) => part.Image?.Statistics.Moves ?? part.Drawing!.Schedule.Strokes.Count;
 
+    /// <summary>
+    /// A part as the job one executor runs (a raster, dots or a drawing, by its image's process or its drawing): the one
+    /// place the session turns a part into its kind; from then on the job's type and its program answer.
+    /// </summary>
+    private static EngraveJob PartJob(PreparedLayer part) => part.Drawing is { } drawing ? drawing : part.Image!;
 
     private RunRecord NewRecord(PreparedLayer part, DateTimeOffset started)
     {
         var hash = Options.ImageSha256 ?? HashOrMissing(part.Spec.ImagePath);
+        // The log's record differs by kind (an image's pixels and mask, a drawing's paths): Core/Logging makes one of each.
         return part.Drawing is { } drawing ? RunRecord.ForDrawing(drawing, hash, started) : RunRecord.ForJob(part.Image!, hash, started);
     }
 
@@ -490,7 +495,8 @@ public sealed class EngraveSession
         return _control.AbortRequested;
     }
 
-    // A continued run is checked against what it had still to burn, not what the run it continues burned.
+    // A continued run is checked against what it had still to burn, not what the run it continues burned. The twin
+    // checks an image against its mask and a drawing against its paths: two inspections (IRunInspector), one per kind.
     private static RunSimulation Inspect(IRunInspector inspector, PreparedLayer part, RunStopPoint? resumedFrom) =>
         part.Drawing is { } drawing ? inspector.InspectDrawing(drawing) : inspector.Inspect(part.Image!, resumedFrom);
 
@@ -498,9 +504,7 @@ public sealed class EngraveSession
     {
         // What an earlier run of this session found of the latencies' spread holds for the rest of it (RunResult.LatencyScale).
         var options = new RunOptions { Home = Options.Home && firstOfSession, ResumeFrom = resumeFrom ?? (firstOfSession ? _resumeFrom : null), LatencyScale = _latencyScale };
-        var executor = part.Drawing is { } drawing
-            ? new RunExecutor(Machine.Stage, Machine.Gate, drawing, Machine.TimeProvider, options, _control)
-            : new RunExecutor(Machine.Stage, Machine.Gate, part.Image!, Machine.TimeProvider, options, _control);
+        var executor = new RunExecutor(Machine.Stage, Machine.Gate, PartJob(part), Machine.TimeProvider, options, _control);
         var movesDone = options.ResumeFrom?.MoveIndex ?? 0;
         executor.MoveCompleted += (_, e) => Interlocked.Exchange(ref movesDone, e.MoveIndex + 1);
         executor.ProgressChanged += (_, p) => Report(new PassProgress(pass, Interlocked.Read(ref movesDone), p));

@@ -13,9 +13,8 @@ namespace LaserEngrave.Devices.Execution;
 /// </remarks>
 public sealed partial class RunExecutor
 {
-    private async Task ExecuteDotsAsync(DotPlan plan, long firstIndex, CancellationToken token)
+    private async Task ExecuteDotsAsync(DotProgram program, long firstIndex, CancellationToken token)
     {
-        var program = plan.Program();
         var timing = program.Timing;
         // Every move between dots is a travel.
         await BeginEngravingAsync(firstIndex, Options.ResumeFrom?.Row ?? 0, token);
@@ -73,15 +72,22 @@ public sealed partial class RunExecutor
     }
 
     /// <summary>Preflight's share of the estimate before the first dot: the exchanges, homing if it homed, and the travel to the dot.</summary>
-    private double EstimateDotsPreparation(DotPlan plan, long firstIndex) =>
-        plan.Program().Steps(firstIndex).Take(1).ToList() is [var first]
-            ? TimedSwitching.For(_process, _profile, plan.Geometry.MicrostepUm).PreparationSeconds(first.X, first.Y, _homed, from: (_x, _y))
+    private double EstimateDotsPreparation(DotProgram program, long firstIndex) =>
+        program.Steps(firstIndex).Take(1).ToList() is [var first]
+            ? TimedSwitching.For(_process, _profile, program.MicrostepUm).PreparationSeconds(first.X, first.Y, _homed, from: (_x, _y))
             : 0;
 
-    /// <summary>For a resumed dot run: the dots fired before the resume point, counted, and the estimate of what is left.</summary>
-    private long PrepareDots(DotPlan plan)
+    /// <summary>A dot job's motion from the resume point on; for a resumed run the dots fired before it, counted, and the estimate of what is left.</summary>
+    private Func<CancellationToken, Task> PrepareDots(DotProgram program)
     {
-        var estimate = plan.Estimate;
+        var firstIndex = SkipDotsDone(program);
+        _accounting.EstimatePreparation = EstimateDotsPreparation(program, firstIndex);
+        return token => ExecuteDotsAsync(program, firstIndex, token);
+    }
+
+    private long SkipDotsDone(DotProgram program)
+    {
+        var estimate = Job!.Dots!.Estimate;
         _accounting.EstimateTotal = estimate.TotalSeconds;
         if (Options.ResumeFrom is not { } resume)
         {
@@ -95,7 +101,6 @@ public sealed partial class RunExecutor
         }
 
         // The dots before, counted as the run counts them; their time as the estimate counts it (the start settings included).
-        var program = plan.Program();
         foreach (var step in program.Steps().TakeWhile(s => s.Index < start))
         {
             _accounting.CountDone(MoveKind.Burn, step.Row);

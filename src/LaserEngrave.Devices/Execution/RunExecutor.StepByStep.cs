@@ -27,14 +27,14 @@ public sealed partial class RunExecutor
         _engravingStarted = true;
         foreach (var axis in new[] { Stage.X, Stage.Y })
         {
-            await axis.SetAccelerationAsync(_accelerationData, token);
-            await axis.SetTargetSpeedAsync(_travelSpeedData, token);
+            await axis.SetAccelerationAsync(_program.Motion.AccelerationData, token);
+            await axis.SetTargetSpeedAsync(_program.Motion.TravelSpeedData, token);
         }
 
-        (_xSpeedData, _ySpeedData) = (_travelSpeedData, _travelSpeedData);
+        (_xSpeedData, _ySpeedData) = (_program.Motion.TravelSpeedData, _program.Motion.TravelSpeedData);
     }
 
-    private async Task ExecuteAsync(IEnumerable<RasterStep> steps, long firstIndex, CancellationToken token)
+    private async Task ExecuteAsync(RasterProgram program, IEnumerable<RasterStep> steps, long firstIndex, CancellationToken token)
     {
         await BeginEngravingAsync(firstIndex, Options.ResumeFrom?.Row ?? 0, token);
         var index = firstIndex;
@@ -46,7 +46,7 @@ public sealed partial class RunExecutor
             {
                 // Reaching the plan's (or the resume point's) first position is not part of the estimate.
                 var positioning = TimeProvider.GetTimestamp();
-                await MoveToAsync(move.X0, move.Y0, _travelSpeedData, token);
+                await MoveToAsync(move.X0, move.Y0, program.Motion.TravelSpeedData, token);
                 _notEngraving += TimeProvider.GetElapsedTime(positioning);
                 first = false;
             }
@@ -59,43 +59,55 @@ public sealed partial class RunExecutor
             index = moveIndex + 1;
         }
 
-        _accounting.Ended(index, Job!.Plan.Mask.Height);
+        _accounting.Ended(index, program.Plan.Mask.Height);
     }
 
-    /// <summary>The program's steps to execute and the index of the first move; for a resumed run also the counters and estimates of what was done before.</summary>
+    /// <summary>
+    /// A raster's motion: its steps by the run's own timing model (wider latencies when preflight found them), from the
+    /// resume point on; for a resumed run also the counters and estimates of what was done before. The estimate is the
+    /// plan's program's (<paramref name="planned"/>).
+    /// </summary>
     /// <exception cref="PreflightException">The resume point is not in this job's plan.</exception>
-    private (IEnumerable<RasterStep> Steps, long FirstIndex) Prepare()
+    private Func<CancellationToken, Task> Prepare(RasterProgram planned)
     {
-        // The run's own timing model plans its strokes (wider latencies when preflight found them); the estimate is the plan's.
-        var program = Job!.Program(_timing);
-        var estimated = Job.Program();
-        _accounting.Estimator = program.Timing is null ? new PlanEstimator(estimated) : null;
+        var program = planned.Timing == _timing ? planned : Job!.Program(_timing);
+        _accounting.Estimator = program.Timing is null ? new PlanEstimator(planned) : null;
+        IEnumerable<RasterStep> steps;
+        long firstIndex = 0;
         if (Options.ResumeFrom is not { } stop)
         {
-            _accounting.EstimateTotal = Job.Statistics.EngravingSeconds;
-            return (program.Steps(), 0);
+            _accounting.EstimateTotal = Job!.Statistics.EngravingSeconds;
+            steps = program.Steps();
+        }
+        else
+        {
+            RasterResume resume;
+            try
+            {
+                resume = program.ResumeAt(stop, _resumeX);
+            }
+            catch (PlanException ex)
+            {
+                throw new PreflightException(ex.Message);
+            }
+
+            _accounting.DoneBefore(resume.RowsBefore, resume.RunsBefore, resume.LastRowBefore);
+            var (before, remaining) = planned.EstimateResumed(resume);
+            _accounting.EstimateBefore = before;
+            _accounting.EstimateTotal = before + remaining;
+            steps = program.Steps(resume);
+            firstIndex = resume.FirstMoveIndex;
         }
 
-        RasterResume resume;
-        try
-        {
-            resume = program.ResumeAt(stop, _resumeX);
-        }
-        catch (PlanException ex)
-        {
-            throw new PreflightException(ex.Message);
-        }
-
-        _accounting.DoneBefore(resume.RowsBefore, resume.RunsBefore, resume.LastRowBefore);
-        var (before, remaining) = estimated.EstimateResumed(resume);
-        _accounting.EstimateBefore = before;
-        _accounting.EstimateTotal = before + remaining;
-        return (program.Steps(resume), resume.FirstMoveIndex);
+        _accounting.EstimatePreparation = EstimatePreparation(planned, steps);
+        return program.Timing is { } timing
+            ? token => ExecuteTimedAsync(program, steps, firstIndex, timing, token)
+            : token => ExecuteAsync(program, steps, firstIndex, token);
     }
 
     /// <summary>The estimate of what preflight did and the travel to the first move will take, as the plan's figure is made.</summary>
-    private double EstimatePreparation(IEnumerable<RasterStep> steps) =>
-        Job?.Plan.Timing is { } timing && steps.Take(1).ToList() is [var first]
+    private double EstimatePreparation(RasterProgram planned, IEnumerable<RasterStep> steps) =>
+        planned.Timing is { } timing && steps.Take(1).ToList() is [var first]
             ? timing.PreparationSeconds(first.FirstMove.X0, first.FirstMove.Y0, _homed, from: (_x, _y))
             : 0;
 
@@ -121,7 +133,7 @@ public sealed partial class RunExecutor
         if (burn)
         {
             // No keepalive in the last moments of the run: a switch-off queued behind one would leave the laser standing on.
-            var motion = new TrapezoidProfile(move.LengthX, StageUnits.SpeedMicrostepsPerS(speedData), StageUnits.AccelerationMicrostepsPerS2(_accelerationData));
+            var motion = new TrapezoidProfile(move.LengthX, StageUnits.SpeedMicrostepsPerS(speedData), StageUnits.AccelerationMicrostepsPerS2(_program.Motion.AccelerationData));
             var quietAfterSeconds = Math.Max(0, motion.Duration - KeepAliveQuietSeconds);
             _laser.KeepAlive!.QuietFrom = TimeProvider.GetTimestamp() + (long)(quietAfterSeconds * TimeProvider.TimestampFrequency);
         }

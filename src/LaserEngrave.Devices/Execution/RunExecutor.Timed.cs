@@ -54,7 +54,7 @@ public sealed partial class RunExecutor
 
     private double RunSeconds => TimeProvider.GetElapsedTime(_engravingStart).TotalSeconds;
 
-    private async Task ExecuteTimedAsync(IEnumerable<RasterStep> steps, long firstIndex, TimedSwitching timing, CancellationToken token)
+    private async Task ExecuteTimedAsync(RasterProgram program, IEnumerable<RasterStep> steps, long firstIndex, TimedSwitching timing, CancellationToken token)
     {
         _queuedUpTo = firstIndex - 1;
         await BeginEngravingAsync(firstIndex, Options.ResumeFrom?.Row ?? 0, token);
@@ -66,7 +66,7 @@ public sealed partial class RunExecutor
                 // Reaching the first step's start (the plan's or the resume point's) is not part of the estimate.
                 var positioning = TimeProvider.GetTimestamp();
                 var (startX, startY) = step.Stroke is { } first ? (first.StartX, first.Y) : (step.Travel.Move.X0, step.Travel.Move.Y0);
-                await MoveToAsync(startX, startY, _travelSpeedData, token);
+                await MoveToAsync(startX, startY, program.Motion.TravelSpeedData, token);
                 _notEngraving += TimeProvider.GetElapsedTime(positioning);
                 timeline = new MotionTimeline(timing, RunSeconds, _xSpeedData);
             }
@@ -92,7 +92,7 @@ public sealed partial class RunExecutor
 
         await WatchedRepliesAsync(token);
         CompleteAcknowledged();
-        _accounting.Ended(null, Job!.Plan.Mask.Height);
+        _accounting.Ended(null, program.Plan.Mask.Height);
     }
 
     private bool IsPauseRequested
@@ -118,8 +118,8 @@ public sealed partial class RunExecutor
         {
             await DelayUntilAsync(speedArrival - timing.StageCommandSeconds, token);
             speedWritten = RunSeconds;
-            Watch(Stage.X.SetTargetSpeedAsync(_burnSpeedData, token), Sent(speedArrival, speedWritten, timing) + timing.StageReplySeconds, "Set Target Speed (X)");
-            _xSpeedData = _burnSpeedData;
+            Watch(Stage.X.SetTargetSpeedAsync(_program.Motion.BurnSpeedData, token), Sent(speedArrival, speedWritten, timing) + timing.StageReplySeconds, "Set Target Speed (X)");
+            _xSpeedData = _program.Motion.BurnSpeedData;
         }
 
         await DelayUntilAsync(times.Arrival - timing.StageCommandSeconds, token);
@@ -315,12 +315,12 @@ public sealed partial class RunExecutor
         await DelayUntilAsync(upWrite, token);
         ThrowIfAborted();
         var upLate = RunSeconds - upWrite;
-        Watch(Stage.X.SetTargetSpeedAsync(_travelSpeedData, token), Sent(start + bump.SpeedUpArrival, RunSeconds, timing) + timing.StageReplySeconds, "Set Target Speed (X, a flown gap)");
+        Watch(Stage.X.SetTargetSpeedAsync(_program.Motion.TravelSpeedData, token), Sent(start + bump.SpeedUpArrival, RunSeconds, timing) + timing.StageReplySeconds, "Set Target Speed (X, a flown gap)");
         NoteGapFlown();
         var downWrite = start + bump.SpeedDownArrival - timing.StageCommandSeconds;
         await DelayUntilAsync(downWrite, token);
         var downLate = RunSeconds - downWrite;
-        Watch(Stage.X.SetTargetSpeedAsync(_burnSpeedData, token), Sent(start + bump.SpeedDownArrival, RunSeconds, timing) + timing.StageReplySeconds, "Set Target Speed (X, after a flown gap)");
+        Watch(Stage.X.SetTargetSpeedAsync(_program.Motion.BurnSpeedData, token), Sent(start + bump.SpeedDownArrival, RunSeconds, timing) + timing.StageReplySeconds, "Set Target Speed (X, after a flown gap)");
 
         // The query goes once the stage is surely back at the burn speed: never sooner after the speed-down than planned,
         // and later still when the speed-down left late against the speed-up (a busy computer): held longer, the bump
@@ -584,7 +584,7 @@ public sealed partial class RunExecutor
         _ = reply.ContinueWith(
             answered =>
             {
-                if (answered.IsCompletedSuccessfully && Job?.Plan.Timing is { } timing)
+                if (answered.IsCompletedSuccessfully && _program is RasterProgram { Timing: { } timing })
                 {
                     var left = RunSeconds - (timing.OnRoundTripSeconds - timing.OnLeadSeconds) - timing.GateJitterSeconds;
                     lock (_lock)
@@ -820,7 +820,7 @@ public sealed partial class RunExecutor
     /// </summary>
     private RunStopPoint CutWithin(RunStopPoint stop)
     {
-        if (Job?.Plan.Timing is not { } timing || _burning is not { } burning || burning.Index != stop.MoveIndex
+        if (_program is not RasterProgram { Timing: { } timing } || _burning is not { } burning || burning.Index != stop.MoveIndex
             || _activeStroke is not { } stroke || _stopMatchesMotion == false || SwitchOnRefused(burning.Acknowledged))
         {
             return stop;
@@ -956,7 +956,7 @@ public sealed partial class RunExecutor
     {
         lock (_lock)
         {
-            if (Job?.Plan.Timing is not { } timing || _activeStroke is not { } stroke || double.IsNaN(written))
+            if (_program is not RasterProgram { Timing: { } timing } || _activeStroke is not { } stroke || double.IsNaN(written))
             {
                 return;
             }

@@ -21,11 +21,10 @@ public sealed partial class RunExecutor
     // Time the host allows itself to react to a reply before acting on it (as TimedSwitching).
     private const double VectorReactionSeconds = 0.0005;
 
-    /// <summary>The first stroke to run (a resumed run's stop point), with the estimates of what was done before.</summary>
-    private int PrepareStrokes()
+    /// <summary>A drawing's motion from the first stroke to run (a resumed run's stop point), with the estimates of what was done before.</summary>
+    private Func<CancellationToken, Task> PrepareStrokes(DrawingProgram program)
     {
         var schedule = Drawing!.Schedule;
-        var program = schedule.Program();
         var first = 0;
         if (Options.ResumeFrom is { } resume)
         {
@@ -40,47 +39,16 @@ public sealed partial class RunExecutor
 
         _accounting.EstimateTotal = schedule.EstimatedSeconds;
         _accounting.EstimateBefore = schedule.EstimatedSeconds - program.SecondsFrom(first);
-        return first;
-    }
 
-    /// <summary>Preflight, homing if it homes, and the travel to the first stroke's run-up, as for images (<c>TimedSwitching.PreparationSeconds</c>).</summary>
-    private double EstimateDrawingPreparation(int firstStroke) =>
-        Drawing!.Schedule.Program().Steps(firstStroke).Take(1).ToList() is [var step]
-            ? Drawing.Schedule.Timing.PreparationSeconds(step.Travel.To.X, step.Travel.To.Y, _homed, from: (_x, _y))
+        // Preflight, homing if it homes, and the travel to the first stroke's run-up, as for images (TimedSwitching.PreparationSeconds).
+        _accounting.EstimatePreparation = program.Steps(first).Take(1).ToList() is [var step]
+            ? program.Timing.PreparationSeconds(step.Travel.To.X, step.Travel.To.Y, _homed, from: (_x, _y))
             : 0;
-
-    internal static void CheckDrawing(PreparedDrawing drawing)
-    {
-        if (!drawing.FitsTravel)
-        {
-            throw new PreflightException(drawing.Warnings.LastOrDefault(w => w.Contains("travel", StringComparison.Ordinal)) ?? "the drawing does not fit the stage travel");
-        }
-
-        if (drawing.Schedule.Strokes.Count == 0)
-        {
-            throw new PreflightException($"{drawing.Spec.ImagePath}: no path is long enough to burn");
-        }
+        return token => ExecuteVectorAsync(program, first, token);
     }
 
-    internal static void CheckDrawingReach(PreparedDrawing drawing, AxisIdentity x, AxisIdentity y)
+    private async Task ExecuteVectorAsync(DrawingProgram program, int first, CancellationToken token)
     {
-        var strokes = drawing.Schedule.Strokes;
-        var right = strokes.Max(s => Math.Max(Math.Max(s.RunUpStart.X, s.RestEnd.X), s.Path.Points.Max(p => p.X)));
-        var bottom = strokes.Max(s => Math.Max(Math.Max(s.RunUpStart.Y, s.RestEnd.Y), s.Path.Points.Max(p => p.Y)));
-        var microstepUm = drawing.Plan.MicrostepUm;
-        foreach (var (name, reach, identity) in new[] { ("X", right, x), ("Y", bottom, y) })
-        {
-            if (identity.MaximumPosition > 0 && reach > identity.MaximumPosition)
-            {
-                throw new PreflightException(
-                    $"the job reaches {name} = {N(StageUnits.MicrostepsToMm(reach, microstepUm))} mm but the {name} axis stops at {N(StageUnits.MicrostepsToMm(identity.MaximumPosition, microstepUm))} mm (its Maximum Position)");
-            }
-        }
-    }
-
-    private async Task ExecuteVectorAsync(PreparedDrawing drawing, int first, CancellationToken token)
-    {
-        var program = drawing.Schedule.Program();
         var timing = program.Timing;
         await BeginEngravingAsync(first, first, token);
         var travelWrite = double.NaN;

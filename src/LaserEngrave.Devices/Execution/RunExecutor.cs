@@ -33,11 +33,10 @@ public sealed partial class RunExecutor : ILaserSafetyRun
     private readonly CancellationTokenSource _fault = new();
     private readonly ProcessSettings _process = ProcessSettings.Default;
     private readonly MachineProfile _profile = MachineProfile.Default;
-    private readonly RunMotion _motion;
     private TimedSwitching? _timing;
-    private readonly int _burnSpeedData;
-    private readonly int _travelSpeedData;
-    private readonly int _accelerationData;
+
+    // The part's program as planned: what the run sends (a timed raster re-timed by the run's own timing model), estimates and checks.
+    private readonly PartProgram _program;
     private RunState _state = RunState.Idle;
     private RunProgress _progress;
     private int _started;
@@ -93,40 +92,44 @@ public sealed partial class RunExecutor : ILaserSafetyRun
         TimeProvider = timeProvider ?? TimeProvider.System;
         Options = options ?? RunOptions.Default;
 
-        // The one place the executor tells the kinds apart: the motion strategy it runs, what it counts, its timing and units.
-        (Job, Drawing, _motion) = job switch
+        // The one place the executor tells the kinds apart: the program it runs; from here on the program's type answers.
+        (Job, Drawing, _program) = job switch
         {
-            RasterJob raster => (raster.Prepared, null, raster.Prepared.Plan.Timing is null ? RunMotion.StepByStep : RunMotion.Timed),
-            DotJob dots => (dots.Prepared, null, RunMotion.Dots),
-            DrawingJob drawing => ((PreparedJob?)null, drawing.Drawing, RunMotion.Strokes),
+            RasterJob raster => (raster.Prepared, (PreparedDrawing?)null, (PartProgram)raster.Prepared.Program()),
+            DotJob dots => (dots.Prepared, null, dots.Program()),
+            DrawingJob drawing => (null, drawing.Drawing, drawing.Program()),
             LayersJob or SweepJob => throw new ArgumentException("an executor runs one image or drawing: a job of layers runs through EngraveSession, a sweep through SweepSession", nameof(job)),
             _ => throw new ArgumentException($"unknown job kind {job.GetType().Name}", nameof(job)),
         };
-        double microstepUm;
-        PlanStrategy strategy;
-        if (Job is { } image)
-        {
-            microstepUm = image.Plan.Geometry.MicrostepUm;
-            strategy = image.Plan.Options.Strategy;
-            _timing = image.Plan.Timing;
-            _accounting = new RunAccounting(image.Statistics.Rows, image.Statistics.BurnRuns);
-            _progress = new RunProgress(RunState.Idle, 0, _accounting.RowsTotal, 0, _accounting.RunsTotal, 0, TimeSpan.Zero, TimeSpan.FromSeconds(image.Statistics.EngravingSeconds), 0, 0, false);
-        }
-        else
-        {
-            var drawing = Drawing!;
-            microstepUm = drawing.Schedule.Timing.MicrostepUm;
-            strategy = PlanStrategy.Optimized;
-            _timing = drawing.Schedule.Timing;
-            _accounting = new RunAccounting(drawing.Schedule.Strokes.Count, drawing.Plan.Paths.Count);
-            _progress = new RunProgress(RunState.Idle, 0, _accounting.RowsTotal, 0, _accounting.RunsTotal, 0, TimeSpan.Zero, TimeSpan.FromSeconds(drawing.Schedule.EstimatedSeconds), 0, 0, false);
-        }
 
+        // The timing model the run starts from: a timed raster's or the drawing's (dots and step by step keep none).
+        _timing = _program switch
+        {
+            RasterProgram raster => raster.Timing,
+            DrawingProgram drawing => drawing.Timing,
+            _ => null,
+        };
+        _progress = IdleProgress(job);
+        _accounting = new RunAccounting(_progress.RowsTotal, _progress.RunsTotal);
         var spec = job.Spec;
         _process = spec.Process;
         _profile = spec.Profile;
-        (_burnSpeedData, _travelSpeedData, _accelerationData) = MotionData.Of(_process, strategy, microstepUm);
         _laser = new LaserSafety(Gate, TimeProvider, _process.LaserFrequencyWholeHz, _profile.Gate.WatchdogMs, Options.StallMarginMs, this);
+    }
+
+    /// <summary>What a run of a single image or drawing shows before it starts: its rows (strokes) and burn runs (paths) to do, and its estimate.</summary>
+    internal static RunProgress IdleProgress(EngraveJob job)
+    {
+        var (units, runs, seconds) = job switch
+        {
+            RasterJob { Prepared.Statistics: var s } => (s.Rows, s.BurnRuns, s.EngravingSeconds),
+            DotJob { Prepared.Statistics: var s } => (s.Rows, s.BurnRuns, s.EngravingSeconds),
+
+            // Every path of the plan, as the run counts them (the log's RunsTotal counts the paths burned, PathsBurned).
+            DrawingJob { Drawing: var d } => (d.Schedule.Strokes.Count, (long)d.Plan.Paths.Count, d.Schedule.EstimatedSeconds),
+            _ => throw new ArgumentException($"an executor runs one image or drawing, not a {job.GetType().Name}", nameof(job)),
+        };
+        return new RunProgress(RunState.Idle, 0, units, 0, runs, 0, TimeSpan.Zero, TimeSpan.FromSeconds(seconds), 0, 0, false);
     }
 
     /// <summary>Raised on every state change.</summary>
@@ -194,37 +197,20 @@ public sealed partial class RunExecutor : ILaserSafetyRun
         {
             SetState(RunState.Preflight);
             identity = await PreflightAsync(token);
-            IEnumerable<RasterStep> steps = [];
-            long firstIndex = 0;
-            var firstStroke = 0;
-            switch (_motion)
+            // One motion strategy per kind of program, chosen once: strokes (RunExecutor.Vector), dots (.Dots), timed
+            // switching (.Timed) or step by step (.StepByStep); each first counts what a resumed run did before.
+            Func<CancellationToken, Task> motion = _program switch
             {
-                case RunMotion.Strokes:
-                    firstStroke = PrepareStrokes();
-                    _accounting.EstimatePreparation = EstimateDrawingPreparation(firstStroke);
-                    break;
-                case RunMotion.Dots:
-                    firstIndex = PrepareDots(Job!.Dots!);
-                    _accounting.EstimatePreparation = EstimateDotsPreparation(Job.Dots!, firstIndex);
-                    break;
-                default:
-                    (steps, firstIndex) = Prepare();
-                    _accounting.EstimatePreparation = EstimatePreparation(steps);
-                    break;
-            }
+                DrawingProgram drawing => PrepareStrokes(drawing),
+                DotProgram dots => PrepareDots(dots),
+                RasterProgram raster => Prepare(raster),
+                _ => throw new InvalidOperationException($"unknown program {_program.GetType().Name}"),
+            };
 
             SetState(RunState.Running);
             _laser.StartKeepAlive(GateKeepAlive.PeriodFor(_profile.Gate.WatchdogMs, Options.KeepAliveFraction), whileOn: _timing is null, OnKeepAliveFailed);
             using var linked = CancellationTokenSource.CreateLinkedTokenSource(token, _fault.Token);
-            // One motion strategy per kind of plan: strokes (RunExecutor.Vector), dots (.Dots), timed switching (.Timed) or step by step (.StepByStep).
-            var motion = _motion switch
-            {
-                RunMotion.Strokes => ExecuteVectorAsync(Drawing!, firstStroke, linked.Token),
-                RunMotion.Dots => ExecuteDotsAsync(Job!.Dots!, firstIndex, linked.Token),
-                RunMotion.Timed => ExecuteTimedAsync(steps, firstIndex, _timing!, linked.Token),
-                _ => ExecuteAsync(steps, firstIndex, linked.Token),
-            };
-            await motion;
+            await motion(linked.Token);
 
             await _laser.SwitchAsync(on: false);
             return await FinishAsync(RunOutcome.Completed, null, identity, startedAt);
@@ -320,7 +306,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun
     /// <summary>Preflight, once (<see cref="RunPreflight"/>): the run starts from what it found.</summary>
     private async Task<MachineIdentity> PreflightAsync(CancellationToken token)
     {
-        var preflight = new RunPreflight(Stage, Gate, _motion, Job, Drawing, _process, _profile, _timing, _travelSpeedData, _accelerationData, Options);
+        var preflight = new RunPreflight(Stage, Gate, _program, Job, Drawing, _process, _profile, _timing, _program.Motion.TravelSpeedData, _program.Motion.AccelerationData, Options);
         var found = await preflight.RunAsync(token);
         _resumeX = found.ResumeX;
         _homed = found.Homed;
@@ -584,6 +570,6 @@ public sealed partial class RunExecutor : ILaserSafetyRun
         double? engraving = _engravingStarted ? (TimeProvider.GetElapsedTime(_engravingStart) - _notEngraving).TotalSeconds : null;
 
         // Timed runs and dots keep to their estimate (the same timeline), so the clock says how much of it is done.
-        return _accounting.Snapshot(_state, elapsed, engraving, byClock: _timing is not null || Job?.Dots is not null, _x, _y, _laser.On);
+        return _accounting.Snapshot(_state, elapsed, engraving, byClock: _timing is not null || _program is DotProgram, _x, _y, _laser.On);
     }
 }

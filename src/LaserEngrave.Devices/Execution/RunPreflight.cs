@@ -4,6 +4,7 @@ using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Motion;
 using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Programs;
 using LaserEngrave.Core.Vectors;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Zaber;
@@ -22,7 +23,7 @@ internal sealed class RunPreflight
 
     private readonly IStage _stage;
     private readonly ILaserGate _gate;
-    private readonly RunMotion _motion;
+    private readonly PartProgram _program;
     private readonly PreparedJob? _job;
     private readonly PreparedDrawing? _drawing;
     private readonly ProcessSettings _process;
@@ -32,12 +33,13 @@ internal sealed class RunPreflight
     private readonly int _accelerationData;
     private readonly RunOptions _options;
 
+    /// <param name="program">The part's program as planned: its kind decides what the firmware must vouch for.</param>
     /// <param name="job">The image job (raster or dots), or null for a drawing.</param>
     /// <param name="drawing">The drawing, or null for an image job.</param>
     /// <param name="timing">The plan's timing model (the drawing's schedule's for a drawing; null for a plan without one).</param>
     /// <param name="travelSpeedData">Set Target Speed data of the travel speed, the axes' Home Speed.</param>
     /// <param name="accelerationData">Set Acceleration data, for homing.</param>
-    public RunPreflight(IStage stage, ILaserGate gate, RunMotion motion, PreparedJob? job, PreparedDrawing? drawing, ProcessSettings process, MachineProfile profile,
+    public RunPreflight(IStage stage, ILaserGate gate, PartProgram program, PreparedJob? job, PreparedDrawing? drawing, ProcessSettings process, MachineProfile profile,
         TimedSwitching? timing, int travelSpeedData, int accelerationData, RunOptions options)
     {
         if ((job is null) == (drawing is null))
@@ -47,7 +49,7 @@ internal sealed class RunPreflight
 
         _stage = stage;
         _gate = gate;
-        _motion = motion;
+        _program = program;
         _job = job;
         _drawing = drawing;
         _process = process;
@@ -144,7 +146,7 @@ internal sealed class RunPreflight
         var timing = _timing;
         var latencyScale = 1.0;
         var scale = Math.Max(double.IsFinite(_options.LatencyScale) ? Math.Max(1, _options.LatencyScale) : 1, SpreadSeenScale(exchangesBefore));
-        if (scale > 1 && _motion == RunMotion.Timed && _job!.Plan.Timing is { } planned)
+        if (scale > 1 && _program is RasterProgram { Timing: { } planned })
         {
             latencyScale = scale;
 
@@ -208,8 +210,8 @@ internal sealed class RunPreflight
     /// <summary>Refuses a run whose strategy needs what the axis' firmware does not vouch for (<see cref="ZaberFirmware"/>), naming the axis, the firmware and what is missing.</summary>
     private void CheckFirmware(AxisIdentity identity, string name)
     {
-        var drawing = _motion == RunMotion.Strokes;
-        var timedRaster = _motion == RunMotion.Timed;
+        var drawing = _program is DrawingProgram;
+        var timedRaster = _program is RasterProgram { Timing: not null };
         var missing = ZaberFirmware.Missing(identity.FirmwareVersion, speedChangeMidMove: timedRaster, constantSpeed: drawing);
         if (missing.Count > 0)
         {
@@ -222,9 +224,9 @@ internal sealed class RunPreflight
     /// <summary>Refuses a job that leaves the travel or asks for speeds the stage cannot run.</summary>
     private void CheckJob()
     {
-        if (_drawing is { } drawing)
+        if (_program is DrawingProgram program)
         {
-            RunExecutor.CheckDrawing(drawing);
+            CheckDrawing(_drawing!, program);
         }
         else if (!_job!.Geometry.FitsTravel)
         {
@@ -232,8 +234,8 @@ internal sealed class RunPreflight
             throw new PreflightException(outside?.Message ?? "the job does not fit the stage travel");
         }
 
-        var strategy = _job?.Plan.Options.Strategy ?? PlanStrategy.Optimized;
-        var microstepUm = _job?.Plan.Geometry.MicrostepUm ?? _timing!.MicrostepUm;
+        var strategy = _program.Strategy;
+        var microstepUm = _program.MicrostepUm;
         CheckSpeed("burn speed", _process.SpeedMmPerS(MoveKind.Burn, strategy));
         CheckSpeed("travel speed", _process.SpeedMmPerS(MoveKind.Travel, strategy));
         var accelerationUnits = Math.Round(StageUnits.MmToMicrosteps(_process.AccelerationMmPerS2, microstepUm) / StageUnits.AccelerationUnitMicrostepsPerS2);
@@ -266,9 +268,9 @@ internal sealed class RunPreflight
     /// <summary>Refuses a job that reaches past an axis' Maximum Position (the device's own limit may be below the profile's travel).</summary>
     private void CheckReach(AxisIdentity x, AxisIdentity y)
     {
-        if (_drawing is { } drawing)
+        if (_program is DrawingProgram program)
         {
-            RunExecutor.CheckDrawingReach(drawing, x, y);
+            CheckDrawingReach(program, x, y);
             return;
         }
 
@@ -282,6 +284,41 @@ internal sealed class RunPreflight
             {
                 throw new PreflightException(
                     $"the job reaches {name} = {N(StageUnits.MicrostepsToMm(reach, geometry.MicrostepUm))} mm but the {name} axis stops at {N(StageUnits.MicrostepsToMm(identity.MaximumPosition, geometry.MicrostepUm))} mm (its Maximum Position)");
+            }
+        }
+    }
+
+    /// <summary>Refuses a drawing that leaves the travel or has nothing to burn.</summary>
+    private static void CheckDrawing(PreparedDrawing drawing, DrawingProgram program)
+    {
+        if (!drawing.FitsTravel)
+        {
+            throw new PreflightException(drawing.Warnings.LastOrDefault(w => w.Contains("travel", StringComparison.Ordinal)) ?? "the drawing does not fit the stage travel");
+        }
+
+        if (program.StrokeCount == 0)
+        {
+            throw new PreflightException($"{drawing.Spec.ImagePath}: no path is long enough to burn");
+        }
+    }
+
+    /// <summary>Refuses a drawing whose strokes (run-ups, paths and where the axes rest after them) reach past an axis' Maximum Position.</summary>
+    private static void CheckDrawingReach(DrawingProgram program, AxisIdentity x, AxisIdentity y)
+    {
+        long right = long.MinValue, bottom = long.MinValue;
+        foreach (var step in program.Steps())
+        {
+            var s = step.Stroke;
+            right = Math.Max(right, Math.Max(Math.Max(s.RunUpStart.X, s.RestEnd.X), s.Path.Points.Max(p => p.X)));
+            bottom = Math.Max(bottom, Math.Max(Math.Max(s.RunUpStart.Y, s.RestEnd.Y), s.Path.Points.Max(p => p.Y)));
+        }
+
+        foreach (var (name, reach, identity) in new[] { ("X", right, x), ("Y", bottom, y) })
+        {
+            if (identity.MaximumPosition > 0 && reach > identity.MaximumPosition)
+            {
+                throw new PreflightException(
+                    $"the job reaches {name} = {N(StageUnits.MicrostepsToMm(reach, program.MicrostepUm))} mm but the {name} axis stops at {N(StageUnits.MicrostepsToMm(identity.MaximumPosition, program.MicrostepUm))} mm (its Maximum Position)");
             }
         }
     }

@@ -1,6 +1,7 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Vectors;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Execution;
 using NSubstitute;
@@ -92,9 +93,26 @@ public class RunPreflightTests
         await stage.Y.DidNotReceiveWithAnyArgs().HomeAsync(Arg.Any<CancellationToken>());
     }
 
-    /// <summary>The preflight of a raster job, with the motion the engine picks for it (timed when its plan has a timing model).</summary>
+    [Fact(Timeout = 60_000)]
+    public async Task RunAsync_DrawingReachesPastAnAxisMaximum_RefusesBeforeHoming()
+    {
+        var (stage, gate) = Fakes(NotHomed with { MaximumPosition = 1000 }, NotHomed);
+        var drawing = PreparedDrawing.Prepare(
+            new JobSpec { ImagePath = TestJobs.AssetPath(Path.Combine("drawings", "hexagons.dxf")), Size = SizeSpec.Width(4), Origin = new OriginMm(5, 5) },
+            VectorOptions.Default);
+        var preflight = new RunPreflight(stage, gate, drawing.Schedule.Program(), null, drawing, drawing.Spec.Process, drawing.Spec.Profile, drawing.Schedule.Timing, TravelSpeedData, AccelerationData, RunOptions.Default);
+
+        var ex = await Assert.ThrowsAsync<PreflightException>(() => preflight.RunAsync(TestContext.Current.CancellationToken));
+
+        Assert.StartsWith("the job reaches X = ", ex.Message, StringComparison.Ordinal);
+        Assert.EndsWith("mm but the X axis stops at 0.0992 mm (its Maximum Position)", ex.Message, StringComparison.Ordinal);
+        await stage.X.DidNotReceiveWithAnyArgs().HomeAsync(Arg.Any<CancellationToken>());
+        await stage.Y.DidNotReceiveWithAnyArgs().HomeAsync(Arg.Any<CancellationToken>());
+    }
+
+    /// <summary>The preflight of a raster job, with the program the engine runs (timed when its plan has a timing model).</summary>
     private static RunPreflight Preflight(IStage stage, ILaserGate gate, PreparedJob job, RunOptions options) =>
-        new(stage, gate, job.Plan.Timing is null ? RunMotion.StepByStep : RunMotion.Timed, job, null, job.Spec.Process, job.Spec.Profile, job.Plan.Timing, TravelSpeedData, AccelerationData, options);
+        new(stage, gate, job.Program(), job, null, job.Spec.Process, job.Spec.Profile, job.Plan.Timing, TravelSpeedData, AccelerationData, options);
 
     private static (IStage Stage, ILaserGate Gate) Fakes(AxisIdentity x, AxisIdentity y)
     {
