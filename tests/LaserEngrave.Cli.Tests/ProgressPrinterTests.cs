@@ -63,7 +63,7 @@ public class ProgressPrinterTests
     }
 
     [Fact]
-    public void Report_PreflightAgainForThePassUnderWay_SaysOnceThatTheRunIsRecoveringAndFromWhichRow()
+    public void Report_SessionRecovering_SaysOnceThatTheRunIsRecoveringAndFromWhichRow()
     {
         using var output = new StringWriter();
         var printer = new ProgressPrinter(output, terminal: false);
@@ -71,11 +71,11 @@ public class ProgressPrinterTests
         printer.Report(new EngraveProgress(RunState.Preflight, 1, 2, 0, 100, false, At(0, RunState.Preflight)));
         printer.Report(new EngraveProgress(RunState.Running, 1, 2, 10, 100, false, At(10)));
         // The session goes on after a timing doubt: the same pass's preflight again, reported more than once, then running.
-        printer.Report(new EngraveProgress(RunState.Preflight, 1, 2, 10, 100, false, At(0, RunState.Preflight) with { RowsDone = 0 }));
-        printer.Report(new EngraveProgress(RunState.Preflight, 1, 2, 10, 100, false, At(0, RunState.Preflight) with { RowsDone = 0 }));
-        printer.Report(new EngraveProgress(RunState.Running, 1, 2, 10, 100, false, At(10)));
+        printer.Report(new EngraveProgress(RunState.Preflight, 1, 2, 10, 100, false, At(0, RunState.Preflight) with { RowsDone = 0 }, Recoveries: 1, Recovering: true));
+        printer.Report(new EngraveProgress(RunState.Preflight, 1, 2, 10, 100, false, At(0, RunState.Preflight) with { RowsDone = 0 }, Recoveries: 1, Recovering: true));
+        printer.Report(new EngraveProgress(RunState.Running, 1, 2, 10, 100, false, At(10), Recoveries: 1));
         // The next pass's preflight is a new start, said as the first one.
-        printer.Report(new EngraveProgress(RunState.Preflight, 2, 2, 0, 100, false, At(0, RunState.Preflight)));
+        printer.Report(new EngraveProgress(RunState.Preflight, 2, 2, 0, 100, false, At(0, RunState.Preflight), Recoveries: 1));
 
         Assert.Equal(
             [
@@ -88,6 +88,21 @@ public class ProgressPrinterTests
             output.ToString().TrimEnd().Split(Environment.NewLine));
     }
 
+    // The next layer's first pass has the pass number of the one before: only the session knows a recovery from a new start.
+    [Fact]
+    public void Report_NextLayersFirstPass_IsANewStartNotARecovery()
+    {
+        using var output = new StringWriter();
+        var printer = new ProgressPrinter(output, terminal: false);
+
+        printer.Report(new EngraveProgress(RunState.Running, 1, 1, 10, 100, false, At(10)));
+        printer.Report(new EngraveProgress(RunState.Preflight, 1, 1, 0, 100, false, At(0, RunState.Preflight), Layer: 2));
+
+        Assert.Equal(
+            ["running: 10 %, row 10 of 40, 50 of 200 burn runs, 1 min 35.0 s left", "preflight: checking the machine and the job"],
+            output.ToString().TrimEnd().Split(Environment.NewLine));
+    }
+
     [Fact]
     public void Report_TerminalRecovering_EndsTheBarsLineAndSaysItOnItsOwnLine()
     {
@@ -95,8 +110,8 @@ public class ProgressPrinterTests
         var printer = new ProgressPrinter(output, terminal: true);
 
         printer.Report(new EngraveProgress(RunState.Running, 1, 1, 10, 100, false, At(25)));
-        printer.Report(new EngraveProgress(RunState.Preflight, 1, 1, 10, 100, false, At(0, RunState.Preflight)));
-        printer.Report(new EngraveProgress(RunState.Running, 1, 1, 10, 100, false, At(25)));
+        printer.Report(new EngraveProgress(RunState.Preflight, 1, 1, 10, 100, false, At(0, RunState.Preflight), Recoveries: 1, Recovering: true));
+        printer.Report(new EngraveProgress(RunState.Running, 1, 1, 10, 100, false, At(25), Recoveries: 1));
         printer.Finish();
 
         Assert.Equal(

@@ -21,11 +21,9 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
     private string? _pass;
     private bool _drawing;
 
-    // The last pass seen past its preflight, and its rows done then: a preflight for that same pass is the session going
-    // on after a timing doubt (EngraveSession re-runs the pass's preflight from its stop point), not a new start.
-    private int _passUnderWay;
+    // The rows done when the run was last seen moving, and the recoveries already said (the session counts them).
     private int _rowsDoneUnderWay;
-    private bool _recovering;
+    private int _recoveriesSaid;
 
     /// <summary>
     /// The job that runs: a drawing's rows are strokes and its burn runs paths (<see cref="EngraveJob.UnitOf"/>), and a
@@ -44,12 +42,12 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
         }
 
         _drawing = Job?.UnitOf(value.Layer) == PreparedLayer.StrokeUnit;
-        if (value.State == RunState.Preflight && value.Pass == _passUnderWay)
+        if (value is { State: RunState.Preflight, Recovering: true })
         {
             // Said once per recovery; the preflight's own figures (a fresh count, 0 %) would only make the bar jump back.
-            if (!_recovering)
+            if (value.Recoveries != _recoveriesSaid)
             {
-                _recovering = true;
+                _recoveriesSaid = value.Recoveries;
                 _lastState = RunState.Preflight;
                 var total = Math.Max(1, value.Run.RowsTotal);
                 var row = Math.Min(_rowsDoneUnderWay + 1, total);
@@ -72,8 +70,6 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
 
         if (value.State != RunState.Preflight)
         {
-            _recovering = false;
-            _passUnderWay = value.Pass;
             _rowsDoneUnderWay = value.Run.RowsDone;
         }
 

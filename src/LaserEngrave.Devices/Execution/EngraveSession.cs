@@ -30,6 +30,7 @@ public sealed class EngraveSession
     // moves its phase); the session reads it.
     private readonly RunControl _control = new();
     private readonly List<RunRecovery> _recoveries = [];
+    private bool _recovering;
     private double _latencyScale = 1;
     private int _started;
 
@@ -463,7 +464,12 @@ public sealed class EngraveSession
             && !cancellationToken.IsCancellationRequested && !AbortRequested())
         {
             lastStop = stop.MoveIndex;
-            _recoveries.Add(new RunRecovery(pass, result.FaultMessage ?? "a timing doubt", stop.MoveIndex, stop.Row));
+            lock (_lock)
+            {
+                _recoveries.Add(new RunRecovery(pass, result.FaultMessage ?? "a timing doubt", stop.MoveIndex, stop.Row));
+                _recovering = true;
+            }
+
             RunResult again;
             try
             {
@@ -545,10 +551,13 @@ public sealed class EngraveSession
                 return;
             }
 
+            // A recovery lasts until the pass it goes on with has left its preflight.
+            _recovering &= state == RunState.Preflight;
+
             // The state is the run's phase, which a pass's end does not end (RunControl.Entered).
             _progress = pass is { } p
-                ? new EngraveProgress(state, p.Pass, Passes, p.MovesDone, _moves, _control.PauseRequested, p.Run, _layer)
-                : _progress with { State = state, PauseRequested = _control.PauseRequested };
+                ? new EngraveProgress(state, p.Pass, Passes, p.MovesDone, _moves, _control.PauseRequested, p.Run, _layer, _recoveries.Count, _recovering)
+                : _progress with { State = state, PauseRequested = _control.PauseRequested, Recoveries = _recoveries.Count, Recovering = _recovering };
 
             progress = _progress;
         }

@@ -414,6 +414,14 @@ public sealed class RunBarTests : ComponentTest
         Assert.Empty(cut.FindAll("#progress-figures"));
         Assert.Equal("idle", cut.Find("#status-run").TextContent);
     }
+
+    // The session's own word that a preflight is a recovery's (EngraveProgress.Recovering), not a new start's.
+    [Theory]
+    [InlineData(RunState.Preflight, false, "starting (preflight)")]
+    [InlineData(RunState.Preflight, true, "recovering: checking the machine again")]
+    [InlineData(RunState.Running, false, "running")]
+    public void RunBar_StateText_SaysARecoveryAsSuch(RunState state, bool recovering, string expected) =>
+        Assert.Equal(expected, RunBar.StateText(state, recovering));
 }
 
 public sealed class LogPanelTests : ComponentTest
