@@ -1,4 +1,5 @@
 using System.Globalization;
+using LaserEngrave.Core.Geometry;
 
 namespace LaserEngrave.App.Components;
 
@@ -21,5 +22,5 @@ public static class Format
 
     /// <summary>A stage position in mm from microsteps.</summary>
     public static string Mm(long? microsteps, double microstepUm) =>
-        microsteps is { } m ? (m * microstepUm / 1000).ToString("0.000", CultureInfo.InvariantCulture) : "–";
+        microsteps is { } m ? StageUnits.MicrostepsToMm(m, microstepUm).ToString("0.000", CultureInfo.InvariantCulture) : "–";
 }

@@ -2,6 +2,7 @@ using System.Text.Json;
 using CommunityToolkit.Mvvm.ComponentModel;
 using CommunityToolkit.Mvvm.Input;
 using LaserEngrave.App.Services;
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 
 namespace LaserEngrave.App.ViewModels;
@@ -138,7 +139,7 @@ public sealed partial class PresetsViewModel : ObservableObject
 
     /// <summary>An image's size at <paramref name="pitchUm"/>: one pixel a pitch (a drawing keeps its size).</summary>
     private (double WidthMm, double HeightMm)? SizeAt(double pitchUm) => _job.ImageInfo is { } info && !_job.IsDrawing
-        ? (info.Width * pitchUm / 1000, info.Height * pitchUm / 1000)
+        ? (Units.StepsToMm(info.Width, pitchUm), Units.StepsToMm(info.Height, pitchUm))
         : null;
 
     /// <summary>Keeps the job's process values under <see cref="NewName"/>, replacing a preset of that name.</summary>

@@ -167,7 +167,7 @@ public sealed partial class TestMovesViewModel : ObservableObject
 
                 try
                 {
-                    await _machine.FollowAsync(moves.GoToAsync(startXMm + (target.X / 1000), startYMm + (target.Y / 1000), lease.CancellationToken), lease.CancellationToken);
+                    await _machine.FollowAsync(moves.GoToAsync(startXMm + Units.UmToMm(target.X), startYMm + Units.UmToMm(target.Y), lease.CancellationToken), lease.CancellationToken);
                 }
                 finally
                 {

@@ -30,7 +30,7 @@ public static class RecordedLatency
         var roundTrips = new double?[events.Count];
         var rest = new double[events.Count];
         StageRoundTrips(profile, events, roundTrips, rest);
-        GateRoundTrips(profile, events, roundTrips, rest, gateProcessingMs / 1000);
+        GateRoundTrips(profile, events, roundTrips, rest, Units.MsToSeconds(gateProcessingMs));
         var result = new double[events.Count];
         foreach (var (stage, baud) in new[] { (true, profile.StageBaudRate), (false, profile.Gate.BaudRate) })
         {
