@@ -3,6 +3,7 @@ using LaserEngrave.Core.Imaging;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Core.Preview;
+using LaserEngrave.Core.Sweeps;
 
 namespace LaserEngrave.Core.Tests.Preview;
 
@@ -37,12 +38,13 @@ public sealed class StagePictureDotTests
         return mask;
     }
 
-    private static PreparedJob DotJob(BitMask mask, bool bidirectional = true, double dotPitchPixels = 0, PlanStrategy strategy = PlanStrategy.Optimized)
+    private static PreparedJob DotJob(BitMask mask, bool bidirectional = true, double dotPitchPixels = 0, PlanStrategy strategy = PlanStrategy.Optimized, double scanOffsetUm = 0)
     {
         var info = new ImageInfo("dots", ImageFormat.Bmp, 1, 2, mask.Width, mask.Height, 0, null, null, RowOrder.TopDown, "none", false);
         var spec = new JobSpec { ImagePath = "dots.bmp", Size = SizeSpec.Width(mask.Width * 0.05), Origin = new OriginMm(1, 1) };
         spec = spec with
         {
+            Profile = scanOffsetUm == 0 ? spec.Profile : spec.Profile with { ScanOffsets = [new ScanOffset(spec.Process.BurnSpeedMmPerS, scanOffsetUm)] },
             Process = spec.Process with { Mode = PlanMode.Dots },
             Plan = spec.Plan with { Bidirectional = bidirectional, Strategy = strategy },
         };
@@ -182,5 +184,47 @@ public sealed class StagePictureDotTests
 
         Assert.Equal(StagePicture.PlanMoves(job).Bytes, picture.Moves);
         Assert.Null(picture.Parts[0].StrokeEnds);
+    }
+
+    [Theory]
+    [InlineData(40)]
+    [InlineData(-40)]
+    public void DrawnDone_ReverseRowsShiftedByAScanOffset_TheSameRunsAsWithout(double scanOffsetUm)
+    {
+        // The offset shifts the right-to-left rows' burn runs (most of a 50 µm pixel here), not the dots: each dot still marks the run it was placed in.
+        var plain = new StagePicture(EngraveJob.Of(DotJob(Mask(Rows))));
+        var job = DotJob(Mask(Rows), scanOffsetUm: scanOffsetUm);
+        var shifted = new StagePicture(EngraveJob.Of(job));
+        var dots = job.Dots!.Program().Steps().Count();
+
+        Assert.NotEqual(plain.Moves, shifted.Moves);
+        Assert.Equal(plain.Drawn, shifted.Drawn);
+        Assert.Equal(Enumerable.Range(0, dots + 1).Select(k => plain.DrawnDone(0, k)), Enumerable.Range(0, dots + 1).Select(k => shifted.DrawnDone(0, k)));
+    }
+
+    [Fact]
+    public void DrawnDone_SweepOfDotCells_EachCellsDotsMarkItsOwnRuns()
+    {
+        var plan = SweepPlan.Build(new SweepSpec
+        {
+            Rows = SweepAxis.Parse("pulses-per-dot=1,3", "--rows"),
+            Origin = new OriginMm(5, 5),
+            CellMm = 0.5,
+            PitchUm = 50,
+            Labels = true,
+            Process = ProcessSettings.Default with { Mode = PlanMode.Dots },
+        });
+        var picture = new StagePicture(EngraveJob.Of(plan));
+        var cell = plan.Cells[1].Job;
+        var alone = new StagePicture(EngraveJob.Of(cell));
+        var part = picture.Parts.Count - 1;
+
+        Assert.NotNull(cell.Dots);
+        Assert.Null(picture.Parts[0].DotMarks);
+        Assert.NotNull(picture.Parts[part].DotMarks);
+        foreach (var k in new long[] { 0, 1, 5, 30, 1000 })
+        {
+            Assert.Equal(picture.Parts[part].Start + alone.DrawnDone(0, k), picture.DrawnDone(part, k));
+        }
     }
 }
