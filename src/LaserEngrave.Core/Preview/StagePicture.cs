@@ -71,10 +71,14 @@ public sealed class StagePicture
 
         var moves = Parts[part];
 
-        // A drawing's run counts strokes; the page counts the moves drawn for them.
-        return moves.Start + (moves.StrokeEnds is { Length: > 0 } ends
-            ? (movesDone <= 0 ? 0 : ends[(int)Math.Min(movesDone, ends.Length) - 1])
-            : Math.Min(movesDone, moves.Count));
+        // A drawing's run counts strokes and a dot job's dots; the page counts the moves drawn for them (within the part's
+        // share of the cap).
+        return moves.Start + Math.Min(moves.Count, moves switch
+        {
+            { StrokeEnds: { Length: > 0 } ends } => movesDone <= 0 ? 0 : ends[(int)Math.Min(movesDone, ends.Length) - 1],
+            { DotMarks: { } dots } => dots.After(movesDone),
+            _ => Math.Max(0, movesDone),
+        });
     }
 
     /// <summary>Where the machine's position is on the stage, mm; null while either axis is unknown.</summary>
@@ -100,7 +104,8 @@ public sealed class StagePicture
 
     // A raster program's steps as the plan's moves they run: a travel's, a stroke's (run-ups, burn runs, gaps, run-outs),
     // a plain move's. Past the cap the rest is not walked: the plan's figures say how many moves there are.
-    private static (byte[] Bytes, int Drawn, long Total) RasterMoves(RasterProgram program, MachineProfile profile, long planned)
+    // Each burn move drawn goes to burns, when given: its row, its index among those drawn and its direction.
+    private static (byte[] Bytes, int Drawn, long Total) RasterMoves(RasterProgram program, MachineProfile profile, long planned, List<(int Row, int At, bool LeftToRight)>? burns = null)
     {
         var um = Units.UmToMm(profile.X.MicrostepUm);
         var vm = Units.UmToMm(profile.Y.MicrostepUm);
@@ -114,6 +119,11 @@ public sealed class StagePicture
             {
                 capped = true;
                 return false;
+            }
+
+            if (move.Kind == MoveKind.Burn)
+            {
+                burns?.Add((move.Row, values.Count / FloatsPerMove, move.X1 > move.X0));
             }
 
             values.Add((float)move.Kind);
@@ -149,6 +159,16 @@ public sealed class StagePicture
 
         var drawn = values.Count / FloatsPerMove;
         return (Bytes(values), drawn, capped ? Math.Max(planned, drawn + 1L) : drawn);
+    }
+
+    // A dot job is pictured by its raster plan (kept for the preview): the runs its dots burn, not the dots alone; its run
+    // counts dots, so the picture keeps which of its moves each dot marks burned.
+    private static (byte[] Bytes, int Drawn, long Total) DotMoves(PreparedJob job, out DotMarks dots)
+    {
+        var burns = new List<(int Row, int At, bool LeftToRight)>();
+        var picture = RasterMoves(job.Program(), job.Spec.Profile, job.Statistics.Moves, burns);
+        dots = DotMarks.Of(job.Dots!, burns, picture.Drawn);
+        return picture;
     }
 
     // A drawing program's steps as moves: each stroke's travel (the run's first from the plan's start: the positioning goes
@@ -222,18 +242,17 @@ public sealed class StagePicture
         foreach (var part in job.Parts)
         {
             int[]? ends = null;
+            DotMarks? dots = null;
             var (bytes, count, moves) = part.Program() switch
             {
                 RasterProgram raster => RasterMoves(raster, part.Spec.Profile, part.Image!.Statistics.Moves),
-
-                // A dot job is pictured by its raster plan (kept for the preview): the runs its dots burn, not the dots alone.
-                DotProgram => PlanMoves(part.Image),
+                DotProgram => DotMoves(part.Image!, out dots),
                 DrawingProgram drawing => DrawingMoves(drawing, part.Drawing!.Plan.Start, part.Spec.Profile, out ends),
                 var other => throw new UnreachableException($"no picture of a {other.GetType().Name}"),
             };
             var kept = Math.Max(0, Math.Min(count, MaxDrawnMoves - drawn));
             all.Write(bytes, 0, kept * FloatsPerMove * sizeof(float));
-            parts.Add(new StagePart(drawn, kept, ends));
+            parts.Add(new StagePart(drawn, kept, ends, dots));
             drawn += kept;
             total += moves;
         }
@@ -317,5 +336,8 @@ public sealed record StageBox(double X, double Y, double W, double H, string Nam
 /// <summary>The job's rectangle on the stage, mm, whether it fits the travel, and the pitch (mm) a drag snaps to.</summary>
 public sealed record StageRect(double X, double Y, double W, double H, bool Fits, double Pitch);
 
-/// <summary>Where a part's moves start among those drawn, how many are drawn, and for a drawing where each stroke's moves end (within the part).</summary>
-public sealed record StagePart(int Start, int Count, int[]? StrokeEnds);
+/// <summary>
+/// Where a part's moves start among those drawn, how many are drawn, for a drawing where each stroke's moves end (within
+/// the part), and for a dot job how many of its moves its dots mark burned.
+/// </summary>
+public sealed record StagePart(int Start, int Count, int[]? StrokeEnds, DotMarks? DotMarks = null);
