@@ -157,6 +157,31 @@ public class VectorCommandsTests
     }
 
     [Fact]
+    public async Task Engrave_DrawingWithAPathTooShortToBurn_DoneWithEveryPathItBurnsAndLoggedSo()
+    {
+        // Issue 23: the 3 µm line is not burned; the run counted it as a path to do and ended "stopped: 2 of 3 paths".
+        var folder = Path.Combine(Path.GetTempPath(), $"le-cli-vector-{Guid.NewGuid():N}");
+        Directory.CreateDirectory(folder);
+        try
+        {
+            var svg = Path.Combine(folder, "short.svg");
+            File.WriteAllText(svg, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10mm\" height=\"10mm\" viewBox=\"0 0 10 10\"><line x1=\"1\" y1=\"1\" x2=\"1.003\" y2=\"1\"/><line x1=\"2\" y1=\"2\" x2=\"4\" y2=\"2\"/><line x1=\"2\" y1=\"4\" x2=\"4\" y2=\"4\"/></svg>");
+            var (exit, output, error) = await CliHarness.RunAsync("engrave", svg, "--origin-mm", "5,5", "--simulate", "--log-dir", folder);
+
+            Assert.True(exit == 0, error);
+            Assert.Contains("done: 100 %, stroke 2 of 2, 2 of 2 paths", error, StringComparison.Ordinal);
+            Assert.Contains("Done:             2 of 2 strokes, 2 of 2 paths", output, StringComparison.Ordinal);
+            using var log = JsonDocument.Parse(File.ReadAllText(Directory.GetFiles(folder, "*.json", SearchOption.AllDirectories).Single()));
+            Assert.Equal(3, log.RootElement.GetProperty("drawing").GetProperty("paths").GetInt32());
+            Assert.Equal((2, 2), (log.RootElement.GetProperty("runsDone").GetInt64(), log.RootElement.GetProperty("runsTotal").GetInt64()));
+        }
+        finally
+        {
+            Directory.Delete(folder, recursive: true);
+        }
+    }
+
+    [Fact]
     public async Task EngraveFromLog_Drawing_RepeatsTheSameStrokes()
     {
         var logs = Path.Combine(Path.GetTempPath(), $"le-cli-vector-{Guid.NewGuid():N}");

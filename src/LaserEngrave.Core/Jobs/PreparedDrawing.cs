@@ -49,7 +49,11 @@ public sealed class PreparedDrawing
     public double WholeRunSeconds(int passes = 1) =>
         PreparationSeconds + (Math.Max(1, passes) * Schedule.EstimatedSeconds) + (Math.Max(0, passes - 1) * PassSetupSeconds);
 
-    /// <summary>How many of the drawing's paths its strokes burn (a path cut into several strokes counts once), as the log counts its runs.</summary>
+    /// <summary>
+    /// How many of the drawing's paths its strokes burn (a path cut into several strokes counts once): the drawing's burn
+    /// runs to do, as the run's progress, its stop point, Continue and the log all count them. A path too short to switch
+    /// the laser on and off is not burned, so it is not counted (the plan's warnings name it).
+    /// </summary>
     public int PathsBurned => Schedule.Strokes.Select(s => s.PathIndex).Distinct().Count();
 
     /// <summary>Whether the paths and every stroke's run-up and run-out stay inside the travel.</summary>

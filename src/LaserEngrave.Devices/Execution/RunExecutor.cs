@@ -118,17 +118,20 @@ public sealed partial class RunExecutor : ILaserSafetyRun
     }
 
     /// <summary>What a run of a single image or drawing shows before it starts: its rows (strokes) and burn runs (paths) to do, and its estimate.</summary>
+    /// <remarks>
+    /// The totals are the job's <see cref="EngraveJob.Planned"/>, the count its log keeps and Continue checks: a drawing's
+    /// paths too short to burn are not paths to do, so a completed run ends with every run counted done.
+    /// </remarks>
     internal static RunProgress IdleProgress(EngraveJob job)
     {
-        var (units, runs, seconds) = job switch
+        var seconds = job switch
         {
-            RasterJob { Prepared.Statistics: var s } => (s.Rows, s.BurnRuns, s.EngravingSeconds),
-            DotJob { Prepared.Statistics: var s } => (s.Rows, s.BurnRuns, s.EngravingSeconds),
-
-            // Every path of the plan, as the run counts them (the log's RunsTotal counts the paths burned, PathsBurned).
-            DrawingJob { Drawing: var d } => (d.Schedule.Strokes.Count, (long)d.Plan.Paths.Count, d.Schedule.EstimatedSeconds),
+            RasterJob { Prepared.Statistics: var s } => s.EngravingSeconds,
+            DotJob { Prepared.Statistics: var s } => s.EngravingSeconds,
+            DrawingJob { Drawing: var d } => d.Schedule.EstimatedSeconds,
             _ => throw new ArgumentException($"an executor runs one image or drawing, not a {job.GetType().Name}", nameof(job)),
         };
+        var (units, runs) = job.Planned;
         return new RunProgress(RunState.Idle, 0, units, 0, runs, 0, TimeSpan.Zero, TimeSpan.FromSeconds(seconds), 0, 0, false);
     }
 
