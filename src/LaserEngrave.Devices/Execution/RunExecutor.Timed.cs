@@ -21,8 +21,6 @@ namespace LaserEngrave.Devices.Execution;
 /// </remarks>
 public sealed partial class RunExecutor
 {
-    private readonly List<Watched> _watched = [];
-    private readonly Dictionary<string, Watched> _lastMove = [];
     private readonly Queue<(Move Move, long Index, Task? Acknowledged)> _toComplete = new();
     private string? _timedFault;
     private bool _recoverableFault;
@@ -140,12 +138,9 @@ public sealed partial class RunExecutor
             _activeStroke = active;
         }
 
-        // Settled replies need no more looking at (their watchers report any fault): the list stays short.
-        _watched.RemoveAll(w => w.Reply.IsCompletedSuccessfully || (w.Successor?.Reply.IsCompletedSuccessfully ?? false));
-        var earlier = _watched.ToList();
+        var earlier = _replies.Unsettled();
         var move = Stage.X.MoveAbsoluteAfterAsync(stroke.EndX, token);
-        Watch(Arrive(move, "X", stroke.EndX, x => _x = x), times.End + timing.StageReplySeconds, "the end of a stroke (X)", axis: "X");
-        var strokeEnd = _lastMove["X"];
+        var strokeEnd = Watch(Arrive(move, "X", stroke.EndX, x => _x = x), times.End + timing.StageReplySeconds, "the end of a stroke (X)", axis: "X");
         var strokeEndDeadline = strokeEnd.Deadline;
         var poll = stroke.RunCount > 0 ? Stage.X.GetPositionAsync(token) : null;
         var direction = stroke.Direction;
@@ -377,13 +372,12 @@ public sealed partial class RunExecutor
     }
 
     /// <summary>Before the first switch-on of a stroke: every earlier move has reported its end, and the position query shows the stage on its way.</summary>
-    private async Task ConfirmMovingAsync(List<Watched> earlier, Task<long> poll, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token)
+    private async Task ConfirmMovingAsync(IReadOnlyList<ReplyWatch.Watched> earlier, Task<long> poll, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token)
     {
         foreach (var watched in earlier)
         {
             // A move whose end is never reported is settled by the next move of its axis reporting its own.
-            var settled = watched.Successor is { } next ? Task.WhenAny(watched.Reply, next.Reply) : watched.Reply;
-            if (!await CompletesByAsync(settled, onWrite, token))
+            if (!await CompletesByAsync(watched.Settled(), onWrite, token))
             {
                 throw Fault($"the stage had not reported {watched.What} when the laser was to come on");
             }
@@ -431,22 +425,7 @@ public sealed partial class RunExecutor
         }
     }
 
-    private async Task<bool> CompletesByAsync(Task task, double seconds, CancellationToken token)
-    {
-        token.ThrowIfCancellationRequested();
-        var wait = seconds - RunSeconds;
-        if (task.IsCompleted || wait <= 0)
-        {
-            return task.IsCompleted;
-        }
-
-        using var stop = CancellationTokenSource.CreateLinkedTokenSource(token);
-        var timer = PreciseDelay.DelayAsync(TimeProvider, TimeSpan.FromSeconds(wait), stop.Token);
-        await Task.WhenAny(task, timer);
-        stop.Cancel();
-        token.ThrowIfCancellationRequested();
-        return task.IsCompleted;
-    }
+    private Task<bool> CompletesByAsync(Task task, double seconds, CancellationToken token) => _replies.CompletesByAsync(task, seconds, token);
 
     private async Task KeepAlivesUntilAsync(double offWrite, TimedSwitching timing, CancellationToken token)
     {
@@ -615,105 +594,14 @@ public sealed partial class RunExecutor
         arrived(Arrived(axis, position, target));
     }
 
-    /// <summary>Watches a reply: late past its expected arrival (plus the stall margin), failed or wrong, it ends the run, laser off first.</summary>
-    /// <remarks>
-    /// A move of an axis (<paramref name="axis"/>) is sent to arrive just after the one before has ended; should it catch
-    /// that one in its last moments, the device may never report the earlier end (the protocol leaves it open). So an
-    /// earlier move whose reply is missing or says it was replaced counts as done once the later move reports its end.
-    /// </remarks>
-    private void Watch(Task reply, double expectedSeconds, string what, bool gate = false, string? axis = null, bool switchOff = false)
-    {
-        var jitter = gate ? _timing?.GateJitterSeconds : _timing?.StageJitterSeconds;
-        var deadline = expectedSeconds + ((jitter ?? 0) * 2) + Units.MsToSeconds(Options.StallMarginMs);
-        var watched = new Watched(reply, deadline, what) { SwitchOff = switchOff };
-        if (axis is not null)
-        {
-            if (_lastMove.TryGetValue(axis, out var before))
-            {
-                before.Successor = watched;
-            }
-
-            _lastMove[axis] = watched;
-        }
-
-        _watched.Add(watched);
-        _ = TaskRunner.For(TimeProvider).Start(() => WatchAsync(watched, gate));
-    }
-
-    private async Task WatchAsync(Watched watched, bool gate)
-    {
-        try
-        {
-            var reply = watched.Reply;
-
-            // Waits again when the deadline moved later meanwhile (a stroke found behind its plan), never for the same one twice.
-            for (var deadline = double.NegativeInfinity; watched.Deadline > deadline && !reply.IsCompleted;)
-            {
-                deadline = watched.Deadline;
-                var wait = deadline - RunSeconds;
-                if (wait <= 0)
-                {
-                    break;
-                }
-
-                using var stop = new CancellationTokenSource();
-                await Task.WhenAny(reply, PreciseDelay.DelayAsync(TimeProvider, TimeSpan.FromSeconds(wait), stop.Token));
-                stop.Cancel();
-            }
-
-            if (reply.IsCompletedSuccessfully)
-            {
-                return;
-            }
-
-            if (watched.Successor is { } successor && (!reply.IsCompleted || reply.Exception?.InnerException is ZaberInterruptedException))
-            {
-                await successor.Done.Task;
-                return;
-            }
-
-            if (watched.SwitchOff)
-            {
-                _laser.MarkSwitchOffFailed();
-            }
-
-            if (!reply.IsCompleted)
-            {
-                _ = Fault(gate
-                    ? $"{watched.What} within {Options.StallMarginMs:0} ms of its expected arrival"
-                    : $"the stage did not report {watched.What} within {Options.StallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)");
-                return;
-            }
-
-            await reply;
-        }
-        catch (OperationCanceledException)
-        {
-            // The run is ending anyway.
-        }
-        catch (Exception ex) when (ex is DeviceException)
-        {
-            _ = Fault(ex.Message);
-        }
-        finally
-        {
-            watched.Done.TrySetResult();
-        }
-    }
+    /// <summary>Watches a reply (<see cref="ReplyWatch.Watch"/>): late past its expected arrival, failed or wrong, it ends the run, laser off first.</summary>
+    private ReplyWatch.Watched Watch(Task reply, double expectedSeconds, string what, bool gate = false, string? axis = null, bool switchOff = false) =>
+        _replies.Watch(reply, expectedSeconds, what, gate, axis, switchOff);
 
     // Every reply watched so far, each by its deadline (a move never reported is settled by the next of its axis).
     private async Task WatchedRepliesAsync(CancellationToken token)
     {
-        foreach (var watched in _watched.ToList())
-        {
-            var settled = watched.Successor is { } next ? Task.WhenAny(watched.Reply, next.Reply) : watched.Reply;
-            var deadline = watched.Successor is { } later ? Math.Max(watched.Deadline, later.Deadline) : watched.Deadline;
-            if (!await CompletesByAsync(settled, deadline + 0.001, token))
-            {
-                throw Fault($"the stage did not report {watched.What} within {Options.StallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)");
-            }
-        }
-
+        await _replies.AllSettledAsync(token);
         lock (_lock)
         {
             if (_timedFault is { } fault)
@@ -722,7 +610,7 @@ public sealed partial class RunExecutor
             }
         }
 
-        _watched.Clear();
+        _replies.Clear();
     }
 
     /// <summary>A fault found while commands are in flight: the laser goes off at once, then the run ends as failed; returns the exception to throw.</summary>
@@ -790,25 +678,6 @@ public sealed partial class RunExecutor
             _toComplete.Dequeue();
             Completed(next.Move, next.Index);
         }
-    }
-
-    /// <summary>A reply being watched; <see cref="Done"/> completes once it is settled (or has faulted the run).</summary>
-    private sealed class Watched(Task reply, double deadline, string what)
-    {
-        public Task Reply { get; } = reply;
-
-        /// <summary>When the reply is due at the latest (s on the run's clock); a stroke found behind its plan moves it later.</summary>
-        public double Deadline { get; set; } = deadline;
-
-        public string What { get; } = what;
-
-        /// <summary>A switch-off: refused or unanswered, the fault's off sequence takes every path at once.</summary>
-        public bool SwitchOff { get; init; }
-
-        /// <summary>The next move of the same axis, which settles this one if this one's end is never reported.</summary>
-        public Watched? Successor { get; set; }
-
-        public TaskCompletionSource Done { get; } = new(TaskCreationOptions.RunContinuationsAsynchronously);
     }
 
     /// <summary>
