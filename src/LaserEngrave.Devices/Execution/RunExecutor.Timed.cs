@@ -34,13 +34,8 @@ public sealed partial class RunExecutor
     private LateSwitches? _lateSwitches;
     private long _queuedUpTo = -1;
 
-    // Where the run was when a fault or an abort cut it: the stroke under way, the burn run whose switch-on was sent and
-    // whose switch-off not yet, when the fault's switch-off left, and whether the X axis stopped where its motion said.
-    private ActiveStroke? _activeStroke;
-    private (Move Move, long Index, Task Acknowledged)? _burning;
-    private double? _faultOffWrite;
-    private bool? _stopMatchesMotion;
-    private double _gateAliveAt = double.NegativeInfinity;
+    // Where the run was when a fault or an abort cut it, for its stop point's cut pixel (under the engine's lock).
+    private readonly StrokeCut _cut = new();
 
     // How late the host may write a timed command before the times after it are moved (below that: the clock's rounding).
     private const double LateSeconds = 0.0001;
@@ -132,10 +127,10 @@ public sealed partial class RunExecutor
         }
 
         var start = stroke.StartX;
-        var active = new ActiveStroke(start, stroke.Direction, stroke.EndX, plan) { Origin = times.Arrival };
+        var active = new StrokeCut.Stroke(start, stroke.Direction, stroke.EndX, plan) { Origin = times.Arrival };
         lock (_lock)
         {
-            _activeStroke = active;
+            _cut.Started(active);
         }
 
         var earlier = _replies.Unsettled();
@@ -181,7 +176,7 @@ public sealed partial class RunExecutor
             var (on, onWritten) = await SendSwitchOnAsync(onEffect, offEffect, timing);
             lock (_lock)
             {
-                _burning = (burn, burnIndex, on);
+                _cut.Burning(burn, burnIndex, on);
             }
 
             _lastGateWrite = onWrite;
@@ -204,7 +199,7 @@ public sealed partial class RunExecutor
                 _laser.MarkOff(timing.OffLeadSeconds);
                 lock (_lock)
                 {
-                    _burning = null;
+                    _cut.NotBurning();
                 }
             }
             else
@@ -212,7 +207,7 @@ public sealed partial class RunExecutor
                 var (off, offWritten) = await SendSwitchOffAsync(timing);
                 lock (_lock)
                 {
-                    _burning = null;
+                    _cut.NotBurning();
                 }
 
                 _lastGateWrite = offWrite;
@@ -568,7 +563,7 @@ public sealed partial class RunExecutor
                     var left = RunSeconds - (timing.OnRoundTripSeconds - timing.OnLeadSeconds) - timing.GateJitterSeconds;
                     lock (_lock)
                     {
-                        _gateAliveAt = Math.Max(_gateAliveAt, left);
+                        _cut.GateAlive(left);
                     }
                 }
             },
@@ -680,118 +675,18 @@ public sealed partial class RunExecutor
         }
     }
 
-    /// <summary>
-    /// The stop point of a timed run cut off in the middle of a burn run (issue: resume without double burn): the time
-    /// the fault's switch-off took effect, at the earliest, and the stroke's motion say how far the run was burned;
-    /// the run resumes at the first pixel not completely burned, so only the one the laser went off in burns twice.
-    /// The motion is trusted only if the X axis stopped where it said, or, when it could not be asked, is found at the
-    /// stroke's end on resuming (<see cref="RunStopPoint.ExpectedXMicrosteps"/>). Caller holds the lock.
-    /// </summary>
-    private RunStopPoint CutWithin(RunStopPoint stop)
-    {
-        if (_program is not RasterProgram { Timing: { } timing } || _burning is not { } burning || burning.Index != stop.MoveIndex
-            || _activeStroke is not { } stroke || _stopMatchesMotion == false || SwitchOnRefused(burning.Acknowledged))
-        {
-            return stop;
-        }
-
-        // A switch-on never acknowledged (its reply lost, garbled or too late) may still have fired: the gate carries
-        // out what it hears. The laser then burned from the run's start to where it went off, and the resumed run burns it again.
-        var fired = burning.Acknowledged.IsCompletedSuccessfully;
-
-        // Off when the gate confirmed the fault's switch-off (its lead after it left, at the earliest). With the gate's
-        // link lost, it fired on until its watchdog tripped, a watchdog time after the last command it had: at the
-        // earliest after the last one it answered (the resumed run checks that the watchdog did trip).
-        double offAt;
-        var byWatchdog = false;
-        if (_laser.OffConfirmed && _faultOffWrite is { } offWrite)
-        {
-            offAt = offWrite + timing.OffLeadSeconds - timing.GateJitterSeconds;
-        }
-        else if (!_laser.OffConfirmed && _gateAliveAt > double.NegativeInfinity)
-        {
-            offAt = _gateAliveAt + Units.MsToSeconds(_profile.Gate.WatchdogMs) - timing.GateJitterSeconds;
-            byWatchdog = true;
-        }
-        else
-        {
-            return stop;
-        }
-
-        var (resumeX, cutPixel) = CutAt(offAt, burning.Move, stroke, timing, fired);
-        if (cutPixel is null)
-        {
-            return stop;
-        }
-
-        // Counting on the watchdog, which a gate that heard the fault's OFF (and carried it out unacknowledged) never
-        // trips: the resumed run then takes the cut at that OFF, the earliest the laser can have gone off.
-        var (offResumeX, offCut) = byWatchdog && _faultOffWrite is { } firstOff
-            ? CutAt(firstOff + timing.OffLeadSeconds - timing.GateJitterSeconds, burning.Move, stroke, timing, fired)
-            : (null, null);
-        return stop with
-        {
-            ResumeXMicrosteps = resumeX,
-            CutPixel = cutPixel,
-            ExpectedXMicrosteps = resumeX is not null && _stopMatchesMotion is null ? stroke.EndX : null,
-            OffByGateWatchdog = byWatchdog,
-            OffResumeXMicrosteps = offResumeX,
-            OffCutPixel = offCut,
-        };
-    }
-
-    /// <summary>
-    /// The cut of a burn run whose laser went off at <paramref name="offAt"/> (s on the run's clock): the first pixel edge
-    /// not completely burned and the pixel the laser went off in; no edge when the run burns again from its start (off
-    /// inside its first pixel, or a switch-on not known to have fired), no pixel when it went off before the run. Caller holds the lock.
-    /// </summary>
-    private (long? ResumeX, PixelIndex? Cut) CutAt(double offAt, Move burn, ActiveStroke stroke, TimedSwitching timing, bool fired)
-    {
-        var along = Along(stroke, offAt - stroke.Origin, timing) - (timing.BurnSpeed * timing.StageJitterSeconds);
-        if (_stoppedAtKnownPosition)
-        {
-            // Stopped while the laser still fired (its gate out of reach): it burned no further than where X stopped.
-            along = Math.Min(along, (_x - stroke.StartX) * stroke.Direction);
-        }
-
-        var burnedTo = stroke.StartX + (stroke.Direction * along);
-        if (fired && Job!.Plan.ResumeWithin(burn, burnedTo) is { } cut)
-        {
-            return (cut.ResumeX, new PixelIndex(cut.Column, burn.Row));
-        }
-
-        // Off within the run's first pixel, or a switch-on not known to have fired: the run burns again from its
-        // start, so the pixel the laser went off in is the one that may get part of its dose twice; the log names it.
-        if ((burnedTo - burn.X0) * stroke.Direction < 0)
-        {
-            return (null, null);
-        }
-
-        var column = Job!.Plan.ColumnAt(burn, Math.Clamp(burnedTo, Math.Min(burn.X0, burn.X1), Math.Max(burn.X0, burn.X1)));
-        return (null, new PixelIndex(column, burn.Row));
-    }
-
-    /// <summary>
-    /// Where the stroke's motion put X <paramref name="seconds"/> after its origin, microsteps from its start: its plan,
-    /// but at the burn speed on from a flown gap whose speed-up was never sent (the run ended first), as the stage went.
-    /// </summary>
-    private static double Along(ActiveStroke stroke, double seconds, TimedSwitching timing)
-    {
-        var unflown = stroke.Plan.Bumps.OrderBy(b => b.Exit).Skip(stroke.GapsFlown).FirstOrDefault();
-        return unflown is not null && seconds > unflown.SpeedUpArrival
-            ? Math.Min(stroke.Plan.Length, stroke.Plan.OffsetAt(unflown.SpeedUpArrival) + (timing.BurnSpeed * (seconds - unflown.SpeedUpArrival)))
-            : stroke.Plan.OffsetAt(seconds);
-    }
+    /// <summary>The stop point's cut pixel when a timed raster run was cut in the middle of a burn run (<see cref="StrokeCut.Cut"/>). Caller holds the lock.</summary>
+    private RunStopPoint CutWithin(RunStopPoint stop) =>
+        _program is RasterProgram { Timing: { } timing }
+            ? _cut.Cut(stop, timing, Job!.Plan, _laser.OffConfirmed, _profile.Gate.WatchdogMs, _stoppedAtKnownPosition ? _x : null, SwitchOnRefused)
+            : stop;
 
     // A flown gap's speed-up has been sent: from here the stroke's plan holds that gap.
     private void NoteGapFlown()
     {
         lock (_lock)
         {
-            if (_activeStroke is { } stroke)
-            {
-                stroke.GapsFlown++;
-            }
+            _cut.GapFlown();
         }
     }
 
@@ -809,7 +704,7 @@ public sealed partial class RunExecutor
         Task? acknowledged;
         lock (_lock)
         {
-            acknowledged = _burning?.Acknowledged;
+            acknowledged = _cut.SwitchOnAcknowledged;
         }
 
         if (acknowledged is { IsCompleted: false })
@@ -820,40 +715,15 @@ public sealed partial class RunExecutor
         }
     }
 
-    /// <summary>The X axis' reply to the stop after a fault: whether it stopped where the stroke's motion put it (braking from the burn speed).</summary>
+    /// <summary>The X axis' reply to the stop after a fault: whether it stopped where the stroke's motion put it (<see cref="StrokeCut.Stopped"/>).</summary>
     private void NoteStopped(double written, long position)
     {
         lock (_lock)
         {
-            if (_program is not RasterProgram { Timing: { } timing } || _activeStroke is not { } stroke || double.IsNaN(written))
+            if (_program is RasterProgram { Timing: { } timing })
             {
-                return;
+                _cut.Stopped(written, position, timing);
             }
-
-            var arrival = written + timing.StageCommandSeconds - stroke.Origin;
-            var along = Along(stroke, arrival, timing);
-            var expected = along >= stroke.Plan.Length
-                ? stroke.EndX
-                : stroke.StartX + (stroke.Direction * (along + (timing.BurnSpeed * timing.BurnSpeed / (2 * timing.Acceleration))));
-            var tolerance = (2 * timing.BurnSpeed * timing.StageJitterSeconds) + 2;
-            _stopMatchesMotion ??= Math.Abs(position - expected) <= tolerance;
         }
-    }
-
-    private sealed class ActiveStroke(long startX, int direction, long endX, StrokePlan plan)
-    {
-        public long StartX { get; } = startX;
-
-        public int Direction { get; } = direction;
-
-        public long EndX { get; } = endX;
-
-        public StrokePlan Plan { get; } = plan;
-
-        /// <summary>When the stroke's offset 0 is, s on the run's clock (its start, moved by the position queries' findings).</summary>
-        public double Origin { get; set; }
-
-        /// <summary>How many of its flown gaps' speed-ups were sent (the others the stage crossed at the burn speed).</summary>
-        public int GapsFlown { get; set; }
     }
 }

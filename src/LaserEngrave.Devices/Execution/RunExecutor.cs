@@ -472,7 +472,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
             // When the fault's switch-off left: a burn run cut by it is burned up to there (the stop point's cut pixel).
             if (_engravingStarted)
             {
-                _faultOffWrite ??= RunSeconds;
+                _cut.FaultOffSent(RunSeconds);
             }
 
             // A switch-off refused or unanswered after the burn run's burst had stopped the laser by itself: the run's
