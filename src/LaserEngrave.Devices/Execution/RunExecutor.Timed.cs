@@ -21,8 +21,6 @@ namespace LaserEngrave.Devices.Execution;
 /// </remarks>
 public sealed partial class RunExecutor
 {
-    private readonly List<Watched> _watched = [];
-    private readonly Dictionary<string, Watched> _lastMove = [];
     private readonly Queue<(Move Move, long Index, Task? Acknowledged)> _toComplete = new();
     private string? _timedFault;
     private bool _recoverableFault;
@@ -36,13 +34,8 @@ public sealed partial class RunExecutor
     private LateSwitches? _lateSwitches;
     private long _queuedUpTo = -1;
 
-    // Where the run was when a fault or an abort cut it: the stroke under way, the burn run whose switch-on was sent and
-    // whose switch-off not yet, when the fault's switch-off left, and whether the X axis stopped where its motion said.
-    private ActiveStroke? _activeStroke;
-    private (Move Move, long Index, Task Acknowledged)? _burning;
-    private double? _faultOffWrite;
-    private bool? _stopMatchesMotion;
-    private double _gateAliveAt = double.NegativeInfinity;
+    // Where the run was when a fault or an abort cut it, for its stop point's cut pixel (under the engine's lock).
+    private readonly StrokeCut _cut = new();
 
     // How late the host may write a timed command before the times after it are moved (below that: the clock's rounding).
     private const double LateSeconds = 0.0001;
@@ -134,18 +127,15 @@ public sealed partial class RunExecutor
         }
 
         var start = stroke.StartX;
-        var active = new ActiveStroke(start, stroke.Direction, stroke.EndX, plan) { Origin = times.Arrival };
+        var active = new StrokeCut.Stroke(start, stroke.Direction, stroke.EndX, plan) { Origin = times.Arrival };
         lock (_lock)
         {
-            _activeStroke = active;
+            _cut.Started(active);
         }
 
-        // Settled replies need no more looking at (their watchers report any fault): the list stays short.
-        _watched.RemoveAll(w => w.Reply.IsCompletedSuccessfully || (w.Successor?.Reply.IsCompletedSuccessfully ?? false));
-        var earlier = _watched.ToList();
+        var earlier = _replies.Unsettled();
         var move = Stage.X.MoveAbsoluteAfterAsync(stroke.EndX, token);
-        Watch(Arrive(move, "X", stroke.EndX, x => _x = x), times.End + timing.StageReplySeconds, "the end of a stroke (X)", axis: "X");
-        var strokeEnd = _lastMove["X"];
+        var strokeEnd = Watch(Arrive(move, "X", stroke.EndX, x => _x = x), times.End + timing.StageReplySeconds, "the end of a stroke (X)", axis: "X");
         var strokeEndDeadline = strokeEnd.Deadline;
         var poll = stroke.RunCount > 0 ? Stage.X.GetPositionAsync(token) : null;
         var direction = stroke.Direction;
@@ -186,7 +176,7 @@ public sealed partial class RunExecutor
             var (on, onWritten) = await SendSwitchOnAsync(onEffect, offEffect, timing);
             lock (_lock)
             {
-                _burning = (burn, burnIndex, on);
+                _cut.Burning(burn, burnIndex, on);
             }
 
             _lastGateWrite = onWrite;
@@ -209,7 +199,7 @@ public sealed partial class RunExecutor
                 _laser.MarkOff(timing.OffLeadSeconds);
                 lock (_lock)
                 {
-                    _burning = null;
+                    _cut.NotBurning();
                 }
             }
             else
@@ -217,7 +207,7 @@ public sealed partial class RunExecutor
                 var (off, offWritten) = await SendSwitchOffAsync(timing);
                 lock (_lock)
                 {
-                    _burning = null;
+                    _cut.NotBurning();
                 }
 
                 _lastGateWrite = offWrite;
@@ -377,13 +367,12 @@ public sealed partial class RunExecutor
     }
 
     /// <summary>Before the first switch-on of a stroke: every earlier move has reported its end, and the position query shows the stage on its way.</summary>
-    private async Task ConfirmMovingAsync(List<Watched> earlier, Task<long> poll, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token)
+    private async Task ConfirmMovingAsync(IReadOnlyList<ReplyWatch.Watched> earlier, Task<long> poll, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token)
     {
         foreach (var watched in earlier)
         {
             // A move whose end is never reported is settled by the next move of its axis reporting its own.
-            var settled = watched.Successor is { } next ? Task.WhenAny(watched.Reply, next.Reply) : watched.Reply;
-            if (!await CompletesByAsync(settled, onWrite, token))
+            if (!await CompletesByAsync(watched.Settled(), onWrite, token))
             {
                 throw Fault($"the stage had not reported {watched.What} when the laser was to come on");
             }
@@ -431,22 +420,7 @@ public sealed partial class RunExecutor
         }
     }
 
-    private async Task<bool> CompletesByAsync(Task task, double seconds, CancellationToken token)
-    {
-        token.ThrowIfCancellationRequested();
-        var wait = seconds - RunSeconds;
-        if (task.IsCompleted || wait <= 0)
-        {
-            return task.IsCompleted;
-        }
-
-        using var stop = CancellationTokenSource.CreateLinkedTokenSource(token);
-        var timer = PreciseDelay.DelayAsync(TimeProvider, TimeSpan.FromSeconds(wait), stop.Token);
-        await Task.WhenAny(task, timer);
-        stop.Cancel();
-        token.ThrowIfCancellationRequested();
-        return task.IsCompleted;
-    }
+    private Task<bool> CompletesByAsync(Task task, double seconds, CancellationToken token) => _replies.CompletesByAsync(task, seconds, token);
 
     private async Task KeepAlivesUntilAsync(double offWrite, TimedSwitching timing, CancellationToken token)
     {
@@ -589,7 +563,7 @@ public sealed partial class RunExecutor
                     var left = RunSeconds - (timing.OnRoundTripSeconds - timing.OnLeadSeconds) - timing.GateJitterSeconds;
                     lock (_lock)
                     {
-                        _gateAliveAt = Math.Max(_gateAliveAt, left);
+                        _cut.GateAlive(left);
                     }
                 }
             },
@@ -615,105 +589,14 @@ public sealed partial class RunExecutor
         arrived(Arrived(axis, position, target));
     }
 
-    /// <summary>Watches a reply: late past its expected arrival (plus the stall margin), failed or wrong, it ends the run, laser off first.</summary>
-    /// <remarks>
-    /// A move of an axis (<paramref name="axis"/>) is sent to arrive just after the one before has ended; should it catch
-    /// that one in its last moments, the device may never report the earlier end (the protocol leaves it open). So an
-    /// earlier move whose reply is missing or says it was replaced counts as done once the later move reports its end.
-    /// </remarks>
-    private void Watch(Task reply, double expectedSeconds, string what, bool gate = false, string? axis = null, bool switchOff = false)
-    {
-        var jitter = gate ? _timing?.GateJitterSeconds : _timing?.StageJitterSeconds;
-        var deadline = expectedSeconds + ((jitter ?? 0) * 2) + Units.MsToSeconds(Options.StallMarginMs);
-        var watched = new Watched(reply, deadline, what) { SwitchOff = switchOff };
-        if (axis is not null)
-        {
-            if (_lastMove.TryGetValue(axis, out var before))
-            {
-                before.Successor = watched;
-            }
-
-            _lastMove[axis] = watched;
-        }
-
-        _watched.Add(watched);
-        _ = TaskRunner.For(TimeProvider).Start(() => WatchAsync(watched, gate));
-    }
-
-    private async Task WatchAsync(Watched watched, bool gate)
-    {
-        try
-        {
-            var reply = watched.Reply;
-
-            // Waits again when the deadline moved later meanwhile (a stroke found behind its plan), never for the same one twice.
-            for (var deadline = double.NegativeInfinity; watched.Deadline > deadline && !reply.IsCompleted;)
-            {
-                deadline = watched.Deadline;
-                var wait = deadline - RunSeconds;
-                if (wait <= 0)
-                {
-                    break;
-                }
-
-                using var stop = new CancellationTokenSource();
-                await Task.WhenAny(reply, PreciseDelay.DelayAsync(TimeProvider, TimeSpan.FromSeconds(wait), stop.Token));
-                stop.Cancel();
-            }
-
-            if (reply.IsCompletedSuccessfully)
-            {
-                return;
-            }
-
-            if (watched.Successor is { } successor && (!reply.IsCompleted || reply.Exception?.InnerException is ZaberInterruptedException))
-            {
-                await successor.Done.Task;
-                return;
-            }
-
-            if (watched.SwitchOff)
-            {
-                _laser.MarkSwitchOffFailed();
-            }
-
-            if (!reply.IsCompleted)
-            {
-                _ = Fault(gate
-                    ? $"{watched.What} within {Options.StallMarginMs:0} ms of its expected arrival"
-                    : $"the stage did not report {watched.What} within {Options.StallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)");
-                return;
-            }
-
-            await reply;
-        }
-        catch (OperationCanceledException)
-        {
-            // The run is ending anyway.
-        }
-        catch (Exception ex) when (ex is DeviceException)
-        {
-            _ = Fault(ex.Message);
-        }
-        finally
-        {
-            watched.Done.TrySetResult();
-        }
-    }
+    /// <summary>Watches a reply (<see cref="ReplyWatch.Watch"/>): late past its expected arrival, failed or wrong, it ends the run, laser off first.</summary>
+    private ReplyWatch.Watched Watch(Task reply, double expectedSeconds, string what, bool gate = false, string? axis = null, bool switchOff = false) =>
+        _replies.Watch(reply, expectedSeconds, what, gate, axis, switchOff);
 
     // Every reply watched so far, each by its deadline (a move never reported is settled by the next of its axis).
     private async Task WatchedRepliesAsync(CancellationToken token)
     {
-        foreach (var watched in _watched.ToList())
-        {
-            var settled = watched.Successor is { } next ? Task.WhenAny(watched.Reply, next.Reply) : watched.Reply;
-            var deadline = watched.Successor is { } later ? Math.Max(watched.Deadline, later.Deadline) : watched.Deadline;
-            if (!await CompletesByAsync(settled, deadline + 0.001, token))
-            {
-                throw Fault($"the stage did not report {watched.What} within {Options.StallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)");
-            }
-        }
-
+        await _replies.AllSettledAsync(token);
         lock (_lock)
         {
             if (_timedFault is { } fault)
@@ -722,7 +605,7 @@ public sealed partial class RunExecutor
             }
         }
 
-        _watched.Clear();
+        _replies.Clear();
     }
 
     /// <summary>A fault found while commands are in flight: the laser goes off at once, then the run ends as failed; returns the exception to throw.</summary>
@@ -792,137 +675,18 @@ public sealed partial class RunExecutor
         }
     }
 
-    /// <summary>A reply being watched; <see cref="Done"/> completes once it is settled (or has faulted the run).</summary>
-    private sealed class Watched(Task reply, double deadline, string what)
-    {
-        public Task Reply { get; } = reply;
-
-        /// <summary>When the reply is due at the latest (s on the run's clock); a stroke found behind its plan moves it later.</summary>
-        public double Deadline { get; set; } = deadline;
-
-        public string What { get; } = what;
-
-        /// <summary>A switch-off: refused or unanswered, the fault's off sequence takes every path at once.</summary>
-        public bool SwitchOff { get; init; }
-
-        /// <summary>The next move of the same axis, which settles this one if this one's end is never reported.</summary>
-        public Watched? Successor { get; set; }
-
-        public TaskCompletionSource Done { get; } = new(TaskCreationOptions.RunContinuationsAsynchronously);
-    }
-
-    /// <summary>
-    /// The stop point of a timed run cut off in the middle of a burn run (issue: resume without double burn): the time
-    /// the fault's switch-off took effect, at the earliest, and the stroke's motion say how far the run was burned;
-    /// the run resumes at the first pixel not completely burned, so only the one the laser went off in burns twice.
-    /// The motion is trusted only if the X axis stopped where it said, or, when it could not be asked, is found at the
-    /// stroke's end on resuming (<see cref="RunStopPoint.ExpectedXMicrosteps"/>). Caller holds the lock.
-    /// </summary>
-    private RunStopPoint CutWithin(RunStopPoint stop)
-    {
-        if (_program is not RasterProgram { Timing: { } timing } || _burning is not { } burning || burning.Index != stop.MoveIndex
-            || _activeStroke is not { } stroke || _stopMatchesMotion == false || SwitchOnRefused(burning.Acknowledged))
-        {
-            return stop;
-        }
-
-        // A switch-on never acknowledged (its reply lost, garbled or too late) may still have fired: the gate carries
-        // out what it hears. The laser then burned from the run's start to where it went off, and the resumed run burns it again.
-        var fired = burning.Acknowledged.IsCompletedSuccessfully;
-
-        // Off when the gate confirmed the fault's switch-off (its lead after it left, at the earliest). With the gate's
-        // link lost, it fired on until its watchdog tripped, a watchdog time after the last command it had: at the
-        // earliest after the last one it answered (the resumed run checks that the watchdog did trip).
-        double offAt;
-        var byWatchdog = false;
-        if (_laser.OffConfirmed && _faultOffWrite is { } offWrite)
-        {
-            offAt = offWrite + timing.OffLeadSeconds - timing.GateJitterSeconds;
-        }
-        else if (!_laser.OffConfirmed && _gateAliveAt > double.NegativeInfinity)
-        {
-            offAt = _gateAliveAt + Units.MsToSeconds(_profile.Gate.WatchdogMs) - timing.GateJitterSeconds;
-            byWatchdog = true;
-        }
-        else
-        {
-            return stop;
-        }
-
-        var (resumeX, cutPixel) = CutAt(offAt, burning.Move, stroke, timing, fired);
-        if (cutPixel is null)
-        {
-            return stop;
-        }
-
-        // Counting on the watchdog, which a gate that heard the fault's OFF (and carried it out unacknowledged) never
-        // trips: the resumed run then takes the cut at that OFF, the earliest the laser can have gone off.
-        var (offResumeX, offCut) = byWatchdog && _faultOffWrite is { } firstOff
-            ? CutAt(firstOff + timing.OffLeadSeconds - timing.GateJitterSeconds, burning.Move, stroke, timing, fired)
-            : (null, null);
-        return stop with
-        {
-            ResumeXMicrosteps = resumeX,
-            CutPixel = cutPixel,
-            ExpectedXMicrosteps = resumeX is not null && _stopMatchesMotion is null ? stroke.EndX : null,
-            OffByGateWatchdog = byWatchdog,
-            OffResumeXMicrosteps = offResumeX,
-            OffCutPixel = offCut,
-        };
-    }
-
-    /// <summary>
-    /// The cut of a burn run whose laser went off at <paramref name="offAt"/> (s on the run's clock): the first pixel edge
-    /// not completely burned and the pixel the laser went off in; no edge when the run burns again from its start (off
-    /// inside its first pixel, or a switch-on not known to have fired), no pixel when it went off before the run. Caller holds the lock.
-    /// </summary>
-    private (long? ResumeX, PixelIndex? Cut) CutAt(double offAt, Move burn, ActiveStroke stroke, TimedSwitching timing, bool fired)
-    {
-        var along = Along(stroke, offAt - stroke.Origin, timing) - (timing.BurnSpeed * timing.StageJitterSeconds);
-        if (_stoppedAtKnownPosition)
-        {
-            // Stopped while the laser still fired (its gate out of reach): it burned no further than where X stopped.
-            along = Math.Min(along, (_x - stroke.StartX) * stroke.Direction);
-        }
-
-        var burnedTo = stroke.StartX + (stroke.Direction * along);
-        if (fired && Job!.Plan.ResumeWithin(burn, burnedTo) is { } cut)
-        {
-            return (cut.ResumeX, new PixelIndex(cut.Column, burn.Row));
-        }
-
-        // Off within the run's first pixel, or a switch-on not known to have fired: the run burns again from its
-        // start, so the pixel the laser went off in is the one that may get part of its dose twice; the log names it.
-        if ((burnedTo - burn.X0) * stroke.Direction < 0)
-        {
-            return (null, null);
-        }
-
-        var column = Job!.Plan.ColumnAt(burn, Math.Clamp(burnedTo, Math.Min(burn.X0, burn.X1), Math.Max(burn.X0, burn.X1)));
-        return (null, new PixelIndex(column, burn.Row));
-    }
-
-    /// <summary>
-    /// Where the stroke's motion put X <paramref name="seconds"/> after its origin, microsteps from its start: its plan,
-    /// but at the burn speed on from a flown gap whose speed-up was never sent (the run ended first), as the stage went.
-    /// </summary>
-    private static double Along(ActiveStroke stroke, double seconds, TimedSwitching timing)
-    {
-        var unflown = stroke.Plan.Bumps.OrderBy(b => b.Exit).Skip(stroke.GapsFlown).FirstOrDefault();
-        return unflown is not null && seconds > unflown.SpeedUpArrival
-            ? Math.Min(stroke.Plan.Length, stroke.Plan.OffsetAt(unflown.SpeedUpArrival) + (timing.BurnSpeed * (seconds - unflown.SpeedUpArrival)))
-            : stroke.Plan.OffsetAt(seconds);
-    }
+    /// <summary>The stop point's cut pixel when a timed raster run was cut in the middle of a burn run (<see cref="StrokeCut.Cut"/>). Caller holds the lock.</summary>
+    private RunStopPoint CutWithin(RunStopPoint stop) =>
+        _program is RasterProgram { Timing: { } timing }
+            ? _cut.Cut(stop, timing, Job!.Plan, _laser.OffConfirmed, _profile.Gate.WatchdogMs, _stoppedAtKnownPosition ? _x : null, SwitchOnRefused)
+            : stop;
 
     // A flown gap's speed-up has been sent: from here the stroke's plan holds that gap.
     private void NoteGapFlown()
     {
         lock (_lock)
         {
-            if (_activeStroke is { } stroke)
-            {
-                stroke.GapsFlown++;
-            }
+            _cut.GapFlown();
         }
     }
 
@@ -940,7 +704,7 @@ public sealed partial class RunExecutor
         Task? acknowledged;
         lock (_lock)
         {
-            acknowledged = _burning?.Acknowledged;
+            acknowledged = _cut.SwitchOnAcknowledged;
         }
 
         if (acknowledged is { IsCompleted: false })
@@ -951,40 +715,15 @@ public sealed partial class RunExecutor
         }
     }
 
-    /// <summary>The X axis' reply to the stop after a fault: whether it stopped where the stroke's motion put it (braking from the burn speed).</summary>
+    /// <summary>The X axis' reply to the stop after a fault: whether it stopped where the stroke's motion put it (<see cref="StrokeCut.Stopped"/>).</summary>
     private void NoteStopped(double written, long position)
     {
         lock (_lock)
         {
-            if (_program is not RasterProgram { Timing: { } timing } || _activeStroke is not { } stroke || double.IsNaN(written))
+            if (_program is RasterProgram { Timing: { } timing })
             {
-                return;
+                _cut.Stopped(written, position, timing);
             }
-
-            var arrival = written + timing.StageCommandSeconds - stroke.Origin;
-            var along = Along(stroke, arrival, timing);
-            var expected = along >= stroke.Plan.Length
-                ? stroke.EndX
-                : stroke.StartX + (stroke.Direction * (along + (timing.BurnSpeed * timing.BurnSpeed / (2 * timing.Acceleration))));
-            var tolerance = (2 * timing.BurnSpeed * timing.StageJitterSeconds) + 2;
-            _stopMatchesMotion ??= Math.Abs(position - expected) <= tolerance;
         }
-    }
-
-    private sealed class ActiveStroke(long startX, int direction, long endX, StrokePlan plan)
-    {
-        public long StartX { get; } = startX;
-
-        public int Direction { get; } = direction;
-
-        public long EndX { get; } = endX;
-
-        public StrokePlan Plan { get; } = plan;
-
-        /// <summary>When the stroke's offset 0 is, s on the run's clock (its start, moved by the position queries' findings).</summary>
-        public double Origin { get; set; }
-
-        /// <summary>How many of its flown gaps' speed-ups were sent (the others the stage crossed at the burn speed).</summary>
-        public int GapsFlown { get; set; }
     }
 }

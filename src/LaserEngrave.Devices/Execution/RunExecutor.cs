@@ -21,7 +21,7 @@ namespace LaserEngrave.Devices.Execution;
 /// <see cref="Pause"/>, <see cref="Resume"/> and <see cref="Abort"/> may be called from any thread at any time.
 /// The protocol is the one <see cref="PlanEstimator"/> models; docs/execution.md describes it.
 /// </remarks>
-public sealed partial class RunExecutor : ILaserSafetyRun
+public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
 {
     private const string AbortedMessage = "aborted by the operator";
 
@@ -49,6 +49,9 @@ public sealed partial class RunExecutor : ILaserSafetyRun
 
     // The laser: its lock, keepalive, state and off sequence.
     private readonly LaserSafety _laser;
+
+    // The replies a timed run does not wait for, each watched against its deadline.
+    private readonly ReplyWatch _replies;
 
     // The run's clock: when it started, when the engraving started, and the pauses and positioning that are not engraving.
     private long _startTimestamp;
@@ -115,6 +118,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun
         _process = spec.Process;
         _profile = spec.Profile;
         _laser = new LaserSafety(Gate, TimeProvider, _process.LaserFrequencyWholeHz, _profile.Gate.WatchdogMs, Options.StallMarginMs, this);
+        _replies = new ReplyWatch(TimeProvider, Options.StallMarginMs, this);
     }
 
     /// <summary>What a run of a single image or drawing shows before it starts: its rows (strokes) and burn runs (paths) to do, and its estimate.</summary>
@@ -471,7 +475,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun
             // When the fault's switch-off left: a burn run cut by it is burned up to there (the stop point's cut pixel).
             if (_engravingStarted)
             {
-                _faultOffWrite ??= RunSeconds;
+                _cut.FaultOffSent(RunSeconds);
             }
 
             // A switch-off refused or unanswered after the burn run's burst had stopped the laser by itself: the run's
@@ -484,6 +488,14 @@ public sealed partial class RunExecutor : ILaserSafetyRun
     }
 
     Task ILaserSafetyRun.StopStageAsync() => StopAxesAsync();
+
+    double IReplyWatchRun.RunSeconds => RunSeconds;
+
+    TimedSwitching? IReplyWatchRun.Timing => _timing;
+
+    DeviceException IReplyWatchRun.Fault(string reason) => Fault(reason);
+
+    void IReplyWatchRun.SwitchOffFailed() => _laser.MarkSwitchOffFailed();
 
     /// <summary>An abort: the laser off first, then the stage stopped.</summary>
     private async Task AbortSequenceAsync()

@@ -1,0 +1,202 @@
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Planning;
+using LaserEngrave.Devices.Abstractions;
+using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Wire.Scheduling;
+
+namespace LaserEngrave.Devices.Execution;
+
+/// <summary>
+/// The replies a timed run does not wait for, each watched against its expected arrival: one missing, late, failed or
+/// wrong is reported to the run as its fault (which turns the laser off first). A move of an axis is settled by the next
+/// move of that axis when its own end is never reported.
+/// </summary>
+/// <remarks>
+/// Used from the run's loop only (its watchers run on the run's task runner and read an entry's deadline and successor);
+/// times are seconds on the run's clock (<see cref="IReplyWatchRun.RunSeconds"/>). docs/execution.md describes the deadlines.
+/// </remarks>
+internal sealed class ReplyWatch
+{
+    private readonly TimeProvider _time;
+    private readonly double _stallMarginMs;
+    private readonly IReplyWatchRun _run;
+    private readonly List<Watched> _watched = [];
+    private readonly Dictionary<string, Watched> _lastMove = [];
+
+    /// <param name="stallMarginMs">How much later than its expected arrival (and twice the jitter) a reply may come.</param>
+    /// <param name="run">What the watch needs of the run: its clock, its timing, and where its faults go.</param>
+    public ReplyWatch(TimeProvider time, double stallMarginMs, IReplyWatchRun run)
+    {
+        _time = time;
+        _stallMarginMs = stallMarginMs;
+        _run = run;
+    }
+
+    /// <summary>Watches a reply: late past its expected arrival (plus the stall margin), failed or wrong, it ends the run, laser off first.</summary>
+    /// <remarks>
+    /// A move of an axis (<paramref name="axis"/>) is sent to arrive just after the one before has ended; should it catch
+    /// that one in its last moments, the device may never report the earlier end (the protocol leaves it open). So an
+    /// earlier move whose reply is missing or says it was replaced counts as done once the later move reports its end.
+    /// </remarks>
+    /// <param name="switchOff">A switch-off: refused or unanswered, the laser may still fire, so the fault takes every path to off.</param>
+    /// <returns>The watched reply, whose deadline a stroke found behind its plan may move later.</returns>
+    public Watched Watch(Task reply, double expectedSeconds, string what, bool gate = false, string? axis = null, bool switchOff = false)
+    {
+        var jitter = gate ? _run.Timing?.GateJitterSeconds : _run.Timing?.StageJitterSeconds;
+        var deadline = expectedSeconds + ((jitter ?? 0) * 2) + Units.MsToSeconds(_stallMarginMs);
+        var watched = new Watched(reply, deadline, what) { SwitchOff = switchOff };
+        if (axis is not null)
+        {
+            if (_lastMove.TryGetValue(axis, out var before))
+            {
+                before.Successor = watched;
+            }
+
+            _lastMove[axis] = watched;
+        }
+
+        _watched.Add(watched);
+        _ = TaskRunner.For(_time).Start(() => WatchAsync(watched, gate));
+        return watched;
+    }
+
+    /// <summary>The replies watched and not yet settled; settled ones need no more looking at (their watchers report any fault), so the list stays short.</summary>
+    public IReadOnlyList<Watched> Unsettled()
+    {
+        _watched.RemoveAll(w => w.Reply.IsCompletedSuccessfully || (w.Successor?.Reply.IsCompletedSuccessfully ?? false));
+        return _watched.ToList();
+    }
+
+    /// <summary>Waits for every reply watched so far, each by its deadline (a move never reported is settled by the next of its axis); one missing faults the run.</summary>
+    public async Task AllSettledAsync(CancellationToken token)
+    {
+        foreach (var watched in _watched.ToList())
+        {
+            var deadline = watched.Successor is { } later ? Math.Max(watched.Deadline, later.Deadline) : watched.Deadline;
+            if (!await CompletesByAsync(watched.Settled(), deadline + 0.001, token))
+            {
+                throw _run.Fault($"the stage did not report {watched.What} within {_stallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)");
+            }
+        }
+    }
+
+    /// <summary>Forgets every reply watched (all settled).</summary>
+    public void Clear() => _watched.Clear();
+
+    /// <summary>Whether <paramref name="task"/> has completed by <paramref name="seconds"/> on the run's clock (waiting until then at most).</summary>
+    public async Task<bool> CompletesByAsync(Task task, double seconds, CancellationToken token)
+    {
+        token.ThrowIfCancellationRequested();
+        var wait = seconds - _run.RunSeconds;
+        if (task.IsCompleted || wait <= 0)
+        {
+            return task.IsCompleted;
+        }
+
+        using var stop = CancellationTokenSource.CreateLinkedTokenSource(token);
+        var timer = PreciseDelay.DelayAsync(_time, TimeSpan.FromSeconds(wait), stop.Token);
+        await Task.WhenAny(task, timer);
+        stop.Cancel();
+        token.ThrowIfCancellationRequested();
+        return task.IsCompleted;
+    }
+
+    private async Task WatchAsync(Watched watched, bool gate)
+    {
+        try
+        {
+            var reply = watched.Reply;
+
+            // Waits again when the deadline moved later meanwhile (a stroke found behind its plan), never for the same one twice.
+            for (var deadline = double.NegativeInfinity; watched.Deadline > deadline && !reply.IsCompleted;)
+            {
+                deadline = watched.Deadline;
+                var wait = deadline - _run.RunSeconds;
+                if (wait <= 0)
+                {
+                    break;
+                }
+
+                using var stop = new CancellationTokenSource();
+                await Task.WhenAny(reply, PreciseDelay.DelayAsync(_time, TimeSpan.FromSeconds(wait), stop.Token));
+                stop.Cancel();
+            }
+
+            if (reply.IsCompletedSuccessfully)
+            {
+                return;
+            }
+
+            if (watched.Successor is { } successor && (!reply.IsCompleted || reply.Exception?.InnerException is ZaberInterruptedException))
+            {
+                await successor.Done.Task;
+                return;
+            }
+
+            if (watched.SwitchOff)
+            {
+                _run.SwitchOffFailed();
+            }
+
+            if (!reply.IsCompleted)
+            {
+                _ = _run.Fault(gate
+                    ? $"{watched.What} within {_stallMarginMs:0} ms of its expected arrival"
+                    : $"the stage did not report {watched.What} within {_stallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)");
+                return;
+            }
+
+            await reply;
+        }
+        catch (OperationCanceledException)
+        {
+            // The run is ending anyway.
+        }
+        catch (Exception ex) when (ex is DeviceException)
+        {
+            _ = _run.Fault(ex.Message);
+        }
+        finally
+        {
+            watched.Done.TrySetResult();
+        }
+    }
+
+    /// <summary>A reply being watched; <see cref="Done"/> completes once it is settled (or has faulted the run).</summary>
+    internal sealed class Watched(Task reply, double deadline, string what)
+    {
+        public Task Reply { get; } = reply;
+
+        /// <summary>When the reply is due at the latest (s on the run's clock); a stroke found behind its plan moves it later.</summary>
+        public double Deadline { get; set; } = deadline;
+
+        public string What { get; } = what;
+
+        /// <summary>A switch-off: refused or unanswered, the fault's off sequence takes every path at once.</summary>
+        public bool SwitchOff { get; init; }
+
+        /// <summary>The next move of the same axis, which settles this one if this one's end is never reported.</summary>
+        public Watched? Successor { get; set; }
+
+        public TaskCompletionSource Done { get; } = new(TaskCreationOptions.RunContinuationsAsynchronously);
+
+        /// <summary>Completes once the reply came, or the next move of its axis (as it stands now) reported its own.</summary>
+        public Task Settled() => Successor is { } next ? Task.WhenAny(Reply, next.Reply) : Reply;
+    }
+}
+
+/// <summary>What a <see cref="ReplyWatch"/> needs of the run whose replies it watches.</summary>
+internal interface IReplyWatchRun
+{
+    /// <summary>The run's clock, s since its engraving started.</summary>
+    double RunSeconds { get; }
+
+    /// <summary>The timing the run times itself with (the stage's and the gate's jitter), or null for a plan without one.</summary>
+    TimedSwitching? Timing { get; }
+
+    /// <summary>A reply missing, late, failed or wrong: the run's fault (the laser off at once); returns the exception to throw.</summary>
+    DeviceException Fault(string reason);
+
+    /// <summary>A switch-off refused or unanswered: the laser may still fire, so the fault's off sequence takes every path.</summary>
+    void SwitchOffFailed();
+}
