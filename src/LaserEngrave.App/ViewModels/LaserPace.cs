@@ -163,30 +163,13 @@ public sealed class LaserPace
                     return Next(ref _dots, () => dots.Steps(), done) is { } dot ? [new(true, dot.X, dot.Y)] : [];
 
                 case RasterProgram raster:
-                    return Next(ref _moves, () => MovesOf(raster), done) is { } move ? [new(move.Kind == MoveKind.Travel, move.X1, move.Y1)] : [];
+                    // The engine counts the plan's moves, and its steps run them in the plan's order: read the plan's
+                    // moves directly, not the steps, which would plan every stroke's timing once more during the run.
+                    return Next(ref _moves, () => raster.Plan.Moves(), done) is { } move ? [new(move.Kind == MoveKind.Travel, move.X1, move.Y1)] : [];
 
                 default:
                     // No other kind of program: the hierarchy is Core's own.
                     return [];
-            }
-        }
-
-        // The plan's moves a raster program runs, step by step, in order.
-        private static IEnumerable<Move> MovesOf(RasterProgram program)
-        {
-            foreach (var step in program.Steps())
-            {
-                if (step.Stroke is { } stroke)
-                {
-                    for (var i = 0; i < stroke.MoveCount; i++)
-                    {
-                        yield return stroke.MoveAt(i);
-                    }
-                }
-                else
-                {
-                    yield return step.IsTravel ? step.Travel.Move : step.Move.Move;
-                }
             }
         }
 
