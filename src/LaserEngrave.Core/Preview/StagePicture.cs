@@ -102,8 +102,9 @@ public sealed class StagePicture
         return DrawingMoves(drawing.Schedule.Program(), drawing.Plan.Start, drawing.Spec.Profile, out strokeMoveEnds);
     }
 
-    // A raster program's steps as the plan's moves they run: a travel's, a stroke's (run-ups, burn runs, gaps, run-outs),
-    // a plain move's. Past the cap the rest is not walked: the plan's figures say how many moves there are.
+    // A raster program's moves: its steps (travels, strokes, plain moves) run the plan's moves in the plan's order, so they
+    // are read from the plan, without timing every stroke only to draw it. Past the cap the rest is not walked: the plan's
+    // figures say how many moves there are.
     // Each burn move drawn goes to burns, when given: its row, its index among those drawn and its direction.
     private static (byte[] Bytes, int Drawn, long Total) RasterMoves(RasterProgram program, MachineProfile profile, long planned, List<(int Row, int At, bool LeftToRight)>? burns = null)
     {
@@ -134,24 +135,9 @@ public sealed class StagePicture
             return true;
         }
 
-        foreach (var step in program.Steps())
+        foreach (var move in program.Plan.Moves())
         {
-            if (step.Stroke is { } stroke)
-            {
-                foreach (ref readonly var move in stroke.Moves)
-                {
-                    if (!Add(move))
-                    {
-                        break;
-                    }
-                }
-            }
-            else
-            {
-                Add(step.IsTravel ? step.Travel.Move : step.Move.Move);
-            }
-
-            if (capped)
+            if (!Add(move))
             {
                 break;
             }
