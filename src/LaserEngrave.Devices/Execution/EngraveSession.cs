@@ -493,6 +493,13 @@ public sealed class EngraveSession
             };
         }
 
+        // An abort (a signal, the Abort button) asked as a pass ended on a doubt it would have gone on from is what ended
+        // the run: it ends aborted, with the doubt's stop point, not as a failure on the doubt.
+        if (result is { Outcome: RunOutcome.Failed, Recoverable: true } && (cancellationToken.IsCancellationRequested || AbortRequested()))
+        {
+            return result with { Outcome = RunOutcome.Aborted, FaultMessage = RunExecutor.AbortedMessage, Recoverable = false };
+        }
+
         return result;
     }
 

@@ -23,7 +23,7 @@ namespace LaserEngrave.Devices.Execution;
 /// </remarks>
 public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
 {
-    private const string AbortedMessage = "aborted by the operator";
+    internal const string AbortedMessage = "aborted by the operator";
 
     // Longer than a keepalive's round trip on the gate's line (PING and OK PONG: 13.5 ms at 9600 baud), with a margin.
     private const double KeepAliveQuietSeconds = 0.05;

@@ -254,6 +254,33 @@ public class EngraveSessionTests
     }
 
     [Fact(Timeout = 120_000)]
+    public async Task RunAsync_AbortAskedAsAPassFailsOnATimingDoubt_EndsAbortedNotFailedOnTheDoubt()
+    {
+        // A signal that came as a pass ended on a late position query was logged and printed as that doubt ("run failed:
+        // ... late"), though the run would have gone on from it and the operator had stopped it.
+        await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = "delay:stage:device=1:command=60:after=15:count=all:ms=150" });
+        var log = new RecordingLog();
+        var session = Session(run, TestJobs.FromAsset("qr-code.bmp", 5, new PlanOptions()), log);
+        // The pass's own report of its failure comes before the session decides whether to go on from it.
+        var progress = new SynchronousProgress(p =>
+        {
+            if (p.Run.State == RunState.Failed)
+            {
+                session.Abort();
+            }
+        });
+
+        var result = await session.RunAsync(progress, TestContext.Current.CancellationToken);
+
+        var record = Assert.Single(log.Records);
+        Assert.Equal(RunOutcome.Aborted, record.Outcome);
+        Assert.Equal(RunState.Aborted, result.State);
+        Assert.DoesNotContain("position query", record.Fault!.Message, StringComparison.Ordinal);
+        Assert.True(record.Fault.LaserOffConfirmed);
+        Assert.False(run.Machine.Gate.IsFiring);
+    }
+
+    [Fact(Timeout = 120_000)]
     public async Task RunAsync_ManyPassesOnABusyComputer_GoesOnFromMoreDoubtsThanOnePassMayHaveAndCompletes()
     {
         // A late host gives the QR a few doubts a pass; 30 passes need more than MaxRecoveriesInAll in all, which once
