@@ -1,0 +1,150 @@
+/* ATmega328P layer of the reference laser gate (docs/gate-firmware.md), 16 MHz crystal (Arduino Uno/Nano class).
+ *
+ *   PB1 / OC1A (Arduino D9)  pulse train, TTL, active high: Timer1 in fast PWM (mode 14, TOP = ICR1), so every pulse is
+ *                            made by the timer's hardware, not by a software loop. Pulse width GATE_PULSE_NS (2 us; one
+ *                            timer tick where the prescaler's tick is longer, below 245 Hz).
+ *   PD0 / RXD, PD1 / TXD     USART0, 9600 baud 8N1 (UBRR 103: 9615 baud, +0.16 %), interrupt-driven both ways.
+ *   Timer2                   1 ms tick (CTC, /128, OCR2A 124) for the watchdog.
+ *
+ * The frequency grid: a period is a whole number of timer ticks, ticks = round(16 MHz / (prescaler x hz)) with the
+ * smallest prescaler of 1, 8, 64, 256 whose ticks fit 16 bits; the period fired is ticks x prescaler / 16 MHz
+ * (fired_period_cycles() below; the table in docs/gate-firmware.md). Bursts are counted by the compare-match
+ * interrupt at every pulse's falling edge; the n-th stops the clock before the next pulse can begin. */
+#include <avr/io.h>
+#include <avr/interrupt.h>
+#include <stdint.h>
+#include "../core/gate_core.h"
+
+#ifndef F_CPU
+#define F_CPU 16000000UL
+#endif
+#define GATE_PULSE_CYCLES 32 /* 2 us at 16 MHz */
+#define GATE_FIRMWARE "AVR-1.0"
+#define GATE_WDOG_AT_POWER_UP 1000
+
+static gate g;
+
+/* ---- USART: ring buffers (sizes are powers of two) ---- */
+static volatile uint8_t rx_buf[64], rx_head, rx_tail;
+static volatile uint8_t tx_buf[128], tx_head, tx_tail;
+static volatile uint32_t ms;
+
+ISR(USART_RX_vect)
+{
+    uint8_t b = UDR0;
+    uint8_t next = (uint8_t)((rx_head + 1) & 63);
+    if (next != rx_tail) { /* full: the byte is lost (the host sends one short line at a time) */
+        rx_buf[rx_head] = b;
+        rx_head = next;
+    }
+}
+
+ISR(USART_UDRE_vect)
+{
+    if (tx_tail == tx_head) {
+        UCSR0B &= (uint8_t)~_BV(UDRIE0);
+        return;
+    }
+    UDR0 = tx_buf[tx_tail];
+    tx_tail = (uint8_t)((tx_tail + 1) & 127);
+}
+
+ISR(TIMER2_COMPA_vect) { ms++; }
+
+/* Every pulse's falling edge: count it; the burst's last stops the clock and parks the pin low before the next
+ * BOTTOM (within one period less the pulse: 128 cycles at 100 kHz). */
+ISR(TIMER1_COMPA_vect)
+{
+    if (gate_pulse(&g)) {
+        TCCR1B = _BV(WGM13) | _BV(WGM12);
+        TCCR1A = _BV(WGM11);
+    }
+}
+
+static void send_byte(uint8_t b)
+{
+    uint8_t next = (uint8_t)((tx_head + 1) & 127);
+    while (next == tx_tail) {
+        /* full: wait for the interrupt to make room (only a flood of refused lines gets here) */
+    }
+    tx_buf[tx_head] = b;
+    tx_head = next;
+    UCSR0B |= _BV(UDRIE0);
+}
+
+static void hal_send(const char *text)
+{
+    while (*text) send_byte((uint8_t)*text++);
+    send_byte('\n');
+}
+
+/* The period the timer fires for hz, in CPU cycles, and the timer settings for it: the smallest prescaler whose tick
+ * count fits 16 bits, chosen by comparing hz (no division), then one division for the tick count. */
+static uint32_t fired_period_cycles(uint32_t hz, uint8_t *cs, uint16_t *ticks)
+{
+    uint8_t i = hz >= 245 ? 0 : hz >= 31 ? 1 : hz >= 4 ? 2 : 3;
+    static const uint32_t per_tick[] = { F_CPU, F_CPU / 8, F_CPU / 64, F_CPU / 256 };
+    static const uint8_t shift[] = { 0, 3, 6, 8 };
+    uint32_t t = (per_tick[i] + hz / 2) / hz;
+    *cs = (uint8_t)(i + 1); /* CS12:0 = 1, 2, 3, 4 for /1, /8, /64, /256 */
+    *ticks = (uint16_t)(t - 1); /* ICR1 = TOP = ticks - 1 */
+    return t << shift[i];
+}
+
+static void hal_fire(uint32_t hz, uint32_t pulses)
+{
+    /* Stop: clock off and OC1A disconnected, so the pin is PORTB1's low (a pulse under way is cut short). */
+    TCCR1B = _BV(WGM13) | _BV(WGM12);
+    TCCR1A = _BV(WGM11);
+    TIMSK1 = 0;
+    TIFR1 = _BV(OCF1A) | _BV(TOV1);
+    if (hz == 0) return;
+
+    uint8_t cs;
+    uint16_t top;
+    fired_period_cycles(hz, &cs, &top);
+    static const uint8_t shift[] = { 0, 0, 3, 6, 8 };
+    uint16_t width = GATE_PULSE_CYCLES >> shift[cs];
+    if (width == 0) width = 1;
+    ICR1 = top;
+    OCR1A = width - 1;
+    /* At TOP, so that the first timer tick wraps to BOTTOM and sets the output: the first pulse begins at once. */
+    TCNT1 = top;
+    if (pulses) TIMSK1 = _BV(OCIE1A);
+    TCCR1A = _BV(COM1A1) | _BV(WGM11);
+    GTCCR = _BV(PSRSYNC); /* the prescaler starts afresh too, so the first tick is a whole one */
+    TCCR1B = _BV(WGM13) | _BV(WGM12) | cs;
+}
+
+static const gate_hal hal = { hal_fire, hal_send };
+
+int main(void)
+{
+    PORTB &= (uint8_t)~_BV(PB1);
+    DDRB |= _BV(PB1);
+
+    UBRR0 = (F_CPU / 16 / 9600) - 1; /* 103 */
+    UCSR0A = 0;
+    UCSR0C = _BV(UCSZ01) | _BV(UCSZ00);
+    UCSR0B = _BV(RXEN0) | _BV(TXEN0) | _BV(RXCIE0);
+
+    TCCR2A = _BV(WGM21);
+    OCR2A = 124;
+    TIMSK2 = _BV(OCIE2A);
+    TCCR2B = _BV(CS22) | _BV(CS20);
+
+    gate_init(&g, &hal, GATE_FIRMWARE, GATE_WDOG_AT_POWER_UP);
+    sei();
+
+    for (;;) {
+        cli();
+        uint32_t now = ms;
+        sei();
+        gate_poll(&g, now);
+        while (rx_tail != rx_head) {
+            uint8_t b = rx_buf[rx_tail];
+            rx_tail = (uint8_t)((rx_tail + 1) & 63);
+            gate_byte(&g, b);
+        }
+    }
+}
