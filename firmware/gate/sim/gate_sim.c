@@ -4,7 +4,7 @@
  *
  * SCRIPT, one item a line ('#' starts a comment):
  *   CYCLE TEXT     a line whose last byte has arrived (its RXC raised, the end of its stop bit in simavr's UART) at
- *                  CYCLE; the harness adds '\n'. Escapes in TEXT: \r, \\, \xHH. Its bytes are put into the UART one
+ *                  CYCLE; the harness adds '\n'. Escapes in TEXT: \r, \t, \\, \xHH. Its bytes are put into the UART one
  *                  simavr byte time apart, ending there.
  *   end CYCLE      run until CYCLE, then report and stop.
  * Output, one event a line, in cycle order within each kind:
@@ -88,6 +88,7 @@ static size_t unescape(const char *s, uint8_t *out)
     size_t n = 0;
     while (*s) {
         if (s[0] == '\\' && s[1] == 'r') { out[n++] = '\r'; s += 2; }
+        else if (s[0] == '\\' && s[1] == 't') { out[n++] = '\t'; s += 2; }
         else if (s[0] == '\\' && s[1] == '\\') { out[n++] = '\\'; s += 2; }
         else if (s[0] == '\\' && s[1] == 'x' && s[2] && s[3]) {
             char hex[3] = { s[2], s[3], 0 };
