@@ -161,7 +161,7 @@ public sealed class SimulatedMachine : IAsyncDisposable
     public void ServeLaser(ISerialLink deviceEnd)
     {
         ArgumentNullException.ThrowIfNull(deviceEnd);
-        _laserServed = Track(LaserPort, deviceEnd, log => Gate.RunAsync(deviceEnd, log, NewLatency(Options.GateProcessing), _stop.Token));
+        _laserServed = Track(LaserPort, deviceEnd, log => Gate.RunAsync(deviceEnd, log, NewLatency(Options.GateProcessing ?? Jitter.None), _stop.Token));
     }
 
     /// <summary>

@@ -43,8 +43,13 @@ public sealed record SimulatorOptions
     /// </remarks>
     public HostLateness HostLateness { get; init; } = HostLateness.None;
 
-    /// <summary>The laser gate's time from a command's last byte to the Q-switch changing (and its reply leaving).</summary>
-    public Jitter GateProcessing { get; init; } = new(0.5, 0.2);
+    /// <summary>The laser gate's time from a command's last byte to the Q-switch changing (and its reply leaving), drawn per command.</summary>
+    /// <remarks>
+    /// Null (the default): the reference firmware's own time for each line, as measured in simavr
+    /// (<see cref="LaserGate.GateFirmwareTiming"/>, docs/gate-firmware.md): 51 µs for OFF, 185 µs to the first pulse of
+    /// a 15-byte BURST. A value: a draw from that range for every command, for a gate of another make.
+    /// </remarks>
+    public Jitter? GateProcessing { get; init; }
 
     /// <summary>
     /// Where both axes stand at power-up, mm from home (clamped to their travel); null: the far end of the travel, as a

@@ -86,7 +86,7 @@ public static class SimulatorOptionsFile
             options = options with
             {
                 AdapterLatency = options.AdapterLatency.WithSpreadScaled(scale),
-                GateProcessing = options.GateProcessing.WithSpreadScaled(scale),
+                GateProcessing = options.GateProcessing?.WithSpreadScaled(scale),
             };
         }
 

@@ -12,6 +12,7 @@
  * interrupt at every pulse's falling edge; the n-th stops the clock before the next pulse can begin. */
 #include <avr/io.h>
 #include <avr/interrupt.h>
+#include <avr/sleep.h>
 #include <stdint.h>
 #include "../core/gate_core.h"
 
@@ -98,6 +99,9 @@ static void hal_fire(uint32_t hz, uint32_t pulses)
     TCCR1A = _BV(WGM11);
     TIMSK1 = 0;
     TIFR1 = _BV(OCF1A) | _BV(TOV1);
+#ifdef GATE_TRACE
+    PINB = _BV(PB2); /* trace builds only: PB2 toggles when the train has been stopped (the twin's model is timed by it) */
+#endif
     if (hz == 0) return;
 
     uint8_t cs;
@@ -122,6 +126,9 @@ int main(void)
 {
     PORTB &= (uint8_t)~_BV(PB1);
     DDRB |= _BV(PB1);
+#ifdef GATE_TRACE
+    DDRB |= _BV(PB2);
+#endif
 
     UBRR0 = (F_CPU / 16 / 9600) - 1; /* 103 */
     UCSR0A = 0;
@@ -133,6 +140,7 @@ int main(void)
     TIMSK2 = _BV(OCIE2A);
     TCCR2B = _BV(CS22) | _BV(CS20);
 
+    set_sleep_mode(SLEEP_MODE_IDLE);
     gate_init(&g, &hal, GATE_FIRMWARE, GATE_WDOG_AT_POWER_UP);
     sei();
 
@@ -146,5 +154,15 @@ int main(void)
             rx_tail = (uint8_t)((rx_tail + 1) & 63);
             gate_byte(&g, b);
         }
+        /* Idle until the next interrupt (a byte, the 1 ms tick, a pulse): the timers and the USART run on. sei then
+         * sleep is atomic, so a byte that came in after the check still wakes the loop. */
+        cli();
+        if (rx_tail == rx_head) {
+            sleep_enable();
+            sei();
+            sleep_cpu();
+            sleep_disable();
+        }
+        sei();
     }
 }

@@ -11,6 +11,7 @@
  *   edge CYCLE 0|1     every change of the pulse pin PB1 / OC1A (Arduino D9)
  *   reply CYCLE TEXT   a reply line; CYCLE is when its '\n' was handed to the UART plus one byte time (its last stop bit)
  *   sent CYCLE TEXT    echo of each scripted line, with the cycle its last byte arrived
+ *   trace CYCLE 0|1    a trace build's PB2 (toggled when the firmware has stopped the train)
  *   byte_cycles N      simavr's UART byte time in cycles (it counts a parity bit even with none: 11 bits)
  * Everything is in simulated cycles at 16 MHz: no wall clock, so the run is the same every time. */
 #include <stdio.h>
@@ -69,6 +70,13 @@ static void on_pin(avr_irq_t *irq, uint32_t value, void *param)
     printf("edge %llu %u\n", (unsigned long long)avr->cycle, value ? 1u : 0u);
 }
 
+static void on_trace(avr_irq_t *irq, uint32_t value, void *param)
+{
+    avr_t *avr = param;
+    (void)irq;
+    printf("trace %llu %u\n", (unsigned long long)avr->cycle, value ? 1u : 0u);
+}
+
 static void on_uart_out(avr_irq_t *irq, uint32_t value, void *param)
 {
     avr_t *avr = param;
@@ -125,6 +133,8 @@ int main(int argc, char **argv)
     uart_in = avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_INPUT);
     avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUTPUT), on_uart_out, avr);
     avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('B'), 1), on_pin, avr);
+    /* A trace build (-DGATE_TRACE) toggles PB2 when it has stopped the train. */
+    avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('B'), 2), on_trace, avr);
 
     FILE *script = fopen(argv[2], "r");
     if (!script) {

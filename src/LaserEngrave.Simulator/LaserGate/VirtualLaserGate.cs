@@ -37,6 +37,8 @@ public sealed class VirtualLaserGate
     private long _generation;
     private ITimer? _watchdog;
     private ITimer? _burstEnd;
+    private readonly HashSet<ITimer> _pending = [];
+    private double _executeAfter;
     private LinkSession? _session;
     private Action<string> _log = _ => { };
 
@@ -115,9 +117,46 @@ public sealed class VirtualLaserGate
             }
 
             var line = _overflow ? "\u0000" : Encoding.ASCII.GetString([.. _line]).TrimEnd('\r').Trim();
+            var lineBytes = _line.Count + 1;
             _line.Clear();
             _overflow = false;
-            return () => Execute(line);
+            if (_options.GateProcessing is not null)
+            {
+                // A drawn processing time (a gate of another make): the link runs the action that much later.
+                return () => Execute(line);
+            }
+
+            return () => ExecuteAsTheFirmware(line, lineBytes);
+        }
+    }
+
+    // The reference firmware's own time for this line (GateFirmwareTiming): the link hands the line over as its last
+    // byte arrives, and the gate acts when the firmware would have. Lines keep their order (a line takes milliseconds to
+    // arrive, the firmware well under one to act, so a later line never overtakes).
+    private void ExecuteAsTheFirmware(string line, int lineBytes)
+    {
+        lock (_lock)
+        {
+            var command = _commands.Match(line, out var args);
+            var fires = command switch
+            {
+                GateCommand.Frequency => TryNumber(args[0], out var hz) && hz is > 0 and <= MaxFrequencyHz,
+                GateCommand.Burst => TryNumber(args[0], out var n) && TryNumber(args[1], out var bhz) && n is >= 1 and <= 1_000_000 && bhz is >= 1 and <= MaxFrequencyHz,
+                _ => false,
+            };
+            var at = Math.Max(_clock.NowSeconds + GateFirmwareTiming.ProcessingSeconds(command, lineBytes, fires), _executeAfter);
+            _executeAfter = at;
+            ITimer? timer = null;
+            timer = _clock.At(at, () =>
+            {
+                lock (_lock)
+                {
+                    _pending.Remove(timer!);
+                }
+
+                Execute(line);
+            });
+            _pending.Add(timer);
         }
     }
 
@@ -207,9 +246,10 @@ public sealed class VirtualLaserGate
 
                 SetFrequency(burstHz, now);
                 var generation = _generation;
-                // The gate counts its pulses: the burst ends exactly N / f after it began, though the clock's timer,
-                // rounded up to whole ticks, runs a moment later (which would let an (N+1)th pulse through).
-                var end = now + ((double)pulses / burstHz);
+                // The gate counts its pulses: the burst ends exactly N fired periods after it began (the firmware's
+                // period grid), though the clock's timer, rounded up to whole ticks, runs a moment later (which would
+                // let an (N+1)th pulse through).
+                var end = now + (pulses * GateFirmwareTiming.FiredPeriodSeconds(burstHz));
                 _burstEnd = _clock.At(end, () =>
                 {
                     lock (_lock)
@@ -237,14 +277,22 @@ public sealed class VirtualLaserGate
     private static bool TryNumber(string text, out int value) =>
         int.TryParse(text, NumberStyles.AllowLeadingSign, CultureInfo.InvariantCulture, out value);
 
-    // Caller holds _lock. Any frequency change ends a burst in progress.
+    // Caller holds _lock. Any frequency change ends a burst in progress. The pulse train is the firmware's: at the
+    // period its timer can fire (GateFirmwareTiming), and started afresh by every frequency command while it fires
+    // (the firmware stops its timer and starts it again, the first pulse at once), so the recorder sees the old train
+    // end and a new one begin at this instant.
     private void SetFrequency(int hz, double now)
     {
         _generation++;
         _burstEnd?.Dispose();
         _burstEnd = null;
+        if (IsFiring && hz > 0)
+        {
+            _recorder.RecordLaser(now, 0);
+        }
+
         FrequencyHz = hz;
-        _recorder.RecordLaser(now, hz);
+        _recorder.RecordLaser(now, GateFirmwareTiming.FiredHz(hz));
         ArmWatchdog();
     }
 

@@ -22,15 +22,15 @@ public static class RecordedLatency
     /// <summary>The one-way delay, seconds, of each event of <paramref name="events"/> that is a write (0 for the rest; 0 for every write on a link without one usable reply).</summary>
     /// <param name="profile">The machine (baud rates, the gate's line terminator).</param>
     /// <param name="events">The recording.</param>
-    /// <param name="gateProcessingMs">The gate's own time from a command's last byte to its reply, ms (the twin's, which the replay keeps).</param>
-    public static double[] OneWaySeconds(MachineProfile profile, IReadOnlyList<WireEvent> events, double gateProcessingMs)
+    /// <param name="gateProcessingSeconds">The gate's own time from a command's last byte to its reply, seconds, for the command's bytes (the twin's, which the replay keeps).</param>
+    public static double[] OneWaySeconds(MachineProfile profile, IReadOnlyList<WireEvent> events, Func<byte[], double> gateProcessingSeconds)
     {
         ArgumentNullException.ThrowIfNull(profile);
         ArgumentNullException.ThrowIfNull(events);
         var roundTrips = new double?[events.Count];
         var rest = new double[events.Count];
         StageRoundTrips(profile, events, roundTrips, rest);
-        GateRoundTrips(profile, events, roundTrips, rest, Units.MsToSeconds(gateProcessingMs));
+        GateRoundTrips(profile, events, roundTrips, rest, gateProcessingSeconds);
         var result = new double[events.Count];
         foreach (var (stage, baud) in new[] { (true, profile.StageBaudRate), (false, profile.Gate.BaudRate) })
         {
@@ -111,7 +111,7 @@ public static class RecordedLatency
     }
 
     // Each gate command's round trip to its reply line (in order), and the wire's and the gate's processing part of it.
-    private static void GateRoundTrips(MachineProfile profile, IReadOnlyList<WireEvent> events, double?[] roundTrips, double[] rest, double processingSeconds)
+    private static void GateRoundTrips(MachineProfile profile, IReadOnlyList<WireEvent> events, double?[] roundTrips, double[] rest, Func<byte[], double> processingSeconds)
     {
         var terminator = (byte)profile.Gate.LineTerminator[^1];
         var secondsPerByte = BitsPerByte / profile.Gate.BaudRate;
@@ -142,7 +142,7 @@ public static class RecordedLatency
                 if (pending.TryDequeue(out var write))
                 {
                     roundTrips[write] = e.Seconds - events[write].Seconds;
-                    rest[write] = ((events[write].Data.Length + line) * secondsPerByte) + processingSeconds;
+                    rest[write] = ((events[write].Data.Length + line) * secondsPerByte) + processingSeconds(events[write].Data);
                 }
 
                 line = 0;

@@ -4,6 +4,7 @@ using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Wire.Serial;
 using LaserEngrave.Simulator.Burn;
+using LaserEngrave.Simulator.LaserGate;
 using LaserEngrave.Simulator.Timing;
 
 namespace LaserEngrave.Simulator.Replay;
@@ -30,7 +31,10 @@ public static class RecordedRunReplay
         if (recordedDelays)
         {
             options = options with { AdapterLatency = Jitter.None };
-            delays = RecordedLatency.OneWaySeconds(profile, events, options.GateProcessing.MeanMs);
+            Func<byte[], double> processing = options.GateProcessing is { } drawn
+                ? _ => Units.MsToSeconds(drawn.MeanMs)
+                : command => GateFirmwareTiming.ProcessingSeconds(command);
+            delays = RecordedLatency.OneWaySeconds(profile, events, processing);
         }
 
         if (record.Devices.FirstOrDefault(d => d.Role == "x axis") is { } x && decimal.TryParse(x.Firmware, NumberStyles.AllowDecimalPoint, CultureInfo.InvariantCulture, out var firmware))

@@ -21,7 +21,7 @@ public class LatencySpreadTests
     private static SimulatorOptions Scaled(double scale, int seed = 1)
     {
         var options = new SimulatorOptions { Seed = seed };
-        return options with { AdapterLatency = options.AdapterLatency.WithSpreadScaled(scale), GateProcessing = options.GateProcessing.WithSpreadScaled(scale) };
+        return options with { AdapterLatency = options.AdapterLatency.WithSpreadScaled(scale), GateProcessing = options.GateProcessing?.WithSpreadScaled(scale) };
     }
 
     [Theory(Timeout = 300_000)]
