@@ -110,10 +110,15 @@ public sealed record LatencyProfile
     public double GateJitterMs { get; init; } = 0.5;
 
     /// <summary>The gate's processing time from a command's last byte to the Q-switch changing (and its reply leaving), ms.</summary>
-    public double GateProcessingMs { get; init; } = 0.5;
+    /// <remarks>
+    /// The reference firmware's (firmware/gate, docs/gate-firmware.md): a BURST line of 14 to 19 bytes fires its first
+    /// pulse 0.180 to 0.214 ms after its last stop bit (measured in simavr). The timed switch-on is planned with it, so a
+    /// gate slower or faster than its profile says switches on that much late or early.
+    /// </remarks>
+    public double GateProcessingMs { get; init; } = 0.19;
 
     /// <summary>Half-width of the spread of <see cref="GateProcessingMs"/>, ms.</summary>
-    public double GateProcessingJitterMs { get; init; } = 0.2;
+    public double GateProcessingJitterMs { get; init; } = 0.03;
 }
 
 /// <summary>The machine: two Zaber axes, the laser gate, the spot and the default process settings.</summary>
