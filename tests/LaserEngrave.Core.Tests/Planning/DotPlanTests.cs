@@ -99,7 +99,9 @@ public class DotPlanTests
         // At 9600 baud a byte is 1.0417 ms: a Zaber frame 6.25 ms; "BURST 3 1000\n" 13 bytes, "OK BURST 3\n" 11 bytes.
         Assert.Equal(0.00625, t.FrameSeconds, 12);
         Assert.Equal("BURST 3 1000\n", t.BurstCommand);
-        Assert.Equal(0.001 + (13 * 10 / 9600.0) + 0.0005, t.BurstLeadSeconds, 12);
+        // The default profile's gate processing: 0.19 ms, the reference firmware's for a BURST line (docs/gate-firmware.md).
+        const double Processing = 0.00019;
+        Assert.Equal(0.001 + (13 * 10 / 9600.0) + Processing, t.BurstLeadSeconds, 12);
         Assert.Equal((11 * 10 / 9600.0) + 0.001, t.BurstReplySeconds, 12);
 
         // The burst (3 ms) is over before its 11.46 ms reply has even crossed the wire: only the reaction margin is left to wait.
@@ -118,7 +120,7 @@ public class DotPlanTests
         Assert.Equal(steps, plan.Estimate.StepsSeconds, 9);
         var atDot = t.BurstLeadSeconds + t.BurstReplySeconds + 0.0005;
         Assert.Equal(atDot, plan.Estimate.AtDotSeconds, 12);
-        var off = 0.002 + 0.0005 + ((4 + 10) * 10 / 9600.0);
+        var off = 0.002 + Processing + ((4 + 10) * 10 / 9600.0);
         Assert.Equal((4 * 2 * stage) + off + steps + (5 * atDot), plan.Estimate.TotalSeconds, 9);
         Assert.Equal(15, plan.Estimate.Pulses);
         Assert.Equal(2, plan.Estimate.Rows);
