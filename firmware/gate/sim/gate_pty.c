@@ -1,0 +1,93 @@
+/* The AVR gate image in simavr on the wall clock, its UART on a pseudo-terminal, for a host in another process
+ * (laserengrave laser, machine check, engrave with laserengrave simulator for the stages):
+ *
+ *   gate_pty FIRMWARE.elf [EDGES_OUT]
+ *
+ * simavr's uart_pty makes the pty and links it as /tmp/simavr-uart0 (printed at start); the host opens that path as
+ * its gate port. The simulated CPU is held to the wall clock (16 MHz of cycles a second), so the watchdog and the
+ * pulse train take their real time. Every edge of the pulse pin PB1 goes to EDGES_OUT ("CYCLE 0|1" a line) when given,
+ * and each train's pulse count to stderr as it ends. Runs until killed (SIGINT/SIGTERM). */
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+#include <sim_avr.h>
+#include <sim_elf.h>
+#include <sim_irq.h>
+#include <avr_ioport.h>
+#include <parts/uart_pty.h>
+
+static volatile sig_atomic_t stop;
+static FILE *edges;
+static unsigned long train, trains;
+static avr_cycle_count_t last_rise;
+
+static void on_signal(int s) { (void)s; stop = 1; }
+
+static void on_pin(avr_irq_t *irq, uint32_t value, void *param)
+{
+    avr_t *avr = param;
+    (void)irq;
+    if (edges) fprintf(edges, "%llu %u\n", (unsigned long long)avr->cycle, value ? 1u : 0u);
+    if (value) {
+        /* A new train when the gap is longer than one period of the slowest frequency (1 Hz) could be: 1.5 s. */
+        if (train && avr->cycle - last_rise > 24000000ULL) {
+            fprintf(stderr, "train %lu: %lu pulses\n", ++trains, train);
+            train = 0;
+        }
+        train++;
+        last_rise = avr->cycle;
+    }
+}
+
+static double now_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec + t.tv_nsec / 1e9;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        fprintf(stderr, "usage: gate_pty FIRMWARE.elf [EDGES_OUT]\n");
+        return 2;
+    }
+    elf_firmware_t fw;
+    memset(&fw, 0, sizeof fw);
+    if (elf_read_firmware(argv[1], &fw) != 0) return 2;
+    avr_t *avr = avr_make_mcu_by_name("atmega328p");
+    if (!avr) return 2;
+    avr_init(avr);
+    avr->frequency = 16000000;
+    avr->log = LOG_ERROR;
+    avr_load_firmware(avr, &fw);
+    if (argc > 2) edges = fopen(argv[2], "w");
+    avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('B'), 1), on_pin, avr);
+
+    static uart_pty_t pty;
+    uart_pty_init(avr, &pty);
+    uart_pty_connect(&pty, '0');
+    fprintf(stderr, "gate on %s (/tmp/simavr-uart0)\n", pty.port[0].slavename);
+    signal(SIGINT, on_signal);
+    signal(SIGTERM, on_signal);
+
+    double start = now_s();
+    while (!stop) {
+        avr_cycle_count_t due = (avr_cycle_count_t)((now_s() - start) * 16e6);
+        while (avr->cycle < due && !stop) {
+            int state = avr_run(avr);
+            if (state == cpu_Done || state == cpu_Crashed) {
+                fprintf(stderr, "the simulated gate stopped (state %d)\n", state);
+                return 1;
+            }
+        }
+        usleep(200);
+    }
+    if (train) fprintf(stderr, "train %lu: %lu pulses\n", ++trains, train);
+    if (edges) fclose(edges);
+    uart_pty_stop(&pty);
+    return 0;
+}

@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# The project's own host against the AVR gate image in simavr, on the wall clock (docs/gate-firmware.md):
+#   firmware/gate/sim/host-bench.sh OUT [WIDTH_MM]
+# Builds the image and gate_pty, starts the image on a pty (/tmp/simavr-uart0), the stages on `laserengrave simulator`
+# through socat ptys, then runs `laser identify`, `laser on 1000 --seconds 1`, `machine check` (its watchdog step
+# included), `machine latency --write` into OUT/profile.json and a timed engrave of the QR sample at WIDTH_MM (5 by
+# default) with that profile; then `replay` of the run's flight recorder gives what the twin burns for the same stream.
+# Every pulse edge of the image goes to OUT/edges.txt; OUT/summary.txt compares the pulses fired with the replay's.
+# Needs: make -C firmware/gate, socat, a build of src/LaserEngrave.Cli. Everything it starts is stopped at the end.
+set -u
+root=$(cd "$(dirname "$0")/../../.." && pwd)
+out=${1:?give the output folder}; width=${2:-5}
+mkdir -p "$out"; out=$(cd "$out" && pwd)
+CLI=${CLI:-$root/src/LaserEngrave.Cli/bin/Debug/net10.0/laserengrave.dll}
+le() { dotnet "$CLI" "$@"; }
+make -s -C "$root/firmware/gate" avr pty >/dev/null || exit 1
+pids=()
+cleanup() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null; done; }
+trap cleanup EXIT
+"$root/firmware/gate/build/gate_pty" "$root/firmware/gate/build/atmega328p/gate.elf" "$out/edges.txt" 2> "$out/gate.log" & pids+=($!)
+socat pty,raw,echo=0,link=/tmp/hb-stage pty,raw,echo=0,link=/tmp/hb-stage-host 2>/dev/null & pids+=($!)
+socat pty,raw,echo=0,link=/tmp/hb-laser pty,raw,echo=0,link=/tmp/hb-laser-host 2>/dev/null & pids+=($!)
+sleep 1
+echo '{"startMm": 1}' > "$out/sim.json"
+le simulator --stage-port /tmp/hb-stage --laser-port /tmp/hb-laser --sim-options "$out/sim.json" > "$out/simulator.log" 2>&1 & pids+=($!)
+sleep 4
+gate=/tmp/simavr-uart0
+{
+  le laser --port $gate identify
+  le laser --port $gate on 1000 --seconds 1
+  le machine check --stage-port /tmp/hb-stage-host --laser-port $gate --yes --count 20
+  le machine latency --stage-port /tmp/hb-stage-host --laser-port $gate --profile "$out/profile.json" --write
+} 2>&1 | tee "$out/commands.txt"
+le engrave "$root/assets/qr-code.bmp" --width-mm "$width" --origin-mm 10,10 --stage-port /tmp/hb-stage-host \
+  --laser-port $gate --profile "$out/profile.json" --json --log-dir "$out/logs" > "$out/engrave.json" 2> "$out/engrave.err"
+log=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['logPath'])" "$out/engrave.json" 2>/dev/null)
+[ -n "$log" ] && le replay "$log" --json > "$out/replay.json" 2> "$out/replay.err"
+sleep 2
+python3 - "$out" <<'PY'
+import json, sys
+out = sys.argv[1]
+rows = [l.split() for l in open(f"{out}/edges.txt") if len(l.split()) == 2]
+rises = [int(c) for c, v in rows if v == "1"]
+run = json.load(open(f"{out}/engrave.json"))
+try:
+    replay = json.load(open(f"{out}/replay.json"))
+except Exception:
+    replay = {}
+lines = [f"engrave: {run.get('outcome')} {run.get('fault') or ''}".strip(),
+         f"pulses the gate image fired in all (identify, on 1 s, machine check, engrave): {len(rises)}",
+         f"the twin's replay of the run's recorded stream: {replay.get('simulation', replay).get('pulses') if replay else 'none'} pulses"]
+open(f"{out}/summary.txt", "w").write("\n".join(lines) + "\n")
+print("\n".join(lines))
+PY
