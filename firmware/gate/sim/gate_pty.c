@@ -30,7 +30,10 @@ static void on_pin(avr_irq_t *irq, uint32_t value, void *param)
 {
     avr_t *avr = param;
     (void)irq;
-    if (edges) fprintf(edges, "%llu %u\n", (unsigned long long)avr->cycle, value ? 1u : 0u);
+    if (edges) {
+        fprintf(edges, "%llu %u\n", (unsigned long long)avr->cycle, value ? 1u : 0u);
+        fflush(edges);
+    }
     if (value) {
         /* A new train when the gap is longer than one period of the slowest frequency (1 Hz) could be: 1.5 s. */
         if (train && avr->cycle - last_rise > 24000000ULL) {
@@ -88,6 +91,7 @@ int main(int argc, char **argv)
     }
     if (train) fprintf(stderr, "train %lu: %lu pulses\n", ++trains, train);
     if (edges) fclose(edges);
-    uart_pty_stop(&pty);
+    /* Not uart_pty_stop: it waits for its reader thread, which can sit in a read of the pty for good. */
+    unlink("/tmp/simavr-uart0");
     return 0;
 }
