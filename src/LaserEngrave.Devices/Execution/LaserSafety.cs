@@ -35,6 +35,8 @@ internal sealed class LaserSafety : IAsyncDisposable
 
     // A switch-off refused or not acknowledged in time: the laser may still fire, so every path to off is taken at once.
     private bool _switchOffFailed;
+    private Task? _pendingOff;
+    private readonly LaserOff _off;
     private bool _keepAliveWhileOn;
 
     /// <param name="frequencyHz">The pulse frequency a switch-on (<c>FREQ f</c>) sets.</param>
@@ -49,6 +51,7 @@ internal sealed class LaserSafety : IAsyncDisposable
         _watchdogMs = watchdogMs;
         _stallMarginMs = stallMarginMs;
         _run = run;
+        _off = new LaserOff(gate, time);
     }
 
     /// <summary>
@@ -118,6 +121,11 @@ internal sealed class LaserSafety : IAsyncDisposable
     }
 
     /// <summary>Switches the laser on (<c>FREQ f</c>, unless an abort came first) or off (<c>OFF</c>), awaiting the gate's acknowledgement.</summary>
+    /// <remarks>
+    /// A switch-off not acknowledged within its round trip (<see cref="LaserOff.ConfirmWindow(TimedSwitching, double, double)"/>,
+    /// the test a timed run's switch-offs get) is in doubt at once, not after the gate's whole timeout: it throws, and the
+    /// fault's off sequence takes every path, counting a late answer to this OFF too.
+    /// </remarks>
     public async Task SwitchAsync(bool on)
     {
         await Lock.WaitAsync();
@@ -140,14 +148,29 @@ internal sealed class LaserSafety : IAsyncDisposable
                     KeepAlive.Active = false;
                 }
 
+                Task off;
                 try
                 {
-                    await _gate.OffAsync(CancellationToken.None);
+                    off = _gate.OffAsync(CancellationToken.None);
                 }
-                catch (DeviceException)
+                catch (Exception ex)
                 {
-                    MarkSwitchOffFailed();
-                    throw;
+                    off = Task.FromException(ex);
+                }
+
+                var window = ConfirmWindow();
+                using (var wait = new CancellationTokenSource())
+                {
+                    await Task.WhenAny(off, PreciseDelay.DelayAsync(_time, window, wait.Token));
+                    wait.Cancel();
+                }
+
+                if (!off.IsCompletedSuccessfully)
+                {
+                    MarkSwitchOffFailed(off);
+                    throw off.Exception?.InnerException is { } refused
+                        ? refused as DeviceException ?? new DeviceException($"the laser gate did not switch the laser off: {refused.Message}", refused)
+                        : new DeviceException(string.Create(CultureInfo.InvariantCulture, $"the laser gate did not acknowledge the switch-off within {_stallMarginMs:0} ms of its expected arrival"));
                 }
 
                 MarkOff();
@@ -193,13 +216,18 @@ internal sealed class LaserSafety : IAsyncDisposable
     }
 
     /// <summary>A switch-off was refused or not acknowledged: the fault's off sequence takes every path at once.</summary>
-    public void MarkSwitchOffFailed()
+    /// <param name="pending">The OFF still waiting for its answer, when it is (a late answer confirms the laser off too).</param>
+    public void MarkSwitchOffFailed(Task? pending = null)
     {
         lock (_lock)
         {
             _switchOffFailed = true;
+            _pendingOff = pending ?? _pendingOff;
         }
     }
+
+    // How long a switch-off may take to be acknowledged now: the timed path's test, behind whatever is on the gate's wire.
+    private TimeSpan ConfirmWindow() => LaserOff.ConfirmWindow(_run.Timing, _stallMarginMs, _run.GateQueueSeconds);
 
     /// <summary>
     /// Switches the laser off after a fault or an abort: OFF, and when that (or an earlier switch-off) was refused or went
@@ -229,39 +257,22 @@ internal sealed class LaserSafety : IAsyncDisposable
                 return;
             }
 
-            DeviceException? refused = null;
-            Task? first = null;
-            if (!inDoubt)
+            Task? pending;
+            lock (_lock)
             {
-                first = _gate.OffAsync(CancellationToken.None);
-
-                // Answered within its round trip (and the margin a stage reply gets), or it is in doubt: a gate gone deaf
-                // must not leave the stage sweeping for the whole of the gate's timeout with the laser on.
-                var timing = _run.Timing;
-                var roundTrip = (timing?.OffRoundTripSeconds ?? 0.02) + (2 * (timing?.GateJitterSeconds ?? 0)) + Units.MsToSeconds(_stallMarginMs);
-                using (var wait = new CancellationTokenSource())
-                {
-                    await Task.WhenAny(first, PreciseDelay.DelayAsync(_time, TimeSpan.FromSeconds(roundTrip), wait.Token));
-                    wait.Cancel();
-                }
-
-                if (first.IsCompletedSuccessfully)
-                {
-                    MarkOff();
-                    lock (_lock)
-                    {
-                        _offConfirmed = true;
-                        _offProblem = null;
-                        _offBy = LaserOffPath.Off;
-                    }
-
-                    return;
-                }
-
-                refused = first.Exception?.InnerException as DeviceException;
+                pending = _pendingOff;
             }
 
-            await EveryWayOffAsync(refused, first);
+            var result = inDoubt
+                ? await _off.EveryWayOffAsync(null, pending, _watchdogMs, _run.StopStageAsync)
+                : await _off.SwitchOffAsync(ConfirmWindow(), _watchdogMs, _run.StopStageAsync);
+            MarkOff();
+            lock (_lock)
+            {
+                _offBy = result.Path;
+                _offConfirmed = result.Confirmed;
+                _offProblem = result.Problem;
+            }
         }
         finally
         {
@@ -276,62 +287,19 @@ internal sealed class LaserSafety : IAsyncDisposable
             await KeepAlive.DisposeAsync();
         }
     }
-
-    private static async Task Settled(Task task)
-    {
-        try
-        {
-            await task;
-        }
-        catch (DeviceException)
-        {
-            // Looked at through the task itself.
-        }
-    }
-
-    /// <summary>
-    /// A switch-off was refused or went unanswered: OFF again, FREQ 0 and the gate's shortest watchdog go out together,
-    /// with a stop to both axes so that nothing more is swept; the first the gate acknowledges of OFF and FREQ 0 confirms
-    /// the laser off. When neither is acknowledged the gate's port is closed, so that the gate hears nothing more and its
-    /// watchdog switches the laser off, and the run says a person must check the laser. Caller holds the laser lock.
-    /// </summary>
-    /// <param name="refused">Why the switch-off was refused, when it was.</param>
-    /// <param name="first">The fault's own OFF, still waiting for its answer (a late answer confirms the laser off too).</param>
-    private async Task EveryWayOffAsync(DeviceException? refused, Task? first)
-    {
-        // Gate commands are not cancelled (a late reply would be taken for the next one's): each waits its own timeout.
-        var off = _gate.OffAsync(CancellationToken.None);
-        var zero = _gate.SetFrequencyAsync(0, CancellationToken.None);
-        var watchdog = _gate.SetWatchdogAsync(MachineProfileValidator.MinWatchdogMs, CancellationToken.None);
-        var stopping = _run.StopStageAsync();
-        await Task.WhenAll(Settled(first ?? Task.CompletedTask), Settled(off), Settled(zero), Settled(watchdog), stopping);
-        var path = off.IsCompletedSuccessfully || first?.IsCompletedSuccessfully == true ? LaserOffPath.OffAgain
-            : zero.IsCompletedSuccessfully ? LaserOffPath.FrequencyZero
-            : LaserOffPath.None;
-        MarkOff();
-        if (path == LaserOffPath.None && _gate is IAsyncDisposable port)
-        {
-            // Silence on its line is the one thing left that switches the laser off: the gate's own watchdog.
-            await port.DisposeAsync();
-        }
-
-        lock (_lock)
-        {
-            _offBy = path;
-            _offConfirmed = path != LaserOffPath.None;
-            var why = (refused ?? off.Exception?.InnerException ?? zero.Exception?.InnerException)?.Message;
-            _offProblem = path != LaserOffPath.None ? null : string.Create(
-                CultureInfo.InvariantCulture,
-                $"the laser could not be confirmed off: the gate acknowledged neither OFF nor FREQ 0 ({why}); its port was closed so that its watchdog ({(watchdog.IsCompletedSuccessfully ? MachineProfileValidator.MinWatchdogMs : _watchdogMs)} ms) switches the laser off; a person must check the laser");
-        }
-    }
 }
 
 /// <summary>What <see cref="LaserSafety"/> needs of the run it guards.</summary>
 internal interface ILaserSafetyRun
 {
-    /// <summary>The timing the run times itself with (the switch-off's round trip), or null for a plan without one.</summary>
-    TimedSwitching? Timing { get; }
+    /// <summary>The gate's timing: the run's own, or for a run without one (step by step, dots) the process' on this machine.</summary>
+    TimedSwitching Timing { get; }
+
+    /// <summary>
+    /// How much later than its own round trip a line written to the gate now is answered: the lines and the replies still
+    /// ahead of it on the gate's wire (a timed switch-on just written, its reply); 0 when nothing is.
+    /// </summary>
+    double GateQueueSeconds { get; }
 
     /// <summary>Throws when an abort was asked (checked inside the laser lock before a switch-on).</summary>
     void ThrowIfAborted();
