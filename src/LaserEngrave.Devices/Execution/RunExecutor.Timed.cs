@@ -182,7 +182,7 @@ public sealed partial class RunExecutor
             var (on, onWritten) = await SendSwitchOnAsync(onEffect, offEffect, timing);
             lock (_lock)
             {
-                _cut.Burning(burn, burnIndex, on);
+                _cut.Burning(burn, burnIndex, on, _burstEndsAt);
             }
 
             _lastGateWrite = onWrite;
@@ -688,7 +688,7 @@ public sealed partial class RunExecutor
     private RunStopPoint CutWithin(RunStopPoint stop) =>
         _program is RasterProgram { Timing: { } timing }
             ? _cut.Cut(stop, timing, Job!.Plan, _laser.OffConfirmed, _profile.Gate.WatchdogMs, _stoppedAtKnownPosition ? _x : null, SwitchOnRefused)
-            : stop;
+            : _program is RasterProgram ? StepCut(stop) : stop;
 
     // A flown gap's speed-up has been sent: from here the stroke's plan holds that gap.
     private void NoteGapFlown()

@@ -485,7 +485,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
 
             // A switch-off refused or unanswered after the burn run's burst had stopped the laser by itself: the run's
             // last pulse was the burst's, inside the run; the paths to off still go, and say which confirmed it.
-            if (inDoubt == true)
+            if (inDoubt == true && double.IsFinite(_burstEndsAt))
             {
                 _burstEndedItself |= RunSeconds >= _burstEndsAt;
             }
