@@ -158,10 +158,13 @@ internal sealed class LaserSafety : IAsyncDisposable
                     off = Task.FromException(ex);
                 }
 
+                // A plain timer, not PreciseDelay: this is a deadline the reply almost always beats, not a timed send, and
+                // on the twin every PreciseDelay draws the loaded host's lateness, which would shift every later draw.
                 var window = ConfirmWindow();
                 using (var wait = new CancellationTokenSource())
                 {
-                    await Task.WhenAny(off, PreciseDelay.DelayAsync(_time, window, wait.Token));
+                    var deadline = Task.Delay(window, _time, wait.Token);
+                    await Task.WhenAny(off, deadline);
                     wait.Cancel();
                 }
 

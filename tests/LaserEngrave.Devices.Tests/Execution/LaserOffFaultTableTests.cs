@@ -172,9 +172,11 @@ public sealed class LaserOffFaultTableTests(ITestOutputHelper output)
             return line;
         }
 
-        // The stage's first command written at or after that gate line: where the stage is working as the laser switches.
+        // The stage's first command written at or after that gate line, where the stage is working as the laser switches;
+        // at the last switch-off the last one before it (a timed run has sent its last stroke's moves by then).
         var at = gate[line].Seconds;
-        return run.Written.Where(w => w.Port == "stage").Count(w => w.Seconds < at);
+        var before = run.Written.Where(w => w.Port == "stage").Count(w => w.Seconds < at);
+        return where == Where.LastSwitchOff ? before - 1 : before;
     }
 
     // A pixel dosed in both runs: a part of its dose in each (a few pulses over its edge from the stage's jitter aside).
