@@ -249,6 +249,15 @@ public sealed class TimedSwitching
         return Math.Max(0, answered - (writtenSeconds + OffRoundTripSeconds));
     }
 
+    /// <summary>From writing <c>FREQ f</c> (a step-by-step switch-on) on a free wire to its acknowledgement being in.</summary>
+    public double FrequencyRoundTripSeconds(int frequencyHz)
+    {
+        var gate = _profile.Gate;
+        var command = string.Format(CultureInfo.InvariantCulture, gate.FrequencyCommand, frequencyHz) + gate.LineTerminator;
+        var reply = gate.AckPrefix + " " + string.Format(CultureInfo.InvariantCulture, gate.FrequencyReply, frequencyHz) + gate.LineTerminator;
+        return _gateAdapterSeconds + (command.Length * _gateByteSeconds) + _gateProcessingSeconds + (reply.Length * _gateByteSeconds) + _gateAdapterSeconds;
+    }
+
     /// <summary>The bytes of a burst's acknowledgement.</summary>
     public int BurstReplyBytes(int pulses) => BurstReply(pulses).Length;
 

@@ -36,6 +36,7 @@ internal sealed class LaserSafety : IAsyncDisposable
     // A switch-off refused or not acknowledged in time: the laser may still fire, so every path to off is taken at once.
     private bool _switchOffFailed;
     private Task? _pendingOff;
+    private double _latestAnswerSeconds;
     private readonly LaserOff _off;
     private bool _keepAliveWhileOn;
 
@@ -137,7 +138,9 @@ internal sealed class LaserSafety : IAsyncDisposable
                 _run.ThrowIfAborted();
 
                 // Gate commands are not cancelled: a reply arriving after a cancelled command would be taken for the next one's.
+                var sent = _time.GetTimestamp();
                 await _gate.SetFrequencyAsync(_frequencyHz, CancellationToken.None);
+                NoteAnswered(sent, _run.Timing.FrequencyRoundTripSeconds(_frequencyHz));
                 MarkOn(_time.GetTimestamp());
                 KeepAlive!.Active = _keepAliveWhileOn;
             }
@@ -149,6 +152,7 @@ internal sealed class LaserSafety : IAsyncDisposable
                 }
 
                 Task off;
+                var sent = _time.GetTimestamp();
                 try
                 {
                     off = _gate.OffAsync(CancellationToken.None);
@@ -176,12 +180,24 @@ internal sealed class LaserSafety : IAsyncDisposable
                         : new DeviceException(string.Create(CultureInfo.InvariantCulture, $"the laser gate did not acknowledge the switch-off within {_stallMarginMs:0} ms of its expected arrival"));
                 }
 
+                NoteAnswered(sent, _run.Timing.OffRoundTripSeconds);
                 MarkOff();
             }
         }
         finally
         {
             Lock.Release();
+        }
+    }
+
+    // How much later than its round trip a switching of this run was answered, at most: a computer or a link that late
+    // (a loaded computer on real ports) answers a switch-off that late too.
+    private void NoteAnswered(long sent, double roundTripSeconds)
+    {
+        var late = _time.GetElapsedTime(sent).TotalSeconds - roundTripSeconds;
+        lock (_lock)
+        {
+            _latestAnswerSeconds = Math.Max(_latestAnswerSeconds, late);
         }
     }
 
@@ -229,8 +245,18 @@ internal sealed class LaserSafety : IAsyncDisposable
         }
     }
 
-    // How long a switch-off may take to be acknowledged now: the timed path's test, behind whatever is on the gate's wire.
-    private TimeSpan ConfirmWindow() => LaserOff.ConfirmWindow(_run.Timing, _stallMarginMs, _run.GateQueueSeconds);
+    // How long a switch-off may take to be acknowledged now: the timed path's test, behind whatever is on the gate's wire,
+    // and as much later again as this run's switchings have been answered late at most.
+    private TimeSpan ConfirmWindow()
+    {
+        double late;
+        lock (_lock)
+        {
+            late = _latestAnswerSeconds;
+        }
+
+        return LaserOff.ConfirmWindow(_run.Timing, _stallMarginMs, _run.GateQueueSeconds + late);
+    }
 
     /// <summary>
     /// Switches the laser off after a fault or an abort: OFF, and when that (or an earlier switch-off) was refused or went

@@ -156,7 +156,7 @@ public sealed partial class RunExecutor
     /// <summary>
     /// The stop point's cut pixel when a step-by-step raster run stopped in a burn run whose switch-on was sent: the run
     /// is burned again from its start on resuming, so every pixel from its start to where X stopped (the laser went off
-    /// before the stop) may get part of its dose twice, and the cut pixel names the last of them; the run's last pixel
+    /// before the stop) may get part of their dose twice, and the cut pixel names the last of them; the run's last pixel
     /// when X could not say where it stopped. Caller holds the lock.
     /// </summary>
     private RunStopPoint StepCut(RunStopPoint stop)
