@@ -85,7 +85,10 @@ public sealed class LaserOff
             : LaserOffPath.None;
         if (path != LaserOffPath.None)
         {
-            return new LaserOffResult(path, null);
+            return new LaserOffResult(path, null)
+            {
+                AllAnswered = off.IsCompletedSuccessfully && zero.IsCompletedSuccessfully && watchdog.IsCompletedSuccessfully && pending?.IsCompletedSuccessfully != false,
+            };
         }
 
         // Silence on its line is the one thing left that switches the laser off: the gate's own watchdog.
@@ -128,4 +131,7 @@ public sealed class LaserOff
 public sealed record LaserOffResult(LaserOffPath Path, string? Problem)
 {
     public bool Confirmed => Path != LaserOffPath.None;
+
+    /// <summary>Every command of the sequence was acknowledged, the switch-off in doubt too: the gate was only late.</summary>
+    public bool AllAnswered { get; init; }
 }

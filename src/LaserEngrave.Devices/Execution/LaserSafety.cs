@@ -37,6 +37,9 @@ internal sealed class LaserSafety : IAsyncDisposable
     private bool _switchOffFailed;
     private Task? _pendingOff;
     private double _latestAnswerSeconds;
+
+    // Set under the laser lock when an off sequence (a fault's or an abort's) starts: no switch-on is marked on after it.
+    private bool _offSequenceStarted;
     private readonly LaserOff _off;
     private bool _keepAliveWhileOn;
 
@@ -124,69 +127,140 @@ internal sealed class LaserSafety : IAsyncDisposable
     /// <summary>Switches the laser on (<c>FREQ f</c>, unless an abort came first) or off (<c>OFF</c>), awaiting the gate's acknowledgement.</summary>
     /// <remarks>
     /// A switch-off not acknowledged within its round trip (<see cref="LaserOff.ConfirmWindow(TimedSwitching, double, double)"/>,
-    /// the test a timed run's switch-offs get) is in doubt at once, not after the gate's whole timeout: it throws, and the
-    /// fault's off sequence takes every path, counting a late answer to this OFF too.
+    /// the test a timed run's switch-offs get) is in doubt at once, not after the gate's whole timeout: every path to off
+    /// goes out then (<see cref="LaserOff.EveryWayOffAsync"/>). Answered late after all, it confirms the laser off and the
+    /// run goes on (the watchdog set back); refused or unanswered, it throws, the laser's state recorded for the fault.
     /// </remarks>
     public async Task SwitchAsync(bool on)
     {
+        if (on)
+        {
+            await SwitchOnAsync();
+            return;
+        }
+
         await Lock.WaitAsync();
         try
         {
-            if (on)
+            if (KeepAlive is not null)
             {
-                // Inside the lock: an abort's switch-off is either already sent (and we stop here) or comes after this.
-                _run.ThrowIfAborted();
-
-                // Gate commands are not cancelled: a reply arriving after a cancelled command would be taken for the next one's.
-                var sent = _time.GetTimestamp();
-                await _gate.SetFrequencyAsync(_frequencyHz, CancellationToken.None);
-                NoteAnswered(sent, _run.Timing.FrequencyRoundTripSeconds(_frequencyHz));
-                MarkOn(_time.GetTimestamp());
-                KeepAlive!.Active = _keepAliveWhileOn;
+                KeepAlive.Active = false;
             }
-            else
+
+            Task off;
+            var sent = _time.GetTimestamp();
+            try
             {
-                if (KeepAlive is not null)
-                {
-                    KeepAlive.Active = false;
-                }
+                off = _gate.OffAsync(CancellationToken.None);
+            }
+            catch (Exception ex)
+            {
+                off = Task.FromException(ex);
+            }
 
-                Task off;
-                var sent = _time.GetTimestamp();
-                try
-                {
-                    off = _gate.OffAsync(CancellationToken.None);
-                }
-                catch (Exception ex)
-                {
-                    off = Task.FromException(ex);
-                }
+            // A plain timer, not PreciseDelay: this is a deadline the reply almost always beats, not a timed send, and
+            // on the twin every PreciseDelay draws the loaded host's lateness, which would shift every later draw.
+            var window = ConfirmWindow();
+            using (var wait = new CancellationTokenSource())
+            {
+                var deadline = Task.Delay(window, _time, wait.Token);
+                await Task.WhenAny(off, deadline);
+                wait.Cancel();
+            }
 
-                // A plain timer, not PreciseDelay: this is a deadline the reply almost always beats, not a timed send, and
-                // on the twin every PreciseDelay draws the loaded host's lateness, which would shift every later draw.
-                var window = ConfirmWindow();
-                using (var wait = new CancellationTokenSource())
-                {
-                    var deadline = Task.Delay(window, _time, wait.Token);
-                    await Task.WhenAny(off, deadline);
-                    wait.Cancel();
-                }
-
-                if (!off.IsCompletedSuccessfully)
-                {
-                    MarkSwitchOffFailed(off);
-                    throw off.Exception?.InnerException is { } refused
-                        ? refused as DeviceException ?? new DeviceException($"the laser gate did not switch the laser off: {refused.Message}", refused)
-                        : new DeviceException(string.Create(CultureInfo.InvariantCulture, $"the laser gate did not acknowledge the switch-off within {_stallMarginMs:0} ms of its expected arrival"));
-                }
-
-                NoteAnswered(sent, _run.Timing.OffRoundTripSeconds);
+            if (!off.IsCompletedSuccessfully)
+            {
+                // In doubt: every path to off at once, now, the stage stopped with them (step by step it stands here).
+                var refused = off.IsFaulted ? off.Exception?.InnerException : null;
+                var result = await _off.EveryWayOffAsync(refused, off, _watchdogMs, _run.StopStageAsync);
                 MarkOff();
+                if (result.AllAnswered)
+                {
+                    // Only late (a loaded computer, a slow link): every command answered, the laser confirmed off, and step
+                    // by step nothing depends on when; the watchdog the emergency shortened is set back and the run goes on.
+                    // (A lost answer is not late: the replies to OFF and FREQ 0 read the same, so one goes unanswered.)
+                    NoteAnswered(sent, _run.Timing.OffRoundTripSeconds);
+                    await _gate.SetWatchdogAsync(_watchdogMs, CancellationToken.None);
+                    return;
+                }
+
+                lock (_lock)
+                {
+                    _switchOffFailed = true;
+                    _offBy = result.Path;
+                    _offConfirmed = result.Confirmed;
+                    _offProblem = result.Problem;
+                }
+
+                throw refused is not null
+                    ? refused as DeviceException ?? new DeviceException($"the laser gate did not switch the laser off: {refused.Message}", refused)
+                    : new DeviceException(string.Create(CultureInfo.InvariantCulture, $"the laser gate did not acknowledge the switch-off within {_stallMarginMs:0} ms of its expected arrival"));
             }
+
+            NoteAnswered(sent, _run.Timing.OffRoundTripSeconds);
+            MarkOff();
         }
         finally
         {
             Lock.Release();
+        }
+    }
+
+    /// <summary>
+    /// <c>FREQ f</c>, unless an abort came first: started under the laser lock, so that it is written before an abort's
+    /// switch-off or not at all (the gate drops a command asked for before an emergency command), but its acknowledgement
+    /// is awaited outside it, so that an abort's switch-off never waits behind a gate that does not answer.
+    /// </summary>
+    private async Task SwitchOnAsync()
+    {
+        Task ack;
+        long sent;
+        await Lock.WaitAsync();
+        try
+        {
+            // Inside the lock: an abort's switch-off is either already sent (and we stop here) or comes after this.
+            _run.ThrowIfAborted();
+
+            // Gate commands are not cancelled: a reply arriving after a cancelled command would be taken for the next one's.
+            sent = _time.GetTimestamp();
+            ack = Start(() => _gate.SetFrequencyAsync(_frequencyHz, CancellationToken.None));
+        }
+        finally
+        {
+            Lock.Release();
+        }
+
+        await ack;
+        NoteAnswered(sent, _run.Timing.FrequencyRoundTripSeconds(_frequencyHz));
+        await Lock.WaitAsync();
+        try
+        {
+            // An abort's off sequence ran while the acknowledgement was on its way: the laser is off, and stays so.
+            _run.ThrowIfAborted();
+            if (_offSequenceStarted)
+            {
+                throw new OperationCanceledException("the laser was switched off while its switch-on was answered");
+            }
+
+            MarkOn(_time.GetTimestamp());
+            KeepAlive!.Active = _keepAliveWhileOn;
+        }
+        finally
+        {
+            Lock.Release();
+        }
+    }
+
+    // A call that throws before it returns its task fails that task instead.
+    private static Task Start(Func<Task> send)
+    {
+        try
+        {
+            return send();
+        }
+        catch (Exception ex)
+        {
+            return Task.FromException(ex);
         }
     }
 
@@ -280,6 +354,7 @@ internal sealed class LaserSafety : IAsyncDisposable
                 inDoubt = _switchOffFailed;
             }
 
+            _offSequenceStarted = true;
             _run.OffSequenceStarting(everyPathTaken ? null : inDoubt);
             if (everyPathTaken)
             {

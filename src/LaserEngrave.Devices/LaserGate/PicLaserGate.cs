@@ -34,6 +34,9 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
     private bool _resynchronise;
     private bool _closed;
 
+    // How many emergency commands were written: an ordinary command asked for before one is never written after it.
+    private long _emergencies;
+
     public PicLaserGate(ISerialLink link, LaserGateProfile profile, TimeProvider? timeProvider = null)
     {
         ArgumentNullException.ThrowIfNull(link);
@@ -122,6 +125,11 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
         await _sendLock.WaitAsync(cancellationToken);
         try
         {
+            lock (_gate)
+            {
+                _emergencies++;
+            }
+
             reply = await WriteAsync(line, expected, cancellationToken);
         }
         finally
@@ -154,6 +162,12 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
         ArgumentNullException.ThrowIfNull(command);
         ArgumentNullException.ThrowIfNull(expected);
         TaskCompletionSource<string> reply;
+        long asked;
+        lock (_gate)
+        {
+            asked = _emergencies;
+        }
+
         await _order.WaitAsync(cancellationToken);
         try
         {
@@ -168,7 +182,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
                 // After a timeout a late reply may still be on its way: a keepalive answered by its own reply proves the line is in step.
                 try
                 {
-                    await AwaitReplyAsync(Profile.KeepAliveCommand, await WriteLineAsync(Profile.KeepAliveCommand, Profile.KeepAliveReply, cancellationToken), cancellationToken);
+                    await AwaitReplyAsync(Profile.KeepAliveCommand, await WriteLineAsync(Profile.KeepAliveCommand, Profile.KeepAliveReply, asked, cancellationToken), cancellationToken);
                 }
                 catch (DeviceTimeoutException ex)
                 {
@@ -180,7 +194,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
                 }
             }
 
-            reply = await WriteLineAsync(command, expected, cancellationToken);
+            reply = await WriteLineAsync(command, expected, asked, cancellationToken);
         }
         finally
         {
@@ -190,12 +204,22 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
         return await AwaitReplyAsync(command, reply, cancellationToken);
     }
 
-    // Holds the send lock only while the line is written, so that an emergency command waits for nothing longer.
-    private async Task<TaskCompletionSource<string>> WriteLineAsync(string command, string expected, CancellationToken cancellationToken)
+    // Holds the send lock only while the line is written, so that an emergency command waits for nothing longer. A command
+    // asked for before an emergency command was written is dropped (GRBL's reset flushes its queue the same way): a
+    // switch-on held up behind a resynchronisation must never reach the gate after the emergency off.
+    private async Task<TaskCompletionSource<string>> WriteLineAsync(string command, string expected, long asked, CancellationToken cancellationToken)
     {
         await _sendLock.WaitAsync(cancellationToken);
         try
         {
+            lock (_gate)
+            {
+                if (_emergencies != asked)
+                {
+                    throw new DeviceException($"laser gate on {PortName}: '{command}' was not sent: the emergency off went first");
+                }
+            }
+
             return await WriteAsync(command, expected, cancellationToken);
         }
         finally

@@ -126,7 +126,8 @@ public sealed class LaserOffFaultTableTests(ITestOutputHelper output)
             return;
         }
 
-        if (result.LaserOffBy is LaserOffPath.OffAgain or LaserOffPath.FrequencyZero or LaserOffPath.None)
+        if (result.LaserOffBy is LaserOffPath.OffAgain or LaserOffPath.FrequencyZero or LaserOffPath.None
+            || (result.Outcome == RunOutcome.Completed && zero > 0))
         {
             Assert.True(zero > 0, string.Join(" | ", lines));
             Assert.Equal(["OFF", "FREQ 0", "WDOG 50"], lines.Skip(zero - 1).Take(3));
@@ -138,6 +139,12 @@ public sealed class LaserOffFaultTableTests(ITestOutputHelper output)
             if (result.LaserOffBy == LaserOffPath.None)
             {
                 Assert.Equal(zero + 1, lines.Count - 1);
+            }
+
+            if (result.Outcome == RunOutcome.Completed)
+            {
+                // A step-by-step switch-off answered late: every path went out at its window, then the watchdog set back.
+                Assert.Contains("WDOG 1000", lines.Skip(zero + 2));
             }
         }
         else

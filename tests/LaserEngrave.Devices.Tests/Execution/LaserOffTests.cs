@@ -69,6 +69,35 @@ public sealed class LaserOffTests(ITestOutputHelper output)
         Assert.Equal(MachineProfileValidator.MinWatchdogMs, run.Machine.Gate.WatchdogMs);
     }
 
+    [Fact(Timeout = 120_000)]
+    public async Task RunAsync_StepByStepSwitchOffAnsweredLate_EveryPathAtItsWindowThenTheRunGoesOnAndCompletes()
+    {
+        // A late answer (a loaded computer on real ports) is in doubt as soon as an unanswered one; it then confirms the
+        // laser off, and step by step nothing depends on when: the watchdog is set back and the run goes on.
+        var ct = TestContext.Current.CancellationToken;
+        var job = TestJobs.FromMask(TestJobs.Mask("..######..", "...#######"), 2, new PlanOptions { Strategy = PlanStrategy.Paper });
+        int firstOff;
+        await using (var clean = SimulatedRun.Create())
+        {
+            await clean.Do(() => clean.Executor(job).RunAsync(ct));
+            var lines = clean.Written.Where(w => w.Port == "gate").Select(w => w.Line).ToList();
+            firstOff = lines.IndexOf("OFF", lines.IndexOf("FREQ 1000"));
+        }
+
+        await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = $"delay:gate:after={firstOff}:ms=100" });
+        var result = await run.Do(() => run.Executor(job).RunAsync(ct));
+
+        var gate = run.Written.Where(w => w.Port == "gate").ToList();
+        output.WriteLine(string.Join(" | ", gate.Select(g => $"{g.Seconds:0.0000} {g.Line}")));
+        Assert.Equal(RunOutcome.Completed, result.Outcome);
+        Assert.Equal(["OFF", "OFF", "FREQ 0", "WDOG 50", "WDOG 1000"], gate.Skip(firstOff).Take(5).Select(g => g.Line));
+        Assert.InRange(gate[firstOff + 1].Seconds - gate[firstOff].Seconds, 0.02, 0.06);
+        Assert.Equal(run.Machine.Profile.Gate.WatchdogMs, run.Machine.Gate.WatchdogMs);
+        var report = run.Analyze(job);
+        Assert.True(report.Burned.ContentEquals(job.Mask), $"{report.ExtraPixels} extra, {report.MissingPixels} missing");
+        Assert.Equal(0, report.LaserOnTravelCount);
+    }
+
     [Fact(Timeout = 60_000)]
     public async Task FirePulsesAsync_SwitchOffUnanswered_TestMoveTakesTheRunsEmergencyOffAndFails()
     {
@@ -126,6 +155,42 @@ public sealed class LaserOffTests(ITestOutputHelper output)
 
         output.WriteLine(string.Join(" ", paths));
         Assert.All(paths, p => Assert.EndsWith(":Off", p, StringComparison.Ordinal));
+    }
+
+    [Theory(Timeout = 120_000)]
+    [InlineData(false)]
+    [InlineData(true)]
+    public async Task Abort_WhileTheFirstSwitchOnGoesUnanswered_OffWrittenAtOnceNotAfterTheGatesTimeout(bool dots)
+    {
+        // A step-by-step switch-on (FREQ f) and a dot's burst held the laser lock for the gate's whole 500 ms timeout:
+        // the abort's OFF waited behind it.
+        var ct = TestContext.Current.CancellationToken;
+        await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = "no-ack:gate:after=3" });
+        var process = dots ? ProcessSettings.Default with { Mode = PlanMode.Dots, PulsesPerDot = 50 } : null;
+        var job = TestJobs.FromMask(TestJobs.Mask("..######..", "...#######"), 2, new PlanOptions { Strategy = PlanStrategy.Paper }, process: process);
+        var executor = run.Executor(job);
+        var abortedAt = double.NaN;
+        var watching = run.Do(async () =>
+        {
+            while (!run.Written.Any(w => w.Port == "gate" && (w.Line.StartsWith("BURST", StringComparison.Ordinal) || w.Line == "FREQ 1000")))
+            {
+                await Task.Delay(TimeSpan.FromMilliseconds(1), run.Time, ct);
+            }
+
+            await Task.Delay(TimeSpan.FromMilliseconds(10), run.Time, ct);
+            abortedAt = run.Machine.NowSeconds;
+            executor.Abort();
+        });
+
+        var result = await run.Do(() => executor.RunAsync(ct));
+        await watching;
+
+        var gate = run.Written.Where(w => w.Port == "gate").ToList();
+        output.WriteLine(string.Join(" | ", gate.Select(g => $"{g.Seconds:0.0000} {g.Line}")));
+        Assert.Equal(RunOutcome.Aborted, result.Outcome);
+        var off = gate.First(g => g.Seconds >= abortedAt && g.Line == "OFF");
+        Assert.InRange(off.Seconds - abortedAt, 0, 0.005);
+        Assert.False(run.Machine.Gate.IsFiring);
     }
 
     [Fact(Timeout = 120_000)]
