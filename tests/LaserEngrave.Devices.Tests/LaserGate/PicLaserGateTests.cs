@@ -267,6 +267,32 @@ public class PicLaserGateTests
     }
 
     [Fact]
+    public async Task EmergencyAsync_WhileASwitchOnWaitsBehindAResync_TheSwitchOnIsNeverWrittenAfterIt()
+    {
+        // A switch-on held up behind the PING must not reach the gate after the emergency off (GRBL's reset flushes its queue).
+        await using var rig = new GateRig(new VirtualTimeProvider());
+        rig.Fake.Intercept = _ => string.Empty;
+
+        await rig.RunAsync(async () =>
+        {
+            var first = rig.Gate.OffAsync(None);
+            Assert.Equal("OFF", await rig.Fake.NextAsync());
+            await VirtualTime.ThrowsAsync<DeviceTimeoutException>(first);
+            var on = rig.Gate.SetFrequencyAsync(1000, None);
+            Assert.Equal("PING", await rig.Fake.NextAsync());
+
+            var off = rig.Gate.EmergencyAsync(EmergencyCommand.Off, None);
+            Assert.Equal("OFF", await rig.Fake.NextAsync());
+            await rig.Fake.SendRawAsync("OK PONG\nOK FREQ 0\n");
+            await off;
+
+            var dropped = await Assert.ThrowsAsync<DeviceException>(() => on);
+            Assert.Contains("'FREQ 1000' was not sent: the emergency off went first", dropped.Message, StringComparison.Ordinal);
+            Assert.DoesNotContain("FREQ 1000", rig.Fake.AllReceived());
+        });
+    }
+
+    [Fact]
     public async Task CloseAsync_WithACommandWaiting_FailsItAndEveryLaterOne()
     {
         await using var rig = new GateRig(new FakeTimeProvider());
