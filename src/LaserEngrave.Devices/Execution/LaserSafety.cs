@@ -1,10 +1,8 @@
 using System.Globalization;
-using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Scheduling;
-using LaserEngrave.Wire.Scheduling;
 
 namespace LaserEngrave.Devices.Execution;
 
@@ -15,7 +13,7 @@ namespace LaserEngrave.Devices.Execution;
 /// </summary>
 /// <remarks>
 /// Its state lock is taken last (under the engine's, never the other way round) and never held across a call out.
-/// docs/execution.md ("Safety") describes the off sequence.
+/// The off sequence itself is <see cref="LaserOff"/>'s; docs/execution.md ("Faults and resume", "The laser-off path") describes it.
 /// </remarks>
 internal sealed class LaserSafety : IAsyncDisposable
 {
