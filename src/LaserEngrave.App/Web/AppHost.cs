@@ -207,14 +207,11 @@ public static class AppHost
         _ = main.Activity.WhenIdleAsync().Wait(RunEndWait);
         if (main.Machine.Connection is { } connection)
         {
-            try
-            {
-                connection.Gate.OffAsync(CancellationToken.None).WaitAsync(TimeSpan.FromMilliseconds(500)).GetAwaiter().GetResult();
-            }
-            catch (Exception ex) when (ex is TimeoutException or Devices.Abstractions.DeviceException or ObjectDisposedException or InvalidOperationException)
-            {
-                // Nothing more can be done at exit; the gate's watchdog switches the laser off by itself.
-            }
+            // The runs' own off path (every path when OFF is in doubt, the port closed last); it settles every failure itself.
+            // Nothing more can be done at exit past the bound: the gate's watchdog switches the laser off by itself.
+            var off = new Devices.Execution.LaserOff(connection.Gate, connection.TimeProvider)
+                .SwitchOffAsync(Devices.Execution.LaserOff.ConfirmWindow(Core.Planning.ProcessSettings.FromProfile(connection.Profile), connection.Profile), connection.Profile.Gate.WatchdogMs);
+            _ = off.Wait(TimeSpan.FromMilliseconds(1000));
 
             _ = main.Machine.CloseAsync().Wait(TimeSpan.FromMilliseconds(300));
         }

@@ -115,13 +115,14 @@ public static class RunSummaryText
             }
             else if (stop.CutPixel is { } first)
             {
-                Line("Resumes", string.Create(c, $"from the run's start; pixel column {first.Column}, row {first.Row} (the laser went off in it, or its switch-on was never acknowledged) may get part of its dose twice"));
+                Line("Resumes", string.Create(c, $"from the run's start; its pixels up to column {first.Column}, row {first.Row} (where the laser went off at the latest, or its switch-on was never acknowledged) may get part of their dose twice"));
             }
 
             if (stop is { OffByGateWatchdog: true, OffCutPixel: { } offCut })
             {
-                var at = stop.OffResumeXMicrosteps is { } offX ? string.Create(c, $"mid-run at X {offX} microsteps") : "from the run's start";
-                Line("Or resumes", string.Create(c, $"{at} if the gate reports its watchdog did not trip (it heard the OFF); then pixel column {offCut.Column}, row {offCut.Row} burns twice"));
+                Line("Or resumes", stop.OffResumeXMicrosteps is { } offX
+                    ? string.Create(c, $"mid-run at X {offX} microsteps if the gate reports its watchdog did not trip (it heard the OFF); then pixel column {offCut.Column}, row {offCut.Row} burns twice")
+                    : string.Create(c, $"from the run's start if the gate reports its watchdog did not trip (it heard the OFF); then its pixels up to column {offCut.Column}, row {offCut.Row} may get part of their dose twice"));
             }
         }
 

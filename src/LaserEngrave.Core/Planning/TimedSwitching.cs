@@ -97,6 +97,8 @@ public sealed class TimedSwitching
         OffLeadSeconds = gateAdapter + (OffCommand.Length * gateByte) + processing;
         OnRoundTripSeconds = OnLeadSeconds + (onReply.Length * gateByte) + gateAdapter;
         KeepAliveBytes = ping.Length;
+        KeepAliveReplyBytes = pong.Length;
+        OffReplyBytes = offReply.Length;
         OffRoundTripSeconds = OffLeadSeconds + (offReply.Length * gateByte) + gateAdapter;
         KeepAliveRoundTripSeconds = gateAdapter + (ping.Length * gateByte) + processing + (pong.Length * gateByte) + gateAdapter;
 
@@ -227,6 +229,43 @@ public sealed class TimedSwitching
     /// <summary>When the gate's wire is free again after <paramref name="bytes"/> written at <paramref name="writtenSeconds"/> behind a wire busy until <paramref name="wireFreeSeconds"/>.</summary>
     public double GateWireFreeAfter(double writtenSeconds, double wireFreeSeconds, int bytes) =>
         Math.Max(writtenSeconds + _gateAdapterSeconds, wireFreeSeconds) + (bytes * _gateByteSeconds);
+
+    /// <summary>
+    /// When the gate's replies are all in again after a line whose bytes are on the wire by <paramref name="lineFreeSeconds"/>,
+    /// its reply <paramref name="replyBytes"/> long, behind replies in until <paramref name="repliesInSeconds"/>: the gate
+    /// answers its lines in order, one reply on its wire at a time.
+    /// </summary>
+    public double GateRepliesInAfter(double lineFreeSeconds, double repliesInSeconds, int replyBytes) =>
+        Math.Max(lineFreeSeconds + _gateProcessingSeconds + _gateAdapterSeconds, repliesInSeconds) + (replyBytes * _gateByteSeconds);
+
+    /// <summary>
+    /// How much later than its own round trip an OFF written at <paramref name="writtenSeconds"/> is answered, behind a wire
+    /// busy until <paramref name="wireFreeSeconds"/> and replies in until <paramref name="repliesInSeconds"/> (an abort's
+    /// OFF written just after a timed switch-on: its reply comes after the burst's).
+    /// </summary>
+    public double OffQueuedSeconds(double writtenSeconds, double wireFreeSeconds, double repliesInSeconds)
+    {
+        var answered = GateRepliesInAfter(GateWireFreeAfter(writtenSeconds, wireFreeSeconds, OffCommand.Length), repliesInSeconds, OffReplyBytes);
+        return Math.Max(0, answered - (writtenSeconds + OffRoundTripSeconds));
+    }
+
+    /// <summary>From writing <c>FREQ f</c> (a step-by-step switch-on) on a free wire to its acknowledgement being in.</summary>
+    public double FrequencyRoundTripSeconds(int frequencyHz)
+    {
+        var gate = _profile.Gate;
+        var command = string.Format(CultureInfo.InvariantCulture, gate.FrequencyCommand, frequencyHz) + gate.LineTerminator;
+        var reply = gate.AckPrefix + " " + string.Format(CultureInfo.InvariantCulture, gate.FrequencyReply, frequencyHz) + gate.LineTerminator;
+        return _gateAdapterSeconds + (command.Length * _gateByteSeconds) + _gateProcessingSeconds + (reply.Length * _gateByteSeconds) + _gateAdapterSeconds;
+    }
+
+    /// <summary>The bytes of a burst's acknowledgement.</summary>
+    public int BurstReplyBytes(int pulses) => BurstReply(pulses).Length;
+
+    /// <summary>The bytes of the switch-off's acknowledgement.</summary>
+    public int OffReplyBytes { get; }
+
+    /// <summary>The bytes of the keepalive's acknowledgement.</summary>
+    public int KeepAliveReplyBytes { get; }
 
     /// <summary>
     /// Null when a burn run of <paramref name="lengthMicrosteps"/> fits in one burst, otherwise the reason in one line: the

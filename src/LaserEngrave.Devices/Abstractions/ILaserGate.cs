@@ -22,6 +22,32 @@ public interface ILaserGate
 
     /// <summary>Fires <paramref name="pulses"/> pulses at <paramref name="frequencyHz"/>, then stops by itself.</summary>
     Task BurstAsync(int pulses, int frequencyHz, CancellationToken cancellationToken);
+
+    /// <summary>
+    /// Sends one command of the emergency off (<see cref="Execution.LaserOff"/>) at once, whatever the link's state: ahead of
+    /// every ordinary command waiting to be sent and without first getting the link back in step after a timeout (a
+    /// keepalive sent first would only feed the watchdog the off counts on); waits for the acknowledgement.
+    /// </summary>
+    Task EmergencyAsync(EmergencyCommand command, CancellationToken cancellationToken);
+
+    /// <summary>
+    /// Closes the gate's port: the gate hears nothing more, so its own watchdog switches the laser off (the last resort of
+    /// the emergency off); every command waiting fails, and every later one too. Closing twice does nothing more.
+    /// </summary>
+    ValueTask CloseAsync();
+}
+
+/// <summary>The commands of the emergency off, each a way to stop the laser on its own.</summary>
+public enum EmergencyCommand
+{
+    /// <summary>OFF.</summary>
+    Off,
+
+    /// <summary>FREQ 0.</summary>
+    FrequencyZero,
+
+    /// <summary>The shortest watchdog the profile rules allow (<see cref="Core.Geometry.MachineProfileValidator.MinWatchdogMs"/> ms), so a gate that hears nothing more stops soonest.</summary>
+    ShortestWatchdog,
 }
 
 /// <summary>What the gate reports about itself.</summary>

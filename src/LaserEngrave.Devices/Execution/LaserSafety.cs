@@ -1,10 +1,8 @@
 using System.Globalization;
-using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Scheduling;
-using LaserEngrave.Wire.Scheduling;
 
 namespace LaserEngrave.Devices.Execution;
 
@@ -15,7 +13,7 @@ namespace LaserEngrave.Devices.Execution;
 /// </summary>
 /// <remarks>
 /// Its state lock is taken last (under the engine's, never the other way round) and never held across a call out.
-/// docs/execution.md ("Safety") describes the off sequence.
+/// The off sequence itself is <see cref="LaserOff"/>'s; docs/execution.md ("Faults and resume", "The laser-off path") describes it.
 /// </remarks>
 internal sealed class LaserSafety : IAsyncDisposable
 {
@@ -35,6 +33,12 @@ internal sealed class LaserSafety : IAsyncDisposable
 
     // A switch-off refused or not acknowledged in time: the laser may still fire, so every path to off is taken at once.
     private bool _switchOffFailed;
+    private Task? _pendingOff;
+    private double _latestAnswerSeconds;
+
+    // Set under the laser lock when an off sequence (a fault's or an abort's) starts: no switch-on is marked on after it.
+    private bool _offSequenceStarted;
+    private readonly LaserOff _off;
     private bool _keepAliveWhileOn;
 
     /// <param name="frequencyHz">The pulse frequency a switch-on (<c>FREQ f</c>) sets.</param>
@@ -49,6 +53,7 @@ internal sealed class LaserSafety : IAsyncDisposable
         _watchdogMs = watchdogMs;
         _stallMarginMs = stallMarginMs;
         _run = run;
+        _off = new LaserOff(gate, time);
     }
 
     /// <summary>
@@ -118,44 +123,153 @@ internal sealed class LaserSafety : IAsyncDisposable
     }
 
     /// <summary>Switches the laser on (<c>FREQ f</c>, unless an abort came first) or off (<c>OFF</c>), awaiting the gate's acknowledgement.</summary>
+    /// <remarks>
+    /// A switch-off not acknowledged within its round trip (<see cref="LaserOff.ConfirmWindow(TimedSwitching, double, double)"/>,
+    /// the test a timed run's switch-offs get) is in doubt at once, not after the gate's whole timeout: every path to off
+    /// goes out then (<see cref="LaserOff.EveryWayOffAsync"/>). Answered late after all, it confirms the laser off and the
+    /// run goes on (the watchdog set back); refused or unanswered, it throws, the laser's state recorded for the fault.
+    /// </remarks>
     public async Task SwitchAsync(bool on)
     {
+        if (on)
+        {
+            await SwitchOnAsync();
+            return;
+        }
+
         await Lock.WaitAsync();
         try
         {
-            if (on)
+            if (KeepAlive is not null)
             {
-                // Inside the lock: an abort's switch-off is either already sent (and we stop here) or comes after this.
-                _run.ThrowIfAborted();
-
-                // Gate commands are not cancelled: a reply arriving after a cancelled command would be taken for the next one's.
-                await _gate.SetFrequencyAsync(_frequencyHz, CancellationToken.None);
-                MarkOn(_time.GetTimestamp());
-                KeepAlive!.Active = _keepAliveWhileOn;
+                KeepAlive.Active = false;
             }
-            else
+
+            Task off;
+            var sent = _time.GetTimestamp();
+            try
             {
-                if (KeepAlive is not null)
-                {
-                    KeepAlive.Active = false;
-                }
+                off = _gate.OffAsync(CancellationToken.None);
+            }
+            catch (Exception ex)
+            {
+                off = Task.FromException(ex);
+            }
 
-                try
-                {
-                    await _gate.OffAsync(CancellationToken.None);
-                }
-                catch (DeviceException)
-                {
-                    MarkSwitchOffFailed();
-                    throw;
-                }
+            // A plain timer, not PreciseDelay: this is a deadline the reply almost always beats, not a timed send, and
+            // on the twin every PreciseDelay draws the loaded host's lateness, which would shift every later draw.
+            var window = ConfirmWindow();
+            using (var wait = new CancellationTokenSource())
+            {
+                var deadline = Task.Delay(window, _time, wait.Token);
+                await Task.WhenAny(off, deadline);
+                wait.Cancel();
+            }
 
+            if (!off.IsCompletedSuccessfully)
+            {
+                // In doubt: every path to off at once, now, the stage stopped with them (step by step it stands here).
+                var refused = off.IsFaulted ? off.Exception?.InnerException : null;
+                var result = await _off.EveryWayOffAsync(refused, off, _watchdogMs, _run.StopStageAsync);
                 MarkOff();
+                if (result.AllAnswered)
+                {
+                    // Only late (a loaded computer, a slow link): every command answered, the laser confirmed off, and step
+                    // by step nothing depends on when; the watchdog the emergency shortened is set back and the run goes on.
+                    // (A lost answer is not late: the replies to OFF and FREQ 0 read the same, so one goes unanswered.)
+                    NoteAnswered(sent, _run.Timing.OffRoundTripSeconds);
+                    await _gate.SetWatchdogAsync(_watchdogMs, CancellationToken.None);
+                    return;
+                }
+
+                lock (_lock)
+                {
+                    _switchOffFailed = true;
+                    _offBy = result.Path;
+                    _offConfirmed = result.Confirmed;
+                    _offProblem = result.Problem;
+                }
+
+                throw refused is not null
+                    ? refused as DeviceException ?? new DeviceException($"the laser gate did not switch the laser off: {refused.Message}", refused)
+                    : new DeviceException(string.Create(CultureInfo.InvariantCulture, $"the laser gate did not acknowledge the switch-off within {_stallMarginMs:0} ms of its expected arrival"));
             }
+
+            NoteAnswered(sent, _run.Timing.OffRoundTripSeconds);
+            MarkOff();
         }
         finally
         {
             Lock.Release();
+        }
+    }
+
+    /// <summary>
+    /// <c>FREQ f</c>, unless an abort came first: started under the laser lock, so that it is written before an abort's
+    /// switch-off or not at all (the gate drops a command asked for before an emergency command), but its acknowledgement
+    /// is awaited outside it, so that an abort's switch-off never waits behind a gate that does not answer.
+    /// </summary>
+    private async Task SwitchOnAsync()
+    {
+        Task ack;
+        long sent;
+        await Lock.WaitAsync();
+        try
+        {
+            // Inside the lock: an abort's switch-off is either already sent (and we stop here) or comes after this.
+            _run.ThrowIfAborted();
+
+            // Gate commands are not cancelled: a reply arriving after a cancelled command would be taken for the next one's.
+            sent = _time.GetTimestamp();
+            ack = Start(() => _gate.SetFrequencyAsync(_frequencyHz, CancellationToken.None));
+        }
+        finally
+        {
+            Lock.Release();
+        }
+
+        await ack;
+        NoteAnswered(sent, _run.Timing.FrequencyRoundTripSeconds(_frequencyHz));
+        await Lock.WaitAsync();
+        try
+        {
+            // An abort's off sequence ran while the acknowledgement was on its way: the laser is off, and stays so.
+            _run.ThrowIfAborted();
+            if (_offSequenceStarted)
+            {
+                throw new OperationCanceledException("the laser was switched off while its switch-on was answered");
+            }
+
+            MarkOn(_time.GetTimestamp());
+            KeepAlive!.Active = _keepAliveWhileOn;
+        }
+        finally
+        {
+            Lock.Release();
+        }
+    }
+
+    // A call that throws before it returns its task fails that task instead.
+    private static Task Start(Func<Task> send)
+    {
+        try
+        {
+            return send();
+        }
+        catch (Exception ex)
+        {
+            return Task.FromException(ex);
+        }
+    }
+
+    // How much later than its round trip a switching of this run was answered, at most: a computer or a link that late
+    // (a loaded computer on real ports) answers a switch-off that late too.
+    private void NoteAnswered(long sent, double roundTripSeconds)
+    {
+        var late = _time.GetElapsedTime(sent).TotalSeconds - roundTripSeconds;
+        lock (_lock)
+        {
+            _latestAnswerSeconds = Math.Max(_latestAnswerSeconds, late);
         }
     }
 
@@ -193,12 +307,27 @@ internal sealed class LaserSafety : IAsyncDisposable
     }
 
     /// <summary>A switch-off was refused or not acknowledged: the fault's off sequence takes every path at once.</summary>
-    public void MarkSwitchOffFailed()
+    /// <param name="pending">The OFF still waiting for its answer, when it is (a late answer confirms the laser off too).</param>
+    public void MarkSwitchOffFailed(Task? pending = null)
     {
         lock (_lock)
         {
             _switchOffFailed = true;
+            _pendingOff = pending ?? _pendingOff;
         }
+    }
+
+    // How long a switch-off may take to be acknowledged now: the timed path's test, behind whatever is on the gate's wire,
+    // and as much later again as this run's switchings have been answered late at most.
+    private TimeSpan ConfirmWindow()
+    {
+        double late;
+        lock (_lock)
+        {
+            late = _latestAnswerSeconds;
+        }
+
+        return LaserOff.ConfirmWindow(_run.Timing, _stallMarginMs, _run.GateQueueSeconds + late);
     }
 
     /// <summary>
@@ -223,45 +352,29 @@ internal sealed class LaserSafety : IAsyncDisposable
                 inDoubt = _switchOffFailed;
             }
 
+            _offSequenceStarted = true;
             _run.OffSequenceStarting(everyPathTaken ? null : inDoubt);
             if (everyPathTaken)
             {
                 return;
             }
 
-            DeviceException? refused = null;
-            Task? first = null;
-            if (!inDoubt)
+            Task? pending;
+            lock (_lock)
             {
-                first = _gate.OffAsync(CancellationToken.None);
-
-                // Answered within its round trip (and the margin a stage reply gets), or it is in doubt: a gate gone deaf
-                // must not leave the stage sweeping for the whole of the gate's timeout with the laser on.
-                var timing = _run.Timing;
-                var roundTrip = (timing?.OffRoundTripSeconds ?? 0.02) + (2 * (timing?.GateJitterSeconds ?? 0)) + Units.MsToSeconds(_stallMarginMs);
-                using (var wait = new CancellationTokenSource())
-                {
-                    await Task.WhenAny(first, PreciseDelay.DelayAsync(_time, TimeSpan.FromSeconds(roundTrip), wait.Token));
-                    wait.Cancel();
-                }
-
-                if (first.IsCompletedSuccessfully)
-                {
-                    MarkOff();
-                    lock (_lock)
-                    {
-                        _offConfirmed = true;
-                        _offProblem = null;
-                        _offBy = LaserOffPath.Off;
-                    }
-
-                    return;
-                }
-
-                refused = first.Exception?.InnerException as DeviceException;
+                pending = _pendingOff;
             }
 
-            await EveryWayOffAsync(refused, first);
+            var result = inDoubt
+                ? await _off.EveryWayOffAsync(null, pending, _watchdogMs, _run.StopStageAsync)
+                : await _off.SwitchOffAsync(ConfirmWindow(), _watchdogMs, _run.StopStageAsync);
+            MarkOff();
+            lock (_lock)
+            {
+                _offBy = result.Path;
+                _offConfirmed = result.Confirmed;
+                _offProblem = result.Problem;
+            }
         }
         finally
         {
@@ -276,62 +389,19 @@ internal sealed class LaserSafety : IAsyncDisposable
             await KeepAlive.DisposeAsync();
         }
     }
-
-    private static async Task Settled(Task task)
-    {
-        try
-        {
-            await task;
-        }
-        catch (DeviceException)
-        {
-            // Looked at through the task itself.
-        }
-    }
-
-    /// <summary>
-    /// A switch-off was refused or went unanswered: OFF again, FREQ 0 and the gate's shortest watchdog go out together,
-    /// with a stop to both axes so that nothing more is swept; the first the gate acknowledges of OFF and FREQ 0 confirms
-    /// the laser off. When neither is acknowledged the gate's port is closed, so that the gate hears nothing more and its
-    /// watchdog switches the laser off, and the run says a person must check the laser. Caller holds the laser lock.
-    /// </summary>
-    /// <param name="refused">Why the switch-off was refused, when it was.</param>
-    /// <param name="first">The fault's own OFF, still waiting for its answer (a late answer confirms the laser off too).</param>
-    private async Task EveryWayOffAsync(DeviceException? refused, Task? first)
-    {
-        // Gate commands are not cancelled (a late reply would be taken for the next one's): each waits its own timeout.
-        var off = _gate.OffAsync(CancellationToken.None);
-        var zero = _gate.SetFrequencyAsync(0, CancellationToken.None);
-        var watchdog = _gate.SetWatchdogAsync(MachineProfileValidator.MinWatchdogMs, CancellationToken.None);
-        var stopping = _run.StopStageAsync();
-        await Task.WhenAll(Settled(first ?? Task.CompletedTask), Settled(off), Settled(zero), Settled(watchdog), stopping);
-        var path = off.IsCompletedSuccessfully || first?.IsCompletedSuccessfully == true ? LaserOffPath.OffAgain
-            : zero.IsCompletedSuccessfully ? LaserOffPath.FrequencyZero
-            : LaserOffPath.None;
-        MarkOff();
-        if (path == LaserOffPath.None && _gate is IAsyncDisposable port)
-        {
-            // Silence on its line is the one thing left that switches the laser off: the gate's own watchdog.
-            await port.DisposeAsync();
-        }
-
-        lock (_lock)
-        {
-            _offBy = path;
-            _offConfirmed = path != LaserOffPath.None;
-            var why = (refused ?? off.Exception?.InnerException ?? zero.Exception?.InnerException)?.Message;
-            _offProblem = path != LaserOffPath.None ? null : string.Create(
-                CultureInfo.InvariantCulture,
-                $"the laser could not be confirmed off: the gate acknowledged neither OFF nor FREQ 0 ({why}); its port was closed so that its watchdog ({(watchdog.IsCompletedSuccessfully ? MachineProfileValidator.MinWatchdogMs : _watchdogMs)} ms) switches the laser off; a person must check the laser");
-        }
-    }
 }
 
 /// <summary>What <see cref="LaserSafety"/> needs of the run it guards.</summary>
 internal interface ILaserSafetyRun
 {
-    /// <summary>The timing the run times itself with (the switch-off's round trip), or null for a plan without one.</summary>
-    TimedSwitching? Timing { get; }
+    /// <summary>The gate's timing: the run's own, or for a run without one (step by step, dots) the process' on this machine.</summary>
+    TimedSwitching Timing { get; }
+
+    /// <summary>
+    /// How much later than its own round trip a line written to the gate now is answered: the lines and the replies still
+    /// ahead of it on the gate's wire (a timed switch-on just written, its reply); 0 when nothing is.
+    /// </summary>
+    double GateQueueSeconds { get; }
 
     /// <summary>Throws when an abort was asked (checked inside the laser lock before a switch-on).</summary>
     void ThrowIfAborted();

@@ -135,7 +135,7 @@ internal sealed class ReplyWatch
 
             if (watched.SwitchOff)
             {
-                _run.SwitchOffFailed();
+                _run.SwitchOffFailed(reply);
             }
 
             if (!reply.IsCompleted)
@@ -198,5 +198,6 @@ internal interface IReplyWatchRun
     DeviceException Fault(string reason);
 
     /// <summary>A switch-off refused or unanswered: the laser may still fire, so the fault's off sequence takes every path.</summary>
-    void SwitchOffFailed();
+    /// <param name="reply">The switch-off's acknowledgement, still awaited when it was late (a late answer confirms the laser off).</param>
+    void SwitchOffFailed(Task reply);
 }

@@ -51,6 +51,7 @@ public sealed partial class RunExecutor
     /// <summary>The step's burst at the stage's standing position; returns once the laser is surely off again.</summary>
     private async Task FireDotAsync(DotStep step, DotTiming timing, CancellationToken token)
     {
+        Task burst;
         await _laser.Lock.WaitAsync();
         try
         {
@@ -58,13 +59,17 @@ public sealed partial class RunExecutor
             ThrowIfAborted();
             _laser.MarkOn(TimeProvider.GetTimestamp());
 
-            // Not cancelled: a reply arriving after a cancelled command would be taken for the next one's.
-            await Gate.BurstAsync(step.Pulses, step.FrequencyHz, CancellationToken.None);
+            // Not cancelled: a reply arriving after a cancelled command would be taken for the next one's. Started under
+            // the lock (written before an abort's switch-off, or dropped by the gate), awaited outside it: an abort's
+            // switch-off never waits behind a gate that does not answer.
+            burst = Gate.BurstAsync(step.Pulses, step.FrequencyHz, CancellationToken.None);
         }
         finally
         {
             _laser.Lock.Release();
         }
+
+        await burst;
 
         // The gate answers as the burst starts; nothing moves before it has surely ended. An abort meanwhile switches the laser off.
         await PreciseDelay.DelayAsync(TimeProvider, TimeSpan.FromSeconds(timing.AfterAckSeconds), token);

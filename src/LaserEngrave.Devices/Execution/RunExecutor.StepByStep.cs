@@ -15,6 +15,9 @@ namespace LaserEngrave.Devices.Execution;
 /// <summary>The step-by-step motion (a paper plan, or one without a timing model), the positioning before the first move of every kind of plan, and the moves every strategy shares.</summary>
 public sealed partial class RunExecutor
 {
+    // The burn run of a step-by-step raster run whose switch-on was sent last (under the engine's lock): a stop in it names its cut pixel.
+    private (Move Move, long Index)? _litMove;
+
     /// <summary>
     /// Where every execution starts, and where its estimate starts counting: the stop point at the first move (and a row
     /// it is in), then the acceleration and the travel speed set on both axes.
@@ -125,6 +128,15 @@ public sealed partial class RunExecutor
         // Speeds before switching on, for the same reason (docs/simulator.md: dwell).
         var speedData = step.SpeedData;
         await SetSpeedsAsync(move.LengthX != 0, move.LengthY != 0, speedData, token);
+        if (burn)
+        {
+            lock (_lock)
+            {
+                // From here the laser may fire over this run (a switch-on carried out but never acknowledged too).
+                _litMove = (move, step.MoveIndex);
+            }
+        }
+
         if (burn && !_laser.On)
         {
             await _laser.SwitchAsync(on: true);
@@ -139,6 +151,27 @@ public sealed partial class RunExecutor
         }
 
         await MoveAxesAsync(move.LengthX != 0 ? step.X : null, move.LengthY != 0 ? step.Y : null, token);
+    }
+
+    /// <summary>
+    /// The stop point's cut pixel when a step-by-step raster run stopped in a burn run whose switch-on was sent: the run
+    /// is burned again from its start on resuming, so every pixel from its start to where X stopped (the laser went off
+    /// before the stop) may get part of their dose twice, and the cut pixel names the last of them; the run's last pixel
+    /// when X could not say where it stopped. Caller holds the lock.
+    /// </summary>
+    private RunStopPoint StepCut(RunStopPoint stop)
+    {
+        if (_litMove is not { } lit || lit.Index != stop.MoveIndex || Job is not { } job || lit.Move.X0 == lit.Move.X1)
+        {
+            return stop;
+        }
+
+        var move = lit.Move;
+        var x = _stoppedAtKnownPosition ? _x : move.X1;
+
+        // Inside the run: a stop short of its first edge is its first pixel, one past its last edge its last pixel.
+        var inside = Math.Clamp(x, Math.Min(move.X0, move.X1) + 1, Math.Max(move.X0, move.X1) - 1);
+        return stop with { CutPixel = new PixelIndex(job.Plan.ColumnAt(move, inside), move.Row) };
     }
 
     /// <summary>A travel to (<paramref name="x"/>, <paramref name="y"/>); an axis already there is left alone unless <paramref name="unsure"/> says its position is the model's, not a reply's.</summary>

@@ -29,6 +29,9 @@ public sealed partial class RunExecutor
     // When the gate's wire is free of the lines written so far (the host's estimate at the adapter's mean), and when the
     // last burst stops by itself at the latest (run seconds).
     private double _gateWireFree = double.NegativeInfinity;
+
+    // When the gate's replies to the lines written so far are all in (the same estimate): an off written now is answered after them.
+    private double _gateRepliesIn = double.NegativeInfinity;
     private double _burstEndsAt = double.NegativeInfinity;
     private bool _burstEndedItself;
     private LateSwitches? _lateSwitches;
@@ -46,6 +49,9 @@ public sealed partial class RunExecutor
     private double TravelLate => _travelLate > LateSeconds ? _travelLate : 0;
 
     private double RunSeconds => TimeProvider.GetElapsedTime(_engravingStart).TotalSeconds;
+
+    /// <summary>How much later than its round trip an OFF written now is answered, behind the timed lines and replies still on the gate's wire.</summary>
+    private double GateQueueSeconds() => _timing is { } timing && _engravingStarted ? timing.OffQueuedSeconds(RunSeconds, _gateWireFree, _gateRepliesIn) : 0;
 
     private async Task ExecuteTimedAsync(RasterProgram program, IEnumerable<RasterStep> steps, long firstIndex, TimedSwitching timing, CancellationToken token)
     {
@@ -176,7 +182,7 @@ public sealed partial class RunExecutor
             var (on, onWritten) = await SendSwitchOnAsync(onEffect, offEffect, timing);
             lock (_lock)
             {
-                _cut.Burning(burn, burnIndex, on);
+                _cut.Burning(burn, burnIndex, on, _burstEndsAt);
             }
 
             _lastGateWrite = onWrite;
@@ -441,6 +447,7 @@ public sealed partial class RunExecutor
             await DelayUntilAsync(next, token);
             _lastGateWrite = RunSeconds;
             _gateWireFree = timing.GateWireFreeAfter(_lastGateWrite, _gateWireFree, timing.KeepAliveBytes);
+            _gateRepliesIn = timing.GateRepliesInAfter(_gateWireFree, _gateRepliesIn, timing.KeepAliveReplyBytes);
             WatchGate(Gate.KeepAliveAsync(CancellationToken.None), _lastGateWrite + timing.KeepAliveRoundTripSeconds, "the laser gate did not answer the keepalive");
         }
     }
@@ -484,6 +491,7 @@ public sealed partial class RunExecutor
 
             var ack = Gate.BurstAsync(pulses, timing.FrequencyHz, CancellationToken.None);
             _gateWireFree = timing.GateWireFreeAfter(written, _gateWireFree, timing.BurstCommand(pulses).Length);
+            _gateRepliesIn = timing.GateRepliesInAfter(_gateWireFree, _gateRepliesIn, timing.BurstReplyBytes(pulses));
             var firing = _gateWireFree + timing.GateProcessingSeconds;
             lock (_lock)
             {
@@ -510,6 +518,7 @@ public sealed partial class RunExecutor
             // Counted from effect to effect: the switch-off takes effect its lead after it is sent, as the switch-on did.
             var off = Gate.OffAsync(CancellationToken.None);
             _gateWireFree = timing.GateWireFreeAfter(written, _gateWireFree, timing.OffCommand.Length);
+            _gateRepliesIn = timing.GateRepliesInAfter(_gateWireFree, _gateRepliesIn, timing.OffReplyBytes);
             _laser.MarkOff(timing.OffLeadSeconds);
             return (off, written);
         }
@@ -679,7 +688,7 @@ public sealed partial class RunExecutor
     private RunStopPoint CutWithin(RunStopPoint stop) =>
         _program is RasterProgram { Timing: { } timing }
             ? _cut.Cut(stop, timing, Job!.Plan, _laser.OffConfirmed, _profile.Gate.WatchdogMs, _stoppedAtKnownPosition ? _x : null, SwitchOnRefused)
-            : stop;
+            : _program is RasterProgram ? StepCut(stop) : stop;
 
     // A flown gap's speed-up has been sent: from here the stroke's plan holds that gap.
     private void NoteGapFlown()

@@ -146,6 +146,7 @@ public sealed partial class RunExecutor
             {
                 _lastGateWrite = at;
                 _gateWireFree = timing.GateWireFreeAfter(RunSeconds, _gateWireFree, timing.KeepAliveBytes);
+                _gateRepliesIn = timing.GateRepliesInAfter(_gateWireFree, _gateRepliesIn, timing.KeepAliveReplyBytes);
                 WatchGate(Gate.KeepAliveAsync(CancellationToken.None), at + timing.KeepAliveRoundTripSeconds, "the laser gate did not answer the keepalive");
                 return Task.CompletedTask;
             }));

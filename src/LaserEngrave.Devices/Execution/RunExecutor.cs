@@ -35,6 +35,9 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
     private readonly MachineProfile _profile = MachineProfile.Default;
     private TimedSwitching? _timing;
 
+    // The gate's timing for a run without a timing model of its own (step by step, dots): its switch-offs' round trip.
+    private TimedSwitching? _gateTiming;
+
     // The part's program as planned: what the run sends (a timed raster re-timed by the run's own timing model), estimates and checks.
     private readonly PartProgram _program;
     private RunState _state = RunState.Idle;
@@ -464,7 +467,9 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
         ProgressChanged?.Invoke(this, progress);
     }
 
-    TimedSwitching? ILaserSafetyRun.Timing => _timing;
+    TimedSwitching ILaserSafetyRun.Timing => _timing ?? (_gateTiming ??= TimedSwitching.For(_process, _profile, _profile.X.MicrostepUm));
+
+    double ILaserSafetyRun.GateQueueSeconds => GateQueueSeconds();
 
     void ILaserSafetyRun.ThrowIfAborted() => ThrowIfAborted();
 
@@ -480,7 +485,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
 
             // A switch-off refused or unanswered after the burn run's burst had stopped the laser by itself: the run's
             // last pulse was the burst's, inside the run; the paths to off still go, and say which confirmed it.
-            if (inDoubt == true)
+            if (inDoubt == true && double.IsFinite(_burstEndsAt))
             {
                 _burstEndedItself |= RunSeconds >= _burstEndsAt;
             }
@@ -495,7 +500,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
 
     DeviceException IReplyWatchRun.Fault(string reason) => Fault(reason);
 
-    void IReplyWatchRun.SwitchOffFailed() => _laser.MarkSwitchOffFailed();
+    void IReplyWatchRun.SwitchOffFailed(Task reply) => _laser.MarkSwitchOffFailed(reply);
 
     /// <summary>An abort: the laser off first, then the stage stopped.</summary>
     private async Task AbortSequenceAsync()

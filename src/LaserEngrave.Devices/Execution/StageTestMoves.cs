@@ -245,9 +245,14 @@ public sealed class StageTestMoves
     }
 
     /// <summary>Runs a test move at the travel speed and acceleration, and switches the laser off at the end whatever happens.</summary>
+    /// <remarks>
+    /// The off at the end is the runs' own (<see cref="LaserOff"/>): in doubt within the switch-off's round trip, then every
+    /// path at once; a laser that cannot be confirmed off fails the move with that, after whatever else went wrong.
+    /// </remarks>
     private async Task SafelyAsync(Func<Task> action, CancellationToken cancellationToken, bool keepAlive = false)
     {
         Exception? keepAliveFault = null;
+        Exception? failure = null;
         using var failed = CancellationTokenSource.CreateLinkedTokenSource(cancellationToken);
         var period = keepAlive ? GateKeepAlive.PeriodFor(Profile.Gate.WatchdogMs, RunOptions.Default.KeepAliveFraction) : TimeSpan.Zero;
         var feeder = new GateKeepAlive(Gate, period, TimeProvider, ex =>
@@ -273,12 +278,23 @@ public sealed class StageTestMoves
         }
         catch (OperationCanceledException) when (keepAliveFault is not null)
         {
-            throw new DeviceException($"the laser gate did not answer the keepalive: {keepAliveFault.Message}", keepAliveFault);
+            failure = new DeviceException($"the laser gate did not answer the keepalive: {keepAliveFault.Message}", keepAliveFault);
         }
-        finally
+        catch (Exception ex)
         {
-            // Not cancellable: the laser goes off even when the operation was cancelled.
-            await Gate.OffAsync(CancellationToken.None);
+            failure = ex;
+        }
+
+        // Not cancellable: the laser goes off even when the operation was cancelled.
+        var off = await new LaserOff(Gate, TimeProvider).SwitchOffAsync(LaserOff.ConfirmWindow(Process, Profile), Profile.Gate.WatchdogMs);
+        if (!off.Confirmed)
+        {
+            throw failure is null ? new DeviceException(off.Problem!) : new DeviceException($"{failure.Message}; {off.Problem}", failure);
+        }
+
+        if (failure is not null)
+        {
+            System.Runtime.ExceptionServices.ExceptionDispatchInfo.Throw(failure);
         }
     }
 }

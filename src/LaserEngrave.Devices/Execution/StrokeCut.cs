@@ -13,7 +13,7 @@ namespace LaserEngrave.Devices.Execution;
 internal sealed class StrokeCut
 {
     private Stroke? _stroke;
-    private (Move Move, long Index, Task Acknowledged)? _burning;
+    private (Move Move, long Index, Task Acknowledged, double BurstEndsAt)? _burning;
     private double? _faultOffWrite;
     private bool? _stopMatchesMotion;
     private double _gateAliveAt = double.NegativeInfinity;
@@ -24,8 +24,8 @@ internal sealed class StrokeCut
     /// <summary>A stroke starts: from here a stop is cut along its motion.</summary>
     public void Started(Stroke stroke) => _stroke = stroke;
 
-    /// <summary>A burn run's switch-on was sent (<paramref name="acknowledged"/> its reply).</summary>
-    public void Burning(Move burn, long index, Task acknowledged) => _burning = (burn, index, acknowledged);
+    /// <summary>A burn run's switch-on was sent (<paramref name="acknowledged"/> its reply; its burst stops by itself by <paramref name="burstEndsAt"/> at the latest, s on the run's clock).</summary>
+    public void Burning(Move burn, long index, Task acknowledged, double burstEndsAt = double.PositiveInfinity) => _burning = (burn, index, acknowledged, burstEndsAt);
 
     /// <summary>The burn run's laser is off again (its switch-off sent, or its burst ended by itself).</summary>
     public void NotBurning() => _burning = null;
@@ -95,9 +95,13 @@ internal sealed class StrokeCut
         {
             offAt = offWrite + timing.OffLeadSeconds - timing.GateJitterSeconds;
         }
-        else if (!offConfirmed && _gateAliveAt > double.NegativeInfinity)
+        else if (!offConfirmed && (_gateAliveAt > double.NegativeInfinity || (!fired && _faultOffWrite is not null && double.IsFinite(burning.BurstEndsAt))))
         {
-            offAt = _gateAliveAt + Units.MsToSeconds(watchdogMs) - timing.GateJitterSeconds;
+            // Never later than the burst's own end: a gate that heard its switch-on counts its pulses whatever it hears
+            // next. A gate that answered nothing in this run (its first switch-on never acknowledged, a resumed run's
+            // too) is bounded by that alone; the first OFF's cut below then names the pixel a gate that heard it went off in.
+            var watchdogOff = _gateAliveAt > double.NegativeInfinity ? _gateAliveAt + Units.MsToSeconds(watchdogMs) - timing.GateJitterSeconds : double.PositiveInfinity;
+            offAt = Math.Min(watchdogOff, burning.BurstEndsAt - (2 * timing.GateJitterSeconds));
             byWatchdog = true;
         }
         else

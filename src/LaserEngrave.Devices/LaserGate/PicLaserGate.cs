@@ -15,7 +15,9 @@ namespace LaserEngrave.Devices.LaserGate;
 /// <see cref="LineFramer"/>. A command holds the line only while it is written: several may wait for their replies at
 /// once (timed switching sends the switch-off while the switch-on's acknowledgement is still on its way), and each reply
 /// line goes to the oldest command waiting that it answers. Each waits for its reply within the profile's timeout on the
-/// given <see cref="System.TimeProvider"/>.
+/// given <see cref="System.TimeProvider"/>. After a timeout, ordinary commands wait while a keepalive gets the link back
+/// in step; the emergency off's commands (<see cref="EmergencyAsync"/>) never do: they wait for nothing but the line being
+/// written at that moment (GRBL's real-time commands bypass its queue the same way).
 /// </remarks>
 public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
 {
@@ -25,9 +27,15 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
     private readonly TimeProvider _time;
     private readonly Lock _gate = new();
     private readonly AsyncLock _sendLock;
+
+    // Ordinary commands in their order, held across a resynchronisation; the send lock is only held while a line is written.
+    private readonly AsyncLock _order = new();
     private readonly List<(string Command, string Expected, TaskCompletionSource<string> Reply)> _pending = [];
     private bool _resynchronise;
     private bool _closed;
+
+    // How many emergency commands were written: an ordinary command asked for before one is never written after it.
+    private long _emergencies;
 
     public PicLaserGate(ISerialLink link, LaserGateProfile profile, TimeProvider? timeProvider = null)
     {
@@ -103,6 +111,37 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
         await SendAsync(Format(Profile.BurstCommand, pulses, frequencyHz), Format(Profile.BurstReply, pulses, frequencyHz), cancellationToken);
     }
 
+    public async Task EmergencyAsync(EmergencyCommand command, CancellationToken cancellationToken)
+    {
+        var (line, expected) = command switch
+        {
+            EmergencyCommand.Off => (Profile.OffCommand, Profile.OffReply),
+            EmergencyCommand.FrequencyZero => (Format(Profile.FrequencyCommand, 0), Format(Profile.FrequencyReply, 0)),
+            EmergencyCommand.ShortestWatchdog => (Format(Profile.WatchdogCommand, MachineProfileValidator.MinWatchdogMs), Format(Profile.WatchdogReply, MachineProfileValidator.MinWatchdogMs)),
+            _ => throw new ArgumentOutOfRangeException(nameof(command), command, "not a command of the emergency off"),
+        };
+
+        TaskCompletionSource<string> reply;
+        await _sendLock.WaitAsync(cancellationToken);
+        try
+        {
+            lock (_gate)
+            {
+                _emergencies++;
+            }
+
+            reply = await WriteAsync(line, expected, cancellationToken);
+        }
+        finally
+        {
+            _sendLock.Release();
+        }
+
+        await AwaitReplyAsync(line, reply, cancellationToken);
+    }
+
+    public ValueTask CloseAsync() => _channel.DisposeAsync();
+
     /// <summary>Sends one command line and waits for its reply line (any acknowledgement or refusal answers it).</summary>
     /// <returns>The reply after the acknowledgement prefix, trimmed ("PICGATE 1.2" for "OK PICGATE 1.2").</returns>
     /// <exception cref="LaserGateException">The gate answered with the error prefix, or with neither prefix.</exception>
@@ -123,7 +162,13 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
         ArgumentNullException.ThrowIfNull(command);
         ArgumentNullException.ThrowIfNull(expected);
         TaskCompletionSource<string> reply;
-        await _sendLock.WaitAsync(cancellationToken);
+        long asked;
+        lock (_gate)
+        {
+            asked = _emergencies;
+        }
+
+        await _order.WaitAsync(cancellationToken);
         try
         {
             bool resynchronise;
@@ -137,7 +182,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
                 // After a timeout a late reply may still be on its way: a keepalive answered by its own reply proves the line is in step.
                 try
                 {
-                    await AwaitReplyAsync(Profile.KeepAliveCommand, await WriteAsync(Profile.KeepAliveCommand, Profile.KeepAliveReply, cancellationToken), cancellationToken);
+                    await AwaitReplyAsync(Profile.KeepAliveCommand, await WriteLineAsync(Profile.KeepAliveCommand, Profile.KeepAliveReply, asked, cancellationToken), cancellationToken);
                 }
                 catch (DeviceTimeoutException ex)
                 {
@@ -149,14 +194,38 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
                 }
             }
 
-            reply = await WriteAsync(command, expected, cancellationToken);
+            reply = await WriteLineAsync(command, expected, asked, cancellationToken);
+        }
+        finally
+        {
+            _order.Release();
+        }
+
+        return await AwaitReplyAsync(command, reply, cancellationToken);
+    }
+
+    // Holds the send lock only while the line is written, so that an emergency command waits for nothing longer. A command
+    // asked for before an emergency command was written is dropped (GRBL's reset flushes its queue the same way): a
+    // switch-on held up behind a resynchronisation must never reach the gate after the emergency off.
+    private async Task<TaskCompletionSource<string>> WriteLineAsync(string command, string expected, long asked, CancellationToken cancellationToken)
+    {
+        await _sendLock.WaitAsync(cancellationToken);
+        try
+        {
+            lock (_gate)
+            {
+                if (_emergencies != asked)
+                {
+                    throw new DeviceException($"laser gate on {PortName}: '{command}' was not sent: the emergency off went first");
+                }
+            }
+
+            return await WriteAsync(command, expected, cancellationToken);
         }
         finally
         {
             _sendLock.Release();
         }
-
-        return await AwaitReplyAsync(command, reply, cancellationToken);
     }
 
     // Caller holds the send lock: the command joins the ones waiting for a reply, then goes on the wire.

@@ -87,7 +87,9 @@ public sealed class TestMovesViewModelTests
         {
             _fakes.Gate.OffAsync(Arg.Any<CancellationToken>());
             _fakes.X.MoveAbsoluteAsync(100787, Arg.Any<CancellationToken>());
-            _fakes.Gate.OffAsync(Arg.Any<CancellationToken>());
+
+            // After: the runs' own laser-off path, whose OFF nothing can hold up.
+            _fakes.Gate.EmergencyAsync(EmergencyCommand.Off, Arg.Any<CancellationToken>());
         });
         await _fakes.Y.Received(1).MoveAbsoluteAsync(50394, Arg.Any<CancellationToken>());
         Assert.Equal(100787, _machine.XMicrosteps);

@@ -62,7 +62,7 @@ public sealed class RunSummaryTextTests : IDisposable
         var text = RunSummaryText.Format(record);
         var read = RunRecordJson.Deserialize(RunRecordJson.Serialize(record), "test.json");
 
-        Assert.Contains("Resumes:            from the run's start; pixel column 13, row 5 (the laser went off in it, or its switch-on was never acknowledged) may get part of its dose twice", text, StringComparison.Ordinal);
+        Assert.Contains("Resumes:            from the run's start; its pixels up to column 13, row 5 (where the laser went off at the latest, or its switch-on was never acknowledged) may get part of their dose twice", text, StringComparison.Ordinal);
         Assert.Contains("Or resumes:         mid-run at X 117000 microsteps if the gate reports its watchdog did not trip (it heard the OFF); then pixel column 12, row 5 burns twice", text, StringComparison.Ordinal);
         Assert.Equal(stop, read.StoppedAt);
     }

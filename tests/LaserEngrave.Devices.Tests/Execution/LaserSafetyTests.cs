@@ -30,7 +30,8 @@ public class LaserSafetyTests
         Assert.Null(laser.OffState.Problem);
         Assert.Equal(0, run.Stops);
         Assert.Equal([false], run.Starts);
-        await gate.Received(1).OffAsync(Arg.Any<CancellationToken>());
+        await gate.Received(1).EmergencyAsync(EmergencyCommand.Off, Arg.Any<CancellationToken>());
+        await gate.DidNotReceive().EmergencyAsync(EmergencyCommand.FrequencyZero, Arg.Any<CancellationToken>());
         await gate.DidNotReceiveWithAnyArgs().SetFrequencyAsync(Arg.Any<int>(), Arg.Any<CancellationToken>());
     }
 
@@ -38,7 +39,7 @@ public class LaserSafetyTests
     public async Task OffSafelyAsync_AfterARefusedSwitchOff_TakesEveryPathAtOnceAndStopsTheStage()
     {
         var gate = Substitute.For<ILaserGate>();
-        gate.OffAsync(Arg.Any<CancellationToken>()).ThrowsAsync(new DeviceException("laser gate replied 'ERR'"));
+        gate.EmergencyAsync(EmergencyCommand.Off, Arg.Any<CancellationToken>()).ThrowsAsync(new DeviceException("laser gate replied 'ERR'"));
         var run = new FakeRun();
         var laser = new LaserSafety(gate, new FakeTimeProvider(), 1000, WatchdogMs, 20, run);
         laser.MarkSwitchOffFailed();
@@ -49,18 +50,18 @@ public class LaserSafetyTests
         Assert.True(laser.OffConfirmed);
         Assert.Equal(1, run.Stops);
         Assert.Equal([true], run.Starts);
-        await gate.Received(1).OffAsync(Arg.Any<CancellationToken>());
-        await gate.Received(1).SetFrequencyAsync(0, Arg.Any<CancellationToken>());
-        await gate.Received(1).SetWatchdogAsync(MachineProfileValidator.MinWatchdogMs, Arg.Any<CancellationToken>());
+        await gate.Received(1).EmergencyAsync(EmergencyCommand.Off, Arg.Any<CancellationToken>());
+        await gate.Received(1).EmergencyAsync(EmergencyCommand.FrequencyZero, Arg.Any<CancellationToken>());
+        await gate.Received(1).EmergencyAsync(EmergencyCommand.ShortestWatchdog, Arg.Any<CancellationToken>());
     }
 
     [Fact(Timeout = 60_000)]
     public async Task OffSafelyAsync_NeitherOffNorFrequencyZeroAcknowledged_ClosesTheGatesPortAndSaysAPersonMustCheck()
     {
-        var gate = Substitute.For<ILaserGate, IAsyncDisposable>();
-        gate.OffAsync(Arg.Any<CancellationToken>()).ThrowsAsync(new DeviceException("laser gate did not acknowledge 'OFF' within 500 ms"));
-        gate.SetFrequencyAsync(0, Arg.Any<CancellationToken>()).ThrowsAsync(new DeviceException("laser gate did not acknowledge 'FREQ 0' within 500 ms"));
-        gate.SetWatchdogAsync(Arg.Any<int>(), Arg.Any<CancellationToken>()).ThrowsAsync(new DeviceException("laser gate did not acknowledge 'WDOG 100' within 500 ms"));
+        var gate = Substitute.For<ILaserGate>();
+        gate.EmergencyAsync(EmergencyCommand.Off, Arg.Any<CancellationToken>()).ThrowsAsync(new DeviceException("laser gate did not acknowledge 'OFF' within 500 ms"));
+        gate.EmergencyAsync(EmergencyCommand.FrequencyZero, Arg.Any<CancellationToken>()).ThrowsAsync(new DeviceException("laser gate did not acknowledge 'FREQ 0' within 500 ms"));
+        gate.EmergencyAsync(EmergencyCommand.ShortestWatchdog, Arg.Any<CancellationToken>()).ThrowsAsync(new DeviceException("laser gate did not acknowledge 'WDOG 50' within 500 ms"));
         var run = new FakeRun();
         var laser = new LaserSafety(gate, new FakeTimeProvider(), 1000, WatchdogMs, 20, run);
 
@@ -70,10 +71,10 @@ public class LaserSafetyTests
         Assert.Equal(LaserOffPath.None, laser.OffState.By);
         Assert.False(laser.OffConfirmed);
         Assert.Contains("its watchdog (1000 ms) switches the laser off; a person must check the laser", laser.OffState.Problem, StringComparison.Ordinal);
-        await ((IAsyncDisposable)gate).Received(1).DisposeAsync();
+        await gate.Received(1).CloseAsync();
         Assert.Equal(1, run.Stops);
         Assert.Equal([false, null], run.Starts);
-        await gate.Received(2).OffAsync(Arg.Any<CancellationToken>());
+        await gate.Received(2).EmergencyAsync(EmergencyCommand.Off, Arg.Any<CancellationToken>());
     }
 
     [Fact(Timeout = 60_000)]
@@ -82,8 +83,8 @@ public class LaserSafetyTests
         using var time = new VirtualTimeProvider();
         var gate = Substitute.For<ILaserGate>();
         var late = new TaskCompletionSource();
-        gate.OffAsync(Arg.Any<CancellationToken>()).Returns(late.Task, Task.FromException(new DeviceException("laser gate did not acknowledge 'OFF' within 500 ms")));
-        gate.SetFrequencyAsync(0, Arg.Any<CancellationToken>()).Returns(_ =>
+        gate.EmergencyAsync(EmergencyCommand.Off, Arg.Any<CancellationToken>()).Returns(late.Task, Task.FromException(new DeviceException("laser gate did not acknowledge 'OFF' within 500 ms")));
+        gate.EmergencyAsync(EmergencyCommand.FrequencyZero, Arg.Any<CancellationToken>()).Returns(_ =>
         {
             late.TrySetResult();
             return Task.FromException(new DeviceException("laser gate did not acknowledge 'FREQ 0' within 500 ms"));
@@ -141,7 +142,9 @@ public class LaserSafetyTests
 
         public List<bool?> Starts { get; } = [];
 
-        public TimedSwitching? Timing => null;
+        public TimedSwitching Timing { get; } = TimedSwitching.For(ProcessSettings.Default, MachineProfile.Default, MachineProfile.Default.X.MicrostepUm);
+
+        public double GateQueueSeconds { get; init; }
 
         public void ThrowIfAborted()
         {

@@ -78,5 +78,13 @@ internal sealed class RecordingDevices
             log.Add($"burst {pulses} {frequencyHz}");
             return inner.BurstAsync(pulses, frequencyHz, cancellationToken);
         }
+
+        public Task EmergencyAsync(EmergencyCommand command, CancellationToken cancellationToken)
+        {
+            log.Add(command == EmergencyCommand.Off ? "laser off" : $"laser emergency {command}");
+            return inner.EmergencyAsync(command, cancellationToken);
+        }
+
+        public ValueTask CloseAsync() => inner.CloseAsync();
     }
 }

@@ -201,6 +201,6 @@ public class ReplyWatchTests
             return new DeviceException(reason);
         }
 
-        public void SwitchOffFailed() => SwitchOffsFailed++;
+        public void SwitchOffFailed(Task reply) => SwitchOffsFailed++;
     }
 }

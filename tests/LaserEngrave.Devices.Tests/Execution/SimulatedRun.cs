@@ -7,6 +7,7 @@ using LaserEngrave.Devices.LaserGate;
 using LaserEngrave.Devices.Zaber;
 using LaserEngrave.Simulator;
 using LaserEngrave.Simulator.Burn;
+using LaserEngrave.Wire.Serial;
 
 namespace LaserEngrave.Devices.Tests.Execution;
 
@@ -24,6 +25,9 @@ internal sealed class SimulatedRun : IAsyncDisposable
     public ZaberChain Stage { get; private set; } = null!;
 
     public PicLaserGate Gate { get; private set; } = null!;
+
+    /// <summary>Every line the host wrote to the gate and every command to the stage, with its time (s on the simulator's clock).</summary>
+    public List<(double Seconds, string Port, string Line)> Written { get; } = [];
 
     public TimeProvider Time => Machine.TimeProvider;
 
@@ -74,8 +78,8 @@ internal sealed class SimulatedRun : IAsyncDisposable
 
     private void Connect()
     {
-        Stage = new ZaberChain(new ZaberConnection(Machine.StageLink, Machine.TimeProvider), Machine.Profile);
-        Gate = new PicLaserGate(Machine.LaserLink, Machine.Profile.Gate, Machine.TimeProvider);
+        Stage = new ZaberChain(new ZaberConnection(new WrittenLink(Machine.StageLink, this, "stage"), Machine.TimeProvider), Machine.Profile);
+        Gate = new PicLaserGate(new WrittenLink(Machine.LaserLink, this, "gate"), Machine.Profile.Gate, Machine.TimeProvider);
     }
 }
 
@@ -150,4 +154,30 @@ internal static class TestJobs
             ? throw new FileNotFoundException($"no assets folder above {AppContext.BaseDirectory}")
             : Path.Combine(directory.FullName, "assets", name);
     }
+}
+
+// Passes everything through, and notes what the host writes (a gate's line as text, a stage's frame in hex).
+/// <summary>A link of a <see cref="SimulatedRun"/> that notes what the host writes.</summary>
+internal sealed class WrittenLink(ISerialLink inner, SimulatedRun run, string port) : ISerialLink
+{
+    public string Name => inner.Name;
+
+    public bool HasUnreadBytes => inner.HasUnreadBytes;
+
+    public ValueTask<int> ReadAsync(Memory<byte> buffer, CancellationToken cancellationToken) => inner.ReadAsync(buffer, cancellationToken);
+
+    public ValueTask<StampedRead> ReadStampedAsync(Memory<byte> buffer, TimeProvider time, CancellationToken cancellationToken) => inner.ReadStampedAsync(buffer, time, cancellationToken);
+
+    public ValueTask WriteAsync(ReadOnlyMemory<byte> data, CancellationToken cancellationToken)
+    {
+        var line = port == "gate" ? System.Text.Encoding.ASCII.GetString(data.Span).TrimEnd('\r', '\n') : Convert.ToHexString(data.Span);
+        lock (run.Written)
+        {
+            run.Written.Add((run.Machine.NowSeconds, port, line));
+        }
+
+        return inner.WriteAsync(data, cancellationToken);
+    }
+
+    public ValueTask DisposeAsync() => inner.DisposeAsync();
 }

@@ -235,6 +235,79 @@ public class PicLaserGateTests
     }
 
     [Fact]
+    public async Task EmergencyAsync_AfterATimeoutWithAKeepAliveUnanswered_GoesOutAtOnceWithoutAPingAhead()
+    {
+        // Issue 31: after a timeout every ordinary command waits for a PING's answer first; the emergency off must not.
+        await using var rig = new GateRig(new VirtualTimeProvider());
+        rig.Fake.Intercept = _ => string.Empty;
+
+        await rig.RunAsync(async () =>
+        {
+            var off = rig.Gate.OffAsync(None);
+            Assert.Equal("OFF", await rig.Fake.NextAsync());
+            await VirtualTime.ThrowsAsync<DeviceTimeoutException>(off);
+
+            // An ordinary command now gets the link back in step first, and holds its turn while the PING is unanswered.
+            var ordinary = rig.Gate.SetFrequencyAsync(0, None);
+            Assert.Equal("PING", await rig.Fake.NextAsync());
+            var sentAt = rig.Time.Elapsed;
+
+            var emergency = new[] { EmergencyCommand.Off, EmergencyCommand.FrequencyZero, EmergencyCommand.ShortestWatchdog }
+                .Select(c => rig.Gate.EmergencyAsync(c, None)).ToList();
+            Assert.Equal("OFF", await rig.Fake.NextAsync());
+            Assert.Equal("FREQ 0", await rig.Fake.NextAsync());
+            Assert.Equal("WDOG 50", await rig.Fake.NextAsync());
+            Assert.Equal(sentAt, rig.Time.Elapsed);
+
+            await rig.Fake.SendRawAsync("OK FREQ 0\nOK FREQ 0\nOK WDOG 50\n");
+            await Task.WhenAll(emergency);
+            Assert.False(ordinary.IsCompleted);
+            await VirtualTime.ThrowsAsync<DeviceTimeoutException>(ordinary);
+        });
+    }
+
+    [Fact]
+    public async Task EmergencyAsync_WhileASwitchOnWaitsBehindAResync_TheSwitchOnIsNeverWrittenAfterIt()
+    {
+        // A switch-on held up behind the PING must not reach the gate after the emergency off (GRBL's reset flushes its queue).
+        await using var rig = new GateRig(new VirtualTimeProvider());
+        rig.Fake.Intercept = _ => string.Empty;
+
+        await rig.RunAsync(async () =>
+        {
+            var first = rig.Gate.OffAsync(None);
+            Assert.Equal("OFF", await rig.Fake.NextAsync());
+            await VirtualTime.ThrowsAsync<DeviceTimeoutException>(first);
+            var on = rig.Gate.SetFrequencyAsync(1000, None);
+            Assert.Equal("PING", await rig.Fake.NextAsync());
+
+            var off = rig.Gate.EmergencyAsync(EmergencyCommand.Off, None);
+            Assert.Equal("OFF", await rig.Fake.NextAsync());
+            await rig.Fake.SendRawAsync("OK PONG\nOK FREQ 0\n");
+            await off;
+
+            var dropped = await Assert.ThrowsAsync<DeviceException>(() => on);
+            Assert.Contains("'FREQ 1000' was not sent: the emergency off went first", dropped.Message, StringComparison.Ordinal);
+            Assert.DoesNotContain("FREQ 1000", rig.Fake.AllReceived());
+        });
+    }
+
+    [Fact]
+    public async Task CloseAsync_WithACommandWaiting_FailsItAndEveryLaterOne()
+    {
+        await using var rig = new GateRig(new FakeTimeProvider());
+        rig.Fake.Intercept = _ => string.Empty;
+        var command = rig.Gate.SetFrequencyAsync(1000, None);
+        await rig.Fake.NextAsync();
+
+        await rig.Gate.CloseAsync();
+
+        await Assert.ThrowsAsync<LinkLostException>(() => command.Within());
+        await Assert.ThrowsAsync<LinkLostException>(() => rig.Gate.EmergencyAsync(EmergencyCommand.Off, None).Within());
+        Assert.False(rig.Gate.IsOpen);
+    }
+
+    [Fact]
     public async Task SendAsync_LinkDropsWhileWaiting_ThrowsLinkLostNamingPortAndCommand()
     {
         await using var rig = new GateRig(new FakeTimeProvider());
