@@ -1,3 +1,4 @@
+using System.Globalization;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Devices.Scheduling;
@@ -403,6 +404,12 @@ public sealed class EngraveSession
             Layers = layers,
             Recoveries = _recoveries.Count > 0 ? [.. _recoveries] : null,
         };
+        if (record.Outcome == RunOutcome.Completed && BurnMismatch(record) is { } mismatch)
+        {
+            // "Completed" promises the whole image engraved: on the twin, where the burn is known, only when it equals the mask.
+            record = record with { Outcome = RunOutcome.Failed, Fault = new RunFault(mismatch, "burn") };
+        }
+
         if (layers is not null)
         {
             // The estimate is the whole job's, whatever part of it ran.
@@ -510,6 +517,26 @@ public sealed class EngraveSession
 
     // A continued run is checked against what it had still to burn, not what the run it continues burned. The twin
     // checks an image against its mask and a drawing against its paths: two inspections (IRunInspector), one per kind.
+    /// <summary>
+    /// Null when the twin's burn of every image equals its mask (or nothing measured it: a real machine, a drawing); otherwise
+    /// the one line that says how it differs.
+    /// </summary>
+    internal static string? BurnMismatch(RunRecord record)
+    {
+        var measured = record.Layers is { } layers
+            ? layers.Select((l, i) => (Name: $"layer {i + 1}: ", l.Simulation, Image: l.Simulation?.Path is null))
+            : [(Name: string.Empty, record.Simulation, Image: record.Drawing is null)];
+        foreach (var (name, simulation, image) in measured)
+        {
+            if (image && simulation is { } sim && (sim.MissingPixels > 0 || sim.ExtraPixels > 0))
+            {
+                return string.Create(CultureInfo.InvariantCulture, $"{name}the burn does not equal the mask: {sim.MissingPixels} black pixels got no pulse and {sim.ExtraPixels} white pixels got one (the simulator's count), so the image was not engraved whole");
+            }
+        }
+
+        return null;
+    }
+
     private static RunSimulation Inspect(IRunInspector inspector, PreparedLayer part, RunStopPoint? resumedFrom) =>
         part.Drawing is { } drawing ? inspector.InspectDrawing(drawing) : inspector.Inspect(part.Image!, resumedFrom);
 

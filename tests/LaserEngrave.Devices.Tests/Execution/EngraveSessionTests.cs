@@ -311,4 +311,44 @@ public class EngraveSessionTests
         Assert.Equal(RunOutcome.Failed, record.Outcome);
         Assert.Null(record.Recoveries);
     }
+
+    [Fact(Timeout = 120_000)]
+    public async Task RunAsync_BurnMissesPixelsOfTheMask_EndsFailedNotCompleted()
+    {
+        // Issue 31, finding 5: a run whose every burn run was sent "completed" (exit 0) with 173 pixels of the mask unburned.
+        await using var run = SimulatedRun.Create();
+        var log = new RecordingLog();
+        var machine = new EngraveMachine(run.Stage, run.Gate, run.Time, "simulator", "simulator") { Simulated = true, Inspector = new MissingPixels(new BurnInspector(run.Machine), 3) };
+
+        var result = await new EngraveSession(machine, Job(), new EngraveSessionOptions { Log = log }).RunAsync(null, TestContext.Current.CancellationToken);
+
+        var record = Assert.Single(log.Records);
+        Assert.Equal(RunOutcome.Failed, record.Outcome);
+        Assert.Equal(RunState.Failed, result.State);
+        Assert.Equal("the burn does not equal the mask: 3 black pixels got no pulse and 0 white pixels got one (the simulator's count), so the image was not engraved whole", record.Fault?.Message);
+        Assert.Equal(record.RunsTotal, record.RunsDone);
+    }
+
+    [Fact]
+    public void BurnMismatch_BurnEqualsTheMaskOrNotMeasured_NullOtherwiseOneLine()
+    {
+        var record = RunRecord.ForJob(Job(), "hash", DateTimeOffset.UnixEpoch);
+        var twin = new RunSimulation(1, 100, null, null, new PulseCountRange(1, 1, 1), 0, 0, 0);
+
+        Assert.Null(EngraveSession.BurnMismatch(record));
+        Assert.Null(EngraveSession.BurnMismatch(record with { Simulation = twin }));
+        Assert.Equal(
+            "the burn does not equal the mask: 0 black pixels got no pulse and 2 white pixels got one (the simulator's count), so the image was not engraved whole",
+            EngraveSession.BurnMismatch(record with { Simulation = twin with { ExtraPixels = 2 } }));
+    }
+
+    /// <summary>The twin's burn check, with some black pixels reported unburned.</summary>
+    private sealed class MissingPixels(IRunInspector inner, long missing) : IRunInspector
+    {
+        public void Begin() => inner.Begin();
+
+        public RunSimulation Inspect(PreparedJob job, RunStopPoint? resumedFrom = null) => inner.Inspect(job, resumedFrom) with { MissingPixels = missing };
+
+        public RunSimulation InspectDrawing(PreparedDrawing drawing) => inner.InspectDrawing(drawing);
+    }
 }
