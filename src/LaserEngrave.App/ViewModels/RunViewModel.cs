@@ -688,6 +688,7 @@ public sealed partial class RunViewModel : ObservableObject
         catch (Exception ex) when (ex is DeviceException or InvalidOperationException or ObjectDisposedException or TimeoutException or IOException)
         {
             _machine.Error = ex.Message;
+            _machine.StateNotKnown();
         }
 
         // The run counts as ended only once its log is written, so whoever waits for the end finds the log.

@@ -365,6 +365,48 @@ public sealed class RunBarTests : ComponentTest
     }
 
     [Fact]
+    public async Task Run_LaserOnInTheEngine_PanelAndStateSayFiringAsTheRunDoes()
+    {
+        // Issue 31, finding 2: during a run the panel and /api/state said "off" (the gate read before the run) while run.laserOn was true.
+        OpenQr();
+        await ConnectAsync();
+        Assert.Equal("off", Main.Machine.GateState);
+        var release = new TaskCompletionSource<RunResult>();
+        var firing = new TaskCompletionSource<IProgress<EngraveProgress>>();
+        Runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>()).Returns(async c =>
+        {
+            var progress = c.Arg<IProgress<EngraveProgress>>();
+            progress.Report(SessionResults.Report(RunState.Running, 50, 100, 10, 20, laserOn: true));
+            firing.SetResult(progress);
+            return SessionResults.Ended(c.Arg<EngraveSession>(), await release.Task);
+        });
+        var panel = Render<MachinePanel>(p => p.Add(c => c.Machine, Main.Machine));
+        var hz = (int)Main.Job.LaserFrequencyHz;
+
+        var run = Main.Run.StartCommand.ExecuteAsync(null);
+        var progress = await firing.Task;
+
+        panel.WaitForAssertion(() => Assert.Equal($"firing at {hz} Hz", panel.Find("#machine-gate").TextContent));
+        var state = System.Text.Json.JsonSerializer.SerializeToElement(global::LaserEngrave.App.Web.StateSnapshot.From(Main));
+        Assert.Equal($"firing at {hz} Hz", state.GetProperty("machine").GetProperty("gateState").GetString());
+        Assert.True(state.GetProperty("run").GetProperty("laserOn").GetBoolean());
+
+        progress.Report(SessionResults.Report(RunState.Running, 51, 100, 10, 20, laserOn: false));
+        panel.WaitForAssertion(() => Assert.Equal("off", panel.Find("#machine-gate").TextContent));
+        state = System.Text.Json.JsonSerializer.SerializeToElement(global::LaserEngrave.App.Web.StateSnapshot.From(Main));
+        Assert.Equal("off", state.GetProperty("machine").GetProperty("gateState").GetString());
+        Assert.False(state.GetProperty("run").GetProperty("laserOn").GetBoolean());
+
+        release.SetResult(new RunResult
+        {
+            Outcome = RunOutcome.Completed, LaserOffConfirmed = true, StartedAt = DateTimeOffset.UnixEpoch, EndedAt = DateTimeOffset.UnixEpoch,
+            EngravingDuration = TimeSpan.Zero, EstimatedSeconds = 1, LaserOnSeconds = 0, RowsDone = 20, RowsTotal = 20, RunsDone = 7, RunsTotal = 7,
+        });
+        await run;
+        Assert.Equal("off", Main.Machine.GateState);
+    }
+
+    [Fact]
     public async Task Run_OfADrawing_CountsStrokesAsTheCommandLineAndTheLogDo()
     {
         Assert.True(Main.Job.LoadImage(TestFiles.Asset(Path.Combine("drawings", "hexagons.dxf"))));
