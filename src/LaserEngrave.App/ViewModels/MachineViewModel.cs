@@ -205,6 +205,15 @@ public sealed partial class MachineViewModel : ObservableObject
         YHomed = true;
     }
 
+    /// <summary>
+    /// The machine did not answer when read after a run (a stage gone silent): whether the axes are homed is no longer
+    /// known, so the panel says "?" rather than the homed it read before; the positions stay the run's last known.
+    /// </summary>
+    internal void StateNotKnown()
+    {
+        XHomed = YHomed = null;
+    }
+
     /// <summary>Closes the connection whatever holds the machine: for the app's exit, after the run was aborted.</summary>
     internal async Task CloseAsync()
     {

@@ -762,6 +762,10 @@ public sealed partial class RunViewModel : ObservableObject
 
             owner._machine.XMicrosteps = value.Run.XMicrosteps;
             owner._machine.YMicrosteps = value.Run.YMicrosteps;
+
+            // The panel's and the API's laser come from the engine's report during a run, not from the gate read before it.
+            var parts = session.Engraving.Parts;
+            owner._machine.RunLaser(value.Run.LaserOn, parts[Math.Clamp(value.Layer - 1, 0, parts.Count - 1)].Spec.Process.LaserFrequencyWholeHz);
             if (owner._pace is { } pace)
             {
                 pace.Report(value.Layer, value.Pass, value.MovesDone, value.Run.XMicrosteps, value.Run.YMicrosteps);

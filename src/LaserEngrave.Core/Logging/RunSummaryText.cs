@@ -102,7 +102,10 @@ public static class RunSummaryText
 
         if (record.StoppedAt is { } stop)
         {
-            var position = stop.XMicrosteps is { } x && stop.YMicrosteps is { } y ? string.Create(c, $", stage at {x}, {y} microsteps") : string.Empty;
+            // In mm first, as the app's panel and cross show the stage; the microsteps after, as the stage counts them.
+            var position = stop.XMicrosteps is { } x && stop.YMicrosteps is { } y
+                ? string.Create(c, $", stage at X {StageUnits.MicrostepsToMm(x, record.Profile.X.MicrostepUm):0.###} mm, Y {StageUnits.MicrostepsToMm(y, record.Profile.Y.MicrostepUm):0.###} mm ({x}, {y} microsteps)")
+                : string.Empty;
             // Counted as the run bar and the "Done" line count (the engine's rows or strokes done), so that they agree; the
             // image row (or stroke) of the move it stopped in follows, as the stop point holds it.
             var (unit, within) = record.Drawing is null ? ("rows", "image row") : ("strokes", "stroke");

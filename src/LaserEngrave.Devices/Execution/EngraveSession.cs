@@ -477,6 +477,12 @@ public sealed class EngraveSession
                 _recovering = true;
             }
 
+            EngraveProgress stopped;
+            lock (_lock)
+            {
+                stopped = _progress;
+            }
+
             RunResult again;
             try
             {
@@ -485,8 +491,16 @@ public sealed class EngraveSession
             catch (Exception ex) when (ex is not OperationCanceledException and not OutOfMemoryException)
             {
                 // Going on needs the machine to pass its checks again (a stage gone silent does not): the run ends on the
-                // first fault, with its stop point, so that a resume later starts there.
-                return result with { FaultMessage = $"{result.FaultMessage}; going on from it failed: {ex.Message}" };
+                // first fault, with its stop point, so that a resume later starts there. What the machine did comes first
+                // (which device, what it did); the doubt that led to it after. The progress is the stopped pass's again, not
+                // the new pass's start (row 0, the stage at 0, 0), so the run bar and the cross agree with the log.
+                lock (_lock)
+                {
+                    _progress = stopped with { Recovering = false };
+                    _recovering = false;
+                }
+
+                return result with { FaultMessage = $"{ex.Message.ReplaceLineEndings(" ")}, while going on after a timing doubt ({result.FaultMessage})" };
             }
 
             result = again with
@@ -515,8 +529,6 @@ public sealed class EngraveSession
         return _control.AbortRequested;
     }
 
-    // A continued run is checked against what it had still to burn, not what the run it continues burned. The twin
-    // checks an image against its mask and a drawing against its paths: two inspections (IRunInspector), one per kind.
     /// <summary>
     /// Null when the twin's burn of every image equals its mask (or nothing measured it: a real machine, a drawing); otherwise
     /// the one line that says how it differs.
@@ -537,6 +549,8 @@ public sealed class EngraveSession
         return null;
     }
 
+    // A continued run is checked against what it had still to burn, not what the run it continues burned. The twin
+    // checks an image against its mask and a drawing against its paths: two inspections (IRunInspector), one per kind.
     private static RunSimulation Inspect(IRunInspector inspector, PreparedLayer part, RunStopPoint? resumedFrom) =>
         part.Drawing is { } drawing ? inspector.InspectDrawing(drawing) : inspector.Inspect(part.Image!, resumedFrom);
 

@@ -6,6 +6,7 @@ using LaserEngrave.App.Tests.ViewModels;
 using LaserEngrave.App.ViewModels;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
+using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Execution;
 using NSubstitute;
 
@@ -404,6 +405,34 @@ public sealed class RunBarTests : ComponentTest
         });
         await run;
         Assert.Equal("off", Main.Machine.GateState);
+    }
+
+    [Fact]
+    public async Task Run_FailsOnAStageThatStoppedAnswering_PanelNoLongerSaysHomedAndTheCrossStaysWhereTheRunStopped()
+    {
+        // Issue 31, finding 8: after a stage went silent the panel still said homed and the cross was drawn at 0, 0.
+        OpenQr();
+        await ConnectAsync();
+        Assert.Contains("X yes", Render<MachinePanel>(p => p.Add(c => c.Machine, Main.Machine)).Find("#machine-homed").TextContent, StringComparison.Ordinal);
+        Runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>()).Returns(c =>
+        {
+            c.Arg<IProgress<EngraveProgress>>().Report(SessionResults.Report(RunState.Running, 30, 100, 8, 33, x: 19484, y: 6760));
+            Machine.Y.IdentifyAsync(Arg.Any<CancellationToken>()).Returns<AxisIdentity>(_ => throw new DeviceException("the Y axis (device 2) does not answer"));
+            return Task.FromResult(SessionResults.Ended(c.Arg<EngraveSession>(), new RunResult
+            {
+                Outcome = RunOutcome.Failed, FaultMessage = "the Y axis (device 2) does not answer", LaserOffConfirmed = true, StartedAt = DateTimeOffset.UnixEpoch, EndedAt = DateTimeOffset.UnixEpoch,
+                EngravingDuration = TimeSpan.Zero, EstimatedSeconds = 1, LaserOnSeconds = 0, RowsDone = 8, RowsTotal = 33, RunsDone = 60, RunsTotal = 284,
+                StopPoint = new RunStopPoint(12, 30, 19484, 6760),
+            }));
+        });
+
+        await Main.Run.StartCommand.ExecuteAsync(null);
+
+        var panel = Render<MachinePanel>(p => p.Add(c => c.Machine, Main.Machine));
+        Assert.Equal("X ?, Y ?", panel.Find("#machine-homed").TextContent);
+        Assert.Equal("the Y axis (device 2) does not answer", Main.Machine.Error);
+        Assert.Equal((19484L, 6760L), (Main.Machine.XMicrosteps, Main.Machine.YMicrosteps));
+        Assert.Contains("row 8 of 33", RenderBar().Find("#progress-figures").TextContent, StringComparison.Ordinal);
     }
 
     [Fact]

@@ -342,6 +342,31 @@ public class EngraveSessionTests
             EngraveSession.BurnMismatch(record with { Simulation = twin with { ExtraPixels = 2 } }));
     }
 
+    [Fact(Timeout = 120_000)]
+    public async Task RunAsync_StageSilentWhileGoingOnAfterADoubt_CauseFirstAndTheLastReportWhereTheRunStopped()
+    {
+        // Issue 31, finding 8: "this computer was 3.5 ms late ...; going on from it failed: the Y axis (device 2) does not
+        // answer": the device came last; and the run bar said row 0 of 33 and drew the cross at 0, 0 while the log said row 8.
+        await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = "delay:stage:device=1:command=60:after=15:ms=150,silent:stage:device=2:after=20" });
+        var log = new RecordingLog();
+        var reports = new List<EngraveProgress>();
+
+        await Session(run, TestJobs.FromAsset("qr-code.bmp", 5, new PlanOptions()), log).RunAsync(new SynchronousProgress(reports.Add), TestContext.Current.CancellationToken);
+
+        var record = Assert.Single(log.Records);
+        Assert.Equal(RunOutcome.Failed, record.Outcome);
+        Assert.StartsWith("the Y axis (device 2) does not answer", record.Fault!.Message, StringComparison.Ordinal);
+        Assert.Contains(", while going on after a timing doubt (the X axis did not answer the position query", record.Fault.Message, StringComparison.Ordinal);
+        var stop = Assert.IsType<RunStopPoint>(record.StoppedAt);
+        var last = reports[^1];
+        Assert.Equal(RunState.Failed, last.State);
+        Assert.False(last.Recovering);
+        Assert.Equal((record.RowsDone, record.RowsTotal), (last.Run.RowsDone, last.Run.RowsTotal));
+        Assert.True(last.Run.RowsDone > 0, "the last report counted no row done");
+        Assert.Equal((stop.XMicrosteps, stop.YMicrosteps), (last.Run.XMicrosteps, last.Run.YMicrosteps));
+        Assert.False(run.Machine.Gate.IsFiring);
+    }
+
     /// <summary>The twin's burn check, with some black pixels reported unburned.</summary>
     private sealed class MissingPixels(IRunInspector inner, long missing) : IRunInspector
     {
