@@ -136,9 +136,17 @@ public sealed partial class RunViewModel : ObservableObject
 
     /// <summary>Where the last run stopped (failed or aborted); kept, with the plan it ran, until a run completes or starts afresh.</summary>
     [ObservableProperty]
-    [NotifyPropertyChangedFor(nameof(CanContinue), nameof(ContinueUnavailableReason))]
+    [NotifyPropertyChangedFor(nameof(CanContinue), nameof(ContinueUnavailableReason), nameof(StoppedText))]
     [NotifyCanExecuteChangedFor(nameof(ContinueCommand))]
     public partial RunStopPoint? StoppedAt { get; private set; }
+
+    /// <summary>
+    /// Where the stopped run stopped, as the log's <c>Stopped at</c> says it: the rows done of the run bar's count and the
+    /// stage in mm (<see cref="RunSummaryText.StagePlace"/>); null when no run stopped.
+    /// </summary>
+    public string? StoppedText => StoppedAt is not { } stop ? null
+        : $"stopped after {Progress?.Run.RowsDone ?? 0} of {Progress?.Run.RowsTotal ?? 0} {ProgressUnit}s"
+            + (stop is { XMicrosteps: { } x, YMicrosteps: { } y } ? $", {RunSummaryText.StagePlace(x, y, _machine.Profile)}" : string.Empty);
 
     /// <summary>Whether <see cref="ContinueCommand"/> can pick the stopped run up: the job as it stopped, nothing under way.</summary>
     public bool CanContinue => StoppedAt is not null && ContinueUnavailableReason is null;

@@ -432,7 +432,9 @@ public sealed class RunBarTests : ComponentTest
         Assert.Equal("X ?, Y ?", panel.Find("#machine-homed").TextContent);
         Assert.Equal("the Y axis (device 2) does not answer", Main.Machine.Error);
         Assert.Equal((19484L, 6760L), (Main.Machine.XMicrosteps, Main.Machine.YMicrosteps));
-        Assert.Contains("row 8 of 33", RenderBar().Find("#progress-figures").TextContent, StringComparison.Ordinal);
+        var bar = RenderBar();
+        Assert.Contains("row 8 of 33", bar.Find("#progress-figures").TextContent, StringComparison.Ordinal);
+        Assert.Equal("stopped after 8 of 33 rows, stage at X 1.933 mm, Y 0.671 mm (19484, 6760 microsteps)", bar.Find("#stopped-at").TextContent);
     }
 
     [Fact]
