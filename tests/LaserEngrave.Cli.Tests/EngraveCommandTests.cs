@@ -33,6 +33,22 @@ public sealed class EngraveCommandTests : IDisposable
         Assert.False(Directory.Exists(LogDir) && Directory.EnumerateFiles(LogDir).Any());
     }
 
+    [Theory]
+    [InlineData("5", "laserengrave: laser frequency 5 Hz gives a 121.95122 µm pixel 0.61 pulses at the burn speed of 1 mm/s, so some pixels would get none: give at least 9 Hz, or a burn speed of at most 0.609 mm/s")]
+    [InlineData("2", "laserengrave: laser frequency 2 Hz gives a 121.95122 µm pixel 0.24 pulses at the burn speed of 1 mm/s")]
+    [InlineData("0.5", "laserengrave: --frequency-hz 0.5: is not a whole number of Hz: the laser gate is sent whole Hz; give 1")]
+    public async Task Engrave_FrequencyThatCannotBurnEveryPixel_Exit2OneLineBeforeAnythingOpensNoLog(string hz, string expected)
+    {
+        // Issue 31, finding 5: 5 Hz on the QR at 5 mm exited 0 "completed" with 173 pixels missing; 1-4 Hz failed after three
+        // recoveries blaming a 0.0 ms lateness; 0.5 Hz was logged as 0.5 while the gate was sent 1 Hz.
+        var (exit, _, error) = await CliHarness.RunAsync("engrave", QrCode, "--width-mm", "5", "--speed-mm-s", "1", "--frequency-hz", hz, "--simulate", "--log-dir", LogDir);
+
+        Assert.Equal(2, exit);
+        var line = Assert.Single(error.Split('\n', StringSplitOptions.RemoveEmptyEntries), l => l.StartsWith("laserengrave: ", StringComparison.Ordinal));
+        Assert.StartsWith(expected, line, StringComparison.Ordinal);
+        Assert.False(Directory.Exists(LogDir) && Directory.EnumerateFiles(LogDir).Any());
+    }
+
     [Fact]
     public async Task EngraveSimulate_DotsTenPulses_EveryPixelTenPulsesNoneMovingModeLogged()
     {

@@ -155,7 +155,7 @@ public sealed partial class CommissionViewModel : ObservableObject
         if (report is not null)
         {
             Steps = report.Steps;
-            Finish(report, connection.Description, profile, at);
+            Finish(report, connection.Description, profile, at, connection.IsSimulated);
         }
 
         // The check homed and moved the axes: the Machine panel reads them again.
@@ -196,7 +196,12 @@ public sealed partial class CommissionViewModel : ObservableObject
     }
 
     // The profile and the report, as `machine check --profile FILE --write --report FILE` writes them.
-    private void Finish(MachineCheckReport report, string machine, MachineProfile profile, DateTimeOffset at)
+    /// <summary>Where a check on the simulator stores its latencies: a profile of its own in the data folder, never the machine's.</summary>
+    public const string SimulatorProfileName = "simulator-profile.json";
+
+    // A check on the simulator measures the simulator: its latencies go into a profile of the simulator's own, and the app
+    // keeps the machine profile it uses (a practice check once overwrote the real machine's figures).
+    private void Finish(MachineCheckReport report, string machine, MachineProfile profile, DateTimeOffset at, bool simulated)
     {
         Passed = report.Passed;
         var lines = report.Lines(machine, at).ToList();
@@ -212,14 +217,21 @@ public sealed partial class CommissionViewModel : ObservableObject
         }
         else
         {
-            var path = _main.Settings.ProfilePath ?? Path.Combine(_dataFolder, "machine-profile.json");
+            var path = simulated ? Path.Combine(_dataFolder, SimulatorProfileName) : _main.Settings.ProfilePath ?? Path.Combine(_dataFolder, "machine-profile.json");
             try
             {
                 var updated = profile with { Latency = latency };
                 Directory.CreateDirectory(Path.GetDirectoryName(Path.GetFullPath(path))!);
                 updated.Save(path);
-                _main.UseProfile(path, updated);
-                written = $"Written: the latency section of {path}";
+                if (simulated)
+                {
+                    written = $"Written: the simulator's latencies into {path}, the simulator's own profile; the machine profile was left as it was";
+                }
+                else
+                {
+                    _main.UseProfile(path, updated);
+                    written = $"Written: the latency section of {path}";
+                }
             }
             catch (Exception ex) when (ex is IOException or UnauthorizedAccessException or ProfileException or MachineBusyException)
             {

@@ -70,8 +70,16 @@ public sealed partial class MachineViewModel : ObservableObject
     [ObservableProperty]
     public partial bool? YHomed { get; private set; }
 
+    /// <summary>
+    /// The laser as last known, the one source the panel, the page's state and the API read: the gate's own answer when
+    /// nothing runs, and during a run the engine's, which knows when a burst is under way (the gate is not asked then).
+    /// </summary>
     [ObservableProperty]
-    public partial string? GateState { get; set; }
+    [NotifyPropertyChangedFor(nameof(GateState))]
+    public partial LaserGateState? Laser { get; set; }
+
+    /// <summary>The laser's state in words ("off", "firing at 1000 Hz"), from <see cref="Laser"/>.</summary>
+    public string? GateState => Laser is { } laser ? Describe(laser) : null;
 
     /// <summary>The last failure of a machine command, one line.</summary>
     [ObservableProperty]
@@ -197,6 +205,15 @@ public sealed partial class MachineViewModel : ObservableObject
         YHomed = true;
     }
 
+    /// <summary>
+    /// The machine did not answer when read after a run (a stage gone silent): whether the axes are homed is no longer
+    /// known, so the panel says "?" rather than the homed it read before; the positions stay the run's last known.
+    /// </summary>
+    internal void StateNotKnown()
+    {
+        XHomed = YHomed = null;
+    }
+
     /// <summary>Closes the connection whatever holds the machine: for the app's exit, after the run was aborted.</summary>
     internal async Task CloseAsync()
     {
@@ -206,7 +223,7 @@ public sealed partial class MachineViewModel : ObservableObject
         Identity = null;
         XMicrosteps = YMicrosteps = null;
         XHomed = YHomed = null;
-        GateState = null;
+        Laser = null;
         if (connection is not null)
         {
             await connection.DisposeAsync();
@@ -276,8 +293,22 @@ public sealed partial class MachineViewModel : ObservableObject
         Identity = $"X: device {x.DeviceNumber}, id {x.DeviceId}, firmware {x.FirmwareText}; Y: device {y.DeviceNumber}, id {y.DeviceId}, firmware {y.FirmwareText}; gate: {gate}";
         XHomed = x.IsHomed;
         YHomed = y.IsHomed;
-        GateState = Describe(state);
+        Laser = state;
         await ReadPositionsAsync(cancellationToken);
+    }
+
+    /// <summary>
+    /// A run's report of the laser (<see cref="LaserEngrave.Devices.Execution.RunProgress.LaserOn"/>) as the laser's state:
+    /// firing at the run's frequency or off, the watchdog as the gate last said.
+    /// </summary>
+    internal void RunLaser(bool on, int frequencyHz)
+    {
+        var last = Laser;
+        var now = new LaserGateState(on ? frequencyHz : 0, on, last?.WatchdogMs ?? 0, last?.WatchdogTripped == true && !on);
+        if (now != last)
+        {
+            Laser = now;
+        }
     }
 
     internal static string Describe(LaserGateState state) =>

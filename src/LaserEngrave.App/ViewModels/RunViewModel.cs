@@ -136,9 +136,17 @@ public sealed partial class RunViewModel : ObservableObject
 
     /// <summary>Where the last run stopped (failed or aborted); kept, with the plan it ran, until a run completes or starts afresh.</summary>
     [ObservableProperty]
-    [NotifyPropertyChangedFor(nameof(CanContinue), nameof(ContinueUnavailableReason))]
+    [NotifyPropertyChangedFor(nameof(CanContinue), nameof(ContinueUnavailableReason), nameof(StoppedText))]
     [NotifyCanExecuteChangedFor(nameof(ContinueCommand))]
     public partial RunStopPoint? StoppedAt { get; private set; }
+
+    /// <summary>
+    /// Where the stopped run stopped, as the log's <c>Stopped at</c> says it: the rows done of the run bar's count and the
+    /// stage in mm (<see cref="RunSummaryText.StagePlace"/>); null when no run stopped.
+    /// </summary>
+    public string? StoppedText => StoppedAt is not { } stop ? null
+        : $"stopped after {Progress?.Run.RowsDone ?? 0} of {Progress?.Run.RowsTotal ?? 0} {ProgressUnit}s"
+            + (stop is { XMicrosteps: { } x, YMicrosteps: { } y } ? $", {RunSummaryText.StagePlace(x, y, _machine.Profile)}" : string.Empty);
 
     /// <summary>Whether <see cref="ContinueCommand"/> can pick the stopped run up: the job as it stopped, nothing under way.</summary>
     public bool CanContinue => StoppedAt is not null && ContinueUnavailableReason is null;
@@ -688,6 +696,7 @@ public sealed partial class RunViewModel : ObservableObject
         catch (Exception ex) when (ex is DeviceException or InvalidOperationException or ObjectDisposedException or TimeoutException or IOException)
         {
             _machine.Error = ex.Message;
+            _machine.StateNotKnown();
         }
 
         // The run counts as ended only once its log is written, so whoever waits for the end finds the log.
@@ -761,6 +770,10 @@ public sealed partial class RunViewModel : ObservableObject
 
             owner._machine.XMicrosteps = value.Run.XMicrosteps;
             owner._machine.YMicrosteps = value.Run.YMicrosteps;
+
+            // The panel's and the API's laser come from the engine's report during a run, not from the gate read before it.
+            var parts = session.Engraving.Parts;
+            owner._machine.RunLaser(value.Run.LaserOn, parts[Math.Clamp(value.Layer - 1, 0, parts.Count - 1)].Spec.Process.LaserFrequencyWholeHz);
             if (owner._pace is { } pace)
             {
                 pace.Report(value.Layer, value.Pass, value.MovesDone, value.Run.XMicrosteps, value.Run.YMicrosteps);

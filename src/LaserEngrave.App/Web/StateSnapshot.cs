@@ -19,6 +19,9 @@ internal static class StateSnapshot
         var stats = prepared?.Statistics;
         var geometry = prepared?.Geometry;
         var progress = run.Progress;
+
+        // Read once: the panel's words and the run's laserOn come from this one value, so they cannot disagree.
+        var laser = machine.Laser;
         return new
         {
             settings = new { theme = main.Settings.Theme, recentFiles = main.Settings.RecentFiles, lastFolder = main.Settings.LastFolder },
@@ -116,7 +119,7 @@ internal static class StateSnapshot
                 yMm = machine.YMicrosteps is { } y ? StageUnits.MicrostepsToMm(y, machine.Profile.Y.MicrostepUm) : (double?)null,
                 machine.XHomed,
                 machine.YHomed,
-                machine.GateState,
+                gateState = laser is null ? null : MachineViewModel.Describe(laser),
                 machine.IsBusy,
                 machine.Error,
             },
@@ -144,7 +147,7 @@ internal static class StateSnapshot
                 pauseRequested = progress?.PauseRequested,
                 x = progress?.Run.XMicrosteps,
                 y = progress?.Run.YMicrosteps,
-                laserOn = progress?.Run.LaserOn,
+                laserOn = progress is null ? (bool?)null : run.IsActive && laser is not null ? laser.Firing : progress.Run.LaserOn,
                 phase = progress is null ? null : run.State.ToString().ToLowerInvariant(),
                 percent = Math.Round(run.Fraction * 100, 1),
                 elapsedSeconds = Math.Round(run.ElapsedSeconds, 1),

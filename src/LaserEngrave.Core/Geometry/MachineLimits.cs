@@ -63,6 +63,9 @@ public sealed record MachineLimits(
     /// <summary>Whether a frequency is one the gate is sent as 1..<see cref="MaxFrequencyHz"/> whole Hz.</summary>
     public bool FrequencyAllowed(double hz) => double.IsFinite(hz) && Math.Round(hz, MidpointRounding.AwayFromZero) >= 1 && hz <= MaxFrequencyHz;
 
+    /// <summary>Whether a frequency is whole Hz, as the gate is sent it (a job refuses a fraction rather than log one value and send another).</summary>
+    public static bool WholeHz(double hz) => double.IsFinite(hz) && hz == Math.Floor(hz);
+
     /// <summary>Numbers in messages: invariant, at most 5 decimals, and in exponent form when huge or tiny.</summary>
     internal static class Text
     {

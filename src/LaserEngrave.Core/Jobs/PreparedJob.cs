@@ -45,7 +45,10 @@ public sealed class PreparedJob
     public DotPlan? Dots { get; }
 
     /// <summary>Null when the job can be engraved as planned; otherwise why not, in one line (checked before anything opens).</summary>
-    public string? EngraveProblem => Dots is { } dots ? dots.Problem : Plan.SwitchingProblem;
+    /// <remarks>A raster burn whose pulses come further apart than a pixel is one (<see cref="JobRules.PixelPulses"/>): some pixels would get none.</remarks>
+    public string? EngraveProblem => Dots is { } dots ? dots.Problem : Plan.SwitchingProblem ?? PixelPulsesProblem;
+
+    private string? PixelPulsesProblem => JobRules.PixelPulses(Pulses) is { } tooFew ? $"{JobField.Label(JobField.Frequency)} {MachineLimits.Text.N(Spec.Process.LaserFrequencyHz)} Hz {tooFew}" : null;
 
     /// <summary>What the process does per pulse and per pixel at this pitch and the profile's spot (seed 004).</summary>
     public PulseFigures Pulses { get; }

@@ -102,7 +102,8 @@ public static class RunSummaryText
 
         if (record.StoppedAt is { } stop)
         {
-            var position = stop.XMicrosteps is { } x && stop.YMicrosteps is { } y ? string.Create(c, $", stage at {x}, {y} microsteps") : string.Empty;
+            // In mm first, as the app's panel and cross show the stage; the microsteps after, as the stage counts them.
+            var position = stop.XMicrosteps is { } x && stop.YMicrosteps is { } y ? $", {StagePlace(x, y, record.Profile)}" : string.Empty;
             // Counted as the run bar and the "Done" line count (the engine's rows or strokes done), so that they agree; the
             // image row (or stroke) of the move it stopped in follows, as the stop point holds it.
             var (unit, within) = record.Drawing is null ? ("rows", "image row") : ("strokes", "stroke");
@@ -276,4 +277,14 @@ public static class RunSummaryText
         RunOutcome.Refused => "refused before starting",
         _ => record.Outcome.ToString(),
     };
+
+    /// <summary>
+    /// Where the stage stopped, in the words the log's <c>Stopped at</c> line and the app's run bar share: in mm first, as the
+    /// app shows the stage, then the microsteps the stage counts ("stage at X 19.332 mm, Y 6.707 mm (194843, 67602 microsteps)").
+    /// </summary>
+    public static string StagePlace(long xMicrosteps, long yMicrosteps, MachineProfile profile)
+    {
+        ArgumentNullException.ThrowIfNull(profile);
+        return string.Create(CultureInfo.InvariantCulture, $"stage at X {StageUnits.MicrostepsToMm(xMicrosteps, profile.X.MicrostepUm):0.###} mm, Y {StageUnits.MicrostepsToMm(yMicrosteps, profile.Y.MicrostepUm):0.###} mm ({xMicrosteps}, {yMicrosteps} microsteps)");
+    }
 }

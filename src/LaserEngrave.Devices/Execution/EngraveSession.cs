@@ -1,3 +1,4 @@
+using System.Globalization;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Devices.Scheduling;
@@ -403,6 +404,12 @@ public sealed class EngraveSession
             Layers = layers,
             Recoveries = _recoveries.Count > 0 ? [.. _recoveries] : null,
         };
+        if (record.Outcome == RunOutcome.Completed && BurnMismatch(record) is { } mismatch)
+        {
+            // "Completed" promises the whole image engraved: on the twin, where the burn is known, only when it equals the mask.
+            record = record with { Outcome = RunOutcome.Failed, Fault = new RunFault(mismatch, "burn") };
+        }
+
         if (layers is not null)
         {
             // The estimate is the whole job's, whatever part of it ran.
@@ -470,6 +477,12 @@ public sealed class EngraveSession
                 _recovering = true;
             }
 
+            EngraveProgress stopped;
+            lock (_lock)
+            {
+                stopped = _progress;
+            }
+
             RunResult again;
             try
             {
@@ -478,8 +491,16 @@ public sealed class EngraveSession
             catch (Exception ex) when (ex is not OperationCanceledException and not OutOfMemoryException)
             {
                 // Going on needs the machine to pass its checks again (a stage gone silent does not): the run ends on the
-                // first fault, with its stop point, so that a resume later starts there.
-                return result with { FaultMessage = $"{result.FaultMessage}; going on from it failed: {ex.Message}" };
+                // first fault, with its stop point, so that a resume later starts there. What the machine did comes first
+                // (which device, what it did); the doubt that led to it after. The progress is the stopped pass's again, not
+                // the new pass's start (row 0, the stage at 0, 0), so the run bar and the cross agree with the log.
+                lock (_lock)
+                {
+                    _progress = stopped with { Recovering = false };
+                    _recovering = false;
+                }
+
+                return result with { FaultMessage = $"{ex.Message.ReplaceLineEndings(" ")}, while going on after a timing doubt ({result.FaultMessage})" };
             }
 
             result = again with
@@ -506,6 +527,26 @@ public sealed class EngraveSession
     private bool AbortRequested()
     {
         return _control.AbortRequested;
+    }
+
+    /// <summary>
+    /// Null when the twin's burn of every image equals its mask (or nothing measured it: a real machine, a drawing); otherwise
+    /// the one line that says how it differs.
+    /// </summary>
+    internal static string? BurnMismatch(RunRecord record)
+    {
+        var measured = record.Layers is { } layers
+            ? layers.Select((l, i) => (Name: $"layer {i + 1}: ", l.Simulation, Image: l.Simulation?.Path is null))
+            : [(Name: string.Empty, record.Simulation, Image: record.Drawing is null)];
+        foreach (var (name, simulation, image) in measured)
+        {
+            if (image && simulation is { } sim && (sim.MissingPixels > 0 || sim.ExtraPixels > 0))
+            {
+                return string.Create(CultureInfo.InvariantCulture, $"{name}the burn does not equal the mask: {sim.MissingPixels} black pixels got no pulse and {sim.ExtraPixels} white pixels got one (the simulator's count), so the image was not engraved whole");
+            }
+        }
+
+        return null;
     }
 
     // A continued run is checked against what it had still to burn, not what the run it continues burned. The twin

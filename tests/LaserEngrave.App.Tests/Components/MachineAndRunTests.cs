@@ -6,6 +6,7 @@ using LaserEngrave.App.Tests.ViewModels;
 using LaserEngrave.App.ViewModels;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
+using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Execution;
 using NSubstitute;
 
@@ -362,6 +363,78 @@ public sealed class RunBarTests : ComponentTest
             EngravingDuration = TimeSpan.Zero, EstimatedSeconds = 1, LaserOnSeconds = 0, RowsDone = 10, RowsTotal = 20, RunsDone = 3, RunsTotal = 7,
         });
         cut.WaitForAssertion(() => Assert.Equal("aborted", cut.Find("#status-run").TextContent));
+    }
+
+    [Fact]
+    public async Task Run_LaserOnInTheEngine_PanelAndStateSayFiringAsTheRunDoes()
+    {
+        // Issue 31, finding 2: during a run the panel and /api/state said "off" (the gate read before the run) while run.laserOn was true.
+        OpenQr();
+        await ConnectAsync();
+        Assert.Equal("off", Main.Machine.GateState);
+        var release = new TaskCompletionSource<RunResult>();
+        var firing = new TaskCompletionSource<IProgress<EngraveProgress>>();
+        Runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>()).Returns(async c =>
+        {
+            var progress = c.Arg<IProgress<EngraveProgress>>();
+            progress.Report(SessionResults.Report(RunState.Running, 50, 100, 10, 20, laserOn: true));
+            firing.SetResult(progress);
+            return SessionResults.Ended(c.Arg<EngraveSession>(), await release.Task);
+        });
+        var panel = Render<MachinePanel>(p => p.Add(c => c.Machine, Main.Machine));
+        var hz = (int)Main.Job.LaserFrequencyHz;
+
+        var run = Main.Run.StartCommand.ExecuteAsync(null);
+        var progress = await firing.Task;
+
+        panel.WaitForAssertion(() => Assert.Equal($"firing at {hz} Hz", panel.Find("#machine-gate").TextContent));
+        var state = System.Text.Json.JsonSerializer.SerializeToElement(global::LaserEngrave.App.Web.StateSnapshot.From(Main));
+        Assert.Equal($"firing at {hz} Hz", state.GetProperty("machine").GetProperty("gateState").GetString());
+        Assert.True(state.GetProperty("run").GetProperty("laserOn").GetBoolean());
+
+        progress.Report(SessionResults.Report(RunState.Running, 51, 100, 10, 20, laserOn: false));
+        panel.WaitForAssertion(() => Assert.Equal("off", panel.Find("#machine-gate").TextContent));
+        state = System.Text.Json.JsonSerializer.SerializeToElement(global::LaserEngrave.App.Web.StateSnapshot.From(Main));
+        Assert.Equal("off", state.GetProperty("machine").GetProperty("gateState").GetString());
+        Assert.False(state.GetProperty("run").GetProperty("laserOn").GetBoolean());
+
+        release.SetResult(new RunResult
+        {
+            Outcome = RunOutcome.Completed, LaserOffConfirmed = true, StartedAt = DateTimeOffset.UnixEpoch, EndedAt = DateTimeOffset.UnixEpoch,
+            EngravingDuration = TimeSpan.Zero, EstimatedSeconds = 1, LaserOnSeconds = 0, RowsDone = 20, RowsTotal = 20, RunsDone = 7, RunsTotal = 7,
+        });
+        await run;
+        Assert.Equal("off", Main.Machine.GateState);
+    }
+
+    [Fact]
+    public async Task Run_FailsOnAStageThatStoppedAnswering_PanelNoLongerSaysHomedAndTheCrossStaysWhereTheRunStopped()
+    {
+        // Issue 31, finding 8: after a stage went silent the panel still said homed and the cross was drawn at 0, 0.
+        OpenQr();
+        await ConnectAsync();
+        Assert.Contains("X yes", Render<MachinePanel>(p => p.Add(c => c.Machine, Main.Machine)).Find("#machine-homed").TextContent, StringComparison.Ordinal);
+        Runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>()).Returns(c =>
+        {
+            c.Arg<IProgress<EngraveProgress>>().Report(SessionResults.Report(RunState.Running, 30, 100, 8, 33, x: 19484, y: 6760));
+            Machine.Y.IdentifyAsync(Arg.Any<CancellationToken>()).Returns<AxisIdentity>(_ => throw new DeviceException("the Y axis (device 2) does not answer"));
+            return Task.FromResult(SessionResults.Ended(c.Arg<EngraveSession>(), new RunResult
+            {
+                Outcome = RunOutcome.Failed, FaultMessage = "the Y axis (device 2) does not answer", LaserOffConfirmed = true, StartedAt = DateTimeOffset.UnixEpoch, EndedAt = DateTimeOffset.UnixEpoch,
+                EngravingDuration = TimeSpan.Zero, EstimatedSeconds = 1, LaserOnSeconds = 0, RowsDone = 8, RowsTotal = 33, RunsDone = 60, RunsTotal = 284,
+                StopPoint = new RunStopPoint(12, 30, 19484, 6760),
+            }));
+        });
+
+        await Main.Run.StartCommand.ExecuteAsync(null);
+
+        var panel = Render<MachinePanel>(p => p.Add(c => c.Machine, Main.Machine));
+        Assert.Equal("X ?, Y ?", panel.Find("#machine-homed").TextContent);
+        Assert.Equal("the Y axis (device 2) does not answer", Main.Machine.Error);
+        Assert.Equal((19484L, 6760L), (Main.Machine.XMicrosteps, Main.Machine.YMicrosteps));
+        var bar = RenderBar();
+        Assert.Contains("row 8 of 33", bar.Find("#progress-figures").TextContent, StringComparison.Ordinal);
+        Assert.Equal("stopped after 8 of 33 rows, stage at X 1.933 mm, Y 0.671 mm (19484, 6760 microsteps)", bar.Find("#stopped-at").TextContent);
     }
 
     [Fact]

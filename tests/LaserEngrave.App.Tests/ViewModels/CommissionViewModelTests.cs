@@ -15,13 +15,20 @@ public sealed class CommissionViewModelTests : IAsyncDisposable
     private readonly CommissionViewModel _commission;
 
     public CommissionViewModelTests()
+        : this(asIfReal: false)
+    {
+    }
+
+    /// <param name="asIfReal">The simulator as the app would see a real machine (<see cref="IMachineConnection.IsSimulated"/> false).</param>
+    private CommissionViewModelTests(bool asIfReal)
     {
         var settings = Substitute.For<ISettingsStore>();
         settings.Load().Returns(new AppSettings());
         var store = Substitute.For<IRunLogStore>();
         store.History().Returns([]);
+        IMachineConnectionFactory factory = new MachineConnectionFactory(new SimulatorOptions { FirmwareVersion = 506 });
         _main = new MainViewModel(
-            new ImageService(), new MachineConnectionFactory(new SimulatorOptions { FirmwareVersion = 506 }), Substitute.For<IRunService>(), store, settings,
+            new ImageService(), asIfReal ? new AsIfReal(factory) : factory, Substitute.For<IRunService>(), store, settings,
             Substitute.For<IFileAccess>(), TimeProvider.System, new MachineActivity(), new JobFiles(new AppFolders(_folder.Path)));
         _commission = new CommissionViewModel(_main, new MachineCheckService(), _folder.Path, TimeProvider.System) { DistanceMm = 1, Exchanges = 10 };
     }
@@ -53,13 +60,32 @@ public sealed class CommissionViewModelTests : IAsyncDisposable
         Assert.Contains("firmware 5.06 (homes at the Target Speed", _commission.Steps.Single(s => s.Name == "X axis").Finding, StringComparison.Ordinal);
         Assert.Contains("watchdog tripped", _commission.Steps.Single(s => s.Name == "gate watchdog").Finding, StringComparison.Ordinal);
         Assert.Equal("Result: every step passed", _commission.Result);
-        var profile = MachineProfile.Load(Path.Combine(_folder.Path, "machine-profile.json"));
+        // Issue 31, finding 9: the simulator's latencies once went into the app's one machine profile (the box ticked by default).
+        Assert.False(File.Exists(Path.Combine(_folder.Path, "machine-profile.json")));
+        var profile = MachineProfile.Load(Path.Combine(_folder.Path, CommissionViewModel.SimulatorProfileName));
         Assert.NotEqual(MachineProfile.Default.Latency, profile.Latency);
-        Assert.Equal(profile.Latency, _main.Machine.Profile.Latency);
+        Assert.Equal(MachineProfile.Default.Latency, _main.Machine.Profile.Latency);
+        Assert.StartsWith("Written: the simulator's latencies into ", _commission.ProfileNote, StringComparison.Ordinal);
+        Assert.EndsWith("the machine profile was left as it was", _commission.ProfileNote, StringComparison.Ordinal);
         var report = await File.ReadAllTextAsync(_commission.ReportPath!, TestContext.Current.CancellationToken);
         Assert.Contains("ok     X move: device 1 (X) sent to 10079 microsteps", report, StringComparison.Ordinal);
         Assert.False(_main.Activity.IsBusy);
         Assert.True(_main.Machine.XHomed);
+    }
+
+    [Fact(Timeout = 120_000)]
+    public async Task Check_OnARealMachine_TheLatenciesGoIntoTheMachineProfileInUse()
+    {
+        await using var real = new CommissionViewModelTests(asIfReal: true);
+        await real._main.Machine.ConnectCommand.ExecuteAsync(null);
+        Assert.Null(real._main.Machine.Error);
+
+        await real._commission.CheckCommand.ExecuteAsync(null);
+
+        var profile = MachineProfile.Load(Path.Combine(real._folder.Path, "machine-profile.json"));
+        Assert.NotEqual(MachineProfile.Default.Latency, profile.Latency);
+        Assert.Equal(profile.Latency, real._main.Machine.Profile.Latency);
+        Assert.False(File.Exists(Path.Combine(real._folder.Path, CommissionViewModel.SimulatorProfileName)));
     }
 
     public async ValueTask DisposeAsync()
@@ -70,5 +96,35 @@ public sealed class CommissionViewModelTests : IAsyncDisposable
         }
 
         _folder.Dispose();
+    }
+
+    /// <summary>Opens the simulator and presents it as a real machine, as serial ports would be.</summary>
+    private sealed class AsIfReal(IMachineConnectionFactory inner) : IMachineConnectionFactory
+    {
+        public async Task<IMachineConnection> ConnectAsync(MachineChoice choice, MachineProfile profile, CancellationToken cancellationToken) =>
+            new Real(await inner.ConnectAsync(choice, profile, cancellationToken));
+
+        public IReadOnlyList<string> ListPorts() => [];
+
+        private sealed class Real(IMachineConnection simulator) : IMachineConnection
+        {
+            public string Description => "stage COM3, laser COM4";
+
+            public MachineProfile Profile => simulator.Profile;
+
+            public TimeProvider TimeProvider => simulator.TimeProvider;
+
+            public bool IsSimulated => false;
+
+            public Devices.Abstractions.IStage Stage => simulator.Stage;
+
+            public Devices.Abstractions.ILaserGate Gate => simulator.Gate;
+
+            public Devices.Machine.ILatencyProbe Latency => simulator.Latency;
+
+            public Core.Logging.IRunInspector? Inspector => null;
+
+            public ValueTask DisposeAsync() => simulator.DisposeAsync();
+        }
     }
 }

@@ -131,6 +131,42 @@ public sealed class JobRulesTests : IDisposable
         Assert.Null(JobRules.Check(PreparedJob.Prepare(runs.Spec())));
     }
 
+    [Fact]
+    public void Check_FivePulsesASecondOnTheQrAtFiveMillimetres_RefusedBeforeAnythingMoves()
+    {
+        // Issue 31, finding 5: at 5 Hz and 1 mm/s a 122 µm pixel gets 0.61 pulses; the run "completed" with 173 pixels missing.
+        var job = PreparedJob.Prepare(runs.Spec() with { Process = ProcessSettings.Default with { BurnSpeedMmPerS = 1, LaserFrequencyHz = 5 } });
+
+        var problem = JobRules.Check(job);
+
+        Assert.NotNull(problem);
+        Assert.Equal(JobField.Frequency, problem.Field);
+        Assert.Equal("laser frequency 5 Hz: gives a 121.95122 µm pixel 0.61 pulses at the burn speed of 1 mm/s, so some pixels would get none: give at least 9 Hz, or a burn speed of at most 0.609 mm/s", problem.Message);
+        Assert.Equal(problem.Message.Replace("Hz:", "Hz", StringComparison.Ordinal), job.EngraveProblem);
+    }
+
+    [Fact]
+    public void Check_FrequencyGivingAPulseEveryPixel_Accepted()
+    {
+        // The frequency the refusal names is one the rule takes.
+        var job = PreparedJob.Prepare(runs.Spec() with { Process = ProcessSettings.Default with { BurnSpeedMmPerS = 1, LaserFrequencyHz = 9 } });
+
+        Assert.Null(JobRules.Check(job));
+        Assert.Null(job.EngraveProblem);
+    }
+
+    [Fact]
+    public void Check_FractionOfAHertz_RefusedByEveryPath()
+    {
+        // Issue 31, finding 5: 0.5 Hz was logged as 0.5 while the gate was sent 1 Hz; a fraction is refused, not rounded.
+        var problem = Assert.Single(JobRules.Check(Basis with { LaserFrequencyHz = 0.5 }, Limits));
+        Assert.Equal(JobField.Frequency, problem.Field);
+        Assert.Equal("laser frequency 0.5 Hz: is not a whole number of Hz: the laser gate is sent whole Hz; give 1", problem.Message);
+        Assert.Contains(JobRules.Check(Basis with { LaserFrequencyHz = 400.4 }, Limits), p => p.Field == JobField.Frequency);
+        Assert.StartsWith("process.laserFrequencyHz 0.5: is not a whole number of Hz", LogProblem(r => r with { Process = r.Process with { LaserFrequencyHz = 0.5 } }), StringComparison.Ordinal);
+        Assert.Contains("is not a whole number of Hz", SweepProblem("frequency=100,100.5"), StringComparison.Ordinal);
+    }
+
     public void Dispose() => runs.Dispose();
 
     private string? LogProblem(Func<RunRecord, RunRecord> change) => RunReplay.Problem(change(runs.FailedRecord() with { Profile = SlowY, Process = ProcessSettings.FromProfile(SlowY), StoppedAt = null }));

@@ -18,7 +18,8 @@ public sealed class RunSummaryTextTests : IDisposable
         Assert.Contains("Fault:              x axis: no reply within 500 ms (timeout)", text, StringComparison.Ordinal);
         Assert.Contains("Laser off:          confirmed by the gate", text, StringComparison.Ordinal);
         // Issue 23: the stop is counted in the rows done, as the run bar and the "Done" line count; the image row follows.
-        Assert.Contains($"Stopped at:         after 11 of {record.RowsTotal} rows, move 40 (image row 12), stage at 123456, 98765 microsteps", text, StringComparison.Ordinal);
+        // Issue 31, finding 8: the stop in mm, as the app shows the stage, not in microsteps only.
+        Assert.Contains($"Stopped at:         after 11 of {record.RowsTotal} rows, move 40 (image row 12), stage at X 12.249 mm, Y 9.799 mm (123456, 98765 microsteps)", text, StringComparison.Ordinal);
         Assert.Contains($"Done:               11 of {record.RowsTotal} rows", text, StringComparison.Ordinal);
         Assert.Contains("Started:            2026-11-23 14:30:05 +02:00", text, StringComparison.Ordinal);
         Assert.Contains(record.Image.Sha256, text, StringComparison.Ordinal);
