@@ -88,6 +88,28 @@ public class ProgressPrinterTests
             output.ToString().TrimEnd().Split(Environment.NewLine));
     }
 
+    [Fact]
+    public void Report_HundredRecoveries_SaysThreeThenCountsTheRestOnceAtTheEnd()
+    {
+        // Issue 31 finding 6: a run that went on after every row printed two lines each time.
+        using var output = new StringWriter();
+        var printer = new ProgressPrinter(output, terminal: false);
+
+        printer.Report(new EngraveProgress(RunState.Running, 1, 1, 10, 100, false, At(10)));
+        for (var n = 1; n <= 100; n++)
+        {
+            printer.Report(new EngraveProgress(RunState.Preflight, 1, 1, 10, 100, false, At(0, RunState.Preflight) with { RowsDone = 0 }, Recoveries: n, Recovering: true));
+            printer.Report(new EngraveProgress(RunState.Running, 1, 1, 10, 100, false, At(10), Recoveries: n));
+        }
+
+        printer.Finish();
+
+        var lines = output.ToString().TrimEnd().Split(Environment.NewLine);
+        Assert.Equal(3, lines.Count(l => l.StartsWith("recovering: the run fell behind", StringComparison.Ordinal)));
+        Assert.Equal(4, lines.Count(l => l.StartsWith("running:", StringComparison.Ordinal)));
+        Assert.Equal("recovering: went on after 97 more timing doubts (100 in all; the run log lists each)", lines[^1]);
+    }
+
     // The next layer's first pass has the pass number of the one before: only the session knows a recovery from a new start.
     [Fact]
     public void Report_NextLayersFirstPass_IsANewStartNotARecovery()

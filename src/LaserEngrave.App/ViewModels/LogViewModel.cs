@@ -209,7 +209,9 @@ public sealed partial class LogViewModel : ObservableObject
         if (files is not null)
         {
             LastRun = new RunLogEntry(files.JsonPath, record, null);
-            Error = null;
+
+            // A log folder that failed during the run: the one line says where the log went instead.
+            Error = files.Notice;
         }
         else
         {

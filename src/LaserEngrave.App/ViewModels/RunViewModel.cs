@@ -449,7 +449,9 @@ public sealed partial class RunViewModel : ObservableObject
             return;
         }
 
-        await RunAsync(target, _job.ToSettings(), _machine.Connection!, record.StoppedAt, continuedFrom: path);
+        // An older log's stop point may count an older planner's moves: where it stands in this plan (docs/run-log.md, "Older logs").
+        var stop = target is RasterJob raster ? RunReplay.StopPointInPlan(record, () => raster.Prepared.Plan) : record.StoppedAt;
+        await RunAsync(target, _job.ToSettings(), _machine.Connection!, stop, continuedFrom: path);
     }
 
     /// <summary>One line for the user on a request that did nothing, e.g. a second Start during a run.</summary>

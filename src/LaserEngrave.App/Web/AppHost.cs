@@ -48,7 +48,7 @@ public static class AppHost
         services.AddSingleton<IFileAccess>(sp => new Services.FileAccess(sp.GetRequiredService<AppFolders>()));
         services.AddSingleton<IJobFiles>(sp => new JobFiles(sp.GetRequiredService<AppFolders>(), () => sp.GetRequiredService<MainViewModel>().Job.Profile, sp.GetRequiredService<TimeProvider>()));
         services.AddSingleton<ISettingsStore>(sp => new JsonSettingsStore(sp.GetRequiredService<AppFolders>().SettingsFile));
-        services.AddSingleton<IRunLogStore>(sp => new RunLogFolder(sp.GetRequiredService<AppFolders>().RunLogFolder));
+        services.AddSingleton<IRunLogStore>(sp => new RunLogFolder(sp.GetRequiredService<AppFolders>().RunLogFolder, sp.GetRequiredService<AppFolders>().DataFolder));
         services.AddSingleton<IPresetStore>(sp => new JsonPresetStore(sp.GetRequiredService<AppFolders>().PresetsFile));
         services.AddSingleton(sp => new PresetsViewModel(sp.GetRequiredService<IPresetStore>(), sp.GetRequiredService<MainViewModel>().Job));
         services.AddSingleton(sp => new CalibrationViewModel(sp.GetRequiredService<MainViewModel>(), sp.GetRequiredService<AppFolders>().DataFolder));

@@ -2,6 +2,7 @@ using System.Diagnostics;
 using System.CommandLine;
 using System.Globalization;
 using System.Runtime.ExceptionServices;
+using System.Text.Json;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
 using LaserEngrave.Core.Jobs;
@@ -156,7 +157,8 @@ internal static class EngraveCommand
                 CliJson.Prepare(typeof(EngraveSummary));
             }
         });
-        var store = new RunLogStore(result.GetValue(o.LogDir) ?? RunLogStore.DefaultFolder);
+        var seam = LogSeam.Value;
+        var store = new RunLogStore(result.GetValue(o.LogDir) ?? RunLogStore.DefaultFolder, seam?.Files);
 
         // A run must not start without a place for its log: the folder takes a file and has room for one, before anything moves.
         store.CheckWritable();
@@ -195,7 +197,8 @@ internal static class EngraveCommand
                 ResumeLayers = resumeLayers,
                 JobFile = layeredFile,
                 Home = result.GetValue(o.Home),
-                Log = store,
+                // The record is the only thing that resumes a run: a folder that fails during the run must not lose it.
+                Log = FallbackRunLogWriter.For(store, seam?.DataFolder ?? FallbackRunLogWriter.DefaultDataFolder, seam?.Files),
                 Recorder = recorder,
             };
             var session = new EngraveSession(machine, job, sessionOptions);
@@ -227,15 +230,24 @@ internal static class EngraveCommand
         await prepareJson.ConfigureAwait(false);
         if (engraved.Files is not { } files)
         {
-            // The run happened: keep what the log would have said on stderr (and the object on stdout), and fail (not "bad input").
+            // The run happened: say so first, in one line, then keep what the log would have said on stderr and the
+            // record itself on stdout with --json (what --resume needs, to be saved by hand), and fail (not "bad input").
+            var why = engraved.LogError?.Message ?? "no log was written";
+            var outcome = record.Outcome.ToString().ToLowerInvariant();
+            stderr.WriteLine($"laserengrave: the run ended ({outcome}) but its log could not be written{(json ? "; the record is in the JSON on stdout (runLog)" : ", so its summary follows")}: {why}");
             stderr.Write(RunSummaryText.Format(record));
             if (json)
             {
-                CliJson.Write(stdout, EngraveSummary.From(record, null, null, null, null));
+                CliJson.Write(stdout, EngraveSummary.From(record, null, null, null, null) with { RunLog = RecordElement(record) });
             }
 
-            var why = engraved.LogError?.Message ?? "no log was written";
-            throw new InvalidOperationException($"the run ended ({record.Outcome.ToString().ToLowerInvariant()}) but its log could not be written, so the summary is above: {why}", engraved.LogError);
+            throw new InvalidOperationException($"the run ended ({outcome}) and its log was not written (see the first line above)", engraved.LogError);
+        }
+
+        if (files.Notice is { } notice)
+        {
+            // The first line after the run, before the summary: the log is not where it was asked to be.
+            stderr.WriteLine($"laserengrave: {notice}");
         }
 
         var burn = inspector?.Report;
@@ -253,7 +265,7 @@ internal static class EngraveCommand
         var summary = EngraveSummary.From(record, files, burnedPath, burn is null ? null : dosePath, wallSeconds);
         if (json)
         {
-            CliJson.Write(stdout, summary);
+            CliJson.Write(stdout, summary with { LogNotice = files.Notice, RunLog = RecordElement(record) });
         }
         else
         {
@@ -278,6 +290,19 @@ internal static class EngraveCommand
         }
 
         return CliRunner.Ok;
+    }
+
+    /// <summary>
+    /// Tests only: the file system the run log is written with and the data folder it falls back to, for this call
+    /// (an <see cref="AsyncLocal{T}"/>, so tests running side by side do not see each other's).
+    /// </summary>
+    internal static readonly AsyncLocal<(RunLogFileSystem Files, string DataFolder)?> LogSeam = new();
+
+    // The run record exactly as the log's JSON holds it (docs/run-log.md), for --json's runLog.
+    private static JsonElement RecordElement(RunRecord record)
+    {
+        using var document = JsonDocument.Parse(RunRecordJson.Serialize(record));
+        return document.RootElement.Clone();
     }
 
     /// <summary>Refuses a job that does not fit the travel before any port opens (preflight would refuse it later).</summary>
@@ -359,8 +384,10 @@ internal static class EngraveCommand
             return (spec, Path.GetFullPath(fromLog), null);
         }
 
-        var stop = logged.StoppedAt
+        _ = logged.StoppedAt
             ?? throw new UsageException($"{fromLog}: the run {logged.Outcome.ToString().ToLowerInvariant()} with no stop point, so there is nothing to resume; repeat it without --resume");
+        // A log of an older schema version may count the moves of an older plan: its stop point in today's plan.
+        var stop = RunReplay.StopPointInPlan(logged, () => PreparedJob.Prepare(spec).Plan);
         return (spec, Path.GetFullPath(fromLog), stop);
     }
 
@@ -546,6 +573,15 @@ internal sealed record EngraveSummary(
     IReadOnlyList<RunLayer>? Layers,
     LateSwitches? LateSwitches)
 {
+    /// <summary>
+    /// The one line saying the log went to a fallback folder and why (docs/run-log.md); null when it is where it was asked
+    /// to be. After the fields above, which stay as they were, so that a reader of them sees no change.
+    /// </summary>
+    public string? LogNotice { get; init; }
+
+    /// <summary>The whole run record, as the log's JSON holds it: printed even when no log could be written, so it can be saved and resumed.</summary>
+    public JsonElement? RunLog { get; init; }
+
     /// <param name="files">The log's files; null when it could not be written (the object still says how the run went).</param>
     public static EngraveSummary From(RunRecord record, RunLogFiles? files, string? burnedPath, string? dosePath, double? wallSeconds) => new(
         record.Outcome.ToString().ToLowerInvariant(),

@@ -48,6 +48,13 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
             if (value.Recoveries != _recoveriesSaid)
             {
                 _recoveriesSaid = value.Recoveries;
+                if (value.Recoveries > RunSummaryText.ListedRecoveries)
+                {
+                    // Hundreds of the same lines (this one and the "running" after it) would bury the run's end: the
+                    // rest are counted in one line when the run ends.
+                    return;
+                }
+
                 _lastState = RunState.Preflight;
                 var total = Math.Max(1, value.Run.RowsTotal);
                 var row = Math.Min(_rowsDoneUnderWay + 1, total);
@@ -113,6 +120,12 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
         {
             Print(writer.WriteLine);
             _barShown = false;
+        }
+
+        if (_recoveriesSaid > RunSummaryText.ListedRecoveries)
+        {
+            var more = _recoveriesSaid - RunSummaryText.ListedRecoveries;
+            Print(() => writer.WriteLine(string.Create(CultureInfo.InvariantCulture, $"recovering: went on after {more} more timing doubt{(more == 1 ? string.Empty : "s")} ({_recoveriesSaid} in all; the run log lists each)")));
         }
     }
 

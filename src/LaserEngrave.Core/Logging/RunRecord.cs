@@ -13,10 +13,19 @@ namespace LaserEngrave.Core.Logging;
 /// </remarks>
 public sealed record RunRecord
 {
-    /// <summary>The schema version this build writes; it reads this one and older.</summary>
-    public const int CurrentSchemaVersion = 1;
+    /// <summary>The schema version this build writes; it reads this one and older (<see cref="RunLogMigration"/>).</summary>
+    /// <remarks>2: every member written (version 1 logs lack the members added during its life; docs/run-log.md, "Older logs").</remarks>
+    public const int CurrentSchemaVersion = 2;
 
     public int SchemaVersion { get; init; } = CurrentSchemaVersion;
+
+    /// <summary>
+    /// The schema version the file was written with, when it was older than <see cref="CurrentSchemaVersion"/> and
+    /// migrated on reading (<see cref="RunLogMigration"/>); not written. A version 1 stop point may count moves of an
+    /// older plan (<see cref="RunReplay.StopPointInPlan"/>).
+    /// </summary>
+    [System.Text.Json.Serialization.JsonIgnore]
+    public int ReadFromSchemaVersion { get; init; } = CurrentSchemaVersion;
 
     /// <summary>LaserEngrave's version that ran the job.</summary>
     public required string SoftwareVersion { get; init; }

@@ -1,5 +1,6 @@
 using System.Text.Encodings.Web;
 using System.Text.Json;
+using System.Text.Json.Nodes;
 
 namespace LaserEngrave.Core.Logging;
 
@@ -30,6 +31,7 @@ public static class RunRecordJson
     public static RunRecord Deserialize(string json, string source)
     {
         ArgumentNullException.ThrowIfNull(json);
+        (json, var readFrom) = Migrated(json);
         RunRecord? record;
         try
         {
@@ -51,6 +53,29 @@ public static class RunRecordJson
                 $"{source}: run log schema version {record.SchemaVersion} is not one this LaserEngrave reads (1..{RunRecord.CurrentSchemaVersion}); use a newer LaserEngrave");
         }
 
-        return record;
+        return readFrom is { } version ? record with { ReadFromSchemaVersion = version } : record;
+    }
+
+    /// <summary>A value as the run log writes it, as a JSON node (for <see cref="RunLogMigration"/>'s defaults).</summary>
+    internal static JsonNode ToNode<T>(T value) =>
+        JsonSerializer.SerializeToNode(value, Context.Options.GetTypeInfo(typeof(T))) ?? throw new InvalidOperationException($"{typeof(T).Name} has no JSON");
+
+    // An older schema version's JSON brought up to this one; anything else (this version, a newer one, no record at all)
+    // as it is, for the strict reader to read or name what is wrong with it.
+    private static (string Json, int? ReadFrom) Migrated(string json)
+    {
+        JsonNode? node;
+        try
+        {
+            node = JsonNode.Parse(json, documentOptions: new JsonDocumentOptions { AllowTrailingCommas = true, CommentHandling = JsonCommentHandling.Skip });
+        }
+        catch (JsonException)
+        {
+            return (json, null);
+        }
+
+        return node is JsonObject record && RunLogMigration.VersionOf(record) is { } version && version >= 1 && version < RunRecord.CurrentSchemaVersion
+            ? (RunLogMigration.ToCurrent(record, version).ToJsonString(Context.Options), version)
+            : (json, null);
     }
 }

@@ -31,6 +31,55 @@ public static class RunReplay
     }
 
     /// <summary>
+    /// The stop point of <paramref name="record"/> as a move of this program's plan of its job. A version 1 log may come
+    /// from a program whose planner numbered the moves otherwise (the QR at 5 mm: row 15 began at move 191 then, after
+    /// move 191 now), so its move index can name another place of today's plan. Its burn runs are the same, in the same
+    /// order, and the log counts those finished (<see cref="RunRecord.RunsDone"/>): such a stop point is taken as the
+    /// start of the first burn run not finished, where the program that wrote it would have gone on (a run cut in the
+    /// middle burned again from its start, as that program did). Any other stop point is returned as it is.
+    /// </summary>
+    /// <param name="record">The log of the run to resume.</param>
+    /// <param name="plan">The plan of the job the log repeats; asked only for a version 1 image job of one pass.</param>
+    public static RunStopPoint? StopPointInPlan(RunRecord record, Func<Planning.RasterPlan> plan)
+    {
+        ArgumentNullException.ThrowIfNull(record);
+        ArgumentNullException.ThrowIfNull(plan);
+        if (record.StoppedAt is not { } stop || record.ReadFromSchemaVersion > 1 || record.Passes > 1 || record.Layers is not null
+            || record.Drawing is not null || record.Process.Mode != Planning.PlanMode.Raster)
+        {
+            return record.StoppedAt;
+        }
+
+        long index = 0;
+        long burns = 0;
+        long? nextRun = null;
+        var nextRunRow = 0;
+        var agrees = false;
+        foreach (var move in plan().Moves())
+        {
+            if (index == stop.MoveIndex)
+            {
+                agrees = burns == record.RunsDone && move.Row == stop.Row;
+            }
+
+            if (move.Kind == Planning.MoveKind.Burn)
+            {
+                if (burns == record.RunsDone && nextRun is null)
+                {
+                    nextRun = index;
+                    nextRunRow = move.Row;
+                }
+
+                burns++;
+            }
+
+            index++;
+        }
+
+        return agrees || nextRun is not { } start ? stop : stop with { MoveIndex = start, Row = nextRunRow, ResumeXMicrosteps = null, CutPixel = null, ExpectedXMicrosteps = null };
+    }
+
+    /// <summary>
     /// Throws <see cref="RunLogException"/> "SOURCE: FIELD ..." for the first logged value a repeat or resume could not
     /// use: a log is a file anyone can edit, so its values meet the command line's rules before anything moves.
     /// </summary>

@@ -74,6 +74,9 @@ public static class RunSummaryText
     }
 
     /// <summary>How many timing doubts the run went on from (each a "Went on after" line of the summary); null when none.</summary>
+    /// <summary>How many timing doubts the summary lists one by one before counting the rest in one line.</summary>
+    public const int ListedRecoveries = 3;
+
     public static string? WentOnAfter(int recoveries) =>
         recoveries <= 0 ? null : string.Create(CultureInfo.InvariantCulture, $"went on after {recoveries} timing doubt{(recoveries == 1 ? string.Empty : "s")}");
 
@@ -182,9 +185,19 @@ public static class RunSummaryText
             Line("Late switches", late);
         }
 
-        foreach (var recovery in record.Recoveries ?? [])
+        // A run can go on after thousands of doubts: the first few are listed, the rest counted (the JSON keeps them all).
+        var recoveries = record.Recoveries ?? [];
+        foreach (var recovery in recoveries.Take(ListedRecoveries))
         {
             Line("Went on after", string.Create(c, $"pass {recovery.Pass}, row {recovery.Row + 1} (move {recovery.MoveIndex}): {recovery.Fault}"));
+        }
+
+        if (recoveries.Count > ListedRecoveries)
+        {
+            var rest = recoveries.Skip(ListedRecoveries).ToList();
+            var first = rest.Min(r => r.Pass);
+            var last = rest.Max(r => r.Pass);
+            Line("Went on after", string.Create(c, $"{rest.Count} more timing doubts ({(first == last ? $"pass {first}" : $"passes {first}-{last}")}), listed in the JSON record's recoveries"));
         }
 
         foreach (var device in record.Devices)

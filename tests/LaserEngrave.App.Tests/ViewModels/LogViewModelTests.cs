@@ -96,6 +96,43 @@ public sealed class LogViewModelTests
     }
 
     [Fact]
+    public void Record_LogFolderFailedAndTheLogWentToTheDataFolder_ErrorIsTheOneLineSayingWhere()
+    {
+        // Issue 31 finding 6: the app shows where the record that resumes the run went, and why.
+        var image = TestFiles.Asset("qr-code.bmp");
+        _store.Save(Arg.Any<RunRecord>()).Returns(new RunLogFiles("/data/c.json", "/data/c.txt") { FallbackReason = "/logs/c.json: cannot write the run log: Read-only file system" });
+
+        _log.Record(Record(image, "abc"));
+
+        Assert.Equal("the run log is in /data/c.json instead: /logs/c.json: cannot write the run log: Read-only file system", _log.Error);
+        Assert.Equal("/data/c.json", _log.LastRun!.Path);
+    }
+
+    [Fact]
+    public void RunLogFolder_LogFolderBecameAFile_SavesInTheDataFolder()
+    {
+        var root = Path.Combine(Path.GetTempPath(), $"le-app-logfallback-{Guid.NewGuid():N}");
+        var logs = Path.Combine(root, "logs");
+        Directory.CreateDirectory(root);
+        try
+        {
+            var folder = new RunLogFolder(logs, Path.Combine(root, "data"));
+            folder.CheckWritable();
+            Directory.Delete(logs);
+            File.WriteAllText(logs, "a file where the log folder was");
+
+            var files = folder.Save(Record(TestFiles.Asset("qr-code.bmp"), "abc"));
+
+            Assert.Equal(Path.Combine(root, "data"), Path.GetDirectoryName(files.JsonPath));
+            Assert.StartsWith($"the run log is in {files.JsonPath} instead: {logs}: ", files.Notice, StringComparison.Ordinal);
+        }
+        finally
+        {
+            Directory.Delete(root, recursive: true);
+        }
+    }
+
+    [Fact]
     public void Record_Saved_LastRunNamesItsFileAndHistoryRefreshed()
     {
         var image = TestFiles.Asset("qr-code.bmp");

@@ -119,6 +119,21 @@ public sealed class RunSummaryTextTests : IDisposable
     }
 
     [Fact]
+    public void Format_HundredsOfRecoveries_ListsThreeAndCountsTheRestInOneLine()
+    {
+        // Issue 31 finding 6: 100 passes gave 2,284 lines of "Went on after", burying the run's end.
+        var recoveries = Enumerable.Range(0, 500).Select(i => new RunRecovery(1 + (i / 5), "x axis: reply late", 40 + i, i % 33)).ToList();
+        var record = runs.FailedRecord() with { Recoveries = recoveries };
+
+        var lines = RunSummaryText.Format(record).Split('\n').Where(l => l.StartsWith("Went on after:", StringComparison.Ordinal)).ToList();
+
+        Assert.Equal(4, lines.Count);
+        Assert.Equal("Went on after:      pass 1, row 1 (move 40): x axis: reply late", lines[0]);
+        Assert.Equal("Went on after:      497 more timing doubts (passes 1-100), listed in the JSON record's recoveries", lines[3]);
+        Assert.Equal(500, RunRecordJson.Deserialize(RunRecordJson.Serialize(record), "run.json").Recoveries!.Count);
+    }
+
+    [Fact]
     public void Format_NoLateSwitches_HasNoLineAndNoTiming()
     {
         var record = runs.FailedRecord() with { LateSwitches = new LateSwitches(0, 0, 1.5), Recoveries = [] };
