@@ -199,7 +199,11 @@ public sealed record MachineProfile
         string text;
         try
         {
-            text = File.ReadAllText(path);
+            text = TextFile.Read(path);
+        }
+        catch (TextEncodingException ex)
+        {
+            throw new ProfileException($"{path}: {ex.Message}", ex);
         }
         catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
         {
@@ -213,7 +217,7 @@ public sealed record MachineProfile
         }
         catch (JsonException ex)
         {
-            throw new ProfileException($"{path}: {MachineProfileValidator.DescribeJsonError(ex)}", ex);
+            throw new ProfileException($"{path}: {MachineProfileValidator.DescribeJsonError(ex, text)}", ex);
         }
 
         if (profile is null)
