@@ -127,9 +127,13 @@ internal static class ApiRequests
         ArgumentNullException.ThrowIfNull(ex);
         if (ex.InnerException is not JsonException json)
         {
-            return ex.Message.Contains("body was inferred but", StringComparison.Ordinal) || ex.Message.Contains("Content-Type", StringComparison.Ordinal)
+            // The binder's own lines name the parameter in quotes with its type first: Required parameter "string path" was not provided.
+            var named = ex.Message.Split('"') is { Length: > 2 } parts ? Quote(parts[1].Split(' ')[^1]) : null;
+            return ex.Message.Contains("Content-Type", StringComparison.Ordinal) || ex.Message.Contains("body was inferred", StringComparison.Ordinal)
                 ? "the request needs a JSON body (Content-Type: application/json)"
-                : "the request body could not be read";
+                : ex.Message.Contains("was not provided", StringComparison.Ordinal) && named is not null ? $"the request lacks {named} (docs/api.md)"
+                : ex.Message.Contains("Failed to bind", StringComparison.Ordinal) && named is not null ? $"{named} has a value of the wrong type"
+                : "the request could not be read: check it against docs/api.md";
         }
 
         var field = json.Path is { Length: > 1 } path ? Quote(path.TrimStart('$').TrimStart('.')) : null;

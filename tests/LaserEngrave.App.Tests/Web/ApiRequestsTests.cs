@@ -166,6 +166,15 @@ public sealed class ApiRequestsTests : IDisposable
     }
 
     [Fact]
+    public async Task Export_WithoutItsPath_400NamingIt()
+    {
+        using var response = await _client.GetAsync("/api/logs/export", Token);
+
+        Assert.Equal(HttpStatusCode.BadRequest, response.StatusCode);
+        Assert.Equal("the request lacks path (docs/api.md)", (await response.Content.ReadFromJsonAsync<JsonElement>(Token)).GetProperty("error").GetString());
+    }
+
+    [Fact]
     public void Quote_LongOrControlText_ShortPrefixWithoutControls()
     {
         Assert.Equal("a?b", ApiRequests.Quote("a\nb"));
