@@ -11,8 +11,8 @@ public class CalibrateCommandTests
     // sides 12.006 and 11.994 mm, diagonals sqrt(ax² + by² ∓ 2 ax by sin 0.5°) = 16.89636 and 17.04445 mm.
     private static readonly string[] Measurements =
     [
-        "--x", "8=8.004", "--x", "16=16.008", "--y", "8=7.996", "--y", "16=15.992",
-        "--side-x", "12.006", "--side-y", "11.994", "--diagonal-ac", "16.89636", "--diagonal-bd", "17.04445", "--angle-deg", "90.5",
+        "--x", "8=8.0040", "--x", "16=16.0080", "--y", "8=7.9960", "--y", "16=15.9920",
+        "--side-x", "12.0060", "--side-y", "11.9940", "--diagonal-ac", "16.89636", "--diagonal-bd", "17.04445", "--angle-deg", "90.5",
     ];
 
     [Theory]
@@ -100,10 +100,10 @@ public class CalibrateCommandTests
     }
 
     [Theory]
-    [InlineData("--x", "16=16.008", "--y", "16=15.992")]
-    [InlineData("--x", "16:16.008", "--y", "16=15.992", "--angle-deg", "90.5")]
-    [InlineData("--x", "16=1.6008", "--y", "16=15.992", "--angle-deg", "90.5")]
-    [InlineData("--x", "16=16.008", "--y", "16=15.992", "--angle-deg", "90.5", "--sigma-um", "0")]
+    [InlineData("--x", "16=16.0080", "--y", "16=15.9920")]
+    [InlineData("--x", "16:16.0080", "--y", "16=15.9920", "--angle-deg", "90.5")]
+    [InlineData("--x", "16=1.6008", "--y", "16=15.9920", "--angle-deg", "90.5")]
+    [InlineData("--x", "16=16.0080", "--y", "16=15.9920", "--angle-deg", "90.5", "--sigma-um", "0")]
     public async Task CalibrateSolve_BadMeasurements_OneLineExitTwoProfileUntouched(params string[] args)
     {
         var profile = CliHarness.TempFile(".json");

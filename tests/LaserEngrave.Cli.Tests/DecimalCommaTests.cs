@@ -49,6 +49,35 @@ public class DecimalCommaTests
         Assert.Equal(string.Empty, stdout);
     }
 
+    [Theory]
+    [InlineData("--frequency-hz", "1,000", "--frequency-hz 1,000: could be 1 or 1000: write 1000 or 1.0")]
+    [InlineData("--frequency-hz", "1.000", "--frequency-hz 1.000: could be 1 or 1000: write 1000 or 1.0")]
+    [InlineData("--frequency-hz", "10,000", "--frequency-hz 10,000: could be 10 or 10000: write 10000 or 10.0")]
+    [InlineData("--frequency-hz", "2,500", "--frequency-hz 2,500: could be 2.5 or 2500: write 2500 or 2.5")]
+    [InlineData("--width-mm", "1,000", "--width-mm 1,000: could be 1 or 1000: write 1000 or 1.0")]
+    [InlineData("--origin-mm", "1.000,2.000", "--origin-mm 1.000,2.000: X '1.000' could be 1 or 1000: write 1000 or 1.0")]
+    public async Task Plan_ThousandsOrDecimals_RefusedNamingBothReadings(string option, string value, string message)
+    {
+        var (exit, stdout, stderr) = await CliHarness.RunAsync(option == "--width-mm" ? ["plan", Qr, option, value] : ["plan", Qr, "--width-mm", "5", option, value]);
+
+        Assert.Equal(2, exit);
+        Assert.Contains(message, stderr, StringComparison.Ordinal);
+        Assert.Single(stderr.TrimEnd().Split('\n'));
+        Assert.Equal(string.Empty, stdout);
+    }
+
+    [Theory]
+    [InlineData("2,5", "\"pulseSpacingUm\": 400,")]
+    [InlineData("12,5", "\"pulseSpacingUm\": 80,")]
+    [InlineData("1000", "\"pulseSpacingUm\": 1,")]
+    public async Task Plan_FrequencyWithOneReading_ReadAtTheDefaultSpeedOf1MmPerS(string value, string expected)
+    {
+        var (exit, stdout, stderr) = await CliHarness.RunAsync("plan", Qr, "--width-mm", "5", "--frequency-hz", value, "--json");
+
+        Assert.True(exit == 0, stderr);
+        Assert.Contains(expected, stdout, StringComparison.Ordinal);
+    }
+
     [Fact]
     public async Task Process_SpeedWithDecimalComma_HalfAMillimetrePerSecond()
     {

@@ -51,6 +51,20 @@ public sealed class EngraveCommandTests : IDisposable
     }
 
     [Fact]
+    public async Task Engrave_Image_SaysSizeOriginAndProcessBeforeItMoves()
+    {
+        var (exit, _, error) = await CliHarness.RunAsync(
+            "engrave", QrCode, "--width-mm", "5", "--origin-mm", "10;12,5", "--speed-mm-s", "0,5", "--frequency-hz", "2000", "--passes", "2", "--simulate", "--json", "--log-dir", LogDir);
+
+        Assert.Equal(0, exit);
+        var lines = error.Split('\n', StringSplitOptions.RemoveEmptyEntries).ToList();
+        var job = lines.IndexOf("job:     qr-code.bmp, 5 x 5 mm, top-left corner at 10, 12.5 mm");
+        Assert.True(job >= 0, error);
+        Assert.Equal("process: raster at 0.5 mm/s, 2000 Hz (0.25 µm between pulses), 2 passes, optimized, bidirectional", lines[job + 1]);
+        Assert.True(job < lines.FindIndex(l => l.StartsWith("preflight:", StringComparison.Ordinal)), error);
+    }
+
+    [Fact]
     public async Task EngraveSimulate_DotsTenPulses_EveryPixelTenPulsesNoneMovingModeLogged()
     {
         var (exit, output, error) = await CliHarness.RunAsync(

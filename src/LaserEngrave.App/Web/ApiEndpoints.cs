@@ -22,6 +22,9 @@ internal static class ApiEndpoints
     {
         var api = app.MapGroup("/api");
 
+        // Every bound body checks its own values (finite numbers, known names) before the route touches anything.
+        api.AddEndpointFilter(ApiRequests.CheckAsync);
+
         // The interlock's refusal, wherever it is raised: 409 and the one line saying what is running.
         api.AddEndpointFilter(async (context, next) =>
         {
@@ -35,7 +38,7 @@ internal static class ApiEndpoints
             }
         });
 
-        api.MapGet("/state", (MainViewModel main) => Results.Json(StateSnapshot.From(main)))
+        api.MapGet("/state", (MainViewModel main) => Results.Json(StateSnapshot.From(main), ApiRequests.StateJson))
             .WithSummary("The whole state: image, job, estimate, machine, test moves, run, log, and what holds the machine (activity).");
 
         api.MapPost("/image", UploadAsync)
@@ -183,11 +186,11 @@ internal static class ApiEndpoints
 
         api.MapPost("/settings/theme", (MainViewModel main, ThemeRequest request) => main.SetTheme(request.Theme)
                 ? State(main)
-                : Results.Json(new { error = $"theme '{request.Theme}': use {string.Join(", ", MainViewModel.Themes)}" }, statusCode: StatusCodes.Status400BadRequest))
+                : Results.Json(new { error = $"theme '{ApiRequests.Quote(request.Theme)}': use {string.Join(", ", MainViewModel.Themes)}" }, statusCode: StatusCodes.Status400BadRequest))
             .WithSummary("The theme: system, light or dark.");
     }
 
-    private static JsonHttpResult<object> State(MainViewModel main) => TypedResults.Json(StateSnapshot.From(main));
+    private static JsonHttpResult<object> State(MainViewModel main) => TypedResults.Json(StateSnapshot.From(main), ApiRequests.StateJson);
 
     private static JsonHttpResult<object> Do(MainViewModel main, Action<object?> action)
     {
@@ -199,7 +202,7 @@ internal static class ApiEndpoints
     private static IResult Busy(string message) => Results.Json(new { error = message }, statusCode: StatusCodes.Status409Conflict);
 
     /// <summary>A request that changed nothing on purpose (a second Start during a run): 200, the note and the state.</summary>
-    private static IResult Ignored(MainViewModel main, string note) => Results.Json(new { note, state = StateSnapshot.From(main) });
+    private static IResult Ignored(MainViewModel main, string note) => Results.Json(new { note, state = StateSnapshot.From(main) }, ApiRequests.StateJson);
 
     /// <summary>
     /// The 409 answer when the interlock disables <paramref name="command"/> now; null when it may start. A command the
@@ -218,7 +221,7 @@ internal static class ApiEndpoints
 
         // The command catches what the user can cause; anything else is still observed here, not lost.
         _ = command.ExecuteAsync(parameter).ContinueWith(t => _ = t.Exception, TaskScheduler.Default);
-        return TypedResults.Json(StateSnapshot.From(main), statusCode: StatusCodes.Status202Accepted);
+        return TypedResults.Json(StateSnapshot.From(main), ApiRequests.StateJson, statusCode: StatusCodes.Status202Accepted);
     }
 
     /// <summary>Opens the file as the page does, read and planned in the background with its progress in the state; the request waits for it.</summary>
@@ -277,49 +280,80 @@ internal static class ApiEndpoints
         {
             foreach (var (field, value) in changes)
             {
+                var name = ApiRequests.Quote(field);
                 try
                 {
                     Set(job, field, value);
                 }
+                catch (UnusableValueException ex)
+                {
+                    problems[name] = $"{name}: {ex.Message}";
+                }
                 catch (Exception ex) when (ex is InvalidOperationException or FormatException or ArgumentException)
                 {
-                    problems[field] = $"{field}: '{value}' is not a usable value";
+                    problems[name] = $"{name}: '{ApiRequests.Quote(value.GetRawText())}' is not a usable value";
                 }
             }
         });
-        return problems.Count == 0 ? State(main) : Results.Json(new { errors = problems, state = StateSnapshot.From(main) }, statusCode: 400);
+        return problems.Count == 0 ? State(main) : Results.Json(new { errors = problems, state = StateSnapshot.From(main) }, ApiRequests.StateJson, statusCode: 400);
     }
 
     private static void Set(JobViewModel job, string field, JsonElement value)
     {
         switch (field)
         {
-            case "thresholdPercent": job.ThresholdPercent = value.GetDouble(); break;
-            case "dither": job.Dither = Enum.Parse<DitherMethod>(value.GetString()!, ignoreCase: true); break;
-            case "invert": job.Invert = value.GetBoolean(); break;
-            case "aspectLocked": job.AspectLocked = value.GetBoolean(); break;
-            case "widthMm": job.EditWidth(value.GetDouble()); break;
-            case "heightMm": job.EditHeight(value.GetDouble()); break;
-            case "pitchUm": job.EditPitch(value.GetDouble()); break;
-            case "microstepsPerPixel": job.EditMicrostepsPerPixel(value.GetDouble()); break;
-            case "originXMm": job.OriginXMm = value.GetDouble(); break;
-            case "originYMm": job.OriginYMm = value.GetDouble(); break;
-            case "laserFrequencyHz": job.LaserFrequencyHz = value.GetDouble(); break;
-            case "burnSpeedMmPerS": job.BurnSpeedMmPerS = value.GetDouble(); break;
-            case "travelSpeedMmPerS": job.TravelSpeedMmPerS = value.GetDouble(); break;
-            case "accelerationMmPerS2": job.AccelerationMmPerS2 = value.GetDouble(); break;
-            case "strategy": job.Strategy = Enum.Parse<PlanStrategy>(value.GetString()!, ignoreCase: true); break;
-            case "bidirectional": job.Bidirectional = value.GetBoolean(); break;
-            case "overscanMm": job.OverscanMm = value.GetDouble(); break;
-            case "passes": job.Passes = value.GetInt32(); break;
-            case "mode": job.Mode = Enum.Parse<PlanMode>(value.GetString()!, ignoreCase: true); break;
-            case "pulsesPerDot": job.PulsesPerDot = value.GetInt32(); break;
-            case "dotPitchMicrosteps": job.DotPitchMicrosteps = value.GetInt64(); break;
-            case "dotSettleMs": job.DotSettleMs = value.GetDouble(); break;
-            case "pulseEnergyUj": job.PulseEnergyUj = value.GetDouble(); break;
-            default: throw new ArgumentException($"unknown field {field}");
+            case "thresholdPercent": job.ThresholdPercent = Number(value); break;
+            case "dither": job.Dither = Named<DitherMethod>(value); break;
+            case "invert": job.Invert = Bool(value); break;
+            case "aspectLocked": job.AspectLocked = Bool(value); break;
+            case "widthMm": job.EditWidth(Number(value)); break;
+            case "heightMm": job.EditHeight(Number(value)); break;
+            case "pitchUm": job.EditPitch(Number(value)); break;
+            case "microstepsPerPixel": job.EditMicrostepsPerPixel(Number(value)); break;
+            case "originXMm": job.OriginXMm = Number(value); break;
+            case "originYMm": job.OriginYMm = Number(value); break;
+            case "laserFrequencyHz": job.LaserFrequencyHz = Number(value); break;
+            case "burnSpeedMmPerS": job.BurnSpeedMmPerS = Number(value); break;
+            case "travelSpeedMmPerS": job.TravelSpeedMmPerS = Number(value); break;
+            case "accelerationMmPerS2": job.AccelerationMmPerS2 = Number(value); break;
+            case "strategy": job.Strategy = Named<PlanStrategy>(value); break;
+            case "bidirectional": job.Bidirectional = Bool(value); break;
+            case "overscanMm": job.OverscanMm = Number(value); break;
+            case "passes": job.Passes = (int)Whole(value, int.MaxValue); break;
+            case "mode": job.Mode = Named<PlanMode>(value); break;
+            case "pulsesPerDot": job.PulsesPerDot = (int)Whole(value, int.MaxValue); break;
+            case "dotPitchMicrosteps": job.DotPitchMicrosteps = Whole(value, long.MaxValue); break;
+            case "dotSettleMs": job.DotSettleMs = Number(value); break;
+            case "pulseEnergyUj": job.PulseEnergyUj = Number(value); break;
+            default: throw new UnusableValueException($"not a job field (docs/api.md lists them)");
         }
     }
+
+    /// <summary>A finite JSON number (never a string, never one too large for a double, which reads as infinity).</summary>
+    private static double Number(JsonElement value) =>
+        value.ValueKind == JsonValueKind.Number && value.TryGetDouble(out var v) && double.IsFinite(v) ? v
+        : throw new UnusableValueException(value.ValueKind == JsonValueKind.Number
+            ? $"{ApiRequests.Quote(value.GetRawText())} is not a finite number"
+            : $"'{ApiRequests.Quote(value.ToString())}' is not a number (send a JSON number, without quotes)");
+
+    private static long Whole(JsonElement value, long max) =>
+        value.ValueKind == JsonValueKind.Number && value.TryGetInt64(out var v) && v >= 0 && v <= max ? v
+        : throw new UnusableValueException($"{ApiRequests.Quote(value.ValueKind == JsonValueKind.String ? $"'{value}'" : value.GetRawText())} is not a whole number from 0 to {max}");
+
+    private static bool Bool(JsonElement value) =>
+        value.ValueKind is JsonValueKind.True or JsonValueKind.False ? value.GetBoolean()
+        : throw new UnusableValueException($"{ApiRequests.Quote(value.GetRawText())} is not true or false");
+
+    /// <summary>One of the enum's names (any case); a number, or a name the enum does not define, is refused, so nothing undefined is kept.</summary>
+    private static T Named<T>(JsonElement value)
+        where T : struct, Enum =>
+        value.ValueKind == JsonValueKind.String && value.GetString() is { Length: > 0 } text && char.IsAsciiLetter(text[0]) && !text.Contains(',', StringComparison.Ordinal)
+            && Enum.TryParse<T>(text, ignoreCase: true, out var named) && Enum.IsDefined(named)
+            ? named
+            : throw new UnusableValueException($"'{ApiRequests.Quote(value.ToString())}' is not one of {string.Join(", ", Enum.GetNames<T>())}");
+
+    /// <summary>A job value the API refuses, with the reason in a line.</summary>
+    private sealed class UnusableValueException(string message) : Exception(message);
 
     /// <summary>The plan's moves as a flat list of numbers (kind, x0, y0, x1, y1 per move), for the page to draw once.</summary>
     private static IResult Plan(MainViewModel main)
@@ -403,17 +437,28 @@ internal static class ApiEndpoints
             : Results.File([.. Encoding.UTF8.Preamble, .. Encoding.UTF8.GetBytes(text)], "text/csv; charset=utf-8", name);
     }
 
-    internal sealed record PathRequest(string? Path);
+    internal sealed record PathRequest(string Path) : IApiRequest
+    {
+        public string? Problem() => string.IsNullOrWhiteSpace(Path) ? "path is empty: send the file's full path" : null;
+    }
 
-    internal sealed record ConnectRequest(bool UseSimulator, string? StagePort, string? LaserPort);
+    internal sealed record ConnectRequest(bool UseSimulator, string? StagePort = null, string? LaserPort = null);
 
-    internal sealed record JogRequest(string Direction, double? StepUm);
+    internal sealed record JogRequest(string Direction, double? StepUm = null) : IApiRequest
+    {
+        public string? Problem() =>
+            Direction is not ("x+" or "x-" or "y+" or "y-") ? $"direction '{ApiRequests.Quote(Direction)}' is not one of x+, x-, y+, y-"
+            : ApiRequests.Finite("stepUm", StepUm);
+    }
 
-    internal sealed record GoToRequest(double XMm, double YMm);
+    internal sealed record GoToRequest(double XMm, double YMm) : IApiRequest
+    {
+        public string? Problem() => ApiRequests.Finite("xMm", XMm) ?? ApiRequests.Finite("yMm", YMm);
+    }
 
     internal sealed record FireRequest(int Pulses);
 
-    internal sealed record RunStartRequest(string? Notes, string? SampleId, bool Confirm = false);
+    internal sealed record RunStartRequest(string? Notes = null, string? SampleId = null, bool Confirm = false);
 
     internal sealed record ThemeRequest(string Theme);
 }

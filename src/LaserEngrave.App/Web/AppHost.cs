@@ -38,6 +38,7 @@ public static class AppHost
         builder.Services.Configure<Microsoft.AspNetCore.Http.Features.FormOptions>(o => o.MultipartBodyLengthLimit = IFileAccess.MaxUploadBytes);
 
         var services = builder.Services;
+        ApiRequests.Configure(services);
         services.AddSingleton<AccessToken>();
         services.AddSingleton(AppFolders.Default);
         services.AddSingleton(TimeProvider.System);
@@ -72,6 +73,7 @@ public static class AppHost
 
         var app = builder.Build();
         app.Use(GuardAsync);
+        app.Use(ApiRequests.ReadAsync);
         app.UseAntiforgery();
         app.MapStaticAssets();
         app.MapRazorComponents<Components.App>().AddInteractiveServerRenderMode(o => o.ContentSecurityFrameAncestorsPolicy = "'none'");

@@ -42,7 +42,7 @@ public sealed record AppOptions(bool OpenBrowser, string? Url, string? DataFolde
                     var text = Value(i++);
                     options = options with
                     {
-                        IdleExit = double.TryParse(text, System.Globalization.NumberStyles.Float, System.Globalization.CultureInfo.InvariantCulture, out var seconds) && seconds is >= 0 and <= 86400
+                        IdleExit = Core.Input.NumberText.TryParse(text, out var seconds, out _) && seconds is >= 0 and <= 86400
                             ? TimeSpan.FromSeconds(seconds)
                             : throw new ArgumentException($"--idle-exit {text}: seconds from 0 to 86400"),
                     };

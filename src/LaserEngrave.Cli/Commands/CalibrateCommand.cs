@@ -267,11 +267,16 @@ internal static class CalibrateCommand
         [.. (values ?? []).Select(text =>
         {
             var parts = text.Split('=');
-            return parts.Length == 2
-                && NumberText.TryParse(parts[0], out var nominal, out _)
-                && NumberText.TryParse(parts[1], out var measured, out _)
-                ? new ScaleMeasurement(nominal, measured)
-                : throw new UsageException($"{option} {text}: expected NOMINAL_MM=MEASURED_MM, e.g. 16=16.008 or 16=16,008");
+            if (parts.Length != 2)
+            {
+                throw new UsageException($"{option} {text}: expected NOMINAL_MM=MEASURED_MM, e.g. 16=16.0080 or 16=16,0080");
+            }
+
+            return NumberText.TryParse(parts[0], out var nominal, out var nominalProblem)
+                ? NumberText.TryParse(parts[1], out var measured, out var measuredProblem)
+                    ? new ScaleMeasurement(nominal, measured)
+                    : throw new UsageException($"{option} {text}: the measured {parts[1].Trim()} {measuredProblem}")
+                : throw new UsageException($"{option} {text}: the nominal {parts[0].Trim()} {nominalProblem}");
         })];
 
     private static T Guard<T>(Func<T> action)

@@ -162,6 +162,12 @@ internal static class EngraveCommand
 
         // A run must not start without a place for its log: the folder takes a file and has room for one, before anything moves.
         store.CheckWritable();
+
+        // What was understood, before any port opens: a size, origin or frequency read otherwise than meant shows here.
+        foreach (var line in JobUnderstood.Lines(job))
+        {
+            stderr.WriteLine(line);
+        }
         EngraveResult engraved;
         double? wallSeconds = null;
         ITwinInspector? inspector = null;

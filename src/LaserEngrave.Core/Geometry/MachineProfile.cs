@@ -204,7 +204,11 @@ public sealed record MachineProfile
         string text;
         try
         {
-            text = File.ReadAllText(path);
+            text = TextFile.Read(path);
+        }
+        catch (TextEncodingException ex)
+        {
+            throw new ProfileException($"{path}: {ex.Message}", ex);
         }
         catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
         {
@@ -218,7 +222,7 @@ public sealed record MachineProfile
         }
         catch (JsonException ex)
         {
-            throw new ProfileException($"{path}: {MachineProfileValidator.DescribeJsonError(ex)}", ex);
+            throw new ProfileException($"{path}: {MachineProfileValidator.DescribeJsonError(ex, text)}", ex);
         }
 
         if (profile is null)

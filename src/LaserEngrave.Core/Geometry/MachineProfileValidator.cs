@@ -228,12 +228,13 @@ public static class MachineProfileValidator
         }
     }
 
-    /// <summary>One line for a profile the JSON reader refused: the field (from the JSON path) and what is wrong there.</summary>
-    public static string DescribeJsonError(JsonException ex)
+    /// <summary>One line for a profile the JSON reader refused: the field (from the JSON path), what is wrong there and where (line and column from 1).</summary>
+    /// <param name="text">The profile's text, when at hand: a number written as text ("12,5") is then named with how to write it.</param>
+    public static string DescribeJsonError(JsonException ex, string? text = null)
     {
         ArgumentNullException.ThrowIfNull(ex);
         var field = ex.Path is { Length: > 0 } path ? path.TrimStart('$').TrimStart('.') : string.Empty;
-        var line = ex.LineNumber is { } n ? $" (line {n + 1})" : string.Empty;
+        var line = IO.JsonProblem.Position(ex) is { } position ? $" ({position})" : string.Empty;
         if (ex.Message.Contains("could not be mapped", StringComparison.Ordinal))
         {
             var name = ex.Message.Split('\'') is { Length: > 2 } parts ? parts[1] : "?";
@@ -241,9 +242,14 @@ public static class MachineProfileValidator
             return $"{where} is not a field of the machine profile{line}: check its spelling (names are camelCase, e.g. watchdogMs); docs/machine-profile.md lists them";
         }
 
+        if (!ex.Message.Contains("could not be converted", StringComparison.Ordinal))
+        {
+            return IO.JsonProblem.Syntax(ex);
+        }
+
         return field.Length == 0
             ? $"not a valid machine profile{line}: expected a JSON object"
-            : $"{field} has a value of the wrong type or out of range for it{line}";
+            : $"{field} has a value of the wrong type or out of range for it{line}{IO.JsonProblem.NumberHint(text, ex.Path)}";
     }
 
     private static void CheckGateStrings(LaserGateProfile gate, List<string> problems)

@@ -7,7 +7,9 @@ namespace LaserEngrave.Core.Input;
 /// one decimal mark, a point or a comma (<c>5.5</c> or <c>5,5</c>), never a thousands separator, whatever the
 /// computer's language. Two numbers (X,Y) are split at a comma when both are written with points, and at a
 /// semicolon when either has a decimal comma (<c>5,5;10,2</c>); anything that could be read two ways is refused
-/// with a line that says how to write it, so a value is never read ten times too big.
+/// with a line that says how to write it, so a value is never read ten times too big. One mark followed by exactly three
+/// digits after a group a thousands separator could end (<c>1,000</c>, <c>2.500</c>, <c>12.345</c>) is one of them:
+/// in Argentina <c>1.000</c> is a thousand, in the US it is one.
 /// </summary>
 public static class NumberText
 {
@@ -36,6 +38,12 @@ public static class NumberText
             return false;
         }
 
+        if (Ambiguous(t) is { } readings)
+        {
+            problem = readings;
+            return false;
+        }
+
         // Only digits, a sign, one mark and an exponent: NaN, Infinity and a culture's own symbols are not numbers a person means.
         if (!t.All(c => char.IsAsciiDigit(c) || c is '+' or '-' or '.' or ',' or 'e' or 'E')
             || !double.TryParse(t.Replace(',', '.'), NumberStyles.AllowLeadingSign | NumberStyles.AllowDecimalPoint | NumberStyles.AllowExponent, CultureInfo.InvariantCulture, out var v))
@@ -61,6 +69,12 @@ public static class NumberText
     {
         value = 0;
         var t = text?.Trim() ?? string.Empty;
+        if (Ambiguous(t) is { } readings)
+        {
+            problem = readings;
+            return false;
+        }
+
         if (!t.All(c => char.IsAsciiDigit(c) || c is '+' or '-') || !t.Any(char.IsAsciiDigit))
         {
             problem = t.Contains(',') || t.Contains('.')
@@ -116,6 +130,31 @@ public static class NumberText
     {
         ArgumentNullException.ThrowIfNull(text);
         return text.Contains(';') ? text.Split(';') : text.Split(',');
+    }
+
+    /// <summary>
+    /// The two readings of a number that could be either (one mark after 1-3 digits not starting with 0, then exactly
+    /// three digits and nothing else: <c>1,000</c>, <c>2.500</c>), as the problem to show; null when it has one reading.
+    /// </summary>
+    /// <remarks><c>0,125</c> is not one (no thousands group starts with 0), nor <c>12,5</c>, <c>1000</c> or <c>1.0e3</c>.</remarks>
+    public static string? Ambiguous(string? text)
+    {
+        var t = text?.Trim() ?? string.Empty;
+        var body = t.Length > 0 && t[0] is '+' or '-' ? t[1..] : t;
+        var mark = body.IndexOfAny(['.', ',']);
+        if (mark is < 1 or > 3 || body.Length != mark + 4 || body[0] == '0' || !body.Remove(mark, 1).All(char.IsAsciiDigit))
+        {
+            return null;
+        }
+
+        var sign = t.Length > body.Length && t[0] == '-' ? "-" : string.Empty;
+        var whole = sign + body.Remove(mark, 1);
+        var fraction = body[(mark + 1)..].TrimEnd('0');
+
+        // The decimal reading written so it cannot be read two ways: 1.0, 2.5, 12.3450.
+        var asDecimal = sign + body[..mark] + "." + (fraction.Length == 0 ? "0" : fraction.Length == 3 ? fraction + "0" : fraction);
+        var small = sign + body[..mark] + (fraction.Length == 0 ? string.Empty : "." + fraction);
+        return $"could be {small} or {whole}: write {whole} or {asDecimal}";
     }
 
     /// <summary>A number as messages show it: invariant, short.</summary>

@@ -33,11 +33,15 @@ public static class JobFile
         JsonDocument document;
         try
         {
-            document = JsonDocument.Parse(File.ReadAllText(path), new JsonDocumentOptions { AllowTrailingCommas = true, CommentHandling = JsonCommentHandling.Skip });
+            document = JsonDocument.Parse(IO.TextFile.Read(path), new JsonDocumentOptions { AllowTrailingCommas = true, CommentHandling = JsonCommentHandling.Skip });
+        }
+        catch (IO.TextEncodingException ex)
+        {
+            throw new PlanException($"{path}: {ex.Message}", ex);
         }
         catch (JsonException ex)
         {
-            throw new PlanException($"{path}: not valid JSON ({ex.Message})", ex);
+            throw new PlanException($"{path}: {IO.JsonProblem.Syntax(ex)}", ex);
         }
 
         using (document)
@@ -314,7 +318,14 @@ public static class JobFile
     private static double? Number(JsonElement element, string name, string where) =>
         !element.TryGetProperty(name, out var value) || value.ValueKind == JsonValueKind.Null ? null
         : value.ValueKind == JsonValueKind.Number ? value.GetDouble()
-        : throw new PlanException($"{where}: \"{name}\" must be a number");
+        : throw new PlanException($"{where}: \"{name}\" must be a number{StringNumberHint(value)}");
+
+    /// <summary>How to write a number given as text ("12,5"): it reads the same in every language only as a JSON number.</summary>
+    private static string StringNumberHint(JsonElement value) =>
+        value.ValueKind != JsonValueKind.String || value.GetString() is not { } text ? string.Empty
+        : Input.NumberText.Ambiguous(text) is { } readings ? $" (\"{text}\" {readings}, without quotes)"
+        : Input.NumberText.TryParse(text, out var number, out _) ? $": write {Input.NumberText.Show(number)}, without quotes"
+        : string.Empty;
 
     private static double? Positive(JsonElement element, string name, string where) =>
         Number(element, name, where) is { } v

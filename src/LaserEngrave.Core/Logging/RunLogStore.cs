@@ -288,7 +288,11 @@ public sealed class RunLogStore : IRunLogWriter, ISweepLogWriter
         string text;
         try
         {
-            text = File.ReadAllText(path, Utf8);
+            text = IO.TextFile.Read(path);
+        }
+        catch (IO.TextEncodingException ex)
+        {
+            throw new RunLogException($"{path}: {ex.Message}", ex);
         }
         catch (Exception ex) when (ex is FileNotFoundException or DirectoryNotFoundException)
         {

@@ -33,8 +33,12 @@ public static class MarkFile
 
         try
         {
-            using var document = JsonDocument.Parse(File.ReadAllText(path), new JsonDocumentOptions { AllowTrailingCommas = true, CommentHandling = JsonCommentHandling.Skip });
+            using var document = JsonDocument.Parse(IO.TextFile.Read(path), new JsonDocumentOptions { AllowTrailingCommas = true, CommentHandling = JsonCommentHandling.Skip });
             return Read(document.RootElement, path);
+        }
+        catch (IO.TextEncodingException ex)
+        {
+            throw new MarkException($"{path}: {ex.Message}", ex);
         }
         catch (JsonException ex)
         {

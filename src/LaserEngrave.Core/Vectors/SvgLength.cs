@@ -42,7 +42,8 @@ internal static class SvgLength
     }
 
     /// <summary>A length attribute in user units (CSS pixels), or <paramref name="fallback"/> when absent.</summary>
-    public static double UserUnits(string? text, double fallback, string element, string attribute)
+    /// <param name="percentOf">What 100% is, in user units (the viewport's width or height); null where a percentage is not taken.</param>
+    public static double UserUnits(string? text, double fallback, string element, string attribute, double? percentOf = null)
     {
         if (text is null)
         {
@@ -52,6 +53,11 @@ internal static class SvgLength
         if (TrySplit(text, out var value, out var unit) && PxPerUnit(unit) is { } px)
         {
             return value * px;
+        }
+
+        if (percentOf is { } whole && unit == "%" && TrySplit(text, out value, out _))
+        {
+            return value / 100 * whole;
         }
 
         throw new DrawingException($"{element}: {attribute}=\"{text}\" is not a length in px, mm, cm, in, pt or pc");

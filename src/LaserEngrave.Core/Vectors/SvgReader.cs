@@ -111,14 +111,18 @@ public static class SvgReader
         }
 
         var warnings = new DrawingWarnings();
-        var (toMm, stated) = RootTransform(root, path, warnings);
-        var walker = new Walker(path, warnings, document, SvgStyleSheet.Read(document, path));
+        var (toMm, stated, viewport) = RootTransform(root, path, warnings);
+        var walker = new Walker(path, warnings, document, SvgStyleSheet.Read(document, path)) { Viewport = viewport };
         walker.Children(root, toMm, string.Empty, 0);
         return new Drawing(path, walker.Paths, warnings.ToList(), stated);
     }
 
-    /// <summary>From the root's user units to millimetres: width and height give the size, viewBox and preserveAspectRatio map user units into it.</summary>
-    private static (Affine Transform, bool Stated) RootTransform(XElement root, string path, DrawingWarnings warnings)
+    /// <summary>
+    /// From the root's user units to millimetres: width and height give the size, viewBox and preserveAspectRatio map user
+    /// units into it. Also the root's viewport in user units, what a percentage inside it is of (its viewBox, else its
+    /// size; 0 when neither is given).
+    /// </summary>
+    private static (Affine Transform, bool Stated, (double W, double H) Viewport) RootTransform(XElement root, string path, DrawingWarnings warnings)
     {
         var id = Describe(root, path);
         double? width = Size(root, "width"), height = Size(root, "height");
@@ -131,35 +135,15 @@ public static class SvgReader
         var viewBox = root.Attribute("viewBox")?.Value;
         if (viewBox is null)
         {
-            return (Affine.Scale(SvgLength.MmPerPx, SvgLength.MmPerPx), stated);
+            return (Affine.Scale(SvgLength.MmPerPx, SvgLength.MmPerPx), stated, ((width ?? 0) / SvgLength.MmPerPx, (height ?? 0) / SvgLength.MmPerPx));
         }
 
-        var box = viewBox.Split([' ', ',', '\t', '\n', '\r'], StringSplitOptions.RemoveEmptyEntries)
-            .Select(v => double.TryParse(v, NumberStyles.Float, CultureInfo.InvariantCulture, out var d) ? d : double.NaN)
-            .ToArray();
-        if (box.Length != 4 || box.Any(v => !double.IsFinite(v)) || !(box[2] > 0) || !(box[3] > 0))
-        {
-            throw new DrawingException($"{id}: viewBox=\"{viewBox}\" is not four numbers with a width and height above 0");
-        }
+        var box = ViewBox(viewBox, id);
 
         // Missing sizes follow the viewBox's aspect; both missing means one user unit per CSS pixel.
         var w = width ?? (height is { } h0 ? h0 * box[2] / box[3] : box[2] * SvgLength.MmPerPx);
         var h = height ?? (width is { } w0 ? w0 * box[3] / box[2] : box[3] * SvgLength.MmPerPx);
-        double sx = w / box[2], sy = h / box[3], tx = 0, ty = 0;
-        var aspect = (root.Attribute("preserveAspectRatio")?.Value ?? "xMidYMid meet").Split(' ', StringSplitOptions.RemoveEmptyEntries);
-        var align = aspect.FirstOrDefault(a => a != "defer") ?? "xMidYMid";
-        if (align != "none")
-        {
-            var s = aspect.Contains("slice") ? Math.Max(sx, sy) : Math.Min(sx, sy);
-            var x = align.Length >= 4 ? align[..4] : "xMid";
-            var y = align.Length >= 8 ? align[4..8] : "YMid";
-            tx = x switch { "xMin" => 0, "xMax" => w - (box[2] * s), _ => (w - (box[2] * s)) / 2 };
-            ty = y switch { "YMin" => 0, "YMax" => h - (box[3] * s), _ => (h - (box[3] * s)) / 2 };
-            sx = sy = s;
-        }
-
-        var m = Affine.Compose(Affine.Translate(-box[0], -box[1]), Affine.Scale(sx, sy));
-        return (Affine.Compose(m, Affine.Translate(tx, ty)), stated);
+        return (ViewBoxMap(box, root.Attribute("preserveAspectRatio")?.Value, 0, 0, w, h), stated, (box[2], box[3]));
 
         double? Size(XElement e, string attribute)
         {
@@ -175,6 +159,40 @@ public static class SvgReader
 
         static bool IsPhysical(string? text) =>
             SvgLength.TrySplit(text, out _, out var unit) && unit is "mm" or "cm" or "in" or "pt" or "pc" or "q";
+    }
+
+    /// <summary>A viewBox's four numbers (min-x, min-y, width, height), width and height above 0.</summary>
+    private static double[] ViewBox(string viewBox, string id)
+    {
+        var box = viewBox.Split([' ', ',', '\t', '\n', '\r'], StringSplitOptions.RemoveEmptyEntries)
+            .Select(v => double.TryParse(v, NumberStyles.Float, CultureInfo.InvariantCulture, out var d) ? d : double.NaN)
+            .ToArray();
+        return box.Length != 4 || box.Any(v => !double.IsFinite(v)) || !(box[2] > 0) || !(box[3] > 0)
+            ? throw new DrawingException($"{id}: viewBox=\"{viewBox}\" is not four numbers with a width and height above 0")
+            : box;
+    }
+
+    /// <summary>
+    /// The SVG specification's viewBox-to-viewport transform (SVG 1.1, 7.8): <paramref name="box"/> scaled into the
+    /// viewport x, y, w, h, uniformly and aligned as preserveAspectRatio says (xMidYMid meet when absent), or stretched for "none".
+    /// </summary>
+    private static Affine ViewBoxMap(double[] box, string? preserveAspectRatio, double x, double y, double w, double h)
+    {
+        double sx = w / box[2], sy = h / box[3], tx = 0, ty = 0;
+        var aspect = (preserveAspectRatio ?? "xMidYMid meet").Split(' ', StringSplitOptions.RemoveEmptyEntries);
+        var align = aspect.FirstOrDefault(a => a != "defer") ?? "xMidYMid";
+        if (align != "none")
+        {
+            var s = aspect.Contains("slice") ? Math.Max(sx, sy) : Math.Min(sx, sy);
+            var ax = align.Length >= 4 ? align[..4] : "xMid";
+            var ay = align.Length >= 8 ? align[4..8] : "YMid";
+            tx = ax switch { "xMin" => 0, "xMax" => w - (box[2] * s), _ => (w - (box[2] * s)) / 2 };
+            ty = ay switch { "YMin" => 0, "YMax" => h - (box[3] * s), _ => (h - (box[3] * s)) / 2 };
+            sx = sy = s;
+        }
+
+        var m = Affine.Compose(Affine.Translate(-box[0], -box[1]), Affine.Scale(sx, sy));
+        return Affine.Compose(m, Affine.Translate(x + tx, y + ty));
     }
 
     private static string Describe(XElement e, string path)
@@ -194,6 +212,9 @@ public static class SvgReader
     private sealed class Walker(string path, DrawingWarnings warnings, XDocument document, SvgStyleSheet styles)
     {
         private Dictionary<string, XElement>? _ids;
+
+        /// <summary>The viewport the walk is in, in the current user units: what a percentage is of.</summary>
+        public (double W, double H) Viewport { get; set; }
 
         public List<DrawingPath> Paths { get; } = [];
 
@@ -251,14 +272,7 @@ public static class SvgReader
                     Children(e, transform, label, depth);
                     return;
                 case "svg":
-                    var x = SvgLength.UserUnits(e.Attribute("x")?.Value, 0, id, "x");
-                    var y = SvgLength.UserUnits(e.Attribute("y")?.Value, 0, id, "y");
-                    if (e.Attribute("viewBox") is not null)
-                    {
-                        warnings.Note($"{id}: the viewBox of a nested <svg> is ignored; its contents are placed at its x and y in its parent's units");
-                    }
-
-                    Children(e, Affine.Compose(Affine.Translate(x, y), transform), layer, depth);
+                    Instance(e, transform, layer, depth, id, Length(e, "x", id, Viewport.W), Length(e, "y", id, Viewport.H), e.Attribute("width")?.Value, e.Attribute("height")?.Value);
                     return;
                 case "use":
                     Use(e, transform, layer, depth, id);
@@ -314,18 +328,100 @@ public static class SvgReader
                 throw new DrawingException($"{id}: <use> nested more than {MaxUseDepth} deep (does {href} use itself?)");
             }
 
-            var x = SvgLength.UserUnits(e.Attribute("x")?.Value, 0, id, "x");
-            var y = SvgLength.UserUnits(e.Attribute("y")?.Value, 0, id, "y");
-            var placed = Affine.Compose(Affine.Translate(x, y), transform);
+            var x = Length(e, "x", id, Viewport.W);
+            var y = Length(e, "y", id, Viewport.H);
             if (target.Name.LocalName == "symbol")
             {
-                Children(target, placed, layer, depth + 1);
+                // A symbol is a viewport of its own: the use's width and height (else the symbol's, else 100%) at the use's x and y.
+                Instance(target, transform, layer, depth + 1, id, x, y, e.Attribute("width")?.Value ?? target.Attribute("width")?.Value, e.Attribute("height")?.Value ?? target.Attribute("height")?.Value);
+            }
+            else if (target.Name.LocalName == "svg")
+            {
+                // A used <svg> takes the use's width and height over its own, and sits at its own x and y inside the use's.
+                var placed = Affine.Compose(Affine.Translate(x, y), transform);
+                var targetId = Describe(target, path);
+                Instance(target, placed, layer, depth + 1, targetId, Length(target, "x", targetId, Viewport.W), Length(target, "y", targetId, Viewport.H), e.Attribute("width")?.Value ?? target.Attribute("width")?.Value, e.Attribute("height")?.Value ?? target.Attribute("height")?.Value);
             }
             else
             {
-                Element(target, placed, layer, depth + 1);
+                Element(target, Affine.Compose(Affine.Translate(x, y), transform), layer, depth + 1);
             }
         }
+
+        /// <summary>
+        /// The viewport a nested &lt;svg&gt; or a used &lt;symbol&gt; makes (SVG 1.1, 7.9 and 5.6): at x, y, of width and height
+        /// (100% of the viewport it is in when absent), its viewBox mapped into it by its preserveAspectRatio; without a
+        /// viewBox its contents keep their units, moved to x, y. Its contents are not clipped to it: what reaches outside is named.
+        /// </summary>
+        private void Instance(XElement e, Affine parent, string layer, int depth, string id, double x, double y, string? width, string? height)
+        {
+            var w = SvgLength.UserUnits(width ?? "100%", 0, id, "width", Viewport.W);
+            var h = SvgLength.UserUnits(height ?? "100%", 0, id, "height", Viewport.H);
+            var viewBox = e.Attribute("viewBox")?.Value is { } text ? ViewBox(text, id) : null;
+            if (viewBox is not null && (Viewport.W <= 0 && width is null || Viewport.H <= 0 && height is null))
+            {
+                // 100% of a viewport of no stated size: the viewBox at one unit per unit, rather than nothing.
+                w = width is null ? viewBox[2] : w;
+                h = height is null ? viewBox[3] : h;
+            }
+
+            if (w < 0 || h < 0)
+            {
+                throw new DrawingException($"{id}: width {w} and height {h} must not be negative");
+            }
+
+            if (viewBox is not null && (w == 0 || h == 0))
+            {
+                // The specification: a viewport of no width or height draws nothing.
+                warnings.Skipped($"<{e.Name.LocalName}>", ShortName(e), "its viewport has no width or height");
+                return;
+            }
+
+            var map = viewBox is null ? Affine.Translate(x, y) : ViewBoxMap(viewBox, e.Attribute("preserveAspectRatio")?.Value, x, y, w, h);
+            var outer = Viewport;
+            var first = Paths.Count;
+            Viewport = viewBox is null ? (w, h) : (viewBox[2], viewBox[3]);
+            try
+            {
+                Children(e, Affine.Compose(map, parent), layer, depth);
+            }
+            finally
+            {
+                Viewport = outer;
+            }
+
+            if (w > 0 && h > 0 && Outside(first, parent, x, y, w, h) && e.Attribute("overflow")?.Value.Trim() is not ("visible" or "auto"))
+            {
+                warnings.Note($"{id}: its contents reach outside its viewport ({x:0.###}, {y:0.###}, {w:0.###} x {h:0.###} user units), which a browser clips; they are engraved unclipped");
+            }
+        }
+
+        /// <summary>Whether the paths from <paramref name="first"/> on reach outside the viewport x, y, w, h of the parent's units (by the curves' ends: a coarse look).</summary>
+        private bool Outside(int first, Affine parent, double x, double y, double w, double h)
+        {
+            var corners = new[] { new DrawingPoint(x, y), new DrawingPoint(x + w, y), new DrawingPoint(x, y + h), new DrawingPoint(x + w, y + h) }.Select(parent.Apply).ToList();
+            double left = corners.Min(c => c.X), right = corners.Max(c => c.X), top = corners.Min(c => c.Y), bottom = corners.Max(c => c.Y);
+            var slack = 1e-6 * Math.Max(right - left, bottom - top);
+            for (var i = first; i < Paths.Count; i++)
+            {
+                foreach (var curve in Paths[i].Curves)
+                {
+                    foreach (var p in (ReadOnlySpan<DrawingPoint>)[curve.Start, curve.End])
+                    {
+                        if (p.X < left - slack || p.X > right + slack || p.Y < top - slack || p.Y > bottom + slack)
+                        {
+                            return true;
+                        }
+                    }
+                }
+            }
+
+            return false;
+        }
+
+        /// <summary>A position attribute in user units; a percentage is of <paramref name="reference"/>, the viewport's width or height.</summary>
+        private static double Length(XElement e, string attribute, string id, double reference) =>
+            SvgLength.UserUnits(e.Attribute(attribute)?.Value, 0, id, attribute, reference);
 
         // The cascade for what decides whether an element is drawn: its presentation attribute, then the style
         // sheet's rules, then its own style attribute, each over the one before.

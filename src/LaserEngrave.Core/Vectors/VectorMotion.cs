@@ -264,7 +264,7 @@ public static class VectorMotion
                 x.AdvanceTo(t);
                 y.AdvanceTo(t);
                 var s = ideal.DistanceAt(t);
-                var d = ideal.DistanceToPath(x.Position, y.Position, Math.Max(pathStart, s - window), Math.Min(pathEnd, s + window));
+                var d = ideal.DistanceFollowing(x.Position, y.Position, Math.Max(pathStart, s - window), Math.Min(pathEnd, s + window));
                 largest = Math.Max(largest, d);
 
                 // A corner the axes round within the limit can still slow the spot down or speed it up: the pulses bunch.

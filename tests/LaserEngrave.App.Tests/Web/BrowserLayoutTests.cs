@@ -189,8 +189,8 @@ public sealed class BrowserLayoutTests : BrowserTest
         WaitFor(_ => DrawnMoves() == jobMoves, "the job drawn again");
 
         Driver.FindElement(By.CssSelector("#panel-calibration summary")).Click();
-        SetField("calXMeasured", "16.008");
-        SetField("calYMeasured", "15.992");
+        SetField("calXMeasured", "16.0080");
+        SetField("calYMeasured", "15.9920");
         SetField("calAngle", "90.5");
         Id("calSolve").Click();
         WaitFor(d => d.FindElements(By.CssSelector("[data-solution=line]")).Count > 0, "the calibration solved");

@@ -81,8 +81,8 @@ public static class BadInputTable
         ["spot-negative-zero"] = ("""{ "spotDiameterUm": -0.0 }""", "spotDiameterUm must be a finite number above 0"),
         ["array"] = ("""[1, 2]""", "not a valid machine profile"),
         ["json-null"] = ("""null""", "the machine profile is empty"),
-        ["empty"] = ("", "not a valid machine profile"),
-        ["not-json"] = ("watchdog = 0", "not a valid machine profile"),
+        ["empty"] = ("", "not valid JSON at line 1, column 1: the file is empty"),
+        ["not-json"] = ("watchdog = 0", "not valid JSON at line 1, column 1: 'w' cannot begin a value"),
     };
 
     /// <summary>The bad command lines: args, exit code, a fragment of the one-line error.</summary>

@@ -163,10 +163,10 @@ public static class ValuesByWhatTheyAre
         add("--origin-mm 5,5,10,2: could be read more than one way; write X,Y with decimal points (5.5,10.2) or X;Y with decimal commas (5,5;10,2)", ["plan", "@qr", "--width-mm", "1", "--origin-mm", "5,5,10,2"]);
         add("--origin-mm 5,5;10,2;1: expected two numbers", ["plan", "@qr", "--width-mm", "1", "--origin-mm", "5,5;10,2;1"]);
         add("--pulses-per-dot 2,5: takes a whole number", ["plan", "@qr", "--width-mm", "1", "--mode", "dots", "--pulses-per-dot", "2,5"]);
-        add("--dot-pitch-microsteps 1.000: takes a whole number", ["plan", "@qr", "--width-mm", "1", "--mode", "dots", "--dot-pitch-microsteps", "1.000"]);
+        add("--dot-pitch-microsteps 1.000: could be 1 or 1000: write 1000 or 1.0", ["plan", "@qr", "--width-mm", "1", "--mode", "dots", "--dot-pitch-microsteps", "1.000"]);
         add("--mark 1,1,1=21,16: the job's point '1,1,1' could be read more than one way", ["align", "@qr", "--width-mm", "5", "--mark", "1,1,1=21,16", "--mark", "4,4=24,19", "--out", "@out"]);
         add("--rows speed=0,5;x: 'x' is not a number", ["sweep", "--rows", "speed=0,5;x", "--simulate", "--log-dir", "@logdir"]);
-        add("--x 16=16,0,08: expected NOMINAL_MM=MEASURED_MM", ["calibrate", "solve", "--profile", "@zprofile", "--x", "16=16,0,08", "--y", "16=16"]);
+        add("--x 16=16,0,08: the measured 16,0,08 has more than one decimal mark", ["calibrate", "solve", "--profile", "@zprofile", "--x", "16=16,0,08", "--y", "16=16"]);
         add("--speed-mm-s 1,2,3: has more than one decimal mark", ["pattern", "scan-offset", "--out", "@out", "--speed-mm-s", "1,2,3"]);
 
         // System.CommandLine's own words: a typo gets "did you mean", a bad value no .NET type name.

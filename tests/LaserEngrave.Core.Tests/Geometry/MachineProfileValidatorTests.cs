@@ -54,10 +54,10 @@ public class MachineProfileValidatorTests
         { """{ "x": { "deviceNumber": 1, "microstepUm": 0 } }""", "x.microstepUm must be above 0" },
         { """{ "stageBaudRate": 115200 }""", "stageBaudRate must be 9600" },
         { """{ "spotDiameterUm": -1 }""", "spotDiameterUm must be a finite number above 0" },
-        { """{ "gate": { "watchdogMs": 1e12 } }""", "gate.watchdogMs has a value of the wrong type or out of range for it (line 1)" },
+        { """{ "gate": { "watchdogMs": 1e12 } }""", "gate.watchdogMs has a value of the wrong type or out of range for it (line 1, column 31)" },
         { """{ "gate": { "watchdogMs": "soon" } }""", "gate.watchdogMs has a value of the wrong type" },
-        { """{ "gate": { "WatchdogMs": 0 } }""", ": gate.WatchdogMs is not a field of the machine profile (line 1)" },
-        { """{ "watchdogMs": 100 }""", ": watchdogMs is not a field of the machine profile (line 1)" },
+        { """{ "gate": { "WatchdogMs": 0 } }""", ": gate.WatchdogMs is not a field of the machine profile (line 1, column 26)" },
+        { """{ "watchdogMs": 100 }""", ": watchdogMs is not a field of the machine profile (line 1, column 16)" },
         { """{ "scanOffsets": [ { "speedMmPerS": 2, "offsetUm": 5 }, { "speedMmPerS": 1, "offsetUm": 3 } ] }""", "scanOffsets[1].speedMmPerS must be above scanOffsets[0].speedMmPerS 2 mm/s: list the speeds in increasing order, each once (got 1)" },
         { """{ "scanOffsets": [ { "speedMmPerS": 1, "offsetUm": 5 }, { "speedMmPerS": 1, "offsetUm": 3 } ] }""", "scanOffsets[1].speedMmPerS must be above scanOffsets[0].speedMmPerS 1 mm/s" },
         { """{ "scanOffsets": [ { "speedMmPerS": 0, "offsetUm": 5 } ] }""", "scanOffsets[0].speedMmPerS must be a finite speed above 0 mm/s (got 0)" },
@@ -74,9 +74,9 @@ public class MachineProfileValidatorTests
         { """{ "z": { "maxMm": 26 } }""", "z.maxMm must be above z.minMm 0 mm and at most z.travelMm 25 mm (got 26)" },
         { """{ "z": { "minMm": 5, "maxMm": 10 } }""", "z.focusMm must be within z.minMm..z.maxMm 5..10 mm (got 12.5)" },
         { """{ "z": { "focusmm": 10 } }""", "z.focusmm is not a field of the machine profile" },
-        { """[1, 2]""", "not a valid machine profile (line 1): expected a JSON object" },
+        { """[1, 2]""", "not a valid machine profile (line 1, column 2): expected a JSON object" },
         { """null""", "the machine profile is empty" },
-        { "", "not a valid machine profile" },
+        { "", "not valid JSON at line 1, column 1: the file is empty" },
     };
 
     [Fact]

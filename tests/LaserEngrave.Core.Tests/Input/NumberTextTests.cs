@@ -76,6 +76,46 @@ public class NumberTextTests
     }
 
     [Theory]
+    [InlineData("1,000", "could be 1 or 1000: write 1000 or 1.0")]
+    [InlineData("1.000", "could be 1 or 1000: write 1000 or 1.0")]
+    [InlineData("10,000", "could be 10 or 10000: write 10000 or 10.0")]
+    [InlineData("2,500", "could be 2.5 or 2500: write 2500 or 2.5")]
+    [InlineData("-2.500", "could be -2.5 or -2500: write -2500 or -2.5")]
+    [InlineData("12.345", "could be 12.345 or 12345: write 12345 or 12.3450")]
+    public void TryParse_OneMarkThenThreeDigits_RefusedNamingBothReadings(string text, string problem)
+    {
+        foreach (var locale in new[] { "de-DE", "es-AR", "en-US", "fr-FR" })
+        {
+            var (ok, said) = Under(locale, () => (NumberText.TryParse(text, out _, out var p), p));
+            Assert.False(ok);
+            Assert.Equal(problem, said);
+        }
+    }
+
+    [Theory]
+    [InlineData("0,125", 0.125)]
+    [InlineData("0.125", 0.125)]
+    [InlineData("12,5", 12.5)]
+    [InlineData("1000", 1000.0)]
+    [InlineData("1.5", 1.5)]
+    [InlineData("1.0", 1.0)]
+    [InlineData("12.3450", 12.345)]
+    [InlineData("1234,567", 1234.567)]
+    [InlineData("1.000e3", 1000.0)]
+    public void TryParse_OneReadingOnly_Read(string text, double expected)
+    {
+        Assert.True(NumberText.TryParse(text, out var value, out var problem), problem);
+        Assert.Equal(expected, value);
+    }
+
+    [Fact]
+    public void TryParsePair_AmbiguousPart_RefusedNamingBothReadings()
+    {
+        Assert.False(NumberText.TryParsePair("1,000;2", out _, out _, out var said));
+        Assert.Equal("X '1,000' could be 1 or 1000: write 1000 or 1.0", said);
+    }
+
+    [Theory]
     [InlineData("10,10", 10.0, 10.0)]
     [InlineData("5.5,10.2", 5.5, 10.2)]
     [InlineData("5,5;10,2", 5.5, 10.2)]
@@ -114,7 +154,7 @@ public class NumberTextTests
 
     [Theory]
     [InlineData("1,5", "takes a whole number")]
-    [InlineData("1.000", "takes a whole number")]
+    [InlineData("1.000", "could be 1 or 1000: write 1000 or 1.0")]
     [InlineData("three", "is not a whole number")]
     [InlineData("99999999999", "is too large")]
     public void TryParseWhole_NotWhole_Refused(string text, string problem)
