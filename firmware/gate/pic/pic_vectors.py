@@ -27,8 +27,9 @@ def check(ok, name, detail=""):
         print(f"FAIL {name}: {detail}")
 
 
-def run(lines, end):
-    """lines: [(cycle the line's last stop bit ends, text)] -> (replies [(cycle, text)], writes [(cycle, reg, value)])."""
+def run(lines, end, jumper=True):
+    """lines: [(cycle the line's last stop bit ends, text)] -> (replies [(cycle, text)], writes [(cycle, reg, value)],
+    edges [(cycle, level)] of RB3). jumper: RB3 wired to RB6/T1CKI, as the gate is built (docs/gate-firmware.md)."""
     changes, level = [], 1
     for at, text in lines:
         data = text.encode("latin-1") + b"\n"
@@ -42,6 +43,8 @@ def run(lines, end):
     stimulus = ", ".join(f"{c}, {v}" for c, v in changes)
     script = f"{work}/vectors.stc"
     log = f"{work}/vectors.log"
+    edges_file = f"{work}/rb3.txt"
+    jumper = " portb6" if jumper else ""
     with open(script, "w") as f:
         f.write(f"""processor p16f628a
 load s {cod}
@@ -54,6 +57,12 @@ name rxs
 end
 node nrx
 attach nrx rxs portb1
+module library libgpsim_modules
+module load FileRecorder rec
+rec.digital = true
+rec.file = "{edges_file}"
+node nrb3
+attach nrb3 portb3 rec.pin{jumper}
 log on {log}
 log w txreg
 log w ccp1con
@@ -61,6 +70,7 @@ log w pr2
 log w t2con
 break c {end}
 run
+rec.file = "{work}/closed.txt"
 quit
 """)
     subprocess.run(["gpsim", "-i", "-c", script], capture_output=True, text=True, timeout=60)
@@ -82,7 +92,13 @@ quit
                 cur += chr(v)
         elif reg in ("ccp1con", "pr2", "t2con"):
             writes.append((cycle, reg, v))
-    return replies, writes
+    edges = []
+    # The recorder writes each change twice, as a level (0/1) and as a voltage; the levels are the edges.
+    for row in open(edges_file):
+        c, v = (row.split() + ["", ""])[:2]
+        if v in ("0", "1"):
+            edges.append((int(c), int(v)))
+    return replies, writes, edges
 
 
 MS = 1000
@@ -98,7 +114,7 @@ vectors = [("*IDN?", "OK PICGATE PIC-0.1"), ("PING", "OK PONG"), ("STATE?", "OK 
 lines, got, writes = [], [], []
 for i in range(0, len(vectors), 5):
     batch = [(20 * MS + (k + 1) * 60 * MS, text) for k, (text, _) in enumerate(vectors[i:i + 5])]
-    replies, w = run(batch, batch[-1][0] + 60 * MS)
+    replies, w, _ = run(batch, batch[-1][0] + 60 * MS)
     got += [t for _, t in replies]
     # Instants relative to the batch; one PWM set-up per batch at most is read below, so keep each batch's own.
     lines.append((batch, w))
@@ -130,7 +146,7 @@ figures.append(f"OFF: PWM stopped {stop - off_at} us after the line's last stop 
 
 # The watchdog: WDOG 50, FREQ 1000, silence; STATE? twice.
 t0 = 20 * MS
-replies, writes = run([(t0, "WDOG 50"), (t0 + 40 * MS, "FREQ 1000"), (t0 + 200 * MS, "STATE?"), (t0 + 260 * MS, "STATE?")],
+replies, writes, _ = run([(t0, "WDOG 50"), (t0 + 40 * MS, "FREQ 1000"), (t0 + 200 * MS, "STATE?"), (t0 + 260 * MS, "STATE?")],
                       t0 + 320 * MS)
 start = next(c for c, r, v in writes if r == "t2con" and v & 4)
 stopped = next(c for c, r, v in writes if r == "ccp1con" and v == 0 and c > start)
@@ -142,7 +158,7 @@ figures.append(f"watchdog 50 ms: PWM stopped {trip / 1000:.3f} ms after the last
 
 # PINGs every 40 ms keep it firing.
 pings = [(t0 + 40 * MS + k * 40 * MS, "PING") for k in range(1, 5)]
-replies, writes = run([(t0, "WDOG 50"), (t0 + 40 * MS, "FREQ 1000")] + pings, t0 + 300 * MS)
+replies, writes, _ = run([(t0, "WDOG 50"), (t0 + 40 * MS, "FREQ 1000")] + pings, t0 + 300 * MS)
 stopped = [c for c, r, v in writes if r == "ccp1con" and v == 0 and c > t0 + 41 * MS]
 check(len(stopped) == 1 and stopped[0] - pings[-1][0] >= 49 * MS, "Watchdog_PingedEvery40ms_OffOnlyAfterLastPing",
       str([(c - pings[-1][0]) / 1000 for c in stopped]))
