@@ -2,9 +2,9 @@
 ; 4 MHz crystal (XT), instruction cycle 1 us. USART 9600 8N1 (BRGH 1, SPBRG 25: 9615 baud), polled.
 ; Pulse train: CCP1 PWM on RB3 from Timer2 (hardware), 2 us pulses. Below 977 Hz the period is k Timer2 periods of
 ; 127..256 x 4 us (the Timer2 interrupt sets PR2 and lets CCP1's double-buffered duty through on every k-th only).
-; BURST counts in hardware: a jumper (1 kOhm) from RB3/CCP1 to RB6/T1CKI clocks Timer1, preloaded so that it overflows
-; on the n-th pulse (an overflow count above 65536); the overflow interrupt's first two instructions stop the PWM,
-; 4-6 us after the n-th pulse began, before the next (10 us at 100 kHz).
+; BURST counts in hardware: a jumper from RB3/CCP1 to RA4/T0CKI clocks Timer0, preloaded so that it overflows on the
+; n-th pulse (counting its overflows above 256); the overflow interrupt's first instructions stop the PWM a few us
+; after the n-th pulse began, before the next (10 us later at 100 kHz). Timer1 gives the 1.024 ms tick.
 ; Implements: *IDN?, PING, OFF, FREQ <hz> (0..100000), BURST <n> <hz> (n 1..1000000, hz 1..100000), STATE?,
 ; WDOG <ms> (0 or 50..60000) and the watchdog (Timer0, 1 ms tick) with TRIPPED in STATE?. Not: keywords in lower
 ; case, tabs, several spaces, signs (ERR 1 / ERR 3), lines over 24 bytes (ERR 1 UNKNOWN, as the full protocol does
@@ -43,7 +43,7 @@ LINEMAX equ 24
           armed                 ; bit 0: the next Timer1 overflow ends the burst and the train is fast (stop at once)
                                 ; bit 1: the next Timer1 overflow ends the burst
           w_save, s_save
-          ovf                   ; Timer1 overflows still to come in the burst, the last included
+          ovf0, ovf1            ; Timer0 overflows still to come in the burst, the last included
           bflags                ; DONE: the burst counted itself out (the main loop folds it in); SLOW; BURSTING
           sl0, sl1              ; Timer2 periods left in this pulse period (SLOW)
           rl0, rl1              ; long ones left
@@ -67,15 +67,15 @@ TRIPPED equ 1
 
 ; ---- interrupt: Timer1 (the burst's counter) and, below 977 Hz, Timer2 ----
         org 4
-        btfsc armed, 0          ; the last pulse of a fast burst has begun: PWM -> capture mode, RB3 back to its
-        bcf CCP1CON, CCP1M3     ; latch (low); neither touches STATUS or W, and main code never leaves bank 0 with
-        goto isr                ; PEIE set
+        btfsc armed, 0          ; the last pulse of a fast burst has begun (and ended: it lasts 2 us, less than the
+        bcf T2CON, TMR2ON       ; interrupt's latency): Timer2 stopped, no period begins again, RB3 stays low; neither
+        goto isr                ; touches STATUS or W, and main code never leaves bank 0 with T0IE set
 
 ; ---- message table (retlw), each message ends with 0 ----
         org 0x10
 msg:    movwf PCL               ; PCLATH = 0, table inside the first 256 words
 m_idn   equ $
-        dt "OK PICGATE PIC-0.1", 0
+        dt "OK PICGATE PIC-1.0", 0
 m_pong  equ $
         dt "OK PONG", 0
 m_off   equ $
@@ -106,46 +106,34 @@ start:
         movlw 0x07
         movwf CMCON             ; comparators off
         bsf STATUS, RP0
-        movlw b'10110111'       ; RB3 (CCP1) output, RB6 (T1CKI) output for a moment (below), RB1 RX / RB2 TX
+        movlw b'11110111'       ; RB3 (CCP1) output, RB1 RX / RB2 TX as the USART wants (RA4/T0CKI an input)
         movwf TRISB
-        bsf PIE1, TMR1IE        ; enabled through INTCON's PEIE only while a burst runs
         movlw 25
         movwf SPBRG
         movlw b'00100100'       ; TXEN, BRGH
         movwf TXSTA
-        movlw b'11010001'       ; Timer0: internal clock, prescaler 1:4 (pull-ups off)
+        movlw b'11101000'       ; Timer0 counts RA4/T0CKI's rising edges, no prescaler (pull-ups off)
         movwf OPTION_REG
         bcf STATUS, RP0
         movlw b'10010000'       ; SPEN, CREN
         movwf RCSTA
         clrf CCP1CON
         clrf T2CON
-        ; Timer1 counts RB6/T1CKI's rising edges (the jumper from RB3), synchronised, and stays on for good: after it is
-        ; switched on it needs a falling edge before it counts, so RB6 gives it one now, through the jumper's resistor,
-        ; while RB3 holds the gate input low.
-        movlw b'00000011'       ; TMR1CS, TMR1ON, 1:1, oscillator off, synchronised
+        movlw 0xFC              ; the first tick 1024 us from now, as every other
+        movwf TMR1H
+        movlw b'00000001'       ; Timer1: instruction clock, 1:1, on (the tick)
         movwf T1CON
-        bsf PORTB, 6
-        nop
-        nop
-        bcf PORTB, 6
-        nop
-        nop
-        bsf STATUS, RP0
-        bsf TRISB, 6            ; RB6 an input again
-        bcf STATUS, RP0
         clrf armed
         clrf bflags
-        bcf PIR1, TMR1IF
         bsf INTCON, GIE
         clrf len
         clrf over
         clrf flags
         clrf ms0
         clrf ms1
-        movlw low 1000          ; watchdog 1000 ms at power-up
+        movlw low 977           ; watchdog 1000 ms at power-up: 977 ticks of 1.024 ms
         movwf wd0
-        movlw high 1000
+        movlw high 977
         movwf wd1
         movlw '1'
         movwf wdig
@@ -157,13 +145,11 @@ start:
         movlw '0'
         movwf fdig
         clrf fdig+1
-        movlw 6
-        movwf TMR0
-        bcf INTCON, T0IF
+        bcf PIR1, TMR1IF
 
 loop:   btfsc bflags, DONE
         call fold
-        btfsc INTCON, T0IF
+        btfsc PIR1, TMR1IF
         call tick
         btfsc RCSTA, OERR       ; overrun: restart the receiver
         call rx_restart
@@ -199,12 +185,16 @@ rx_restart:
         bsf RCSTA, CREN
         return
 
-; ---- 1 ms tick: counts the silence; switches off when it reaches the watchdog time while firing ----
+; ---- 1.024 ms tick: counts the silence; switches off when it passes the watchdog time while firing ----
+; Timer1 overflowed a while ago: TMR1H + 0xFC (- 4) makes the next overflow 1024 us after this one (TMR1L runs on);
+; a carry says a whole tick more has gone by (a line was being processed): the next poll counts it at once.
 tick:   btfsc bflags, DONE       ; a burst that ended by itself is not the watchdog's
         call fold
-        bcf INTCON, T0IF
-        movlw 8                 ; 250 counts of 4 us (the write costs two)
-        addwf TMR0, F
+        bcf PIR1, TMR1IF
+        movlw 0xFC
+        addwf TMR1H, F
+        btfsc STATUS, C
+        bsf PIR1, TMR1IF
         incfsz ms0, F
         goto tick_chk
         incfsz ms1, F
@@ -408,6 +398,16 @@ not_burst:
         goto err3
         goto wdog
 
+wd_sub: movf num0, W             ; t -= num1:num0 (t2 borrows)
+        subwf t0, F
+        movf num1, W
+        btfss STATUS, C
+        incfsz num1, W
+        subwf t1, F
+        btfss STATUS, C
+        decf t2, F
+        return
+
 at_end: movlw line              ; Z set when parse stopped at the line's end
         addwf len, W
         xorwf pend, W
@@ -592,9 +592,34 @@ wdog_max:                       ; <= 60000 (0xEA60)
         btfsc STATUS, C
         goto err2
 wdog_ok:
-        movf num0, W
-        movwf wd0
+        ; ticks = ceil(ms x 125 / 128): never before the time asked (ms x 125 = ms x 128 - ms x 2 - ms, 24 bits)
+        clrf t2
         movf num1, W
+        movwf t1
+        movf num0, W
+        movwf t0
+        movlw 7
+        movwf cnt
+wd_shl: bcf STATUS, C
+        rlf t0, F
+        rlf t1, F
+        rlf t2, F
+        decfsz cnt, F
+        goto wd_shl
+        call wd_sub             ; - ms, three times
+        call wd_sub
+        call wd_sub
+        movlw 127               ; + 127, then >> 7
+        addwf t0, F
+        btfss STATUS, C
+        goto wd_r
+        incf t1, F
+        btfsc STATUS, Z
+        incf t2, F
+wd_r:   rlf t0, W               ; bit 7 into C
+        rlf t1, W
+        movwf wd0
+        rlf t2, W
         movwf wd1
         movlw 6
         movwf cnt
@@ -733,7 +758,8 @@ p_term: movlw dig
 
 ; ---- the PWM ----
 pwm_off:
-        bcf INTCON, PEIE        ; no burst interrupt from here on
+        bcf INTCON, T0IE        ; no burst interrupt from here on
+        bcf INTCON, PEIE
         clrf CCP1CON            ; RB3 back to its latch, low
         clrf T2CON
         clrf armed
@@ -863,34 +889,30 @@ pwm_start:
         bsf flags, FIRING
         return
 
-; Timer1 preloaded with -n mod 65536: it overflows on the n-th rising edge, after ceil(n / 65536) overflows.
+; Timer0 preloaded with -n mod 256: it overflows on the n-th rising edge, after ceil(n / 256) overflows.
 arm:    comf bn0, W
-        movwf t0
-        comf bn1, W
-        movwf t1
-        incf t0, F
-        btfsc STATUS, Z
-        incf t1, F
-        clrf TMR1L              ; high byte first: the counter is still
-        movf t1, W
-        movwf TMR1H
-        movf t0, W
-        movwf TMR1L
-        movf bn2, W             ; overflows = n >> 16, plus one when n's low 16 bits are not 0
-        movwf ovf
+        addlw 1
+        movwf TMR0
+        movf bn1, W             ; overflows = n >> 8, plus one when n's low byte is not 0
+        movwf ovf0
+        movf bn2, W
+        movwf ovf1
         movf bn0, W
-        iorwf bn1, W
-        btfss STATUS, Z
-        incf ovf, F
-        clrf armed
-        decf ovf, W
+        btfsc STATUS, Z
+        goto arm_n
+        incf ovf0, F
+        btfsc STATUS, Z
+        incf ovf1, F
+arm_n:  clrf armed
+        decf ovf0, W
+        iorwf ovf1, W
         btfss STATUS, Z
         goto arm_on
         bsf armed, 1            ; this overflow is the last
         btfss bflags, SLOW
         bsf armed, 0            ; and the interrupt's first instructions stop the train
-arm_on: bcf PIR1, TMR1IF
-        bsf INTCON, PEIE
+arm_on: bcf INTCON, T0IF
+        bsf INTCON, T0IE
         return
 
 ; q2:q1:q0 = (q + n / 2) / n, n = num
@@ -921,15 +943,19 @@ isr:    movwf w_save
         swapf STATUS, W
         clrf STATUS             ; bank 0
         movwf s_save
-        btfss PIR1, TMR1IF
+        btfss INTCON, T0IF
         goto isr_t2
-        bcf PIR1, TMR1IF
-        btfss bflags, BURSTING  ; a FREQ train's count is nobody's
+        btfss INTCON, T0IE
         goto isr_t2
+        bcf INTCON, T0IF
         btfsc armed, 1
         goto isr_stop
-        decf ovf, F             ; an overflow on the way
-        decf ovf, W
+        movlw 1                 ; an overflow on the way
+        subwf ovf0, F
+        btfss STATUS, C
+        decf ovf1, F
+        decf ovf0, W
+        iorwf ovf1, W
         btfss STATUS, Z
         goto isr_t2
         bsf armed, 1            ; the next is the last
@@ -937,9 +963,10 @@ isr:    movwf w_save
         bsf armed, 0
         goto isr_t2
 isr_stop:
-        clrf CCP1CON            ; (a fast train's was stopped at the vector)
+        clrf CCP1CON            ; RB3 to its latch (a fast train's Timer2 was stopped at the vector)
         clrf T2CON
         clrf armed
+        bcf INTCON, T0IE
         bcf INTCON, PEIE
         bsf bflags, DONE
         goto isr_end
@@ -1076,7 +1103,7 @@ sr_loop:
         goto sr_loop
 
 tx:     movwf txc               ; the 1 ms tick runs on while a reply goes out (12 ms for 12 bytes)
-tx_w:   btfsc INTCON, T0IF
+tx_w:   btfsc PIR1, TMR1IF
         call tick
         btfss PIR1, TXIF
         goto tx_w
