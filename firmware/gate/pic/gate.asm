@@ -188,9 +188,7 @@ rx_restart:
 ; ---- 1.024 ms tick: counts the silence; switches off when it passes the watchdog time while firing ----
 ; Timer1 overflowed a while ago: TMR1H + 0xFC (- 4) makes the next overflow 1024 us after this one (TMR1L runs on);
 ; a carry says a whole tick more has gone by (a line was being processed): the next poll counts it at once.
-tick:   btfsc bflags, DONE       ; a burst that ended by itself is not the watchdog's
-        call fold
-        bcf PIR1, TMR1IF
+tick:   bcf PIR1, TMR1IF
         movlw 0xFC
         addwf TMR1H, F
         btfsc STATUS, C
@@ -204,6 +202,8 @@ tick:   btfsc bflags, DONE       ; a burst that ended by itself is not the watch
 tick_chk:
         btfss flags, FIRING
         return
+        btfsc bflags, DONE      ; a burst that ended by itself is off already (folded in by the main loop, not here:
+        return                  ; the tick also runs while a reply is sent, STATE?'s frequency digits among them)
         movf wd0, W
         iorwf wd1, W
         btfsc STATUS, Z

@@ -115,7 +115,9 @@ vectors = [("*IDN?", "OK PICGATE PIC-1.0"), ("PING", "OK PONG"), ("STATE?", "OK 
            ("BURST 1000001 1000", "ERR 2 RANGE"), ("BURST 5 0", "ERR 2 RANGE"), ("BURST 5 100001", "ERR 2 RANGE"),
            ("BURST 5", "ERR 3 SYNTAX"), ("BURST x 5", "ERR 3 SYNTAX"), ("BURST 5 1000 7", "ERR 3 SYNTAX"),
            ("BURST", "ERR 3 SYNTAX"), ("BURST 1000000 100000", "OK BURST 1000000"), ("OFF", "OK FREQ 0"),
-           ("PING\r", "OK PONG"), ("A" * 30, "ERR 1 UNKNOWN"), ("PING", "OK PONG")]
+           ("PING\r", "OK PONG"), ("A" * 30, "ERR 1 UNKNOWN"), ("PING", "OK PONG"),
+           ("BURST 1000 3333", "OK BURST 1000"), ("STATE?", "OK STATE 3333 ON WDOG 1000"), ("OFF", "OK FREQ 0")]
+# Each run of five starts the chip afresh: a line that needs the one before it shares its run (indices 5k..5k+4).
 figures = []
 
 
