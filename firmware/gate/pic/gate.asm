@@ -1,12 +1,12 @@
-; Reference laser gate, PIC16F628A (docs/gate-firmware.md, "The PIC"), gpasm.
+; Reference laser gate, PIC16F628A (docs/gate-firmware.md, "The PIC gate"), gpasm.
 ; 4 MHz crystal (XT), instruction cycle 1 us. USART 9600 8N1 (BRGH 1, SPBRG 25: 9615 baud), polled.
 ; Pulse train: CCP1 PWM on RB3 from Timer2 (hardware), 2 us pulses. Below 977 Hz the period is k Timer2 periods of
 ; 127..256 x 4 us (the Timer2 interrupt sets PR2 and lets CCP1's double-buffered duty through on every k-th only).
 ; BURST counts in hardware: a jumper from RB3/CCP1 to RA4/T0CKI clocks Timer0, preloaded so that it overflows on the
-; n-th pulse (counting its overflows above 256); the overflow interrupt's first instructions stop the PWM a few us
+; n-th pulse (counting its overflows above 256); the overflow interrupt's first instructions stop Timer2 a few us
 ; after the n-th pulse began, before the next (10 us later at 100 kHz). Timer1 gives the 1.024 ms tick.
 ; Implements: *IDN?, PING, OFF, FREQ <hz> (0..100000), BURST <n> <hz> (n 1..1000000, hz 1..100000), STATE?,
-; WDOG <ms> (0 or 50..60000) and the watchdog (Timer0, 1 ms tick) with TRIPPED in STATE?. Not: keywords in lower
+; WDOG <ms> (0 or 50..60000) and the watchdog (Timer1, 1.024 ms tick) with TRIPPED in STATE?. Not: keywords in lower
 ; case, tabs, several spaces, signs (ERR 1 / ERR 3), lines over 24 bytes (ERR 1 UNKNOWN, as the full protocol does
 ; over 128), numbers of 8 digits or more (ERR 2 RANGE where the twin says ERR 3 SYNTAX beyond the 32-bit range).
         processor p16f628a
