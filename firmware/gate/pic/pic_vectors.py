@@ -236,6 +236,15 @@ for cmd, ok in (("FREQ 1000", "OK FREQ 1000"), ("BURST 1000 1000", "OK BURST 100
     figures.append(f"watchdog 50 ms ({cmd}): train stopped {trip / 1000:.3f} ms after the last line's stop bit, "
                    f"last pulse {(r[-1] - t0 - 40 * MS) / 1000 if r else '-'} ms")
 
+# The power-up watchdog, 1000 ms (977 ticks of 1.024 ms).
+replies, w, e = run([(t0, "FREQ 1000")], t0 + 1100 * MS)
+start = next(c for c, r_, v in w if r_ == "t2con" and v & 4)
+stopped = next((c for c, r_, v in w if r_ == "ccp1con" and v == 0 and c > start), None)
+trip = (stopped - t0) if stopped else None
+check(trip is not None and 1000 * MS <= trip <= 1002 * MS + 300, "WatchdogPowerUp_Edges_OffBetween1000And1002ms",
+      str(trip))
+figures.append(f"watchdog at power-up (1000 ms): train stopped {trip / 1000 if trip else '-'} ms after the last line")
+
 # PINGs every 40 ms keep it firing.
 pings = [(t0 + 40 * MS + k * 40 * MS, "PING") for k in range(1, 5)]
 replies, w, e = run([(t0, "WDOG 50"), (t0 + 40 * MS, "FREQ 1000")] + pings, t0 + 300 * MS)
