@@ -192,8 +192,10 @@ public sealed class BrowserTests : BrowserTest
     [Fact]
     public void Page_ReloadedKeepsTheToken_ANewTabOrAStaleTokenIsToldToOpenThePrintedAddress()
     {
-        // The token left the address bar and no cookie holds it: the tab's sessionStorage does.
+        // The launch code left the address bar, no address ever held the token and no cookie holds it: the tab's
+        // sessionStorage does.
         Assert.DoesNotContain("token", Driver.Url, StringComparison.Ordinal);
+        Assert.DoesNotContain("launch", Driver.Url, StringComparison.Ordinal);
         Assert.DoesNotContain(Driver.Manage().Cookies.AllCookies, c => c.Value.Contains(Secret, StringComparison.Ordinal));
         Driver.Navigate().Refresh();
         WaitFor(d => d.FindElement(By.Id("app")).GetAttribute("data-interactive") == "true", "the reloaded page is interactive");
@@ -203,6 +205,13 @@ public sealed class BrowserTests : BrowserTest
         Driver.SwitchTo().NewWindow(WindowType.Tab);
         Driver.Navigate().GoToUrl(Url);
         WaitFor(d => d.FindElement(By.Id("no-token")).Text.Contains("printed", StringComparison.Ordinal), "told to open the printed address");
+        Assert.Equal(1, windows.OpenWindows);
+
+        // The launch address again (as the history or a synced profile keeps it): its code was used, so nothing opens.
+        Driver.ExecuteScript("sessionStorage.clear();");
+        Driver.Navigate().GoToUrl("about:blank");
+        Driver.Navigate().GoToUrl(LaunchAddress);
+        WaitFor(d => d.FindElements(By.Id("no-token")).Count == 1, "a used launch address told to open the app from its window");
         Assert.Equal(1, windows.OpenWindows);
 
         // A token of an earlier start (the app restarted on the same port): refused, then the same line.
