@@ -216,9 +216,7 @@ public sealed partial class CommissionViewModel : ObservableObject
             try
             {
                 var updated = profile with { Latency = latency };
-                Directory.CreateDirectory(Path.GetDirectoryName(Path.GetFullPath(path))!);
-                updated.Save(path);
-                _main.UseProfile(path, updated);
+                _main.SaveProfile(path, updated);
                 written = $"Written: the latency section of {path}";
             }
             catch (Exception ex) when (ex is IOException or UnauthorizedAccessException or ProfileException or MachineBusyException)
