@@ -299,6 +299,30 @@ public sealed partial class AppProcessTests : IDisposable
         Assert.Equal(2, Directory.GetFiles(Path.Combine(_data.Path, "logs"), "*.json", SearchOption.AllDirectories).Length);
     }
 
+    /// <summary>
+    /// clients/python/tests: the client gives the token to the app alone (no proxy, no redirect, loopback only, the
+    /// server's proof of the token and the app's process checked first), against stand-in servers.
+    /// </summary>
+    [Fact]
+    public async Task PythonClient_UnitTests_AllPass()
+    {
+        var start = new ProcessStartInfo("python3") { RedirectStandardOutput = true, RedirectStandardError = true, UseShellExecute = false };
+        foreach (var arg in new[] { "-m", "unittest", "discover", "-v", "-s", TestFiles.RepositoryFile(Path.Combine("clients", "python", "tests")) })
+        {
+            start.ArgumentList.Add(arg);
+        }
+
+        start.Environment["PYTHONDONTWRITEBYTECODE"] = "1";
+        using var python = Process.Start(start)!;
+        var output = python.StandardOutput.ReadToEndAsync(Token);
+        var error = python.StandardError.ReadToEndAsync(Token);
+        await python.WaitForExitAsync(Token).WaitAsync(TimeSpan.FromMinutes(2), Token);
+
+        var report = await error;
+        Assert.True(python.ExitCode == 0, $"exit {python.ExitCode}\n{await output}\n{report}");
+        Assert.Matches(@"Ran [1-9]\d* tests", report);
+    }
+
     [Fact]
     public async Task PythonClient_NoApp_OneLineExit2()
     {
