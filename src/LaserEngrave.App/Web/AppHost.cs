@@ -69,6 +69,9 @@ public static class AppHost
         services.AddRazorComponents().AddInteractiveServerComponents();
         services.AddFluentUIComponents();
         services.AddWindowLifetime();
+        // No antiforgery cookie: a cookie cannot be kept to one port, so every server on 127.0.0.1 would receive it, and
+        // it authorises nothing here (the page posts no forms; every request shows the token in a header instead).
+        services.AddScoped<Microsoft.AspNetCore.Components.Forms.AntiforgeryStateProvider, NoAntiforgeryState>();
         configure?.Invoke(services);
 
         var app = builder.Build();
@@ -131,6 +134,12 @@ public static class AppHost
         }
 
         return Unauthorized(response, $"this needs the start's token: open the app from its window or its launch address, or send 'Authorization: Bearer TOKEN' or '{AccessToken.HeaderName}: TOKEN' (TOKEN from connection.json)");
+    }
+
+    /// <summary>Gives the page no antiforgery token, so none is made and no cookie is set for it.</summary>
+    private sealed class NoAntiforgeryState : Microsoft.AspNetCore.Components.Forms.AntiforgeryStateProvider
+    {
+        public override Microsoft.AspNetCore.Components.Forms.AntiforgeryRequestToken? GetAntiforgeryToken() => null;
     }
 
     /// <summary>Blazor's SignalR hub, the page's own connection.</summary>

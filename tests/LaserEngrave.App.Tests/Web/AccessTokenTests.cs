@@ -127,6 +127,20 @@ public sealed class AccessTokenTests : IClassFixture<AccessTokenTests.OneApp>, I
         Assert.False(response.Headers.Contains("Set-Cookie"));
     }
 
+    [Theory]
+    [InlineData("/")]
+    [InlineData("/?x=1")]
+    public async Task Page_Served_NoCookieForOtherPortsToReceive(string path)
+    {
+        using var client = Client(cookies: true);
+
+        using var response = await client.GetAsync(path, Token);
+
+        // A cookie cannot be kept to one port: whatever the app set, every server on 127.0.0.1 would receive.
+        Assert.Equal(HttpStatusCode.OK, response.StatusCode);
+        Assert.False(response.Headers.Contains("Set-Cookie"), string.Join("; ", response.Headers.TryGetValues("Set-Cookie", out var set) ? set : []));
+    }
+
     private async Task<HttpResponseMessage> TradeAsync(string? code, string? origin = null)
     {
         using var client = Client();

@@ -111,6 +111,21 @@ public sealed partial class AppProcessTests : IDisposable
         Assert.DoesNotContain("running at", await process.StandardOutput.ReadToEndAsync(Token), StringComparison.Ordinal);
     }
 
+    [Theory]
+    [InlineData("https://127.0.0.1:5443")]
+    [InlineData("http://127.0.0.1:5444;https://localhost:5445")]
+    public async Task Start_HttpsAddress_OneLineExit2(string urls)
+    {
+        var process = Start(["--urls", urls]);
+
+        await process.WaitForExitAsync(Token).WaitAsync(Bound, Token);
+
+        var error = await process.StandardError.ReadToEndAsync(Token);
+        Assert.Equal(2, process.ExitCode);
+        Assert.Contains("the app listens over http:// only", Assert.Single(error.Split('\n', StringSplitOptions.RemoveEmptyEntries)), StringComparison.Ordinal);
+        Assert.Empty(await process.StandardOutput.ReadToEndAsync(Token));
+    }
+
     [Fact]
     public async Task Start_PortInUse_OneLineExit2()
     {

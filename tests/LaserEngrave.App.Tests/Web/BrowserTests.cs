@@ -307,6 +307,15 @@ public sealed class BrowserTests : BrowserTest
         Id("history-select-shown").Click();
         WaitFor(d => d.FindElements(By.Id("history-csv")).Count == 1, "the export offered");
         Assert.True(new FileInfo(Screenshot("run-history")).Length > 20_000);
+
+        // A run's Log link opens its text in a new window, fetched with the token (the new window has none of its own).
+        var workspace = Driver.CurrentWindowHandle;
+        Driver.FindElement(By.CssSelector("#history-table tbody tr a.chip[target='_blank']")).Click();
+        WaitFor(d => d.WindowHandles.Count == 2, "the log's window opened");
+        Driver.SwitchTo().Window(Driver.WindowHandles.Single(h => h != workspace));
+        WaitFor(d => d.FindElement(By.TagName("body")).Text.Contains("Outcome", StringComparison.OrdinalIgnoreCase), "the log's text shown");
+        Driver.Close();
+        Driver.SwitchTo().Window(workspace);
         Id("history-close").Click();
         Assert.DoesNotContain(Driver.Manage().Logs.GetLog(LogType.Browser), e => e.Level == LogLevel.Severe);
     }
