@@ -82,15 +82,11 @@ catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
     Console.Error.WriteLine($"{connectionFile}: could not write the address for scripts ({ex.Message}); they cannot find the app");
 }
 
-// Printed once the connection file is there, so whoever reads this line finds it. The address carries a one-time launch
-// code, never the token: opened once (by hand, with --no-browser) it is refused afterwards.
-Console.WriteLine($"LaserEngrave is running at {address}/#{LaunchCodes.FragmentName}={launchCodes.Issue()}");
-Console.WriteLine("Ctrl+C stops it (the laser is switched off first).");
 // Created now, so the window's connections are counted from the first.
 _ = app.Services.GetRequiredService<WindowLifetime>();
+var opened = false;
 if (options.OpenBrowser)
 {
-    var opened = false;
     try
     {
         // The browser is given a file readable by the user alone that sends it on with a launch code of its own: its
@@ -102,11 +98,18 @@ if (options.OpenBrowser)
     {
         Console.Error.WriteLine($"{folders.LaunchFolder}: could not write the window's launch file ({ex.Message})");
     }
+}
 
-    if (!opened)
-    {
-        Console.WriteLine("Could not open a browser: open the address above yourself.");
-    }
+// Printed once the connection file is there, so whoever reads this line finds it. With no window of its own the
+// address carries a one-time launch code, never the token: opened once by hand, it is refused afterwards. With its
+// window open it carries none, so a line kept in a log opens nothing.
+Console.WriteLine(opened
+    ? $"LaserEngrave is running at {address} (in its own window)"
+    : $"LaserEngrave is running at {address}/#{LaunchCodes.FragmentName}={launchCodes.Issue()}");
+Console.WriteLine("Ctrl+C stops it (the laser is switched off first).");
+if (options.OpenBrowser && !opened)
+{
+    Console.WriteLine("Could not open a browser: open the address above yourself (it works once).");
 }
 
 await app.WaitForShutdownAsync();

@@ -48,7 +48,7 @@ public sealed partial class AppProcessTests : IDisposable
         return ["--urls", "http://127.0.0.1:0", "--sim-options", file];
     }
 
-    [GeneratedRegex(@"^LaserEngrave is running at (http://127\.0\.0\.1:\d+)/#launch=([A-Za-z0-9_-]{22})$")]
+    [GeneratedRegex(@"^LaserEngrave is running at (http://127\.0\.0\.1:\d+)(/#launch=[A-Za-z0-9_-]{22}| \(in its own window\))$")]
     private static partial Regex StartLine();
 
     private Process Start(string[] args, params (string Key, string Value)[] environment) => Start(args, browser: false, environment);
