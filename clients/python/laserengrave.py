@@ -9,11 +9,19 @@
     record = app.export_log(run["path"])             # the run's JSON record
 
 Every request shows the start's token (Authorization: Bearer); the app refuses requests without it (401) and any
-with another page's Origin (403). Nothing here sends an Origin or a cookie.
+with another page's Origin (403). Nothing here sends an Origin or a cookie. The token goes to the app alone: only to a
+loopback address (127.0.0.1, [::1]), never through a proxy (http_proxy, the Windows registry's), never across a
+redirect, and only after the server on the port has proved it holds the token (GET /api/proof, an HMAC of a fresh
+challenge) and, with a connection file, that the app's process named there is alive: a connection.json left by a crash
+sends nothing to whoever took the freed port.
 """
 
+import hashlib
+import hmac
+import ipaddress
 import json
 import os
+import secrets
 import sys
 import time
 import urllib.error
@@ -34,6 +42,54 @@ class ApiError(Exception):
         self.status = status
         self.message = message
         self.body = body
+
+
+class _NoRedirect(urllib.request.HTTPRedirectHandler):
+    """Follows no redirect: the answer stays the 3xx (raised as ApiError), so the token never goes to another address."""
+
+    def redirect_request(self, req, fp, code, msg, headers, newurl):
+        return None
+
+
+# No proxy (an empty ProxyHandler: http_proxy and the Windows registry's proxy are not read) and no redirects.
+_OPENER = urllib.request.build_opener(urllib.request.ProxyHandler({}), _NoRedirect())
+
+
+def _loopback_url(url):
+    """url when it is http:// on a loopback address (127.0.0.0/8, [::1]); ApiError otherwise. Names (localhost) are refused: a hosts file could send them elsewhere."""
+    parts = urllib.parse.urlsplit(url)
+    try:
+        loopback = parts.scheme == "http" and parts.hostname is not None and ipaddress.ip_address(parts.hostname).is_loopback
+        port = parts.port
+    except ValueError:
+        loopback, port = False, None
+    if not loopback or port is None or parts.username or parts.password:
+        raise ApiError(0, f"{url}: not the app's address: the token is sent only to http://127.0.0.1:PORT or http://[::1]:PORT")
+    return url.rstrip("/")
+
+
+def _process_alive(pid):
+    """Whether a process with this id runs (the app that wrote connection.json)."""
+    if pid <= 0:
+        return False
+    if sys.platform == "win32":
+        import ctypes
+        kernel32 = ctypes.windll.kernel32
+        handle = kernel32.OpenProcess(0x1000, False, pid)  # PROCESS_QUERY_LIMITED_INFORMATION
+        if not handle:
+            return False
+        try:
+            code = ctypes.c_ulong()
+            return bool(kernel32.GetExitCodeProcess(handle, ctypes.byref(code))) and code.value == 259  # STILL_ACTIVE
+        finally:
+            kernel32.CloseHandle(handle)
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
 
 
 class RunError(Exception):
@@ -60,10 +116,35 @@ def default_connection_file():
 class LaserEngrave:
     """The running app at url, shown the token on every request."""
 
-    def __init__(self, url, token, timeout=30.0):
-        self.url = url.rstrip("/")
+    def __init__(self, url, token, timeout=30.0, pid=None):
+        self.url = _loopback_url(url)
         self.token = token
         self.timeout = timeout
+        self.pid = pid
+        self._verified = False
+
+    def verify(self):
+        """Checks the server on the port is this start of the app before the token is sent: the process named in
+        connection.json is alive, and the server proves it holds the token (HMAC-SHA256 keyed by the token over
+        'laserengrave-proof:' + a fresh challenge, GET /api/proof). Raises ApiError when it is not."""
+        if self.pid is not None and not _process_alive(self.pid):
+            raise ApiError(0, f"{self.url}: the app's process {self.pid} named in the connection file has ended: is LaserEngrave running?")
+        challenge = secrets.token_urlsafe(24)
+        request = urllib.request.Request(self.url + "/api/proof?challenge=" + challenge, method="GET", headers={"Accept": "application/json"})
+        try:
+            with _OPENER.open(request, timeout=self.timeout) as response:
+                answer = _json_or_none(response.read())
+        except urllib.error.HTTPError as e:
+            raise ApiError(0, f"{self.url}: the server there is not LaserEngrave (it answered {e.code} to the proof): the token was not sent") from None
+        except urllib.error.URLError as e:
+            raise ApiError(0, f"{self.url}: cannot reach LaserEngrave ({e.reason})") from None
+        expected = hmac.new(self.token.encode("ascii"), ("laserengrave-proof:" + challenge).encode("ascii"), hashlib.sha256).hexdigest()
+        proof = answer.get("proof") if isinstance(answer, dict) else None
+        if not isinstance(proof, str) or not hmac.compare_digest(proof, expected):
+            raise ApiError(0, f"{self.url}: the server there could not prove it is this start of LaserEngrave (a connection file left by an earlier start?): the token was not sent")
+        if self.pid is not None and answer.get("pid") != self.pid:
+            raise ApiError(0, f"{self.url}: the server there is process {answer.get('pid')}, not {self.pid} named in the connection file: the token was not sent")
+        self._verified = True
 
     @classmethod
     def from_connection_file(cls, path=None, timeout=30.0):
@@ -78,12 +159,15 @@ class LaserEngrave:
             raise ApiError(0, f"{path}: not a LaserEngrave connection file ({e})") from None
         if not isinstance(connection, dict) or not connection.get("url") or not connection.get("token"):
             raise ApiError(0, f"{path}: not a LaserEngrave connection file (no url and token)")
-        return cls(connection["url"], connection["token"], timeout)
+        pid = connection.get("pid")
+        return cls(connection["url"], connection["token"], timeout, pid if isinstance(pid, int) and pid > 0 else None)
 
     # --- HTTP ---------------------------------------------------------------------------------------------------
 
     def request(self, method, path, body=None, data=None, content_type=None, raw=False):
-        """One API call; returns the parsed JSON answer (or bytes with raw=True). Raises ApiError for 4xx and 5xx."""
+        """One API call; returns the parsed JSON answer (or bytes with raw=True). Raises ApiError for 3xx, 4xx and 5xx."""
+        if not self._verified:
+            self.verify()
         headers = {"Authorization": f"Bearer {self.token}", "Accept": "application/json"}
         if body is not None:
             data = json.dumps(body).encode("utf-8")
@@ -95,9 +179,11 @@ class LaserEngrave:
             headers["Content-Type"] = "application/json"
         request = urllib.request.Request(self.url + path, data=data, method=method, headers=headers)
         try:
-            with urllib.request.urlopen(request, timeout=self.timeout) as response:
+            with _OPENER.open(request, timeout=self.timeout) as response:
                 content = response.read()
         except urllib.error.HTTPError as e:
+            if 300 <= e.code < 400:
+                raise ApiError(e.code, f"{self.url}: the server answered with a redirect to {e.headers.get('Location')}; not followed (the token goes to the app alone)") from None
             content = e.read()
             raise ApiError(e.code, _message(content, e.reason), _json_or_none(content)) from None
         except urllib.error.URLError as e:

@@ -67,29 +67,49 @@ if (addresses.FirstOrDefault(a => !LoopbackAddresses.IsLoopback(a)) is { } open)
 }
 
 var token = app.Services.GetRequiredService<AccessToken>();
+var launchCodes = app.Services.GetRequiredService<LaunchCodes>();
 var address = addresses.First().TrimEnd('/');
-var url = $"{address}/?{AccessToken.QueryName}={token.Value}";
-var connectionFile = app.Services.GetRequiredService<AppFolders>().ConnectionFile;
+var folders = app.Services.GetRequiredService<AppFolders>();
+var connectionFile = folders.ConnectionFile;
 try
 {
-    // For scripts of the same user (clients/python): the address and token, readable by the user alone.
-    ConnectionFile.Write(connectionFile, address, token.Value);
+    // For scripts of the same user (clients/python): the address, token and process id, readable by the user alone.
+    ConnectionFile.Write(connectionFile, address, token.Value, Environment.ProcessId);
     app.Lifetime.ApplicationStopping.Register(() => ConnectionFile.Remove(connectionFile, token.Value));
 }
 catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
 {
-    Console.Error.WriteLine($"{connectionFile}: could not write the address for scripts ({ex.Message}); they can take it from the next line");
+    Console.Error.WriteLine($"{connectionFile}: could not write the address for scripts ({ex.Message}); they cannot find the app");
 }
 
-// Printed once the connection file is there, so whoever reads this line finds it.
-Console.WriteLine($"LaserEngrave is running at {url}");
-Console.WriteLine("Ctrl+C stops it (the laser is switched off first).");
 // Created now, so the window's connections are counted from the first.
 _ = app.Services.GetRequiredService<WindowLifetime>();
-var profileFolder = Path.Combine(app.Services.GetRequiredService<AppFolders>().DataFolder, "window");
-if (options.OpenBrowser && !BrowserLauncher.TryOpen(url, profileFolder))
+var opened = false;
+if (options.OpenBrowser)
 {
-    Console.WriteLine("Could not open a browser: open the address above yourself.");
+    try
+    {
+        // The browser is given a file readable by the user alone that sends it on with a launch code of its own: its
+        // command line (which every local user can read) names only the file.
+        var launchFile = launchCodes.WriteLaunchFile(folders.LaunchFolder, address);
+        opened = BrowserLauncher.TryOpen(launchFile, Path.Combine(folders.DataFolder, "window"));
+    }
+    catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
+    {
+        Console.Error.WriteLine($"{folders.LaunchFolder}: could not write the window's launch file ({ex.Message})");
+    }
+}
+
+// Printed once the connection file is there, so whoever reads this line finds it. With no window of its own the
+// address carries a one-time launch code, never the token: opened once by hand, it is refused afterwards. With its
+// window open it carries none, so a line kept in a log opens nothing.
+Console.WriteLine(opened
+    ? $"LaserEngrave is running at {address} (in its own window)"
+    : $"LaserEngrave is running at {address}/#{LaunchCodes.FragmentName}={launchCodes.Issue()}");
+Console.WriteLine("Ctrl+C stops it (the laser is switched off first).");
+if (options.OpenBrowser && !opened)
+{
+    Console.WriteLine("Could not open a browser: open the address above yourself (it works once).");
 }
 
 await app.WaitForShutdownAsync();

@@ -16,6 +16,9 @@ public sealed record AppFolders(string DataFolder, string? LogFolder = null)
     /// <summary>The running app's address and token for scripts (Web/ConnectionFile), beside the settings.</summary>
     public string ConnectionFile => Path.Combine(DataFolder, "connection.json");
 
+    /// <summary>The window's one-time launch files (Web/LaunchCodes), in a folder of the user's alone.</summary>
+    public string LaunchFolder => Path.Combine(DataFolder, "launch");
+
     public string PresetsFile => Path.Combine(DataFolder, "presets.json");
 
     public string UploadFolder => Path.Combine(DataFolder, "images");

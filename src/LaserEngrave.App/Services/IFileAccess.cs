@@ -9,9 +9,16 @@ public interface IFileAccess
     /// <summary>The longest upload name taken, characters: with the temporary name's prefix and suffix it stays within a file system's 255 bytes.</summary>
     const int MaxUploadNameLength = 200;
 
-    /// <summary>Keeps an uploaded file under the app's image folder; returns its path.</summary>
-    /// <exception cref="UploadException">A name that cannot be a file's (a control character such as NUL, a path separator, "." or "..", longer than <see cref="MaxUploadNameLength"/>), too large, interrupted or not writable: one line naming the file; nothing is left behind.</exception>
-    Task<string> SaveUploadAsync(string fileName, Stream content, CancellationToken cancellationToken);
+    /// <summary>The most the image folder holds, all uploads together (4 GB): an upload past it is refused, nothing is removed by itself.</summary>
+    const long UploadQuotaBytes = 4L << 30;
+
+    /// <summary>
+    /// Keeps an uploaded file under the app's image folder, in a folder named after its content (never replacing another
+    /// upload); returns its path. <paramref name="beforeCommit"/> runs once the bytes are whole, before the file is put in
+    /// place: what it throws (the run interlock's refusal) leaves nothing behind.
+    /// </summary>
+    /// <exception cref="UploadException">A name that cannot be a file's on Linux, macOS or Windows (a path, a control or invisible formatting character, a device name such as CON or aux.bmp, a trailing dot or space, "." or "..", longer than <see cref="MaxUploadNameLength"/>), too large, past the quota, interrupted or not writable: one line naming the file; nothing is left behind.</exception>
+    Task<string> SaveUploadAsync(string fileName, Stream content, CancellationToken cancellationToken, Action? beforeCommit = null);
 
     bool Exists(string path);
 

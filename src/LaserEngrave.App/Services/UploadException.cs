@@ -26,6 +26,9 @@ public sealed class UploadException : IOException
         FileName = string.Empty;
     }
 
+    /// <summary>Whether the image folder's quota refused it (the API answers 507, not 400).</summary>
+    public bool QuotaExceeded { get; init; }
+
     /// <summary>The name the user's file had.</summary>
     public string FileName { get; }
 }

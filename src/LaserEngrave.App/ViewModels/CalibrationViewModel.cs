@@ -188,9 +188,7 @@ public sealed partial class CalibrationViewModel : ObservableObject
         try
         {
             profile.Calibration?.Validate();
-            Directory.CreateDirectory(Path.GetDirectoryName(path)!);
-            profile.Save(path);
-            _main.UseProfile(path, profile);
+            _main.SaveProfile(path, profile);
             Status = $"{what} -> {path}";
             Error = null;
             OnPropertyChanged(nameof(Current));

@@ -221,15 +221,15 @@ public sealed partial class CommissionViewModel : ObservableObject
             try
             {
                 var updated = profile with { Latency = latency };
-                Directory.CreateDirectory(Path.GetDirectoryName(Path.GetFullPath(path))!);
-                updated.Save(path);
                 if (simulated)
                 {
+                    // The simulator's own profile: written under the same run interlock, never put in use as the machine's.
+                    _main.WriteProfile(path, updated);
                     written = $"Written: the simulator's latencies into {path}, the simulator's own profile; the machine profile was left as it was";
                 }
                 else
                 {
-                    _main.UseProfile(path, updated);
+                    _main.SaveProfile(path, updated);
                     written = $"Written: the latency section of {path}";
                 }
             }

@@ -612,6 +612,9 @@ public sealed partial class JobViewModel : ObservableObject
 
     public void EditMicrostepsPerPixel(double microsteps) => EditPitch(microsteps * _profile.X.MicrostepUm);
 
+    /// <summary>Throws <see cref="MachineBusyException"/> while an operation fixes the job (an upload asks before it is kept).</summary>
+    public void ThrowIfLocked() => _activity.ThrowIfJobLocked();
+
     /// <summary>Uses another machine profile (its travel and microstep) for the plan.</summary>
     public void UseProfile(MachineProfile profile)
     {

@@ -188,6 +188,32 @@ public sealed partial class MainViewModel : ObservableObject
 
     /// <summary>Uses <paramref name="profile"/>, saved at <paramref name="path"/>, from now on: the job plans with it, the next connection uses it, the settings remember it.</summary>
     /// <exception cref="MachineBusyException">A run, homing or a test move is under way: nothing is changed.</exception>
+    /// <summary>
+    /// Writes <paramref name="profile"/> to <paramref name="path"/> and uses it from now on (calibration, commissioning):
+    /// refused before anything is written while a run, homing or test move fixes the job, so the file on disk always
+    /// matches what the page says.
+    /// </summary>
+    /// <exception cref="MachineBusyException">An operation that fixes the job is under way: the file is untouched.</exception>
+    /// <exception cref="IOException">The file cannot be written.</exception>
+    public void SaveProfile(string path, MachineProfile profile)
+    {
+        ArgumentException.ThrowIfNullOrWhiteSpace(path);
+        ArgumentNullException.ThrowIfNull(profile);
+        WriteProfile(path, profile);
+        UseProfile(path, profile);
+    }
+
+    /// <summary>Writes <paramref name="profile"/> to <paramref name="path"/> without putting it in use; refused (nothing
+    /// written) while a run or another machine operation holds the interlock.</summary>
+    public void WriteProfile(string path, MachineProfile profile)
+    {
+        ArgumentException.ThrowIfNullOrWhiteSpace(path);
+        ArgumentNullException.ThrowIfNull(profile);
+        Activity.ThrowIfJobLocked();
+        Directory.CreateDirectory(Path.GetDirectoryName(Path.GetFullPath(path))!);
+        profile.Save(path);
+    }
+
     public void UseProfile(string path, MachineProfile profile)
     {
         ArgumentException.ThrowIfNullOrWhiteSpace(path);

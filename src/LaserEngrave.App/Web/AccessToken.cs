@@ -4,15 +4,16 @@ using System.Text;
 namespace LaserEngrave.App.Web;
 
 /// <summary>
-/// The secret made at each start that the page and every API call must show: only who can read the start line (the
-/// user at this computer) can drive the laser, not another local user or a page of another site.
+/// The secret made at each start that the page and every API call must show. It is on no command line and in no
+/// address: the page gets it by trading a one-time launch code (<see cref="LaunchCodes"/>), scripts read it from
+/// connection.json (readable by the user alone), so another local user or a page of another site cannot drive the laser.
 /// </summary>
 public sealed class AccessToken
 {
     /// <summary>The header automation can send instead of <c>Authorization: Bearer</c>.</summary>
     public const string HeaderName = "X-LaserEngrave-Token";
 
-    /// <summary>The query parameter of the address printed at start.</summary>
+    /// <summary>Where earlier versions put the token in the page's address: refused now, whatever it carries.</summary>
     public const string QueryName = "token";
 
     /// <summary>Where SignalR's browser client puts the token on a WebSocket, which cannot carry a header; taken on the hub only.</summary>

@@ -35,6 +35,7 @@ internal static class ApiDescription
                     },
                 };
             }
+            DescribeAnswers(operation, context.Document, context.Description.HttpMethod ?? "GET", "/" + (context.Description.RelativePath ?? string.Empty).Split('?')[0], operation.RequestBody is not null || context.Description.ParameterDescriptions.Count > 0);
             return Task.CompletedTask;
         });
         options.AddDocumentTransformer((document, _, _) =>
@@ -55,7 +56,124 @@ internal static class ApiDescription
                 ["token"] = new OpenApiSecurityScheme { Type = SecuritySchemeType.Http, Scheme = "bearer", Description = "The start's token." },
             };
             document.Security = [new OpenApiSecurityRequirement { [new OpenApiSecuritySchemeReference("token", document)] = [] }];
+            document.Components.Schemas ??= new Dictionary<string, IOpenApiSchema>();
+            document.Components.Schemas[ErrorSchemaName] = ErrorSchema();
             return Task.CompletedTask;
         });
+    }
+
+    /// <summary>
+    /// The answers a route really gives besides its success, from the guard and the API's own refusals (the framework
+    /// lists only 200): 401 without the token, 403 for another page's Origin or a Host not of this computer, 409 for a
+    /// command refused while an operation holds the machine, 400 for a body or value the app cannot use; commands that
+    /// are started, not awaited, answer 202. The two routes that take no token say so (no security requirement).
+    /// </summary>
+    private static void DescribeAnswers(OpenApiOperation operation, OpenApiDocument? document, string method, string path, bool takesInput)
+    {
+        operation.Responses ??= new OpenApiResponses();
+        if (operation.Summary?.StartsWith("202", StringComparison.Ordinal) == true && operation.Responses.Remove("200", out var ok))
+        {
+            ok.Description = "Accepted: started; follow it in GET /api/state.";
+            operation.Responses["202"] = ok;
+        }
+
+        var session = path is SessionEndpoints.SessionPath or SessionEndpoints.ProofPath;
+        if (session)
+        {
+            operation.Security = [];
+        }
+        else
+        {
+            Add("401", "No token, or not this start's ('Authorization: Bearer TOKEN'); one line of text.", json: false);
+        }
+
+        Add("403", "Another page's Origin, or a Host that is not this computer's; one line of text (none for a Host).", json: false);
+        var post = string.Equals(method, "POST", StringComparison.OrdinalIgnoreCase);
+        if (post && !session && path is not ("/api/run/abort" or "/api/moves/stop" or "/api/logs/open-folder" or "/api/settings/theme"))
+        {
+            Add("409", "Refused: a run, homing or test move holds the machine, or the command cannot run now; the error says which.");
+        }
+
+        if (takesInput && !session)
+        {
+            Add("400", "A body or value the app cannot use; the error (or errors, a line a field) says which.");
+        }
+
+        if (path is "/api/image/original.png" or "/api/image/mask.png" or "/api/logs/export")
+        {
+            Add("404", "Nothing to show: no image open, or no such log.");
+        }
+
+        if (path == "/api/image")
+        {
+            Add("413", "Larger than the app's 512 MB upload limit.");
+            Add("507", "The image folder's quota (4 GB) would be passed: remove images no longer needed.");
+        }
+
+        if (path == "/api/job" && operation.RequestBody?.Content?.TryGetValue("application/json", out var body) == true && body.Schema?.Properties is not { Count: > 0 })
+        {
+            body.Schema = JobBody();
+        }
+
+        void Add(string status, string description, bool json = true)
+        {
+            if (!operation.Responses.ContainsKey(status))
+            {
+                operation.Responses[status] = new OpenApiResponse
+                {
+                    Description = description,
+                    Content = json
+                        ? new Dictionary<string, OpenApiMediaType> { ["application/json"] = new() { Schema = new OpenApiSchemaReference(ErrorSchemaName, document) } }
+                        : new Dictionary<string, OpenApiMediaType> { ["text/plain"] = new() { Schema = new OpenApiSchema { Type = JsonSchemaType.String } } },
+                };
+            }
+        }
+    }
+
+    private const string ErrorSchemaName = "Error";
+
+    private static OpenApiSchema ErrorSchema() => new()
+    {
+        Type = JsonSchemaType.Object,
+        Properties = new Dictionary<string, IOpenApiSchema>
+        {
+            ["error"] = new OpenApiSchema { Type = JsonSchemaType.String, Description = "One line naming the value and the problem." },
+            ["errors"] = new OpenApiSchema { Type = JsonSchemaType.Object, Description = "POST /api/job: a line for each field it could not use.", AdditionalProperties = new OpenApiSchema { Type = JsonSchemaType.String } },
+        },
+    };
+
+    /// <summary>The fields POST /api/job takes (docs/api.md), any of them, each applied and then planned once.</summary>
+    private static OpenApiSchema JobBody()
+    {
+        static OpenApiSchema Of(JsonSchemaType type, string? format = null) => new() { Type = type, Format = format };
+        static OpenApiSchema OneOf<TEnum>()
+            where TEnum : struct, Enum =>
+            new() { Type = JsonSchemaType.String, Enum = [.. Enum.GetNames<TEnum>().Select(n => (System.Text.Json.Nodes.JsonNode)System.Text.Json.Nodes.JsonValue.Create(char.ToLowerInvariant(n[0]) + n[1..]))] };
+
+        var number = new[] { "thresholdPercent", "widthMm", "heightMm", "pitchUm", "microstepsPerPixel", "originXMm", "originYMm", "laserFrequencyHz", "burnSpeedMmPerS", "travelSpeedMmPerS", "accelerationMmPerS2", "overscanMm", "dotSettleMs", "pulseEnergyUj" };
+        var properties = new Dictionary<string, IOpenApiSchema>();
+        foreach (var name in number)
+        {
+            properties[name] = Of(JsonSchemaType.Number, "double");
+        }
+
+        foreach (var name in new[] { "invert", "aspectLocked", "bidirectional" })
+        {
+            properties[name] = Of(JsonSchemaType.Boolean);
+        }
+
+        properties["passes"] = Of(JsonSchemaType.Integer, "int32");
+        properties["pulsesPerDot"] = Of(JsonSchemaType.Integer, "int32");
+        properties["dotPitchMicrosteps"] = Of(JsonSchemaType.Integer, "int64");
+        properties["dither"] = OneOf<Core.Imaging.DitherMethod>();
+        properties["strategy"] = OneOf<Core.Planning.PlanStrategy>();
+        properties["mode"] = OneOf<Core.Planning.PlanMode>();
+        return new OpenApiSchema
+        {
+            Type = JsonSchemaType.Object,
+            Description = "Any of the job's fields; each is applied, then the job is planned once. Unknown fields are refused (400).",
+            Properties = properties,
+            AdditionalPropertiesAllowed = false,
+        };
     }
 }

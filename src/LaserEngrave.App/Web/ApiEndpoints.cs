@@ -236,7 +236,8 @@ internal static class ApiEndpoints
     private static async Task<IResult> UploadAsync(HttpRequest request, MainViewModel main, IFileAccess files, string? name)
     {
         main.Activity.ThrowIfJobLocked();
-        var fileName = Path.GetFileName(name ?? "image");
+        // The name as sent: a path is refused (400), never cut down to its last part.
+        var fileName = name ?? "image";
         if (request.ContentLength is > IFileAccess.MaxUploadBytes)
         {
             return TooLarge(new UploadException(fileName, Services.FileAccess.TooLarge).Message);
@@ -251,12 +252,13 @@ internal static class ApiEndpoints
         string path;
         try
         {
-            path = await files.SaveUploadAsync(fileName, request.Body, request.HttpContext.RequestAborted).ConfigureAwait(false);
+            // A run started while the body streamed in refuses it here (409), before anything is put in place.
+            path = await files.SaveUploadAsync(fileName, request.Body, request.HttpContext.RequestAborted, main.Activity.ThrowIfJobLocked).ConfigureAwait(false);
         }
         catch (UploadException ex)
         {
-            return ex.Message.EndsWith(Services.FileAccess.TooLarge, StringComparison.Ordinal)
-                ? TooLarge(ex.Message)
+            return ex.Message.EndsWith(Services.FileAccess.TooLarge, StringComparison.Ordinal) ? TooLarge(ex.Message)
+                : ex.QuotaExceeded ? Results.Json(new { error = ex.Message }, statusCode: StatusCodes.Status507InsufficientStorage)
                 : Results.Json(new { error = ex.Message }, statusCode: StatusCodes.Status400BadRequest);
         }
 

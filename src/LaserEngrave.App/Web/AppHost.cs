@@ -40,6 +40,7 @@ public static class AppHost
         var services = builder.Services;
         ApiRequests.Configure(services);
         services.AddSingleton<AccessToken>();
+        services.AddSingleton<LaunchCodes>();
         services.AddSingleton(AppFolders.Default);
         services.AddSingleton(TimeProvider.System);
         services.AddSingleton<MachineActivity>();
@@ -69,6 +70,9 @@ public static class AppHost
         services.AddRazorComponents().AddInteractiveServerComponents();
         services.AddFluentUIComponents();
         services.AddWindowLifetime();
+        // No antiforgery cookie: a cookie cannot be kept to one port, so every server on 127.0.0.1 would receive it, and
+        // it authorises nothing here (the page posts no forms; every request shows the token in a header instead).
+        services.AddScoped<Microsoft.AspNetCore.Components.Forms.AntiforgeryStateProvider, NoAntiforgeryState>();
         configure?.Invoke(services);
 
         var app = builder.Build();
@@ -77,9 +81,11 @@ public static class AppHost
         app.UseAntiforgery();
         app.MapStaticAssets();
         app.MapRazorComponents<Components.App>().AddInteractiveServerRenderMode(o => o.ContentSecurityFrameAncestorsPolicy = "'none'");
+        SessionEndpoints.Map(app);
         ApiEndpoints.Map(app);
         app.MapOpenApi(ApiDescription.Path);
         app.Lifetime.ApplicationStopping.Register(() => Shutdown(app.Services));
+        app.Lifetime.ApplicationStopping.Register(() => app.Services.GetRequiredService<LaunchCodes>().RemoveFiles());
 
         // The run log's JSON writer is built in the background, so the first log (an abort's at exit too) does not wait for it.
         app.Lifetime.ApplicationStarted.Register(() => _ = Task.Run(Core.Logging.RunRecordJson.Prepare));
@@ -116,18 +122,26 @@ public static class AppHost
         response.Headers.XFrameOptions = "DENY";
         response.Headers["Referrer-Policy"] = "no-referrer";
 
-        var token = context.RequestServices.GetRequiredService<AccessToken>();
-        if (HttpMethods.IsGet(request.Method) && request.Query.TryGetValue(AccessToken.QueryName, out var given) && !token.Matches(given.ToString()))
+        // The token is never taken from a page's address (it would stay in the browser's history): an old bookmark or
+        // a pasted start line of an earlier version is refused whatever it carries.
+        if (request.Query.ContainsKey(AccessToken.QueryName))
         {
-            return Unauthorized(response, "the token in the address is not this start's: open the address LaserEngrave printed when it started");
+            return Unauthorized(response, "a token in the address is not taken: open the app from the window it opened or the launch address it printed (each works once)");
         }
 
+        var token = context.RequestServices.GetRequiredService<AccessToken>();
         if (IsPublic(request) || token.IsShownBy(request, hub: request.Path.StartsWithSegments(BlazorHubPath)))
         {
             return next(context);
         }
 
-        return Unauthorized(response, $"this needs the token LaserEngrave printed when it started: open that address, or send 'Authorization: Bearer TOKEN' or '{AccessToken.HeaderName}: TOKEN'");
+        return Unauthorized(response, $"this needs the start's token: open the app from its window or its launch address, or send 'Authorization: Bearer TOKEN' or '{AccessToken.HeaderName}: TOKEN' (TOKEN from connection.json)");
+    }
+
+    /// <summary>Gives the page no antiforgery token, so none is made and no cookie is set for it.</summary>
+    private sealed class NoAntiforgeryState : Microsoft.AspNetCore.Components.Forms.AntiforgeryStateProvider
+    {
+        public override Microsoft.AspNetCore.Components.Forms.AntiforgeryRequestToken? GetAntiforgeryToken() => null;
     }
 
     /// <summary>Blazor's SignalR hub, the page's own connection.</summary>
@@ -137,12 +151,18 @@ public static class AppHost
     private static readonly string[] GuardedPaths = ["/api", "/openapi", BlazorHubPath];
 
     /// <summary>
-    /// The page's shell and its static files (no state: the page is not prerendered), Blazor's list of script
+    /// The page's shell and its static files (no state: the page is not prerendered), the launch code's trade and the
+    /// token's proof (SessionEndpoints), Blazor's list of script
     /// initializers, and the beacon with which a closing page ends its own circuit (it names the circuit's secret id
     /// and cannot carry a header). Everything else needs the token.
     /// </summary>
     private static bool IsPublic(HttpRequest request)
     {
+        if (SessionEndpoints.IsSessionRoute(request))
+        {
+            return true;
+        }
+
         var path = request.Path;
         if (HttpMethods.IsGet(request.Method) || HttpMethods.IsHead(request.Method))
         {

@@ -6,19 +6,24 @@ namespace LaserEngrave.App.Web;
 
 /// <summary>
 /// Opens the page in its own window: Edge's, Chrome's or Chromium's app mode (no tabs, no address bar, its own profile
-/// so it is its own process), else the default browser.
+/// so it is its own process), else the default browser; either is given the launch file, never the token.
 /// </summary>
 internal static class BrowserLauncher
 {
-    /// <summary>Opens <paramref name="url"/>; false when nothing could open it.</summary>
-    public static bool TryOpen(string url, string profileFolder)
+    /// <summary>
+    /// Opens the page through <paramref name="launchFile"/> (a file of the user's alone that sends the browser on with a
+    /// one-time code): the browser's command line, which every local user can read, names only the file. False when
+    /// nothing could open it.
+    /// </summary>
+    public static bool TryOpen(string launchFile, string profileFolder)
     {
+        ArgumentNullException.ThrowIfNull(launchFile);
         if (FindAppBrowser(Candidates(), File.Exists) is { } browser)
         {
             try
             {
                 var start = new ProcessStartInfo(browser) { UseShellExecute = false };
-                foreach (var argument in AppModeArguments(url, profileFolder, asRoot: OperatingSystem.IsLinux() && Environment.IsPrivilegedProcess))
+                foreach (var argument in AppModeArguments(new Uri(launchFile).AbsoluteUri, profileFolder, asRoot: OperatingSystem.IsLinux() && Environment.IsPrivilegedProcess))
                 {
                     start.ArgumentList.Add(argument);
                 }
@@ -34,7 +39,8 @@ internal static class BrowserLauncher
 
         try
         {
-            SystemShell.Open(url);
+            // The default browser opens the .html file as it opens any (the shell, open, xdg-open).
+            SystemShell.Open(launchFile);
             return true;
         }
         catch (Exception ex) when (ex is Win32Exception or InvalidOperationException)

@@ -4,13 +4,15 @@ namespace LaserEngrave.App.Web;
 
 /// <summary>
 /// The running app's address and token in a file beside its settings, readable by the user alone, so a script of the
-/// same user finds the app without copying the start line: <c>{"url": "http://127.0.0.1:PORT", "token": "…"}</c>.
+/// same user finds the app: <c>{"url": "http://127.0.0.1:PORT", "token": "…", "pid": 1234}</c>. A script checks the
+/// process is alive and that the server on the port proves it holds the token (<c>GET /api/proof</c>) before it sends
+/// the token: a file left by a crash then sends nothing to whoever took the freed port.
 /// </summary>
 public static class ConnectionFile
 {
     /// <summary>Writes the file whole (a new file, owner read and write only on Unix, moved into place).</summary>
     /// <exception cref="IOException">The data folder cannot be written.</exception>
-    public static void Write(string path, string url, string token)
+    public static void Write(string path, string url, string token, int pid)
     {
         ArgumentNullException.ThrowIfNull(path);
         Directory.CreateDirectory(Path.GetDirectoryName(Path.GetFullPath(path))!);
@@ -26,7 +28,7 @@ public static class ConnectionFile
         {
             using (var file = new FileStream(partial, options))
             {
-                JsonSerializer.Serialize(file, new Connection(url, token));
+                JsonSerializer.Serialize(file, new Connection(url, token) { Pid = pid });
             }
 
             File.Move(partial, path, overwrite: true);
@@ -76,5 +78,10 @@ public static class ConnectionFile
     /// <param name="Token">The start's token, for <c>Authorization: Bearer</c>.</param>
     public sealed record Connection(
         [property: System.Text.Json.Serialization.JsonPropertyName("url")] string Url,
-        [property: System.Text.Json.Serialization.JsonPropertyName("token")] string Token);
+        [property: System.Text.Json.Serialization.JsonPropertyName("token")] string Token)
+    {
+        /// <summary>The app's process id; 0 in a file of an earlier version.</summary>
+        [System.Text.Json.Serialization.JsonPropertyName("pid")]
+        public int Pid { get; init; }
+    }
 }

@@ -25,6 +25,11 @@ public static class LoopbackAddresses
             {
                 return $"{url} (--urls) is an IPv4 address written as IPv6, which the server cannot listen on: write it as IPv4, e.g. --urls http://127.0.0.1:5080";
             }
+
+            if (NotHttp(url))
+            {
+                return HttpOnly(url, "--urls");
+            }
         }
 
         foreach (var endpoint in configuration.GetSection("Kestrel:Endpoints").GetChildren())
@@ -32,6 +37,11 @@ public static class LoopbackAddresses
             if (endpoint["Url"] is { } url && !IsLoopback(url))
             {
                 return Refusal(url, $"Kestrel:Endpoints:{endpoint.Key}:Url");
+            }
+
+            if (endpoint["Url"] is { } other && NotHttp(other))
+            {
+                return HttpOnly(other, $"Kestrel:Endpoints:{endpoint.Key}:Url");
             }
         }
 
@@ -83,6 +93,12 @@ public static class LoopbackAddresses
         var colon = authority.LastIndexOf(':');
         return colon < 0 ? authority : authority[..colon];
     }
+
+    /// <summary>Whether <paramref name="url"/> is anything but http:// (https needs a certificate the app never sets up, and the server would not start).</summary>
+    private static bool NotHttp(string url) => !url.Trim().StartsWith("http://", StringComparison.OrdinalIgnoreCase);
+
+    private static string HttpOnly(string url, string source) =>
+        $"{url} ({source}): the app listens over http:// only (on this computer alone https adds nothing but a certificate to set up), e.g. --urls http://127.0.0.1:5080";
 
     private static string Refusal(string url, string source) =>
         $"{url} ({source}) is not an address of this computer: the app listens on loopback only (127.0.0.1, [::1] or localhost), e.g. --urls http://127.0.0.1:5080";

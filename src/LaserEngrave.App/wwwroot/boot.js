@@ -1,15 +1,24 @@
 // Starts the page's connection with the start's token. The token lives in this tab's sessionStorage, which only this
-// origin (scheme, host and port) can read: never in a cookie, which the browser would send to every port on 127.0.0.1.
-(function () {
+// origin (scheme, host and port) can read: never in a cookie, which the browser would send to every port on 127.0.0.1,
+// and never in an address. The address the page is opened at carries a one-time launch code (#launch=CODE), traded
+// once for the token: what the history keeps of it opens nothing.
+(async function () {
   'use strict';
   const key = 'laserengrave-token';
   const address = new URL(location.href);
-  const given = address.searchParams.get('token');
-  if (given) {
-    sessionStorage.setItem(key, given);
-    // The token leaves the address bar (and the history) at once.
-    address.searchParams.delete('token');
-    history.replaceState(history.state, '', address);
+  const code = new URLSearchParams(address.hash.slice(1)).get('launch');
+  if (code) {
+    // The code leaves the address bar at once; it is used up by the trade below in any case.
+    address.hash = '';
+    history.replaceState(history.state, '', address.pathname + address.search);
+    try {
+      const traded = await fetch('api/session', { method: 'POST', headers: { 'X-LaserEngrave-Launch': code }, credentials: 'omit', cache: 'no-store' });
+      if (traded.ok) {
+        sessionStorage.setItem(key, (await traded.json()).token);
+      }
+    } catch (e) {
+      // Refused below, as a page without a token.
+    }
   }
 
   const token = () => sessionStorage.getItem(key);
@@ -20,7 +29,7 @@
     const message = document.createElement('p');
     message.id = 'no-token';
     message.style.margin = '2rem';
-    message.textContent = 'Open the address LaserEngrave printed when it started (it carries this start\u2019s token).';
+    message.textContent = 'Open LaserEngrave from the window it opened or the launch address it printed when it started (each works once).';
     document.body.append(message);
   }
 
@@ -33,12 +42,22 @@
 
   window.laserEngrave = { fetch: authorisedFetch };
 
-  // A download link to the API (a log export) is fetched with the token, then saved under the server's file name.
+  // A link to the API (a log export, a run's log) is fetched with the token: a download is saved under the server's
+  // file name, a link to a new tab opens what was fetched there (a tab opened at the API's address would have no token).
   document.addEventListener('click', async (e) => {
-    const link = e.target instanceof Element ? e.target.closest('a[download][href^="api/"]') : null;
+    const link = e.target instanceof Element ? e.target.closest('a[href^="api/"]:is([download], [target="_blank"])') : null;
     if (!link) return;
     e.preventDefault();
     e.stopPropagation();
+    if (!link.hasAttribute('download')) {
+      // Opened now, within the click, so no pop-up blocker stops it; filled once the answer is here.
+      const tab = window.open('', '_blank');
+      const shown = await authorisedFetch(link.getAttribute('href'));
+      const text = shown.ok ? await shown.blob() : new Blob([await shown.text()], { type: 'text/plain' });
+      if (tab) tab.location.href = URL.createObjectURL(text);
+      return;
+    }
+
     const response = await authorisedFetch(link.getAttribute('href'));
     if (!response.ok) return;
     const disposition = response.headers.get('Content-Disposition') || '';

@@ -330,15 +330,8 @@ public sealed class SerialPortLink : ISerialLink
         return lost;
     }
 
-    /// <summary>Takes an exclusive lock for the port, so a second LaserEngrave (or a second open in this one) is refused.</summary>
-    /// <remarks>
-    /// System.IO.Ports sets TIOCEXCL, which keeps other users out but not root. The old native port also locked the tty
-    /// itself with flock; .NET can only do that by opening the tty without O_NOCTTY, which makes it the controlling
-    /// terminal of a session leader (a systemd service), and a hang-up would then kill the process. So the flock is
-    /// taken on a small lock file named after the device instead; the files stay in the temp folder, since deleting a
-    /// lock file that another process is about to lock would let both in.
-    /// </remarks>
-    private static SafeFileHandle LockUnixPort(string name)
+    /// <summary>Takes an exclusive lock on the device itself (<see cref="PortLock"/>), so a second LaserEngrave (or a second open in this one) is refused.</summary>
+    private static SafeFileHandle? LockUnixPort(string name)
     {
         string device;
         try
@@ -356,19 +349,7 @@ public sealed class SerialPortLink : ISerialLink
             throw SerialPortErrors.NoSuchPort(name);
         }
 
-        var lockPath = Path.Combine(Path.GetTempPath(), $"laserengrave-{device.Trim('/').Replace('/', '_')}.lock");
-        try
-        {
-            return File.OpenHandle(lockPath, FileMode.OpenOrCreate, FileAccess.Read, FileShare.None);
-        }
-        catch (IOException)
-        {
-            throw SerialPortErrors.InUse(name);
-        }
-        catch (UnauthorizedAccessException)
-        {
-            throw new SerialPortException(name, $"{name}: cannot create the lock file {lockPath}");
-        }
+        return PortLock.Take(device, name);
     }
 
     /// <summary>Raises DTR, and RTS unless the handshake drives it, as the native port did and terminal programs do.</summary>

@@ -50,16 +50,76 @@ public sealed class FileAccessTests : IDisposable
     }
 
     [Fact]
-    public async Task SaveUpload_AtTheLimit_KeptUnderItsName()
+    public async Task SaveUpload_AtTheLimit_KeptUnderItsNameInItsContentsFolder()
     {
         var files = new App.Services.FileAccess(new AppFolders(_folder.Path), maxUploadBytes: 1000);
         using var content = new MemoryStream(new byte[1000]);
 
-        var path = await files.SaveUploadAsync("../../etc/logo.png", content, Token);
+        var path = await files.SaveUploadAsync("logo.png", content, Token);
 
-        Assert.Equal(Path.Combine(Images, "logo.png"), path);
-        Assert.Equal([path], Directory.GetFiles(Images));
+        var hash = Convert.ToHexStringLower(System.Security.Cryptography.SHA256.HashData(new byte[1000]))[..16];
+        Assert.Equal(Path.Combine(Images, hash, "logo.png"), path);
+        Assert.Equal([path], Directory.GetFiles(Images, "*", SearchOption.AllDirectories));
         Assert.Equal(1000, new FileInfo(path).Length);
+    }
+
+    [Fact]
+    public async Task SaveUpload_SameNameOtherBytes_BothKeptNeitherReplaced()
+    {
+        var files = new App.Services.FileAccess(new AppFolders(_folder.Path));
+
+        var first = await files.SaveUploadAsync("same.png", new MemoryStream([1, 2, 3]), Token);
+        var second = await files.SaveUploadAsync("same.png", new MemoryStream([4, 5, 6]), Token);
+        var again = await files.SaveUploadAsync("same.png", new MemoryStream([1, 2, 3]), Token);
+
+        Assert.NotEqual(first, second);
+        Assert.Equal(first, again);
+        Assert.Equal([1, 2, 3], await File.ReadAllBytesAsync(first, Token));
+        Assert.Equal([4, 5, 6], await File.ReadAllBytesAsync(second, Token));
+        Assert.Equal("same.png", Path.GetFileName(second));
+    }
+
+    [Fact]
+    public async Task SaveUpload_InterlockRefusesAtTheEnd_NothingKeptAndTheEarlierFileUntouched()
+    {
+        var files = new App.Services.FileAccess(new AppFolders(_folder.Path));
+        var earlier = await files.SaveUploadAsync("same.png", new MemoryStream([1, 2, 3]), Token);
+        var before = Directory.GetFiles(Images, "*", SearchOption.AllDirectories);
+
+        // The run started while the bytes came in: the interlock refuses when they are whole.
+        await Assert.ThrowsAsync<MachineBusyException>(() => files.SaveUploadAsync(
+            "same.png", new MemoryStream([4, 5, 6]), Token, () => throw new MachineBusyException("a run is under way: the job cannot change until it ends")));
+
+        Assert.Equal(before, Directory.GetFiles(Images, "*", SearchOption.AllDirectories));
+        Assert.Equal([1, 2, 3], await File.ReadAllBytesAsync(earlier, Token));
+    }
+
+    [Fact]
+    public async Task SaveUpload_PastTheQuota_RefusedAndNothingKept()
+    {
+        var files = new App.Services.FileAccess(new AppFolders(_folder.Path), maxUploadBytes: 1000, quotaBytes: 1500);
+        await files.SaveUploadAsync("first.png", new MemoryStream(new byte[1000]), Token);
+
+        var error = await Assert.ThrowsAsync<UploadException>(() => files.SaveUploadAsync("second.png", new MemoryStream(new byte[600]), Token));
+
+        Assert.True(error.QuotaExceeded);
+        Assert.StartsWith("second.png: the image folder would hold more than", error.Message, StringComparison.Ordinal);
+        Assert.Single(Directory.GetFiles(Images, "*", SearchOption.AllDirectories));
+    }
+
+    [Fact]
+    public async Task RemoveUpload_AnUpload_FileAndItsFolderGoneAnythingElseLeftAlone()
+    {
+        var files = new App.Services.FileAccess(new AppFolders(_folder.Path));
+        var path = await files.SaveUploadAsync("x.png", new MemoryStream([1]), Token);
+        var outside = Path.Combine(_folder.Path, "settings.json");
+        await File.WriteAllTextAsync(outside, "{}", Token);
+
+        files.RemoveUpload(path);
+        files.RemoveUpload(outside);
+
+        Assert.Empty(Directory.GetFileSystemEntries(Images));
+        Assert.True(File.Exists(outside));
     }
 
     /// <summary>Gives some bytes, then fails as a dropped connection does.</summary>

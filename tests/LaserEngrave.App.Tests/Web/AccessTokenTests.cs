@@ -113,17 +113,117 @@ public sealed class AccessTokenTests : IClassFixture<AccessTokenTests.OneApp>, I
         Assert.Equal(HttpStatusCode.OK, post.StatusCode);
     }
 
-    [Fact]
-    public async Task Page_TokenInAddress_ServedWithoutACookieOrRedirect()
+    [Theory]
+    [InlineData(true)]
+    [InlineData(false)]
+    public async Task Page_TokenInAddress_UnauthorizedEvenTheRightOneAndNoCookie(bool right)
     {
         using var client = Client(cookies: true);
 
-        using var first = await client.GetAsync($"/?token={Secret}", Token);
+        // An address is kept by the browser's history: the token is never taken from one, right or wrong.
+        using var response = await client.GetAsync($"/?token={(right ? Secret : "guess")}", Token);
 
-        // The page keeps the token in its own tab (boot.js): no cookie holds it, nothing the browser would send to another port.
+        Assert.Equal(HttpStatusCode.Unauthorized, response.StatusCode);
+        Assert.False(response.Headers.Contains("Set-Cookie"));
+    }
+
+    [Theory]
+    [InlineData("/")]
+    [InlineData("/?x=1")]
+    public async Task Page_Served_NoCookieForOtherPortsToReceive(string path)
+    {
+        using var client = Client(cookies: true);
+
+        using var response = await client.GetAsync(path, Token);
+
+        // A cookie cannot be kept to one port: whatever the app set, every server on 127.0.0.1 would receive.
+        Assert.Equal(HttpStatusCode.OK, response.StatusCode);
+        Assert.False(response.Headers.Contains("Set-Cookie"), string.Join("; ", response.Headers.TryGetValues("Set-Cookie", out var set) ? set : []));
+    }
+
+    private async Task<HttpResponseMessage> TradeAsync(string? code, string? origin = null)
+    {
+        using var client = Client();
+        using var request = new HttpRequestMessage(HttpMethod.Post, "/api/session");
+        if (code is not null)
+        {
+            request.Headers.Add(LaunchCodes.HeaderName, code);
+        }
+
+        if (origin is not null)
+        {
+            request.Headers.Add("Origin", origin);
+        }
+
+        return await client.SendAsync(request, Token);
+    }
+
+    [Fact]
+    public async Task Session_LaunchCode_TokenOnceThenUnauthorized()
+    {
+        var code = _app.Services.GetRequiredService<LaunchCodes>().Issue();
+
+        using var first = await TradeAsync(code, origin: "http://localhost");
+        using var again = await TradeAsync(code);
+
         Assert.Equal(HttpStatusCode.OK, first.StatusCode);
-        Assert.DoesNotContain(first.Headers.TryGetValues("Set-Cookie", out var cookies) ? cookies : [], c => c.Contains(Secret, StringComparison.Ordinal) || c.Contains("LaserEngrave", StringComparison.Ordinal));
-        Assert.Contains("boot", await first.Content.ReadAsStringAsync(Token), StringComparison.Ordinal);
+        Assert.Equal(Secret, (await first.Content.ReadFromJsonAsync<System.Text.Json.JsonElement>(Token)).GetProperty("token").GetString());
+        Assert.Contains("no-store", first.Headers.CacheControl?.ToString() ?? string.Empty, StringComparison.Ordinal);
+        Assert.False(first.Headers.Contains("Set-Cookie"));
+        Assert.Equal(HttpStatusCode.Unauthorized, again.StatusCode);
+        Assert.DoesNotContain(Secret, await again.Content.ReadAsStringAsync(Token), StringComparison.Ordinal);
+    }
+
+    [Theory]
+    [InlineData(null)]
+    [InlineData("")]
+    [InlineData("guess")]
+    public async Task Session_NoOrUnknownLaunchCode_Unauthorized(string? code)
+    {
+        using var response = await TradeAsync(code);
+
+        Assert.Equal(HttpStatusCode.Unauthorized, response.StatusCode);
+        Assert.DoesNotContain(Secret, await response.Content.ReadAsStringAsync(Token), StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task Session_AnotherPagesOrigin_ForbiddenAndTheCodeKept()
+    {
+        var code = _app.Services.GetRequiredService<LaunchCodes>().Issue();
+
+        using var foreign = await TradeAsync(code, origin: "http://127.0.0.1:1");
+        using var own = await TradeAsync(code);
+
+        Assert.Equal(HttpStatusCode.Forbidden, foreign.StatusCode);
+        Assert.Equal(HttpStatusCode.OK, own.StatusCode);
+    }
+
+    [Fact]
+    public async Task Proof_Challenge_HmacOfTheTokenAndTheProcessId()
+    {
+        using var client = Client();
+        const string challenge = "0123456789abcdef-_XYZ";
+
+        var answer = await client.GetFromJsonAsync<System.Text.Json.JsonElement>($"/api/proof?challenge={challenge}", Token);
+
+        var expected = Convert.ToHexStringLower(System.Security.Cryptography.HMACSHA256.HashData(
+            System.Text.Encoding.ASCII.GetBytes(Secret), System.Text.Encoding.ASCII.GetBytes("laserengrave-proof:" + challenge)));
+        Assert.Equal(expected, answer.GetProperty("proof").GetString());
+        Assert.Equal(Environment.ProcessId, answer.GetProperty("pid").GetInt32());
+        Assert.Equal("LaserEngrave", answer.GetProperty("app").GetString());
+    }
+
+    [Theory]
+    [InlineData("")]
+    [InlineData("short")]
+    [InlineData("0123456789abcdef%20")]
+    public async Task Proof_ChallengeNotANonce_BadRequest(string challenge)
+    {
+        using var client = Client();
+
+        using var response = await client.GetAsync($"/api/proof?challenge={challenge}", Token);
+
+        Assert.Equal(HttpStatusCode.BadRequest, response.StatusCode);
     }
 
     [Fact]
@@ -213,17 +313,6 @@ public sealed class AccessTokenTests : IClassFixture<AccessTokenTests.OneApp>, I
 
         Assert.Equal(HttpStatusCode.OK, response.StatusCode);
         Assert.Equal(HttpStatusCode.OK, hub.StatusCode);
-    }
-
-    [Fact]
-    public async Task Page_WrongTokenInAddress_UnauthorizedAndNoCookie()
-    {
-        using var client = Client();
-
-        using var response = await client.GetAsync("/?token=guess", Token);
-
-        Assert.Equal(HttpStatusCode.Unauthorized, response.StatusCode);
-        Assert.False(response.Headers.Contains("Set-Cookie"));
     }
 
     [Fact]

@@ -145,6 +145,28 @@ public sealed class ApiEndpointsTests : IDisposable
     }
 
     [Fact]
+    public async Task Upload_SameNameTwiceOtherBytes_TheFirstFileKeptAsItWas()
+    {
+        using var one = TestFiles.NewFolder();
+        using var two = TestFiles.NewFolder();
+        var first = File.ReadAllBytes(TestFiles.WriteChecker(one.Path, 8, 6));
+        var second = File.ReadAllBytes(TestFiles.WriteChecker(two.Path, 10, 4));
+        Assert.NotEqual(first, second);
+
+        foreach (var bytes in new[] { first, second })
+        {
+            using var content = new ByteArrayContent(bytes);
+            using var response = await _client.PostAsync("/api/image?name=same.png", content, Token);
+            Assert.Equal(HttpStatusCode.OK, response.StatusCode);
+        }
+
+        var kept = Directory.GetFiles(Path.Combine(_app.DataFolder, "images"), "same.png", SearchOption.AllDirectories);
+        Assert.Equal(2, kept.Length);
+        Assert.Contains(kept, f => File.ReadAllBytes(f).SequenceEqual(first));
+        Assert.Contains(kept, f => File.ReadAllBytes(f).SequenceEqual(second));
+    }
+
+    [Fact]
     public async Task Upload_NotAnImage_ErrorBesideImage()
     {
         using var folder = TestFiles.NewFolder();
@@ -159,7 +181,7 @@ public sealed class ApiEndpointsTests : IDisposable
         Assert.DoesNotContain(_app.DataFolder, error, StringComparison.Ordinal);
         Assert.Equal(JsonValueKind.Null, state.GetProperty("estimate").ValueKind);
         // Only files that open stay in images/.
-        Assert.Empty(Directory.GetFiles(Path.Combine(_app.DataFolder, "images")));
+        Assert.Empty(Directory.GetFileSystemEntries(Path.Combine(_app.DataFolder, "images")));
     }
 
     [Theory]
@@ -167,7 +189,16 @@ public sealed class ApiEndpointsTests : IDisposable
     [InlineData("..", "..: not a file name")]
     [InlineData(".", ".: not a file name")]
     [InlineData("LONG", "the name is longer than 200 characters")]
-    [InlineData("a\\b.png", "a\\b.png: the name has a character a file name cannot have")]
+    [InlineData("a\\b.png", "a\\b.png: a path, not a file name: send the file's name alone")]
+    [InlineData("../../x.png", "../../x.png: a path, not a file name: send the file's name alone")]
+    [InlineData("CON", "CON: a name Windows keeps for a device (CON, NUL, AUX, COM1, LPT1...)")]
+    [InlineData("NUL", "NUL: a name Windows keeps for a device (CON, NUL, AUX, COM1, LPT1...)")]
+    [InlineData("COM1", "COM1: a name Windows keeps for a device (CON, NUL, AUX, COM1, LPT1...)")]
+    [InlineData("aux.bmp", "aux.bmp: a name Windows keeps for a device (CON, NUL, AUX, COM1, LPT1...)")]
+    [InlineData("scan.png.", "scan.png.: the name ends in a dot or a space, which Windows drops")]
+    [InlineData("scan.png ", "scan.png : the name ends in a dot or a space, which Windows drops")]
+    [InlineData("gnp.\u202Eevil.exe", "gnp.?evil.exe: the name has an invisible formatting character (U+202E), which can make it read as another name")]
+    [InlineData("a:b.png", "a:b.png: the name has a character a file name cannot have")]
     public async Task Upload_OddName_OneClearBadRequestAndNothingKept(string name, string error)
     {
         name = name == "LONG" ? new string('a', 296) + ".png" : name;

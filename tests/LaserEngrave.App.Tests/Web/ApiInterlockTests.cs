@@ -126,13 +126,13 @@ public sealed class ApiInterlockTests : IDisposable
     public async Task Upload_WhileRunning_ConflictAndNothingSaved()
     {
         await StartHeldRunAsync();
-        var images = Directory.GetFiles(Path.Combine(_app.DataFolder, "images"));
+        var images = Directory.GetFiles(Path.Combine(_app.DataFolder, "images"), "*", SearchOption.AllDirectories);
 
         using var content = new ByteArrayContent(await File.ReadAllBytesAsync(TestFiles.Asset("qr-code.bmp"), Token));
         using var response = await _client.PostAsync("/api/image?name=qr-code.bmp", content, Token);
 
         Assert.Equal(HttpStatusCode.Conflict, response.StatusCode);
-        Assert.Equal(images, Directory.GetFiles(Path.Combine(_app.DataFolder, "images")));
+        Assert.Equal(images, Directory.GetFiles(Path.Combine(_app.DataFolder, "images"), "*", SearchOption.AllDirectories));
     }
 
     [Fact]

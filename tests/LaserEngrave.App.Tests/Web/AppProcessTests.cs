@@ -48,10 +48,12 @@ public sealed partial class AppProcessTests : IDisposable
         return ["--urls", "http://127.0.0.1:0", "--sim-options", file];
     }
 
-    [GeneratedRegex(@"^LaserEngrave is running at (http://127\.0\.0\.1:\d+)/\?token=([A-Za-z0-9_-]{43})$")]
+    [GeneratedRegex(@"^LaserEngrave is running at (http://127\.0\.0\.1:\d+)(/#launch=[A-Za-z0-9_-]{22}| \(in its own window\))$")]
     private static partial Regex StartLine();
 
-    private Process Start(string[] args, params (string Key, string Value)[] environment)
+    private Process Start(string[] args, params (string Key, string Value)[] environment) => Start(args, browser: false, environment);
+
+    private Process Start(string[] args, bool browser, params (string Key, string Value)[] environment)
     {
         var start = new ProcessStartInfo("dotnet")
         {
@@ -60,7 +62,11 @@ public sealed partial class AppProcessTests : IDisposable
             UseShellExecute = false,
         };
         start.ArgumentList.Add(Path.Combine(AppContext.BaseDirectory, "LaserEngrave.App.dll"));
-        start.ArgumentList.Add("--no-browser");
+        if (!browser)
+        {
+            start.ArgumentList.Add("--no-browser");
+        }
+
         start.ArgumentList.Add("--data-folder");
         start.ArgumentList.Add(_data.Path);
         foreach (var arg in args)
@@ -79,12 +85,14 @@ public sealed partial class AppProcessTests : IDisposable
         return _process;
     }
 
-    private static async Task<(string Base, string Secret)> ReadStartLineAsync(Process process)
+    /// <summary>The address on the start line and the token in connection.json (the start line carries a launch code, never the token).</summary>
+    private async Task<(string Base, string Secret)> ReadStartLineAsync(Process process)
     {
         var line = await process.StandardOutput.ReadLineAsync(Token).AsTask().WaitAsync(Bound, Token);
         var match = StartLine().Match(line ?? string.Empty);
         Assert.True(match.Success, $"start line: {line}; stderr: {(process.HasExited ? await process.StandardError.ReadToEndAsync(Token) : string.Empty)}");
-        return (match.Groups[1].Value, match.Groups[2].Value);
+        var connection = JsonDocument.Parse(await File.ReadAllTextAsync(Path.Combine(_data.Path, "connection.json"), Token)).RootElement;
+        return (match.Groups[1].Value, connection.GetProperty("token").GetString()!);
     }
 
     [Theory]
@@ -101,6 +109,21 @@ public sealed partial class AppProcessTests : IDisposable
         Assert.Contains(named, error, StringComparison.Ordinal);
         Assert.Single(error.Split('\n', StringSplitOptions.RemoveEmptyEntries));
         Assert.DoesNotContain("running at", await process.StandardOutput.ReadToEndAsync(Token), StringComparison.Ordinal);
+    }
+
+    [Theory]
+    [InlineData("https://127.0.0.1:5443")]
+    [InlineData("http://127.0.0.1:5444;https://localhost:5445")]
+    public async Task Start_HttpsAddress_OneLineExit2(string urls)
+    {
+        var process = Start(["--urls", urls]);
+
+        await process.WaitForExitAsync(Token).WaitAsync(Bound, Token);
+
+        var error = await process.StandardError.ReadToEndAsync(Token);
+        Assert.Equal(2, process.ExitCode);
+        Assert.Contains("the app listens over http:// only", Assert.Single(error.Split('\n', StringSplitOptions.RemoveEmptyEntries)), StringComparison.Ordinal);
+        Assert.Empty(await process.StandardOutput.ReadToEndAsync(Token));
     }
 
     [Fact]
@@ -141,6 +164,7 @@ public sealed partial class AppProcessTests : IDisposable
         var connection = JsonDocument.Parse(await File.ReadAllTextAsync(file, Token)).RootElement;
         Assert.Equal(address, connection.GetProperty("url").GetString());
         Assert.Equal(secret, connection.GetProperty("token").GetString());
+        Assert.Equal(process.Id, connection.GetProperty("pid").GetInt32());
         if (!OperatingSystem.IsWindows())
         {
             Assert.Equal(UnixFileMode.UserRead | UnixFileMode.UserWrite, File.GetUnixFileMode(file));
@@ -149,6 +173,96 @@ public sealed partial class AppProcessTests : IDisposable
         await TerminateAsync(process);
         await process.WaitForExitAsync(Token).WaitAsync(Bound, Token);
         Assert.False(File.Exists(file));
+    }
+
+    /// <summary>
+    /// The window's launch as another local user sees it: a stand-in browser (a script first on PATH, named chromium)
+    /// is started by the app and stays alive; its arguments, read through /proc/PID/cmdline as any user can, name no
+    /// secret, and every string in them (as a token, as a launch code) is refused for the state, connect, jog and fire.
+    /// The launch file they name is the user's alone; the code in it opens the page once and is refused after, as the
+    /// browser's history would keep it.
+    /// </summary>
+    [Fact]
+    [System.Runtime.Versioning.UnsupportedOSPlatform("windows")]
+    public async Task Launch_StandInBrowser_ItsArgumentsOpenNothingForAnotherUser()
+    {
+        using var bin = TestFiles.NewFolder();
+        var record = Path.Combine(bin.Path, "browser.pid");
+        var standIn = Path.Combine(bin.Path, "chromium");
+        await File.WriteAllTextAsync(standIn, $"#!/bin/sh\necho $$ > '{record}.part' && mv '{record}.part' '{record}'\nsleep 120\n", Token);
+        File.SetUnixFileMode(standIn, UnixFileMode.UserRead | UnixFileMode.UserWrite | UnixFileMode.UserExecute);
+        var process = Start(["--urls", "http://127.0.0.1:0"], browser: true, ("PATH", bin.Path + Path.PathSeparator + Environment.GetEnvironmentVariable("PATH")));
+        var (address, secret) = await ReadStartLineAsync(process);
+        for (var i = 0; !File.Exists(record) && i < 6000; i++)
+        {
+            // Only a bound for a broken test: the browser is started right after the start line.
+            await Task.Delay(10, Token);
+        }
+
+        var browserPid = int.Parse((await File.ReadAllTextAsync(record, Token)).Trim(), System.Globalization.CultureInfo.InvariantCulture);
+        try
+        {
+            // What another user reads: the browser's whole command line.
+            var arguments = (await File.ReadAllTextAsync($"/proc/{browserPid}/cmdline", Token)).Split('\0', StringSplitOptions.RemoveEmptyEntries);
+            var app = Assert.Single(arguments, a => a.StartsWith("--app=", StringComparison.Ordinal));
+            Assert.DoesNotContain(arguments, a => a.Contains(secret, StringComparison.Ordinal));
+            var launchFile = new Uri(app["--app=".Length..]).LocalPath;
+            Assert.StartsWith(_data.Path, launchFile, StringComparison.Ordinal);
+            var userAlone = UnixFileMode.UserRead | UnixFileMode.UserWrite | UnixFileMode.UserExecute;
+            Assert.Equal(UnixFileMode.UserRead | UnixFileMode.UserWrite, File.GetUnixFileMode(launchFile));
+            Assert.Equal(userAlone, File.GetUnixFileMode(Path.GetDirectoryName(launchFile)!));
+
+            var found = arguments.SelectMany(a => a.Split('=', '#', '&', '?', '/', ',')).Append(string.Empty).Concat(arguments).Distinct().ToList();
+            using var other = new HttpClient { BaseAddress = new Uri(address), Timeout = Bound };
+            foreach (var candidate in found)
+            {
+                await AssertRefusedAsync(other, candidate);
+            }
+
+            // The user's browser: the file sends it to the page with a code, traded once for the token.
+            var page = await File.ReadAllTextAsync(launchFile, Token);
+            var code = Regex.Match(page, @"#launch=([A-Za-z0-9_-]+)").Groups[1].Value;
+            using var user = new HttpClient { BaseAddress = new Uri(address), Timeout = Bound };
+            using var trade = new HttpRequestMessage(HttpMethod.Post, "/api/session") { Headers = { { "X-LaserEngrave-Launch", code } } };
+            using var traded = await user.SendAsync(trade, Token);
+            Assert.Equal(HttpStatusCode.OK, traded.StatusCode);
+            Assert.Equal(secret, (await traded.Content.ReadFromJsonAsync<JsonElement>(Token)).GetProperty("token").GetString());
+            Assert.False(File.Exists(launchFile));
+            user.DefaultRequestHeaders.Authorization = new("Bearer", secret);
+            Assert.Equal(HttpStatusCode.Accepted, (await user.PostAsJsonAsync("/api/machine/connect", new { useSimulator = true }, Token)).StatusCode);
+
+            // The code as the history keeps it: used, refused.
+            await AssertRefusedAsync(other, code);
+        }
+        finally
+        {
+            using var kill = Process.Start("kill", [browserPid.ToString(System.Globalization.CultureInfo.InvariantCulture)]);
+            await kill.WaitForExitAsync(Token);
+        }
+    }
+
+    /// <summary>Asserts <paramref name="found"/>, shown as a token or traded as a launch code, reads and moves nothing.</summary>
+    private static async Task AssertRefusedAsync(HttpClient client, string found)
+    {
+        using var trade = new HttpRequestMessage(HttpMethod.Post, "/api/session");
+        trade.Headers.TryAddWithoutValidation("X-LaserEngrave-Launch", found);
+        using var traded = await client.SendAsync(trade, Token);
+        Assert.True(traded.StatusCode == HttpStatusCode.Unauthorized, $"launch code '{found}': {traded.StatusCode}");
+        foreach (var (path, body) in new[] { ("/api/state", (string?)null), ("/api/machine/connect", "{\"useSimulator\":true}"), ("/api/moves/jog", "{\"direction\":\"x+\",\"stepUm\":5000}"), ("/api/moves/fire", "{\"pulses\":200}") })
+        {
+            foreach (var header in new[] { "Authorization", "X-LaserEngrave-Token" })
+            {
+                using var request = new HttpRequestMessage(body is null ? HttpMethod.Get : HttpMethod.Post, path);
+                request.Headers.TryAddWithoutValidation(header, header == "Authorization" ? "Bearer " + found : found);
+                if (body is not null)
+                {
+                    request.Content = new StringContent(body, System.Text.Encoding.UTF8, "application/json");
+                }
+
+                using var response = await client.SendAsync(request, Token);
+                Assert.True(response.StatusCode is HttpStatusCode.Unauthorized or HttpStatusCode.Forbidden, $"{path} with '{found}' as {header}: {response.StatusCode}");
+            }
+        }
     }
 
     /// <summary>Runs clients/python/examples/test_grid.py with python3 and the arguments; its exit code and output.</summary>
@@ -198,6 +312,30 @@ public sealed partial class AppProcessTests : IDisposable
 
         Assert.Equal(3, (await File.ReadAllLinesAsync(Path.Combine(logs.Path, "summary.csv"), Token)).Length);
         Assert.Equal(2, Directory.GetFiles(Path.Combine(_data.Path, "logs"), "*.json", SearchOption.AllDirectories).Length);
+    }
+
+    /// <summary>
+    /// clients/python/tests: the client gives the token to the app alone (no proxy, no redirect, loopback only, the
+    /// server's proof of the token and the app's process checked first), against stand-in servers.
+    /// </summary>
+    [Fact]
+    public async Task PythonClient_UnitTests_AllPass()
+    {
+        var start = new ProcessStartInfo("python3") { RedirectStandardOutput = true, RedirectStandardError = true, UseShellExecute = false };
+        foreach (var arg in new[] { "-m", "unittest", "discover", "-v", "-s", TestFiles.RepositoryFile(Path.Combine("clients", "python", "tests")) })
+        {
+            start.ArgumentList.Add(arg);
+        }
+
+        start.Environment["PYTHONDONTWRITEBYTECODE"] = "1";
+        using var python = Process.Start(start)!;
+        var output = python.StandardOutput.ReadToEndAsync(Token);
+        var error = python.StandardError.ReadToEndAsync(Token);
+        await python.WaitForExitAsync(Token).WaitAsync(TimeSpan.FromMinutes(2), Token);
+
+        var report = await error;
+        Assert.True(python.ExitCode == 0, $"exit {python.ExitCode}\n{await output}\n{report}");
+        Assert.Matches(@"Ran [1-9]\d* tests", report);
     }
 
     [Fact]
@@ -320,7 +458,7 @@ public sealed partial class AppProcessTests : IDisposable
     private static async Task<ClientWebSocket> OpenPageConnectionAsync(string address, string secret)
     {
         using var browser = new HttpClient { BaseAddress = new Uri(address), Timeout = Bound };
-        (await browser.GetAsync($"/?token={secret}", Token)).EnsureSuccessStatusCode();
+        (await browser.GetAsync("/", Token)).EnsureSuccessStatusCode();
         browser.DefaultRequestHeaders.Authorization = new("Bearer", secret);
         using var negotiate = await browser.PostAsync("/_blazor/negotiate?negotiateVersion=1", null, Token);
         negotiate.EnsureSuccessStatusCode();

@@ -36,6 +36,9 @@ public abstract class BrowserTest : IAsyncLifetime, IClassFixture<SharedBrowser>
 
     protected string Secret => _token;
 
+    /// <summary>The launch address <see cref="Open"/> last used (its code is used up once the page has loaded).</summary>
+    protected string LaunchAddress { get; private set; } = string.Empty;
+
     /// <summary>The app's data folder (settings, images, logs).</summary>
     protected string DataFolder => _folder.Path;
 
@@ -74,10 +77,11 @@ public abstract class BrowserTest : IAsyncLifetime, IClassFixture<SharedBrowser>
         _folder.Dispose();
     }
 
-    /// <summary>Opens the address the app prints: the first load shows the start's token, which the page keeps as a cookie.</summary>
+    /// <summary>Opens the page as its window does: at an address with a new one-time launch code, which the page trades for the token.</summary>
     protected void Open()
     {
-        Driver.Navigate().GoToUrl($"{_url.TrimEnd('/')}/?{AccessToken.QueryName}={_token}");
+        LaunchAddress = $"{_url.TrimEnd('/')}/#{LaunchCodes.FragmentName}={Host.Services.GetRequiredService<LaunchCodes>().Issue()}";
+        Driver.Navigate().GoToUrl(LaunchAddress);
         WaitFor(d => d.FindElement(By.Id("app")).GetAttribute("data-interactive") == "true", "the page is interactive");
         WaitFor(d => d.FindElement(By.Id("stage-host")).GetAttribute("data-ready") == "true", "the stage canvas is ready");
     }

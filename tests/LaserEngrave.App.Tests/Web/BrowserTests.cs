@@ -192,8 +192,10 @@ public sealed class BrowserTests : BrowserTest
     [Fact]
     public void Page_ReloadedKeepsTheToken_ANewTabOrAStaleTokenIsToldToOpenThePrintedAddress()
     {
-        // The token left the address bar and no cookie holds it: the tab's sessionStorage does.
+        // The launch code left the address bar, no address ever held the token and no cookie holds it: the tab's
+        // sessionStorage does.
         Assert.DoesNotContain("token", Driver.Url, StringComparison.Ordinal);
+        Assert.DoesNotContain("launch", Driver.Url, StringComparison.Ordinal);
         Assert.DoesNotContain(Driver.Manage().Cookies.AllCookies, c => c.Value.Contains(Secret, StringComparison.Ordinal));
         Driver.Navigate().Refresh();
         WaitFor(d => d.FindElement(By.Id("app")).GetAttribute("data-interactive") == "true", "the reloaded page is interactive");
@@ -203,6 +205,13 @@ public sealed class BrowserTests : BrowserTest
         Driver.SwitchTo().NewWindow(WindowType.Tab);
         Driver.Navigate().GoToUrl(Url);
         WaitFor(d => d.FindElement(By.Id("no-token")).Text.Contains("printed", StringComparison.Ordinal), "told to open the printed address");
+        Assert.Equal(1, windows.OpenWindows);
+
+        // The launch address again (as the history or a synced profile keeps it): its code was used, so nothing opens.
+        Driver.ExecuteScript("sessionStorage.clear();");
+        Driver.Navigate().GoToUrl("about:blank");
+        Driver.Navigate().GoToUrl(LaunchAddress);
+        WaitFor(d => d.FindElements(By.Id("no-token")).Count == 1, "a used launch address told to open the app from its window");
         Assert.Equal(1, windows.OpenWindows);
 
         // A token of an earlier start (the app restarted on the same port): refused, then the same line.
@@ -298,6 +307,15 @@ public sealed class BrowserTests : BrowserTest
         Id("history-select-shown").Click();
         WaitFor(d => d.FindElements(By.Id("history-csv")).Count == 1, "the export offered");
         Assert.True(new FileInfo(Screenshot("run-history")).Length > 20_000);
+
+        // A run's Log link opens its text in a new window, fetched with the token (the new window has none of its own).
+        var workspace = Driver.CurrentWindowHandle;
+        Driver.FindElement(By.CssSelector("#history-table tbody tr a.chip[target='_blank']")).Click();
+        WaitFor(d => d.WindowHandles.Count == 2, "the log's window opened");
+        Driver.SwitchTo().Window(Driver.WindowHandles.Single(h => h != workspace));
+        WaitFor(d => d.FindElement(By.TagName("body")).Text.Contains("Outcome", StringComparison.OrdinalIgnoreCase), "the log's text shown");
+        Driver.Close();
+        Driver.SwitchTo().Window(workspace);
         Id("history-close").Click();
         Assert.DoesNotContain(Driver.Manage().Logs.GetLog(LogType.Browser), e => e.Level == LogLevel.Severe);
     }

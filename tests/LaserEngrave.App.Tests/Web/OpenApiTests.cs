@@ -38,10 +38,29 @@ public sealed class OpenApiTests : IDisposable
         using var document = JsonDocument.Parse(await client.GetStringAsync("/openapi/v1.json", Token));
 
         var paths = document.RootElement.GetProperty("paths").EnumerateObject().Select(p => p.Name).ToList();
-        Assert.Equal(28, paths.Count);
+        Assert.Equal(30, paths.Count);
         Assert.All(paths, p => Assert.StartsWith("/api/", p, StringComparison.Ordinal));
         Assert.Contains("/api/run/start", paths);
         Assert.Equal("bearer", document.RootElement.GetProperty("components").GetProperty("securitySchemes").GetProperty("token").GetProperty("scheme").GetString());
+    }
+
+    [Fact]
+    public async Task Served_TheRealAnswersAndTheJobBody()
+    {
+        using var client = _app.NewClient();
+
+        using var document = JsonDocument.Parse(await client.GetStringAsync("/openapi/v1.json", Token));
+
+        var paths = document.RootElement.GetProperty("paths");
+        string[] Answers(string path, string method) => [.. paths.GetProperty(path).GetProperty(method).GetProperty("responses").EnumerateObject().Select(r => r.Name).Order(StringComparer.Ordinal)];
+        Assert.Equal(["202", "400", "401", "403", "409"], Answers("/api/moves/jog", "post"));
+        Assert.Equal(["200", "400", "401", "403", "409", "413", "507"], Answers("/api/image", "post"));
+        Assert.Equal(["200", "401", "403"], Answers("/api/state", "get"));
+        Assert.Equal(["200", "401", "403"], Answers("/api/session", "post"));
+        Assert.Equal(0, paths.GetProperty("/api/proof").GetProperty("get").GetProperty("security").GetArrayLength());
+        var job = paths.GetProperty("/api/job").GetProperty("post").GetProperty("requestBody").GetProperty("content").GetProperty("application/json").GetProperty("schema");
+        Assert.Equal("number", job.GetProperty("properties").GetProperty("widthMm").GetProperty("type").GetString());
+        Assert.Contains("floydSteinberg", job.GetProperty("properties").GetProperty("dither").GetProperty("enum").EnumerateArray().Select(e => e.GetString()));
     }
 
     [Fact]

@@ -85,6 +85,45 @@ public class SerialPortLinkTests
     }
 
     [Fact]
+    public async Task Open_SecondOpenWhileTheFirstHoldsThePort_RefusedBeforeTheFirstsSettingsChange()
+    {
+        using var pair = new SocatPair();
+        await using var first = SerialPortLink.Open(new SerialPortSettings(pair.A) { BaudRate = 9600 });
+
+        // As root TIOCEXCL lets the second open through: the lock must refuse it before it configures the port.
+        Assert.Throws<SerialPortException>(() => SerialPortLink.Open(new SerialPortSettings(pair.A) { BaudRate = 115200 }));
+
+        Assert.Contains(" speed 9600 baud ", Stty(pair.A), StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public async Task Open_LockFileLinkPlantedInTemp_NotFollowedAndNoLockFileMade()
+    {
+        using var pair = new SocatPair();
+        var device = File.ResolveLinkTarget(pair.A, returnFinalTarget: true)!.FullName;
+        // Where earlier versions made their lock file, planted as a link to a file another user wants created.
+        var planted = Path.Combine(Path.GetTempPath(), $"laserengrave-{device.Trim('/').Replace('/', '_')}.lock");
+        var victim = Path.Combine(Path.GetTempPath(), $"le-victim-{Guid.NewGuid():N}");
+        File.Delete(planted);
+        File.CreateSymbolicLink(planted, victim);
+        try
+        {
+            await using (SerialPortLink.Open(pair.A))
+            {
+                Assert.False(File.Exists(victim));
+            }
+
+            Assert.False(File.Exists(victim));
+            Assert.DoesNotContain(Directory.GetFiles(Path.GetTempPath(), $"laserengrave-{device.Trim('/').Replace('/', '_')}*"), f => f != planted);
+        }
+        finally
+        {
+            File.Delete(planted);
+            File.Delete(victim);
+        }
+    }
+
+    [Fact]
     public async Task Open_AfterTheFirstLinkIsDisposed_OpensAgain()
     {
         using var pair = new SocatPair();
