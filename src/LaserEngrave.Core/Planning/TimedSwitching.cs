@@ -170,9 +170,14 @@ public sealed class TimedSwitching
     /// <summary>The keepalive line's bytes.</summary>
     public int KeepAliveBytes { get; }
 
-    /// <summary>The switch-on line of a burst of <paramref name="pulses"/> at the process' frequency.</summary>
+    /// <summary>
+    /// The switch-on line of a burst of <paramref name="pulses"/> at the process' frequency; on a frequency-only gate the
+    /// frequency command (<c>FREQ f</c>), whatever the count, since the host's timed switch-off ends the run.
+    /// </summary>
     public string BurstCommand(int pulses) =>
-        string.Format(CultureInfo.InvariantCulture, _profile.Gate.BurstCommand, pulses, FrequencyHz) + _profile.Gate.LineTerminator;
+        _profile.Gate.CountsBursts
+            ? string.Format(CultureInfo.InvariantCulture, _profile.Gate.BurstCommand, pulses, FrequencyHz) + _profile.Gate.LineTerminator
+            : string.Format(CultureInfo.InvariantCulture, _profile.Gate.FrequencyCommand, FrequencyHz) + _profile.Gate.LineTerminator;
 
     /// <summary>From writing a burst's line (its wire free) to the gate firing its first pulse.</summary>
     public double BurstLeadSeconds(int pulses) => _gateAdapterSeconds + (BurstCommand(pulses).Length * _gateByteSeconds) + _gateProcessingSeconds;
@@ -234,6 +239,12 @@ public sealed class TimedSwitching
     /// </summary>
     public string? RunTooLongForBurst(long lengthMicrosteps)
     {
+        if (!_profile.Gate.CountsBursts)
+        {
+            // A frequency-only gate counts nothing: the host's switch-off ends every run, however long.
+            return null;
+        }
+
         var pulses = Math.Ceiling(lengthMicrosteps / BurnSpeed * FrequencyHz);
         return pulses <= MaxBurstPulses ? null : string.Create(
             CultureInfo.InvariantCulture,
@@ -241,7 +252,10 @@ public sealed class TimedSwitching
     }
 
     private string BurstReply(int pulses) =>
-        _profile.Gate.AckPrefix + " " + string.Format(CultureInfo.InvariantCulture, _profile.Gate.BurstReply, pulses, FrequencyHz) + _profile.Gate.LineTerminator;
+        _profile.Gate.NeverReplies ? string.Empty
+        : _profile.Gate.AckPrefix + " " + (_profile.Gate.CountsBursts
+            ? string.Format(CultureInfo.InvariantCulture, _profile.Gate.BurstReply, pulses, FrequencyHz)
+            : string.Format(CultureInfo.InvariantCulture, _profile.Gate.FrequencyReply, FrequencyHz)) + _profile.Gate.LineTerminator;
 
     public string OffCommand { get; }
 

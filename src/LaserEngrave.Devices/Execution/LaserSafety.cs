@@ -51,6 +51,9 @@ internal sealed class LaserSafety : IAsyncDisposable
         _run = run;
     }
 
+    /// <summary>A gate that never replies (a frequency-only profile's choice): its OFF counts as sent, never as confirmed.</summary>
+    public bool GateNeverReplies { get; init; }
+
     /// <summary>
     /// Every laser command goes under this lock, and a switch-on checks for an abort inside it: so once an abort has sent
     /// its switch-off, no switch-on can follow it on the wire.
@@ -250,8 +253,11 @@ internal sealed class LaserSafety : IAsyncDisposable
                     MarkOff();
                     lock (_lock)
                     {
-                        _offConfirmed = true;
-                        _offProblem = null;
+                        // A gate that never replies was sent OFF, and nothing says it heard it.
+                        _offConfirmed = !GateNeverReplies;
+                        _offProblem = GateNeverReplies
+                            ? "the laser could not be confirmed off: OFF was sent, but this laser gate never replies; a person must check the laser"
+                            : null;
                         _offBy = LaserOffPath.Off;
                     }
 
@@ -302,7 +308,8 @@ internal sealed class LaserSafety : IAsyncDisposable
         // Gate commands are not cancelled (a late reply would be taken for the next one's): each waits its own timeout.
         var off = _gate.OffAsync(CancellationToken.None);
         var zero = _gate.SetFrequencyAsync(0, CancellationToken.None);
-        var watchdog = _gate.SetWatchdogAsync(MachineProfileValidator.MinWatchdogMs, CancellationToken.None);
+        // A gate without a watchdog (frequency-only) has none to shorten.
+        var watchdog = _watchdogMs > 0 ? _gate.SetWatchdogAsync(MachineProfileValidator.MinWatchdogMs, CancellationToken.None) : Task.FromException(new DeviceException("no watchdog"));
         var stopping = _run.StopStageAsync();
         await Task.WhenAll(Settled(first ?? Task.CompletedTask), Settled(off), Settled(zero), Settled(watchdog), stopping);
         var path = off.IsCompletedSuccessfully || first?.IsCompletedSuccessfully == true ? LaserOffPath.OffAgain
@@ -318,11 +325,15 @@ internal sealed class LaserSafety : IAsyncDisposable
         lock (_lock)
         {
             _offBy = path;
-            _offConfirmed = path != LaserOffPath.None;
+            _offConfirmed = path != LaserOffPath.None && !GateNeverReplies;
             var why = (refused ?? off.Exception?.InnerException ?? zero.Exception?.InnerException)?.Message;
-            _offProblem = path != LaserOffPath.None ? null : string.Create(
-                CultureInfo.InvariantCulture,
-                $"the laser could not be confirmed off: the gate acknowledged neither OFF nor FREQ 0 ({why}); its port was closed so that its watchdog ({(watchdog.IsCompletedSuccessfully ? MachineProfileValidator.MinWatchdogMs : _watchdogMs)} ms) switches the laser off; a person must check the laser");
+            _offProblem = path != LaserOffPath.None
+                ? (GateNeverReplies ? "the laser could not be confirmed off: OFF and FREQ 0 were sent, but this laser gate never replies; a person must check the laser" : null)
+                : _watchdogMs <= 0
+                ? $"the laser could not be confirmed off: the gate acknowledged neither OFF nor FREQ 0 ({why}), and it has no watchdog; a person must switch the laser off at its key now"
+                : string.Create(
+                    CultureInfo.InvariantCulture,
+                    $"the laser could not be confirmed off: the gate acknowledged neither OFF nor FREQ 0 ({why}); its port was closed so that its watchdog ({(watchdog.IsCompletedSuccessfully ? MachineProfileValidator.MinWatchdogMs : _watchdogMs)} ms) switches the laser off; a person must check the laser");
         }
     }
 }

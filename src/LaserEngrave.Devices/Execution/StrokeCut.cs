@@ -71,7 +71,7 @@ internal sealed class StrokeCut
     /// stroke's end on resuming (<see cref="RunStopPoint.ExpectedXMicrosteps"/>).
     /// </summary>
     /// <param name="offConfirmed">Whether the gate confirmed the laser off.</param>
-    /// <param name="watchdogMs">The gate's watchdog time, after which a gate out of reach switched the laser off by itself.</param>
+    /// <param name="watchdogMs">The gate's watchdog time, after which a gate out of reach switched the laser off by itself (0: no watchdog, so such a gate's laser went off at no known time).</param>
     /// <param name="stoppedX">Where X stopped, when it said.</param>
     /// <param name="switchOnRefused">Whether the gate refused a switch-on (an error reply): the laser did not come on for that run.</param>
     public RunStopPoint Cut(RunStopPoint stop, TimedSwitching timing, RasterPlan plan, bool offConfirmed, int watchdogMs, long? stoppedX, Func<Task, bool> switchOnRefused)
@@ -95,7 +95,7 @@ internal sealed class StrokeCut
         {
             offAt = offWrite + timing.OffLeadSeconds - timing.GateJitterSeconds;
         }
-        else if (!offConfirmed && _gateAliveAt > double.NegativeInfinity)
+        else if (!offConfirmed && watchdogMs > 0 && _gateAliveAt > double.NegativeInfinity)
         {
             offAt = _gateAliveAt + Units.MsToSeconds(watchdogMs) - timing.GateJitterSeconds;
             byWatchdog = true;
