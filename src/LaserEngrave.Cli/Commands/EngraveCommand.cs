@@ -144,6 +144,7 @@ internal static class EngraveCommand
         }
 
         var profile = job.Spec.Profile;
+        o.Machine.RefuseUnacceptedNoWatchdog(result, profile);
 
         // While the machine opens and runs (the simulation on one thread), another thread prepares the JSON writers of
         // the log and the summary, which would otherwise add their compiling time (a tenth of a second) after the run.
@@ -195,6 +196,7 @@ internal static class EngraveCommand
                 ResumeLayers = resumeLayers,
                 JobFile = layeredFile,
                 Home = result.GetValue(o.Home),
+                AcceptNoWatchdog = result.GetValue(o.Machine.AcceptNoWatchdog),
                 Log = store,
                 Recorder = recorder,
             };

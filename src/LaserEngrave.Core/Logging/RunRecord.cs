@@ -102,6 +102,12 @@ public sealed record RunRecord
     /// <summary>Passes completed, when <see cref="Passes"/> is above 1; the row and run counts are the last pass's.</summary>
     public int? PassesDone { get; init; }
 
+    /// <summary>
+    /// For a laser gate without a watchdog (a frequency-only profile): what then protects the laser when the computer
+    /// hangs, as preflight said it and the person accepted it before the run; null for a gate with a watchdog.
+    /// </summary>
+    public string? NoWatchdogAccepted { get; init; }
+
     /// <summary>The operator's notes, as typed.</summary>
     public string? Notes { get; init; }
 

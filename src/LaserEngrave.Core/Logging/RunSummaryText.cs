@@ -170,6 +170,10 @@ public static class RunSummaryText
             ? string.Create(c, $"dots: {s.PulsesPerDot} pulses per dot, a dot {(s.DotPitchMicrosteps == 0 ? "at every pixel's centre" : $"every {s.DotPitchMicrosteps} microsteps")}, settle {s.DotSettleMs:0.###} ms")
             : "raster (burning while moving)");
         Line("Machine", record.Profile.Name + (record.Simulated ? " (simulator)" : string.Empty));
+        if (record.NoWatchdogAccepted is { } accepted)
+        {
+            Line("No watchdog", "accepted before the run: " + accepted);
+        }
         if (record.HostPriority is { } priority)
         {
             Line("Host priority", priority);

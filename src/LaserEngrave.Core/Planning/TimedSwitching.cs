@@ -115,7 +115,8 @@ public sealed class TimedSwitching
         // before the next may: a switch-off can follow a switch-on no sooner than its own bytes take, and the other way round.
         OffWireSeconds = OffCommand.Length * gateByte;
         OnWireSeconds = OnCommand.Length * gateByte;
-        MinOnSeconds = (2 * EdgeGuardSeconds) + OffWireSeconds + (2 * GateJitterSeconds) + ReactionSeconds;
+        LateOffAllowanceSeconds = gate.CountsBursts ? 0 : profile.EdgeToleranceUm / (BurnSpeed * microstepUm);
+        MinOnSeconds = (2 * EdgeGuardSeconds) + LateOffAllowanceSeconds + OffWireSeconds + (2 * GateJitterSeconds) + ReactionSeconds;
         MinOffSeconds = MinOffFor(LongestBurstPulses);
         _flown = new GapMemo<FlownGap?>(gap => ComputeFly(gap) is { } fly ? FlownGap.Of(this, fly) : null);
         _crossesGap = new GapMemo<bool>(gap => CrossSeconds(gap) <= StopGoSeconds(gap));
@@ -277,8 +278,15 @@ public sealed class TimedSwitching
     /// <summary>From crossing a run's entry edge to the switch-on taking effect: the guard, at least half a pulse period.</summary>
     public double OnDelaySeconds => Math.Max(HalfPulseSeconds, EdgeGuardSeconds);
 
-    /// <summary>From the switch-off taking effect to crossing the run's exit edge.</summary>
-    public double OffAdvanceSeconds => EdgeGuardSeconds;
+    /// <summary>
+    /// From the switch-off taking effect to crossing the run's exit edge: the guard, and on a frequency-only gate the
+    /// profile's edge tolerance as time at the burn speed too, since nothing but the switch-off stops such a gate and a
+    /// computer late to send it within the tolerance must still stop it before the edge.
+    /// </summary>
+    public double OffAdvanceSeconds => EdgeGuardSeconds + LateOffAllowanceSeconds;
+
+    /// <summary>How late a switch-off may be written and still stop a frequency-only gate before the edge (0 on a gate that counts its bursts).</summary>
+    public double LateOffAllowanceSeconds { get; }
 
     /// <summary>
     /// When a stroke's first switch-on may be sent at the earliest after a Y move's nominal end: once its reply is in.

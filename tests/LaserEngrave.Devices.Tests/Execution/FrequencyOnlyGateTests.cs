@@ -1,10 +1,12 @@
 using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Core.Vectors;
 using LaserEngrave.Devices.Execution;
 using LaserEngrave.Simulator;
+using LaserEngrave.Simulator.Burn;
 
 namespace LaserEngrave.Devices.Tests.Execution;
 
@@ -37,7 +39,9 @@ public sealed class FrequencyOnlyGateTests(ITestOutputHelper output)
     public async Task RunAsync_FrequencyOnlyGateSample_CompletesWithTheMaskAndNoPulseOnWhite(string asset, PlanStrategy strategy, string profileFile)
     {
         var ct = TestContext.Current.CancellationToken;
-        var profile = Profile(profileFile);
+
+        // A host never late (the in-process twin's default) needs no allowance for late switch-offs: the default tolerance.
+        var profile = Profile(profileFile) with { EdgeToleranceUm = MachineProfile.Default.EdgeToleranceUm };
         await using var run = SimulatedRun.Create(profile: profile);
         var job = Job(asset, profile, strategy);
 
@@ -51,6 +55,55 @@ public sealed class FrequencyOnlyGateTests(ITestOutputHelper output)
         Assert.Equal(0, report.LaserOnTravelCount);
         Assert.True(report.Burned.ContentEquals(job.Mask), $"{report.ExtraPixels} extra, {report.MissingPixels} missing");
         Assert.False(run.Machine.Gate.IsFiring);
+    }
+
+    [Theory(Timeout = 300_000)]
+    [InlineData("qr-code.bmp", 1.0)]
+    [InlineData("text-banner.png", 0.95)]
+    public async Task RunAsync_FrequencyOnlyGateLateHostExampleProfile_CompletesWithNoPulseOnWhite(string asset, double burnSpeedMmPerS)
+    {
+        // The example profile's 5 µm tolerance aims every switch-off that early, so a computer up to 5 ms late (the
+        // twin's realistic host) still stops the gate before the edge; the banner's 16.2 ms pixels then need <= 0.972 mm/s.
+        var ct = TestContext.Current.CancellationToken;
+        var profile = Profile();
+        await using var run = SimulatedRun.Create(new SimulatorOptions { HostLateness = LaserEngrave.Simulator.Timing.HostLateness.Realistic }, profile);
+        var job = PreparedJob.Prepare(Job(asset, profile).Spec with { Process = ProcessSettings.Default with { BurnSpeedMmPerS = burnSpeedMmPerS } });
+
+        var log = new RecordingLog();
+
+        // The session, as both front ends run it: a switch-on the late host sends beyond the tolerance is a timing doubt it goes on from.
+        var session = new EngraveSession(
+            new EngraveMachine(run.Stage, run.Gate, run.Time, "simulator", "simulator") { Simulated = true, Inspector = new BurnInspector(run.Machine) },
+            job,
+            new EngraveSessionOptions { Log = log, AcceptNoWatchdog = true });
+
+        await session.RunAsync(null, ct);
+        var record = Assert.Single(log.Records);
+        var simulation = Assert.IsType<RunSimulation>(record.Simulation);
+
+        output.WriteLine(string.Create(CultureInfo.InvariantCulture, $"{asset} at {burnSpeedMmPerS} mm/s, late host: {record.Outcome} {record.Fault?.Message}; recoveries {record.Recoveries?.Count ?? 0}; on white {simulation.LaserOnTravelCount}, extra {simulation.ExtraPixels}, missing {simulation.MissingPixels}, edges mean/max {simulation.Edges?.MeanErrorUm:0.00}/{simulation.Edges?.MaxErrorUm:0.00} µm"));
+        Assert.True(record.Outcome == RunOutcome.Completed, $"{record.Outcome}: {record.Fault?.Message}");
+        Assert.Equal((0, 0L, 0L), (simulation.LaserOnTravelCount, simulation.ExtraPixels, simulation.MissingPixels));
+        Assert.Equal(LaserGateProfile.NoWatchdogSentence, record.NoWatchdogAccepted);
+        Assert.Contains("No watchdog", RunSummaryText.Format(record), StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void PixelTooShort_FrequencyOnlyGateWithItsToleranceAhead_NamesTheSlowerSpeed()
+    {
+        // 16.2 ms pixels at 1 mm/s (the banner at 5 mm): enough for the counted-burst gate, not for a frequency-only gate
+        // whose switch-off is aimed 5 µm (5 ms) early.
+        var profile = Profile();
+        var frequencyOnly = TimedSwitching.For(ProcessSettings.Default, profile, profile.X.MicrostepUm);
+        var counted = TimedSwitching.For(ProcessSettings.Default, MachineProfile.Default, profile.X.MicrostepUm);
+        var pixel = (long)Math.Round(16.234 / profile.X.MicrostepUm);
+
+        Assert.Null(counted.PixelTooShort(pixel, 16.234));
+        var refused = frequencyOnly.PixelTooShort(pixel, 16.234);
+        output.WriteLine(refused ?? "(accepted)");
+        Assert.Contains("burn at 0.97", refused, StringComparison.Ordinal);
+        Assert.Equal(0.005, frequencyOnly.OffAdvanceSeconds - frequencyOnly.EdgeGuardSeconds, 6);
+        Assert.Equal(counted.EdgeGuardSeconds, counted.OffAdvanceSeconds);
     }
 
     [Fact(Timeout = 300_000)]
