@@ -49,7 +49,24 @@ public sealed partial class MachineViewModel : ObservableObject
     public partial IReadOnlyList<string> Ports { get; private set; } = [];
 
     [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(GateHasNoWatchdog), nameof(NoWatchdogUnaccepted))]
     public partial MachineProfile Profile { get; set; }
+
+    /// <summary>
+    /// The person accepts that the profile's laser gate has no watchdog (the Machine panel's checkbox, or the API's start):
+    /// every run of the app passes it on, and its log keeps the sentence accepted.
+    /// </summary>
+    [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(NoWatchdogUnaccepted))]
+    public partial bool AcceptNoWatchdog { get; set; }
+
+    /// <summary>The profile's gate has no watchdog (a frequency-only gate): the panel asks the person to accept it.</summary>
+    public bool GateHasNoWatchdog => !Profile.Gate.HasWatchdog;
+
+    /// <summary>Why a run cannot start yet: the gate has no watchdog and nobody accepted it; null otherwise.</summary>
+    public string? NoWatchdogUnaccepted => GateHasNoWatchdog && !AcceptNoWatchdog
+        ? $"{LaserGateProfile.NoWatchdogSentence}; tick \"I accept\" in the Machine panel to run"
+        : null;
 
     [ObservableProperty]
     [NotifyCanExecuteChangedFor(nameof(ConnectCommand), nameof(DisconnectCommand), nameof(IdentifyCommand), nameof(HomeCommand))]
@@ -272,13 +289,16 @@ public sealed partial class MachineViewModel : ObservableObject
         var x = await connection.Stage.X.IdentifyAsync(cancellationToken);
         var y = await connection.Stage.Y.IdentifyAsync(cancellationToken);
         var gate = await connection.Gate.IdentifyAsync(cancellationToken);
-        var state = await connection.Gate.GetStateAsync(cancellationToken);
         Identity = $"X: device {x.DeviceNumber}, id {x.DeviceId}, firmware {x.FirmwareText}; Y: device {y.DeviceNumber}, id {y.DeviceId}, firmware {y.FirmwareText}; gate: {gate}";
         XHomed = x.IsHomed;
         YHomed = y.IsHomed;
-        GateState = Describe(state);
+        GateState = await GateStateAsync(connection.Gate, Profile, cancellationToken);
         await ReadPositionsAsync(cancellationToken);
     }
+
+    /// <summary>What the gate reports of itself; a frequency-only gate reports nothing, and the panel says so.</summary>
+    internal static async Task<string> GateStateAsync(ILaserGate gate, MachineProfile profile, CancellationToken cancellationToken) =>
+        profile.Gate.CountsBursts ? Describe(await gate.GetStateAsync(cancellationToken)) : "a frequency-only gate: it reports no state and has no watchdog";
 
     internal static string Describe(LaserGateState state) =>
         (state.Firing ? $"firing at {state.FrequencyHz} Hz" : "off") + (state.WatchdogTripped ? ", watchdog tripped" : string.Empty);

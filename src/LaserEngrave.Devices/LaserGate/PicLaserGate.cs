@@ -86,7 +86,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
     /// <summary>Asks for the state; the reply must read "STATE &lt;hz&gt; ON|OFF WDOG &lt;ms&gt; [TRIPPED]" after the acknowledgement prefix.</summary>
     public async Task<LaserGateState> GetStateAsync(CancellationToken cancellationToken)
     {
-        ThrowIfFrequencyOnly(Profile.StatusCommand, "its state");
+        ThrowIfFrequencyOnly(Profile.StatusCommand, "state to report");
         var text = await SendAsync(Profile.StatusCommand, Profile.StatusReply, cancellationToken);
         return ParseState(text) ?? throw new LaserGateException(
             PortName, Profile.StatusCommand, text, $"laser gate on {PortName}: cannot read the state from '{text}' (expected 'STATE <hz> ON|OFF WDOG <ms> [TRIPPED]')");
@@ -94,7 +94,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
 
     public async Task KeepAliveAsync(CancellationToken cancellationToken)
     {
-        ThrowIfFrequencyOnly(Profile.KeepAliveCommand, "a keepalive");
+        ThrowIfFrequencyOnly(Profile.KeepAliveCommand, "keepalive");
         await SendAsync(Profile.KeepAliveCommand, Profile.KeepAliveReply, cancellationToken);
     }
 
@@ -107,7 +107,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
             return;
         }
 
-        ThrowIfFrequencyOnly(Profile.WatchdogCommand, "a watchdog");
+        ThrowIfFrequencyOnly(Profile.WatchdogCommand, "watchdog");
         await SendAsync(Format(Profile.WatchdogCommand, milliseconds), Format(Profile.WatchdogReply, milliseconds), cancellationToken);
     }
 
@@ -115,7 +115,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
     {
         ArgumentOutOfRangeException.ThrowIfNegativeOrZero(pulses);
         ArgumentOutOfRangeException.ThrowIfNegativeOrZero(frequencyHz);
-        ThrowIfFrequencyOnly(Profile.BurstCommand, "a counted burst");
+        ThrowIfFrequencyOnly(Profile.BurstCommand, "counted burst");
         await SendAsync(Format(Profile.BurstCommand, pulses, frequencyHz), Format(Profile.BurstReply, pulses, frequencyHz), cancellationToken);
     }
 
