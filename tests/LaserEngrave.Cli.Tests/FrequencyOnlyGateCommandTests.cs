@@ -20,11 +20,17 @@ public sealed class FrequencyOnlyGateCommandTests : IDisposable
     [Theory]
     [InlineData("engrave")]
     [InlineData("fire")]
+    [InlineData("laser")]
     public async Task Command_FrequencyOnlyProfileWithoutAcceptance_Exit2WithTheSentenceNothingOpened(string verb)
     {
-        string[] args = verb == "engrave"
-            ? ["engrave", QrCode, "--width-mm", "5", "--origin-mm", "10,10", "--profile", FrequencyOnly, "--simulate", "--log-dir", LogDir]
-            : ["fire", "--pulses", "10", "--profile", FrequencyOnly, "--simulate"];
+        string[] args = verb switch
+        {
+            "engrave" => ["engrave", QrCode, "--width-mm", "5", "--origin-mm", "10,10", "--profile", FrequencyOnly, "--simulate", "--log-dir", LogDir],
+            "fire" => ["fire", "--pulses", "10", "--profile", FrequencyOnly, "--simulate"],
+
+            // A port that does not exist: refused before it is opened, or the error would name the port instead.
+            _ => ["laser", "on", "1000", "--seconds", "1", "--port", "/dev/le-no-such-port", "--profile", FrequencyOnly],
+        };
 
         var (exit, _, error) = await CliHarness.RunAsync(args);
 
