@@ -104,8 +104,9 @@ public sealed record RunRecord
 
     /// <summary>
     /// For a laser gate without a watchdog (a frequency-only profile): what then protects the laser when the computer
-    /// hangs, as preflight said it and the person accepted it before the run; null for a gate with a watchdog.
+    /// hangs, as preflight said it and the person accepted it before the run; null (and left out of the file) for a gate with a watchdog.
     /// </summary>
+    [System.Text.Json.Serialization.JsonIgnore(Condition = System.Text.Json.Serialization.JsonIgnoreCondition.WhenWritingNull)]
     public string? NoWatchdogAccepted { get; init; }
 
     /// <summary>The operator's notes, as typed.</summary>
