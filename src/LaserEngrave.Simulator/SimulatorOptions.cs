@@ -1,3 +1,4 @@
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Simulator.Timing;
 
 namespace LaserEngrave.Simulator;
@@ -109,6 +110,12 @@ public sealed record SimulatorOptions
 
     /// <summary>Watchdog time of the gate at power-up, ms; null takes the machine profile's.</summary>
     public int? GateWatchdogMs { get; init; }
+
+    /// <summary>
+    /// What kind of gate the twin is; null takes the machine profile's (<c>gate.kind</c>). Set apart from the profile, the
+    /// twin is a gate the profile does not describe, which commissioning must notice.
+    /// </summary>
+    public LaserGateKind? GateKind { get; init; }
 
     /// <summary>Laser-on intervals with both axes still shorter than this are not counted as dwell.</summary>
     /// <remarks>

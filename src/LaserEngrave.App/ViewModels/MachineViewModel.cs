@@ -49,7 +49,24 @@ public sealed partial class MachineViewModel : ObservableObject
     public partial IReadOnlyList<string> Ports { get; private set; } = [];
 
     [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(GateHasNoWatchdog), nameof(NoWatchdogUnaccepted))]
     public partial MachineProfile Profile { get; set; }
+
+    /// <summary>
+    /// The person accepts that the profile's laser gate has no watchdog (the Machine panel's checkbox, or the API's start):
+    /// every run of the app passes it on, and its log keeps the sentence accepted.
+    /// </summary>
+    [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(NoWatchdogUnaccepted))]
+    public partial bool AcceptNoWatchdog { get; set; }
+
+    /// <summary>The profile's gate has no watchdog (a frequency-only gate): the panel asks the person to accept it.</summary>
+    public bool GateHasNoWatchdog => !Profile.Gate.HasWatchdog;
+
+    /// <summary>Why a run cannot start yet: the gate has no watchdog and nobody accepted it; null otherwise.</summary>
+    public string? NoWatchdogUnaccepted => GateHasNoWatchdog && !AcceptNoWatchdog
+        ? $"{LaserGateProfile.NoWatchdogSentence}; tick \"I accept\" in the Machine panel to run"
+        : null;
 
     [ObservableProperty]
     [NotifyCanExecuteChangedFor(nameof(ConnectCommand), nameof(DisconnectCommand), nameof(IdentifyCommand), nameof(HomeCommand))]
@@ -79,7 +96,9 @@ public sealed partial class MachineViewModel : ObservableObject
     public partial LaserGateState? Laser { get; set; }
 
     /// <summary>The laser's state in words ("off", "firing at 1000 Hz"), from <see cref="Laser"/>.</summary>
-    public string? GateState => Laser is { } laser ? Describe(laser) : null;
+    public string? GateState => Laser is { } laser ? Describe(laser) : _laserUnknownWhy;
+
+    private string? _laserUnknownWhy;
 
     /// <summary>The last failure of a machine command, one line.</summary>
     [ObservableProperty]
@@ -223,6 +242,7 @@ public sealed partial class MachineViewModel : ObservableObject
         Identity = null;
         XMicrosteps = YMicrosteps = null;
         XHomed = YHomed = null;
+        _laserUnknownWhy = null;
         Laser = null;
         if (connection is not null)
         {
@@ -289,13 +309,34 @@ public sealed partial class MachineViewModel : ObservableObject
         var x = await connection.Stage.X.IdentifyAsync(cancellationToken);
         var y = await connection.Stage.Y.IdentifyAsync(cancellationToken);
         var gate = await connection.Gate.IdentifyAsync(cancellationToken);
-        var state = await connection.Gate.GetStateAsync(cancellationToken);
         Identity = $"X: device {x.DeviceNumber}, id {x.DeviceId}, firmware {x.FirmwareText}; Y: device {y.DeviceNumber}, id {y.DeviceId}, firmware {y.FirmwareText}; gate: {gate}";
         XHomed = x.IsHomed;
         YHomed = y.IsHomed;
-        Laser = state;
+        await ReadLaserAsync(connection.Gate, cancellationToken);
         await ReadPositionsAsync(cancellationToken);
     }
+
+    /// <summary>
+    /// Asks the gate its state as the laser's state; a frequency-only gate reports nothing, so the laser is then unknown
+    /// until a run reports it, and the panel says why.
+    /// </summary>
+    internal async Task ReadLaserAsync(ILaserGate gate, CancellationToken cancellationToken)
+    {
+        if (Profile.Gate.CountsBursts)
+        {
+            _laserUnknownWhy = null;
+            Laser = await gate.GetStateAsync(cancellationToken);
+        }
+        else
+        {
+            _laserUnknownWhy = FrequencyOnlyGateNote;
+            Laser = null;
+            OnPropertyChanged(nameof(GateState));
+        }
+    }
+
+    /// <summary>What the panel says of the laser on a gate that reports no state.</summary>
+    internal const string FrequencyOnlyGateNote = "a frequency-only gate: it reports no state and has no watchdog";
 
     /// <summary>
     /// A run's report of the laser (<see cref="LaserEngrave.Devices.Execution.RunProgress.LaserOn"/>) as the laser's state:

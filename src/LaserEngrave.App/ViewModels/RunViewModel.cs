@@ -166,7 +166,8 @@ public sealed partial class RunViewModel : ObservableObject
     public bool CanStart => !_machine.Activity.IsBusy && !IsActive
         && (RunsLayers ? _layers!.Error is null : _job.Errors.Count == 0)
         && Planned is { StartProblem: null }
-        && _machine.Connection is not null;
+        && _machine.Connection is not null
+        && _machine.NoWatchdogUnaccepted is null;
 
     /// <summary>What Start would run: the job of layers while there are layers, else the image or drawing; null when it does not plan.</summary>
     private EngraveJob? Planned => RunsLayers ? _layers!.Engraving : _job.Engraving;
@@ -319,7 +320,7 @@ public sealed partial class RunViewModel : ObservableObject
         var unplanned = RunsLayers
             ? _layers!.Error ?? (job is null ? "the layers do not plan" : null)
             : job is null ? "no job planned: open an image and give it a usable size first" : null;
-        if (!Refused(unplanned ?? job!.StartProblem ?? (connection is null ? "not connected: connect to the simulator or the machine first" : null)))
+        if (!Refused(unplanned ?? job!.StartProblem ?? (connection is null ? "not connected: connect to the simulator or the machine first" : null) ?? _machine.NoWatchdogUnaccepted))
         {
             await RunAsync(job!, _job.ToSettings(), connection!);
         }
@@ -633,6 +634,7 @@ public sealed partial class RunViewModel : ObservableObject
             JobFile = layered ? _layers?.UnchangedJobFile : null,
             Log = _log.Writer,
             WallClock = _time,
+            AcceptNoWatchdog = _machine.AcceptNoWatchdog,
 
             // On real ports every byte in and out is recorded beside the log, as the command line's runs are (`laserengrave replay`).
             Recorder = connection.StartRecording(_log.Folder),

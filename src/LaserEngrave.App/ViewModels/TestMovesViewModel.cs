@@ -237,7 +237,7 @@ public sealed partial class TestMovesViewModel : ObservableObject
         }
 
         await moves.FirePulsesAsync(TestFirePulses, frequency, ct);
-        _machine.Laser = await moves.Gate.GetStateAsync(ct);
+        await _machine.ReadLaserAsync(moves.Gate, ct);
     });
 
     /// <summary>Stops the test move, jog or homing under way (laser off); a run is stopped with its own Abort.</summary>

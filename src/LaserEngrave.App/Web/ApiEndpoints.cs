@@ -2,6 +2,7 @@ using System.Text;
 using System.Text.Json;
 using LaserEngrave.App.Services;
 using LaserEngrave.App.ViewModels;
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
@@ -135,6 +136,17 @@ internal static class ApiEndpoints
                 return Ignored(main, "a run is already under way: this Start was ignored");
             }
 
+            // A gate without a watchdog runs once accepted, here as by the Machine panel's checkbox (the log keeps it).
+            if (request.AcceptNoWatchdog)
+            {
+                main.Machine.AcceptNoWatchdog = true;
+            }
+
+            if (main.Machine.NoWatchdogUnaccepted is not null)
+            {
+                return Busy($"{LaserGateProfile.NoWatchdogSentence}; send \"acceptNoWatchdog\": true to accept it (or tick it in the Machine panel)");
+            }
+
             if (Refused(main, main.Run.StartCommand) is { } refused)
             {
                 return refused;
@@ -150,7 +162,7 @@ internal static class ApiEndpoints
             main.Log.SampleId = request.SampleId;
             return Start(main, main.Run.ConfirmStartCommand);
         })
-            .WithSummary("202; runs the planned job (all passes); a second start during a run is ignored (200 with a note); 409 with the question for a job of over an hour or of pixels much smaller than the spot, unless confirm is true.");
+            .WithSummary("202; runs the planned job (all passes); a second start during a run is ignored (200 with a note); 409 with the question for a job of over an hour or of pixels much smaller than the spot, unless confirm is true; 409 with the sentence for a gate without a watchdog, unless acceptNoWatchdog is true (or the Machine panel's box is ticked).");
         api.MapPost("/run/continue", (MainViewModel main) =>
         {
             if (main.Run.IsActive)
@@ -460,7 +472,7 @@ internal static class ApiEndpoints
 
     internal sealed record FireRequest(int Pulses);
 
-    internal sealed record RunStartRequest(string? Notes = null, string? SampleId = null, bool Confirm = false);
+    internal sealed record RunStartRequest(string? Notes = null, string? SampleId = null, bool Confirm = false, bool AcceptNoWatchdog = false);
 
     internal sealed record ThemeRequest(string Theme);
 }

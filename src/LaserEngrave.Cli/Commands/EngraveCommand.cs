@@ -145,6 +145,7 @@ internal static class EngraveCommand
         }
 
         var profile = job.Spec.Profile;
+        o.Machine.RefuseUnacceptedNoWatchdog(result, profile);
 
         // While the machine opens and runs (the simulation on one thread), another thread prepares the JSON writers of
         // the log and the summary, which would otherwise add their compiling time (a tenth of a second) after the run.
@@ -203,6 +204,7 @@ internal static class EngraveCommand
                 ResumeLayers = resumeLayers,
                 JobFile = layeredFile,
                 Home = result.GetValue(o.Home),
+                AcceptNoWatchdog = result.GetValue(o.Machine.AcceptNoWatchdog),
                 // The record is the only thing that resumes a run: a folder that fails during the run must not lose it.
                 Log = FallbackRunLogWriter.For(store, seam?.DataFolder ?? FallbackRunLogWriter.DefaultDataFolder, seam?.Files),
                 Recorder = recorder,

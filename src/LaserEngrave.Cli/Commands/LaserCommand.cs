@@ -23,11 +23,18 @@ internal static class LaserCommand
 
         var hz = new Argument<int>("HZ") { Description = "Q-switch frequency in Hz (pulses per second)" };
         var seconds = new Option<double?>("--seconds") { Description = "Switch off after this many seconds (default: at Ctrl+C)" };
-        var on = new Command("on", "Fire at HZ while this command runs (watchdog fed), and switch off at Ctrl+C, after --seconds, or on any fault") { hz, seconds };
+        var accept = new Option<bool>("--accept-no-watchdog") { Description = "Fire a laser gate that has no watchdog (a frequencyOnly profile): if this computer hangs while the laser fires, only the interlock or the key switch stops it" };
+        var on = new Command("on", "Fire at HZ while this command runs (watchdog fed), and switch off at Ctrl+C, after --seconds, or on any fault") { hz, seconds, accept };
         on.SetAction((result, ct) =>
         {
             // Checked before the port opens: a bad number must never reach the gate.
-            CheckFire(options.LoadProfile(result), result.GetValue(hz), result.GetValue(seconds));
+            var profile = options.LoadProfile(result);
+            CheckFire(profile, result.GetValue(hz), result.GetValue(seconds));
+            if (!profile.Gate.HasWatchdog && !result.GetValue(accept))
+            {
+                throw new UsageException($"{Core.Geometry.LaserGateProfile.NoWatchdogSentence}; give --accept-no-watchdog to accept it");
+            }
+
             return RunAsync(options, result, (gate, output, token) => FireAsync(gate, output, result.GetValue(hz), result.GetValue(seconds), token), ct);
         });
 
@@ -126,7 +133,12 @@ internal static class LaserCommand
             {
                 var left = time.GetElapsedTime(time.GetTimestamp(), until);
                 await Task.Delay(left < feed ? left : feed, time, cancellationToken).ConfigureAwait(false);
-                await gate.KeepAliveAsync(cancellationToken).ConfigureAwait(false);
+
+                // A frequency-only gate has no watchdog to feed: only the time (or Ctrl+C) ends its firing.
+                if (gate.Profile.CountsBursts)
+                {
+                    await gate.KeepAliveAsync(cancellationToken).ConfigureAwait(false);
+                }
             }
         }
         catch (OperationCanceledException) when (cancellationToken.IsCancellationRequested)

@@ -1,5 +1,6 @@
 using System.CommandLine;
 using System.Globalization;
+using System.Text.Json;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Machine;
 using LaserEngrave.Devices.Scheduling;
@@ -148,7 +149,7 @@ internal static class MachineCommand
 
             if (result.GetValue(json))
             {
-                CliJson.Write(stdout, new { passed = found.Passed, steps = found.Steps.Select(s => new { name = s.Name, result = s.Result.ToString().ToLowerInvariant(), finding = s.Finding }), latency = found.Latency, profile = path, written, report = reportPath });
+                CliJson.Write(stdout, new { passed = found.Passed, gateKind = found.GateKindFound is { } kind ? JsonNamingPolicy.CamelCase.ConvertName(kind.ToString()) : null, steps = found.Steps.Select(s => new { name = s.Name, result = s.Result.ToString().ToLowerInvariant(), finding = s.Finding }), latency = found.Latency, profile = path, written, report = reportPath });
             }
             else
             {

@@ -33,6 +33,12 @@ internal sealed class MachineOptions
 
     public Option<string?> SimOptions { get; } = SimOptionsOption();
 
+    /// <summary>The person accepts a laser gate without a watchdog (a frequency-only profile); commands that fire refuse such a gate without it.</summary>
+    public Option<bool> AcceptNoWatchdog { get; } = new("--accept-no-watchdog")
+    {
+        Description = "Fire with a laser gate that has no watchdog (a frequencyOnly profile): if this computer hangs while the laser fires, only the interlock or the key switch stops it",
+    };
+
     public Option<int?> SimSeed { get; } = SimSeedOption();
 
     /// <summary>Hidden: the twin's wire traffic as a flight recording (tools/wire-capture.sh compares builds with it).</summary>
@@ -51,6 +57,19 @@ internal sealed class MachineOptions
         command.Options.Add(SimOptions);
         command.Options.Add(SimSeed);
         command.Options.Add(SimWire);
+        command.Options.Add(AcceptNoWatchdog);
+    }
+
+    /// <summary>
+    /// Refuses to fire a gate without a watchdog unless `--accept-no-watchdog` says the person accepts what then protects
+    /// the laser (exit 2, the sentence, before anything opens).
+    /// </summary>
+    public void RefuseUnacceptedNoWatchdog(ParseResult result, MachineProfile profile)
+    {
+        if (!profile.Gate.HasWatchdog && !result.GetValue(AcceptNoWatchdog))
+        {
+            throw new UsageException($"{LaserGateProfile.NoWatchdogSentence}; give --accept-no-watchdog to accept it");
+        }
     }
 
     internal static Option<string?> SimOptionsOption() => new("--sim-options")

@@ -79,6 +79,7 @@ internal static class SweepCommand
         }
 
         SweepResult swept;
+        o.Machine.RefuseUnacceptedNoWatchdog(result, plan.Spec.Profile);
         var opened = o.Machine.Open(result, plan.Spec.Profile);
         await using (opened.ConfigureAwait(false))
         {
@@ -94,6 +95,7 @@ internal static class SweepCommand
                 Notes = result.GetValue(o.Notes),
                 SampleId = result.GetValue(o.Sample),
                 Home = result.GetValue(o.Home),
+                AcceptNoWatchdog = result.GetValue(o.Machine.AcceptNoWatchdog),
                 Log = store,
             });
             var jobs = plan.Cells.Count + (plan.Labels is null ? 0 : 1);

@@ -40,6 +40,11 @@ internal static class TestMoveCommands
             {
                 var drawing = VectorCommands.Prepare(result, job, vector);
                 OptionChecks.InRange(result.GetValue(visibleHz), 1, drawing.Spec.Profile.MaxFrameFrequencyHz, "--visible-hz", " Hz", "the profile's maxFrameFrequencyHz");
+                if (result.GetValue(visibleHz) is not null)
+                {
+                    machine.RefuseUnacceptedNoWatchdog(result, drawing.Spec.Profile);
+                }
+
                 VectorCommands.RefuseUnrunnable(drawing);
                 var points = drawing.Plan.Paths.SelectMany(p => p.Points).ToList();
                 return await WithMovesAsync(result, machine, drawing.Spec.Profile, drawing.Spec.Process, async moves =>
@@ -50,6 +55,11 @@ internal static class TestMoveCommands
 
             // The laser is on around the whole frame: only a low frequency, to see the outline without burning it.
             OptionChecks.InRange(result.GetValue(visibleHz), 1, spec.Profile.MaxFrameFrequencyHz, "--visible-hz", " Hz", "the profile's maxFrameFrequencyHz");
+            if (result.GetValue(visibleHz) is not null)
+            {
+                machine.RefuseUnacceptedNoWatchdog(result, spec.Profile);
+            }
+
             var prepared = PreparedJob.Prepare(spec);
             EngraveCommand.RefuseOutsideTravel(prepared);
 
@@ -133,6 +143,7 @@ internal static class TestMoveCommands
             var machineProfile = LoadProfile(result, profile);
             OptionChecks.InRange(result.GetValue(frequency), 1, machineProfile.Gate.MaxFrequencyHz, "--frequency-hz", " Hz", "the profile's gate.maxFrequencyHz");
             var hz = result.GetValue(frequency) ?? (int)Math.Round(machineProfile.LaserFrequencyHz, MidpointRounding.AwayFromZero);
+            machine.RefuseUnacceptedNoWatchdog(result, machineProfile);
 
             return await WithMovesAsync(result, machine, machineProfile, null, async moves =>
             {

@@ -28,9 +28,62 @@ public record AxisProfile
     public long TravelMicrosteps => (long)Math.Floor(StageUnits.MmToMicrosteps(TravelMm, MicrostepUm));
 }
 
+/// <summary>What kind of laser gate the machine has: what it can do decides how a run switches the laser.</summary>
+[JsonConverter(typeof(LaserGateKindConverter))]
+public enum LaserGateKind
+{
+    /// <summary>The gate of docs/laser-gate-protocol.md: counted bursts (BURST), a watchdog (WDOG, PING) and its state (STATE?).</summary>
+    CountedBurst,
+
+    /// <summary>A gate that only sets a frequency (FREQ f, FREQ 0): the host times every switch-on and switch-off itself, and nothing stops the laser when the host hangs.</summary>
+    FrequencyOnly,
+}
+
+/// <summary>Reads and writes <see cref="LaserGateKind"/> as "countedBurst" and "frequencyOnly", never as a number.</summary>
+public sealed class LaserGateKindConverter : JsonStringEnumConverter<LaserGateKind>
+{
+    public LaserGateKindConverter()
+        : base(JsonNamingPolicy.CamelCase, allowIntegerValues: false)
+    {
+    }
+}
+
 /// <summary>How the laser gate is spoken to; every string is overridable for a PIC that speaks differently.</summary>
 public sealed record LaserGateProfile
 {
+    /// <summary>
+    /// What the gate can do: the counted-burst gate with a watchdog (the default), or a gate that only sets a frequency.
+    /// Left out of the file when it is the default, so existing profiles and logs read and write as before.
+    /// </summary>
+    [JsonIgnore(Condition = JsonIgnoreCondition.WhenWritingDefault)]
+    public LaserGateKind Kind { get; init; }
+
+    /// <summary>
+    /// A frequency-only gate that never answers a line: each command counts as carried out once written. Only a
+    /// frequency-only gate may say so (the counted-burst gate proves itself by its replies).
+    /// </summary>
+    [JsonIgnore(Condition = JsonIgnoreCondition.WhenWritingDefault)]
+    public bool NeverReplies { get; init; }
+
+    /// <summary>Whether this gate counts its bursts and has a watchdog (the default protocol).</summary>
+    [JsonIgnore]
+    public bool CountsBursts => Kind == LaserGateKind.CountedBurst;
+
+    /// <summary>Whether the gate has a watchdog that switches the laser off when the host falls silent.</summary>
+    [JsonIgnore]
+    public bool HasWatchdog => WatchdogMs > 0;
+
+    /// <summary>Whether the host identifies the gate (a frequency-only gate may have no identify command, and one that never replies cannot answer it).</summary>
+    [JsonIgnore]
+    public bool Identifies => !NeverReplies && !string.IsNullOrWhiteSpace(IdentifyCommand);
+
+    /// <summary>
+    /// What protects the laser when the computer hangs with a gate that has no watchdog, in one plain sentence: preflight
+    /// says it and asks the person to accept it (`--accept-no-watchdog`, the app's checkbox), and the run log keeps it.
+    /// </summary>
+    public const string NoWatchdogSentence =
+        "this laser gate has no watchdog: if this computer hangs while the laser fires, the laser keeps firing, and only the hardware interlock or your hand on the key switch stops it";
+
     public int BaudRate { get; init; } = 9600;
 
     public string IdentifyCommand { get; init; } = "*IDN?";
@@ -82,7 +135,7 @@ public sealed record LaserGateProfile
     /// <summary>How long to wait for an acknowledgement before the gate counts as silent.</summary>
     public int TimeoutMs { get; init; } = 500;
 
-    /// <summary>Watchdog time programmed into the gate: it switches the laser off after this long without a command (50..60000).</summary>
+    /// <summary>Watchdog time programmed into the gate: it switches the laser off after this long without a command (50..60000); 0 for a frequency-only gate, which has none.</summary>
     public int WatchdogMs { get; init; } = 1000;
 
     /// <summary>Highest Q-switch frequency the gate takes, whole Hz (the default protocol's FREQ range is 0..100000).</summary>

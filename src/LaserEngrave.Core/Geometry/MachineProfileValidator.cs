@@ -7,7 +7,8 @@ namespace LaserEngrave.Core.Geometry;
 /// <remarks>
 /// Zaber T-series firmware 5.xx (docs/zaber-protocol.md): speed data 1..32767 x 9.375 microsteps/s, acceleration data
 /// 1..32767 x 11250 microsteps/s² (0 would mean "no ramp"), positions 0..16 777 215 microsteps, 9600 baud only. The laser
-/// gate (docs/laser-gate-protocol.md): frequency 0..100000 whole Hz, watchdog 50..60000 ms. Used by the CLI and the app.
+/// gate (docs/laser-gate-protocol.md): frequency 0..100000 whole Hz, watchdog 50..60000 ms (a frequency-only gate: none,
+/// said as 0). Used by the CLI and the app.
 /// </remarks>
 public static class MachineProfileValidator
 {
@@ -124,9 +125,21 @@ public static class MachineProfileValidator
 
         Require(BaudRates.Contains(gate.BaudRate), $"gate.baudRate must be one of {string.Join(", ", BaudRates)} (got {gate.BaudRate})");
         Require(gate.TimeoutMs is >= 1 and <= MaxTimeoutMs, $"gate.timeoutMs must be 1..{MaxTimeoutMs} ms (got {gate.TimeoutMs})");
-        Require(
-            gate.WatchdogMs is >= MinWatchdogMs and <= MaxWatchdogMs,
-            $"gate.watchdogMs must be {MinWatchdogMs}..{MaxWatchdogMs} ms: the watchdog switches the laser off when the host falls silent, and a run never burns without it (got {gate.WatchdogMs})");
+        if (gate.CountsBursts)
+        {
+            Require(
+                gate.WatchdogMs is >= MinWatchdogMs and <= MaxWatchdogMs,
+                $"gate.watchdogMs must be {MinWatchdogMs}..{MaxWatchdogMs} ms: the watchdog switches the laser off when the host falls silent, and a run never burns without it (got {gate.WatchdogMs})");
+            Require(!gate.NeverReplies, "gate.neverReplies must be false for a countedBurst gate: its replies prove each burst and its watchdog; only a frequencyOnly gate may never reply");
+        }
+        else
+        {
+            // A gate without a watchdog must say so in its profile, so that nobody takes the default 1000 ms for a promise.
+            Require(
+                gate.WatchdogMs == 0,
+                $"gate.watchdogMs must be 0 for a frequencyOnly gate: such a gate has no watchdog, and the profile must say so (got {gate.WatchdogMs})");
+        }
+
         CheckGateStrings(gate, problems);
         Require(
             profile.EdgeToleranceUm is > 0 and <= MaxEdgeToleranceUm,
@@ -255,6 +268,9 @@ public static class MachineProfileValidator
     private static void CheckGateStrings(LaserGateProfile gate, List<string> problems)
     {
         // Every command is told from the others by how it begins (replies echo it), so none may equal another or begin with it.
+        // A frequency-only gate is sent only its frequency, its off and (when it answers and has one) its identify command;
+        // the others are never sent, so they are not checked, and its off may be the frequency command at 0 ("FREQ 0").
+        var frequencyOnly = !gate.CountsBursts;
         var commands = new (string Field, string? Value, int Placeholders)[]
         {
             ("identifyCommand", gate.IdentifyCommand, 0),
@@ -265,9 +281,22 @@ public static class MachineProfileValidator
             ("watchdogCommand", gate.WatchdogCommand, 1),
             ("burstCommand", gate.BurstCommand, 2),
         };
+        if (frequencyOnly)
+        {
+            commands = [.. commands.Where(c => c.Field is "frequencyCommand" or "offCommand" || (c.Field == "identifyCommand" && gate.Identifies))];
+        }
+
         var heads = new List<(string Field, string Value, string Head)>();
         foreach (var (field, value, placeholders) in commands)
         {
+            if (frequencyOnly && field == "offCommand" && value is not null && gate.FrequencyCommand is not null
+                && FormatProblem(gate.FrequencyCommand, 1) is null
+                && string.Equals(value.Trim(), string.Format(CultureInfo.InvariantCulture, gate.FrequencyCommand, 0).Trim(), StringComparison.OrdinalIgnoreCase))
+            {
+                // "FREQ 0" is how a frequency-only gate is switched off: the frequency command itself, not a command of its own.
+                continue;
+            }
+
             if (string.IsNullOrWhiteSpace(value))
             {
                 problems.Add($"gate.{field} must not be empty");
@@ -337,6 +366,12 @@ public static class MachineProfileValidator
             ("watchdogReply", gate.WatchdogReply, 1, false),
             ("burstReply", gate.BurstReply, 2, false),
         };
+        if (frequencyOnly)
+        {
+            // Only the replies of the commands a frequency-only gate is sent; none at all when it never replies.
+            replies = gate.NeverReplies ? [] : [.. replies.Where(r => r.Field is "frequencyReply" or "offReply" || (r.Field == "identifyReply" && gate.Identifies))];
+        }
+
         foreach (var (field, value, count, mayBeEmpty) in replies)
         {
             if (value is null || (!mayBeEmpty && string.IsNullOrWhiteSpace(value)))

@@ -111,6 +111,13 @@ public sealed record RunRecord
     /// <summary>Passes completed, when <see cref="Passes"/> is above 1; the row and run counts are the last pass's.</summary>
     public int? PassesDone { get; init; }
 
+    /// <summary>
+    /// For a laser gate without a watchdog (a frequency-only profile): what then protects the laser when the computer
+    /// hangs, as preflight said it and the person accepted it before the run; null (and left out of the file) for a gate with a watchdog.
+    /// </summary>
+    [System.Text.Json.Serialization.JsonIgnore(Condition = System.Text.Json.Serialization.JsonIgnoreCondition.WhenWritingNull)]
+    public string? NoWatchdogAccepted { get; init; }
+
     /// <summary>The operator's notes, as typed.</summary>
     public string? Notes { get; init; }
 

@@ -39,7 +39,7 @@ public static class RunSummaryText
     public static string? Timing(RunRecord record)
     {
         ArgumentNullException.ThrowIfNull(record);
-        var late = LateSwitches(record.LateSwitches);
+        var late = LateSwitches(record.LateSwitches, record.Profile.Gate.CountsBursts);
         var wentOn = WentOnAfter(record.Recoveries?.Count ?? 0);
         return (late, wentOn) switch
         {
@@ -51,7 +51,9 @@ public static class RunSummaryText
     }
 
     /// <summary>The switchings sent late, as the summary's "Late switches" line says them ("switch-ons: 4 within ..."); null when none.</summary>
-    public static string? LateSwitches(LateSwitches? late)
+    /// <param name="late">The record's late switchings.</param>
+    /// <param name="countedBurst">Whether the gate counts its bursts; a frequency-only gate's late switch-offs were stopped in time by their early aim, not by a burst.</param>
+    public static string? LateSwitches(LateSwitches? late, bool countedBurst = true)
     {
         if (late is null || (late.Count == 0 && late.LateOffs == 0))
         {
@@ -67,7 +69,9 @@ public static class RunSummaryText
 
         if (late.LateOffs > 0)
         {
-            parts.Add(string.Create(c, $"switch-offs: {late.LateOffs} (the burst had ended the run by itself)"));
+            parts.Add(countedBurst
+                ? string.Create(c, $"switch-offs: {late.LateOffs} (the burst had ended the run by itself)")
+                : string.Create(c, $"switch-offs: {late.LateOffs} within the {late.ToleranceUm:0.###} µm edge tolerance (each aimed that much early, so the laser stopped before the edge)"));
         }
 
         return string.Join("; ", parts);
@@ -175,12 +179,16 @@ public static class RunSummaryText
             ? string.Create(c, $"dots: {s.PulsesPerDot} pulses per dot, a dot {(s.DotPitchMicrosteps == 0 ? "at every pixel's centre" : $"every {s.DotPitchMicrosteps} microsteps")}, settle {s.DotSettleMs:0.###} ms")
             : "raster (burning while moving)");
         Line("Machine", record.Profile.Name + (record.Simulated ? " (simulator)" : string.Empty));
+        if (record.NoWatchdogAccepted is { } accepted)
+        {
+            Line("No watchdog", "accepted before the run: " + accepted);
+        }
         if (record.HostPriority is { } priority)
         {
             Line("Host priority", priority);
         }
 
-        if (LateSwitches(record.LateSwitches) is { } late)
+        if (LateSwitches(record.LateSwitches, record.Profile.Gate.CountsBursts) is { } late)
         {
             Line("Late switches", late);
         }

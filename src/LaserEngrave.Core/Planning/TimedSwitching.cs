@@ -117,7 +117,8 @@ public sealed class TimedSwitching
         // before the next may: a switch-off can follow a switch-on no sooner than its own bytes take, and the other way round.
         OffWireSeconds = OffCommand.Length * gateByte;
         OnWireSeconds = OnCommand.Length * gateByte;
-        MinOnSeconds = (2 * EdgeGuardSeconds) + OffWireSeconds + (2 * GateJitterSeconds) + ReactionSeconds;
+        LateOffAllowanceSeconds = gate.CountsBursts ? 0 : profile.EdgeToleranceUm / (BurnSpeed * microstepUm);
+        MinOnSeconds = (2 * EdgeGuardSeconds) + LateOffAllowanceSeconds + OffWireSeconds + (2 * GateJitterSeconds) + ReactionSeconds;
         MinOffSeconds = MinOffFor(LongestBurstPulses);
         _flown = new GapMemo<FlownGap?>(gap => ComputeFly(gap) is { } fly ? FlownGap.Of(this, fly) : null);
         _crossesGap = new GapMemo<bool>(gap => CrossSeconds(gap) <= StopGoSeconds(gap));
@@ -172,9 +173,14 @@ public sealed class TimedSwitching
     /// <summary>The keepalive line's bytes.</summary>
     public int KeepAliveBytes { get; }
 
-    /// <summary>The switch-on line of a burst of <paramref name="pulses"/> at the process' frequency.</summary>
+    /// <summary>
+    /// The switch-on line of a burst of <paramref name="pulses"/> at the process' frequency; on a frequency-only gate the
+    /// frequency command (<c>FREQ f</c>), whatever the count, since the host's timed switch-off ends the run.
+    /// </summary>
     public string BurstCommand(int pulses) =>
-        string.Format(CultureInfo.InvariantCulture, _profile.Gate.BurstCommand, pulses, FrequencyHz) + _profile.Gate.LineTerminator;
+        _profile.Gate.CountsBursts
+            ? string.Format(CultureInfo.InvariantCulture, _profile.Gate.BurstCommand, pulses, FrequencyHz) + _profile.Gate.LineTerminator
+            : string.Format(CultureInfo.InvariantCulture, _profile.Gate.FrequencyCommand, FrequencyHz) + _profile.Gate.LineTerminator;
 
     /// <summary>From writing a burst's line (its wire free) to the gate firing its first pulse.</summary>
     public double BurstLeadSeconds(int pulses) => _gateAdapterSeconds + (BurstCommand(pulses).Length * _gateByteSeconds) + _gateProcessingSeconds;
@@ -273,6 +279,12 @@ public sealed class TimedSwitching
     /// </summary>
     public string? RunTooLongForBurst(long lengthMicrosteps)
     {
+        if (!_profile.Gate.CountsBursts)
+        {
+            // A frequency-only gate counts nothing: the host's switch-off ends every run, however long.
+            return null;
+        }
+
         var pulses = Math.Ceiling(lengthMicrosteps / BurnSpeed * FrequencyHz);
         return pulses <= MaxBurstPulses ? null : string.Create(
             CultureInfo.InvariantCulture,
@@ -280,7 +292,10 @@ public sealed class TimedSwitching
     }
 
     private string BurstReply(int pulses) =>
-        _profile.Gate.AckPrefix + " " + string.Format(CultureInfo.InvariantCulture, _profile.Gate.BurstReply, pulses, FrequencyHz) + _profile.Gate.LineTerminator;
+        _profile.Gate.NeverReplies ? string.Empty
+        : _profile.Gate.AckPrefix + " " + (_profile.Gate.CountsBursts
+            ? string.Format(CultureInfo.InvariantCulture, _profile.Gate.BurstReply, pulses, FrequencyHz)
+            : string.Format(CultureInfo.InvariantCulture, _profile.Gate.FrequencyReply, FrequencyHz)) + _profile.Gate.LineTerminator;
 
     public string OffCommand { get; }
 
@@ -302,8 +317,15 @@ public sealed class TimedSwitching
     /// <summary>From crossing a run's entry edge to the switch-on taking effect: the guard, at least half a pulse period.</summary>
     public double OnDelaySeconds => Math.Max(HalfPulseSeconds, EdgeGuardSeconds);
 
-    /// <summary>From the switch-off taking effect to crossing the run's exit edge.</summary>
-    public double OffAdvanceSeconds => EdgeGuardSeconds;
+    /// <summary>
+    /// From the switch-off taking effect to crossing the run's exit edge: the guard, and on a frequency-only gate the
+    /// profile's edge tolerance as time at the burn speed too, since nothing but the switch-off stops such a gate and a
+    /// computer late to send it within the tolerance must still stop it before the edge.
+    /// </summary>
+    public double OffAdvanceSeconds => EdgeGuardSeconds + LateOffAllowanceSeconds;
+
+    /// <summary>How late a switch-off may be written and still stop a frequency-only gate before the edge (0 on a gate that counts its bursts).</summary>
+    public double LateOffAllowanceSeconds { get; }
 
     /// <summary>
     /// When a stroke's first switch-on may be sent at the earliest after a Y move's nominal end: once its reply is in.

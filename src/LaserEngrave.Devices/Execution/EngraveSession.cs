@@ -1,4 +1,5 @@
 using System.Globalization;
+using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Devices.Scheduling;
@@ -260,7 +261,10 @@ public sealed class EngraveSession
     {
         var hash = Options.ImageSha256 ?? HashOrMissing(part.Spec.ImagePath);
         // The log's record differs by kind (an image's pixels and mask, a drawing's paths): Core/Logging makes one of each.
-        return part.Drawing is { } drawing ? RunRecord.ForDrawing(drawing, hash, started) : RunRecord.ForJob(part.Image!, hash, started);
+        var record = part.Drawing is { } drawing ? RunRecord.ForDrawing(drawing, hash, started) : RunRecord.ForJob(part.Image!, hash, started);
+
+        // A gate without a watchdog runs only once accepted: the log keeps what the person accepted.
+        return !part.Spec.Profile.Gate.HasWatchdog && Options.AcceptNoWatchdog ? record with { NoWatchdogAccepted = LaserGateProfile.NoWatchdogSentence } : record;
     }
 
     private static RunLayer LayerEntry(PreparedLayer part, double estimatedSeconds)
@@ -557,7 +561,7 @@ public sealed class EngraveSession
     private async Task<RunResult> RunPassAsync(PreparedLayer part, int pass, bool firstOfSession, CancellationToken cancellationToken, RunStopPoint? resumeFrom = null)
     {
         // What an earlier run of this session found of the latencies' spread holds for the rest of it (RunResult.LatencyScale).
-        var options = new RunOptions { Home = Options.Home && firstOfSession, ResumeFrom = resumeFrom ?? (firstOfSession ? _resumeFrom : null), LatencyScale = _latencyScale };
+        var options = new RunOptions { Home = Options.Home && firstOfSession, ResumeFrom = resumeFrom ?? (firstOfSession ? _resumeFrom : null), LatencyScale = _latencyScale, AcceptNoWatchdog = Options.AcceptNoWatchdog };
         var executor = new RunExecutor(Machine.Stage, Machine.Gate, PartJob(part), Machine.TimeProvider, options, _control);
         var movesDone = options.ResumeFrom?.MoveIndex ?? 0;
         executor.MoveCompleted += (_, e) => Interlocked.Exchange(ref movesDone, e.MoveIndex + 1);

@@ -33,6 +33,12 @@ public sealed record EngraveSessionOptions
     /// <summary>Home both axes in the first pass's preflight even when they are homed.</summary>
     public bool Home { get; init; }
 
+    /// <summary>
+    /// The person accepts a laser gate without a watchdog (`--accept-no-watchdog`, the Machine panel's checkbox): without it
+    /// a frequency-only profile's run is refused in preflight; with it the log keeps the sentence that was accepted.
+    /// </summary>
+    public bool AcceptNoWatchdog { get; init; }
+
     /// <summary>Where the log is written; null writes none (the result still has the record).</summary>
     public IRunLogWriter? Log { get; init; }
 

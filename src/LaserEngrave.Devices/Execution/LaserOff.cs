@@ -32,6 +32,12 @@ public sealed class LaserOff
     }
 
     /// <summary>
+    /// The gate never replies (a frequency-only gate whose profile says so): its commands count as carried out once
+    /// written, so the laser is never reported confirmed off, only sent off.
+    /// </summary>
+    public bool GateNeverReplies { get; set; }
+
+    /// <summary>
     /// How long a switch-off may take to be acknowledged before it is in doubt: its round trip on the gate's line, twice
     /// the gate's jitter and the stall margin (the test a timed run's own switch-offs get, docs/execution.md), and the
     /// time the lines and replies still ahead of it on the gate's wire take (<paramref name="queuedSeconds"/>).
@@ -61,7 +67,7 @@ public sealed class LaserOff
 
         if (first.IsCompletedSuccessfully)
         {
-            return new LaserOffResult(LaserOffPath.Off, null);
+            return new LaserOffResult(LaserOffPath.Off, GateNeverReplies ? NeverRepliesProblem("OFF was") : null);
         }
 
         return await EveryWayOffAsync(first.IsFaulted ? first.Exception?.InnerException : null, first, watchdogMs, stopStage);
@@ -77,7 +83,8 @@ public sealed class LaserOff
         // Gate commands are not cancelled (a late reply would be taken for the next one's): each waits its own timeout.
         var off = Start(() => _gate.EmergencyAsync(EmergencyCommand.Off, CancellationToken.None));
         var zero = Start(() => _gate.EmergencyAsync(EmergencyCommand.FrequencyZero, CancellationToken.None));
-        var watchdog = Start(() => _gate.EmergencyAsync(EmergencyCommand.ShortestWatchdog, CancellationToken.None));
+        // A gate without a watchdog (frequency-only) has none to shorten.
+        var watchdog = watchdogMs > 0 ? Start(() => _gate.EmergencyAsync(EmergencyCommand.ShortestWatchdog, CancellationToken.None)) : Task.CompletedTask;
         var stopping = stopStage is null ? Task.CompletedTask : Start(stopStage);
         await Task.WhenAll(Settled(pending ?? Task.CompletedTask), Settled(off), Settled(zero), Settled(watchdog), Settled(stopping));
         var path = off.IsCompletedSuccessfully || pending?.IsCompletedSuccessfully == true ? LaserOffPath.OffAgain
@@ -85,7 +92,7 @@ public sealed class LaserOff
             : LaserOffPath.None;
         if (path != LaserOffPath.None)
         {
-            return new LaserOffResult(path, null)
+            return new LaserOffResult(path, GateNeverReplies ? NeverRepliesProblem("OFF and FREQ 0 were") : null)
             {
                 AllAnswered = off.IsCompletedSuccessfully && zero.IsCompletedSuccessfully && watchdog.IsCompletedSuccessfully && pending?.IsCompletedSuccessfully != false,
             };
@@ -94,10 +101,18 @@ public sealed class LaserOff
         // Silence on its line is the one thing left that switches the laser off: the gate's own watchdog.
         await Settled(Start(async () => await _gate.CloseAsync()));
         var why = (refused ?? off.Exception?.InnerException ?? zero.Exception?.InnerException)?.Message;
+        if (watchdogMs <= 0)
+        {
+            return new LaserOffResult(LaserOffPath.None, $"the laser could not be confirmed off: the gate acknowledged neither OFF nor FREQ 0 ({why}), and it has no watchdog; a person must switch the laser off at its key now");
+        }
+
         return new LaserOffResult(LaserOffPath.None, string.Create(
             CultureInfo.InvariantCulture,
             $"the laser could not be confirmed off: the gate acknowledged neither OFF nor FREQ 0 ({why}); its port was closed so that its watchdog ({(watchdog.IsCompletedSuccessfully ? MachineProfileValidator.MinWatchdogMs : watchdogMs)} ms) switches the laser off; a person must check the laser"));
     }
+
+    private static string NeverRepliesProblem(string sent) =>
+        $"the laser could not be confirmed off: {sent} sent, but this laser gate never replies; a person must check the laser";
 
     // A call that throws before it returns its task (a disposed port, a bug) fails that task instead: nothing escapes the off path.
     private static Task Start(Func<Task> send)
@@ -130,7 +145,8 @@ public sealed class LaserOff
 /// <param name="Problem">Why the laser could not be confirmed off, one line; null when it was.</param>
 public sealed record LaserOffResult(LaserOffPath Path, string? Problem)
 {
-    public bool Confirmed => Path != LaserOffPath.None;
+    /// <summary>The gate acknowledged a path to off (a gate that never replies never confirms: its problem says so).</summary>
+    public bool Confirmed => Path != LaserOffPath.None && Problem is null;
 
     /// <summary>Every command of the sequence was acknowledged, the switch-off in doubt too: the gate was only late.</summary>
     public bool AllAnswered { get; init; }

@@ -56,6 +56,9 @@ internal sealed class LaserSafety : IAsyncDisposable
         _off = new LaserOff(gate, time);
     }
 
+    /// <summary>A gate that never replies (a frequency-only profile's choice): its OFF counts as sent, never as confirmed.</summary>
+    public bool GateNeverReplies { get => _off.GateNeverReplies; init => _off.GateNeverReplies = value; }
+
     /// <summary>
     /// Every laser command goes under this lock, and a switch-on checks for an abort inside it: so once an abort has sent
     /// its switch-off, no switch-on can follow it on the wire.

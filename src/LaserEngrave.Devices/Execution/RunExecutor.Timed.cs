@@ -199,7 +199,8 @@ public sealed partial class RunExecutor
 
             await KeepAlivesUntilAsync(offWrite, timing, token);
             await DelayUntilAsync(offWrite, token);
-            if (k + 1 < stroke.RunCount && !bumps.ContainsKey(Distance(burn.X1)) && !OffFitsBefore(stroke.RunAt(k + 1).Move, offEffect))
+            // A frequency-only gate fires until told otherwise: its switch-off is never left out.
+            if (k + 1 < stroke.RunCount && _profile.Gate.CountsBursts && !bumps.ContainsKey(Distance(burn.X1)) && !OffFitsBefore(stroke.RunAt(k + 1).Move, offEffect))
             {
                 // A gap too short for the switch-off's line and the next burst's: the burst ends this run by itself.
                 _laser.MarkOff(timing.OffLeadSeconds);
@@ -489,14 +490,16 @@ public sealed partial class RunExecutor
                 NoteLateSwitch(lateUm);
             }
 
-            var ack = Gate.BurstAsync(pulses, timing.FrequencyHz, CancellationToken.None);
+            // A frequency-only gate is switched on by its frequency alone, as before the burst: only the timed switch-off ends the run.
+            var counted = _profile.Gate.CountsBursts;
+            var ack = counted ? Gate.BurstAsync(pulses, timing.FrequencyHz, CancellationToken.None) : Gate.SetFrequencyAsync(timing.FrequencyHz, CancellationToken.None);
             _gateWireFree = timing.GateWireFreeAfter(written, _gateWireFree, timing.BurstCommand(pulses).Length);
             _gateRepliesIn = timing.GateRepliesInAfter(_gateWireFree, _gateRepliesIn, timing.BurstReplyBytes(pulses));
             var firing = _gateWireFree + timing.GateProcessingSeconds;
             lock (_lock)
             {
                 _laser.MarkOn(TimeProvider.GetTimestamp() + (long)((firing - written) * TimeProvider.TimestampFrequency));
-                _burstEndsAt = firing + ((double)pulses / timing.FrequencyHz) + timing.GateJitterSeconds;
+                _burstEndsAt = counted ? firing + ((double)pulses / timing.FrequencyHz) + timing.GateJitterSeconds : double.PositiveInfinity;
             }
 
             return (ack, written);
@@ -539,14 +542,23 @@ public sealed partial class RunExecutor
 
     /// <summary>
     /// A switch-off written late: the burst has stopped the laser by itself at the run's end already, so no pulse crossed
-    /// the edge; it is counted and logged, beside the late switch-ons.
+    /// the edge; it is counted and logged, beside the late switch-ons. A frequency-only gate has no burst: beyond the edge
+    /// tolerance its laser fired past the edge, and the run ends.
     /// </summary>
     private void NoteSwitchOffLate(double planned, double written, TimedSwitching timing)
     {
         var late = written - planned;
         if (late > LateSeconds)
         {
-            NoteLateSwitch(late * timing.BurnSpeed * timing.MicrostepUm, off: true);
+            var lateUm = late * timing.BurnSpeed * timing.MicrostepUm;
+            NoteLateSwitch(lateUm, off: true);
+            if (!_profile.Gate.CountsBursts && lateUm > _profile.EdgeToleranceUm)
+            {
+                // A frequency-only gate fires until the switch-off arrives: late beyond the tolerance, it fired past the edge.
+                throw Fault(string.Create(
+                    CultureInfo.InvariantCulture,
+                    $"this computer was {Units.SecondsToMs(late):0.0} ms late to switch the laser off, {lateUm:0.0} µm at the burn speed, beyond the profile's edge tolerance of {_profile.EdgeToleranceUm:0.###} µm: this frequency-only gate fired past the run's exit edge"));
+            }
         }
     }
 

@@ -120,7 +120,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
         var spec = job.Spec;
         _process = spec.Process;
         _profile = spec.Profile;
-        _laser = new LaserSafety(Gate, TimeProvider, _process.LaserFrequencyWholeHz, _profile.Gate.WatchdogMs, Options.StallMarginMs, this);
+        _laser = new LaserSafety(Gate, TimeProvider, _process.LaserFrequencyWholeHz, _profile.Gate.WatchdogMs, Options.StallMarginMs, this) { GateNeverReplies = _profile.Gate.NeverReplies };
         _replies = new ReplyWatch(TimeProvider, Options.StallMarginMs, this);
     }
 

@@ -27,6 +27,13 @@ public sealed record RunOptions
     /// </summary>
     public double LatencyScale { get; init; } = 1;
 
+    /// <summary>
+    /// The person accepts a gate without a watchdog (a frequency-only profile): when this computer hangs with the laser on,
+    /// only the interlock or the key switch stops it (<see cref="Core.Geometry.LaserGateProfile.NoWatchdogSentence"/>).
+    /// Without it preflight refuses such a run before anything is sent; the run log keeps that it was accepted.
+    /// </summary>
+    public bool AcceptNoWatchdog { get; init; }
+
     /// <summary>How late past its expected arrival a stage reply may come before the run counts the stage as stalled, ms.</summary>
     public double StallMarginMs { get; init; } = 20;
 }

@@ -64,20 +64,26 @@ internal sealed class RunPreflight
     /// <exception cref="PreflightException">Refused; nothing moved under the laser.</exception>
     public async Task<PreflightOutcome> RunAsync(CancellationToken token)
     {
+        CheckGateKind();
         CheckJob();
         string gateIdentity;
         var gateVouchesForCut = true;
+        var counted = _profile.Gate.CountsBursts;
         try
         {
             gateIdentity = await OnceMoreAfterTimeoutAsync(() => _gate.IdentifyAsync(token));
-            if (_options.ResumeFrom is { OffByGateWatchdog: true } && !(await _gate.GetStateAsync(token)).WatchdogTripped)
+            if (_options.ResumeFrom is { OffByGateWatchdog: true } && (!counted || !(await _gate.GetStateAsync(token)).WatchdogTripped))
             {
-                // The laser's switch-off time counted on the watchdog; a gate restarted since cannot vouch for it.
+                // The laser's switch-off time counted on the watchdog; a gate restarted since (or one without STATE?) cannot vouch for it.
                 gateVouchesForCut = false;
             }
 
             await _gate.OffAsync(token);
-            await _gate.SetWatchdogAsync(_profile.Gate.WatchdogMs, token);
+            if (counted)
+            {
+                // A frequency-only gate has no watchdog to set: the person accepted that (CheckGateKind).
+                await _gate.SetWatchdogAsync(_profile.Gate.WatchdogMs, token);
+            }
         }
         catch (DeviceException ex)
         {
@@ -218,6 +224,24 @@ internal sealed class RunPreflight
             var instead = timedRaster ? "; engrave it step by step (--strategy paper), which needs neither" : string.Empty;
             throw new PreflightException(
                 $"the {name} axis (device {identity.DeviceNumber}) has firmware {identity.FirmwareText}, for which the Zaber manual does not vouch for {string.Join(" nor ", missing)}, which this job needs (T-series firmware 5.00-5.99 has it){instead}");
+        }
+    }
+
+    /// <summary>
+    /// A gate without a watchdog runs only once the person has accepted what then protects the laser (said in one
+    /// sentence), and a frequency-only gate cannot count a dot's pulses: both refused before anything is sent.
+    /// </summary>
+    private void CheckGateKind()
+    {
+        var gate = _profile.Gate;
+        if (!gate.HasWatchdog && !_options.AcceptNoWatchdog)
+        {
+            throw new PreflightException($"{LaserGateProfile.NoWatchdogSentence}; accept it to run (--accept-no-watchdog, or tick it in the Machine panel)");
+        }
+
+        if (!gate.CountsBursts && _program is DotProgram)
+        {
+            throw new PreflightException("dot mode fires an exact count of pulses at each dot, which only a gate that counts its bursts (BURST) can do; this profile's gate is frequencyOnly: engrave in raster mode");
         }
     }
 

@@ -163,7 +163,7 @@ public sealed class StageTestMoves
         return corners[^1];
     }
 
-    /// <summary>Fires <paramref name="pulses"/> pulses at <paramref name="frequencyHz"/> at the current position (the gate's burst), then off.</summary>
+    /// <summary>Fires <paramref name="pulses"/> pulses at <paramref name="frequencyHz"/> at the current position (the gate's burst; on a frequency-only gate, timed by the host), then off.</summary>
     public async Task FirePulsesAsync(int pulses, int frequencyHz, CancellationToken cancellationToken)
     {
         if (pulses <= 0 || frequencyHz <= 0)
@@ -174,10 +174,33 @@ public sealed class StageTestMoves
         await SafelyAsync(
             async () =>
             {
-                await Gate.BurstAsync(pulses, frequencyHz, cancellationToken);
+                if (Profile.Gate.CountsBursts)
+                {
+                    await Gate.BurstAsync(pulses, frequencyHz, cancellationToken);
 
-                // The burst runs on its own; wait it out so the switch-off at the end does not cut it short.
-                await Task.Delay(TimeSpan.FromSeconds((double)pulses / frequencyHz), TimeProvider, cancellationToken);
+                    // The burst runs on its own; wait it out so the switch-off at the end does not cut it short.
+                    await Task.Delay(TimeSpan.FromSeconds((double)pulses / frequencyHz), TimeProvider, cancellationToken);
+                }
+                else
+                {
+                    // A frequency-only gate counts nothing: the host switches it off between the last pulse and the one after,
+                    // timed from the switch-on's write (each line acts at its last byte, so the shorter off line is sent that much
+                    // later), so the count is as good as the two lines' latencies.
+                    var gate = Profile.Gate;
+                    var byteSeconds = 10.0 / gate.BaudRate;
+                    var onLine = string.Format(CultureInfo.InvariantCulture, gate.FrequencyCommand, frequencyHz).Length;
+                    var offAfter = TimeSpan.FromSeconds(((pulses - 0.5) / frequencyHz) + ((onLine - gate.OffCommand.Length) * byteSeconds));
+                    var written = TimeProvider.GetTimestamp();
+                    var on = Gate.SetFrequencyAsync(frequencyHz, cancellationToken);
+                    var left = offAfter - TimeProvider.GetElapsedTime(written);
+                    if (left > TimeSpan.Zero)
+                    {
+                        await Task.Delay(left, TimeProvider, cancellationToken);
+                    }
+
+                    await on;
+                    await Gate.OffAsync(cancellationToken);
+                }
             },
             cancellationToken);
     }
@@ -286,7 +309,7 @@ public sealed class StageTestMoves
         }
 
         // Not cancellable: the laser goes off even when the operation was cancelled.
-        var off = await new LaserOff(Gate, TimeProvider).SwitchOffAsync(LaserOff.ConfirmWindow(Process, Profile), Profile.Gate.WatchdogMs);
+        var off = await new LaserOff(Gate, TimeProvider) { GateNeverReplies = Profile.Gate.NeverReplies }.SwitchOffAsync(LaserOff.ConfirmWindow(Process, Profile), Profile.Gate.WatchdogMs);
         if (!off.Confirmed)
         {
             throw failure is null ? new DeviceException(off.Problem!) : new DeviceException($"{failure.Message}; {off.Problem}", failure);

@@ -71,7 +71,7 @@ internal sealed class StrokeCut
     /// stroke's end on resuming (<see cref="RunStopPoint.ExpectedXMicrosteps"/>).
     /// </summary>
     /// <param name="offConfirmed">Whether the gate confirmed the laser off.</param>
-    /// <param name="watchdogMs">The gate's watchdog time, after which a gate out of reach switched the laser off by itself.</param>
+    /// <param name="watchdogMs">The gate's watchdog time, after which a gate out of reach switched the laser off by itself (0: no watchdog, so such a gate's laser went off at no known time).</param>
     /// <param name="stoppedX">Where X stopped, when it said.</param>
     /// <param name="switchOnRefused">Whether the gate refused a switch-on (an error reply): the laser did not come on for that run.</param>
     public RunStopPoint Cut(RunStopPoint stop, TimedSwitching timing, RasterPlan plan, bool offConfirmed, int watchdogMs, long? stoppedX, Func<Task, bool> switchOnRefused)
@@ -95,12 +95,14 @@ internal sealed class StrokeCut
         {
             offAt = offWrite + timing.OffLeadSeconds - timing.GateJitterSeconds;
         }
-        else if (!offConfirmed && (_gateAliveAt > double.NegativeInfinity || (!fired && _faultOffWrite is not null && double.IsFinite(burning.BurstEndsAt))))
+        else if (!offConfirmed && ((watchdogMs > 0 && _gateAliveAt > double.NegativeInfinity) || (!fired && _faultOffWrite is not null && double.IsFinite(burning.BurstEndsAt))))
         {
             // Never later than the burst's own end: a gate that heard its switch-on counts its pulses whatever it hears
             // next. A gate that answered nothing in this run (its first switch-on never acknowledged, a resumed run's
             // too) is bounded by that alone; the first OFF's cut below then names the pixel a gate that heard it went off in.
-            var watchdogOff = _gateAliveAt > double.NegativeInfinity ? _gateAliveAt + Units.MsToSeconds(watchdogMs) - timing.GateJitterSeconds : double.PositiveInfinity;
+            // A gate without a watchdog (frequency-only) never switches itself off: only its burst's end bounds it, and
+            // such a gate has none (infinite), so it reaches here only with a watchdog.
+            var watchdogOff = watchdogMs > 0 && _gateAliveAt > double.NegativeInfinity ? _gateAliveAt + Units.MsToSeconds(watchdogMs) - timing.GateJitterSeconds : double.PositiveInfinity;
             offAt = Math.Min(watchdogOff, burning.BurstEndsAt - (2 * timing.GateJitterSeconds));
             byWatchdog = true;
         }

@@ -37,6 +37,9 @@ public sealed record SweepSessionOptions
     /// <summary>Home both axes before the first job even if they are homed.</summary>
     public bool Home { get; init; }
 
+    /// <summary>The person accepts a laser gate without a watchdog for every cell (<see cref="EngraveSessionOptions.AcceptNoWatchdog"/>).</summary>
+    public bool AcceptNoWatchdog { get; init; }
+
     public ISweepLogWriter? Log { get; init; }
 
     public TimeProvider WallClock { get; init; } = TimeProvider.System;
@@ -154,6 +157,7 @@ public sealed class SweepSession
                     Notes = Options.Notes,
                     SampleId = Options.SampleId,
                     Home = Options.Home && i == 0,
+                    AcceptNoWatchdog = Options.AcceptNoWatchdog,
                     ImageSha256 = SweepPlan.MaskSha256(job.Mask),
                     WallClock = Options.WallClock,
                 });

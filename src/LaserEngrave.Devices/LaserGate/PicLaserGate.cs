@@ -76,7 +76,11 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
         return new PicLaserGate(port, profile, timeProvider);
     }
 
-    public Task<string> IdentifyAsync(CancellationToken cancellationToken) => SendAsync(Profile.IdentifyCommand, Profile.IdentifyReply, cancellationToken);
+    /// <summary>What a gate that does not identify itself (a frequency-only profile without an identify command, or one that never replies) is called.</summary>
+    public const string UnidentifiedFrequencyOnly = "frequency-only gate (it does not identify itself)";
+
+    public Task<string> IdentifyAsync(CancellationToken cancellationToken) =>
+        Profile.Identifies ? SendAsync(Profile.IdentifyCommand, Profile.IdentifyReply, cancellationToken) : Task.FromResult(UnidentifiedFrequencyOnly);
 
     public async Task SetFrequencyAsync(int frequencyHz, CancellationToken cancellationToken)
     {
@@ -90,17 +94,28 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
     /// <summary>Asks for the state; the reply must read "STATE &lt;hz&gt; ON|OFF WDOG &lt;ms&gt; [TRIPPED]" after the acknowledgement prefix.</summary>
     public async Task<LaserGateState> GetStateAsync(CancellationToken cancellationToken)
     {
+        ThrowIfFrequencyOnly(Profile.StatusCommand, "state to report");
         var text = await SendAsync(Profile.StatusCommand, Profile.StatusReply, cancellationToken);
         return ParseState(text) ?? throw new LaserGateException(
             PortName, Profile.StatusCommand, text, $"laser gate on {PortName}: cannot read the state from '{text}' (expected 'STATE <hz> ON|OFF WDOG <ms> [TRIPPED]')");
     }
 
-    public async Task KeepAliveAsync(CancellationToken cancellationToken) =>
+    public async Task KeepAliveAsync(CancellationToken cancellationToken)
+    {
+        ThrowIfFrequencyOnly(Profile.KeepAliveCommand, "keepalive");
         await SendAsync(Profile.KeepAliveCommand, Profile.KeepAliveReply, cancellationToken);
+    }
 
     public async Task SetWatchdogAsync(int milliseconds, CancellationToken cancellationToken)
     {
         ArgumentOutOfRangeException.ThrowIfNegative(milliseconds);
+        if (!Profile.CountsBursts && milliseconds == 0)
+        {
+            // No watchdog is what this gate has already.
+            return;
+        }
+
+        ThrowIfFrequencyOnly(Profile.WatchdogCommand, "watchdog");
         await SendAsync(Format(Profile.WatchdogCommand, milliseconds), Format(Profile.WatchdogReply, milliseconds), cancellationToken);
     }
 
@@ -108,6 +123,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
     {
         ArgumentOutOfRangeException.ThrowIfNegativeOrZero(pulses);
         ArgumentOutOfRangeException.ThrowIfNegativeOrZero(frequencyHz);
+        ThrowIfFrequencyOnly(Profile.BurstCommand, "counted burst");
         await SendAsync(Format(Profile.BurstCommand, pulses, frequencyHz), Format(Profile.BurstReply, pulses, frequencyHz), cancellationToken);
     }
 
@@ -177,7 +193,8 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
                 resynchronise = _resynchronise;
             }
 
-            if (resynchronise)
+            // A frequency-only gate has no keepalive to get back in step with; its replies are told apart by what they say.
+            if (resynchronise && Profile.CountsBursts)
             {
                 // After a timeout a late reply may still be on its way: a keepalive answered by its own reply proves the line is in step.
                 try
@@ -239,7 +256,19 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
                 throw LinkLost(command, waiting: false);
             }
 
-            _pending.Add((command, expected, reply));
+            if (!Profile.NeverReplies)
+            {
+                _pending.Add((command, expected, reply));
+            }
+        }
+
+        if (Profile.NeverReplies)
+        {
+            // A gate that never replies (the profile says so): the command is carried out, as far as anyone can tell,
+            // once written; nothing waits for an answer (callers never report such a gate's laser off as confirmed).
+            await _channel.WriteAsync(Encoding.ASCII.GetBytes(command + Profile.LineTerminator), $"laser gate on {PortName}: cannot send '{command}'", cancellationToken);
+            reply.SetResult(string.Empty);
+            return reply;
         }
 
         try
@@ -337,6 +366,15 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
         }
 
         return new LaserGateState(hz, firing, watchdogMs, tripped);
+    }
+
+    // A frequency-only gate knows FREQ and its off only: anything else would be answered as unknown (or not at all).
+    private void ThrowIfFrequencyOnly(string command, string what)
+    {
+        if (!Profile.CountsBursts)
+        {
+            throw new LaserGateException(PortName, command, string.Empty, $"laser gate on {PortName} is a frequency-only gate (the profile's gate.kind): it has no {what}");
+        }
     }
 
     private static string Format(string format, params object[] values) => string.Format(CultureInfo.InvariantCulture, format, values);

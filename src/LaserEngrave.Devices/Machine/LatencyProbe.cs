@@ -42,12 +42,19 @@ public sealed class LatencyProbe : ILatencyProbe
         var y = RoundTrips.Of(_stage.Y.Description, await TimeAsync(exchanges, i => _stage.Y.PingAsync(i, cancellationToken), cancellationToken), stageWireMs);
 
         var gate = _gate.Profile;
+        if (gate.NeverReplies)
+        {
+            throw new DeviceException($"laser gate on {_gate.PortName} never replies (the profile's gate.neverReplies), so no round trip times it: keep the profile's gate latencies, measured on the bench");
+        }
+
+        // A frequency-only gate has no keepalive: its off command, with the laser off already, is the exchange that changes nothing.
+        var (command, expected) = gate.CountsBursts ? (gate.KeepAliveCommand, gate.KeepAliveReply) : (gate.OffCommand, gate.OffReply);
         var reply = string.Empty;
-        var times = await TimeAsync(exchanges, async _ => reply = await _gate.SendAsync(gate.KeepAliveCommand, gate.KeepAliveReply, cancellationToken), cancellationToken);
+        var times = await TimeAsync(exchanges, async _ => reply = await _gate.SendAsync(command, expected, cancellationToken), cancellationToken);
 
         // The reply as it came: the prefix, the text after it if any, the terminator.
         var replyBytes = gate.AckPrefix.Length + (reply.Length == 0 ? 0 : 1 + reply.Length) + gate.LineTerminator.Length;
-        var gateWireMs = WireMs(gate.KeepAliveCommand.Length + gate.LineTerminator.Length + replyBytes, gate.BaudRate);
+        var gateWireMs = WireMs(command.Length + gate.LineTerminator.Length + replyBytes, gate.BaudRate);
         return new LatencyMeasurement(x, y, RoundTrips.Of($"laser gate on {_gate.PortName}", times, gateWireMs));
     }
 

@@ -62,11 +62,21 @@ public sealed class MachineCheck
         var c = CultureInfo.InvariantCulture;
         try
         {
+            LaserGateKind? kindFound = null;
             var gateId = await Step(steps, "laser gate", async () =>
             {
                 var id = await _gate.IdentifyAsync(cancellationToken);
                 await _gate.OffAsync(cancellationToken);
-                return $"{id} on {_laserPort}, switched off";
+                var (kind, found) = await GateKindAsync(cancellationToken);
+                kindFound = kind;
+                var text = $"{id} on {_laserPort}, switched off; {found}";
+                if (kind == LaserGateKind.FrequencyOnly && _profile.Gate.CountsBursts)
+                {
+                    // The profile promises a burst and a watchdog this gate does not have: no run may count on them.
+                    throw new DeviceException($"{text}, but the profile says countedBurst: set gate.kind to frequencyOnly and gate.watchdogMs to 0 (docs/machine-profile.md), or flash the gate's firmware");
+                }
+
+                return text;
             });
             AxisIdentity? x = null;
             AxisIdentity? y = null;
@@ -158,7 +168,12 @@ public sealed class MachineCheck
                 return string.Create(c, $"stage {found.StageMs:0.###} ± {found.StageJitterMs:0.###} ms, gate {found.GateMs:0.###} ± {found.GateJitterMs:0.###} ms one way ({exchanges} round trips each; X max {latency.X.MaxMs:0.##} ms, Y max {latency.Y.MaxMs:0.##} ms, gate max {latency.Gate.MaxMs:0.##} ms)");
             });
 
-            if (tripWatchdog)
+            if (!_profile.Gate.HasWatchdog)
+            {
+                // Nothing to trip: the profile says so, and every run asks the person to accept it.
+                steps.Add(new MachineCheckStep("gate watchdog", MachineCheckResult.Skipped, $"none to trip (gate.kind frequencyOnly): {LaserGateProfile.NoWatchdogSentence}"));
+            }
+            else if (tripWatchdog)
             {
                 await Step(steps, "gate watchdog", () => TripWatchdogAsync(cancellationToken));
             }
@@ -167,7 +182,11 @@ public sealed class MachineCheck
                 steps.Add(new MachineCheckStep("gate watchdog", MachineCheckResult.Skipped, "not tripped: nobody confirmed the beam was blocked"));
             }
 
-            return new MachineCheckReport(steps.Steps, x, y, gateId, latency?.ToProfile(_profile.Latency));
+            return new MachineCheckReport(steps.Steps, x, y, gateId, latency?.ToProfile(_profile.Latency))
+            {
+                GateKindFound = kindFound,
+                NoWatchdog = !_profile.Gate.HasWatchdog,
+            };
         }
         finally
         {
@@ -193,6 +212,49 @@ public sealed class MachineCheck
                 }
             }
         }
+    }
+
+    /// <summary>
+    /// Which kind of gate answers: the counted-burst gate reports its state (STATE?), a frequency-only one does not know
+    /// the command. Asked whatever the profile says, so a profile that describes the wrong gate is caught.
+    /// </summary>
+    private async Task<(LaserGateKind? Kind, string Found)> GateKindAsync(CancellationToken cancellationToken)
+    {
+        var gate = _profile.Gate;
+        if (gate.NeverReplies)
+        {
+            return (null, "a gate that never replies (the profile's gate.neverReplies): its kind cannot be asked; the profile says frequencyOnly, and nothing confirms a command it is sent");
+        }
+
+        try
+        {
+            if (gate.CountsBursts)
+            {
+                var state = await _gate.GetStateAsync(cancellationToken);
+                return (LaserGateKind.CountedBurst, string.Create(CultureInfo.InvariantCulture, $"found a counted-burst gate with a watchdog (it reports its state: watchdog {state.WatchdogMs} ms)"));
+            }
+
+            if (_gate is PicLaserGate pic)
+            {
+                // The default protocol's state command, which the profile of a frequency-only gate need not spell.
+                var status = string.IsNullOrWhiteSpace(gate.StatusCommand) ? new LaserGateProfile().StatusCommand : gate.StatusCommand;
+                var reply = await pic.SendAsync(status, "STATE", cancellationToken);
+                if (PicLaserGate.ParseState(reply) is not null)
+                {
+                    return (LaserGateKind.CountedBurst, $"found a counted-burst gate with a watchdog (it reports its state), though the profile says frequencyOnly: set gate.kind to countedBurst to use its burst and watchdog");
+                }
+            }
+            else
+            {
+                return (null, "the profile says frequencyOnly (its kind not asked on this connection)");
+            }
+        }
+        catch (DeviceException ex) when (ex is LaserGateException or DeviceTimeoutException)
+        {
+            return (LaserGateKind.FrequencyOnly, $"found a frequency-only gate: it does not report its state ({ex.Message}), so it has no counted burst and no watchdog");
+        }
+
+        return (LaserGateKind.FrequencyOnly, "found a frequency-only gate: its answer to the state command is not a state");
     }
 
     // Fires at the profile's frame frequency and stays silent past the watchdog time: the gate must switch itself off and say so.
@@ -261,8 +323,14 @@ public sealed record MachineCheckStep(string Name, MachineCheckResult Result, st
 /// <summary>What a machine check found: its steps, both axes, the gate and the measured latencies (null where a step failed).</summary>
 public sealed record MachineCheckReport(IReadOnlyList<MachineCheckStep> Steps, AxisIdentity? X, AxisIdentity? Y, string? Gate, LatencyProfile? Latency)
 {
-    /// <summary>Every step passed (a skipped watchdog trip is not a pass).</summary>
-    public bool Passed => Steps.All(s => s.Result == MachineCheckResult.Passed);
+    /// <summary>Which kind of gate the check found answering (null when it could not ask).</summary>
+    public LaserGateKind? GateKindFound { get; init; }
+
+    /// <summary>The profile's gate has no watchdog (frequency-only): its watchdog step has nothing to trip.</summary>
+    public bool NoWatchdog { get; init; }
+
+    /// <summary>Every step passed (a skipped watchdog trip is not a pass, unless the gate has no watchdog to trip).</summary>
+    public bool Passed => Steps.All(s => s.Result == MachineCheckResult.Passed || (NoWatchdog && s.Name == "gate watchdog" && s.Result == MachineCheckResult.Skipped));
 
     /// <summary>The printable report: a heading, the date, one line per step.</summary>
     public IEnumerable<string> Lines(string machine, DateTimeOffset at)
@@ -275,6 +343,8 @@ public sealed record MachineCheckReport(IReadOnlyList<MachineCheckStep> Steps, A
             yield return $"{mark} {step.Name}: {step.Finding}";
         }
 
-        yield return Passed ? "Result: every step passed" : "Result: NOT every step passed; fix what failed (docs/commissioning.md) before engraving";
+        yield return Passed
+            ? NoWatchdog ? "Result: every step passed; this gate has no watchdog, which each run asks you to accept" : "Result: every step passed"
+            : "Result: NOT every step passed; fix what failed (docs/commissioning.md) before engraving";
     }
 }

@@ -11,6 +11,12 @@ namespace LaserEngrave.Simulator.LaserGate;
 
 /// <summary>The simulated PIC laser gate, speaking docs/laser-gate-protocol.md (with the profile's command strings).</summary>
 /// <remarks>
+/// <para>
+/// Two kinds: the counted-burst gate of the protocol (the default), and the frequency-only gate a lab already has
+/// (<see cref="LaserGateKind.FrequencyOnly"/>): it fires at the last frequency set until told otherwise, knows only its
+/// frequency command, its off and (when it has one) its identify command, has no watchdog, and answers nothing at all
+/// when the profile says it never replies.
+/// </para>
 /// A command takes effect when its line's last byte has arrived; the reply then takes its own time on the wire.
 /// Every line received, valid or not, feeds the watchdog; a Silent fault stops the gate hearing lines, so its
 /// watchdog then switches the laser off, as a hung PIC's hardware watchdog would. The watchdog measures the host's
@@ -50,11 +56,18 @@ public sealed class VirtualLaserGate
         _faults = faults;
         _recorder = recorder;
         _commands = new GateCommandSet(profile);
-        WatchdogMs = options.GateWatchdogMs ?? profile.WatchdogMs;
+        Kind = options.GateKind ?? profile.Kind;
+        WatchdogMs = Kind == LaserGateKind.FrequencyOnly ? 0 : options.GateWatchdogMs ?? profile.WatchdogMs;
         BaudRate = profile.BaudRate;
     }
 
     public int BaudRate { get; }
+
+    /// <summary>What kind of gate this is: the counted-burst gate with a watchdog, or a frequency-only one.</summary>
+    public LaserGateKind Kind { get; }
+
+    // A frequency-only gate that never answers (the profile's choice) stays silent whatever it hears.
+    private bool Silent => Kind == LaserGateKind.FrequencyOnly && _profile.NeverReplies;
 
     /// <summary>Frequency the laser fires at now, Hz (0 = off).</summary>
     public int FrequencyHz { get; private set; }
@@ -174,11 +187,19 @@ public sealed class VirtualLaserGate
                 ArmWatchdog();
                 if (fault.RefuseCode is { } code)
                 {
-                    Reply($"{_profile.ErrorPrefix} {code.ToString(CultureInfo.InvariantCulture)} INJECTED");
+                    // A gate that never replies cannot say it refused: the command is simply not carried out.
+                    if (!Silent)
+                    {
+                        Reply($"{_profile.ErrorPrefix} {code.ToString(CultureInfo.InvariantCulture)} INJECTED");
+                    }
                 }
                 else if (line.Length > 0)
                 {
-                    Reply(Run(line, now));
+                    var reply = Run(line, now);
+                    if (!Silent)
+                    {
+                        Reply(reply);
+                    }
                 }
             }
         }
@@ -193,6 +214,12 @@ public sealed class VirtualLaserGate
     {
         var ok = _profile.AckPrefix;
         var command = _commands.Match(line, out var args);
+        if (Kind == LaserGateKind.FrequencyOnly && command is GateCommand.State or GateCommand.KeepAlive or GateCommand.Watchdog or GateCommand.Burst)
+        {
+            // The lab's PIC knows FREQ and its off, nothing of the counted-burst protocol.
+            command = GateCommand.Unknown;
+        }
+
         switch (command)
         {
             case GateCommand.Identify:

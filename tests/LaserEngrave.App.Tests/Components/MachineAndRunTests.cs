@@ -65,6 +65,33 @@ public sealed class MachinePanelTests : ComponentTest
     }
 
     [Fact]
+    public void NoWatchdogBox_FrequencyOnlyProfile_SaysWhatProtectsTheLaserAndTickingItAccepts()
+    {
+        Main.Machine.Profile = FrequencyOnlyProfile();
+        var cut = Render<MachinePanel>(p => p.Add(c => c.Machine, Main.Machine));
+        Assert.NotNull(Main.Machine.NoWatchdogUnaccepted);
+
+        var box = cut.Find("#accept-no-watchdog");
+        Assert.Contains(Core.Geometry.LaserGateProfile.NoWatchdogSentence, cut.Find("#no-watchdog").TextContent, StringComparison.Ordinal);
+        Assert.False(box.HasAttribute("checked"));
+        box.Change(true);
+
+        Assert.True(Main.Machine.AcceptNoWatchdog);
+        Assert.Null(Main.Machine.NoWatchdogUnaccepted);
+    }
+
+    [Fact]
+    public void NoWatchdogBox_DefaultProfile_NotShown()
+    {
+        var cut = Render<MachinePanel>(p => p.Add(c => c.Machine, Main.Machine));
+
+        Assert.Empty(cut.FindAll("#accept-no-watchdog"));
+        Assert.Null(Main.Machine.NoWatchdogUnaccepted);
+    }
+
+    private static Core.Geometry.MachineProfile FrequencyOnlyProfile() => Core.Geometry.MachineProfile.Load(TestFiles.Asset(Path.Combine("profiles", "frequency-only.json")));
+
+    [Fact]
     public void ListPorts_TwoFound_Named()
     {
         Machine.Factory.ListPorts().Returns(["COM3", "COM4"]);

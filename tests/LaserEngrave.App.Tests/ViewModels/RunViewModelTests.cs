@@ -141,6 +141,24 @@ public sealed class RunViewModelTests
     }
 
     [Fact]
+    public async Task CanStart_GateWithoutWatchdogNotAccepted_FalseUntilTickedThenTheSessionCarriesIt()
+    {
+        await DrawingReadyAsync();
+        var sessions = new List<EngraveSession>();
+        _runs.RunAsync(Arg.Do<EngraveSession>(sessions.Add), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(Ends(Result(RunOutcome.Completed)));
+        Assert.True(_run.CanStart);
+
+        _machine.Profile = MachineProfile.Load(TestFiles.Asset(Path.Combine("profiles", "frequency-only.json")));
+        Assert.False(_run.CanStart);
+        _machine.AcceptNoWatchdog = true;
+        Assert.True(_run.CanStart);
+        await _run.StartCommand.ExecuteAsync(null);
+
+        Assert.True(Assert.Single(sessions).Options.AcceptNoWatchdog);
+    }
+
+    [Fact]
     public async Task CanStart_DrawingWithABadChordTolerance_IsFalseAndNoSessionRuns()
     {
         await DrawingReadyAsync();

@@ -1,7 +1,10 @@
 using System.Net;
 using System.Net.Http.Json;
 using System.Text.Json;
+using LaserEngrave.App.ViewModels;
 using LaserEngrave.App.Web;
+using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Logging;
 using Microsoft.Extensions.DependencyInjection;
 
 namespace LaserEngrave.App.Tests.Web;
@@ -330,6 +333,27 @@ public sealed class ApiEndpointsTests : IDisposable
         await PostAsync("/api/run/start", new { sampleId = "T-2", confirm = true }, HttpStatusCode.Accepted);
         var state = await WaitForAsync(s => !s.GetProperty("run").GetProperty("active").GetBoolean() && s.GetProperty("run").GetProperty("state").GetString() != "Idle", TimeSpan.FromSeconds(120));
         Assert.True("Completed" == state.GetProperty("run").GetProperty("state").GetString(), state.GetProperty("run").ToString());
+    }
+
+    [Fact]
+    public async Task RunStart_GateWithoutWatchdog_409WithTheSentenceUntilAcceptedThenTheLogKeepsIt()
+    {
+        using var folder = TestFiles.NewFolder();
+        var profilePath = TestFiles.Asset(Path.Combine("profiles", "frequency-only.json"));
+        _app.Services.GetRequiredService<MainViewModel>().UseProfile(profilePath, MachineProfile.Load(profilePath));
+        await UploadAsync(TestFiles.WriteChecker(folder.Path, 8, 6));
+        await PostAsync("/api/job", new { widthMm = 0.8, originXMm = 0, originYMm = 0 });
+        await PostAsync("/api/machine/connect", new { useSimulator = true }, HttpStatusCode.Accepted);
+        await WaitForAsync(s => s.GetProperty("machine").GetProperty("connected").GetBoolean() && !s.GetProperty("activity").GetProperty("busy").GetBoolean(), TimeSpan.FromSeconds(20));
+
+        var answer = await PostAsync("/api/run/start", new { sampleId = "T-3" }, HttpStatusCode.Conflict);
+
+        Assert.StartsWith(LaserGateProfile.NoWatchdogSentence, answer.GetProperty("error").GetString(), StringComparison.Ordinal);
+        await PostAsync("/api/run/start", new { sampleId = "T-3", acceptNoWatchdog = true }, HttpStatusCode.Accepted);
+        var state = await WaitForAsync(s => !s.GetProperty("run").GetProperty("active").GetBoolean() && s.GetProperty("run").GetProperty("state").GetString() != "Idle", TimeSpan.FromSeconds(120));
+        Assert.True("Completed" == state.GetProperty("run").GetProperty("state").GetString(), state.GetProperty("run").ToString());
+        var path = state.GetProperty("log").GetProperty("lastRun").GetProperty("path").GetString()!;
+        Assert.Equal(LaserGateProfile.NoWatchdogSentence, RunLogStore.Read(path).NoWatchdogAccepted);
     }
 
     [Fact]

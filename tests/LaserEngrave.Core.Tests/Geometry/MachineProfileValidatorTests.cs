@@ -74,6 +74,13 @@ public class MachineProfileValidatorTests
         { """{ "z": { "maxMm": 26 } }""", "z.maxMm must be above z.minMm 0 mm and at most z.travelMm 25 mm (got 26)" },
         { """{ "z": { "minMm": 5, "maxMm": 10 } }""", "z.focusMm must be within z.minMm..z.maxMm 5..10 mm (got 12.5)" },
         { """{ "z": { "focusmm": 10 } }""", "z.focusmm is not a field of the machine profile" },
+        { """{ "gate": { "kind": "frequencyOnly" } }""", "gate.watchdogMs must be 0 for a frequencyOnly gate: such a gate has no watchdog, and the profile must say so (got 1000)" },
+        { """{ "gate": { "kind": "frequencyOnly", "watchdogMs": 0, "offCommand": "FREQ 1" } }""", "gate.offCommand \"FREQ 1\" begins like gate.frequencyCommand" },
+        { """{ "gate": { "kind": "frequencyOnly", "watchdogMs": 0, "frequencyReply": null } }""", "gate.frequencyReply must not be null" },
+        { """{ "gate": { "kind": "frequencyOnly", "watchdogMs": 0, "offCommand": "" } }""", "gate.offCommand must not be empty" },
+        { """{ "gate": { "kind": "burst" } }""", "gate.kind has a value of the wrong type or out of range for it" },
+        { """{ "gate": { "kind": 1 } }""", "gate.kind has a value of the wrong type or out of range for it" },
+        { """{ "gate": { "neverReplies": true } }""", "gate.neverReplies must be false for a countedBurst gate" },
         { """[1, 2]""", "not a valid machine profile (line 1, column 2): expected a JSON object" },
         { """null""", "the machine profile is empty" },
         { "", "not valid JSON at line 1, column 1: the file is empty" },
@@ -84,6 +91,60 @@ public class MachineProfileValidatorTests
     {
         Assert.Empty(MachineProfileValidator.Problems(MachineProfile.Default));
         MachineProfile.Default.Validate();
+    }
+
+    [Theory]
+    [InlineData("frequency-only.json", false)]
+    [InlineData("frequency-only-silent.json", true)]
+    public void Load_FrequencyOnlyExampleProfile_AFrequencyOnlyGateWithoutWatchdog(string file, bool neverReplies)
+    {
+        var profile = MachineProfile.Load(Logging.TestRuns.Asset(Path.Combine("profiles", file)));
+
+        Assert.Equal(LaserGateKind.FrequencyOnly, profile.Gate.Kind);
+        Assert.False(profile.Gate.CountsBursts);
+        Assert.False(profile.Gate.HasWatchdog);
+        Assert.Equal(neverReplies, profile.Gate.NeverReplies);
+        Assert.False(profile.Gate.Identifies);
+        Assert.Equal("FREQ 0", profile.Gate.OffCommand);
+    }
+
+    [Fact]
+    public void Problems_FrequencyOnlyGateWithUnusedCommandsEmpty_HasNone()
+    {
+        // A frequency-only gate is never sent STATE?, PING, WDOG or BURST: their strings may be anything, even empty.
+        var gate = new LaserGateProfile
+        {
+            Kind = LaserGateKind.FrequencyOnly, WatchdogMs = 0, OffCommand = "FREQ 0", StatusCommand = "", KeepAliveCommand = "", WatchdogCommand = "", BurstCommand = "",
+            StatusReply = "", KeepAliveReply = "", WatchdogReply = "", BurstReply = "",
+        };
+
+        Assert.Empty(MachineProfileValidator.Problems(MachineProfile.Default with { Gate = gate }));
+    }
+
+    [Fact]
+    public void Problems_CountedBurstGateWithEmptyBurstCommand_NamesIt()
+    {
+        var gate = new LaserGateProfile { BurstCommand = "" };
+
+        Assert.Contains("gate.burstCommand must not be empty", MachineProfileValidator.Problems(MachineProfile.Default with { Gate = gate }));
+    }
+
+    [Fact]
+    public void ToJson_DefaultGate_LeavesKindAndNeverRepliesOut()
+    {
+        // Existing profiles and run logs are written as before: the default kind says nothing new.
+        var json = MachineProfile.Default.ToJson();
+
+        Assert.DoesNotContain("\"kind\"", json, StringComparison.Ordinal);
+        Assert.DoesNotContain("neverReplies", json, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void ToJson_FrequencyOnlyGate_WritesItsKindByName()
+    {
+        var profile = MachineProfile.Default with { Gate = new LaserGateProfile { Kind = LaserGateKind.FrequencyOnly, WatchdogMs = 0, OffCommand = "FREQ 0" } };
+
+        Assert.Contains("\"kind\": \"frequencyOnly\"", profile.ToJson(), StringComparison.Ordinal);
     }
 
     [Theory]

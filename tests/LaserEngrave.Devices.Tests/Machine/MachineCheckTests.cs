@@ -35,7 +35,7 @@ public sealed class MachineCheckTests
 
         Assert.Equal(MachineCheck.StepNames, told);
         Assert.Equal(MachineCheck.StepNames, report.Steps.Select(s => s.Name));
-        Assert.Equal("PICGATE FAKE on COM4, switched off", report.Steps[0].Finding);
+        Assert.Equal("PICGATE FAKE on COM4, switched off; found a counted-burst gate with a watchdog (it reports its state: watchdog 1000 ms)", report.Steps[0].Finding);
         Assert.StartsWith("device 1 (X) sent to 10079 microsteps", report.Steps.Single(s => s.Name == "X move").Finding, StringComparison.Ordinal);
         Assert.Equal(MachineCheckResult.Skipped, report.Steps[^1].Result);
     }
