@@ -67,8 +67,9 @@ public class DecimalCommaTests
     }
 
     [Theory]
-    [InlineData("2,5", "\"pulseSpacingUm\": 400,")]
-    [InlineData("12,5", "\"pulseSpacingUm\": 80,")]
+    // Whole hertz only (the gate is sent whole Hz), so the decimal comma is shown on a whole number.
+    [InlineData("2500,0", "\"pulseSpacingUm\": 0.4,")]
+    [InlineData("1250,00", "\"pulseSpacingUm\": 0.8,")]
     [InlineData("1000", "\"pulseSpacingUm\": 1,")]
     public async Task Plan_FrequencyWithOneReading_ReadAtTheDefaultSpeedOf1MmPerS(string value, string expected)
     {

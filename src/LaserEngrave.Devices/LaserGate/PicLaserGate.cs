@@ -312,7 +312,8 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
             throw;
         }
 
-        return Interpret(command, line);
+        // A gate that never replies has nothing to interpret: written is all anyone can know.
+        return Profile.NeverReplies ? string.Empty : Interpret(command, line);
     }
 
     // Whether the line answers the command waiting: a refusal, an acknowledgement that says what is expected, or any line that is neither.

@@ -1,4 +1,5 @@
 using System.Globalization;
+using System.Text.RegularExpressions;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
@@ -91,17 +92,23 @@ public sealed class FrequencyOnlyGateTests(ITestOutputHelper output)
     [Fact]
     public void PixelTooShort_FrequencyOnlyGateWithItsToleranceAhead_NamesTheSlowerSpeed()
     {
-        // 16.2 ms pixels at 1 mm/s (the banner at 5 mm): enough for the counted-burst gate, not for a frequency-only gate
-        // whose switch-off is aimed 5 µm (5 ms) early.
+        // A frequency-only gate's switch-off is aimed 5 µm (5 ms at 1 mm/s) early, so it needs longer pixels than the
+        // counted-burst gate: the longest pixel it refuses at 1 mm/s is one the counted-burst gate switches exactly.
         var profile = Profile();
         var frequencyOnly = TimedSwitching.For(ProcessSettings.Default, profile, profile.X.MicrostepUm);
         var counted = TimedSwitching.For(ProcessSettings.Default, MachineProfile.Default, profile.X.MicrostepUm);
-        var pixel = (long)Math.Round(16.234 / profile.X.MicrostepUm);
+        var pitchUm = 20.0;
+        while (frequencyOnly.PixelTooShort((long)Math.Round(pitchUm / profile.X.MicrostepUm), pitchUm) is null)
+        {
+            pitchUm -= 0.25;
+        }
 
-        Assert.Null(counted.PixelTooShort(pixel, 16.234));
-        var refused = frequencyOnly.PixelTooShort(pixel, 16.234);
-        output.WriteLine(refused ?? "(accepted)");
-        Assert.Contains("burn at 0.97", refused, StringComparison.Ordinal);
+        var pixel = (long)Math.Round(pitchUm / profile.X.MicrostepUm);
+        Assert.Null(counted.PixelTooShort(pixel, pitchUm));
+        var refused = frequencyOnly.PixelTooShort(pixel, pitchUm);
+        output.WriteLine(string.Create(CultureInfo.InvariantCulture, $"{pitchUm} µm: {refused}"));
+        var slowest = double.Parse(Regex.Match(refused!, @"burn at ([0-9.]+) mm/s").Groups[1].Value, CultureInfo.InvariantCulture);
+        Assert.InRange(slowest, 0.5, 0.9999);
         Assert.Equal(0.005, frequencyOnly.OffAdvanceSeconds - frequencyOnly.EdgeGuardSeconds, 6);
         Assert.Equal(counted.EdgeGuardSeconds, counted.OffAdvanceSeconds);
     }
