@@ -1,9 +1,10 @@
 /* The gate's portable core; see gate_core.h. Plain C99, no library calls, so that it builds for any chip. */
 #include "gate_core.h"
 
-enum { CMD_NONE, CMD_IDN, CMD_FREQ, CMD_OFF, CMD_STATE, CMD_PING, CMD_WDOG, CMD_BURST };
+enum { CMD_NONE, CMD_IDN, CMD_FREQ, CMD_OFF, CMD_STATE, CMD_PING, CMD_WDOG, CMD_BURST, CMD_BURST_AFTER, CMD_CAPS };
 
-/* The command table: keyword and how many arguments follow it, in the twin's matching order. */
+/* The command table: keyword and how many words follow it, in the twin's matching order. The scheduled burst is
+ * BURST with four words, its third the literal AFTER (checked in execute). */
 static const struct { const char *keyword; uint8_t args; uint8_t command; } commands[] = {
     { "*IDN?", 0, CMD_IDN },
     { "FREQ", 1, CMD_FREQ },
@@ -12,6 +13,8 @@ static const struct { const char *keyword; uint8_t args; uint8_t command; } comm
     { "PING", 0, CMD_PING },
     { "WDOG", 1, CMD_WDOG },
     { "BURST", 2, CMD_BURST },
+    { "BURST", 4, CMD_BURST_AFTER },
+    { "CAPS?", 0, CMD_CAPS },
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 
@@ -90,15 +93,21 @@ static void fold_burst(gate *g)
     }
 }
 
-/* Any frequency command ends a burst under way: the train is stopped before the counter is set again. */
-static void set_frequency(gate *g, uint32_t hz, uint32_t pulses)
+/* Any frequency command ends a burst under way, or one still waiting for its start: the train is stopped (and a
+ * scheduled start cancelled) before the counter is set again. after_us: NO_AFTER to start at once. */
+#define NO_AFTER 0xFFFFFFFFUL
+static void set_frequency(gate *g, uint32_t hz, uint32_t pulses, uint32_t after_us)
 {
     g->hal->fire(0, 0);
     g->burst_left = pulses;
     g->burst_done = 0;
     g->hz = hz;
     if (hz > 0) {
-        g->hal->fire(hz, pulses);
+        if (after_us == NO_AFTER) {
+            g->hal->fire(hz, pulses);
+        } else {
+            g->hal->fire_after(hz, pulses, after_us);
+        }
     }
 }
 
@@ -115,15 +124,15 @@ static void reply(gate *g, const char *a, uint32_t number, uint8_t with_number)
 static void execute(gate *g, const char *line, uint8_t len)
 {
     /* Tokens: runs of non-space, as the twin's ^KEYWORD\s+(\S+)$ patterns see them. */
-    const char *token[4];
-    uint8_t token_len[4];
+    const char *token[5];
+    uint8_t token_len[5];
     uint8_t tokens = 0, too_many = 0;
     for (uint8_t i = 0; i < len;) {
         while (i < len && is_space(line[i])) i++;
         if (i == len) break;
         uint8_t start = i;
         while (i < len && !is_space(line[i])) i++;
-        if (tokens < 4) {
+        if (tokens < 5) {
             token[tokens] = line + start;
             token_len[tokens] = (uint8_t)(i - start);
             tokens++;
@@ -134,7 +143,8 @@ static void execute(gate *g, const char *line, uint8_t len)
 
     uint8_t command = CMD_NONE;
     for (uint8_t c = 0; c < COMMAND_COUNT && !too_many; c++) {
-        if (tokens == 1 + commands[c].args && same_word(token[0], token_len[0], commands[c].keyword)) {
+        if (tokens == 1 + commands[c].args && same_word(token[0], token_len[0], commands[c].keyword)
+            && (commands[c].command != CMD_BURST_AFTER || (g->hal->fire_after && same_word(token[3], token_len[3], "AFTER")))) {
             command = commands[c].command;
             break;
         }
@@ -154,12 +164,10 @@ static void execute(gate *g, const char *line, uint8_t len)
         return;
     }
 
-    int32_t a = 0, b = 0;
-    if (tokens >= 2 && !gate_parse_int(token[1], token_len[1], &a)) {
-        reply(g, "ERR 3 SYNTAX", 0, 0);
-        return;
-    }
-    if (tokens >= 3 && !gate_parse_int(token[2], token_len[2], &b)) {
+    int32_t a = 0, b = 0, c = 0;
+    if ((tokens >= 2 && !gate_parse_int(token[1], token_len[1], &a))
+        || (tokens >= 3 && !gate_parse_int(token[2], token_len[2], &b))
+        || (tokens >= 5 && !gate_parse_int(token[4], token_len[4], &c))) {
         reply(g, "ERR 3 SYNTAX", 0, 0);
         return;
     }
@@ -173,11 +181,11 @@ static void execute(gate *g, const char *line, uint8_t len)
     }
     case CMD_FREQ:
         if (a < 0 || (uint32_t)a > GATE_MAX_HZ) break;
-        set_frequency(g, (uint32_t)a, 0);
+        set_frequency(g, (uint32_t)a, 0, NO_AFTER);
         reply(g, "OK FREQ ", (uint32_t)a, 1);
         return;
     case CMD_OFF:
-        set_frequency(g, 0, 0);
+        set_frequency(g, 0, 0, NO_AFTER);
         reply(g, "OK FREQ 0", 0, 0);
         return;
     case CMD_STATE: {
@@ -202,8 +210,22 @@ static void execute(gate *g, const char *line, uint8_t len)
         return;
     case CMD_BURST:
         if (a < 1 || (uint32_t)a > GATE_MAX_BURST || b < 1 || (uint32_t)b > GATE_MAX_HZ) break;
-        set_frequency(g, (uint32_t)b, (uint32_t)a);
+        set_frequency(g, (uint32_t)b, (uint32_t)a, NO_AFTER);
         reply(g, "OK BURST ", (uint32_t)a, 1);
+        return;
+    case CMD_BURST_AFTER: {
+        if (a < 1 || (uint32_t)a > GATE_MAX_BURST || b < 1 || (uint32_t)b > GATE_MAX_HZ || c < 0 || (uint32_t)c > GATE_MAX_AFTER_US) break;
+        /* Armed at once (the reply says it was accepted); the HAL's timer fires the first pulse c us after the line's
+         * last byte. Waiting counts as firing: STATE? says ON and the watchdog watches the wait. */
+        set_frequency(g, (uint32_t)b, (uint32_t)a, (uint32_t)c);
+        char text[48];
+        put_u32(put(put_u32(put(text, "OK BURST "), (uint32_t)a), " AFTER "), (uint32_t)c);
+        g->hal->send(text);
+        return;
+    }
+    case CMD_CAPS:
+        /* What this gate can do beyond the base protocol; an older gate answers CAPS? with ERR 1 UNKNOWN. */
+        reply(g, g->hal->fire_after ? "OK CAPS AFTER" : "OK CAPS", 0, 0);
         return;
     }
     reply(g, "ERR 2 RANGE", 0, 0);
@@ -263,7 +285,7 @@ void gate_poll(gate *g, uint32_t now_ms)
     /* Off when no line was heard for the whole watchdog time: at the first count past it, so never early and at most
      * one count (1 ms) late. */
     if (g->hz > 0 && g->wdog_ms > 0 && (uint32_t)(now_ms - g->last_heard_ms) > g->wdog_ms) {
-        set_frequency(g, 0, 0);
+        set_frequency(g, 0, 0, NO_AFTER);
         g->tripped = 1;
         g->trips++;
     }

@@ -18,6 +18,8 @@
 #define GATE_MAX_BURST 1000000UL
 #define GATE_MIN_WDOG_MS 50UL
 #define GATE_MAX_WDOG_MS 60000UL
+/* Longest delay of a scheduled burst (BURST <n> <hz> AFTER <us>), microseconds. */
+#define GATE_MAX_AFTER_US 1000000UL
 /* Longest line kept (bytes before the '\n', a '\r' included); a longer one is answered ERR 1 UNKNOWN, as the twin does. */
 #define GATE_LINE_MAX 128
 
@@ -27,6 +29,11 @@ typedef struct gate_hal {
     void (*fire)(uint32_t hz, uint32_t pulses);
     /* Queue one reply line (text without the line end; the HAL adds '\n'). Must not block for long. */
     void (*send)(const char *text);
+    /* As fire (hz > 0), but the first pulse begins after_us microseconds after the line being handled now was received
+     * (the HAL's own stamp of its last byte, taken in its receive interrupt), timed by a hardware timer; at once when
+     * that time has already passed. fire(0, 0) cancels a start still waiting. NULL on a chip without it: the gate then
+     * refuses BURST ... AFTER with ERR 3 SYNTAX, as a gate older than it does, and CAPS? does not list AFTER. */
+    void (*fire_after)(uint32_t hz, uint32_t pulses, uint32_t after_us);
 } gate_hal;
 
 typedef struct gate {

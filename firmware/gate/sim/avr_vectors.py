@@ -76,7 +76,7 @@ def fired_period(hz):
 
 # --- every command and every error, on the wire ---------------------------------------------------------------------
 vectors = [
-    ("*IDN?", "OK PICGATE AVR-1.0"), ("STATE?", "OK STATE 0 OFF WDOG 1000"), ("PING", "OK PONG"),
+    ("*IDN?", "OK PICGATE AVR-1.1"), ("STATE?", "OK STATE 0 OFF WDOG 1000"), ("PING", "OK PONG"),
     ("FREQ 1000", "OK FREQ 1000"), ("STATE?", "OK STATE 1000 ON WDOG 1000"), ("OFF", "OK FREQ 0"),
     ("FREQ 100000", "OK FREQ 100000"), ("FREQ 0", "OK FREQ 0"), ("WDOG 0", "OK WDOG 0"), ("WDOG 50", "OK WDOG 50"),
     ("WDOG 60000", "OK WDOG 60000"), ("WDOG 1000", "OK WDOG 1000"), ("BURST 2 1000", "OK BURST 2"),
@@ -171,6 +171,56 @@ figures.append("first pulse after the line's last stop bit: " + ", ".join(f"{nam
                                                                            for name, d in first_pulse))
 figures.append(f"first pulse delay: min {min(delays)} cycles ({us(min(delays)):.1f} us), max {max(delays)} cycles "
                f"({us(max(delays)):.1f} us)")
+
+# --- scheduled bursts (BURST <n> <hz> AFTER <us>): the first pulse <us> after the line's last stop bit ----------------
+# The error is the first rising edge less (the line's cycle + us x 16). The image arms Timer0's compare START_TICKS early
+# for its interrupt's entry; what is left is the time base's 0.5 us tick and the interrupts that may delay the compare's
+# (the reply being sent, the 1 ms tick, Timer0's overflow).
+after_errors = []
+for us_after in (300, 1000, 5000, 20000, 100000, 1000000):
+    for n, hz in ((120, 1000), (3, 100000)):
+        for phase in (0, 5, 11, 777, 5003):  # the line's arrival at other phases of the ms tick and the time base
+            t0 = 100 * MS + phase
+            span = us_after * 16 + int(n * F / hz) + 60 * MS
+            lines = [(t0, "WDOG 0"), (t0 + 40 * MS, f"BURST {n} {hz} AFTER {us_after}")]
+            t1 = t0 + 40 * MS
+            replies, rises, falls = run(lines, t1 + span)
+            ok = texts(replies) == ["OK WDOG 0", f"OK BURST {n} AFTER {us_after}"]
+            check(ok, f"BurstAfter{us_after}_{n}At{hz}Hz_Acknowledged", str(texts(replies)))
+            check(len(rises) == n and len(falls) == n, f"BurstAfter{us_after}_{n}At{hz}Hz_FiresExactly{n}", f"fired {len(rises)}")
+            if rises:
+                after_errors.append((us_after, rises[0] - t1 - us_after * 16))
+for us_after in sorted({u for u, _ in after_errors}):
+    errs = [e for u, e in after_errors if u == us_after]
+    figures.append(f"BURST ... AFTER {us_after}: first pulse {us_after} us {'+' if min(errs) >= 0 else ''}{us(min(errs)):.2f}.."
+                   f"{us(max(errs)):+.2f} us after the line's last stop bit ({min(errs)}..{max(errs)} cycles, {len(errs)} runs)")
+errs = [e for u, e in after_errors if u >= 300]
+check(all(-16 <= e <= 40 for e in errs), "BurstAfter_300usAndMore_WithinTickAndInterrupts",
+      f"errors {min(errs)}..{max(errs)} cycles")
+figures.append(f"scheduled burst, 300 us and more: error {us(min(errs)):+.2f}..{us(max(errs)):+.2f} us over {len(errs)} runs")
+
+# Shorter than the gate's processing: the first pulse as soon as the line is processed, as a plain BURST.
+t0 = 100 * MS
+replies, rises, _ = run([(t0, "BURST 3 1000 AFTER 0")], t0 + 60 * MS)
+check(texts(replies) == ["OK BURST 3 AFTER 0"] and len(rises) == 3, "BurstAfter0_FiresWhenProcessed", str(texts(replies)))
+if rises:
+    figures.append(f"BURST 3 1000 AFTER 0: first pulse {us(rises[0] - t0):.1f} us after the line (the processing)")
+
+# A later frequency command cancels the waiting start; a PING does not.
+replies, rises, _ = run([(t0, "BURST 5 1000 AFTER 50000"), (t0 + 20 * MS, "OFF")], t0 + 120 * MS)
+check(len(rises) == 0 and texts(replies) == ["OK BURST 5 AFTER 50000", "OK FREQ 0"], "BurstAfter_ThenOff_NeverFires",
+      f"{len(rises)} pulses, {texts(replies)}")
+replies, rises, _ = run([(t0, "BURST 5 1000 AFTER 50000"), (t0 + 20 * MS, "BURST 2 1000")], t0 + 120 * MS)
+check(len(rises) == 2 and rises[0] < t0 + 21 * MS, "BurstAfter_ThenBurst_OnlyTheNewOne", f"{len(rises)} pulses")
+replies, rises, _ = run([(t0, "BURST 5 1000 AFTER 50000"), (t0 + 20 * MS, "PING")], t0 + 120 * MS)
+check(len(rises) == 5 and abs(rises[0] - t0 - 50000 * 16) <= 40, "BurstAfter_ThenPing_FiresOnTime", f"{len(rises)} pulses")
+# The watchdog watches the wait: WDOG 50 and a start 100 ms away never fires.
+replies, rises, _ = run([(t0, "WDOG 50"), (t0 + 40 * MS, "BURST 5 1000 AFTER 100000"), (t0 + 200 * MS, "STATE?")],
+                        t0 + 260 * MS)
+check(len(rises) == 0 and texts(replies)[-1] == "OK STATE 0 OFF WDOG 50 TRIPPED", "BurstAfter_WatchdogDuringWait_NeverFires",
+      f"{len(rises)} pulses, {texts(replies)}")
+replies, _, _ = run([(t0, "CAPS?")], t0 + 60 * MS)
+check(texts(replies) == ["OK CAPS AFTER"], "Caps_Asked_ListsAfter", str(texts(replies)))
 
 # --- the watchdog ----------------------------------------------------------------------------------------------------
 t0 = 100 * MS

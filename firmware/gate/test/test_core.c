@@ -7,9 +7,18 @@
 static char replies[16][64];
 static int reply_count;
 static uint32_t fired_hz, fired_pulses, fire_calls;
+static uint32_t fired_after; /* the delay of the last scheduled start; NO_AFTER_SEEN when the last fire started at once */
+#define NO_AFTER_SEEN 0xFFFFFFFFUL
 static int passed, failed;
 
-static void fake_fire(uint32_t hz, uint32_t pulses) { fired_hz = hz; fired_pulses = pulses; fire_calls++; }
+static void fake_fire(uint32_t hz, uint32_t pulses) { fired_hz = hz; fired_pulses = pulses; fired_after = NO_AFTER_SEEN; fire_calls++; }
+static void fake_fire_after(uint32_t hz, uint32_t pulses, uint32_t after_us)
+{
+    fired_hz = hz;
+    fired_pulses = pulses;
+    fired_after = after_us;
+    fire_calls++;
+}
 static void fake_send(const char *text)
 {
     if (reply_count < 16) {
@@ -17,7 +26,8 @@ static void fake_send(const char *text)
     }
     reply_count++;
 }
-static const gate_hal hal = { fake_fire, fake_send };
+static const gate_hal hal = { fake_fire, fake_send, fake_fire_after };
+static const gate_hal hal_without_after = { fake_fire, fake_send, 0 };
 static gate g;
 
 static void reset(void)
@@ -297,6 +307,70 @@ static void numbers_parse_as_dotnet_does(void)
     check(!gate_parse_int("1-", 2, &v), "ParseInt_TrailingSign_Refused", "");
 }
 
+static void scheduled_bursts(void)
+{
+    reset();
+    expect("Caps_WithAfter_ListsAfter", "CAPS?", "OK CAPS AFTER");
+    expect("BurstAfter_InRange_AcknowledgedWithDelay", "BURST 120 1000 AFTER 5000", "OK BURST 120 AFTER 5000");
+    expect_u32("BurstAfter_InRange_ScheduledWithDelay", fired_after, 5000);
+    expect_u32("BurstAfter_InRange_Counted", fired_pulses, 120);
+    expect_u32("BurstAfter_InRange_AtItsFrequency", fired_hz, 1000);
+    expect("BurstAfter_Waiting_StateOn", "STATE?", "OK STATE 1000 ON WDOG 1000");
+    expect_u32("BurstAfter_Counted_FiresExactly", run_pulses(1000), 120);
+    expect("BurstAfter_Zero_Acknowledged", "BURST 1 100000 AFTER 0", "OK BURST 1 AFTER 0");
+    expect_u32("BurstAfter_Zero_ScheduledAtZero", fired_after, 0);
+    expect("BurstAfter_Max_Acknowledged", "burst 1000000 100000 after 1000000", "OK BURST 1000000 AFTER 1000000");
+    expect("BurstAfter_SpacesAndTabs_Accepted", " BURST\t3  1000 AFTER\t+300 \r", "OK BURST 3 AFTER 300");
+    expect_u32("BurstAfter_PlusSign_ReadAsNumber", fired_after, 300);
+
+    /* A later frequency command cancels the start still waiting (the HAL is told to stop first). */
+    ask("BURST 10 1000 AFTER 20000");
+    fire_calls = 0;
+    expect("BurstAfter_ThenOff_Acknowledged", "OFF", "OK FREQ 0");
+    expect_u32("BurstAfter_ThenOff_Stopped", fired_hz, 0);
+    expect_u32("BurstAfter_ThenOff_OneStop", fire_calls, 1);
+    ask("BURST 10 1000 AFTER 20000");
+    expect("BurstAfter_ThenBurst_Acknowledged", "BURST 3 2000", "OK BURST 3");
+    expect_u32("BurstAfter_ThenBurst_StartsAtOnce", fired_after, NO_AFTER_SEEN);
+    expect_u32("BurstAfter_ThenBurst_NewCount", run_pulses(50), 3);
+    ask("BURST 10 1000");
+    run_pulses(4);
+    ask("BURST 5 1000 AFTER 1000");
+    expect_u32("BurstAfter_DuringBurst_NewCount", run_pulses(50), 5);
+
+    /* Errors: range, syntax; a refused one changes nothing. */
+    ask("OFF");
+    expect("BurstAfter_AboveMaxDelay_Err2", "BURST 5 1000 AFTER 1000001", "ERR 2 RANGE");
+    expect("BurstAfter_NegativeDelay_Err2", "BURST 5 1000 AFTER -1", "ERR 2 RANGE");
+    expect("BurstAfter_ZeroPulses_Err2", "BURST 0 1000 AFTER 300", "ERR 2 RANGE");
+    expect("BurstAfter_ZeroHz_Err2", "BURST 5 0 AFTER 300", "ERR 2 RANGE");
+    expect("BurstAfter_DelayNotANumber_Err3", "BURST 5 1000 AFTER x", "ERR 3 SYNTAX");
+    expect("BurstAfter_OtherWord_Err3", "BURST 5 1000 LATER 300", "ERR 3 SYNTAX");
+    expect("BurstAfter_NoDelay_Err3", "BURST 5 1000 AFTER", "ERR 3 SYNTAX");
+    expect("BurstAfter_ExtraWord_Err3", "BURST 5 1000 AFTER 300 NOW", "ERR 3 SYNTAX");
+    expect("BurstAfter_DelayBeyondInt32_Err3", "BURST 5 1000 AFTER 2147483648", "ERR 3 SYNTAX");
+    expect_u32("BurstAfter_Refused_NeverFired", fired_hz, 0);
+
+    /* The watchdog watches the wait: a start still waiting when it trips never comes. */
+    reset();
+    gate_poll(&g, 10);
+    ask("WDOG 50");
+    ask("BURST 100 1000 AFTER 1000000");
+    gate_poll(&g, 60);
+    expect_u32("BurstAfter_WatchdogTime_StillArmed", fired_hz, 1000);
+    gate_poll(&g, 61);
+    expect_u32("BurstAfter_WatchdogTrips_Cancelled", fired_hz, 0);
+    expect("BurstAfter_WatchdogTrips_Tripped", "STATE?", "OK STATE 0 OFF WDOG 50 TRIPPED");
+
+    /* A chip without a scheduled start: refused as a gate older than it does, and not listed. */
+    reply_count = 0;
+    gate_init(&g, &hal_without_after, "OLD-1", 1000);
+    expect("BurstAfter_ChipWithout_Err3", "BURST 5 1000 AFTER 300", "ERR 3 SYNTAX");
+    expect_u32("BurstAfter_ChipWithout_NeverFired", fired_hz, 0);
+    expect("Caps_ChipWithout_ListsNothing", "CAPS?", "OK CAPS");
+    expect("Burst_ChipWithout_StillWorks", "BURST 5 1000", "OK BURST 5");
+}
+
 int main(void)
 {
     commands_answer_as_the_protocol_says();
@@ -306,6 +380,7 @@ int main(void)
     watchdog_switches_off_after_silence();
     lines_split_long_and_not_ascii();
     numbers_parse_as_dotnet_does();
+    scheduled_bursts();
     printf("gate core: %d passed, %d failed\n", passed, failed);
     return failed ? 1 : 0;
 }

@@ -103,6 +103,16 @@ public sealed record LaserGateProfile
     /// <summary>Fires a burst; {0} is the pulse count, {1} the frequency in Hz.</summary>
     public string BurstCommand { get; init; } = "BURST {0} {1}";
 
+    /// <summary>
+    /// Fires a burst whose first pulse the gate times itself: {0} pulses at {1} Hz, the first {2} µs after the line's last
+    /// byte has arrived (docs/laser-gate-protocol.md, "Scheduled bursts"). Only a gate whose <see cref="CapabilitiesCommand"/>
+    /// lists AFTER takes it; an older gate refuses it and never fires it.
+    /// </summary>
+    public string BurstAfterCommand { get; init; } = "BURST {0} {1} AFTER {2}";
+
+    /// <summary>Asks what the gate can do beyond the base protocol (an older gate refuses it).</summary>
+    public string CapabilitiesCommand { get; init; } = "CAPS?";
+
     /// <summary>What acknowledges <see cref="IdentifyCommand"/> after the prefix; empty: any acknowledgement.</summary>
     public string IdentifyReply { get; init; } = string.Empty;
 
@@ -123,6 +133,12 @@ public sealed record LaserGateProfile
 
     /// <summary>What acknowledges <see cref="BurstCommand"/> after the prefix; {0} and {1} as in the command.</summary>
     public string BurstReply { get; init; } = "BURST {0}";
+
+    /// <summary>What acknowledges <see cref="BurstAfterCommand"/> after the prefix; {0}, {1} and {2} as in the command.</summary>
+    public string BurstAfterReply { get; init; } = "BURST {0} AFTER {2}";
+
+    /// <summary>The first word of the reply to <see cref="CapabilitiesCommand"/> after the prefix; the words after it name what the gate can do.</summary>
+    public string CapabilitiesReply { get; init; } = "CAPS";
 
     /// <summary>Every successful reply starts with this.</summary>
     public string AckPrefix { get; init; } = "OK";

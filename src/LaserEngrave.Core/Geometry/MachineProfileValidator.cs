@@ -280,6 +280,8 @@ public static class MachineProfileValidator
             ("keepAliveCommand", gate.KeepAliveCommand, 0),
             ("watchdogCommand", gate.WatchdogCommand, 1),
             ("burstCommand", gate.BurstCommand, 2),
+            ("burstAfterCommand", gate.BurstAfterCommand, 3),
+            ("capabilitiesCommand", gate.CapabilitiesCommand, 0),
         };
         if (frequencyOnly)
         {
@@ -334,6 +336,18 @@ public static class MachineProfileValidator
             for (var j = i + 1; j < heads.Count; j++)
             {
                 var (a, b) = (heads[i], heads[j]);
+                if (IsBurstPair(a.Field, b.Field))
+                {
+                    // The scheduled burst is the burst with more words (BURST {0} {1} AFTER {2}): the same head, told apart
+                    // by its words. Neither may read as the other, or a switch-on meant for later would fire at once.
+                    if (ReadsAs(a.Value, b.Value) || ReadsAs(b.Value, a.Value))
+                    {
+                        problems.Add($"{b.Field} \"{b.Value}\" reads as {a.Field} \"{a.Value}\": the scheduled burst must differ from the burst in more than its values");
+                    }
+
+                    continue;
+                }
+
                 if (a.Head.StartsWith(b.Head, StringComparison.OrdinalIgnoreCase) || b.Head.StartsWith(a.Head, StringComparison.OrdinalIgnoreCase))
                 {
                     var relation = string.Equals(a.Value, b.Value, StringComparison.OrdinalIgnoreCase) ? "is the same as" : "begins like";
@@ -365,6 +379,8 @@ public static class MachineProfileValidator
             ("keepAliveReply", gate.KeepAliveReply, 0, false),
             ("watchdogReply", gate.WatchdogReply, 1, false),
             ("burstReply", gate.BurstReply, 2, false),
+            ("burstAfterReply", gate.BurstAfterReply, 3, false),
+            ("capabilitiesReply", gate.CapabilitiesReply, 0, false),
         };
         if (frequencyOnly)
         {
@@ -394,6 +410,19 @@ public static class MachineProfileValidator
         }
     }
 
+    private static bool IsBurstPair(string a, string b) =>
+        (a, b) is ("gate.burstCommand", "gate.burstAfterCommand") or ("gate.burstAfterCommand", "gate.burstCommand");
+
+    /// <summary>Whether a line made from template <paramref name="line"/> is matched by template <paramref name="pattern"/>, as the gate matches it (each placeholder one word, spaces any run of whitespace, any case).</summary>
+    private static bool ReadsAs(string line, string pattern)
+    {
+        var values = Enumerable.Range(0, 3).Select(i => (object)(1000 + i)).ToArray();
+        var text = string.Format(CultureInfo.InvariantCulture, line, values);
+        var regex = "^" + string.Concat(System.Text.RegularExpressions.Regex.Split(pattern.Trim(), @"(\{\d+\})").Select(part =>
+            System.Text.RegularExpressions.Regex.IsMatch(part, @"^\{\d+\}$") ? @"(\S+)" : System.Text.RegularExpressions.Regex.Replace(System.Text.RegularExpressions.Regex.Escape(part), @"(\\ )+", @"\s+"))) + "$";
+        return System.Text.RegularExpressions.Regex.IsMatch(text.Trim(), regex, System.Text.RegularExpressions.RegexOptions.IgnoreCase | System.Text.RegularExpressions.RegexOptions.CultureInvariant);
+    }
+
     /// <summary>Null when a reply template formats with <paramref name="count"/> values (it need not use them all).</summary>
     private static string? ReplyTemplateProblem(string format, int count)
     {
@@ -404,9 +433,12 @@ public static class MachineProfileValidator
         }
         catch (FormatException)
         {
-            return count == 1
-                ? "is not a valid reply template: only {0} (the command's value) may stand in braces; double any other brace"
-                : "is not a valid reply template: only {0} and {1} (the command's values) may stand in braces; double any other brace";
+            return count switch
+            {
+                1 => "is not a valid reply template: only {0} (the command's value) may stand in braces; double any other brace",
+                2 => "is not a valid reply template: only {0} and {1} (the command's values) may stand in braces; double any other brace",
+                _ => "is not a valid reply template: only {0}, {1} and {2} (the command's values) may stand in braces; double any other brace",
+            };
         }
     }
 
@@ -421,7 +453,7 @@ public static class MachineProfileValidator
         }
         catch (FormatException)
         {
-            return $"is not a valid template: use {{0}}{(count > 1 ? " and {1}" : string.Empty)} for the value{(count > 1 ? "s" : string.Empty)} and double any other brace";
+            return $"is not a valid template: use {(count switch { 1 => "{0}", 2 => "{0} and {1}", _ => "{0}, {1} and {2}" })} for the value{(count > 1 ? "s" : string.Empty)} and double any other brace";
         }
 
         for (var i = 0; i < count; i++)

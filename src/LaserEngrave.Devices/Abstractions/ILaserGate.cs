@@ -24,6 +24,20 @@ public interface ILaserGate
     Task BurstAsync(int pulses, int frequencyHz, CancellationToken cancellationToken);
 
     /// <summary>
+    /// Fires <paramref name="pulses"/> pulses at <paramref name="frequencyHz"/>, the first <paramref name="afterUs"/> µs after
+    /// the line's last byte has arrived at the gate, timed by the gate itself (docs/laser-gate-protocol.md, "Scheduled
+    /// bursts"); waits for the acknowledgement, which the gate sends when it has accepted the line, before the first pulse.
+    /// Only for a gate whose <see cref="GetCapabilitiesAsync"/> lists <see cref="LaserGateCapabilities.After"/>; a link that
+    /// cannot send it fails.
+    /// </summary>
+    Task BurstAfterAsync(int pulses, int frequencyHz, int afterUs, CancellationToken cancellationToken) =>
+        Task.FromException(new NotSupportedException("this laser gate link cannot send a scheduled burst"));
+
+    /// <summary>What the gate can do beyond the base protocol (its answer to CAPS?); none for a gate that refuses the question.</summary>
+    Task<IReadOnlySet<string>> GetCapabilitiesAsync(CancellationToken cancellationToken) =>
+        Task.FromResult<IReadOnlySet<string>>(new HashSet<string>());
+
+    /// <summary>
     /// Sends one command of the emergency off (<see cref="Execution.LaserOff"/>) at once, whatever the link's state: ahead of
     /// every ordinary command waiting to be sent and without first getting the link back in step after a timeout (a
     /// keepalive sent first would only feed the watchdog the off counts on); waits for the acknowledgement.
@@ -48,6 +62,13 @@ public enum EmergencyCommand
 
     /// <summary>The shortest watchdog the profile rules allow (<see cref="Core.Geometry.MachineProfileValidator.MinWatchdogMs"/> ms), so a gate that hears nothing more stops soonest.</summary>
     ShortestWatchdog,
+}
+
+/// <summary>The words a gate's CAPS? reply may list.</summary>
+public static class LaserGateCapabilities
+{
+    /// <summary>The scheduled burst, BURST n hz AFTER us.</summary>
+    public const string After = "AFTER";
 }
 
 /// <summary>What the gate reports about itself.</summary>

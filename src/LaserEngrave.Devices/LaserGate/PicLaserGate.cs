@@ -127,6 +127,37 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
         await SendAsync(Format(Profile.BurstCommand, pulses, frequencyHz), Format(Profile.BurstReply, pulses, frequencyHz), cancellationToken);
     }
 
+    /// <inheritdoc/>
+    public async Task BurstAfterAsync(int pulses, int frequencyHz, int afterUs, CancellationToken cancellationToken)
+    {
+        ArgumentOutOfRangeException.ThrowIfNegativeOrZero(pulses);
+        ArgumentOutOfRangeException.ThrowIfNegativeOrZero(frequencyHz);
+        ArgumentOutOfRangeException.ThrowIfNegative(afterUs);
+        ArgumentOutOfRangeException.ThrowIfGreaterThan(afterUs, MaxAfterUs);
+        await SendAsync(Format(Profile.BurstAfterCommand, pulses, frequencyHz, afterUs), Format(Profile.BurstAfterReply, pulses, frequencyHz, afterUs), cancellationToken);
+    }
+
+    /// <summary>Longest delay of a scheduled burst the protocol allows, µs.</summary>
+    public const int MaxAfterUs = 1_000_000;
+
+    /// <inheritdoc/>
+    /// <remarks>A gate that refuses the question (an older one answers CAPS? with its error prefix) has no capabilities; a timeout or a lost link still fails.</remarks>
+    public async Task<IReadOnlySet<string>> GetCapabilitiesAsync(CancellationToken cancellationToken)
+    {
+        string text;
+        try
+        {
+            text = await SendAsync(Profile.CapabilitiesCommand, Profile.CapabilitiesReply, cancellationToken);
+        }
+        catch (LaserGateException ex) when (ex.Reply.StartsWith(Profile.ErrorPrefix, StringComparison.Ordinal))
+        {
+            return new HashSet<string>(StringComparer.OrdinalIgnoreCase);
+        }
+
+        var words = text.Split(' ', StringSplitOptions.RemoveEmptyEntries | StringSplitOptions.TrimEntries);
+        return new HashSet<string>(words.Skip(Profile.CapabilitiesReply.Split(' ', StringSplitOptions.RemoveEmptyEntries).Length), StringComparer.OrdinalIgnoreCase);
+    }
+
     public async Task EmergencyAsync(EmergencyCommand command, CancellationToken cancellationToken)
     {
         var (line, expected) = command switch

@@ -19,6 +19,8 @@ internal sealed class GateCommandSet
             Compile(GateCommand.KeepAlive, profile.KeepAliveCommand),
             Compile(GateCommand.Watchdog, profile.WatchdogCommand),
             Compile(GateCommand.Burst, profile.BurstCommand),
+            Compile(GateCommand.BurstAfter, profile.BurstAfterCommand),
+            Compile(GateCommand.Capabilities, profile.CapabilitiesCommand),
         ];
     }
 
@@ -64,4 +66,6 @@ internal enum GateCommand
     KeepAlive,
     Watchdog,
     Burst,
+    BurstAfter,
+    Capabilities,
 }

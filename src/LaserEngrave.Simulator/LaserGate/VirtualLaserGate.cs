@@ -30,6 +30,9 @@ public sealed class VirtualLaserGate
     /// <summary>Longest line kept; a longer one is answered as unknown.</summary>
     public const int MaxLineLength = 128;
 
+    /// <summary>Longest delay of a scheduled burst (BURST n hz AFTER us), µs.</summary>
+    public const int MaxAfterUs = 1_000_000;
+
     private readonly LaserGateProfile _profile;
     private readonly SimulatorOptions _options;
     private readonly SimulationClock _clock;
@@ -43,6 +46,10 @@ public sealed class VirtualLaserGate
     private long _generation;
     private ITimer? _watchdog;
     private ITimer? _burstEnd;
+    private ITimer? _scheduledStart;
+
+    // The frequency of a scheduled burst accepted and waiting for its first pulse (0: none): STATE? says ON, the watchdog watches.
+    private int _armedHz;
     private readonly HashSet<ITimer> _pending = [];
     private double _executeAfter;
     private LinkSession? _session;
@@ -136,17 +143,17 @@ public sealed class VirtualLaserGate
             if (_options.GateProcessing is not null)
             {
                 // A drawn processing time (a gate of another make): the link runs the action that much later.
-                return () => Execute(line);
+                return () => Execute(line, arrivedAt);
             }
 
-            return () => ExecuteAsTheFirmware(line, lineBytes);
+            return () => ExecuteAsTheFirmware(line, lineBytes, arrivedAt);
         }
     }
 
     // The reference firmware's own time for this line (GateFirmwareTiming): the link hands the line over as its last
     // byte arrives, and the gate acts when the firmware would have. Lines keep their order (a line takes milliseconds to
     // arrive, the firmware well under one to act, so a later line never overtakes).
-    private void ExecuteAsTheFirmware(string line, int lineBytes)
+    private void ExecuteAsTheFirmware(string line, int lineBytes, double arrivedAt)
     {
         lock (_lock)
         {
@@ -155,6 +162,8 @@ public sealed class VirtualLaserGate
             {
                 GateCommand.Frequency => TryNumber(args[0], out var hz) && hz is > 0 and <= MaxFrequencyHz,
                 GateCommand.Burst => TryNumber(args[0], out var n) && TryNumber(args[1], out var bhz) && n is >= 1 and <= 1_000_000 && bhz is >= 1 and <= MaxFrequencyHz,
+
+                // A scheduled burst is accepted (and answered) when the train is stopped; its first pulse is timed apart.
                 _ => false,
             };
             var at = Math.Max(_clock.NowSeconds + GateFirmwareTiming.ProcessingSeconds(command, lineBytes, fires), _executeAfter);
@@ -167,13 +176,13 @@ public sealed class VirtualLaserGate
                     _pending.Remove(timer!);
                 }
 
-                Execute(line);
+                Execute(line, arrivedAt);
             });
             _pending.Add(timer);
         }
     }
 
-    private void Execute(string line)
+    private void Execute(string line, double arrivedAt)
     {
         bool disconnect;
         lock (_lock)
@@ -195,7 +204,7 @@ public sealed class VirtualLaserGate
                 }
                 else if (line.Length > 0)
                 {
-                    var reply = Run(line, now);
+                    var reply = Run(line, now, arrivedAt);
                     if (!Silent)
                     {
                         Reply(reply);
@@ -210,7 +219,7 @@ public sealed class VirtualLaserGate
         }
     }
 
-    private string Run(string line, double now)
+    private string Run(string line, double now, double arrivedAt)
     {
         var ok = _profile.AckPrefix;
         var command = _commands.Match(line, out var args);
@@ -241,7 +250,7 @@ public sealed class VirtualLaserGate
                 SetFrequency(0, now);
                 return Ack(_profile.OffReply);
             case GateCommand.State:
-                var state = $"{ok} STATE {FrequencyHz} {(IsFiring ? "ON" : "OFF")} WDOG {WatchdogMs}{(Tripped ? " TRIPPED" : string.Empty)}";
+                var state = $"{ok} STATE {(IsFiring ? FrequencyHz : _armedHz)} {(IsFiring || _armedHz > 0 ? "ON" : "OFF")} WDOG {WatchdogMs}{(Tripped ? " TRIPPED" : string.Empty)}";
                 Tripped = false;
                 return state;
             case GateCommand.KeepAlive:
@@ -271,23 +280,23 @@ public sealed class VirtualLaserGate
                     return Range();
                 }
 
-                SetFrequency(burstHz, now);
-                var generation = _generation;
-                // The gate counts its pulses: the burst ends exactly N fired periods after it began (the firmware's
-                // period grid), though the clock's timer, rounded up to whole ticks, runs a moment later (which would
-                // let an (N+1)th pulse through).
-                var end = now + (pulses * GateFirmwareTiming.FiredPeriodSeconds(burstHz));
-                _burstEnd = _clock.At(end, () =>
-                {
-                    lock (_lock)
-                    {
-                        if (generation == _generation)
-                        {
-                            SetFrequency(0, end);
-                        }
-                    }
-                });
+                StartBurst(pulses, burstHz, now);
                 return Ack(_profile.BurstReply, pulses, burstHz);
+            case GateCommand.BurstAfter:
+                if (!TryNumber(args[0], out var afterPulses) || !TryNumber(args[1], out var afterHz) || !TryNumber(args[2], out var afterUs))
+                {
+                    return Syntax();
+                }
+
+                if (afterPulses is < 1 or > 1_000_000 || afterHz is < 1 or > MaxFrequencyHz || afterUs is < 0 or > MaxAfterUs)
+                {
+                    return Range();
+                }
+
+                ScheduleBurst(afterPulses, afterHz, afterUs, now, arrivedAt);
+                return Ack(_profile.BurstAfterReply, afterPulses, afterHz, afterUs);
+            case GateCommand.Capabilities:
+                return $"{ok} {_profile.CapabilitiesReply} AFTER";
             case GateCommand.Malformed:
                 return Syntax();
             default:
@@ -299,6 +308,49 @@ public sealed class VirtualLaserGate
         string Syntax() => $"{_profile.ErrorPrefix} 3 SYNTAX";
 
         string Range() => $"{_profile.ErrorPrefix} 2 RANGE";
+    }
+
+    // Caller holds _lock. Fires pulses at hz from now, counted: the burst ends exactly N fired periods after it began (the
+    // firmware's period grid), though the clock's timer, rounded up to whole ticks, runs a moment later (which would let
+    // an (N+1)th pulse through).
+    private void StartBurst(int pulses, int hz, double now)
+    {
+        SetFrequency(hz, now);
+        var generation = _generation;
+        var end = now + (pulses * GateFirmwareTiming.FiredPeriodSeconds(hz));
+        _burstEnd = _clock.At(end, () =>
+        {
+            lock (_lock)
+            {
+                if (generation == _generation)
+                {
+                    SetFrequency(0, end);
+                }
+            }
+        });
+    }
+
+    // Caller holds _lock. The reference firmware's scheduled burst: accepted now (the train under way stopped, the reply
+    // leaving), its first pulse afterUs after the line's last byte arrived, on the gate's own timer (simavr: within
+    // +0.44 µs of that, docs/gate-firmware.md), or, when that is sooner than the gate can start a train, as soon as it can
+    // (GateFirmwareTiming.StartCycles after the line is processed). Any later frequency command or the watchdog cancels it.
+    private void ScheduleBurst(int pulses, int hz, int afterUs, double now, double arrivedAt)
+    {
+        SetFrequency(0, now);
+        _armedHz = hz;
+        var generation = _generation;
+        var start = Math.Max(arrivedAt + (afterUs / 1e6), now + (GateFirmwareTiming.StartCycles / GateFirmwareTiming.ClockHz));
+        _scheduledStart = _clock.At(start, () =>
+        {
+            lock (_lock)
+            {
+                if (generation == _generation)
+                {
+                    StartBurst(pulses, hz, start);
+                }
+            }
+        });
+        ArmWatchdog();
     }
 
     private static bool TryNumber(string text, out int value) =>
@@ -313,6 +365,9 @@ public sealed class VirtualLaserGate
         _generation++;
         _burstEnd?.Dispose();
         _burstEnd = null;
+        _scheduledStart?.Dispose();
+        _scheduledStart = null;
+        _armedHz = 0;
         if (IsFiring && hz > 0)
         {
             _recorder.RecordLaser(now, 0);
@@ -329,7 +384,7 @@ public sealed class VirtualLaserGate
     {
         _watchdog?.Dispose();
         _watchdog = null;
-        if (!IsFiring || WatchdogMs <= 0)
+        if ((!IsFiring && _armedHz == 0) || WatchdogMs <= 0)
         {
             return;
         }
@@ -340,7 +395,7 @@ public sealed class VirtualLaserGate
         {
             lock (_lock)
             {
-                if (generation != _generation || heard != _lastHeard || !IsFiring)
+                if (generation != _generation || heard != _lastHeard || (!IsFiring && _armedHz == 0))
                 {
                     return;
                 }

@@ -231,6 +231,103 @@ public class VirtualLaserGateTests
         Assert.InRange(to - from, 0.5, 0.6);
     }
 
+    [Theory(Timeout = 20_000)]
+    [InlineData(300)]
+    [InlineData(1000)]
+    [InlineData(5000)]
+    [InlineData(20000)]
+    public async Task BurstAfter_Delay_FirstPulseThatLongAfterTheLineArrived(int afterUs)
+    {
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { GateProcessing = null });
+        var text = $"BURST 120 1000 AFTER {afterUs}";
+        var sent = bench.Now;
+
+        Assert.Equal($"OK BURST 120 AFTER {afterUs}", await bench.AskAsync(text));
+        await bench.WaitAsync(TimeSpan.FromSeconds(1));
+
+        // The line's last byte arrived (text.Length + 1) bytes after the write; the gate's own timer does the rest.
+        var arrived = sent.TotalSeconds + ((text.Length + 1) * 10.0 / 9600);
+        var (from, to) = Assert.Single(bench.Machine.Recorder.LaserOnIntervals(bench.Machine.NowSeconds));
+        Assert.Equal(arrived + (afterUs / 1e6), from, 6);
+        Assert.Equal(0.120, to - from, 6);
+    }
+
+    [Fact(Timeout = 20_000)]
+    public async Task BurstAfter_Accepted_AcknowledgedBeforeTheFirstPulseAndStateOn()
+    {
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { GateProcessing = null });
+
+        await bench.SendLineAsync("BURST 10 1000 AFTER 50000");
+        var (ack, at) = await bench.ReceiveLineAsync();
+        var state = await bench.AskAsync("STATE?");
+        var firingWhileWaiting = bench.Machine.Gate.IsFiring;
+        await bench.WaitAsync(TimeSpan.FromSeconds(1));
+
+        Assert.Equal("OK BURST 10 AFTER 50000", ack);
+        Assert.Equal("OK STATE 1000 ON WDOG 1000", state);
+        Assert.False(firingWhileWaiting);
+        var (from, _) = Assert.Single(bench.Machine.Recorder.LaserOnIntervals(bench.Machine.NowSeconds));
+        Assert.True(at.TotalSeconds < from, $"acknowledged at {at.TotalSeconds} s, first pulse at {from} s");
+    }
+
+    [Theory(Timeout = 20_000)]
+    [InlineData("OFF")]
+    [InlineData("FREQ 0")]
+    public async Task BurstAfter_FrequencyCommandWhileWaiting_NeverFires(string command)
+    {
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { GateProcessing = null });
+
+        await bench.AskAsync("BURST 10 1000 AFTER 100000");
+        await bench.AskAsync(command);
+        await bench.WaitAsync(TimeSpan.FromSeconds(1));
+
+        Assert.Empty(bench.Machine.Recorder.LaserOnIntervals(bench.Machine.NowSeconds));
+        Assert.Equal("OK STATE 0 OFF WDOG 1000", await bench.AskAsync("STATE?"));
+    }
+
+    [Fact(Timeout = 20_000)]
+    public async Task BurstAfter_WatchdogTripsWhileWaiting_NeverFires()
+    {
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { GateProcessing = null });
+        await bench.AskAsync("WDOG 50");
+
+        await bench.AskAsync("BURST 10 1000 AFTER 1000000");
+        await bench.WaitAsync(TimeSpan.FromSeconds(2));
+
+        Assert.Empty(bench.Machine.Recorder.LaserOnIntervals(bench.Machine.NowSeconds));
+        Assert.Equal("OK STATE 0 OFF WDOG 50 TRIPPED", await bench.AskAsync("STATE?"));
+        Assert.Equal(1, bench.Machine.Gate.WatchdogTrips);
+    }
+
+    [Fact(Timeout = 20_000)]
+    public async Task BurstAfter_ShorterThanTheProcessing_FiresWhenTheGateCan()
+    {
+        await using var bench = MachineBench.Create(MachineBench.WireOnly with { GateProcessing = null });
+        var sent = bench.Now;
+
+        await bench.AskAsync("BURST 3 1000 AFTER 0");
+        await bench.WaitAsync(TimeSpan.FromSeconds(1));
+
+        var arrived = sent.TotalSeconds + (21 * 10.0 / 9600);
+        var (from, _) = Assert.Single(bench.Machine.Recorder.LaserOnIntervals(bench.Machine.NowSeconds));
+        Assert.InRange(from - arrived, 100e-6, 300e-6);
+    }
+
+    [Theory(Timeout = 20_000)]
+    [InlineData("BURST 5 1000 AFTER 1000001", "ERR 2 RANGE")]
+    [InlineData("BURST 5 1000 AFTER -1", "ERR 2 RANGE")]
+    [InlineData("BURST 0 1000 AFTER 300", "ERR 2 RANGE")]
+    [InlineData("BURST 5 1000 AFTER x", "ERR 3 SYNTAX")]
+    [InlineData("BURST 5 1000 LATER 300", "ERR 3 SYNTAX")]
+    [InlineData("burst 5 1000 after 300", "OK BURST 5 AFTER 300")]
+    [InlineData("CAPS?", "OK CAPS AFTER")]
+    public async Task BurstAfter_Lines_AnsweredAsTheFirmware(string line, string reply)
+    {
+        await using var bench = MachineBench.Create();
+
+        Assert.Equal(reply, await bench.AskAsync(line));
+    }
+
     [Fact(Timeout = 20_000)]
     public async Task Profile_OtherCommandStrings_TheGateSpeaksThem()
     {
