@@ -20,11 +20,12 @@ public sealed class TwinCamera
     private readonly List<SampleMark> _marks = [];
     private long _frames;
 
-    public TwinCamera(SimulatedMachine machine, TwinCameraOptions? options = null)
+    /// <param name="optics">The camera's optics when the machine's profile has no camera section (the app's twin then shows a default camera).</param>
+    public TwinCamera(SimulatedMachine machine, TwinCameraOptions? options = null, CameraProfile? optics = null)
     {
         ArgumentNullException.ThrowIfNull(machine);
         _machine = machine;
-        Profile = machine.Profile.Camera ?? throw new ArgumentException("the machine profile has no camera section", nameof(machine));
+        Profile = machine.Profile.Camera ?? optics ?? throw new ArgumentException("the machine profile has no camera section", nameof(machine));
         Options = options ?? new TwinCameraOptions();
         _texture = new SampleTexture(Options.Seed);
     }
