@@ -16,13 +16,17 @@ namespace LaserEngrave.App.ViewModels;
 public sealed partial class CameraViewModel : ObservableObject
 {
     private readonly ICameraService _camera;
+    private readonly Lock _refreshLock = new();
     private object? _shown;
+    private int _refreshState; // 0 idle, 1 refreshing, 2 refreshing and asked again
 
     public CameraViewModel(ICameraService camera)
     {
         ArgumentNullException.ThrowIfNull(camera);
         _camera = camera;
-        camera.Changed += (_, _) => Refresh();
+        // A change is reported on the machine's own thread (the simulation's loop on the twin): the twin's frame is rendered
+        // on the thread pool instead, at most one at a time, so the machine never waits for a picture.
+        camera.Changed += (_, _) => RefreshSoon();
         Refresh();
     }
 
@@ -168,25 +172,54 @@ public sealed partial class CameraViewModel : ObservableObject
         Refresh();
     }
 
+    private void RefreshSoon()
+    {
+        if (Interlocked.Increment(ref _refreshState) > 1)
+        {
+            Interlocked.Exchange(ref _refreshState, 2);
+            return;
+        }
+
+        _ = Task.Run(() =>
+        {
+            do
+            {
+                Interlocked.Exchange(ref _refreshState, 1);
+                try
+                {
+                    Refresh();
+                }
+                catch (Exception ex) when (ex is CameraException or InvalidOperationException or ArgumentException)
+                {
+                    Error = ex.Message;
+                }
+            }
+            while (Interlocked.CompareExchange(ref _refreshState, 0, 1) != 1);
+        });
+    }
+
     /// <summary>Takes the twin's frame again when the stage, the camera or the job changed, and everything drawn over it.</summary>
     public void Refresh()
     {
         // A frame costs a render of the twin: positions are reported every 200 ms while the stage follows, mostly unchanged.
-        var key = (_camera.IsTwin, _camera.StagePositionUm, _camera.Camera, _camera.JobBoxUm, _camera.CanMove);
-        if (Equals(key, _shown))
+        lock (_refreshLock)
         {
-            return;
-        }
+            var key = (_camera.IsTwin, _camera.StagePositionUm, _camera.Camera, _camera.JobBoxUm, _camera.CanMove);
+            if (Equals(key, _shown))
+            {
+                return;
+            }
 
-        _shown = key;
-        if (_camera.IsTwin && _camera.TwinFrame() is { } frame)
-        {
-            TwinFrameUrl = "data:image/png;base64," + Convert.ToBase64String(frame.ToPng());
-            Sharpness = FocusMeasure.Sharpness(frame);
-        }
-        else
-        {
-            TwinFrameUrl = null;
+            _shown = key;
+            if (_camera.IsTwin && _camera.TwinFrame() is { } frame)
+            {
+                TwinFrameUrl = "data:image/png;base64," + Convert.ToBase64String(frame.ToPng());
+                Sharpness = FocusMeasure.Sharpness(frame);
+            }
+            else
+            {
+                TwinFrameUrl = null;
+            }
         }
 
         OnPropertyChanged(string.Empty);

@@ -64,7 +64,7 @@ public sealed class CameraPanelTests : ComponentTest
 
         await cut.InvokeAsync(() => cut.Instance.OnCameraClick(179.5, 104.5));
 
-        await service.Received(1).GoToAsync(10_020, 9_980, Arg.Any<CancellationToken>());
+        cut.WaitForAssertion(() => service.Received(1).GoToAsync(10_020, 9_980, Arg.Any<CancellationToken>()));
         cut.WaitForAssertion(() => Assert.Contains("Going to 10.02, 9.98 mm (pixel 180, 105), laser off", cut.Find("#camera-goto").TextContent, StringComparison.Ordinal));
     }
 
