@@ -163,8 +163,9 @@ public sealed partial class CameraViewModel : ObservableObject
                 string.Create(CultureInfo.InvariantCulture, $"Residual: {c.ResidualUm:0.###} µm over {result.Jogs.Count} jogs"),
             ];
         }
-        catch (CameraException ex)
+        catch (Exception ex) when (ex is not OperationCanceledException)
         {
+            // Whatever stopped it (a refused move, a device error), the panel says so: the command runs detached from the page.
             Error = ex.Message;
         }
 
