@@ -55,6 +55,8 @@ public static class AppHost
         services.AddSingleton(sp => new PresetsViewModel(sp.GetRequiredService<IPresetStore>(), sp.GetRequiredService<MainViewModel>().Job));
         services.AddSingleton(sp => new CalibrationViewModel(sp.GetRequiredService<MainViewModel>(), sp.GetRequiredService<AppFolders>().DataFolder));
         services.AddSingleton(sp => new AlignmentViewModel(sp.GetRequiredService<MainViewModel>(), sp.GetRequiredService<AppFolders>().DataFolder));
+        services.AddSingleton<ICameraService>(sp => new CameraService(sp.GetRequiredService<MainViewModel>()));
+        services.AddSingleton(sp => new CameraViewModel(sp.GetRequiredService<ICameraService>()));
         services.AddSingleton<IMachineCheckService, MachineCheckService>();
         services.AddSingleton(sp => new CommissionViewModel(sp.GetRequiredService<MainViewModel>(), sp.GetRequiredService<IMachineCheckService>(), sp.GetRequiredService<AppFolders>().DataFolder, sp.GetRequiredService<TimeProvider>()));
         services.AddSingleton<IMarkService>(sp => new MarkService(sp.GetRequiredService<AppFolders>(), () => sp.GetRequiredService<MainViewModel>().Job.Profile, sp.GetRequiredService<TimeProvider>()));

@@ -258,6 +258,10 @@ public sealed record MachineProfile
     [JsonIgnore(Condition = JsonIgnoreCondition.WhenWritingNull)]
     public AxisCalibration? Calibration { get; init; }
 
+    /// <summary>The camera on the optical path (docs/camera.md); null (absent from the file) on a machine without one.</summary>
+    [JsonIgnore(Condition = JsonIgnoreCondition.WhenWritingNull)]
+    public CameraProfile? Camera { get; init; }
+
     /// <summary>The built-in profile: two Zaber T-LA60A, device 1 = X, device 2 = Y.</summary>
     public static MachineProfile Default { get; } = new();
 

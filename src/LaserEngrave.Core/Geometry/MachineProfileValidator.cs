@@ -155,6 +155,10 @@ public static class MachineProfileValidator
         }
 
         CheckScanOffsets(profile.ScanOffsets, problems);
+        if (profile.Camera is { } camera)
+        {
+            CheckCamera(camera, problems);
+        }
         try
         {
             profile.Calibration?.Validate("calibration");
@@ -200,6 +204,44 @@ public static class MachineProfileValidator
         else if (!(z.FocusMm >= z.MinMm && z.FocusMm <= z.UpperMm))
         {
             problems.Add($"z.focusMm must be within z.minMm..z.maxMm {N(z.MinMm)}..{N(z.UpperMm)} mm (got {N(z.FocusMm)})");
+        }
+    }
+
+    /// <summary>Largest camera image side the app takes, pixels.</summary>
+    public const int MaxCameraSidePx = 8192;
+
+    // The camera's figures: an image size a grabber gives, a scale from a microscope to a macro lens, the spot inside the image.
+    private static void CheckCamera(CameraProfile camera, List<string> problems)
+    {
+        var before = problems.Count;
+        void Require(bool ok, string what)
+        {
+            if (!ok)
+            {
+                problems.Add(what);
+            }
+        }
+
+        Require(camera.WidthPx is >= 16 and <= MaxCameraSidePx, $"camera.widthPx must be 16..{MaxCameraSidePx} pixels (got {camera.WidthPx})");
+        Require(camera.HeightPx is >= 16 and <= MaxCameraSidePx, $"camera.heightPx must be 16..{MaxCameraSidePx} pixels (got {camera.HeightPx})");
+        Require(camera.UmPerPixel is > 0 and <= 1000, $"camera.umPerPixel must be above 0 and at most 1000 µm on the sample per camera pixel (got {N(camera.UmPerPixel)})");
+        Require(camera.RotationDeg is > -180 and <= 180, $"camera.rotationDeg must be above -180 and at most 180 degrees (got {N(camera.RotationDeg)})");
+        if (problems.Count > before)
+        {
+            return;
+        }
+
+        var halfWidthUm = camera.WidthPx * camera.UmPerPixel / 2;
+        var halfHeightUm = camera.HeightPx * camera.UmPerPixel / 2;
+        Require(Math.Abs(camera.SpotOffsetXUm) < halfWidthUm, $"camera.spotOffsetXUm must lie inside the image, less than {N(halfWidthUm)} µm from its centre either way (got {N(camera.SpotOffsetXUm)})");
+        Require(Math.Abs(camera.SpotOffsetYUm) < halfHeightUm, $"camera.spotOffsetYUm must lie inside the image, less than {N(halfHeightUm)} µm from its centre either way (got {N(camera.SpotOffsetYUm)})");
+        if (camera.Calibration is { } c)
+        {
+            Require(c.UmPerPixel is > 0 and <= 1000, $"camera.calibration.umPerPixel must be above 0 and at most 1000 µm (got {N(c.UmPerPixel)})");
+            Require(c.RotationDeg is > -180 and <= 180, $"camera.calibration.rotationDeg must be above -180 and at most 180 degrees (got {N(c.RotationDeg)})");
+            Require(c.SpotXPx >= 0 && c.SpotXPx <= camera.WidthPx - 1, $"camera.calibration.spotXPx must lie inside the image, 0..{camera.WidthPx - 1} (got {N(c.SpotXPx)})");
+            Require(c.SpotYPx >= 0 && c.SpotYPx <= camera.HeightPx - 1, $"camera.calibration.spotYPx must lie inside the image, 0..{camera.HeightPx - 1} (got {N(c.SpotYPx)})");
+            Require(c.ResidualUm >= 0 && double.IsFinite(c.ResidualUm), $"camera.calibration.residualUm must be a finite number, 0 or more (got {N(c.ResidualUm)})");
         }
     }
 

@@ -14,6 +14,9 @@ public sealed class BurnInspector(SimulatedMachine machine) : ITwinInspector
 
     public double NowSeconds => machine.NowSeconds;
 
+    /// <summary>The twin itself, for what looks at it besides the burn check (the twin's camera).</summary>
+    public SimulatedMachine Machine => machine;
+
     public BurnReport AnalyzeSince(BurnGrid grid, double startSeconds)
     {
         // Every job's check started its own window; this one starts where the caller says.

@@ -83,6 +83,18 @@ public sealed class BurnRecorder
         }
     }
 
+    /// <summary>Every recorded switching on (frequency above 0) and off (0), in the order recorded, whatever <see cref="Restart"/> windowed: the twin's camera draws every burn the sample ever took.</summary>
+    public IReadOnlyList<(double AtSeconds, double FrequencyHz)> LaserChanges
+    {
+        get
+        {
+            lock (_lock)
+            {
+                return [.. _laser];
+            }
+        }
+    }
+
     /// <summary>The laser's frequency changed at <paramref name="atSeconds"/> (0 = off).</summary>
     /// <remarks>Only switching on and off is kept: a new frequency while the laser fires does not change its pulse train.</remarks>
     public void RecordLaser(double atSeconds, double frequencyHz)

@@ -33,6 +33,8 @@ public abstract class ComponentTest : BunitContext
         Services.AddSingleton(Calibration);
         Alignment = new AlignmentViewModel(Main, DataFolder.Path);
         Services.AddSingleton(Alignment);
+        Camera = new CameraViewModel(new CameraService(Main));
+        Services.AddSingleton(Camera);
         Marks = new MarkViewModel(new MarkService(new AppFolders(DataFolder.Path), () => Main.Job.Profile, TimeProvider.System), path => Main.Layers.Open(path));
         Services.AddSingleton(Marks);
         Commission = new CommissionViewModel(Main, Checks, DataFolder.Path, TimeProvider.System);
@@ -42,6 +44,8 @@ public abstract class ComponentTest : BunitContext
     }
 
     private protected Fakes Machine { get; } = new();
+
+    private protected CameraViewModel Camera { get; }
 
     /// <summary>The machine check the Commission panel runs (a fake: the steps are what a test reports).</summary>
     private protected IMachineCheckService Checks { get; } = Substitute.For<IMachineCheckService>();

@@ -1,0 +1,230 @@
+using System.Globalization;
+using CommunityToolkit.Mvvm.ComponentModel;
+using CommunityToolkit.Mvvm.Input;
+using LaserEngrave.App.Services;
+using LaserEngrave.Core.Camera;
+using LaserEngrave.Core.Geometry;
+
+namespace LaserEngrave.App.ViewModels;
+
+/// <summary>The Camera view: the image (a camera in the page, or the twin's), the spot, a scale bar, the job's outline, click to go, calibrate, the focus figure.</summary>
+/// <remarks>
+/// Everything drawn over the image is in camera pixels, from the calibration in force (the measured one, else the
+/// profile's nominal optics): the spot's pixel, the scale bar's length, the job's corners. A click is a camera pixel;
+/// <see cref="CameraCalibration.StageTargetUm"/> turns it into the stage position that brings it under the spot.
+/// </remarks>
+public sealed partial class CameraViewModel : ObservableObject
+{
+    private readonly ICameraService _camera;
+    private readonly Lock _refreshLock = new();
+    private object? _shown;
+    private int _refreshState; // 0 idle, 1 refreshing, 2 refreshing and asked again
+
+    public CameraViewModel(ICameraService camera)
+    {
+        ArgumentNullException.ThrowIfNull(camera);
+        _camera = camera;
+        // A change is reported on the machine's own thread (the simulation's loop on the twin): the twin's frame is rendered
+        // on the thread pool instead, at most one at a time, so the machine never waits for a picture.
+        camera.Changed += (_, _) => RefreshSoon();
+        Refresh();
+    }
+
+    /// <summary>The camera's figures; null: the profile has no camera and the app is not on the simulator.</summary>
+    public CameraProfile? Camera => _camera.Camera;
+
+    public bool HasCamera => Camera is not null;
+
+    /// <summary>Frames come from the twin (served as images) rather than from a camera in the page.</summary>
+    public bool IsTwin => _camera.IsTwin;
+
+    public int WidthPx => Camera?.WidthPx ?? 640;
+
+    public int HeightPx => Camera?.HeightPx ?? 480;
+
+    /// <summary>The figures in force, measured or nominal.</summary>
+    public CameraCalibration? InForce => Camera?.InForce;
+
+    public bool IsCalibrated => Camera?.Calibration is not null;
+
+    /// <summary>The twin's latest frame as a PNG data URL; null with a live camera.</summary>
+    [ObservableProperty]
+    public partial string? TwinFrameUrl { get; private set; }
+
+    /// <summary>The sharpness figure (<see cref="FocusMeasure"/>) of the latest frame; higher is sharper.</summary>
+    [ObservableProperty]
+    public partial double? Sharpness { get; private set; }
+
+    /// <summary>The live camera's name, as the page reported it.</summary>
+    [ObservableProperty]
+    public partial string? LiveCamera { get; private set; }
+
+    [ObservableProperty]
+    public partial string? Error { get; private set; }
+
+    /// <summary>What the last calibration measured, one line each.</summary>
+    [ObservableProperty]
+    public partial IReadOnlyList<string> CalibrationLines { get; private set; } = [];
+
+    /// <summary>Where the last click sent the stage, in words.</summary>
+    [ObservableProperty]
+    public partial string? LastGoTo { get; private set; }
+
+    /// <summary>The scale bar: a round length, µm, about a fifth of the image wide, and its length in camera pixels.</summary>
+    public (double Um, double Px) ScaleBar
+    {
+        get
+        {
+            var umPerPixel = InForce?.UmPerPixel ?? 1;
+            var target = WidthPx * umPerPixel / 5;
+            var decade = Math.Pow(10, Math.Floor(Math.Log10(target)));
+            var um = new[] { 5, 2, 1 }.Select(m => m * decade).First(v => v <= target);
+            return (um, um / umPerPixel);
+        }
+    }
+
+    /// <summary>The job's rectangle as SVG points in camera pixels ("x,y x,y ..."); null without a job or a stage position.</summary>
+    public string? JobOutline
+    {
+        get
+        {
+            if (InForce is not { } calibration || _camera.StagePositionUm is not { } stage || _camera.JobBoxUm is not { } box)
+            {
+                return null;
+            }
+
+            var corners = new[] { (box.Left, box.Top), (box.Right, box.Top), (box.Right, box.Bottom), (box.Left, box.Bottom) };
+            return string.Join(' ', corners.Select(c =>
+            {
+                var (x, y) = calibration.PixelAt(c.Item1 - stage.XUm, c.Item2 - stage.YUm);
+                return string.Create(CultureInfo.InvariantCulture, $"{x:0.#},{y:0.#}");
+            }));
+        }
+    }
+
+    public string CalibrationText => InForce is not { } c ? "No camera: the machine profile has no camera section (docs/camera.md)."
+        : string.Create(CultureInfo.InvariantCulture, $"{(IsCalibrated ? "Calibrated" : "Not calibrated (the profile's nominal optics)")}: {c.UmPerPixel:0.####} µm a pixel, turned {c.RotationDeg:0.###}°{(c.Mirrored ? ", mirrored" : string.Empty)}, spot at {c.SpotXPx:0.#}, {c.SpotYPx:0.#} px{(IsCalibrated ? $", residual {c.ResidualUm:0.###} µm" : string.Empty)}");
+
+    /// <summary>Why Calibrate cannot run now; null when it can.</summary>
+    public string? CalibrateUnavailableReason => !HasCamera ? "the machine profile has no camera section"
+        : !IsTwin ? "calibrating needs the camera's frames in the app, which it has only on the simulator so far"
+        : !_camera.CanMove ? "connect the machine first, and wait for what holds it"
+        : null;
+
+    public bool CanGo => HasCamera && _camera.CanMove && _camera.StagePositionUm is not null;
+
+    public bool CanCalibrate => CalibrateUnavailableReason is null;
+
+    /// <summary>The page's camera started (its label) or failed (its error, one line).</summary>
+    public void ReportLiveCamera(string? label, string? error)
+    {
+        LiveCamera = label;
+        Error = error;
+    }
+
+    /// <summary>The page measured the live frame's sharpness (same figure as <see cref="FocusMeasure"/>).</summary>
+    public void ReportLiveSharpness(double sharpness) => Sharpness = sharpness;
+
+    /// <summary>Click to go: camera pixel (<paramref name="pixel"/>) under the spot, laser off.</summary>
+    [RelayCommand(CanExecute = nameof(CanGo))]
+    private async Task GoToPixelAsync((double X, double Y) pixel)
+    {
+        Error = null;
+        if (InForce is not { } calibration || _camera.StagePositionUm is not { } stage)
+        {
+            return;
+        }
+
+        var (x, y) = calibration.StageTargetUm(stage.XUm, stage.YUm, pixel.X, pixel.Y);
+        LastGoTo = string.Create(CultureInfo.InvariantCulture, $"Going to {Units.UmToMm(x):0.####}, {Units.UmToMm(y):0.####} mm (pixel {pixel.X:0}, {pixel.Y:0}), laser off");
+        try
+        {
+            await _camera.GoToAsync(x, y, CancellationToken.None);
+        }
+        catch (CameraException ex)
+        {
+            Error = ex.Message;
+        }
+    }
+
+    [RelayCommand(CanExecute = nameof(CanCalibrate))]
+    private async Task CalibrateAsync(CancellationToken cancellationToken)
+    {
+        Error = null;
+        try
+        {
+            var result = await _camera.CalibrateAsync(cancellationToken);
+            var c = result.Calibration;
+            CalibrationLines =
+            [
+                string.Create(CultureInfo.InvariantCulture, $"Scale: {c.UmPerPixel:0.####} µm a camera pixel"),
+                string.Create(CultureInfo.InvariantCulture, $"Rotation: {c.RotationDeg:0.###}° against the stage's X{(c.Mirrored ? " (mirrored)" : string.Empty)}"),
+                string.Create(CultureInfo.InvariantCulture, $"Spot: pixel {c.SpotXPx:0.##}, {c.SpotYPx:0.##} (test dot darkened {result.DotDarkeningGrey:0} grey levels)"),
+                string.Create(CultureInfo.InvariantCulture, $"Residual: {c.ResidualUm:0.###} µm over {result.Jogs.Count} jogs"),
+            ];
+        }
+        catch (Exception ex) when (ex is not OperationCanceledException)
+        {
+            // Whatever stopped it (a refused move, a device error), the panel says so: the command runs detached from the page.
+            Error = ex.Message;
+        }
+
+        _shown = null;
+        Refresh();
+    }
+
+    private void RefreshSoon()
+    {
+        if (Interlocked.Increment(ref _refreshState) > 1)
+        {
+            Interlocked.Exchange(ref _refreshState, 2);
+            return;
+        }
+
+        _ = Task.Run(() =>
+        {
+            do
+            {
+                Interlocked.Exchange(ref _refreshState, 1);
+                try
+                {
+                    Refresh();
+                }
+                catch (Exception ex) when (ex is CameraException or InvalidOperationException or ArgumentException)
+                {
+                    Error = ex.Message;
+                }
+            }
+            while (Interlocked.CompareExchange(ref _refreshState, 0, 1) != 1);
+        });
+    }
+
+    /// <summary>Takes the twin's frame again when the stage, the camera or the job changed, and everything drawn over it.</summary>
+    public void Refresh()
+    {
+        // A frame costs a render of the twin: positions are reported every 200 ms while the stage follows, mostly unchanged.
+        lock (_refreshLock)
+        {
+            var key = (_camera.IsTwin, _camera.StagePositionUm, _camera.Camera, _camera.JobBoxUm, _camera.CanMove);
+            if (Equals(key, _shown))
+            {
+                return;
+            }
+
+            _shown = key;
+            if (_camera.IsTwin && _camera.TwinFrame() is { } frame)
+            {
+                TwinFrameUrl = "data:image/png;base64," + Convert.ToBase64String(frame.ToPng());
+                Sharpness = FocusMeasure.Sharpness(frame);
+            }
+            else
+            {
+                TwinFrameUrl = null;
+            }
+        }
+
+        OnPropertyChanged(string.Empty);
+        GoToPixelCommand.NotifyCanExecuteChanged();
+        CalibrateCommand.NotifyCanExecuteChanged();
+    }
+}

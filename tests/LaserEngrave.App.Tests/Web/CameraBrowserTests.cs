@@ -1,0 +1,39 @@
+using LaserEngrave.App.ViewModels;
+using Microsoft.Extensions.DependencyInjection;
+using OpenQA.Selenium;
+using OpenQA.Selenium.Interactions;
+
+namespace LaserEngrave.App.Tests.Web;
+
+/// <summary>The Camera panel in headless Chromium on the simulator: the twin's frames and click to go (issue 37).</summary>
+public sealed class CameraBrowserTests : BrowserTest
+{
+    [Fact]
+    public void CameraPanel_OnTheTwin_ShowsTheTwinsFrameAndAClickMovesTheStage()
+    {
+        Size1280x720();
+        Id("connect").Click();
+        WaitFor(d => d.FindElement(By.Id("machine-connection")).Text.Contains("simulator", StringComparison.Ordinal), "connected to the simulator");
+        // The twin's stage starts at the end of its travel: calibration jogs both ways, so it starts from the middle.
+        SetField("goto-x", "30");
+        SetField("goto-y", "30");
+        WaitFor(_ => Enabled("goto"), "Go to offered");
+        Id("goto").Click();
+        WaitFor(d => d.FindElement(By.Id("position")).Text == "X 30.000 · Y 30.000 mm", "the stage at 30, 30 mm");
+        Driver.ExecuteScript("document.getElementById('panel-camera').open = true; document.getElementById('panel-camera').scrollIntoView();");
+        WaitFor(d => d.FindElement(By.Id("camera-image")).GetAttribute("src")?.StartsWith("data:image/png;base64,", StringComparison.Ordinal) == true, "the twin's frame shown");
+        Assert.Contains("The twin's camera", Text("camera-source"), StringComparison.Ordinal);
+
+        Assert.True(Enabled("camera-calibrate"));
+        Screenshot("camera-twin");
+
+        // A click right of the image's centre: the stage goes there, laser off.
+        var main = Host.Services.GetRequiredService<MainViewModel>();
+        var before = main.Machine.XMicrosteps;
+        var image = Id("camera-view");
+        new Actions(Driver).MoveToElement(image, image.Size.Width / 4, 0).Click().Perform();
+        WaitFor(d => d.FindElement(By.Id("camera-goto")).Text.StartsWith("Going to ", StringComparison.Ordinal), "the click sent the stage");
+        WaitFor(_ => main.Machine.XMicrosteps != before, "the stage moved");
+        Assert.Empty(Driver.FindElements(By.CssSelector("[data-error=camera]")));
+    }
+}
