@@ -17,7 +17,7 @@ namespace LaserEngrave.Core.Logging;
 public static class RunLogMigration
 {
     // Step i turns version i + 1 into version i + 2.
-    private static readonly Func<JsonObject, JsonObject>[] Steps = [FromVersion1];
+    private static readonly Func<JsonObject, JsonObject>[] Steps = [FromVersion1, FromVersion2];
 
     /// <summary>The record's JSON at <see cref="RunRecord.CurrentSchemaVersion"/>; <paramref name="version"/> is the one it was written with.</summary>
     public static JsonObject ToCurrent(JsonObject record, int version)
@@ -54,6 +54,19 @@ public static class RunLogMigration
         FillMissing(record, "mask", Node(new MaskOptions()));
         FillMissing(record, "plan", Node(new PlanOptions()));
         record["passes"] ??= 1;
+        return record;
+    }
+
+    /// <summary>
+    /// Version 2 (2026-11-29, morning) was written before the gate gained its kind (`kind`, `neverReplies`: a gate that
+    /// only sets a frequency), the scheduled burst (`burstAfterCommand`, `burstAfterReply`) and the capabilities question
+    /// (`capabilitiesCommand`, `capabilitiesReply`), and the profile its optional `camera`. Each member it lacks in the
+    /// profile takes the value `--profile` gives when it is left out: the counted-burst gate every version 2 log ran
+    /// with, its default command strings (which that program never sent), and no camera.
+    /// </summary>
+    private static JsonObject FromVersion2(JsonObject record)
+    {
+        FillMissing(record, "profile", Node(MachineProfile.Default));
         return record;
     }
 

@@ -14,8 +14,9 @@ namespace LaserEngrave.Core.Logging;
 public sealed record RunRecord
 {
     /// <summary>The schema version this build writes; it reads this one and older (<see cref="RunLogMigration"/>).</summary>
-    /// <remarks>2: every member written (version 1 logs lack the members added during its life; docs/run-log.md, "Older logs").</remarks>
-    public const int CurrentSchemaVersion = 2;
+    /// <remarks>2: every member written (version 1 logs lack the members added during its life); 3: the gate's kind, scheduled
+    /// burst and capabilities, and the camera (docs/run-log.md, "Older logs").</remarks>
+    public const int CurrentSchemaVersion = 3;
 
     public int SchemaVersion { get; init; } = CurrentSchemaVersion;
 

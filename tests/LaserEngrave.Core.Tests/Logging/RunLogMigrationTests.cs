@@ -43,8 +43,8 @@ public sealed class RunLogMigrationTests
     [Fact]
     public void Read_CurrentVersionLackingASection_StaysStrict()
     {
-        // Only an older version is filled in: a version 2 log is written whole, so a missing section is an edited file.
-        var node = JsonNode.Parse(File.ReadAllText(Path.Combine(FixtureFolder, "v2-2026-11-29-i31-log-completed.json")))!;
+        // Only an older version is filled in: a log of the current version is written whole, so a missing section is an edited file.
+        var node = JsonNode.Parse(File.ReadAllText(Path.Combine(FixtureFolder, "v3-2026-11-29-e64073c-completed.json")))!;
         node["profile"]!.AsObject().Remove("latency");
 
         var record = RunRecordJson.Deserialize(node.ToJsonString(), "run.json");
@@ -58,6 +58,7 @@ public sealed class RunLogMigrationTests
     [InlineData("v1-2026-11-27-50f0c04-failed.json", 16, 246, true)]
     [InlineData("v1-2026-11-29-17fa7f5-failed.json", 13, 190, true)]
     [InlineData("v2-2026-11-29-i31-log-failed.json", 13, 190, true)]
+    [InlineData("v3-2026-11-29-e64073c-failed.json", 15, 228, true)]
     public void StopPointInPlan_LogOfEachVersion_TheFirstUnfinishedBurnRunInTheRowItLogged(string fixture, int row, long moveIndex, bool sameIndex)
     {
         var record = RunLogStore.Read(Path.Combine(FixtureFolder, fixture));
