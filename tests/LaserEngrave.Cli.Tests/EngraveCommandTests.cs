@@ -35,8 +35,8 @@ public sealed class EngraveCommandTests : IDisposable
     }
 
     [Theory]
-    [InlineData("5", "laserengrave: laser frequency 5 Hz gives a 121.95122 µm pixel 0.61 pulses at the burn speed of 1 mm/s, so some pixels would get none: give at least 9 Hz, or a burn speed of at most 0.609 mm/s")]
-    [InlineData("2", "laserengrave: laser frequency 2 Hz gives a 121.95122 µm pixel 0.24 pulses at the burn speed of 1 mm/s")]
+    [InlineData("5", "laserengrave: laser frequency 5 Hz gives each 121.95 µm pixel only 0.61 pulses at the burn speed of 1 mm/s, so some pixels would get none: give at least 9 Hz, or a burn speed of at most 0.609 mm/s")]
+    [InlineData("2", "laserengrave: laser frequency 2 Hz gives each 121.95 µm pixel only 0.24 pulses at the burn speed of 1 mm/s")]
     [InlineData("0.5", "laserengrave: --frequency-hz 0.5: is not a whole number of Hz: the laser gate is sent whole Hz; give 1")]
     public async Task Engrave_FrequencyThatCannotBurnEveryPixel_Exit2OneLineBeforeAnythingOpensNoLog(string hz, string expected)
     {

@@ -147,7 +147,7 @@ public static class JobRules
 
         var frequency = Math.Ceiling(PulseArithmetic.FrequencyHz(pulses.SpeedMmPerS, pitch, pulses.PulsesPerDot) - 1e-9);
         var speed = PulseArithmetic.SpeedMmPerS(pitch, pulses.FrequencyHz, pulses.PulsesPerDot);
-        return $"gives a {N(pitch)} µm pixel {perPixel.ToString("0.##", System.Globalization.CultureInfo.InvariantCulture)} pulses at the burn speed of {N(pulses.SpeedMmPerS)} mm/s, so some pixels would get none: "
+        return $"gives each {N(Math.Round(pitch, 2))} µm pixel only {perPixel.ToString("0.##", System.Globalization.CultureInfo.InvariantCulture)} pulses at the burn speed of {N(pulses.SpeedMmPerS)} mm/s, so some pixels would get none: "
             + $"give at least {N(frequency)} Hz, or a burn speed of at most {N(Math.Floor(speed * 1000) / 1000)} mm/s";
     }
 

@@ -141,7 +141,7 @@ public sealed class JobRulesTests : IDisposable
 
         Assert.NotNull(problem);
         Assert.Equal(JobField.Frequency, problem.Field);
-        Assert.Equal("laser frequency 5 Hz: gives a 121.95122 µm pixel 0.61 pulses at the burn speed of 1 mm/s, so some pixels would get none: give at least 9 Hz, or a burn speed of at most 0.609 mm/s", problem.Message);
+        Assert.Equal("laser frequency 5 Hz: gives each 121.95 µm pixel only 0.61 pulses at the burn speed of 1 mm/s, so some pixels would get none: give at least 9 Hz, or a burn speed of at most 0.609 mm/s", problem.Message);
         Assert.Equal(problem.Message.Replace("Hz:", "Hz", StringComparison.Ordinal), job.EngraveProblem);
     }
 
