@@ -5,7 +5,12 @@
 # through socat ptys, then runs `laser identify`, `laser on 1000 --seconds 1`, `machine check` (its watchdog step
 # included), `machine latency --write` into OUT/profile.json and a timed engrave of the QR sample at WIDTH_MM (5 by
 # default) with that profile; then `replay` of the run's flight recorder gives what the twin burns for the same stream.
-# Every pulse edge of the image goes to OUT/edges.txt; OUT/summary.txt compares the pulses fired with the replay's.
+# Every pulse edge of the image goes to OUT/edges.txt ("CYCLE 0|1") and every line it received to OUT/lines.txt ("CYCLE
+# TEXT", its last byte's receive-complete). The engrave's part of them is cut into OUT/gate-stream.txt and
+# OUT/avr-bursts.txt (sim/pty_bursts.py: every FREQ/OFF/BURST line's pulses and first pulse), which the cycle-exact
+# replay in gate_sim must reproduce (differential.py --check) and the twin's differential test compares with the twin
+# (GateFirmwareDifferentialTests, when the two files are committed as sim/differential/qr5mm-pty-*). OUT/summary.txt
+# gives the outcome, the time and the pulses.
 # Needs: make -C firmware/gate, socat, a build of src/LaserEngrave.Cli. Everything it starts is stopped at the end.
 set -u
 root=$(cd "$(dirname "$0")/../../.." && pwd)
@@ -13,11 +18,11 @@ out=${1:?give the output folder}; width=${2:-5}
 mkdir -p "$out"; out=$(cd "$out" && pwd)
 CLI=${CLI:-$root/src/LaserEngrave.Cli/bin/Debug/net10.0/laserengrave.dll}
 le() { dotnet "$CLI" "$@"; }
-make -s -C "$root/firmware/gate" avr pty >/dev/null || exit 1
+make -s -C "$root/firmware/gate" avr pty build/gate_sim >/dev/null || exit 1
 pids=()
 cleanup() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null; done; }
 trap cleanup EXIT
-"$root/firmware/gate/build/gate_pty" "$root/firmware/gate/build/atmega328p/gate.elf" "$out/edges.txt" 2> "$out/gate.log" & pids+=($!)
+"$root/firmware/gate/build/gate_pty" "$root/firmware/gate/build/atmega328p/gate.elf" "$out/edges.txt" "$out/lines.txt" 2> "$out/gate.log" & pids+=($!)
 socat pty,raw,echo=0,link=/tmp/hb-stage pty,raw,echo=0,link=/tmp/hb-stage-host 2>/dev/null & pids+=($!)
 socat pty,raw,echo=0,link=/tmp/hb-laser pty,raw,echo=0,link=/tmp/hb-laser-host 2>/dev/null & pids+=($!)
 sleep 1
@@ -31,11 +36,19 @@ gate=/tmp/simavr-uart0
   le machine check --stage-port /tmp/hb-stage-host --laser-port $gate --yes --count 20
   le machine latency --stage-port /tmp/hb-stage-host --laser-port $gate --profile "$out/profile.json" --write
 } 2>&1 | tee "$out/commands.txt"
+first=$(wc -l < "$out/lines.txt")
+started=$(date +%s.%N)
 le engrave "$root/assets/qr-code.bmp" --width-mm "$width" --origin-mm 10,10 --stage-port /tmp/hb-stage-host \
   --laser-port $gate --profile "$out/profile.json" --json --log-dir "$out/logs" > "$out/engrave.json" 2> "$out/engrave.err"
+echo "engrave took $(echo "$(date +%s.%N) - $started" | bc) s (wall clock, process start to exit)" > "$out/engrave-time.txt"
 log=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['logPath'])" "$out/engrave.json" 2>/dev/null)
 [ -n "$log" ] && le replay "$log" --json > "$out/replay.json" 2> "$out/replay.err"
 sleep 2
+python3 "$root/firmware/gate/sim/pty_bursts.py" "$out/lines.txt" "$out/edges.txt" "$first" "$out/gate-stream.txt" \
+  "$out/avr-bursts.txt" "gate lines of engrave assets/qr-code.bmp --width-mm $width with the gate image on gate_pty (sim/host-bench.sh)" \
+  | tee "$out/bursts.txt"
+python3 "$root/firmware/gate/sim/differential.py" "$root/firmware/gate/build/gate_sim" \
+  "$root/firmware/gate/build/atmega328p/gate.elf" "$out/gate-stream.txt" "$out/avr-bursts.txt" --check | tee -a "$out/bursts.txt"
 python3 - "$out" <<'PY'
 import json, sys
 out = sys.argv[1]
@@ -47,6 +60,8 @@ try:
 except Exception:
     replay = {}
 lines = [f"engrave: {run.get('outcome')} {run.get('fault') or ''}".strip(),
+         open(f"{out}/engrave-time.txt").read().strip(),
+         "the engrave's part: " + open(f"{out}/bursts.txt").read().strip().replace("\n", "; "),
          f"pulses the gate image fired in all (identify, on 1 s, machine check, engrave): {len(rises)}",
          f"the twin's replay of the run's recorded stream: {replay.get('simulation', replay).get('pulses') if replay else 'none'} pulses"]
 open(f"{out}/summary.txt", "w").write("\n".join(lines) + "\n")
