@@ -24,17 +24,18 @@ cleanup() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null; done; }
 trap cleanup EXIT
 # The simulated gate and stages stand for a chip and controllers, which never pause, and a lab's host computer runs
 # nothing else: real-time priority for them and the engrave when allowed (RT_PRIO=0 to run without), so that other
-# processes on a shared computer do not hold up a reply (gate.log says how far the gate ever fell behind the wall
+# processes on a shared computer do not hold up a reply (the socat relays too) (gate.log says how far the gate ever fell behind the wall
 # clock). The kernel keeps 5 % of the CPU for the others whatever happens (sched_rt_runtime_us).
 prio=(); [ "${RT_PRIO:-1}" = 1 ] && chrt -f 10 true 2>/dev/null && prio=(chrt -f 10)
 rr=(); [ ${#prio[@]} -gt 0 ] && rr=(chrt -r 5)
 le() { "${rr[@]}" dotnet "$CLI" "$@"; }
 "${prio[@]}" "$root/firmware/gate/build/gate_pty" "$root/firmware/gate/build/atmega328p/gate.elf" "$out/edges.txt" "$out/lines.txt" 2> "$out/gate.log" & pids+=($!)
-socat pty,raw,echo=0,link=/tmp/hb-stage pty,raw,echo=0,link=/tmp/hb-stage-host 2>/dev/null & pids+=($!)
-socat pty,raw,echo=0,link=/tmp/hb-laser pty,raw,echo=0,link=/tmp/hb-laser-host 2>/dev/null & pids+=($!)
+"${prio[@]}" socat pty,raw,echo=0,link=/tmp/hb-stage pty,raw,echo=0,link=/tmp/hb-stage-host 2>/dev/null & pids+=($!)
+"${prio[@]}" socat pty,raw,echo=0,link=/tmp/hb-laser pty,raw,echo=0,link=/tmp/hb-laser-host 2>/dev/null & pids+=($!)
 sleep 1
 echo '{"startMm": 1}' > "$out/sim.json"
-le simulator --stage-port /tmp/hb-stage --laser-port /tmp/hb-laser --sim-options "$out/sim.json" > "$out/simulator.log" 2>&1 & pids+=($!)
+# Not through le: a function in the background is a subshell, and killing it would leave the simulator running.
+"${rr[@]}" dotnet "$CLI" simulator --stage-port /tmp/hb-stage --laser-port /tmp/hb-laser --sim-options "$out/sim.json" > "$out/simulator.log" 2>&1 & pids+=($!)
 sleep 4
 gate=/tmp/simavr-uart0
 {
