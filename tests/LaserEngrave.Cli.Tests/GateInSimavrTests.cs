@@ -46,6 +46,7 @@ public sealed class GateInSimavrTests : IAsyncDisposable
         var (latencyExit, latencyOut, latencyErr) = await CliHarness.RunAsync(
             "machine", "latency", "--stage-port", stage.B, "--laser-port", gatePort, "--profile", profile, "--write", "--count", "20");
         Assert.True(latencyExit == 0, $"machine latency failed: {latencyErr}{latencyOut}");
+        WidenForSharedComputer(profile);
 
         var image = Path.Combine(_dir, "small.pbm");
         await File.WriteAllTextAsync(image, "P1\n3 3\n1 1 0\n0 1 1\n1 0 1\n", ct);
@@ -76,6 +77,24 @@ public sealed class GateInSimavrTests : IAsyncDisposable
 
         TestContext.Current.TestOutputHelper?.WriteLine(
             $"{bursts.Count} bursts, {bursts.Sum(b => b.Fired)} pulses of {bursts.Sum(b => b.Asked)} asked for; {bursts.Count(b => b.Fired == b.Asked)} fired their whole count");
+    }
+
+    /// <summary>
+    /// The measured latencies, their spreads widened to 20 ms and the edge tolerance to 10 µm (40 ms at 0.25 mm/s): the
+    /// gate, the stages and the ptys are processes on a test computer shared with other work, where one round trip in
+    /// twenty can take tens of milliseconds (a lab's serial adapters do not); with pixels of 400 ms the run keeps its
+    /// margins, and what the test proves, the gate's counting, does not depend on them.
+    /// </summary>
+    private static void WidenForSharedComputer(string profile)
+    {
+        var root = System.Text.Json.Nodes.JsonNode.Parse(File.ReadAllText(profile))!;
+        var latency = root["latency"]!;
+        latency["stageMs"] = Math.Min(latency["stageMs"]!.GetValue<double>(), 5);
+        latency["gateMs"] = Math.Min(latency["gateMs"]!.GetValue<double>(), 5);
+        latency["stageJitterMs"] = 20.0;
+        latency["gateJitterMs"] = 20.0;
+        root["edgeToleranceUm"] = 10.0;
+        File.WriteAllText(profile, root.ToJsonString());
     }
 
     /// <summary>
