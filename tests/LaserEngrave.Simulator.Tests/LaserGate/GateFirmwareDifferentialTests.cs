@@ -25,7 +25,7 @@ public class GateFirmwareDifferentialTests
     [Theory(Timeout = 120_000)]
     [InlineData("qr5mm", 60)]
     [InlineData("qr5mm-pty", 266)]
-    [InlineData("qr5mm-pty-rt", 274)]
+    [InlineData("qr5mm-pty-rt", 284)]
     public async Task RecordedStream_TwinAndFirmware_SameBurstsAndFirstPulses(string name, int expectedBursts)
     {
         var folder = Path.Combine(RepositoryRoot, "firmware", "gate", "sim", "differential");
