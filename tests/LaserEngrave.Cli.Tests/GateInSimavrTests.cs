@@ -91,8 +91,10 @@ public sealed class GateInSimavrTests : IAsyncDisposable
         var latency = root["latency"]!;
         latency["stageMs"] = Math.Min(latency["stageMs"]!.GetValue<double>(), 5);
         latency["gateMs"] = Math.Min(latency["gateMs"]!.GetValue<double>(), 5);
-        latency["stageJitterMs"] = 20.0;
-        latency["gateJitterMs"] = 20.0;
+        // The most the profile allows for the stage (its reply watch waits twice that past the expected arrival): in the
+        // full suite the other test projects share the two cores with simavr, socat and the stage simulator.
+        latency["stageJitterMs"] = 100.0;
+        latency["gateJitterMs"] = 40.0;
         root["edgeToleranceUm"] = 10.0;
         File.WriteAllText(profile, root.ToJsonString());
     }
