@@ -147,6 +147,58 @@ public sealed partial class CameraViewModel : ObservableObject
         }
     }
 
+    /// <summary>The map's side, mm: a square of stage positions centred where the stage stands.</summary>
+    [ObservableProperty]
+    public partial double MapSizeMm { get; set; } = 1;
+
+    /// <summary>The latest stitched map as a PNG data URL; null before one is scanned.</summary>
+    [ObservableProperty]
+    public partial string? MapUrl { get; private set; }
+
+    /// <summary>What the latest map covers, stage mm: its first pixel's centre and its size (the stage canvas draws it there).</summary>
+    [ObservableProperty]
+    public partial (double XMm, double YMm, double WidthMm, double HeightMm)? MapBoxMm { get; private set; }
+
+    /// <summary>One line about the latest map: frames, the worst seam and its scale.</summary>
+    [ObservableProperty]
+    public partial string? MapText { get; private set; }
+
+    /// <summary>Why Map cannot run now; null when it can.</summary>
+    public string? MapUnavailableReason => !HasCamera ? "the machine profile has no camera section"
+        : !IsTwin ? "a map needs the camera's frames in the app, which it has only on the simulator so far"
+        : !_camera.CanMove || _camera.StagePositionUm is null ? "connect and home the stage first; nothing else may hold the machine"
+        : !(MapSizeMm > 0 && MapSizeMm <= 20) ? string.Create(CultureInfo.InvariantCulture, $"a map of {MapSizeMm} mm must be above 0 and at most 20 mm a side")
+        : null;
+
+    public bool CanScanMap => MapUnavailableReason is null;
+
+    partial void OnMapSizeMmChanged(double value) => ScanMapCommand.NotifyCanExecuteChanged();
+
+    /// <summary>Scans a square of <see cref="MapSizeMm"/> centred where the stage stands and stitches it; the stage goes back.</summary>
+    [RelayCommand(CanExecute = nameof(CanScanMap))]
+    private async Task ScanMapAsync(CancellationToken cancellationToken)
+    {
+        Error = null;
+        if (_camera.StagePositionUm is not { } stage)
+        {
+            return;
+        }
+
+        var sideUm = MapSizeMm * 1000;
+        try
+        {
+            var map = await _camera.ScanMapAsync(stage.XUm - (sideUm / 2), stage.YUm - (sideUm / 2), sideUm, sideUm, cancellationToken);
+            MapUrl = "data:image/png;base64," + Convert.ToBase64String(map.Image.ToPng());
+            MapBoxMm = (Units.UmToMm(map.OriginXUm), Units.UmToMm(map.OriginYUm), Units.UmToMm(map.Image.Width * map.UmPerPixel), Units.UmToMm(map.Image.Height * map.UmPerPixel));
+            MapText = string.Create(CultureInfo.InvariantCulture, $"Map: {map.Frames.Count} frames, worst seam {map.WorstSeamPx:0.##} camera px over {map.Seams.Count} seams; {map.Image.Width} x {map.Image.Height} px at {map.UmPerPixel:0.###} µm a pixel");
+        }
+        catch (Exception ex) when (ex is not OperationCanceledException)
+        {
+            // Whatever stopped it (a refused move, frames that do not overlap), the panel says so.
+            Error = ex.Message;
+        }
+    }
+
     [RelayCommand(CanExecute = nameof(CanCalibrate))]
     private async Task CalibrateAsync(CancellationToken cancellationToken)
     {
@@ -226,5 +278,6 @@ public sealed partial class CameraViewModel : ObservableObject
         OnPropertyChanged(string.Empty);
         GoToPixelCommand.NotifyCanExecuteChanged();
         CalibrateCommand.NotifyCanExecuteChanged();
+        ScanMapCommand.NotifyCanExecuteChanged();
     }
 }

@@ -41,4 +41,31 @@ public sealed class CameraSimulatorTests : ComponentTest
         Assert.True(measured.ResidualUm < 2, $"residual {measured.ResidualUm} µm");
         Assert.Null(Main.TestMoves.Error);
     }
+
+    [Fact]
+    public async Task ScanMap_OnTheSimulator_StitchedMapShownWithItsSeamsAndTheStageBack()
+    {
+        await ConnectAsync();
+        Main.TestMoves.GoToXMm = 30;
+        Main.TestMoves.GoToYMm = 30;
+        await Main.TestMoves.GoToCommand.ExecuteAsync(null);
+        var before = (Main.Machine.XMicrosteps, Main.Machine.YMicrosteps);
+        var cut = Render<CameraPanel>(p => p.Add(c => c.Camera, Camera));
+        Camera.MapSizeMm = 0.5;
+
+        cut.Find("#camera-map").Click();
+
+        cut.WaitForAssertion(() => Assert.True(cut.FindAll("#camera-map-result").Count == 1 || cut.FindAll("[data-error=camera]").Count > 0), TimeSpan.FromSeconds(120));
+        Assert.Empty(cut.FindAll("[data-error=camera]").Select(e => e.TextContent));
+        var text = cut.Find("#camera-map-result").TextContent;
+        Assert.Matches(@"^Map: \d+ frames, worst seam (0|1)(\.\d+)? camera px over \d+ seams; ", text);
+        Assert.StartsWith("data:image/png;base64,", cut.Find("#camera-map-image").GetAttribute("src"), StringComparison.Ordinal);
+        // Centred where the stage stood, half a millimetre a side; the stage back there.
+        var (x, y, w, h) = Camera.MapBoxMm!.Value;
+        Assert.Equal(29.75, x, 0.01);
+        Assert.Equal(29.75, y, 0.01);
+        Assert.Equal(0.5, w, 0.02);
+        Assert.Equal(0.5, h, 0.02);
+        Assert.Equal(before, (Main.Machine.XMicrosteps, Main.Machine.YMicrosteps));
+    }
 }
