@@ -155,7 +155,7 @@ public sealed partial class CameraViewModel : ObservableObject
     [ObservableProperty]
     public partial string? MapUrl { get; private set; }
 
-    /// <summary>What the latest map covers, stage mm: its first pixel's centre and its size (the stage canvas draws it there).</summary>
+    /// <summary>What the latest map covers, stage mm: its top-left edge and its size (the stage canvas draws it there).</summary>
     [ObservableProperty]
     public partial (double XMm, double YMm, double WidthMm, double HeightMm)? MapBoxMm { get; private set; }
 
@@ -188,8 +188,11 @@ public sealed partial class CameraViewModel : ObservableObject
         try
         {
             var map = await _camera.ScanMapAsync(stage.XUm - (sideUm / 2), stage.YUm - (sideUm / 2), sideUm, sideUm, cancellationToken);
+            // Pixel (0, 0) is centred at the origin: the picture's edge is half a pixel before it.
+            var half = map.UmPerPixel / 2;
+            MapBoxMm = (Units.UmToMm(map.OriginXUm - half), Units.UmToMm(map.OriginYUm - half), Units.UmToMm(map.Image.Width * map.UmPerPixel), Units.UmToMm(map.Image.Height * map.UmPerPixel));
+            // The box first: the stage canvas draws the picture where the box says once the picture arrives.
             MapUrl = "data:image/png;base64," + Convert.ToBase64String(map.Image.ToPng());
-            MapBoxMm = (Units.UmToMm(map.OriginXUm), Units.UmToMm(map.OriginYUm), Units.UmToMm(map.Image.Width * map.UmPerPixel), Units.UmToMm(map.Image.Height * map.UmPerPixel));
             MapText = string.Create(CultureInfo.InvariantCulture, $"Map: {map.Frames.Count} frames, worst seam {map.WorstSeamPx:0.##} camera px over {map.Seams.Count} seams; {map.Image.Width} x {map.Image.Height} px at {map.UmPerPixel:0.###} µm a pixel");
         }
         catch (Exception ex) when (ex is not OperationCanceledException)
