@@ -103,7 +103,7 @@ public sealed partial class CameraViewModel : ObservableObject
     }
 
     public string CalibrationText => InForce is not { } c ? "No camera: the machine profile has no camera section (docs/camera.md)."
-        : string.Create(CultureInfo.InvariantCulture, $"{(IsCalibrated ? "Calibrated" : "Not calibrated (the profile's nominal optics)")}: {c.UmPerPixel:0.####} µm a pixel, turned {c.RotationDeg:0.###}°{(c.Mirrored ? ", mirrored" : string.Empty)}, spot at {c.SpotXPx:0.#}, {c.SpotYPx:0.#} px{(IsCalibrated ? $", residual {c.ResidualUm:0.###} µm" : string.Empty)}");
+        : string.Create(CultureInfo.InvariantCulture, $"{(IsCalibrated ? "Calibrated" : "Not calibrated (the profile's nominal optics)")}: {c.UmPerPixel:0.####} µm a pixel, turned {Degrees(c.RotationDeg):0.###}°{(c.Mirrored ? ", mirrored" : string.Empty)}, spot at {c.SpotXPx:0.#}, {c.SpotYPx:0.#} px{(IsCalibrated ? $", residual {c.ResidualUm:0.###} µm" : string.Empty)}");
 
     /// <summary>Why Calibrate cannot run now; null when it can.</summary>
     public string? CalibrateUnavailableReason => !HasCamera ? "the machine profile has no camera section"
@@ -213,7 +213,7 @@ public sealed partial class CameraViewModel : ObservableObject
             CalibrationLines =
             [
                 string.Create(CultureInfo.InvariantCulture, $"Scale: {c.UmPerPixel:0.####} µm a camera pixel"),
-                string.Create(CultureInfo.InvariantCulture, $"Rotation: {c.RotationDeg:0.###}° against the stage's X{(c.Mirrored ? " (mirrored)" : string.Empty)}"),
+                string.Create(CultureInfo.InvariantCulture, $"Rotation: {Degrees(c.RotationDeg):0.###}° against the stage's X{(c.Mirrored ? " (mirrored)" : string.Empty)}"),
                 string.Create(CultureInfo.InvariantCulture, $"Spot: pixel {c.SpotXPx:0.##}, {c.SpotYPx:0.##} (test dot darkened {result.DotDarkeningGrey:0} grey levels)"),
                 string.Create(CultureInfo.InvariantCulture, $"Residual: {c.ResidualUm:0.###} µm over {result.Jogs.Count} jogs"),
             ];
@@ -227,6 +227,9 @@ public sealed partial class CameraViewModel : ObservableObject
         _shown = null;
         Refresh();
     }
+
+    // A turn of -0.0001° would read "-0°": rounded first, and -0 made 0.
+    private static double Degrees(double value) => Math.Round(value, 3) + 0.0;
 
     private void RefreshSoon()
     {
