@@ -108,6 +108,27 @@ public sealed class CameraService : ICameraService
         return result;
     }
 
+    public async Task<SampleMap> ScanMapAsync(double x0Um, double y0Um, double widthUm, double heightUm, CancellationToken cancellationToken)
+    {
+        if (!IsTwin || Camera is not { } camera)
+        {
+            throw new CameraException("a map needs the camera's frames in the app, which it has only on the simulator so far: connect to the simulator");
+        }
+
+        var rig = new Rig(this);
+        var (startX, startY) = rig.Position;
+        // Two camera pixels a map pixel: a few megapixels at most for a map of some millimetres, and seams still measured in full frames.
+        var umPerPixel = Math.Round(2 * camera.InForce.UmPerPixel, 3);
+        try
+        {
+            return await new MapStitcher(rig, camera.InForce).ScanAsync(x0Um, y0Um, widthUm, heightUm, umPerPixel, cancellationToken);
+        }
+        finally
+        {
+            await GoToAsync(startX, startY, CancellationToken.None);
+        }
+    }
+
     // The calibration's rig over the workspace: moves and the dot through the test moves (laser off between), frames from the twin.
     private sealed class Rig(CameraService service) : ICameraRig
     {

@@ -32,4 +32,11 @@ public interface ICameraService
 
     /// <summary>Measures the camera with known jogs and one test dot (<see cref="CameraCalibrator"/>) and keeps the result in the profile in use.</summary>
     Task<CameraCalibrationResult> CalibrateAsync(CancellationToken cancellationToken);
+
+    /// <summary>
+    /// Scans the rectangle of stage positions from (<paramref name="x0Um"/>, <paramref name="y0Um"/>), <paramref name="widthUm"/> x
+    /// <paramref name="heightUm"/> µm, frame by frame (laser off) and stitches it (<see cref="MapStitcher"/>); the stage goes back
+    /// to where it stood. Throws <see cref="CameraException"/> with the reason it could not.
+    /// </summary>
+    Task<SampleMap> ScanMapAsync(double x0Um, double y0Um, double widthUm, double heightUm, CancellationToken cancellationToken);
 }

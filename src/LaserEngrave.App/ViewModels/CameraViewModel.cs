@@ -103,7 +103,7 @@ public sealed partial class CameraViewModel : ObservableObject
     }
 
     public string CalibrationText => InForce is not { } c ? "No camera: the machine profile has no camera section (docs/camera.md)."
-        : string.Create(CultureInfo.InvariantCulture, $"{(IsCalibrated ? "Calibrated" : "Not calibrated (the profile's nominal optics)")}: {c.UmPerPixel:0.####} µm a pixel, turned {c.RotationDeg:0.###}°{(c.Mirrored ? ", mirrored" : string.Empty)}, spot at {c.SpotXPx:0.#}, {c.SpotYPx:0.#} px{(IsCalibrated ? $", residual {c.ResidualUm:0.###} µm" : string.Empty)}");
+        : string.Create(CultureInfo.InvariantCulture, $"{(IsCalibrated ? "Calibrated" : "Not calibrated (the profile's nominal optics)")}: {c.UmPerPixel:0.####} µm a pixel, turned {Degrees(c.RotationDeg):0.###}°{(c.Mirrored ? ", mirrored" : string.Empty)}, spot at {c.SpotXPx:0.#}, {c.SpotYPx:0.#} px{(IsCalibrated ? $", residual {c.ResidualUm:0.###} µm" : string.Empty)}");
 
     /// <summary>Why Calibrate cannot run now; null when it can.</summary>
     public string? CalibrateUnavailableReason => !HasCamera ? "the machine profile has no camera section"
@@ -147,6 +147,61 @@ public sealed partial class CameraViewModel : ObservableObject
         }
     }
 
+    /// <summary>The map's side, mm: a square of stage positions centred where the stage stands.</summary>
+    [ObservableProperty]
+    public partial double MapSizeMm { get; set; } = 1;
+
+    /// <summary>The latest stitched map as a PNG data URL; null before one is scanned.</summary>
+    [ObservableProperty]
+    public partial string? MapUrl { get; private set; }
+
+    /// <summary>What the latest map covers, stage mm: its top-left edge and its size (the stage canvas draws it there).</summary>
+    [ObservableProperty]
+    public partial (double XMm, double YMm, double WidthMm, double HeightMm)? MapBoxMm { get; private set; }
+
+    /// <summary>One line about the latest map: frames, the worst seam and its scale.</summary>
+    [ObservableProperty]
+    public partial string? MapText { get; private set; }
+
+    /// <summary>Why Map cannot run now; null when it can.</summary>
+    public string? MapUnavailableReason => !HasCamera ? "the machine profile has no camera section"
+        : !IsTwin ? "a map needs the camera's frames in the app, which it has only on the simulator so far"
+        : !_camera.CanMove || _camera.StagePositionUm is null ? "connect and home the stage first; nothing else may hold the machine"
+        : !(MapSizeMm > 0 && MapSizeMm <= 20) ? string.Create(CultureInfo.InvariantCulture, $"a map of {MapSizeMm} mm must be above 0 and at most 20 mm a side")
+        : null;
+
+    public bool CanScanMap => MapUnavailableReason is null;
+
+    partial void OnMapSizeMmChanged(double value) => ScanMapCommand.NotifyCanExecuteChanged();
+
+    /// <summary>Scans a square of <see cref="MapSizeMm"/> centred where the stage stands and stitches it; the stage goes back.</summary>
+    [RelayCommand(CanExecute = nameof(CanScanMap))]
+    private async Task ScanMapAsync(CancellationToken cancellationToken)
+    {
+        Error = null;
+        if (_camera.StagePositionUm is not { } stage)
+        {
+            return;
+        }
+
+        var sideUm = MapSizeMm * 1000;
+        try
+        {
+            var map = await _camera.ScanMapAsync(stage.XUm - (sideUm / 2), stage.YUm - (sideUm / 2), sideUm, sideUm, cancellationToken);
+            // Pixel (0, 0) is centred at the origin: the picture's edge is half a pixel before it.
+            var half = map.UmPerPixel / 2;
+            MapBoxMm = (Units.UmToMm(map.OriginXUm - half), Units.UmToMm(map.OriginYUm - half), Units.UmToMm(map.Image.Width * map.UmPerPixel), Units.UmToMm(map.Image.Height * map.UmPerPixel));
+            // The box first: the stage canvas draws the picture where the box says once the picture arrives.
+            MapUrl = "data:image/png;base64," + Convert.ToBase64String(map.Image.ToPng());
+            MapText = string.Create(CultureInfo.InvariantCulture, $"Map: {map.Frames.Count} frames, worst seam {map.WorstSeamPx:0.##} camera px over {map.Seams.Count} seams; {map.Image.Width} x {map.Image.Height} px at {map.UmPerPixel:0.###} µm a pixel");
+        }
+        catch (Exception ex) when (ex is not OperationCanceledException)
+        {
+            // Whatever stopped it (a refused move, frames that do not overlap), the panel says so.
+            Error = ex.Message;
+        }
+    }
+
     [RelayCommand(CanExecute = nameof(CanCalibrate))]
     private async Task CalibrateAsync(CancellationToken cancellationToken)
     {
@@ -158,7 +213,7 @@ public sealed partial class CameraViewModel : ObservableObject
             CalibrationLines =
             [
                 string.Create(CultureInfo.InvariantCulture, $"Scale: {c.UmPerPixel:0.####} µm a camera pixel"),
-                string.Create(CultureInfo.InvariantCulture, $"Rotation: {c.RotationDeg:0.###}° against the stage's X{(c.Mirrored ? " (mirrored)" : string.Empty)}"),
+                string.Create(CultureInfo.InvariantCulture, $"Rotation: {Degrees(c.RotationDeg):0.###}° against the stage's X{(c.Mirrored ? " (mirrored)" : string.Empty)}"),
                 string.Create(CultureInfo.InvariantCulture, $"Spot: pixel {c.SpotXPx:0.##}, {c.SpotYPx:0.##} (test dot darkened {result.DotDarkeningGrey:0} grey levels)"),
                 string.Create(CultureInfo.InvariantCulture, $"Residual: {c.ResidualUm:0.###} µm over {result.Jogs.Count} jogs"),
             ];
@@ -172,6 +227,9 @@ public sealed partial class CameraViewModel : ObservableObject
         _shown = null;
         Refresh();
     }
+
+    // A turn of -0.0001° would read "-0°": rounded first, and -0 made 0.
+    private static double Degrees(double value) => Math.Round(value, 3) + 0.0;
 
     private void RefreshSoon()
     {
@@ -226,5 +284,6 @@ public sealed partial class CameraViewModel : ObservableObject
         OnPropertyChanged(string.Empty);
         GoToPixelCommand.NotifyCanExecuteChanged();
         CalibrateCommand.NotifyCanExecuteChanged();
+        ScanMapCommand.NotifyCanExecuteChanged();
     }
 }

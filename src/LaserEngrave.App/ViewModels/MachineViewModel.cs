@@ -207,7 +207,9 @@ public sealed partial class MachineViewModel : ObservableObject
             }
             finally
             {
-                await stop.CancelAsync();
+                // Cancel, not CancelAsync: CancelAsync runs the pending tick's callback on the thread pool, and the
+                // simulation's loop (unpaced virtual time), seeing no work of its own while waiting for it, reported a deadlock.
+                stop.Cancel();
             }
         }
 

@@ -62,29 +62,53 @@ public static class ImageRegistration
     }
 
     /// <summary>Refines a shift already known to about a pixel (<paramref name="guessX"/>, <paramref name="guessY"/>) on the images' overlap; returns the refined shift.</summary>
+    /// <remarks>
+    /// Gauss-Newton on the sum of squared differences, in the inverse-compositional form: the gradients (central
+    /// differences) and their normal matrix come from the first image once, so each step samples the second image only
+    /// once per pixel. The steps converge to the same least-squares shift as gradients of the second image would, at a
+    /// fifth of the work (a map's seams measure a hundred overlaps).
+    /// </remarks>
     public static (double XPx, double YPx) Refine(GreyImage first, GreyImage second, double guessX, double guessY)
     {
         ArgumentNullException.ThrowIfNull(first);
         ArgumentNullException.ThrowIfNull(second);
+        int w = first.Width, h = first.Height, sw = second.Width, sh = second.Height;
+        var f = first.Values;
+        var g = second.Values;
+        var gradX = new double[w * h];
+        var gradY = new double[w * h];
+        for (var v = 1; v < h - 1; v++)
+        {
+            for (var u = 1; u < w - 1; u++)
+            {
+                var i = (v * w) + u;
+                gradX[i] = 0.5 * (f[i + 1] - f[i - 1]);
+                gradY[i] = 0.5 * (f[i + w] - f[i - w]);
+            }
+        }
+
         var (x, y) = (guessX, guessY);
-        for (var iteration = 0; iteration < 8; iteration++)
+        for (var iteration = 0; iteration < 12; iteration++)
         {
             double hxx = 0, hxy = 0, hyy = 0, bx = 0, by = 0;
-            for (var v = 1; v < first.Height - 1; v++)
+            // Only pixels whose shifted place lies inside the second image's pixel centres take part.
+            var ix = (int)Math.Floor(x);
+            var iy = (int)Math.Floor(y);
+            var (fx, fy) = (x - ix, y - iy);
+            var u0 = Math.Max(1, -ix);
+            var u1 = Math.Min(w - 2, sw - 2 - ix);
+            var v0 = Math.Max(1, -iy);
+            var v1 = Math.Min(h - 2, sh - 2 - iy);
+            for (var v = v0; v <= v1; v++)
             {
-                for (var u = 1; u < first.Width - 1; u++)
+                var k = ((v + iy) * sw) + u0 + ix;
+                var i = (v * w) + u0;
+                for (var u = u0; u <= u1; u++, k++, i++)
                 {
-                    var sx = u + x;
-                    var sy = v + y;
-                    var b = second.Sample(sx, sy);
-                    var gx = (second.Sample(sx + 0.5, sy) - second.Sample(sx - 0.5, sy));
-                    var gy = (second.Sample(sx, sy + 0.5) - second.Sample(sx, sy - 0.5));
-                    if (double.IsNaN(b) || double.IsNaN(gx) || double.IsNaN(gy))
-                    {
-                        continue;
-                    }
-
-                    var e = first[u, v] - b;
+                    var top = g[k] + ((g[k + 1] - g[k]) * fx);
+                    var bottom = g[k + sw] + ((g[k + sw + 1] - g[k + sw]) * fx);
+                    var e = top + ((bottom - top) * fy) - f[i];
+                    var (gx, gy) = (gradX[i], gradY[i]);
                     hxx += gx * gx;
                     hxy += gx * gy;
                     hyy += gy * gy;
@@ -99,10 +123,11 @@ public static class ImageRegistration
                 break;
             }
 
+            // first(q + d) matches second(q + p) after the step, so the shift becomes p - d.
             var dx = ((hyy * bx) - (hxy * by)) / det;
             var dy = ((hxx * by) - (hxy * bx)) / det;
-            x += dx;
-            y += dy;
+            x -= dx;
+            y -= dy;
             if (Math.Abs(dx) < 1e-4 && Math.Abs(dy) < 1e-4)
             {
                 break;
@@ -138,9 +163,11 @@ public static class ImageRegistration
     // Whole-pixel shift and the parabola's fraction, from the inverse of the normalised cross-power spectrum.
     private static (double X, double Y, double Peak) PhaseCorrelate(GreyImage first, GreyImage second)
     {
-        int w = first.Width, h = first.Height;
-        var a = Windowed(first);
-        var b = Windowed(second);
+        // Zero-padded to powers of two: MathNet's radix-2 transform, several times faster than its any-length (Bluestein) one.
+        var w = (int)System.Numerics.BitOperations.RoundUpToPowerOf2((uint)first.Width);
+        var h = (int)System.Numerics.BitOperations.RoundUpToPowerOf2((uint)first.Height);
+        var a = Windowed(first, w, h);
+        var b = Windowed(second, w, h);
         Transform2D(a, w, h, inverse: false);
         Transform2D(b, w, h, inverse: false);
         for (var i = 0; i < a.Length; i++)
@@ -216,18 +243,18 @@ public static class ImageRegistration
         return denominator < 0 ? Math.Clamp(0.5 * (left - right) / denominator, -0.5, 0.5) : 0;
     }
 
-    private static Complex[] Windowed(GreyImage image)
+    private static Complex[] Windowed(GreyImage image, int paddedW, int paddedH)
     {
         int w = image.Width, h = image.Height;
         var mean = image.Values.Average();
         var wx = Hann(w);
         var wy = Hann(h);
-        var values = new Complex[w * h];
+        var values = new Complex[paddedW * paddedH];
         for (var y = 0; y < h; y++)
         {
             for (var x = 0; x < w; x++)
             {
-                values[(y * w) + x] = new Complex((image[x, y] - mean) * wx[x] * wy[y], 0);
+                values[(y * paddedW) + x] = new Complex((image[x, y] - mean) * wx[x] * wy[y], 0);
             }
         }
 

@@ -93,16 +93,12 @@ public sealed class TwinCamera
         var truth = Truth;
         var (a, b, c, d) = truth.Matrix();
         var image = new double[w * h];
-        for (var v = 0; v < h; v++)
+        // Pixel (u, v) sees the sample at P + M ((u, v) - spot): an affine map, so the texture is filled row by row.
+        _texture.Fill(image, w, h, stageXUm - (a * truth.SpotXPx) - (b * truth.SpotYPx), stageYUm - (c * truth.SpotXPx) - (d * truth.SpotYPx), a, c, b, d);
+        var contrast = Options.Contrast;
+        for (var i = 0; i < image.Length; i++)
         {
-            var dv = v - truth.SpotYPx;
-            for (var u = 0; u < w; u++)
-            {
-                var du = u - truth.SpotXPx;
-                var sx = stageXUm + (a * du) + (b * dv);
-                var sy = stageYUm + (c * du) + (d * dv);
-                image[(v * w) + u] = 0.5 + (Options.Contrast * (_texture.At(sx, sy) - 0.5));
-            }
+            image[i] = 0.5 + (contrast * (image[i] - 0.5));
         }
 
         DrawBurns(image, w, h, truth, stageXUm, stageYUm);
@@ -111,10 +107,13 @@ public sealed class TwinCamera
         GaussianBlur(image, w, h, Math.Min(blurUm / truth.UmPerPixel, Math.Max(w, h) / 4.0));
         var random = new Random(unchecked((Options.Seed * 1_000_003) + (int)frameNumber));
         var pixels = new byte[w * h];
+        var noise = Options.NoiseGrey;
+        // One normal value per pixel (Box-Muller's cosine half), in the same order as ever: a seed's frames stay the same images.
         for (var i = 0; i < pixels.Length; i++)
         {
-            var grey = 30 + (200 * image[i]) + (Options.NoiseGrey * Gaussian(random));
-            pixels[i] = (byte)Math.Clamp(Math.Round(grey), 0, 255);
+            var u1 = 1.0 - random.NextDouble();
+            var u2 = random.NextDouble();
+            pixels[i] = Grey(image[i], noise * Math.Sqrt(-2 * Math.Log(u1)) * Math.Cos(2 * Math.PI * u2));
         }
 
         return new CameraFrame(w, h, pixels);
@@ -229,9 +228,21 @@ public sealed class TwinCamera
             for (var u = 0; u < w; u++)
             {
                 var acc = 0.0;
-                for (var k = -reach; k <= reach; k++)
+                var row = v * w;
+                if (u >= reach && u < w - reach)
                 {
-                    acc += kernel[k + reach] * image[(v * w) + Math.Clamp(u + k, 0, w - 1)];
+                    // Away from the sides no clamping: the common case, kept to a plain multiply-add.
+                    for (var k = 0; k < kernel.Length; k++)
+                    {
+                        acc += kernel[k] * image[row + u - reach + k];
+                    }
+                }
+                else
+                {
+                    for (var k = -reach; k <= reach; k++)
+                    {
+                        acc += kernel[k + reach] * image[row + Math.Clamp(u + k, 0, w - 1)];
+                    }
                 }
 
                 temp[(v * w) + u] = acc;
@@ -243,9 +254,19 @@ public sealed class TwinCamera
             for (var u = 0; u < w; u++)
             {
                 var acc = 0.0;
-                for (var k = -reach; k <= reach; k++)
+                if (v >= reach && v < h - reach)
                 {
-                    acc += kernel[k + reach] * temp[(Math.Clamp(v + k, 0, h - 1) * w) + u];
+                    for (var k = 0; k < kernel.Length; k++)
+                    {
+                        acc += kernel[k] * temp[((v - reach + k) * w) + u];
+                    }
+                }
+                else
+                {
+                    for (var k = -reach; k <= reach; k++)
+                    {
+                        acc += kernel[k + reach] * temp[(Math.Clamp(v + k, 0, h - 1) * w) + u];
+                    }
                 }
 
                 image[(v * w) + u] = acc;
@@ -253,11 +274,10 @@ public sealed class TwinCamera
         }
     }
 
-    private static double Gaussian(Random random)
+    private static byte Grey(double brightness, double noise)
     {
-        var u1 = 1.0 - random.NextDouble();
-        var u2 = random.NextDouble();
-        return Math.Sqrt(-2 * Math.Log(u1)) * Math.Cos(2 * Math.PI * u2);
+        var grey = 30 + (200 * brightness) + noise;
+        return grey <= 0 ? (byte)0 : grey >= 255 ? (byte)255 : (byte)Math.Round(grey);
     }
 }
 

@@ -36,4 +36,35 @@ public sealed class CameraBrowserTests : BrowserTest
         WaitFor(_ => main.Machine.XMicrosteps != before, "the stage moved");
         Assert.Empty(Driver.FindElements(By.CssSelector("[data-error=camera]")));
     }
+
+    [Fact]
+    public void CameraPanel_CalibrateThenMapOnTheTwin_ShowsWhatWasMeasuredAndTheMap()
+    {
+        Size1280x720();
+        Id("connect").Click();
+        WaitFor(d => d.FindElement(By.Id("machine-connection")).Text.Contains("simulator", StringComparison.Ordinal), "connected to the simulator");
+        SetField("goto-x", "30");
+        SetField("goto-y", "30");
+        WaitFor(_ => Enabled("goto"), "Go to offered");
+        Id("goto").Click();
+        WaitFor(d => d.FindElement(By.Id("position")).Text == "X 30.000 · Y 30.000 mm", "the stage at 30, 30 mm");
+        Driver.ExecuteScript("document.getElementById('panel-camera').open = true; document.getElementById('panel-camera').scrollIntoView();");
+        WaitFor(_ => Enabled("camera-calibrate"), "Calibrate offered");
+
+        Id("camera-calibrate").Click();
+
+        WaitFor(d => d.FindElements(By.CssSelector("[data-camera=calibration]")).Count == 4 || d.FindElements(By.CssSelector("[data-error=camera]")).Count > 0, "calibration measured", 120);
+        Assert.Empty(Driver.FindElements(By.CssSelector("[data-error=camera]")).Select(e => e.Text));
+        Assert.StartsWith("Calibrated: ", Text("camera-calibration"), StringComparison.Ordinal);
+
+        SetField("camera-map-size", "0.5");
+        WaitFor(_ => Enabled("camera-map"), "Map offered");
+        Id("camera-map").Click();
+
+        WaitFor(d => d.FindElements(By.Id("camera-map-result")).Count == 1 || d.FindElements(By.CssSelector("[data-error=camera]")).Count > 0, "the map stitched", 120);
+        Assert.Empty(Driver.FindElements(By.CssSelector("[data-error=camera]")).Select(e => e.Text));
+        Assert.StartsWith("Map: ", Text("camera-map-result"), StringComparison.Ordinal);
+        Driver.ExecuteScript("document.getElementById('camera-calibrate').scrollIntoView();");
+        Screenshot("camera-twin-calibrated");
+    }
 }

@@ -71,9 +71,8 @@ public sealed class CameraLiveBrowserTests : IAsyncLifetime
     {
         var driver = _driver!;
         var url = _app!.Services.GetRequiredService<IServer>().Features.Get<IServerAddressesFeature>()!.Addresses.First().TrimEnd('/');
-        // Opened as the app's window opens it: a one-time launch code the page trades for the token.
-        var code = _app.Services.GetRequiredService<LaunchCodes>().Issue();
-        driver.Navigate().GoToUrl($"{url}/#{LaunchCodes.FragmentName}={code}");
+        // As the app's window opens it: a one-time launch code the page trades for the token (a token in the address is refused).
+        driver.Navigate().GoToUrl($"{url}/#{LaunchCodes.FragmentName}={_app.Services.GetRequiredService<LaunchCodes>().Issue()}");
         var wait = new WebDriverWait(driver, TimeSpan.FromSeconds(60)) { PollingInterval = TimeSpan.FromMilliseconds(50) };
         wait.IgnoreExceptionTypes(typeof(NoSuchElementException), typeof(StaleElementReferenceException));
         wait.Until(d => d.FindElement(By.Id("app")).GetAttribute("data-interactive") == "true");

@@ -84,6 +84,13 @@ export function create(host, dotnet) {
     ctx.restore();
     ctx.strokeStyle = css('--border-strong'); ctx.lineWidth = 1; ctx.strokeRect(x0 + 0.5, y0 + 0.5, x1 - x0, y1 - y0);
 
+    // The camera's stitched map of the sample, under the job, in mm coordinates.
+    if (s.map && s.map.img.complete && s.map.img.naturalWidth > 0) {
+      ctx.save(); ctx.setTransform(d * s.scale, 0, 0, d * s.scale, d * s.ox, d * s.oy);
+      ctx.drawImage(s.map.img, s.map.x, s.map.y, s.map.w, s.map.h);
+      ctx.restore();
+    }
+
     // The job, in mm coordinates.
     const job = s.drag && s.drag.kind === 'job' ? { ...s.job, x: s.drag.x, y: s.drag.y } : s.job;
     ctx.save(); ctx.setTransform(d * s.scale, 0, 0, d * s.scale, d * s.ox, d * s.oy);
@@ -298,6 +305,13 @@ export function create(host, dotnet) {
     setTravel(w, h) { s.travel = { w, h }; s.fitted = false; resize(); },
     setJob(job, draggable) { s.job = job; s.draggable = draggable; invalidate(); },
     setLayers(layers) { s.layers = layers || []; invalidate(); },
+    setMap(url, x, y, w, h) {
+      if (!url) { s.map = null; invalidate(); return; }
+      const img = new Image();
+      img.onload = () => invalidate();
+      img.src = url;
+      s.map = { img, x, y, w, h };
+    },
     setMask(url) {
       if (url === s.maskUrl) return;
       s.maskUrl = url;
