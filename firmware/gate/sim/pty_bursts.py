@@ -10,6 +10,8 @@ image fired for it and its first pulse's cycle, grouped exactly as sim/different
 that `differential.py ... STREAM_OUT BURSTS_OUT --check` proves the wall-clock run and the cycle-exact replay agree."""
 import sys
 
+from bursts import group
+
 lines_path, edges_path, first, stream_out, bursts_out = sys.argv[1:6]
 title = sys.argv[6] if len(sys.argv) > 6 else "gate lines recorded by gate_pty"
 rows = []
@@ -30,35 +32,7 @@ for row in open(edges_path):
     level = v
 
 
-def hz_of(text):
-    words = text.split(" ")
-    try:
-        return int(words[2]) if words[0].upper() == "BURST" else int(words[1]) if words[0].upper() == "FREQ" else 0
-    except (IndexError, ValueError):
-        return 0
-
-
-def fired_period(hz):
-    i = 0 if hz >= 245 else 1 if hz >= 31 else 2 if hz >= 4 else 3
-    p = (1, 8, 64, 256)[i]
-    return ((16_000_000 // p + hz // 2) // hz) * p
-
-
-freq = [(i, at, text) for i, (at, text) in enumerate(lines) if text.split(" ")[0].upper() in ("FREQ", "OFF", "BURST")]
-counts = {i: [0, None] for i, _, _ in freq}
-k, prev, period, owner = -1, None, None, None
-for r in rises:
-    if prev is None or period is None or abs(r - prev - period) > 16:
-        while k + 1 < len(freq) and freq[k + 1][1] < r:
-            k += 1
-        if k < 0:
-            continue
-        owner = freq[k][0]
-        period = fired_period(hz_of(freq[k][2])) if hz_of(freq[k][2]) else None
-        if counts[owner][1] is None:
-            counts[owner][1] = r
-    counts[owner][0] += 1
-    prev = r
+freq, counts = group(lines, rises)
 with open(stream_out, "w") as f:
     f.write(f"# {title}; cycle = the line's last byte at the gate (RXC), 16 MHz, from 0.1 s before its first line\n")
     f.writelines(f"{at} {text}\n" for at, text in lines)
