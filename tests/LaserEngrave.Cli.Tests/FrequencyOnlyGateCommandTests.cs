@@ -70,5 +70,18 @@ public sealed class FrequencyOnlyGateCommandTests : IDisposable
         Assert.Null(log.NoWatchdogAccepted);
     }
 
+    [Theory]
+    [InlineData("frequency-only-silent.json", "laser sent off (this gate never replies, so nothing confirms it)")]
+    [InlineData("frequency-only.json", "laser off")]
+    public async Task GoToSimulate_FrequencyOnlyGate_MovesAndSaysOnlyWhatTheGateConfirmed(string profile, string laser)
+    {
+        // A gate that never replies can only be sent off: a move with the laser off goes on, and never says "laser off".
+        var (exit, output, error) = await CliHarness.RunAsync(
+            "goto", "5", "5", "--simulate", "--profile", Path.Combine(CliHarness.RepositoryRoot, "assets", "profiles", profile));
+
+        Assert.True(exit == 0, error);
+        Assert.EndsWith($"= 5, 5 mm; {laser}", output.TrimEnd(), StringComparison.Ordinal);
+    }
+
     public void Dispose() => Directory.Delete(folder, recursive: true);
 }

@@ -150,11 +150,11 @@ internal static class TestMoveCommands
                 if (count is { } n)
                 {
                     await moves.FirePulsesAsync(n, hz, ct);
-                    return string.Create(CultureInfo.InvariantCulture, $"fired {n} pulses at {hz} Hz; laser off");
+                    return string.Create(CultureInfo.InvariantCulture, $"fired {n} pulses at {hz} Hz; {LaserOffWords(machineProfile)}");
                 }
 
                 await moves.FireForAsync(TimeSpan.FromMilliseconds(duration!.Value), hz, ct);
-                return string.Create(CultureInfo.InvariantCulture, $"fired for {duration} ms at {hz} Hz; laser off");
+                return string.Create(CultureInfo.InvariantCulture, $"fired for {duration} ms at {hz} Hz; {LaserOffWords(machineProfile)}");
             });
         });
         return command;
@@ -188,5 +188,9 @@ internal static class TestMoveCommands
 
     private static string Describe(StagePosition position, MachineProfile profile) => string.Create(
         CultureInfo.InvariantCulture,
-        $"at {position.XMicrosteps}, {position.YMicrosteps} microsteps = {StageUnits.MicrostepsToMm(position.XMicrosteps, profile.X.MicrostepUm):0.####}, {StageUnits.MicrostepsToMm(position.YMicrosteps, profile.Y.MicrostepUm):0.####} mm; laser off");
+        $"at {position.XMicrosteps}, {position.YMicrosteps} microsteps = {StageUnits.MicrostepsToMm(position.XMicrosteps, profile.X.MicrostepUm):0.####}, {StageUnits.MicrostepsToMm(position.YMicrosteps, profile.Y.MicrostepUm):0.####} mm; {LaserOffWords(profile)}");
+
+    // Never "off" for a gate that cannot say so.
+    private static string LaserOffWords(MachineProfile profile) =>
+        profile.Gate.NeverReplies ? "laser sent off (this gate never replies, so nothing confirms it)" : "laser off";
 }
