@@ -39,4 +39,31 @@ public interface ICameraService
     /// to where it stood. Throws <see cref="CameraException"/> with the reason it could not.
     /// </summary>
     Task<SampleMap> ScanMapAsync(double x0Um, double y0Um, double widthUm, double heightUm, CancellationToken cancellationToken);
+
+    /// <summary>Raised when a measurement wants a live frame: the page answers with <see cref="SubmitLiveFrame"/> (from any thread).</summary>
+    event EventHandler? LiveFrameWanted;
+
+    /// <summary>The page's live camera is playing, so frames can be asked for.</summary>
+    bool LiveCameraReady { get; set; }
+
+    /// <summary>The size the page sends live frames at: the profile's image, shrunk by a whole factor to at most 640 x 480.</summary>
+    (int Width, int Height) LiveFrameSize { get; }
+
+    /// <summary>A grey live frame from the page, row by row; null when taken, otherwise why it was refused (wrong size or length, too soon after the last).</summary>
+    string? SubmitLiveFrame(int width, int height, byte[] grey);
+
+    /// <summary>The next frame to measure: the twin's now, or the first the page sends after this call.</summary>
+    Task<CameraFrame> CaptureAsync(CancellationToken cancellationToken);
+
+    /// <summary>The machine's focus (Z) axis; null without one.</summary>
+    ZAxisProfile? FocusAxis { get; }
+
+    /// <summary>
+    /// Steps Z from <paramref name="fromUm"/> to <paramref name="toUm"/> (µm from the visible focus) by <paramref name="stepUm"/>, laser off,
+    /// measuring the sharpness at each step (<see cref="FocusSweep"/>); Z goes back where it stood when that is known.
+    /// </summary>
+    Task<FocusSweepResult> FindFocusAsync(double fromUm, double toUm, double stepUm, IProgress<FocusPoint>? progress, CancellationToken cancellationToken);
+
+    /// <summary>Laser off, then Z to <paramref name="offsetUm"/> µm from the visible focus; throws <see cref="CameraException"/> with why not.</summary>
+    Task MoveFocusAsync(double offsetUm, CancellationToken cancellationToken);
 }

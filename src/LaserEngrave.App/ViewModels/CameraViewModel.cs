@@ -107,7 +107,7 @@ public sealed partial class CameraViewModel : ObservableObject
 
     /// <summary>Why Calibrate cannot run now; null when it can.</summary>
     public string? CalibrateUnavailableReason => !HasCamera ? "the machine profile has no camera section"
-        : !IsTwin ? "calibrating needs the camera's frames in the app, which it has only on the simulator so far"
+        : !IsTwin && !_camera.LiveCameraReady ? "the live camera is not playing yet: allow the browser to use it"
         : !_camera.CanMove ? "connect the machine first, and wait for what holds it"
         : null;
 
@@ -120,6 +120,152 @@ public sealed partial class CameraViewModel : ObservableObject
     {
         LiveCamera = label;
         Error = error;
+        _camera.LiveCameraReady = label is not null;
+        _shown = null;
+        Refresh();
+    }
+
+    /// <summary>Raised when a measurement wants a frame of the live camera; the page answers with <see cref="SubmitLiveFrame"/>.</summary>
+    public event EventHandler? LiveFrameWanted
+    {
+        add => _camera.LiveFrameWanted += value;
+        remove => _camera.LiveFrameWanted -= value;
+    }
+
+    /// <summary>The size the page sends live frames at (the profile's image, shrunk by a whole factor to at most 640 x 480).</summary>
+    public (int Width, int Height) LiveFrameSize => _camera.LiveFrameSize;
+
+    /// <summary>A grey frame of the live camera from the page; a refused one (wrong size, too soon) is said in <see cref="Error"/>.</summary>
+    public bool SubmitLiveFrame(int width, int height, byte[] grey)
+    {
+        if (_camera.SubmitLiveFrame(width, height, grey) is { } refusal)
+        {
+            Error = refusal;
+            return false;
+        }
+
+        LiveFramesReceived++;
+        LiveFramesText = $"Frames measured here: {LiveFramesReceived} ({width} x {height} grey)";
+        return true;
+    }
+
+    /// <summary>Live frames the page sent that were taken.</summary>
+    public int LiveFramesReceived { get; private set; }
+
+    /// <summary>How many live frames the app measured, and their size; null before the first.</summary>
+    [ObservableProperty]
+    public partial string? LiveFramesText { get; private set; }
+
+    /// <summary>The focus sweep's range and step, µm from the visible focus (z.focusMm, the 0 of the focal-offset series).</summary>
+    [ObservableProperty]
+    public partial double FocusFromUm { get; set; } = -300;
+
+    /// <inheritdoc cref="FocusFromUm"/>
+    [ObservableProperty]
+    public partial double FocusToUm { get; set; } = 300;
+
+    /// <inheritdoc cref="FocusFromUm"/>
+    [ObservableProperty]
+    public partial double FocusStepUm { get; set; } = 50;
+
+    /// <summary>The sweep's steps so far (they arrive while it runs).</summary>
+    [ObservableProperty]
+    public partial IReadOnlyList<FocusPoint> FocusPoints { get; private set; } = [];
+
+    /// <summary>The last finished sweep; null before one.</summary>
+    [ObservableProperty]
+    public partial FocusSweepResult? FocusResult { get; private set; }
+
+    /// <summary>What the last sweep found and how it relates to the focal-offset series, one line each.</summary>
+    [ObservableProperty]
+    public partial IReadOnlyList<string> FocusLines { get; private set; } = [];
+
+    public bool HasFocusAxis => _camera.FocusAxis is not null;
+
+    /// <summary>Why Find focus cannot run now; null when it can.</summary>
+    public string? FocusUnavailableReason => !HasCamera ? "the machine profile has no camera section"
+        : _camera.FocusAxis is null ? "this machine profile has no focus (Z) axis, so there is no Z to sweep (add a \"z\" section, docs/machine-profile.md); turn the focus by hand and watch the sharpness figure"
+        : !IsTwin && !_camera.LiveCameraReady ? "the live camera is not playing yet: allow the browser to use it"
+        : !_camera.CanMove ? "connect the machine first, and wait for what holds it"
+        : !(FocusStepUm > 0 && FocusToUm > FocusFromUm) ? string.Create(CultureInfo.InvariantCulture, $"the sweep needs a range from a lower to a higher offset and a step above 0 µm (got {FocusFromUm} to {FocusToUm} µm by {FocusStepUm} µm)")
+        : _camera.FocusAxis.OffsetProblem(FocusFromUm) is { } low ? string.Create(CultureInfo.InvariantCulture, $"the sweep's start, {FocusFromUm} µm, {low}")
+        : _camera.FocusAxis.OffsetProblem(FocusToUm) is { } high ? string.Create(CultureInfo.InvariantCulture, $"the sweep's end, {FocusToUm} µm, {high}")
+        : null;
+
+    public bool CanFindFocus => FocusUnavailableReason is null;
+
+    /// <summary>The sharpest Z the last sweep found (between steps), µm from the visible focus; offered by <see cref="GoToSharpestFocusCommand"/>.</summary>
+    public double? SharpestFocusUm => FocusResult is { } r ? Math.Round(r.BestOffsetUm, 1) + 0.0 : null;
+
+    public bool CanGoToSharpestFocus => SharpestFocusUm is not null && HasFocusAxis && _camera.CanMove;
+
+    partial void OnFocusFromUmChanged(double value) => FindFocusCommand.NotifyCanExecuteChanged();
+
+    partial void OnFocusToUmChanged(double value) => FindFocusCommand.NotifyCanExecuteChanged();
+
+    partial void OnFocusStepUmChanged(double value) => FindFocusCommand.NotifyCanExecuteChanged();
+
+    /// <summary>Steps Z through the range with the laser off, measuring the sharpness at each step; Z goes back where it stood.</summary>
+    [RelayCommand(CanExecute = nameof(CanFindFocus))]
+    private async Task FindFocusAsync(CancellationToken cancellationToken)
+    {
+        Error = null;
+        FocusResult = null;
+        FocusLines = [];
+        FocusPoints = [];
+        var z = _camera.FocusAxis;
+        try
+        {
+            var result = await _camera.FindFocusAsync(FocusFromUm, FocusToUm, FocusStepUm, new Steps(this), cancellationToken);
+            FocusPoints = result.Points;
+            FocusResult = result;
+            if (z is not null)
+            {
+                var peak = SharpestFocusUm!.Value;
+                FocusLines =
+                [
+                    string.Create(CultureInfo.InvariantCulture, $"Sharpest step: {result.BestStepUm:+0.#;-0.#;0} µm from the visible focus (Z {z.FocusMm + Units.UmToMm(result.BestStepUm):0.####} mm); between the steps the peak is at {peak:+0.#;-0.#;0} µm"),
+                    string.Create(CultureInfo.InvariantCulture, $"The focal-offset series (seed 002; Sweep panel, Focal series) counts from the same 0, the visible focus at Z {z.FocusMm:0.###} mm: the camera sees the sample sharpest at {peak:+0.#;-0.#;0} µm on that scale, so the series' best offset f lies f {(peak >= 0 ? "-" : "+")} {Math.Abs(peak):0.#} µm from where the camera is sharp"),
+                ];
+            }
+        }
+        catch (Exception ex) when (ex is not OperationCanceledException)
+        {
+            Error = ex.Message;
+        }
+
+        _shown = null;
+        Refresh();
+    }
+
+    /// <summary>Laser off, Z to the sharpest offset the last sweep found.</summary>
+    [RelayCommand(CanExecute = nameof(CanGoToSharpestFocus))]
+    private async Task GoToSharpestFocusAsync(CancellationToken cancellationToken)
+    {
+        Error = null;
+        if (SharpestFocusUm is not { } offset)
+        {
+            return;
+        }
+
+        try
+        {
+            await _camera.MoveFocusAsync(offset, cancellationToken);
+            LastGoTo = string.Create(CultureInfo.InvariantCulture, $"Z at {offset:+0.#;-0.#;0} µm from the visible focus, the sharpest the sweep found, laser off");
+        }
+        catch (CameraException ex)
+        {
+            Error = ex.Message;
+        }
+
+        _shown = null;
+        Refresh();
+    }
+
+    // The sweep's steps as they come, shown at once (not posted to a context: the panel re-renders on the change).
+    private sealed class Steps(CameraViewModel owner) : IProgress<FocusPoint>
+    {
+        public void Report(FocusPoint value) => owner.FocusPoints = [.. owner.FocusPoints, value];
     }
 
     /// <summary>The page measured the live frame's sharpness (same figure as <see cref="FocusMeasure"/>).</summary>
@@ -165,7 +311,7 @@ public sealed partial class CameraViewModel : ObservableObject
 
     /// <summary>Why Map cannot run now; null when it can.</summary>
     public string? MapUnavailableReason => !HasCamera ? "the machine profile has no camera section"
-        : !IsTwin ? "a map needs the camera's frames in the app, which it has only on the simulator so far"
+        : !IsTwin && !_camera.LiveCameraReady ? "the live camera is not playing yet: allow the browser to use it"
         : !_camera.CanMove || _camera.StagePositionUm is null ? "connect and home the stage first; nothing else may hold the machine"
         : !(MapSizeMm > 0 && MapSizeMm <= 20) ? string.Create(CultureInfo.InvariantCulture, $"a map of {MapSizeMm} mm must be above 0 and at most 20 mm a side")
         : null;
@@ -285,5 +431,7 @@ public sealed partial class CameraViewModel : ObservableObject
         GoToPixelCommand.NotifyCanExecuteChanged();
         CalibrateCommand.NotifyCanExecuteChanged();
         ScanMapCommand.NotifyCanExecuteChanged();
+        FindFocusCommand.NotifyCanExecuteChanged();
+        GoToSharpestFocusCommand.NotifyCanExecuteChanged();
     }
 }

@@ -21,8 +21,9 @@ public sealed class FocusSweep
         _rig = rig;
     }
 
+    /// <param name="returnToStart">Z goes back to where it stood at the start (the app offers the sharpest Z instead of taking it); otherwise Z is left at the sharpest step.</param>
     /// <exception cref="CameraException">The machine has no Z axis, or the range or step is unusable.</exception>
-    public async Task<FocusSweepResult> RunAsync(double fromUm, double toUm, double stepUm, CancellationToken cancellationToken, IProgress<FocusPoint>? progress = null)
+    public async Task<FocusSweepResult> RunAsync(double fromUm, double toUm, double stepUm, CancellationToken cancellationToken, IProgress<FocusPoint>? progress = null, bool returnToStart = false)
     {
         if (!_rig.HasFocusAxis)
         {
@@ -79,8 +80,8 @@ public sealed class FocusSweep
             }
         }
 
-        // Z is left at the sharpest step, where the technician wants to look next.
-        await _rig.MoveFocusAsync(points[best].OffsetUm, cancellationToken);
+        // Z is left at the sharpest step, where the technician wants to look next, unless asked to go back.
+        await _rig.MoveFocusAsync(returnToStart ? start : points[best].OffsetUm, cancellationToken);
         return new FocusSweepResult(points, points[best].OffsetUm, peak);
     }
 }
