@@ -191,6 +191,22 @@ public sealed class CameraService : ICameraService
         return offset is { } value && z.OffsetProblem(value) is null ? value : null;
     }
 
+    public async Task<(double XUm, double YUm, double XPx, double YPx)> PickMarkAsync(double xPx, double yPx, double markDiameterUm, CancellationToken cancellationToken)
+    {
+        RequireFrames("picking a mark");
+        var rig = new Rig(this);
+        var navigator = new CameraNavigator(rig, Camera!.InForce);
+        // The frame and the position together: the stage stands still while nothing else holds the machine.
+        var position = rig.Position;
+        var frame = await CaptureAsync(cancellationToken);
+        if (rig.Position != position)
+        {
+            throw new CameraException("the stage moved while the frame was taken: pick the mark again when it stands still");
+        }
+
+        return navigator.PickMark(frame, xPx, yPx, markDiameterUm);
+    }
+
     /// <summary>The frame to measure: the twin's, or the next one the page sends after this call.</summary>
     public async Task<CameraFrame> CaptureAsync(CancellationToken cancellationToken)
     {

@@ -66,4 +66,10 @@ public interface ICameraService
 
     /// <summary>Laser off, then Z to <paramref name="offsetUm"/> µm from the visible focus; throws <see cref="CameraException"/> with why not.</summary>
     Task MoveFocusAsync(double offsetUm, CancellationToken cancellationToken);
+
+    /// <summary>
+    /// A mark clicked at (<paramref name="xPx"/>, <paramref name="yPx"/>) in a frame taken where the stage stands: snapped to
+    /// the dark mark's centre (<see cref="MarkFinder"/>) and turned into the stage position that brings it under the spot, µm.
+    /// </summary>
+    Task<(double XUm, double YUm, double XPx, double YPx)> PickMarkAsync(double xPx, double yPx, double markDiameterUm, CancellationToken cancellationToken);
 }

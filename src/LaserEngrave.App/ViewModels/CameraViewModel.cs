@@ -20,10 +20,14 @@ public sealed partial class CameraViewModel : ObservableObject
     private object? _shown;
     private int _refreshState; // 0 idle, 1 refreshing, 2 refreshing and asked again
 
-    public CameraViewModel(ICameraService camera)
+    private readonly Action<int, double, double>? _takeMark;
+
+    /// <param name="takeMark">Where a mark picked in the image goes: mark 1 or 2 and its stage position, mm (the Alignment panel's fields).</param>
+    public CameraViewModel(ICameraService camera, Action<int, double, double>? takeMark = null)
     {
         ArgumentNullException.ThrowIfNull(camera);
         _camera = camera;
+        _takeMark = takeMark;
         // A change is reported on the machine's own thread (the simulation's loop on the twin): the twin's frame is rendered
         // on the thread pool instead, at most one at a time, so the machine never waits for a picture.
         camera.Changed += (_, _) => RefreshSoon();
@@ -293,6 +297,52 @@ public sealed partial class CameraViewModel : ObservableObject
         }
     }
 
+    /// <summary>The alignment mark the next click picks (1 or 2); null: a click goes there.</summary>
+    [ObservableProperty]
+    public partial int? PickingMark { get; set; }
+
+    /// <summary>About how wide the marks are on the sample, µm: the click snaps to the dark mark's centre within it.</summary>
+    [ObservableProperty]
+    public partial double MarkDiameterUm { get; set; } = 50;
+
+    /// <summary>What the last picked mark became, one line.</summary>
+    [ObservableProperty]
+    public partial string? MarkText { get; private set; }
+
+    public bool CanPickMark => _takeMark is not null && HasCamera && _camera.StagePositionUm is not null && (IsTwin || _camera.LiveCameraReady) && _camera.CanMove;
+
+    /// <summary>A click while picking a mark: snapped to the mark's centre, its stage position given to the alignment as mark <see cref="PickingMark"/>.</summary>
+    [RelayCommand(CanExecute = nameof(CanPickMark))]
+    private async Task PickMarkAsync((double X, double Y) pixel)
+    {
+        Error = null;
+        if (PickingMark is not { } mark || _takeMark is null)
+        {
+            return;
+        }
+
+        if (!(MarkDiameterUm > 0 && MarkDiameterUm <= 5000))
+        {
+            Error = string.Create(CultureInfo.InvariantCulture, $"a mark {MarkDiameterUm} µm wide must be above 0 and at most 5000 µm");
+            return;
+        }
+
+        try
+        {
+            var (x, y, xPx, yPx) = await _camera.PickMarkAsync(pixel.X, pixel.Y, MarkDiameterUm, CancellationToken.None);
+            _takeMark(mark, Units.UmToMm(x), Units.UmToMm(y));
+            MarkText = string.Create(CultureInfo.InvariantCulture, $"Mark {mark}: stage {Units.UmToMm(x):0.####}, {Units.UmToMm(y):0.####} mm (clicked at pixel {pixel.X:0}, {pixel.Y:0}, snapped to the mark's centre at {xPx:0.#}, {yPx:0.#}); given to the alignment to two marks");
+            PickingMark = null;
+        }
+        catch (CameraException ex)
+        {
+            Error = ex.Message;
+        }
+    }
+
+    /// <summary>The next click picks mark <paramref name="mark"/> (1 or 2); pressed again, clicks go to the point again.</summary>
+    public void TogglePickMark(int mark) => PickingMark = PickingMark == mark ? null : mark;
+
     /// <summary>The map's side, mm: a square of stage positions centred where the stage stands.</summary>
     [ObservableProperty]
     public partial double MapSizeMm { get; set; } = 1;
@@ -433,5 +483,6 @@ public sealed partial class CameraViewModel : ObservableObject
         ScanMapCommand.NotifyCanExecuteChanged();
         FindFocusCommand.NotifyCanExecuteChanged();
         GoToSharpestFocusCommand.NotifyCanExecuteChanged();
+        PickMarkCommand.NotifyCanExecuteChanged();
     }
 }

@@ -56,7 +56,19 @@ public static class AppHost
         services.AddSingleton(sp => new CalibrationViewModel(sp.GetRequiredService<MainViewModel>(), sp.GetRequiredService<AppFolders>().DataFolder));
         services.AddSingleton(sp => new AlignmentViewModel(sp.GetRequiredService<MainViewModel>(), sp.GetRequiredService<AppFolders>().DataFolder));
         services.AddSingleton<ICameraService>(sp => new CameraService(sp.GetRequiredService<MainViewModel>()));
-        services.AddSingleton(sp => new CameraViewModel(sp.GetRequiredService<ICameraService>()));
+        services.AddSingleton(sp => new CameraViewModel(sp.GetRequiredService<ICameraService>(), (mark, xMm, yMm) =>
+        {
+            // A mark picked in the camera's image is the Alignment panel's stage position of that mark.
+            var alignment = sp.GetRequiredService<AlignmentViewModel>();
+            if (mark == 1)
+            {
+                (alignment.Stage1XMm, alignment.Stage1YMm) = (xMm, yMm);
+            }
+            else
+            {
+                (alignment.Stage2XMm, alignment.Stage2YMm) = (xMm, yMm);
+            }
+        }));
         services.AddSingleton<IMachineCheckService, MachineCheckService>();
         services.AddSingleton(sp => new CommissionViewModel(sp.GetRequiredService<MainViewModel>(), sp.GetRequiredService<IMachineCheckService>(), sp.GetRequiredService<AppFolders>().DataFolder, sp.GetRequiredService<TimeProvider>()));
         services.AddSingleton<IMarkService>(sp => new MarkService(sp.GetRequiredService<AppFolders>(), () => sp.GetRequiredService<MainViewModel>().Job.Profile, sp.GetRequiredService<TimeProvider>()));

@@ -124,6 +124,71 @@ public sealed class CameraFocusAndLiveTests : ComponentTest
     }
 
     [Fact]
+    public async Task PickMark_TwoMarksClickedInLiveFrames_GivenToTheAlignmentWhichPlacesTheJobWithinFiveMicrometres()
+    {
+        var camera = new CameraViewModel(new CameraService(Main, _clock), (mark, x, y) =>
+        {
+            if (mark == 1)
+            {
+                (Alignment.Stage1XMm, Alignment.Stage1YMm) = (x, y);
+            }
+            else
+            {
+                (Alignment.Stage2XMm, Alignment.Stage2YMm) = (x, y);
+            }
+        });
+        UseSimulator(MachineProfile.Default with { Camera = Optics }, hideTwin: true);
+        await AtAsync(30, 30);
+        TwinCamera? twinCamera = null;
+        _ = new FakePage(camera, _clock, () => (twinCamera ??= new TwinCamera(_twin!, optics: Optics)).Capture());
+        camera.ReportLiveCamera("fake camera", null);
+        await camera.CalibrateCommand.ExecuteAsync(null);
+        Assert.Null(camera.Error);
+        var cut = Render<CameraPanel>(p => p.Add(c => c.Camera, camera));
+        // The sample's marks: where a job turned by 7.3° has its marks (1, 1.5) and (9, 6.5) mm.
+        var truth = new Core.Alignment.RigidTransform(7.3 * Math.PI / 180, 24.2, 25.7);
+        (double X, double Y)[] jobMarks = [(1.0, 1.5), (9.0, 6.5)];
+        var marks = jobMarks.Select(m => truth.Apply(m.X, m.Y)).ToList();
+        foreach (var (sx, sy) in marks)
+        {
+            twinCamera!.AddMark(sx * 1000, sy * 1000, 40);
+        }
+
+        for (var i = 0; i < 2; i++)
+        {
+            // Jog near the mark (80 µm off, as by eye), press Pick mark, click near it in the image.
+            var (sx, sy) = marks[i];
+            Main.TestMoves.GoToXMm = sx + 0.08;
+            Main.TestMoves.GoToYMm = sy - 0.06;
+            await Main.TestMoves.GoToCommand.ExecuteAsync(null);
+            var (px, py) = Optics.Nominal.PixelAt(-80, 60);
+            // Offered once the panel has seen the move end (the machine held no more).
+            cut.WaitForAssertion(() => Assert.False(cut.Find($"#camera-pick-{i + 1}").HasAttribute("disabled")), TimeSpan.FromSeconds(10));
+            cut.Find($"#camera-pick-{i + 1}").Click();
+            Assert.Equal(i + 1, camera.PickingMark);
+            await cut.InvokeAsync(() => cut.Instance.OnCameraClick(Math.Round(px) - 2, Math.Round(py) + 4));
+            cut.WaitForAssertion(() => Assert.True(camera.PickingMark is null || camera.Error is not null), TimeSpan.FromSeconds(30));
+            Assert.Null(camera.Error);
+        }
+
+        (Alignment.Job1XMm, Alignment.Job1YMm, Alignment.Job2XMm, Alignment.Job2YMm) = (jobMarks[0].X, jobMarks[0].Y, jobMarks[1].X, jobMarks[1].Y);
+        var alignment = Core.Alignment.FiducialAlignment.Solve(
+            new Core.Alignment.Fiducial(Alignment.Job1XMm, Alignment.Job1YMm, Alignment.Stage1XMm, Alignment.Stage1YMm),
+            new Core.Alignment.Fiducial(Alignment.Job2XMm, Alignment.Job2YMm, Alignment.Stage2XMm, Alignment.Stage2YMm));
+        var worst = 0.0;
+        foreach (var (jx, jy) in new[] { (0.0, 0.0), (10.0, 0.0), (0.0, 8.0), (10.0, 8.0), jobMarks[0], jobMarks[1] })
+        {
+            var (ax, ay) = alignment.Transform.Apply(jx, jy);
+            var (tx, ty) = truth.Apply(jx, jy);
+            worst = Math.Max(worst, 1000 * Math.Sqrt(Math.Pow(ax - tx, 2) + Math.Pow(ay - ty, 2)));
+        }
+
+        Xunit.TestContext.Current.TestOutputHelper?.WriteLine($"marks picked in live frames: worst {worst:F3} µm over the job's corners and marks, rotation {alignment.Transform.AngleDegrees:F4}° (true 7.3°)");
+        Assert.True(worst < 5, $"the aligned job is up to {worst:F2} µm off");
+        Assert.StartsWith("Mark 2: stage ", cut.Find("#camera-mark").TextContent, StringComparison.Ordinal);
+    }
+
+    [Fact]
     public async Task Calibrate_LiveFramesWithoutTexture_RefusedWithAPlainSentence()
     {
         var camera = new CameraViewModel(new CameraService(Main, _clock));
@@ -188,28 +253,6 @@ public sealed class CameraFocusAndLiveTests : ComponentTest
         public int Sent { get; private set; }
     }
 
-    // The simulator's connection with its burn inspector hidden: the app takes it for a real machine, so frames come from the page.
-    private sealed class NotATwin(IMachineConnection inner) : IMachineConnection
-    {
-        public string Description => inner.Description;
-
-        public MachineProfile Profile => inner.Profile;
-
-        public TimeProvider TimeProvider => inner.TimeProvider;
-
-        public bool IsSimulated => inner.IsSimulated;
-
-        public IStage Stage => inner.Stage;
-
-        public ILaserGate Gate => inner.Gate;
-
-        public ILatencyProbe Latency => inner.Latency;
-
-        public IRunInspector? Inspector => null;
-
-        public ValueTask DisposeAsync() => inner.DisposeAsync();
-    }
-
     // A clock that moves only when told: the live frames' rate is judged by it.
     private sealed class StepClock : TimeProvider
     {
@@ -221,4 +264,26 @@ public sealed class CameraFocusAndLiveTests : ComponentTest
 
         public void Advance(TimeSpan by) => Interlocked.Add(ref _ticks, by.Ticks);
     }
+}
+
+// The simulator's connection with its burn inspector hidden: the app takes it for a real machine, so frames come from the page.
+internal sealed class NotATwin(IMachineConnection inner) : IMachineConnection
+{
+    public string Description => inner.Description;
+
+    public MachineProfile Profile => inner.Profile;
+
+    public TimeProvider TimeProvider => inner.TimeProvider;
+
+    public bool IsSimulated => inner.IsSimulated;
+
+    public IStage Stage => inner.Stage;
+
+    public ILaserGate Gate => inner.Gate;
+
+    public ILatencyProbe Latency => inner.Latency;
+
+    public IRunInspector? Inspector => null;
+
+    public ValueTask DisposeAsync() => inner.DisposeAsync();
 }

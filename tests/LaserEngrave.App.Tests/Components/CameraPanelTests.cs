@@ -98,14 +98,26 @@ public sealed class CameraPanelTests : ComponentTest
     }
 
     [Fact]
-    public void Calibrate_LiveCamera_DisabledWithTheReason()
+    public void Calibrate_LiveCameraNotPlayingYet_DisabledWithTheReason()
     {
         var cut = RenderPanel(new CameraViewModel(Service(twin: false)));
 
         var button = cut.Find("#camera-calibrate");
 
         Assert.True(button.HasAttribute("disabled"));
-        Assert.Contains("only on the simulator so far", button.GetAttribute("title"), StringComparison.Ordinal);
+        Assert.Equal("the live camera is not playing yet: allow the browser to use it", button.GetAttribute("title"));
         Assert.NotEmpty(cut.FindAll("#camera-video"));
+    }
+
+    [Fact]
+    public void Calibrate_LiveCameraPlaying_OfferedWithItsFrames()
+    {
+        var camera = new CameraViewModel(Service(twin: false));
+        var cut = RenderPanel(camera);
+
+        cut.InvokeAsync(() => camera.ReportLiveCamera("USB microscope (320 x 240)", null));
+
+        cut.WaitForAssertion(() => Assert.False(cut.Find("#camera-calibrate").HasAttribute("disabled")));
+        Assert.Equal("Live: USB microscope (320 x 240)", cut.Find("#camera-source").TextContent);
     }
 }
