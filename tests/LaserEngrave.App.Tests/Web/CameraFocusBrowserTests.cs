@@ -39,7 +39,7 @@ public sealed class CameraFocusBrowserTests : BrowserTest
         var best = double.Parse(Driver.FindElement(By.CssSelector("#camera-focus-steps tr.best")).GetAttribute("data-focus-step")!, CultureInfo.InvariantCulture);
         Assert.InRange(best, 137 - 50, 137 + 50);
         Assert.StartsWith("Go to sharpest Z (+1", Text("camera-focus-go"), StringComparison.Ordinal);
-        Driver.ExecuteScript("document.getElementById('camera-focus').scrollIntoView({ block: 'center' });");
+        Driver.ExecuteScript("document.getElementById('camera-focus').scrollIntoView({ block: 'end' });");
         Screenshot("camera-focus");
     }
 }

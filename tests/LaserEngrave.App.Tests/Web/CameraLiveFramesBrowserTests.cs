@@ -94,7 +94,7 @@ public sealed class CameraLiveFramesBrowserTests : IAsyncLifetime
         // The frame came from the page through the stream, at the size asked, and was measured here.
         Assert.Equal($"Frames measured here: 1 ({Width} x {Height} grey)", driver.FindElement(By.Id("camera-live-frames")).Text);
         Assert.Equal(1, _app.Services.GetRequiredService<CameraViewModel>().LiveFramesReceived);
-        driver.ExecuteScript("document.getElementById('camera-calibrate').scrollIntoView({ block: 'center' });");
+        driver.ExecuteScript("document.querySelector('[data-error=camera]').scrollIntoView({ block: 'end' });");
         Directory.CreateDirectory(BrowserTest.ScreenshotFolder);
         driver.GetScreenshot().SaveAsFile(Path.Combine(BrowserTest.ScreenshotFolder, "camera-live-blank.png"));
     }
