@@ -234,6 +234,28 @@ public sealed class CameraFocusAndLiveTests : ComponentTest
         Assert.Equal((640, 360), camera.LiveFrameSize);
     }
 
+    [Fact]
+    public async Task CaptureAsync_FrameShrunkByThePage_EnlargedToTheProfilesPixels()
+    {
+        var service = new CameraService(Main, _clock);
+        Main.UseProfile(Path.Combine(DataFolder.Path, "big.json"), MachineProfile.Default with { Camera = new CameraProfile { WidthPx = 1920, HeightPx = 1080 } });
+        // A ramp along x, 640 x 360 as the page sends a 1920 x 1080 camera: two grey levels a sent pixel.
+        var sent = new byte[640 * 360];
+        for (var i = 0; i < sent.Length; i++)
+        {
+            sent[i] = (byte)(i % 640 / 5);
+        }
+
+        service.LiveFrameWanted += (_, _) => Assert.Null(service.SubmitLiveFrame(640, 360, sent));
+
+        var frame = await service.CaptureAsync(Xunit.TestContext.Current.CancellationToken);
+
+        Assert.Equal((1920, 1080), (frame.Width, frame.Height));
+        // Camera pixel 3k + 1 is the middle of sent pixel k: its value again.
+        Assert.Equal(sent[100], frame[301, 500]);
+        Assert.Equal(sent[600], frame[1801, 10]);
+    }
+
     // What the page does when the app asks for a frame: the camera's next frame, grey, sent back (the clock moves on as a camera's would).
     private sealed class FakePage
     {
