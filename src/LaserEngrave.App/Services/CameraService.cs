@@ -125,7 +125,8 @@ public sealed class CameraService : ICameraService
 
         RequireFrames("a focus sweep");
         var rig = new Rig(this);
-        // Where Z stands now, to go back there; on an axis not homed yet it is not known, and Z stays at the sharpest step.
+        // Where Z stands now, to go back there; on an axis not homed yet it is not known, and Z stays at the sharpest step
+        // (after a failure part way, at the visible focus: somewhere inside its limits).
         var start = await ReadFocusOffsetAsync();
         rig.FocusOffsetUm = start ?? 0;
         return await new FocusSweep(rig).RunAsync(fromUm, toUm, stepUm, cancellationToken, progress, returnToStart: start is not null);
