@@ -1,3 +1,4 @@
+using System.Globalization;
 using System.ComponentModel;
 using CommunityToolkit.Mvvm.ComponentModel;
 using CommunityToolkit.Mvvm.Input;
@@ -303,6 +304,30 @@ public sealed partial class MainViewModel : ObservableObject
         {
             Save(Settings with { UseSimulator = Machine.UseSimulator, StagePort = Machine.StagePort, LaserPort = Machine.LaserPort });
         }
+    }
+
+    /// <summary>The decimal mark the number fields show: the one the user last typed (kept between starts).</summary>
+    public char DecimalMark => Settings.DecimalComma ? ',' : '.';
+
+    /// <summary>Takes the decimal mark from a number the user typed and read: a comma or a point; none (a whole number) changes nothing.</summary>
+    public void NoteDecimalMark(string typed)
+    {
+        ArgumentNullException.ThrowIfNull(typed);
+        var comma = typed.Contains(',', StringComparison.Ordinal);
+        if (comma == Settings.DecimalComma || (!comma && !typed.Contains('.', StringComparison.Ordinal)))
+        {
+            return;
+        }
+
+        Save(Settings with { DecimalComma = comma });
+        OnPropertyChanged(nameof(DecimalMark));
+    }
+
+    /// <summary>A number as the fields show it: up to <paramref name="decimals"/> decimals, no thousands separator, the user's decimal mark.</summary>
+    public string ShowNumber(double value, int decimals = 4)
+    {
+        var text = Math.Round(value, decimals).ToString("0." + new string('#', decimals), CultureInfo.InvariantCulture);
+        return DecimalMark == ',' ? text.Replace('.', ',') : text;
     }
 
     private void Save(AppSettings settings)

@@ -118,6 +118,17 @@ public sealed class LogPanelFolderTests : ComponentTest
     }
 
     [Fact]
+    public void Notes_SeveralLines_KeptAsTyped()
+    {
+        var cut = Render<LogPanel>(p => p.Add(c => c.Log, Main.Log));
+
+        cut.Find("#notes").Change("línea uno\nlínea dos");
+
+        Assert.Equal("textarea", cut.Find("#notes").TagName, ignoreCase: true);
+        Assert.Equal("línea uno\nlínea dos", Main.Log.Notes);
+    }
+
+    [Fact]
     public void OpenLogFolder_NoFileManager_SaysSoWithThePath()
     {
         Files.OpenFolder("/logs").Returns(false);
@@ -273,6 +284,7 @@ public sealed class RunBarTests : ComponentTest
         cut.WaitForAssertion(() => Assert.False(Disabled(cut.Find("#start"))));
         Assert.True(Disabled(cut.Find("#pause")));
         Assert.True(Disabled(cut.Find("#continue")));
+        Assert.True(Disabled(cut.Find("#abort")));
     }
 
     // The QR at a 5 µm pitch, connected, Start pressed: slow enough that a 5 µm pixel lasts the gate's switching time (a
@@ -378,6 +390,7 @@ public sealed class RunBarTests : ComponentTest
         cut.WaitForAssertion(() => Assert.Equal("50 %", cut.Find("#progress-text").TextContent));
         Assert.Contains("row 10 of 20", cut.Find("#progress-figures").TextContent, StringComparison.Ordinal);
         Assert.True(Disabled(cut.Find("#start")));
+        Assert.False(Disabled(cut.Find("#abort")));
         cut.Find("#pause").Click();
         cut.WaitForAssertion(() => Assert.Empty(cut.FindAll("#pause")));
         cut.Find("#resume").Click();
