@@ -179,6 +179,9 @@ public sealed partial class RunViewModel : ObservableObject
     public string ProgressUnit => _running?.UnitOf(Progress?.Layer ?? 0) ?? PreparedLayer.RowUnit;
 
     /// <summary>The layer under way as "layer 2 of 3 “logo”"; null when the run is not one of layers.</summary>
+    /// <summary>The layers of the job under way (a job of layers); null for a single job or when nothing has run.</summary>
+    public int? LayerCount => _running?.Layers is { Count: > 0 } layers ? layers.Count : null;
+
     public string? LayerText => _running?.Layers is { Count: > 0 } layers && Progress is { } p && p.Layer >= 1 && p.Layer <= layers.Count
         ? $"layer {p.Layer} of {layers.Count} “{layers[p.Layer - 1].Layer.Name}”"
         : null;

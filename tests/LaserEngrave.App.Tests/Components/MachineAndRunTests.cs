@@ -371,6 +371,26 @@ public sealed class RunBarTests : ComponentTest
     }
 
     [Fact]
+    public async Task Run_SecondOfTenOnePassLayers_PassCountedWithinTheLayer()
+    {
+        OpenQr();
+        await ConnectAsync();
+        var release = new TaskCompletionSource<RunResult>();
+        Runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>()).Returns(async c =>
+        {
+            // The session's pass 2 of the 10 summed over ten one-pass layers is the second layer's only pass.
+            c.Arg<IProgress<EngraveProgress>>().Report(SessionResults.Report(RunState.Running, 50, 100, 10, 20, pass: 2, passes: 10) with { Layer = 2, LayerPass = 1, LayerPasses = 1 });
+            return SessionResults.Ended(c.Arg<EngraveSession>(), await release.Task);
+        });
+        var cut = RenderBar();
+
+        cut.Find("#start").Click();
+
+        cut.WaitForAssertion(() => Assert.Equal("row 10 of 20", cut.Find("#progress-figures").TextContent));
+        release.SetResult(SessionResults.Result(RunOutcome.Completed));
+    }
+
+    [Fact]
     public async Task Run_UnderWay_ProgressPauseResume()
     {
         OpenQr();
