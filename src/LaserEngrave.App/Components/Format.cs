@@ -32,4 +32,10 @@ public static class Format
         count.ToString("#,0", Grouping);
 
     private static readonly NumberFormatInfo Grouping = new() { NumberGroupSeparator = "\u202F", NumberDecimalSeparator = "." };
+
+    /// <summary>
+    /// A button's tooltip, which Fluent UI's button also makes its accessible name: its visible label first ("Frame: trace
+    /// the job's outline, laser off"), so a screen reader reads, and voice control finds, the word the button shows.
+    /// </summary>
+    public static string Named(string label, string what) => $"{label}: {what}";
 }

@@ -250,7 +250,7 @@ public sealed class JogPadTests : ComponentTest
         var cut = Render<JogPad>(p => p.Add(c => c.Moves, Main.TestMoves).Add(c => c.Machine, Main.Machine));
 
         Assert.True(Disabled(cut.Find("#frame")));
-        Assert.Equal("open an image or drawing first", cut.Find("#frame").GetAttribute("title"));
+        Assert.Equal("Frame: open an image or drawing first", cut.Find("#frame").GetAttribute("title"));
         Assert.False(Disabled(cut.Find("#goto")));
     }
 

@@ -35,6 +35,29 @@ public sealed class BrowserLayoutTests : BrowserTest
     }
 
     [Fact]
+    public void Workspace_Laptop1366At125Percent_StageStaysInViewBesideThePanelBeingEdited()
+    {
+        // 1366 x 768 at 125 % zoom leaves a page of 1093 x 501: every panel was below the stage, which then left the view.
+        OpenSample("text-banner.png");
+        Resize(1093, 501);
+
+        const string InView = """
+            const r = arguments[0].getBoundingClientRect();
+            return r.height > 0 && r.top >= 0 && r.bottom <= window.innerHeight && r.left >= 0 && r.right <= window.innerWidth;
+            """;
+        foreach (var field in new[] { "widthMm", "notes" })
+        {
+            Driver.ExecuteScript("arguments[0].scrollIntoView({ block: 'center' });", Id(field));
+            Assert.True((bool)Driver.ExecuteScript(InView, Id(field))!, $"#{field} is not in view at 1093 x 501");
+            Assert.True((bool)Driver.ExecuteScript(InView, Id("stage-canvas"))!, $"the stage left the view while #{field} is shown at 1093 x 501");
+        }
+
+        var stage = Id("stage-canvas").Size;
+        Assert.True(stage.Width >= 450 && stage.Height >= 250, $"the stage is only {stage.Width} x {stage.Height} px at 1093 x 501");
+        Assert.True((bool)Driver.ExecuteScript(InView, Id("start"))!, "Start is off-screen at 1093 x 501");
+    }
+
+    [Fact]
     public void MachinePanel_1280Wide_PreflightFactFitsOneLineWithTheSentenceAsItsTooltip()
     {
         Size1280x720();
