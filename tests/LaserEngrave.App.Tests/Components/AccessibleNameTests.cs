@@ -66,6 +66,17 @@ public sealed partial class AccessibleNameTests : ComponentTest
     }
 
     [Fact]
+    public void Workspace_Tab_ReachesStartAmongTheFirstTenStops()
+    {
+        OpenQr();
+        var cut = Render<Workspace>();
+
+        var stops = cut.FindAll("fluent-button, button, input, select, textarea, a[href], summary").Select(e => e.Id).ToList();
+
+        Assert.InRange(stops.IndexOf("start"), 0, 9);
+    }
+
+    [Fact]
     public void JogSteps_TheChosenOnePressed()
     {
         var steps = Buttons().Where(b => b.HasAttribute("data-step")).ToList();
