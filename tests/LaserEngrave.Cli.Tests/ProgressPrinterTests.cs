@@ -151,13 +151,14 @@ public class ProgressPrinterTests
         var plate = Core.Jobs.JobFile.Load(Path.Combine(CliHarness.RepositoryRoot, "assets", "jobs", "plate.json"));
         var printer = new ProgressPrinter(output, terminal: false) { Job = Core.Jobs.LayeredJob.Prepare([.. plate.Take(2)], Core.Geometry.MachineProfile.Default) };
 
-        printer.Report(new EngraveProgress(RunState.Running, 1, 2, 10, 100, false, At(10), Layer: 1));
-        printer.Report(new EngraveProgress(RunState.Running, 2, 2, 10, 100, false, At(20), Layer: 2));
+        // Two one-pass layers: each is pass 1 of 1 (the session's passes summed over the layers are not the layer's).
+        printer.Report(new EngraveProgress(RunState.Running, 1, 2, 10, 100, false, At(10), Layer: 1, LayerPass: 1, LayerPasses: 1));
+        printer.Report(new EngraveProgress(RunState.Running, 2, 2, 10, 100, false, At(20), Layer: 2, LayerPass: 1, LayerPasses: 1));
 
         Assert.Equal(
             [
-                "running: 10 %, stroke 10 of 40, 50 of 200 paths, pass 1 of 2, layer 1 of 2 \"marks\", 1 min 35.0 s left",
-                "running: 20 %, row 10 of 40, 50 of 200 burn runs, pass 2 of 2, layer 2 of 2 \"logo\", 1 min 35.0 s left",
+                "running: 10 %, stroke 10 of 40, 50 of 200 paths, pass 1 of 1, layer 1 of 2 \"marks\", 1 min 35.0 s left",
+                "running: 20 %, row 10 of 40, 50 of 200 burn runs, pass 1 of 1, layer 2 of 2 \"logo\", 1 min 35.0 s left",
             ],
             output.ToString().TrimEnd().Split(Environment.NewLine));
     }

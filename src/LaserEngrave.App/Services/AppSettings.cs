@@ -23,4 +23,10 @@ public sealed record AppSettings
 
     /// <summary>"system" (the system's light or dark mode), "light" or "dark": the page's colours and Fluent UI's.</summary>
     public string Theme { get; init; } = "system";
+
+    /// <summary>
+    /// True once the user writes decimals with a comma ("20,5"): the number fields then show theirs with a comma too,
+    /// never rewriting what was typed. A number typed with a point sets it back.
+    /// </summary>
+    public bool DecimalComma { get; init; }
 }

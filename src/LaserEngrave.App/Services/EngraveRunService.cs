@@ -1,3 +1,4 @@
+using CommunityToolkit.Mvvm.Messaging;
 using LaserEngrave.Devices.Execution;
 
 namespace LaserEngrave.App.Services;
@@ -15,7 +16,10 @@ public sealed class EngraveRunService : IRunService
             try
             {
                 // A job of marks advances the sample counter when, and only when, its run completed (docs/marking.md).
-                Core.Marks.MarkManifest.AfterRun(jobFile, result.Record.Outcome, result.Record.JobFile?.Marks);
+                if (Core.Marks.MarkManifest.AfterRun(jobFile, result.Record.Outcome, result.Record.JobFile?.Marks) is not null)
+                {
+                    WeakReferenceMessenger.Default.Send(new ViewModels.MarkViewModel.CounterAdvancedMessage());
+                }
             }
             catch (Exception ex) when (ex is Core.Marks.MarkException or IOException or UnauthorizedAccessException)
             {

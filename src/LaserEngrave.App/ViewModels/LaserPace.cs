@@ -62,9 +62,13 @@ public sealed class LaserPace
             _layer = layer;
             _pass = pass;
             _movesDone = movesDone;
-            _from = (x, y);
             _reportedAt = _time.GetUtcNow();
-            _legs = _part?.LegsAt(movesDone) ?? [];
+            (long X, long Y)? start = null;
+            _legs = _part?.LegsAt(movesDone, out start) ?? [];
+
+            // A raster's engine reports the stage where its row began for the whole row; the plan knows where each of
+            // the row's moves starts, so the cross goes on from there rather than jumping back to the row's start.
+            _from = start ?? (x, y);
         }
     }
 
@@ -143,8 +147,9 @@ public sealed class LaserPace
         /// Read from the part's program, whose kind says what the engine counts between reports: a drawing's strokes, a
         /// dot job's dots, a raster's plan moves (those of its travels, strokes and plain moves).
         /// </remarks>
-        public IReadOnlyList<Leg> LegsAt(long done)
+        public IReadOnlyList<Leg> LegsAt(long done, out (long X, long Y)? start)
         {
+            start = null;
             switch (_program)
             {
                 case DrawingProgram drawing:
@@ -165,7 +170,13 @@ public sealed class LaserPace
                 case RasterProgram raster:
                     // The engine counts the plan's moves, and its steps run them in the plan's order: read the plan's
                     // moves directly, not the steps, which would plan every stroke's timing once more during the run.
-                    return Next(ref _moves, () => raster.Plan.Moves(), done) is { } move ? [new(move.Kind == MoveKind.Travel, move.X1, move.Y1)] : [];
+                    if (Next(ref _moves, () => raster.Plan.Moves(), done) is not { } move)
+                    {
+                        return [];
+                    }
+
+                    start = (move.X0, move.Y0);
+                    return [new(move.Kind == MoveKind.Travel, move.X1, move.Y1)];
 
                 default:
                     // No other kind of program: the hierarchy is Core's own.

@@ -185,6 +185,17 @@ public sealed partial class LayersViewModel : ObservableObject
         Set([]);
     }
 
+    /// <summary>A job file was opened: its layers are a new artwork (undo starts anew).</summary>
+    public event EventHandler? Opened;
+
+    /// <summary>Puts <paramref name="layers"/> back as the job of layers (undo and redo) and plans them again.</summary>
+    public void Restore(IReadOnlyList<JobLayer> layers)
+    {
+        ArgumentNullException.ThrowIfNull(layers);
+        _activity.ThrowIfJobLocked();
+        Set(layers);
+    }
+
     /// <summary>Opens a job file (as <c>--job</c> reads it); a bad file leaves the layers as they were and says why.</summary>
     public bool Open(string path)
     {
@@ -205,6 +216,7 @@ public sealed partial class LayersViewModel : ObservableObject
         JobPath = Path.GetFullPath(path);
         _inFile = layers;
         Set(layers);
+        Opened?.Invoke(this, EventArgs.Empty);
         return true;
     }
 

@@ -1,3 +1,4 @@
+using System.Globalization;
 using System.ComponentModel;
 using CommunityToolkit.Mvvm.ComponentModel;
 using CommunityToolkit.Mvvm.Input;
@@ -57,6 +58,10 @@ public sealed partial class MainViewModel : ObservableObject
         Sweep = new SweepViewModel(Job, Machine, logs, time);
         Machine.PropertyChanged += OnMachineChanged;
         Job.PropertyChanged += OnJobChanged;
+        Layers.PropertyChanged += OnLayersChanged;
+
+        // Another job file opened: a new history, as for another image.
+        Layers.Opened += (_, _) => History.Reset(Snapshot());
     }
 
     /// <summary>Images to start with, shipped with the app, so a newcomer can engrave at once.</summary>
@@ -81,8 +86,13 @@ public sealed partial class MainViewModel : ObservableObject
 
     public LogViewModel Log { get; }
 
-    /// <summary>The job's undo and redo, one step per committed change of its settings.</summary>
-    public JobHistory History { get; } = new();
+    /// <summary>The job's undo and redo, one step per committed change of its settings or of its layers.</summary>
+    public EditHistory<WorkbenchState> History { get; } = new();
+
+    // Set while undo or redo puts a state back: what that changes is the state put back, not a new edit.
+    private bool _puttingBack;
+
+    private WorkbenchState Snapshot() => new(Job.ImagePath is null ? null : Job.ToSettings(), Layers.Layers);
 
     private bool CanUndo => History.CanUndo && Job.LockedBecause is null;
 
@@ -92,9 +102,9 @@ public sealed partial class MainViewModel : ObservableObject
     [RelayCommand(CanExecute = nameof(CanUndo))]
     private void Undo()
     {
-        if (History.Undo() is { } settings)
+        if (History.Undo() is { } state)
         {
-            PutBack(settings);
+            PutBack(state);
         }
     }
 
@@ -102,16 +112,44 @@ public sealed partial class MainViewModel : ObservableObject
     [RelayCommand(CanExecute = nameof(CanRedo))]
     private void Redo()
     {
-        if (History.Redo() is { } settings)
+        if (History.Redo() is { } state)
         {
-            PutBack(settings);
+            PutBack(state);
         }
     }
 
-    private void PutBack(JobSettings settings)
+    private void PutBack(WorkbenchState state)
     {
-        // The snapshot is of this image: its path is left out so nothing is read again.
-        Job.Apply(settings with { ImagePath = null });
+        _puttingBack = true;
+        try
+        {
+            if (!state.Layers.SequenceEqual(Layers.Layers))
+            {
+                Layers.Restore(state.Layers);
+            }
+
+            // The snapshot is of this image: its path is left out so nothing is read again.
+            if (state.Job is { } settings && settings != Job.ToSettings())
+            {
+                Job.Apply(settings with { ImagePath = null });
+            }
+        }
+        finally
+        {
+            _puttingBack = false;
+        }
+
+        UndoCommand.NotifyCanExecuteChanged();
+        RedoCommand.NotifyCanExecuteChanged();
+    }
+
+    private void OnLayersChanged(object? sender, PropertyChangedEventArgs e)
+    {
+        if (e.PropertyName == nameof(LayersViewModel.Layers) && !_puttingBack)
+        {
+            History.Record(Snapshot());
+        }
+
         UndoCommand.NotifyCanExecuteChanged();
         RedoCommand.NotifyCanExecuteChanged();
     }
@@ -276,7 +314,10 @@ public sealed partial class MainViewModel : ObservableObject
         else if (e.PropertyName == nameof(JobViewModel.PlanVersion))
         {
             // Each plan follows a committed change; putting a snapshot back plans it again, which records nothing new.
-            History.Record(Job.ToSettings());
+            if (!_puttingBack)
+            {
+                History.Record(Snapshot());
+            }
             UndoCommand.NotifyCanExecuteChanged();
             RedoCommand.NotifyCanExecuteChanged();
         }
@@ -303,6 +344,30 @@ public sealed partial class MainViewModel : ObservableObject
         {
             Save(Settings with { UseSimulator = Machine.UseSimulator, StagePort = Machine.StagePort, LaserPort = Machine.LaserPort });
         }
+    }
+
+    /// <summary>The decimal mark the number fields show: the one the user last typed (kept between starts).</summary>
+    public char DecimalMark => Settings.DecimalComma ? ',' : '.';
+
+    /// <summary>Takes the decimal mark from a number the user typed and read: a comma or a point; none (a whole number) changes nothing.</summary>
+    public void NoteDecimalMark(string typed)
+    {
+        ArgumentNullException.ThrowIfNull(typed);
+        var comma = typed.Contains(',', StringComparison.Ordinal);
+        if (comma == Settings.DecimalComma || (!comma && !typed.Contains('.', StringComparison.Ordinal)))
+        {
+            return;
+        }
+
+        Save(Settings with { DecimalComma = comma });
+        OnPropertyChanged(nameof(DecimalMark));
+    }
+
+    /// <summary>A number as the fields show it: up to <paramref name="decimals"/> decimals, no thousands separator, the user's decimal mark.</summary>
+    public string ShowNumber(double value, int decimals = 4)
+    {
+        var text = Math.Round(value, decimals).ToString("0." + new string('#', decimals), CultureInfo.InvariantCulture);
+        return DecimalMark == ',' ? text.Replace('.', ',') : text;
     }
 
     private void Save(AppSettings settings)

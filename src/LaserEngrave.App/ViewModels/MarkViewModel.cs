@@ -1,6 +1,7 @@
 using System.Globalization;
 using CommunityToolkit.Mvvm.ComponentModel;
 using CommunityToolkit.Mvvm.Input;
+using CommunityToolkit.Mvvm.Messaging;
 using LaserEngrave.App.Services;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Marks;
@@ -16,17 +17,30 @@ public sealed partial class MarkViewModel : ObservableObject
 {
     private readonly IMarkService _marks;
     private readonly Func<string, bool> _openJob;
+    private readonly Func<string?> _sampleId;
 
     /// <param name="marks">Makes and checks the marks.</param>
     /// <param name="openJob">Opens a job file as the job of layers (the Layers panel's Open); false when it could not.</param>
-    public MarkViewModel(IMarkService marks, Func<string, bool> openJob)
+    /// <param name="sampleId">
+    /// The sample ID the run will be logged under (the Log panel's): what {sample} stands for, so a mark never names
+    /// another sample than its run's log. None: no sample.
+    /// </param>
+    public MarkViewModel(IMarkService marks, Func<string, bool> openJob, Func<string?>? sampleId = null)
     {
         ArgumentNullException.ThrowIfNull(marks);
         ArgumentNullException.ThrowIfNull(openJob);
         _marks = marks;
         _openJob = openJob;
+        _sampleId = sampleId ?? (() => null);
         RefreshCounter();
+
+        // A completed run of marks advances the counter in the run service, after the log is in: the panel then shows
+        // the next free number at once, not the one just burned (a weak registration: a panel gone is not kept).
+        WeakReferenceMessenger.Default.Register<MarkViewModel, CounterAdvancedMessage>(this, static (mark, _) => mark.RefreshCounter());
     }
+
+    /// <summary>Sent when a completed run of marks has advanced a sample counter.</summary>
+    public sealed record CounterAdvancedMessage;
 
     /// <summary>The codes offered: value and label.</summary>
     public static IReadOnlyList<(string Value, string Label)> Codes { get; } = [("datamatrix", "Data Matrix"), ("qr", "QR code"), ("none", "Text alone")];
@@ -63,11 +77,10 @@ public sealed partial class MarkViewModel : ObservableObject
     [ObservableProperty]
     public partial double OriginYMm { get; set; } = 10;
 
-    /// <summary>What {sample} stands for.</summary>
-    [ObservableProperty]
-    public partial string? Sample { get; set; }
+    /// <summary>What {sample} stands for: the sample ID the run is logged under.</summary>
+    public string? Sample => _sampleId();
 
-    /// <summary>The counter's next number (the first copy's).</summary>
+    /// <summary>The counter's next free number: the first copy's of the next marks made.</summary>
     [ObservableProperty]
     public partial int NextNumber { get; private set; } = 1;
 
@@ -92,7 +105,19 @@ public sealed partial class MarkViewModel : ObservableObject
         ? null
         : Verdicts.FirstOrDefault(v => !v.Reads) is { } bad
             ? string.Create(CultureInfo.InvariantCulture, $"\"{bad.Text}\" does not read on the twin ({bad.ModulesRight} of {bad.Modules} modules right): make the mark larger")
-            : string.Create(CultureInfo.InvariantCulture, $"all {Verdicts.Count} codes read on the twin; worst module {Verdicts.Min(v => v.WorstModulePercent):0} % as it should be, modules {Verdicts[0].ModuleUm:0.#} µm = {Verdicts[0].ModuleUm / Verdicts[0].SpotDiameterUm:0.#} spots");
+            : string.Create(CultureInfo.InvariantCulture, $"{(Verdicts.Count == 1 ? "the code reads" : $"all {Verdicts.Count} codes read")} on the twin; worst module {Verdicts.Min(v => v.WorstModulePercent):0} % as it should be, modules {Verdicts[0].ModuleUm:0.#} µm = {Verdicts[0].ModuleUm / Verdicts[0].SpotDiameterUm:0.#} spots");
+
+    /// <summary>The numbers of the marks made and not yet burned, as the panel says them; null before any are made.</summary>
+    public string? MadeNumbers => Marks.Count == 0
+        ? null
+        : (Marks.Min(m => m.Number), Marks.Max(m => m.Number)) is var (first, last) && first == last
+            ? string.Create(CultureInfo.InvariantCulture, $"These marks: number {first}")
+            : string.Create(CultureInfo.InvariantCulture, $"These marks: numbers {first}–{last}");
+
+    /// <summary>"1 mark", "10 marks": the marks made.</summary>
+    public string? MadeCount => Marks.Count == 0
+        ? null
+        : Marks.Select(m => m.Number).Distinct().Count() is var n && n == 1 ? "1 mark" : string.Create(CultureInfo.InvariantCulture, $"{n} marks");
 
     /// <summary>Makes the marks, burns every code on the twin and reads it back; when all read, opens the job as the job of layers.</summary>
     [RelayCommand(IncludeCancelCommand = true)]
@@ -116,6 +141,8 @@ public sealed partial class MarkViewModel : ObservableObject
         {
             var result = await _marks.MakeAsync(spec, Sample, check: true, cancellationToken);
             Marks = result.Marks;
+            OnPropertyChanged(nameof(MadeNumbers));
+            OnPropertyChanged(nameof(MadeCount));
             Verdicts = result.Verdicts;
             EstimatedSeconds = result.EstimatedSeconds;
             OnPropertyChanged(nameof(Verdict));

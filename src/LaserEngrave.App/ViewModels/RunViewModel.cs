@@ -59,6 +59,11 @@ public sealed partial class RunViewModel : ObservableObject
         {
             if (e.PropertyName is nameof(LayersViewModel.Job) or nameof(LayersViewModel.Layers))
             {
+                if (e.PropertyName == nameof(LayersViewModel.Layers))
+                {
+                    ClearStaleProgress(layersChanged: true);
+                }
+
                 RefreshCommands();
                 OnPropertyChanged(nameof(RunsLayers));
                 OnPropertyChanged(nameof(CanContinue));
@@ -179,6 +184,9 @@ public sealed partial class RunViewModel : ObservableObject
     public string ProgressUnit => _running?.UnitOf(Progress?.Layer ?? 0) ?? PreparedLayer.RowUnit;
 
     /// <summary>The layer under way as "layer 2 of 3 “logo”"; null when the run is not one of layers.</summary>
+    /// <summary>The layers of the job under way (a job of layers); null for a single job or when nothing has run.</summary>
+    public int? LayerCount => _running?.Layers is { Count: > 0 } layers ? layers.Count : null;
+
     public string? LayerText => _running?.Layers is { Count: > 0 } layers && Progress is { } p && p.Layer >= 1 && p.Layer <= layers.Count
         ? $"layer {p.Layer} of {layers.Count} “{layers[p.Layer - 1].Layer.Name}”"
         : null;
@@ -730,15 +738,23 @@ public sealed partial class RunViewModel : ObservableObject
     }
 
     /// <summary>A new plan makes the last run's figures meaningless for it ("100 %, row 33 of 33" on a job never run).</summary>
-    private void ClearStaleProgress()
+    /// <summary>
+    /// The last run's bar, its percentage and its error, belong to the job it ran: once that job changed (another image,
+    /// an edit, the layers changed), the bar is idle again. Where a stopped run stopped is kept (Continue says whether the
+    /// job still is the one that stopped).
+    /// </summary>
+    private void ClearStaleProgress(bool layersChanged = false)
     {
-        if (!IsActive && Progress is not null && RunPlanVersion != _job.PlanVersion)
+        if (IsActive || (!layersChanged && RunPlanVersion == _job.PlanVersion))
         {
-            Progress = null;
-            if (State is RunState.Completed or RunState.Aborted or RunState.Failed)
-            {
-                State = RunState.Idle;
-            }
+            return;
+        }
+
+        Progress = null;
+        Error = null;
+        if (State is RunState.Completed or RunState.Aborted or RunState.Failed)
+        {
+            State = RunState.Idle;
         }
     }
 

@@ -442,8 +442,11 @@ internal static class ApiEndpoints
         }
 
         var json = string.Equals(format, "json", StringComparison.OrdinalIgnoreCase);
-        var text = main.Log.Export(json ? "json" : "csv", string.Equals(decimalMark, "comma", StringComparison.OrdinalIgnoreCase));
-        var name = $"runs-{DateTimeOffset.Now:yyyy-MM-dd_HHmm}.{(json ? "json" : "csv")}";
+                // The two CSV variants under their own names, so a download of each does not replace or rename the other.
+        var comma = !json && string.Equals(decimalMark, "comma", StringComparison.OrdinalIgnoreCase);
+        var name = $"runs-{DateTimeOffset.Now:yyyy-MM-dd_HHmm}{(comma ? "-decimal-comma" : "")}.{(json ? "json" : "csv")}";
+
+        var text = main.Log.Export(json ? "json" : "csv", comma);
 
         // Excel reads a CSV as UTF-8 (µ, sample IDs in any script) only after the byte order mark.
         return json

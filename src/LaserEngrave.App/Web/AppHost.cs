@@ -72,7 +72,7 @@ public static class AppHost
         services.AddSingleton<IMachineCheckService, MachineCheckService>();
         services.AddSingleton(sp => new CommissionViewModel(sp.GetRequiredService<MainViewModel>(), sp.GetRequiredService<IMachineCheckService>(), sp.GetRequiredService<AppFolders>().DataFolder, sp.GetRequiredService<TimeProvider>()));
         services.AddSingleton<IMarkService>(sp => new MarkService(sp.GetRequiredService<AppFolders>(), () => sp.GetRequiredService<MainViewModel>().Job.Profile, sp.GetRequiredService<TimeProvider>()));
-        services.AddSingleton(sp => new MarkViewModel(sp.GetRequiredService<IMarkService>(), path => sp.GetRequiredService<MainViewModel>().Layers.Open(path)));
+        services.AddSingleton(sp => new MarkViewModel(sp.GetRequiredService<IMarkService>(), path => sp.GetRequiredService<MainViewModel>().Layers.Open(path), () => sp.GetRequiredService<MainViewModel>().Log.SampleId));
         services.AddSingleton(sp =>
         {
             var main = ActivatorUtilities.CreateInstance<MainViewModel>(sp);

@@ -35,7 +35,9 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
     public void Report(EngraveProgress value)
     {
         ArgumentNullException.ThrowIfNull(value);
-        _pass = value.Passes > 1 ? string.Create(CultureInfo.InvariantCulture, $"{value.Pass} of {value.Passes}") : null;
+        // The pass within its layer: a job of ten one-pass layers is "1 of 1, layer 3 of 10", not pass 3 of 10.
+        var (pass, passes) = value.PassInLayer;
+        _pass = passes > 1 ? string.Create(CultureInfo.InvariantCulture, $"{pass} of {passes}") : null;
         if (Job?.Layers is { Count: > 0 } layers && value.Layer >= 1 && value.Layer <= layers.Count)
         {
             _pass = string.Create(CultureInfo.InvariantCulture, $"{_pass ?? "1 of 1"}, layer {value.Layer} of {layers.Count} \"{layers[value.Layer - 1].Layer.Name}\"");

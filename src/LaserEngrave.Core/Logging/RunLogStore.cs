@@ -322,17 +322,25 @@ public sealed class RunLogStore : IRunLogWriter, ISweepLogWriter
             return string.Empty;
         }
 
+        // Letters and digits of any script stay (a sample "Muestra ñ-01 ±5 µm" keeps its ñ and µ: every file system the
+        // app runs on takes them); anything else, separators and characters Windows refuses included, becomes one '_'.
         var safe = new StringBuilder();
-        foreach (var ch in text.Trim())
+        foreach (var ch in text.Trim().Normalize(NormalizationForm.FormC))
         {
-            safe.Append(char.IsAsciiLetterOrDigit(ch) || ch is '-' or '_' or '.' ? ch : '_');
+            var keep = char.IsLetterOrDigit(ch) || ch is '-' or '.';
+            if (!keep && safe.Length > 0 && safe[^1] == '_')
+            {
+                continue;
+            }
+
+            safe.Append(keep ? ch : '_');
             if (safe.Length == MaxSampleChars)
             {
                 break;
             }
         }
 
-        // A name of dots only (".", "..") would mean something else to the file system.
-        return safe.ToString().Trim('.');
+        // A name of dots only (".", "..") would mean something else to the file system; Windows drops a trailing dot.
+        return safe.ToString().Trim('.', '_');
     }
 }

@@ -142,7 +142,15 @@ public static class RunSummaryText
         Line("Done", record.Drawing is null
             ? string.Create(c, $"{record.RowsDone} of {record.RowsTotal} rows, {record.RunsDone} of {record.RunsTotal} burn runs")
             : string.Create(c, $"{record.RowsDone} of {record.RowsTotal} strokes, {record.RunsDone} of {record.RunsTotal} paths"));
-        if (record.Passes > 1)
+        // A job of layers counts its layers, each with its own passes (listed below); its image and figures here are its
+        // first layer's, and say so.
+        var layers = record.Layers ?? [];
+        var ofFirstLayer = layers.Count > 0 ? " (layer 1)" : string.Empty;
+        if (layers.Count > 0)
+        {
+            Line("Layers", string.Create(c, $"{layers.Count(l => l.Outcome == Jobs.RunOutcome.Completed)} of {layers.Count} completed (each with its passes below)"));
+        }
+        else if (record.Passes > 1)
         {
             Line("Passes", string.Create(c, $"{record.PassesDone ?? 0} of {record.Passes} done (rows and runs above: the last pass)"));
         }
@@ -150,7 +158,7 @@ public static class RunSummaryText
         var g = record.Geometry;
         if (record.Drawing is { } d)
         {
-            Line("Drawing", record.Image.Path);
+            Line("Drawing" + ofFirstLayer, record.Image.Path);
             Line("Drawing SHA-256", record.Image.Sha256);
             Line("Size on stage", string.Create(c, $"{g.WidthMm:0.####} x {g.HeightMm:0.####} mm (scale {d.Scale:0.######})"));
             Line("Origin", string.Create(c, $"{g.OriginXMm:0.####}, {g.OriginYMm:0.####} mm"));
@@ -159,7 +167,7 @@ public static class RunSummaryText
         }
         else
         {
-            Line("Image", string.Create(c, $"{record.Image.Path} ({record.Image.WidthPx} x {record.Image.HeightPx} px)"));
+            Line("Image" + ofFirstLayer, string.Create(c, $"{record.Image.Path} ({record.Image.WidthPx} x {record.Image.HeightPx} px)"));
             Line("Image SHA-256", record.Image.Sha256);
             var m = record.Mask;
             Line("Mask", string.Create(c, $"threshold {m.ThresholdPercent:0.##} %, dither {m.Dither.ToString().ToLowerInvariant()}{(m.Invert ? ", inverted" : string.Empty)}"));

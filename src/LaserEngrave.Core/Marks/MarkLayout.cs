@@ -82,7 +82,7 @@ public sealed class MarkLayout
         var marks = new List<PlacedMark>();
         var layers = new List<JobLayer>();
         var codes = new List<CodeRaster>();
-        var columns = spec.Columns ?? Math.Min(spec.Copies, 10);
+        var columns = ColumnsOf(spec);
         double? pitchX = spec.PitchXMm, pitchY = spec.PitchYMm;
         for (var i = 0; i < spec.Copies; i++)
         {
@@ -223,9 +223,11 @@ public sealed class MarkLayout
             throw new MarkException(N($"{name("copies")} {spec.Copies} must be 1..{MarkSpec.MaxCopies}"));
         }
 
-        if (spec.Columns is { } columns && (columns < 1 || columns > spec.Copies))
+        // More columns than copies is one row of the copies (a panel's Copies lowered below its Columns, a marks file's
+        // grid used for one copy): not an error to make the user change a second box for.
+        if (spec.Columns is { } columns && (columns < 1 || columns > MarkSpec.MaxCopies))
         {
-            throw new MarkException(N($"{name("columns")} {columns} must be 1..{spec.Copies} (the copies)"));
+            throw new MarkException(N($"{name("columns")} {columns} must be 1..{MarkSpec.MaxCopies}"));
         }
 
         foreach (var (field, value) in new[] { ($"{name("pitchMm")} X", spec.PitchXMm), ($"{name("pitchMm")} Y", spec.PitchYMm) })
@@ -269,13 +271,16 @@ public sealed class MarkLayout
         }
     }
 
+    /// <summary>Copies in a row: the spec's columns, at most the copies; all in one row up to ten when it gives none.</summary>
+    private static int ColumnsOf(MarkSpec spec) => Math.Min(spec.Columns ?? 10, spec.Copies);
+
     /// <summary>
     /// Refuses an array whose copies would reach past the stage's travel, before any layer is built, naming the first copy
     /// that would, where it would end, and what to change: the origin, the columns or copies, the pitch.
     /// </summary>
     private static void CheckTravel(MarkSpec spec, IReadOnlyList<(string Text, double WidthMm, double HeightMm)> copies, int first, MachineProfile profile, Func<string, string> name)
     {
-        var columns = spec.Columns ?? Math.Min(spec.Copies, 10);
+        var columns = ColumnsOf(spec);
         var pitchX = spec.PitchXMm ?? copies[0].WidthMm + 1;
         var pitchY = spec.PitchYMm ?? copies[0].HeightMm + 1;
         double travelX = profile.X.TravelMm, travelY = profile.Y.TravelMm;

@@ -51,7 +51,7 @@ public sealed record MarkSpec
 
     public int Copies { get; init; } = 1;
 
-    /// <summary>Copies in a row of the grid; null: all in one row, up to ten.</summary>
+    /// <summary>Copies in a row of the grid (more than the copies: all in one row); null: all in one row, up to ten.</summary>
     public int? Columns { get; init; }
 
     /// <summary>From one copy to the next along X and Y, mm; null: the copy's size plus 1 mm.</summary>

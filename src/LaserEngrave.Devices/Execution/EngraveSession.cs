@@ -22,6 +22,11 @@ public sealed class EngraveSession
     private readonly bool _layered;
     private long _moves;
     private int _layer = 1;
+
+    // The pass under way within its layer and that layer's passes (the progress's "pass 2 of 3"; a job of layers is not
+    // one job of their summed passes).
+    private int _layerPass = 1;
+    private int _layerPasses = 1;
     private readonly int _firstLayer;
     private readonly RunStopPoint? _resumeFrom;
     private RunExecutor? _current;
@@ -104,7 +109,8 @@ public sealed class EngraveSession
         _moves = Moves(parts[_firstLayer]);
         _layer = _firstLayer + 1;
         var first = parts[_firstLayer];
-        _progress = new EngraveProgress(RunState.Idle, 1, Passes, 0, _moves, false, RunExecutor.IdleProgress(PartJob(first)));
+        (_layerPass, _layerPasses) = ((Options.ResumeLayers?.PassesDone ?? 0) + 1, Options.ResumeFrom is null ? first.Layer.Passes : 1);
+        _progress = new EngraveProgress(RunState.Idle, 1, Passes, 0, _moves, false, RunExecutor.IdleProgress(PartJob(first)), LayerPass: _layerPass, LayerPasses: _layerPasses);
     }
 
     public EngraveMachine Machine { get; }
@@ -331,10 +337,13 @@ public sealed class EngraveSession
                     continue;
                 }
 
+                var layerPasses = index == _firstLayer ? Options.ResumeLayers?.PassesDone ?? 0 : 0;
+                var passes = Options.ResumeFrom is null ? part.Layer.Passes : 1;
                 lock (_lock)
                 {
                     _moves = Moves(part);
                     _layer = index + 1;
+                    (_layerPass, _layerPasses) = (layerPasses + 1, passes);
                 }
 
                 if (_layered)
@@ -350,12 +359,15 @@ public sealed class EngraveSession
                 }
 
                 RunResult? layerRun = null;
-                var layerPasses = index == _firstLayer ? Options.ResumeLayers?.PassesDone ?? 0 : 0;
-                var passes = Options.ResumeFrom is null ? part.Layer.Passes : 1;
                 try
                 {
                     for (var p = layerPasses + 1; p <= passes; p++)
                     {
+                        lock (_lock)
+                        {
+                            _layerPass = p;
+                        }
+
                         var result = await RecoverAsync(part, ++pass, await RunPassAsync(part, pass, firstOfSession: pass == 1, cancellationToken), cancellationToken);
 
                         // The log speaks for the whole job: times and laser-on add up over the passes, the counts are the last pass's.
@@ -608,7 +620,7 @@ public sealed class EngraveSession
 
             // The state is the run's phase, which a pass's end does not end (RunControl.Entered).
             _progress = pass is { } p
-                ? new EngraveProgress(state, p.Pass, Passes, p.MovesDone, _moves, _control.PauseRequested, p.Run, _layer, _recoveries.Count, _recovering)
+                ? new EngraveProgress(state, p.Pass, Passes, p.MovesDone, _moves, _control.PauseRequested, p.Run, _layer, _recoveries.Count, _recovering, _layerPass, _layerPasses)
                 : _progress with { State = state, PauseRequested = _control.PauseRequested, Recoveries = _recoveries.Count, Recovering = _recovering };
 
             progress = _progress;

@@ -1,3 +1,5 @@
+using LaserEngrave.App.Services;
+using NSubstitute;
 using Bunit;
 using LaserEngrave.App.Components.Workspace;
 using LaserEngrave.App.ViewModels;
@@ -31,6 +33,34 @@ public sealed class NumberFieldTests : ComponentTest
 
         Assert.Equal(expected, committed);
         Assert.Equal("text", cut.Find("input").GetAttribute("type"));
+    }
+
+    [Fact]
+    public void Change_DecimalComma_ShownWithTheCommaHereAndInEveryField()
+    {
+        double value = 10;
+        var cut = Render<NumberField>(p => p.Add(c => c.Id, "w").Add(c => c.Label, "Width").Add(c => c.Value, value).Add(c => c.OnCommit, v => value = v));
+
+        cut.Find("input").Change("20,5");
+        var other = Render<NumberField>(p => p.Add(c => c.Id, "h").Add(c => c.Label, "Height").Add(c => c.Value, 1.25));
+        var same = Render<NumberField>(p => p.Add(c => c.Id, "w2").Add(c => c.Label, "Width").Add(c => c.Value, value));
+
+        Assert.Equal("20,5", same.Find("input").GetAttribute("value"));
+        Assert.Equal("1,25", other.Find("input").GetAttribute("value"));
+        Settings.Received().Save(Arg.Is<AppSettings>(s => s.DecimalComma));
+    }
+
+    [Fact]
+    public void Change_DecimalPointAfterComma_PointShownAgain()
+    {
+        var cut = Render<NumberField>(p => p.Add(c => c.Id, "w").Add(c => c.Label, "Width").Add(c => c.OnCommit, _ => { }));
+        cut.Find("input").Change("2,5");
+
+        cut.Find("input").Change("3.5");
+        var other = Render<NumberField>(p => p.Add(c => c.Id, "h").Add(c => c.Label, "Height").Add(c => c.Value, 1.25));
+
+        Assert.Equal("1.25", other.Find("input").GetAttribute("value"));
+        Assert.False(Main.Settings.DecimalComma);
     }
 
     [Theory]
@@ -135,7 +165,8 @@ public sealed class ImagePanelTests : ComponentTest
         cut.Find("#invert").Change(true);
 
         Assert.True(Main.Job.Invert);
-        cut.WaitForAssertion(() => Assert.Equal((41 * 41 - 563).ToString(System.Globalization.CultureInfo.InvariantCulture), cut.Find("#burn-pixels").TextContent.Replace(",", "", StringComparison.Ordinal)));
+        // 1118: its thousands grouped by a narrow space, never a comma or a point a decimal-comma lab would misread.
+        cut.WaitForAssertion(() => Assert.Equal("1\u202F118", cut.Find("#burn-pixels").TextContent));
     }
 }
 

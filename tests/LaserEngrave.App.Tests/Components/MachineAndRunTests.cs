@@ -118,6 +118,17 @@ public sealed class LogPanelFolderTests : ComponentTest
     }
 
     [Fact]
+    public void Notes_SeveralLines_KeptAsTyped()
+    {
+        var cut = Render<LogPanel>(p => p.Add(c => c.Log, Main.Log));
+
+        cut.Find("#notes").Change("línea uno\nlínea dos");
+
+        Assert.Equal("textarea", cut.Find("#notes").TagName, ignoreCase: true);
+        Assert.Equal("línea uno\nlínea dos", Main.Log.Notes);
+    }
+
+    [Fact]
     public void OpenLogFolder_NoFileManager_SaysSoWithThePath()
     {
         Files.OpenFolder("/logs").Returns(false);
@@ -239,7 +250,7 @@ public sealed class JogPadTests : ComponentTest
         var cut = Render<JogPad>(p => p.Add(c => c.Moves, Main.TestMoves).Add(c => c.Machine, Main.Machine));
 
         Assert.True(Disabled(cut.Find("#frame")));
-        Assert.Equal("open an image or drawing first", cut.Find("#frame").GetAttribute("title"));
+        Assert.Equal("Frame: open an image or drawing first", cut.Find("#frame").GetAttribute("title"));
         Assert.False(Disabled(cut.Find("#goto")));
     }
 
@@ -273,6 +284,7 @@ public sealed class RunBarTests : ComponentTest
         cut.WaitForAssertion(() => Assert.False(Disabled(cut.Find("#start"))));
         Assert.True(Disabled(cut.Find("#pause")));
         Assert.True(Disabled(cut.Find("#continue")));
+        Assert.True(Disabled(cut.Find("#abort")));
     }
 
     // The QR at a 5 µm pitch, connected, Start pressed: slow enough that a 5 µm pixel lasts the gate's switching time (a
@@ -359,6 +371,26 @@ public sealed class RunBarTests : ComponentTest
     }
 
     [Fact]
+    public async Task Run_SecondOfTenOnePassLayers_PassCountedWithinTheLayer()
+    {
+        OpenQr();
+        await ConnectAsync();
+        var release = new TaskCompletionSource<RunResult>();
+        Runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>()).Returns(async c =>
+        {
+            // The session's pass 2 of the 10 summed over ten one-pass layers is the second layer's only pass.
+            c.Arg<IProgress<EngraveProgress>>().Report(SessionResults.Report(RunState.Running, 50, 100, 10, 20, pass: 2, passes: 10) with { Layer = 2, LayerPass = 1, LayerPasses = 1 });
+            return SessionResults.Ended(c.Arg<EngraveSession>(), await release.Task);
+        });
+        var cut = RenderBar();
+
+        cut.Find("#start").Click();
+
+        cut.WaitForAssertion(() => Assert.Equal("row 10 of 20", cut.Find("#progress-figures").TextContent));
+        release.SetResult(SessionResults.Result(RunOutcome.Completed));
+    }
+
+    [Fact]
     public async Task Run_UnderWay_ProgressPauseResume()
     {
         OpenQr();
@@ -378,6 +410,7 @@ public sealed class RunBarTests : ComponentTest
         cut.WaitForAssertion(() => Assert.Equal("50 %", cut.Find("#progress-text").TextContent));
         Assert.Contains("row 10 of 20", cut.Find("#progress-figures").TextContent, StringComparison.Ordinal);
         Assert.True(Disabled(cut.Find("#start")));
+        Assert.False(Disabled(cut.Find("#abort")));
         cut.Find("#pause").Click();
         cut.WaitForAssertion(() => Assert.Empty(cut.FindAll("#pause")));
         cut.Find("#resume").Click();

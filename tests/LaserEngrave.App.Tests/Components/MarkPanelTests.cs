@@ -19,7 +19,7 @@ public sealed class MarkPanelTests : ComponentTest
 
         Assert.Equal("S-{n:000}", cut.Find("#mark-text").GetAttribute("value"));
         Assert.Equal("2", cut.Find("#mark-size").GetAttribute("value"));
-        Assert.Contains("Next number: 1", cut.Find("#mark-counter").TextContent, StringComparison.Ordinal);
+        Assert.Contains("Next free number: 1", cut.Find("#mark-counter").TextContent, StringComparison.Ordinal);
     }
 
     [Fact(Timeout = 120_000)]
@@ -65,7 +65,7 @@ public sealed class MarkPanelTests : ComponentTest
 
         cut.WaitForAssertion(() => Assert.Contains("\"S-007\" does not read on the twin (100 of 144 modules right)", cut.Find("#mark-verdict").TextContent, StringComparison.Ordinal));
         Assert.Equal(0, opened);
-        Assert.Contains("Next number: 7", cut.Find("#mark-counter").TextContent, StringComparison.Ordinal);
+        Assert.Contains("Next free number: 7", cut.Find("#mark-counter").TextContent, StringComparison.Ordinal);
     }
 
     [Fact]
@@ -105,16 +105,34 @@ public sealed class MarkPanelTests : ComponentTest
         Assert.Empty(Main.Layers.Layers);
     }
 
-    [Fact]
-    public void Make_ColumnsMoreThanCopies_RefusedAsTheCommandLineRefusesThem()
+    [Fact(Timeout = 120_000)]
+    public async Task Make_CopiesLoweredBelowColumns_OneMarkMadeAndSaidInTheSingular()
     {
         var cut = RenderPanel();
-        cut.Find("#mark-copies").Change("3");
-        cut.Find("#mark-columns").Change("5");
+        cut.Find("#mark-size").Change("1");
+        cut.Find("#mark-copies").Change("1");
+
+        cut.Find("#mark-make").Click();
+        await Marks.MakeCommand.ExecutionTask!;
+
+        cut.WaitForAssertion(() => Assert.StartsWith("the code reads on the twin", cut.Find("#mark-verdict").TextContent, StringComparison.Ordinal));
+        Assert.StartsWith("1 mark, estimate", cut.Find("#mark-estimate").TextContent, StringComparison.Ordinal);
+        Assert.StartsWith("These marks: number 1 ", cut.Find("#mark-made").TextContent, StringComparison.Ordinal);
+        Assert.Empty(cut.FindAll("#mark-error"));
+    }
+
+    [Fact]
+    public void Make_SampleIdInTheLog_TheMarksSampleIsTheLogs()
+    {
+        var service = Substitute.For<IMarkService>();
+        service.NextNumber().Returns(4);
+        service.MakeAsync(Arg.Any<MarkSpec>(), Arg.Any<string?>(), true, Arg.Any<CancellationToken>()).Returns(new MarkResult(null, [], 1, []));
+        Main.Log.SampleId = "Muestra ñ-01";
+        var cut = RenderPanel(new MarkViewModel(service, _ => true, () => Main.Log.SampleId));
 
         cut.Find("#mark-make").Click();
 
-        cut.WaitForAssertion(() => Assert.Equal("columns 5 must be 1..3 (the copies)", cut.Find("#mark-error").TextContent));
-        Assert.Empty(Main.Layers.Layers);
+        Assert.Contains("{sample}: Muestra ñ-01", cut.Find("#mark-sample").TextContent, StringComparison.Ordinal);
+        service.Received(1).MakeAsync(Arg.Any<MarkSpec>(), "Muestra ñ-01", true, Arg.Any<CancellationToken>());
     }
 }

@@ -42,6 +42,37 @@ public sealed class UndoTests : ComponentTest
     }
 
     [Fact]
+    public void Undo_AfterMovingALayerUp_OrderBackAndTheOpenImageUntouched()
+    {
+        OpenQr(widthMm: 10);
+        Assert.True(Main.Layers.Open(TestFiles.Asset(Path.Combine("jobs", "plate.json"))));
+        var order = Main.Layers.Layers.Select(l => l.Name).ToList();
+
+        Main.Layers.Move(1, -1);
+        Assert.NotEqual(order, Main.Layers.Layers.Select(l => l.Name));
+        Main.UndoCommand.Execute(null);
+
+        Assert.Equal(order, Main.Layers.Layers.Select(l => l.Name));
+        Assert.Equal(10, Main.Job.Job!.Geometry.AchievedWidthMm, 2);
+        Assert.False(Main.UndoCommand.CanExecute(null));
+        Main.RedoCommand.Execute(null);
+        Assert.Equal(order[1], Main.Layers.Layers[0].Name);
+    }
+
+    [Fact]
+    public void Undo_AfterClearingTheLayers_TheyComeBack()
+    {
+        Assert.True(Main.Layers.Open(TestFiles.Asset(Path.Combine("jobs", "plate.json"))));
+        var layers = Main.Layers.Layers;
+
+        Main.Layers.Clear();
+        Assert.Empty(Main.Layers.Layers);
+        Main.UndoCommand.Execute(null);
+
+        Assert.Equal(layers, Main.Layers.Layers);
+    }
+
+    [Fact]
     public void Undo_WhileAMoveHoldsTheJob_Disabled()
     {
         OpenQr(widthMm: 10);

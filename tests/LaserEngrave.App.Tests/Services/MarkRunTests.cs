@@ -69,6 +69,7 @@ public sealed class MarkRunTests : IAsyncDisposable
 
         Assert.Equal(RunState.Completed, _run.State);
         Assert.Equal(3, _service.NextNumber());
+        Assert.Equal(3, _mark.NextNumber);
         _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Layers!.Select(l => l.Name).SequenceEqual(new[] { "Data Matrix \"S-001\"", "Data Matrix \"S-002\"" })));
     }
 
@@ -131,6 +132,7 @@ public sealed class MarkRunTests : IAsyncDisposable
 
         Assert.Equal(RunState.Completed, _run.State);
         Assert.Equal(3, _service.NextNumber());
+        Assert.Equal(3, _mark.NextNumber);
     }
 
     public async ValueTask DisposeAsync()

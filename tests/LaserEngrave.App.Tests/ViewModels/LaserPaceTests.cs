@@ -77,6 +77,31 @@ public sealed class LaserPaceTests
     }
 
     [Fact]
+    public void Now_RowsSecondBurnReportedAtTheRowsStart_FollowsTheBurnFromItsOwnStart()
+    {
+        // The engine reports the stage where the row began for the whole row (issue 36, finding 1): the cross snapped
+        // back there at every report, 0.3-1.5 mm behind the machine.
+        _job.LoadImage(TestFiles.Asset("qr-code.bmp"));
+        _job.EditWidth(10);
+        var job = _job.Job!;
+        var moves = job.Plan.Moves().ToList();
+        var first = moves.FindIndex(m => m.Kind == MoveKind.Burn);
+        var index = moves.FindIndex(first + 1, m => m.Kind == MoveKind.Burn && m.Row == moves[first].Row && m.X0 != moves[first].X0);
+        var burn = moves[index];
+        var rowStart = moves.First(m => m.Row == burn.Row);
+        var pace = new LaserPace(job, _clock);
+        var seconds = burn.LengthX / (job.Spec.Process.BurnSpeedMmPerS * 1000 / MachineProfile.Default.X.MicrostepUm);
+
+        pace.Report(1, index, rowStart.X0, rowStart.Y0);
+        var atReport = pace.Now(moving: true)!.Value;
+        _clock.Advance(TimeSpan.FromSeconds(seconds / 2));
+        var halfway = pace.Now(moving: true)!.Value;
+
+        Assert.Equal((burn.X0, burn.Y0), atReport);
+        Assert.InRange(halfway.X, Math.Min(burn.X0, burn.X1) + (burn.LengthX / 2) - 60, Math.Min(burn.X0, burn.X1) + (burn.LengthX / 2) + 60);
+    }
+
+    [Fact]
     public void Now_TravelUnderWay_FollowsItsRampsAndArrivesAtItsEnd()
     {
         _job.LoadImage(TestFiles.Asset("qr-code.bmp"));

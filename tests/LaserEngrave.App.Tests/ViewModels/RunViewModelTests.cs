@@ -332,6 +332,51 @@ public sealed class RunViewModelTests
     }
 
     [Fact]
+    public async Task RunBar_AnotherImageOpenedAfterACompletedRun_BackToIdle()
+    {
+        await ReadyAsync();
+        _runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>()).Returns(Ends(Result(RunOutcome.Completed)));
+        await _run.StartCommand.ExecuteAsync(null);
+        Assert.Equal(RunState.Completed, _run.State);
+
+        _job.LoadImage(TestFiles.Asset("text-banner.png"));
+
+        Assert.Equal((RunState.Idle, 0.0), (_run.State, _run.Fraction));
+    }
+
+    [Fact]
+    public async Task RunBar_JobChangedAfterAFailedRun_ItsErrorGoesTheStopPointStays()
+    {
+        await ReadyAsync();
+        _runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(Ends(Result(RunOutcome.Failed, "laser gate: no reply to FREQ 1000 within 500 ms")));
+        await _run.StartCommand.ExecuteAsync(null);
+        Assert.NotNull(_run.Error);
+
+        _job.EditWidth(4);
+
+        Assert.Null(_run.Error);
+        Assert.Equal(RunState.Idle, _run.State);
+    }
+
+    [Fact]
+    public async Task RunBar_LayersRunCompletedThenTheLayersCleared_BackToIdle()
+    {
+        using var folder = TestFiles.NewFolder();
+        var layers = new LayersViewModel(new JobFiles(new AppFolders(folder.Path)), _job, _activity);
+        var run = new RunViewModel(_runs, _job, _machine, _log, TimeProvider.System, layers);
+        Assert.True(layers.Open(TestFiles.Asset(Path.Combine("jobs", "plate.json"))));
+        await _machine.ConnectCommand.ExecuteAsync(null);
+        _runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>()).Returns(Ends(Result(RunOutcome.Completed)));
+        await run.StartCommand.ExecuteAsync(null);
+        Assert.Equal(RunState.Completed, run.State);
+
+        layers.Clear();
+
+        Assert.Equal((RunState.Idle, 0.0), (run.State, run.Fraction));
+    }
+
+    [Fact]
     public async Task Start_GateSilentDuringRun_FailedWithErrorAndLogged()
     {
         await ReadyAsync();

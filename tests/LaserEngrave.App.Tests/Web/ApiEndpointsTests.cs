@@ -314,6 +314,17 @@ public sealed class ApiEndpointsTests : IDisposable
         var json = await _client.GetFromJsonAsync<JsonElement>($"/api/logs/export?format=json&path={Uri.EscapeDataString(path)}", Token);
         Assert.Equal("completed", json.GetProperty("outcome").GetString(), ignoreCase: true);
         Assert.Single(state.GetProperty("log").GetProperty("history").EnumerateArray());
+
+        // The two CSV variants download under their own names (the second no longer replaces or renames the first).
+        _app.Services.GetRequiredService<MainViewModel>().Log.SelectShownCommand.Execute(null);
+        using var point = await _client.GetAsync("/api/logs/history?format=csv&decimalMark=point", Token);
+        using var comma = await _client.GetAsync("/api/logs/history?format=csv&decimalMark=comma", Token);
+        var pointName = point.Content.Headers.ContentDisposition!.FileName!.Trim('"');
+        var commaName = comma.Content.Headers.ContentDisposition!.FileName!.Trim('"');
+        Assert.EndsWith(".csv", pointName, StringComparison.Ordinal);
+        Assert.EndsWith("-decimal-comma.csv", commaName, StringComparison.Ordinal);
+        Assert.NotEqual(pointName, commaName);
+        Assert.Contains(";", await comma.Content.ReadAsStringAsync(Token), StringComparison.Ordinal);
     }
 
     [Fact]

@@ -35,6 +35,48 @@ public sealed class BrowserLayoutTests : BrowserTest
     }
 
     [Fact]
+    public void Workspace_Laptop1366At125Percent_StageStaysInViewBesideThePanelBeingEdited()
+    {
+        // 1366 x 768 at 125 % zoom leaves a page of 1093 x 501: every panel was below the stage, which then left the view.
+        PageSize(1093, 501);
+        OpenSample("text-banner.png");
+
+        const string InView = """
+            const r = arguments[0].getBoundingClientRect();
+            return r.height > 0 && r.top >= 0 && r.bottom <= window.innerHeight && r.left >= 0 && r.right <= window.innerWidth;
+            """;
+        foreach (var field in new[] { "widthMm", "notes" })
+        {
+            Driver.ExecuteScript("arguments[0].scrollIntoView({ block: 'center' });", Id(field));
+            Assert.True((bool)Driver.ExecuteScript(InView, Id(field))!, $"#{field} is not in view at 1093 x 501");
+            Assert.True((bool)Driver.ExecuteScript(InView, Id("stage-canvas"))!, $"the stage left the view while #{field} is shown at 1093 x 501");
+        }
+
+        Screenshot("workspace-1093x501");
+        var stage = Id("stage-canvas").Size;
+        Assert.True(stage.Width >= 450 && stage.Height >= 250, $"the stage is only {stage.Width} x {stage.Height} px at 1093 x 501");
+        Assert.True((bool)Driver.ExecuteScript(InView, Id("start"))!, "Start is off-screen at 1093 x 501");
+    }
+
+    [Fact]
+    public void Stage_ZoomedInFortyTimes_StopsAtOneMicrometreAPixelAndANewJobComesIntoView()
+    {
+        OpenSample("qr-code.bmp");
+        WaitFor(_ => View().Scale > 1, "the stage drawn");
+        for (var i = 0; i < 40; i++)
+        {
+            Id("zoom-in").Click();
+        }
+
+        WaitFor(_ => View().Scale >= 999, "zoomed in to the limit");
+        Assert.True(View().Scale <= 1000, $"zoomed to {View().Scale} px/mm, past 1 µm a pixel");
+
+        // Zoomed deep on the QR's middle, the banner opened elsewhere on the stage: the view shows the travel again.
+        SetField("originXMm", "40");
+        WaitFor(_ => View().Scale < 100, "the view following the job moved out of it");
+    }
+
+    [Fact]
     public void MachinePanel_1280Wide_PreflightFactFitsOneLineWithTheSentenceAsItsTooltip()
     {
         Size1280x720();

@@ -161,13 +161,16 @@ public abstract class BrowserTest : IAsyncLifetime, IClassFixture<SharedBrowser>
     protected double FieldValue(string id) => double.Parse(Id(id).GetDomProperty("value")!, CultureInfo.InvariantCulture);
 
     /// <summary>The page's own area at exactly 1280 x 720, as docs/user-guide.md shows it.</summary>
-    protected void Size1280x720()
+    protected void Size1280x720() => PageSize(1280, 720);
+
+    /// <summary>The page's own area at exactly <paramref name="width"/> x <paramref name="height"/> (a window's is larger by its frame).</summary>
+    protected void PageSize(int width, int height)
     {
         Driver.ExecuteCdpCommand("Emulation.setDeviceMetricsOverride", new Dictionary<string, object?>
         {
-            ["width"] = 1280, ["height"] = 720, ["deviceScaleFactor"] = 1, ["mobile"] = false,
+            ["width"] = width, ["height"] = height, ["deviceScaleFactor"] = 1, ["mobile"] = false,
         });
-        WaitFor(d => Convert.ToInt64(((IJavaScriptExecutor)d).ExecuteScript("return window.innerHeight;"), CultureInfo.InvariantCulture) == 720, "a 1280 x 720 page");
+        WaitFor(d => Convert.ToInt64(((IJavaScriptExecutor)d).ExecuteScript("return window.innerHeight;"), CultureInfo.InvariantCulture) == height, $"a {width} x {height} page");
     }
 
     /// <summary>Zooms the stage in with the wheel around (<paramref name="xMm"/>, <paramref name="yMm"/>), to show a small job.</summary>

@@ -54,9 +54,12 @@ public sealed class RunLogStoreTests : IDisposable
     [Theory]
     [InlineData(null, "2026-11-23_143005")]
     [InlineData("  ", "2026-11-23_143005")]
-    [InlineData("../etc/passwd", "2026-11-23_143005__etc_passwd")]
+    [InlineData("../etc/passwd", "2026-11-23_143005_etc_passwd")]
     [InlineData("..", "2026-11-23_143005")]
-    [InlineData("Probe 3: Si/SiO2", "2026-11-23_143005_Probe_3__Si_SiO2")]
+    [InlineData("Probe 3: Si/SiO2", "2026-11-23_143005_Probe_3_Si_SiO2")]
+    [InlineData("Muestra ñ-01 ±5 µm", "2026-11-23_143005_Muestra_ñ-01_5_µm")]
+    [InlineData("試料 7", "2026-11-23_143005_試料_7")]
+    [InlineData("a\\b<c>d|e?f*g\"h", "2026-11-23_143005_a_b_c_d_e_f_g_h")]
     public void FileStem_SampleId_MadeSafeForAFileName(string? sample, string expected)
     {
         Assert.Equal(expected, RunLogStore.FileStem(runs.FailedRecord(sample)));

@@ -92,6 +92,20 @@ public sealed class RunSummaryTextTests : IDisposable
     }
 
     [Fact]
+    public void Format_TwoLayersOfOnePass_CountsLayersNotPassesAndSaysWhoseImage()
+    {
+        RunLayer Layer(string name, string source) => new(name, source, "0", LayerMode.Raster, null, 1, 1, 0, 0, 1, 1000, 1) { PassesDone = 1, Outcome = RunOutcome.Completed };
+        var record = runs.FailedRecord() with { Passes = 2, PassesDone = 2, Layers = [Layer("logo", "/jobs/logo.png"), Layer("id", "/jobs/id.png")] };
+
+        var text = RunSummaryText.Format(record);
+
+        Assert.DoesNotContain("Passes:", text, StringComparison.Ordinal);
+        Assert.Contains("Layers:             2 of 2 completed (each with its passes below)", text, StringComparison.Ordinal);
+        Assert.Contains("Image (layer 1):", text, StringComparison.Ordinal);
+        Assert.Contains("\"id\" raster id.png", text, StringComparison.Ordinal);
+    }
+
+    [Fact]
     public void Format_SinglePass_HasNoPassesLine()
     {
         var text = RunSummaryText.Format(runs.FailedRecord());

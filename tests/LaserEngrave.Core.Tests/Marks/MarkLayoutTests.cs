@@ -93,11 +93,19 @@ public sealed class MarkLayoutTests : IDisposable
     [Theory]
     [InlineData(0, null, "copies 0")]
     [InlineData(401, null, "copies 401")]
-    [InlineData(10, 11, "columns 11")]
+    [InlineData(10, 0, "columns 0 must be 1..")]
     public void Make_BadArray_IsRefused(int copies, int? columns, string expected)
     {
         var ex = Assert.Throws<MarkException>(() => MarkLayout.Make(TenIds with { Copies = copies, Columns = columns }, 1, Context, MachineProfile.Default, _folder));
 
         Assert.Contains(expected, ex.Message);
+    }
+
+    [Fact]
+    public void Make_MoreColumnsThanCopies_OneRowOfTheCopies()
+    {
+        var layout = MarkLayout.Make(TenIds with { Copies = 1, Columns = 5 }, 1, Context, MachineProfile.Default, _folder);
+
+        Assert.Equal([1], layout.Marks.Select(m => m.Number).Distinct());
     }
 }

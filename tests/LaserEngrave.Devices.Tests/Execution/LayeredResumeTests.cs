@@ -95,6 +95,10 @@ public sealed class LayeredResumeTests
         Assert.True(resumed.Resumed);
         Assert.Equal(RunOutcome.Completed, resumed.Outcome);
         Assert.Equal([2, 3], reports.Select(r => r.Layer).Distinct());
+
+        // Each layer counts its own passes: layer 2 (one pass) is "pass 1 of 1", not "pass 1 of 3" of the passes summed.
+        Assert.All(reports.Where(r => r.Layer == 2), r => Assert.Equal((1, 1), r.PassInLayer));
+        Assert.Equal([(1, 2), (2, 2)], reports.Where(r => r.Layer == 3).Select(r => r.PassInLayer).Distinct());
         Assert.All(resumed.Layers!, l => Assert.Equal((RunOutcome.Completed, l.Passes), (l.Outcome!.Value, l.PassesDone)));
         Assert.Equal((0, 0, true), (resumed.Layers![0].EngravingSeconds, resumed.Layers[0].LaserOnSeconds, resumed.Layers[0].CompletedBefore));
 

@@ -29,6 +29,21 @@ export function create(host, dotnet) {
     if (!s.fitted || !s.userView) fit(); else invalidate();
   }
 
+  // From a quarter of the whole travel's fit up to 1 µm a screen pixel: deeper, the rulers have no mark left to draw and
+  // the plan's lines (a microstep is 0.1 µm at best) show nothing more.
+  const MAX_SCALE = 1000;
+  function clampScale(scale) {
+    const r = host.getBoundingClientRect();
+    const least = Math.max(0.1, Math.min((r.width - RULER) / s.travel.w, (r.height - RULER) / s.travel.h) / 4);
+    return Math.min(MAX_SCALE, Math.max(least, scale));
+  }
+
+  // The job's box is in view, at least in part.
+  function jobInView(job) {
+    const r = host.getBoundingClientRect(), a = toMm(RULER, RULER), b = toMm(r.width, r.height);
+    return job.x < b.x && job.x + job.w > a.x && job.y < b.y && job.y + job.h > a.y;
+  }
+
   function fit() {
     const r = host.getBoundingClientRect(), m = 12;
     const w = r.width - RULER - 2 * m, h = r.height - RULER - 2 * m;
@@ -202,7 +217,7 @@ export function create(host, dotnet) {
   canvas.addEventListener('wheel', (e) => {
     e.preventDefault();
     const { px, py } = local(e), mm = toMm(px, py), k = e.deltaY < 0 ? 1.2 : 1 / 1.2;
-    s.scale = Math.min(5000, Math.max(1, s.scale * k)); s.userView = true;
+    s.scale = clampScale(s.scale * k); s.userView = true;
     s.ox = px - mm.x * s.scale; s.oy = py - mm.y * s.scale;
     invalidate();
   }, { passive: false });
@@ -303,7 +318,13 @@ export function create(host, dotnet) {
 
   return {
     setTravel(w, h) { s.travel = { w, h }; s.fitted = false; resize(); },
-    setJob(job, draggable) { s.job = job; s.draggable = draggable; invalidate(); },
+    setJob(job, draggable) {
+      // A job newly opened or resized off the part of the stage in view: the whole travel again, so the stage is never
+      // shown empty with the job somewhere outside it.
+      const changed = !s.job || !job || job.w !== s.job.w || job.h !== s.job.h || job.x !== s.job.x || job.y !== s.job.y;
+      s.job = job; s.draggable = draggable;
+      if (job && changed && s.userView && !jobInView(job)) fit(); else invalidate();
+    },
     setLayers(layers) { s.layers = layers || []; invalidate(); },
     setMap(url, x, y, w, h) {
       if (!url) { s.map = null; invalidate(); return; }
@@ -333,7 +354,7 @@ export function create(host, dotnet) {
     setProgress(movesDone) { s.movesDone = movesDone; extendBurned(); invalidate(); },
     setLaser(x, y, on) { s.laser = x === null ? null : { x, y }; s.laserOn = on; invalidate(); },
     fit,
-    zoom(k) { s.userView = true; const r = host.getBoundingClientRect(), cx = r.width / 2, cy = r.height / 2, mm = toMm(cx, cy); s.scale *= k; s.ox = cx - mm.x * s.scale; s.oy = cy - mm.y * s.scale; invalidate(); },
+    zoom(k) { s.userView = true; const r = host.getBoundingClientRect(), cx = r.width / 2, cy = r.height / 2, mm = toMm(cx, cy); s.scale = clampScale(s.scale * k); s.ox = cx - mm.x * s.scale; s.oy = cy - mm.y * s.scale; invalidate(); },
     dispose() { document.removeEventListener('keydown', onKey); document.body.removeEventListener('themeChanged', invalidate); observer.disconnect(); },
   };
 }

@@ -2,26 +2,38 @@ using LaserEngrave.Core.Jobs;
 namespace LaserEngrave.App.Services;
 
 /// <summary>
-/// The job's undo and redo: immutable snapshots of its settings (image settings, size, position, process), one per
-/// committed change. Opening another image starts a new history: undo never swaps the artwork.
+/// What undo puts back: the open job's settings (image settings, size, position, process; null before one is open)
+/// and the job of layers, each edit of either one step.
 /// </summary>
-public sealed class JobHistory(int capacity = 100)
+public sealed record WorkbenchState(JobSettings? Job, IReadOnlyList<JobLayer> Layers)
 {
-    private readonly LinkedList<JobSettings> _undo = new();
-    private readonly Stack<JobSettings> _redo = new();
+    public bool Equals(WorkbenchState? other) => other is not null && Job == other.Job && Layers.SequenceEqual(other.Layers);
+
+    public override int GetHashCode() => HashCode.Combine(Job, Layers.Count);
+}
+
+/// <summary>
+/// Undo and redo: immutable snapshots, one per committed change. Opening another image or job file starts a new
+/// history: undo never swaps the artwork.
+/// </summary>
+public sealed class EditHistory<T>(int capacity = 100)
+    where T : class, IEquatable<T>
+{
+    private readonly LinkedList<T> _undo = new();
+    private readonly Stack<T> _redo = new();
 
     /// <summary>The job's settings as last recorded; null before the first.</summary>
-    public JobSettings? Current { get; private set; }
+    public T? Current { get; private set; }
 
     public bool CanUndo => _undo.Count > 0;
 
     public bool CanRedo => _redo.Count > 0;
 
     /// <summary>Keeps <paramref name="settings"/> as the job's state after a change; a state equal to the current one is no change.</summary>
-    public void Record(JobSettings settings)
+    public void Record(T settings)
     {
         ArgumentNullException.ThrowIfNull(settings);
-        if (settings == Current)
+        if (settings.Equals(Current))
         {
             return;
         }
@@ -40,7 +52,7 @@ public sealed class JobHistory(int capacity = 100)
     }
 
     /// <summary>Steps back: the settings to put back, or null when there is nothing to undo.</summary>
-    public JobSettings? Undo()
+    public T? Undo()
     {
         if (_undo.Last is not { } last)
         {
@@ -54,7 +66,7 @@ public sealed class JobHistory(int capacity = 100)
     }
 
     /// <summary>Steps forward again after <see cref="Undo"/>: the settings to put back, or null when there is nothing to redo.</summary>
-    public JobSettings? Redo()
+    public T? Redo()
     {
         if (!_redo.TryPop(out var next))
         {
@@ -67,7 +79,7 @@ public sealed class JobHistory(int capacity = 100)
     }
 
     /// <summary>Starts a new history at <paramref name="settings"/> (another image opened).</summary>
-    public void Reset(JobSettings? settings)
+    public void Reset(T? settings)
     {
         _undo.Clear();
         _redo.Clear();
