@@ -105,7 +105,7 @@ public sealed class CameraPanelTests : ComponentTest
         var button = cut.Find("#camera-calibrate");
 
         Assert.True(button.HasAttribute("disabled"));
-        Assert.Equal("the live camera is not playing yet: allow the browser to use it", button.GetAttribute("title"));
+        Assert.Equal("Calibrate: the live camera is not playing yet: allow the browser to use it", button.GetAttribute("title"));
         Assert.NotEmpty(cut.FindAll("#camera-video"));
     }
 
