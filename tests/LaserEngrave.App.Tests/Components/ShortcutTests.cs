@@ -20,7 +20,7 @@ public sealed class ShortcutTests : ComponentTest
         await Press(cut, "help");
 
         var rows = cut.FindAll("#help-keys tr").Select(r => r.QuerySelector("th")!.TextContent.Trim()).ToArray();
-        Assert.Equal(["Ctrl+O", "Ctrl+S", "Ctrl+Z", "Ctrl+Y or Ctrl+Shift+Z", "Arrow keys", "Esc", "F1"], rows);
+        Assert.Equal(["Ctrl+O", "Ctrl+S", "Ctrl+Z", "Ctrl+Y or Ctrl+Shift+Z", "Arrow keys", "Ctrl+arrow keys", "Shift+arrow keys", "Esc", "F1"], rows);
         await Press(cut, "help");
         Assert.Empty(cut.FindAll("#help-overlay"));
         await Press(cut, "help");

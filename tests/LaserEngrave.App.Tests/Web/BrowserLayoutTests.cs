@@ -77,6 +77,37 @@ public sealed class BrowserLayoutTests : BrowserTest
     }
 
     [Fact]
+    public void Stage_JobClickedThenArrows_TheJobMovesNotTheStageShiftArrowsJog()
+    {
+        Size1280x720();
+        OpenSample("qr-code.bmp");
+        Id("connect").Click();
+        WaitFor(d => Enabled("jog-x-"), "connected to the simulator");
+        WaitFor(_ => Position().Y is not null, "the position read");
+        var (_, y0) = Position();
+        var x0 = FieldValue("originXMm");
+        var (scale, ox, oy) = View();
+        var canvas = Id("stage-canvas");
+
+        // A click inside the job's box (1 mm right of its origin and 0.3 mm down) selects it.
+        new Actions(Driver).MoveToLocation((int)(canvas.Location.X + ox + ((x0 + 1) * scale)), (int)(canvas.Location.Y + oy + ((FieldValue("originYMm") + 0.3) * scale))).Click().Perform();
+        WaitFor(_ => Id("stage-host").GetAttribute("data-selected") == "true", "the job selected");
+        new Actions(Driver).SendKeys(Keys.ArrowRight).Perform();
+        WaitFor(_ => Math.Abs(FieldValue("originXMm") - (x0 + 0.1)) < 1e-9, "the job moved 0.1 mm right");
+        Assert.Equal(y0, Position().Y);
+
+        // Shift+arrow jogs the stage (up: the simulated stage starts at the far end of its travel); the job stays.
+        new Actions(Driver).KeyDown(Keys.Shift).SendKeys(Keys.ArrowUp).KeyUp(Keys.Shift).Perform();
+        WaitFor(_ => Position().Y is { } y && y != y0, "the stage jogged");
+        Assert.Equal(x0 + 0.1, FieldValue("originXMm"), 9);
+
+        // Esc leaves the job: the arrows then move nothing.
+        new Actions(Driver).SendKeys(Keys.Escape).SendKeys(Keys.ArrowRight).Perform();
+        WaitFor(_ => Id("stage-host").GetAttribute("data-selected") == "false", "the job left");
+        Assert.Equal(x0 + 0.1, FieldValue("originXMm"), 9);
+    }
+
+    [Fact]
     public void MachinePanel_1280Wide_PreflightFactFitsOneLineWithTheSentenceAsItsTooltip()
     {
         Size1280x720();

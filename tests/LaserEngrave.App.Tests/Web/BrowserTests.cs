@@ -51,8 +51,8 @@ public sealed class BrowserTests : BrowserTest
         Id("jog-x-").Click();
         WaitFor(_ => Position().X < before.X - 0.09, "jogged 0.1 mm in X");
         WaitFor(_ => Enabled("jog-y-"), "jog done");
-        Driver.FindElement(By.TagName("body")).SendKeys(Keys.ArrowUp);
-        WaitFor(_ => Position().Y < before.Y - 0.09, "jogged 0.1 mm in Y by the arrow key");
+        new Actions(Driver).KeyDown(Keys.Shift).SendKeys(Keys.ArrowUp).KeyUp(Keys.Shift).Perform();
+        WaitFor(_ => Position().Y < before.Y - 0.09, "jogged 0.1 mm in Y by Shift+arrow");
         Id("frame").Click();
         WaitFor(_ => Enabled("frame") && Enabled("start"), "frame traced");
         Assert.Empty(Driver.FindElements(By.Id("moves-error")));

@@ -125,10 +125,15 @@ export function create(host, dotnet) {
         if (s.burnedUpTo > 0) { ctx.strokeStyle = css('--burned'); ctx.stroke(s.burned); }
         ctx.translate(-dx, -dy);
       }
-      ctx.lineWidth = 1.5 / s.scale; ctx.setLineDash([6 / s.scale, 4 / s.scale]);
+      ctx.lineWidth = 1.5 / s.scale; ctx.setLineDash(s.selected ? [] : [6 / s.scale, 4 / s.scale]);
       ctx.strokeStyle = job.fits ? css('--accent') : css('--danger');
       if (s.layers.length === 0) ctx.strokeRect(job.x, job.y, job.w, job.h);
       ctx.setLineDash([]);
+      if (s.selected && s.layers.length === 0) {
+        // Selected: a solid outline with a handle at each corner, as a drawing program shows it.
+        const h = 6 / s.scale; ctx.fillStyle = css('--accent');
+        for (const [cx, cy] of [[job.x, job.y], [job.x + job.w, job.y], [job.x, job.y + job.h], [job.x + job.w, job.y + job.h]]) ctx.fillRect(cx - h / 2, cy - h / 2, h, h);
+      }
     }
     // A job of layers: each layer's box, numbered and named in burn order.
     ctx.font = `${11 / s.scale}px system-ui, sans-serif`; ctx.textBaseline = 'bottom';
@@ -230,6 +235,8 @@ export function create(host, dotnet) {
     s.drag = e.button === 0 && inJob(mm)
       ? { kind: 'job', sx: mm.x, sy: mm.y, x: s.job.x, y: s.job.y }
       : { kind: 'pan', px, py, ox: s.ox, oy: s.oy };
+    // A click on the job selects it (the arrow keys then move it); a click beside it leaves it.
+    if (e.button === 0) select(s.drag.kind === 'job');
     canvas.style.cursor = s.drag.kind === 'job' ? 'move' : 'grabbing';
   });
 
@@ -246,15 +253,23 @@ export function create(host, dotnet) {
     invalidate();
   });
 
+  // The job placed at (x, y) mm: drawn there at once, put back when the app refuses the place.
+  const place = async (x, y) => {
+    const previous = s.job;
+    s.job = { ...s.job, x, y };
+    invalidate();
+    const accepted = await dotnet.invokeMethodAsync('OnJobDropped', x, y);
+    if (!accepted) { s.job = previous; invalidate(); }
+  };
+  const select = (on) => {
+    s.selected = !!(on && s.job && s.draggable);
+    host.dataset.selected = s.selected ? 'true' : 'false';
+    invalidate();
+  };
   const endDrag = async () => {
     const d = s.drag; s.drag = null; canvas.style.cursor = 'crosshair';
-    if (d && d.kind === 'job' && (d.x !== s.job.x || d.y !== s.job.y)) {
-      const previous = s.job;
-      s.job = { ...s.job, x: d.x, y: d.y };
-      invalidate();
-      const accepted = await dotnet.invokeMethodAsync('OnJobDropped', d.x, d.y);
-      if (!accepted) { s.job = previous; invalidate(); }
-    } else invalidate();
+    if (d && d.kind === 'job' && (d.x !== s.job.x || d.y !== s.job.y)) await place(d.x, d.y);
+    else invalidate();
   };
   canvas.addEventListener('pointerleave', () => { if (!s.drag) cursor.textContent = ''; });
   canvas.addEventListener('pointerup', endDrag);
@@ -285,6 +300,7 @@ export function create(host, dotnet) {
       return;
     }
     if (e.key === 'Escape' && !e.ctrlKey && !e.altKey && !e.metaKey) {
+      select(false);
       dotnet.invokeMethodAsync('OnShortcutKey', 'escape');
       return;
     }
@@ -304,9 +320,15 @@ export function create(host, dotnet) {
       dotnet.invokeMethodAsync('OnShortcutKey', key === 'y' || e.shiftKey ? 'redo' : 'undo');
       return;
     }
-    if (typing || e.altKey || e.ctrlKey || e.metaKey || !keys[e.key]) return;
+    if (typing || e.altKey || e.metaKey || !keys[e.key]) return;
     e.preventDefault();
-    dotnet.invokeMethodAsync('OnJogKey', keys[e.key]);
+    // Shift+arrows jog the stage (the real machine); the arrows alone move the selected job, 0.1 mm (Ctrl: 1 mm), as in
+    // a drawing program: never the stage unasked.
+    if (e.shiftKey && !e.ctrlKey) { dotnet.invokeMethodAsync('OnJogKey', keys[e.key]); return; }
+    if (!s.selected || !s.job || !s.draggable) { dotnet.invokeMethodAsync('OnShortcutKey', 'arrow-unselected'); return; }
+    const step = e.ctrlKey ? 1 : 0.1, d = keys[e.key];
+    const x = snap(s.job.x + (d === 'x+' ? step : d === 'x-' ? -step : 0)), y = snap(s.job.y + (d === 'y+' ? step : d === 'y-' ? -step : 0));
+    place(x, y);
   };
   document.addEventListener('keydown', onKey);
   document.body.addEventListener('themeChanged', invalidate);
@@ -319,6 +341,7 @@ export function create(host, dotnet) {
   return {
     setTravel(w, h) { s.travel = { w, h }; s.fitted = false; resize(); },
     setJob(job, draggable) {
+      if (!job || !draggable) select(false);
       // A job newly opened or resized off the part of the stage in view: the whole travel again, so the stage is never
       // shown empty with the job somewhere outside it.
       const changed = !s.job || !job || job.w !== s.job.w || job.h !== s.job.h || job.x !== s.job.x || job.y !== s.job.y;
