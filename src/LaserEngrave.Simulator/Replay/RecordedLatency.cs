@@ -51,12 +51,13 @@ public static class RecordedLatency
         ArgumentNullException.ThrowIfNull(gateProcessingSeconds);
         var roundTrips = new double?[events.Count];
         var rest = new double[events.Count];
-        StageRoundTrips(profile, events, roundTrips, rest);
+        var positions = new List<RecordedPosition>();
+        StageRoundTrips(profile, events, roundTrips, rest, positions);
         GateRoundTrips(profile, events, roundTrips, rest, gateProcessingSeconds);
         var result = new WriteDelay[events.Count];
         var stage = EstimateLink(events, true, profile.StageBaudRate, roundTrips, rest, result);
         var gate = EstimateLink(events, false, profile.Gate.BaudRate, roundTrips, rest, result);
-        return new RecordedDelays(result, stage, gate);
+        return new RecordedDelays(result, stage, gate) { Positions = positions };
     }
 
     private static LinkDelays EstimateLink(IReadOnlyList<WireEvent> events, bool stage, int baud, double?[] roundTrips, double[] rest, WriteDelay[] result)
@@ -119,7 +120,7 @@ public static class RecordedLatency
     }
 
     // Each Zaber write's round trip to its reply (a command that replies at once), and the wire's part of it.
-    private static void StageRoundTrips(MachineProfile profile, IReadOnlyList<WireEvent> events, double?[] roundTrips, double[] rest)
+    private static void StageRoundTrips(MachineProfile profile, IReadOnlyList<WireEvent> events, double?[] roundTrips, double[] rest, List<RecordedPosition> positions)
     {
         var wire = 2 * ZaberFrame.Length * BitsPerByte / profile.StageBaudRate;
         var pending = new List<(byte Device, byte Command, int Index)>();
@@ -149,6 +150,7 @@ public static class RecordedLatency
             while (bytes.Count >= ZaberFrame.Length)
             {
                 var (device, command) = (bytes[0], bytes[1]);
+                var data = BitConverter.ToInt32([bytes[2], bytes[3], bytes[4], bytes[5]]);
                 bytes.RemoveRange(0, ZaberFrame.Length);
                 var match = pending.FindIndex(p => p.Device == device && p.Command == command);
                 if (match < 0)
@@ -160,6 +162,10 @@ public static class RecordedLatency
                 pending.RemoveAt(match);
                 roundTrips[write] ??= e.Seconds - events[write].Seconds;
                 rest[write] = wire;
+                if ((ZaberCommand)command == ZaberCommand.ReturnCurrentPosition)
+                {
+                    positions.Add(new RecordedPosition(write, device, data));
+                }
             }
         }
     }
@@ -216,9 +222,15 @@ public readonly record struct WriteDelay(double Seconds, double EarliestSeconds,
 /// <param name="LongestReadLateSeconds">The most the host read a reply late by, seconds.</param>
 public sealed record LinkDelays(int RoundTrips, double FastestSeconds, double SlowestSeconds, int RepliesReadLate, double LongestReadLateSeconds);
 
+/// <summary>A position a stage reported: the write of its query (an event's index), the device, the position in microsteps.</summary>
+public sealed record RecordedPosition(int WriteIndex, byte Device, int Microsteps);
+
 /// <summary>Each event's delay (<see cref="WriteDelay"/>; default for an event that is not a write), and what each link showed.</summary>
 public sealed record RecordedDelays(IReadOnlyList<WriteDelay> Writes, LinkDelays Stage, LinkDelays Gate)
 {
+    /// <summary>Every position the stages reported to a Return Current Position, in the order they were asked.</summary>
+    public IReadOnlyList<RecordedPosition> Positions { get; init; } = [];
+
     /// <summary>Each event's estimated delay, seconds.</summary>
     public double[] Seconds() => [.. Writes.Select(w => w.Seconds)];
 

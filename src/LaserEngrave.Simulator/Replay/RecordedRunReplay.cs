@@ -5,6 +5,7 @@ using LaserEngrave.Core.Logging;
 using LaserEngrave.Wire.Serial;
 using LaserEngrave.Simulator.Burn;
 using LaserEngrave.Simulator.LaserGate;
+using LaserEngrave.Simulator.Motion;
 using LaserEngrave.Simulator.Timing;
 
 namespace LaserEngrave.Simulator.Replay;
@@ -55,30 +56,35 @@ public static class RecordedRunReplay
     }
 
     /// <summary>
-    /// Replays the run of one image or drawing at the recorded delays' estimates and, where the recording leaves a band
-    /// open (<see cref="RecordedDelays"/>), at both ends of it as well: the stage's writes at their earliest and the
-    /// gate's at their latest, then the other way round. What differs between the three is what the recording cannot
-    /// tell: each switching's band in µm and the pixels burned in one and not in another.
+    /// Replays the run of one image or drawing at the recorded delays' estimates, its stage's motion writes moved until
+    /// the replay's stage reports the positions the run's stages reported (<see cref="ReportedPositionFit"/>), and, where
+    /// the recording leaves a band open (<see cref="RecordedDelays"/>), at both ends of it as well: the stage's writes at
+    /// their earliest and the gate's at their latest, then the other way round. What differs between the three is what
+    /// the recording cannot tell: each switching's band in µm and the pixels burned in one and not in another.
     /// </summary>
     /// <returns>The estimate's figures and burn report, and the uncertainty (null when the setup has no recorded delays: the twin's adapters drew theirs).</returns>
     public static async Task<(RunSimulation Simulation, BurnReport? Burn, ReplayUncertainty? Uncertainty)> ReplayWithUncertaintyAsync(EngraveJob job, MachineProfile profile, IReadOnlyList<WireEvent> events, ReplaySetup setup, CancellationToken cancellationToken)
     {
         ArgumentNullException.ThrowIfNull(setup);
-        var estimate = await RunOnceAsync(job, profile, events, setup.Options, setup.Delays, cancellationToken).ConfigureAwait(false);
         if (setup.Recorded is not { } recorded)
         {
-            return (estimate.Simulation, estimate.Burn, null);
+            var plain = await RunOnceAsync(job, profile, events, setup.Options, setup.Delays, cancellationToken).ConfigureAwait(false);
+            return (plain.Simulation, plain.Burn, null);
         }
 
+        Task<ReplayRun> Replay(IReadOnlyList<double> delays) => RunOnceAsync(job, profile, events, setup.Options, delays, cancellationToken);
+        var (_, estimate, agreement) = await ReportedPositionFit.FitAsync(profile, events, recorded.Positions, recorded.Seconds(), Replay).ConfigureAwait(false);
         if (recorded.WidestSeconds < ReplayUncertainty.ResolutionSeconds)
         {
             // Every delay pinned: the ends of the bands are the estimate itself.
-            return (estimate.Simulation, estimate.Burn, ReplayUncertainty.Compare(estimate, estimate, estimate, recorded));
+            return (estimate.Simulation, estimate.Burn, ReplayUncertainty.Compare(estimate, estimate, estimate, recorded, agreement));
         }
 
-        var gateEarly = await RunOnceAsync(job, profile, events, setup.Options, recorded.Corner(events, gateLate: false), cancellationToken).ConfigureAwait(false);
-        var gateLate = await RunOnceAsync(job, profile, events, setup.Options, recorded.Corner(events, gateLate: true), cancellationToken).ConfigureAwait(false);
-        return (estimate.Simulation, estimate.Burn, ReplayUncertainty.Compare(estimate, gateEarly, gateLate, recorded));
+        // Each end of the bands with the stage's motion fitted again to its reports: a stage whose queries arrived earlier
+        // stood where it said earlier, so its motion writes came earlier too.
+        var (_, gateEarly, _) = await ReportedPositionFit.FitAsync(profile, events, recorded.Positions, recorded.Corner(events, gateLate: false), Replay).ConfigureAwait(false);
+        var (_, gateLate, _) = await ReportedPositionFit.FitAsync(profile, events, recorded.Positions, recorded.Corner(events, gateLate: true), Replay).ConfigureAwait(false);
+        return (estimate.Simulation, estimate.Burn, ReplayUncertainty.Compare(estimate, gateEarly, gateLate, recorded, agreement));
     }
 
     private static async Task<ReplayRun> RunOnceAsync(EngraveJob job, MachineProfile profile, IReadOnlyList<WireEvent> events, SimulatorOptions options, IReadOnlyList<double>? delays, CancellationToken cancellationToken)
@@ -94,13 +100,20 @@ public static class RecordedRunReplay
         {
             var inspector = new BurnInspector(machine);
             inspector.Begin();
-            await WireReplay.RunAsync(machine, events, cancellationToken, delays: delays).ConfigureAwait(false);
+            var start = 0.0;
+            await WireReplay.RunAsync(machine, events, cancellationToken, delays: delays, started: s => start = s).ConfigureAwait(false);
             var simulation = Inspect(inspector, job.Parts[0]);
             var recorder = machine.Recorder;
             var switches = recorder.LaserChanges
                 .Select(c => new LaserSwitch(c.AtSeconds, c.FrequencyHz > 0, recorder.X.PositionAt(c.AtSeconds) * recorder.XMicrostepUm, recorder.Y.PositionAt(c.AtSeconds) * recorder.YMicrostepUm))
                 .ToList();
-            return new ReplayRun(simulation, inspector.Report, switches);
+            var axes = new Dictionary<byte, AxisTrajectory> { [profile.X.DeviceNumber] = recorder.X, [profile.Y.DeviceNumber] = recorder.Y };
+            if (profile.Z is { } z && recorder.Z is { } zAxis)
+            {
+                axes[z.DeviceNumber] = zAxis;
+            }
+
+            return new ReplayRun(simulation, inspector.Report, switches, axes, start);
         }
     }
 

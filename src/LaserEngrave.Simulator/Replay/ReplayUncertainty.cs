@@ -2,6 +2,7 @@ using System.Numerics;
 using LaserEngrave.Core.Imaging;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Simulator.Burn;
+using LaserEngrave.Simulator.Motion;
 
 namespace LaserEngrave.Simulator.Replay;
 
@@ -20,6 +21,7 @@ namespace LaserEngrave.Simulator.Replay;
 /// <param name="Edges">Each switching with its band, in the order the laser switched, the widest first when more than <see cref="MaxEdgesListed"/> are uncertain.</param>
 /// <param name="Stage">What the stage link's round trips showed.</param>
 /// <param name="Gate">What the gate link's round trips showed.</param>
+/// <param name="Positions">How the replay's stage agreed with the positions the run's stages reported.</param>
 public sealed record ReplayUncertainty(
     double EdgesWithinUm,
     int Switchings,
@@ -29,7 +31,8 @@ public sealed record ReplayUncertainty(
     int UnmatchedSwitchings,
     IReadOnlyList<EdgeBand> Edges,
     LinkDelays Stage,
-    LinkDelays Gate)
+    LinkDelays Gate,
+    PositionAgreement Positions)
 {
     /// <summary>A band narrower than this is no band (the recording's times are to 0.1 µs).</summary>
     public const double ResolutionSeconds = 1e-6;
@@ -49,10 +52,13 @@ public sealed record ReplayUncertainty(
             ? "no reply read late"
             : FormattableString.Invariant($"{late} repl{(late == 1 ? "y" : "ies")} read late by the host (up to {Math.Max(Stage.LongestReadLateSeconds, Gate.LongestReadLateSeconds) * 1000:0.#} ms), taken as the host's, not the delivery's");
         var onWhite = PulsesOnWhite.Least == PulsesOnWhite.Most ? string.Empty : FormattableString.Invariant($"; pulses on white {PulsesOnWhite.Least}..{PulsesOnWhite.Most} within the bands");
-        return FormattableString.Invariant($"edges placed within ±{EdgesWithinUm:0.##} µm ({UncertainEdges} of {Switchings} switchings uncertain){pixels}{onWhite}; {host}");
+        var positions = Positions.Reported == 0
+            ? "no position reported"
+            : FormattableString.Invariant($"{Positions.Reported} reported positions, {Positions.Corrected} motion writes moved to them, the stage within {Positions.WorstOffUm:0.##} µm of each");
+        return FormattableString.Invariant($"edges placed within ±{EdgesWithinUm:0.##} µm ({UncertainEdges} of {Switchings} switchings uncertain){pixels}{onWhite}; {host}; {positions}");
     }
 
-    internal static ReplayUncertainty Compare(ReplayRun estimate, ReplayRun gateEarly, ReplayRun gateLate, RecordedDelays delays)
+    internal static ReplayUncertainty Compare(ReplayRun estimate, ReplayRun gateEarly, ReplayRun gateLate, RecordedDelays delays, PositionAgreement positions)
     {
         var count = Math.Min(estimate.Switches.Count, Math.Min(gateEarly.Switches.Count, gateLate.Switches.Count));
         var edges = new List<EdgeBand>(count);
@@ -74,7 +80,8 @@ public sealed record ReplayUncertainty(
             Math.Max(estimate.Switches.Count, Math.Max(gateEarly.Switches.Count, gateLate.Switches.Count)) - count,
             listed,
             delays.Stage,
-            delays.Gate);
+            delays.Gate,
+            positions);
     }
 
     private static double Distance(LaserSwitch a, LaserSwitch b) => Math.Sqrt(((a.XUm - b.XUm) * (a.XUm - b.XUm)) + ((a.YUm - b.YUm) * (a.YUm - b.YUm)));
@@ -114,5 +121,5 @@ public sealed record EdgeBand(double AtSeconds, bool On, double XUm, double YUm,
 /// <summary>One switching of the laser in a replay: when, on or off, where the stage stood (µm).</summary>
 internal sealed record LaserSwitch(double AtSeconds, bool On, double XUm, double YUm);
 
-/// <summary>One replay's figures, burn report (an image's) and laser switchings.</summary>
-internal sealed record ReplayRun(RunSimulation Simulation, BurnReport? Burn, IReadOnlyList<LaserSwitch> Switches);
+/// <summary>One replay's figures, burn report (an image's) and laser switchings; its axes by device number and the twin's clock at the recording's start.</summary>
+internal sealed record ReplayRun(RunSimulation Simulation, BurnReport? Burn, IReadOnlyList<LaserSwitch> Switches, IReadOnlyDictionary<byte, AxisTrajectory> Axes, double StartSeconds);

@@ -37,9 +37,10 @@ public sealed class ReplayUncertaintyTests : IDisposable
         var events = WireRecording.Read(path);
         var setup = RecordedRunReplay.Setup(record, job.Spec.Profile, events, options with { Seed = 99 });
 
-        var (replayed, burn, uncertainty) = await RecordedRunReplay.ReplayWithUncertaintyAsync(job, job.Spec.Profile, events, setup, TestContext.Current.CancellationToken);
+        var (replayed, burn, maybe) = await RecordedRunReplay.ReplayWithUncertaintyAsync(job, job.Spec.Profile, events, setup, TestContext.Current.CancellationToken);
+        var uncertainty = Assert.IsType<ReplayUncertainty>(maybe);
 
-        TestContext.Current.TestOutputHelper?.WriteLine($"run: {record.Outcome} {record.Fault?.Message}\ntwin: {record.Simulation}\nreplay: {replayed}\n{uncertainty!.Summary()}");
+        TestContext.Current.TestOutputHelper?.WriteLine($"run: {record.Outcome} {record.Fault?.Message}\ntwin: {record.Simulation}\nreplay: {replayed}\n{uncertainty.Summary()}");
         Assert.InRange(record.Simulation!.Pulses, 1000, long.MaxValue);
         var late = uncertainty.Stage.RepliesReadLate + uncertainty.Gate.RepliesReadLate;
         Assert.InRange(late, 1, int.MaxValue);
@@ -64,10 +65,11 @@ public sealed class ReplayUncertaintyTests : IDisposable
         var events = WireRecording.Read(path);
         var setup = RecordedRunReplay.Setup(record, job.Spec.Profile, events, options with { Seed = 99 });
 
-        var (replayed, burn, uncertainty) = await RecordedRunReplay.ReplayWithUncertaintyAsync(job, job.Spec.Profile, events, setup, TestContext.Current.CancellationToken);
+        var (replayed, burn, maybe) = await RecordedRunReplay.ReplayWithUncertaintyAsync(job, job.Spec.Profile, events, setup, TestContext.Current.CancellationToken);
+        var uncertainty = Assert.IsType<ReplayUncertainty>(maybe);
 
         var differing = Differing(twin, burn!);
-        TestContext.Current.TestOutputHelper?.WriteLine($"run: {record.Outcome} {record.Fault?.Message}\ntwin: {record.Simulation}\nreplay: {replayed}\n{uncertainty!.Summary()}\npixels differing from the twin: {differing}");
+        TestContext.Current.TestOutputHelper?.WriteLine($"run: {record.Outcome} {record.Fault?.Message}\ntwin: {record.Simulation}\nreplay: {replayed}\n{uncertainty.Summary()}\npixels differing from the twin: {differing}");
         Assert.InRange(uncertainty.Stage.RepliesReadLate + uncertainty.Gate.RepliesReadLate, 1, int.MaxValue);
         Assert.InRange(uncertainty.EdgesWithinUm, 0.05, 5);
         Assert.InRange(differing, 0, uncertainty.UncertainPixels!.Value);
