@@ -15,8 +15,9 @@ namespace LaserEngrave.Simulator.Replay;
 /// A round trip cannot be split by the recording alone: a reply read 200 ms late by a stalled host and a write delivered
 /// 200 ms late look the same from the host. Halving it (as the replay did until issue 34) made every host stall a late
 /// delivery: a host stopped for 200 ms replayed with pulses on white that never happened. Here the link's round trips
-/// say how fast its adapter is: the fastest shows its floor, and those not far beyond the usual (the median plus one and
-/// a half times its distance from the fastest, at least 0.2 ms) its range one way, <c>[fastest / 2, slowest usual / 2]</c>.
+/// say how fast its adapter is: the fastest shows its floor, and those not far beyond the usual (the lower quartile plus
+/// two and a half times its distance from the fastest, at least 0.2 ms; a uniform spread each way stays within it) its
+/// range one way, <c>[fastest / 2, slowest usual / 2]</c>.
 /// A write whose round trip is within that range is estimated at half of it and can lie anywhere the range allows for
 /// both ways; a longer one (a reply read late) and a write with no reply of its own (a Zaber move replies when it ends)
 /// are estimated at the middle of the range and can lie anywhere in it. A delivery later than the adapter has shown it
@@ -88,10 +89,18 @@ public static class RecordedLatency
 
         var sorted = adapters.Values.Order().ToList();
         var fastest = sorted[0];
-        var median = sorted[sorted.Count / 2];
-        var usualUpTo = median + Math.Max(1.5 * (median - fastest), UsualSpreadFloorSeconds);
-        var slowest = sorted.Where(x => x <= usualUpTo).Max();
-        var (low, high) = (fastest / 2, slowest / 2);
+        // The lower quartile, not the median: a host that read half its replies late must not make them usual.
+        var quartile = sorted[sorted.Count / 4];
+        var usualUpTo = quartile + Math.Max(2.5 * (quartile - fastest), UsualSpreadFloorSeconds);
+        var usual = sorted.Where(x => x <= usualUpTo).ToList();
+        var slowest = usual[^1];
+
+        // Half a round trip is the mean of two draws, which reaches its extremes seldom: n of them fall short of the
+        // one-way range by about its width times sqrt(1 / 2n) at each end (a sum of two uniform draws), so the range is
+        // widened by half as much again as that (a few round trips: a third of it and more; a QR's hundreds: 7 %).
+        var shortfall = Math.Sqrt(1.0 / (2 * usual.Count));
+        var widen = shortfall >= 0.4 ? (slowest - fastest) / 2 : 1.5 * (slowest - fastest) / 2 * shortfall / (1 - (2 * shortfall));
+        var (low, high) = (Math.Max(0, (fastest / 2) - widen), (slowest / 2) + widen);
         var middle = new WriteDelay((low + high) / 2, low, high);
         var late = 0;
         var longestLate = 0.0;

@@ -71,9 +71,12 @@ public sealed class ReplayUncertaintyTests : IDisposable
         var differing = Differing(twin, burn!);
         TestContext.Current.TestOutputHelper?.WriteLine($"run: {record.Outcome} {record.Fault?.Message}\ntwin: {record.Simulation}\nreplay: {replayed}\n{uncertainty.Summary()}\npixels differing from the twin: {differing}");
         Assert.InRange(uncertainty.Stage.RepliesReadLate + uncertainty.Gate.RepliesReadLate, 1, int.MaxValue);
-        Assert.InRange(uncertainty.EdgesWithinUm, 0.05, 5);
+        Assert.InRange(uncertainty.Positions.Corrected, 1, int.MaxValue);
+        Assert.InRange(uncertainty.Positions.WorstOffUm, 0, 1);
+        Assert.InRange(uncertainty.EdgesWithinUm, 0.05, 3);
         Assert.InRange(differing, 0, uncertainty.UncertainPixels!.Value);
         Assert.InRange(record.Simulation!.LaserOnTravelCount, uncertainty.PulsesOnWhite.Least, uncertainty.PulsesOnWhite.Most);
+        Assert.InRange(replayed.LaserOnTravelCount, uncertainty.PulsesOnWhite.Least, uncertainty.PulsesOnWhite.Most);
     }
 
     private static long Differing(BurnReport a, BurnReport b)
