@@ -27,7 +27,7 @@ public sealed record ReplayUncertainty(
     int Switchings,
     int UncertainEdges,
     long? UncertainPixels,
-    (long Least, long Most) PulsesOnWhite,
+    PulseCountBounds PulsesOnWhite,
     int UnmatchedSwitchings,
     IReadOnlyList<EdgeBand> Edges,
     LinkDelays Stage,
@@ -76,7 +76,7 @@ public sealed record ReplayUncertainty(
             edges.Count,
             uncertain.Count,
             estimate.Burn is { } burn ? Differing(burn.Burned, gateEarly.Burn!.Burned, gateLate.Burn!.Burned) : null,
-            (onWhite.Min(), onWhite.Max()),
+            new PulseCountBounds(onWhite.Min(), onWhite.Max()),
             Math.Max(estimate.Switches.Count, Math.Max(gateEarly.Switches.Count, gateLate.Switches.Count)) - count,
             listed,
             delays.Stage,
@@ -117,6 +117,9 @@ public sealed record EdgeBand(double AtSeconds, bool On, double XUm, double YUm,
     /// <summary>The band's half width: the farther of its two ends, µm.</summary>
     public double WidthUm => Math.Max(GateEarlyUm, GateLateUm);
 }
+
+/// <summary>The least and the most of a count of pulses within the bands.</summary>
+public sealed record PulseCountBounds(long Least, long Most);
 
 /// <summary>One switching of the laser in a replay: when, on or off, where the stage stood (µm).</summary>
 internal sealed record LaserSwitch(double AtSeconds, bool On, double XUm, double YUm);
