@@ -1,8 +1,9 @@
 // The QR through socat ptys against the twin attached in this process (on the wall clock, as `laserengrave simulator`
 // in tools/ports-bench.sh), engraved by the CLI in another process N times; each run's recording replayed from its log
 // alone and compared with the simulator's own burn, pixel for pixel.
-//   dotnet run -c Release --project tools/replay-ports-bench -- [N] [WIDTH_MM]
-// Environment: CLI (laserengrave.dll; default this tree's Release build), LOOPS=1 (two CPU-busy loops meanwhile), OUT.
+//   dotnet build -c Release src/LaserEngrave.Cli && dotnet run -c Release --project tools/replay-ports-bench -- [N] [WIDTH_MM]
+// Environment: CLI (laserengrave.dll; default this tree's Release build), LOOPS=1 (two CPU-busy loops meanwhile),
+// MEASURE=0 (the default profile instead of one measured through the ptys first, as tools/ports-bench.sh), OUT.
 using System.Diagnostics;
 using System.Text.Json;
 using LaserEngrave.Core.Jobs;
@@ -38,15 +39,17 @@ try
     await using (simulator)
     {
         var profilePath = Path.Combine(output, "profile.json");
-        var (latencyExit, latencyOut, _) = await RunCli(cli, "machine", "latency", "--stage-port", stage.B, "--laser-port", laser.B, "--profile", profilePath, "--write");
-        Console.WriteLine($"latency measured (exit {latencyExit}): {string.Join(" | ", latencyOut.Split('\n').Where(l => l.Contains("adapter") || l.Contains("round trips")))}");
+        var measure = Environment.GetEnvironmentVariable("MEASURE") != "0";
+        var (latencyExit, latencyOut, latencyError) = measure ? await RunCli(cli, "machine", "latency", "--stage-port", stage.B, "--laser-port", laser.B, "--profile", profilePath, "--write") : (0, "not measured (MEASURE=0): the default profile", string.Empty);
+        Console.WriteLine($"latency measured (exit {latencyExit}): {string.Join(" | ", latencyOut.Split('\n').Where(l => l.Contains("adapter") || l.Contains("round trips")))}{latencyError.Split('\n').FirstOrDefault()}");
         for (var j = 1; j <= n; j++)
         {
             var inspector = new BurnInspector(simulator);
             inspector.Begin();
             var watch = Stopwatch.StartNew();
-            var (exit, json, error) = await RunCli(cli, "engrave", Path.Combine(root, "assets/qr-code.bmp"), "--width-mm", width, "--origin-mm", "10,10", "--stage-port", stage.B, "--laser-port", laser.B,
-                "--profile", profilePath, "--json", "--log-dir", Path.Combine(output, "logs"));
+            string[] profileArguments = measure ? ["--profile", profilePath] : [];
+            var (exit, json, error) = await RunCli(cli, ["engrave", Path.Combine(root, "assets/qr-code.bmp"), "--width-mm", width, "--origin-mm", "10,10", "--stage-port", stage.B, "--laser-port", laser.B,
+                .. profileArguments, "--json", "--log-dir", Path.Combine(output, "logs")]);
             var wall = watch.Elapsed.TotalSeconds;
             string logPath;
             try
