@@ -82,8 +82,8 @@ public static class RecordedRunReplay
 
         // Each end of the bands with the stage's motion fitted again to its reports: a stage whose queries arrived earlier
         // stood where it said earlier, so its motion writes came earlier too.
-        var (_, gateEarly, _) = await ReportedPositionFit.FitAsync(profile, events, recorded.Positions, recorded.Corner(events, gateLate: false), Replay).ConfigureAwait(false);
-        var (_, gateLate, _) = await ReportedPositionFit.FitAsync(profile, events, recorded.Positions, recorded.Corner(events, gateLate: true), Replay).ConfigureAwait(false);
+        var (_, gateEarly, _) = await ReportedPositionFit.FitAsync(profile, events, recorded.Positions, recorded.Corner(events, gateLate: false), Replay, spill: false).ConfigureAwait(false);
+        var (_, gateLate, _) = await ReportedPositionFit.FitAsync(profile, events, recorded.Positions, recorded.Corner(events, gateLate: true), Replay, spill: false).ConfigureAwait(false);
         return (estimate.Simulation, estimate.Burn, ReplayUncertainty.Compare(estimate, gateEarly, gateLate, recorded, agreement));
     }
 

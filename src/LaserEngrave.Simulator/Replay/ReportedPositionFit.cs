@@ -34,7 +34,8 @@ internal static class ReportedPositionFit
     /// <summary>Moves the stage's motion writes from <paramref name="start"/> until the replay's stage reports what the run's stages reported (<paramref name="positions"/>); the delays, their last replay and how well its stage agreed.</summary>
     /// <param name="start">Each event's delay to start from, seconds (the queries' among them stay).</param>
     /// <param name="replay">Replays the recording at the given delays.</param>
-    public static async Task<(double[] Seconds, ReplayRun Run, PositionAgreement Agreement)> FitAsync(MachineProfile profile, IReadOnlyList<WireEvent> events, IReadOnlyList<RecordedPosition> positions, IReadOnlyList<double> start, Func<IReadOnlyList<double>, Task<ReplayRun>> replay)
+    /// <param name="spill">Whether a write that would have to arrive before it was written moves the motion write before it instead (the estimate; not the ends of the bands, which are the adapter's extremes and nothing further).</param>
+    public static async Task<(double[] Seconds, ReplayRun Run, PositionAgreement Agreement)> FitAsync(MachineProfile profile, IReadOnlyList<WireEvent> events, IReadOnlyList<RecordedPosition> positions, IReadOnlyList<double> start, Func<IReadOnlyList<double>, Task<ReplayRun>> replay, bool spill = true)
     {
         var links = Links(profile, events, positions);
         var seconds = start.ToArray();
@@ -42,13 +43,17 @@ internal static class ReportedPositionFit
         var corrected = new HashSet<int>();
         double worst;
         ReplayRun run;
+
+        // The pass whose stage disagreed least with the reports in all (a correction that caught a ramp can make it worse).
+        (double Total, double Worst, double[] Seconds, ReplayRun Run)? best = null;
         while (true)
         {
             run = await replay(seconds).ConfigureAwait(false);
             passes++;
             var arrivals = StageArrivals(profile, events, seconds);
             worst = 0;
-            var corrections = new List<(int Write, double By)>();
+            var total = 0.0;
+            var corrections = new List<(int Write, double By, int Earlier)>();
 
             // What a stage was found off by at its previous report goes on with it (an offset along a motion stays one
             // through a speed change): a write is corrected for what its report adds to that, so that all of them can be
@@ -73,6 +78,7 @@ internal static class ReportedPositionFit
                 var off = Math.Round(axis.PositionAt(at), MidpointRounding.AwayFromZero) - link.Position.Microsteps;
                 carried[link.Position.Device] = off;
                 worst = Math.Max(worst, Math.Abs(off));
+                total += Math.Abs(off);
                 if (link.MotionWrite < 0)
                 {
                     continue;
@@ -90,8 +96,13 @@ internal static class ReportedPositionFit
                 var by = -added / sensitivity;
                 if (Math.Abs(by) <= MaxCorrectionSeconds)
                 {
-                    corrections.Add((link.MotionWrite, by));
+                    corrections.Add((link.MotionWrite, by, link.EarlierMotionWrite));
                 }
+            }
+
+            if (best is not { } b || total < b.Total)
+            {
+                best = (total, worst, [.. seconds], run);
             }
 
             if (corrections.Count == 0 || passes >= MaxPasses)
@@ -99,14 +110,23 @@ internal static class ReportedPositionFit
                 break;
             }
 
-            foreach (var (write, by) in corrections)
+            foreach (var (write, by, earlier) in corrections)
             {
-                seconds[write] = Math.Max(0, seconds[write] + by);
+                var moved = seconds[write] + by;
+                seconds[write] = Math.Max(0, moved);
                 corrected.Add(write);
+                if (spill && moved < 0 && earlier >= 0)
+                {
+                    // Sooner than it was written: the motion change before it (a flown gap's speed-up) came later than
+                    // the adapter shows instead (a far end that read its bytes late), which to first order is the same.
+                    seconds[earlier] += -moved;
+                    corrected.Add(earlier);
+                }
             }
         }
 
-        return (seconds, run, new PositionAgreement(positions.Count, corrected.Count, passes, worst * MicrostepUm(profile)));
+        var kept = best!.Value;
+        return (kept.Seconds, kept.Run, new PositionAgreement(positions.Count, corrected.Count, passes, kept.Worst * MicrostepUm(profile)));
     }
 
     // How far along the stage is at a later report per second the motion change comes later, microsteps/s: the speed it
@@ -150,7 +170,7 @@ internal static class ReportedPositionFit
             }
 
             // A motion frame written with the query moves with it: the report then says nothing of its time.
-            var (motionWrite, motionFrame) = (-1, -1);
+            var (motionWrite, motionFrame, earlierWrite) = (-1, -1, -1);
             if (LastMotionFrame(query.Data, position.Device) is var own && own >= 0 && own < queryFrame)
             {
                 result.Add(new PositionLink(position, queryFrame, -1, -1));
@@ -166,14 +186,22 @@ internal static class ReportedPositionFit
                 }
 
                 var frame = LastMotionFrame(e.Data, position.Device);
-                if (frame >= 0)
+                if (frame < 0)
+                {
+                    continue;
+                }
+
+                if (motionWrite < 0)
                 {
                     (motionWrite, motionFrame) = (i, frame);
-                    break;
+                    continue;
                 }
+
+                earlierWrite = i;
+                break;
             }
 
-            result.Add(new PositionLink(position, queryFrame, motionWrite, motionFrame));
+            result.Add(new PositionLink(position, queryFrame, motionWrite, motionFrame) { EarlierMotionWrite = earlierWrite });
         }
 
         return result;
@@ -228,7 +256,11 @@ internal static class ReportedPositionFit
         return result;
     }
 
-    private sealed record PositionLink(RecordedPosition Position, int QueryFrame, int MotionWrite, int MotionFrame);
+    private sealed record PositionLink(RecordedPosition Position, int QueryFrame, int MotionWrite, int MotionFrame)
+    {
+        /// <summary>The motion write before <see cref="MotionWrite"/> since the previous report (-1: none).</summary>
+        public int EarlierMotionWrite { get; init; } = -1;
+    }
 }
 
 /// <summary>How the replay's stage agreed with the positions the run's stages reported.</summary>
