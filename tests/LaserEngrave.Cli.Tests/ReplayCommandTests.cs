@@ -65,6 +65,13 @@ public sealed class ReplayCommandTests : IDisposable
         var simulatedPng = new MemoryStream();
         simulated.WritePng(simulatedPng);
         Assert.Equal(simulatedPng.ToArray(), await File.ReadAllBytesAsync(burned, ct));
+
+        // What the recording cannot tell is said apart, in µm and pixels, not added to the pulses on white.
+        var uncertainty = r.GetProperty("replay");
+        Assert.StartsWith("edges placed within ±", uncertainty.GetProperty("summary").GetString(), StringComparison.Ordinal);
+        var figures = uncertainty.GetProperty("figures");
+        Assert.InRange(figures.GetProperty("uncertainPixels").GetInt64(), 0, 18);
+        Assert.InRange(r.GetProperty("laserOnTravelCount").GetInt64(), figures.GetProperty("pulsesOnWhite").GetProperty("least").GetInt64(), figures.GetProperty("pulsesOnWhite").GetProperty("most").GetInt64());
     }
 
     [Fact(Timeout = 180_000)]

@@ -590,6 +590,10 @@ internal sealed record EngraveSummary(
     /// <summary>The whole run record, as the log's JSON holds it: printed even when no log could be written, so it can be saved and resumed.</summary>
     public JsonElement? RunLog { get; init; }
 
+    /// <summary>`replay` only: what the recording cannot tell of the burn (docs/simulator.md, "Replaying a recorded run"); absent from every other command's output.</summary>
+    [System.Text.Json.Serialization.JsonIgnore(Condition = System.Text.Json.Serialization.JsonIgnoreCondition.WhenWritingNull)]
+    public ReplayUncertaintyReport? Replay { get; init; }
+
     /// <param name="files">The log's files; null when it could not be written (the object still says how the run went).</param>
     public static EngraveSummary From(RunRecord record, RunLogFiles? files, string? burnedPath, string? dosePath, double? wallSeconds) => new(
         record.Outcome.ToString().ToLowerInvariant(),

@@ -57,6 +57,7 @@ internal static class ReplayCommand
 
         var events = WireRecording.Read(Path.Combine(Path.GetDirectoryName(Path.GetFullPath(jsonPath))!, recording.File));
         BurnReport? burn = null;
+        ReplayUncertainty? uncertainty = null;
         ReplaySetup setup;
         if (record.Layers is { } loggedLayers)
         {
@@ -94,7 +95,7 @@ internal static class ReplayCommand
             }
 
             setup = RecordedRunReplay.Setup(record, spec.Profile, events, baseOptions, !modelLatency);
-            (var simulation, burn) = await RecordedRunReplay.ReplayAsync(job, spec.Profile, events, setup, cancellationToken).ConfigureAwait(false);
+            (var simulation, burn, uncertainty) = await RecordedRunReplay.ReplayWithUncertaintyAsync(job, spec.Profile, events, setup, cancellationToken).ConfigureAwait(false);
             record = record with { Simulation = simulation };
         }
 
@@ -109,7 +110,10 @@ internal static class ReplayCommand
         }
 
         var files = new RunLogFiles(Path.GetFullPath(jsonPath), Path.ChangeExtension(Path.GetFullPath(jsonPath), ".txt"));
-        var summary = EngraveSummary.From(record, files, burnedPath, burn is null ? null : dosePath, null);
+        var summary = EngraveSummary.From(record, files, burnedPath, burn is null ? null : dosePath, null) with
+        {
+            Replay = uncertainty is null ? null : new ReplayUncertaintyReport(uncertainty.Summary(), uncertainty),
+        };
         var stdout = result.InvocationConfiguration.Output;
         if (json)
         {
@@ -117,10 +121,18 @@ internal static class ReplayCommand
         }
         else
         {
-            stdout.WriteLine($"Replayed {events.Count} recorded writes and reads of {files.JsonPath} through the twin (seed {setup.Options.Seed}; {(setup.Delays is null ? "the twin's adapter latency" : "each write's delay from its reply")}):");
+            stdout.WriteLine($"Replayed {events.Count} recorded writes and reads of {files.JsonPath} through the twin (seed {setup.Options.Seed}; {(setup.Delays is null ? "the twin's adapter latency" : "each write's delay from what the recording shows")}):");
             EngraveCommand.WriteText(stdout, summary);
+            if (uncertainty is not null)
+            {
+                // What the recording cannot tell, beside what the estimate burned: never counted as pulses on white.
+                stdout.WriteLine($"Uncertain: {uncertainty.Summary()}");
+            }
         }
 
         return CliRunner.Ok;
     }
 }
+
+/// <summary>A replay's uncertainty as `replay --json` prints it under <c>replay</c>: the one line, then the figures.</summary>
+internal sealed record ReplayUncertaintyReport(string Summary, ReplayUncertainty Figures);

@@ -54,15 +54,11 @@ public static class GateFirmwareTiming
         return (stop + (fires ? StartCycles : 0)) / ClockHz;
     }
 
-    /// <summary>The firmware's processing of a line as the replay's round trips need it (<see cref="ProcessingSeconds(GateCommand, int, bool)"/>), from its bytes.</summary>
-    internal static double ProcessingSeconds(ReadOnlySpan<byte> line)
+    /// <summary>The firmware's processing of a written line as a replay's round trips need it, read as the twin's gate reads it (<paramref name="commands"/>: the profile's spellings; a scheduled burst's wait is not part of it).</summary>
+    internal static double ProcessingSeconds(GateCommandSet commands, ReadOnlySpan<byte> line)
     {
-        var text = System.Text.Encoding.ASCII.GetString(line).Trim();
-        var words = text.Split(' ', StringSplitOptions.RemoveEmptyEntries);
-        var keyword = words.Length > 0 ? words[0].ToUpperInvariant() : string.Empty;
-        var command = keyword switch { "OFF" => GateCommand.Off, "BURST" => GateCommand.Burst, "FREQ" => GateCommand.Frequency, _ => GateCommand.Unknown };
-        var fires = command == GateCommand.Burst || (command == GateCommand.Frequency && words.Length == 2 && words[1] != "0");
-        return ProcessingSeconds(command, line.Length, fires);
+        var text = System.Text.Encoding.ASCII.GetString(line).TrimEnd('\n').TrimEnd('\r').Trim();
+        return VirtualLaserGate.FirmwareProcessingSeconds(commands, text, line.Length);
     }
 
     /// <summary>

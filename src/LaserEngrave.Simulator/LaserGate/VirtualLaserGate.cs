@@ -157,16 +157,7 @@ public sealed class VirtualLaserGate
     {
         lock (_lock)
         {
-            var command = _commands.Match(line, out var args);
-            var fires = command switch
-            {
-                GateCommand.Frequency => TryNumber(args[0], out var hz) && hz is > 0 and <= MaxFrequencyHz,
-                GateCommand.Burst => TryNumber(args[0], out var n) && TryNumber(args[1], out var bhz) && n is >= 1 and <= 1_000_000 && bhz is >= 1 and <= MaxFrequencyHz,
-
-                // A scheduled burst is accepted (and answered) when the train is stopped; its first pulse is timed apart.
-                _ => false,
-            };
-            var at = Math.Max(_clock.NowSeconds + GateFirmwareTiming.ProcessingSeconds(command, lineBytes, fires), _executeAfter);
+            var at = Math.Max(_clock.NowSeconds + FirmwareProcessingSeconds(_commands, line, lineBytes), _executeAfter);
             _executeAfter = at;
             ITimer? timer = null;
             timer = _clock.At(at, () =>
@@ -180,6 +171,24 @@ public sealed class VirtualLaserGate
             });
             _pending.Add(timer);
         }
+    }
+
+    /// <summary>
+    /// The reference firmware's time from a line's last byte to its effect and reply (<see cref="GateFirmwareTiming"/>),
+    /// for the line as <paramref name="commands"/> reads it: the one place the twin and a replay's round trips take it from.
+    /// </summary>
+    internal static double FirmwareProcessingSeconds(GateCommandSet commands, string line, int lineBytes)
+    {
+        var command = commands.Match(line, out var args);
+        var fires = command switch
+        {
+            GateCommand.Frequency => TryNumber(args[0], out var hz) && hz is > 0 and <= MaxFrequencyHz,
+            GateCommand.Burst => TryNumber(args[0], out var n) && TryNumber(args[1], out var bhz) && n is >= 1 and <= 1_000_000 && bhz is >= 1 and <= MaxFrequencyHz,
+
+            // A scheduled burst is accepted (and answered) when the train is stopped; its first pulse is timed apart.
+            _ => false,
+        };
+        return GateFirmwareTiming.ProcessingSeconds(command, lineBytes, fires);
     }
 
     private void Execute(string line, double arrivedAt)

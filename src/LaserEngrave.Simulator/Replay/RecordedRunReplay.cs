@@ -5,6 +5,7 @@ using LaserEngrave.Core.Logging;
 using LaserEngrave.Wire.Serial;
 using LaserEngrave.Simulator.Burn;
 using LaserEngrave.Simulator.LaserGate;
+using LaserEngrave.Simulator.Motion;
 using LaserEngrave.Simulator.Timing;
 
 namespace LaserEngrave.Simulator.Replay;
@@ -27,14 +28,15 @@ public static class RecordedRunReplay
         ArgumentNullException.ThrowIfNull(record);
         ArgumentNullException.ThrowIfNull(baseOptions);
         var options = baseOptions with { HostLateness = HostLateness.None, RealTime = false, Paced = false, FaultSpec = null, StartMicrosteps = WireReplay.StartMicrosteps(profile, events) };
-        double[]? delays = null;
+        RecordedDelays? delays = null;
         if (recordedDelays)
         {
             options = options with { AdapterLatency = Jitter.None };
+            var commands = new GateCommandSet(profile.Gate);
             Func<byte[], double> processing = options.GateProcessing is { } drawn
                 ? _ => Units.MsToSeconds(drawn.MeanMs)
-                : command => GateFirmwareTiming.ProcessingSeconds(command);
-            delays = RecordedLatency.OneWaySeconds(profile, events, processing);
+                : command => GateFirmwareTiming.ProcessingSeconds(commands, command);
+            delays = RecordedLatency.Estimate(profile, events, processing);
         }
 
         if (record.Devices.FirstOrDefault(d => d.Role == "x axis") is { } x && decimal.TryParse(x.Firmware, NumberStyles.AllowDecimalPoint, CultureInfo.InvariantCulture, out var firmware))
@@ -42,11 +44,50 @@ public static class RecordedRunReplay
             options = options with { FirmwareVersion = (int)Math.Round(firmware * 100) };
         }
 
-        return new ReplaySetup(options, delays);
+        return new ReplaySetup(options, delays?.Seconds()) { Recorded = delays };
     }
 
     /// <summary>Replays the run of one image or drawing (<paramref name="job"/>); its figures and, for an image, the burn report (burned pixels, dose).</summary>
     public static async Task<(RunSimulation Simulation, BurnReport? Burn)> ReplayAsync(EngraveJob job, MachineProfile profile, IReadOnlyList<WireEvent> events, ReplaySetup setup, CancellationToken cancellationToken)
+    {
+        ArgumentNullException.ThrowIfNull(setup);
+        var run = await RunOnceAsync(job, profile, events, setup.Options, setup.Delays, cancellationToken).ConfigureAwait(false);
+        return (run.Simulation, run.Burn);
+    }
+
+    /// <summary>
+    /// Replays the run of one image or drawing at the recorded delays' estimates, its stage's motion writes moved until
+    /// the replay's stage reports the positions the run's stages reported (<see cref="ReportedPositionFit"/>), and, where
+    /// the recording leaves a band open (<see cref="RecordedDelays"/>), at both ends of it as well: the stage's writes at
+    /// their earliest and the gate's at their latest, then the other way round. What differs between the three is what
+    /// the recording cannot tell: each switching's band in µm and the pixels burned in one and not in another.
+    /// </summary>
+    /// <returns>The estimate's figures and burn report, and the uncertainty (null when the setup has no recorded delays: the twin's adapters drew theirs).</returns>
+    public static async Task<(RunSimulation Simulation, BurnReport? Burn, ReplayUncertainty? Uncertainty)> ReplayWithUncertaintyAsync(EngraveJob job, MachineProfile profile, IReadOnlyList<WireEvent> events, ReplaySetup setup, CancellationToken cancellationToken)
+    {
+        ArgumentNullException.ThrowIfNull(setup);
+        if (setup.Recorded is not { } recorded)
+        {
+            var plain = await RunOnceAsync(job, profile, events, setup.Options, setup.Delays, cancellationToken).ConfigureAwait(false);
+            return (plain.Simulation, plain.Burn, null);
+        }
+
+        Task<ReplayRun> Replay(IReadOnlyList<double> delays) => RunOnceAsync(job, profile, events, setup.Options, delays, cancellationToken);
+        var (_, estimate, agreement) = await ReportedPositionFit.FitAsync(profile, events, recorded.Positions, recorded.Seconds(), Replay).ConfigureAwait(false);
+        if (recorded.WidestSeconds < ReplayUncertainty.ResolutionSeconds)
+        {
+            // Every delay pinned: the ends of the bands are the estimate itself.
+            return (estimate.Simulation, estimate.Burn, ReplayUncertainty.Compare(estimate, estimate, estimate, recorded, agreement));
+        }
+
+        // Each end of the bands with the stage's motion fitted again to its reports: a stage whose queries arrived earlier
+        // stood where it said earlier, so its motion writes came earlier too.
+        var (_, gateEarly, _) = await ReportedPositionFit.FitAsync(profile, events, recorded.Positions, recorded.Corner(events, gateLate: false), Replay, spill: false).ConfigureAwait(false);
+        var (_, gateLate, _) = await ReportedPositionFit.FitAsync(profile, events, recorded.Positions, recorded.Corner(events, gateLate: true), Replay, spill: false).ConfigureAwait(false);
+        return (estimate.Simulation, estimate.Burn, ReplayUncertainty.Compare(estimate, gateEarly, gateLate, recorded, agreement));
+    }
+
+    private static async Task<ReplayRun> RunOnceAsync(EngraveJob job, MachineProfile profile, IReadOnlyList<WireEvent> events, SimulatorOptions options, IReadOnlyList<double>? delays, CancellationToken cancellationToken)
     {
         ArgumentNullException.ThrowIfNull(job);
         if (job.Parts.Count != 1)
@@ -54,14 +95,25 @@ public static class RecordedRunReplay
             throw new ArgumentException("one image or one drawing (a job of layers replays by ReplayLayersAsync)", nameof(job));
         }
 
-        ArgumentNullException.ThrowIfNull(setup);
-        var machine = SimulatedMachine.CreateInProcess(profile, setup.Options);
+        var machine = SimulatedMachine.CreateInProcess(profile, options);
         await using (machine.ConfigureAwait(false))
         {
             var inspector = new BurnInspector(machine);
             inspector.Begin();
-            await WireReplay.RunAsync(machine, events, cancellationToken, delays: setup.Delays).ConfigureAwait(false);
-            return (Inspect(inspector, job.Parts[0]), inspector.Report);
+            var start = 0.0;
+            await WireReplay.RunAsync(machine, events, cancellationToken, delays: delays, started: s => start = s).ConfigureAwait(false);
+            var simulation = Inspect(inspector, job.Parts[0]);
+            var recorder = machine.Recorder;
+            var switches = recorder.LaserChanges
+                .Select(c => new LaserSwitch(c.AtSeconds, c.FrequencyHz > 0, recorder.X.PositionAt(c.AtSeconds) * recorder.XMicrostepUm, recorder.Y.PositionAt(c.AtSeconds) * recorder.YMicrostepUm))
+                .ToList();
+            var axes = new Dictionary<byte, AxisTrajectory> { [profile.X.DeviceNumber] = recorder.X, [profile.Y.DeviceNumber] = recorder.Y };
+            if (profile.Z is { } z && recorder.Z is { } zAxis)
+            {
+                axes[z.DeviceNumber] = zAxis;
+            }
+
+            return new ReplayRun(simulation, inspector.Report, switches, axes, start);
         }
     }
 
@@ -117,4 +169,8 @@ public static class RecordedRunReplay
 }
 
 /// <summary>How a recording is replayed: the twin's options, and each event's delay from the recording (null: the twin's adapters draw their own).</summary>
-public sealed record ReplaySetup(SimulatorOptions Options, IReadOnlyList<double>? Delays);
+public sealed record ReplaySetup(SimulatorOptions Options, IReadOnlyList<double>? Delays)
+{
+    /// <summary>The delays with the band each leaves open and what each link showed; null with the twin's own adapters.</summary>
+    public RecordedDelays? Recorded { get; init; }
+}

@@ -23,7 +23,8 @@ public static class WireReplay
     /// <param name="cancellationToken">Stops the replay.</param>
     /// <param name="layerStarts">Called with each layer's index at its recorded start, on the simulation's loop (a layer's burn is checked alone).</param>
     /// <param name="delays">How much later than recorded each event's write goes in, seconds (<see cref="RecordedLatency"/>; null: none, the twin's adapters add theirs). Writes keep their order.</param>
-    public static Task RunAsync(SimulatedMachine machine, IReadOnlyList<WireEvent> events, CancellationToken cancellationToken, Action<int>? layerStarts = null, IReadOnlyList<double>? delays = null)
+    /// <param name="started">Called with the twin's clock (<see cref="SimulatedMachine.NowSeconds"/>) at the recording's time zero.</param>
+    public static Task RunAsync(SimulatedMachine machine, IReadOnlyList<WireEvent> events, CancellationToken cancellationToken, Action<int>? layerStarts = null, IReadOnlyList<double>? delays = null, Action<double>? started = null)
     {
         ArgumentNullException.ThrowIfNull(machine);
         ArgumentNullException.ThrowIfNull(events);
@@ -41,6 +42,7 @@ public static class WireReplay
             _ = runner.Start(() => DrainAsync(stage));
             _ = runner.Start(() => DrainAsync(laser));
             var start = time.GetTimestamp();
+            started?.Invoke(machine.NowSeconds);
             var end = 0.0;
             for (var i = 0; i < events.Count; i++)
             {
