@@ -265,7 +265,7 @@ public sealed class StagePicture
 
         foreach (var cell in plan.Cells)
         {
-            boxes.Add(Box(cell.Job, string.Join(" · ", cell.Parameters.Values.Select(v => v.ToString("0.###", System.Globalization.CultureInfo.InvariantCulture)))));
+            boxes.Add(Box(cell.Job, Sweeps.SweepParameters.Label(cell.Parameters)));
         }
 
         return [.. boxes];

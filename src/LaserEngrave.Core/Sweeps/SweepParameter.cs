@@ -70,6 +70,23 @@ public static class SweepParameters
             ? string.Create(System.Globalization.CultureInfo.InvariantCulture, $"{known.CliName().Replace('-', ' ')} {p.Value:0.######}{(known.Unit().Length > 0 ? " " + known.Unit() : string.Empty)}")
             : string.Create(System.Globalization.CultureInfo.InvariantCulture, $"{p.Key} {p.Value:0.######}")));
 
+    /// <summary>
+    /// A cell's values as its label on the stage says them, each with its unit and nothing else: "1.6 mm/s · 1000 Hz",
+    /// "2 passes", "3 pulses", "50 µm".
+    /// </summary>
+    public static string Label(IEnumerable<KeyValuePair<string, double>> parameters) =>
+        string.Join(" · ", parameters.Select(p =>
+        {
+            var value = p.Value.ToString("0.###", System.Globalization.CultureInfo.InvariantCulture);
+            return FromLogKey(p.Key) switch
+            {
+                SweepParameter.Passes => p.Value == 1 ? "1 pass" : $"{value} passes",
+                SweepParameter.PulsesPerDot => p.Value == 1 ? "1 pulse" : $"{value} pulses",
+                { } known when known.Unit().Length > 0 => $"{value} {known.Unit()}",
+                _ => value,
+            };
+        }));
+
     /// <summary>Whether the value must be a whole number.</summary>
     public static bool IsWhole(this SweepParameter parameter) => parameter is SweepParameter.Passes or SweepParameter.PulsesPerDot;
 

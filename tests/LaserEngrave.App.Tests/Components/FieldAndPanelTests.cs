@@ -306,7 +306,7 @@ public sealed class SweepPanelTests : ComponentTest
         cut.Find("#sweepColumns").Change("pitch=10");
 
         Assert.Contains("both vary pitch", cut.Find("[data-error=sweep]").TextContent, StringComparison.Ordinal);
-        Assert.True(cut.Find("#sweepRun").HasAttribute("disabled"));
+        Assert.False(Main.Sweep.RunSweepCommand.CanExecute(null));
     }
 
     [Fact]

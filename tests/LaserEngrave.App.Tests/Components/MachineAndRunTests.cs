@@ -726,7 +726,7 @@ public sealed class StageCanvasTests : ComponentTest
 
         Assert.Equal(5, boxes.Count);
         Assert.Equal("labels", boxes[0].Name);
-        Assert.Equal(["0.5 · 1000", "0.5 · 500", "2 · 1000", "2 · 500"], boxes.Skip(1).Select(b => b.Name).Order(StringComparer.Ordinal));
+        Assert.Equal(["0.5 mm/s · 1000 Hz", "0.5 mm/s · 500 Hz", "2 mm/s · 1000 Hz", "2 mm/s · 500 Hz"], boxes.Skip(1).Select(b => b.Name).Order(StringComparer.Ordinal));
         foreach (var (box, cell) in boxes.Skip(1).Zip(plan.Cells))
         {
             // Each box is its cell's burn: from the cell's origin, the cell's size, within a pixel.

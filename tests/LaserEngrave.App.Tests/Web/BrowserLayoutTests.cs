@@ -322,7 +322,9 @@ public sealed class BrowserLayoutTests : BrowserTest
         var jobMoves = DrawnMoves();
         Id("sweepShow").Click();
         WaitFor(_ => DrawnMoves() != jobMoves && DrawnMoves() > 0, "the sweep drawn on the stage");
-        for (var zoom = 0; zoom < 6; zoom++)
+        // Each label says its values with their units ("0.5 mm/s · 500 Hz"): longer, so all nine fit a few steps further in
+        // (at 7 px and more, never overlapping on the way).
+        for (var zoom = 0; zoom < 10; zoom++)
         {
             var boxes = BoxLabels();
             for (var i = 0; i < boxes.Length; i++)

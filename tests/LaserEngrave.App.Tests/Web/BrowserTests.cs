@@ -329,8 +329,9 @@ public sealed class BrowserTests : BrowserTest
         SetField("sweepSpacingMm", "0.3");
         WaitFor(d => d.FindElement(By.Id("sweep-summary")).Text.StartsWith("3 × 3 cells", StringComparison.Ordinal), "a 3 x 3 sweep planned");
         Id("connect").Click();
-        WaitFor(_ => Enabled("sweepRun"), "the sweep can run");
         Id("sweepShow").Click();
+        WaitFor(_ => Enabled("start") && Id("runs-sweep").Displayed, "Start runs the sweep shown");
+        WaitFor(d => d.FindElement(By.Id("status-estimate")).Text.StartsWith("sweep 3 × 3 cells", StringComparison.Ordinal), "the header names the sweep");
         ZoomAround(2.5, 2.5, 8);
 
         // Held at its fifth cell (virtual time) until the page has shown it.
@@ -345,7 +346,7 @@ public sealed class BrowserTests : BrowserTest
                 shown.Wait(TimeSpan.FromSeconds(60));
             }
         };
-        Id("sweepRun").Click();
+        Id("start").Click();
         WaitFor(d => d.FindElement(By.Id("progress-figures")).Text.StartsWith("cell 5 of 9: row 2, column 2 (speed 1 mm/s, frequency 1000 Hz)", StringComparison.Ordinal), "the fifth cell in the run bar", 120);
 
         Assert.Equal("sweep running", Text("status-run"));
