@@ -550,7 +550,7 @@ public sealed class RunBarTests : ComponentTest
 
     // The session's own word that a preflight is a recovery's (EngraveProgress.Recovering), not a new start's.
     [Theory]
-    [InlineData(RunState.Preflight, false, "starting (preflight)")]
+    [InlineData(RunState.Preflight, false, "starting: checking the machine")]
     [InlineData(RunState.Preflight, true, "recovering: checking the machine again")]
     [InlineData(RunState.Running, false, "running")]
     public void RunBar_StateText_SaysARecoveryAsSuch(RunState state, bool recovering, string expected) =>
