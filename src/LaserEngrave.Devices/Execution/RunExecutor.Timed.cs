@@ -37,6 +37,12 @@ public sealed partial class RunExecutor
     private LateSwitches? _lateSwitches;
     private long _queuedUpTo = -1;
 
+    // Whether this run's switch-ons are scheduled bursts the gate times (its CAPS? lists AFTER), and how many were sent so,
+    // and how many came too late for that and went plain.
+    private bool _scheduledBursts;
+    private long _scheduledSwitchOns;
+    private long _lateSchedules;
+
     // Where the run was when a fault or an abort cut it, for its stop point's cut pixel (under the engine's lock).
     private readonly StrokeCut _cut = new();
 
@@ -178,15 +184,16 @@ public sealed partial class RunExecutor
             var onEffect = onWrite + timing.OnLeadSeconds;
             var offEffect = offWrite + timing.OffLeadSeconds;
             onWrite = timing.BurstWriteSeconds(onEffect, offEffect);
-            await DelayUntilAsync(onWrite, token);
-            var (on, onWritten) = await SendSwitchOnAsync(onEffect, offEffect, timing);
+            var (on, onWritten, onAnswered) = _scheduledBursts
+                ? await ScheduledSwitchOnAsync(onEffect, offEffect, onWrite, timing, token)
+                : await PlainSwitchOnAsync(onEffect, offEffect, onWrite, timing, token);
             lock (_lock)
             {
                 _cut.Burning(burn, burnIndex, on, _burstEndsAt);
             }
 
-            _lastGateWrite = onWrite;
-            WatchGate(on, Later(onWrite, onWritten) + timing.OnRoundTripSeconds, "the laser gate did not acknowledge the switch-on");
+            _lastGateWrite = Math.Max(onWrite, onWritten);
+            WatchGate(on, onAnswered, "the laser gate did not acknowledge the switch-on");
             RunProgress progress;
             lock (_lock)
             {
@@ -197,13 +204,15 @@ public sealed partial class RunExecutor
 
             ProgressChanged?.Invoke(this, progress);
 
-            await KeepAlivesUntilAsync(offWrite, timing, token);
-            await DelayUntilAsync(offWrite, token);
-            // A frequency-only gate fires until told otherwise: its switch-off is never left out.
-            if (k + 1 < stroke.RunCount && _profile.Gate.CountsBursts && !bumps.ContainsKey(Distance(burn.X1)) && !OffFitsBefore(stroke.RunAt(k + 1).Move, offEffect))
+            // A scheduled switch-on is written well ahead: when the next one is due before this run's switch-off, the
+            // switch-off is left out, since written after that line it would cancel the burst armed by it; the count
+            // ends this run by itself.
+            var nextWrite = k + 1 < stroke.RunCount && _scheduledBursts && !bumps.ContainsKey(Distance(burn.X1)) ? NextScheduledWrite(stroke.RunAt(k + 1).Move) : double.PositiveInfinity;
+            var offLeftOut = offWrite + timing.OffWireSeconds > nextWrite;
+            await KeepAlivesUntilAsync(Math.Min(offWrite, nextWrite), timing, token);
+            if (offLeftOut)
             {
-                // A gap too short for the switch-off's line and the next burst's: the burst ends this run by itself.
-                _laser.MarkOff(timing.OffLeadSeconds);
+                _laser.MarkOff(Math.Max(0, offEffect - RunSeconds));
                 lock (_lock)
                 {
                     _cut.NotBurning();
@@ -211,15 +220,30 @@ public sealed partial class RunExecutor
             }
             else
             {
-                var (off, offWritten) = await SendSwitchOffAsync(timing);
-                lock (_lock)
-                {
-                    _cut.NotBurning();
-                }
+                await DelayUntilAsync(offWrite, token);
 
-                _lastGateWrite = offWrite;
-                WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off", switchOff: true);
-                NoteSwitchOffLate(offWrite, offWritten, timing);
+                // A frequency-only gate fires until told otherwise: its switch-off is never left out.
+                if (k + 1 < stroke.RunCount && _profile.Gate.CountsBursts && !bumps.ContainsKey(Distance(burn.X1)) && !OffFitsBefore(stroke.RunAt(k + 1).Move, offEffect))
+                {
+                    // A gap too short for the switch-off's line and the next burst's: the burst ends this run by itself.
+                    _laser.MarkOff(timing.OffLeadSeconds);
+                    lock (_lock)
+                    {
+                        _cut.NotBurning();
+                    }
+                }
+                else
+                {
+                    var (off, offWritten) = await SendSwitchOffAsync(timing);
+                    lock (_lock)
+                    {
+                        _cut.NotBurning();
+                    }
+
+                    _lastGateWrite = offWrite;
+                    WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off", switchOff: true);
+                    NoteSwitchOffLate(offWrite, offWritten, timing);
+                }
             }
 
             // A run counts as burned once its switch-on is acknowledged (a silent gate burns nothing).
@@ -229,6 +253,14 @@ public sealed partial class RunExecutor
             {
                 flown = (bump, await FlyGapAsync(bump, times.Arrival + shift, timing, token));
             }
+        }
+
+        // When the next run's scheduled switch-on is to be written (as ScheduledSwitchOnAsync will compute it).
+        double NextScheduledWrite(Move next)
+        {
+            var nextOn = times.Arrival + Offset(next.X0) + shift + timing.OnDelaySeconds;
+            var nextOff = times.Arrival + Offset(next.X1) + shift - timing.OffAdvanceSeconds;
+            return Math.Min(timing.ScheduledWriteSeconds(nextOn, nextOff, _burstEndsAt), timing.BurstWriteSeconds(nextOn, nextOff));
         }
 
         // Whether the gap after a run carries the switch-off's line ahead of the next burst's (docs/execution.md, "The burst").
@@ -507,6 +539,92 @@ public sealed partial class RunExecutor
         finally
         {
             _laser.Lock.Release();
+        }
+    }
+
+    /// <summary>A plain switch-on (<c>BURST</c>, or <c>FREQ</c> on a frequency-only gate), written when its line must leave: the host's lateness is its edge's.</summary>
+    /// <returns>Its acknowledgement, when it was written, and when its acknowledgement is expected (run seconds).</returns>
+    private async Task<(Task Acknowledged, double WrittenSeconds, double AnsweredSeconds)> PlainSwitchOnAsync(double onEffect, double offEffect, double onWrite, TimedSwitching timing, CancellationToken token)
+    {
+        await DelayUntilAsync(onWrite, token);
+        var (on, written) = await SendSwitchOnAsync(onEffect, offEffect, timing);
+        return (on, written, Later(onWrite, written) + timing.OnRoundTripSeconds);
+    }
+
+    /// <summary>
+    /// A switch-on the gate times itself (<c>BURST n hz AFTER us</c>, docs/laser-gate-protocol.md "Scheduled bursts"):
+    /// written its slack ahead of time, with the delay computed at the write from when it is written, the lines still on
+    /// the gate's wire and the gate's processing, so that a host late by less than the slack moves no edge. Written too
+    /// late for that, it is the plain switch-on at its own time, with the edge tolerance as before.
+    /// </summary>
+    private async Task<(Task Acknowledged, double WrittenSeconds, double AnsweredSeconds)> ScheduledSwitchOnAsync(double onEffect, double offEffect, double onWrite, TimedSwitching timing, CancellationToken token)
+    {
+        await DelayUntilAsync(Math.Min(timing.ScheduledWriteSeconds(onEffect, offEffect, _burstEndsAt), onWrite), token);
+        for (var attempt = 0; attempt < 3; attempt++)
+        {
+            if (await SendScheduledSwitchOnAsync(onEffect, offEffect, timing) is { } sent)
+            {
+                return sent;
+            }
+
+            // A delay just at a power of ten (its digits and the line's length disagree) is tried again a moment later.
+            var again = RunSeconds + (2 * timing.GateByteSeconds);
+            if (again >= onWrite)
+            {
+                break;
+            }
+
+            await DelayUntilAsync(again, token);
+        }
+
+        NoteLateSchedule();
+        return await PlainSwitchOnAsync(onEffect, offEffect, onWrite, timing, token);
+    }
+
+    /// <summary>Writes a scheduled switch-on under the laser lock if it is still in time for the gate's timer; null when not (nothing written).</summary>
+    private async Task<(Task Acknowledged, double WrittenSeconds, double AnsweredSeconds)?> SendScheduledSwitchOnAsync(double onEffect, double offEffect, TimedSwitching timing)
+    {
+        await _laser.Lock.WaitAsync();
+        try
+        {
+            ThrowIfAborted();
+            if (_fault.IsCancellationRequested)
+            {
+                throw new DeviceException(_timedFault ?? "a fault ended the run");
+            }
+
+            // Computed at the write itself: whatever the host lost before it comes off the delay, not off the edge.
+            var written = RunSeconds;
+            if (timing.Schedule(written, _gateWireFree, onEffect, offEffect) is not { } burst)
+            {
+                return null;
+            }
+
+            var ack = Gate.BurstAfterAsync(burst.Pulses, timing.FrequencyHz, burst.AfterUs, CancellationToken.None);
+            _gateWireFree = burst.ArrivalSeconds;
+            _gateRepliesIn = timing.GateRepliesInAfter(_gateWireFree, _gateRepliesIn, timing.BurstAfterReplyBytes(burst.Pulses, burst.AfterUs));
+            var firing = burst.ArrivalSeconds + (burst.AfterUs / 1e6);
+            lock (_lock)
+            {
+                _laser.MarkOn(TimeProvider.GetTimestamp() + (long)((firing - written) * TimeProvider.TimestampFrequency));
+                _burstEndsAt = firing + ((double)burst.Pulses / timing.FrequencyHz) + timing.GateJitterSeconds;
+                _scheduledSwitchOns++;
+            }
+
+            return (ack, written, _gateRepliesIn + timing.GateJitterSeconds);
+        }
+        finally
+        {
+            _laser.Lock.Release();
+        }
+    }
+
+    /// <summary>A scheduled switch-on written too late for the gate's timer: sent plain, the host's lateness its edge's again.</summary>
+    private void NoteLateSchedule()
+    {
+        lock (_lock)
+        {
+            _lateSchedules++;
         }
     }
 

@@ -324,6 +324,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
         _y = found.Y;
         _latencyScale = found.LatencyScale;
         _timing = found.Timing;
+        _scheduledBursts = found.ScheduledBursts;
         return found.Identity;
     }
 
