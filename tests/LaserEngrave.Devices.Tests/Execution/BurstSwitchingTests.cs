@@ -23,9 +23,9 @@ public class BurstSwitchingTests
     [Fact(Timeout = 120_000)]
     public async Task RunAsync_GateRefusesASwitchOff_NoPulseOnWhiteAndTheSummarySaysTheBurstEndedIt()
     {
-        // Before the burst: 22 pulses on white, an edge 31 µm off, and "Laser off: confirmed by the gate".
+        // Before the burst: 22 pulses on white, an edge 31 µm off, and "Laser off: confirmed by the gate". (The 31st gate line: an OFF, behind the CAPS? question.)
         var job = Sample("qr-code.bmp");
-        await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = "error:gate:after=30" });
+        await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = "error:gate:after=31" });
 
         var result = await run.Do(() => run.Executor(job).RunAsync(TestContext.Current.CancellationToken));
         var report = run.Machine.Recorder.Analyze(SimulatedRun.Grid(job), job.Mask, job.Spec.Process.BurnSpeedMmPerS);
