@@ -52,8 +52,12 @@ public sealed class TimedSwitching
     /// <param name="process">The process timed.</param>
     /// <param name="profile">The machine's latencies and gate commands.</param>
     /// <param name="microstepUm">The stage's microstep, µm.</param>
-    /// <param name="scheduledSwitchOns">A run whose gate times its switch-ons (scheduled bursts): a flown gap leaves room for that longer line and its slack after its position query.</param>
-    public TimedSwitching(ProcessSettings process, MachineProfile profile, double microstepUm, bool scheduledSwitchOns = false)
+    /// <param name="scheduledSwitchOns">
+    /// Whether a flown gap leaves room after its position query for a scheduled switch-on's longer line and its slack;
+    /// null: on every gate that counts its bursts, since whether it takes scheduled bursts is only known when the run asks
+    /// it (CAPS?), and the plan, its estimate and the run must agree. A gate without them switches on plainly in that room.
+    /// </param>
+    public TimedSwitching(ProcessSettings process, MachineProfile profile, double microstepUm, bool? scheduledSwitchOns = null)
     {
         ArgumentNullException.ThrowIfNull(process);
         ArgumentNullException.ThrowIfNull(profile);
@@ -113,7 +117,13 @@ public sealed class TimedSwitching
         // switch-on needs its lead. The laser is never switched on before the stage has been seen moving.
         PollReplySeconds = FrameSeconds + StageReplySeconds + (2 * StageJitterSeconds) + ReactionSeconds;
         var ramp = BurnSpeed / Acceleration;
-        FirstEdgeSeconds = Math.Max(ramp + ReactionSeconds, PollReplySeconds + OnLeadSeconds + GateJitterSeconds);
+        // A scheduled switch-on needs its longer line and its slack after the query's reply (the stroke's first run and
+        // every run after a flown gap): room a plain one leaves unused.
+        ScheduledSwitchOns = (scheduledSwitchOns ?? true) && gate.CountsBursts;
+        ScheduledExtraSeconds = ScheduledSwitchOns
+            ? (Math.Max(0, BurstAfterCommand(LongestBurstPulses, (int)(ScheduleSlackSeconds * 1e6)).Length - OnCommand.Length) * gateByte) + PlannedSlackSeconds + ScheduleMinSeconds
+            : 0;
+        FirstEdgeSeconds = Math.Max(ramp + ReactionSeconds, PollReplySeconds + OnLeadSeconds + ScheduledExtraSeconds + GateJitterSeconds);
         RunUpMicrosteps = (long)Math.Ceiling((BurnSpeed * BurnSpeed / (2 * Acceleration)) + (BurnSpeed * (FirstEdgeSeconds - ramp)));
         RunOutMicrosteps = (long)Math.Ceiling(BurnSpeed * BurnSpeed / (2 * Acceleration));
 
@@ -124,17 +134,13 @@ public sealed class TimedSwitching
         LateOffAllowanceSeconds = gate.CountsBursts ? 0 : profile.EdgeToleranceUm / (BurnSpeed * microstepUm);
         MinOnSeconds = (2 * EdgeGuardSeconds) + LateOffAllowanceSeconds + OffWireSeconds + (2 * GateJitterSeconds) + ReactionSeconds;
         MinOffSeconds = MinOffFor(LongestBurstPulses);
-        ScheduledSwitchOns = scheduledSwitchOns && gate.CountsBursts;
-        ScheduledExtraSeconds = ScheduledSwitchOns
-            ? Math.Max(0, BurstAfterCommand(LongestBurstPulses, (int)(ScheduleSlackSeconds * 1e6)).Length - OnCommand.Length) * gateByte + ScheduleSlackSeconds + ScheduleMinSeconds
-            : 0;
         _flown = new GapMemo<FlownGap?>(gap => ComputeFly(gap) is { } fly ? FlownGap.Of(this, fly) : null);
         _crossesGap = new GapMemo<bool>(gap => CrossSeconds(gap) <= StopGoSeconds(gap));
     }
 
     public double MicrostepUm { get; }
 
-    /// <summary>Whether this run's switch-ons are scheduled bursts its gate times (<see cref="Schedule"/>).</summary>
+    /// <summary>Whether flown gaps are planned with room for scheduled switch-ons (<see cref="Schedule"/>).</summary>
     public bool ScheduledSwitchOns { get; }
 
     /// <summary>How much more a scheduled switch-on needs after a flown gap's query than a plain one: its longer line and its slack (0 for plain switch-ons).</summary>
@@ -245,6 +251,13 @@ public sealed class TimedSwitching
 
     /// <summary>One byte on the gate's wire.</summary>
     public double GateByteSeconds => _gateByteSeconds;
+
+    /// <summary>
+    /// The slack a plan leaves for a scheduled switch-on where it must wait for a position query first (a stroke's first
+    /// run, a run after a flown gap), where every millisecond is run time: the realistic twin's tail (5 ms) and a margin.
+    /// Elsewhere the switch-on is written <see cref="ScheduleSlackSeconds"/> ahead, which costs nothing.
+    /// </summary>
+    public const double PlannedSlackSeconds = 0.006;
 
     /// <summary>Least delay a scheduled burst is sent with: the gate's processing of the line, its spread and a margin, so its own timer, not its processing, places the first pulse.</summary>
     public double ScheduleMinSeconds => _gateProcessingSeconds + Units.MsToSeconds(_profile.Latency.GateProcessingJitterMs) + 0.00005;

@@ -159,14 +159,13 @@ internal sealed class RunPreflight
         var timing = _timing;
         var latencyScale = 1.0;
         var scale = Math.Max(double.IsFinite(_options.LatencyScale) ? Math.Max(1, _options.LatencyScale) : 1, SpreadSeenScale(exchangesBefore));
-        var timedProfile = _profile;
         if (scale > 1 && _program is RasterProgram { Timing: { } planned })
         {
             latencyScale = scale;
 
             // Guards, margins, run-ups and checks all follow from the latencies' spread: the run times itself with the wider one.
             var latency = _profile.Latency;
-            timedProfile = _profile with
+            var timedProfile = _profile with
             {
                 Latency = latency with
                 {
@@ -176,12 +175,6 @@ internal sealed class RunPreflight
                 },
             };
             timing = TimedSwitching.For(_process, timedProfile, planned.MicrostepUm);
-        }
-
-        if (scheduled && timing is { } plain)
-        {
-            // A gate that times its switch-ons needs their longer line and its slack after a flown gap's query.
-            timing = new TimedSwitching(_process, timedProfile, plain.MicrostepUm, scheduledSwitchOns: true);
         }
 
         return new PreflightOutcome(new MachineIdentity(x, y, gateIdentity), gateVouchesForCut, resumeX, homing.Count > 0, positionX, positionY, latencyScale, timing, scheduled);
