@@ -146,10 +146,11 @@ public sealed partial class RunExecutor
         }
 
         var earlier = _replies.Unsettled();
+        var moveWritten = RunSeconds;
         var move = Stage.X.MoveAbsoluteAfterAsync(stroke.EndX, token);
         var strokeEnd = Watch(Arrive(move, "X", stroke.EndX, x => _x = x), times.End + timing.StageReplySeconds, "the end of a stroke (X)", axis: "X");
         var strokeEndDeadline = strokeEnd.Deadline;
-        var poll = stroke.RunCount > 0 ? Stage.X.GetPositionAsync(token) : null;
+        var poll = stroke.RunCount > 0 ? Arrival(Stage.X.GetPositionAsync(token)) : null;
         var direction = stroke.Direction;
 
         // Where the position queries after flown gaps found the stage ahead (-) or behind (+) its plan, as time at the burn speed.
@@ -163,7 +164,7 @@ public sealed partial class RunExecutor
             var onWrite = times.Arrival + Offset(burn.X0) + shift + timing.OnDelaySeconds - timing.OnLeadSeconds;
             if (index++ == 0)
             {
-                await ConfirmMovingAsync(earlier, poll!, start, direction, timing, onWrite, token);
+                await ConfirmMovingAsync(earlier, poll!, moveWritten, start, direction, timing, onWrite, token);
             }
             else if (flown is { } gap)
             {
@@ -361,7 +362,8 @@ public sealed partial class RunExecutor
         var queryWrite = start + bump.QueryArrival - timing.StageCommandSeconds;
         await DelayUntilAsync(Math.Max(queryWrite, RunSeconds + (bump.QueryArrival - bump.SpeedDownArrival) + rampDown), token);
         var queryLate = RunSeconds - queryWrite;
-        return new FlownQuery(Stage.X.GetPositionAsync(token), Later(0, upLate), Later(0, downLate), Later(0, queryLate));
+        var queryWritten = RunSeconds;
+        return new FlownQuery(Arrival(Stage.X.GetPositionAsync(token)), queryWritten, Later(0, upLate), Later(0, downLate), Later(0, queryLate));
     }
 
     /// <summary>How far above the burn speed a bump held <paramref name="hold"/> s rises (<see cref="TimedSwitching.FlyGain"/>'s dV).</summary>
@@ -369,7 +371,45 @@ public sealed partial class RunExecutor
         Math.Min(timing.Acceleration * Math.Max(0, hold), Math.Max(0, timing.TravelSpeed - timing.BurnSpeed));
 
     /// <summary>A flown gap's position query, and how late (s) the host wrote the speed-up, the speed-down and the query.</summary>
-    private sealed record FlownQuery(Task<long> Query, double UpLate, double DownLate, double QueryLate);
+    private sealed record FlownQuery(Answered<long> Query, double WrittenSeconds, double UpLate, double DownLate, double QueryLate);
+
+    /// <summary>A reply and when it came in (run seconds; NaN until then), so that it is judged by its round trip as well as by what it says.</summary>
+    private sealed class Answered<T>(Task<T> task)
+    {
+        public Task<T> Task { get; } = task;
+
+        public double Seconds { get; set; } = double.NaN;
+    }
+
+    /// <summary>Stamps a reply's arrival on the run clock when its task completes (before anything awaiting it runs).</summary>
+    private Answered<T> Arrival<T>(Task<T> task)
+    {
+        var arrived = new Answered<T>(task);
+        _ = task.ContinueWith(_ => arrived.Seconds = RunSeconds, CancellationToken.None, TaskContinuationOptions.ExecuteSynchronously, TaskScheduler.Default);
+        return arrived;
+    }
+
+    /// <summary>
+    /// A position reply that came back too late to locate the stage (issue 34): its round trip from <paramref name="written"/>
+    /// past what the links allow (<paramref name="frames"/> frames on the wire each way, both adapters and their spreads, a
+    /// margin), so when the axis answered is not known and its position says nothing of where the stage is against its
+    /// plan. A timing doubt with the laser off, never "ahead of plan".
+    /// </summary>
+    private void ThrowIfReplyTooLate<T>(Answered<T> reply, double written, int frames, TimedSwitching timing, string what)
+    {
+        var roundTrip = reply.Seconds - written;
+        var expected = timing.StageAdapterSeconds + (frames * timing.FrameSeconds) + timing.StageReplySeconds;
+        var allowed = expected + (4 * timing.StageJitterSeconds) + ReplyMarginSeconds;
+        if (roundTrip > allowed)
+        {
+            throw Fault(
+                string.Create(CultureInfo.InvariantCulture, $"the X axis' reply to {what} came back {Units.SecondsToMs(roundTrip):0.0} ms after it was written ({Units.SecondsToMs(expected):0.0} ms expected): too late to locate the stage, so the laser stays off"),
+                recoverable: true);
+        }
+    }
+
+    // What a position reply's round trip may exceed its links' spread by (the host's own reaction to the reply).
+    private const double ReplyMarginSeconds = 0.002;
 
     /// <summary>
     /// After a flown gap, before the next switch-on: the position query's answer says how far ahead of its plan the stage
@@ -377,11 +417,13 @@ public sealed partial class RunExecutor
     /// </summary>
     private async Task<double> MeasureFlownGapAsync(StrokePlan.Bump bump, FlownQuery flown, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token)
     {
-        var query = flown.Query;
+        var query = flown.Query.Task;
         if (!await CompletesByAsync(query, onWrite, token) || !query.IsCompletedSuccessfully)
         {
             throw Fault("the X axis did not answer the position query after a flown gap before the laser was to come on", recoverable: true);
         }
+
+        ThrowIfReplyTooLate(flown.Query, flown.WrittenSeconds, 1, timing, "the position query after a flown gap");
 
         // A host late to write (a loaded computer) held the bump longer or shorter and asked later: where the stage then is.
         var hold = bump.SpeedDownArrival - bump.SpeedUpArrival;
@@ -406,8 +448,9 @@ public sealed partial class RunExecutor
     }
 
     /// <summary>Before the first switch-on of a stroke: every earlier move has reported its end, and the position query shows the stage on its way.</summary>
-    private async Task ConfirmMovingAsync(IReadOnlyList<ReplyWatch.Watched> earlier, Task<long> poll, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token)
+    private async Task ConfirmMovingAsync(IReadOnlyList<ReplyWatch.Watched> earlier, Answered<long> arrived, double moveWritten, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token)
     {
+        var poll = arrived.Task;
         foreach (var watched in earlier)
         {
             // A move whose end is never reported is settled by the next move of its axis reporting its own.
@@ -432,6 +475,9 @@ public sealed partial class RunExecutor
             throw Fault($"the X axis did not answer the position query before the laser was to come on: {ex.Message}");
         }
 
+        // The stroke's Move Absolute and its query together: the query's frame leaves behind the move's.
+        ThrowIfReplyTooLate(arrived, moveWritten, 2, timing, "the position query after a stroke's Move Absolute");
+
         // The query arrives one frame after the move: the stage has accelerated that long, give or take both latencies.
         var a = timing.Acceleration;
         var earliest = Math.Max(0, timing.FrameSeconds - (2 * timing.StageJitterSeconds));
@@ -443,9 +489,12 @@ public sealed partial class RunExecutor
         {
             // Not yet seen moving (the query overtook the move's start on a late device, or on a simulator on the wall
             // clock): ask once more while there is time; the laser stays off until it has been seen moving.
-            var again = Stage.X.GetPositionAsync(token);
+            var againWritten = RunSeconds;
+            var againArrived = Arrival(Stage.X.GetPositionAsync(token));
+            var again = againArrived.Task;
             if (await CompletesByAsync(again, onWrite, token) && again.IsCompletedSuccessfully)
             {
+                ThrowIfReplyTooLate(againArrived, againWritten, 1, timing, "a second position query at a stroke's start");
                 position = again.Result;
                 moved = (position - start) * direction;
                 least = 1;

@@ -104,4 +104,22 @@ public class ScheduledSwitchOnTests
         Assert.InRange(report.Edges!.MaxErrorUm, 0, 3);
         Assert.InRange(result.EngravingDuration.TotalSeconds / job.Statistics.EngravingSeconds, 0.995, 1.005);
     }
+
+    [Fact(Timeout = 300_000)]
+    public async Task RunAsync_PositionReplyAfterAFlownGapLateButBeforeTheSwitchOn_IsATimingDoubtNotAPosition()
+    {
+        // Issue 34: a reply that came back well past its round trip says nothing of when the axis answered; before, its
+        // position was taken at face value (on a loaded PC: "ahead of plan", and the switch-on moved into the white).
+        var job = TestJobs.FromAsset("qr-code.bmp", 5, new PlanOptions());
+        await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = "delay:stage:after=34:ms=8" });
+
+        var result = await run.Do(() => run.Executor(job).RunAsync(TestContext.Current.CancellationToken));
+        var report = run.Machine.Recorder.Analyze(SimulatedRun.Grid(job), job.Mask, job.Spec.Process.BurnSpeedMmPerS);
+
+        Assert.Equal(RunOutcome.Failed, result.Outcome);
+        Assert.Contains("too late to locate the stage, so the laser stays off", result.FaultMessage, StringComparison.Ordinal);
+        Assert.True(result.Recoverable);
+        Assert.True(result.LaserOffConfirmed);
+        Assert.Equal((0, 0L), (report.LaserOnTravelCount, report.ExtraPixels));
+    }
 }
