@@ -37,11 +37,8 @@ public sealed partial class RunExecutor
     private LateSwitches? _lateSwitches;
     private long _queuedUpTo = -1;
 
-    // Whether this run's switch-ons are scheduled bursts the gate times (its CAPS? lists AFTER), and how many were sent so,
-    // and how many came too late for that and went plain.
+    // Whether this run's switch-ons are scheduled bursts the gate times (its CAPS? lists AFTER).
     private bool _scheduledBursts;
-    private long _scheduledSwitchOns;
-    private long _lateSchedules;
 
     // Where the run was when a fault or an abort cut it, for its stop point's cut pixel (under the engine's lock).
     private readonly StrokeCut _cut = new();
@@ -626,7 +623,6 @@ public sealed partial class RunExecutor
             await DelayUntilAsync(again, token);
         }
 
-        NoteLateSchedule();
         return await PlainSwitchOnAsync(onEffect, offEffect, onWrite, timing, token);
     }
 
@@ -657,7 +653,6 @@ public sealed partial class RunExecutor
             {
                 _laser.MarkOn(TimeProvider.GetTimestamp() + (long)((firing - written) * TimeProvider.TimestampFrequency));
                 _burstEndsAt = firing + ((double)burst.Pulses / timing.FrequencyHz) + timing.GateJitterSeconds;
-                _scheduledSwitchOns++;
             }
 
             return (ack, written, _gateRepliesIn + timing.GateJitterSeconds);
@@ -665,15 +660,6 @@ public sealed partial class RunExecutor
         finally
         {
             _laser.Lock.Release();
-        }
-    }
-
-    /// <summary>A scheduled switch-on written too late for the gate's timer: sent plain, the host's lateness its edge's again.</summary>
-    private void NoteLateSchedule()
-    {
-        lock (_lock)
-        {
-            _lateSchedules++;
         }
     }
 
