@@ -108,6 +108,13 @@ public sealed record SimulatorOptions
     /// <summary>Firmware text of the laser gate's identification reply.</summary>
     public string GateFirmware { get; init; } = "SIM-1.0";
 
+    /// <summary>
+    /// Whether the twin's gate takes scheduled bursts (`BURST n hz AFTER us`, and lists AFTER in its `CAPS?` reply), as the
+    /// reference firmware AVR-1.1; false: an older gate (AVR-1.0, the PIC16F628A) that answers `CAPS?` with `ERR 1 UNKNOWN`
+    /// and a scheduled burst with `ERR 3 SYNTAX`, and is sent plain bursts.
+    /// </summary>
+    public bool GateScheduledBursts { get; init; } = true;
+
     /// <summary>Watchdog time of the gate at power-up, ms; null takes the machine profile's.</summary>
     public int? GateWatchdogMs { get; init; }
 

@@ -47,6 +47,7 @@ public static class SimulatorOptionsFile
         var options = baseOptions with
         {
             Seed = fields.Seed ?? baseOptions.Seed,
+            GateScheduledBursts = fields.GateScheduledBursts ?? baseOptions.GateScheduledBursts,
             AdapterLatency = Checked(path, "adapterLatency", fields.AdapterLatency) ?? baseOptions.AdapterLatency,
             GateProcessing = Checked(path, "gateProcessing", fields.GateProcessing) ?? baseOptions.GateProcessing,
             TargetSpeedData = InRange(path, "targetSpeedData", fields.TargetSpeedData, 1, 32767) ?? baseOptions.TargetSpeedData,
@@ -134,6 +135,8 @@ public static class SimulatorOptionsFile
     private sealed record Fields
     {
         public int? Seed { get; init; }
+
+        public bool? GateScheduledBursts { get; init; }
 
         public int? FirmwareVersion { get; init; }
 

@@ -37,8 +37,10 @@ public class PlanCommandsTests
         var bound = json.RootElement.GetProperty("lowerBoundSeconds").GetDouble();
         var engraving = json.RootElement.GetProperty("estimatedEngravingSeconds").GetDouble();
 
-        // Issue targets (docs/execution.md, "Figures"); the estimates are held to the twin by the Devices figures tests.
-        Assert.InRange(engraving / bound, 1.0, 1.10);
+        // Issue targets (docs/execution.md, "Figures"); the estimates are held to the twin by the Devices figures tests. Since
+        // issue 34 a plan leaves room after each position query for a scheduled switch-on's longer line and its slack
+        // (docs/execution.md, "Scheduled switch-ons"): 1.116 x the bound, where the host-timed burst gave 1.08.
+        Assert.InRange(engraving / bound, 1.0, 1.12);
         Assert.True(paper.RootElement.GetProperty("estimatedEngravingSeconds").GetDouble() >= 4 * engraving);
         Assert.True(engraving < json.RootElement.GetProperty("estimatedSeconds").GetDouble());
     }

@@ -92,6 +92,13 @@ public sealed record RunRecord
     /// <summary>Switchings sent late but within the profile's edge tolerance; null when none was (and in older logs).</summary>
     public LateSwitches? LateSwitches { get; init; }
 
+    /// <summary>
+    /// How many times the profile's latency spread the run's guards assumed, when more than the profile's (a loaded
+    /// computer, or a check that found the latencies spread wider): every switching was aimed that much further inside its
+    /// run, so lines came out shorter; null when the profile's held (and in older logs).
+    /// </summary>
+    public double? GuardScale { get; init; }
+
     public int RowsDone { get; init; }
 
     /// <summary>What <see cref="RowsDone"/> and <see cref="RowsTotal"/> count, as the log's reader says it: "strokes" for a drawing, else "rows" (not written: the log's kind says it).</summary>

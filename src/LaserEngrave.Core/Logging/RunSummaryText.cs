@@ -41,14 +41,21 @@ public static class RunSummaryText
         ArgumentNullException.ThrowIfNull(record);
         var late = LateSwitches(record.LateSwitches, record.Profile.Gate.CountsBursts);
         var wentOn = WentOnAfter(record.Recoveries?.Count ?? 0);
-        return (late, wentOn) switch
+        var timing = (late, wentOn) switch
         {
             (null, null) => null,
             (null, _) => wentOn,
             (_, null) => "late " + late,
             _ => $"late {late}; {wentOn}",
         };
+        return GuardScale(record.GuardScale) is { } guards ? (timing is null ? guards : $"{timing}; {guards}") : timing;
     }
+
+    /// <summary>The guards' widening as the summary says it ("guards 2.4 x the profile's latency spread: lines shorter by ..."); null when the profile's held.</summary>
+    public static string? GuardScale(double? scale) =>
+        scale is > 1 and var s
+            ? string.Create(CultureInfo.InvariantCulture, $"guards {s:0.##} x the profile's latency spread (every switching aimed that much further inside its run: lines come out shorter)")
+            : null;
 
     /// <summary>The switchings sent late, as the summary's "Late switches" line says them ("switch-ons: 4 within ..."); null when none.</summary>
     /// <param name="late">The record's late switchings.</param>
@@ -199,6 +206,11 @@ public static class RunSummaryText
         if (LateSwitches(record.LateSwitches, record.Profile.Gate.CountsBursts) is { } late)
         {
             Line("Late switches", late);
+        }
+
+        if (GuardScale(record.GuardScale) is { } guards)
+        {
+            Line("Guards", guards);
         }
 
         // A run can go on after thousands of doubts: the first few are listed, the rest counted (the JSON keeps them all).

@@ -49,7 +49,15 @@ public sealed class TimedSwitching
     /// <summary>The machine whose latencies and gate commands it times.</summary>
     public MachineProfile Profile { get; }
 
-    public TimedSwitching(ProcessSettings process, MachineProfile profile, double microstepUm)
+    /// <param name="process">The process timed.</param>
+    /// <param name="profile">The machine's latencies and gate commands.</param>
+    /// <param name="microstepUm">The stage's microstep, µm.</param>
+    /// <param name="scheduledSwitchOns">
+    /// Whether a flown gap leaves room after its position query for a scheduled switch-on's longer line and its slack;
+    /// null: on every gate that counts its bursts, since whether it takes scheduled bursts is only known when the run asks
+    /// it (CAPS?), and the plan, its estimate and the run must agree. A gate without them switches on plainly in that room.
+    /// </param>
+    public TimedSwitching(ProcessSettings process, MachineProfile profile, double microstepUm, bool? scheduledSwitchOns = null)
     {
         ArgumentNullException.ThrowIfNull(process);
         ArgumentNullException.ThrowIfNull(profile);
@@ -109,7 +117,13 @@ public sealed class TimedSwitching
         // switch-on needs its lead. The laser is never switched on before the stage has been seen moving.
         PollReplySeconds = FrameSeconds + StageReplySeconds + (2 * StageJitterSeconds) + ReactionSeconds;
         var ramp = BurnSpeed / Acceleration;
-        FirstEdgeSeconds = Math.Max(ramp + ReactionSeconds, PollReplySeconds + OnLeadSeconds + GateJitterSeconds);
+        // A scheduled switch-on needs its longer line and its slack after the query's reply (the stroke's first run and
+        // every run after a flown gap): room a plain one leaves unused.
+        ScheduledSwitchOns = (scheduledSwitchOns ?? true) && gate.CountsBursts;
+        ScheduledExtraSeconds = ScheduledSwitchOns
+            ? (Math.Max(0, BurstAfterCommand(LongestBurstPulses, (int)(ScheduleSlackSeconds * 1e6)).Length - OnCommand.Length) * gateByte) + PlannedSlackSeconds + ScheduleMinSeconds
+            : 0;
+        FirstEdgeSeconds = Math.Max(ramp + ReactionSeconds, PollReplySeconds + OnLeadSeconds + ScheduledExtraSeconds + GateJitterSeconds);
         RunUpMicrosteps = (long)Math.Ceiling((BurnSpeed * BurnSpeed / (2 * Acceleration)) + (BurnSpeed * (FirstEdgeSeconds - ramp)));
         RunOutMicrosteps = (long)Math.Ceiling(BurnSpeed * BurnSpeed / (2 * Acceleration));
 
@@ -125,6 +139,12 @@ public sealed class TimedSwitching
     }
 
     public double MicrostepUm { get; }
+
+    /// <summary>Whether flown gaps are planned with room for scheduled switch-ons (<see cref="Schedule"/>).</summary>
+    public bool ScheduledSwitchOns { get; }
+
+    /// <summary>How much more a scheduled switch-on needs after a flown gap's query than a plain one: its longer line and its slack (0 for plain switch-ons).</summary>
+    public double ScheduledExtraSeconds { get; }
 
     public int BurnSpeedData { get; }
 
@@ -219,6 +239,89 @@ public sealed class TimedSwitching
 
         return best;
     }
+
+    /// <summary>
+    /// How much earlier than a plain <c>BURST</c> a scheduled switch-on (<c>BURST n hz AFTER us</c>) is written, beyond its
+    /// own longer line: the host may be this late to write it and the gate still fires on time (docs/process.md,
+    /// "Switch-ons the gate times"). The realistic twin's host is late up to 0.5 ms and one wait in a hundred up to 5 ms;
+    /// 20 ms also covers a loaded PC's rarer stalls. A shorter gap before a run leaves less, never more: the line may not
+    /// reach the gate before the burst ahead of it has ended (any later frequency command ends a burst).
+    /// </summary>
+    public const double ScheduleSlackSeconds = 0.020;
+
+    /// <summary>One byte on the gate's wire.</summary>
+    public double GateByteSeconds => _gateByteSeconds;
+
+    /// <summary>
+    /// The slack a plan leaves for a scheduled switch-on where it must wait for a position query first (a stroke's first
+    /// run, a run after a flown gap), where every millisecond is run time: the realistic twin's tail (5 ms) and a margin.
+    /// Elsewhere the switch-on is written <see cref="ScheduleSlackSeconds"/> ahead, which costs nothing.
+    /// </summary>
+    public const double PlannedSlackSeconds = 0.006;
+
+    /// <summary>Least delay a scheduled burst is sent with: the gate's processing of the line, its spread and a margin, so its own timer, not its processing, places the first pulse.</summary>
+    public double ScheduleMinSeconds => _gateProcessingSeconds + Units.MsToSeconds(_profile.Latency.GateProcessingJitterMs) + 0.00005;
+
+    /// <summary>The scheduled switch-on's line: <paramref name="pulses"/> at the process' frequency, the first <paramref name="afterUs"/> µs after the line's last byte.</summary>
+    public string BurstAfterCommand(int pulses, int afterUs) =>
+        string.Format(CultureInfo.InvariantCulture, _profile.Gate.BurstAfterCommand, pulses, FrequencyHz, afterUs) + _profile.Gate.LineTerminator;
+
+    /// <summary>The bytes of a scheduled burst's acknowledgement.</summary>
+    public int BurstAfterReplyBytes(int pulses, int afterUs) =>
+        _profile.Gate.NeverReplies ? 0 : (_profile.Gate.AckPrefix + " " + string.Format(CultureInfo.InvariantCulture, _profile.Gate.BurstAfterReply, pulses, FrequencyHz, afterUs) + _profile.Gate.LineTerminator).Length;
+
+    /// <summary>
+    /// When a scheduled switch-on whose burst fires from <paramref name="onEffectSeconds"/> is best written: its slack
+    /// (<see cref="ScheduleSlackSeconds"/>) ahead of the latest moment its line still arrives in time, but never so early
+    /// that the line could reach the gate before the burst ahead of it has ended (<paramref name="previousBurstEndsSeconds"/>,
+    /// the latest it may end).
+    /// </summary>
+    public double ScheduledWriteSeconds(double onEffectSeconds, double offEffectSeconds, double previousBurstEndsSeconds)
+    {
+        var pulses = Math.Max(1, PulsesWithin(offEffectSeconds - onEffectSeconds));
+        var bytes = BurstAfterCommand(pulses, (int)Math.Round(ScheduleSlackSeconds * 1e6)).Length;
+        var wire = _gateAdapterSeconds + (bytes * _gateByteSeconds);
+        var latest = onEffectSeconds - wire - ScheduleMinSeconds - GateJitterSeconds;
+
+        // The line, delivered and processed at the soonest its latencies allow, is taken after that burst's end (its bound already has the spread).
+        var earliest = previousBurstEndsSeconds + GateJitterSeconds + ReactionSeconds - wire - _gateProcessingSeconds;
+        return Math.Max(latest - ScheduleSlackSeconds, earliest);
+    }
+
+    /// <summary>
+    /// The scheduled switch-on of a burn run firing from <paramref name="onEffectSeconds"/> to before
+    /// <paramref name="offEffectSeconds"/>, written at <paramref name="writtenSeconds"/> behind a gate wire busy until
+    /// <paramref name="wireFreeSeconds"/>: its pulses, its delay from the line's arrival (µs, to the gate's time base) and
+    /// the line's length; null when it is written too late for the gate's own timer to place the first pulse (the line
+    /// arrives with less than <see cref="ScheduleMinSeconds"/> to go), or, rarely, when the delay's digits and the line's
+    /// length disagree (a delay just at a power of ten: the caller tries again a moment later).
+    /// </summary>
+    public ScheduledBurst? Schedule(double writtenSeconds, double wireFreeSeconds, double onEffectSeconds, double offEffectSeconds)
+    {
+        var pulses = PulsesWithin(offEffectSeconds - onEffectSeconds);
+        if (pulses < 1)
+        {
+            return null;
+        }
+
+        var onWire = Math.Max(writtenSeconds + _gateAdapterSeconds, wireFreeSeconds);
+        for (int digits = 1, least = 0, most = 9; digits <= 7; digits++, least = most + 1, most = (most * 10) + 9)
+        {
+            var bytes = BurstAfterCommand(pulses, least).Length;
+            var arrival = onWire + (bytes * _gateByteSeconds);
+            var delay = onEffectSeconds - arrival;
+            var us = (long)Math.Round(delay * 1e6);
+            if (us >= least && us <= most)
+            {
+                return delay < ScheduleMinSeconds || us > MaxAfterUs ? null : new ScheduledBurst(pulses, (int)us, bytes, arrival);
+            }
+        }
+
+        return null;
+    }
+
+    /// <summary>Longest delay of a scheduled burst the gate protocol allows, µs.</summary>
+    public const int MaxAfterUs = 1_000_000;
 
     /// <summary>
     /// Whether the switch-off taking effect at <paramref name="offEffectSeconds"/> leaves the wire in time for the next
@@ -555,7 +658,7 @@ public sealed class TimedSwitching
         double Needed(double hold)
         {
             // Query reply in, the switch-on's lead, and room for a correction of the largest error.
-            var afterQuery = (2 * j) + StageReplySeconds + ReactionSeconds + OnLeadSeconds + GateJitterSeconds + (MaxError(hold) / BurnSpeed);
+            var afterQuery = (2 * j) + StageReplySeconds + ReactionSeconds + OnLeadSeconds + ScheduledExtraSeconds + GateJitterSeconds + (MaxError(hold) / BurnSpeed);
             return (BurnSpeed * ((2 * j) + hold + QueryDelay(hold) + afterQuery)) + FlyGain(hold);
         }
 
@@ -584,3 +687,6 @@ public sealed class TimedSwitching
 
     private static string Format(string format, int value) => string.Format(CultureInfo.InvariantCulture, format, value);
 }
+
+/// <summary>A scheduled switch-on as written: its pulses, its delay after the line's last byte (µs), the line's bytes and when that byte is expected at the gate (run seconds).</summary>
+public readonly record struct ScheduledBurst(int Pulses, int AfterUs, int LineBytes, double ArrivalSeconds);

@@ -468,6 +468,7 @@ public sealed class EngraveSession
             EstimatedEngravingSeconds = sum.EstimatedEngravingSeconds + result.EstimatedEngravingSeconds,
             LaserOnSeconds = sum.LaserOnSeconds + result.LaserOnSeconds,
             LateSwitches = LateSwitches.Add(sum.LateSwitches, result.LateSwitches),
+            GuardScale = Math.Max(sum.GuardScale, result.GuardScale),
         };
     }
 
@@ -527,6 +528,7 @@ public sealed class EngraveSession
                 EstimatedEngravingSeconds = result.EstimatedEngravingSeconds,
                 LaserOnSeconds = result.LaserOnSeconds + again.LaserOnSeconds,
                 LateSwitches = LateSwitches.Add(result.LateSwitches, again.LateSwitches),
+                GuardScale = Math.Max(result.GuardScale, again.GuardScale),
             };
         }
 

@@ -37,6 +37,9 @@ public sealed partial class RunExecutor
     private LateSwitches? _lateSwitches;
     private long _queuedUpTo = -1;
 
+    // Whether this run's switch-ons are scheduled bursts the gate times (its CAPS? lists AFTER).
+    private bool _scheduledBursts;
+
     // Where the run was when a fault or an abort cut it, for its stop point's cut pixel (under the engine's lock).
     private readonly StrokeCut _cut = new();
 
@@ -140,10 +143,11 @@ public sealed partial class RunExecutor
         }
 
         var earlier = _replies.Unsettled();
+        var moveWritten = RunSeconds;
         var move = Stage.X.MoveAbsoluteAfterAsync(stroke.EndX, token);
         var strokeEnd = Watch(Arrive(move, "X", stroke.EndX, x => _x = x), times.End + timing.StageReplySeconds, "the end of a stroke (X)", axis: "X");
         var strokeEndDeadline = strokeEnd.Deadline;
-        var poll = stroke.RunCount > 0 ? Stage.X.GetPositionAsync(token) : null;
+        var poll = stroke.RunCount > 0 ? Arrival(Stage.X.GetPositionAsync(token)) : null;
         var direction = stroke.Direction;
 
         // Where the position queries after flown gaps found the stage ahead (-) or behind (+) its plan, as time at the burn speed.
@@ -157,7 +161,7 @@ public sealed partial class RunExecutor
             var onWrite = times.Arrival + Offset(burn.X0) + shift + timing.OnDelaySeconds - timing.OnLeadSeconds;
             if (index++ == 0)
             {
-                await ConfirmMovingAsync(earlier, poll!, start, direction, timing, onWrite, token);
+                await ConfirmMovingAsync(earlier, poll!, moveWritten, start, direction, timing, onWrite, token);
             }
             else if (flown is { } gap)
             {
@@ -178,15 +182,16 @@ public sealed partial class RunExecutor
             var onEffect = onWrite + timing.OnLeadSeconds;
             var offEffect = offWrite + timing.OffLeadSeconds;
             onWrite = timing.BurstWriteSeconds(onEffect, offEffect);
-            await DelayUntilAsync(onWrite, token);
-            var (on, onWritten) = await SendSwitchOnAsync(onEffect, offEffect, timing);
+            var (on, onWritten, onAnswered) = _scheduledBursts
+                ? await ScheduledSwitchOnAsync(onEffect, offEffect, onWrite, timing, token)
+                : await PlainSwitchOnAsync(onEffect, offEffect, onWrite, timing, token);
             lock (_lock)
             {
                 _cut.Burning(burn, burnIndex, on, _burstEndsAt);
             }
 
-            _lastGateWrite = onWrite;
-            WatchGate(on, Later(onWrite, onWritten) + timing.OnRoundTripSeconds, "the laser gate did not acknowledge the switch-on");
+            _lastGateWrite = Math.Max(onWrite, onWritten);
+            WatchGate(on, onAnswered, "the laser gate did not acknowledge the switch-on");
             RunProgress progress;
             lock (_lock)
             {
@@ -197,13 +202,15 @@ public sealed partial class RunExecutor
 
             ProgressChanged?.Invoke(this, progress);
 
-            await KeepAlivesUntilAsync(offWrite, timing, token);
-            await DelayUntilAsync(offWrite, token);
-            // A frequency-only gate fires until told otherwise: its switch-off is never left out.
-            if (k + 1 < stroke.RunCount && _profile.Gate.CountsBursts && !bumps.ContainsKey(Distance(burn.X1)) && !OffFitsBefore(stroke.RunAt(k + 1).Move, offEffect))
+            // A scheduled switch-on is written well ahead: when the next one is due before this run's switch-off, the
+            // switch-off is left out, since written after that line it would cancel the burst armed by it; the count
+            // ends this run by itself.
+            var nextWrite = k + 1 < stroke.RunCount && _scheduledBursts && !bumps.ContainsKey(Distance(burn.X1)) ? NextScheduledWrite(stroke.RunAt(k + 1).Move) : double.PositiveInfinity;
+            var offLeftOut = offWrite + timing.OffWireSeconds > nextWrite;
+            await KeepAlivesUntilAsync(Math.Min(offWrite, nextWrite), timing, token);
+            if (offLeftOut)
             {
-                // A gap too short for the switch-off's line and the next burst's: the burst ends this run by itself.
-                _laser.MarkOff(timing.OffLeadSeconds);
+                _laser.MarkOff(Math.Max(0, offEffect - RunSeconds));
                 lock (_lock)
                 {
                     _cut.NotBurning();
@@ -211,15 +218,30 @@ public sealed partial class RunExecutor
             }
             else
             {
-                var (off, offWritten) = await SendSwitchOffAsync(timing);
-                lock (_lock)
-                {
-                    _cut.NotBurning();
-                }
+                await DelayUntilAsync(offWrite, token);
 
-                _lastGateWrite = offWrite;
-                WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off", switchOff: true);
-                NoteSwitchOffLate(offWrite, offWritten, timing);
+                // A frequency-only gate fires until told otherwise: its switch-off is never left out.
+                if (k + 1 < stroke.RunCount && _profile.Gate.CountsBursts && !bumps.ContainsKey(Distance(burn.X1)) && !OffFitsBefore(stroke.RunAt(k + 1).Move, offEffect))
+                {
+                    // A gap too short for the switch-off's line and the next burst's: the burst ends this run by itself.
+                    _laser.MarkOff(timing.OffLeadSeconds);
+                    lock (_lock)
+                    {
+                        _cut.NotBurning();
+                    }
+                }
+                else
+                {
+                    var (off, offWritten) = await SendSwitchOffAsync(timing);
+                    lock (_lock)
+                    {
+                        _cut.NotBurning();
+                    }
+
+                    _lastGateWrite = offWrite;
+                    WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off", switchOff: true);
+                    NoteSwitchOffLate(offWrite, offWritten, timing);
+                }
             }
 
             // A run counts as burned once its switch-on is acknowledged (a silent gate burns nothing).
@@ -229,6 +251,14 @@ public sealed partial class RunExecutor
             {
                 flown = (bump, await FlyGapAsync(bump, times.Arrival + shift, timing, token));
             }
+        }
+
+        // When the next run's scheduled switch-on is to be written (as ScheduledSwitchOnAsync will compute it).
+        double NextScheduledWrite(Move next)
+        {
+            var nextOn = times.Arrival + Offset(next.X0) + shift + timing.OnDelaySeconds;
+            var nextOff = times.Arrival + Offset(next.X1) + shift - timing.OffAdvanceSeconds;
+            return Math.Min(timing.ScheduledWriteSeconds(nextOn, nextOff, _burstEndsAt), timing.BurstWriteSeconds(nextOn, nextOff));
         }
 
         // Whether the gap after a run carries the switch-off's line ahead of the next burst's (docs/execution.md, "The burst").
@@ -329,7 +359,8 @@ public sealed partial class RunExecutor
         var queryWrite = start + bump.QueryArrival - timing.StageCommandSeconds;
         await DelayUntilAsync(Math.Max(queryWrite, RunSeconds + (bump.QueryArrival - bump.SpeedDownArrival) + rampDown), token);
         var queryLate = RunSeconds - queryWrite;
-        return new FlownQuery(Stage.X.GetPositionAsync(token), Later(0, upLate), Later(0, downLate), Later(0, queryLate));
+        var queryWritten = RunSeconds;
+        return new FlownQuery(Arrival(Stage.X.GetPositionAsync(token)), queryWritten, Later(0, upLate), Later(0, downLate), Later(0, queryLate));
     }
 
     /// <summary>How far above the burn speed a bump held <paramref name="hold"/> s rises (<see cref="TimedSwitching.FlyGain"/>'s dV).</summary>
@@ -337,7 +368,45 @@ public sealed partial class RunExecutor
         Math.Min(timing.Acceleration * Math.Max(0, hold), Math.Max(0, timing.TravelSpeed - timing.BurnSpeed));
 
     /// <summary>A flown gap's position query, and how late (s) the host wrote the speed-up, the speed-down and the query.</summary>
-    private sealed record FlownQuery(Task<long> Query, double UpLate, double DownLate, double QueryLate);
+    private sealed record FlownQuery(Answered<long> Query, double WrittenSeconds, double UpLate, double DownLate, double QueryLate);
+
+    /// <summary>A reply and when it came in (run seconds; NaN until then), so that it is judged by its round trip as well as by what it says.</summary>
+    private sealed class Answered<T>(Task<T> task)
+    {
+        public Task<T> Task { get; } = task;
+
+        public double Seconds { get; set; } = double.NaN;
+    }
+
+    /// <summary>Stamps a reply's arrival on the run clock when its task completes (before anything awaiting it runs).</summary>
+    private Answered<T> Arrival<T>(Task<T> task)
+    {
+        var arrived = new Answered<T>(task);
+        _ = task.ContinueWith(_ => arrived.Seconds = RunSeconds, CancellationToken.None, TaskContinuationOptions.ExecuteSynchronously, TaskScheduler.Default);
+        return arrived;
+    }
+
+    /// <summary>
+    /// A position reply that came back too late to locate the stage (issue 34): its round trip from <paramref name="written"/>
+    /// past what the links allow (<paramref name="frames"/> frames on the wire each way, both adapters and their spreads, a
+    /// margin), so when the axis answered is not known and its position says nothing of where the stage is against its
+    /// plan. A timing doubt with the laser off, never "ahead of plan".
+    /// </summary>
+    private void ThrowIfReplyTooLate<T>(Answered<T> reply, double written, int frames, TimedSwitching timing, string what)
+    {
+        var roundTrip = reply.Seconds - written;
+        var expected = timing.StageAdapterSeconds + (frames * timing.FrameSeconds) + timing.StageReplySeconds;
+        var allowed = expected + (4 * timing.StageJitterSeconds) + ReplyMarginSeconds;
+        if (roundTrip > allowed)
+        {
+            throw Fault(
+                string.Create(CultureInfo.InvariantCulture, $"the X axis' reply to {what} came back {Units.SecondsToMs(roundTrip):0.0} ms after it was written ({Units.SecondsToMs(expected):0.0} ms expected): too late to locate the stage, so the laser stays off"),
+                recoverable: true);
+        }
+    }
+
+    // What a position reply's round trip may exceed its links' spread by (the host's own reaction to the reply).
+    private const double ReplyMarginSeconds = 0.002;
 
     /// <summary>
     /// After a flown gap, before the next switch-on: the position query's answer says how far ahead of its plan the stage
@@ -345,11 +414,13 @@ public sealed partial class RunExecutor
     /// </summary>
     private async Task<double> MeasureFlownGapAsync(StrokePlan.Bump bump, FlownQuery flown, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token)
     {
-        var query = flown.Query;
+        var query = flown.Query.Task;
         if (!await CompletesByAsync(query, onWrite, token) || !query.IsCompletedSuccessfully)
         {
             throw Fault("the X axis did not answer the position query after a flown gap before the laser was to come on", recoverable: true);
         }
+
+        ThrowIfReplyTooLate(flown.Query, flown.WrittenSeconds, 1, timing, "the position query after a flown gap");
 
         // A host late to write (a loaded computer) held the bump longer or shorter and asked later: where the stage then is.
         var hold = bump.SpeedDownArrival - bump.SpeedUpArrival;
@@ -374,8 +445,9 @@ public sealed partial class RunExecutor
     }
 
     /// <summary>Before the first switch-on of a stroke: every earlier move has reported its end, and the position query shows the stage on its way.</summary>
-    private async Task ConfirmMovingAsync(IReadOnlyList<ReplyWatch.Watched> earlier, Task<long> poll, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token)
+    private async Task ConfirmMovingAsync(IReadOnlyList<ReplyWatch.Watched> earlier, Answered<long> arrived, double moveWritten, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token)
     {
+        var poll = arrived.Task;
         foreach (var watched in earlier)
         {
             // A move whose end is never reported is settled by the next move of its axis reporting its own.
@@ -400,6 +472,9 @@ public sealed partial class RunExecutor
             throw Fault($"the X axis did not answer the position query before the laser was to come on: {ex.Message}");
         }
 
+        // The stroke's Move Absolute and its query together: the query's frame leaves behind the move's.
+        ThrowIfReplyTooLate(arrived, moveWritten, 2, timing, "the position query after a stroke's Move Absolute");
+
         // The query arrives one frame after the move: the stage has accelerated that long, give or take both latencies.
         var a = timing.Acceleration;
         var earliest = Math.Max(0, timing.FrameSeconds - (2 * timing.StageJitterSeconds));
@@ -411,9 +486,12 @@ public sealed partial class RunExecutor
         {
             // Not yet seen moving (the query overtook the move's start on a late device, or on a simulator on the wall
             // clock): ask once more while there is time; the laser stays off until it has been seen moving.
-            var again = Stage.X.GetPositionAsync(token);
+            var againWritten = RunSeconds;
+            var againArrived = Arrival(Stage.X.GetPositionAsync(token));
+            var again = againArrived.Task;
             if (await CompletesByAsync(again, onWrite, token) && again.IsCompletedSuccessfully)
             {
+                ThrowIfReplyTooLate(againArrived, againWritten, 1, timing, "a second position query at a stroke's start");
                 position = again.Result;
                 moved = (position - start) * direction;
                 least = 1;
@@ -503,6 +581,81 @@ public sealed partial class RunExecutor
             }
 
             return (ack, written);
+        }
+        finally
+        {
+            _laser.Lock.Release();
+        }
+    }
+
+    /// <summary>A plain switch-on (<c>BURST</c>, or <c>FREQ</c> on a frequency-only gate), written when its line must leave: the host's lateness is its edge's.</summary>
+    /// <returns>Its acknowledgement, when it was written, and when its acknowledgement is expected (run seconds).</returns>
+    private async Task<(Task Acknowledged, double WrittenSeconds, double AnsweredSeconds)> PlainSwitchOnAsync(double onEffect, double offEffect, double onWrite, TimedSwitching timing, CancellationToken token)
+    {
+        await DelayUntilAsync(onWrite, token);
+        var (on, written) = await SendSwitchOnAsync(onEffect, offEffect, timing);
+        return (on, written, Later(onWrite, written) + timing.OnRoundTripSeconds);
+    }
+
+    /// <summary>
+    /// A switch-on the gate times itself (<c>BURST n hz AFTER us</c>, docs/laser-gate-protocol.md "Scheduled bursts"):
+    /// written its slack ahead of time, with the delay computed at the write from when it is written, the lines still on
+    /// the gate's wire and the gate's processing, so that a host late by less than the slack moves no edge. Written too
+    /// late for that, it is the plain switch-on at its own time, with the edge tolerance as before.
+    /// </summary>
+    private async Task<(Task Acknowledged, double WrittenSeconds, double AnsweredSeconds)> ScheduledSwitchOnAsync(double onEffect, double offEffect, double onWrite, TimedSwitching timing, CancellationToken token)
+    {
+        await DelayUntilAsync(Math.Min(timing.ScheduledWriteSeconds(onEffect, offEffect, _burstEndsAt), onWrite), token);
+        for (var attempt = 0; attempt < 3; attempt++)
+        {
+            if (await SendScheduledSwitchOnAsync(onEffect, offEffect, timing) is { } sent)
+            {
+                return sent;
+            }
+
+            // A delay just at a power of ten (its digits and the line's length disagree) is tried again a moment later.
+            var again = RunSeconds + (2 * timing.GateByteSeconds);
+            if (again >= onWrite)
+            {
+                break;
+            }
+
+            await DelayUntilAsync(again, token);
+        }
+
+        return await PlainSwitchOnAsync(onEffect, offEffect, onWrite, timing, token);
+    }
+
+    /// <summary>Writes a scheduled switch-on under the laser lock if it is still in time for the gate's timer; null when not (nothing written).</summary>
+    private async Task<(Task Acknowledged, double WrittenSeconds, double AnsweredSeconds)?> SendScheduledSwitchOnAsync(double onEffect, double offEffect, TimedSwitching timing)
+    {
+        await _laser.Lock.WaitAsync();
+        try
+        {
+            ThrowIfAborted();
+            if (_fault.IsCancellationRequested)
+            {
+                throw new DeviceException(_timedFault ?? "a fault ended the run");
+            }
+
+            // Computed at the write itself: whatever the host lost before it comes off the delay, not off the edge.
+            var written = RunSeconds;
+            if (timing.Schedule(written, _gateWireFree, onEffect, offEffect) is not { } burst)
+            {
+                return null;
+            }
+
+            var ack = Gate.BurstAfterAsync(burst.Pulses, timing.FrequencyHz, burst.AfterUs, CancellationToken.None);
+            _gateWireFree = burst.ArrivalSeconds;
+            _gateRepliesIn = timing.GateRepliesInAfter(_gateWireFree, _gateRepliesIn, timing.BurstAfterReplyBytes(burst.Pulses, burst.AfterUs));
+            var firing = burst.ArrivalSeconds + (burst.AfterUs / 1e6);
+            lock (_lock)
+            {
+                _laser.MarkOn(TimeProvider.GetTimestamp() + (long)((firing - written) * TimeProvider.TimestampFrequency));
+                _burstEndsAt = firing + ((double)burst.Pulses / timing.FrequencyHz) + timing.GateJitterSeconds;
+            }
+
+            return (ack, written, _gateRepliesIn + timing.GateJitterSeconds);
         }
         finally
         {

@@ -324,6 +324,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
         _y = found.Y;
         _latencyScale = found.LatencyScale;
         _timing = found.Timing;
+        _scheduledBursts = found.ScheduledBursts;
         return found.Identity;
     }
 
@@ -423,6 +424,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
                 LaserOffConfirmed = offConfirmed,
                 LaserOffBy = outcome == RunOutcome.Completed ? null : offBy ?? (offConfirmed ? LaserOffPath.Off : LaserOffPath.None),
                 LatencyScale = Math.Max(LatencyScale, _latencyScaleSeen),
+                GuardScale = LatencyScale,
                 StartedAt = startedAt,
                 EndedAt = TimeProvider.GetUtcNow(),
                 EngravingDuration = engraving < TimeSpan.Zero ? TimeSpan.Zero : engraving,

@@ -69,6 +69,7 @@ internal sealed class RunPreflight
         string gateIdentity;
         var gateVouchesForCut = true;
         var counted = _profile.Gate.CountsBursts;
+        var scheduled = false;
         try
         {
             gateIdentity = await OnceMoreAfterTimeoutAsync(() => _gate.IdentifyAsync(token));
@@ -83,6 +84,12 @@ internal sealed class RunPreflight
             {
                 // A frequency-only gate has no watchdog to set: the person accepted that (CheckGateKind).
                 await _gate.SetWatchdogAsync(_profile.Gate.WatchdogMs, token);
+
+                // Only a timed raster sends scheduled switch-ons, and only to a gate that says it takes them (CAPS? lists AFTER).
+                if (_program is RasterProgram { Timing: not null })
+                {
+                    scheduled = (await _gate.GetCapabilitiesAsync(token)).Contains(LaserGateCapabilities.After);
+                }
             }
         }
         catch (DeviceException ex)
@@ -158,7 +165,7 @@ internal sealed class RunPreflight
 
             // Guards, margins, run-ups and checks all follow from the latencies' spread: the run times itself with the wider one.
             var latency = _profile.Latency;
-            timing = TimedSwitching.For(_process, _profile with
+            var timedProfile = _profile with
             {
                 Latency = latency with
                 {
@@ -166,10 +173,11 @@ internal sealed class RunPreflight
                     GateJitterMs = latency.GateJitterMs * latencyScale,
                     GateProcessingJitterMs = latency.GateProcessingJitterMs * latencyScale,
                 },
-            }, planned.MicrostepUm);
+            };
+            timing = TimedSwitching.For(_process, timedProfile, planned.MicrostepUm);
         }
 
-        return new PreflightOutcome(new MachineIdentity(x, y, gateIdentity), gateVouchesForCut, resumeX, homing.Count > 0, positionX, positionY, latencyScale, timing);
+        return new PreflightOutcome(new MachineIdentity(x, y, gateIdentity), gateVouchesForCut, resumeX, homing.Count > 0, positionX, positionY, latencyScale, timing, scheduled);
     }
 
     private static string N(double value) => value.ToString("0.####", CultureInfo.InvariantCulture);
@@ -387,4 +395,5 @@ internal sealed class RunPreflight
 /// <param name="Y">The Y axis' position after homing, microsteps.</param>
 /// <param name="LatencyScale">The latency spread the run assumes, in times the profile's (1, or wider for a timed raster).</param>
 /// <param name="Timing">The timing the run times itself with: the plan's, or one for the wider spread.</param>
-internal sealed record PreflightOutcome(MachineIdentity Identity, bool GateVouchesForCut, long? ResumeX, bool Homed, long X, long Y, double LatencyScale, TimedSwitching? Timing);
+/// <param name="ScheduledBursts">Whether the gate takes scheduled bursts (CAPS? lists AFTER) and the run is a timed raster: its switch-ons are then timed by the gate.</param>
+internal sealed record PreflightOutcome(MachineIdentity Identity, bool GateVouchesForCut, long? ResumeX, bool Homed, long X, long Y, double LatencyScale, TimedSwitching? Timing, bool ScheduledBursts);

@@ -57,6 +57,7 @@ public static class RunRecords
             EngravingSeconds = run.EngravingDuration.TotalSeconds,
             LaserOnSeconds = run.LaserOnSeconds,
             LateSwitches = run.LateSwitches,
+            GuardScale = run.GuardScale > 1 ? run.GuardScale : null,
             RowsDone = run.RowsDone,
             RowsTotal = run.RowsTotal,
             RunsDone = run.RunsDone,

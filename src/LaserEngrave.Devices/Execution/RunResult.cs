@@ -35,6 +35,13 @@ public sealed record RunResult
     /// </summary>
     public double LatencyScale { get; init; } = 1;
 
+    /// <summary>
+    /// The scale the run's guards, margins and checks were widened by (the latency spread it timed itself with, in times the
+    /// profile's; 1: as the profile says): wider guards aim every switching further inside its run, so lines come out
+    /// shorter. For the log, the summary and the app.
+    /// </summary>
+    public double GuardScale { get; init; } = 1;
+
     /// <summary>False when the laser could not be confirmed off at the end (the gate did not answer any attempt).</summary>
     public required bool LaserOffConfirmed { get; init; }
 

@@ -238,6 +238,12 @@ public sealed class VirtualLaserGate
             command = GateCommand.Unknown;
         }
 
+        if (!_options.GateScheduledBursts && command is GateCommand.Capabilities)
+        {
+            // An older gate: it does not know the question, and refuses the scheduled burst's fourth word (below).
+            command = GateCommand.Unknown;
+        }
+
         switch (command)
         {
             case GateCommand.Identify:
@@ -291,6 +297,8 @@ public sealed class VirtualLaserGate
 
                 StartBurst(pulses, burstHz, now);
                 return Ack(_profile.BurstReply, pulses, burstHz);
+            case GateCommand.BurstAfter when !_options.GateScheduledBursts:
+                return Syntax();
             case GateCommand.BurstAfter:
                 if (!TryNumber(args[0], out var afterPulses) || !TryNumber(args[1], out var afterHz) || !TryNumber(args[2], out var afterUs))
                 {

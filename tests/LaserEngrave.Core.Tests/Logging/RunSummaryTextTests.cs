@@ -148,6 +148,17 @@ public sealed class RunSummaryTextTests : IDisposable
     }
 
     [Fact]
+    public void Format_GuardsWidened_SaysTheScaleInTheSummaryTheTimingAndTheJson()
+    {
+        // Issue 34: lines shrank under load (guards widened up to 8x) and neither the log nor the summary said so.
+        var record = runs.FailedRecord() with { GuardScale = 2.4, LateSwitches = null, Recoveries = [] };
+
+        Assert.Contains("Guards:             guards 2.4 x the profile's latency spread", RunSummaryText.Format(record), StringComparison.Ordinal);
+        Assert.StartsWith("guards 2.4 x the profile's latency spread", RunSummaryText.Timing(record), StringComparison.Ordinal);
+        Assert.Equal(2.4, RunRecordJson.Deserialize(RunRecordJson.Serialize(record), "run.json").GuardScale);
+    }
+
+    [Fact]
     public void Format_NoLateSwitches_HasNoLineAndNoTiming()
     {
         var record = runs.FailedRecord() with { LateSwitches = new LateSwitches(0, 0, 1.5), Recoveries = [] };

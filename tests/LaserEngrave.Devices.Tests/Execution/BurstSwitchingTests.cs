@@ -23,9 +23,9 @@ public class BurstSwitchingTests
     [Fact(Timeout = 120_000)]
     public async Task RunAsync_GateRefusesASwitchOff_NoPulseOnWhiteAndTheSummarySaysTheBurstEndedIt()
     {
-        // Before the burst: 22 pulses on white, an edge 31 µm off, and "Laser off: confirmed by the gate".
+        // Before the burst: 22 pulses on white, an edge 31 µm off, and "Laser off: confirmed by the gate". (The 31st gate line: an OFF, behind the CAPS? question.)
         var job = Sample("qr-code.bmp");
-        await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = "error:gate:after=30" });
+        await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = "error:gate:after=31" });
 
         var result = await run.Do(() => run.Executor(job).RunAsync(TestContext.Current.CancellationToken));
         var report = run.Machine.Recorder.Analyze(SimulatedRun.Grid(job), job.Mask, job.Spec.Process.BurnSpeedMmPerS);
@@ -93,14 +93,16 @@ public class BurstSwitchingTests
         // A switch-on later than the edge tolerance leaves its run off and the session goes on from there (recoveries).
         Assert.True(record.Outcome == RunOutcome.Completed, $"{record.Outcome}: {record.Fault}");
         Assert.Equal(0L, simulation.MissingPixels);
-        Assert.True(record.LateSwitches is { Count: > 0 } late && late.LatestUm <= late.ToleranceUm, $"{record.LateSwitches}");
+        // Scheduled switch-ons (issue 34) leave few late ones, and none beyond the tolerance.
+        Assert.True(record.LateSwitches is null || record.LateSwitches.LatestUm <= record.LateSwitches.ToleranceUm, $"{record.LateSwitches}");
     }
 
     [Fact(Timeout = 120_000)]
     public async Task RunAsync_SwitchOnLaterThanTheEdgeTolerance_LaserStaysOffAndTheRunEndsAsATimingDoubt()
     {
         var job = TestJobs.FromMask(TestJobs.RandomMask(7, 40, 20), 5, new PlanOptions(), profile: MachineProfile.Default with { EdgeToleranceUm = 0.05 });
-        await using var run = SimulatedRun.Create(new SimulatorOptions { HostLateness = new HostLateness(0.5, 0, 0) });
+        // A gate without scheduled bursts: the host times the switch-on, so its lateness moves the edge.
+        await using var run = SimulatedRun.Create(new SimulatorOptions { HostLateness = new HostLateness(0.5, 0, 0), GateScheduledBursts = false });
 
         var result = await run.Do(() => run.Executor(job).RunAsync(TestContext.Current.CancellationToken));
         var report = run.Machine.Recorder.Analyze(SimulatedRun.Grid(job), job.Mask, job.Spec.Process.BurnSpeedMmPerS);

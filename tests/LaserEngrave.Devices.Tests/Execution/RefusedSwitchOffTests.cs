@@ -9,8 +9,8 @@ namespace LaserEngrave.Devices.Tests.Execution;
 /// <summary>A switch-off the gate refuses or leaves unanswered never ends in "confirmed" without saying which path confirmed it.</summary>
 public sealed class RefusedSwitchOffTests
 {
-    // The 31st gate line of the QR job at 5 mm is a stroke's timed OFF (issue 19, item 1).
-    private const string RefusedOff = "error:gate:after=30";
+    // The 32nd gate line of the QR job at 5 mm is a stroke's timed OFF (issue 19, item 1; one line on since CAPS?).
+    private const string RefusedOff = "error:gate:after=31";
 
     [Fact(Timeout = 120_000)]
     public async Task RunAsync_GateRefusesTheSwitchOff_EveryPathGoesOutAndOffAgainConfirmsIt()

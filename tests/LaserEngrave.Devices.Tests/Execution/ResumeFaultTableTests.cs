@@ -13,10 +13,10 @@ namespace LaserEngrave.Devices.Tests.Execution;
 /// </summary>
 public sealed class ResumeFaultTableTests(ITestOutputHelper output)
 {
-    // Preflight sends the gate 3 lines and the stage about 20 commands; these land on the first switch-on (gate 3, issue
-    // 31), in the first stroke, mid-row, at a row's last switch-off and further in (the four pairs of issue 19 among
+    // Preflight sends the gate 4 lines (the 4th, CAPS?, since issue 34) and the stage about 20 commands; these land on the
+    // first switch-on (gate 4, issue 31), in the first stroke, mid-row, at a row's last switch-off and further in (the four pairs of issue 19 among
     // them: gate 25, 40, 60 and 120).
-    private static readonly int[] GateAfter = [3, 4, 25, 40, 60, 120];
+    private static readonly int[] GateAfter = [4, 5, 25, 40, 60, 120];
     private static readonly int[] StageAfter = [33, 100, 250];
     private static readonly string[] Kinds = ["drop-reply", "corrupt", "delay", "error", "silent", "disconnect", "no-ack"];
 

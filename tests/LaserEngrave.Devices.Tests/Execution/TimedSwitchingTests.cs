@@ -56,7 +56,7 @@ public class TimedSwitchingTests
     [Fact(Timeout = 120_000)]
     public async Task RunAsync_StageReplyLate_EndsFailedWithTheLaserOffAndNothingOnWhite()
     {
-        await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = "delay:stage:after=30:ms=300" });
+        await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = "delay:stage:after=31:ms=300" });
         var job = TestJobs.FromAsset("qr-code.bmp", 5, new PlanOptions());
 
         var result = await run.Do(() => run.Executor(job).RunAsync(TestContext.Current.CancellationToken));

@@ -25,7 +25,8 @@ public sealed class WireReplayTests : IDisposable
     public async Task Replay_OfATwinRunsRecording_BurnsExactlyWhatTheTwinBurned(int seed, bool late)
     {
         var job = TestJobs.FromAsset("qr-code.bmp", 5, new PlanOptions());
-        var options = new SimulatorOptions { Seed = seed, HostLateness = late ? HostLateness.Realistic : HostLateness.None };
+        // The late host with a gate that has no scheduled bursts: its switch-ons are host-timed, so it has recoveries to replay.
+        var options = new SimulatorOptions { Seed = seed, HostLateness = late ? HostLateness.Realistic : HostLateness.None, GateScheduledBursts = !late };
         var (record, twin, path) = await RecordedRunAsync(job, options);
 
         var events = WireRecording.Read(path);
