@@ -24,7 +24,7 @@ public sealed class MotionTimeline
 
     // When each reply still to come leaves its device, in order: replies share the wire back to the host, one frame
     // each. Kept sorted as they are added, which is nearly always at the end.
-    private readonly List<double> _replies = [];
+    private List<double> _replies = [];
 
     public MotionTimeline(TimedSwitching timing, double startSeconds, int xSpeedData)
     {
@@ -36,6 +36,15 @@ public sealed class MotionTimeline
         // Nothing written from now can arrive before a command's latency has passed.
         WireFree = startSeconds + timing.StageCommandSeconds - timing.FrameSeconds;
         XSpeedData = xSpeedData;
+    }
+
+    /// <summary>A timeline that goes on from where this one is, independently.</summary>
+    public MotionTimeline Clone()
+    {
+        // Member by member, so that a field added later is copied too; the replies still to come are the one list.
+        var copy = (MotionTimeline)MemberwiseClone();
+        copy._replies = [.. _replies];
+        return copy;
     }
 
     /// <summary>When the X axis has stopped after its last motion.</summary>

@@ -213,6 +213,15 @@ public sealed class PlanEstimator
         return Timeline().End + timing.MarginSeconds + (length / timing.BurnSpeed);
     }
 
+    /// <summary>An estimator that goes on from where this one is, independently (a resume's estimate from a row's start).</summary>
+    public PlanEstimator Clone()
+    {
+        // Member by member, so that a field added later is copied too; the timeline is the one part that is mutable.
+        var copy = (PlanEstimator)MemberwiseClone();
+        copy._timeline = _timeline?.Clone();
+        return copy;
+    }
+
     /// <summary>Ends the run: switches the laser off if it is on; returns the time that took.</summary>
     public double Finish()
     {

@@ -50,6 +50,20 @@ internal sealed class RowPlanner
     /// <summary>Direction of the row planned last (meaningful after it produced moves).</summary>
     public bool LastRowLeftToRight { get; private set; } = true;
 
+    /// <summary>What the next row's planning depends on, to plan from a row on without planning the rows before (<see cref="PlanRowIndex"/>).</summary>
+    public State Save() => new(NextRow, VisitedRows, LastRowLeftToRight, _hasPosition, _x, _y);
+
+    /// <summary>Goes on from a <see cref="Save"/>d state: the rows planned next are those that followed it.</summary>
+    public void Restore(in State state)
+    {
+        NextRow = state.NextRow;
+        VisitedRows = state.VisitedRows;
+        LastRowLeftToRight = state.LastRowLeftToRight;
+        _hasPosition = state.HasPosition;
+        _x = state.X;
+        _y = state.Y;
+    }
+
     /// <summary>Plans row <see cref="NextRow"/> into <paramref name="sink"/>; returns whether the row is visited (every row under Paper, non-blank rows under Optimized). Call only while NextRow &lt; height.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public bool PlanNextRow<TSink>(ref TSink sink)
@@ -214,4 +228,7 @@ internal sealed class RowPlanner
             sink.Visit(new Move(kind, x0, y0, x1, y1, row));
         }
     }
+
+    /// <summary>The planner between two rows (<see cref="Save"/>).</summary>
+    internal readonly record struct State(int NextRow, int VisitedRows, bool LastRowLeftToRight, bool HasPosition, long X, long Y);
 }
