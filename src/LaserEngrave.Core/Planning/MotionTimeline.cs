@@ -107,7 +107,7 @@ public sealed class MotionTimeline
     /// <paramref name="firstEdgeSeconds"/> after it starts and whose last exit edge <paramref name="lastOffSeconds"/>
     /// after; returns when its commands arrive.
     /// </summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     public StrokeTimes Stroke(StrokePlan stroke, double firstEdgeSeconds, double lastOffSeconds)
     {
         ArgumentNullException.ThrowIfNull(stroke);
@@ -177,7 +177,7 @@ public sealed class MotionTimeline
     }
 
     /// <summary>Inserts <paramref name="value"/> into the sorted <paramref name="list"/> where <see cref="List{T}.Sort()"/> would put it (NaN first).</summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     internal static void InsertSorted(List<double> list, double value)
     {
         var count = list.Count;
@@ -197,7 +197,7 @@ public sealed class MotionTimeline
     }
 
     // When the wire back is free of every reply that is ready before `at` (they leave in the order they are ready).
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     private double ReplyWireClear(double at)
     {
         var free = double.NegativeInfinity;

@@ -108,7 +108,7 @@ public sealed class PlanEstimator
     }
 
     /// <summary>Advances over a plain move of a step-by-step program; returns its time (laser command, speed changes and motion).</summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     public double Move(in MoveStep step)
     {
         var seconds = 0.0;
@@ -150,7 +150,7 @@ public sealed class PlanEstimator
     }
 
     /// <summary>Advances over a travel of a timed program: a stop-go move of one or both axes on the motion model; returns its time.</summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     public double Travel(in TravelStep step)
     {
         var timeline = Timeline();
@@ -172,7 +172,7 @@ public sealed class PlanEstimator
     /// Advances over a stroke of a timed program: one move from rest to rest at the burn speed over its run-up, runs, flown
     /// gaps and run-out, on the motion model; returns its time.
     /// </summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     public double Stroke(StrokeStep step)
     {
         ArgumentNullException.ThrowIfNull(step);

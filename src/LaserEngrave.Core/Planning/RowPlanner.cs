@@ -8,8 +8,9 @@ namespace LaserEngrave.Core.Planning;
 /// <remarks>
 /// The single source of every plan's moves: <see cref="RasterPlan"/> enumerates, visits, counts and resumes through it,
 /// so the executor, the statistics, the preview and the CSV all see the same sequence.
-/// The hot methods are compiled fully optimised on their first call (AggressiveOptimization): one statistics pass over a
-/// large mask is over before tiered compilation would have promoted them, and the CLI plans a mask exactly once.
+/// The hot methods are compiled fully optimised on their first call when compiled at run time (<see cref="HotPath"/>): one
+/// statistics pass over a large mask is over before tiered compilation would have promoted them, and the CLI plans a mask
+/// exactly once.
 /// </remarks>
 internal sealed class RowPlanner
 {
@@ -65,7 +66,7 @@ internal sealed class RowPlanner
     }
 
     /// <summary>Plans row <see cref="NextRow"/> into <paramref name="sink"/>; returns whether the row is visited (every row under Paper, non-blank rows under Optimized). Call only while NextRow &lt; height.</summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     public bool PlanNextRow<TSink>(ref TSink sink)
         where TSink : IMoveVisitor
     {
@@ -88,7 +89,7 @@ internal sealed class RowPlanner
         return true;
     }
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     private void PlanPaperRow<TSink>(ref TSink sink, int row, int runCount)
         where TSink : IMoveVisitor
     {
@@ -127,7 +128,7 @@ internal sealed class RowPlanner
         SetPosition(x, y);
     }
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     private void PlanOptimizedRow<TSink>(ref TSink sink, int row, int runCount, bool leftToRight)
         where TSink : IMoveVisitor
     {
