@@ -60,6 +60,7 @@ public static class SimulatorOptionsFile
             StartMm = fields.StartMm is { } startMm
                 ? double.IsFinite(startMm) && startMm >= 0 && startMm <= 1000 ? startMm : throw new InvalidDataException($"{path}: startMm must be 0..1000 mm (got {startMm.ToString(System.Globalization.CultureInfo.InvariantCulture)})")
                 : baseOptions.StartMm,
+            Paced = fields.Paced ?? baseOptions.Paced,
         };
         if (fields.TrueFocusOffsetUm is { } focusOffset)
         {
@@ -109,7 +110,7 @@ public static class SimulatorOptionsFile
     }
 
     private static readonly string[] KnownFields =
-        ["seed", "firmwareVersion", "deviceId", "hostLateness", "adapterLatency", "gateProcessing", "jitterScale", "targetSpeedData", "homeSpeedData", "accelerationData", "startMm", "faults", "trueFocusOffsetUm", "rayleighLengthUm"];
+        ["seed", "firmwareVersion", "deviceId", "hostLateness", "adapterLatency", "gateProcessing", "jitterScale", "targetSpeedData", "homeSpeedData", "accelerationData", "startMm", "paced", "faults", "trueFocusOffsetUm", "rayleighLengthUm"];
 
     private static Jitter? Checked(string path, string name, Jitter? jitter)
     {
@@ -157,6 +158,8 @@ public static class SimulatorOptionsFile
         public int? AccelerationData { get; init; }
 
         public double? StartMm { get; init; }
+
+        public bool? Paced { get; init; }
 
         public string? Faults { get; init; }
 

@@ -58,9 +58,9 @@ public sealed class EngraveOnPortsTests : IAsyncLifetime
     [Fact(Timeout = 60_000)]
     public async Task GotoOnPorts_Position_ArrivesWithTheLaserOff()
     {
-        var (exit, output, error) = await CliHarness.RunAsync("goto", "59", "58", "--stage-port", StagePort, "--laser-port", LaserPort);
+        var (exit, output, error) = await CliHarness.RunAsync("goto", "3", "2", "--stage-port", StagePort, "--laser-port", LaserPort);
 
         Assert.True(exit == 0, error);
-        Assert.EndsWith("= 59, 58 mm; laser off", output.TrimEnd(), StringComparison.Ordinal);
+        Assert.EndsWith("= 3, 2 mm; laser off", output.TrimEnd(), StringComparison.Ordinal);
     }
 }

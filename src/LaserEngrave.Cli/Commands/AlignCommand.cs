@@ -87,19 +87,17 @@ internal static class AlignCommand
             var c = CultureInfo.InvariantCulture;
             if (result.GetValue(json))
             {
-                CliJson.Write(stdout, new
-                {
-                    output = target,
-                    rotationDegrees = alignment.Transform.AngleDegrees,
+                CliJson.Write(stdout, new AlignSummary(
+                    target,
+                    alignment.Transform.AngleDegrees,
                     alignment.ScaleMismatchPpm,
                     alignment.DistanceMismatchUm,
                     alignment.ResidualUm,
                     pitchUm,
-                    widthPx = aligned.Mask.Width,
-                    heightPx = aligned.Mask.Height,
-                    originXMm = aligned.OriginXMm,
-                    originYMm = aligned.OriginYMm,
-                });
+                    aligned.Mask.Width,
+                    aligned.Mask.Height,
+                    aligned.OriginXMm,
+                    aligned.OriginYMm));
                 return 0;
             }
 
@@ -131,3 +129,16 @@ internal static class AlignCommand
                 : throw new UsageException($"--mark {text}: {what} '{part}' {problem}");
     }
 }
+
+/// <summary>`align --json`: the fit of the two marks and the aligned mask.</summary>
+internal sealed record AlignSummary(
+    string Output,
+    double RotationDegrees,
+    double ScaleMismatchPpm,
+    double DistanceMismatchUm,
+    double ResidualUm,
+    double PitchUm,
+    int WidthPx,
+    int HeightPx,
+    double OriginXMm,
+    double OriginYMm);

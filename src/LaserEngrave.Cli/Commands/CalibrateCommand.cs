@@ -169,18 +169,16 @@ internal static class CalibrateCommand
             var stdout = result.InvocationConfiguration.Output;
             if (result.GetValue(json))
             {
-                CliJson.Write(stdout, new
-                {
-                    profile = path,
+                CliJson.Write(stdout, new CalibrationSolveSummary(
+                    path,
                     written,
-                    refined = previous is not null,
-                    measured = solved,
-                    calibration = stored,
+                    previous is not null,
+                    solved,
+                    stored,
                     solution.DegreesOfFreedom,
                     solution.LengthRmsUm,
                     solution.NormalizedRms,
-                    solution.Residuals,
-                });
+                    solution.Residuals));
                 return 0;
             }
 
@@ -220,7 +218,7 @@ internal static class CalibrateCommand
             var stdout = result.InvocationConfiguration.Output;
             if (result.GetValue(json))
             {
-                CliJson.Write(stdout, new { profile = result.GetValue(profile), calibration = loaded.Calibration });
+                CliJson.Write(stdout, new CalibrationShowSummary(result.GetValue(profile), loaded.Calibration));
                 return 0;
             }
 
@@ -297,3 +295,18 @@ internal static class CalibrateCommand
         return 0;
     });
 }
+
+/// <summary>`calibrate solve --json`: what the measurements gave, what was stored, and the residuals.</summary>
+internal sealed record CalibrationSolveSummary(
+    string Profile,
+    bool Written,
+    bool Refined,
+    AxisCalibration Measured,
+    AxisCalibration Calibration,
+    int DegreesOfFreedom,
+    double LengthRmsUm,
+    double? NormalizedRms,
+    IReadOnlyList<MeasurementResidual> Residuals);
+
+/// <summary>`calibrate show --json`: the profile's calibration, null when uncalibrated.</summary>
+internal sealed record CalibrationShowSummary(string? Profile, AxisCalibration? Calibration);

@@ -64,7 +64,7 @@ internal static class MachineCommand
             var stdout = result.InvocationConfiguration.Output;
             if (result.GetValue(json))
             {
-                CliJson.Write(stdout, new { profile = path, written = store, x = measured.X, y = measured.Y, stage = measured.Stage, gate = measured.Gate, latency });
+                CliJson.Write(stdout, new LatencySummary(path, store, measured.X, measured.Y, measured.Stage, measured.Gate, latency));
                 return CliRunner.Ok;
             }
 
@@ -149,7 +149,7 @@ internal static class MachineCommand
 
             if (result.GetValue(json))
             {
-                CliJson.Write(stdout, new { passed = found.Passed, gateKind = found.GateKindFound is { } kind ? JsonNamingPolicy.CamelCase.ConvertName(kind.ToString()) : null, steps = found.Steps.Select(s => new { name = s.Name, result = s.Result.ToString().ToLowerInvariant(), finding = s.Finding }), latency = found.Latency, profile = path, written, report = reportPath });
+                CliJson.Write(stdout, new MachineCheckSummary(found.Passed, found.GateKindFound is { } kind ? JsonNamingPolicy.CamelCase.ConvertName(kind.ToString()) : null, [.. found.Steps.Select(s => new MachineCheckStepSummary(s.Name, s.Result.ToString().ToLowerInvariant(), s.Finding))], found.Latency, path, written, reportPath));
             }
             else
             {
@@ -181,3 +181,12 @@ internal static class MachineCommand
         CultureInfo.InvariantCulture,
         $"{trips.Device}: {trips.Count} round trips, min {trips.MinMs:0.###} / mean {trips.MeanMs:0.###} / max {trips.MaxMs:0.###} ms, spread ±{trips.SpreadMs:0.###} ms, standard deviation {trips.StdDevMs:0.###} ms (wire {trips.WireMs:0.###} ms)");
 }
+
+/// <summary>`machine latency --json`: the round trips measured and the latency section they give.</summary>
+internal sealed record LatencySummary(string? Profile, bool Written, RoundTrips X, RoundTrips Y, RoundTrips Stage, RoundTrips Gate, LatencyProfile Latency);
+
+/// <summary>`machine check --json`: each step's result and what it found.</summary>
+internal sealed record MachineCheckSummary(bool Passed, string? GateKind, IReadOnlyList<MachineCheckStepSummary> Steps, LatencyProfile? Latency, string? Profile, bool Written, string? Report);
+
+/// <summary>One step of <see cref="MachineCheckSummary"/>; the result in lower case.</summary>
+internal sealed record MachineCheckStepSummary(string Name, string Result, string Finding);

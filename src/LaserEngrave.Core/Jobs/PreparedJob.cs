@@ -22,7 +22,10 @@ public sealed class PreparedJob
         Geometry = geometry;
         Plan = plan;
         Statistics = statistics;
+        _program = new Lazy<RasterProgram>(() => new RasterProgram(Plan, Spec.Process, Spec.Profile.Gate));
     }
+
+    private readonly Lazy<RasterProgram> _program;
 
     public JobSpec Spec { get; }
 
@@ -39,7 +42,8 @@ public sealed class PreparedJob
 
     /// <summary>The program of a raster pass of this job: what the executor sends and the estimate interprets.</summary>
     /// <param name="timing">The timing model to plan strokes by (default: the plan's; a run that times itself with wider latencies gives its own).</param>
-    public RasterProgram Program(TimedSwitching? timing = null) => new(Plan, Spec.Process, Spec.Profile.Gate, timing);
+    /// <remarks>The plan's program is one object for the job's life: what it keeps for resuming (its estimates at each row) is made once, however often the job is resumed.</remarks>
+    public RasterProgram Program(TimedSwitching? timing = null) => timing is null ? _program.Value : new(Plan, Spec.Process, Spec.Profile.Gate, timing);
 
     /// <summary>The dot plan in <see cref="PlanMode.Dots"/> (what the executor runs then); null in raster mode.</summary>
     public DotPlan? Dots { get; }

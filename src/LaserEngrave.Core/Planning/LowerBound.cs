@@ -55,7 +55,7 @@ public struct LowerBound
     }
 
     /// <summary>Counts one move of the plan, in order; only burns count, with what lies between them.</summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     public void Add(in Move move)
     {
         if (move.Kind != MoveKind.Burn)

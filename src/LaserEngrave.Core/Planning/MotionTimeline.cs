@@ -24,7 +24,7 @@ public sealed class MotionTimeline
 
     // When each reply still to come leaves its device, in order: replies share the wire back to the host, one frame
     // each. Kept sorted as they are added, which is nearly always at the end.
-    private readonly List<double> _replies = [];
+    private List<double> _replies = [];
 
     public MotionTimeline(TimedSwitching timing, double startSeconds, int xSpeedData)
     {
@@ -36,6 +36,15 @@ public sealed class MotionTimeline
         // Nothing written from now can arrive before a command's latency has passed.
         WireFree = startSeconds + timing.StageCommandSeconds - timing.FrameSeconds;
         XSpeedData = xSpeedData;
+    }
+
+    /// <summary>A timeline that goes on from where this one is, independently.</summary>
+    public MotionTimeline Clone()
+    {
+        // Member by member, so that a field added later is copied too; the replies still to come are the one list.
+        var copy = (MotionTimeline)MemberwiseClone();
+        copy._replies = [.. _replies];
+        return copy;
     }
 
     /// <summary>When the X axis has stopped after its last motion.</summary>
@@ -98,7 +107,7 @@ public sealed class MotionTimeline
     /// <paramref name="firstEdgeSeconds"/> after it starts and whose last exit edge <paramref name="lastOffSeconds"/>
     /// after; returns when its commands arrive.
     /// </summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     public StrokeTimes Stroke(StrokePlan stroke, double firstEdgeSeconds, double lastOffSeconds)
     {
         ArgumentNullException.ThrowIfNull(stroke);
@@ -168,7 +177,7 @@ public sealed class MotionTimeline
     }
 
     /// <summary>Inserts <paramref name="value"/> into the sorted <paramref name="list"/> where <see cref="List{T}.Sort()"/> would put it (NaN first).</summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     internal static void InsertSorted(List<double> list, double value)
     {
         var count = list.Count;
@@ -188,7 +197,7 @@ public sealed class MotionTimeline
     }
 
     // When the wire back is free of every reply that is ready before `at` (they leave in the order they are ready).
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     private double ReplyWireClear(double at)
     {
         var free = double.NegativeInfinity;

@@ -108,7 +108,7 @@ public sealed class PlanEstimator
     }
 
     /// <summary>Advances over a plain move of a step-by-step program; returns its time (laser command, speed changes and motion).</summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     public double Move(in MoveStep step)
     {
         var seconds = 0.0;
@@ -150,7 +150,7 @@ public sealed class PlanEstimator
     }
 
     /// <summary>Advances over a travel of a timed program: a stop-go move of one or both axes on the motion model; returns its time.</summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     public double Travel(in TravelStep step)
     {
         var timeline = Timeline();
@@ -172,7 +172,7 @@ public sealed class PlanEstimator
     /// Advances over a stroke of a timed program: one move from rest to rest at the burn speed over its run-up, runs, flown
     /// gaps and run-out, on the motion model; returns its time.
     /// </summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     public double Stroke(StrokeStep step)
     {
         ArgumentNullException.ThrowIfNull(step);
@@ -211,6 +211,15 @@ public sealed class PlanEstimator
         }
 
         return Timeline().End + timing.MarginSeconds + (length / timing.BurnSpeed);
+    }
+
+    /// <summary>An estimator that goes on from where this one is, independently (a resume's estimate from a row's start).</summary>
+    public PlanEstimator Clone()
+    {
+        // Member by member, so that a field added later is copied too; the timeline is the one part that is mutable.
+        var copy = (PlanEstimator)MemberwiseClone();
+        copy._timeline = _timeline?.Clone();
+        return copy;
     }
 
     /// <summary>Ends the run: switches the laser off if it is on; returns the time that took.</summary>

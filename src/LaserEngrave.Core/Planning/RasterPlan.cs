@@ -48,6 +48,7 @@ public sealed class RasterPlan
             : JobGeometry.Round(StageUnits.MmToMicrosteps(options.OverscanMm, geometry.MicrostepUm));
         Timing = options.Strategy == PlanStrategy.Optimized ? timing : null;
         _switchingProblem = new Lazy<string?>(FindSwitchingProblem);
+        _rowIndex = new Lazy<PlanRowIndex>(() => PlanRowIndex.Build(this));
         RunUpMicrosteps = Math.Max(OverscanMicrosteps, Timing?.RunUpMicrosteps ?? 0);
         RunOutMicrosteps = Math.Max(OverscanMicrosteps, Timing?.RunOutMicrosteps ?? 0);
         Warnings = [.. OverscanWarnings(), .. ScanOffsetWarnings()];
@@ -70,6 +71,7 @@ public sealed class RasterPlan
     /// whichever is faster); null for <see cref="PlanStrategy.Paper"/> or when planned without one (moves only).
     /// </summary>
     private readonly Lazy<string?> _switchingProblem;
+    private readonly Lazy<PlanRowIndex> _rowIndex;
 
     public TimedSwitching? Timing { get; }
 
@@ -264,7 +266,10 @@ public sealed class RasterPlan
         return Math.Clamp(column, 0, Geometry.WidthPx - 1);
     }
 
-    private RowPlanner NewPlanner() => new(Mask, Geometry, Options, OverscanMicrosteps, StageUnits.UmToMicrosteps(ScanOffsetUm, Geometry.MicrostepUm), Timing);
+    /// <summary>Where each visited row starts (built on first use, by one pass of the planner): for resuming without planning the rows before.</summary>
+    internal PlanRowIndex RowIndex => _rowIndex.Value;
+
+    internal RowPlanner NewPlanner() => new(Mask, Geometry, Options, OverscanMicrosteps, StageUnits.UmToMicrosteps(ScanOffsetUm, Geometry.MicrostepUm), Timing);
 
     private List<JobWarning> OverscanWarnings()
     {

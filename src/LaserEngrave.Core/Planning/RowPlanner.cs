@@ -8,8 +8,9 @@ namespace LaserEngrave.Core.Planning;
 /// <remarks>
 /// The single source of every plan's moves: <see cref="RasterPlan"/> enumerates, visits, counts and resumes through it,
 /// so the executor, the statistics, the preview and the CSV all see the same sequence.
-/// The hot methods are compiled fully optimised on their first call (AggressiveOptimization): one statistics pass over a
-/// large mask is over before tiered compilation would have promoted them, and the CLI plans a mask exactly once.
+/// The hot methods are compiled fully optimised on their first call when compiled at run time (<see cref="HotPath"/>): one
+/// statistics pass over a large mask is over before tiered compilation would have promoted them, and the CLI plans a mask
+/// exactly once.
 /// </remarks>
 internal sealed class RowPlanner
 {
@@ -50,8 +51,22 @@ internal sealed class RowPlanner
     /// <summary>Direction of the row planned last (meaningful after it produced moves).</summary>
     public bool LastRowLeftToRight { get; private set; } = true;
 
+    /// <summary>What the next row's planning depends on, to plan from a row on without planning the rows before (<see cref="PlanRowIndex"/>).</summary>
+    public State Save() => new(NextRow, VisitedRows, LastRowLeftToRight, _hasPosition, _x, _y);
+
+    /// <summary>Goes on from a <see cref="Save"/>d state: the rows planned next are those that followed it.</summary>
+    public void Restore(in State state)
+    {
+        NextRow = state.NextRow;
+        VisitedRows = state.VisitedRows;
+        LastRowLeftToRight = state.LastRowLeftToRight;
+        _hasPosition = state.HasPosition;
+        _x = state.X;
+        _y = state.Y;
+    }
+
     /// <summary>Plans row <see cref="NextRow"/> into <paramref name="sink"/>; returns whether the row is visited (every row under Paper, non-blank rows under Optimized). Call only while NextRow &lt; height.</summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     public bool PlanNextRow<TSink>(ref TSink sink)
         where TSink : IMoveVisitor
     {
@@ -74,7 +89,7 @@ internal sealed class RowPlanner
         return true;
     }
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     private void PlanPaperRow<TSink>(ref TSink sink, int row, int runCount)
         where TSink : IMoveVisitor
     {
@@ -113,7 +128,7 @@ internal sealed class RowPlanner
         SetPosition(x, y);
     }
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     private void PlanOptimizedRow<TSink>(ref TSink sink, int row, int runCount, bool leftToRight)
         where TSink : IMoveVisitor
     {
@@ -214,4 +229,7 @@ internal sealed class RowPlanner
             sink.Visit(new Move(kind, x0, y0, x1, y1, row));
         }
     }
+
+    /// <summary>The planner between two rows (<see cref="Save"/>).</summary>
+    internal readonly record struct State(int NextRow, int VisitedRows, bool LastRowLeftToRight, bool HasPosition, long X, long Y);
 }

@@ -14,7 +14,7 @@ internal static class RowRuns
     /// Relies on <see cref="Imaging.BitMask"/>'s guarantee that bits past the width are zero, so a run can only end past
     /// the last word when the width is a multiple of 64, and then it ends exactly at the width.
     /// </remarks>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     public static int Find(ReadOnlySpan<ulong> words, ref int[] runs)
     {
         if (words.IsEmpty)

@@ -33,7 +33,7 @@ internal struct StatisticsVisitor : IRasterStepVisitor
         _estimator.Travel(travel);
     }
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     public void Stroke(StrokeStep stroke)
     {
         foreach (ref readonly var move in stroke.Moves)
@@ -50,7 +50,7 @@ internal struct StatisticsVisitor : IRasterStepVisitor
         _estimator.Move(move);
     }
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     private void Count(in Move move)
     {
         _moves++;

@@ -43,7 +43,7 @@ public sealed class StrokePlan
     }
 
     /// <summary>Makes this the plan of another stroke (only for a plan its owner reuses, never one handed out).</summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     internal void Replan(TimedSwitching timing, long length, ReadOnlySpan<(long Exit, long Entry)> gaps)
     {
         _profile = timing.Stroke(length);

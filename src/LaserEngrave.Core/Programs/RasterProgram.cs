@@ -29,7 +29,10 @@ public sealed class RasterProgram : PartProgram
 
         // The plan's run-up, also when the run times itself with wider latencies: the travels before the strokes end where the plan put them.
         RunUpMicrosteps = plan.Timing?.RunUpMicrosteps ?? 0;
+        _rowEstimates = new Lazy<PlanEstimator[]>(EstimateRowStarts);
     }
+
+    private readonly Lazy<PlanEstimator[]> _rowEstimates;
 
     public RasterPlan Plan { get; }
 
@@ -51,8 +54,7 @@ public sealed class RasterProgram : PartProgram
             return [];
         }
 
-        var moves = Plan.Moves(from.Stop.Row).Skip(checked((int)(from.FirstMoveIndex - from.RowStartIndex)));
-        return Enumerate(moves, from.FirstMoveIndex, from.Trimmed);
+        return Enumerate(MovesFrom(from.FirstMoveIndex), from.FirstMoveIndex, from.Trimmed);
     }
 
     /// <summary>Passes every step in order to <paramref name="visitor"/>, reusing one stroke's buffers: nothing is allocated per step.</summary>
@@ -71,93 +73,110 @@ public sealed class RasterProgram : PartProgram
     /// Where the program goes on from <paramref name="stop"/>: a burn run is resumed with its run-up, as it was planned; one
     /// cut off midway (<paramref name="resumeX"/>), from its first pixel not completely burned.
     /// </summary>
+    /// <remarks>Found from the plan's row index (<see cref="PlanRowIndex"/>): only the stop point's row is planned again.</remarks>
     /// <exception cref="PlanException">The stop point is not in this plan, or the resume X not inside its burn run.</exception>
     public RasterResume ResumeAt(RunStopPoint stop, long? resumeX)
     {
         ArgumentNullException.ThrowIfNull(stop);
+        var index = Plan.RowIndex;
+        var rows = index.Rows;
+        var moveCount = index.MoveCount;
         var start = stop.MoveIndex;
-        long index = 0;
-        Move? previous = null;
         Move? trimmed = null;
-        foreach (var move in Plan.Moves())
+        if (stop.MoveIndex >= 0 && stop.MoveIndex < moveCount)
         {
-            if (index == stop.MoveIndex)
+            var row = rows[index.RowHolding(stop.MoveIndex)];
+            var moves = PlanRowIndex.RowMoves(Plan, row);
+            var at = checked((int)(stop.MoveIndex - row.MoveIndex));
+            var move = moves[at];
+            if (resumeX is { } x)
             {
-                if (resumeX is { } x)
+                var dir = Math.Sign(move.X1 - move.X0);
+                if (move.Kind != MoveKind.Burn || (x - move.X0) * dir <= 0 || (move.X1 - x) * dir <= 0)
                 {
-                    var dir = Math.Sign(move.X1 - move.X0);
-                    if (move.Kind != MoveKind.Burn || (x - move.X0) * dir <= 0 || (move.X1 - x) * dir <= 0)
-                    {
-                        throw new PlanException($"the resume point (row {stop.Row}, move {stop.MoveIndex}, X {x}) is not inside a burn run of this job's plan");
-                    }
-
-                    trimmed = move with { X0 = x };
-                }
-                else if (move.Kind == MoveKind.Burn && previous is { Kind: MoveKind.Overscan } runUp && runUp.Row == move.Row)
-                {
-                    start--;
+                    throw new PlanException($"the resume point (row {stop.Row}, move {stop.MoveIndex}, X {x}) is not inside a burn run of this job's plan");
                 }
 
-                break;
+                trimmed = move with { X0 = x };
             }
-
-            previous = move;
-            index++;
+            else if (move.Kind == MoveKind.Burn && at > 0 && moves[at - 1] is { Kind: MoveKind.Overscan } runUp && runUp.Row == move.Row)
+            {
+                // A run-up is in its run's row: the move before a row's first is never one.
+                start--;
+            }
         }
 
-        // What was done before the resume point and where its row starts.
-        long rowStart = -1;
-        long runs = 0;
-        var rows = 0;
-        var lastRow = -1;
-        index = 0;
-        foreach (var move in Plan.Moves())
+        // Where the stop point's row starts (or the first row with moves after it).
+        var first = index.FirstRowFrom(stop.Row);
+        var rowStart = first < rows.Count ? rows[first].MoveIndex : -1;
+        if (start < 0 || start > moveCount || (start < moveCount && (rowStart < 0 || rowStart > start)))
         {
-            if (rowStart < 0 && move.Row >= stop.Row)
-            {
-                rowStart = index;
-            }
+            throw new PlanException($"the resume point (row {stop.Row}, move {stop.MoveIndex}) is not in this job's plan of {moveCount} moves");
+        }
 
-            if (index < start)
+        // What was done before the resume point: the counts at its row's start, then that row's moves before it.
+        var counter = new PlanRowIndex.Counter();
+        if (start > 0)
+        {
+            var row = rows[index.RowHolding(start - 1)];
+            counter = new PlanRowIndex.Counter(row);
+            foreach (var move in PlanRowIndex.RowMoves(Plan, row))
             {
-                runs += move.Kind == MoveKind.Burn ? 1 : 0;
-                if (move.Row != lastRow)
+                if (counter.Index >= start)
                 {
-                    rows += lastRow >= 0 ? 1 : 0;
-                    lastRow = move.Row;
+                    break;
                 }
+
+                counter.Visit(move);
             }
-
-            index++;
         }
 
-        if (start < 0 || start > index || (start < index && (rowStart < 0 || rowStart > start)))
-        {
-            throw new PlanException($"the resume point (row {stop.Row}, move {stop.MoveIndex}) is not in this job's plan of {index} moves");
-        }
-
-        return new RasterResume(stop, start, trimmed, rowStart, index, runs, rows, lastRow);
+        return new RasterResume(stop, start, trimmed, rowStart, moveCount, counter.Runs, counter.Rows, counter.LastRow);
     }
 
     /// <summary>
     /// The estimate of a resumed run: of the program up to the resume point, as the run had it when its last move there ended (a
     /// stroke not finished counted at the burn speed from its start), and of the steps from there (<see cref="Steps(RasterResume)"/>).
     /// </summary>
+    /// <remarks>
+    /// The part before goes on from the estimate kept at the start of the resume point's row (<see cref="RowEstimates"/>,
+    /// made once for the program), so it costs a row; the part after costs the rows left.
+    /// </remarks>
     public (double Before, double Remaining) EstimateResumed(RasterResume from)
     {
         ArgumentNullException.ThrowIfNull(from);
-        var before = new BeforeVisitor(new PlanEstimator(this), from.FirstMoveIndex);
-        Visit(ref before);
+        var before = 0.0;
+        var index = Plan.RowIndex;
+
+        // Strokes never span rows, so every step before the last row start below the resume point is in the kept estimate;
+        // a stroke ending just at the resume point is counted provisionally, as the run had it: that row is gone over again.
+        var k = index.RowHolding(from.FirstMoveIndex, strictly: true);
+        if (k >= 0)
+        {
+            var row = index.Rows[k];
+            var kept = RowEstimates[k].Clone();
+            var visitor = new BeforeVisitor(kept, from.FirstMoveIndex, kept.ElapsedSeconds - kept.StartSeconds);
+            var rowBuilder = new StepBuilder(this, reuse: true);
+            var at = row.MoveIndex;
+            foreach (var move in PlanRowIndex.RowMoves(Plan, row))
+            {
+                rowBuilder.Add(move, at++, ref visitor);
+            }
+
+            rowBuilder.Finish(ref visitor);
+            before = visitor.Seconds;
+        }
+
         var remaining = new PlanEstimator(this);
         var collector = new EstimatingVisitor(remaining);
         var builder = new StepBuilder(this, reuse: true);
-        var index = from.FirstMoveIndex;
+        var moveIndex = from.FirstMoveIndex;
         if (!from.Done)
         {
             var first = true;
-            foreach (var move in Plan.Moves(from.Stop.Row).Skip(checked((int)(from.FirstMoveIndex - from.RowStartIndex))))
+            foreach (var move in MovesFrom(from.FirstMoveIndex))
             {
-                builder.Add(first && from.Trimmed is { } trimmed ? trimmed : move, index++, ref collector);
+                builder.Add(first && from.Trimmed is { } trimmed ? trimmed : move, moveIndex++, ref collector);
                 first = false;
             }
 
@@ -165,7 +184,48 @@ public sealed class RasterProgram : PartProgram
         }
 
         remaining.Finish();
-        return (before.Seconds, remaining.ElapsedSeconds);
+        return (before, remaining.ElapsedSeconds);
+    }
+
+    /// <summary>
+    /// The estimator as it stood at the start of each row of the plan's <see cref="PlanRowIndex"/>, every step before that
+    /// row added: one pass over the program, made on the first resume and kept for the next ones.
+    /// </summary>
+    private PlanEstimator[] RowEstimates => _rowEstimates.Value;
+
+    private PlanEstimator[] EstimateRowStarts()
+    {
+        var rows = Plan.RowIndex.Rows;
+        var kept = new PlanEstimator[rows.Count];
+        var estimator = new PlanEstimator(this);
+        var visitor = new EstimatingVisitor(estimator);
+        var builder = new StepBuilder(this, reuse: true);
+        for (var k = 0; k < rows.Count; k++)
+        {
+            // The stroke before ends here: a row's first move never joins it (strokes stay in their row).
+            builder.Finish(ref visitor);
+            kept[k] = estimator.Clone();
+            var at = rows[k].MoveIndex;
+            foreach (var move in PlanRowIndex.RowMoves(Plan, rows[k]))
+            {
+                builder.Add(move, at++, ref visitor);
+            }
+        }
+
+        return kept;
+    }
+
+    /// <summary>The plan's moves from index <paramref name="first"/> on, planned from that move's row.</summary>
+    private IEnumerable<Move> MovesFrom(long first)
+    {
+        var index = Plan.RowIndex;
+        if (first >= index.MoveCount)
+        {
+            return [];
+        }
+
+        var row = index.Rows[index.RowHolding(first)];
+        return PlanRowIndex.MovesFrom(Plan, row).Skip(checked((int)(first - row.MoveIndex)));
     }
 
     private static RasterPlan Validated(RasterPlan plan)
@@ -291,9 +351,9 @@ public sealed class RasterProgram : PartProgram
 
     // The estimate up to a move index as the run had it then: every step before it, a stroke it falls in (or the last
     // before it) provisionally.
-    private struct BeforeVisitor(PlanEstimator estimator, long firstIndex) : IRasterStepVisitor
+    private struct BeforeVisitor(PlanEstimator estimator, long firstIndex, double seconds) : IRasterStepVisitor
     {
-        public double Seconds { get; private set; }
+        public double Seconds { get; private set; } = seconds;
 
         public void Travel(in TravelStep travel)
         {

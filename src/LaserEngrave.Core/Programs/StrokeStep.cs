@@ -113,7 +113,7 @@ public sealed class StrokeStep
     /// Settles the stroke: its start (a run-up of <paramref name="runUp"/> before the first edge, within the travel), its gaps
     /// and its plan under <paramref name="timing"/>; with <paramref name="reuse"/> planned into one plan kept for the next stroke.
     /// </summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     internal void Close(TimedSwitching timing, long runUp, long travelX, bool reuse)
     {
         ref readonly var first = ref _moves[0];

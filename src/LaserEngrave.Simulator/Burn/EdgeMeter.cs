@@ -1,4 +1,5 @@
 using System.Runtime.CompilerServices;
+using LaserEngrave.Core;
 using LaserEngrave.Core.Imaging;
 
 namespace LaserEngrave.Simulator.Burn;
@@ -57,7 +58,7 @@ internal sealed class EdgeMeter
     }
 
     /// <summary>A pulse landed at <paramref name="x"/> in row <paramref name="row"/>'s cell (-1 or the height when off the grid).</summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     public void Add(int row, double x, double frequencyHz)
     {
         if (row < 0 || row >= _grid.HeightPx)

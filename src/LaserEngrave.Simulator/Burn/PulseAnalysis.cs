@@ -1,4 +1,5 @@
 using System.Runtime.CompilerServices;
+using LaserEngrave.Core;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
 using LaserEngrave.Simulator.Motion;
@@ -79,10 +80,10 @@ internal sealed class PulseAnalysis
     /// <summary>Fires every period's pulses; <paramref name="periods"/> in time order, not overlapping.</summary>
     /// <remarks>
     /// The walk and what it calls per pulse run once per job, over up to millions of pulses: they are compiled optimised
-    /// from the start (AggressiveOptimization), since tiered compilation would leave them unoptimised for most of a
-    /// short process (a third of the CLI's run time on a 600,000-pulse job).
+    /// from the start when compiled at run time (<see cref="HotPath"/>), since tiered compilation would leave them
+    /// unoptimised for most of a short process (a third of the CLI's run time on a 600,000-pulse job).
     /// </remarks>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     public void Walk(IReadOnlyList<LaserPeriod> periods, MotionSegment[] xs, MotionSegment[] ys)
     {
         int xi = 0, yi = 0;
@@ -114,7 +115,7 @@ internal sealed class PulseAnalysis
         }
     }
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     public BurnReport Report(int refusedMoves)
     {
         var dose = new DoseMap(_grid.WidthPx, _grid.HeightPx, _dose);
@@ -191,7 +192,7 @@ internal sealed class PulseAnalysis
         return dt >= segment.DurationSeconds ? 0 : segment.StartVelocity + (segment.Acceleration * dt);
     }
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     private void Pulse(in MotionSegment xSegment, in MotionSegment ySegment, double t, double hz)
     {
         Pulses++;
@@ -235,7 +236,7 @@ internal sealed class PulseAnalysis
 
     // The pixel a pulse at (x, y) marks: its own cell, unless that is white or off the grid and a black pixel's edge is
     // within half a microstep (the stage stands on a run's edge at both ends of a stop-go burn run).
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     private (int Column, int Row) Settle(double x, double y, int column, int row)
     {
         if (Black(column, row))
@@ -259,7 +260,7 @@ internal sealed class PulseAnalysis
     }
 
     // As BurnGrid.ColumnAt and RowCellAt, on the edges looked up once.
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     private int CellAt(long[] edges, double at, double origin)
     {
         var count = edges.Length - 1;
@@ -308,7 +309,7 @@ internal sealed class PulseAnalysis
 
     private bool Black(int column, int row) => InGrid(column, row) && (_expected?[column, row] ?? true);
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [MethodImpl(HotPath.Optimized)]
     private long SubcellIndex(double x, double y, int column, int row)
     {
         const int n = DoseMap.SubcellsPerPixel;

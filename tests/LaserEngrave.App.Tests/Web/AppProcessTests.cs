@@ -285,7 +285,10 @@ public sealed partial class AppProcessTests : IDisposable
     [Fact]
     public async Task PythonClient_TestGridOnTheSimulator_EachCellRunAndItsLogCollected()
     {
-        var process = Start(NearHome());
+        // The twin unpaced: what is tested is the client and the cells' logs, not the run's pace on the wall clock.
+        var options = Path.Combine(_data.Path, "unpaced.json");
+        await File.WriteAllTextAsync(options, "{ \"startMm\": 0.5, \"paced\": false }", Token);
+        var process = Start(["--urls", "http://127.0.0.1:0", "--sim-options", options]);
         await ReadStartLineAsync(process);
         using var logs = TestFiles.NewFolder();
 

@@ -27,7 +27,8 @@ public class PtyRunTests
         await using var machine = SimulatedMachine.Attach(SerialPortLink.Open(stagePair.A), SerialPortLink.Open(laserPair.A), profile, new SimulatorOptions { StartMm = 1 });
         await using var stage = ZaberChain.Open(stagePair.B, profile);
         await using var gate = PicLaserGate.Open(laserPair.B, profile.Gate);
-        var job = TestJobs.FromMask(TestJobs.Mask("#..##.", ".####.", "#....#"), 0.6, new PlanOptions { Strategy = PlanStrategy.Paper }, profile: profile);
+        // 1 mm from home too, so that the travel to the job takes a moment (the run is on the wall clock).
+        var job = TestJobs.FromMask(TestJobs.Mask("#..##.", ".####.", "#....#"), 0.6, new PlanOptions { Strategy = PlanStrategy.Paper }, new OriginMm(1, 1), profile: profile);
 
         var result = await new RunExecutor(stage, gate, job).RunAsync(ct);
         var report = machine.Recorder.Analyze(SimulatedRun.Grid(job), job.Mask);
