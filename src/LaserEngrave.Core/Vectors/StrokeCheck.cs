@@ -16,11 +16,18 @@ namespace LaserEngrave.Core.Vectors;
 /// </remarks>
 internal sealed class StrokeCheck
 {
-    // Bound and measured distance agree within this, microsteps (0.1 nm): far below any figure shown.
-    private const double Agreement = 1e-3;
+    /// <summary>The old check's step: its model sampled this often while the laser is on.</summary>
+    public const double SampleSeconds = 0.00025;
 
-    // A piece is halved at most this often (to parts of a few microseconds); what is left is taken at its bound (never less than the truth).
+    // Bound and measured distance agree within this, microsteps (1 nm): far below any figure shown.
+    private const double Agreement = 0.01;
+
+    // A piece undecided against the limit is halved at most this often (to parts of a few microseconds); what is left is
+    // taken at its bound (never less than the truth).
     private const int MaxDepth = 12;
+
+    // A piece decided against the limit is halved at most this often for the largest deviation's figure, then taken at its bound.
+    private const int FigureDepth = 3;
 
     private readonly StrokeProfile _ideal;
     private readonly double _acceleration;
@@ -31,6 +38,7 @@ internal sealed class StrokeCheck
     private readonly double _pathStart;
     private readonly double _pathEnd;
     private readonly List<double> _worst = [];
+    private long _budget;
     private int _segment;
     private bool _over;
     private (double Badness, double At) _peak;
@@ -50,6 +58,12 @@ internal sealed class StrokeCheck
     /// <summary>The largest distance of the model from the path with the laser on, microsteps.</summary>
     public double Largest { get; private set; }
 
+    /// <summary>
+    /// Whether the check gave up: a path whose segments are so short and so many (a spiral of 500 000 vertices 5 mm wide)
+    /// that its pieces would take more measurements than sampling every 0.25 ms; the stroke is then sampled as before.
+    /// </summary>
+    public bool GaveUp { get; private set; }
+
     /// <summary>Per stretch where the model leaves the path too far or runs off the burn speed, where along the path it was worst.</summary>
     public IReadOnlyList<double> Worst => _worst;
 
@@ -68,8 +82,21 @@ internal sealed class StrokeCheck
         double pathStart,
         double pathEnd)
     {
-        var check = new StrokeCheck(ideal, acceleration, limit, ideal.Speed, speedTolerance, window, pathStart, pathEnd);
-        check.Follow(xs, ys, start, on, off);
+        var check = new StrokeCheck(ideal, acceleration, limit, ideal.Speed, speedTolerance, window, pathStart, pathEnd)
+        {
+            // Twice the samples at 0.25 ms, counting every part and every measurement.
+            _budget = 64 + (long)(2 * Math.Max(0, off - on) / SampleSeconds),
+        };
+
+        try
+        {
+            check.Follow(xs, ys, start, on, off);
+        }
+        catch (BudgetSpent)
+        {
+            check.GaveUp = true;
+        }
+
         return check;
     }
 
@@ -143,9 +170,17 @@ internal sealed class StrokeCheck
     private void Piece(Parabola ax, Parabola ay, double t0, double t1)
     {
         var bisectors = Math.Max(4, 2 * (_ideal.VertexCount + 8));
+        var stalled = 0;
         var t = t0;
         while (true)
         {
+            // A model right on a bisector may be found on both sides of it by rounding: after a few crossings without
+            // moving on, the cursor stays for the rest of the piece (its segment's bound holds all the same).
+            if (stalled > 2)
+            {
+                bisectors = 0;
+            }
+
             // The next crossing of a bisector by the model: into the next segment (forward) or back into the one before.
             var end = t1;
             var next = _segment;
@@ -177,6 +212,7 @@ internal sealed class StrokeCheck
                 return;
             }
 
+            stalled = end > t ? 0 : stalled + 1;
             _segment = next;
             bisectors--;
             t = end;
@@ -186,6 +222,7 @@ internal sealed class StrokeCheck
     // A part of a piece on one segment: its deviation bound checked where it matters, its speed error in closed form, both observed.
     private void Part(Parabola ax, Parabola ay, double t0, double t1)
     {
+        Spend();
         var (deviation, deviationAt) = Deviation(ax, ay, t0, t1, 0);
         var (speedError, speedAt) = SpeedError(ax, ay, t0, t1);
         Largest = Math.Max(Largest, deviation);
@@ -208,7 +245,7 @@ internal sealed class StrokeCheck
     }
 
     // The largest distance from the window's segments on [t0, t1]: the bound by the cursor's segment, met by a measurement
-    // where it could raise the largest or cross the limit, else halved. Returns the value (within Agreement, never less) and when.
+    // where it could raise the largest or cross the limit, else halved. Returns the value (within Agreement of the truth) and when.
     private (double Value, double At) Deviation(Parabola ax, Parabola ay, double t0, double t1, int depth)
     {
         var (bound, at) = SegmentBound(_segment, ax, ay, t0, t1);
@@ -224,42 +261,67 @@ internal sealed class StrokeCheck
             return (bound, at);
         }
 
-        // The bound is loose here (the model outside a corner, another part of the path nearer): the distance changes
-        // no faster than the model moves, which tightens as the part is halved.
+        // The cursor's segment not the nearest there (left behind, or out of the window): the cursor moves to the nearest.
+        var s = _ideal.DistanceAt(at);
+        var nearest = _ideal.NearestSegment(ax.Position(at), ay.Position(at), Math.Max(_pathStart, s - _window), Math.Min(_pathEnd, s + _window));
+        if (nearest >= 0 && nearest != _segment)
+        {
+            var (again, againAt) = SegmentBound(nearest, ax, ay, t0, t1);
+            if (again < bound)
+            {
+                (_segment, bound, at) = (nearest, again, againAt);
+                if (bound <= _limit && bound <= Largest + Agreement)
+                {
+                    return (Math.Min(bound, Largest), at);
+                }
+
+                if (bound - low <= Agreement)
+                {
+                    return (bound, at);
+                }
+            }
+        }
+
         var middle = 0.5 * (t0 + t1);
-        var atMiddle = Measure(ax, ay, middle);
-        var moving = Math.Sqrt(ax.SpeedSquaredMax(t0, t1)) + Math.Sqrt(ay.SpeedSquaredMax(t0, t1));
-        var lipschitz = atMiddle + (moving * (t1 - t0) / 2);
-        if (atMiddle > low)
+        if (low <= _limit && bound > _limit)
         {
-            (low, lowAt) = (atMiddle, middle);
-        }
+            // Undecided against the limit and the bound loose here (another part of the path nearer, the model outside a
+            // corner): the distance changes no faster than the model moves, which decides it as the part is halved.
+            var atMiddle = Measure(ax, ay, middle);
+            var moving = Math.Sqrt(ax.SpeedSquaredMax(t0, t1)) + Math.Sqrt(ay.SpeedSquaredMax(t0, t1));
+            var lipschitz = atMiddle + (moving * (t1 - t0) / 2);
+            if (atMiddle > low)
+            {
+                (low, lowAt) = (atMiddle, middle);
+            }
 
-        if (lipschitz < bound)
-        {
-            (bound, at) = (lipschitz, middle);
-        }
+            if (lipschitz < bound)
+            {
+                (bound, at) = (lipschitz, middle);
+            }
 
-        // Decided against the limit, and the largest known within the agreement (ten times it once the stroke is split anyway).
-        var agreement = low > _limit ? 10 * Agreement : Agreement;
-        if (low > _limit || bound <= _limit)
-        {
-            if (bound - low <= agreement)
+            if (bound - low <= Agreement)
             {
                 return (bound, at);
             }
 
-            if (bound <= Math.Max(Largest, low) + agreement)
+            if (low <= _limit && bound > _limit)
             {
-                return (Math.Max(low, Math.Min(bound, Largest)), lowAt);
+                return depth >= MaxDepth ? (bound, at) : Halves(ax, ay, t0, middle, t1, depth, low);
             }
         }
 
-        if (depth >= MaxDepth)
+        // Decided against the limit: halved only while the largest could still rise, a few times (the figure, not the decision).
+        if (bound <= Math.Max(Largest, low) + Agreement)
         {
-            return (bound, at);
+            return (Math.Max(low, Math.Min(bound, Largest)), lowAt);
         }
 
+        return depth >= FigureDepth ? (bound, at) : Halves(ax, ay, t0, middle, t1, depth, low);
+    }
+
+    private (double Value, double At) Halves(Parabola ax, Parabola ay, double t0, double middle, double t1, int depth, double low)
+    {
         Largest = Math.Max(Largest, low);
         var left = Deviation(ax, ay, t0, middle, depth + 1);
         Largest = Math.Max(Largest, left.Value);
@@ -270,8 +332,17 @@ internal sealed class StrokeCheck
     // The true distance at one instant, as the sampled check measured it.
     private double Measure(Parabola ax, Parabola ay, double t)
     {
+        Spend();
         var s = _ideal.DistanceAt(t);
         return _ideal.DistanceFollowing(ax.Position(t), ay.Position(t), Math.Max(_pathStart, s - _window), Math.Min(_pathEnd, s + _window));
+    }
+
+    private void Spend()
+    {
+        if (--_budget < 0)
+        {
+            throw new BudgetSpent();
+        }
     }
 
     // The largest distance from one segment on [t0, t1] (that segment in the window throughout): across its line and past its ends.
@@ -355,6 +426,8 @@ internal sealed class StrokeCheck
         var root = side.FirstRise(h);
         return root is { } r ? t0 + r : double.PositiveInfinity;
     }
+
+    private sealed class BudgetSpent : Exception;
 
     /// <summary>One axis from a time on: position, velocity and acceleration, until its ramp (if any) ends.</summary>
     private readonly record struct Parabola(double T, double P, double V, double A, double Command, bool Stopping, double RampEnd)

@@ -129,6 +129,24 @@ internal sealed class StrokeProfile
         return best;
     }
 
+    /// <summary>The segment of a window (as <see cref="DistanceToPath"/> takes it) nearest to a point, -1 when the window is empty.</summary>
+    public int NearestSegment(double x, double y, double from, double to)
+    {
+        var found = Array.BinarySearch(_s, from);
+        var first = Math.Max(0, (found >= 0 ? found : ~found) - 1);
+        var (best, nearest) = (double.PositiveInfinity, -1);
+        for (var i = first; i < _s.Length - 1 && _s[i] <= to; i++)
+        {
+            var d = SegmentDistance(x, y, _x[i], _y[i], _x[i + 1], _y[i + 1]);
+            if (d < best)
+            {
+                (best, nearest) = (d, i);
+            }
+        }
+
+        return nearest;
+    }
+
     // For DistanceFollowing, how many segments share one bound.
     private const int Block = 8;
 

@@ -293,9 +293,11 @@ public static class VectorMotion
             var expected = Replay(queryAxis == VectorAxis.X ? xs : ys, queryAxis == VectorAxis.X ? runUpStart.X : runUpStart.Y, query.AtSeconds);
 
             // The model against the path while the laser is on, piece by piece of its motion: the stretches too far from it.
-            var check = StrokeCheck.Run(ideal, xs, ys, runUpStart, on, off, _t.Acceleration, _limit, SpeedTolerance, _speed * 4 * _slot, pathStart, pathEnd);
-            var worst = check.Worst;
-            var largest = check.Largest;
+            var window = _speed * 4 * _slot;
+            var check = StrokeCheck.Run(ideal, xs, ys, runUpStart, on, off, _t.Acceleration, _limit, SpeedTolerance, window, pathStart, pathEnd);
+            var (worst, largest) = check.GaveUp
+                ? Sampled(ideal, xs, ys, runUpStart, on, off, window, pathStart, pathEnd)
+                : (check.Worst, check.Largest);
 
             var rest = Math.Max(restX, restY);
             var stroke = new VectorStroke
@@ -314,6 +316,61 @@ public static class VectorMotion
                 PredictedDeviationUm = StageUnits.MicrostepsToUm(largest, _t.MicrostepUm),
             };
             return (stroke, worst);
+        }
+
+        // The model against the path every StrokeCheck.SampleSeconds while the laser is on (for a path too dense for the
+        // check by pieces): the stretches too far from it, as the check was first made.
+        private (List<double> Worst, double Largest) Sampled(StrokeProfile ideal, List<AxisCommand> xs, List<AxisCommand> ys, StagePoint runUpStart, double on, double off, double window, double pathStart, double pathEnd)
+        {
+            var worst = new List<double>();
+            var largest = 0.0;
+            var x = new AxisModel(runUpStart.X, _t.Acceleration);
+            var y = new AxisModel(runUpStart.Y, _t.Acceleration);
+            int xi = 0, yi = 0;
+            var over = false;
+            (double Deviation, double At) peak = (0, 0);
+            for (var t = on; t <= off; t += StrokeCheck.SampleSeconds)
+            {
+                while (xi < xs.Count && xs[xi].AtSeconds <= t)
+                {
+                    x.Apply(xs[xi++]);
+                }
+
+                while (yi < ys.Count && ys[yi].AtSeconds <= t)
+                {
+                    y.Apply(ys[yi++]);
+                }
+
+                x.AdvanceTo(t);
+                y.AdvanceTo(t);
+                var s = ideal.DistanceAt(t);
+                var d = ideal.DistanceFollowing(x.Position, y.Position, Math.Max(pathStart, s - window), Math.Min(pathEnd, s + window));
+                largest = Math.Max(largest, d);
+
+                // A corner the axes round within the limit can still slow the spot down or speed it up: the pulses bunch.
+                var speedError = Math.Abs((Math.Sqrt((x.Velocity * x.Velocity) + (y.Velocity * y.Velocity)) / _speed) - 1);
+                if (d > _limit || speedError > SpeedTolerance)
+                {
+                    over = true;
+                    var badness = Math.Max(d / _limit, speedError / SpeedTolerance);
+                    if (badness > peak.Deviation)
+                    {
+                        peak = (badness, s - pathStart);
+                    }
+                }
+                else if (over)
+                {
+                    worst.Add(peak.At);
+                    (over, peak) = (false, (0, 0));
+                }
+            }
+
+            if (over)
+            {
+                worst.Add(peak.At);
+            }
+
+            return (worst, largest);
         }
 
         /// <summary>One axis' commands: a new speed at each of its updates (when it changes), then a stop once the ideal motion rests.</summary>
