@@ -47,7 +47,7 @@ public class StrokeCheckTests
         Assert.Empty(check.Worst);
     }
 
-    /// <summary>Every stroke of a curved drawing: the model replayed every 10 µs never leaves its path further than the check found (within 0.1 nm).</summary>
+    /// <summary>Every stroke of a curved drawing: the model replayed every 10 µs never leaves its path further than the check found (within 1 nm).</summary>
     [Fact]
     public void Plan_CurvesAndCorners_PredictedDeviationNoLessThanDenseSampling()
     {
@@ -86,7 +86,7 @@ public class StrokeCheckTests
                 }
             }
 
-            Assert.True(StageUnits.MicrostepsToUm(dense, MicrostepUm) <= stroke.PredictedDeviationUm + 1e-4, $"stroke {stroke.Index}: {StageUnits.MicrostepsToUm(dense, MicrostepUm)} µm sampled, {stroke.PredictedDeviationUm} µm checked");
+            Assert.True(StageUnits.MicrostepsToUm(dense, MicrostepUm) <= stroke.PredictedDeviationUm + 1e-3, $"stroke {stroke.Index}: {StageUnits.MicrostepsToUm(dense, MicrostepUm)} µm sampled, {stroke.PredictedDeviationUm} µm checked");
         }
     }
 
