@@ -4,11 +4,13 @@ ones that must be refused fast, naming the limit and the file (docs/vectors.md, 
 
     tools/make-big-drawings.py OUT_FOLDER
 
-Real:    lines-300k.dxf (300 000 LINEs, a hatch of short strokes), polyline-500k.svg (one polyline of 500 000 points).
+Real:    lines-300k.dxf (300 000 LINEs, a hatch of short strokes), polyline-500k.svg (one polyline of 500 000 points),
+         zigzag-500k.svg (one polyline of 500 000 points turning 90 degrees at every one: 499 999 strokes).
 Hostile: insert-array.dxf (an INSERT with a 32767 x 32767 array), nested-blocks.dxf (blocks 11 deep, 6 INSERTs each),
          use-4-15.svg (<use> expanded 4^15 times), nested-g.svg (200 000 nested <g>), subpaths-1m.svg (1 000 000
          subpaths), layers-20k.json (a job file of 20 000 layers).
-Time each with: /usr/bin/time -v laserengrave plan FILE --width-mm 50 --origin-mm 5,5   (job: plan --job FILE)
+Time each with: /usr/bin/time -v laserengrave plan FILE --width-mm 50 --origin-mm 5,5   (job: plan --job FILE);
+the issue-38 targets: zigzag-500k.svg at --width-mm 50 and lines-300k.dxf at --width-mm 10, each <= 5 s and <= 300 MB.
 """
 import math
 import os
@@ -61,6 +63,15 @@ def main() -> None:
         a = t * 50 * 2 * math.pi
         points.append(f"{50 + r * math.cos(a):.4f},{50 + r * math.sin(a):.4f}")
     write("polyline-500k.svg", svg(f'<polyline fill="none" stroke="black" points="{" ".join(points)}"/>'))
+
+    # One polyline of 500 000 points zigzagging in 500 rows of 1000 (serpentine): every vertex a right angle the axes
+    # cannot follow, so every segment is a stroke of its own (at 50 mm wide: 71 um strokes, 9.8 h of burning).
+    zigzag = []
+    for i in range(500_000):
+        row, col = divmod(i, 1000)
+        x = col if row % 2 == 0 else 999 - col
+        zigzag.append(f"{x * 0.1:.1f},{row * 0.2 + (col % 2) * 0.1:.1f}")
+    write("zigzag-500k.svg", svg(f'<polyline fill="none" stroke="black" points="{" ".join(zigzag)}"/>'))
 
     write("insert-array.dxf", dxf(insert("B", columns=32767, rows=32767, spacing=0.01), block("B", line(0, 0, 0.005, 0.005))))
 

@@ -44,6 +44,27 @@ internal sealed class StrokeProfile
     /// <summary>Distance along the polyline of vertex <paramref name="index"/>.</summary>
     public double LengthAt(int index) => _s[index];
 
+    /// <summary>How many vertices the polyline has (run-up start and run-out end included).</summary>
+    public int VertexCount => _s.Length;
+
+    /// <summary>Vertex <paramref name="index"/>, microsteps.</summary>
+    public (double X, double Y) Vertex(int index) => (_x[index], _y[index]);
+
+    /// <summary>The segment that holds a distance along the polyline: the last vertex at or before it (0..VertexCount - 2).</summary>
+    public int SegmentAt(double distance)
+    {
+        var i = Array.BinarySearch(_s, distance);
+        i = i >= 0 ? i : ~i - 1;
+        return Math.Clamp(i, 0, Math.Max(0, _s.Length - 2));
+    }
+
+    /// <summary>
+    /// Whether segment <paramref name="segment"/> is among those <see cref="DistanceToPath"/> measures for a window: from the
+    /// last vertex before <paramref name="from"/> on, each segment starting at or before <paramref name="to"/>.
+    /// </summary>
+    public bool InWindow(int segment, double from, double to) =>
+        segment >= 0 && segment < _s.Length - 1 && _s[segment + 1] >= from && _s[segment] <= to;
+
     /// <summary>Distance along the polyline at a time.</summary>
     public double DistanceAt(double seconds)
     {
@@ -106,6 +127,24 @@ internal sealed class StrokeProfile
         }
 
         return best;
+    }
+
+    /// <summary>The segment of a window (as <see cref="DistanceToPath"/> takes it) nearest to a point, -1 when the window is empty.</summary>
+    public int NearestSegment(double x, double y, double from, double to)
+    {
+        var found = Array.BinarySearch(_s, from);
+        var first = Math.Max(0, (found >= 0 ? found : ~found) - 1);
+        var (best, nearest) = (double.PositiveInfinity, -1);
+        for (var i = first; i < _s.Length - 1 && _s[i] <= to; i++)
+        {
+            var d = SegmentDistance(x, y, _x[i], _y[i], _x[i + 1], _y[i + 1]);
+            if (d < best)
+            {
+                (best, nearest) = (d, i);
+            }
+        }
+
+        return nearest;
     }
 
     // For DistanceFollowing, how many segments share one bound.

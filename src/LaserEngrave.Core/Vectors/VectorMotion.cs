@@ -25,9 +25,6 @@ public static class VectorMotion
     // The spot's speed along the path may differ this much from the burn speed in the model (the pulses' spacing by as much).
     private const double SpeedTolerance = 0.06;
 
-    // The deviation is checked on the model this often while the laser is on.
-    private const double CheckStepSeconds = 0.00025;
-
     /// <summary>Plans every path's strokes and adds up the time the executor takes for them.</summary>
     public static VectorSchedule Plan(VectorPlan plan, TimedSwitching timing, MachineProfile profile, VectorMotionOptions? options = null)
     {
@@ -36,7 +33,7 @@ public static class VectorMotion
         ArgumentNullException.ThrowIfNull(profile);
         options ??= VectorMotionOptions.Default;
 
-        // Every stroke's motion is modelled at CheckStepSeconds before the run: the work grows with the burning time.
+        // Every stroke's motion is modelled before the run, command by command: the work grows with the burning time.
         var burnSeconds = plan.Paths.Sum(p => p.LengthMicrosteps) / timing.BurnSpeed;
         if (burnSeconds > DrawingLimits.MaxBurnHours * 3600)
         {
@@ -54,7 +51,10 @@ public static class VectorMotion
             var pieces = options.StopAtEveryVertex ? Segments(path) : [path.Points];
             foreach (var piece in pieces)
             {
-                planner.Add(piece, path, i, strokes, skipped);
+                foreach (var part in planner.SplitAtCorners(piece))
+                {
+                    planner.Add(part, path, i, strokes, skipped);
+                }
             }
         }
 
@@ -104,6 +104,8 @@ public static class VectorMotion
         private readonly double _outSeconds;
         private readonly double _limit;
         private readonly double _directionLength;
+        private readonly double _cornerTurn;
+        private readonly UpdateGrid _grid;
 
         public StrokePlanner(TimedSwitching timing, VectorMotionOptions options)
         {
@@ -112,6 +114,7 @@ public static class VectorMotion
 
             // One command a slot: a frame, and room for both latencies' spread so that two writes never queue on the wire.
             _slot = timing.FrameSeconds + timing.MarginSeconds;
+            _grid = new UpdateGrid(_slot);
             _speed = timing.BurnSpeed;
 
             // The path accelerates at half the axes' acceleration, so each axis can follow it with room to correct.
@@ -128,6 +131,57 @@ public static class VectorMotion
             _directionLength = StageUnits.UmToMicrosteps(5, timing.MicrostepUm);
             ShortestMicrosteps = _speed * (timing.MinOnSeconds + timing.OnDelaySeconds + timing.OffAdvanceSeconds - (2 * timing.EdgeGuardSeconds));
             LimitMargin = (timing.BurnSpeed * timing.BurnSpeed / (2 * timing.Acceleration)) + 10;
+
+            // The spot, within SpeedTolerance of the burn speed and each axis within its acceleration, turns on no tighter
+            // radius than r = v^2 / (sqrt 2 a); an arc of that radius rounds a corner of turn t by r (1 - cos t/2), and
+            // the model could share that out at best half inside, half outside the path. A corner that leaves the path by
+            // more than the limit even so is one the axes cannot follow: the path is split there before its first build.
+            var slowest = _speed * (1 - SpeedTolerance);
+            var radius = slowest * slowest / (Math.Sqrt(2) * timing.Acceleration);
+            var cosine = 1 - (2 * _limit / radius);
+            _cornerTurn = cosine > -1 ? 2 * Math.Acos(cosine) : double.PositiveInfinity;
+        }
+
+        /// <summary>
+        /// A path cut at each corner the axes cannot follow (<see cref="_cornerTurn"/>), where both parts are long enough to
+        /// burn; what is left to split (a corner the model shows too sharp after all) is split after its build, as before.
+        /// </summary>
+        public IEnumerable<IReadOnlyList<StagePoint>> SplitAtCorners(IReadOnlyList<StagePoint> points)
+        {
+            if (points.Count <= 2 || double.IsPositiveInfinity(_cornerTurn))
+            {
+                yield return points;
+                yield break;
+            }
+
+            var total = Length(points, 0, points.Count - 1);
+            var from = 0;
+            var along = 0.0;
+            var fromAlong = 0.0;
+            for (var k = 1; k < points.Count - 1; k++)
+            {
+                along += StagePoint.Distance(points[k - 1], points[k]);
+                if (along - fromAlong < ShortestMicrosteps || total - along < ShortestMicrosteps || Turn(points[k - 1], points[k], points[k + 1]) <= _cornerTurn)
+                {
+                    continue;
+                }
+
+                yield return Slice(points, from, k);
+                (from, fromAlong) = (k, along);
+            }
+
+            yield return from == 0 ? points : Slice(points, from, points.Count - 1);
+        }
+
+        private static StagePoint[] Slice(IReadOnlyList<StagePoint> points, int from, int to)
+        {
+            var piece = new StagePoint[to - from + 1];
+            for (var k = 0; k < piece.Length; k++)
+            {
+                piece[k] = points[from + k];
+            }
+
+            return piece;
         }
 
         /// <summary>The shortest path that can be burned: the laser's least on-time at the burn speed, microsteps.</summary>
@@ -156,19 +210,13 @@ public static class VectorMotion
             var from = 0;
             foreach (var at in splits.Append(points.Count - 1))
             {
-                var piece = new StagePoint[at - from + 1];
-                for (var k = 0; k < piece.Length; k++)
-                {
-                    piece[k] = points[from + k];
-                }
-
-                Add(piece, source, pathIndex, strokes, skipped);
+                Add(Slice(points, from, at), source, pathIndex, strokes, skipped);
                 from = at;
             }
         }
 
         // For each stretch where the model leaves the path too far, the sharpest vertex near it (both parts long enough to burn).
-        private List<int> SplitPoints(IReadOnlyList<StagePoint> points, List<double> worst)
+        private List<int> SplitPoints(IReadOnlyList<StagePoint> points, IReadOnlyList<double> worst)
         {
             var along = new double[points.Count];
             for (var i = 1; i < points.Count; i++)
@@ -210,7 +258,7 @@ public static class VectorMotion
             return [.. splits];
         }
 
-        private (VectorStroke Stroke, List<double> Worst) Build(IReadOnlyList<StagePoint> points, StagePath source, int pathIndex, int index)
+        private (VectorStroke Stroke, IReadOnlyList<double> Worst) Build(IReadOnlyList<StagePoint> points, StagePath source, int pathIndex, int index)
         {
             var first = points[0];
             var last = points[^1];
@@ -221,7 +269,11 @@ public static class VectorMotion
             var start = (first.X - (ux0 * runUp), first.Y - (uy0 * runUp));
             var end = (last.X + (ux1 * runOut), last.Y + (uy1 * runOut));
             var polyline = new List<(double X, double Y)>(points.Count + 2) { start };
-            polyline.AddRange(points.Select(p => ((double)p.X, (double)p.Y)));
+            foreach (var p in points)
+            {
+                polyline.Add((p.X, p.Y));
+            }
+
             polyline.Add(end);
 
             // The axes stand on whole microsteps: the stroke starts from the rounded run-up start.
@@ -237,19 +289,47 @@ public static class VectorMotion
             var xs = Follow(ideal, VectorAxis.X, runUpStart.X, 0, out var restX, out var xAtRest);
             var ys = Follow(ideal, VectorAxis.Y, runUpStart.Y, _slot, out var restY, out var yAtRest);
             var query = new AxisCommand(2 * _slot, queryAxis, AxisCommandKind.Query);
-            var commands = xs.Concat(ys).Append(query).OrderBy(c => c.AtSeconds).ToList();
+            var commands = Merge(xs, ys, query);
             var expected = Replay(queryAxis == VectorAxis.X ? xs : ys, queryAxis == VectorAxis.X ? runUpStart.X : runUpStart.Y, query.AtSeconds);
 
-            // The model against the path while the laser is on: the stretches too far from it.
+            // The model against the path while the laser is on, piece by piece of its motion: the stretches too far from it.
+            var window = _speed * 4 * _slot;
+            var check = StrokeCheck.Run(ideal, xs, ys, runUpStart, on, off, _t.Acceleration, _limit, SpeedTolerance, window, pathStart, pathEnd);
+            var (worst, largest) = check.GaveUp
+                ? Sampled(ideal, xs, ys, runUpStart, on, off, window, pathStart, pathEnd)
+                : (check.Worst, check.Largest);
+
+            var rest = Math.Max(restX, restY);
+            var stroke = new VectorStroke
+            {
+                Index = index,
+                PathIndex = pathIndex,
+                Path = source with { Points = points, Closed = points.Count > 3 && points[0] == points[^1] },
+                RunUpStart = runUpStart,
+                RestEnd = new StagePoint(xAtRest, yAtRest),
+                Commands = new StrokeCommands(commands, _grid),
+                QueryExpected = expected,
+                LaserOnSeconds = on,
+                LaserOffSeconds = off,
+                RestSeconds = rest,
+                NextArrivalSeconds = Math.Max(rest + _t.MarginSeconds, off + _t.AfterOffSeconds),
+                PredictedDeviationUm = StageUnits.MicrostepsToUm(largest, _t.MicrostepUm),
+            };
+            return (stroke, worst);
+        }
+
+        // The model against the path every StrokeCheck.SampleSeconds while the laser is on (for a path too dense for the
+        // check by pieces): the stretches too far from it, as the check was first made.
+        private (List<double> Worst, double Largest) Sampled(StrokeProfile ideal, List<AxisCommand> xs, List<AxisCommand> ys, StagePoint runUpStart, double on, double off, double window, double pathStart, double pathEnd)
+        {
             var worst = new List<double>();
             var largest = 0.0;
             var x = new AxisModel(runUpStart.X, _t.Acceleration);
             var y = new AxisModel(runUpStart.Y, _t.Acceleration);
             int xi = 0, yi = 0;
-            var window = _speed * 4 * _slot;
             var over = false;
             (double Deviation, double At) peak = (0, 0);
-            for (var t = on; t <= off; t += CheckStepSeconds)
+            for (var t = on; t <= off; t += StrokeCheck.SampleSeconds)
             {
                 while (xi < xs.Count && xs[xi].AtSeconds <= t)
                 {
@@ -290,23 +370,7 @@ public static class VectorMotion
                 worst.Add(peak.At);
             }
 
-            var rest = Math.Max(restX, restY);
-            var stroke = new VectorStroke
-            {
-                Index = index,
-                PathIndex = pathIndex,
-                Path = source with { Points = points, Closed = points.Count > 3 && points[0] == points[^1] },
-                RunUpStart = runUpStart,
-                RestEnd = new StagePoint(xAtRest, yAtRest),
-                Commands = commands,
-                QueryExpected = expected,
-                LaserOnSeconds = on,
-                LaserOffSeconds = off,
-                RestSeconds = rest,
-                NextArrivalSeconds = Math.Max(rest + _t.MarginSeconds, off + _t.AfterOffSeconds),
-                PredictedDeviationUm = StageUnits.MicrostepsToUm(largest, _t.MicrostepUm),
-            };
-            return (stroke, worst);
+            return (worst, largest);
         }
 
         /// <summary>One axis' commands: a new speed at each of its updates (when it changes), then a stop once the ideal motion rests.</summary>
@@ -361,13 +425,46 @@ public static class VectorMotion
         private long Replay(List<AxisCommand> commands, long start, double seconds)
         {
             var model = new AxisModel(start, _t.Acceleration);
-            foreach (var command in commands.Where(c => c.AtSeconds <= seconds))
+            foreach (var command in commands)
             {
+                if (command.AtSeconds > seconds)
+                {
+                    break;
+                }
+
                 model.Apply(command);
             }
 
             model.AdvanceTo(seconds);
             return JobGeometry.Round(model.Position);
+        }
+
+        // Every command in time order: X before Y before the query at the same time (as a stable sort of them in that order).
+        private static AxisCommand[] Merge(List<AxisCommand> xs, List<AxisCommand> ys, AxisCommand query)
+        {
+            var all = new AxisCommand[xs.Count + ys.Count + 1];
+            int xi = 0, yi = 0;
+            var queried = false;
+            for (var k = 0; k < all.Length; k++)
+            {
+                var tx = xi < xs.Count ? xs[xi].AtSeconds : double.PositiveInfinity;
+                var ty = yi < ys.Count ? ys[yi].AtSeconds : double.PositiveInfinity;
+                var tq = queried ? double.PositiveInfinity : query.AtSeconds;
+                if (tx <= ty && tx <= tq)
+                {
+                    all[k] = xs[xi++];
+                }
+                else if (ty <= tq)
+                {
+                    all[k] = ys[yi++];
+                }
+                else
+                {
+                    (all[k], queried) = (query, true);
+                }
+            }
+
+            return all;
         }
 
         // The unit direction at a path's start (forward) or end, over its first (last) 5 µm, so a one-microstep segment does not decide it.
