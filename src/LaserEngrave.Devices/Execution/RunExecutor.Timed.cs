@@ -463,6 +463,13 @@ public sealed partial class RunExecutor
     /// </summary>
     private async Task<(Task Acknowledged, double WrittenSeconds)> SendSwitchOnAsync(double onEffect, double offEffect, TimedSwitching timing)
     {
+        var sent = await SendSwitchOnLockedAsync(onEffect, offEffect, timing);
+        await LateWrite.CheckAsync(sent.LineWritten, TimeProvider, _engravingStart, sent.WrittenSeconds, sent.LateSeconds, timing, _profile.EdgeToleranceUm, "switch the laser on", m => Fault(m, recoverable: true));
+        return (sent.Acknowledged, sent.WrittenSeconds);
+    }
+
+    private async Task<(Task Acknowledged, double WrittenSeconds, double LateSeconds, Task<long?> LineWritten)> SendSwitchOnLockedAsync(double onEffect, double offEffect, TimedSwitching timing)
+    {
         await _laser.Lock.WaitAsync();
         try
         {
@@ -493,6 +500,7 @@ public sealed partial class RunExecutor
             // A frequency-only gate is switched on by its frequency alone, as before the burst: only the timed switch-off ends the run.
             var counted = _profile.Gate.CountsBursts;
             var ack = counted ? Gate.BurstAsync(pulses, timing.FrequencyHz, CancellationToken.None) : Gate.SetFrequencyAsync(timing.FrequencyHz, CancellationToken.None);
+            var lineWritten = Gate.LineWritten;
             _gateWireFree = timing.GateWireFreeAfter(written, _gateWireFree, timing.BurstCommand(pulses).Length);
             _gateRepliesIn = timing.GateRepliesInAfter(_gateWireFree, _gateRepliesIn, timing.BurstReplyBytes(pulses));
             var firing = _gateWireFree + timing.GateProcessingSeconds;
@@ -502,7 +510,7 @@ public sealed partial class RunExecutor
                 _burstEndsAt = counted ? firing + ((double)pulses / timing.FrequencyHz) + timing.GateJitterSeconds : double.PositiveInfinity;
             }
 
-            return (ack, written);
+            return (ack, written, Math.Max(0, late), lineWritten);
         }
         finally
         {

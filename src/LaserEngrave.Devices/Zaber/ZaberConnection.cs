@@ -342,8 +342,7 @@ public sealed class ZaberConnection : IAsyncDisposable
             long written;
             try
             {
-                await WriteFrameAsync(request, cancellationToken);
-                written = _time.GetTimestamp();
+                written = await WriteFrameAsync(request, cancellationToken);
             }
             catch
             {
@@ -426,7 +425,8 @@ public sealed class ZaberConnection : IAsyncDisposable
         _ => null,
     };
 
-    private Task WriteFrameAsync(ZaberFrame frame, CancellationToken cancellationToken) =>
+    // Returns when the write completed (the round trip counts from there, not from when it was asked for).
+    private Task<long> WriteFrameAsync(ZaberFrame frame, CancellationToken cancellationToken) =>
         _channel.WriteAsync(frame.ToBytes(), $"{PortName}: cannot send {ZaberCommandText.Describe(frame)} to {DescribeTarget(frame.Device)}", cancellationToken);
 
     private string DescribeTarget(byte device) => device == 0 ? "every device" : DescribeDevice(device);
