@@ -315,14 +315,16 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
         {
             // A gate that never replies (the profile says so): the command is carried out, as far as anyone can tell,
             // once written; nothing waits for an answer (callers never report such a gate's laser off as confirmed).
-            written?.TrySetResult(await _channel.WriteAsync(Encoding.ASCII.GetBytes(command + Profile.LineTerminator), $"laser gate on {PortName}: cannot send '{command}'", cancellationToken));
+            var completed = await _channel.WriteAsync(Encoding.ASCII.GetBytes(command + Profile.LineTerminator), $"laser gate on {PortName}: cannot send '{command}'", cancellationToken);
+            written?.TrySetResult(completed);
             reply.SetResult(string.Empty);
             return reply;
         }
 
         try
         {
-            written?.TrySetResult(await _channel.WriteAsync(Encoding.ASCII.GetBytes(command + Profile.LineTerminator), $"laser gate on {PortName}: cannot send '{command}'", cancellationToken));
+            var completed = await _channel.WriteAsync(Encoding.ASCII.GetBytes(command + Profile.LineTerminator), $"laser gate on {PortName}: cannot send '{command}'", cancellationToken);
+            written?.TrySetResult(completed);
         }
         catch
         {
