@@ -41,6 +41,9 @@ public interface ILaserGate
     /// </summary>
     Task<long?> LineWritten => Task.FromResult<long?>(null);
 
+    /// <summary>True while bytes that arrived from the gate are still on their way to the host's code; false when the link cannot tell.</summary>
+    bool IsReceiving => false;
+
     /// <summary>What the gate can do beyond the base protocol (its answer to CAPS?); none for a gate that refuses the question.</summary>
     Task<IReadOnlySet<string>> GetCapabilitiesAsync(CancellationToken cancellationToken) =>
         Task.FromResult<IReadOnlySet<string>>(new HashSet<string>());

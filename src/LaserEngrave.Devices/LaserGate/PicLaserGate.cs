@@ -63,6 +63,9 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
     /// <inheritdoc/>
     public Task<long?> LineWritten => _lineWritten;
 
+    /// <inheritdoc/>
+    public bool IsReceiving => _channel.IsReceiving;
+
     public bool IsOpen
     {
         get

@@ -21,6 +21,9 @@ public sealed class ZaberChain : IStage, IAsyncDisposable
 
     public ZaberConnection Connection { get; }
 
+    /// <inheritdoc/>
+    public bool IsReceiving => Connection.IsReceiving;
+
     public MachineProfile Profile { get; }
 
     public ZaberBinaryDevice X { get; }

@@ -116,6 +116,9 @@ public sealed class ZaberConnection : IAsyncDisposable
         }
     }
 
+    /// <summary>True while bytes that arrived are still on their way to their waiters (unread, or being framed and handed on).</summary>
+    public bool IsReceiving => _channel.IsReceiving;
+
     /// <summary>Bytes taken from the link so far (tests use it to know the reader has seen what was sent).</summary>
     internal long BytesReceived => _channel.BytesReceived;
 
