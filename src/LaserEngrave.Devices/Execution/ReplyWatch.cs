@@ -45,6 +45,14 @@ internal sealed class ReplyWatch
     /// <summary>Whether bytes are still arriving on the gate's link (true) or the stage's (false); null: never (the deadline stands).</summary>
     public Func<bool, bool>? Arriving { get; init; }
 
+    /// <summary>
+    /// When the command asked for last on the gate's link (true) or the stage's (false) was written (its write's completion,
+    /// a timestamp of the run's clock; null: unknown); null: the watch does not ask. A watched reply's deadline moves later
+    /// by however much later its command's write completed than the watch began: a computer that stalled before the
+    /// write sent the command late, and its reply comes that much later, stage and gate alike.
+    /// </summary>
+    public Func<bool, Task<long?>>? Written { get; init; }
+
     /// <summary>Watches a reply: late past its expected arrival (plus the stall margin), failed or wrong, it ends the run, laser off first.</summary>
     /// <remarks>
     /// A move of an axis (<paramref name="axis"/>) is sent to arrive just after the one before has ended; should it catch
@@ -69,7 +77,9 @@ internal sealed class ReplyWatch
         }
 
         _watched.Add(watched);
-        _ = TaskRunner.For(_time).Start(() => WatchAsync(watched, gate));
+        var written = Written?.Invoke(gate) is { IsCompleted: false } stillWriting ? stillWriting : null;
+        var asked = _time.GetTimestamp();
+        _ = TaskRunner.For(_time).Start(() => WatchAsync(watched, gate, written, asked));
         return watched;
     }
 
@@ -140,11 +150,16 @@ internal sealed class ReplyWatch
         return reply.IsCompleted;
     }
 
-    private async Task WatchAsync(Watched watched, bool gate)
+    private async Task WatchAsync(Watched watched, bool gate, Task<long?>? written, long asked)
     {
         try
         {
             var reply = watched.Reply;
+            if (written is not null && await written is { } stamp && _time.GetElapsedTime(asked, stamp) is { Ticks: > 0 } late)
+            {
+                // Written late (a stalled computer): the reply is expected that much later.
+                watched.Deadline += late.TotalSeconds;
+            }
 
             // Waits again when the deadline moved later meanwhile (a stroke found behind its plan), never for the same one twice.
             for (var deadline = double.NegativeInfinity; watched.Deadline > deadline && !reply.IsCompleted;)

@@ -141,13 +141,20 @@ public sealed partial class RunExecutor
 
         var earlier = _replies.Unsettled();
         var move = Stage.X.MoveAbsoluteAfterAsync(stroke.EndX, token);
+        var moveWritten = Stage.LineWritten;
         var strokeEnd = Watch(Arrive(move, "X", stroke.EndX, x => _x = x), times.End + timing.StageReplySeconds, "the end of a stroke (X)", axis: "X");
         var strokeEndDeadline = strokeEnd.Deadline;
         var poll = stroke.RunCount > 0 ? Stage.X.GetPositionAsync(token) : null;
+        var pollWritten = Stage.LineWritten;
         var direction = stroke.Direction;
 
-        // Where the position queries after flown gaps found the stage ahead (-) or behind (+) its plan, as time at the burn speed.
-        var shift = 0.0;
+        // Where the position queries after flown gaps found the stage ahead (-) or behind (+) its plan, as time at the burn
+        // speed; from the start, a move whose write completed late (a computer stalled before it) is that much behind.
+        var shift = await WrittenLateAsync(moveWritten, times.Arrival - timing.StageCommandSeconds);
+        active.Origin = times.Arrival + shift;
+
+        // The query asked after the move: written later than the move (a stall between them), it finds the stage further on.
+        var pollLate = poll is null ? 0 : await WrittenLateAsync(pollWritten, times.Arrival - timing.StageCommandSeconds + shift);
         (StrokePlan.Bump Bump, FlownQuery Query)? flown = null;
         var bumps = plan.Bumps.ToDictionary(b => b.Exit);
         var index = 0;
@@ -157,7 +164,7 @@ public sealed partial class RunExecutor
             var onWrite = times.Arrival + Offset(burn.X0) + shift + timing.OnDelaySeconds - timing.OnLeadSeconds;
             if (index++ == 0)
             {
-                await ConfirmMovingAsync(earlier, poll!, start, direction, timing, onWrite, token);
+                await ConfirmMovingAsync(earlier, poll!, start, direction, timing, onWrite, token, pollLate);
             }
             else if (flown is { } gap)
             {
@@ -287,6 +294,7 @@ public sealed partial class RunExecutor
             ThrowIfAborted();
             _travelLate = Math.Max(_travelLate, RunSeconds - write);
             await send();
+            _travelLate = Math.Max(_travelLate, await WrittenLateAsync(Stage.LineWritten, write));
         }
 
         if (_travelLate > LateSeconds)
@@ -313,11 +321,16 @@ public sealed partial class RunExecutor
         ThrowIfAborted();
         var upLate = RunSeconds - upWrite;
         Watch(Stage.X.SetTargetSpeedAsync(_program.Motion.TravelSpeedData, token), Sent(start + bump.SpeedUpArrival, RunSeconds, timing) + timing.StageReplySeconds, "Set Target Speed (X, a flown gap)");
+        var upWritten = Stage.LineWritten;
         NoteGapFlown();
         var downWrite = start + bump.SpeedDownArrival - timing.StageCommandSeconds;
         await DelayUntilAsync(downWrite, token);
+
+        // A write that completed late (a computer stalled before it) left that late, whatever the clock said before it.
+        upLate = Math.Max(upLate, await WrittenLateAsync(upWritten, upWrite));
         var downLate = RunSeconds - downWrite;
         Watch(Stage.X.SetTargetSpeedAsync(_program.Motion.BurnSpeedData, token), Sent(start + bump.SpeedDownArrival, RunSeconds, timing) + timing.StageReplySeconds, "Set Target Speed (X, after a flown gap)");
+        downLate = Math.Max(downLate, await WrittenLateAsync(Stage.LineWritten, downWrite));
 
         // The query goes once the stage is surely back at the burn speed: never sooner after the speed-down than planned,
         // and later still when the speed-down left late against the speed-up (a busy computer): held longer, the bump
@@ -329,7 +342,9 @@ public sealed partial class RunExecutor
         var queryWrite = start + bump.QueryArrival - timing.StageCommandSeconds;
         await DelayUntilAsync(Math.Max(queryWrite, RunSeconds + (bump.QueryArrival - bump.SpeedDownArrival) + rampDown), token);
         var queryLate = RunSeconds - queryWrite;
-        return new FlownQuery(Stage.X.GetPositionAsync(token), Later(0, upLate), Later(0, downLate), Later(0, queryLate));
+        var query = Stage.X.GetPositionAsync(token);
+        queryLate = Math.Max(queryLate, await WrittenLateAsync(Stage.LineWritten, queryWrite));
+        return new FlownQuery(query, Later(0, upLate), Later(0, downLate), Later(0, queryLate));
     }
 
     /// <summary>How far above the burn speed a bump held <paramref name="hold"/> s rises (<see cref="TimedSwitching.FlyGain"/>'s dV).</summary>
@@ -374,14 +389,14 @@ public sealed partial class RunExecutor
     }
 
     /// <summary>Before the first switch-on of a stroke: every earlier move has reported its end, and the position query shows the stage on its way.</summary>
-    private async Task ConfirmMovingAsync(IReadOnlyList<ReplyWatch.Watched> earlier, Task<long> poll, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token)
+    private async Task ConfirmMovingAsync(IReadOnlyList<ReplyWatch.Watched> earlier, Task<long> poll, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token, double pollLate = 0)
     {
         foreach (var watched in earlier)
         {
             // A move whose end is never reported is settled by the next move of its axis reporting its own.
             if (!await CompletesByAsync(watched.Settled(), onWrite, token))
             {
-                throw Fault($"the stage had not reported {watched.What} when the laser was to come on");
+                throw Fault($"the stage had not reported {watched.What} when the laser was to come on", recoverable: true);
             }
         }
 
@@ -402,8 +417,8 @@ public sealed partial class RunExecutor
 
         // The query arrives one frame after the move: the stage has accelerated that long, give or take both latencies.
         var a = timing.Acceleration;
-        var earliest = Math.Max(0, timing.FrameSeconds - (2 * timing.StageJitterSeconds));
-        var latest = timing.FrameSeconds + (2 * timing.StageJitterSeconds);
+        var earliest = Math.Max(0, timing.FrameSeconds + pollLate - (2 * timing.StageJitterSeconds));
+        var latest = timing.FrameSeconds + pollLate + (2 * timing.StageJitterSeconds);
         var moved = (position - start) * direction;
         var least = Math.Max(1, Math.Floor(0.5 * a * earliest * earliest / 2));
         var most = Math.Ceiling(0.5 * a * latest * latest) + 2;
@@ -517,6 +532,10 @@ public sealed partial class RunExecutor
             _laser.Lock.Release();
         }
     }
+
+    /// <summary>How much later than <paramref name="plannedWrite"/> (run seconds) a command's write completed; 0 when on time or unknown.</summary>
+    private async Task<double> WrittenLateAsync(Task<long?> lineWritten, double plannedWrite) =>
+        await lineWritten is { } stamp && TimeProvider.GetElapsedTime(_engravingStart, stamp).TotalSeconds - plannedWrite is > LateSeconds and var late ? late : 0;
 
     /// <summary>Sends a timed switch-off under the laser lock and returns its acknowledgement without waiting for it, and when it was written.</summary>
     private async Task<(Task Acknowledged, double WrittenSeconds)> SendSwitchOffAsync(TimedSwitching timing)

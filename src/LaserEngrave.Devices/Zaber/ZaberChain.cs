@@ -24,6 +24,9 @@ public sealed class ZaberChain : IStage, IAsyncDisposable
     /// <inheritdoc/>
     public bool IsReceiving => Connection.IsReceiving;
 
+    /// <inheritdoc/>
+    public Task<long?> LineWritten => Connection.LineWritten;
+
     public MachineProfile Profile { get; }
 
     public ZaberBinaryDevice X { get; }

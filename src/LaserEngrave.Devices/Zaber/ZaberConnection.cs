@@ -48,6 +48,7 @@ public sealed class ZaberConnection : IAsyncDisposable
     private Task _resync = Task.CompletedTask;
     private bool _closed;
     private int _disposed;
+    private volatile Task<long?> _lineWritten = Task.FromResult<long?>(null);
 
     public ZaberConnection(ISerialLink link, TimeProvider? timeProvider = null, ZaberConnectionOptions? options = null)
     {
@@ -115,6 +116,12 @@ public sealed class ZaberConnection : IAsyncDisposable
             }
         }
     }
+
+    /// <summary>
+    /// Completes when the request asked for last (the call that returned just before this is read) has been written,
+    /// with the time its write completed as a timestamp of the connection's clock; null when it was never written.
+    /// </summary>
+    public Task<long?> LineWritten => _lineWritten;
 
     /// <summary>True while bytes that arrived are still on their way to their waiters (unread, or being framed and handed on).</summary>
     public bool IsReceiving => _channel.IsReceiving;
@@ -322,6 +329,8 @@ public sealed class ZaberConnection : IAsyncDisposable
 
         var pending = new PendingRequest(request);
         List<PendingRequest>? interrupted = null;
+        var lineWritten = new TaskCompletionSource<long?>(TaskCreationOptions.RunContinuationsAsynchronously);
+        _lineWritten = lineWritten.Task;
         await _sendLock.WaitAsync(cancellationToken);
         var lineHeld = true;
         try
@@ -346,10 +355,12 @@ public sealed class ZaberConnection : IAsyncDisposable
             try
             {
                 written = await WriteFrameAsync(request, cancellationToken);
+                lineWritten.TrySetResult(written);
             }
             catch
             {
                 Remove(pending);
+                lineWritten.TrySetResult(null);
                 throw;
             }
 
@@ -393,6 +404,8 @@ public sealed class ZaberConnection : IAsyncDisposable
             {
                 _sendLock.Release();
             }
+
+            lineWritten.TrySetResult(null);
         }
     }
 

@@ -14,7 +14,8 @@ namespace LaserEngrave.Simulator.Serial;
 /// </para>
 /// <para>
 /// Device to host: a reply leaves byte by byte behind the replies before it, and reaches the host when its last byte has
-/// left plus the adapter's latency (drawn once per reply), never before an earlier reply.
+/// left plus the adapter's latency (drawn once per reply), never before an earlier reply; with <see cref="ReplyPieces"/>
+/// some replies reach it in two pieces, the first early.
 /// </para>
 /// Reads never wait for virtual time, so every write is seen at the instant the host made it. A byte's arrival is when the
 /// link says it arrived (on real ports, when the operating system returned it), not when this loop got to it: on a loaded
@@ -56,19 +57,36 @@ internal sealed class LinkSession
         {
             var start = Math.Max(_clock.NowSeconds + extraDelay.TotalSeconds, _outBusyUntil);
             _outBusyUntil = start + (data.Length * _secondsPerByte);
+            var previous = _lastDelivery;
             _lastDelivery = Math.Max(_outBusyUntil + _latency.ToHostSeconds(), _lastDelivery);
-            if (_clock.IsWallClock)
+            if (_latency.Cut(data.Length) is { } cut)
             {
-                // Handed to the writer by the pacer at its instant, in order (deliveries never go back in time): the
-                // system's timers would hand it a few milliseconds late. The write itself stays off the pacer's thread,
-                // which every simulator of the process shares, since a port's write can block.
-                var delivery = _lastDelivery;
-                _clock.At(delivery, () => _outgoing.Writer.TryWrite((data, delivery)));
+                // The adapter hands the first piece on early, never before its bytes have left the device nor before the
+                // reply ahead of it; the last arrives when the whole reply would have.
+                var first = Math.Max(Math.Max(_lastDelivery - cut.GapSeconds, start + (cut.At * _secondsPerByte)), previous);
+                Deliver(data[..cut.At], first);
+                Deliver(data[cut.At..], _lastDelivery);
             }
             else
             {
-                _outgoing.Writer.TryWrite((data, _lastDelivery));
+                Deliver(data, _lastDelivery);
             }
+        }
+    }
+
+    // Caller holds the send lock: deliveries are queued in their order.
+    private void Deliver(byte[] data, double delivery)
+    {
+        if (_clock.IsWallClock)
+        {
+            // Handed to the writer by the pacer at its instant, in order (deliveries never go back in time): the
+            // system's timers would hand it a few milliseconds late. The write itself stays off the pacer's thread,
+            // which every simulator of the process shares, since a port's write can block.
+            _clock.At(delivery, () => _outgoing.Writer.TryWrite((data, delivery)));
+        }
+        else
+        {
+            _outgoing.Writer.TryWrite((data, delivery));
         }
     }
 
