@@ -540,7 +540,7 @@ public sealed class ZaberConnection : IAsyncDisposable
     }
 
     private void OnPartialFrameDropped(byte[] dropped) => LineEvent?.Invoke(this, new ZaberLineEventArgs(
-        ZaberLineEvent.PartialFrameDropped, $"{PortName}: dropped {dropped.Length} byte(s) of an unfinished frame ({Convert.ToHexString(dropped)}) after a gap"));
+        ZaberLineEvent.PartialFrameDropped, string.Create(CultureInfo.InvariantCulture, $"{PortName}: dropped {dropped.Length} byte(s) of an unfinished frame ({Convert.ToHexString(dropped)}) after a gap of at least {_framer.LastDropGap.TotalMilliseconds:0.0} ms")));
 
     private void Dispatch(ZaberFrame frame, ref List<Action>? after)
     {

@@ -55,6 +55,7 @@ public sealed class ZaberFramer : ISerialFramer<ZaberFrame>
                 if (_count > 0 && !_discarding)
                 {
                     dropped = _partial[.._count];
+                    LastDropGap = _time.GetElapsedTime(_lastArrival, earliest);
                 }
 
                 _count = 0;
@@ -95,6 +96,9 @@ public sealed class ZaberFramer : ISerialFramer<ZaberFrame>
             }
         }
     }
+
+    /// <summary>The gap proven before the last unfinished frame dropped (read it in the drop's callback).</summary>
+    public TimeSpan LastDropGap { get; private set; }
 
     /// <summary>Drops every byte until the line has been quiet for the partial-frame timeout (after garbage).</summary>
     public void DiscardUntilQuiet()

@@ -29,7 +29,7 @@ public class LineWarningsTests
         });
 
         var line = Assert.Single(warnings.Lines!);
-        Assert.Equal($"1.512 s: {ZaberRig.Port}: dropped 3 byte(s) of an unfinished frame (013C09) after a gap", line);
+        Assert.Equal($"1.512 s: {ZaberRig.Port}: dropped 3 byte(s) of an unfinished frame (013C09) after a gap of at least 12.0 ms", line);
     }
 
     [Fact]

@@ -78,6 +78,7 @@ public class ZaberFramerTests
 
         Assert.Equal([new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 321)], frames);
         Assert.Equal([bytes[..3]], dropped);
+        Assert.Equal(12, framer.LastDropGap.TotalMilliseconds, 6);
     }
 
     [Fact]
