@@ -78,6 +78,7 @@ internal sealed class ReplyWatch
 
         _watched.Add(watched);
         var written = Written?.Invoke(gate) is { IsCompleted: false } stillWriting ? stillWriting : null;
+        watched.Written = written;
         var asked = _time.GetTimestamp();
         _ = TaskRunner.For(_time).Start(() => WatchAsync(watched, gate, written, asked));
         return watched;
@@ -232,6 +233,12 @@ internal sealed class ReplyWatch
 
         /// <summary>A reply of the gate (else of the stage): which link's arriving bytes may still be it.</summary>
         public bool Gate { get; init; }
+
+        /// <summary>Its command's write, when it was still being written as the watch began (a stalled computer); null: written.</summary>
+        public Task<long?>? Written { get; set; }
+
+        /// <summary>True while its command is still being written: its deadline is not known yet (it moves with the write).</summary>
+        public bool StillWriting => Written is { IsCompleted: false };
 
         /// <summary>The next move of the same axis, which settles this one if this one's end is never reported.</summary>
         public Watched? Successor { get; set; }
