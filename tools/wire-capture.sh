@@ -6,7 +6,8 @@
 # Per job JOB: digests/JOB.txt (per port and direction: byte count and SHA-256 of the bytes; then the SHA-256 of the
 # whole timed recording), digests/JOB.json (the --json summary without wall time and paths), digests/JOB.progress (the
 # progress lines), wire/JOB.jsonl (the recording itself, to find a difference). Build first: dotnet build src/LaserEngrave.Cli
-# Environment: CLI (laserengrave.dll; default: this tree's Debug build); NORMALIZE_ONLY=1 re-derives the .json and
+# Environment: CLI (laserengrave.dll; default: this tree's Debug build); SIM_OPTIONS (a --sim-options file for every job,
+# e.g. a never-late host to compare the protocol alone across a change of the twin's defaults); NORMALIZE_ONLY=1 re-derives the .json and
 # .progress digests of an earlier capture in OUT from its raw output (when this filter has changed).
 set -u
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -58,7 +59,7 @@ EOF
 run() { # JOB COMMAND ARGS...: runs one job on the twin, records its wire traffic and digests it
   local job=$1; shift
   rm -f "$out/wire/$job.jsonl"
-  dotnet "$CLI" "$@" --simulate --log-dir "$out/logs" --sim-wire "$out/wire/$job.jsonl" --json \
+  dotnet "$CLI" "$@" --simulate ${SIM_OPTIONS:+--sim-options "$SIM_OPTIONS"} --log-dir "$out/logs" --sim-wire "$out/wire/$job.jsonl" --json \
     > "$out/$job.stdout" 2> "$out/$job.stderr"
   echo "exit $?" > "$out/digests/$job.exit"
   normalize "$job"

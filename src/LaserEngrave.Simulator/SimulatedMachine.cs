@@ -40,6 +40,7 @@ public sealed class SimulatedMachine : IAsyncDisposable
     private Task _stageServed = Task.CompletedTask;
     private Task _laserServed = Task.CompletedTask;
     private int _disposed;
+    private int _loadedLinks;
 
     private SimulatedMachine(MachineProfile profile, SimulatorOptions options, bool inProcess)
     {
@@ -52,7 +53,7 @@ public sealed class SimulatedMachine : IAsyncDisposable
         {
             _virtual = new VirtualTimeProvider(options.VirtualStart, options.Paced);
             TimeProvider = _virtual;
-            if (!options.HostLateness.IsNone)
+            if (!options.HostLateness.WakesOnTime)
             {
                 // Its own stream, so the links' draws (and every figure without host lateness) stay as they were.
                 var lateness = options.HostLateness;
@@ -238,21 +239,40 @@ public sealed class SimulatedMachine : IAsyncDisposable
     }
 
     // Each link draws its latencies from its own seeded source, so the stage's traffic does not shift the gate's draws.
-    private LinkLatency NewLatency(Jitter processing = default) =>
-        new(Options.AdapterLatency, processing, new Random(_random.Next()));
+    private LinkLatency NewLatency(Jitter processing = default)
+    {
+        var seed = _random.Next();
+        var latency = new LinkLatency(Options.AdapterLatency, processing, new Random(seed));
+
+        // Pieces draw from a stream of their own (derived from the link's), so the latencies are the same with or without them.
+        return Options.ReplyPieces.IsNone ? latency : latency.WithPieces(Options.ReplyPieces, new Random(seed ^ 0x50494543));
+    }
 
     private ISerialLink ServeInProcessStage()
     {
         var (host, device) = InMemorySerialLink.CreatePair("simulated stage", TimeProvider);
         ServeStage(device);
-        return host;
+        return Loaded(host, 1);
     }
 
     private ISerialLink ServeInProcessLaser()
     {
         var (host, device) = InMemorySerialLink.CreatePair("simulated laser gate", TimeProvider);
         ServeLaser(device);
-        return host;
+        return Loaded(host, 2);
+    }
+
+    // The host's end as a loaded computer uses it (stalled writes, late reads), in virtual time; each link its own stream.
+    private ISerialLink Loaded(ISerialLink host, int link)
+    {
+        var lateness = Options.HostLateness;
+        if (_virtual is null || (!lateness.Stalls && !lateness.ReadsLate))
+        {
+            return host;
+        }
+
+        _loadedLinks++;
+        return new LoadedHostLink(host, TimeProvider, lateness, new Random(unchecked((Options.Seed * 7919) + (link * 104729) + (_loadedLinks * 31)) ^ 0x53544C4C));
     }
 
     private Task Track(string port, ISerialLink link, Func<Action<string>, Task> serve)

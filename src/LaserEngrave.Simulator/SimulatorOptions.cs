@@ -8,10 +8,12 @@ public sealed record SimulatorOptions
 {
     /// <summary>
     /// The twin the front ends start from (the CLI's <c>--simulate</c> and <c>simulator</c>, the app's in-process
-    /// simulator): a host as late as a lab PC with other work on it (<see cref="Timing.HostLateness.Realistic"/>), so that
-    /// what a user sees does not flatter the host; an options file's <c>hostLateness</c> overrides it (zeros: never late).
+    /// simulator): a host as late as a lab PC with other work on it (<see cref="Timing.HostLateness.Realistic"/>: late
+    /// wake-ups, rare stalled writes and late reads) and replies now and then in two pieces
+    /// (<see cref="Serial.ReplyPieces.Realistic"/>), so that what a user sees does not flatter the host; an options file's
+    /// <c>hostLateness</c> and <c>replyPieces</c> override them (zeros: never late, always whole).
     /// </summary>
-    public static SimulatorOptions FrontEnd { get; } = new() { HostLateness = HostLateness.Realistic };
+    public static SimulatorOptions FrontEnd { get; } = new() { HostLateness = HostLateness.Realistic, ReplyPieces = Serial.ReplyPieces.Realistic };
 
     /// <summary>Run on the wall clock (<see cref="TimeProvider.System"/>) instead of virtual time, e.g. for the app's live view.</summary>
     /// <remarks>A simulator attached to ports always runs on the wall clock: its host lives in real time in another process.</remarks>
@@ -43,6 +45,12 @@ public sealed record SimulatorOptions
     /// later than the edge tolerance) measure the protocol alone.
     /// </remarks>
     public HostLateness HostLateness { get; init; } = HostLateness.None;
+
+    /// <summary>
+    /// How the USB-serial adapters deliver replies: some in two pieces a few milliseconds apart (in-process and attached
+    /// to ports alike). None here; the front ends' default (<see cref="FrontEnd"/>) has <see cref="Serial.ReplyPieces.Realistic"/>.
+    /// </summary>
+    public Serial.ReplyPieces ReplyPieces { get; init; }
 
     /// <summary>The laser gate's time from a command's last byte to the Q-switch changing (and its reply leaving), drawn per command.</summary>
     /// <remarks>

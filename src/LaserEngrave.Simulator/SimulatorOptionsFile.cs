@@ -1,5 +1,6 @@
 using System.Text.Json;
 using System.Text.Json.Serialization;
+using LaserEngrave.Simulator.Serial;
 using LaserEngrave.Simulator.Timing;
 
 namespace LaserEngrave.Simulator;
@@ -55,6 +56,7 @@ public static class SimulatorOptionsFile
             AccelerationData = InRange(path, "accelerationData", fields.AccelerationData, 0, 32767) ?? baseOptions.AccelerationData,
             FaultSpec = fields.Faults ?? baseOptions.FaultSpec,
             HostLateness = CheckedLateness(path, fields.HostLateness) ?? baseOptions.HostLateness,
+            ReplyPieces = CheckedPieces(path, fields.ReplyPieces) ?? baseOptions.ReplyPieces,
             FirmwareVersion = InRange(path, "firmwareVersion", fields.FirmwareVersion, 500, 599) ?? baseOptions.FirmwareVersion,
             DeviceId = InRange(path, "deviceId", fields.DeviceId, 1, int.MaxValue) ?? baseOptions.DeviceId,
             StartMm = fields.StartMm is { } startMm
@@ -110,7 +112,7 @@ public static class SimulatorOptionsFile
     }
 
     private static readonly string[] KnownFields =
-        ["seed", "firmwareVersion", "deviceId", "hostLateness", "adapterLatency", "gateProcessing", "jitterScale", "targetSpeedData", "homeSpeedData", "accelerationData", "startMm", "paced", "faults", "trueFocusOffsetUm", "rayleighLengthUm"];
+        ["seed", "firmwareVersion", "deviceId", "hostLateness", "replyPieces", "adapterLatency", "gateProcessing", "jitterScale", "targetSpeedData", "homeSpeedData", "accelerationData", "startMm", "paced", "faults", "trueFocusOffsetUm", "rayleighLengthUm"];
 
     private static Jitter? Checked(string path, string name, Jitter? jitter)
     {
@@ -123,10 +125,18 @@ public static class SimulatorOptionsFile
     }
 
     private static HostLateness? CheckedLateness(string path, HostLateness? lateness) =>
-        lateness is { } l && (!double.IsFinite(l.TypicalMs) || !double.IsFinite(l.TailMs) || !double.IsFinite(l.TailProbability)
-            || l.TypicalMs < 0 || l.TypicalMs > 1000 || l.TailMs < 0 || l.TailMs > 1000 || l.TailProbability < 0 || l.TailProbability > 1)
+        lateness is { } l && (!Within(l.TypicalMs, 1000) || !Within(l.TailMs, 1000) || !Within(l.TailProbability, 1))
             ? throw new InvalidDataException($"{path}: hostLateness must have typicalMs and tailMs from 0 to 1000 ms and tailProbability from 0 to 1")
+            : lateness is { } s && (!Within(s.StallMs, 1000) || !Within(s.LateReadMs, 1000) || !Within(s.StallProbability, 1) || !Within(s.LateReadProbability, 1))
+            ? throw new InvalidDataException($"{path}: hostLateness must have stallMs and lateReadMs from 0 to 1000 ms and stallProbability and lateReadProbability from 0 to 1")
             : lateness;
+
+    private static ReplyPieces? CheckedPieces(string path, ReplyPieces? pieces) =>
+        pieces is { } p && (!Within(p.Probability, 1) || !Within(p.GapMs, 100))
+            ? throw new InvalidDataException($"{path}: replyPieces must have probability from 0 to 1 and gapMs from 0 to 100 ms")
+            : pieces;
+
+    private static bool Within(double value, double max) => double.IsFinite(value) && value >= 0 && value <= max;
 
     private static int? InRange(string path, string name, int? value, int min, int max) =>
         value is { } v && (v < min || v > max)
@@ -142,6 +152,8 @@ public static class SimulatorOptionsFile
         public int? FirmwareVersion { get; init; }
 
         public HostLateness? HostLateness { get; init; }
+
+        public ReplyPieces? ReplyPieces { get; init; }
 
         public int? DeviceId { get; init; }
 

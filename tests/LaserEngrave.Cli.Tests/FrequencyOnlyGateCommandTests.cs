@@ -44,8 +44,13 @@ public sealed class FrequencyOnlyGateCommandTests : IDisposable
     [Fact]
     public async Task EngraveSimulate_FrequencyOnlyProfileAccepted_CompletesNoPulseOnWhiteAndTheLogKeepsTheAcceptance()
     {
+        // The front ends' late host, but no stalled write: a frequency-only gate fires until a stalled switch-off arrives
+        // (docs/execution.md, "A frequency-only gate").
+        Directory.CreateDirectory(folder);
+        var options = Path.Combine(folder, "no-stalls.json");
+        await File.WriteAllTextAsync(options, """{ "hostLateness": { "typicalMs": 0.5, "tailProbability": 0.01, "tailMs": 5, "lateReadProbability": 0.0005, "lateReadMs": 60 } }""", TestContext.Current.CancellationToken);
         var (exit, output, error) = await CliHarness.RunAsync(
-            "engrave", QrCode, "--width-mm", "5", "--origin-mm", "10,10", "--profile", FrequencyOnly, "--accept-no-watchdog", "--simulate", "--json", "--log-dir", LogDir);
+            "engrave", QrCode, "--width-mm", "5", "--origin-mm", "10,10", "--profile", FrequencyOnly, "--accept-no-watchdog", "--simulate", "--sim-options", options, "--json", "--log-dir", LogDir);
 
         Assert.True(exit == 0, error);
         using var json = JsonDocument.Parse(output);

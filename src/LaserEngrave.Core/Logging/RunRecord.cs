@@ -147,6 +147,15 @@ public sealed record RunRecord
     /// <summary>The timing doubts the run went on from (a position query too late with the laser off, on a busy computer); null when none.</summary>
     public IReadOnlyList<RunRecovery>? Recoveries { get; init; }
 
+    /// <summary>
+    /// What the stage's line dropped during the run (an unfinished frame after a proven gap), one line each with the run's
+    /// seconds and the port; at most <see cref="MaxLineWarnings"/>, the rest counted in the last; null when nothing was.
+    /// </summary>
+    public IReadOnlyList<string>? LineWarnings { get; init; }
+
+    /// <summary>How many <see cref="LineWarnings"/> a record keeps.</summary>
+    public const int MaxLineWarnings = 50;
+
     /// <summary>For a job of layers: its job file and SHA-256 (a resume refuses a changed file); null otherwise.</summary>
     public RunJobFile? JobFile { get; init; }
 

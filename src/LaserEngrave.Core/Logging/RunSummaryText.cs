@@ -228,6 +228,17 @@ public static class RunSummaryText
             Line("Went on after", string.Create(c, $"{rest.Count} more timing doubts ({(first == last ? $"pass {first}" : $"passes {first}-{last}")}), listed in the JSON record's recoveries"));
         }
 
+        var warnings = record.LineWarnings ?? [];
+        foreach (var warning in warnings.Take(ListedRecoveries))
+        {
+            Line("Line", warning);
+        }
+
+        if (warnings.Count > ListedRecoveries)
+        {
+            Line("Line", string.Create(c, $"{warnings.Count - ListedRecoveries} more, listed in the JSON record's lineWarnings"));
+        }
+
         foreach (var device in record.Devices)
         {
             Line("Device", $"{device.Role} on {device.Port}: {device.Identity}, firmware {device.Firmware}");

@@ -33,6 +33,17 @@ public interface ILaserGate
     Task BurstAfterAsync(int pulses, int frequencyHz, int afterUs, CancellationToken cancellationToken) =>
         Task.FromException(new NotSupportedException("this laser gate link cannot send a scheduled burst"));
 
+    /// <summary>
+    /// Completes when the line of the command asked for last (the call that returned just before this is read) has been
+    /// written, with the time its write completed (returned from the operating system) as a timestamp of the gate's clock
+    /// (the machine's); null when it was never written or the link cannot tell. A computer that stalled between deciding
+    /// to send and the write sent the line that much later, whatever was planned.
+    /// </summary>
+    Task<long?> LineWritten => Task.FromResult<long?>(null);
+
+    /// <summary>True while bytes that arrived from the gate are still on their way to the host's code; false when the link cannot tell.</summary>
+    bool IsReceiving => false;
+
     /// <summary>What the gate can do beyond the base protocol (its answer to CAPS?); none for a gate that refuses the question.</summary>
     Task<IReadOnlySet<string>> GetCapabilitiesAsync(CancellationToken cancellationToken) =>
         Task.FromResult<IReadOnlySet<string>>(new HashSet<string>());

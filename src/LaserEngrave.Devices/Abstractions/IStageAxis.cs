@@ -82,4 +82,15 @@ public interface IStage
 
     /// <summary>The focus (Z) axis; null on a two-axis machine.</summary>
     IStageAxis? Z => null;
+
+    /// <summary>True while bytes that arrived from the stage are still on their way to the host's code (unread, or being handed on); false when the link cannot tell.</summary>
+    /// <remarks>A reply whose time is up asks it: a host stalled after the reply arrived is late to read it, not the stage to send it.</remarks>
+    bool IsReceiving => false;
+
+    /// <summary>
+    /// Completes when the command asked for last on the stage's line (the call that returned just before this is read)
+    /// has been written, with the time its write completed as a timestamp of the machine's clock; null when it was never
+    /// written or the link cannot tell.
+    /// </summary>
+    Task<long?> LineWritten => Task.FromResult<long?>(null);
 }

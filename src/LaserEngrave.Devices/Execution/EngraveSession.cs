@@ -299,6 +299,7 @@ public sealed class EngraveSession
     private async Task<EngraveResult> RunPassesAsync(CancellationToken cancellationToken)
     {
         var time = Machine.TimeProvider;
+        using var lineWarnings = new LineWarnings(Machine.Stage, time);
         var record = NewRecord(_parts[0], Options.WallClock.GetLocalNow()) with
         {
             Simulated = Machine.Simulated,
@@ -419,6 +420,7 @@ public sealed class EngraveSession
             PassesDone = Passes > 1 ? passesDone : null,
             Layers = layers,
             Recoveries = _recoveries.Count > 0 ? [.. _recoveries] : null,
+            LineWarnings = lineWarnings.Lines,
         };
         if (record.Outcome == RunOutcome.Completed && BurnMismatch(record) is { } mismatch)
         {

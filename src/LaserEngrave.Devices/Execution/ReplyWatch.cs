@@ -32,6 +32,27 @@ internal sealed class ReplyWatch
         _run = run;
     }
 
+    /// <summary>How often a reply whose time is up is looked for again while bytes are still arriving (the gate's waits' recheck).</summary>
+    internal static readonly TimeSpan ArrivingRecheck = TimeSpan.FromMilliseconds(5);
+
+    /// <summary>
+    /// How long past its deadline a reply may still be looked for while bytes are still arriving on its link: a host that
+    /// stalled (another process, a page fault) reads a reply that came in time 20-100 ms late, and that is not the
+    /// device stalling. Nothing arriving, the deadline stands.
+    /// </summary>
+    internal static readonly TimeSpan ArrivingGrace = TimeSpan.FromMilliseconds(250);
+
+    /// <summary>Whether bytes are still arriving on the gate's link (true) or the stage's (false); null: never (the deadline stands).</summary>
+    public Func<bool, bool>? Arriving { get; init; }
+
+    /// <summary>
+    /// When the command asked for last on the gate's link (true) or the stage's (false) was written (its write's completion,
+    /// a timestamp of the run's clock; null: unknown); null: the watch does not ask. A watched reply's deadline moves later
+    /// by however much later its command's write completed than the watch began: a computer that stalled before the
+    /// write sent the command late, and its reply comes that much later, stage and gate alike.
+    /// </summary>
+    public Func<bool, Task<long?>>? Written { get; init; }
+
     /// <summary>Watches a reply: late past its expected arrival (plus the stall margin), failed or wrong, it ends the run, laser off first.</summary>
     /// <remarks>
     /// A move of an axis (<paramref name="axis"/>) is sent to arrive just after the one before has ended; should it catch
@@ -44,7 +65,7 @@ internal sealed class ReplyWatch
     {
         var jitter = gate ? _run.Timing?.GateJitterSeconds : _run.Timing?.StageJitterSeconds;
         var deadline = expectedSeconds + ((jitter ?? 0) * 2) + Units.MsToSeconds(_stallMarginMs);
-        var watched = new Watched(reply, deadline, what) { SwitchOff = switchOff };
+        var watched = new Watched(reply, deadline, what) { SwitchOff = switchOff, Gate = gate };
         if (axis is not null)
         {
             if (_lastMove.TryGetValue(axis, out var before))
@@ -56,7 +77,10 @@ internal sealed class ReplyWatch
         }
 
         _watched.Add(watched);
-        _ = TaskRunner.For(_time).Start(() => WatchAsync(watched, gate));
+        var written = Written?.Invoke(gate) is { IsCompleted: false } stillWriting ? stillWriting : null;
+        watched.Written = written;
+        var asked = _time.GetTimestamp();
+        _ = TaskRunner.For(_time).Start(() => WatchAsync(watched, gate, written, asked));
         return watched;
     }
 
@@ -73,7 +97,8 @@ internal sealed class ReplyWatch
         foreach (var watched in _watched.ToList())
         {
             var deadline = watched.Successor is { } later ? Math.Max(watched.Deadline, later.Deadline) : watched.Deadline;
-            if (!await CompletesByAsync(watched.Settled(), deadline + 0.001, token))
+            var settled = watched.Settled();
+            if (!await CompletesByAsync(settled, deadline + 0.001, token) && !await StillArrivingAsync(settled, watched.Gate, token))
             {
                 throw _run.Fault($"the stage did not report {watched.What} within {_stallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)");
             }
@@ -101,11 +126,41 @@ internal sealed class ReplyWatch
         return task.IsCompleted;
     }
 
-    private async Task WatchAsync(Watched watched, bool gate)
+    /// <summary>
+    /// After a deadline passed: while bytes are still arriving on the reply's link, looks again every few milliseconds
+    /// (at most <see cref="ArrivingGrace"/>); returns whether the reply came meanwhile.
+    /// </summary>
+    private async Task<bool> StillArrivingAsync(Task reply, bool gate, CancellationToken token)
+    {
+        if (Arriving is not { } arriving)
+        {
+            return reply.IsCompleted;
+        }
+
+        // A plain timer, not PreciseDelay: a recheck is not a timed send, and on the twin every PreciseDelay draws the
+        // loaded host's lateness, which would shift every later draw.
+        var until = _time.GetTimestamp() + (long)(ArrivingGrace.TotalSeconds * _time.TimestampFrequency);
+        while (!reply.IsCompleted && _time.GetTimestamp() < until && arriving(gate))
+        {
+            using var stop = CancellationTokenSource.CreateLinkedTokenSource(token);
+            await Task.WhenAny(reply, Task.Delay(ArrivingRecheck, _time, stop.Token));
+            stop.Cancel();
+            token.ThrowIfCancellationRequested();
+        }
+
+        return reply.IsCompleted;
+    }
+
+    private async Task WatchAsync(Watched watched, bool gate, Task<long?>? written, long asked)
     {
         try
         {
             var reply = watched.Reply;
+            if (written is not null && await written is { } stamp && _time.GetElapsedTime(asked, stamp) is { Ticks: > 0 } late)
+            {
+                // Written late (a stalled computer): the reply is expected that much later.
+                watched.Deadline += late.TotalSeconds;
+            }
 
             // Waits again when the deadline moved later meanwhile (a stroke found behind its plan), never for the same one twice.
             for (var deadline = double.NegativeInfinity; watched.Deadline > deadline && !reply.IsCompleted;)
@@ -122,6 +177,7 @@ internal sealed class ReplyWatch
                 stop.Cancel();
             }
 
+            await StillArrivingAsync(reply, gate, CancellationToken.None);
             if (reply.IsCompletedSuccessfully)
             {
                 return;
@@ -174,6 +230,15 @@ internal sealed class ReplyWatch
 
         /// <summary>A switch-off: refused or unanswered, the fault's off sequence takes every path at once.</summary>
         public bool SwitchOff { get; init; }
+
+        /// <summary>A reply of the gate (else of the stage): which link's arriving bytes may still be it.</summary>
+        public bool Gate { get; init; }
+
+        /// <summary>Its command's write, when it was still being written as the watch began (a stalled computer); null: written.</summary>
+        public Task<long?>? Written { get; set; }
+
+        /// <summary>True while its command is still being written: its deadline is not known yet (it moves with the write).</summary>
+        public bool StillWriting => Written is { IsCompleted: false };
 
         /// <summary>The next move of the same axis, which settles this one if this one's end is never reported.</summary>
         public Watched? Successor { get; set; }

@@ -143,15 +143,22 @@ public sealed partial class RunExecutor
         }
 
         var earlier = _replies.Unsettled();
-        var moveWritten = RunSeconds;
+        var moveStamped = RunSeconds;
         var move = Stage.X.MoveAbsoluteAfterAsync(stroke.EndX, token);
+        var moveWritten = Stage.LineWritten;
         var strokeEnd = Watch(Arrive(move, "X", stroke.EndX, x => _x = x), times.End + timing.StageReplySeconds, "the end of a stroke (X)", axis: "X");
         var strokeEndDeadline = strokeEnd.Deadline;
         var poll = stroke.RunCount > 0 ? Arrival(Stage.X.GetPositionAsync(token)) : null;
+        var pollWritten = Stage.LineWritten;
         var direction = stroke.Direction;
 
-        // Where the position queries after flown gaps found the stage ahead (-) or behind (+) its plan, as time at the burn speed.
-        var shift = 0.0;
+        // Where the position queries after flown gaps found the stage ahead (-) or behind (+) its plan, as time at the burn
+        // speed; from the start, a move whose write completed late (a computer stalled before it) is that much behind.
+        var shift = await WrittenLateAsync(moveWritten, times.Arrival - timing.StageCommandSeconds);
+        active.Origin = times.Arrival + shift;
+
+        // The query asked after the move: written later than the move (a stall between them), it finds the stage further on.
+        var pollLate = poll is null ? 0 : await WrittenLateAsync(pollWritten, times.Arrival - timing.StageCommandSeconds + shift);
         (StrokePlan.Bump Bump, FlownQuery Query)? flown = null;
         var bumps = plan.Bumps.ToDictionary(b => b.Exit);
         var index = 0;
@@ -161,7 +168,8 @@ public sealed partial class RunExecutor
             var onWrite = times.Arrival + Offset(burn.X0) + shift + timing.OnDelaySeconds - timing.OnLeadSeconds;
             if (index++ == 0)
             {
-                await ConfirmMovingAsync(earlier, poll!, moveWritten, start, direction, timing, onWrite, token);
+                // The round trip counts from the move's write as it completed (a stall before it is no slow reply).
+                await ConfirmMovingAsync(earlier, poll!, Math.Max(moveStamped, times.Arrival - timing.StageCommandSeconds + shift), start, direction, timing, onWrite, token, pollLate);
             }
             else if (flown is { } gap)
             {
@@ -317,6 +325,7 @@ public sealed partial class RunExecutor
             ThrowIfAborted();
             _travelLate = Math.Max(_travelLate, RunSeconds - write);
             await send();
+            _travelLate = Math.Max(_travelLate, await WrittenLateAsync(Stage.LineWritten, write));
         }
 
         if (_travelLate > LateSeconds)
@@ -343,11 +352,16 @@ public sealed partial class RunExecutor
         ThrowIfAborted();
         var upLate = RunSeconds - upWrite;
         Watch(Stage.X.SetTargetSpeedAsync(_program.Motion.TravelSpeedData, token), Sent(start + bump.SpeedUpArrival, RunSeconds, timing) + timing.StageReplySeconds, "Set Target Speed (X, a flown gap)");
+        var upWritten = Stage.LineWritten;
         NoteGapFlown();
         var downWrite = start + bump.SpeedDownArrival - timing.StageCommandSeconds;
         await DelayUntilAsync(downWrite, token);
+
+        // A write that completed late (a computer stalled before it) left that late, whatever the clock said before it.
+        upLate = Math.Max(upLate, await WrittenLateAsync(upWritten, upWrite));
         var downLate = RunSeconds - downWrite;
         Watch(Stage.X.SetTargetSpeedAsync(_program.Motion.BurnSpeedData, token), Sent(start + bump.SpeedDownArrival, RunSeconds, timing) + timing.StageReplySeconds, "Set Target Speed (X, after a flown gap)");
+        downLate = Math.Max(downLate, await WrittenLateAsync(Stage.LineWritten, downWrite));
 
         // The query goes once the stage is surely back at the burn speed: never sooner after the speed-down than planned,
         // and later still when the speed-down left late against the speed-up (a busy computer): held longer, the bump
@@ -359,8 +373,13 @@ public sealed partial class RunExecutor
         var queryWrite = start + bump.QueryArrival - timing.StageCommandSeconds;
         await DelayUntilAsync(Math.Max(queryWrite, RunSeconds + (bump.QueryArrival - bump.SpeedDownArrival) + rampDown), token);
         var queryLate = RunSeconds - queryWrite;
-        var queryWritten = RunSeconds;
-        return new FlownQuery(Arrival(Stage.X.GetPositionAsync(token)), queryWritten, Later(0, upLate), Later(0, downLate), Later(0, queryLate));
+        var queryStamped = RunSeconds;
+        var query = Arrival(Stage.X.GetPositionAsync(token));
+        var queryWrittenLate = await WrittenLateAsync(Stage.LineWritten, queryWrite);
+        queryLate = Math.Max(queryLate, queryWrittenLate);
+
+        // Its round trip counts from the write's completion: a stall before the write is the host's, not the reply's.
+        return new FlownQuery(query, Math.Max(queryStamped, queryWrite + queryWrittenLate), Later(0, upLate), Later(0, downLate), Later(0, queryLate));
     }
 
     /// <summary>How far above the burn speed a bump held <paramref name="hold"/> s rises (<see cref="TimedSwitching.FlyGain"/>'s dV).</summary>
@@ -445,7 +464,7 @@ public sealed partial class RunExecutor
     }
 
     /// <summary>Before the first switch-on of a stroke: every earlier move has reported its end, and the position query shows the stage on its way.</summary>
-    private async Task ConfirmMovingAsync(IReadOnlyList<ReplyWatch.Watched> earlier, Answered<long> arrived, double moveWritten, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token)
+    private async Task ConfirmMovingAsync(IReadOnlyList<ReplyWatch.Watched> earlier, Answered<long> arrived, double moveWritten, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token, double pollLate = 0)
     {
         var poll = arrived.Task;
         foreach (var watched in earlier)
@@ -453,7 +472,7 @@ public sealed partial class RunExecutor
             // A move whose end is never reported is settled by the next move of its axis reporting its own.
             if (!await CompletesByAsync(watched.Settled(), onWrite, token))
             {
-                throw Fault($"the stage had not reported {watched.What} when the laser was to come on");
+                throw Fault($"the stage had not reported {watched.What} when the laser was to come on", recoverable: true);
             }
         }
 
@@ -473,12 +492,12 @@ public sealed partial class RunExecutor
         }
 
         // The stroke's Move Absolute and its query together: the query's frame leaves behind the move's.
-        ThrowIfReplyTooLate(arrived, moveWritten, 2, timing, "the position query after a stroke's Move Absolute");
+        ThrowIfReplyTooLate(arrived, moveWritten + pollLate, 2, timing, "the position query after a stroke's Move Absolute");
 
         // The query arrives one frame after the move: the stage has accelerated that long, give or take both latencies.
         var a = timing.Acceleration;
-        var earliest = Math.Max(0, timing.FrameSeconds - (2 * timing.StageJitterSeconds));
-        var latest = timing.FrameSeconds + (2 * timing.StageJitterSeconds);
+        var earliest = Math.Max(0, timing.FrameSeconds + pollLate - (2 * timing.StageJitterSeconds));
+        var latest = timing.FrameSeconds + pollLate + (2 * timing.StageJitterSeconds);
         var moved = (position - start) * direction;
         var least = Math.Max(1, Math.Floor(0.5 * a * earliest * earliest / 2));
         var most = Math.Ceiling(0.5 * a * latest * latest) + 2;
@@ -541,6 +560,13 @@ public sealed partial class RunExecutor
     /// </summary>
     private async Task<(Task Acknowledged, double WrittenSeconds)> SendSwitchOnAsync(double onEffect, double offEffect, TimedSwitching timing)
     {
+        var sent = await SendSwitchOnLockedAsync(onEffect, offEffect, timing);
+        await LateWrite.CheckAsync(sent.LineWritten, TimeProvider, _engravingStart, sent.WrittenSeconds, sent.LateSeconds, timing, _profile.EdgeToleranceUm, "switch the laser on", m => Fault(m, recoverable: true));
+        return (sent.Acknowledged, sent.WrittenSeconds);
+    }
+
+    private async Task<(Task Acknowledged, double WrittenSeconds, double LateSeconds, Task<long?> LineWritten)> SendSwitchOnLockedAsync(double onEffect, double offEffect, TimedSwitching timing)
+    {
         await _laser.Lock.WaitAsync();
         try
         {
@@ -571,6 +597,7 @@ public sealed partial class RunExecutor
             // A frequency-only gate is switched on by its frequency alone, as before the burst: only the timed switch-off ends the run.
             var counted = _profile.Gate.CountsBursts;
             var ack = counted ? Gate.BurstAsync(pulses, timing.FrequencyHz, CancellationToken.None) : Gate.SetFrequencyAsync(timing.FrequencyHz, CancellationToken.None);
+            var lineWritten = Gate.LineWritten;
             _gateWireFree = timing.GateWireFreeAfter(written, _gateWireFree, timing.BurstCommand(pulses).Length);
             _gateRepliesIn = timing.GateRepliesInAfter(_gateWireFree, _gateRepliesIn, timing.BurstReplyBytes(pulses));
             var firing = _gateWireFree + timing.GateProcessingSeconds;
@@ -580,7 +607,7 @@ public sealed partial class RunExecutor
                 _burstEndsAt = counted ? firing + ((double)pulses / timing.FrequencyHz) + timing.GateJitterSeconds : double.PositiveInfinity;
             }
 
-            return (ack, written);
+            return (ack, written, Math.Max(0, late), lineWritten);
         }
         finally
         {
@@ -610,7 +637,11 @@ public sealed partial class RunExecutor
         {
             if (await SendScheduledSwitchOnAsync(onEffect, offEffect, timing) is { } sent)
             {
-                return sent;
+                // Its delay was computed at the stamp: a write that completed later (a computer stalled between them)
+                // reached the gate that much later and fires that much late, its count ending past the edge. Beyond the
+                // tolerance that is a timing doubt: the fault's OFF cancels the armed burst before or as it fires.
+                await LateWrite.CheckAsync(sent.LineWritten, TimeProvider, _engravingStart, sent.WrittenSeconds, 0, timing, _profile.EdgeToleranceUm, "switch the laser on", m => Fault(m, recoverable: true));
+                return (sent.Acknowledged, sent.WrittenSeconds, sent.AnsweredSeconds);
             }
 
             // A delay just at a power of ten (its digits and the line's length disagree) is tried again a moment later.
@@ -627,7 +658,7 @@ public sealed partial class RunExecutor
     }
 
     /// <summary>Writes a scheduled switch-on under the laser lock if it is still in time for the gate's timer; null when not (nothing written).</summary>
-    private async Task<(Task Acknowledged, double WrittenSeconds, double AnsweredSeconds)?> SendScheduledSwitchOnAsync(double onEffect, double offEffect, TimedSwitching timing)
+    private async Task<(Task Acknowledged, double WrittenSeconds, double AnsweredSeconds, Task<long?> LineWritten)?> SendScheduledSwitchOnAsync(double onEffect, double offEffect, TimedSwitching timing)
     {
         await _laser.Lock.WaitAsync();
         try
@@ -646,6 +677,7 @@ public sealed partial class RunExecutor
             }
 
             var ack = Gate.BurstAfterAsync(burst.Pulses, timing.FrequencyHz, burst.AfterUs, CancellationToken.None);
+            var lineWritten = Gate.LineWritten;
             _gateWireFree = burst.ArrivalSeconds;
             _gateRepliesIn = timing.GateRepliesInAfter(_gateWireFree, _gateRepliesIn, timing.BurstAfterReplyBytes(burst.Pulses, burst.AfterUs));
             var firing = burst.ArrivalSeconds + (burst.AfterUs / 1e6);
@@ -655,13 +687,17 @@ public sealed partial class RunExecutor
                 _burstEndsAt = firing + ((double)burst.Pulses / timing.FrequencyHz) + timing.GateJitterSeconds;
             }
 
-            return (ack, written, _gateRepliesIn + timing.GateJitterSeconds);
+            return (ack, written, _gateRepliesIn + timing.GateJitterSeconds, lineWritten);
         }
         finally
         {
             _laser.Lock.Release();
         }
     }
+
+    /// <summary>How much later than <paramref name="plannedWrite"/> (run seconds) a command's write completed; 0 when on time or unknown.</summary>
+    private async Task<double> WrittenLateAsync(Task<long?> lineWritten, double plannedWrite) =>
+        await lineWritten is { } stamp && TimeProvider.GetElapsedTime(_engravingStart, stamp).TotalSeconds - plannedWrite is > LateSeconds and var late ? late : 0;
 
     /// <summary>Sends a timed switch-off under the laser lock and returns its acknowledgement without waiting for it, and when it was written.</summary>
     private async Task<(Task Acknowledged, double WrittenSeconds)> SendSwitchOffAsync(TimedSwitching timing)

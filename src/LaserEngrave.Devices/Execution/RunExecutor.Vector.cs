@@ -97,7 +97,7 @@ public sealed partial class RunExecutor
         var onWrite = timing.BurstWriteSeconds(origin + stroke.LaserOnSeconds, origin + stroke.LaserOffSeconds);
         var offWrite = origin + stroke.LaserOffSeconds - timing.OffLeadSeconds;
         var events = new List<(double Write, int Order, Func<Task> Send)>();
-        var due = new List<(Task Reply, double Due, string What)>();
+        var due = new List<(Task Reply, double Due, string What, ReplyWatch.Watched Watched)>();
         var stall = (2 * timing.StageJitterSeconds) + Units.MsToSeconds(Options.StallMarginMs);
         Task<long>? poll = null;
         IStageAxis? polled = null;
@@ -113,8 +113,8 @@ public sealed partial class RunExecutor
                 {
                     case AxisCommandKind.Speed:
                         var speed = Settled(axis.StreamSpeedAsync(command.SpeedData, token));
-                        due.Add((speed, arrival + timing.StageReplySeconds + stall, $"a speed change of its stroke ({name})"));
-                        Watch(speed, arrival + timing.StageReplySeconds, $"a speed change of its stroke ({name})");
+                        var watched = Watch(speed, arrival + timing.StageReplySeconds, $"a speed change of its stroke ({name})");
+                        due.Add((speed, arrival + timing.StageReplySeconds + stall, $"a speed change of its stroke ({name})", watched));
                         break;
                     case AxisCommandKind.Stop:
                         Watch(Settled(axis.StreamStopAsync(token)), arrival + (timing.BurnSpeed / timing.Acceleration) + timing.StageReplySeconds, $"the stop of its stroke ({name})");
@@ -189,12 +189,12 @@ public sealed partial class RunExecutor
         return travel;
     }
 
-    private void CheckDue(List<(Task Reply, double Due, string What)> due)
+    private void CheckDue(List<(Task Reply, double Due, string What, ReplyWatch.Watched Watched)> due)
     {
         var now = RunSeconds;
         for (var i = due.Count - 1; i >= 0; i--)
         {
-            var (reply, at, what) = due[i];
+            var (reply, at, what, watched) = due[i];
             if (reply.IsCompletedSuccessfully)
             {
                 due.RemoveAt(i);
@@ -203,8 +203,10 @@ public sealed partial class RunExecutor
             {
                 throw Fault(refused.Message);
             }
-            else if (at < now)
+            else if (Math.Max(at, watched.Deadline) < now && !Stage.IsReceiving && !watched.StillWriting)
             {
+                // Written late or bytes still arriving (a stalled computer): its watch decides, the deadline moved by the
+                // late write, with the grace it gives.
                 throw Fault($"the stage did not report {what} within {Options.StallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)");
             }
         }
@@ -216,7 +218,7 @@ public sealed partial class RunExecutor
         var name = axis == Stage.Y ? "Y" : "X";
         if (poll is null || !await CompletesByAsync(poll, onWrite, token))
         {
-            throw Fault($"the {name} axis did not answer the position query before the laser was to come on");
+            throw Fault($"the {name} axis did not answer the position query before the laser was to come on", recoverable: true);
         }
 
         long position;

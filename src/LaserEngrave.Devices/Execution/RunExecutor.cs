@@ -121,7 +121,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
         _process = spec.Process;
         _profile = spec.Profile;
         _laser = new LaserSafety(Gate, TimeProvider, _process.LaserFrequencyWholeHz, _profile.Gate.WatchdogMs, Options.StallMarginMs, this) { GateNeverReplies = _profile.Gate.NeverReplies };
-        _replies = new ReplyWatch(TimeProvider, Options.StallMarginMs, this);
+        _replies = new ReplyWatch(TimeProvider, Options.StallMarginMs, this) { Arriving = gate => gate ? Gate.IsReceiving : Stage.IsReceiving, Written = gate => gate ? Gate.LineWritten : Stage.LineWritten };
     }
 
     /// <summary>What a run of a single image or drawing shows before it starts: its rows (strokes) and burn runs (paths) to do, and its estimate.</summary>

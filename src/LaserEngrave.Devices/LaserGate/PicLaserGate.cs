@@ -37,6 +37,9 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
     // How many emergency commands were written: an ordinary command asked for before one is never written after it.
     private long _emergencies;
 
+    // When the line of the command asked for last was written (LineWritten).
+    private volatile Task<long?> _lineWritten = Task.FromResult<long?>(null);
+
     public PicLaserGate(ISerialLink link, LaserGateProfile profile, TimeProvider? timeProvider = null)
     {
         ArgumentNullException.ThrowIfNull(link);
@@ -56,6 +59,12 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
     public LaserGateProfile Profile { get; }
 
     public TimeSpan Timeout => TimeSpan.FromMilliseconds(Profile.TimeoutMs);
+
+    /// <inheritdoc/>
+    public Task<long?> LineWritten => _lineWritten;
+
+    /// <inheritdoc/>
+    public bool IsReceiving => _channel.IsReceiving;
 
     public bool IsOpen
     {
@@ -169,6 +178,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
         };
 
         TaskCompletionSource<string> reply;
+        var written = NewLineWritten();
         await _sendLock.WaitAsync(cancellationToken);
         try
         {
@@ -177,11 +187,12 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
                 _emergencies++;
             }
 
-            reply = await WriteAsync(line, expected, cancellationToken);
+            reply = await WriteAsync(line, expected, written, cancellationToken);
         }
         finally
         {
             _sendLock.Release();
+            written.TrySetResult(null);
         }
 
         await AwaitReplyAsync(line, reply, cancellationToken);
@@ -215,6 +226,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
             asked = _emergencies;
         }
 
+        var written = NewLineWritten();
         await _order.WaitAsync(cancellationToken);
         try
         {
@@ -230,7 +242,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
                 // After a timeout a late reply may still be on its way: a keepalive answered by its own reply proves the line is in step.
                 try
                 {
-                    await AwaitReplyAsync(Profile.KeepAliveCommand, await WriteLineAsync(Profile.KeepAliveCommand, Profile.KeepAliveReply, asked, cancellationToken), cancellationToken);
+                    await AwaitReplyAsync(Profile.KeepAliveCommand, await WriteLineAsync(Profile.KeepAliveCommand, Profile.KeepAliveReply, asked, null, cancellationToken), cancellationToken);
                 }
                 catch (DeviceTimeoutException ex)
                 {
@@ -242,11 +254,12 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
                 }
             }
 
-            reply = await WriteLineAsync(command, expected, asked, cancellationToken);
+            reply = await WriteLineAsync(command, expected, asked, written, cancellationToken);
         }
         finally
         {
             _order.Release();
+            written.TrySetResult(null);
         }
 
         return await AwaitReplyAsync(command, reply, cancellationToken);
@@ -255,7 +268,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
     // Holds the send lock only while the line is written, so that an emergency command waits for nothing longer. A command
     // asked for before an emergency command was written is dropped (GRBL's reset flushes its queue the same way): a
     // switch-on held up behind a resynchronisation must never reach the gate after the emergency off.
-    private async Task<TaskCompletionSource<string>> WriteLineAsync(string command, string expected, long asked, CancellationToken cancellationToken)
+    private async Task<TaskCompletionSource<string>> WriteLineAsync(string command, string expected, long asked, TaskCompletionSource<long?>? written, CancellationToken cancellationToken)
     {
         await _sendLock.WaitAsync(cancellationToken);
         try
@@ -268,7 +281,7 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
                 }
             }
 
-            return await WriteAsync(command, expected, cancellationToken);
+            return await WriteAsync(command, expected, written, cancellationToken);
         }
         finally
         {
@@ -276,8 +289,16 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
         }
     }
 
+    // Asked for now: the command's LineWritten from here on.
+    private TaskCompletionSource<long?> NewLineWritten()
+    {
+        var written = new TaskCompletionSource<long?>(TaskCreationOptions.RunContinuationsAsynchronously);
+        _lineWritten = written.Task;
+        return written;
+    }
+
     // Caller holds the send lock: the command joins the ones waiting for a reply, then goes on the wire.
-    private async Task<TaskCompletionSource<string>> WriteAsync(string command, string expected, CancellationToken cancellationToken)
+    private async Task<TaskCompletionSource<string>> WriteAsync(string command, string expected, TaskCompletionSource<long?>? written, CancellationToken cancellationToken)
     {
         var reply = new TaskCompletionSource<string>(TaskCreationOptions.RunContinuationsAsynchronously);
         lock (_gate)
@@ -297,14 +318,16 @@ public sealed class PicLaserGate : ILaserGate, IAsyncDisposable
         {
             // A gate that never replies (the profile says so): the command is carried out, as far as anyone can tell,
             // once written; nothing waits for an answer (callers never report such a gate's laser off as confirmed).
-            await _channel.WriteAsync(Encoding.ASCII.GetBytes(command + Profile.LineTerminator), $"laser gate on {PortName}: cannot send '{command}'", cancellationToken);
+            var completed = await _channel.WriteAsync(Encoding.ASCII.GetBytes(command + Profile.LineTerminator), $"laser gate on {PortName}: cannot send '{command}'", cancellationToken);
+            written?.TrySetResult(completed);
             reply.SetResult(string.Empty);
             return reply;
         }
 
         try
         {
-            await _channel.WriteAsync(Encoding.ASCII.GetBytes(command + Profile.LineTerminator), $"laser gate on {PortName}: cannot send '{command}'", cancellationToken);
+            var completed = await _channel.WriteAsync(Encoding.ASCII.GetBytes(command + Profile.LineTerminator), $"laser gate on {PortName}: cannot send '{command}'", cancellationToken);
+            written?.TrySetResult(completed);
         }
         catch
         {

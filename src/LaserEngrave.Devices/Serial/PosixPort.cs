@@ -1,3 +1,4 @@
+using System.Diagnostics;
 using System.Reflection;
 using System.Runtime.InteropServices;
 
@@ -29,6 +30,7 @@ internal sealed class PosixPort : IDisposable
     private readonly SafeHandle _handle;
     private readonly int _fd;
     private readonly int _wake;
+    private long _lastRead = long.MinValue;
 
     private PosixPort(SafeHandle handle, int wake)
     {
@@ -85,10 +87,17 @@ internal sealed class PosixPort : IDisposable
     public void Dispose() => _ = NativeMethods.Close(_wake);
 
     /// <summary>Waits for bytes and reads them; 0 once <paramref name="closed"/> says the port was closed.</summary>
+    /// <param name="buffer">Where the bytes go.</param>
+    /// <param name="closed">Whether the port was closed meanwhile.</param>
+    /// <param name="quietAt">
+    /// The latest <see cref="Stopwatch"/> timestamp at which the port was proven to have nothing waiting, since the previous
+    /// read (<see cref="long.MinValue"/>: none): the bytes returned arrived after it.
+    /// </param>
     /// <exception cref="IOException">The other end hung up or the device failed.</exception>
-    public int Read(byte[] buffer, Func<bool> closed)
+    public int Read(byte[] buffer, Func<bool> closed, out long quietAt)
     {
         var fds = new[] { new PollFd { Fd = _fd, Events = PollIn }, new PollFd { Fd = _wake, Events = PollIn } };
+        quietAt = long.MinValue;
         while (true)
         {
             if (closed())
@@ -98,7 +107,12 @@ internal sealed class PosixPort : IDisposable
 
             fds[0].Revents = 0;
             fds[1].Revents = 0;
-            var ready = NativeMethods.Poll(fds, 2, DisposeCheckMs);
+
+            // Just after a read, short waits: each that times out proves the line quiet a little later, so a frame's real
+            // gap is told from a reader that was merely late (ArrivalProof). Later, the usual long wait.
+            var before = Stopwatch.GetTimestamp();
+            var timeoutMs = ArrivalProof.PollTimeoutMs(_lastRead, before, DisposeCheckMs);
+            var ready = NativeMethods.Poll(fds, 2, timeoutMs);
             if (closed())
             {
                 // Never read once closed: the port may already be open again elsewhere, and its bytes are not ours.
@@ -118,6 +132,8 @@ internal sealed class PosixPort : IDisposable
 
             if (ready == 0)
             {
+                // The kernel looks at the port once more when the time is up: nothing was waiting then.
+                quietAt = ArrivalProof.QuietAfterTimeout(quietAt, before, timeoutMs);
                 continue;
             }
 
@@ -126,6 +142,7 @@ internal sealed class PosixPort : IDisposable
                 var n = (int)NativeMethods.Read(_fd, buffer, (nuint)buffer.Length);
                 if (n > 0)
                 {
+                    _lastRead = Stopwatch.GetTimestamp();
                     return n;
                 }
 

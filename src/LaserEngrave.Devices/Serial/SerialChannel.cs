@@ -30,6 +30,7 @@ public sealed class SerialChannel<TMessage> : IAsyncDisposable
     private readonly CancellationTokenSource _stop = new();
     private Task _readLoop = Task.CompletedTask;
     private long _bytesReceived;
+    private long _lastWriteCompleted = long.MinValue;
     private volatile bool _dispatching;
     private bool _started;
     private bool _closed;
@@ -109,11 +110,26 @@ public sealed class SerialChannel<TMessage> : IAsyncDisposable
         }
     }
 
+    /// <summary>When the latest write completed, as a timestamp of <see cref="Time"/>; null before the first.</summary>
+    public long? LastWriteCompleted
+    {
+        get
+        {
+            var stamp = Interlocked.Read(ref _lastWriteCompleted);
+            return stamp == long.MinValue ? null : stamp;
+        }
+    }
+
     /// <summary>Writes <paramref name="data"/>; a failing link becomes a <see cref="LinkLostException"/>.</summary>
     /// <param name="data">The bytes.</param>
     /// <param name="what">What is sent, as the start of the error ("/dev/ttyUSB0: cannot send Home to device 1").</param>
     /// <param name="cancellationToken">Cancels the write.</param>
-    public async Task WriteAsync(ReadOnlyMemory<byte> data, string what, CancellationToken cancellationToken)
+    /// <returns>
+    /// When the write completed (the link's write returned: on a real port, the operating system took the bytes), as a
+    /// timestamp of <see cref="Time"/>. Not when it was asked for: a computer that stalls between the two (another process,
+    /// a page fault) sends the bytes that much later, and only this stamp shows it.
+    /// </returns>
+    public async Task<long> WriteAsync(ReadOnlyMemory<byte> data, string what, CancellationToken cancellationToken)
     {
         try
         {
@@ -123,6 +139,10 @@ public sealed class SerialChannel<TMessage> : IAsyncDisposable
         {
             throw new LinkLostException($"{what}: {ex.Message}", ex);
         }
+
+        var completed = Time.GetTimestamp();
+        Interlocked.Exchange(ref _lastWriteCompleted, completed);
+        return completed;
     }
 
     /// <summary>A <see cref="LinkLostException"/> with <paramref name="message"/> and the reason the link closed, if any.</summary>
@@ -175,7 +195,7 @@ public sealed class SerialChannel<TMessage> : IAsyncDisposable
                 _dispatching = true;
                 try
                 {
-                    _framer.Push(buffer.AsSpan(0, read.Count), read.ArrivalTimestamp, _onMessage);
+                    _framer.Push(buffer.AsSpan(0, read.Count), read, _onMessage);
                 }
                 finally
                 {

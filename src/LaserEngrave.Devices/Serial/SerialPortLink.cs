@@ -11,7 +11,8 @@ namespace LaserEngrave.Devices.Serial;
 /// <para>
 /// One thread of its own per port reads <see cref="SerialPort.BaseStream"/> (never through DataReceived) with blocking
 /// reads, stamps each read with the time it returned, and queues it; <see cref="ReadStampedAsync"/> hands that stamp on
-/// as the bytes' arrival. The reader loop that awaits the queue continues on that thread too, so a reply is framed and
+/// as the latest the bytes can have arrived, with the earliest (<see cref="ArrivalProof"/>): a reader held up before it
+/// read finds bytes that were waiting, and their read's stamp is late by its delay. The reader loop that awaits the queue continues on that thread too, so a reply is framed and
 /// handed to its waiter as soon as the operating system returns it, even while the thread pool is busy (compiling,
 /// running a job) or the machine is loaded (docs/zaber-protocol.md, Timeouts).
 /// </para>
@@ -37,7 +38,7 @@ public sealed class SerialPortLink : ISerialLink
     private readonly Channel<Received> _received = Channel.CreateUnbounded<Received>(
         new UnboundedChannelOptions { SingleReader = true, AllowSynchronousContinuations = true });
     private Thread? _reader;
-    private Received _pending = new([], 0);
+    private Received _pending = new([], 0, 0);
     private int _pendingOffset;
     private int _disposed;
     private volatile IOException? _failure;
@@ -157,8 +158,13 @@ public sealed class SerialPortLink : ISerialLink
 
         var n = Math.Min(buffer.Length, _pending.Data.Length - _pendingOffset);
         _pending.Data.AsMemory(_pendingOffset, n).CopyTo(buffer);
+        // Only the first piece of a read is bounded by what came before it; the rest of it arrived with it.
+        var earliest = _pendingOffset == 0 ? _pending.Earliest : _pending.Stamp;
         _pendingOffset += n;
-        return new StampedRead(n, StampedRead.OnClock(_pending.Stamp, TimeProvider.System, time));
+        return new StampedRead(n, StampedRead.OnClock(_pending.Stamp, TimeProvider.System, time))
+        {
+            EarliestArrival = StampedRead.OnClock(earliest, TimeProvider.System, time),
+        };
     }
 
     public async ValueTask WriteAsync(ReadOnlyMemory<byte> data, CancellationToken cancellationToken)
@@ -292,12 +298,14 @@ public sealed class SerialPortLink : ISerialLink
     private void ReadUntilClosed()
     {
         var buffer = new byte[512];
+        var previous = long.MinValue;
         while (true)
         {
             int n;
+            var quietAt = long.MinValue;
             try
             {
-                n = _posix is not null ? _posix.Read(buffer, () => IsDisposed) : _stream.Read(buffer, 0, buffer.Length);
+                n = _posix is not null ? _posix.Read(buffer, () => IsDisposed, out quietAt) : _stream.Read(buffer, 0, buffer.Length);
             }
             catch (Exception ex) when (IsDisposed && ex is ObjectDisposedException or IOException or OperationCanceledException or InvalidOperationException)
             {
@@ -316,8 +324,11 @@ public sealed class SerialPortLink : ISerialLink
                 return;
             }
 
+            // Stamped when the read returned: the latest the bytes can have arrived. The earliest is the last time the port
+            // was proven quiet (ArrivalProof); without such a proof (Windows' stream) no gap before them is proven.
             var stamp = Stopwatch.GetTimestamp();
-            _received.Writer.TryWrite(new Received(buffer.AsSpan(0, n).ToArray(), stamp));
+            _received.Writer.TryWrite(new Received(buffer.AsSpan(0, n).ToArray(), stamp, ArrivalProof.Earliest(quietAt, previous, stamp)));
+            previous = stamp;
         }
     }
 
@@ -370,7 +381,7 @@ public sealed class SerialPortLink : ISerialLink
         }
     }
 
-    private sealed record Received(byte[] Data, long Stamp);
+    private sealed record Received(byte[] Data, long Stamp, long Earliest);
 
     private static Parity ToParity(SerialParity parity) => parity switch
     {

@@ -21,6 +21,12 @@ public sealed class ZaberChain : IStage, IAsyncDisposable
 
     public ZaberConnection Connection { get; }
 
+    /// <inheritdoc/>
+    public bool IsReceiving => Connection.IsReceiving;
+
+    /// <inheritdoc/>
+    public Task<long?> LineWritten => Connection.LineWritten;
+
     public MachineProfile Profile { get; }
 
     public ZaberBinaryDevice X { get; }

@@ -48,6 +48,7 @@ public sealed class ZaberConnection : IAsyncDisposable
     private Task _resync = Task.CompletedTask;
     private bool _closed;
     private int _disposed;
+    private volatile Task<long?> _lineWritten = Task.FromResult<long?>(null);
 
     public ZaberConnection(ISerialLink link, TimeProvider? timeProvider = null, ZaberConnectionOptions? options = null)
     {
@@ -115,6 +116,15 @@ public sealed class ZaberConnection : IAsyncDisposable
             }
         }
     }
+
+    /// <summary>
+    /// Completes when the request asked for last (the call that returned just before this is read) has been written,
+    /// with the time its write completed as a timestamp of the connection's clock; null when it was never written.
+    /// </summary>
+    public Task<long?> LineWritten => _lineWritten;
+
+    /// <summary>True while bytes that arrived are still on their way to their waiters (unread, or being framed and handed on).</summary>
+    public bool IsReceiving => _channel.IsReceiving;
 
     /// <summary>Bytes taken from the link so far (tests use it to know the reader has seen what was sent).</summary>
     internal long BytesReceived => _channel.BytesReceived;
@@ -319,6 +329,8 @@ public sealed class ZaberConnection : IAsyncDisposable
 
         var pending = new PendingRequest(request);
         List<PendingRequest>? interrupted = null;
+        var lineWritten = new TaskCompletionSource<long?>(TaskCreationOptions.RunContinuationsAsynchronously);
+        _lineWritten = lineWritten.Task;
         await _sendLock.WaitAsync(cancellationToken);
         var lineHeld = true;
         try
@@ -342,12 +354,13 @@ public sealed class ZaberConnection : IAsyncDisposable
             long written;
             try
             {
-                await WriteFrameAsync(request, cancellationToken);
-                written = _time.GetTimestamp();
+                written = await WriteFrameAsync(request, cancellationToken);
+                lineWritten.TrySetResult(written);
             }
             catch
             {
                 Remove(pending);
+                lineWritten.TrySetResult(null);
                 throw;
             }
 
@@ -391,6 +404,8 @@ public sealed class ZaberConnection : IAsyncDisposable
             {
                 _sendLock.Release();
             }
+
+            lineWritten.TrySetResult(null);
         }
     }
 
@@ -426,7 +441,8 @@ public sealed class ZaberConnection : IAsyncDisposable
         _ => null,
     };
 
-    private Task WriteFrameAsync(ZaberFrame frame, CancellationToken cancellationToken) =>
+    // Returns when the write completed (the round trip counts from there, not from when it was asked for).
+    private Task<long> WriteFrameAsync(ZaberFrame frame, CancellationToken cancellationToken) =>
         _channel.WriteAsync(frame.ToBytes(), $"{PortName}: cannot send {ZaberCommandText.Describe(frame)} to {DescribeTarget(frame.Device)}", cancellationToken);
 
     private string DescribeTarget(byte device) => device == 0 ? "every device" : DescribeDevice(device);
@@ -524,7 +540,7 @@ public sealed class ZaberConnection : IAsyncDisposable
     }
 
     private void OnPartialFrameDropped(byte[] dropped) => LineEvent?.Invoke(this, new ZaberLineEventArgs(
-        ZaberLineEvent.PartialFrameDropped, $"{PortName}: dropped {dropped.Length} byte(s) of an unfinished frame ({Convert.ToHexString(dropped)}) after a gap"));
+        ZaberLineEvent.PartialFrameDropped, string.Create(CultureInfo.InvariantCulture, $"{PortName}: dropped {dropped.Length} byte(s) of an unfinished frame ({Convert.ToHexString(dropped)}) after a gap of at least {_framer.LastDropGap.TotalMilliseconds:0.0} ms")));
 
     private void Dispatch(ZaberFrame frame, ref List<Action>? after)
     {

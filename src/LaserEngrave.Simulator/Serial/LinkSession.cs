@@ -14,7 +14,8 @@ namespace LaserEngrave.Simulator.Serial;
 /// </para>
 /// <para>
 /// Device to host: a reply leaves byte by byte behind the replies before it, and reaches the host when its last byte has
-/// left plus the adapter's latency (drawn once per reply), never before an earlier reply.
+/// left plus the adapter's latency (drawn once per reply), never before an earlier reply; with <see cref="ReplyPieces"/>
+/// some replies reach it in two pieces, the first early.
 /// </para>
 /// Reads never wait for virtual time, so every write is seen at the instant the host made it. A byte's arrival is when the
 /// link says it arrived (on real ports, when the operating system returned it), not when this loop got to it: on a loaded
@@ -27,7 +28,7 @@ internal sealed class LinkSession
     private readonly double _secondsPerByte;
     private readonly LinkLatency _latency;
     private readonly Action<string> _log;
-    private readonly Channel<(byte[] Data, double AtSeconds)> _outgoing = Channel.CreateUnbounded<(byte[], double)>(new() { SingleReader = true });
+    private readonly Channel<Delivery> _outgoing = Channel.CreateUnbounded<Delivery>(new() { SingleReader = true });
     private readonly Lock _sendLock = new();
     private readonly Channel<(double AtSeconds, Action Action)> _actions = Channel.CreateUnbounded<(double, Action)>(new() { SingleReader = true });
     private readonly CancellationTokenSource _stop = new();
@@ -56,21 +57,50 @@ internal sealed class LinkSession
         {
             var start = Math.Max(_clock.NowSeconds + extraDelay.TotalSeconds, _outBusyUntil);
             _outBusyUntil = start + (data.Length * _secondsPerByte);
+            var previous = _lastDelivery;
             _lastDelivery = Math.Max(_outBusyUntil + _latency.ToHostSeconds(), _lastDelivery);
-            if (_clock.IsWallClock)
+            if (_latency.Cut(data.Length) is { } cut)
             {
-                // Handed to the writer by the pacer at its instant, in order (deliveries never go back in time): the
-                // system's timers would hand it a few milliseconds late. The write itself stays off the pacer's thread,
-                // which every simulator of the process shares, since a port's write can block.
-                var delivery = _lastDelivery;
-                _clock.At(delivery, () => _outgoing.Writer.TryWrite((data, delivery)));
+                // The adapter hands the first piece on early, never before its bytes have left the device nor before the
+                // reply ahead of it; the last arrives when the whole reply would have.
+                var first = Math.Max(Math.Max(_lastDelivery - cut.GapSeconds, start + (cut.At * _secondsPerByte)), previous);
+                if (_clock.IsWallClock)
+                {
+                    // One delivery whose writer keeps the gap itself: two timed hand-overs on a loaded computer came
+                    // 11-15 ms apart, a gap no adapter makes.
+                    Deliver(new Delivery(data[..cut.At], first, data[cut.At..], _lastDelivery));
+                }
+                else
+                {
+                    Deliver(new Delivery(data[..cut.At], first));
+                    Deliver(new Delivery(data[cut.At..], _lastDelivery));
+                }
             }
             else
             {
-                _outgoing.Writer.TryWrite((data, _lastDelivery));
+                Deliver(new Delivery(data, _lastDelivery));
             }
         }
     }
+
+    // Caller holds the send lock: deliveries are queued in their order.
+    private void Deliver(Delivery delivery)
+    {
+        if (_clock.IsWallClock)
+        {
+            // Handed to the writer by the pacer at its instant, in order (deliveries never go back in time): the
+            // system's timers would hand it a few milliseconds late. The write itself stays off the pacer's thread,
+            // which every simulator of the process shares, since a port's write can block.
+            _clock.At(delivery.AtSeconds, () => _outgoing.Writer.TryWrite(delivery));
+        }
+        else
+        {
+            _outgoing.Writer.TryWrite(delivery);
+        }
+    }
+
+    /// <summary>Bytes to hand to the host at their time; on the wall clock a reply's last piece (<see cref="Tail"/>) rides with its first.</summary>
+    private sealed record Delivery(byte[] Data, double AtSeconds, byte[]? Tail = null, double TailAtSeconds = 0);
 
     /// <summary>Closes the link (a Disconnect fault); the session then ends.</summary>
     public void Close(string why)
@@ -218,6 +248,18 @@ internal sealed class LinkSession
                 {
                     await _clock.DelayUntil(item.AtSeconds, cancellationToken);
                     await _link.WriteAsync(item.Data, cancellationToken);
+                    if (item.Tail is { } tail)
+                    {
+                        // The gap measured from the first piece's write, spun (a few ms): a sleep would wake late.
+                        var gap = item.TailAtSeconds - item.AtSeconds;
+                        var written = System.Diagnostics.Stopwatch.GetTimestamp();
+                        while (System.Diagnostics.Stopwatch.GetElapsedTime(written).TotalSeconds < gap)
+                        {
+                            Thread.SpinWait(20);
+                        }
+
+                        await _link.WriteAsync(tail, cancellationToken);
+                    }
                 }
             }
 

@@ -6,7 +6,8 @@ namespace LaserEngrave.Wire.Zaber;
 /// <remarks>
 /// The bytes of one frame arrive less than the partial-frame timeout (10 ms) apart; an unfinished frame whose last byte
 /// arrived longer ago than that when the next byte arrives is dropped. The times are when the bytes arrived, not when the
-/// reader got to them: a frame in two pieces 4 ms apart that the host reads late is still one frame. After garbage the
+/// reader got to them: a frame in two pieces 4 ms apart that the host reads late is still one frame; where a link can only
+/// bound the arrival (a real port), only a gap proven by its bounds counts (<see cref="StampedRead.EarliestArrival"/>). After garbage the
 /// framer discards until the line has been quiet for the timeout. Thread-safe: the connection's resynchronisation asks
 /// whether the line is quiet while the reader loop pushes bytes.
 /// </remarks>
@@ -33,17 +34,28 @@ public sealed class ZaberFramer : ISerialFramer<ZaberFrame>
         _partialDropped = partialDropped;
     }
 
-    public void Push(ReadOnlySpan<byte> bytes, long arrivalTimestamp, Action<ZaberFrame> deliver)
+    public void Push(ReadOnlySpan<byte> bytes, long arrivalTimestamp, Action<ZaberFrame> deliver) =>
+        Push(bytes, new StampedRead(bytes.Length, arrivalTimestamp), deliver);
+
+    /// <remarks>
+    /// The gap is proven, not guessed: from the latest the previous bytes can have arrived (their read's stamp) to the
+    /// earliest these can have (<see cref="StampedRead.EarliestArrival"/> when the link only bounds it). A piece that was
+    /// already waiting when a late reader got to it has no gap proven before it, however late it was read.
+    /// </remarks>
+    public void Push(ReadOnlySpan<byte> bytes, StampedRead read, Action<ZaberFrame> deliver)
     {
         ArgumentNullException.ThrowIfNull(deliver);
+        var arrivalTimestamp = read.ArrivalTimestamp;
+        var earliest = read.EarliestArrival is { } bound ? Math.Min(bound, arrivalTimestamp) : arrivalTimestamp;
         byte[]? dropped = null;
         lock (_sync)
         {
-            if (_anyByte && (_count > 0 || _discarding) && _time.GetElapsedTime(_lastArrival, arrivalTimestamp) > _partialFrameTimeout)
+            if (_anyByte && (_count > 0 || _discarding) && earliest > _lastArrival && _time.GetElapsedTime(_lastArrival, earliest) > _partialFrameTimeout)
             {
                 if (_count > 0 && !_discarding)
                 {
                     dropped = _partial[.._count];
+                    LastDropGap = _time.GetElapsedTime(_lastArrival, earliest);
                 }
 
                 _count = 0;
@@ -84,6 +96,9 @@ public sealed class ZaberFramer : ISerialFramer<ZaberFrame>
             }
         }
     }
+
+    /// <summary>The gap proven before the last unfinished frame dropped (read it in the drop's callback).</summary>
+    public TimeSpan LastDropGap { get; private set; }
 
     /// <summary>Drops every byte until the line has been quiet for the partial-frame timeout (after garbage).</summary>
     public void DiscardUntilQuiet()

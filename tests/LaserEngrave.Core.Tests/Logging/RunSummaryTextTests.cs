@@ -177,4 +177,19 @@ public sealed class RunSummaryTextTests : IDisposable
     }
 
     public void Dispose() => runs.Dispose();
+
+    [Fact]
+    public void Format_LineWarnings_ListsTheFirstThreeAndCountsTheRestAndTheJsonKeepsThem()
+    {
+        var record = runs.FailedRecord() with { LineWarnings = ["a", "b", "c", "d", "e"] };
+
+        var text = RunSummaryText.Format(record);
+        var read = RunRecordJson.Deserialize(RunRecordJson.Serialize(record), "test.json");
+
+        Assert.Contains("Line:               a\n", text, StringComparison.Ordinal);
+        Assert.Contains("Line:               c\n", text, StringComparison.Ordinal);
+        Assert.DoesNotContain("Line:               d\n", text, StringComparison.Ordinal);
+        Assert.Contains("Line:               2 more, listed in the JSON record's lineWarnings\n", text, StringComparison.Ordinal);
+        Assert.Equal(["a", "b", "c", "d", "e"], read.LineWarnings);
+    }
 }

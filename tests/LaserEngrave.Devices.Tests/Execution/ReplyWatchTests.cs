@@ -179,6 +179,100 @@ public class ReplyWatchTests
         Assert.Empty(run.Faults);
     }
 
+    [Theory(Timeout = 60_000)]
+    [InlineData(1.04)]
+    [InlineData(1.12)]
+    public async Task Watch_ReplyRead20To100MsLateWhileBytesAreArriving_ReportsNothing(double readAt)
+    {
+        // A host stalled after the reply arrived: its bytes wait unread until readAt, past the deadline at 1.02 s.
+        using var time = new VirtualTimeProvider();
+        var run = new FakeRun(time);
+        Task reply = new TaskCompletionSource().Task;
+        var replies = new ReplyWatch(time, StallMarginMs, run) { Arriving = gate => !gate && run.RunSeconds >= 1.0 && !reply.IsCompleted };
+
+        await time.RunTestAsync(async () =>
+        {
+            reply = ReplyAfter(time, readAt);
+            var watched = replies.Watch(reply, 1.0, "the end of a travel (X)", axis: "X");
+            await watched.Done.Task;
+            Assert.True(reply.IsCompletedSuccessfully);
+        });
+
+        Assert.Empty(run.Faults);
+    }
+
+    [Fact(Timeout = 60_000)]
+    public async Task Watch_ReplyLateWithNothingArriving_FaultsAtTheDeadline()
+    {
+        using var time = new VirtualTimeProvider();
+        var run = new FakeRun(time);
+        var replies = new ReplyWatch(time, StallMarginMs, run) { Arriving = _ => false };
+        double faultedAt = 0;
+
+        await time.RunTestAsync(async () =>
+        {
+            var watched = replies.Watch(ReplyAfter(time, 1.06), 1.0, "the end of a travel (X)", axis: "X");
+            await watched.Done.Task;
+            faultedAt = run.RunSeconds;
+        });
+
+        Assert.Equal([$"the stage did not report the end of a travel (X) {Stalled}"], run.Faults);
+        Assert.Equal(1.02, faultedAt, 9);
+    }
+
+    [Fact(Timeout = 60_000)]
+    public async Task Watch_BytesArrivingOnTheOtherLinkOnly_FaultsAtTheDeadline()
+    {
+        using var time = new VirtualTimeProvider();
+        var run = new FakeRun(time);
+        var replies = new ReplyWatch(time, StallMarginMs, run) { Arriving = gate => gate };
+
+        await time.RunTestAsync(async () =>
+        {
+            var watched = replies.Watch(ReplyAfter(time, 1.06), 1.0, "the end of a travel (X)", axis: "X");
+            await watched.Done.Task;
+        });
+
+        Assert.Equal([$"the stage did not report the end of a travel (X) {Stalled}"], run.Faults);
+    }
+
+    [Fact(Timeout = 60_000)]
+    public async Task Watch_BytesArrivingButNeverTheReply_FaultsAfterTheGrace()
+    {
+        using var time = new VirtualTimeProvider();
+        var run = new FakeRun(time);
+        var replies = new ReplyWatch(time, StallMarginMs, run) { Arriving = _ => true };
+        double faultedAt = 0;
+
+        await time.RunTestAsync(async () =>
+        {
+            var watched = replies.Watch(new TaskCompletionSource().Task, 1.0, "the laser gate did not acknowledge the switch-on", gate: true);
+            await watched.Done.Task;
+            faultedAt = run.RunSeconds;
+        });
+
+        Assert.Equal(["the laser gate did not acknowledge the switch-on within 20 ms of its expected arrival"], run.Faults);
+        Assert.InRange(faultedAt, 1.02 + ReplyWatch.ArrivingGrace.TotalSeconds, 1.02 + ReplyWatch.ArrivingGrace.TotalSeconds + 0.01);
+    }
+
+    [Fact(Timeout = 60_000)]
+    public async Task AllSettledAsync_ReplyReadLateWhileBytesAreArriving_Returns()
+    {
+        using var time = new VirtualTimeProvider();
+        var run = new FakeRun(time);
+        Task reply = new TaskCompletionSource().Task;
+        var replies = new ReplyWatch(time, StallMarginMs, run) { Arriving = _ => run.RunSeconds >= 1.0 && !reply.IsCompleted };
+
+        await time.RunTestAsync(async () =>
+        {
+            reply = ReplyAfter(time, 1.08);
+            replies.Watch(reply, 1.0, "the end of a travel (Y)", axis: "Y");
+            await replies.AllSettledAsync(CancellationToken.None);
+        });
+
+        Assert.Empty(run.Faults);
+    }
+
     private static async Task ReplyAfter(TimeProvider time, double seconds) =>
         await PreciseDelay.DelayAsync(time, TimeSpan.FromSeconds(seconds), CancellationToken.None);
 

@@ -14,9 +14,12 @@ namespace LaserEngrave.Devices.Tests.Execution;
 /// <summary>An in-process simulated machine with the real ZaberChain and PicLaserGate on its links, in virtual time.</summary>
 internal sealed class SimulatedRun : IAsyncDisposable
 {
-    private SimulatedRun(SimulatedMachine machine)
+    private readonly Func<ISerialLink, TimeProvider, ISerialLink>? _gateLink;
+
+    private SimulatedRun(SimulatedMachine machine, Func<ISerialLink, TimeProvider, ISerialLink>? gateLink = null)
     {
         Machine = machine;
+        _gateLink = gateLink;
         Connect();
     }
 
@@ -33,6 +36,10 @@ internal sealed class SimulatedRun : IAsyncDisposable
 
     public static SimulatedRun Create(SimulatorOptions? options = null, MachineProfile? profile = null) =>
         new(SimulatedMachine.CreateInProcess(profile ?? MachineProfile.Default, options));
+
+    /// <summary>A run whose gate link passes through <paramref name="gateLink"/> (a test's stalled or held link).</summary>
+    public static SimulatedRun Create(SimulatorOptions? options, Func<ISerialLink, TimeProvider, ISerialLink> gateLink) =>
+        new(SimulatedMachine.CreateInProcess(MachineProfile.Default, options), gateLink);
 
     public RunExecutor Executor(PreparedJob job, RunOptions? options = null) => new(Stage, Gate, job, Time, options);
 
@@ -79,7 +86,8 @@ internal sealed class SimulatedRun : IAsyncDisposable
     private void Connect()
     {
         Stage = new ZaberChain(new ZaberConnection(new WrittenLink(Machine.StageLink, this, "stage"), Machine.TimeProvider), Machine.Profile);
-        Gate = new PicLaserGate(new WrittenLink(Machine.LaserLink, this, "gate"), Machine.Profile.Gate, Machine.TimeProvider);
+        var gateLink = new WrittenLink(Machine.LaserLink, this, "gate");
+        Gate = new PicLaserGate(_gateLink?.Invoke(gateLink, Machine.TimeProvider) ?? gateLink, Machine.Profile.Gate, Machine.TimeProvider);
     }
 }
 

@@ -1,3 +1,4 @@
+using LaserEngrave.Wire.Serial;
 using LaserEngrave.Wire.Zaber;
 using Microsoft.Extensions.Time.Testing;
 
@@ -42,6 +43,58 @@ public class ZaberFramerTests
 
         Assert.Equal([new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 321)], frames);
         Assert.Equal([bytes[..3], bytes[3..]], dropped);
+    }
+
+    [Fact]
+    public void Push_TwoPieces3MsApartOnTheWireRead30MsApartWithoutAQuietProof_KeepsTheFrame()
+    {
+        // A real port's reader stamps a read when it returned: piece two was already waiting when the late reader got to
+        // it, 30 ms after piece one, and nothing proved the line quiet in between (the earliest it can have arrived is
+        // piece one's read).
+        var dropped = new List<byte[]>();
+        var framer = new ZaberFramer(PartialFrameTimeout, _time, dropped.Add);
+        var frames = new List<ZaberFrame>();
+        var bytes = new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 321).ToBytes();
+        var start = _time.GetTimestamp();
+
+        framer.Push(bytes.AsSpan(0, 3), new StampedRead(3, start) { EarliestArrival = start - Ms(5) }, frames.Add);
+        framer.Push(bytes.AsSpan(3), new StampedRead(3, start + Ms(30)) { EarliestArrival = start }, frames.Add);
+
+        Assert.Equal([new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 321)], frames);
+        Assert.Empty(dropped);
+    }
+
+    [Fact]
+    public void Push_GapProvenByTheLineSeenQuiet12MsAfterThePiece_DropsTheUnfinishedFrame()
+    {
+        var dropped = new List<byte[]>();
+        var framer = new ZaberFramer(PartialFrameTimeout, _time, dropped.Add);
+        var frames = new List<ZaberFrame>();
+        var bytes = new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 321).ToBytes();
+        var start = _time.GetTimestamp();
+
+        framer.Push(bytes.AsSpan(0, 3), new StampedRead(3, start) { EarliestArrival = start }, frames.Add);
+        framer.Push(bytes, new StampedRead(6, start + Ms(14)) { EarliestArrival = start + Ms(12) }, frames.Add);
+
+        Assert.Equal([new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 321)], frames);
+        Assert.Equal([bytes[..3]], dropped);
+        Assert.Equal(12, framer.LastDropGap.TotalMilliseconds, 6);
+    }
+
+    [Fact]
+    public void Push_LineSeenQuietOnly8MsAfterThePieceThoughRead40MsLater_KeepsTheFrame()
+    {
+        var dropped = new List<byte[]>();
+        var framer = new ZaberFramer(PartialFrameTimeout, _time, dropped.Add);
+        var frames = new List<ZaberFrame>();
+        var bytes = new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 321).ToBytes();
+        var start = _time.GetTimestamp();
+
+        framer.Push(bytes.AsSpan(0, 2), new StampedRead(2, start) { EarliestArrival = start }, frames.Add);
+        framer.Push(bytes.AsSpan(2), new StampedRead(4, start + Ms(40)) { EarliestArrival = start + Ms(8) }, frames.Add);
+
+        Assert.Equal([new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 321)], frames);
+        Assert.Empty(dropped);
     }
 
     [Fact]
