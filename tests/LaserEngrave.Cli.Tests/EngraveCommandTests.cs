@@ -124,8 +124,11 @@ public sealed class EngraveCommandTests : IDisposable
         Assert.InRange(duration, estimated * 0.98, double.MaxValue);
         Assert.InRange(engraving, estimatedEngraving * 0.99, duration);
         Assert.True(estimated > estimatedEngraving, "the whole run includes preflight and homing");
-        // The gate times its switch-ons (issue 34): the late host no longer costs the run time or doubts.
-        Assert.InRange(duration, estimated * 0.995, estimated * 1.005);
+        // The gate times its switch-ons (issue 34): a computer late to wake no longer costs the run time. A stall between a
+        // line's stamp and its write (the twin's loaded PC, one write in 2000) is a doubt the session goes on from, at
+        // about a second each, which the estimate does not count.
+        var recoveries = RunLogStore.Read(root.GetProperty("logPath").GetString()!).Recoveries?.Count ?? 0;
+        Assert.InRange(duration, estimated * 0.995, (estimated * 1.005) + recoveries);
         Assert.InRange(laserOn, 0.001, duration);
         Assert.Equal(0, root.GetProperty("missingPixels").GetInt64());
         Assert.Equal(0, root.GetProperty("extraPixels").GetInt64());
