@@ -152,7 +152,7 @@ internal static class ApiEndpoints
                 return refused;
             }
 
-            // A job of over an hour, or of pixels much smaller than the spot, asks as the page's Start does.
+            // A job longer than the user's threshold (an hour until set), or of pixels much smaller than the spot, asks as the page's Start does.
             if (!request.Confirm && main.Run.StartQuestion is { } question)
             {
                 return Busy($"{question} Send \"confirm\": true to start anyway");
@@ -162,7 +162,7 @@ internal static class ApiEndpoints
             main.Log.SampleId = request.SampleId;
             return Start(main, main.Run.ConfirmStartCommand);
         })
-            .WithSummary("202; runs the planned job (all passes); a second start during a run is ignored (200 with a note); 409 with the question for a job of over an hour or of pixels much smaller than the spot, unless confirm is true; 409 with the sentence for a gate without a watchdog, unless acceptNoWatchdog is true (or the Machine panel's box is ticked).");
+            .WithSummary("202; runs the planned job (all passes); a second start during a run is ignored (200 with a note); 409 with the question for a job longer than the Machine panel's \"Ask before runs longer than\" (an hour until set) or of pixels much smaller than the spot, unless confirm is true; 409 with the sentence for a gate without a watchdog, unless acceptNoWatchdog is true (or the Machine panel's box is ticked).");
         api.MapPost("/run/continue", (MainViewModel main) =>
         {
             if (main.Run.IsActive)
