@@ -185,7 +185,21 @@ public static class JobFile
         ArgumentException.ThrowIfNullOrWhiteSpace(path);
         ArgumentNullException.ThrowIfNull(layers);
         var full = Path.GetFullPath(path);
-        var folder = Path.GetDirectoryName(full) ?? ".";
+        var bytes = ToJson(layers, Path.GetDirectoryName(full) ?? ".");
+
+        // Written whole beside the file, then moved over it: a failed save leaves the old job as it was.
+        var temporary = full + ".saving";
+        File.WriteAllBytes(temporary, bytes);
+        File.Move(temporary, full, overwrite: true);
+    }
+
+    /// <summary>
+    /// The job file's bytes (UTF-8 JSON), as <see cref="Save"/> writes them: sources relative to <paramref name="folder"/>,
+    /// or, with null, full paths, for a file whose folder is not known (one the browser downloads, then uploads back).
+    /// </summary>
+    public static byte[] ToJson(IReadOnlyList<JobLayer> layers, string? folder)
+    {
+        ArgumentNullException.ThrowIfNull(layers);
         using var buffer = new MemoryStream();
         using (var json = new Utf8JsonWriter(buffer, new JsonWriterOptions { Indented = true }))
         {
@@ -195,7 +209,8 @@ public static class JobFile
             {
                 json.WriteStartObject();
                 json.WriteString("name", layer.Name);
-                json.WriteString("source", Path.GetRelativePath(folder, Path.GetFullPath(layer.Source)).Replace('\\', '/'));
+                var source = Path.GetFullPath(layer.Source);
+                json.WriteString("source", (folder is null ? source : Path.GetRelativePath(folder, source)).Replace('\\', '/'));
                 json.WriteString("mode", layer.Mode.ToString().ToLowerInvariant());
                 if (layer.DrawingLayer is { } drawingLayer)
                 {
@@ -226,11 +241,7 @@ public static class JobFile
         }
 
         buffer.WriteByte((byte)'\n');
-
-        // Written whole beside the file, then moved over it: a failed save leaves the old job as it was.
-        var temporary = full + ".saving";
-        File.WriteAllBytes(temporary, buffer.ToArray());
-        File.Move(temporary, full, overwrite: true);
+        return buffer.ToArray();
 
         static void Optional(Utf8JsonWriter json, string name, double? value)
         {
