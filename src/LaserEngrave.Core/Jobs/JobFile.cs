@@ -18,7 +18,7 @@ public static class JobFile
     public const int MaxLayers = 1000;
 
     private static readonly string[] Fields =
-        ["name", "source", "mark", "mode", "drawingLayer", "widthMm", "originMm", "speedMmPerS", "frequencyHz", "passes", "toleranceUm", "fillPitchUm", "thresholdPercent", "dither", "invert"];
+        ["name", "source", "mark", "mode", "drawingLayer", "widthMm", "originMm", "speedMmPerS", "frequencyHz", "passes", "toleranceUm", "fillPitchUm", "thresholdPercent", "dither", "invert", "quarterTurns", "mirrorX", "mirrorY"];
 
     /// <summary>Reads the job file's layers; its marks, if any, made into their layers with <paramref name="marks"/>.</summary>
     /// <param name="marks">The counter, machine, time and sample a mark layer is made with; a file with a mark layer needs them.</param>
@@ -227,11 +227,26 @@ public static class JobFile
                 json.WriteNumber("passes", layer.Passes);
                 Optional(json, "toleranceUm", layer.ToleranceUm);
                 Optional(json, "fillPitchUm", layer.FillPitchUm);
-                if (layer.Mask != Imaging.MaskOptions.Default)
+                if (layer.Mask with { QuarterTurns = 0, MirrorX = false, MirrorY = false } != Imaging.MaskOptions.Default)
                 {
                     json.WriteNumber("thresholdPercent", layer.Mask.ThresholdPercent);
                     json.WriteString("dither", Imaging.DitherNames.Name(layer.Mask.Dither));
                     json.WriteBoolean("invert", layer.Mask.Invert);
+                }
+
+                if (layer.Mask.QuarterTurns != 0)
+                {
+                    json.WriteNumber("quarterTurns", layer.Mask.QuarterTurns);
+                }
+
+                if (layer.Mask.MirrorX)
+                {
+                    json.WriteBoolean("mirrorX", true);
+                }
+
+                if (layer.Mask.MirrorY)
+                {
+                    json.WriteBoolean("mirrorY", true);
                 }
                 json.WriteEndObject();
             }
@@ -315,11 +330,20 @@ public static class JobFile
             throw new PlanException($"{where}: dither \"{ditherText}\" is not {Imaging.DitherNames.List}");
         }
 
-        var invert = !element.TryGetProperty("invert", out var value) || value.ValueKind == JsonValueKind.Null ? false
-            : value.ValueKind is JsonValueKind.True or JsonValueKind.False ? value.GetBoolean()
-            : throw new PlanException($"{where}: \"invert\" must be true or false");
-        return new Imaging.MaskOptions { ThresholdPercent = threshold, Dither = dither, Invert = invert };
+        var turns = Number(element, "quarterTurns", where) is { } q
+            ? q is 0 or 1 or 2 or 3 ? (int)q : throw new PlanException($"{where}: quarterTurns {N(q)}: give 0, 1, 2 or 3 (quarter turns clockwise)")
+            : 0;
+        return new Imaging.MaskOptions
+        {
+            ThresholdPercent = threshold, Dither = dither, Invert = Flag(element, "invert", where), QuarterTurns = turns,
+            MirrorX = Flag(element, "mirrorX", where), MirrorY = Flag(element, "mirrorY", where),
+        };
     }
+
+    private static bool Flag(JsonElement element, string name, string where) =>
+        !element.TryGetProperty(name, out var value) || value.ValueKind == JsonValueKind.Null ? false
+        : value.ValueKind is JsonValueKind.True or JsonValueKind.False ? value.GetBoolean()
+        : throw new PlanException($"{where}: \"{name}\" must be true or false");
 
     private static string? String(JsonElement element, string name, string where) =>
         !element.TryGetProperty(name, out var value) || value.ValueKind == JsonValueKind.Null ? null
