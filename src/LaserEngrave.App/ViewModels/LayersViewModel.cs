@@ -213,7 +213,7 @@ public sealed partial class LayersViewModel : ObservableObject
             Passes = _job.Passes,
             ToleranceUm = drawing ? _job.ToleranceUm : null,
             FillPitchUm = drawing ? _job.FillPitchUm : null,
-            Mask = drawing ? Core.Imaging.MaskOptions.Default : new Core.Imaging.MaskOptions { ThresholdPercent = _job.ThresholdPercent, Dither = _job.Dither, Invert = _job.Invert },
+            Mask = drawing ? Core.Imaging.MaskOptions.Default : _job.ToSettings().ToMask(),
         };
     }
 
@@ -339,6 +339,9 @@ public sealed partial class LayersViewModel : ObservableObject
                 ThresholdPercent = layer.Mask.ThresholdPercent,
                 Dither = layer.Mask.Dither,
                 Invert = layer.Mask.Invert,
+                QuarterTurns = layer.Mask.QuarterTurns,
+                MirrorX = layer.Mask.MirrorX,
+                MirrorY = layer.Mask.MirrorY,
                 DrawingFill = layer.Mode switch { LayerMode.Fill => VectorFillMode.Fill, LayerMode.Both => VectorFillMode.Both, _ => VectorFillMode.Outline },
                 DrawingLayer = drawing ? layer.DrawingLayer : null,
                 ToleranceUm = layer.ToleranceUm ?? VectorOptions.Default.ToleranceUm,

@@ -356,6 +356,9 @@ internal static class ApiEndpoints
             case "dotPitchMicrosteps": job.DotPitchMicrosteps = Whole(value, long.MaxValue); break;
             case "dotSettleMs": job.DotSettleMs = Number(value); break;
             case "pulseEnergyUj": job.PulseEnergyUj = Number(value); break;
+            case "quarterTurns": job.QuarterTurns = (int)Whole(value, 3); break;
+            case "mirrorX": job.MirrorX = Bool(value); break;
+            case "mirrorY": job.MirrorY = Bool(value); break;
             default: throw new UnusableValueException($"not a job field (docs/api.md lists them)");
         }
     }
