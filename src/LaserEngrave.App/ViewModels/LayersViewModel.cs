@@ -176,6 +176,69 @@ public sealed partial class LayersViewModel : ObservableObject
         return true;
     }
 
+    /// <summary>Rows of an array (<see cref="AddArray"/>): the copies down the stage.</summary>
+    [ObservableProperty]
+    public partial int ArrayRows { get; set; } = 2;
+
+    /// <summary>Columns of an array: the copies across the stage.</summary>
+    [ObservableProperty]
+    public partial int ArrayColumns { get; set; } = 2;
+
+    /// <summary>The distance from one copy's origin to the next across, mm.</summary>
+    [ObservableProperty]
+    public partial double ArrayPitchXMm { get; set; } = 10;
+
+    /// <summary>The distance from one copy's origin to the next down, mm.</summary>
+    [ObservableProperty]
+    public partial double ArrayPitchYMm { get; set; } = 10;
+
+    /// <summary>
+    /// Adds the open image or drawing as an array: <see cref="ArrayRows"/> × <see cref="ArrayColumns"/> layers, the first
+    /// at the job's origin, each next one <see cref="ArrayPitchXMm"/> across and <see cref="ArrayPitchYMm"/> down; each
+    /// copy is a layer, so the stage draws it and Start burns it where it is drawn.
+    /// </summary>
+    /// <returns>False (with <see cref="FileError"/> saying why) when nothing is open, it does not plan, or the array is out of range.</returns>
+    public bool AddArray()
+    {
+        _activity.ThrowIfJobLocked();
+        var rows = ArrayRows;
+        var columns = ArrayColumns;
+        if (rows < 1 || columns < 1 || (long)rows * columns < 2 || (long)rows * columns + Layers.Count > JobFile.MaxLayers)
+        {
+            FileError = $"an array of {rows} × {columns}: give at least 2 copies and at most {JobFile.MaxLayers - Layers.Count} in all (a job has at most {JobFile.MaxLayers} layers)";
+            return false;
+        }
+
+        if (!(double.IsFinite(ArrayPitchXMm) && double.IsFinite(ArrayPitchYMm) && ArrayPitchXMm >= 0 && ArrayPitchYMm >= 0))
+        {
+            FileError = "an array's spacing: give 0 mm or more across and down";
+            return false;
+        }
+
+        if (CurrentAsLayer(out var problem) is not { } layer)
+        {
+            FileError = problem + " before making an array of it";
+            return false;
+        }
+
+        var layers = Layers.ToList();
+        for (var r = 0; r < rows; r++)
+        {
+            for (var c = 0; c < columns; c++)
+            {
+                layers.Add(layer with
+                {
+                    Name = UniqueName($"{layer.Name} r{r + 1}c{c + 1}", layers),
+                    Origin = new OriginMm(layer.Origin.X + (c * ArrayPitchXMm), layer.Origin.Y + (r * ArrayPitchYMm)),
+                });
+            }
+        }
+
+        FileError = null;
+        Set(layers);
+        return true;
+    }
+
     /// <summary>The open image or drawing, with the values its fields have now, as a layer; null with <paramref name="problem"/> saying why.</summary>
     private JobLayer? CurrentAsLayer(out string? problem)
     {
@@ -408,9 +471,9 @@ public sealed partial class LayersViewModel : ObservableObject
         _ => LayerMode.Outline,
     };
 
-    private string UniqueName(string name)
+    private string UniqueName(string name, IReadOnlyList<JobLayer>? among = null)
     {
-        var taken = Layers.Select(l => l.Name).ToHashSet(StringComparer.Ordinal);
+        var taken = (among ?? Layers).Select(l => l.Name).ToHashSet(StringComparer.Ordinal);
         if (!taken.Contains(name))
         {
             return name;

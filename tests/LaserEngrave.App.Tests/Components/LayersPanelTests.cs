@@ -88,4 +88,20 @@ public sealed class LayersPanelTests : ComponentTest
         cut.WaitForAssertion(() => Assert.Equal(3, cut.FindAll("#layer-list li").Count));
         Assert.Equal(Path.GetFullPath(uploaded), Main.Layers.JobPath);
     }
+
+    [Fact]
+    public void Array_ThreeByOne_ThreeLayersListedAndStartRunsThem()
+    {
+        Assert.True(Main.Job.LoadImage(TestFiles.Asset("qr-code.bmp")));
+        var cut = Render<LayersPanel>(p => p.Add(c => c.Layers, Main.Layers));
+
+        cut.Find("#array-rows").Change("1");
+        cut.Find("#array-columns").Change("3");
+        cut.Find("#array-pitch-x").Change("7,5");
+        cut.Find("#layer-array-add").Click();
+
+        cut.WaitForAssertion(() => Assert.Equal(3, cut.FindAll("#layer-list li").Count));
+        Assert.Equal(Main.Job.OriginXMm + 15, Main.Layers.Layers[2].Origin.X, 6);
+        Assert.True(Main.Run.RunsLayers);
+    }
 }

@@ -246,6 +246,47 @@ public sealed class LayersViewModelTests : IDisposable
     }
 
     [Fact]
+    public void AddArray_TwoRowsThreeColumns_SixLayersAtTheirOriginsPlannedAlike()
+    {
+        Assert.True(_job.LoadImage(TestFiles.Asset("qr-code.bmp")));
+        _job.Batch(() =>
+        {
+            _job.EditWidth(4);
+            _job.OriginXMm = 2;
+            _job.OriginYMm = 3;
+        });
+        _layers.ArrayRows = 2;
+        _layers.ArrayColumns = 3;
+        _layers.ArrayPitchXMm = 5;
+        _layers.ArrayPitchYMm = 6;
+
+        Assert.True(_layers.AddArray(), _layers.FileError);
+
+        Assert.Equal(6, _layers.Layers.Count);
+        Assert.Equal(
+            [new OriginMm(2, 3), new OriginMm(7, 3), new OriginMm(12, 3), new OriginMm(2, 9), new OriginMm(7, 9), new OriginMm(12, 9)],
+            _layers.Layers.Select(l => l.Origin));
+        Assert.Equal("qr-code r2c3", _layers.Layers[5].Name);
+        Assert.Null(_layers.Error);
+        var job = _layers.Job!;
+        Assert.All(job.Layers, l => Assert.True(l.Image!.Mask.ContentEquals(_job.Mask!)));
+        Assert.All(job.Layers, l => Assert.Equal(4, l.SizeMm.WidthMm, 3));
+    }
+
+    [Fact]
+    public void AddArray_OneByOne_RefusedSayingWhy()
+    {
+        Assert.True(_job.LoadImage(TestFiles.Asset("qr-code.bmp")));
+        _layers.ArrayRows = 1;
+        _layers.ArrayColumns = 1;
+
+        Assert.False(_layers.AddArray());
+
+        Assert.StartsWith("an array of 1 × 1: give at least 2 copies", _layers.FileError, StringComparison.Ordinal);
+        Assert.Empty(_layers.Layers);
+    }
+
+    [Fact]
     public void Save_NothingOpenNoLayers_RefusedSayingWhy()
     {
         Assert.False(_layers.CanSave);
