@@ -29,4 +29,7 @@ public sealed record AppSettings
     /// never rewriting what was typed. A number typed with a point sets it back.
     /// </summary>
     public bool DecimalComma { get; init; }
+
+    /// <summary>A run estimated longer than this, minutes, asks before it starts (Start and the API's 409); an hour until set.</summary>
+    public double AskAboveMinutes { get; init; } = 60;
 }

@@ -114,12 +114,15 @@ public sealed partial class AlignmentViewModel : ObservableObject
             var path = Path.Combine(folder, $"{name}-aligned.png");
             PngWriter.WriteMask(path, aligned.Mask);
 
-            // The aligned mask is black = burn already: threshold it as it is.
+            // The aligned mask is black = burn already, and already turned and mirrored: threshold it as it is.
             job.Batch(() =>
             {
                 job.Invert = false;
                 job.Dither = DitherMethod.None;
                 job.ThresholdPercent = 50;
+                job.QuarterTurns = 0;
+                job.MirrorX = false;
+                job.MirrorY = false;
             });
             if (job.LoadImage(path))
             {

@@ -39,7 +39,7 @@ public sealed partial class JobViewModel : ObservableObject
     public const string FillPitchField = JobField.FillPitch;
     public const string DrawingLayerField = "drawingLayer";
 
-    private static readonly HashSet<string> MaskInputs = [nameof(ThresholdPercent), nameof(Dither), nameof(Invert)];
+    private static readonly HashSet<string> MaskInputs = [nameof(ThresholdPercent), nameof(Dither), nameof(Invert), nameof(QuarterTurns), nameof(MirrorX), nameof(MirrorY)];
 
     private static readonly HashSet<string> PlanInputs =
     [
@@ -105,6 +105,102 @@ public sealed partial class JobViewModel : ObservableObject
 
     [ObservableProperty]
     public partial bool Invert { get; set; }
+
+    /// <summary>Quarter turns clockwise of the image on the stage, 0..3: the mask is turned, so the plan and the burn follow it.</summary>
+    [ObservableProperty]
+    public partial int QuarterTurns { get; set; }
+
+    /// <summary>The image flipped left to right (before it is turned).</summary>
+    [ObservableProperty]
+    public partial bool MirrorX { get; set; }
+
+    /// <summary>The image flipped top to bottom (before it is turned).</summary>
+    [ObservableProperty]
+    public partial bool MirrorY { get; set; }
+
+    /// <summary>Whether the job can be turned and mirrored: an image (a drawing cannot yet).</summary>
+    public bool CanTurn => ImagePath is not null && !IsDrawing;
+
+    /// <summary>The turn and mirror in force, as the Size panel says it: "upright", or e.g. "turned 90° clockwise, mirrored left to right".</summary>
+    public string OrientationText
+    {
+        get
+        {
+            var parts = new List<string>();
+            if (QuarterTurns != 0)
+            {
+                parts.Add($"turned {QuarterTurns * 90}° clockwise");
+            }
+
+            if (MirrorX)
+            {
+                parts.Add("image mirrored left to right");
+            }
+
+            if (MirrorY)
+            {
+                parts.Add("image mirrored top to bottom");
+            }
+
+            return parts.Count == 0 ? "upright" : string.Join(", ", parts);
+        }
+    }
+
+    /// <summary>How the image becomes its mask now: threshold, dither, invert, turn and mirror.</summary>
+    private MaskOptions MaskNow => new() { ThresholdPercent = ThresholdPercent, Dither = Dither, Invert = Invert, QuarterTurns = QuarterTurns, MirrorX = MirrorX, MirrorY = MirrorY };
+
+    /// <summary>
+    /// Turns the job a quarter turn (<paramref name="clockwise"/> or not) on the stage, keeping its size on the stage: the
+    /// side that leads (width or height) takes the other side's length, so a 10 × 5 mm job becomes 5 × 10 mm.
+    /// </summary>
+    public void Rotate(bool clockwise)
+    {
+        var width = Job?.Geometry.AchievedWidthMm;
+        var height = Job?.Geometry.AchievedHeightMm;
+        Batch(() =>
+        {
+            QuarterTurns = (QuarterTurns + (clockwise ? 1 : 3)) % 4;
+            switch (SizeMode)
+            {
+                case SizeMode.Width when height is { } h:
+                    WidthMm = Math.Round(h, 6);
+                    break;
+                case SizeMode.Height when width is { } w:
+                    HeightMm = Math.Round(w, 6);
+                    break;
+                case SizeMode.WidthAndHeight:
+                    (WidthMm, HeightMm) = (HeightMm, WidthMm);
+                    break;
+            }
+        });
+    }
+
+    /// <summary>Flips the job left to right on the stage, as it is turned now (a turned job's mirror is about the stage's axes).</summary>
+    public void FlipHorizontal()
+    {
+        // Mirroring is applied before the turn: a flip about the stage's vertical axis is a flip of the image's other axis when turned an odd number of times.
+        if (QuarterTurns % 2 == 0)
+        {
+            MirrorX = !MirrorX;
+        }
+        else
+        {
+            MirrorY = !MirrorY;
+        }
+    }
+
+    /// <summary>Flips the job top to bottom on the stage, as it is turned now.</summary>
+    public void FlipVertical()
+    {
+        if (QuarterTurns % 2 == 0)
+        {
+            MirrorY = !MirrorY;
+        }
+        else
+        {
+            MirrorX = !MirrorX;
+        }
+    }
 
     [ObservableProperty]
     public partial SizeMode SizeMode { get; set; }
@@ -404,7 +500,7 @@ public sealed partial class JobViewModel : ObservableObject
         }
 
         OnPropertyChanged(nameof(IsDrawing));
-        if (opened.MaskOptions != new MaskOptions { ThresholdPercent = ThresholdPercent, Dither = Dither, Invert = Invert })
+        if (opened.MaskOptions != MaskNow)
         {
             // The threshold, dither or invert changed while the image was read: its mask is made again as they say now.
             RebuildMask();
@@ -634,6 +730,9 @@ public sealed partial class JobViewModel : ObservableObject
             ThresholdPercent = settings.ThresholdPercent;
             Dither = settings.Dither;
             Invert = settings.Invert;
+            QuarterTurns = settings.QuarterTurns;
+            MirrorX = settings.MirrorX;
+            MirrorY = settings.MirrorY;
             SizeMode = settings.SizeMode;
             AspectLocked = settings.SizeMode != SizeMode.WidthAndHeight;
             WidthMm = settings.WidthMm;
@@ -672,6 +771,9 @@ public sealed partial class JobViewModel : ObservableObject
         ThresholdPercent = ThresholdPercent,
         Dither = Dither,
         Invert = Invert,
+        QuarterTurns = QuarterTurns,
+        MirrorX = MirrorX,
+        MirrorY = MirrorY,
         SizeMode = SizeMode,
         WidthMm = WidthMm,
         HeightMm = HeightMm,
@@ -800,7 +902,7 @@ public sealed partial class JobViewModel : ObservableObject
             {
                 // A large image was dropped after its last mask: decode it again (its file is the app's copy or the user's own).
                 var image = _image ?? _images.Load(path);
-                Mask = _images.BuildMask(image, new MaskOptions { ThresholdPercent = ThresholdPercent, Dither = Dither, Invert = Invert });
+                Mask = _images.BuildMask(image, MaskNow);
                 MaskVersion++;
                 if ((long)image.Stride * image.Height > RetainedImageBytes)
                 {
@@ -999,7 +1101,7 @@ public sealed partial class JobViewModel : ObservableObject
     private JobSpec Spec(string path) => new()
     {
         ImagePath = path,
-        Mask = new MaskOptions { ThresholdPercent = ThresholdPercent, Dither = Dither, Invert = Invert },
+        Mask = MaskNow,
         Size = SizeMode switch
         {
             SizeMode.Height => SizeSpec.Height(HeightMm),

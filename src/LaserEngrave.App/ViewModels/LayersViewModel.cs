@@ -19,6 +19,9 @@ public sealed partial class LayersViewModel : ObservableObject
     private readonly MachineActivity _activity;
     private IReadOnlyList<JobLayer>? _inFile;
 
+    // Set while a job file of one layer is put into the single job: that image is the file's, not another.
+    private bool _openingSingle;
+
     public LayersViewModel(IJobFiles files, JobViewModel job, MachineActivity activity)
     {
         ArgumentNullException.ThrowIfNull(files);
@@ -33,6 +36,18 @@ public sealed partial class LayersViewModel : ObservableObject
             if (e.PropertyName == nameof(JobViewModel.Profile) && IsActive)
             {
                 Replan();
+            }
+
+            if (e.PropertyName == nameof(JobViewModel.ImagePath) && !IsActive && !_openingSingle)
+            {
+                // Another image or drawing is not the job file opened or saved: Save must not write over that file.
+                JobPath = null;
+            }
+
+            if (e.PropertyName is nameof(JobViewModel.PlanVersion) or nameof(JobViewModel.ImagePath))
+            {
+                OnPropertyChanged(nameof(CanSave));
+                OnPropertyChanged(nameof(SuggestedPath));
             }
         };
         _activity.PropertyChanged += (_, e) =>
@@ -53,6 +68,7 @@ public sealed partial class LayersViewModel : ObservableObject
     /// <summary>The layers in burn order.</summary>
     [ObservableProperty]
     [NotifyPropertyChangedFor(nameof(IsActive))]
+    [NotifyPropertyChangedFor(nameof(CanSave))]
     public partial IReadOnlyList<JobLayer> Layers { get; private set; } = [];
 
     /// <summary>The layers planned, or null when there are none or one cannot be planned (<see cref="Error"/> says why).</summary>
@@ -98,46 +114,170 @@ public sealed partial class LayersViewModel : ObservableObject
     /// <summary>The whole job: every layer's passes with their preflight, s; null without a plan.</summary>
     public double? EstimatedSeconds => Job?.EstimatedSeconds;
 
-    /// <summary>Where a new job file would be saved: the last one, else job.json in the app's jobs folder.</summary>
-    public string SuggestedPath => JobPath ?? Path.Combine(_files.DefaultFolder, "job.json");
+    /// <summary>
+    /// Where a new job file would be saved: the last one, else in the app's jobs folder job.json (layers) or the single
+    /// job's image or drawing name with .json.
+    /// </summary>
+    public string SuggestedPath => JobPath ?? Path.Combine(_files.DefaultFolder, DownloadName);
+
+    /// <summary>The name a job file downloaded by the page is offered under: the last one's, else as <see cref="SuggestedPath"/>.</summary>
+    public string DownloadName => JobPath is { } path
+        ? Path.GetFileName(path)
+        : (!IsActive && _job.ImagePath is { } image ? Path.GetFileNameWithoutExtension(image) : "job") + ".json";
+
+    /// <summary>Whether there is a job to save: layers, or an open image or drawing that plans.</summary>
+    public bool CanSave => IsActive || (_job.ImagePath is not null && _job.Engraving is not null);
+
+    /// <summary>
+    /// The layers a job file of the job now holds: the layers, or, when there are none, the open image or drawing as one
+    /// layer with the values its fields have (opened back, it is the single job again); null with <paramref name="problem"/>
+    /// saying why when there is nothing to save.
+    /// </summary>
+    public IReadOnlyList<JobLayer>? ToSave(out string? problem)
+    {
+        if (IsActive)
+        {
+            problem = null;
+            return Layers;
+        }
+
+        return CurrentAsLayer(out problem) is { } layer ? [layer] : null;
+    }
+
+    /// <summary>
+    /// The job file's bytes for the page to download (sources as full paths: the file's folder is the browser's); null
+    /// with <see cref="FileError"/> saying why when there is nothing to save.
+    /// </summary>
+    public byte[]? ToDownload()
+    {
+        if (ToSave(out var problem) is not { } layers)
+        {
+            FileError = problem;
+            return null;
+        }
+
+        FileError = null;
+        return JobFile.ToJson(layers, null);
+    }
 
     /// <summary>Adds the open image or drawing, with the values its fields have now, as the last layer.</summary>
     /// <returns>False (with <see cref="FileError"/> saying why) when nothing is open or its values do not plan.</returns>
     public bool AddCurrent()
     {
         _activity.ThrowIfJobLocked();
+        if (CurrentAsLayer(out var problem) is not { } layer)
+        {
+            FileError = problem + " before adding it as a layer";
+            return false;
+        }
+
+        FileError = null;
+        Set([.. Layers, layer with { Name = UniqueName(layer.Name) }]);
+        return true;
+    }
+
+    /// <summary>Rows of an array (<see cref="AddArray"/>): the copies down the stage.</summary>
+    [ObservableProperty]
+    public partial int ArrayRows { get; set; } = 2;
+
+    /// <summary>Columns of an array: the copies across the stage.</summary>
+    [ObservableProperty]
+    public partial int ArrayColumns { get; set; } = 2;
+
+    /// <summary>The distance from one copy's origin to the next across, mm.</summary>
+    [ObservableProperty]
+    public partial double ArrayPitchXMm { get; set; } = 10;
+
+    /// <summary>The distance from one copy's origin to the next down, mm.</summary>
+    [ObservableProperty]
+    public partial double ArrayPitchYMm { get; set; } = 10;
+
+    /// <summary>
+    /// Adds the open image or drawing as an array: <see cref="ArrayRows"/> × <see cref="ArrayColumns"/> layers, the first
+    /// at the job's origin, each next one <see cref="ArrayPitchXMm"/> across and <see cref="ArrayPitchYMm"/> down; each
+    /// copy is a layer, so the stage draws it and Start burns it where it is drawn.
+    /// </summary>
+    /// <returns>False (with <see cref="FileError"/> saying why) when nothing is open, it does not plan, or the array is out of range.</returns>
+    public bool AddArray()
+    {
+        _activity.ThrowIfJobLocked();
+        var rows = ArrayRows;
+        var columns = ArrayColumns;
+        if (rows < 1 || columns < 1 || (long)rows * columns < 2 || (long)rows * columns + Layers.Count > JobFile.MaxLayers)
+        {
+            FileError = $"an array of {rows} × {columns}: give at least 2 copies and at most {JobFile.MaxLayers - Layers.Count} in all (a job has at most {JobFile.MaxLayers} layers)";
+            return false;
+        }
+
+        if (!(double.IsFinite(ArrayPitchXMm) && double.IsFinite(ArrayPitchYMm) && ArrayPitchXMm >= 0 && ArrayPitchYMm >= 0))
+        {
+            FileError = "an array's spacing: give 0 mm or more across and down";
+            return false;
+        }
+
+        if (CurrentAsLayer(out var problem) is not { } layer)
+        {
+            FileError = problem + " before making an array of it";
+            return false;
+        }
+
+        var layers = Layers.ToList();
+        for (var r = 0; r < rows; r++)
+        {
+            for (var c = 0; c < columns; c++)
+            {
+                layers.Add(layer with
+                {
+                    Name = UniqueName($"{layer.Name} r{r + 1}c{c + 1}", layers),
+                    Origin = new OriginMm(layer.Origin.X + (c * ArrayPitchXMm), layer.Origin.Y + (r * ArrayPitchYMm)),
+                });
+            }
+        }
+
+        FileError = null;
+        Set(layers);
+        return true;
+    }
+
+    /// <summary>The open image or drawing, with the values its fields have now, as a layer; null with <paramref name="problem"/> saying why.</summary>
+    private JobLayer? CurrentAsLayer(out string? problem)
+    {
         if (_job.ImagePath is not { } source)
         {
-            FileError = "open an image or drawing first: it becomes the new layer";
-            return false;
+            problem = "open an image or drawing first: there is no job to save";
+            return null;
         }
 
         if (_job.Engraving is null)
         {
-            FileError = "the open job does not plan (see the fields marked in red): set it right before adding it as a layer";
-            return false;
+            problem = "the open job does not plan (see the fields marked in red): set it right";
+            return null;
         }
 
         var drawing = _job.IsDrawing;
-        var name = Path.GetFileNameWithoutExtension(source) + (drawing && _job.DrawingLayer is { } l ? " " + l : string.Empty);
-        var layer = new JobLayer
+        if (!drawing && _job.Mode == PlanMode.Dots)
         {
-            Name = UniqueName(name),
+            // A job file's image layer is rastered: written as one, a dots job would burn otherwise than it shows.
+            problem = "the open job burns dots, and a job file's image layer is rastered: set the process to raster";
+            return null;
+        }
+
+        problem = null;
+        return new JobLayer
+        {
+            Name = Path.GetFileNameWithoutExtension(source) + (drawing && _job.DrawingLayer is { } l ? " " + l : string.Empty),
             Source = source,
             Mode = drawing ? Mode(_job.DrawingFill) : LayerMode.Raster,
             DrawingLayer = drawing ? _job.DrawingLayer : null,
-            WidthMm = drawing ? (_job.SizeMode == SizeMode.Width ? _job.WidthMm : null) : _job.Job!.Geometry.RequestedWidthMm,
+            WidthMm = _job.SizeMode == SizeMode.Width ? _job.WidthMm : drawing ? null : _job.Job!.Geometry.RequestedWidthMm,
             Origin = new OriginMm(_job.OriginXMm, _job.OriginYMm),
             SpeedMmPerS = _job.BurnSpeedMmPerS,
             FrequencyHz = _job.LaserFrequencyHz,
             Passes = _job.Passes,
             ToleranceUm = drawing ? _job.ToleranceUm : null,
             FillPitchUm = drawing ? _job.FillPitchUm : null,
-            Mask = drawing ? Core.Imaging.MaskOptions.Default : new Core.Imaging.MaskOptions { ThresholdPercent = _job.ThresholdPercent, Dither = _job.Dither, Invert = _job.Invert },
+            Mask = drawing ? Core.Imaging.MaskOptions.Default : _job.ToSettings().ToMask(),
         };
-        FileError = null;
-        Set([.. Layers, layer]);
-        return true;
     }
 
     /// <summary>Replaces one layer (its name, mode, origin, speed, frequency or passes changed) and plans again.</summary>
@@ -185,6 +325,12 @@ public sealed partial class LayersViewModel : ObservableObject
         Set([]);
     }
 
+    /// <summary>Throws <see cref="MachineBusyException"/> while an operation holds the job (a job file chosen in the page waits for it before it is kept).</summary>
+    public void ThrowIfLocked() => _activity.ThrowIfJobLocked();
+
+    /// <summary>A job file the page could not hand over (too large, interrupted, refused during a run): why, as <see cref="FileError"/>.</summary>
+    public void ReportFileError(string problem) => FileError = problem;
+
     /// <summary>A job file was opened: its layers are a new artwork (undo starts anew).</summary>
     public event EventHandler? Opened;
 
@@ -212,6 +358,11 @@ public sealed partial class LayersViewModel : ObservableObject
             return false;
         }
 
+        if (layers.Count == 1)
+        {
+            return OpenSingle(path, layers[0]);
+        }
+
         FileError = null;
         JobPath = Path.GetFullPath(path);
         _inFile = layers;
@@ -220,13 +371,68 @@ public sealed partial class LayersViewModel : ObservableObject
         return true;
     }
 
-    /// <summary>Writes the layers to a job file the command line runs (<c>engrave --job FILE</c>).</summary>
+    /// <summary>
+    /// A job file of one layer opens as the single job it was saved from: its image or drawing opened, then its values
+    /// put in the fields (what a layer leaves out, the machine profile's); the layers, if any, are emptied.
+    /// </summary>
+    private bool OpenSingle(string path, JobLayer layer)
+    {
+        _openingSingle = true;
+        try
+        {
+            if (!_job.LoadImage(layer.Source))
+            {
+                FileError = $"{path}: its image or drawing {layer.Source} did not open: {_job.Errors.GetValueOrDefault(JobViewModel.ImageField) ?? "see the Image panel"}";
+                return false;
+            }
+
+            var profile = JobViewModel.FromProfile(_job.Profile);
+            var drawing = layer.Mode != LayerMode.Raster;
+            _job.Apply(_job.ToSettings() with
+            {
+                ImagePath = null,
+                SizeMode = layer.WidthMm is not null ? SizeMode.Width : SizeMode.Pitch,
+                WidthMm = layer.WidthMm ?? _job.WidthMm,
+                OriginXMm = layer.Origin.X,
+                OriginYMm = layer.Origin.Y,
+                BurnSpeedMmPerS = layer.SpeedMmPerS ?? profile.BurnSpeedMmPerS,
+                LaserFrequencyHz = layer.FrequencyHz ?? profile.LaserFrequencyHz,
+                Passes = layer.Passes,
+                Mode = PlanMode.Raster,
+                ThresholdPercent = layer.Mask.ThresholdPercent,
+                Dither = layer.Mask.Dither,
+                Invert = layer.Mask.Invert,
+                QuarterTurns = layer.Mask.QuarterTurns,
+                MirrorX = layer.Mask.MirrorX,
+                MirrorY = layer.Mask.MirrorY,
+                DrawingFill = layer.Mode switch { LayerMode.Fill => VectorFillMode.Fill, LayerMode.Both => VectorFillMode.Both, _ => VectorFillMode.Outline },
+                DrawingLayer = drawing ? layer.DrawingLayer : null,
+                ToleranceUm = layer.ToleranceUm ?? VectorOptions.Default.ToleranceUm,
+                FillPitchUm = layer.FillPitchUm ?? VectorOptions.Default.FillPitchUm,
+            });
+            FileError = null;
+            JobPath = Path.GetFullPath(path);
+            _inFile = null;
+            Set([]);
+            Opened?.Invoke(this, EventArgs.Empty);
+            return true;
+        }
+        finally
+        {
+            _openingSingle = false;
+        }
+    }
+
+    /// <summary>
+    /// Writes the layers, or with none the open image or drawing as one layer, to a job file the command line runs
+    /// (<c>engrave --job FILE</c>) and Open opens back as the same job.
+    /// </summary>
     public bool Save(string path)
     {
         ArgumentException.ThrowIfNullOrWhiteSpace(path);
-        if (Layers.Count == 0)
+        if (ToSave(out var problem) is not { } layers)
         {
-            FileError = "no layers to save: add the open image or drawing as a layer first";
+            FileError = problem;
             return false;
         }
 
@@ -238,7 +444,7 @@ public sealed partial class LayersViewModel : ObservableObject
 
         try
         {
-            _files.Save(path, Layers);
+            _files.Save(path, layers);
         }
         catch (Exception ex) when (ex is IOException or UnauthorizedAccessException or ArgumentException or NotSupportedException)
         {
@@ -248,7 +454,9 @@ public sealed partial class LayersViewModel : ObservableObject
 
         FileError = null;
         JobPath = Path.GetFullPath(path);
-        _inFile = Layers;
+
+        // A single job saved is not a job of layers: a run of it logs no job file to resume from.
+        _inFile = IsActive ? Layers : null;
         OnPropertyChanged(nameof(UnchangedJobFile));
         return true;
     }
@@ -263,9 +471,9 @@ public sealed partial class LayersViewModel : ObservableObject
         _ => LayerMode.Outline,
     };
 
-    private string UniqueName(string name)
+    private string UniqueName(string name, IReadOnlyList<JobLayer>? among = null)
     {
-        var taken = Layers.Select(l => l.Name).ToHashSet(StringComparer.Ordinal);
+        var taken = (among ?? Layers).Select(l => l.Name).ToHashSet(StringComparer.Ordinal);
         if (!taken.Contains(name))
         {
             return name;

@@ -54,7 +54,11 @@ public sealed partial class MainViewModel : ObservableObject
         TestMoves = new TestMovesViewModel(Machine, Job);
         Log = new LogViewModel(logs, files, Job);
         Layers = new LayersViewModel(jobFiles ?? new JobFiles(AppFolders.Default), Job, activity);
-        Run = new RunViewModel(runs, Job, Machine, Log, time, Layers);
+        Run = new RunViewModel(runs, Job, Machine, Log, time, Layers)
+        {
+            // A hand-edited settings file's threshold out of range: the hour of the first start.
+            AskAboveMinutes = AskAboveProblem(Settings.AskAboveMinutes) is null ? Settings.AskAboveMinutes : RunViewModel.DefaultAskAboveMinutes,
+        };
         Sweep = new SweepViewModel(Job, Machine, logs, time);
         Machine.PropertyChanged += OnMachineChanged;
         Job.PropertyChanged += OnJobChanged;
@@ -261,6 +265,41 @@ public sealed partial class MainViewModel : ObservableObject
         ProfileError = null;
         Save(Settings with { ProfilePath = path });
     }
+
+    /// <summary>The longest threshold the long-run question takes, minutes: a week.</summary>
+    public const double MaxAskAboveMinutes = 7 * 24 * 60;
+
+    /// <summary>Why the last threshold typed for the long-run question was refused; null when it was taken.</summary>
+    [ObservableProperty]
+    public partial string? AskAboveError { get; private set; }
+
+    /// <summary>
+    /// Start (and the API's start) asks before a run estimated longer than <paramref name="minutes"/>; kept in the
+    /// settings. 0 asks before every run.
+    /// </summary>
+    /// <returns>False, with nothing changed and <see cref="AskAboveError"/> saying why, for a value out of range.</returns>
+    public bool SetAskAboveMinutes(double minutes)
+    {
+        if (AskAboveProblem(minutes) is { } problem)
+        {
+            AskAboveError = problem;
+            return false;
+        }
+
+        AskAboveError = null;
+        Run.AskAboveMinutes = minutes;
+        if (minutes != Settings.AskAboveMinutes)
+        {
+            Save(Settings with { AskAboveMinutes = minutes });
+        }
+
+        return true;
+    }
+
+    private static string? AskAboveProblem(double minutes) =>
+        double.IsFinite(minutes) && minutes >= 0 && minutes <= MaxAskAboveMinutes
+            ? null
+            : string.Create(CultureInfo.InvariantCulture, $"ask before runs longer than {minutes} min: give 0 (ask before every run) to {MaxAskAboveMinutes} min (a week)");
 
     /// <summary>The themes offered: the system's light or dark mode, or always light, or always dark.</summary>
     public static IReadOnlyList<string> Themes { get; } = ["system", "light", "dark"];

@@ -222,11 +222,19 @@ public sealed partial class RunViewModel : ObservableObject
         }
     }
 
-    /// <summary>A run longer than this asks before it starts (the estimate, all passes).</summary>
-    public const double AskAboveSeconds = 3600;
+    /// <summary>The long-run question's threshold at the first start: an hour.</summary>
+    public const double DefaultAskAboveMinutes = 60;
 
     /// <summary>
-    /// What to ask before Start runs this job, with its numbers: a run of over an hour, or pixels less than half the laser
+    /// A run longer than this, minutes (the estimate, all passes), asks before it starts, in the page and through the API;
+    /// the user's setting (<see cref="MainViewModel.SetAskAboveMinutes"/>), an hour until set.
+    /// </summary>
+    [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(StartQuestion))]
+    public partial double AskAboveMinutes { get; set; } = DefaultAskAboveMinutes;
+
+    /// <summary>
+    /// What to ask before Start runs this job, with its numbers: a run longer than <see cref="AskAboveMinutes"/>, or pixels less than half the laser
     /// spot (each burns several times wider than it is); null when Start need not ask.
     /// </summary>
     public string? StartQuestion
@@ -237,7 +245,7 @@ public sealed partial class RunViewModel : ObservableObject
             var spot = _job.Profile.SpotDiameterUm;
             var pitch = Planned?.SmallestPixelUm;
             var reasons = new List<string>();
-            if (estimate > AskAboveSeconds)
+            if (estimate > AskAboveMinutes * 60)
             {
                 reasons.Add($"it takes about {Components.Format.Duration(estimate.Value)}");
             }

@@ -152,7 +152,7 @@ internal static class ApiEndpoints
                 return refused;
             }
 
-            // A job of over an hour, or of pixels much smaller than the spot, asks as the page's Start does.
+            // A job longer than the user's threshold (an hour until set), or of pixels much smaller than the spot, asks as the page's Start does.
             if (!request.Confirm && main.Run.StartQuestion is { } question)
             {
                 return Busy($"{question} Send \"confirm\": true to start anyway");
@@ -162,7 +162,7 @@ internal static class ApiEndpoints
             main.Log.SampleId = request.SampleId;
             return Start(main, main.Run.ConfirmStartCommand);
         })
-            .WithSummary("202; runs the planned job (all passes); a second start during a run is ignored (200 with a note); 409 with the question for a job of over an hour or of pixels much smaller than the spot, unless confirm is true; 409 with the sentence for a gate without a watchdog, unless acceptNoWatchdog is true (or the Machine panel's box is ticked).");
+            .WithSummary("202; runs the planned job (all passes); a second start during a run is ignored (200 with a note); 409 with the question for a job longer than the Machine panel's \"Ask before runs longer than\" (an hour until set) or of pixels much smaller than the spot, unless confirm is true; 409 with the sentence for a gate without a watchdog, unless acceptNoWatchdog is true (or the Machine panel's box is ticked).");
         api.MapPost("/run/continue", (MainViewModel main) =>
         {
             if (main.Run.IsActive)
@@ -196,6 +196,15 @@ internal static class ApiEndpoints
         api.MapGet("/logs/history", (MainViewModel main, string? format, string? decimalMark) => ExportHistory(main, format, decimalMark))
             .WithSummary("The runs ticked in the history table as CSV (decimalMark=comma: decimal commas, fields between semicolons) or format=json.");
 
+        api.MapGet("/jobfile", (MainViewModel main) => main.Layers.ToDownload() is { } bytes
+                ? Results.File(bytes, "application/json", main.Layers.DownloadName)
+                : Busy(main.Layers.FileError ?? "nothing to save"))
+            .WithSummary("The job file of the job now (the layers, or the open image or drawing as one layer), sources as full paths; the page's Download job file. 409 with the reason when there is nothing to save.");
+        api.MapPost("/jobfile/open", (MainViewModel main, PathRequest request) => JobFile(main, request.Path, main.Layers.Open))
+            .WithSummary("Opens a job file on this computer by its path: one layer opens as the single job, more as the layers; 400 with the file's problem.");
+        api.MapPost("/jobfile/save", (MainViewModel main, PathRequest request) => JobFile(main, request.Path, main.Layers.Save))
+            .WithSummary("Saves the job (the layers, or the open image or drawing as one layer) as a job file at the path given (.json), sources relative to it; 400 with the reason.");
+
         api.MapPost("/settings/theme", (MainViewModel main, ThemeRequest request) => main.SetTheme(request.Theme)
                 ? State(main)
                 : Results.Json(new { error = $"theme '{ApiRequests.Quote(request.Theme)}': use {string.Join(", ", MainViewModel.Themes)}" }, statusCode: StatusCodes.Status400BadRequest))
@@ -209,6 +218,14 @@ internal static class ApiEndpoints
         action(null);
         return State(main);
     }
+
+    /// <summary>Opens or saves a job file by its path: the state, or 400 with the file's problem.</summary>
+    private static IResult JobFile(MainViewModel main, string? path, Func<string, bool> action) =>
+        string.IsNullOrWhiteSpace(path)
+            ? Results.Json(new { error = "give the job file's path: \"path\": \"…/job.json\"" }, statusCode: StatusCodes.Status400BadRequest)
+            : action(path)
+                ? State(main)
+                : Results.Json(new { error = main.Layers.FileError }, statusCode: StatusCodes.Status400BadRequest);
 
     /// <summary>409 with the one line saying what holds the machine (or why the request cannot be done now).</summary>
     private static IResult Busy(string message) => Results.Json(new { error = message }, statusCode: StatusCodes.Status409Conflict);
@@ -339,6 +356,9 @@ internal static class ApiEndpoints
             case "dotPitchMicrosteps": job.DotPitchMicrosteps = Whole(value, long.MaxValue); break;
             case "dotSettleMs": job.DotSettleMs = Number(value); break;
             case "pulseEnergyUj": job.PulseEnergyUj = Number(value); break;
+            case "quarterTurns": job.QuarterTurns = (int)Whole(value, 3); break;
+            case "mirrorX": job.MirrorX = Bool(value); break;
+            case "mirrorY": job.MirrorY = Bool(value); break;
             default: throw new UnusableValueException($"not a job field (docs/api.md lists them)");
         }
     }

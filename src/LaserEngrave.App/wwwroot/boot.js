@@ -58,8 +58,27 @@
       return;
     }
 
+    // A link that asks for it (the job file) offers the browser's own save dialog where there is one (the File System
+    // Access API, in Chromium browsers), asked within the click; elsewhere, or if it fails, it downloads as any link.
+    const picked = link.hasAttribute('data-save-picker') && window.showSaveFilePicker
+      ? window.showSaveFilePicker({ suggestedName: link.getAttribute('download') || undefined, types: [{ description: 'Job file', accept: { 'application/json': ['.json'] } }] })
+        .catch((error) => (error && error.name === 'AbortError' ? 'cancelled' : null))
+      : null;
     const response = await authorisedFetch(link.getAttribute('href'));
     if (!response.ok) return;
+    const handle = await picked;
+    if (handle === 'cancelled') return;
+    if (handle) {
+      try {
+        const writable = await handle.createWritable();
+        await writable.write(await response.clone().blob());
+        await writable.close();
+        return;
+      } catch (e) {
+        // Written nowhere: downloaded below instead.
+      }
+    }
+
     const disposition = response.headers.get('Content-Disposition') || '';
     const name = /filename\*?=(?:UTF-8'')?"?([^";]+)"?/i.exec(disposition);
     const url = URL.createObjectURL(await response.blob());

@@ -9,6 +9,12 @@ public static class MaskBuilder
         ArgumentNullException.ThrowIfNull(image);
         ArgumentNullException.ThrowIfNull(options);
         options.Validate();
+        return MaskOrientation.Apply(BuildUpright(image, options), options);
+    }
+
+    // The mask as the image stands; Build turns and mirrors it.
+    private static BitMask BuildUpright(LoadedImage image, MaskOptions options)
+    {
         var mask = new BitMask(image.Width, image.Height);
         if (image.Layout == PixelLayout.Indexed && PaletteMaskWriter.TryCreate(image.Palette, image.BitsPerIndex, options) is { } writer)
         {
@@ -47,7 +53,7 @@ public static class MaskBuilder
             if (FormatSniffer.Detect(reader) == ImageFormat.Bmp && BmpDecoder.TryBuildMask(reader, options, out var bmpInfo) is { } direct)
             {
                 found = bmpInfo;
-                return direct;
+                return MaskOrientation.Apply(direct, options);
             }
 
             var image = ImageLoader.Decode(reader);

@@ -20,9 +20,29 @@ public sealed record MaskOptions
     /// <summary>Burns the opaque pixels that would not burn, and spares those that would.</summary>
     public bool Invert { get; init; }
 
-    /// <summary>Throws <see cref="ArgumentOutOfRangeException"/> for a threshold outside 0..100 or an unknown dither.</summary>
+    /// <summary>
+    /// Quarter turns clockwise, 0..3, as the image is seen on the stage (row 0 at the top), applied after
+    /// <see cref="MirrorX"/> and <see cref="MirrorY"/>: the mask is turned, so the plan, the preview and the burn follow it.
+    /// </summary>
+    public int QuarterTurns { get; init; }
+
+    /// <summary>The image flipped left to right (its columns reversed) before it is turned.</summary>
+    public bool MirrorX { get; init; }
+
+    /// <summary>The image flipped top to bottom (its rows reversed) before it is turned.</summary>
+    public bool MirrorY { get; init; }
+
+    /// <summary>Whether the mask is turned or mirrored at all.</summary>
+    public bool Transforms => QuarterTurns != 0 || MirrorX || MirrorY;
+
+    /// <summary>Throws <see cref="ArgumentOutOfRangeException"/> for a threshold outside 0..100, an unknown dither or quarter turns outside 0..3.</summary>
     public void Validate()
     {
+        if (QuarterTurns is < 0 or > 3)
+        {
+            throw new ArgumentOutOfRangeException(nameof(QuarterTurns), QuarterTurns, "quarter turns must be 0, 1, 2 or 3 (0°, 90°, 180°, 270° clockwise)");
+        }
+
         if (!(ThresholdPercent >= 0 && ThresholdPercent <= 100))
         {
             throw new ArgumentOutOfRangeException(nameof(ThresholdPercent), ThresholdPercent, "the threshold must be between 0 and 100 %");

@@ -18,7 +18,7 @@ public static class JobFile
     public const int MaxLayers = 1000;
 
     private static readonly string[] Fields =
-        ["name", "source", "mark", "mode", "drawingLayer", "widthMm", "originMm", "speedMmPerS", "frequencyHz", "passes", "toleranceUm", "fillPitchUm", "thresholdPercent", "dither", "invert"];
+        ["name", "source", "mark", "mode", "drawingLayer", "widthMm", "originMm", "speedMmPerS", "frequencyHz", "passes", "toleranceUm", "fillPitchUm", "thresholdPercent", "dither", "invert", "quarterTurns", "mirrorX", "mirrorY"];
 
     /// <summary>Reads the job file's layers; its marks, if any, made into their layers with <paramref name="marks"/>.</summary>
     /// <param name="marks">The counter, machine, time and sample a mark layer is made with; a file with a mark layer needs them.</param>
@@ -185,7 +185,21 @@ public static class JobFile
         ArgumentException.ThrowIfNullOrWhiteSpace(path);
         ArgumentNullException.ThrowIfNull(layers);
         var full = Path.GetFullPath(path);
-        var folder = Path.GetDirectoryName(full) ?? ".";
+        var bytes = ToJson(layers, Path.GetDirectoryName(full) ?? ".");
+
+        // Written whole beside the file, then moved over it: a failed save leaves the old job as it was.
+        var temporary = full + ".saving";
+        File.WriteAllBytes(temporary, bytes);
+        File.Move(temporary, full, overwrite: true);
+    }
+
+    /// <summary>
+    /// The job file's bytes (UTF-8 JSON), as <see cref="Save"/> writes them: sources relative to <paramref name="folder"/>,
+    /// or, with null, full paths, for a file whose folder is not known (one the browser downloads, then uploads back).
+    /// </summary>
+    public static byte[] ToJson(IReadOnlyList<JobLayer> layers, string? folder)
+    {
+        ArgumentNullException.ThrowIfNull(layers);
         using var buffer = new MemoryStream();
         using (var json = new Utf8JsonWriter(buffer, new JsonWriterOptions { Indented = true }))
         {
@@ -195,7 +209,8 @@ public static class JobFile
             {
                 json.WriteStartObject();
                 json.WriteString("name", layer.Name);
-                json.WriteString("source", Path.GetRelativePath(folder, Path.GetFullPath(layer.Source)).Replace('\\', '/'));
+                var source = Path.GetFullPath(layer.Source);
+                json.WriteString("source", (folder is null ? source : Path.GetRelativePath(folder, source)).Replace('\\', '/'));
                 json.WriteString("mode", layer.Mode.ToString().ToLowerInvariant());
                 if (layer.DrawingLayer is { } drawingLayer)
                 {
@@ -212,11 +227,26 @@ public static class JobFile
                 json.WriteNumber("passes", layer.Passes);
                 Optional(json, "toleranceUm", layer.ToleranceUm);
                 Optional(json, "fillPitchUm", layer.FillPitchUm);
-                if (layer.Mask != Imaging.MaskOptions.Default)
+                if (layer.Mask with { QuarterTurns = 0, MirrorX = false, MirrorY = false } != Imaging.MaskOptions.Default)
                 {
                     json.WriteNumber("thresholdPercent", layer.Mask.ThresholdPercent);
                     json.WriteString("dither", Imaging.DitherNames.Name(layer.Mask.Dither));
                     json.WriteBoolean("invert", layer.Mask.Invert);
+                }
+
+                if (layer.Mask.QuarterTurns != 0)
+                {
+                    json.WriteNumber("quarterTurns", layer.Mask.QuarterTurns);
+                }
+
+                if (layer.Mask.MirrorX)
+                {
+                    json.WriteBoolean("mirrorX", true);
+                }
+
+                if (layer.Mask.MirrorY)
+                {
+                    json.WriteBoolean("mirrorY", true);
                 }
                 json.WriteEndObject();
             }
@@ -226,11 +256,7 @@ public static class JobFile
         }
 
         buffer.WriteByte((byte)'\n');
-
-        // Written whole beside the file, then moved over it: a failed save leaves the old job as it was.
-        var temporary = full + ".saving";
-        File.WriteAllBytes(temporary, buffer.ToArray());
-        File.Move(temporary, full, overwrite: true);
+        return buffer.ToArray();
 
         static void Optional(Utf8JsonWriter json, string name, double? value)
         {
@@ -304,11 +330,20 @@ public static class JobFile
             throw new PlanException($"{where}: dither \"{ditherText}\" is not {Imaging.DitherNames.List}");
         }
 
-        var invert = !element.TryGetProperty("invert", out var value) || value.ValueKind == JsonValueKind.Null ? false
-            : value.ValueKind is JsonValueKind.True or JsonValueKind.False ? value.GetBoolean()
-            : throw new PlanException($"{where}: \"invert\" must be true or false");
-        return new Imaging.MaskOptions { ThresholdPercent = threshold, Dither = dither, Invert = invert };
+        var turns = Number(element, "quarterTurns", where) is { } q
+            ? q is 0 or 1 or 2 or 3 ? (int)q : throw new PlanException($"{where}: quarterTurns {N(q)}: give 0, 1, 2 or 3 (quarter turns clockwise)")
+            : 0;
+        return new Imaging.MaskOptions
+        {
+            ThresholdPercent = threshold, Dither = dither, Invert = Flag(element, "invert", where), QuarterTurns = turns,
+            MirrorX = Flag(element, "mirrorX", where), MirrorY = Flag(element, "mirrorY", where),
+        };
     }
+
+    private static bool Flag(JsonElement element, string name, string where) =>
+        !element.TryGetProperty(name, out var value) || value.ValueKind == JsonValueKind.Null ? false
+        : value.ValueKind is JsonValueKind.True or JsonValueKind.False ? value.GetBoolean()
+        : throw new PlanException($"{where}: \"{name}\" must be true or false");
 
     private static string? String(JsonElement element, string name, string where) =>
         !element.TryGetProperty(name, out var value) || value.ValueKind == JsonValueKind.Null ? null

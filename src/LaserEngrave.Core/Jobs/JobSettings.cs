@@ -19,6 +19,21 @@ public sealed record JobSettings
 
     public bool Invert { get; init; }
 
+    /// <summary>Quarter turns clockwise of the image on the stage, 0..3 (<see cref="MaskOptions.QuarterTurns"/>).</summary>
+    public int QuarterTurns { get; init; }
+
+    /// <summary>The image flipped left to right before it is turned.</summary>
+    public bool MirrorX { get; init; }
+
+    /// <summary>The image flipped top to bottom before it is turned.</summary>
+    public bool MirrorY { get; init; }
+
+    /// <summary>How the image becomes its burn mask: threshold, dither, invert, turn and mirror.</summary>
+    public MaskOptions ToMask() => new()
+    {
+        ThresholdPercent = ThresholdPercent, Dither = Dither, Invert = Invert, QuarterTurns = QuarterTurns, MirrorX = MirrorX, MirrorY = MirrorY,
+    };
+
     /// <summary>Which field decides the size: width, height, both or pitch.</summary>
     public SizeMode SizeMode { get; init; } = SizeMode.Width;
 
@@ -88,6 +103,9 @@ public sealed record JobSettings
         "thresholdPercent" => "Threshold",
         "dither" => "Dither",
         "invert" => "Invert",
+        "quarterTurns" => "Rotate",
+        "mirrorX" => "Mirror X",
+        "mirrorY" => "Mirror Y",
         "sizeMode" => "which size field leads",
         "widthMm" => "Width",
         "heightMm" => "Height",
@@ -125,6 +143,9 @@ public sealed record JobSettings
             ThresholdPercent = spec.Mask.ThresholdPercent,
             Dither = spec.Mask.Dither,
             Invert = spec.Mask.Invert,
+            QuarterTurns = spec.Mask.QuarterTurns,
+            MirrorX = spec.Mask.MirrorX,
+            MirrorY = spec.Mask.MirrorY,
             OriginXMm = spec.Origin.X,
             OriginYMm = spec.Origin.Y,
             Passes = spec.Passes,

@@ -128,6 +128,11 @@ public static class RunReplay
             return $"mask.dither {record.Mask.Dither} is not one of the known";
         }
 
+        if (record.Mask.QuarterTurns is < 0 or > 3)
+        {
+            return $"mask.quarterTurns {record.Mask.QuarterTurns} is not 0, 1, 2 or 3";
+        }
+
         if (record.Geometry.Size is not { } size)
         {
             return "geometry.size is missing (null)";

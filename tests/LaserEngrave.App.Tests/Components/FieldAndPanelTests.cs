@@ -431,6 +431,23 @@ public sealed class AlignmentPanelTests : ComponentTest
     }
 
     [Fact]
+    public void Align_TurnedJob_TheAlignedImageIsNotTurnedAgain()
+    {
+        Assert.True(Main.Job.LoadImage(TestFiles.Asset("text-banner.png")));
+        Main.Job.Rotate(clockwise: true);
+        var cut = Render<AlignmentPanel>(p => p.Add(c => c.Alignment, Alignment));
+        Mark(cut, 1, 0.5, 0.5, OnStage(0.5, 0.5, 0));
+        Mark(cut, 2, 1, 4, OnStage(1, 4, 0));
+
+        cut.Find("#alAlign").Click();
+
+        // The aligned mask is the turned job's (taller than wide): shown and burned upright as it was written.
+        Assert.EndsWith("-aligned.png", Main.Job.ImagePath, StringComparison.Ordinal);
+        Assert.Equal(0, Main.Job.QuarterTurns);
+        Assert.True(Main.Job.Mask!.Height > Main.Job.Mask.Width, $"{Main.Job.Mask.Width} × {Main.Job.Mask.Height}");
+    }
+
+    [Fact]
     public void Align_MarksFartherApartOnTheStage_RefusedWithOneLine()
     {
         OpenQr();

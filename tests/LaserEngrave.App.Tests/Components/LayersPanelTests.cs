@@ -1,6 +1,7 @@
 using Bunit;
 using LaserEngrave.App.Components.Workspace;
 using LaserEngrave.Core.Jobs;
+using NSubstitute;
 
 namespace LaserEngrave.App.Tests.Components;
 
@@ -53,5 +54,54 @@ public sealed class LayersPanelTests : ComponentTest
 
         Assert.Null(Main.Layers.FileError);
         Assert.Equal(["engraved marks", "logo"], JobFile.Load(path).Select(l => l.Name));
+    }
+
+    [Fact]
+    public void SaveJob_SingleImageNoLayers_SavedAsOneLayerThatOpensBackAsTheJob()
+    {
+        Assert.True(Main.Job.LoadImage(TestFiles.Asset("qr-code.bmp")));
+        Main.Job.EditWidth(6);
+        var cut = Render<LayersPanel>(p => p.Add(c => c.Layers, Main.Layers));
+        var path = Path.Combine(DataFolder.Path, "single.json");
+
+        cut.Find("#job-path").Change(path);
+        cut.Find("#job-save").Click();
+
+        Assert.Null(Main.Layers.FileError);
+        var layer = Assert.Single(JobFile.Load(path));
+        Assert.Equal(6, layer.WidthMm);
+        Assert.Equal("single.json", cut.Find("#job-download").GetAttribute("download"));
+        Assert.Equal("api/jobfile", cut.Find("#job-download").GetAttribute("href"));
+    }
+
+    [Fact]
+    public void OpenJobFile_ChosenInTheBrowser_KeptAsAnUploadAndOpened()
+    {
+        var uploaded = Path.Combine(DataFolder.Path, "images", "0123456789abcdef", "plate.json");
+        Directory.CreateDirectory(Path.GetDirectoryName(uploaded)!);
+        JobFile.Save(uploaded, JobFile.Load(Plate));
+        Files.SaveUploadAsync("plate.json", Arg.Any<Stream>(), Arg.Any<CancellationToken>(), Arg.Any<Action?>()).Returns(uploaded);
+        var cut = Render<LayersPanel>(p => p.Add(c => c.Layers, Main.Layers));
+
+        cut.FindComponent<Microsoft.AspNetCore.Components.Forms.InputFile>().UploadFiles(InputFileContent.CreateFromText(File.ReadAllText(uploaded), "plate.json"));
+
+        cut.WaitForAssertion(() => Assert.Equal(3, cut.FindAll("#layer-list li").Count));
+        Assert.Equal(Path.GetFullPath(uploaded), Main.Layers.JobPath);
+    }
+
+    [Fact]
+    public void Array_ThreeByOne_ThreeLayersListedAndStartRunsThem()
+    {
+        Assert.True(Main.Job.LoadImage(TestFiles.Asset("qr-code.bmp")));
+        var cut = Render<LayersPanel>(p => p.Add(c => c.Layers, Main.Layers));
+
+        cut.Find("#array-rows").Change("1");
+        cut.Find("#array-columns").Change("3");
+        cut.Find("#array-pitch-x").Change("7,5");
+        cut.Find("#layer-array-add").Click();
+
+        cut.WaitForAssertion(() => Assert.Equal(3, cut.FindAll("#layer-list li").Count));
+        Assert.Equal(Main.Job.OriginXMm + 15, Main.Layers.Layers[2].Origin.X, 6);
+        Assert.True(Main.Run.RunsLayers);
     }
 }

@@ -348,8 +348,47 @@ public sealed class RunBarTests : ComponentTest
 
         Main.Job.Passes = 100;
 
-        Assert.True(Main.Job.EstimatedSeconds > RunViewModel.AskAboveSeconds, $"{Main.Job.EstimatedSeconds} s");
+        Assert.True(Main.Job.EstimatedSeconds > RunViewModel.DefaultAskAboveMinutes * 60, $"{Main.Job.EstimatedSeconds} s");
         Assert.StartsWith($"Start anyway? It takes about {App.Components.Format.Duration(Main.Job.EstimatedSeconds!.Value)}", Main.Run.StartQuestion, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void StartQuestion_ThresholdSetBelowTheEstimate_AsksForARunUnderAnHourAndKeepsTheSetting()
+    {
+        OpenQr(widthMm: 20);
+        var estimate = Main.Job.EstimatedSeconds!.Value;
+        Assert.True(estimate < 3600, $"{estimate} s");
+        Assert.Null(Main.Run.StartQuestion);
+        var panel = Render<MachinePanel>(p => p.Add(c => c.Machine, Main.Machine));
+        var minutes = Math.Round(estimate / 60 / 2, 2);
+
+        panel.Find("#ask-above-minutes").Change(minutes.ToString(System.Globalization.CultureInfo.InvariantCulture).Replace('.', ','));
+
+        Assert.Equal(minutes, Main.Run.AskAboveMinutes);
+        Assert.StartsWith("Start anyway? It takes about", Main.Run.StartQuestion, StringComparison.Ordinal);
+        Settings.Received().Save(Arg.Is<AppSettings>(s => s.AskAboveMinutes == minutes));
+    }
+
+    [Fact]
+    public void AskAboveMinutes_Negative_RefusedWithTheRangeAndKeepsTheHour()
+    {
+        var panel = Render<MachinePanel>(p => p.Add(c => c.Machine, Main.Machine));
+
+        panel.Find("#ask-above-minutes").Change("-5");
+
+        Assert.Equal(RunViewModel.DefaultAskAboveMinutes, Main.Run.AskAboveMinutes);
+        panel.WaitForAssertion(() => Assert.Contains("give 0 (ask before every run) to 10080 min", panel.Find("[data-error='ask-above-minutes']").TextContent, StringComparison.Ordinal));
+    }
+
+    [Fact]
+    public void AskAboveMinutes_SavedSetting_UsedAtTheNextStart()
+    {
+        var settings = Substitute.For<ISettingsStore>();
+        settings.Load().Returns(new AppSettings { AskAboveMinutes = 30 });
+
+        var main = new MainViewModel(new ImageService(), Machine.Factory, Runs, Store, settings, Files, TimeProvider.System, new MachineActivity(), new JobFiles(new AppFolders(DataFolder.Path)));
+
+        Assert.Equal(30, main.Run.AskAboveMinutes);
     }
 
     [Fact]

@@ -71,14 +71,30 @@ public sealed class ShortcutTests : ComponentTest
     }
 
     [Fact]
-    public async Task CtrlS_NoLayers_SaysWhyInTheOpenedLayersPanel()
+    public async Task CtrlS_SingleImageNoLayers_SavedAsAJobFileOfOneLayer()
+    {
+        using var folder = TestFiles.NewFolder();
+        var path = Path.Combine(folder.Path, "single.json");
+        OpenQr(widthMm: 4);
+        var cut = Render<Workspace>();
+        cut.Find("#job-path").Change(path);
+
+        await Press(cut, "save");
+
+        Assert.Null(Main.Layers.FileError);
+        Assert.Equal(4, Assert.Single(LaserEngrave.Core.Jobs.JobFile.Load(path)).WidthMm!.Value, 3);
+        Assert.Empty(Main.Layers.Layers);
+    }
+
+    [Fact]
+    public async Task CtrlS_NothingOpen_SaysWhyInTheOpenedLayersPanel()
     {
         var cut = Render<Workspace>();
         Assert.False(cut.Find("#panel-layers").HasAttribute("open"));
 
         await Press(cut, "save");
 
-        cut.WaitForAssertion(() => Assert.StartsWith("no layers to save", cut.Find("#layers-file-error").TextContent, StringComparison.Ordinal));
+        cut.WaitForAssertion(() => Assert.StartsWith("open an image or drawing first", cut.Find("#layers-file-error").TextContent, StringComparison.Ordinal));
         Assert.True(cut.Find("#panel-layers").HasAttribute("open"));
     }
 

@@ -176,6 +176,161 @@ public sealed class LayersViewModelTests : IDisposable
     }
 
     [Fact]
+    public void Save_SingleImageNoLayers_OneLayerFileOpenedBackAsTheSameSingleJob()
+    {
+        var files = new JobFiles(new AppFolders(_folder.Path));
+        var layers = new LayersViewModel(files, _job, _activity);
+        Assert.True(_job.LoadImage(TestFiles.Asset("qr-code.bmp")));
+        _job.Batch(() =>
+        {
+            _job.EditWidth(7);
+            _job.OriginXMm = 3;
+            _job.OriginYMm = 4;
+            _job.BurnSpeedMmPerS = 0.5;
+            _job.LaserFrequencyHz = 2000;
+            _job.Passes = 2;
+            _job.Dither = Core.Imaging.DitherMethod.Atkinson;
+        });
+        var saved = _job.ToSettings();
+        var mask = _job.Mask!.CountSet();
+        var path = Path.Combine(files.DefaultFolder, "qr.json");
+
+        Assert.True(layers.Save(path), layers.FileError);
+
+        Assert.Single(JobFile.Load(path));
+        Assert.Empty(layers.Layers);
+        Assert.True(_job.LoadImage(TestFiles.Asset("text-banner.png")));
+        _job.Batch(() =>
+        {
+            _job.EditWidth(5);
+            _job.BurnSpeedMmPerS = 1;
+            _job.Dither = Core.Imaging.DitherMethod.None;
+        });
+
+        Assert.True(layers.Open(path), layers.FileError);
+
+        Assert.Empty(layers.Layers);
+        Assert.Equal(saved, _job.ToSettings());
+        Assert.Equal(mask, _job.Mask!.CountSet());
+        Assert.NotNull(_job.Engraving);
+        Assert.Equal(Path.GetFullPath(path), layers.JobPath);
+    }
+
+    [Fact]
+    public void Save_SingleDrawingLayer_OpenedBackWithItsLayerFillAndPlan()
+    {
+        var files = new JobFiles(new AppFolders(_folder.Path));
+        var layers = new LayersViewModel(files, _job, _activity);
+        OpenDrawing("cut");
+        _job.Batch(() =>
+        {
+            _job.DrawingFill = VectorFillMode.Fill;
+            _job.FillPitchUm = 80;
+            _job.Passes = 3;
+        });
+        var strokes = _job.Drawing!.Schedule.Strokes.Count;
+        var estimate = _job.EstimatedSeconds;
+        var path = Path.Combine(files.DefaultFolder, "cut.json");
+        Assert.True(layers.Save(path), layers.FileError);
+        Assert.True(_job.LoadImage(TestFiles.Asset("qr-code.bmp")));
+
+        Assert.True(layers.Open(path), layers.FileError);
+
+        Assert.Empty(layers.Layers);
+        Assert.Equal("cut", _job.DrawingLayer);
+        Assert.Equal(VectorFillMode.Fill, _job.DrawingFill);
+        Assert.Equal(80, _job.FillPitchUm);
+        Assert.Equal(3, _job.Passes);
+        Assert.Equal(strokes, _job.Drawing!.Schedule.Strokes.Count);
+        Assert.Equal(estimate, _job.EstimatedSeconds);
+    }
+
+    [Fact]
+    public void AddArray_TwoRowsThreeColumns_SixLayersAtTheirOriginsPlannedAlike()
+    {
+        Assert.True(_job.LoadImage(TestFiles.Asset("qr-code.bmp")));
+        _job.Batch(() =>
+        {
+            _job.EditWidth(4);
+            _job.OriginXMm = 2;
+            _job.OriginYMm = 3;
+        });
+        _layers.ArrayRows = 2;
+        _layers.ArrayColumns = 3;
+        _layers.ArrayPitchXMm = 5;
+        _layers.ArrayPitchYMm = 6;
+
+        Assert.True(_layers.AddArray(), _layers.FileError);
+
+        Assert.Equal(6, _layers.Layers.Count);
+        Assert.Equal(
+            [new OriginMm(2, 3), new OriginMm(7, 3), new OriginMm(12, 3), new OriginMm(2, 9), new OriginMm(7, 9), new OriginMm(12, 9)],
+            _layers.Layers.Select(l => l.Origin));
+        Assert.Equal("qr-code r2c3", _layers.Layers[5].Name);
+        Assert.Null(_layers.Error);
+        var job = _layers.Job!;
+        Assert.All(job.Layers, l => Assert.True(l.Image!.Mask.ContentEquals(_job.Mask!)));
+        Assert.All(job.Layers, l => Assert.Equal(4, l.SizeMm.WidthMm, 3));
+    }
+
+    [Fact]
+    public void AddArray_OneByOne_RefusedSayingWhy()
+    {
+        Assert.True(_job.LoadImage(TestFiles.Asset("qr-code.bmp")));
+        _layers.ArrayRows = 1;
+        _layers.ArrayColumns = 1;
+
+        Assert.False(_layers.AddArray());
+
+        Assert.StartsWith("an array of 1 × 1: give at least 2 copies", _layers.FileError, StringComparison.Ordinal);
+        Assert.Empty(_layers.Layers);
+    }
+
+    [Fact]
+    public void Save_NothingOpenNoLayers_RefusedSayingWhy()
+    {
+        Assert.False(_layers.CanSave);
+
+        Assert.False(_layers.Save(Path.Combine(_folder.Path, "job.json")));
+
+        Assert.Equal("open an image or drawing first: there is no job to save", _layers.FileError);
+        _files.DidNotReceive().Save(Arg.Any<string>(), Arg.Any<IReadOnlyList<JobLayer>>());
+    }
+
+    [Fact]
+    public void Save_SingleImageBurningDots_RefusedNotWrittenAsARaster()
+    {
+        Assert.True(_job.LoadImage(TestFiles.Asset("qr-code.bmp")));
+        _job.Mode = PlanMode.Dots;
+
+        Assert.False(_layers.Save(Path.Combine(_folder.Path, "dots.json")));
+
+        Assert.Contains("burns dots", _layers.FileError, StringComparison.Ordinal);
+        _files.DidNotReceive().Save(Arg.Any<string>(), Arg.Any<IReadOnlyList<JobLayer>>());
+    }
+
+    [Fact]
+    public void ToDownload_SingleImage_FullPathSourcesThatOpenFromAnotherFolder()
+    {
+        var files = new JobFiles(new AppFolders(_folder.Path));
+        var layers = new LayersViewModel(files, _job, _activity);
+        Assert.True(_job.LoadImage(TestFiles.Asset("qr-code.bmp")));
+        Assert.True(layers.CanSave);
+        Assert.Equal("qr-code.json", layers.DownloadName);
+
+        var bytes = layers.ToDownload();
+
+        Assert.NotNull(bytes);
+        var elsewhere = Path.Combine(_folder.Path, "uploads", "0123456789abcdef", "qr-code.json");
+        Directory.CreateDirectory(Path.GetDirectoryName(elsewhere)!);
+        File.WriteAllBytes(elsewhere, bytes);
+        var layer = Assert.Single(JobFile.Load(elsewhere));
+        Assert.Equal(Path.GetFullPath(TestFiles.Asset("qr-code.bmp")), layer.Source);
+        Assert.True(layers.Open(elsewhere), layers.FileError);
+        Assert.Equal(Path.GetFullPath(TestFiles.Asset("qr-code.bmp")), Path.GetFullPath(_job.ImagePath!));
+    }
+
+    [Fact]
     public void UnchangedJobFile_OpenedThenEdited_NamedUntilALayerChanges()
     {
         _files.Load(Plate).Returns(JobFile.Load(Plate));

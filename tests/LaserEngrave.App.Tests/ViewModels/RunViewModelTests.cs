@@ -94,6 +94,30 @@ public sealed class RunViewModelTests
     }
 
     [Fact]
+    public async Task Start_TurnedAndMirroredJob_TheSessionRunsTheTurnedMaskAndTheLogKeepsTheTurn()
+    {
+        await ReadyAsync();
+        Assert.True(_job.LoadImage(TestFiles.Asset("text-banner.png")));
+        _job.Rotate(clockwise: true);
+        _job.FlipHorizontal();
+        var turned = _job.Mask!;
+        EngraveSession? ran = null;
+        _runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(c =>
+            {
+                ran = c.Arg<EngraveSession>();
+                return Task.FromResult(Ended(ran, Result(RunOutcome.Completed)));
+            });
+
+        await _run.StartCommand.ExecuteAsync(null);
+
+        Assert.NotNull(ran);
+        Assert.Equal((60, 308), (turned.Width, turned.Height));
+        Assert.True(ran.Job!.Mask.ContentEquals(turned));
+        _store.Received(1).Save(Arg.Is<RunRecord>(r => r.Mask.QuarterTurns == 1 && r.Mask.MirrorY && !r.Mask.MirrorX && r.Image.WidthPx == 60));
+    }
+
+    [Fact]
     public async Task Start_RunCompletes_CompletedAndLogged()
     {
         await ReadyAsync();

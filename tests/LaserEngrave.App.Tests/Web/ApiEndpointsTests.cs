@@ -328,6 +328,37 @@ public sealed class ApiEndpointsTests : IDisposable
     }
 
     [Fact]
+    public async Task JobFile_SingleImage_DownloadedSavedAndOpenedBackAsTheSingleJob()
+    {
+        using var folder = TestFiles.NewFolder();
+        using (var none = await _client.GetAsync("/api/jobfile", Token))
+        {
+            Assert.Equal(HttpStatusCode.Conflict, none.StatusCode);
+        }
+
+        await UploadAsync(TestFiles.WriteChecker(folder.Path, 8, 6));
+        await PostAsync("/api/job", new { widthMm = 4, originXMm = 2, originYMm = 3 });
+
+        using var download = await _client.GetAsync("/api/jobfile", Token);
+        Assert.Equal(HttpStatusCode.OK, download.StatusCode);
+        using var json = JsonDocument.Parse(await download.Content.ReadAsStringAsync(Token));
+        var layer = Assert.Single(json.RootElement.GetProperty("layers").EnumerateArray());
+        Assert.True(Path.IsPathFullyQualified(layer.GetProperty("source").GetString()!));
+        Assert.Equal(4, layer.GetProperty("widthMm").GetDouble());
+        var path = Path.Combine(folder.Path, "checker.json");
+        await PostAsync("/api/jobfile/save", new { path });
+        await PostAsync("/api/job", new { widthMm = 6 });
+
+        await PostAsync("/api/jobfile/open", new { path });
+
+        var main = _app.Services.GetRequiredService<MainViewModel>();
+        Assert.Equal(4, main.Job.WidthMm);
+        Assert.Empty(main.Layers.Layers);
+        var bad = await PostAsync("/api/jobfile/open", new { path = Path.Combine(folder.Path, "none.json") }, HttpStatusCode.BadRequest);
+        Assert.Contains("none.json", bad.GetProperty("error").GetString(), StringComparison.Ordinal);
+    }
+
+    [Fact]
     public async Task RunStart_PixelsMuchSmallerThanTheSpot_409WithTheQuestionUnlessConfirmed()
     {
         using var folder = TestFiles.NewFolder();

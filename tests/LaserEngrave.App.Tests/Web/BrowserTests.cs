@@ -20,6 +20,33 @@ namespace LaserEngrave.App.Tests.Web;
 public sealed class BrowserTests : BrowserTest
 {
     [Fact]
+    public void JobFile_SingleImageDownloadedThenChosenInTheFileInput_OpensBackAsTheSameJob()
+    {
+        OpenSample("qr-code.bmp");
+        SetField("widthMm", "6");
+        WaitFor(d => d.FindElement(By.Id("status-estimate")).Text.StartsWith("6 × 6 mm", StringComparison.Ordinal), "6 mm job planned");
+        Driver.FindElement(By.CssSelector("#panel-layers summary")).Click();
+        WaitFor(d => d.FindElements(By.Id("job-download")).Count == 1, "Download job file offered");
+
+        // What the browser downloads, fetched as its link does (boot.js: with the tab's token), then handed to the file input.
+        var json = (string)((IJavaScriptExecutor)Driver).ExecuteAsyncScript("""
+            const done = arguments[arguments.length - 1];
+            window.laserEngrave.fetch(document.getElementById('job-download').getAttribute('href')).then(r => r.text()).then(done, e => done('error ' + e));
+            """)!;
+        Assert.Contains("\"widthMm\": 6", json, StringComparison.Ordinal);
+        var picked = Path.Combine(DataFolder, "picked", "qr-code.json");
+        Directory.CreateDirectory(Path.GetDirectoryName(picked)!);
+        File.WriteAllText(picked, json);
+        SetField("widthMm", "3");
+        WaitFor(d => d.FindElement(By.Id("status-estimate")).Text.StartsWith("3 × 3 mm", StringComparison.Ordinal), "3 mm job planned");
+
+        Id("job-file").SendKeys(picked);
+
+        WaitFor(d => d.FindElement(By.Id("status-estimate")).Text.StartsWith("6 × 6 mm", StringComparison.Ordinal), "the job file's 6 mm job opened");
+        Assert.Empty(Driver.FindElements(By.CssSelector("#layer-list li")));
+    }
+
+    [Fact]
     public async Task FirstJob_SampleSizedDraggedRunPausedAbortedContinued_LogExported()
     {
         OpenSample("qr-code.bmp");

@@ -38,7 +38,7 @@ public sealed class OpenApiTests : IDisposable
         using var document = JsonDocument.Parse(await client.GetStringAsync("/openapi/v1.json", Token));
 
         var paths = document.RootElement.GetProperty("paths").EnumerateObject().Select(p => p.Name).ToList();
-        Assert.Equal(30, paths.Count);
+        Assert.Equal(33, paths.Count);
         Assert.All(paths, p => Assert.StartsWith("/api/", p, StringComparison.Ordinal));
         Assert.Contains("/api/run/start", paths);
         Assert.Equal("bearer", document.RootElement.GetProperty("components").GetProperty("securitySchemes").GetProperty("token").GetProperty("scheme").GetString());

@@ -32,6 +32,41 @@ public class StarterAssetsTests
     }
 
     [Fact]
+    public void GreySample_Dithered_BurnsEachWedgeStepInProportionToItsGrey()
+    {
+        // The grey sample (tools/make-grey-sample.py) is for trying dithers: greys the threshold alone makes black or white.
+        var path = Asset("grey-sample.png");
+        var thresholded = MaskBuilder.FromFile(path, MaskOptions.Default, out var info);
+        var dithered = MaskBuilder.FromFile(path, MaskOptions.Default with { Dither = DitherMethod.FloydSteinberg }, out _);
+
+        Assert.Equal(ImageFormat.Png, info.Format);
+        Assert.Equal(8, info.BitsPerPixel);
+        Assert.Equal((320, 240), (info.Width, info.Height));
+        var previous = 1.1;
+        for (var step = 0; step <= 10; step++)
+        {
+            // The wedge's step of step * 10 % grey, rows 210..229 away from its edges: the dots burned follow the grey.
+            var left = (step * 320 / 11) + 4;
+            var right = ((step + 1) * 320 / 11) - 4;
+            var set = 0;
+            for (var y = 210; y < 230; y++)
+            {
+                for (var x = left; x < right; x++)
+                {
+                    set += dithered[x, y] ? 1 : 0;
+                }
+            }
+
+            var fraction = set / (double)((right - left) * 20);
+            Assert.InRange(fraction, 1 - (step / 10.0) - 0.08, 1 - (step / 10.0) + 0.08);
+            Assert.True(fraction <= previous, $"step {step}: {fraction} after {previous}");
+            previous = fraction;
+        }
+
+        Assert.NotEqual(thresholded.CountSet(), dithered.CountSet());
+    }
+
+    [Fact]
     public void QrCode_HasFinderPatternsAtTopLeftTopRightAndBottomLeftOnly()
     {
         var mask = MaskBuilder.FromFile(Asset("qr-code.bmp"), MaskOptions.Default, out var info);

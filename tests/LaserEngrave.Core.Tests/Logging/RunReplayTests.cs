@@ -1,3 +1,4 @@
+using LaserEngrave.Core.Imaging;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
@@ -20,6 +21,29 @@ public sealed class RunReplayTests : IDisposable
         var original = PreparedJob.Prepare(runs.Spec());
         Assert.Equal(original.Statistics, again.Statistics);
         Assert.Equal(original.Geometry.Geometry, again.Geometry.Geometry);
+    }
+
+    [Fact]
+    public void ToJobSpec_TurnedMirroredRun_TheSameTurnedMaskAgainAndOldLogsUpright()
+    {
+        var first = runs.FailedRecord();
+        var record = first with { Mask = first.Mask with { QuarterTurns = 1, MirrorX = true } };
+        var logged = RunRecordJson.Deserialize(RunRecordJson.Serialize(record), "test");
+
+        var again = PreparedJob.Prepare(RunReplay.ToJobSpec(logged));
+
+        Assert.Equal(record.Mask, logged.Mask);
+        var upright = PreparedJob.Prepare(runs.Spec()).Mask;
+        Assert.True(again.Mask.ContentEquals(MaskOrientation.Apply(upright, record.Mask)));
+
+        // A log written before the turn existed has no such members: upright, as it ran.
+        var old = System.Text.Json.Nodes.JsonNode.Parse(RunRecordJson.Serialize(runs.FailedRecord()))!.AsObject();
+        var mask = old["mask"]!.AsObject();
+        mask.Remove("quarterTurns");
+        mask.Remove("mirrorX");
+        mask.Remove("mirrorY");
+        Assert.Equal(first.Mask, RunRecordJson.Deserialize(old.ToJsonString(), "old").Mask);
+        Assert.False(first.Mask.Transforms);
     }
 
     [Fact]
