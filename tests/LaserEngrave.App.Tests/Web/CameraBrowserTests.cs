@@ -22,7 +22,7 @@ public sealed class CameraBrowserTests : BrowserTest
         WaitFor(d => d.FindElement(By.Id("position")).Text == "X 30.000 · Y 30.000 mm", "the stage at 30, 30 mm");
         Driver.ExecuteScript("document.getElementById('panel-camera').open = true; document.getElementById('panel-camera').scrollIntoView();");
         WaitFor(d => d.FindElement(By.Id("camera-image")).GetAttribute("src")?.StartsWith("data:image/png;base64,", StringComparison.Ordinal) == true, "the twin's frame shown");
-        Assert.Contains("The twin's camera", Text("camera-source"), StringComparison.Ordinal);
+        Assert.Contains("The simulator's camera", Text("camera-source"), StringComparison.Ordinal);
 
         Assert.True(Enabled("camera-calibrate"));
         Screenshot("camera-twin");
