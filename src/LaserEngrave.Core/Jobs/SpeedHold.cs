@@ -36,10 +36,14 @@ public static class SpeedHold
     }
 
     /// <summary>Null when a host-timed run at <paramref name="speedMmPerS"/> holds its edges; else the sentence that refuses it, with the fastest speed it holds.</summary>
-    public static string? Problem(double speedMmPerS, MachineProfile profile, bool scheduled)
+    public static string? Problem(double speedMmPerS, MachineProfile profile, bool scheduled) =>
+        Rule(speedMmPerS, profile, scheduled) is { } rule ? $"burn speed {N(speedMmPerS)} mm/s is {rule}" : null;
+
+    /// <summary><see cref="Problem"/> without the speed it names: the rule a field's message puts after "burn speed 4 mm/s: ".</summary>
+    public static string? Rule(double speedMmPerS, MachineProfile profile, bool scheduled)
     {
         var fastest = FastestMmPerS(profile, scheduled);
-        return speedMmPerS <= fastest ? null : $"burn speed {N(speedMmPerS)} mm/s is faster than this computer can hold with this gate: {Reason(speedMmPerS, profile)}; the fastest it holds is {N(Floor(fastest))} mm/s{Instead}";
+        return speedMmPerS <= fastest ? null : $"faster than this computer can hold with this gate: {Reason(speedMmPerS, profile)}; the fastest it holds is {N(Floor(fastest))} mm/s{Instead}";
     }
 
     /// <summary>
