@@ -190,7 +190,7 @@ public sealed record LatencyProfile
     public double GateProcessingJitterMs { get; init; } = 0.03;
 
     /// <summary>
-    /// How late this computer wakes from a timed wait, ms: the lateness 99 % of its waits stay within. A switching the host
+    /// How late this computer wakes from a timed wait, ms: the lateness 98 % of its waits stay within (`machine latency` measures it). A switching the host
     /// times itself lands that much late, so it sets the fastest burn speed the edge tolerance holds (<see cref="Jobs.SpeedHold"/>).
     /// </summary>
     /// <remarks>The default describes a lab PC, as the twin's realistic host: waits up to 0.5 ms late, 1 % of them up to 5 ms.</remarks>
