@@ -185,6 +185,22 @@ public sealed class EngraveCommandTests : IDisposable
     }
 
     [Fact]
+    public async Task Engrave_SpeedThisComputerCannotHoldOnAGateWithoutAfter_Exit2NamingTheFastestBeforeAnythingOpensNoLog()
+    {
+        // Issue 34: on a gate that cannot time its switch-ons, 4 mm/s on a lab PC (0.5 ms late) is 2 µm past a 1.5 µm
+        // tolerance: said before Start, not as timing doubts from row 2 on.
+        var options = Path.Combine(folder, "no-after.json");
+        await File.WriteAllTextAsync(options, """{ "gateScheduledBursts": false }""", TestContext.Current.CancellationToken);
+
+        var (exit, _, error) = await CliHarness.RunAsync("engrave", QrCode, "--width-mm", "5", "--speed-mm-s", "4", "--simulate", "--sim-options", options, "--log-dir", LogDir);
+
+        Assert.Equal(2, exit);
+        var line = Assert.Single(error.Split('\n', StringSplitOptions.RemoveEmptyEntries), l => l.StartsWith("laserengrave: ", StringComparison.Ordinal));
+        Assert.Equal("laserengrave: burn speed 4 mm/s is faster than this computer can hold with this gate: it wakes up to 0.5 ms late (the profile's latency.hostLatenessMs), 2 µm at 4 mm/s, past the edge tolerance of 1.5 µm; the fastest it holds is 3 mm/s (a gate that times its switch-ons, CAPS? listing AFTER, holds any)", line);
+        Assert.False(Directory.Exists(LogDir) && Directory.EnumerateFiles(LogDir).Any());
+    }
+
+    [Fact]
     public async Task EngraveSimulate_BusyHostRecovers_SaysRecoveringOncePerDoubtNotPreflightAgain()
     {
         // A host often late (a busy computer): switch-ons later than the edge tolerance are timing doubts the session goes on from.
@@ -193,7 +209,7 @@ public sealed class EngraveCommandTests : IDisposable
         await File.WriteAllTextAsync(options, """{ "hostLateness": { "typicalMs": 0.5, "tailProbability": 0.05, "tailMs": 5 }, "gateScheduledBursts": false }""", TestContext.Current.CancellationToken);
 
         var (_, output, error) = await CliHarness.RunAsync(
-            "engrave", QrCode, "--width-mm", "5", "--origin-mm", "10,10", "--speed-mm-s", "4", "--simulate", "--sim-options", options, "--json", "--log-dir", LogDir);
+            "engrave", QrCode, "--width-mm", "5", "--origin-mm", "10,10", "--speed-mm-s", "3", "--simulate", "--sim-options", options, "--json", "--log-dir", LogDir);
 
         using var json = JsonDocument.Parse(output);
         var log = RunLogStore.Read(json.RootElement.GetProperty("logPath").GetString()!);

@@ -9,6 +9,26 @@ public sealed class SweepCommandTests : IDisposable
     public SweepCommandTests() => Directory.CreateDirectory(folder);
 
     [Fact]
+    public async Task Sweep_CellsThisComputerCannotHoldOnAGateWithoutAfter_Exit2NamingThemBeforeAnythingOpensNoLog()
+    {
+        // Issue 34: the 10 x 10 grid failed 25 minutes in at its 3.6-4 mm/s rows; on a gate that cannot time its switch-ons
+        // those cells are named before the first one burns.
+        var options = Path.Combine(folder, "no-after.json");
+        await File.WriteAllTextAsync(options, """{ "gateScheduledBursts": false }""", TestContext.Current.CancellationToken);
+        var logs = Path.Combine(folder, "logs");
+
+        var (exit, _, error) = await CliHarness.RunAsync(
+            "sweep", "--rows", "speed=0.4,0.8,1.2,1.6,2,2.4,2.8,3.2,3.6,4", "--columns", "frequency=500,1000,1500,2000,2500,3000,3500,4000,4500,5000",
+            "--origin-mm", "5,5", "--simulate", "--sim-options", options, "--log-dir", logs);
+
+        Assert.Equal(2, exit);
+        var line = Assert.Single(error.Split('\n', StringSplitOptions.RemoveEmptyEntries), l => l.StartsWith("laserengrave: ", StringComparison.Ordinal));
+        Assert.StartsWith("laserengrave: 30 cells of the sweep (every cell at 3.2, 3.6, 4 mm/s) burn faster than this computer can hold with this gate: ", line, StringComparison.Ordinal);
+        Assert.Contains("the fastest it holds is 3 mm/s: sweep speeds up to that", line, StringComparison.Ordinal);
+        Assert.False(Directory.Exists(logs) && Directory.EnumerateFiles(logs).Any());
+    }
+
+    [Fact]
     public async Task SweepPlanOnly_Json_EveryCellWithItsValuesPlaceAndPulses()
     {
         var (exit, output, error) = await CliHarness.RunAsync(

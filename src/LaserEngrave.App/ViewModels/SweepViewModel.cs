@@ -155,6 +155,14 @@ public sealed partial class SweepViewModel : ObservableObject
                 Profile = _job.Profile,
             });
             Error = null;
+
+            // The cells this computer cannot hold with this gate, named before Run (a counting gate is taken to time its
+            // switch-ons; the sweep asks it CAPS? before its first cell and refuses then if it does not).
+            if (SpeedHold.SweepProblem(Plan.Cells, _job.Profile, scheduled: _job.Profile.Gate.CountsBursts) is { } tooFast)
+            {
+                Plan = null;
+                Error = InPanelWords(tooFast);
+            }
         }
         catch (Exception ex) when (ex is SweepException or PlanException or GeometryException)
         {

@@ -152,6 +152,13 @@ internal static class ApiEndpoints
                 return refused;
             }
 
+            // A burn speed the job refuses (one this computer cannot hold with this gate, a pixel too short for it): the
+            // sentence under the page's speed field, before anything moves.
+            if (main.Job.Errors.TryGetValue(JobViewModel.BurnSpeedField, out var speed))
+            {
+                return Busy(speed);
+            }
+
             // A job longer than the user's threshold (an hour until set), or of pixels much smaller than the spot, asks as the page's Start does.
             if (!request.Confirm && main.Run.StartQuestion is { } question)
             {
@@ -162,7 +169,7 @@ internal static class ApiEndpoints
             main.Log.SampleId = request.SampleId;
             return Start(main, main.Run.ConfirmStartCommand);
         })
-            .WithSummary("202; runs the planned job (all passes); a second start during a run is ignored (200 with a note); 409 with the question for a job longer than the Machine panel's \"Ask before runs longer than\" (an hour until set) or of pixels much smaller than the spot, unless confirm is true; 409 with the sentence for a gate without a watchdog, unless acceptNoWatchdog is true (or the Machine panel's box is ticked).");
+            .WithSummary("202; runs the planned job (all passes); a second start during a run is ignored (200 with a note); 409 with the question for a job longer than the Machine panel's \"Ask before runs longer than\" (an hour until set) or of pixels much smaller than the spot, unless confirm is true; 409 with the sentence for a gate without a watchdog, unless acceptNoWatchdog is true (or the Machine panel's box is ticked); 409 with the burn speed field's sentence when the job refuses its speed (one this computer cannot hold with this gate).");
         api.MapPost("/run/continue", (MainViewModel main) =>
         {
             if (main.Run.IsActive)

@@ -135,6 +135,12 @@ internal static class EngraveCommand
                 throw new UsageException(tooShort);
             }
 
+            if (prepared.Plan.Timing is not null && SpeedHold.Problem(prepared.Spec.Process.BurnSpeedMmPerS, prepared.Spec.Profile, o.Machine.ExpectsScheduledSwitchOns(result, prepared.Spec.Profile)) is { } tooFast)
+            {
+                // The edge tolerance against this computer's lateness: named before any port opens, not as timing doubts mid-run.
+                throw new UsageException(tooFast);
+            }
+
             warnings = prepared.Warnings.Select(w => w.Message);
             job = prepared;
         }

@@ -2,6 +2,7 @@ using System.CommandLine;
 using System.Globalization;
 using System.Text.Json;
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Devices.Machine;
 using LaserEngrave.Devices.Scheduling;
 
@@ -64,7 +65,7 @@ internal static class MachineCommand
             var stdout = result.InvocationConfiguration.Output;
             if (result.GetValue(json))
             {
-                CliJson.Write(stdout, new LatencySummary(path, store, measured.X, measured.Y, measured.Stage, measured.Gate, latency));
+                CliJson.Write(stdout, new LatencySummary(path, store, measured.X, measured.Y, measured.Stage, measured.Gate, measured.Host, latency));
                 return CliRunner.Ok;
             }
 
@@ -77,6 +78,8 @@ internal static class MachineCommand
             stdout.WriteLine(string.Create(c, $"Stage adapter:    {latency.StageMs:0.###} ± {latency.StageJitterMs:0.###} ms one way (round trip - wire, halved; spread from the standard deviation or the furthest round trip, the larger)"));
             stdout.WriteLine(string.Create(c, $"Gate adapter:     {latency.GateMs:0.###} ± {latency.GateJitterMs:0.###} ms one way (round trip - wire - processing, halved)"));
             stdout.WriteLine(string.Create(c, $"Gate processing:  {latency.GateProcessingMs:0.###} ± {latency.GateProcessingJitterMs:0.###} ms, kept from the profile: a round trip cannot tell it from the adapter's"));
+            var fastest = SpeedHold.FastestMmPerS(existing with { Latency = latency }, scheduled: false);
+            stdout.WriteLine(string.Create(c, $"Host lateness:    {latency.HostLatenessMs:0.###} ms (98 % of {measured.Host?.Count ?? 0} timed waits within it), {latency.HostLatenessTailMs:0.###} ms at most: the fastest host-timed burn speed is the edge tolerance over the first ({fastest:0.##} mm/s on a gate without AFTER)"));
             stdout.WriteLine(store ? $"Written:          the latency section of {path}" : "Not written:      give --profile FILE --write to store it");
             return CliRunner.Ok;
         });
@@ -183,7 +186,7 @@ internal static class MachineCommand
 }
 
 /// <summary>`machine latency --json`: the round trips measured and the latency section they give.</summary>
-internal sealed record LatencySummary(string? Profile, bool Written, RoundTrips X, RoundTrips Y, RoundTrips Stage, RoundTrips Gate, LatencyProfile Latency);
+internal sealed record LatencySummary(string? Profile, bool Written, RoundTrips X, RoundTrips Y, RoundTrips Stage, RoundTrips Gate, HostWaits? Host, LatencyProfile Latency);
 
 /// <summary>`machine check --json`: each step's result and what it found.</summary>
 internal sealed record MachineCheckSummary(bool Passed, string? GateKind, IReadOnlyList<MachineCheckStepSummary> Steps, LatencyProfile? Latency, string? Profile, bool Written, string? Report);

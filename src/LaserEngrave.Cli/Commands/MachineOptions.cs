@@ -72,6 +72,13 @@ internal sealed class MachineOptions
         }
     }
 
+    /// <summary>
+    /// Whether the gate is expected to time its switch-ons (CAPS? listing AFTER) before any port opens: never a
+    /// frequency-only gate; the twin's as its options say; a real counting gate is asked at preflight, which refuses then.
+    /// </summary>
+    public bool ExpectsScheduledSwitchOns(ParseResult result, MachineProfile profile) =>
+        profile.Gate.CountsBursts && (!result.GetValue(Simulate) || SimulatorOptionsFor(result).GateScheduledBursts);
+
     internal static Option<string?> SimOptionsOption() => new("--sim-options")
     {
         Description = "With the simulator: a JSON file of simulator options (latency model, seed, faults; see docs/simulator.md)",

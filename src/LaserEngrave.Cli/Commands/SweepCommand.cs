@@ -1,6 +1,7 @@
 using System.CommandLine;
 using System.Globalization;
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Sweeps;
 using LaserEngrave.Devices.Execution;
@@ -80,6 +81,12 @@ internal static class SweepCommand
 
         SweepResult swept;
         o.Machine.RefuseUnacceptedNoWatchdog(result, plan.Spec.Profile);
+        if (SpeedHold.SweepProblem(plan.Cells, plan.Spec.Profile, o.Machine.ExpectsScheduledSwitchOns(result, plan.Spec.Profile)) is { } tooFast)
+        {
+            // Before the first cell, not 25 minutes in at the first cell this computer cannot hold (issue 34).
+            throw new UsageException(tooFast);
+        }
+
         var opened = o.Machine.Open(result, plan.Spec.Profile);
         await using (opened.ConfigureAwait(false))
         {

@@ -188,6 +188,19 @@ public sealed record LatencyProfile
 
     /// <summary>Half-width of the spread of <see cref="GateProcessingMs"/>, ms.</summary>
     public double GateProcessingJitterMs { get; init; } = 0.03;
+
+    /// <summary>
+    /// How late this computer wakes from a timed wait, ms: the lateness 98 % of its waits stay within (`machine latency` measures it). A switching the host
+    /// times itself lands that much late, so it sets the fastest burn speed the edge tolerance holds (<see cref="Jobs.SpeedHold"/>).
+    /// </summary>
+    /// <remarks>The default describes a lab PC, as the twin's realistic host: waits up to 0.5 ms late, 1 % of them up to 5 ms.</remarks>
+    public double HostLatenessMs { get; init; } = 0.5;
+
+    /// <summary>
+    /// The longest lateness of a timed wait this computer showed, ms (the tail beyond <see cref="HostLatenessMs"/>): a
+    /// scheduled switch-on's lead time must cover it, or that switch-on goes plain and the tolerance rules it.
+    /// </summary>
+    public double HostLatenessTailMs { get; init; } = 5;
 }
 
 /// <summary>The machine: two Zaber axes, the laser gate, the spot and the default process settings.</summary>

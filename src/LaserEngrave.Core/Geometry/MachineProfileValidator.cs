@@ -149,6 +149,7 @@ public static class MachineProfileValidator
                  {
                      ("stageMs", latency.StageMs), ("stageJitterMs", latency.StageJitterMs), ("gateMs", latency.GateMs),
                      ("gateJitterMs", latency.GateJitterMs), ("gateProcessingMs", latency.GateProcessingMs), ("gateProcessingJitterMs", latency.GateProcessingJitterMs),
+                     ("hostLatenessMs", latency.HostLatenessMs), ("hostLatenessTailMs", latency.HostLatenessTailMs),
                  })
         {
             Require(ms is >= 0 and <= MaxLatencyMs, $"latency.{name} must be 0..{MaxLatencyMs} ms (got {N(ms)})");

@@ -100,7 +100,7 @@ public static class JobRules
     /// <summary>
     /// What the planned job itself refuses, as a problem of the field to change: pixels smaller than a microstep (the size
     /// field), a pixel too short for the laser gate to switch (the burn speed), a burst too long for its watchdog (the
-    /// pulses per dot); null when it can be engraved.
+    /// pulses per dot), a burn speed this computer cannot hold with this gate (<see cref="SpeedHold"/>); null when it can be engraved.
     /// </summary>
     /// <remarks>The command line refuses the first before planning, the engine the others at preflight (<see cref="PreparedJob.EngraveProblem"/>): found here, nothing starts.</remarks>
     public static FieldProblem? Check(PreparedJob job)
@@ -124,9 +124,18 @@ public static class JobRules
             return new FieldProblem(JobField.Frequency, spec.Process.LaserFrequencyHz, tooFew);
         }
 
-        return job.EngraveProblem is not { } problem ? null
-            : job.Dots is null ? new FieldProblem(JobField.BurnSpeed, spec.Process.BurnSpeedMmPerS, problem)
-            : new FieldProblem(JobField.PulsesPerDot, spec.Process.PulsesPerDot, problem);
+        if (job.EngraveProblem is { } problem)
+        {
+            return job.Dots is null ? new FieldProblem(JobField.BurnSpeed, spec.Process.BurnSpeedMmPerS, problem)
+                : new FieldProblem(JobField.PulsesPerDot, spec.Process.PulsesPerDot, problem);
+        }
+
+        // What this computer can hold with this gate: a counting gate is taken to time its switch-ons, which preflight
+        // asks it (CAPS?) and refuses then if it does not; a frequency-only gate never does.
+        var speed = spec.Process.BurnSpeedMmPerS;
+        return job.Plan.Timing is not null && SpeedHold.Rule(speed, spec.Profile, scheduled: spec.Profile.Gate.CountsBursts) is { } tooFast
+            ? new FieldProblem(JobField.BurnSpeed, speed, tooFast)
+            : null;
     }
 
     /// <summary>

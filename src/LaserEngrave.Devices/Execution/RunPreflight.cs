@@ -97,6 +97,13 @@ internal sealed class RunPreflight
             throw new PreflightException($"the laser gate does not answer as it should: {ex.Message}", ex);
         }
 
+        // What this computer can hold with this gate, now that the gate said whether it times its switch-ons: refused
+        // before anything moves rather than failing as timing doubts (SpeedHold, the one rule the front ends use too).
+        if (_program is RasterProgram { Timing: not null } && SpeedHold.Problem(_process.BurnSpeedMmPerS, _profile, scheduled) is { } tooFast)
+        {
+            throw new PreflightException(tooFast);
+        }
+
         var exchangesBefore = (_stage.X as IAxisFirmware)?.RoundTripsRecorded ?? 0;
         var x = await IdentifyAxisAsync(_stage.X, "X", token);
         var y = await IdentifyAxisAsync(_stage.Y, "Y", token);

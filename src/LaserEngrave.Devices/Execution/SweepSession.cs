@@ -109,6 +109,32 @@ public sealed class SweepSession
         }
     }
 
+    /// <summary>
+    /// The cells this computer cannot hold with this gate (<see cref="SpeedHold"/>), named before the first cell, not when
+    /// the run reaches them. The gate is asked whether it times its switch-ons (CAPS?) only when that decides it, so a
+    /// sweep within what any gate holds sends nothing more.
+    /// </summary>
+    private async Task<string?> SpeedsNotHeldAsync(CancellationToken cancellationToken)
+    {
+        var profile = Plan.Spec.Profile;
+        var hostTimed = SpeedHold.SweepProblem(Plan.Cells, profile, scheduled: false);
+        if (hostTimed is null || !profile.Gate.CountsBursts)
+        {
+            return hostTimed;
+        }
+
+        try
+        {
+            var scheduled = (await Machine.Gate.GetCapabilitiesAsync(cancellationToken)).Contains(LaserGateCapabilities.After);
+            return scheduled ? SpeedHold.SweepProblem(Plan.Cells, profile, scheduled: true) : hostTimed;
+        }
+        catch (DeviceException)
+        {
+            // The first cell's preflight asks the gate again and says what is wrong with it.
+            return null;
+        }
+    }
+
     private async Task<SweepResult> RunJobsAsync(IProgress<SweepProgress>? progress, CancellationToken cancellationToken)
     {
         await using var registration = cancellationToken.Register(Abort);
@@ -137,6 +163,12 @@ public sealed class SweepSession
                 outcome = RunOutcome.Refused;
                 fault = ex.Message;
             }
+        }
+
+        if (fault is null && await SpeedsNotHeldAsync(cancellationToken) is { } tooFast)
+        {
+            outcome = RunOutcome.Refused;
+            fault = tooFast;
         }
 
         for (var i = 0; fault is null && i < jobs.Count; i++)

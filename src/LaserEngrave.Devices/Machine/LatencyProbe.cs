@@ -2,6 +2,7 @@ using LaserEngrave.Core.Geometry;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.LaserGate;
 using LaserEngrave.Devices.Zaber;
+using LaserEngrave.Wire.Scheduling;
 
 namespace LaserEngrave.Devices.Machine;
 
@@ -16,6 +17,11 @@ public sealed class LatencyProbe : ILatencyProbe
 {
     private const int ZaberFrameBytes = 6;
     private const double BitsPerByte = 10;
+
+    // Timed waits per round trip asked for (1000 for the default 200), each as long as a short switching wait: enough
+    // that the 99th percentile is not the tail's single worst.
+    private const int WaitsPer = 5;
+    private const double WaitMs = 1;
 
     private readonly ZaberChain _stage;
     private readonly PicLaserGate _gate;
@@ -55,7 +61,26 @@ public sealed class LatencyProbe : ILatencyProbe
         // The reply as it came: the prefix, the text after it if any, the terminator.
         var replyBytes = gate.AckPrefix.Length + (reply.Length == 0 ? 0 : 1 + reply.Length) + gate.LineTerminator.Length;
         var gateWireMs = WireMs(command.Length + gate.LineTerminator.Length + replyBytes, gate.BaudRate);
-        return new LatencyMeasurement(x, y, RoundTrips.Of($"laser gate on {_gate.PortName}", times, gateWireMs));
+        var host = await TimeWaitsAsync(WaitsPer * exchanges, cancellationToken);
+        return new LatencyMeasurement(x, y, RoundTrips.Of($"laser gate on {_gate.PortName}", times, gateWireMs), host);
+    }
+
+    /// <summary>
+    /// How late this computer wakes from <paramref name="count"/> timed waits of <see cref="WaitMs"/>, as a timed switching
+    /// waits (<see cref="PreciseDelay"/>, on the session's clock: the twin's modelled lateness on its virtual one).
+    /// </summary>
+    private async Task<HostWaits> TimeWaitsAsync(int count, CancellationToken cancellationToken)
+    {
+        var wait = TimeSpan.FromMilliseconds(WaitMs);
+        var lateness = new double[count];
+        for (var i = 0; i < count; i++)
+        {
+            var start = _time.GetTimestamp();
+            await PreciseDelay.DelayAsync(_time, wait, cancellationToken);
+            lateness[i] = _time.GetElapsedTime(start).TotalMilliseconds - WaitMs;
+        }
+
+        return HostWaits.Of(lateness);
     }
 
     /// <summary>Time <paramref name="bytes"/> take on the wire at <paramref name="baudRate"/>, 10 bits a byte (8N1), ms.</summary>

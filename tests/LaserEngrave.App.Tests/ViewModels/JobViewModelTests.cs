@@ -446,6 +446,29 @@ public sealed class JobViewModelTests
         Assert.Null(job.Job);
     }
 
+    /// <summary>The default machine with a frequency-only gate: the host times every switching, so its lateness limits the speed.</summary>
+    internal static readonly MachineProfile FrequencyOnly = MachineProfile.Default with
+    {
+        Gate = new LaserGateProfile { Kind = LaserGateKind.FrequencyOnly, WatchdogMs = 0 },
+    };
+
+    [Fact]
+    public void BurnSpeed_BeyondWhatThisComputerHoldsOnAFrequencyOnlyGate_TheSentenceUnderTheSpeedField()
+    {
+        // Issue 34: 1.5 µm of tolerance over a lab PC's 0.5 ms is 3 mm/s; said under the field, Start disabled.
+        var job = new JobViewModel(new ImageService(), FrequencyOnly);
+        Assert.True(job.LoadImage(TestFiles.Asset("qr-code.bmp")));
+
+        job.BurnSpeedMmPerS = 3.5;
+
+        Assert.Equal(
+            "burn speed 3.5 mm/s: faster than this computer can hold with this gate: it wakes up to 0.5 ms late (the profile's latency.hostLatenessMs), 1.75 µm at 3.5 mm/s, past the edge tolerance of 1.5 µm; the fastest it holds is 3 mm/s (a gate that times its switch-ons, CAPS? listing AFTER, holds any)",
+            job.Errors[JobViewModel.BurnSpeedField]);
+
+        job.BurnSpeedMmPerS = 3;
+        Assert.False(job.Errors.ContainsKey(JobViewModel.BurnSpeedField));
+    }
+
     [Fact]
     public void Pitch_AboveAMillimetre_PlannedAsTheCommandLineDoes()
     {

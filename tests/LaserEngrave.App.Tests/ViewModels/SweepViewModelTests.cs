@@ -45,6 +45,31 @@ public sealed class SweepViewModelTests : IDisposable
     }
 
     [Fact]
+    public void Plan_CellsThisComputerCannotHoldOnAFrequencyOnlyGate_NamedAndNothingToRun()
+    {
+        // Issue 34: the grid's fast rows named before Run, not when the run reaches them 25 minutes in.
+        var activity = new MachineActivity();
+        var job = new JobViewModel(new ImageService(), JobViewModelTests.FrequencyOnly, activity);
+        var store = Substitute.For<IRunLogStore>();
+        store.Folder.Returns(_folder.Path);
+        var sweep = new SweepViewModel(job, _machine, store, TimeProvider.System)
+        {
+            Labels = false,
+            Columns = "frequency=500,1000",
+        };
+
+        sweep.Rows = "speed=1,2,3.5";
+
+        Assert.Null(sweep.Plan);
+        Assert.False(sweep.CanRun);
+        Assert.Contains("(speed 3.5 mm/s, frequency 500 Hz)", sweep.Error, StringComparison.Ordinal);
+        Assert.Contains("the fastest it holds is 3 mm/s", sweep.Error, StringComparison.Ordinal);
+
+        sweep.Rows = "speed=1,2,3";
+        Assert.NotNull(sweep.Plan);
+    }
+
+    [Fact]
     public void ShowOnStage_PlannedSweep_ShownUntilItsValuesAreRefused()
     {
         Assert.False(_sweep.ShowsOnStage);

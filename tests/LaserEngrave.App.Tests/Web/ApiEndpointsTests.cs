@@ -378,6 +378,25 @@ public sealed class ApiEndpointsTests : IDisposable
     }
 
     [Fact]
+    public async Task RunStart_SpeedThisComputerCannotHoldOnAFrequencyOnlyGate_409WithTheSpeedFieldsSentence()
+    {
+        // Issue 34: 1.5 µm of tolerance over a lab PC's 0.5 ms holds 3 mm/s on a gate the host times; 4 is refused before anything moves.
+        using var folder = TestFiles.NewFolder();
+        var profilePath = TestFiles.Asset(Path.Combine("profiles", "frequency-only.json"));
+        _app.Services.GetRequiredService<MainViewModel>().UseProfile(profilePath, MachineProfile.Load(profilePath) with { EdgeToleranceUm = 1.5 });
+        await UploadAsync(TestFiles.WriteChecker(folder.Path, 8, 6));
+        await PostAsync("/api/job", new { widthMm = 5, originXMm = 0, originYMm = 0, burnSpeedMmPerS = 4 });
+        await PostAsync("/api/machine/connect", new { useSimulator = true }, HttpStatusCode.Accepted);
+        await WaitForAsync(s => s.GetProperty("machine").GetProperty("connected").GetBoolean() && !s.GetProperty("activity").GetProperty("busy").GetBoolean(), TimeSpan.FromSeconds(20));
+
+        var answer = await PostAsync("/api/run/start", new { sampleId = "T-4", acceptNoWatchdog = true, confirm = true }, HttpStatusCode.Conflict);
+
+        Assert.Equal(
+            "burn speed 4 mm/s: faster than this computer can hold with this gate: it wakes up to 0.5 ms late (the profile's latency.hostLatenessMs), 2 µm at 4 mm/s, past the edge tolerance of 1.5 µm; the fastest it holds is 3 mm/s (a gate that times its switch-ons, CAPS? listing AFTER, holds any)",
+            answer.GetProperty("error").GetString());
+    }
+
+    [Fact]
     public async Task RunStart_GateWithoutWatchdog_409WithTheSentenceUntilAcceptedThenTheLogKeepsIt()
     {
         using var folder = TestFiles.NewFolder();

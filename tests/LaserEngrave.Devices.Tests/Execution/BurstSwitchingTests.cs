@@ -106,7 +106,10 @@ public class BurstSwitchingTests
     [Fact(Timeout = 120_000)]
     public async Task RunAsync_SwitchOnLaterThanTheEdgeTolerance_LaserStaysOffAndTheRunEndsAsATimingDoubt()
     {
-        var job = TestJobs.FromMask(TestJobs.RandomMask(7, 40, 20), 5, new PlanOptions(), profile: MachineProfile.Default with { EdgeToleranceUm = 0.05 });
+        // A profile that takes its host for punctual (0.005 ms: 0.05 µm holds 10 mm/s, so preflight lets it start) on a twin
+        // whose host is up to 0.5 ms late: the run's own check must catch what the profile understated.
+        var punctual = MachineProfile.Default with { EdgeToleranceUm = 0.05, Latency = new LatencyProfile { HostLatenessMs = 0.005 } };
+        var job = TestJobs.FromMask(TestJobs.RandomMask(7, 40, 20), 5, new PlanOptions(), profile: punctual);
         // A gate without scheduled bursts: the host times the switch-on, so its lateness moves the edge.
         await using var run = SimulatedRun.Create(new SimulatorOptions { HostLateness = new HostLateness(0.5, 0, 0), GateScheduledBursts = false });
 

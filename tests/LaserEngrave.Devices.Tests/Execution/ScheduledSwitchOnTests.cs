@@ -76,6 +76,22 @@ public class ScheduledSwitchOnTests
     }
 
     [Fact(Timeout = 300_000)]
+    public async Task RunAsync_QrAt4MmPerSOnAGateWithoutAfter_RefusedAtPreflightNamingTheFastestBeforeTheStageHearsAnything()
+    {
+        // Issue 34: what this computer can hold is said once the gate has answered CAPS?, before either axis is asked or moved.
+        var job = QrAt(4);
+        await using var run = SimulatedRun.Create(new SimulatorOptions { GateScheduledBursts = false });
+
+        var refused = await Assert.ThrowsAsync<PreflightException>(() => run.Do(() => run.Executor(job).RunAsync(TestContext.Current.CancellationToken)));
+
+        Assert.Equal(SpeedHold.Problem(4, MachineProfile.Default, scheduled: false), refused.Message);
+        Assert.Contains("the fastest it holds is 3 mm/s", refused.Message, StringComparison.Ordinal);
+        Assert.DoesNotContain(run.Written, w => w.Port == "stage");
+        Assert.DoesNotContain(run.Written, w => w.Port == "gate" && w.Line.StartsWith("BURST ", StringComparison.Ordinal));
+        Assert.False(run.Machine.Gate.IsFiring);
+    }
+
+    [Fact(Timeout = 300_000)]
     public async Task RunAsync_GateWithoutAfter_SendsPlainBurstsAndCompletes()
     {
         // An older gate refuses CAPS?: it is never sent a scheduled burst, which it would refuse (or, a loose one, fire at once).

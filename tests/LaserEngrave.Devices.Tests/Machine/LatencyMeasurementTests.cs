@@ -6,6 +6,27 @@ namespace LaserEngrave.Devices.Tests.Machine;
 public class LatencyMeasurementTests
 {
     [Fact]
+    public void HostWaitsOf_HundredWaits_98thByRankAndTheLatest()
+    {
+        // 0.01 .. 0.99 ms and an early wake-up (-0.2 ms), which counts as 0: sorted, the 98th of the 100 is 0.97.
+        var waits = Enumerable.Range(1, 99).Select(i => i / 100.0).Append(-0.2).ToList();
+
+        var host = HostWaits.Of(waits);
+
+        Assert.Equal((100, 0.97, 0.99), (host.Count, host.Percentile98Ms, host.MaxMs));
+    }
+
+    [Fact]
+    public void ToProfile_HostNotMeasured_KeepsTheProfilesLateness()
+    {
+        var trips = new RoundTrips("X", 10, 14, 14.5, 15, 0.3, 12.5);
+
+        var latency = new LatencyMeasurement(trips, trips, trips).ToProfile(new LatencyProfile { HostLatenessMs = 0.7, HostLatenessTailMs = 9 });
+
+        Assert.Equal((0.7, 9.0), (latency.HostLatenessMs, latency.HostLatenessTailMs));
+    }
+
+    [Fact]
     public void ToProfile_RoundTrips_OneWayIsRoundTripLessWireHalved_ProcessingKept()
     {
         // Stage: mean 14.5 ms, wire 12.5 ms -> 1.0 ms each way; both axes s = 0.6 ms over 100 round trips, pooled over
