@@ -401,6 +401,30 @@ public sealed class RunViewModelTests
     }
 
     [Fact]
+    public async Task StageBurned_SingleJobRunThenAJobOfLayersOpened_NothingOfTheLayersDrawnBurned()
+    {
+        // Issue 36, finding 9: the plate's marks layer was drawn in the "burned" colour before anything burned, the last
+        // single run's progress read as the new layers'.
+        using var folder = TestFiles.NewFolder();
+        var layers = new LayersViewModel(new JobFiles(new AppFolders(folder.Path)), _job, _activity);
+        var run = new RunViewModel(_runs, _job, _machine, _log, TimeProvider.System, layers);
+        await ReadyAsync();
+        _runs.RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>())
+            .Returns(c =>
+            {
+                c.Arg<IProgress<EngraveProgress>>().Report(Report(RunState.Running, 10, 10, 5, 5));
+                return Task.FromResult(Ended(c.Arg<EngraveSession>(), Result(RunOutcome.Completed)));
+            });
+        await run.StartCommand.ExecuteAsync(null);
+        Assert.NotNull(run.Progress);
+
+        Assert.True(layers.Open(TestFiles.Asset(Path.Combine("jobs", "plate.json"))));
+
+        Assert.Null(run.Progress);
+        Assert.True(run.RunsLayers);
+    }
+
+    [Fact]
     public async Task Start_GateSilentDuringRun_FailedWithErrorAndLogged()
     {
         await ReadyAsync();
