@@ -215,6 +215,40 @@ public sealed class BrowserLayoutTests : BrowserTest
     }
 
     [Fact]
+    public void Workspace_UserGuideSizes_StageAndPanelsInEveryScreenshot()
+    {
+        // The user guide's three windows (issue 36): a 1366 x 768 laptop's page at 100 % and at 125 % (1093 x 501 CSS
+        // pixels drawn at 1.25), and 1920 x 1080. In each the stage and both panel columns are on screen, side by side.
+        foreach (var (name, width, height, scale) in new[] { ("1366x768", 1366, 657, 1.0), ("1366x768-125", 1093, 501, 1.25), ("1920x1080", 1920, 969, 1.0) })
+        {
+            Driver.ExecuteCdpCommand("Emulation.setDeviceMetricsOverride", new Dictionary<string, object?>
+            {
+                ["width"] = width, ["height"] = height, ["deviceScaleFactor"] = scale, ["mobile"] = false,
+            });
+            WaitFor(d => Convert.ToInt64(((IJavaScriptExecutor)d).ExecuteScript("return window.innerHeight;"), CultureInfo.InvariantCulture) == height, $"a {width} x {height} page");
+            if (name == "1366x768")
+            {
+                OpenSample("qr-code.bmp");
+                SetField("widthMm", "12");
+                Id("connect").Click();
+                WaitFor(d => d.FindElement(By.Id("stage-host")).GetAttribute("data-drawn-moves") != "0" && Enabled("jog-x-"), "planned and connected");
+            }
+
+            // The panels being edited brought into view in their own columns (each scrolls beside the stage).
+            Driver.ExecuteScript("document.getElementById('panel-size').scrollIntoView({ block: 'start' }); document.getElementById('panel-machine').scrollIntoView({ block: 'start' });");
+            Driver.ExecuteAsyncScript("requestAnimationFrame(() => requestAnimationFrame(arguments[arguments.length - 1]));");
+            foreach (var id in new[] { "stage-canvas", "panel-size", "panel-machine", "start" })
+            {
+                var inView = (bool)Driver.ExecuteScript(
+                    "const r = arguments[0].getBoundingClientRect(); return r.height > 0 && r.top >= 0 && r.left >= 0 && r.right <= window.innerWidth && r.top < window.innerHeight;", Id(id))!;
+                Assert.True(inView, $"#{id} is not on screen at {name}");
+            }
+
+            Assert.True(new FileInfo(Screenshot("user-guide-" + name)).Length > 20_000);
+        }
+    }
+
+    [Fact]
     public void FocalSeries_ProfileWithZ_PresetPlannedAndShown()
     {
         Resize(1440, 1000);
