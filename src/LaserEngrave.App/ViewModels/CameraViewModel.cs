@@ -229,7 +229,7 @@ public sealed partial class CameraViewModel : ObservableObject
                 FocusLines =
                 [
                     string.Create(CultureInfo.InvariantCulture, $"Sharpest step: {result.BestStepUm:+0.#;-0.#;0} µm from the visible focus (Z {z.FocusMm + Units.UmToMm(result.BestStepUm):0.####} mm); between the steps the peak is at {peak:+0.#;-0.#;0} µm"),
-                    string.Create(CultureInfo.InvariantCulture, $"The focal-offset series (seed 002; Sweep panel, Focal series) counts from the same 0, the visible focus at Z {z.FocusMm:0.###} mm: the camera sees the sample sharpest at {peak:+0.#;-0.#;0} µm on that scale, so the series' best offset f lies f {(peak >= 0 ? "-" : "+")} {Math.Abs(peak):0.#} µm from where the camera is sharp"),
+                    string.Create(CultureInfo.InvariantCulture, $"The focal-offset series (Sweep panel, Focal series) counts from the same 0, the visible focus at Z {z.FocusMm:0.###} mm: the camera sees the sample sharpest at {peak:+0.#;-0.#;0} µm on that scale, so the series' best offset f lies f {(peak >= 0 ? "-" : "+")} {Math.Abs(peak):0.#} µm from where the camera is sharp"),
                 ];
             }
         }

@@ -33,7 +33,7 @@ public sealed record ProcessPreset
             BurnSpeedMmPerS = 1,
             TravelSpeedMmPerS = 4,
             PitchUm = 50,
-            Notes = "Nd:YAG, acousto-optic Q-switch at 1 kHz, f = 25 mm lens, 350 µm silicon wafers; QR codes and drawings (seed 000).",
+            Notes = "Nd:YAG, acousto-optic Q-switch at 1 kHz, f = 25 mm lens, 350 µm silicon wafers; QR codes and drawings (the source paper's own process).",
         },
         new()
         {
@@ -42,7 +42,7 @@ public sealed record ProcessPreset
             BurnSpeedMmPerS = 2,
             TravelSpeedMmPerS = 4,
             PitchUm = 20,
-            Notes = "355 nm ns laser, 20 kHz, 150 µJ per pulse, 2 mm/s; hexagons cut in Si(100), spot < 20 µm (seed 001). Set the pulse energy on the laser itself.",
+            Notes = "355 nm ns laser, 20 kHz, 150 µJ per pulse, 2 mm/s; hexagons cut in Si(100), spot < 20 µm (from the hexagon-cutting paper). Set the pulse energy on the laser itself.",
         },
     ];
 

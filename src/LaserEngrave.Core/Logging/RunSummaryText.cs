@@ -143,7 +143,7 @@ public static class RunSummaryText
 
         Line("Started", record.StartedAt.ToString("yyyy-MM-dd HH:mm:ss zzz", c));
         Line("Ended", record.EndedAt.ToString("yyyy-MM-dd HH:mm:ss zzz", c));
-        var clock = record.Simulated ? " (simulated time)" : string.Empty;
+        var clock = record.Simulated ? " (on the simulator's clock)" : string.Empty;
         Line("Duration", string.Create(c, $"{Duration(record.ActualSeconds)}, estimated {Duration(record.EstimatedSeconds)}{clock}; engraving {Duration(record.EngravingSeconds)}, estimated {Duration(record.EstimatedEngravingSeconds)}"));
         Line("Laser on", Duration(record.LaserOnSeconds));
         Line("Done", record.Drawing is null
@@ -226,6 +226,13 @@ public static class RunSummaryText
             var first = rest.Min(r => r.Pass);
             var last = rest.Max(r => r.Pass);
             Line("Went on after", string.Create(c, $"{rest.Count} more timing doubts ({(first == last ? $"pass {first}" : $"passes {first}-{last}")}), listed in the JSON record's recoveries"));
+        }
+
+        if (recoveries.Count > 0)
+        {
+            // Each doubt's own sentence says the laser stayed off "for that run": the run was then burned when the job went
+            // on from its stop point, which the counts above include. Said once, so the two never read as a contradiction.
+            Line("Went on", "each run the laser was kept off for at a doubt was burned when the job went on from there (the counts above are the whole job's)");
         }
 
         var warnings = record.LineWarnings ?? [];

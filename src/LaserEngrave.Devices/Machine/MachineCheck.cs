@@ -98,7 +98,7 @@ public sealed class MachineCheck
                     var firmware = identity.FirmwareVersion;
                     var homing = ZaberFirmware.HasHomeSpeed(firmware) ? "homes at Set Home Speed" : "homes at the Target Speed (no Set Home Speed before 5.20)";
                     var known = ZaberFirmware.IsKnown(firmware) ? string.Empty : "; a firmware the manual does not describe: engrave step by step (--strategy paper)";
-                    var text = string.Create(c, $"{Describe(axis, name)}: device ID {identity.DeviceId}, firmware {identity.FirmwareText} ({homing}{known}), resolution {profile.MicrostepUm:0.########} µm a microstep (the profile's), Maximum Position {identity.MaximumPosition} = {travelMm:0.###} mm of travel");
+                    var text = string.Create(c, $"{Describe(axis, name)}: device ID {identity.DeviceId}, firmware {identity.FirmwareText} ({homing}{known}), resolution {profile.MicrostepUm:0.########} µm a microstep (the profile's), travel limit {travelMm:0.###} mm (the device's Maximum Position setting, {identity.MaximumPosition} microsteps)");
                     if (identity.MaximumPosition < profile.TravelMicrosteps)
                     {
                         throw new DeviceException(string.Create(c, $"{text}, shorter than the profile's {profile.TravelMm:0.###} mm: correct the profile's travel or the device's Maximum Position"));

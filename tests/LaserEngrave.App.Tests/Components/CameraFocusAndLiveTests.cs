@@ -69,7 +69,7 @@ public sealed class CameraFocusAndLiveTests : ComponentTest
         Xunit.TestContext.Current.TestOutputHelper?.WriteLine($"panel's focus sweep: sharpest step {result.BestStepUm} µm, peak {result.BestOffsetUm:F1} µm, the twin's focus {truth} µm; {string.Join(", ", result.Points.Select(p => $"{p.OffsetUm}:{p.Sharpness:F1}"))}");
         Assert.True(Math.Abs(result.BestStepUm - truth) <= 50, $"sharpest step {result.BestStepUm} µm, the twin's focus {truth} µm");
         Assert.Equal(result.BestStepUm.ToString(System.Globalization.CultureInfo.InvariantCulture), cut.Find("#camera-focus-steps tr.best").GetAttribute("data-focus-step"));
-        Assert.Contains("focal-offset series (seed 002", cut.FindAll("[data-camera=focus]")[1].TextContent, StringComparison.Ordinal);
+        Assert.Contains("focal-offset series (Sweep panel", cut.FindAll("[data-camera=focus]")[1].TextContent, StringComparison.Ordinal);
 
         cut.Find("#camera-focus-go").Click();
 

@@ -26,7 +26,7 @@ public sealed class RunSummaryTextTests : IDisposable
         Assert.Contains("burn 0.8 mm/s, travel 3 mm/s, acceleration 40 mm/s²", text, StringComparison.Ordinal);
         Assert.Contains("Laser frequency:    1500 Hz", text, StringComparison.Ordinal);
         Assert.Contains("optimized, unidirectional, overscan 0.2 mm", text, StringComparison.Ordinal);
-        Assert.Contains("Duration:           1 min 01.5 s, estimated 1 min 10.3 s (simulated time); engraving 0 min 55.5 s, estimated 0 min 54.8 s", text, StringComparison.Ordinal);
+        Assert.Contains("Duration:           1 min 01.5 s, estimated 1 min 10.3 s (on the simulator's clock); engraving 0 min 55.5 s, estimated 0 min 54.8 s", text, StringComparison.Ordinal);
         Assert.Contains("firmware 5.29", text, StringComparison.Ordinal);
         Assert.Contains("Repeats:            /logs/2026-11-22_090000_S-16.json", text, StringComparison.Ordinal);
         Assert.Contains("Notes:              first try\n                    focus 2 turns down", text, StringComparison.Ordinal);
@@ -127,6 +127,9 @@ public sealed class RunSummaryTextTests : IDisposable
 
         Assert.Contains("Late switches:      switch-ons: 4 within the 1.5 µm edge tolerance (latest 1.42 µm); switch-offs: 1 (the burst had ended the run by itself)\n", text, StringComparison.Ordinal);
         Assert.Contains("Went on after:      pass 1, row 13 (move 40)", text, StringComparison.Ordinal);
+
+        // Issue 36 finding 11: "the laser stayed off for that run" beside "284 of 284 burn runs": said once how both hold.
+        Assert.Contains("Went on:            each run the laser was kept off for at a doubt was burned when the job went on from there", text, StringComparison.Ordinal);
         Assert.Equal(
             "late switch-ons: 4 within the 1.5 µm edge tolerance (latest 1.42 µm); switch-offs: 1 (the burst had ended the run by itself); went on after 2 timing doubts",
             RunSummaryText.Timing(record));
