@@ -1,7 +1,7 @@
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Motion;
 using LaserEngrave.Core.Planning;
-using LaserEngrave.Core.Programs;
+using LaserEngrave.Core.Vectors;
 
 namespace LaserEngrave.App.ViewModels;
 

@@ -5,6 +5,7 @@ using CommunityToolkit.Mvvm.Input;
 using LaserEngrave.App.Services;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
+using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Execution;
 

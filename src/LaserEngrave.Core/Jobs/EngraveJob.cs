@@ -1,5 +1,5 @@
 using LaserEngrave.Core.Planning;
-using LaserEngrave.Core.Programs;
+using LaserEngrave.Core.Vectors;
 using LaserEngrave.Core.Sweeps;
 
 namespace LaserEngrave.Core.Jobs;

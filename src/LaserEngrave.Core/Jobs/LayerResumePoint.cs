@@ -1,3 +1,5 @@
+using LaserEngrave.Core.Planning;
+
 namespace LaserEngrave.Core.Jobs;
 
 /// <summary>Where a run of layers that did not complete goes on: the layer, its passes already done, and where its next pass stopped.</summary>

@@ -1,7 +1,6 @@
 using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Planning;
-using LaserEngrave.Core.Programs;
 using LaserEngrave.Core.Vectors;
 
 namespace LaserEngrave.Core.Jobs;

@@ -3,7 +3,6 @@ using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Core.Process;
-using LaserEngrave.Core.Programs;
 
 namespace LaserEngrave.Core.Jobs;
 

@@ -1,5 +1,6 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Planning;
 
 namespace LaserEngrave.Core.Logging;
 

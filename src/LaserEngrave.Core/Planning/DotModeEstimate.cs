@@ -1,5 +1,4 @@
 using LaserEngrave.Core.Geometry;
-using LaserEngrave.Core.Programs;
 
 namespace LaserEngrave.Core.Planning;
 

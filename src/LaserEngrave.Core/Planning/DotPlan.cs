@@ -1,7 +1,6 @@
 using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
-using LaserEngrave.Core.Programs;
 
 namespace LaserEngrave.Core.Planning;
 

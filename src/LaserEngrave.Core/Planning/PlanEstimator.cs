@@ -2,7 +2,6 @@ using System.Globalization;
 using System.Runtime.CompilerServices;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Motion;
-using LaserEngrave.Core.Programs;
 
 namespace LaserEngrave.Core.Planning;
 

@@ -1,6 +1,5 @@
 using System.Runtime.CompilerServices;
 using LaserEngrave.Core.Geometry;
-using LaserEngrave.Core.Programs;
 
 namespace LaserEngrave.Core.Planning;
 

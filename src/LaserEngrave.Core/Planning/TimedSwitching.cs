@@ -1,7 +1,6 @@
 using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Motion;
-using LaserEngrave.Core.Programs;
 
 namespace LaserEngrave.Core.Planning;
 

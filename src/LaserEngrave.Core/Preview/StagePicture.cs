@@ -2,7 +2,6 @@ using System.Diagnostics;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
-using LaserEngrave.Core.Programs;
 using LaserEngrave.Core.Sweeps;
 using LaserEngrave.Core.Vectors;
 

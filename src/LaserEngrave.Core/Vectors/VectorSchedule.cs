@@ -1,5 +1,4 @@
 using LaserEngrave.Core.Planning;
-using LaserEngrave.Core.Programs;
 
 namespace LaserEngrave.Core.Vectors;
 

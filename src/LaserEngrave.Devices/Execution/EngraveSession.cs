@@ -2,6 +2,7 @@ using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
+using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Scheduling;
 using LaserEngrave.Wire.Scheduling;
 

@@ -1,5 +1,6 @@
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
+using LaserEngrave.Core.Planning;
 using LaserEngrave.Wire.Serial;
 
 namespace LaserEngrave.Devices.Execution;

@@ -1,5 +1,4 @@
 using LaserEngrave.Core.Planning;
-using LaserEngrave.Core.Programs;
 using LaserEngrave.Wire.Scheduling;
 
 namespace LaserEngrave.Devices.Execution;

@@ -3,7 +3,6 @@ using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
-using LaserEngrave.Core.Programs;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Zaber;
 using LaserEngrave.Wire.Scheduling;

@@ -1,7 +1,6 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
-using LaserEngrave.Core.Programs;
 using LaserEngrave.Core.Vectors;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Zaber;

@@ -1,4 +1,5 @@
 using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Planning;
 
 namespace LaserEngrave.Devices.Execution;
 

@@ -4,7 +4,6 @@ using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Motion;
 using LaserEngrave.Core.Planning;
-using LaserEngrave.Core.Programs;
 using LaserEngrave.Core.Vectors;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Zaber;

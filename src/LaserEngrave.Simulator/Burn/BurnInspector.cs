@@ -1,6 +1,7 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
+using LaserEngrave.Core.Planning;
 
 namespace LaserEngrave.Simulator.Burn;
 

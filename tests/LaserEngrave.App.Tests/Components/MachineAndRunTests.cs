@@ -6,6 +6,7 @@ using LaserEngrave.App.Tests.ViewModels;
 using LaserEngrave.App.ViewModels;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
+using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Execution;
 using NSubstitute;

@@ -3,6 +3,7 @@ using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.App.ViewModels;
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Abstractions;
 using NSubstitute;
 using LaserEngrave.Devices.Execution;

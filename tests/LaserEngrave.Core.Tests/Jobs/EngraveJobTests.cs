@@ -2,7 +2,6 @@ using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
-using LaserEngrave.Core.Programs;
 using LaserEngrave.Core.Tests.Vectors;
 using LaserEngrave.Core.Vectors;
 

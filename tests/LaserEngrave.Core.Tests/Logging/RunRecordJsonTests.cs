@@ -1,6 +1,7 @@
 using System.Text.Json;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
+using LaserEngrave.Core.Planning;
 
 namespace LaserEngrave.Core.Tests.Logging;
 

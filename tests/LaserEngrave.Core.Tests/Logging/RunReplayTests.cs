@@ -2,6 +2,7 @@ using LaserEngrave.Core.Imaging;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
+using LaserEngrave.Core.Planning;
 
 namespace LaserEngrave.Core.Tests.Logging;
 

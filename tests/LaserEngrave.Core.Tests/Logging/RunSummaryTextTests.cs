@@ -1,5 +1,6 @@
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
+using LaserEngrave.Core.Planning;
 
 namespace LaserEngrave.Core.Tests.Logging;
 

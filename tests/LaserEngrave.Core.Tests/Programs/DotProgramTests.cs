@@ -1,7 +1,6 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
 using LaserEngrave.Core.Planning;
-using LaserEngrave.Core.Programs;
 
 namespace LaserEngrave.Core.Tests.Programs;
 

@@ -1,6 +1,5 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Planning;
-using LaserEngrave.Core.Programs;
 using LaserEngrave.Core.Vectors;
 using static LaserEngrave.Core.Tests.Vectors.TestDrawings;
 

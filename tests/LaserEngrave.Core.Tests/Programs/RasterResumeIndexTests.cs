@@ -2,7 +2,6 @@ using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
-using LaserEngrave.Core.Programs;
 using LaserEngrave.Core.Tests.Imaging;
 using LaserEngrave.Core.Tests.Planning;
 

@@ -1,6 +1,5 @@
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
-using LaserEngrave.Core.Programs;
 using LaserEngrave.Devices.Execution;
 
 namespace LaserEngrave.Devices.Tests.Execution;

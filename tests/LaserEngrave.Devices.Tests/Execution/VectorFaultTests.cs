@@ -1,5 +1,6 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Planning;
 using LaserEngrave.Core.Vectors;
 using LaserEngrave.Devices.Execution;
 using LaserEngrave.Simulator;

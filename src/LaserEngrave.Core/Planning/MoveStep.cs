@@ -1,6 +1,6 @@
 using LaserEngrave.Core.Planning;
 
-namespace LaserEngrave.Core.Programs;
+namespace LaserEngrave.Core.Planning;
 
 /// <summary>A plain move of a step-by-step raster program: the laser switched, the speeds set, both axes to the target, each awaited.</summary>
 /// <param name="LaserOn">Whether the laser is on during the move.</param>

@@ -1,6 +1,6 @@
 using LaserEngrave.Core.Planning;
 
-namespace LaserEngrave.Core.Programs;
+namespace LaserEngrave.Core.Planning;
 
 /// <summary>One step of a raster program as <see cref="RasterProgram.Steps()"/> hands it out: a travel, a stroke or a plain move.</summary>
 public readonly record struct RasterStep

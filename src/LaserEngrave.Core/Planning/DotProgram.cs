@@ -1,7 +1,7 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Planning;
 
-namespace LaserEngrave.Core.Programs;
+namespace LaserEngrave.Core.Planning;
 
 /// <summary>One dot of a <see cref="DotProgram"/>: the travel to it in device units, then its counted burst.</summary>
 /// <param name="Index">The dot's place in the program, 0-based: a stop point's index is the first dot not fired.</param>

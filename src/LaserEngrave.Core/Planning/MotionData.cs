@@ -1,7 +1,7 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Planning;
 
-namespace LaserEngrave.Core.Programs;
+namespace LaserEngrave.Core.Planning;
 
 /// <summary>A part's speeds and acceleration as the Zaber devices take them, converted once from the process (<see cref="StageUnits"/>).</summary>
 /// <param name="BurnSpeedData">Target speed data of burn runs and their run-ups and run-outs.</param>

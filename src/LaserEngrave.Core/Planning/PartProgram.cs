@@ -1,7 +1,7 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Planning;
 
-namespace LaserEngrave.Core.Programs;
+namespace LaserEngrave.Core.Planning;
 
 /// <summary>
 /// The device-unit program of one part's pass: its motion data, converted once from the process, and its steps

@@ -1,6 +1,6 @@
 using LaserEngrave.Core.Planning;
 
-namespace LaserEngrave.Core.Programs;
+namespace LaserEngrave.Core.Planning;
 
 /// <summary>A burn run of a stroke: the laser on from <see cref="OnX"/> to <see cref="OffX"/>.</summary>
 /// <param name="Move">The plan's burn move (its start trimmed to the resume X on a run resumed midway).</param>

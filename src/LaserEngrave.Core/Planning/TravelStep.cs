@@ -1,6 +1,6 @@
 using LaserEngrave.Core.Planning;
 
-namespace LaserEngrave.Core.Programs;
+namespace LaserEngrave.Core.Planning;
 
 /// <summary>A travel of a timed raster program, laser off: both axes to an absolute target at the travel speed.</summary>
 /// <param name="X">Target X, microsteps.</param>

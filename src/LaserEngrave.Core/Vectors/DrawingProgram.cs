@@ -1,7 +1,7 @@
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Core.Vectors;
 
-namespace LaserEngrave.Core.Programs;
+namespace LaserEngrave.Core.Vectors;
 
 /// <summary>The travel to a stroke's run-up start with the laser off: Move Absolute of the axes that must move, replies awaited.</summary>
 /// <param name="From">Where the model has the axes resting after the stroke before; null for the run's first travel, from wherever the stage stands (the positioning, not part of the estimate).</param>

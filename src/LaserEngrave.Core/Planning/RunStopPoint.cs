@@ -1,4 +1,4 @@
-namespace LaserEngrave.Core.Jobs;
+namespace LaserEngrave.Core.Planning;
 
 /// <summary>Where a run that did not complete stopped: the first move not completed and the stage's last known position.</summary>
 /// <param name="Row">The image row of the first move not completed (0 = top row), or an earlier one.</param>

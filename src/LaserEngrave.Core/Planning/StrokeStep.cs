@@ -1,7 +1,7 @@
 using System.Runtime.CompilerServices;
 using LaserEngrave.Core.Planning;
 
-namespace LaserEngrave.Core.Programs;
+namespace LaserEngrave.Core.Planning;
 
 /// <summary>
 /// A stroke of a timed raster program: one X Move Absolute from rest at <see cref="StartX"/> to rest at <see cref="EndX"/>

@@ -1,7 +1,6 @@
-using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Planning;
 
-namespace LaserEngrave.Core.Programs;
+namespace LaserEngrave.Core.Planning;
 
 /// <summary>Where a raster program goes on from a stop point (<see cref="RasterProgram.ResumeAt"/>), and what was done before it.</summary>
 /// <param name="Stop">The stop point.</param>

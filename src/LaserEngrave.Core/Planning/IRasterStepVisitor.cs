@@ -1,4 +1,4 @@
-namespace LaserEngrave.Core.Programs;
+namespace LaserEngrave.Core.Planning;
 
 /// <summary>Receives a raster program's steps in order (<see cref="RasterProgram.Visit{TVisitor}(ref TVisitor)"/>).</summary>
 /// <remarks>

@@ -1,8 +1,7 @@
-using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Planning;
 
-namespace LaserEngrave.Core.Programs;
+namespace LaserEngrave.Core.Planning;
 
 /// <summary>
 /// The program of a raster pass: under timed switching its travels and strokes (<see cref="StrokeStep"/>: runs, flown
