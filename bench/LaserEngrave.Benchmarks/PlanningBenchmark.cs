@@ -4,7 +4,6 @@ using BenchmarkDotNet.Jobs;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
 using LaserEngrave.Core.Planning;
-using LaserEngrave.Core.Programs;
 
 namespace LaserEngrave.Benchmarks;
 

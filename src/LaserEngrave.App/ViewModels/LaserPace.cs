@@ -18,7 +18,7 @@ namespace LaserEngrave.App.ViewModels;
 /// </remarks>
 public sealed class LaserPace
 {
-    private readonly IReadOnlyList<PreparedLayer> _parts;
+    private readonly IReadOnlyList<JobPart> _parts;
     private readonly TimeProvider _time;
 
     // The engine reports on its thread and the page's timer asks on another.
@@ -124,7 +124,7 @@ public sealed class LaserPace
         private IEnumerator<DotStep>? _dots;
         private long _index = -1;
 
-        public Part(PreparedLayer layer)
+        public Part(JobPart layer)
         {
             _program = layer.Program();
 

@@ -462,7 +462,7 @@ public sealed partial class LayersViewModel : ObservableObject
     }
 
     /// <summary>One layer's plan (null while the layers do not plan).</summary>
-    public PreparedLayer? Planned(int index) => Job is { } job && index >= 0 && index < job.Layers.Count ? job.Layers[index] : null;
+    public JobPart? Planned(int index) => Job is { } job && index >= 0 && index < job.Layers.Count ? job.Layers[index] : null;
 
     private static LayerMode Mode(VectorFillMode fill) => fill switch
     {

@@ -182,7 +182,7 @@ public sealed partial class RunViewModel : ObservableObject
     public bool RunsLayers => _layers is { IsActive: true };
 
     /// <summary>What the run counts, as the command line and the log say it: strokes for a drawing (or a drawing's layer), else rows.</summary>
-    public string ProgressUnit => _running?.UnitOf(Progress?.Layer ?? 0) ?? PreparedLayer.RowUnit;
+    public string ProgressUnit => _running?.UnitOf(Progress?.Layer ?? 0) ?? JobPart.RowUnit;
 
     /// <summary>The layer under way as "layer 2 of 3 “logo”"; null when the run is not one of layers.</summary>
     /// <summary>The layers of the job under way (a job of layers); null for a single job or when nothing has run.</summary>

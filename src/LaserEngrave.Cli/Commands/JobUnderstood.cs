@@ -26,15 +26,15 @@ internal static class JobUnderstood
     }
 
     /// <summary>"raster at 1 mm/s, 1000 Hz (1 µm between pulses), 2 passes, optimized, bidirectional".</summary>
-    private static string Process(PreparedLayer part)
+    private static string Process(JobPart part)
     {
         var process = part.Spec.Process;
         var passes = part.Layer.Passes;
-        var kind = part.Drawing is not null ? "drawing"
+        var kind = part is DrawingPart ? "drawing"
             : process.Mode == PlanMode.Dots ? Inv($"dots of {process.PulsesPerDot} pulse{(process.PulsesPerDot == 1 ? string.Empty : "s")}")
             : "raster";
         var spacing = process.Mode == PlanMode.Dots ? string.Empty : Inv($" ({N(process.BurnSpeedMmPerS * 1000 / process.LaserFrequencyHz)} µm between pulses)");
-        var plan = part.Image is { } image && process.Mode != PlanMode.Dots
+        var plan = part is RasterPart { Image: var image }
             ? $", {image.Spec.Plan.Strategy.ToString().ToLowerInvariant()}{(image.Spec.Plan.Bidirectional ? ", bidirectional" : ", one direction")}"
             : string.Empty;
         var speed = process.Mode == PlanMode.Dots ? string.Empty : Inv($"at {N(process.BurnSpeedMmPerS)} mm/s, ");
@@ -42,7 +42,7 @@ internal static class JobUnderstood
     }
 
     /// <summary>The layers' speeds, frequencies and passes, each as one value or a range.</summary>
-    private static string Ranges(IReadOnlyList<PreparedLayer> parts) =>
+    private static string Ranges(IReadOnlyList<JobPart> parts) =>
         $"{Range(parts.Select(p => p.Spec.Process.BurnSpeedMmPerS))} mm/s, {Range(parts.Select(p => p.Spec.Process.LaserFrequencyHz))} Hz, "
         + Inv($"{Range(parts.Select(p => (double)p.Layer.Passes))} passes a layer, {parts.Sum(p => p.Layer.Passes)} layer passes in all");
 

@@ -43,7 +43,7 @@ internal sealed class ProgressPrinter(TextWriter writer, bool terminal) : IProgr
             _pass = string.Create(CultureInfo.InvariantCulture, $"{_pass ?? "1 of 1"}, layer {value.Layer} of {layers.Count} \"{layers[value.Layer - 1].Layer.Name}\"");
         }
 
-        _drawing = Job?.UnitOf(value.Layer) == PreparedLayer.StrokeUnit;
+        _drawing = Job?.UnitOf(value.Layer) == JobPart.StrokeUnit;
         if (value is { State: RunState.Preflight, Recovering: true })
         {
             // Said once per recovery; the preflight's own figures (a fresh count, 0 %) would only make the bar jump back.

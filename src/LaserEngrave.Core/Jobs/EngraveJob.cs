@@ -16,7 +16,7 @@ namespace LaserEngrave.Core.Jobs;
 /// </remarks>
 public abstract class EngraveJob
 {
-    private protected EngraveJob(IReadOnlyList<PreparedLayer> parts)
+    private protected EngraveJob(IReadOnlyList<JobPart> parts)
     {
         if (parts.Count == 0)
         {
@@ -27,9 +27,9 @@ public abstract class EngraveJob
     }
 
     /// <summary>The parts, in the order they run.</summary>
-    public IReadOnlyList<PreparedLayer> Parts { get; }
+    public IReadOnlyList<JobPart> Parts { get; }
 
-    /// <summary>Each part's program (<see cref="PreparedLayer.Program"/>), in the order they run.</summary>
+    /// <summary>Each part's program (<see cref="JobPart.Program"/>, built once per part), in the order they run.</summary>
     public IReadOnlyList<PartProgram> Programs => [.. Parts.Select(p => p.Program())];
 
     /// <summary>The (first part's) job: file, size, origin, process and machine.</summary>
@@ -45,13 +45,13 @@ public abstract class EngraveJob
     public bool FitsTravel => Parts.All(p => p.FitsTravel);
 
     /// <summary>The whole run, every part's passes with their preflight and positioning, s.</summary>
-    public virtual double EstimatedSeconds => PreparedLayer.RunSeconds(Parts).Sum();
+    public virtual double EstimatedSeconds => JobPart.RunSeconds(Parts).Sum();
 
     /// <summary>
     /// The layers a run names in its progress ("layer 2 of 3") and a stopped run continues from
     /// (<see cref="LayerResumePoint"/>); null for a job that is not one of layers.
     /// </summary>
-    public virtual IReadOnlyList<PreparedLayer>? Layers => null;
+    public virtual IReadOnlyList<JobPart>? Layers => null;
 
     /// <summary>What the run counts while layer <paramref name="layer"/> (from 1, as progress reports it) runs: "stroke" for a drawing, else "row".</summary>
     public virtual string UnitOf(int layer) => Parts[0].Unit;
@@ -63,7 +63,7 @@ public abstract class EngraveJob
     public (int Units, long Runs) Planned => (Parts.Sum(p => p.Planned.Units), Parts.Sum(p => p.Planned.Runs));
 
     /// <summary>The smallest pixel of its images, µm (what a laser spot much larger burns wider than it is); null without an image.</summary>
-    public double? SmallestPixelUm => Parts.Where(p => p.Image is not null).Select(p => (double?)p.Image!.Geometry.PitchUm).Min();
+    public double? SmallestPixelUm => Parts.Select(p => p.PixelUm).Min();
 
     /// <summary>The image's mask a single image job burns (to tell whether the image changed since); null for any other kind.</summary>
     public Imaging.BitMask? Mask => this switch
@@ -126,54 +126,63 @@ public abstract class EngraveJob
 
     public static implicit operator EngraveJob(LayeredJob layers) => Of(layers);
 
-    /// <summary>One part of a single image or drawing, named after nothing and burned its spec's passes.</summary>
-    private protected static PreparedLayer Single(JobSpec spec, PreparedJob? image, PreparedDrawing? drawing) =>
-        new(new JobLayer { Name = string.Empty, Source = spec.ImagePath, Passes = spec.Passes, Mode = drawing is null ? LayerMode.Raster : LayerMode.Outline }, image, drawing);
+    /// <summary>The one part a single image or drawing runs as; null for a job of layers or a sweep (a session runs those part by part).</summary>
+    public virtual JobPart? SinglePart => null;
+
+    /// <summary>The layer of a single image or drawing: named after nothing and burned its spec's passes.</summary>
+    private protected static JobLayer SingleLayer(JobSpec spec, LayerMode mode) =>
+        new() { Name = string.Empty, Source = spec.ImagePath, Passes = spec.Passes, Mode = mode };
 }
 
 /// <summary>An image burned row by row while the stage moves (timed switching, or step by step for a paper plan).</summary>
 public sealed class RasterJob : EngraveJob
 {
     internal RasterJob(PreparedJob job)
-        : base([Single(job.Spec, job, null)])
+        : base([JobPart.Of(SingleLayer(job.Spec, LayerMode.Raster), job)])
     {
         Prepared = job;
     }
 
     public PreparedJob Prepared { get; }
+
+    public override JobPart SinglePart => Parts[0];
 }
 
 /// <summary>An image burned as dots: the stage stops at each and the gate fires a counted burst.</summary>
 public sealed class DotJob : EngraveJob
 {
     internal DotJob(PreparedJob job)
-        : base([Single(job.Spec, job, null)])
+        : base([JobPart.Of(SingleLayer(job.Spec, LayerMode.Raster), job)])
     {
         Prepared = job;
         Plan = job.Dots ?? throw new ArgumentException("a dot job needs a dot plan", nameof(job));
     }
 
+    public override JobPart SinglePart => Parts[0];
+
     public PreparedJob Prepared { get; }
 
     public DotPlan Plan { get; }
 
-    /// <summary>What runs: every dot's target and burst in device units.</summary>
-    public DotProgram Program() => Plan.Program();
+    /// <summary>What runs: every dot's target and burst in device units (the part's program).</summary>
+    public DotProgram Program() => ((DotPart)Parts[0]).Program();
 }
 
 /// <summary>A drawing's paths burned as strokes, each axis streaming its speed.</summary>
 public sealed class DrawingJob : EngraveJob
 {
     internal DrawingJob(PreparedDrawing drawing)
-        : base([Single((drawing ?? throw new ArgumentNullException(nameof(drawing))).Spec, null, drawing)])
+        : base([JobPart.Of(SingleLayer((drawing ?? throw new ArgumentNullException(nameof(drawing))).Spec, LayerMode.Outline), drawing)])
     {
         Drawing = drawing;
     }
 
+    public override JobPart SinglePart => Parts[0];
+
     public PreparedDrawing Drawing { get; }
 
     /// <summary>What runs: per stroke the travel to it and its axis commands and laser edges in device units.</summary>
-    public DrawingProgram Program() => Drawing.Schedule.Program();
+    public DrawingProgram Program() => ((DrawingPart)Parts[0]).Program();
 }
 
 /// <summary>Several images and drawings, each with its own process, passes and mode, run in order into one log.</summary>
@@ -187,10 +196,10 @@ public sealed class LayersJob : EngraveJob
 
     public LayeredJob Layered { get; }
 
-    public override IReadOnlyList<PreparedLayer> Layers => Parts;
+    public override IReadOnlyList<JobPart> Layers => Parts;
 
     /// <summary>The unit of the layer under way; "row" outside the layers (before the first report).</summary>
-    public override string UnitOf(int layer) => layer >= 1 && layer <= Parts.Count ? Parts[layer - 1].Unit : PreparedLayer.RowUnit;
+    public override string UnitOf(int layer) => layer >= 1 && layer <= Parts.Count ? Parts[layer - 1].Unit : JobPart.RowUnit;
 
     /// <summary>A job of layers starts while every layer lies inside the travel (a layer's other problems are the Layers view's to say).</summary>
     public override string? StartProblem => FitsTravel ? null : "a layer lies outside the stage's travel: move its origin or make it smaller";
@@ -203,7 +212,7 @@ public sealed class LayersJob : EngraveJob
 public sealed class SweepJob : EngraveJob
 {
     internal SweepJob(SweepPlan plan)
-        : base([.. plan.Jobs().Select(j => Single(j.Spec, j, null))])
+        : base([.. plan.Jobs().Select(j => JobPart.Of(SingleLayer(j.Spec, LayerMode.Raster), j))])
     {
         Plan = plan;
         Cells = [.. plan.Jobs().Select(j => EngraveJob.Of(j))];

@@ -1,5 +1,3 @@
-using LaserEngrave.Core.Planning;
-
 namespace LaserEngrave.Core.Planning;
 
 /// <summary>A burn run of a stroke: the laser on from <see cref="OnX"/> to <see cref="OffX"/>.</summary>

@@ -1,5 +1,4 @@
 using LaserEngrave.Core.Geometry;
-using LaserEngrave.Core.Planning;
 
 namespace LaserEngrave.Core.Planning;
 
@@ -31,6 +30,9 @@ public sealed class DotProgram : PartProgram
 
     /// <summary>The timing model every step follows.</summary>
     public DotTiming Timing => _plan.Timing;
+
+    /// <summary>The dot plan it runs: its mask and its estimate.</summary>
+    public DotPlan Plan => _plan;
 
     /// <summary>Set Acceleration data of both axes, set before the first dot.</summary>
     public int AccelerationData => Motion.AccelerationData;

@@ -1,5 +1,4 @@
 using LaserEngrave.Core.Geometry;
-using LaserEngrave.Core.Planning;
 
 namespace LaserEngrave.Core.Planning;
 

@@ -1,5 +1,3 @@
-using LaserEngrave.Core.Planning;
-
 namespace LaserEngrave.Core.Planning;
 
 /// <summary>A plain move of a step-by-step raster program: the laser switched, the speeds set, both axes to the target, each awaited.</summary>

@@ -1,5 +1,4 @@
 using LaserEngrave.Core.Geometry;
-using LaserEngrave.Core.Planning;
 
 namespace LaserEngrave.Core.Planning;
 
@@ -33,4 +32,7 @@ public abstract class PartProgram
 
     /// <summary>Burn and travel speed data and acceleration data.</summary>
     public MotionData Motion { get; }
+
+    /// <summary>The model a run of it switches the laser by time with (a timed raster's, a drawing's); null for dots and step by step.</summary>
+    public virtual TimedSwitching? SwitchTiming => null;
 }

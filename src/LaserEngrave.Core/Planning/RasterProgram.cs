@@ -1,5 +1,4 @@
 using LaserEngrave.Core.Geometry;
-using LaserEngrave.Core.Planning;
 
 namespace LaserEngrave.Core.Planning;
 
@@ -37,6 +36,11 @@ public sealed class RasterProgram : PartProgram
 
     /// <summary>The timing model of a timed program; null: step by step.</summary>
     public TimedSwitching? Timing { get; }
+
+    public override TimedSwitching? SwitchTiming => Timing;
+
+    /// <summary>The same plan's program timed by another model (a run that times itself with wider latencies).</summary>
+    public RasterProgram Retimed(TimedSwitching? timing) => new(Plan, Process, Gate, timing);
 
     /// <summary>The run-up a stroke gets before its first edge when its first move is shorter, microsteps.</summary>
     public long RunUpMicrosteps { get; }

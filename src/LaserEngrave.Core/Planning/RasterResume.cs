@@ -1,5 +1,3 @@
-using LaserEngrave.Core.Planning;
-
 namespace LaserEngrave.Core.Planning;
 
 /// <summary>Where a raster program goes on from a stop point (<see cref="RasterProgram.ResumeAt"/>), and what was done before it.</summary>

@@ -1,5 +1,3 @@
-using LaserEngrave.Core.Planning;
-
 namespace LaserEngrave.Core.Planning;
 
 /// <summary>One step of a raster program as <see cref="RasterProgram.Steps()"/> hands it out: a travel, a stroke or a plain move.</summary>

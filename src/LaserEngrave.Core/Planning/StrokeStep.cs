@@ -1,5 +1,4 @@
 using System.Runtime.CompilerServices;
-using LaserEngrave.Core.Planning;
 
 namespace LaserEngrave.Core.Planning;
 

@@ -1,5 +1,3 @@
-using LaserEngrave.Core.Planning;
-
 namespace LaserEngrave.Core.Planning;
 
 /// <summary>A travel of a timed raster program, laser off: both axes to an absolute target at the travel speed.</summary>

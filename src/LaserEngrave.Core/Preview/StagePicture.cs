@@ -9,7 +9,7 @@ namespace LaserEngrave.Core.Preview;
 
 /// <summary>
 /// The stage's picture of a job, in mm, as the app's stage canvas draws it: every part's moves in burn order (kind and
-/// both ends) from the part's program (<see cref="PreparedLayer.Program"/>), what is sent, the boxes of a job's layers or a sweep's cells, the job's rectangle, and which moves a run's progress has
+/// both ends) from the part's program (<see cref="JobPart.Program"/>), what is sent, the boxes of a job's layers or a sweep's cells, the job's rectangle, and which moves a run's progress has
 /// burned. The page only draws it.
 /// </summary>
 /// <remarks>
@@ -228,11 +228,11 @@ public sealed class StagePicture
         {
             int[]? ends = null;
             DotMarks? dots = null;
-            var (bytes, count, moves) = part.Program() switch
+            var (bytes, count, moves) = part switch
             {
-                RasterProgram raster => RasterMoves(raster, part.Spec.Profile, part.Image!.Statistics.Moves),
-                DotProgram => DotMoves(part.Image!, out dots),
-                DrawingProgram drawing => DrawingMoves(drawing, part.Drawing!.Plan.Start, part.Spec.Profile, out ends),
+                RasterPart raster => RasterMoves(raster.Program(), part.Spec.Profile, part.Moves),
+                DotPart dot => DotMoves(dot.Image, out dots),
+                DrawingPart drawing => DrawingMoves(drawing.Program(), drawing.Drawing.Plan.Start, part.Spec.Profile, out ends),
                 var other => throw new UnreachableException($"no picture of a {other.GetType().Name}"),
             };
             var kept = Math.Max(0, Math.Min(count, MaxDrawnMoves - drawn));
@@ -285,13 +285,13 @@ public sealed class StagePicture
         }
 
         var part = job.Parts[0];
-        if (part.Drawing is { } drawing)
+        if (part is DrawingPart { Drawing: var drawing })
         {
             var plan = drawing.Plan;
             return new StageRect(drawing.Spec.Origin.X, drawing.Spec.Origin.Y, plan.WidthMm, plan.HeightMm, drawing.FitsTravel, Units.UmToMm(plan.MicrostepUm));
         }
 
-        var image = part.Image!;
+        var image = ((ImagePart)part).Image;
         var (x, y, w, h) = Edges(image);
         return new StageRect(x, y, w, h, image.Geometry.FitsTravel, Units.UmToMm(image.Geometry.PitchUm));
     }

@@ -1,5 +1,4 @@
 using LaserEngrave.Core.Planning;
-using LaserEngrave.Core.Vectors;
 
 namespace LaserEngrave.Core.Vectors;
 
@@ -45,6 +44,8 @@ public sealed class DrawingProgram : PartProgram
 
     /// <summary>The timing model every step follows.</summary>
     public TimedSwitching Timing { get; }
+
+    public override TimedSwitching? SwitchTiming => Timing;
 
     /// <summary>Set Acceleration data of both axes, set before the first stroke.</summary>
     public int AccelerationData => Motion.AccelerationData;

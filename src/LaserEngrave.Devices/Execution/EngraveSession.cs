@@ -19,7 +19,7 @@ namespace LaserEngrave.Devices.Execution;
 public sealed class EngraveSession
 {
     private readonly Lock _lock = new();
-    private readonly IReadOnlyList<PreparedLayer> _parts;
+    private readonly IReadOnlyList<JobPart> _parts;
     private readonly bool _layered;
     private long _moves;
     private int _layer = 1;
@@ -69,8 +69,8 @@ public sealed class EngraveSession
         var parts = job.Parts;
         var layered = job is LayersJob;
         Engraving = job;
-        Job = parts[0].Image;
-        Drawing = parts[0].Drawing;
+        Job = (parts[0] as ImagePart)?.Image;
+        Drawing = (parts[0] as DrawingPart)?.Drawing;
         Machine = machine;
         Spec = job.Spec;
         Options = options ?? EngraveSessionOptions.Default;
@@ -107,11 +107,11 @@ public sealed class EngraveSession
         Passes = Options.ResumeLayers is { } from ? parts.Skip(from.Layer).Sum(p => p.Layer.Passes) - from.PassesDone
             : Options.ResumeFrom is null ? parts.Sum(p => p.Layer.Passes)
             : 1;
-        _moves = Moves(parts[_firstLayer]);
+        _moves = parts[_firstLayer].Moves;
         _layer = _firstLayer + 1;
         var first = parts[_firstLayer];
         (_layerPass, _layerPasses) = ((Options.ResumeLayers?.PassesDone ?? 0) + 1, Options.ResumeFrom is null ? first.Layer.Passes : 1);
-        _progress = new EngraveProgress(RunState.Idle, 1, Passes, 0, _moves, false, RunExecutor.IdleProgress(PartJob(first)), LayerPass: _layerPass, LayerPasses: _layerPasses);
+        _progress = new EngraveProgress(RunState.Idle, 1, Passes, 0, _moves, false, RunExecutor.IdleProgress(first), LayerPass: _layerPass, LayerPasses: _layerPasses);
     }
 
     public EngraveMachine Machine { get; }
@@ -254,27 +254,22 @@ public sealed class EngraveSession
         }
     }
 
-    // The moves a pass reports: an image's plan's moves, a drawing's strokes (what MoveCompleted's index counts); the
-    // part's job does not hold this count, so the part's kind answers here.
-    private static long Moves(PreparedLayer part) => part.Image?.Statistics.Moves ?? part.Drawing!.Schedule.Strokes.Count;
-
-    /// <summary>
-    /// A part as the job one executor runs (a raster, dots or a drawing, by its image's process or its drawing): the one
-    /// place the session turns a part into its kind; from then on the job's type and its program answer.
-    /// </summary>
-    private static EngraveJob PartJob(PreparedLayer part) => part.Drawing is { } drawing ? drawing : part.Image!;
-
-    private RunRecord NewRecord(PreparedLayer part, DateTimeOffset started)
+    private RunRecord NewRecord(JobPart part, DateTimeOffset started)
     {
         var hash = Options.ImageSha256 ?? HashOrMissing(part.Spec.ImagePath);
-        // The log's record differs by kind (an image's pixels and mask, a drawing's paths): Core/Logging makes one of each.
-        var record = part.Drawing is { } drawing ? RunRecord.ForDrawing(drawing, hash, started) : RunRecord.ForJob(part.Image!, hash, started);
+        // The log names the kind (an image's pixels and mask, a drawing's paths): Core/Logging makes one of each.
+        var record = part switch
+        {
+            DrawingPart { Drawing: var drawing } => RunRecord.ForDrawing(drawing, hash, started),
+            ImagePart { Image: var image } => RunRecord.ForJob(image, hash, started),
+            _ => throw new ArgumentException($"no log record for a {part.GetType().Name}", nameof(part)),
+        };
 
         // A gate without a watchdog runs only once accepted: the log keeps what the person accepted.
         return !part.Spec.Profile.Gate.HasWatchdog && Options.AcceptNoWatchdog ? record with { NoWatchdogAccepted = LaserGateProfile.NoWatchdogSentence } : record;
     }
 
-    private static RunLayer LayerEntry(PreparedLayer part, double estimatedSeconds)
+    private static RunLayer LayerEntry(JobPart part, double estimatedSeconds)
     {
         var spec = part.Spec;
         var (width, height) = part.SizeMm;
@@ -312,7 +307,7 @@ public sealed class EngraveSession
             Passes = Passes,
         };
         // Each layer's estimate as the job runs it: the first homes, every later one starts where the one before ended.
-        var layers = _layered ? _parts.Zip(PreparedLayer.RunSeconds(_parts), LayerEntry).ToList() : null;
+        var layers = _layered ? _parts.Zip(JobPart.RunSeconds(_parts), LayerEntry).ToList() : null;
         if (layers is not null)
         {
             record = record with { EstimatedSeconds = layers.Sum(l => l.EstimatedSeconds), EstimatedEngravingSeconds = layers.Sum(l => l.EstimatedEngravingSeconds) };
@@ -343,7 +338,7 @@ public sealed class EngraveSession
                 var passes = Options.ResumeFrom is null ? part.Layer.Passes : 1;
                 lock (_lock)
                 {
-                    _moves = Moves(part);
+                    _moves = part.Moves;
                     _layer = index + 1;
                     (_layerPass, _layerPasses) = (layerPasses + 1, passes);
                 }
@@ -481,7 +476,7 @@ public sealed class EngraveSession
     /// resumed run's own checks; at most <see cref="MaxRecoveries"/> times at one place, never after an abort. Anything
     /// else ends the run.
     /// </summary>
-    private async Task<RunResult> RecoverAsync(PreparedLayer part, int pass, RunResult result, CancellationToken cancellationToken)
+    private async Task<RunResult> RecoverAsync(JobPart part, int pass, RunResult result, CancellationToken cancellationToken)
     {
         var atOnePlace = 0;
         var inThisPass = 0;
@@ -572,14 +567,19 @@ public sealed class EngraveSession
 
     // A continued run is checked against what it had still to burn, not what the run it continues burned. The twin
     // checks an image against its mask and a drawing against its paths: two inspections (IRunInspector), one per kind.
-    private static RunSimulation Inspect(IRunInspector inspector, PreparedLayer part, RunStopPoint? resumedFrom) =>
-        part.Drawing is { } drawing ? inspector.InspectDrawing(drawing) : inspector.Inspect(part.Image!, resumedFrom);
+    private static RunSimulation Inspect(IRunInspector inspector, JobPart part, RunStopPoint? resumedFrom) =>
+        part switch
+        {
+            DrawingPart { Drawing: var drawing } => inspector.InspectDrawing(drawing),
+            ImagePart { Image: var image } => inspector.Inspect(image, resumedFrom),
+            _ => throw new ArgumentException($"no inspection of a {part.GetType().Name}", nameof(part)),
+        };
 
-    private async Task<RunResult> RunPassAsync(PreparedLayer part, int pass, bool firstOfSession, CancellationToken cancellationToken, RunStopPoint? resumeFrom = null)
+    private async Task<RunResult> RunPassAsync(JobPart part, int pass, bool firstOfSession, CancellationToken cancellationToken, RunStopPoint? resumeFrom = null)
     {
         // What an earlier run of this session found of the latencies' spread holds for the rest of it (RunResult.LatencyScale).
         var options = new RunOptions { Home = Options.Home && firstOfSession, ResumeFrom = resumeFrom ?? (firstOfSession ? _resumeFrom : null), LatencyScale = _latencyScale, AcceptNoWatchdog = Options.AcceptNoWatchdog };
-        var executor = new RunExecutor(Machine.Stage, Machine.Gate, PartJob(part), Machine.TimeProvider, options, _control);
+        var executor = new RunExecutor(Machine.Stage, Machine.Gate, part, Machine.TimeProvider, options, _control);
         var movesDone = options.ResumeFrom?.MoveIndex ?? 0;
         executor.MoveCompleted += (_, e) => Interlocked.Exchange(ref movesDone, e.MoveIndex + 1);
         executor.ProgressChanged += (_, p) => Report(new PassProgress(pass, Interlocked.Read(ref movesDone), p));

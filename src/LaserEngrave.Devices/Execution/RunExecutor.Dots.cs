@@ -44,7 +44,7 @@ public sealed partial class RunExecutor
             index++;
         }
 
-        _accounting.Ended(index, Job!.Plan.Mask.Height);
+        _accounting.Ended(index, program.Plan.Mask.Height);
     }
 
     /// <summary>The step's burst at the stage's standing position; returns once the laser is surely off again.</summary>
@@ -91,7 +91,7 @@ public sealed partial class RunExecutor
 
     private long SkipDotsDone(DotProgram program)
     {
-        var estimate = Job!.Dots!.Estimate;
+        var estimate = program.Plan.Estimate;
         _accounting.EstimateTotal = estimate.TotalSeconds;
         if (Options.ResumeFrom is not { } resume)
         {

@@ -72,13 +72,13 @@ public sealed partial class RunExecutor
     /// <exception cref="PreflightException">The resume point is not in this job's plan.</exception>
     private Func<CancellationToken, Task> Prepare(RasterProgram planned)
     {
-        var program = planned.Timing == _timing ? planned : Job!.Program(_timing);
+        var program = planned.Timing == _timing ? planned : planned.Retimed(_timing);
         _accounting.Estimator = program.Timing is null ? new PlanEstimator(planned) : null;
         IEnumerable<RasterStep> steps;
         long firstIndex = 0;
         if (Options.ResumeFrom is not { } stop)
         {
-            _accounting.EstimateTotal = Job!.Statistics.EngravingSeconds;
+            _accounting.EstimateTotal = Part.EngravingSeconds;
             steps = program.Steps();
         }
         else
@@ -158,9 +158,9 @@ public sealed partial class RunExecutor
     /// before the stop) may get part of their dose twice, and the cut pixel names the last of them; the run's last pixel
     /// when X could not say where it stopped. Caller holds the lock.
     /// </summary>
-    private RunStopPoint StepCut(RunStopPoint stop)
+    private RunStopPoint StepCut(RunStopPoint stop, RasterPlan plan)
     {
-        if (_litMove is not { } lit || lit.Index != stop.MoveIndex || Job is not { } job || lit.Move.X0 == lit.Move.X1)
+        if (_litMove is not { } lit || lit.Index != stop.MoveIndex || lit.Move.X0 == lit.Move.X1)
         {
             return stop;
         }
@@ -170,7 +170,7 @@ public sealed partial class RunExecutor
 
         // Inside the run: a stop short of its first edge is its first pixel, one past its last edge its last pixel.
         var inside = Math.Clamp(x, Math.Min(move.X0, move.X1) + 1, Math.Max(move.X0, move.X1) - 1);
-        return stop with { CutPixel = new PixelIndex(job.Plan.ColumnAt(move, inside), move.Row) };
+        return stop with { CutPixel = new PixelIndex(plan.ColumnAt(move, inside), move.Row) };
     }
 
     /// <summary>A travel to (<paramref name="x"/>, <paramref name="y"/>); an axis already there is left alone unless <paramref name="unsure"/> says its position is the model's, not a reply's.</summary>

@@ -513,7 +513,7 @@ public sealed partial class RunExecutor
                 position = again.Result;
                 moved = (position - start) * direction;
                 least = 1;
-                most = Math.Abs(Job!.Plan.Geometry.TravelXMicrosteps);
+                most = Math.Abs(_profile.X.TravelMicrosteps);
             }
         }
 
@@ -885,10 +885,12 @@ public sealed partial class RunExecutor
     }
 
     /// <summary>The stop point's cut pixel when a timed raster run was cut in the middle of a burn run (<see cref="StrokeCut.Cut"/>). Caller holds the lock.</summary>
-    private RunStopPoint CutWithin(RunStopPoint stop) =>
-        _program is RasterProgram { Timing: { } timing }
-            ? _cut.Cut(stop, timing, Job!.Plan, _laser.OffConfirmed, _profile.Gate.WatchdogMs, _stoppedAtKnownPosition ? _x : null, SwitchOnRefused)
-            : _program is RasterProgram ? StepCut(stop) : stop;
+    private RunStopPoint CutWithin(RunStopPoint stop) => _program switch
+    {
+        RasterProgram { Timing: { } timing, Plan: var plan } => _cut.Cut(stop, timing, plan, _laser.OffConfirmed, _profile.Gate.WatchdogMs, _stoppedAtKnownPosition ? _x : null, SwitchOnRefused),
+        RasterProgram { Plan: var plan } => StepCut(stop, plan),
+        _ => stop,
+    };
 
     // A flown gap's speed-up has been sent: from here the stroke's plan holds that gap.
     private void NoteGapFlown()

@@ -23,7 +23,6 @@ public sealed partial class RunExecutor
     /// <summary>A drawing's motion from the first stroke to run (a resumed run's stop point), with the estimates of what was done before.</summary>
     private Func<CancellationToken, Task> PrepareStrokes(DrawingProgram program)
     {
-        var schedule = Drawing!.Schedule;
         var first = 0;
         if (Options.ResumeFrom is { } resume)
         {
@@ -36,8 +35,8 @@ public sealed partial class RunExecutor
             _accounting.DoneBefore(first, program.Steps().Take(first).Count(s => s.LastOfPath));
         }
 
-        _accounting.EstimateTotal = schedule.EstimatedSeconds;
-        _accounting.EstimateBefore = schedule.EstimatedSeconds - program.SecondsFrom(first);
+        _accounting.EstimateTotal = Part.EngravingSeconds;
+        _accounting.EstimateBefore = Part.EngravingSeconds - program.SecondsFrom(first);
 
         // Preflight, homing if it homes, and the travel to the first stroke's run-up, as for images (TimedSwitching.PreparationSeconds).
         _accounting.EstimatePreparation = program.Steps(first).Take(1).ToList() is [var step]

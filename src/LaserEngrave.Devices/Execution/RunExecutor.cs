@@ -80,66 +80,53 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
     /// <summary>An executor for one image (raster or dots) or one drawing: it runs that job's plan once.</summary>
     /// <remarks>Layers and passes are the session's (<see cref="EngraveSession"/>, one executor a pass of a layer); a sweep's cells are each a job.</remarks>
     public RunExecutor(IStage stage, ILaserGate gate, EngraveJob job, TimeProvider? timeProvider = null, RunOptions? options = null)
-        : this(stage, gate, job, timeProvider, options, new RunControl())
+        : this(stage, gate, PartOf(job), timeProvider, options, new RunControl())
     {
     }
 
-    /// <summary>An executor for one pass of a session, acting on the session's <paramref name="control"/> (its pause and abort requests).</summary>
-    internal RunExecutor(IStage stage, ILaserGate gate, EngraveJob job, TimeProvider? timeProvider, RunOptions? options, RunControl control)
+    /// <summary>An executor for one pass of a session's part, acting on the session's <paramref name="control"/> (its pause and abort requests).</summary>
+    internal RunExecutor(IStage stage, ILaserGate gate, JobPart part, TimeProvider? timeProvider, RunOptions? options, RunControl control)
     {
         ArgumentNullException.ThrowIfNull(stage);
         ArgumentNullException.ThrowIfNull(gate);
-        ArgumentNullException.ThrowIfNull(job);
+        ArgumentNullException.ThrowIfNull(part);
         ArgumentNullException.ThrowIfNull(control);
         _control = control;
         Stage = stage;
         Gate = gate;
         TimeProvider = timeProvider ?? TimeProvider.System;
         Options = options ?? RunOptions.Default;
+        Part = part;
 
-        // The one place the executor tells the kinds apart: the program it runs; from here on the program's type answers.
-        (Job, Drawing, _program) = job switch
-        {
-            RasterJob raster => (raster.Prepared, (PreparedDrawing?)null, (PartProgram)raster.Prepared.Program()),
-            DotJob dots => (dots.Prepared, null, dots.Program()),
-            DrawingJob drawing => (null, drawing.Drawing, drawing.Program()),
-            LayersJob or SweepJob => throw new ArgumentException("an executor runs one image or drawing: a job of layers runs through EngraveSession, a sweep through SweepSession", nameof(job)),
-            _ => throw new ArgumentException($"unknown job kind {job.GetType().Name}", nameof(job)),
-        };
+        // The part's program, built once for the part: from here on the program's type answers.
+        _program = part.Program();
 
         // The timing model the run starts from: a timed raster's or the drawing's (dots and step by step keep none).
-        _timing = _program switch
-        {
-            RasterProgram raster => raster.Timing,
-            DrawingProgram drawing => drawing.Timing,
-            _ => null,
-        };
-        _progress = IdleProgress(job);
+        _timing = _program.SwitchTiming;
+        _progress = IdleProgress(part);
         _accounting = new RunAccounting(_progress.RowsTotal, _progress.RunsTotal);
-        var spec = job.Spec;
+        var spec = part.Spec;
         _process = spec.Process;
         _profile = spec.Profile;
         _laser = new LaserSafety(Gate, TimeProvider, _process.LaserFrequencyWholeHz, _profile.Gate.WatchdogMs, Options.StallMarginMs, this) { GateNeverReplies = _profile.Gate.NeverReplies };
         _replies = new ReplyWatch(TimeProvider, Options.StallMarginMs, this) { Arriving = gate => gate ? Gate.IsReceiving : Stage.IsReceiving, Written = gate => gate ? Gate.LineWritten : Stage.LineWritten };
     }
 
-    /// <summary>What a run of a single image or drawing shows before it starts: its rows (strokes) and burn runs (paths) to do, and its estimate.</summary>
+    /// <summary>What a run of one part shows before it starts: its rows (strokes) and burn runs (paths) to do, and its estimate.</summary>
     /// <remarks>
-    /// The totals are the job's <see cref="EngraveJob.Planned"/>, the count its log keeps and Continue checks: a drawing's
+    /// The totals are the part's <see cref="JobPart.Planned"/>, the count its log keeps and Continue checks: a drawing's
     /// paths too short to burn are not paths to do, so a completed run ends with every run counted done.
     /// </remarks>
-    internal static RunProgress IdleProgress(EngraveJob job)
+    internal static RunProgress IdleProgress(JobPart part)
     {
-        var seconds = job switch
-        {
-            RasterJob { Prepared.Statistics: var s } => s.EngravingSeconds,
-            DotJob { Prepared.Statistics: var s } => s.EngravingSeconds,
-            DrawingJob { Drawing: var d } => d.Schedule.EstimatedSeconds,
-            _ => throw new ArgumentException($"an executor runs one image or drawing, not a {job.GetType().Name}", nameof(job)),
-        };
-        var (units, runs) = job.Planned;
-        return new RunProgress(RunState.Idle, 0, units, 0, runs, 0, TimeSpan.Zero, TimeSpan.FromSeconds(seconds), 0, 0, false);
+        var (units, runs) = part.Planned;
+        return new RunProgress(RunState.Idle, 0, units, 0, runs, 0, TimeSpan.Zero, TimeSpan.FromSeconds(part.EngravingSeconds), 0, 0, false);
     }
+
+    // The one part of a single image or drawing; a job of layers or a sweep is the session's to run part by part.
+    private static JobPart PartOf(EngraveJob job) =>
+        (job ?? throw new ArgumentNullException(nameof(job))).SinglePart
+        ?? throw new ArgumentException("an executor runs one image or drawing: a job of layers runs through EngraveSession, a sweep through SweepSession", nameof(job));
 
     /// <summary>Raised on every state change.</summary>
     public event EventHandler<RunStateChangedEventArgs>? StateChanged;
@@ -154,11 +141,8 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
 
     public ILaserGate Gate { get; }
 
-    /// <summary>The image job this executor runs; null for a drawing.</summary>
-    public PreparedJob? Job { get; }
-
-    /// <summary>The drawing this executor runs; null for an image job.</summary>
-    public PreparedDrawing? Drawing { get; }
+    /// <summary>The part this executor runs: a raster, dots or a drawing.</summary>
+    public JobPart Part { get; }
 
     public TimeProvider TimeProvider { get; }
 
@@ -315,7 +299,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
     /// <summary>Preflight, once (<see cref="RunPreflight"/>): the run starts from what it found.</summary>
     private async Task<MachineIdentity> PreflightAsync(CancellationToken token)
     {
-        var preflight = new RunPreflight(Stage, Gate, _program, Job, Drawing, _process, _profile, _timing, _program.Motion.TravelSpeedData, _program.Motion.AccelerationData, Options);
+        var preflight = new RunPreflight(Stage, Gate, Part, _program, _process, _profile, _timing, _program.Motion.TravelSpeedData, _program.Motion.AccelerationData, Options);
         var found = await preflight.RunAsync(token);
         _resumeX = found.ResumeX;
         _homed = found.Homed;

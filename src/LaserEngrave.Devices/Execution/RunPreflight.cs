@@ -23,8 +23,7 @@ internal sealed class RunPreflight
     private readonly IStage _stage;
     private readonly ILaserGate _gate;
     private readonly PartProgram _program;
-    private readonly PreparedJob? _job;
-    private readonly PreparedDrawing? _drawing;
+    private readonly JobPart _part;
     private readonly ProcessSettings _process;
     private readonly MachineProfile _profile;
     private readonly TimedSwitching? _timing;
@@ -32,25 +31,19 @@ internal sealed class RunPreflight
     private readonly int _accelerationData;
     private readonly RunOptions _options;
 
+    /// <param name="part">The part to run: what it refuses (outside the travel, nothing to burn, pixels too short) and how far it reaches.</param>
     /// <param name="program">The part's program as planned: its kind decides what the firmware must vouch for.</param>
-    /// <param name="job">The image job (raster or dots), or null for a drawing.</param>
-    /// <param name="drawing">The drawing, or null for an image job.</param>
     /// <param name="timing">The plan's timing model (the drawing's schedule's for a drawing; null for a plan without one).</param>
     /// <param name="travelSpeedData">Set Target Speed data of the travel speed, the axes' Home Speed.</param>
     /// <param name="accelerationData">Set Acceleration data, for homing.</param>
-    public RunPreflight(IStage stage, ILaserGate gate, PartProgram program, PreparedJob? job, PreparedDrawing? drawing, ProcessSettings process, MachineProfile profile,
+    public RunPreflight(IStage stage, ILaserGate gate, JobPart part, PartProgram program, ProcessSettings process, MachineProfile profile,
         TimedSwitching? timing, int travelSpeedData, int accelerationData, RunOptions options)
     {
-        if ((job is null) == (drawing is null))
-        {
-            throw new ArgumentException("preflight checks one image job or one drawing");
-        }
-
+        ArgumentNullException.ThrowIfNull(part);
         _stage = stage;
         _gate = gate;
         _program = program;
-        _job = job;
-        _drawing = drawing;
+        _part = part;
         _process = process;
         _profile = profile;
         _timing = timing;
@@ -262,14 +255,9 @@ internal sealed class RunPreflight
     /// <summary>Refuses a job that leaves the travel or asks for speeds the stage cannot run.</summary>
     private void CheckJob()
     {
-        if (_program is DrawingProgram program)
+        if (_part.PlanProblem is { } problem)
         {
-            CheckDrawing(_drawing!, program);
-        }
-        else if (!_job!.Geometry.FitsTravel)
-        {
-            var outside = _job.Geometry.Warnings.FirstOrDefault(w => w.Kind == JobWarningKind.OutsideTravel);
-            throw new PreflightException(outside?.Message ?? "the job does not fit the stage travel");
+            throw new PreflightException(problem);
         }
 
         var strategy = _program.Strategy;
@@ -285,7 +273,7 @@ internal sealed class RunPreflight
         }
 
         // After the speeds: a pixel too short for the gate names a burn speed that would work, which must be one the stage runs.
-        if (_job?.EngraveProblem is { } tooShort)
+        if (_part.EngraveProblem is { } tooShort)
         {
             throw new PreflightException(tooShort);
         }
@@ -306,57 +294,13 @@ internal sealed class RunPreflight
     /// <summary>Refuses a job that reaches past an axis' Maximum Position (the device's own limit may be below the profile's travel).</summary>
     private void CheckReach(AxisIdentity x, AxisIdentity y)
     {
-        if (_program is DrawingProgram program)
-        {
-            CheckDrawingReach(program, x, y);
-            return;
-        }
-
-        var plan = _job!.Plan;
-        var geometry = plan.Geometry;
-        var right = Math.Min(geometry.EdgeX(geometry.WidthPx) + plan.OverscanMicrosteps, geometry.TravelXMicrosteps);
-        var bottom = geometry.EdgeY(geometry.HeightPx);
+        var (right, bottom, microstepUm) = _part.Reach;
         foreach (var (name, reach, identity) in new[] { ("X", right, x), ("Y", bottom, y) })
         {
             if (identity.MaximumPosition > 0 && reach > identity.MaximumPosition)
             {
                 throw new PreflightException(
-                    $"the job reaches {name} = {N(StageUnits.MicrostepsToMm(reach, geometry.MicrostepUm))} mm but the {name} axis stops at {N(StageUnits.MicrostepsToMm(identity.MaximumPosition, geometry.MicrostepUm))} mm (its Maximum Position)");
-            }
-        }
-    }
-
-    /// <summary>Refuses a drawing that leaves the travel or has nothing to burn.</summary>
-    private static void CheckDrawing(PreparedDrawing drawing, DrawingProgram program)
-    {
-        if (!drawing.FitsTravel)
-        {
-            throw new PreflightException(drawing.Warnings.LastOrDefault(w => w.Contains("travel", StringComparison.Ordinal)) ?? "the drawing does not fit the stage travel");
-        }
-
-        if (program.StrokeCount == 0)
-        {
-            throw new PreflightException($"{drawing.Spec.ImagePath}: no path is long enough to burn");
-        }
-    }
-
-    /// <summary>Refuses a drawing whose strokes (run-ups, paths and where the axes rest after them) reach past an axis' Maximum Position.</summary>
-    private static void CheckDrawingReach(DrawingProgram program, AxisIdentity x, AxisIdentity y)
-    {
-        long right = long.MinValue, bottom = long.MinValue;
-        foreach (var step in program.Steps())
-        {
-            var s = step.Stroke;
-            right = Math.Max(right, Math.Max(Math.Max(s.RunUpStart.X, s.RestEnd.X), s.Path.Points.Max(p => p.X)));
-            bottom = Math.Max(bottom, Math.Max(Math.Max(s.RunUpStart.Y, s.RestEnd.Y), s.Path.Points.Max(p => p.Y)));
-        }
-
-        foreach (var (name, reach, identity) in new[] { ("X", right, x), ("Y", bottom, y) })
-        {
-            if (identity.MaximumPosition > 0 && reach > identity.MaximumPosition)
-            {
-                throw new PreflightException(
-                    $"the job reaches {name} = {N(StageUnits.MicrostepsToMm(reach, program.MicrostepUm))} mm but the {name} axis stops at {N(StageUnits.MicrostepsToMm(identity.MaximumPosition, program.MicrostepUm))} mm (its Maximum Position)");
+                    $"the job reaches {name} = {N(StageUnits.MicrostepsToMm(reach, microstepUm))} mm but the {name} axis stops at {N(StageUnits.MicrostepsToMm(identity.MaximumPosition, microstepUm))} mm (its Maximum Position)");
             }
         }
     }

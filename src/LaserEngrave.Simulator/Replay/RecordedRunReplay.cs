@@ -122,7 +122,7 @@ public static class RecordedRunReplay
     /// a layer the recording does not start (it never ran, or an earlier run completed it).
     /// </summary>
     /// <exception cref="RunLogException">The recording notes no layer's start (made before layers were noted).</exception>
-    public static async Task<IReadOnlyList<RunSimulation?>> ReplayLayersAsync(IReadOnlyList<PreparedLayer> parts, MachineProfile profile, IReadOnlyList<WireEvent> events, ReplaySetup setup, CancellationToken cancellationToken)
+    public static async Task<IReadOnlyList<RunSimulation?>> ReplayLayersAsync(IReadOnlyList<JobPart> parts, MachineProfile profile, IReadOnlyList<WireEvent> events, ReplaySetup setup, CancellationToken cancellationToken)
     {
         ArgumentNullException.ThrowIfNull(parts);
         ArgumentNullException.ThrowIfNull(events);
@@ -164,8 +164,13 @@ public static class RecordedRunReplay
     }
 
     // The twin checks an image's burn pixel by pixel and a drawing's along its paths: the one place the kinds part here.
-    private static RunSimulation Inspect(BurnInspector inspector, PreparedLayer part) =>
-        part.Image is { } image ? inspector.Inspect(image) : inspector.InspectDrawing(part.Drawing!);
+    private static RunSimulation Inspect(BurnInspector inspector, JobPart part) =>
+        part switch
+        {
+            DrawingPart { Drawing: var drawing } => inspector.InspectDrawing(drawing),
+            ImagePart { Image: var image } => inspector.Inspect(image),
+            _ => throw new ArgumentException($"no inspection of a {part.GetType().Name}", nameof(part)),
+        };
 }
 
 /// <summary>How a recording is replayed: the twin's options, and each event's delay from the recording (null: the twin's adapters draw their own).</summary>

@@ -72,11 +72,11 @@ public sealed class LayersViewModelTests : IDisposable
         Assert.Equal((LayerMode.Both, "mark", 100.0, 0.5), (mark.Mode, mark.DrawingLayer, mark.FillPitchUm!.Value, mark.SpeedMmPerS!.Value));
         Assert.Equal((LayerMode.Raster, 3.0, 2), (_layers.Layers[1].Mode, _layers.Layers[1].WidthMm!.Value, _layers.Layers[1].Passes));
         Assert.Equal(new Core.Imaging.MaskOptions { ThresholdPercent = 30, Invert = true }, _layers.Layers[1].Mask);
-        Assert.True(_layers.Job!.Layers[1].Image!.Mask.ContentEquals(_job.Mask!));
+        Assert.True(((ImagePart)_layers.Job!.Layers[1]).Image.Mask.ContentEquals(_job.Mask!));
         Assert.Equal(Core.Imaging.MaskOptions.Default, mark.Mask);
         var same = LayeredJob.Prepare(_layers.Layers, MachineProfile.Default);
         Assert.Equal(same.EstimatedSeconds, _layers.EstimatedSeconds!.Value, 9);
-        Assert.NotEmpty(_layers.Job!.Layers[0].Drawing!.Plan.FillRows);
+        Assert.NotEmpty(((DrawingPart)_layers.Job!.Layers[0]).Drawing.Plan.FillRows);
         Assert.Null(_layers.Error);
         Assert.True(_layers.IsActive);
     }
@@ -269,7 +269,7 @@ public sealed class LayersViewModelTests : IDisposable
         Assert.Equal("qr-code r2c3", _layers.Layers[5].Name);
         Assert.Null(_layers.Error);
         var job = _layers.Job!;
-        Assert.All(job.Layers, l => Assert.True(l.Image!.Mask.ContentEquals(_job.Mask!)));
+        Assert.All(job.Layers, l => Assert.True(((ImagePart)l).Image.Mask.ContentEquals(_job.Mask!)));
         Assert.All(job.Layers, l => Assert.Equal(4, l.SizeMm.WidthMm, 3));
     }
 

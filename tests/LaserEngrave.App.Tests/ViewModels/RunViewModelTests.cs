@@ -221,7 +221,7 @@ public sealed class RunViewModelTests
 
         var session = Assert.Single(sessions);
         Assert.Equal(4, session.Passes);
-        Assert.Same(layers.Job!.Layers[0].Drawing, session.Drawing);
+        Assert.Same(((DrawingPart)layers.Job!.Layers[0]).Drawing, session.Drawing);
         Assert.Equal("layer 2 of 3 “logo”", layerText);
         Assert.Equal(RunState.Completed, run.State);
         Assert.Equal(Path.GetFullPath(TestFiles.Asset(Path.Combine("jobs", "plate.json"))), session.Options.JobFile);

@@ -137,7 +137,7 @@ public sealed class EngraveJobTests
 
         Assert.Equal(image.Geometry.PitchUm, EngraveJob.Of(image).SmallestPixelUm);
         Assert.Null(EngraveJob.Of(Drawing()).SmallestPixelUm);
-        Assert.Equal(layers.Parts.Where(p => p.Image is not null).Min(p => p.Image!.Geometry.PitchUm), layers.SmallestPixelUm);
+        Assert.Equal(layers.Parts.OfType<ImagePart>().Min(p => p.Image.Geometry.PitchUm), layers.SmallestPixelUm);
     }
 
     [Fact]

@@ -52,9 +52,9 @@ public sealed class MarkLayoutTests : IDisposable
         var prepared = LayeredJob.Prepare(job, MachineProfile.Default);
 
         Assert.Equal(["Data Matrix \"S-041\"", "text \"S-041\"", "Data Matrix \"S-042\"", "text \"S-042\""], prepared.Layers.Select(l => l.Layer.Name));
-        Assert.True(prepared.Layers[0].Image!.Mask.ContentEquals(layout.Codes[0].Mask), "the BMP reads back as the drawn code");
-        Assert.Equal("S-041", CodeDecoder.Decode(prepared.Layers[0].Image!.Mask, CodeKind.DataMatrix));
-        Assert.NotNull(prepared.Layers[1].Drawing);
+        Assert.True(((ImagePart)prepared.Layers[0]).Image.Mask.ContentEquals(layout.Codes[0].Mask), "the BMP reads back as the drawn code");
+        Assert.Equal("S-041", CodeDecoder.Decode(((ImagePart)prepared.Layers[0]).Image.Mask, CodeKind.DataMatrix));
+        Assert.IsType<DrawingPart>(prepared.Layers[1]);
         Assert.True(prepared.FitsTravel);
     }
 

@@ -150,7 +150,7 @@ public sealed class StagePictureProgramTests
         foreach (var part in job.Parts)
         {
             int[]? ends = null;
-            var (bytes, count, moves) = part.Drawing is { } drawing ? DrawingMoves(drawing, out ends) : PlanMoves(part.Image!);
+            var (bytes, count, moves) = part is DrawingPart { Drawing: var drawing } ? DrawingMoves(drawing, out ends) : PlanMoves(((ImagePart)part).Image);
             var kept = Math.Max(0, Math.Min(count, Cap - drawn));
             all.Write(bytes, 0, kept * 5 * sizeof(float));
             parts.Add(new StagePart(drawn, kept, ends));

@@ -67,7 +67,7 @@ public sealed class LayeredJobTests : IDisposable
 
         var job = LayeredJob.Prepare([plain, inverted], MachineProfile.Default);
 
-        Assert.Equal(41 * 41, job.Layers[0].Image!.Mask.CountSet() + job.Layers[1].Image!.Mask.CountSet());
+        Assert.Equal(41 * 41, ((ImagePart)job.Layers[0]).Image.Mask.CountSet() + ((ImagePart)job.Layers[1]).Image.Mask.CountSet());
         var drawing = new JobLayer { Name = "d", Source = TestDrawings.File("hexagons.dxf"), Mode = LayerMode.Outline, Mask = new Core.Imaging.MaskOptions { Invert = true } };
         Assert.Equal("layer \"d\": thresholdPercent, dither and invert are for images", Assert.Throws<PlanException>(() => LayeredJob.Prepare([drawing], MachineProfile.Default)).Message);
     }
@@ -91,17 +91,17 @@ public sealed class LayeredJobTests : IDisposable
     {
         var job = LayeredJob.Prepare(JobFile.Load(Plate), MachineProfile.Default);
 
-        Assert.Equal(0.5, job.Layers[0].Drawing!.Spec.Process.BurnSpeedMmPerS);
-        Assert.Equal(1, job.Layers[2].Drawing!.Spec.Process.BurnSpeedMmPerS);
-        Assert.NotNull(job.Layers[1].Image);
+        Assert.Equal(0.5, ((DrawingPart)job.Layers[0]).Drawing.Spec.Process.BurnSpeedMmPerS);
+        Assert.Equal(1, ((DrawingPart)job.Layers[2]).Drawing.Spec.Process.BurnSpeedMmPerS);
+        Assert.IsAssignableFrom<ImagePart>(job.Layers[1]);
         // One homing: the first layer's whole run, then each later one from where the one before ended (less than alone).
-        Assert.Equal(PreparedLayer.RunSeconds(job.Layers).Sum(), job.EstimatedSeconds, 9);
+        Assert.Equal(JobPart.RunSeconds(job.Layers).Sum(), job.EstimatedSeconds, 9);
         Assert.True(job.EstimatedSeconds < job.Layers.Sum(l => l.EstimatedSeconds));
         Assert.Equal(job.Layers.Sum(l => l.EngravingSeconds * l.Layer.Passes), job.EstimatedEngravingSeconds, 9);
 
         // The cut's two passes: twice the engraving, with the preflight before each.
         var cut = job.Layers[2];
-        Assert.Equal(cut.Drawing!.WholeRunSeconds(2), cut.EstimatedSeconds, 9);
+        Assert.Equal(((DrawingPart)cut).Drawing.WholeRunSeconds(2), cut.EstimatedSeconds, 9);
         Assert.True(cut.EstimatedSeconds > 2 * cut.EngravingSeconds);
     }
 

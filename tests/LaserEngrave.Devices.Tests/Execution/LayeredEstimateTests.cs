@@ -19,7 +19,7 @@ public sealed class LayeredEstimateTests
     public void EstimatedSeconds_LaterLayers_NoHomingEach()
     {
         var job = Job();
-        var perLayer = PreparedLayer.RunSeconds(job.Layers);
+        var perLayer = JobPart.RunSeconds(job.Layers);
 
         Assert.Equal(job.Layers[0].EstimatedSeconds, perLayer[0]);
         Assert.All(Enumerable.Range(1, job.Layers.Count - 1), i => Assert.True(perLayer[i] < job.Layers[i].EstimatedSeconds, $"layer {i + 1}: {perLayer[i]} s, alone {job.Layers[i].EstimatedSeconds} s"));

@@ -100,7 +100,8 @@ public class RunPreflightTests
         var drawing = PreparedDrawing.Prepare(
             new JobSpec { ImagePath = TestJobs.AssetPath(Path.Combine("drawings", "hexagons.dxf")), Size = SizeSpec.Width(4), Origin = new OriginMm(5, 5) },
             VectorOptions.Default);
-        var preflight = new RunPreflight(stage, gate, drawing.Schedule.Program(), null, drawing, drawing.Spec.Process, drawing.Spec.Profile, drawing.Schedule.Timing, TravelSpeedData, AccelerationData, RunOptions.Default);
+        var part = EngraveJob.Of(drawing).Parts[0];
+        var preflight = new RunPreflight(stage, gate, part, part.Program(), drawing.Spec.Process, drawing.Spec.Profile, drawing.Schedule.Timing, TravelSpeedData, AccelerationData, RunOptions.Default);
 
         var ex = await Assert.ThrowsAsync<PreflightException>(() => preflight.RunAsync(TestContext.Current.CancellationToken));
 
@@ -112,7 +113,7 @@ public class RunPreflightTests
 
     /// <summary>The preflight of a raster job, with the program the engine runs (timed when its plan has a timing model).</summary>
     private static RunPreflight Preflight(IStage stage, ILaserGate gate, PreparedJob job, RunOptions options) =>
-        new(stage, gate, job.Program(), job, null, job.Spec.Process, job.Spec.Profile, job.Plan.Timing, TravelSpeedData, AccelerationData, options);
+        new(stage, gate, EngraveJob.Of(job).Parts[0], job.Program(), job.Spec.Process, job.Spec.Profile, job.Plan.Timing, TravelSpeedData, AccelerationData, options);
 
     private static (IStage Stage, ILaserGate Gate) Fakes(AxisIdentity x, AxisIdentity y)
     {
