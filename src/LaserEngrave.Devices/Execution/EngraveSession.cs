@@ -296,105 +296,20 @@ public sealed class EngraveSession
     {
         var time = Machine.TimeProvider;
         using var lineWarnings = new LineWarnings(Machine.Stage, time);
-        var record = NewRecord(_parts[0], Options.WallClock.GetLocalNow()) with
-        {
-            Simulated = Machine.Simulated,
-            Notes = Options.Notes,
-            SampleId = Options.SampleId,
-            RepeatOf = Options.RepeatOf,
-            Resumed = _resumeFrom is not null || Options.ResumeLayers is not null,
-            JobFile = Options.JobFile is { } jobFile ? new RunJobFile(Path.GetFullPath(jobFile), HashOrMissing(jobFile)) { Marks = MarksOf(jobFile) } : null,
-            Passes = Passes,
-        };
-        // Each layer's estimate as the job runs it: the first homes, every later one starts where the one before ended.
-        var layers = _layered ? _parts.Zip(JobPart.RunSeconds(_parts), LayerEntry).ToList() : null;
-        if (layers is not null)
-        {
-            record = record with { EstimatedSeconds = layers.Sum(l => l.EstimatedSeconds), EstimatedEngravingSeconds = layers.Sum(l => l.EstimatedEngravingSeconds) };
-        }
+        var (record, layers) = StartRecord();
 
         // On real ports the host's timing is the laser's: the run asks for a higher CPU priority, and the log says what it got.
         using var priority = Machine.Simulated ? null : RunPriority.Raise();
         record = record with { HostPriority = priority?.Description };
         var clockStart = time.GetTimestamp();
         Machine.Inspector?.Begin();
-        RunResult? run = null;
+        var tally = new PassTally();
         Exception? error = null;
-        var passesDone = 0;
-        var pass = 0;
         try
         {
             for (var index = 0; index < _parts.Count; index++)
             {
-                var part = _parts[index];
-                if (index < _firstLayer)
-                {
-                    // Completed by the run this one continues: logged as it was, not burned again.
-                    layers![index] = layers[index] with { PassesDone = part.Layer.Passes, Outcome = RunOutcome.Completed, CompletedBefore = true };
-                    continue;
-                }
-
-                var layerPasses = index == _firstLayer ? Options.ResumeLayers?.PassesDone ?? 0 : 0;
-                var passes = Options.ResumeFrom is null ? part.Layer.Passes : 1;
-                lock (_lock)
-                {
-                    _moves = part.Moves;
-                    _layer = index + 1;
-                    (_layerPass, _layerPasses) = (layerPasses + 1, passes);
-                }
-
-                if (_layered)
-                {
-                    // The flight recorder notes where each layer begins, so a replay checks each layer's burn alone.
-                    Options.Recorder?.MarkLayer(index);
-                }
-
-                if (index > _firstLayer)
-                {
-                    // Each layer's burn is checked on its own.
-                    Machine.Inspector?.Begin();
-                }
-
-                RunResult? layerRun = null;
-                try
-                {
-                    for (var p = layerPasses + 1; p <= passes; p++)
-                    {
-                        lock (_lock)
-                        {
-                            _layerPass = p;
-                        }
-
-                        var result = await RecoverAsync(part, ++pass, await RunPassAsync(part, pass, firstOfSession: pass == 1, cancellationToken), cancellationToken);
-
-                        // The log speaks for the whole job: times and laser-on add up over the passes, the counts are the last pass's.
-                        run = Add(run, result);
-                        layerRun = Add(layerRun, result);
-                        if (result.Outcome != RunOutcome.Completed)
-                        {
-                            break;
-                        }
-
-                        passesDone++;
-                        layerPasses++;
-                    }
-                }
-                finally
-                {
-                    if (layers is not null)
-                    {
-                        layers[index] = layers[index] with
-                        {
-                            PassesDone = layerPasses,
-                            Outcome = layerRun?.Outcome,
-                            EngravingSeconds = layerRun?.EngravingDuration.TotalSeconds ?? 0,
-                            LaserOnSeconds = layerRun?.LaserOnSeconds ?? 0,
-                            Simulation = Machine.Inspector is { } layerInspector && layerRun is not null ? Inspect(layerInspector, part, index == _firstLayer ? _resumeFrom : null) : null,
-                        };
-                    }
-                }
-
-                if (layerRun?.Outcome != RunOutcome.Completed)
+                if (!await RunLayerAsync(index, layers, tally, cancellationToken))
                 {
                     break;
                 }
@@ -406,17 +321,141 @@ public sealed class EngraveSession
             error = ex;
         }
 
+        record = FinishRecord(record, layers, tally, error, time.GetElapsedTime(clockStart), lineWarnings.Lines);
+        var (files, logError) = WriteLog(record);
+        lock (_lock)
+        {
+            _current = null;
+            _control.End(RunStateMachine.EndState(record.Outcome));
+        }
+
+        Report(null);
+        return new EngraveResult(record, tally.Run, error, files, logError);
+    }
+
+    /// <summary>What a session has run so far: the results added up over the passes, the passes done and the pass under way.</summary>
+    private sealed class PassTally
+    {
+        public RunResult? Run { get; set; }
+
+        public int PassesDone { get; set; }
+
+        public int Pass { get; set; }
+    }
+
+    /// <summary>The log's record before the run, and a job of layers' entries with each layer's estimate.</summary>
+    private (RunRecord Record, List<RunLayer>? Layers) StartRecord()
+    {
+        var record = NewRecord(_parts[0], Options.WallClock.GetLocalNow()) with
+        {
+            Simulated = Machine.Simulated,
+            Notes = Options.Notes,
+            SampleId = Options.SampleId,
+            RepeatOf = Options.RepeatOf,
+            Resumed = _resumeFrom is not null || Options.ResumeLayers is not null,
+            JobFile = Options.JobFile is { } jobFile ? new RunJobFile(Path.GetFullPath(jobFile), HashOrMissing(jobFile)) { Marks = MarksOf(jobFile) } : null,
+            Passes = Passes,
+        };
+
+        // Each layer's estimate as the job runs it: the first homes, every later one starts where the one before ended.
+        var layers = _layered ? _parts.Zip(JobPart.RunSeconds(_parts), LayerEntry).ToList() : null;
+        if (layers is not null)
+        {
+            record = record with { EstimatedSeconds = layers.Sum(l => l.EstimatedSeconds), EstimatedEngravingSeconds = layers.Sum(l => l.EstimatedEngravingSeconds) };
+        }
+
+        return (record, layers);
+    }
+
+    /// <summary>Runs the passes of the part at <paramref name="index"/>; returns whether the run goes on to the next.</summary>
+    private async Task<bool> RunLayerAsync(int index, List<RunLayer>? layers, PassTally tally, CancellationToken cancellationToken)
+    {
+        var part = _parts[index];
+        if (index < _firstLayer)
+        {
+            // Completed by the run this one continues: logged as it was, not burned again.
+            layers![index] = layers[index] with { PassesDone = part.Layer.Passes, Outcome = RunOutcome.Completed, CompletedBefore = true };
+            return true;
+        }
+
+        var layerPasses = index == _firstLayer ? Options.ResumeLayers?.PassesDone ?? 0 : 0;
+        var passes = Options.ResumeFrom is null ? part.Layer.Passes : 1;
+        lock (_lock)
+        {
+            _moves = part.Moves;
+            _layer = index + 1;
+            (_layerPass, _layerPasses) = (layerPasses + 1, passes);
+        }
+
+        if (_layered)
+        {
+            // The flight recorder notes where each layer begins, so a replay checks each layer's burn alone.
+            Options.Recorder?.MarkLayer(index);
+        }
+
+        if (index > _firstLayer)
+        {
+            // Each layer's burn is checked on its own.
+            Machine.Inspector?.Begin();
+        }
+
+        RunResult? layerRun = null;
+        try
+        {
+            for (var p = layerPasses + 1; p <= passes; p++)
+            {
+                lock (_lock)
+                {
+                    _layerPass = p;
+                }
+
+                var pass = ++tally.Pass;
+                var result = await RecoverAsync(part, pass, await RunPassAsync(part, pass, firstOfSession: pass == 1, cancellationToken), cancellationToken);
+
+                // The log speaks for the whole job: times and laser-on add up over the passes, the counts are the last pass's.
+                tally.Run = Add(tally.Run, result);
+                layerRun = Add(layerRun, result);
+                if (result.Outcome != RunOutcome.Completed)
+                {
+                    break;
+                }
+
+                tally.PassesDone++;
+                layerPasses++;
+            }
+        }
+        finally
+        {
+            if (layers is not null)
+            {
+                layers[index] = layers[index] with
+                {
+                    PassesDone = layerPasses,
+                    Outcome = layerRun?.Outcome,
+                    EngravingSeconds = layerRun?.EngravingDuration.TotalSeconds ?? 0,
+                    LaserOnSeconds = layerRun?.LaserOnSeconds ?? 0,
+                    Simulation = Machine.Inspector is { } layerInspector && layerRun is not null ? Inspect(layerInspector, part, index == _firstLayer ? _resumeFrom : null) : null,
+                };
+            }
+        }
+
+        return layerRun?.Outcome == RunOutcome.Completed;
+    }
+
+    /// <summary>The log's record after the run: its outcome, the twin's inspection, the layers, recoveries and recording.</summary>
+    private RunRecord FinishRecord(RunRecord record, List<RunLayer>? layers, PassTally tally, Exception? error, TimeSpan elapsed, IReadOnlyList<string>? lineWarnings)
+    {
         if (Machine.Inspector is { } inspector && !_layered)
         {
             record = record with { Simulation = Inspect(inspector, _parts[0], _resumeFrom) };
         }
 
-        record = RunRecords.Complete(record, run, error, Machine.StagePort, Machine.LaserPort, Options.WallClock.GetLocalNow(), time.GetElapsedTime(clockStart)) with
+        record = RunRecords.Complete(record, tally.Run, error, Machine.StagePort, Machine.LaserPort, Options.WallClock.GetLocalNow(), elapsed) with
         {
-            PassesDone = Passes > 1 ? passesDone : null,
+            PassesDone = Passes > 1 ? tally.PassesDone : null,
             Layers = layers,
             Recoveries = _recoveries.Count > 0 ? [.. _recoveries] : null,
-            LineWarnings = lineWarnings.Lines,
+            LineWarnings = lineWarnings,
         };
         if (record.Outcome == RunOutcome.Completed && BurnMismatch(record) is { } mismatch)
         {
@@ -435,40 +474,37 @@ public sealed class EngraveSession
             record = record with { Recording = recorder.Finish() };
         }
 
-        RunLogFiles? files = null;
-        Exception? logError = null;
-        if (Options.Log is { } log)
-        {
-            try
-            {
-                files = log.Write(record);
-            }
-            catch (Exception ex) when (ex is RunLogException or IOException or UnauthorizedAccessException)
-            {
-                logError = ex;
-            }
-        }
-
-        lock (_lock)
-        {
-            _current = null;
-            _control.End(RunStateMachine.EndState(record.Outcome));
-        }
-
-        Report(null);
-        return new EngraveResult(record, run, error, files, logError);
-
-        static RunResult Add(RunResult? sum, RunResult result) => sum is null ? result : result with
-        {
-            StartedAt = sum.StartedAt,
-            EngravingDuration = sum.EngravingDuration + result.EngravingDuration,
-            EstimatedSeconds = sum.EstimatedSeconds + result.EstimatedSeconds,
-            EstimatedEngravingSeconds = sum.EstimatedEngravingSeconds + result.EstimatedEngravingSeconds,
-            LaserOnSeconds = sum.LaserOnSeconds + result.LaserOnSeconds,
-            LateSwitches = LateSwitches.Add(sum.LateSwitches, result.LateSwitches),
-            GuardScale = Math.Max(sum.GuardScale, result.GuardScale),
-        };
+        return record;
     }
+
+    /// <summary>Writes the log when the session keeps one; a log that could not be written is returned, not thrown.</summary>
+    private (RunLogFiles? Files, Exception? Error) WriteLog(RunRecord record)
+    {
+        if (Options.Log is not { } log)
+        {
+            return (null, null);
+        }
+
+        try
+        {
+            return (log.Write(record), null);
+        }
+        catch (Exception ex) when (ex is RunLogException or IOException or UnauthorizedAccessException)
+        {
+            return (null, ex);
+        }
+    }
+
+    private static RunResult Add(RunResult? sum, RunResult result) => sum is null ? result : result with
+    {
+        StartedAt = sum.StartedAt,
+        EngravingDuration = sum.EngravingDuration + result.EngravingDuration,
+        EstimatedSeconds = sum.EstimatedSeconds + result.EstimatedSeconds,
+        EstimatedEngravingSeconds = sum.EstimatedEngravingSeconds + result.EstimatedEngravingSeconds,
+        LaserOnSeconds = sum.LaserOnSeconds + result.LaserOnSeconds,
+        LateSwitches = LateSwitches.Add(sum.LateSwitches, result.LateSwitches),
+        GuardScale = Math.Max(sum.GuardScale, result.GuardScale),
+    };
 
     /// <summary>
     /// A pass that failed on a timing doubt (<see cref="RunResult.Recoverable"/>: a position query too late with the

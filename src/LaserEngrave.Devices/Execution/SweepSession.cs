@@ -146,114 +146,23 @@ public sealed class SweepSession
         }
 
         jobs.AddRange(Plan.Cells.Select(c => ((SweepCell?)c, c.Job)));
-        var runs = new Dictionary<SweepCell, RunRecord>();
-        var reachedZ = new Dictionary<SweepCell, long>();
-        RunRecord? labels = null;
-        var outcome = RunOutcome.Completed;
-        string? fault = null;
-        FocusAxis? focus = null;
-        if (Plan.Cells.Any(c => c.FocusZMicrosteps is not null))
+        var tally = new SweepTally();
+        var focus = OpenFocus(tally);
+        if (tally.Fault is null && await SpeedsNotHeldAsync(cancellationToken) is { } tooFast)
         {
-            try
-            {
-                focus = new FocusAxis(Machine.Stage, Machine.Gate, Plan.Spec.Profile);
-            }
-            catch (PreflightException ex)
-            {
-                outcome = RunOutcome.Refused;
-                fault = ex.Message;
-            }
+            tally.End(RunOutcome.Refused, tooFast);
         }
 
-        if (fault is null && await SpeedsNotHeldAsync(cancellationToken) is { } tooFast)
+        for (var i = 0; tally.Fault is null && i < jobs.Count; i++)
         {
-            outcome = RunOutcome.Refused;
-            fault = tooFast;
-        }
-
-        for (var i = 0; fault is null && i < jobs.Count; i++)
-        {
-            var (cell, job) = jobs[i];
-            EngraveSession session;
-            lock (_lock)
+            if (!await RunJobAsync(i, jobs, focus, tally, progress, cancellationToken))
             {
-                if (_abortRequested)
-                {
-                    outcome = RunOutcome.Aborted;
-                    fault = "aborted by the operator";
-                    break;
-                }
-
-                session = new EngraveSession(Machine, job, new EngraveSessionOptions
-                {
-                    Notes = Options.Notes,
-                    SampleId = Options.SampleId,
-                    Home = Options.Home && i == 0,
-                    AcceptNoWatchdog = Options.AcceptNoWatchdog,
-                    ImageSha256 = SweepPlan.MaskSha256(job.Mask),
-                    WallClock = Options.WallClock,
-                });
-                _current = session;
-            }
-
-            // The labels burn at the visible focus, each cell at its own.
-            if (focus is not null && (cell is null ? Plan.Spec.Profile.Z!.MicrostepsAt(0) : cell.FocusZMicrosteps) is { } z)
-            {
-                try
-                {
-                    var reached = await MoveFocusAsync(focus, z, cancellationToken);
-                    if (cell is not null)
-                    {
-                        reachedZ[cell] = reached;
-                    }
-                }
-                catch (Exception ex) when (ex is DeviceException or OperationCanceledException)
-                {
-                    lock (_lock)
-                    {
-                        _current = null;
-                        outcome = ex is OperationCanceledException || _abortRequested ? RunOutcome.Aborted : RunOutcome.Failed;
-                    }
-
-                    fault = outcome == RunOutcome.Aborted
-                        ? $"aborted by the operator while moving the focus to {z} microsteps for {cell?.Describe() ?? "the labels"}"
-                        : $"{cell?.Describe() ?? "the labels"}: moving the focus to {z} microsteps: {ex.Message}";
-
-                    // A device that failed mid-move (a lost reply) may still be moving: laser off and Z stopped before the log.
-                    await focus.StopAsync();
-                    break;
-                }
-            }
-
-            var index = i;
-            var sink = progress is null ? null : new Relay(p => progress.Report(new SweepProgress(index, jobs.Count, cell, p)));
-            var result = await session.RunAsync(sink, cancellationToken);
-            lock (_lock)
-            {
-                _current = null;
-            }
-
-            if (cell is null)
-            {
-                labels = result.Record;
-            }
-            else
-            {
-                runs[cell] = result.Record;
-            }
-
-            JobEnded?.Invoke(this, new SweepJobEndedEventArgs(cell, result));
-            if (result.Record.Outcome != RunOutcome.Completed)
-            {
-                outcome = result.Record.Outcome;
-                var what = cell?.Describe() ?? "the labels";
-                fault = $"{what}: {result.Error?.Message ?? result.Record.Fault?.Message ?? outcome.ToString().ToLowerInvariant()}";
                 break;
             }
         }
 
         // Back to the visible focus once every cell is burned, so the next job is not burned out of focus.
-        if (focus is not null && outcome == RunOutcome.Completed)
+        if (focus is not null && tally.Outcome == RunOutcome.Completed)
         {
             try
             {
@@ -261,49 +170,11 @@ public sealed class SweepSession
             }
             catch (Exception ex) when (ex is DeviceException or OperationCanceledException)
             {
-                fault = $"every cell was burned, but the focus could not be moved back to z.focusMm: {ex.Message}";
+                tally.Fault = $"every cell was burned, but the focus could not be moved back to z.focusMm: {ex.Message}";
             }
         }
 
-        var spec = Plan.Spec;
-        var record = new SweepRecord
-        {
-            SoftwareVersion = RunRecord.CurrentSoftwareVersion,
-            StartedAt = startedAt,
-            EndedAt = Options.WallClock.GetLocalNow(),
-            Outcome = outcome,
-            Fault = fault,
-            Pattern = spec.Pattern.ToString().ToLowerInvariant(),
-            CellImage = spec.Pattern == SweepPattern.Image ? spec.CellImageName : null,
-            CellMm = spec.CellMm,
-            SpacingMm = spec.SpacingMm,
-            OriginXMm = spec.Origin.X,
-            OriginYMm = spec.Origin.Y,
-            Rows = spec.Rows.ToString(),
-            Columns = spec.Columns?.ToString(),
-            Simulated = Machine.Simulated,
-            Notes = Options.Notes,
-            SampleId = Options.SampleId,
-            Labels = labels,
-            Cells =
-            [
-                .. Plan.Cells.Select(c => new SweepCellRecord(
-                    c.Row,
-                    c.Column,
-                    c.Parameters,
-                    c.OriginXMm,
-                    c.OriginYMm,
-                    c.Job.Geometry.AchievedWidthMm,
-                    c.Job.Geometry.AchievedHeightMm,
-                    c.Job.Geometry.PitchUm,
-                    c.Job.Spec.Passes,
-                    runs.GetValueOrDefault(c))
-                {
-                    FocusZMicrosteps = c.FocusZMicrosteps,
-                    ZReachedMicrosteps = reachedZ.TryGetValue(c, out var reached) ? reached : null,
-                }),
-            ],
-        };
+        var record = NewRecord(tally, startedAt);
         RunLogFiles? files = null;
         Exception? logError = null;
         if (Options.Log is { } log)
@@ -319,6 +190,176 @@ public sealed class SweepSession
         }
 
         return new SweepResult(record, files, logError);
+    }
+
+    /// <summary>What the sweep has run so far: each cell's log, the Z each reached, the labels' log, and how it ends.</summary>
+    private sealed class SweepTally
+    {
+        public Dictionary<SweepCell, RunRecord> Runs { get; } = [];
+
+        public Dictionary<SweepCell, long> ReachedZ { get; } = [];
+
+        public RunRecord? Labels { get; set; }
+
+        public RunOutcome Outcome { get; set; } = RunOutcome.Completed;
+
+        public string? Fault { get; set; }
+
+        public void End(RunOutcome outcome, string fault) => (Outcome, Fault) = (outcome, fault);
+    }
+
+    /// <summary>The focus axis when a cell has a focus of its own; null without (or when the profile has none, refused).</summary>
+    private FocusAxis? OpenFocus(SweepTally tally)
+    {
+        if (!Plan.Cells.Any(c => c.FocusZMicrosteps is not null))
+        {
+            return null;
+        }
+
+        try
+        {
+            return new FocusAxis(Machine.Stage, Machine.Gate, Plan.Spec.Profile);
+        }
+        catch (PreflightException ex)
+        {
+            tally.End(RunOutcome.Refused, ex.Message);
+            return null;
+        }
+    }
+
+    /// <summary>Runs job <paramref name="i"/> (the labels or a cell) at its focus, as its own session and log; returns whether the sweep goes on.</summary>
+    private async Task<bool> RunJobAsync(int i, List<(SweepCell? Cell, PreparedJob Job)> jobs, FocusAxis? focus, SweepTally tally, IProgress<SweepProgress>? progress, CancellationToken cancellationToken)
+    {
+        var (cell, job) = jobs[i];
+        EngraveSession session;
+        lock (_lock)
+        {
+            if (_abortRequested)
+            {
+                tally.End(RunOutcome.Aborted, "aborted by the operator");
+                return false;
+            }
+
+            session = new EngraveSession(Machine, job, new EngraveSessionOptions
+            {
+                Notes = Options.Notes,
+                SampleId = Options.SampleId,
+                Home = Options.Home && i == 0,
+                AcceptNoWatchdog = Options.AcceptNoWatchdog,
+                ImageSha256 = SweepPlan.MaskSha256(job.Mask),
+                WallClock = Options.WallClock,
+            });
+            _current = session;
+        }
+
+        // The labels burn at the visible focus, each cell at its own.
+        if (focus is not null && (cell is null ? Plan.Spec.Profile.Z!.MicrostepsAt(0) : cell.FocusZMicrosteps) is { } z
+            && !await FocusForAsync(focus, cell, z, tally, cancellationToken))
+        {
+            return false;
+        }
+
+        var sink = progress is null ? null : new Relay(p => progress.Report(new SweepProgress(i, jobs.Count, cell, p)));
+        var result = await session.RunAsync(sink, cancellationToken);
+        lock (_lock)
+        {
+            _current = null;
+        }
+
+        if (cell is null)
+        {
+            tally.Labels = result.Record;
+        }
+        else
+        {
+            tally.Runs[cell] = result.Record;
+        }
+
+        JobEnded?.Invoke(this, new SweepJobEndedEventArgs(cell, result));
+        if (result.Record.Outcome != RunOutcome.Completed)
+        {
+            var what = cell?.Describe() ?? "the labels";
+            tally.End(result.Record.Outcome, $"{what}: {result.Error?.Message ?? result.Record.Fault?.Message ?? result.Record.Outcome.ToString().ToLowerInvariant()}");
+            return false;
+        }
+
+        return true;
+    }
+
+    /// <summary>Moves the focus to <paramref name="z"/> for a cell (null: the labels); returns false when that failed and the sweep ends.</summary>
+    private async Task<bool> FocusForAsync(FocusAxis focus, SweepCell? cell, long z, SweepTally tally, CancellationToken cancellationToken)
+    {
+        try
+        {
+            var reached = await MoveFocusAsync(focus, z, cancellationToken);
+            if (cell is not null)
+            {
+                tally.ReachedZ[cell] = reached;
+            }
+
+            return true;
+        }
+        catch (Exception ex) when (ex is DeviceException or OperationCanceledException)
+        {
+            RunOutcome outcome;
+            lock (_lock)
+            {
+                _current = null;
+                outcome = ex is OperationCanceledException || _abortRequested ? RunOutcome.Aborted : RunOutcome.Failed;
+            }
+
+            tally.End(outcome, outcome == RunOutcome.Aborted
+                ? $"aborted by the operator while moving the focus to {z} microsteps for {cell?.Describe() ?? "the labels"}"
+                : $"{cell?.Describe() ?? "the labels"}: moving the focus to {z} microsteps: {ex.Message}");
+
+            // A device that failed mid-move (a lost reply) may still be moving: laser off and Z stopped before the log.
+            await focus.StopAsync();
+            return false;
+        }
+    }
+
+    /// <summary>The sweep's log: its grid, and each cell's size, focus and run.</summary>
+    private SweepRecord NewRecord(SweepTally tally, DateTimeOffset startedAt)
+    {
+        var spec = Plan.Spec;
+        return new SweepRecord
+        {
+            SoftwareVersion = RunRecord.CurrentSoftwareVersion,
+            StartedAt = startedAt,
+            EndedAt = Options.WallClock.GetLocalNow(),
+            Outcome = tally.Outcome,
+            Fault = tally.Fault,
+            Pattern = spec.Pattern.ToString().ToLowerInvariant(),
+            CellImage = spec.Pattern == SweepPattern.Image ? spec.CellImageName : null,
+            CellMm = spec.CellMm,
+            SpacingMm = spec.SpacingMm,
+            OriginXMm = spec.Origin.X,
+            OriginYMm = spec.Origin.Y,
+            Rows = spec.Rows.ToString(),
+            Columns = spec.Columns?.ToString(),
+            Simulated = Machine.Simulated,
+            Notes = Options.Notes,
+            SampleId = Options.SampleId,
+            Labels = tally.Labels,
+            Cells =
+            [
+                .. Plan.Cells.Select(c => new SweepCellRecord(
+                    c.Row,
+                    c.Column,
+                    c.Parameters,
+                    c.OriginXMm,
+                    c.OriginYMm,
+                    c.Job.Geometry.AchievedWidthMm,
+                    c.Job.Geometry.AchievedHeightMm,
+                    c.Job.Geometry.PitchUm,
+                    c.Job.Spec.Passes,
+                    tally.Runs.GetValueOrDefault(c))
+                {
+                    FocusZMicrosteps = c.FocusZMicrosteps,
+                    ZReachedMicrosteps = tally.ReachedZ.TryGetValue(c, out var reached) ? reached : null,
+                }),
+            ],
+        };
     }
 
     // A focus move that Abort can stop.
