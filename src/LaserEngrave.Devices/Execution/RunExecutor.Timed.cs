@@ -20,7 +20,6 @@ namespace LaserEngrave.Devices.Execution;
 /// </remarks>
 public sealed partial class RunExecutor
 {
-    private readonly Queue<(Move Move, long Index, Task? Acknowledged)> _toComplete = new();
     private string? _timedFault;
     private bool _recoverableFault;
     private double _lastGateWrite;
@@ -34,7 +33,6 @@ public sealed partial class RunExecutor
     private double _burstEndsAt = double.NegativeInfinity;
     private bool _burstEndedItself;
     private LateSwitches? _lateSwitches;
-    private long _queuedUpTo = -1;
 
     // Whether this run's switch-ons are scheduled bursts the gate times (its CAPS? lists AFTER).
     private bool _scheduledBursts;
@@ -57,7 +55,7 @@ public sealed partial class RunExecutor
 
     private async Task ExecuteTimedAsync(RasterProgram program, IEnumerable<RasterStep> steps, long firstIndex, TimedSwitching timing, CancellationToken token)
     {
-        _queuedUpTo = firstIndex - 1;
+        _completions.StartAt(firstIndex);
         await BeginEngravingAsync(firstIndex, Options.ResumeFrom?.Row ?? 0, token);
         MotionTimeline? timeline = null;
         foreach (var step in steps)
@@ -76,7 +74,7 @@ public sealed partial class RunExecutor
             {
                 // Pauses come between steps, with the laser off and the stage at rest.
                 await WatchedRepliesAsync(token);
-                CompleteAcknowledged();
+                _completions.Acknowledged();
                 await PauseIfAskedAsync(token);
                 timeline = new MotionTimeline(timing, RunSeconds, _xSpeedData);
             }
@@ -92,7 +90,7 @@ public sealed partial class RunExecutor
         }
 
         await WatchedRepliesAsync(token);
-        CompleteAcknowledged();
+        _completions.Acknowledged();
         _accounting.Ended(null, program.Plan.Mask.Height);
     }
 
@@ -183,7 +181,7 @@ public sealed partial class RunExecutor
 
             var offWrite = times.Arrival + Offset(burn.X1) + shift - timing.OffAdvanceSeconds - timing.OffLeadSeconds;
 
-            CompleteUpTo(stroke, burnIndex - 1, null);
+            _completions.UpTo(stroke, burnIndex - 1, null);
 
             // The burst fills the run from its switch-on to its planned switch-off; its line's length depends on its count.
             var onEffect = onWrite + timing.OnLeadSeconds;
@@ -252,7 +250,7 @@ public sealed partial class RunExecutor
             }
 
             // A run counts as burned once its switch-on is acknowledged (a silent gate burns nothing).
-            CompleteUpTo(stroke, burnIndex, on);
+            _completions.UpTo(stroke, burnIndex, on);
 
             if (bumps.TryGetValue(Distance(burn.X1), out var bump))
             {
@@ -282,7 +280,7 @@ public sealed partial class RunExecutor
             timeline.Delay(shift);
         }
 
-        CompleteUpTo(stroke, stroke.FirstMoveIndex + stroke.MoveCount - 1, null);
+        _completions.UpTo(stroke, stroke.FirstMoveIndex + stroke.MoveCount - 1, null);
     }
 
     private async Task TravelAsync(TravelStep travel, TimedSwitching timing, MotionTimeline timeline, CancellationToken token)
@@ -337,7 +335,7 @@ public sealed partial class RunExecutor
 
         _accounting.Current(move, index);
 
-        CompleteUp(move, index, null);
+        _completions.Up(move, index, null);
     }
 
     /// <summary>
@@ -847,41 +845,6 @@ public sealed partial class RunExecutor
         }
 
         return new DeviceException(reason);
-    }
-
-    private void CompleteUpTo(StrokeStep stroke, long index, Task? lastAcknowledged)
-    {
-        for (var i = 0; i < stroke.MoveCount && stroke.FirstMoveIndex + i <= index; i++)
-        {
-            Queue(stroke.MoveAt(i), stroke.FirstMoveIndex + i, index, lastAcknowledged);
-        }
-
-        CompleteAcknowledged();
-    }
-
-    private void CompleteUp(Move move, long index, Task? lastAcknowledged)
-    {
-        Queue(move, index, index, lastAcknowledged);
-        CompleteAcknowledged();
-    }
-
-    private void Queue(Move move, long moveIndex, long index, Task? lastAcknowledged)
-    {
-        if (moveIndex > _queuedUpTo)
-        {
-            _toComplete.Enqueue((move, moveIndex, moveIndex == index ? lastAcknowledged : null));
-            _queuedUpTo = moveIndex;
-        }
-    }
-
-    /// <summary>Raises completion, in order, for every queued move whose switch-on (if it has one) is acknowledged.</summary>
-    private void CompleteAcknowledged()
-    {
-        while (_toComplete.TryPeek(out var next) && (next.Acknowledged is null || next.Acknowledged.IsCompletedSuccessfully))
-        {
-            _toComplete.Dequeue();
-            Completed(next.Move, next.Index);
-        }
     }
 
     /// <summary>The stop point's cut pixel when a timed raster run was cut in the middle of a burn run (<see cref="StrokeCut.Cut"/>). Caller holds the lock.</summary>

@@ -71,6 +71,9 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
     // The count of moves, rows and runs done, and the estimate: what progress, the stop point and the log read.
     private readonly RunAccounting _accounting;
 
+    // A timed run's moves waiting to be reported done (each burn run once its switch-on is acknowledged).
+    private readonly MoveCompletions _completions;
+
     // What preflight found (RunPreflight) and what the run saw of the latencies' spread since.
     private long? _resumeX;
     private bool _homed;
@@ -105,6 +108,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
         _timing = _program.SwitchTiming;
         _progress = IdleProgress(part);
         _accounting = new RunAccounting(_progress.RowsTotal, _progress.RunsTotal);
+        _completions = new MoveCompletions(Completed);
         var spec = part.Spec;
         _process = spec.Process;
         _profile = spec.Profile;
