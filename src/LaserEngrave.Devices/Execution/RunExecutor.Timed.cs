@@ -22,26 +22,12 @@ public sealed partial class RunExecutor
 {
     private string? _timedFault;
     private bool _recoverableFault;
-    private double _lastGateWrite;
-
-    // When the gate's wire is free of the lines written so far (the host's estimate at the adapter's mean), and when the
-    // last burst stops by itself at the latest (run seconds).
-    private double _gateWireFree = double.NegativeInfinity;
-
-    // When the gate's replies to the lines written so far are all in (the same estimate): an off written now is answered after them.
-    private double _gateRepliesIn = double.NegativeInfinity;
-    private double _burstEndsAt = double.NegativeInfinity;
-    private bool _burstEndedItself;
-    private LateSwitches? _lateSwitches;
-
-    // Whether this run's switch-ons are scheduled bursts the gate times (its CAPS? lists AFTER).
-    private bool _scheduledBursts;
 
     // Where the run was when a fault or an abort cut it, for its stop point's cut pixel (under the engine's lock).
     private readonly StrokeCut _cut = new();
 
     // How late the host may write a timed command before the times after it are moved (below that: the clock's rounding).
-    private const double LateSeconds = 0.0001;
+    private const double LateSeconds = GateSwitching.LateSeconds;
 
     // How late the host has written the current travel's commands so far (a loaded computer on the wall clock).
     private double _travelLate;
@@ -51,7 +37,7 @@ public sealed partial class RunExecutor
     private double RunSeconds => TimeProvider.GetElapsedTime(_engravingStart).TotalSeconds;
 
     /// <summary>How much later than its round trip an OFF written now is answered, behind the timed lines and replies still on the gate's wire.</summary>
-    private double GateQueueSeconds() => _timing is { } timing && _engravingStarted ? timing.OffQueuedSeconds(RunSeconds, _gateWireFree, _gateRepliesIn) : 0;
+    private double GateQueueSeconds() => _timing is { } timing && _engravingStarted ? _switching.QueueSeconds(timing, RunSeconds) : 0;
 
     private async Task ExecuteTimedAsync(RasterProgram program, IEnumerable<RasterStep> steps, long firstIndex, TimedSwitching timing, CancellationToken token)
     {
@@ -187,15 +173,15 @@ public sealed partial class RunExecutor
             var onEffect = onWrite + timing.OnLeadSeconds;
             var offEffect = offWrite + timing.OffLeadSeconds;
             onWrite = timing.BurstWriteSeconds(onEffect, offEffect);
-            var (on, onWritten, onAnswered) = _scheduledBursts
-                ? await ScheduledSwitchOnAsync(onEffect, offEffect, onWrite, timing, token)
-                : await PlainSwitchOnAsync(onEffect, offEffect, onWrite, timing, token);
+            var (on, onWritten, onAnswered) = _switching.ScheduledBursts
+                ? await _switching.ScheduledSwitchOnAsync(onEffect, offEffect, onWrite, timing, token)
+                : await _switching.PlainSwitchOnAsync(onEffect, offEffect, onWrite, timing, token);
             lock (_lock)
             {
-                _cut.Burning(burn, burnIndex, on, _burstEndsAt);
+                _cut.Burning(burn, burnIndex, on, _switching.BurstEndsAt);
             }
 
-            _lastGateWrite = Math.Max(onWrite, onWritten);
+            _switching.LastWrite = Math.Max(onWrite, onWritten);
             WatchGate(on, onAnswered, "the laser gate did not acknowledge the switch-on");
             RunProgress progress;
             lock (_lock)
@@ -210,7 +196,7 @@ public sealed partial class RunExecutor
             // A scheduled switch-on is written well ahead: when the next one is due before this run's switch-off, the
             // switch-off is left out, since written after that line it would cancel the burst armed by it; the count
             // ends this run by itself.
-            var nextWrite = k + 1 < stroke.RunCount && _scheduledBursts && !bumps.ContainsKey(Distance(burn.X1)) ? NextScheduledWrite(stroke.RunAt(k + 1).Move) : double.PositiveInfinity;
+            var nextWrite = k + 1 < stroke.RunCount && _switching.ScheduledBursts && !bumps.ContainsKey(Distance(burn.X1)) ? NextScheduledWrite(stroke.RunAt(k + 1).Move) : double.PositiveInfinity;
             var offLeftOut = offWrite + timing.OffWireSeconds > nextWrite;
             await KeepAlivesUntilAsync(Math.Min(offWrite, nextWrite), timing, token);
             if (offLeftOut)
@@ -237,15 +223,15 @@ public sealed partial class RunExecutor
                 }
                 else
                 {
-                    var (off, offWritten) = await SendSwitchOffAsync(timing);
+                    var (off, offWritten) = await _switching.SendSwitchOffAsync(timing);
                     lock (_lock)
                     {
                         _cut.NotBurning();
                     }
 
-                    _lastGateWrite = offWrite;
+                    _switching.LastWrite = offWrite;
                     WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off", switchOff: true);
-                    NoteSwitchOffLate(offWrite, offWritten, timing);
+                    _switching.NoteSwitchOffLate(offWrite, offWritten, timing);
                 }
             }
 
@@ -263,7 +249,7 @@ public sealed partial class RunExecutor
         {
             var nextOn = times.Arrival + Offset(next.X0) + shift + timing.OnDelaySeconds;
             var nextOff = times.Arrival + Offset(next.X1) + shift - timing.OffAdvanceSeconds;
-            return Math.Min(timing.ScheduledWriteSeconds(nextOn, nextOff, _burstEndsAt), timing.BurstWriteSeconds(nextOn, nextOff));
+            return Math.Min(timing.ScheduledWriteSeconds(nextOn, nextOff, _switching.BurstEndsAt), timing.BurstWriteSeconds(nextOn, nextOff));
         }
 
         // Whether the gap after a run carries the switch-off's line ahead of the next burst's (docs/execution.md, "The burst").
@@ -533,162 +519,16 @@ public sealed partial class RunExecutor
 
         while (true)
         {
-            var next = Math.Max(_lastGateWrite + period, RunSeconds);
+            var next = Math.Max(_switching.LastWrite + period, RunSeconds);
             if (next + timing.KeepAliveRoundTripSeconds + (2 * timing.GateJitterSeconds) + 0.001 >= offWrite)
             {
                 return;
             }
 
             await DelayUntilAsync(next, token);
-            _lastGateWrite = RunSeconds;
-            _gateWireFree = timing.GateWireFreeAfter(_lastGateWrite, _gateWireFree, timing.KeepAliveBytes);
-            _gateRepliesIn = timing.GateRepliesInAfter(_gateWireFree, _gateRepliesIn, timing.KeepAliveReplyBytes);
-            WatchGate(Gate.KeepAliveAsync(CancellationToken.None), _lastGateWrite + timing.KeepAliveRoundTripSeconds, "the laser gate did not answer the keepalive");
-        }
-    }
-
-    /// <summary>
-    /// Sends a timed switch-on under the laser lock (after checking for an abort) and returns its acknowledgement without
-    /// waiting for it, and when it was written: the lock is free again at once, so an abort's or a fault's switch-off never
-    /// waits behind it. The switch-on is the gate's counted burst, sized now, from the real write time and the gate's wire
-    /// queue, to stop by itself before <paramref name="offEffect"/> (docs/execution.md, "The burst"): a switch-off that is
-    /// late, refused or lost then costs no pulse past the edge. A host so late that it is beyond the profile's edge
-    /// tolerance (or that no pulse fits any more) leaves the laser off and ends the run as a timing doubt.
-    /// </summary>
-    private async Task<(Task Acknowledged, double WrittenSeconds)> SendSwitchOnAsync(double onEffect, double offEffect, TimedSwitching timing)
-    {
-        var sent = await SendSwitchOnLockedAsync(onEffect, offEffect, timing);
-        await LateWrite.CheckAsync(sent.LineWritten, TimeProvider, _engravingStart, sent.WrittenSeconds, sent.LateSeconds, timing, _profile.EdgeToleranceUm, "switch the laser on", m => Fault(m, recoverable: true));
-        return (sent.Acknowledged, sent.WrittenSeconds);
-    }
-
-    private async Task<(Task Acknowledged, double WrittenSeconds, double LateSeconds, Task<long?> LineWritten)> SendSwitchOnLockedAsync(double onEffect, double offEffect, TimedSwitching timing)
-    {
-        await _laser.Lock.WaitAsync();
-        try
-        {
-            ThrowIfAborted();
-            if (_fault.IsCancellationRequested)
-            {
-                throw new DeviceException(_timedFault ?? "a fault ended the run");
-            }
-
-            // Late is when the gate will start firing against when it was to: the host's own lateness and any line still
-            // on the gate's wire ahead of this one.
-            var written = RunSeconds;
-            var pulses = timing.BurstPulses(written, _gateWireFree, offEffect);
-            var late = timing.GateWireFreeAfter(written, _gateWireFree, timing.BurstCommand(Math.Max(1, pulses)).Length) + timing.GateProcessingSeconds - onEffect;
-            var lateUm = late * timing.BurnSpeed * timing.MicrostepUm;
-            if (lateUm > _profile.EdgeToleranceUm || pulses < 1)
-            {
-                throw Fault(
-                    string.Create(CultureInfo.InvariantCulture, $"this computer was {Units.SecondsToMs(late):0.0} ms late to switch the laser on, {lateUm:0.0} µm at the burn speed, beyond the profile's edge tolerance of {_profile.EdgeToleranceUm:0.###} µm: the laser stayed off for that run"),
-                    recoverable: true);
-            }
-
-            if (late > LateSeconds)
-            {
-                NoteLateSwitch(lateUm);
-            }
-
-            // A frequency-only gate is switched on by its frequency alone, as before the burst: only the timed switch-off ends the run.
-            var counted = _profile.Gate.CountsBursts;
-            var ack = counted ? Gate.BurstAsync(pulses, timing.FrequencyHz, CancellationToken.None) : Gate.SetFrequencyAsync(timing.FrequencyHz, CancellationToken.None);
-            var lineWritten = Gate.LineWritten;
-            _gateWireFree = timing.GateWireFreeAfter(written, _gateWireFree, timing.BurstCommand(pulses).Length);
-            _gateRepliesIn = timing.GateRepliesInAfter(_gateWireFree, _gateRepliesIn, timing.BurstReplyBytes(pulses));
-            var firing = _gateWireFree + timing.GateProcessingSeconds;
-            lock (_lock)
-            {
-                _laser.MarkOn(TimeProvider.GetTimestamp() + (long)((firing - written) * TimeProvider.TimestampFrequency));
-                _burstEndsAt = counted ? firing + ((double)pulses / timing.FrequencyHz) + timing.GateJitterSeconds : double.PositiveInfinity;
-            }
-
-            return (ack, written, Math.Max(0, late), lineWritten);
-        }
-        finally
-        {
-            _laser.Lock.Release();
-        }
-    }
-
-    /// <summary>A plain switch-on (<c>BURST</c>, or <c>FREQ</c> on a frequency-only gate), written when its line must leave: the host's lateness is its edge's.</summary>
-    /// <returns>Its acknowledgement, when it was written, and when its acknowledgement is expected (run seconds).</returns>
-    private async Task<(Task Acknowledged, double WrittenSeconds, double AnsweredSeconds)> PlainSwitchOnAsync(double onEffect, double offEffect, double onWrite, TimedSwitching timing, CancellationToken token)
-    {
-        await DelayUntilAsync(onWrite, token);
-        var (on, written) = await SendSwitchOnAsync(onEffect, offEffect, timing);
-        return (on, written, Later(onWrite, written) + timing.OnRoundTripSeconds);
-    }
-
-    /// <summary>
-    /// A switch-on the gate times itself (<c>BURST n hz AFTER us</c>, docs/laser-gate-protocol.md "Scheduled bursts"):
-    /// written its slack ahead of time, with the delay computed at the write from when it is written, the lines still on
-    /// the gate's wire and the gate's processing, so that a host late by less than the slack moves no edge. Written too
-    /// late for that, it is the plain switch-on at its own time, with the edge tolerance as before.
-    /// </summary>
-    private async Task<(Task Acknowledged, double WrittenSeconds, double AnsweredSeconds)> ScheduledSwitchOnAsync(double onEffect, double offEffect, double onWrite, TimedSwitching timing, CancellationToken token)
-    {
-        await DelayUntilAsync(Math.Min(timing.ScheduledWriteSeconds(onEffect, offEffect, _burstEndsAt), onWrite), token);
-        for (var attempt = 0; attempt < 3; attempt++)
-        {
-            if (await SendScheduledSwitchOnAsync(onEffect, offEffect, timing) is { } sent)
-            {
-                // Its delay was computed at the stamp: a write that completed later (a computer stalled between them)
-                // reached the gate that much later and fires that much late, its count ending past the edge. Beyond the
-                // tolerance that is a timing doubt: the fault's OFF cancels the armed burst before or as it fires.
-                await LateWrite.CheckAsync(sent.LineWritten, TimeProvider, _engravingStart, sent.WrittenSeconds, 0, timing, _profile.EdgeToleranceUm, "switch the laser on", m => Fault(m, recoverable: true));
-                return (sent.Acknowledged, sent.WrittenSeconds, sent.AnsweredSeconds);
-            }
-
-            // A delay just at a power of ten (its digits and the line's length disagree) is tried again a moment later.
-            var again = RunSeconds + (2 * timing.GateByteSeconds);
-            if (again >= onWrite)
-            {
-                break;
-            }
-
-            await DelayUntilAsync(again, token);
-        }
-
-        return await PlainSwitchOnAsync(onEffect, offEffect, onWrite, timing, token);
-    }
-
-    /// <summary>Writes a scheduled switch-on under the laser lock if it is still in time for the gate's timer; null when not (nothing written).</summary>
-    private async Task<(Task Acknowledged, double WrittenSeconds, double AnsweredSeconds, Task<long?> LineWritten)?> SendScheduledSwitchOnAsync(double onEffect, double offEffect, TimedSwitching timing)
-    {
-        await _laser.Lock.WaitAsync();
-        try
-        {
-            ThrowIfAborted();
-            if (_fault.IsCancellationRequested)
-            {
-                throw new DeviceException(_timedFault ?? "a fault ended the run");
-            }
-
-            // Computed at the write itself: whatever the host lost before it comes off the delay, not off the edge.
-            var written = RunSeconds;
-            if (timing.Schedule(written, _gateWireFree, onEffect, offEffect) is not { } burst)
-            {
-                return null;
-            }
-
-            var ack = Gate.BurstAfterAsync(burst.Pulses, timing.FrequencyHz, burst.AfterUs, CancellationToken.None);
-            var lineWritten = Gate.LineWritten;
-            _gateWireFree = burst.ArrivalSeconds;
-            _gateRepliesIn = timing.GateRepliesInAfter(_gateWireFree, _gateRepliesIn, timing.BurstAfterReplyBytes(burst.Pulses, burst.AfterUs));
-            var firing = burst.ArrivalSeconds + (burst.AfterUs / 1e6);
-            lock (_lock)
-            {
-                _laser.MarkOn(TimeProvider.GetTimestamp() + (long)((firing - written) * TimeProvider.TimestampFrequency));
-                _burstEndsAt = firing + ((double)burst.Pulses / timing.FrequencyHz) + timing.GateJitterSeconds;
-            }
-
-            return (ack, written, _gateRepliesIn + timing.GateJitterSeconds, lineWritten);
-        }
-        finally
-        {
-            _laser.Lock.Release();
+            _switching.LastWrite = RunSeconds;
+            _switching.KeepAliveWritten(_switching.LastWrite, timing);
+            WatchGate(Gate.KeepAliveAsync(CancellationToken.None), _switching.LastWrite + timing.KeepAliveRoundTripSeconds, "the laser gate did not answer the keepalive");
         }
     }
 
@@ -696,65 +536,13 @@ public sealed partial class RunExecutor
     private async Task<double> WrittenLateAsync(Task<long?> lineWritten, double plannedWrite) =>
         await lineWritten is { } stamp && TimeProvider.GetElapsedTime(_engravingStart, stamp).TotalSeconds - plannedWrite is > LateSeconds and var late ? late : 0;
 
-    /// <summary>Sends a timed switch-off under the laser lock and returns its acknowledgement without waiting for it, and when it was written.</summary>
-    private async Task<(Task Acknowledged, double WrittenSeconds)> SendSwitchOffAsync(TimedSwitching timing)
-    {
-        await _laser.Lock.WaitAsync();
-        try
-        {
-            var written = RunSeconds;
-
-            // Counted from effect to effect: the switch-off takes effect its lead after it is sent, as the switch-on did.
-            var off = Gate.OffAsync(CancellationToken.None);
-            _gateWireFree = timing.GateWireFreeAfter(written, _gateWireFree, timing.OffCommand.Length);
-            _gateRepliesIn = timing.GateRepliesInAfter(_gateWireFree, _gateRepliesIn, timing.OffReplyBytes);
-            _laser.MarkOff(timing.OffLeadSeconds);
-            return (off, written);
-        }
-        finally
-        {
-            _laser.Lock.Release();
-        }
-    }
-
-    /// <summary>A switch-on sent late but within the edge tolerance, or a late switch-off: counted for the run's log and summary.</summary>
-    private void NoteLateSwitch(double lateUm, bool off = false)
-    {
-        lock (_lock)
-        {
-            _lateSwitches = LateSwitches.Add(_lateSwitches, off ? new LateSwitches(0, 0, _profile.EdgeToleranceUm, 1) : new LateSwitches(1, lateUm, _profile.EdgeToleranceUm));
-        }
-    }
-
-    /// <summary>
-    /// A switch-off written late: the burst has stopped the laser by itself at the run's end already, so no pulse crossed
-    /// the edge; it is counted and logged, beside the late switch-ons. A frequency-only gate has no burst: beyond the edge
-    /// tolerance its laser fired past the edge, and the run ends.
-    /// </summary>
-    private void NoteSwitchOffLate(double planned, double written, TimedSwitching timing)
-    {
-        var late = written - planned;
-        if (late > LateSeconds)
-        {
-            var lateUm = late * timing.BurnSpeed * timing.MicrostepUm;
-            NoteLateSwitch(lateUm, off: true);
-            if (!_profile.Gate.CountsBursts && lateUm > _profile.EdgeToleranceUm)
-            {
-                // A frequency-only gate fires until the switch-off arrives: late beyond the tolerance, it fired past the edge.
-                throw Fault(string.Create(
-                    CultureInfo.InvariantCulture,
-                    $"this computer was {Units.SecondsToMs(late):0.0} ms late to switch the laser off, {lateUm:0.0} µm at the burn speed, beyond the profile's edge tolerance of {_profile.EdgeToleranceUm:0.###} µm: this frequency-only gate fired past the run's exit edge"));
-            }
-        }
-    }
-
     /// <summary>When a stage command planned to arrive at <paramref name="plannedArrival"/> arrives, written at <paramref name="writtenSeconds"/>.</summary>
     /// <remarks>A host late to write (a loaded computer) is not the device's delay: its reply is expected that much later.</remarks>
     private static double Sent(double plannedArrival, double writtenSeconds, TimedSwitching timing) =>
         Later(plannedArrival, writtenSeconds + timing.StageCommandSeconds);
 
     // The actual time when it is later than planned by more than the clock's rounding, else the planned one.
-    private static double Later(double planned, double actual) => actual > planned + LateSeconds ? actual : planned;
+    private static double Later(double planned, double actual) => GateSwitching.Later(planned, actual);
 
     /// <param name="switchOff">A switch-off: refused or unanswered, the laser may still fire, so the fault takes every path to off.</param>
     private void WatchGate(Task reply, double expectedSeconds, string what, bool switchOff = false)

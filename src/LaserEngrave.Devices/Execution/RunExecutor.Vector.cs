@@ -131,8 +131,8 @@ public sealed partial class RunExecutor
         {
             await ConfirmStrokeAsync(poll, polled, stroke, timing, onWrite, token);
             await DelayUntilAsync(onWrite, token);
-            var (on, onWritten) = await SendSwitchOnAsync(origin + stroke.LaserOnSeconds, origin + stroke.LaserOffSeconds, timing);
-            _lastGateWrite = onWrite;
+            var (on, onWritten) = await _switching.SendSwitchOnAsync(origin + stroke.LaserOnSeconds, origin + stroke.LaserOffSeconds, timing);
+            _switching.LastWrite = onWrite;
             WatchGate(on, Later(onWrite, onWritten) + timing.OnRoundTripSeconds, "the laser gate did not acknowledge the switch-on");
         }));
 
@@ -142,9 +142,8 @@ public sealed partial class RunExecutor
             var at = ping;
             events.Add((at, 2, () =>
             {
-                _lastGateWrite = at;
-                _gateWireFree = timing.GateWireFreeAfter(RunSeconds, _gateWireFree, timing.KeepAliveBytes);
-                _gateRepliesIn = timing.GateRepliesInAfter(_gateWireFree, _gateRepliesIn, timing.KeepAliveReplyBytes);
+                _switching.LastWrite = at;
+                _switching.KeepAliveWritten(RunSeconds, timing);
                 WatchGate(Gate.KeepAliveAsync(CancellationToken.None), at + timing.KeepAliveRoundTripSeconds, "the laser gate did not answer the keepalive");
                 return Task.CompletedTask;
             }));
@@ -152,10 +151,10 @@ public sealed partial class RunExecutor
 
         events.Add((offWrite, 3, async () =>
         {
-            (off, var offWritten) = await SendSwitchOffAsync(timing);
-            _lastGateWrite = offWrite;
+            (off, var offWritten) = await _switching.SendSwitchOffAsync(timing);
+            _switching.LastWrite = offWrite;
             WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off", switchOff: true);
-            NoteSwitchOffLate(offWrite, offWritten, timing);
+            _switching.NoteSwitchOffLate(offWrite, offWritten, timing);
         }));
 
         foreach (var (at, _, send) in events.OrderBy(e => e.Write).ThenBy(e => e.Order))

@@ -20,7 +20,7 @@ namespace LaserEngrave.Devices.Execution;
 /// <see cref="Pause"/>, <see cref="Resume"/> and <see cref="Abort"/> may be called from any thread at any time.
 /// The protocol is the one <see cref="PlanEstimator"/> models; docs/execution.md describes it.
 /// </remarks>
-public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
+public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun, IGateSwitchingRun
 {
     internal const string AbortedMessage = "aborted by the operator";
 
@@ -54,6 +54,9 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
 
     // The replies a timed run does not wait for, each watched against its deadline.
     private readonly ReplyWatch _replies;
+
+    // The timed laser's lines on the gate's wire: switch-ons sized or scheduled as written, switch-offs, late writes.
+    private readonly GateSwitching _switching;
 
     // The run's clock: when it started, when the engraving started, and the pauses and positioning that are not engraving.
     private long _startTimestamp;
@@ -114,6 +117,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
         _profile = spec.Profile;
         _laser = new LaserSafety(Gate, TimeProvider, _process.LaserFrequencyWholeHz, _profile.Gate.WatchdogMs, Options.StallMarginMs, this) { GateNeverReplies = _profile.Gate.NeverReplies };
         _replies = new ReplyWatch(TimeProvider, Options.StallMarginMs, this) { Arriving = gate => gate ? Gate.IsReceiving : Stage.IsReceiving, Written = gate => gate ? Gate.LineWritten : Stage.LineWritten };
+        _switching = new GateSwitching(Gate, _laser, TimeProvider, _profile, _lock, this);
     }
 
     /// <summary>What a run of one part shows before it starts: its rows (strokes) and burn runs (paths) to do, and its estimate.</summary>
@@ -311,7 +315,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
         _y = found.Y;
         _latencyScale = found.LatencyScale;
         _timing = found.Timing;
-        _scheduledBursts = found.ScheduledBursts;
+        _switching.ScheduledBursts = found.ScheduledBursts;
         return found.Identity;
     }
 
@@ -418,8 +422,8 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
                 EstimatedSeconds = _accounting.EstimatePreparation + _accounting.EstimateTotal - _accounting.EstimateBefore,
                 EstimatedEngravingSeconds = _accounting.EstimateTotal - _accounting.EstimateBefore,
                 LaserOnSeconds = _laser.OnSeconds,
-                LateSwitches = _lateSwitches,
-                BurstEndedItself = _burstEndedItself,
+                LateSwitches = _switching.Late,
+                BurstEndedItself = _switching.BurstEndedItself,
                 RowsDone = _accounting.RowsDone,
                 RowsTotal = _accounting.RowsTotal,
                 RunsDone = _accounting.RunsDone,
@@ -474,9 +478,9 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
 
             // A switch-off refused or unanswered after the burn run's burst had stopped the laser by itself: the run's
             // last pulse was the burst's, inside the run; the paths to off still go, and say which confirmed it.
-            if (inDoubt == true && double.IsFinite(_burstEndsAt))
+            if (inDoubt == true && double.IsFinite(_switching.BurstEndsAt))
             {
-                _burstEndedItself |= RunSeconds >= _burstEndsAt;
+                _switching.BurstEndedItself |= RunSeconds >= _switching.BurstEndsAt;
             }
         }
     }
@@ -488,6 +492,23 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
     TimedSwitching? IReplyWatchRun.Timing => _timing;
 
     DeviceException IReplyWatchRun.Fault(string reason) => Fault(reason);
+
+    double IGateSwitchingRun.RunSeconds => RunSeconds;
+
+    long IGateSwitchingRun.EngravingStart => _engravingStart;
+
+    void IGateSwitchingRun.ThrowIfEnded()
+    {
+        ThrowIfAborted();
+        if (_fault.IsCancellationRequested)
+        {
+            throw new DeviceException(_timedFault ?? "a fault ended the run");
+        }
+    }
+
+    DeviceException IGateSwitchingRun.Fault(string reason, bool recoverable) => Fault(reason, recoverable);
+
+    Task IGateSwitchingRun.DelayUntilAsync(double seconds, CancellationToken token) => DelayUntilAsync(seconds, token);
 
     void IReplyWatchRun.SwitchOffFailed(Task reply) => _laser.MarkSwitchOffFailed(reply);
 
