@@ -78,6 +78,11 @@ internal sealed class GateSwitching(ILaserGate gate, LaserSafety laser, TimeProv
         RepliesIn = timing.GateRepliesInAfter(WireFree, RepliesIn, timing.KeepAliveReplyBytes);
     }
 
+    /// <summary>When a stage command planned to arrive at <paramref name="plannedArrival"/> arrives, written at <paramref name="writtenSeconds"/>.</summary>
+    /// <remarks>A host late to write (a loaded computer) is not the device's delay: its reply is expected that much later.</remarks>
+    public static double Sent(double plannedArrival, double writtenSeconds, TimedSwitching timing) =>
+        Later(plannedArrival, writtenSeconds + timing.StageCommandSeconds);
+
     /// <summary>The actual time when it is later than planned by more than the clock's rounding, else the planned one.</summary>
     public static double Later(double planned, double actual) => actual > planned + LateSeconds ? actual : planned;
 

@@ -131,7 +131,7 @@ public sealed partial class RunExecutor
         var moveWritten = Stage.LineWritten;
         var strokeEnd = Watch(Arrive(move, "X", stroke.EndX, x => _x = x), times.End + timing.StageReplySeconds, "the end of a stroke (X)", axis: "X");
         var strokeEndDeadline = strokeEnd.Deadline;
-        var poll = stroke.RunCount > 0 ? Arrival(Stage.X.GetPositionAsync(token)) : null;
+        var poll = stroke.RunCount > 0 ? _position.Arrival(Stage.X.GetPositionAsync(token)) : null;
         var pollWritten = Stage.LineWritten;
         var direction = stroke.Direction;
 
@@ -142,7 +142,7 @@ public sealed partial class RunExecutor
 
         // The query asked after the move: written later than the move (a stall between them), it finds the stage further on.
         var pollLate = poll is null ? 0 : await WrittenLateAsync(pollWritten, times.Arrival - timing.StageCommandSeconds + shift);
-        (StrokePlan.Bump Bump, FlownQuery Query)? flown = null;
+        (StrokePlan.Bump Bump, StrokePosition.FlownQuery Query)? flown = null;
         var bumps = plan.Bumps.ToDictionary(b => b.Exit);
         var index = 0;
         for (var k = 0; k < stroke.RunCount; k++)
@@ -152,11 +152,11 @@ public sealed partial class RunExecutor
             if (index++ == 0)
             {
                 // The round trip counts from the move's write as it completed (a stall before it is no slow reply).
-                await ConfirmMovingAsync(earlier, poll!, Math.Max(moveStamped, times.Arrival - timing.StageCommandSeconds + shift), start, direction, timing, onWrite, token, pollLate);
+                await _position.ConfirmMovingAsync(earlier, poll!, Math.Max(moveStamped, times.Arrival - timing.StageCommandSeconds + shift), start, direction, timing, onWrite, token, pollLate);
             }
             else if (flown is { } gap)
             {
-                shift += await MeasureFlownGapAsync(gap.Bump, gap.Query, start, direction, timing, onWrite, token);
+                shift += await _position.MeasureFlownGapAsync(gap.Bump, gap.Query, start, direction, timing, onWrite, token);
                 active.Origin = times.Arrival + shift;
 
                 // Behind its plan (a bump held shorter by a late speed-up), the stroke also ends that much later.
@@ -240,7 +240,7 @@ public sealed partial class RunExecutor
 
             if (bumps.TryGetValue(Distance(burn.X1), out var bump))
             {
-                flown = (bump, await FlyGapAsync(bump, times.Arrival + shift, timing, token));
+                flown = (bump, await _position.FlyGapAsync(bump, times.Arrival + shift, timing, token));
             }
         }
 
@@ -324,189 +324,6 @@ public sealed partial class RunExecutor
         _completions.Up(move, index, null);
     }
 
-    /// <summary>
-    /// Flies a gap (docs/execution.md, "Flown gaps"): the travel speed set just after the exit edge, the burn speed set back,
-    /// then a position query once the stage is surely at the burn speed again; returns the query.
-    /// </summary>
-    private async Task<FlownQuery> FlyGapAsync(StrokePlan.Bump bump, double start, TimedSwitching timing, CancellationToken token)
-    {
-        var upWrite = start + bump.SpeedUpArrival - timing.StageCommandSeconds;
-        await DelayUntilAsync(upWrite, token);
-        ThrowIfAborted();
-        var upLate = RunSeconds - upWrite;
-        Watch(Stage.X.SetTargetSpeedAsync(_program.Motion.TravelSpeedData, token), Sent(start + bump.SpeedUpArrival, RunSeconds, timing) + timing.StageReplySeconds, "Set Target Speed (X, a flown gap)");
-        var upWritten = Stage.LineWritten;
-        NoteGapFlown();
-        var downWrite = start + bump.SpeedDownArrival - timing.StageCommandSeconds;
-        await DelayUntilAsync(downWrite, token);
-
-        // A write that completed late (a computer stalled before it) left that late, whatever the clock said before it.
-        upLate = Math.Max(upLate, await WrittenLateAsync(upWritten, upWrite));
-        var downLate = RunSeconds - downWrite;
-        Watch(Stage.X.SetTargetSpeedAsync(_program.Motion.BurnSpeedData, token), Sent(start + bump.SpeedDownArrival, RunSeconds, timing) + timing.StageReplySeconds, "Set Target Speed (X, after a flown gap)");
-        downLate = Math.Max(downLate, await WrittenLateAsync(Stage.LineWritten, downWrite));
-
-        // The query goes once the stage is surely back at the burn speed: never sooner after the speed-down than planned,
-        // and later still when the speed-down left late against the speed-up (a busy computer): held longer, the bump
-        // peaks higher and takes that much longer to come back down, and a query before that would find the stage still
-        // fast, take it for behind its plan, and the laser would come on early.
-        var hold = bump.SpeedDownArrival - bump.SpeedUpArrival;
-        var longer = Later(0, downLate) - Later(0, upLate);
-        var rampDown = longer > 0 ? (Rise(timing, hold + longer) - Rise(timing, hold)) / timing.Acceleration : 0;
-        var queryWrite = start + bump.QueryArrival - timing.StageCommandSeconds;
-        await DelayUntilAsync(Math.Max(queryWrite, RunSeconds + (bump.QueryArrival - bump.SpeedDownArrival) + rampDown), token);
-        var queryLate = RunSeconds - queryWrite;
-        var queryStamped = RunSeconds;
-        var query = Arrival(Stage.X.GetPositionAsync(token));
-        var queryWrittenLate = await WrittenLateAsync(Stage.LineWritten, queryWrite);
-        queryLate = Math.Max(queryLate, queryWrittenLate);
-
-        // Its round trip counts from the write's completion: a stall before the write is the host's, not the reply's.
-        return new FlownQuery(query, Math.Max(queryStamped, queryWrite + queryWrittenLate), Later(0, upLate), Later(0, downLate), Later(0, queryLate));
-    }
-
-    /// <summary>How far above the burn speed a bump held <paramref name="hold"/> s rises (<see cref="TimedSwitching.FlyGain"/>'s dV).</summary>
-    private static double Rise(TimedSwitching timing, double hold) =>
-        Math.Min(timing.Acceleration * Math.Max(0, hold), Math.Max(0, timing.TravelSpeed - timing.BurnSpeed));
-
-    /// <summary>A flown gap's position query, and how late (s) the host wrote the speed-up, the speed-down and the query.</summary>
-    private sealed record FlownQuery(Answered<long> Query, double WrittenSeconds, double UpLate, double DownLate, double QueryLate);
-
-    /// <summary>A reply and when it came in (run seconds; NaN until then), so that it is judged by its round trip as well as by what it says.</summary>
-    private sealed class Answered<T>(Task<T> task)
-    {
-        public Task<T> Task { get; } = task;
-
-        public double Seconds { get; set; } = double.NaN;
-    }
-
-    /// <summary>Stamps a reply's arrival on the run clock when its task completes (before anything awaiting it runs).</summary>
-    private Answered<T> Arrival<T>(Task<T> task)
-    {
-        var arrived = new Answered<T>(task);
-        _ = task.ContinueWith(_ => arrived.Seconds = RunSeconds, CancellationToken.None, TaskContinuationOptions.ExecuteSynchronously, TaskScheduler.Default);
-        return arrived;
-    }
-
-    /// <summary>
-    /// A position reply that came back too late to locate the stage (issue 34): its round trip from <paramref name="written"/>
-    /// past what the links allow (<paramref name="frames"/> frames on the wire each way, both adapters and their spreads, a
-    /// margin), so when the axis answered is not known and its position says nothing of where the stage is against its
-    /// plan. A timing doubt with the laser off, never "ahead of plan".
-    /// </summary>
-    private void ThrowIfReplyTooLate<T>(Answered<T> reply, double written, int frames, TimedSwitching timing, string what)
-    {
-        var roundTrip = reply.Seconds - written;
-        var expected = timing.StageAdapterSeconds + (frames * timing.FrameSeconds) + timing.StageReplySeconds;
-        var allowed = expected + (4 * timing.StageJitterSeconds) + ReplyMarginSeconds;
-        if (roundTrip > allowed)
-        {
-            throw Fault(
-                string.Create(CultureInfo.InvariantCulture, $"the X axis' reply to {what} came back {Units.SecondsToMs(roundTrip):0.0} ms after it was written ({Units.SecondsToMs(expected):0.0} ms expected): too late to locate the stage, so the laser stays off"),
-                recoverable: true);
-        }
-    }
-
-    // What a position reply's round trip may exceed its links' spread by (the host's own reaction to the reply).
-    private const double ReplyMarginSeconds = 0.002;
-
-    /// <summary>
-    /// After a flown gap, before the next switch-on: the position query's answer says how far ahead of its plan the stage
-    /// is (the speed changes' latencies); returns the time shift that puts the next switchings back on their edges.
-    /// </summary>
-    private async Task<double> MeasureFlownGapAsync(StrokePlan.Bump bump, FlownQuery flown, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token)
-    {
-        var query = flown.Query.Task;
-        if (!await CompletesByAsync(query, onWrite, token) || !query.IsCompletedSuccessfully)
-        {
-            throw Fault("the X axis did not answer the position query after a flown gap before the laser was to come on", recoverable: true);
-        }
-
-        ThrowIfReplyTooLate(flown.Query, flown.WrittenSeconds, 1, timing, "the position query after a flown gap");
-
-        // A host late to write (a loaded computer) held the bump longer or shorter and asked later: where the stage then is.
-        var hold = bump.SpeedDownArrival - bump.SpeedUpArrival;
-        var gainedMore = timing.FlyGain(hold + flown.DownLate - flown.UpLate) - timing.FlyGain(hold);
-        var expected = bump.ExpectedOffset + (timing.BurnSpeed * flown.QueryLate) + gainedMore;
-        var ahead = ((query.Result - start) * direction) - expected;
-        if (Math.Abs(ahead) > bump.MaxErrorMicrosteps + 1)
-        {
-            // The latencies spread wider than assumed. One check sees one or two draws of them and rarely their largest, so
-            // the run that goes on from here assumes twice what this one found (RunResult.LatencyScale).
-            _latencyScaleSeen = Math.Max(_latencyScaleSeen, Math.Min(MaxLatencyScale, 2 * LatencyScale * Math.Abs(ahead) / Math.Max(bump.MaxErrorMicrosteps, 1)));
-
-            throw Fault(string.Create(
-                System.Globalization.CultureInfo.InvariantCulture,
-                $"the X axis reported {query.Result} microsteps after a flown gap, {ahead:0} from its plan (at most {bump.MaxErrorMicrosteps:0} expected): it is not moving as planned, so the laser stays off"),
-                recoverable: true);
-        }
-
-        // What the bump gained beyond its plan (its speed commands' real interval) is the stage ahead of its plan as surely as
-        // what the query found: every later switching comes that much sooner. Asking later is not: it is only time passing.
-        return -(ahead + gainedMore) / timing.BurnSpeed;
-    }
-
-    /// <summary>Before the first switch-on of a stroke: every earlier move has reported its end, and the position query shows the stage on its way.</summary>
-    private async Task ConfirmMovingAsync(IReadOnlyList<ReplyWatch.Watched> earlier, Answered<long> arrived, double moveWritten, long start, int direction, TimedSwitching timing, double onWrite, CancellationToken token, double pollLate = 0)
-    {
-        var poll = arrived.Task;
-        foreach (var watched in earlier)
-        {
-            // A move whose end is never reported is settled by the next move of its axis reporting its own.
-            if (!await CompletesByAsync(watched.Settled(), onWrite, token))
-            {
-                throw Fault($"the stage had not reported {watched.What} when the laser was to come on", recoverable: true);
-            }
-        }
-
-        if (!await CompletesByAsync(poll, onWrite, token))
-        {
-            throw Fault("the X axis did not answer the position query before the laser was to come on", recoverable: true);
-        }
-
-        long position;
-        try
-        {
-            position = await poll;
-        }
-        catch (DeviceException ex)
-        {
-            throw Fault($"the X axis did not answer the position query before the laser was to come on: {ex.Message}");
-        }
-
-        // The stroke's Move Absolute and its query together: the query's frame leaves behind the move's.
-        ThrowIfReplyTooLate(arrived, moveWritten + pollLate, 2, timing, "the position query after a stroke's Move Absolute");
-
-        // The query arrives one frame after the move: the stage has accelerated that long, give or take both latencies.
-        var a = timing.Acceleration;
-        var earliest = Math.Max(0, timing.FrameSeconds + pollLate - (2 * timing.StageJitterSeconds));
-        var latest = timing.FrameSeconds + pollLate + (2 * timing.StageJitterSeconds);
-        var moved = (position - start) * direction;
-        var least = Math.Max(1, Math.Floor(0.5 * a * earliest * earliest / 2));
-        var most = Math.Ceiling(0.5 * a * latest * latest) + 2;
-        if (moved < least && moved >= 0 && RunSeconds + timing.FrameSeconds + timing.StageReplySeconds + (2 * timing.StageJitterSeconds) < onWrite)
-        {
-            // Not yet seen moving (the query overtook the move's start on a late device, or on a simulator on the wall
-            // clock): ask once more while there is time; the laser stays off until it has been seen moving.
-            var againWritten = RunSeconds;
-            var againArrived = Arrival(Stage.X.GetPositionAsync(token));
-            var again = againArrived.Task;
-            if (await CompletesByAsync(again, onWrite, token) && again.IsCompletedSuccessfully)
-            {
-                ThrowIfReplyTooLate(againArrived, againWritten, 1, timing, "a second position query at a stroke's start");
-                position = again.Result;
-                moved = (position - start) * direction;
-                least = 1;
-                most = Math.Abs(_profile.X.TravelMicrosteps);
-            }
-        }
-
-        if (moved < least || moved > most)
-        {
-            throw Fault($"the X axis reported {position} microsteps just after starting its stroke, not {start + (direction * least)}..{start + (direction * most)}: it is not moving as planned, so the laser stays off");
-        }
-    }
-
     private Task<bool> CompletesByAsync(Task task, double seconds, CancellationToken token) => _replies.CompletesByAsync(task, seconds, token);
 
     private async Task KeepAlivesUntilAsync(double offWrite, TimedSwitching timing, CancellationToken token)
@@ -536,10 +353,7 @@ public sealed partial class RunExecutor
     private async Task<double> WrittenLateAsync(Task<long?> lineWritten, double plannedWrite) =>
         await lineWritten is { } stamp && TimeProvider.GetElapsedTime(_engravingStart, stamp).TotalSeconds - plannedWrite is > LateSeconds and var late ? late : 0;
 
-    /// <summary>When a stage command planned to arrive at <paramref name="plannedArrival"/> arrives, written at <paramref name="writtenSeconds"/>.</summary>
-    /// <remarks>A host late to write (a loaded computer) is not the device's delay: its reply is expected that much later.</remarks>
-    private static double Sent(double plannedArrival, double writtenSeconds, TimedSwitching timing) =>
-        Later(plannedArrival, writtenSeconds + timing.StageCommandSeconds);
+    private static double Sent(double plannedArrival, double writtenSeconds, TimedSwitching timing) => GateSwitching.Sent(plannedArrival, writtenSeconds, timing);
 
     // The actual time when it is later than planned by more than the clock's rounding, else the planned one.
     private static double Later(double planned, double actual) => GateSwitching.Later(planned, actual);
