@@ -93,11 +93,89 @@ public sealed partial class RunExecutor
 
     private async Task StrokeAsync(StrokeStep stroke, TimedSwitching timing, MotionTimeline timeline, CancellationToken token)
     {
-        var plan = stroke.Plan;
-        double Offset(long x) => stroke.TimeAt(x);
-        long Distance(long x) => stroke.Distance(x);
-        var times = timeline.Stroke(plan, stroke.FirstEdgeSeconds, stroke.LastOffSeconds);
+        var s = await StartStrokeAsync(stroke, timing, timeline, token);
+        for (var k = 0; k < stroke.RunCount; k++)
+        {
+            await BurnRunAsync(s, k, token);
+        }
 
+        // Behind its plan, the stroke also ends later: the next move must not catch it braking.
+        if (s.Shift > 0)
+        {
+            timeline.Delay(s.Shift);
+        }
+
+        _completions.UpTo(stroke, stroke.FirstMoveIndex + stroke.MoveCount - 1, null);
+    }
+
+    /// <summary>
+    /// A stroke under way: its step and times, where the position queries found the stage against its plan, the gap being
+    /// flown, and the replies its first switch-on waits for.
+    /// </summary>
+    private sealed class StrokeUnderWay(StrokeStep stroke, TimedSwitching timing, StrokeTimes times, StrokeCut.Stroke active)
+    {
+        public StrokeStep Stroke { get; } = stroke;
+
+        public TimedSwitching Timing { get; } = timing;
+
+        public StrokeTimes Times { get; } = times;
+
+        /// <summary>The stroke as the stop point's cut pixel reads it (its origin moved with <see cref="Shift"/>).</summary>
+        public StrokeCut.Stroke Active { get; } = active;
+
+        public Dictionary<long, StrokePlan.Bump> Bumps { get; } = stroke.Plan.Bumps.ToDictionary(b => b.Exit);
+
+        /// <summary>
+        /// Where the position queries after flown gaps found the stage ahead (-) or behind (+) its plan, as time at the burn
+        /// speed; from the start, a move whose write completed late (a computer stalled before it) is that much behind.
+        /// </summary>
+        public double Shift { get; set; }
+
+        public (StrokePlan.Bump Bump, StrokePosition.FlownQuery Query)? Flown { get; set; }
+
+        public required ReplyWatch.Watched End { get; init; }
+
+        public required double EndDeadline { get; init; }
+
+        public required IReadOnlyList<ReplyWatch.Watched> Earlier { get; init; }
+
+        public required StrokePosition.Answered<long>? Poll { get; init; }
+
+        public required double MoveStamped { get; init; }
+
+        public double PollLate { get; set; }
+
+        /// <summary>When the switch-on of the run entering at <paramref name="x"/> is written, run seconds.</summary>
+        public double OnWrite(long x) => Times.Arrival + Stroke.TimeAt(x) + Shift + Timing.OnDelaySeconds - Timing.OnLeadSeconds;
+
+        /// <summary>When the switch-off of the run leaving at <paramref name="x"/> is written, run seconds.</summary>
+        public double OffWrite(long x) => Times.Arrival + Stroke.TimeAt(x) + Shift - Timing.OffAdvanceSeconds - Timing.OffLeadSeconds;
+
+        /// <summary>Whether the gap after the run leaving at <paramref name="x"/> is flown.</summary>
+        public bool FlownAfter(long x) => Bumps.ContainsKey(Stroke.Distance(x));
+
+        /// <summary>When the next run's scheduled switch-on is to be written (as GateSwitching.ScheduledSwitchOnAsync will compute it).</summary>
+        public double NextScheduledWrite(Move next, double burstEndsAt)
+        {
+            var (nextOn, nextOff) = Effects(next);
+            return Math.Min(Timing.ScheduledWriteSeconds(nextOn, nextOff, burstEndsAt), Timing.BurstWriteSeconds(nextOn, nextOff));
+        }
+
+        /// <summary>Whether the gap after a run carries the switch-off's line ahead of the next burst's (docs/execution.md, "The burst").</summary>
+        public bool OffFitsBefore(Move next, double offEffect)
+        {
+            var (nextOn, nextOff) = Effects(next);
+            return Timing.OffFitsBefore(offEffect, nextOn, Timing.PulsesWithin(nextOff - nextOn));
+        }
+
+        private (double On, double Off) Effects(Move next) =>
+            (Times.Arrival + Stroke.TimeAt(next.X0) + Shift + Timing.OnDelaySeconds, Times.Arrival + Stroke.TimeAt(next.X1) + Shift - Timing.OffAdvanceSeconds);
+    }
+
+    /// <summary>Sends a stroke's speed and its Move Absolute with the position query behind it, at their times (later, with everything after, when the host is late).</summary>
+    private async Task<StrokeUnderWay> StartStrokeAsync(StrokeStep stroke, TimedSwitching timing, MotionTimeline timeline, CancellationToken token)
+    {
+        var times = timeline.Stroke(stroke.Plan, stroke.FirstEdgeSeconds, stroke.LastOffSeconds);
         var speedWritten = double.NegativeInfinity;
         if (times.SpeedArrival is { } speedArrival)
         {
@@ -118,8 +196,7 @@ public sealed partial class RunExecutor
             times = times with { Arrival = arrival, End = times.End + (arrival - times.Arrival) };
         }
 
-        var start = stroke.StartX;
-        var active = new StrokeCut.Stroke(start, stroke.Direction, stroke.EndX, plan) { Origin = times.Arrival };
+        var active = new StrokeCut.Stroke(stroke.StartX, stroke.Direction, stroke.EndX, stroke.Plan) { Origin = times.Arrival };
         lock (_lock)
         {
             _cut.Started(active);
@@ -130,143 +207,118 @@ public sealed partial class RunExecutor
         var move = Stage.X.MoveAbsoluteAfterAsync(stroke.EndX, token);
         var moveWritten = Stage.LineWritten;
         var strokeEnd = Watch(Arrive(move, "X", stroke.EndX, x => _x = x), times.End + timing.StageReplySeconds, "the end of a stroke (X)", axis: "X");
-        var strokeEndDeadline = strokeEnd.Deadline;
         var poll = stroke.RunCount > 0 ? _position.Arrival(Stage.X.GetPositionAsync(token)) : null;
         var pollWritten = Stage.LineWritten;
-        var direction = stroke.Direction;
-
-        // Where the position queries after flown gaps found the stage ahead (-) or behind (+) its plan, as time at the burn
-        // speed; from the start, a move whose write completed late (a computer stalled before it) is that much behind.
-        var shift = await WrittenLateAsync(moveWritten, times.Arrival - timing.StageCommandSeconds);
-        active.Origin = times.Arrival + shift;
+        var s = new StrokeUnderWay(stroke, timing, times, active) { End = strokeEnd, EndDeadline = strokeEnd.Deadline, Earlier = earlier, Poll = poll, MoveStamped = moveStamped };
+        s.Shift = await WrittenLateAsync(moveWritten, times.Arrival - timing.StageCommandSeconds);
+        active.Origin = times.Arrival + s.Shift;
 
         // The query asked after the move: written later than the move (a stall between them), it finds the stage further on.
-        var pollLate = poll is null ? 0 : await WrittenLateAsync(pollWritten, times.Arrival - timing.StageCommandSeconds + shift);
-        (StrokePlan.Bump Bump, StrokePosition.FlownQuery Query)? flown = null;
-        var bumps = plan.Bumps.ToDictionary(b => b.Exit);
-        var index = 0;
-        for (var k = 0; k < stroke.RunCount; k++)
+        s.PollLate = poll is null ? 0 : await WrittenLateAsync(pollWritten, times.Arrival - timing.StageCommandSeconds + s.Shift);
+        return s;
+    }
+
+    /// <summary>Burn run <paramref name="k"/> of a stroke: the stage checked where it must be, the switch-on, the switch-off (or the burst's own end), the gap after it flown.</summary>
+    private async Task BurnRunAsync(StrokeUnderWay s, int k, CancellationToken token)
+    {
+        var (stroke, timing, times) = (s.Stroke, s.Timing, s.Times);
+        var (burn, burnIndex) = stroke.RunAt(k);
+        var onWrite = s.OnWrite(burn.X0);
+        if (k == 0)
         {
-            var (burn, burnIndex) = stroke.RunAt(k);
-            var onWrite = times.Arrival + Offset(burn.X0) + shift + timing.OnDelaySeconds - timing.OnLeadSeconds;
-            if (index++ == 0)
-            {
-                // The round trip counts from the move's write as it completed (a stall before it is no slow reply).
-                await _position.ConfirmMovingAsync(earlier, poll!, Math.Max(moveStamped, times.Arrival - timing.StageCommandSeconds + shift), start, direction, timing, onWrite, token, pollLate);
-            }
-            else if (flown is { } gap)
-            {
-                shift += await _position.MeasureFlownGapAsync(gap.Bump, gap.Query, start, direction, timing, onWrite, token);
-                active.Origin = times.Arrival + shift;
+            // The round trip counts from the move's write as it completed (a stall before it is no slow reply).
+            await _position.ConfirmMovingAsync(s.Earlier, s.Poll!, Math.Max(s.MoveStamped, times.Arrival - timing.StageCommandSeconds + s.Shift), stroke.StartX, stroke.Direction, timing, onWrite, token, s.PollLate);
+        }
+        else if (s.Flown is { } gap)
+        {
+            s.Shift += await _position.MeasureFlownGapAsync(gap.Bump, gap.Query, stroke.StartX, stroke.Direction, timing, onWrite, token);
+            s.Active.Origin = times.Arrival + s.Shift;
 
-                // Behind its plan (a bump held shorter by a late speed-up), the stroke also ends that much later.
-                strokeEnd.Deadline = strokeEndDeadline + Math.Max(0, shift);
-                onWrite = times.Arrival + Offset(burn.X0) + shift + timing.OnDelaySeconds - timing.OnLeadSeconds;
-                flown = null;
-            }
+            // Behind its plan (a bump held shorter by a late speed-up), the stroke also ends that much later.
+            s.End.Deadline = s.EndDeadline + Math.Max(0, s.Shift);
+            onWrite = s.OnWrite(burn.X0);
+            s.Flown = null;
+        }
 
-            var offWrite = times.Arrival + Offset(burn.X1) + shift - timing.OffAdvanceSeconds - timing.OffLeadSeconds;
+        var offWrite = s.OffWrite(burn.X1);
+        _completions.UpTo(stroke, burnIndex - 1, null);
 
-            _completions.UpTo(stroke, burnIndex - 1, null);
+        // The burst fills the run from its switch-on to its planned switch-off; its line's length depends on its count.
+        var onEffect = onWrite + timing.OnLeadSeconds;
+        var offEffect = offWrite + timing.OffLeadSeconds;
+        onWrite = timing.BurstWriteSeconds(onEffect, offEffect);
+        var (on, onWritten, onAnswered) = _switching.ScheduledBursts
+            ? await _switching.ScheduledSwitchOnAsync(onEffect, offEffect, onWrite, timing, token)
+            : await _switching.PlainSwitchOnAsync(onEffect, offEffect, onWrite, timing, token);
+        lock (_lock)
+        {
+            _cut.Burning(burn, burnIndex, on, _switching.BurstEndsAt);
+        }
 
-            // The burst fills the run from its switch-on to its planned switch-off; its line's length depends on its count.
-            var onEffect = onWrite + timing.OnLeadSeconds;
-            var offEffect = offWrite + timing.OffLeadSeconds;
-            onWrite = timing.BurstWriteSeconds(onEffect, offEffect);
-            var (on, onWritten, onAnswered) = _switching.ScheduledBursts
-                ? await _switching.ScheduledSwitchOnAsync(onEffect, offEffect, onWrite, timing, token)
-                : await _switching.PlainSwitchOnAsync(onEffect, offEffect, onWrite, timing, token);
+        _switching.LastWrite = Math.Max(onWrite, onWritten);
+        WatchGate(on, onAnswered, "the laser gate did not acknowledge the switch-on");
+        RunProgress progress;
+        lock (_lock)
+        {
+            _accounting.Current(burn, burnIndex);
+            _progress = Snapshot();
+            progress = _progress;
+        }
+
+        ProgressChanged?.Invoke(this, progress);
+        await EndBurnRunAsync(s, k, burn, offWrite, offEffect, token);
+
+        // A run counts as burned once its switch-on is acknowledged (a silent gate burns nothing).
+        _completions.UpTo(stroke, burnIndex, on);
+
+        if (s.Bumps.TryGetValue(stroke.Distance(burn.X1), out var bump))
+        {
+            s.Flown = (bump, await _position.FlyGapAsync(bump, times.Arrival + s.Shift, timing, token));
+        }
+    }
+
+    /// <summary>The end of burn run <paramref name="k"/>: its switch-off at its time, or left to the burst's count when a line would not fit.</summary>
+    private async Task EndBurnRunAsync(StrokeUnderWay s, int k, Move burn, double offWrite, double offEffect, CancellationToken token)
+    {
+        var (stroke, timing) = (s.Stroke, s.Timing);
+
+        // A scheduled switch-on is written well ahead: when the next one is due before this run's switch-off, the
+        // switch-off is left out, since written after that line it would cancel the burst armed by it; the count
+        // ends this run by itself.
+        var nextWrite = k + 1 < stroke.RunCount && _switching.ScheduledBursts && !s.FlownAfter(burn.X1) ? s.NextScheduledWrite(stroke.RunAt(k + 1).Move, _switching.BurstEndsAt) : double.PositiveInfinity;
+        var offLeftOut = offWrite + timing.OffWireSeconds > nextWrite;
+        await KeepAlivesUntilAsync(Math.Min(offWrite, nextWrite), timing, token);
+        if (offLeftOut)
+        {
+            _laser.MarkOff(Math.Max(0, offEffect - RunSeconds));
+            NotBurning();
+            return;
+        }
+
+        await DelayUntilAsync(offWrite, token);
+
+        // A frequency-only gate fires until told otherwise: its switch-off is never left out.
+        if (k + 1 < stroke.RunCount && _profile.Gate.CountsBursts && !s.FlownAfter(burn.X1) && !s.OffFitsBefore(stroke.RunAt(k + 1).Move, offEffect))
+        {
+            // A gap too short for the switch-off's line and the next burst's: the burst ends this run by itself.
+            _laser.MarkOff(timing.OffLeadSeconds);
+            NotBurning();
+            return;
+        }
+
+        var (off, offWritten) = await _switching.SendSwitchOffAsync(timing);
+        NotBurning();
+        _switching.LastWrite = offWrite;
+        WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off", switchOff: true);
+        _switching.NoteSwitchOffLate(offWrite, offWritten, timing);
+
+        void NotBurning()
+        {
             lock (_lock)
             {
-                _cut.Burning(burn, burnIndex, on, _switching.BurstEndsAt);
-            }
-
-            _switching.LastWrite = Math.Max(onWrite, onWritten);
-            WatchGate(on, onAnswered, "the laser gate did not acknowledge the switch-on");
-            RunProgress progress;
-            lock (_lock)
-            {
-                _accounting.Current(burn, burnIndex);
-                _progress = Snapshot();
-                progress = _progress;
-            }
-
-            ProgressChanged?.Invoke(this, progress);
-
-            // A scheduled switch-on is written well ahead: when the next one is due before this run's switch-off, the
-            // switch-off is left out, since written after that line it would cancel the burst armed by it; the count
-            // ends this run by itself.
-            var nextWrite = k + 1 < stroke.RunCount && _switching.ScheduledBursts && !bumps.ContainsKey(Distance(burn.X1)) ? NextScheduledWrite(stroke.RunAt(k + 1).Move) : double.PositiveInfinity;
-            var offLeftOut = offWrite + timing.OffWireSeconds > nextWrite;
-            await KeepAlivesUntilAsync(Math.Min(offWrite, nextWrite), timing, token);
-            if (offLeftOut)
-            {
-                _laser.MarkOff(Math.Max(0, offEffect - RunSeconds));
-                lock (_lock)
-                {
-                    _cut.NotBurning();
-                }
-            }
-            else
-            {
-                await DelayUntilAsync(offWrite, token);
-
-                // A frequency-only gate fires until told otherwise: its switch-off is never left out.
-                if (k + 1 < stroke.RunCount && _profile.Gate.CountsBursts && !bumps.ContainsKey(Distance(burn.X1)) && !OffFitsBefore(stroke.RunAt(k + 1).Move, offEffect))
-                {
-                    // A gap too short for the switch-off's line and the next burst's: the burst ends this run by itself.
-                    _laser.MarkOff(timing.OffLeadSeconds);
-                    lock (_lock)
-                    {
-                        _cut.NotBurning();
-                    }
-                }
-                else
-                {
-                    var (off, offWritten) = await _switching.SendSwitchOffAsync(timing);
-                    lock (_lock)
-                    {
-                        _cut.NotBurning();
-                    }
-
-                    _switching.LastWrite = offWrite;
-                    WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off", switchOff: true);
-                    _switching.NoteSwitchOffLate(offWrite, offWritten, timing);
-                }
-            }
-
-            // A run counts as burned once its switch-on is acknowledged (a silent gate burns nothing).
-            _completions.UpTo(stroke, burnIndex, on);
-
-            if (bumps.TryGetValue(Distance(burn.X1), out var bump))
-            {
-                flown = (bump, await _position.FlyGapAsync(bump, times.Arrival + shift, timing, token));
+                _cut.NotBurning();
             }
         }
-
-        // When the next run's scheduled switch-on is to be written (as ScheduledSwitchOnAsync will compute it).
-        double NextScheduledWrite(Move next)
-        {
-            var nextOn = times.Arrival + Offset(next.X0) + shift + timing.OnDelaySeconds;
-            var nextOff = times.Arrival + Offset(next.X1) + shift - timing.OffAdvanceSeconds;
-            return Math.Min(timing.ScheduledWriteSeconds(nextOn, nextOff, _switching.BurstEndsAt), timing.BurstWriteSeconds(nextOn, nextOff));
-        }
-
-        // Whether the gap after a run carries the switch-off's line ahead of the next burst's (docs/execution.md, "The burst").
-        bool OffFitsBefore(Move next, double offEffect)
-        {
-            var nextOn = times.Arrival + Offset(next.X0) + shift + timing.OnDelaySeconds;
-            var nextOff = times.Arrival + Offset(next.X1) + shift - timing.OffAdvanceSeconds;
-            return timing.OffFitsBefore(offEffect, nextOn, timing.PulsesWithin(nextOff - nextOn));
-        }
-
-        // Behind its plan, the stroke also ends later: the next move must not catch it braking.
-        if (shift > 0)
-        {
-            timeline.Delay(shift);
-        }
-
-        _completions.UpTo(stroke, stroke.FirstMoveIndex + stroke.MoveCount - 1, null);
     }
 
     private async Task TravelAsync(TravelStep travel, TimedSwitching timing, MotionTimeline timeline, CancellationToken token)
