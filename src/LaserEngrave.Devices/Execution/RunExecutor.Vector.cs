@@ -96,10 +96,52 @@ public sealed partial class RunExecutor
         var offWrite = origin + stroke.LaserOffSeconds - timing.OffLeadSeconds;
         var events = new List<(double Write, int Order, Func<Task> Send)>();
         var due = new List<(Task Reply, double Due, string What, ReplyWatch.Watched Watched)>();
+        var sent = new VectorStrokeSent();
+        AddAxisCommands(events, due, sent, stroke, timing, origin, token);
+        AddGateCommands(events, sent, stroke, timing, origin, onWrite, offWrite, token);
+        foreach (var (at, _, send) in events.OrderBy(e => e.Write).ThenBy(e => e.Order))
+        {
+            await DelayUntilAsync(at, token);
+            ThrowIfAborted();
+
+            // Every reply that is due is looked at before each command: a stage that stops answering (or acting) is
+            // caught within a slot of its reply's deadline, on the stroke's own path, not by a watcher's timer.
+            CheckDue(due);
+            await send();
+        }
+
+        // The travel leaves once the axes rest and the switch-off is acknowledged.
+        var travel = write + stroke.NextArrivalSeconds;
+        if (!await CompletesByAsync(sent.Off!, travel, token) || !sent.Off!.IsCompletedSuccessfully)
+        {
+            _laser.MarkSwitchOffFailed();
+            throw Fault("the laser gate had not acknowledged the switch-off when the stage was to travel");
+        }
+
+        _laser.MarkOff();
+        lock (_lock)
+        {
+            _x = stroke.RestEnd.X;
+            _y = stroke.RestEnd.Y;
+        }
+
+        return travel;
+    }
+
+    /// <summary>What a stroke's commands have sent so far: its position query (and of which axis), its switch-off.</summary>
+    private sealed class VectorStrokeSent
+    {
+        public Task<long>? Poll { get; set; }
+
+        public IStageAxis? Polled { get; set; }
+
+        public Task? Off { get; set; }
+    }
+
+    /// <summary>Each axis command of the stroke (speed, stop, position query) at its time, its reply watched.</summary>
+    private void AddAxisCommands(List<(double Write, int Order, Func<Task> Send)> events, List<(Task Reply, double Due, string What, ReplyWatch.Watched Watched)> due, VectorStrokeSent sent, VectorStroke stroke, TimedSwitching timing, double origin, CancellationToken token)
+    {
         var stall = (2 * timing.StageJitterSeconds) + Units.MsToSeconds(Options.StallMarginMs);
-        Task<long>? poll = null;
-        IStageAxis? polled = null;
-        Task? off = null;
         foreach (var command in stroke.Commands)
         {
             var axis = command.Axis == VectorAxis.X ? Stage.X : Stage.Y;
@@ -118,18 +160,22 @@ public sealed partial class RunExecutor
                         Watch(Settled(axis.StreamStopAsync(token)), arrival + (timing.BurnSpeed / timing.Acceleration) + timing.StageReplySeconds, $"the stop of its stroke ({name})");
                         break;
                     default:
-                        poll = axis.GetPositionAsync(token);
-                        polled = axis;
+                        sent.Poll = axis.GetPositionAsync(token);
+                        sent.Polled = axis;
                         break;
                 }
 
                 return Task.CompletedTask;
             }));
         }
+    }
 
+    /// <summary>The stroke's switch-on once its position is confirmed, the keepalives while it burns, its switch-off.</summary>
+    private void AddGateCommands(List<(double Write, int Order, Func<Task> Send)> events, VectorStrokeSent sent, VectorStroke stroke, TimedSwitching timing, double origin, double onWrite, double offWrite, CancellationToken token)
+    {
         events.Add((onWrite, 1, async () =>
         {
-            await ConfirmStrokeAsync(poll, polled, stroke, timing, onWrite, token);
+            await ConfirmStrokeAsync(sent.Poll, sent.Polled, stroke, timing, onWrite, token);
             await DelayUntilAsync(onWrite, token);
             var (on, onWritten) = await _switching.SendSwitchOnAsync(origin + stroke.LaserOnSeconds, origin + stroke.LaserOffSeconds, timing);
             _switching.LastWrite = onWrite;
@@ -151,39 +197,11 @@ public sealed partial class RunExecutor
 
         events.Add((offWrite, 3, async () =>
         {
-            (off, var offWritten) = await _switching.SendSwitchOffAsync(timing);
+            (sent.Off, var offWritten) = await _switching.SendSwitchOffAsync(timing);
             _switching.LastWrite = offWrite;
-            WatchGate(off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off", switchOff: true);
+            WatchGate(sent.Off, Later(offWrite, offWritten) + timing.OffRoundTripSeconds, "the laser gate did not acknowledge the switch-off", switchOff: true);
             _switching.NoteSwitchOffLate(offWrite, offWritten, timing);
         }));
-
-        foreach (var (at, _, send) in events.OrderBy(e => e.Write).ThenBy(e => e.Order))
-        {
-            await DelayUntilAsync(at, token);
-            ThrowIfAborted();
-
-            // Every reply that is due is looked at before each command: a stage that stops answering (or acting) is
-            // caught within a slot of its reply's deadline, on the stroke's own path, not by a watcher's timer.
-            CheckDue(due);
-            await send();
-        }
-
-        // The travel leaves once the axes rest and the switch-off is acknowledged.
-        var travel = write + stroke.NextArrivalSeconds;
-        if (!await CompletesByAsync(off!, travel, token) || !off!.IsCompletedSuccessfully)
-        {
-            _laser.MarkSwitchOffFailed();
-            throw Fault("the laser gate had not acknowledged the switch-off when the stage was to travel");
-        }
-
-        _laser.MarkOff();
-        lock (_lock)
-        {
-            _x = stroke.RestEnd.X;
-            _y = stroke.RestEnd.Y;
-        }
-
-        return travel;
     }
 
     private void CheckDue(List<(Task Reply, double Due, string What, ReplyWatch.Watched Watched)> due)
