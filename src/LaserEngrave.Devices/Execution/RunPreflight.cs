@@ -58,13 +58,36 @@ internal sealed class RunPreflight
     {
         CheckGateKind();
         CheckJob();
-        string gateIdentity;
+        var (gateIdentity, gateVouchesForCut, scheduled) = await CheckGateAsync(token);
+
+        // What this computer can hold with this gate, now that the gate said whether it times its switch-ons: refused
+        // before anything moves rather than failing as timing doubts (SpeedHold, the one rule the front ends use too).
+        if (_program is RasterProgram { Timing: not null } && SpeedHold.Problem(_process.BurnSpeedMmPerS, _profile, scheduled) is { } tooFast)
+        {
+            throw new PreflightException(tooFast);
+        }
+
+        var exchangesBefore = (_stage.X as IAxisFirmware)?.RoundTripsRecorded ?? 0;
+        var x = await IdentifyAxisAsync(_stage.X, "X", token);
+        var y = await IdentifyAxisAsync(_stage.Y, "Y", token);
+        CheckFirmware(x, "X");
+        CheckFirmware(y, "Y");
+        CheckReach(x, y);
+        var resumeX = await ResumeXAsync(x, gateVouchesForCut, token);
+        var (homed, positionX, positionY) = await HomeAsync(x, y, token);
+        var (latencyScale, timing) = TimingFor(SpreadSeenScale(exchangesBefore));
+        return new PreflightOutcome(new MachineIdentity(x, y, gateIdentity), gateVouchesForCut, resumeX, homed, positionX, positionY, latencyScale, timing, scheduled);
+    }
+
+    /// <summary>The gate identified, switched off and its watchdog set; whether it vouches for a resumed run's cut and times scheduled switch-ons.</summary>
+    private async Task<(string Identity, bool VouchesForCut, bool Scheduled)> CheckGateAsync(CancellationToken token)
+    {
         var gateVouchesForCut = true;
         var counted = _profile.Gate.CountsBursts;
         var scheduled = false;
         try
         {
-            gateIdentity = await OnceMoreAfterTimeoutAsync(() => _gate.IdentifyAsync(token));
+            var gateIdentity = await OnceMoreAfterTimeoutAsync(() => _gate.IdentifyAsync(token));
             if (_options.ResumeFrom is { OffByGateWatchdog: true } && (!counted || !(await _gate.GetStateAsync(token)).WatchdogTripped))
             {
                 // The laser's switch-off time counted on the watchdog; a gate restarted since (or one without STATE?) cannot vouch for it.
@@ -83,25 +106,18 @@ internal sealed class RunPreflight
                     scheduled = (await _gate.GetCapabilitiesAsync(token)).Contains(LaserGateCapabilities.After);
                 }
             }
+
+            return (gateIdentity, gateVouchesForCut, scheduled);
         }
         catch (DeviceException ex)
         {
             throw new PreflightException($"the laser gate does not answer as it should: {ex.Message}", ex);
         }
+    }
 
-        // What this computer can hold with this gate, now that the gate said whether it times its switch-ons: refused
-        // before anything moves rather than failing as timing doubts (SpeedHold, the one rule the front ends use too).
-        if (_program is RasterProgram { Timing: not null } && SpeedHold.Problem(_process.BurnSpeedMmPerS, _profile, scheduled) is { } tooFast)
-        {
-            throw new PreflightException(tooFast);
-        }
-
-        var exchangesBefore = (_stage.X as IAxisFirmware)?.RoundTripsRecorded ?? 0;
-        var x = await IdentifyAxisAsync(_stage.X, "X", token);
-        var y = await IdentifyAxisAsync(_stage.Y, "Y", token);
-        CheckFirmware(x, "X");
-        CheckFirmware(y, "Y");
-        CheckReach(x, y);
+    /// <summary>Where a run cut midway goes on from: the stop point's resume X, when the gate and the stage still vouch for it; else null.</summary>
+    private async Task<long?> ResumeXAsync(AxisIdentity x, bool gateVouchesForCut, CancellationToken token)
+    {
         // A gate whose watchdog did not trip heard a command that switched the laser off: the cut at the fault's first OFF.
         var resumeX = gateVouchesForCut ? _options.ResumeFrom?.ResumeXMicrosteps : _options.ResumeFrom?.OffResumeXMicrosteps;
         if (_options.ResumeFrom is { ResumeXMicrosteps: not null, ExpectedXMicrosteps: { } expected })
@@ -121,8 +137,13 @@ internal sealed class RunPreflight
             }
         }
 
+        return resumeX;
+    }
+
+    /// <summary>Homes what is not homed (or both when asked), then reads where the axes stand; whether anything was homed.</summary>
+    private async Task<(bool Homed, long X, long Y)> HomeAsync(AxisIdentity x, AxisIdentity y, CancellationToken token)
+    {
         var homing = new List<Task<long>>();
-        long positionX, positionY;
         try
         {
             // Homing at the process' acceleration and travel speed, so it takes the time the estimate says, not the device's power-up settings'.
@@ -146,37 +167,38 @@ internal sealed class RunPreflight
             }
 
             await Task.WhenAll(homing);
-            positionX = await _stage.X.GetPositionAsync(token);
-            positionY = await _stage.Y.GetPositionAsync(token);
+            var positionX = await _stage.X.GetPositionAsync(token);
+            var positionY = await _stage.Y.GetPositionAsync(token);
+            return (homing.Count > 0, positionX, positionY);
         }
         catch (DeviceException ex)
         {
             throw new PreflightException($"homing failed: {ex.Message}", ex);
         }
+    }
 
+    /// <summary>The latency spread the run assumes and the timing it runs by: a timed raster's widened when <paramref name="spreadSeen"/> (or the options) say so.</summary>
+    private (double LatencyScale, TimedSwitching? Timing) TimingFor(double spreadSeen)
+    {
         // Raster timed switching only: a drawing's schedule and a step-by-step run keep the profile's latencies.
-        var timing = _timing;
-        var latencyScale = 1.0;
-        var scale = Math.Max(double.IsFinite(_options.LatencyScale) ? Math.Max(1, _options.LatencyScale) : 1, SpreadSeenScale(exchangesBefore));
-        if (scale > 1 && _program is RasterProgram { Timing: { } planned })
+        var scale = Math.Max(double.IsFinite(_options.LatencyScale) ? Math.Max(1, _options.LatencyScale) : 1, spreadSeen);
+        if (scale <= 1 || _program is not RasterProgram { Timing: { } planned })
         {
-            latencyScale = scale;
-
-            // Guards, margins, run-ups and checks all follow from the latencies' spread: the run times itself with the wider one.
-            var latency = _profile.Latency;
-            var timedProfile = _profile with
-            {
-                Latency = latency with
-                {
-                    StageJitterMs = latency.StageJitterMs * latencyScale,
-                    GateJitterMs = latency.GateJitterMs * latencyScale,
-                    GateProcessingJitterMs = latency.GateProcessingJitterMs * latencyScale,
-                },
-            };
-            timing = TimedSwitching.For(_process, timedProfile, planned.MicrostepUm);
+            return (1.0, _timing);
         }
 
-        return new PreflightOutcome(new MachineIdentity(x, y, gateIdentity), gateVouchesForCut, resumeX, homing.Count > 0, positionX, positionY, latencyScale, timing, scheduled);
+        // Guards, margins, run-ups and checks all follow from the latencies' spread: the run times itself with the wider one.
+        var latency = _profile.Latency;
+        var timedProfile = _profile with
+        {
+            Latency = latency with
+            {
+                StageJitterMs = latency.StageJitterMs * scale,
+                GateJitterMs = latency.GateJitterMs * scale,
+                GateProcessingJitterMs = latency.GateProcessingJitterMs * scale,
+            },
+        };
+        return (scale, TimedSwitching.For(_process, timedProfile, planned.MicrostepUm));
     }
 
     private static string N(double value) => value.ToString("0.####", CultureInfo.InvariantCulture);
