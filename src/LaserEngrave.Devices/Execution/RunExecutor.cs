@@ -20,7 +20,7 @@ namespace LaserEngrave.Devices.Execution;
 /// <see cref="Pause"/>, <see cref="Resume"/> and <see cref="Abort"/> may be called from any thread at any time.
 /// The protocol is the one <see cref="PlanEstimator"/> models; docs/execution.md describes it.
 /// </remarks>
-public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun, IGateSwitchingRun, IStrokePositionRun
+public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun, IGateSwitchingRun, IStrokePositionRun, IRunMotion
 {
     internal const string AbortedMessage = "aborted by the operator";
 
@@ -207,7 +207,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun, IGate
             Func<CancellationToken, Task> motion = _program switch
             {
                 DrawingProgram drawing => PrepareStrokes(drawing),
-                DotProgram dots => PrepareDots(dots),
+                DotProgram dots => new DotMotion(this, dots).Prepare(),
                 RasterProgram raster => Prepare(raster),
                 _ => throw new InvalidOperationException($"unknown program {_program.GetType().Name}"),
             };
@@ -513,6 +513,30 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun, IGate
     DeviceException IGateSwitchingRun.Fault(string reason, bool recoverable) => Fault(reason, recoverable);
 
     Task IGateSwitchingRun.DelayUntilAsync(double seconds, CancellationToken token) => DelayUntilAsync(seconds, token);
+
+    LaserSafety IRunMotion.Laser => _laser;
+
+    RunAccounting IRunMotion.Accounting => _accounting;
+
+    ProcessSettings IRunMotion.Process => _process;
+
+    MachineProfile IRunMotion.Profile => _profile;
+
+    bool IRunMotion.Homed => _homed;
+
+    (long X, long Y) IRunMotion.Position => (_x, _y);
+
+    Task IRunMotion.BeginEngravingAsync(long firstIndex, int row, CancellationToken token) => BeginEngravingAsync(firstIndex, row, token);
+
+    Task IRunMotion.MoveToAsync(long x, long y, int speedData, CancellationToken token) => MoveToAsync(x, y, speedData, token);
+
+    Task IRunMotion.PauseIfAskedAsync(CancellationToken token) => PauseIfAskedAsync(token);
+
+    void IRunMotion.Completed(Move move, long index) => Completed(move, index);
+
+    void IRunMotion.ThrowIfAborted() => ThrowIfAborted();
+
+    void IRunMotion.NotEngraving(TimeSpan spent) => _notEngraving += spent;
 
     double IStrokePositionRun.RunSeconds => RunSeconds;
 
