@@ -9,7 +9,7 @@ using NSubstitute;
 
 namespace LaserEngrave.App.Tests.ViewModels;
 
-/// <summary>The laser drawn at the machine's pace during a run: between the engine's reports, from the plan and the app's clock only.</summary>
+/// <summary>The laser drawn at the machine's pace during a run: between the engine's reports, from the plan and the machine's clock only.</summary>
 public sealed class LaserPaceTests
 {
     private readonly ManualTimeProvider _clock = new();
@@ -23,6 +23,8 @@ public sealed class LaserPaceTests
 
     public LaserPaceTests()
     {
+        // The cross goes at the machine's clock: here the test's.
+        _fakes.Connection.TimeProvider.Returns(_clock);
         _machine = new MachineViewModel(_fakes.Factory, MachineProfile.Default, _activity);
         _job = new JobViewModel(new ImageService(), MachineProfile.Default, _activity);
         var log = new LogViewModel(_store, Substitute.For<IFileAccess>(), _job);
