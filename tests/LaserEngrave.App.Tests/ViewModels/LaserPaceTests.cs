@@ -104,6 +104,36 @@ public sealed class LaserPaceTests
     }
 
     [Fact]
+    public void Now_EngineKnowsTheStrokeUnderWay_DrawsWhereTheEnginePutsTheStageUntilTheReportsPassIt()
+    {
+        // A timed raster's engine knows its row's one motion (flown gaps at the travel speed): the plan's moves do not.
+        _job.LoadImage(TestFiles.Asset("qr-code.bmp"));
+        _job.EditWidth(10);
+        var job = _job.Job!;
+        var moves = job.Plan.Moves().ToList();
+        var index = moves.FindIndex(m => m.Kind == MoveKind.Burn);
+        var burn = moves[index];
+        long? askedAt = null;
+        var engine = new StrokePosition(burn.X0 + 1234, burn.Y0, index, 3);
+        var pace = new LaserPace(job, _clock, at =>
+        {
+            askedAt = at;
+            return engine;
+        });
+
+        pace.Report(1, index, burn.X0, burn.Y0);
+        _clock.Advance(TimeSpan.FromSeconds(0.25));
+        var during = pace.Now(moving: true, out var atSeconds);
+        pace.Report(1, index + 4, burn.X1, burn.Y1);
+        var past = pace.Now(moving: true);
+
+        Assert.Equal((burn.X0 + 1234, burn.Y0), during);
+        Assert.Equal(_clock.GetTimestamp(), askedAt);
+        Assert.Equal(_clock.GetTimestamp() / (double)_clock.TimestampFrequency, atSeconds);
+        Assert.NotEqual((burn.X0 + 1234, burn.Y0), past);
+    }
+
+    [Fact]
     public void Now_TravelUnderWay_FollowsItsRampsAndArrivesAtItsEnd()
     {
         _job.LoadImage(TestFiles.Asset("qr-code.bmp"));
