@@ -806,14 +806,8 @@ public sealed partial class JobViewModel : ObservableObject
         });
         if (settings.ImagePath is { } path && path != ImagePath)
         {
-            // Opened upright, then given the job's own turn back.
-            LoadImage(path);
-            Batch(() =>
-            {
-                QuarterTurns = settings.QuarterTurns;
-                MirrorX = settings.MirrorX;
-                MirrorY = settings.MirrorY;
-            });
+            // The job put back keeps its own turn and mirrors, set above.
+            LoadImage(path, upright: false);
         }
     }
 

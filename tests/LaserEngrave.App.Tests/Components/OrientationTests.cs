@@ -93,6 +93,18 @@ public sealed class OrientationTests : ComponentTest
     }
 
     [Fact]
+    public void Apply_APastJobOfAnotherFileWithItsTurn_OpensWithThatTurn()
+    {
+        Assert.True(Main.Job.LoadImage(TestFiles.Asset("qr-code.bmp")));
+        var past = Main.Job.ToSettings() with { ImagePath = TestFiles.Asset("text-banner.png"), QuarterTurns = 1, MirrorX = true };
+
+        Main.Job.Apply(past);
+
+        Assert.Equal((1, true), (Main.Job.QuarterTurns, Main.Job.MirrorX));
+        Assert.Equal((60, 308), (Main.Job.Mask!.Width, Main.Job.Mask.Height));
+    }
+
+    [Fact]
     public void Open_TheSameImageAgainOrAFileThatFails_KeepsTheTurn()
     {
         Assert.True(Main.Job.LoadImage(TestFiles.Asset("text-banner.png")));
