@@ -39,6 +39,22 @@ public sealed partial class RunExecutor
     /// <summary>How much later than its round trip an OFF written now is answered, behind the timed lines and replies still on the gate's wire.</summary>
     private double GateQueueSeconds() => _timing is { } timing && _engravingStarted ? _switching.QueueSeconds(timing, RunSeconds) : 0;
 
+    /// <summary>
+    /// Where this run's own timing puts the stage at <paramref name="timestamp"/> (of <see cref="TimeProvider"/>) from a
+    /// timed run's first stroke on: a stroke's motion from when its move arrived, its flown gaps, moved by what the
+    /// position queries found, and the travels between strokes on their ramps; null before the first stroke or for any
+    /// other kind of run. For a view of the run; it asks the stage nothing.
+    /// </summary>
+    public StrokePosition? StrokePositionAt(long timestamp)
+    {
+        lock (_lock)
+        {
+            return _timing is { } timing && _engravingStarted
+                ? _cut.PositionAt(TimeProvider.GetElapsedTime(_engravingStart, timestamp).TotalSeconds, timing)
+                : null;
+        }
+    }
+
     private async Task ExecuteTimedAsync(RasterProgram program, IEnumerable<RasterStep> steps, long firstIndex, TimedSwitching timing, CancellationToken token)
     {
         _completions.StartAt(firstIndex);
@@ -132,7 +148,7 @@ public sealed partial class RunExecutor
             times = times with { Arrival = arrival, End = times.End + (arrival - times.Arrival) };
         }
 
-        var active = new StrokeCut.Stroke(stroke.StartX, stroke.Direction, stroke.EndX, stroke.Plan) { Origin = times.Arrival };
+        var active = new StrokeCut.Stroke(stroke.StartX, stroke.Direction, stroke.EndX, stroke.Plan) { Origin = times.Arrival, Y = stroke.Y, FirstMoveIndex = stroke.FirstMoveIndex, MoveCount = stroke.MoveCount };
         lock (_lock)
         {
             _cut.Started(active);
@@ -290,6 +306,11 @@ public sealed partial class RunExecutor
             }));
         }
 
+        lock (_lock)
+        {
+            _cut.Travelling(move, index, times.XArrival, times.YArrival);
+        }
+
         foreach (var (write, send) in sends.OrderBy(s => s.Write))
         {
             await DelayUntilAsync(write, token);
@@ -303,6 +324,10 @@ public sealed partial class RunExecutor
         {
             // A host late to write (a loaded computer) moves this travel's ends, and everything after them, later.
             timeline.Delay(_travelLate, travel: true);
+            lock (_lock)
+            {
+                _cut.Travelling(move, index, times.XArrival + _travelLate, times.YArrival + _travelLate);
+            }
         }
 
         _travelLate = 0;
@@ -409,7 +434,7 @@ public sealed partial class RunExecutor
     private DeviceException Fault(string reason) => Fault(reason, recoverable: false);
 
     /// <param name="reason">The run's fault, one line.</param>
-    /// <param name="recoverable">Only a position query's doubt with the laser off: see <see cref="RunResult.Recoverable"/>.</param>
+    /// <param name="recoverable">Only a doubt about time (a position query or a stage reply too late, a switch-on past the tolerance), never about the laser: see <see cref="RunResult.Recoverable"/>.</param>
     private DeviceException Fault(string reason, bool recoverable)
     {
         var first = false;

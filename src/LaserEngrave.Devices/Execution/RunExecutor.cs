@@ -20,7 +20,7 @@ namespace LaserEngrave.Devices.Execution;
 /// <see cref="Pause"/>, <see cref="Resume"/> and <see cref="Abort"/> may be called from any thread at any time.
 /// The protocol is the one <see cref="PlanEstimator"/> models; docs/execution.md describes it.
 /// </remarks>
-public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun, IGateSwitchingRun, IStrokePositionRun, IRunMotion
+public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun, IGateSwitchingRun, IStagePositionCheckRun, IRunMotion
 {
     internal const string AbortedMessage = "aborted by the operator";
 
@@ -59,7 +59,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun, IGate
     private readonly GateSwitching _switching;
 
     // Where the X axis is against a stroke's plan, before its first switch-on and after each flown gap.
-    private readonly StrokePosition _position;
+    private readonly StagePositionCheck _position;
 
     // The run's clock: when it started, when the engraving started, and the pauses and positioning that are not engraving.
     private long _startTimestamp;
@@ -121,7 +121,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun, IGate
         _laser = new LaserSafety(Gate, TimeProvider, _process.LaserFrequencyWholeHz, _profile.Gate.WatchdogMs, Options.StallMarginMs, this) { GateNeverReplies = _profile.Gate.NeverReplies };
         _replies = new ReplyWatch(TimeProvider, Options.StallMarginMs, this) { Arriving = gate => gate ? Gate.IsReceiving : Stage.IsReceiving, Written = gate => gate ? Gate.LineWritten : Stage.LineWritten };
         _switching = new GateSwitching(Gate, _laser, TimeProvider, _profile, _lock, this);
-        _position = new StrokePosition(Stage, _program.Motion, _profile.X.TravelMicrosteps, this);
+        _position = new StagePositionCheck(Stage, _program.Motion, _profile.X.TravelMicrosteps, this);
     }
 
     /// <summary>What a run of one part shows before it starts: its rows (strokes) and burn runs (paths) to do, and its estimate.</summary>
@@ -495,7 +495,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun, IGate
 
     TimedSwitching? IReplyWatchRun.Timing => _timing;
 
-    DeviceException IReplyWatchRun.Fault(string reason) => Fault(reason);
+    DeviceException IReplyWatchRun.Fault(string reason, bool recoverable) => Fault(reason, recoverable);
 
     double IGateSwitchingRun.RunSeconds => RunSeconds;
 
@@ -538,25 +538,25 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun, IGate
 
     void IRunMotion.NotEngraving(TimeSpan spent) => _notEngraving += spent;
 
-    double IStrokePositionRun.RunSeconds => RunSeconds;
+    double IStagePositionCheckRun.RunSeconds => RunSeconds;
 
-    double IStrokePositionRun.LatencyScale => LatencyScale;
+    double IStagePositionCheckRun.LatencyScale => LatencyScale;
 
-    void IStrokePositionRun.ThrowIfAborted() => ThrowIfAborted();
+    void IStagePositionCheckRun.ThrowIfAborted() => ThrowIfAborted();
 
-    DeviceException IStrokePositionRun.Fault(string reason, bool recoverable) => Fault(reason, recoverable);
+    DeviceException IStagePositionCheckRun.Fault(string reason, bool recoverable) => Fault(reason, recoverable);
 
-    Task IStrokePositionRun.DelayUntilAsync(double seconds, CancellationToken token) => DelayUntilAsync(seconds, token);
+    Task IStagePositionCheckRun.DelayUntilAsync(double seconds, CancellationToken token) => DelayUntilAsync(seconds, token);
 
-    void IStrokePositionRun.Watch(Task reply, double expectedSeconds, string what) => Watch(reply, expectedSeconds, what);
+    void IStagePositionCheckRun.Watch(Task reply, double expectedSeconds, string what) => Watch(reply, expectedSeconds, what);
 
-    Task<double> IStrokePositionRun.WrittenLateAsync(Task<long?> lineWritten, double plannedWrite) => WrittenLateAsync(lineWritten, plannedWrite);
+    Task<double> IStagePositionCheckRun.WrittenLateAsync(Task<long?> lineWritten, double plannedWrite) => WrittenLateAsync(lineWritten, plannedWrite);
 
-    Task<bool> IStrokePositionRun.CompletesByAsync(Task task, double seconds, CancellationToken token) => CompletesByAsync(task, seconds, token);
+    Task<bool> IStagePositionCheckRun.CompletesByAsync(Task task, double seconds, CancellationToken token) => CompletesByAsync(task, seconds, token);
 
-    void IStrokePositionRun.GapFlown() => NoteGapFlown();
+    void IStagePositionCheckRun.GapFlown() => NoteGapFlown();
 
-    void IStrokePositionRun.LatencySeen(double scale) => _latencyScaleSeen = Math.Max(_latencyScaleSeen, scale);
+    void IStagePositionCheckRun.LatencySeen(double scale) => _latencyScaleSeen = Math.Max(_latencyScaleSeen, scale);
 
     void IReplyWatchRun.SwitchOffFailed(Task reply) => _laser.MarkSwitchOffFailed(reply);
 

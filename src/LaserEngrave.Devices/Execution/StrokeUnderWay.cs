@@ -25,7 +25,7 @@ internal sealed class StrokeUnderWay(StrokeStep stroke, TimedSwitching timing, S
     /// </summary>
     public double Shift { get; set; }
 
-    public (StrokePlan.Bump Bump, StrokePosition.FlownQuery Query)? Flown { get; set; }
+    public (StrokePlan.Bump Bump, StagePositionCheck.FlownQuery Query)? Flown { get; set; }
 
     public required ReplyWatch.Watched End { get; init; }
 
@@ -33,7 +33,7 @@ internal sealed class StrokeUnderWay(StrokeStep stroke, TimedSwitching timing, S
 
     public required IReadOnlyList<ReplyWatch.Watched> Earlier { get; init; }
 
-    public required StrokePosition.Answered<long>? Poll { get; init; }
+    public required StagePositionCheck.Answered<long>? Poll { get; init; }
 
     public required double MoveStamped { get; init; }
 
