@@ -10,6 +10,7 @@ using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Execution;
 using LaserEngrave.Machines;
+using LaserEngrave.Machines.Runs;
 using LaserEngrave.Simulator.Burn;
 using LaserEngrave.Wire.Serial;
 
@@ -82,11 +83,6 @@ internal static class EngraveCommand
 
             var layered = LayerCommands.Prepare(result, jobFile, o.Job, o.Vector, result.GetValue(o.Counter), result.GetValue(o.Sample));
             layeredFile = jobFile;
-            if (Core.Marks.MarkManifest.BurnedAlready(jobFile) is { } burned)
-            {
-                throw new Core.Marks.MarkException(burned);
-            }
-
             warnings = LayerCommands.Warnings(layered);
             job = layered;
         }
@@ -113,7 +109,6 @@ internal static class EngraveCommand
 
             PreparedDrawing drawing;
             (drawing, repeatOf, resumeFrom) = BindDrawingJob(result, o, passes);
-            VectorCommands.RefuseUnrunnable(drawing);
             warnings = drawing.Warnings;
             job = drawing;
         }
@@ -123,7 +118,6 @@ internal static class EngraveCommand
             (spec, repeatOf, resumeFrom) = BindJob(result, o);
             spec = spec with { Passes = passes ?? spec.Passes };
             var prepared = PreparedJob.Prepare(spec);
-            RefuseOutsideTravel(prepared);
             if (burnedScale is { } scale && PngWriter.ScaledPixels(prepared.Mask.Width, prepared.Mask.Height, scale) > PngWriter.MaxScaledPixels)
             {
                 throw new UsageException(string.Create(CultureInfo.InvariantCulture, $"--burned-scale {scale}: the {prepared.Mask.Width} x {prepared.Mask.Height} px job would make a burned image of {PngWriter.ScaledPixels(prepared.Mask.Width, prepared.Mask.Height, scale):N0} pixels, more than the {PngWriter.MaxScaledPixels:N0} allowed; use a smaller scale"));
@@ -145,6 +139,35 @@ internal static class EngraveCommand
             job = prepared;
         }
 
+        var seam = LogSeam.Value;
+        var store = new RunLogStore(result.GetValue(o.LogDir) ?? RunLogStore.DefaultFolder, seam?.Files);
+        var run = new EngraveRun(
+            new RunRequest
+            {
+                Job = job,
+                Notes = result.GetValue(o.Notes),
+                SampleId = result.GetValue(o.Sample),
+                RepeatOf = repeatOf,
+                ResumeFrom = resumeFrom,
+                ResumeLayers = resumeLayers,
+                JobFile = layeredFile,
+                Home = result.GetValue(o.Home),
+                AcceptNoWatchdog = result.GetValue(o.Machine.AcceptNoWatchdog),
+            },
+            // The record is the only thing that resumes a run: a folder that fails during the run must not lose it.
+            new RunLog(FallbackRunLogWriter.For(store, seam?.DataFolder ?? FallbackRunLogWriter.DefaultDataFolder, seam?.Files), store.CheckWritable));
+
+        // Refused before any port opens, nothing moved and the stage not homed: bad input (exit 2), in the use case's words.
+        if (run.Check() is { } refusal)
+        {
+            if (refusal.Cause is { } cause)
+            {
+                ExceptionDispatchInfo.Throw(cause);
+            }
+
+            throw new UsageException(refusal.Message);
+        }
+
         foreach (var warning in warnings)
         {
             stderr.WriteLine($"warning: {warning}");
@@ -164,18 +187,12 @@ internal static class EngraveCommand
                 CliJson.Prepare(typeof(EngraveSummary));
             }
         });
-        var seam = LogSeam.Value;
-        var store = new RunLogStore(result.GetValue(o.LogDir) ?? RunLogStore.DefaultFolder, seam?.Files);
-
-        // A run must not start without a place for its log: the folder takes a file and has room for one, before anything moves.
-        store.CheckWritable();
-
         // What was understood, before any port opens: a size, origin or frequency read otherwise than meant shows here.
         foreach (var line in JobUnderstood.Lines(job))
         {
             stderr.WriteLine(line);
         }
-        EngraveResult engraved;
+        RunEnd ended;
         double? wallSeconds = null;
         ITwinInspector? inspector = null;
         // On real ports every byte in and out is recorded beside the log, so the run's burn can be replayed (`laserengrave replay`).
@@ -194,28 +211,8 @@ internal static class EngraveCommand
 
         await using (opened.ConfigureAwait(false))
         {
-            var machineSession = opened.Session;
             inspector = opened.Twin;
-            var machine = new EngraveMachine(machineSession.Stage, machineSession.Gate, machineSession.TimeProvider, machineSession.StagePort, machineSession.LaserPort)
-            {
-                Simulated = simulate,
-                Inspector = inspector,
-            };
-            var sessionOptions = new EngraveSessionOptions
-            {
-                Notes = result.GetValue(o.Notes),
-                SampleId = result.GetValue(o.Sample),
-                RepeatOf = repeatOf,
-                ResumeFrom = resumeFrom,
-                ResumeLayers = resumeLayers,
-                JobFile = layeredFile,
-                Home = result.GetValue(o.Home),
-                AcceptNoWatchdog = result.GetValue(o.Machine.AcceptNoWatchdog),
-                // The record is the only thing that resumes a run: a folder that fails during the run must not lose it.
-                Log = FallbackRunLogWriter.For(store, seam?.DataFolder ?? FallbackRunLogWriter.DefaultDataFolder, seam?.Files),
-                Recorder = recorder,
-            };
-            var session = new EngraveSession(machine, job, sessionOptions);
+            var session = run.Open(opened.Engraving, recorder);
             var printer = new ProgressPrinter(stderr, terminal: ReferenceEquals(stderr, Console.Error) && !Console.IsErrorRedirected)
             {
                 Job = job,
@@ -225,7 +222,7 @@ internal static class EngraveCommand
             var wall = Stopwatch.StartNew();
             try
             {
-                engraved = await session.RunAsync(printer, cancellationToken).ConfigureAwait(false);
+                ended = await EngraveRun.RunAsync(session, printer, cancellationToken).ConfigureAwait(false);
             }
             finally
             {
@@ -234,11 +231,17 @@ internal static class EngraveCommand
             }
         }
 
+        var engraved = ended.Result;
         var record = engraved.Record;
         var error = engraved.Error;
-        if (layeredFile is not null)
+        if (ended.NextMarkNumber is { } next)
         {
-            MarkCommand.AfterRun(layeredFile, record, stderr);
+            stderr.WriteLine(string.Create(CultureInfo.InvariantCulture, $"marks: the sample counter's next number is {next}"));
+        }
+
+        if (ended.CounterProblem is { } counterProblem)
+        {
+            stderr.WriteLine($"warning: the sample counter was not advanced: {counterProblem}");
         }
 
         await prepareJson.ConfigureAwait(false);
@@ -317,21 +320,6 @@ internal static class EngraveCommand
     {
         using var document = JsonDocument.Parse(RunRecordJson.Serialize(record));
         return document.RootElement.Clone();
-    }
-
-    /// <summary>Refuses a job that does not fit the travel before any port opens (preflight would refuse it later).</summary>
-    internal static void RefuseOutsideTravel(PreparedJob prepared)
-    {
-        if (prepared.Geometry.FitsTravel)
-        {
-            return;
-        }
-
-        var g = prepared.Geometry;
-        var spec = prepared.Spec;
-        throw new UsageException(string.Create(
-            CultureInfo.InvariantCulture,
-            $"the job ({g.AchievedWidthMm:0.###} x {g.AchievedHeightMm:0.###} mm at origin {spec.Origin.X:0.###}, {spec.Origin.Y:0.###} mm) does not fit the stage's travel ({spec.Profile.X.TravelMm:0.###} x {spec.Profile.Y.TravelMm:0.###} mm); move --origin-mm or make it smaller"));
     }
 
     /// <summary>Whether the job is a drawing: IMAGE is a .dxf or .svg, or the log repeated is a drawing's.</summary>
