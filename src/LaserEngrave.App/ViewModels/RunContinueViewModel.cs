@@ -8,7 +8,24 @@ namespace LaserEngrave.App.ViewModels;
 
 /// <summary>What a run asks of <see cref="RunViewModel"/>: the job, its values then, and where a continued run goes on from.</summary>
 /// <param name="ContinuedFrom">The log of the run this one continues (the last run's when none is given and it resumes).</param>
-internal sealed record RunOrder(EngraveJob Job, JobSettings Settings, RunStopPoint? ResumeFrom = null, LayerResumePoint? ResumeLayers = null, string? ContinuedFrom = null);
+internal sealed record RunOrder(EngraveJob Job, JobSettings Settings, RunStopPoint? ResumeFrom = null, LayerResumePoint? ResumeLayers = null, string? ContinuedFrom = null)
+{
+    /// <summary>The run use case's request for this order, with the log panel's notes and sample ID.</summary>
+    /// <param name="lastRun">The last run's log: the one a resumed run continues when the order names none.</param>
+    /// <param name="jobFile">The job file of the layers, unchanged since it was opened; logged (and its marks checked) for a job of layers only.</param>
+    public Machines.Runs.RunRequest Request(string? notes, string? sampleId, string? lastRun, string? jobFile, bool acceptNoWatchdog, TimeProvider wallClock) => new()
+    {
+        Job = Job,
+        Notes = notes,
+        SampleId = sampleId,
+        RepeatOf = ResumeFrom is null && ResumeLayers is null ? null : ContinuedFrom ?? lastRun,
+        ResumeFrom = ResumeFrom,
+        ResumeLayers = ResumeLayers,
+        JobFile = Job.Layers is not null ? jobFile : null,
+        AcceptNoWatchdog = acceptNoWatchdog,
+        WallClock = wallClock,
+    };
+}
 
 /// <summary>
 /// The run bar's Continue and the run history's: whether the stopped run (or a logged one) can go on with the job as it

@@ -141,6 +141,34 @@ public sealed partial class RunProgressViewModel : ObservableObject
         _passSeconds = [.. job.PassSeconds(resumeFrom, resumeLayers)];
     }
 
+    /// <summary>
+    /// A report of the session under way: its progress, and its state while it runs (the start and the end are the
+    /// owner's to set, the end once the log is in). True when it changed whether a pause is pending.
+    /// </summary>
+    internal bool Mirror(EngraveProgress progress)
+    {
+        var pauseChanged = Progress?.PauseRequested != progress.PauseRequested;
+        Progress = progress;
+        if (progress.State is not RunState.Idle && !RunStateMachine.IsEnd(progress.State))
+        {
+            State = progress.State;
+        }
+
+        return pauseChanged;
+    }
+
+    /// <summary>The run ended: a failure's reason stands in the bar.</summary>
+    internal void Ended(EngraveResult result)
+    {
+        if (result.State == RunState.Failed)
+        {
+            // Which path confirmed the laser off is said only when it was not the usual OFF (docs/execution.md).
+            Error = result.Record.Fault is { } fault
+                ? fault.LaserOffBy is null or LaserOffPath.Off ? fault.Message : $"{fault.Message}; laser off: {RunSummaryText.LaserOff(fault)}"
+                : "the run failed";
+        }
+    }
+
     /// <summary>The run's engine has stopped: the time it took stands.</summary>
     internal void Stopped() => ElapsedSecondsAtEnd = _time.GetElapsedTime(_startedTicks).TotalSeconds;
 

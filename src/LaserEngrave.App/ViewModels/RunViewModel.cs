@@ -34,16 +34,11 @@ public sealed partial class RunViewModel : ObservableObject
     /// <param name="layers">The job of layers: while it has layers, Start runs them instead of the single job.</param>
     public RunViewModel(IRunService runs, JobViewModel job, MachineViewModel machine, LogViewModel log, TimeProvider time, LayersViewModel? layers = null)
     {
-        ArgumentNullException.ThrowIfNull(runs);
-        ArgumentNullException.ThrowIfNull(job);
-        ArgumentNullException.ThrowIfNull(machine);
-        ArgumentNullException.ThrowIfNull(log);
-        ArgumentNullException.ThrowIfNull(time);
-        _runs = runs;
-        _job = job;
-        _machine = machine;
-        _log = log;
-        _time = time;
+        _runs = runs ?? throw new ArgumentNullException(nameof(runs));
+        _job = job ?? throw new ArgumentNullException(nameof(job));
+        _machine = machine ?? throw new ArgumentNullException(nameof(machine));
+        _log = log ?? throw new ArgumentNullException(nameof(log));
+        _time = time ?? throw new ArgumentNullException(nameof(time));
         _layers = layers;
         Bar = new RunProgressViewModel(time, () => machine.Profile);
         Continue = new RunContinueViewModel(job, machine, log, layers, Bar, RunAsync);
@@ -119,27 +114,13 @@ public sealed partial class RunViewModel : ObservableObject
 
     public (long X, long Y)? LaserMicrosteps => Bar.LaserMicrosteps;
 
-    public string StateName => Bar.StateName;
-
-    public double ElapsedSecondsAtEnd => Bar.ElapsedSecondsAtEnd;
-
-    public string? StoppedText => Bar.StoppedText;
-
     public bool IsActive => Bar.IsActive;
-
-    public string ProgressUnit => Bar.ProgressUnit;
-
-    public int? LayerCount => Bar.LayerCount;
-
-    public string? LayerText => Bar.LayerText;
 
     public bool CanPause => Bar.CanPause;
 
     public bool CanResume => Bar.CanResume;
 
     public double Fraction => Bar.Fraction;
-
-    public double ElapsedSeconds => Bar.ElapsedSeconds;
 
     public double RemainingSeconds => Bar.RemainingSeconds;
 
@@ -148,10 +129,6 @@ public sealed partial class RunViewModel : ObservableObject
     public string? ContinueUnavailableReason => Continue.ContinueUnavailableReason;
 
     public IAsyncRelayCommand ContinueCommand => Continue.ContinueCommand;
-
-    public IAsyncRelayCommand<string> ContinueLoggedCommand => Continue.ContinueLoggedCommand;
-
-    public string? WhyNotContinueLogged(string path) => Continue.WhyNotContinueLogged(path);
 
     /// <summary>What Start would run: the job of layers while there are layers, else the image or drawing; null when it does not plan.</summary>
     private EngraveJob? Planned => RunsLayers ? _layers!.Engraving : _job.Engraving;
@@ -275,18 +252,7 @@ public sealed partial class RunViewModel : ObservableObject
 
     /// <summary>The run use case for the order with the log panel's fields, this app's log and clock.</summary>
     private EngraveRun NewRun(RunOrder order) => new(
-        new RunRequest
-        {
-            Job = order.Job,
-            Notes = _log.Notes,
-            SampleId = _log.SampleId,
-            RepeatOf = order.ResumeFrom is null && order.ResumeLayers is null ? null : order.ContinuedFrom ?? _log.LastRun?.Path,
-            ResumeFrom = order.ResumeFrom,
-            ResumeLayers = order.ResumeLayers,
-            JobFile = order.Job.Layers is not null ? _layers?.UnchangedJobFile : null,
-            AcceptNoWatchdog = _machine.AcceptNoWatchdog,
-            WallClock = _time,
-        },
+        order.Request(_log.Notes, _log.SampleId, _log.LastRun?.Path, _layers?.UnchangedJobFile, _machine.AcceptNoWatchdog, _time),
         new RunLog(_log.Writer, _log.CheckWritable));
 
     [RelayCommand(CanExecute = nameof(CanPause))]
@@ -309,28 +275,15 @@ public sealed partial class RunViewModel : ObservableObject
         if (_session is { } session && may)
         {
             ask(session);
-            Mirror(session);
+            Mirror(session, session.Progress);
         }
     }
 
     /// <summary>Takes the session's state and progress while it runs; the start and the end are this view-model's to set (the end once the log is in).</summary>
-    private void Mirror(EngraveSession session) => Mirror(session, session.Progress);
-
     private void Mirror(EngraveSession session, EngraveProgress progress)
     {
-        if (!ReferenceEquals(session, _session))
-        {
-            return;
-        }
-
-        var pauseChanged = Progress?.PauseRequested != progress.PauseRequested;
-        Progress = progress;
-        if (progress.State is not RunState.Idle && !RunStateMachine.IsEnd(progress.State))
-        {
-            State = progress.State;
-        }
-
-        if (pauseChanged)
+        // Only the session under way: a report of an ended one (late on its thread) changes nothing.
+        if (ReferenceEquals(session, _session) && Bar.Mirror(progress))
         {
             RefreshCommands();
         }
@@ -358,14 +311,8 @@ public sealed partial class RunViewModel : ObservableObject
         var request = run.Request;
         var job = request.Job;
         Bar.Began(job, request.ResumeFrom, request.ResumeLayers);
-        var machine = new EngraveMachine(connection.Stage, connection.Gate, connection.TimeProvider, connection.Description, connection.Description)
-        {
-            Simulated = connection.IsSimulated,
-            Inspector = connection.IsSimulated ? connection.Inspector : null,
-        };
-
         // On real ports every byte in and out is recorded beside the log, as the command line's runs are (`laserengrave replay`).
-        var running = run.Open(machine, connection.StartRecording(_log.Folder));
+        var running = run.Open(connection.Engraving(), connection.StartRecording(_log.Folder));
         StoppedAt = null;
         RunPlanVersion = _job.PlanVersion;
         _session = running;
@@ -408,30 +355,12 @@ public sealed partial class RunViewModel : ObservableObject
         State = result.State;
     }
 
-    /// <summary>A run's end in the run bar (its error, where it stopped) and the log panel.</summary>
+    /// <summary>A run's end in the run bar (its error, where it stopped), in Continue and in the log panel.</summary>
     private void Ended(EngraveRun run, JobSettings settings, EngraveResult result)
     {
-        var record = result.Record;
-        if (result.State == RunState.Failed)
-        {
-            // Which path confirmed the laser off is said only when it was not the usual OFF (docs/execution.md).
-            Error = record.Fault is { } fault
-                ? fault.LaserOffBy is null or LaserOffPath.Off ? fault.Message : $"{fault.Message}; laser off: {RunSummaryText.LaserOff(fault)}"
-                : "the run failed";
-        }
-
-        var job = run.Request.Job;
-        var layered = job.Layers is not null;
-        var stopPoint = record.Outcome is RunOutcome.Failed or RunOutcome.Aborted ? record.StoppedAt : null;
-        var layerResume = layered ? StoppedRuns.LayerResume(record) : null;
-        if (layered && layerResume is null)
-        {
-            stopPoint = null;
-        }
-
-        Continue.Stopped.Ended(stopPoint is null ? null : new StoppedRun(job, settings, stopPoint, layerResume, layered ? _layers?.Layers : null));
-        StoppedAt = stopPoint;
-        _log.Recorded(record, result.Files, result.LogError);
+        Bar.Ended(result);
+        StoppedAt = Continue.Stopped.Ended(run.Request.Job, settings, result.Record, _layers?.Layers);
+        _log.Recorded(result.Record, result.Files, result.LogError);
     }
 
     private void RefreshCommands()

@@ -37,6 +37,25 @@ internal sealed class StoppedRuns
         _check = ((-1, -1), null);
     }
 
+    /// <summary>
+    /// A run of <paramref name="job"/> with <paramref name="settings"/> ended as <paramref name="record"/> says: the run it
+    /// leaves to continue (a failed or aborted one with something left), and where it stopped; null when nothing is left.
+    /// </summary>
+    /// <param name="layers">The layers it ran, for a job of layers.</param>
+    public RunStopPoint? Ended(EngraveJob job, JobSettings settings, RunRecord record, IReadOnlyList<JobLayer>? layers)
+    {
+        var layered = job.Layers is not null;
+        var stopPoint = record.Outcome is RunOutcome.Failed or RunOutcome.Aborted ? record.StoppedAt : null;
+        var layerResume = layered ? LayerResume(record) : null;
+        if (layered && layerResume is null)
+        {
+            stopPoint = null;
+        }
+
+        Ended(stopPoint is null ? null : new StoppedRun(job, settings, stopPoint, layerResume, layered ? layers : null));
+        return stopPoint;
+    }
+
     /// <summary>What about the job now differs from the one the last run stopped on, as one line; null when nothing does.</summary>
     public string? Difference((int Job, int Layers) planVersion, JobNow now)
     {

@@ -233,7 +233,7 @@ public sealed class RunViewModelTests
             .Returns(c =>
             {
                 c.Arg<IProgress<EngraveProgress>>().Report(Report(RunState.Running, 10, 100, 2, 41, pass: 2, passes: 4) with { Layer = 2 });
-                layerText = run.LayerText;
+                layerText = run.Bar.LayerText;
                 return Task.FromResult(Ended(c.Arg<EngraveSession>(), Result(RunOutcome.Completed)));
             });
 
