@@ -37,108 +37,11 @@ internal static class EngraveCommand
 
     private static async Task<int> RunAsync(ParseResult result, EngraveOptions o, CancellationToken cancellationToken)
     {
-        var stdout = result.InvocationConfiguration.Output;
         var stderr = result.InvocationConfiguration.Error;
         o.Machine.Validate(result);
-        var simulate = result.GetValue(o.Machine.Simulate);
-        var burnedPath = result.GetValue(o.Burned);
-        var dosePath = result.GetValue(o.Dose);
-        if (burnedPath is not null && !simulate)
-        {
-            throw new UsageException("--burned needs --simulate: only the simulator knows what was burned");
-        }
-
-        OptionChecks.OutputFile(burnedPath, "--burned");
-        var burnedScale = result.GetValue(o.BurnedScale);
-        if (burnedScale is not null && burnedPath is null)
-        {
-            throw new UsageException("--burned-scale needs --burned: it sizes that image");
-        }
-
-        OptionChecks.InRange(burnedScale, 1, MaxBurnedScale, "--burned-scale", " image pixels a job pixel", "to look at a small job's burned.png");
-        var passes = result.GetValue(o.Passes);
-        if (passes is { } n && JobRules.Passes(n) is { } rule)
-        {
-            throw new UsageException($"--passes {n}: {rule}");
-        }
-
-        // The one job the session runs, whichever kind the options name.
-        EngraveJob job;
-        string? repeatOf = null;
-        RunStopPoint? resumeFrom = null;
-        LayerResumePoint? resumeLayers = null;
-        string? layeredFile = null;
-        IEnumerable<string> warnings;
-        if (result.GetValue(o.JobFile) is null && OptionChecks.IsGiven(result, o.Counter))
-        {
-            throw new UsageException("--counter is for --job: a job file's marks number from it (a repeated or resumed run's log names its own)");
-        }
-
-        if (result.GetValue(o.JobFile) is { } jobFile)
-        {
-            if (new Option[] { o.FromLog, o.Resume, o.Passes, o.Burned, o.Dose }.FirstOrDefault(option => OptionChecks.IsGiven(result, option)) is { } other)
-            {
-                throw new UsageException($"{other.Name} with --job: {(other == o.Passes ? "each layer has its own passes" : other == o.Burned || other == o.Dose ? "--burned and --dose are for one image" : "a job of layers is repeated or resumed by --from-log LOG alone (the log names its job file)")}");
-            }
-
-            var layered = LayerCommands.Prepare(result, jobFile, o.Job, o.Vector, result.GetValue(o.Counter), result.GetValue(o.Sample));
-            layeredFile = jobFile;
-            warnings = LayerCommands.Warnings(layered);
-            job = layered;
-        }
-        // With IMAGE too, the image's way refuses the pair before any log is read.
-        else if (result.GetValue(o.Job.Image) is null && result.GetValue(o.FromLog) is { } layersLog && RunLogStore.Read(layersLog).Layers is not null)
-        {
-            if (new Option[] { o.Passes, o.Burned, o.Dose }.FirstOrDefault(option => OptionChecks.IsGiven(result, option)) is { } other)
-            {
-                throw new UsageException($"{other.Name} with --from-log of a job of layers: {(other == o.Passes ? "each layer has its own passes" : "--burned and --dose are for one image")}");
-            }
-
-            LayeredJob layered;
-            (layered, layeredFile, resumeLayers) = LayerCommands.FromLog(result, layersLog, result.GetValue(o.Resume), o.Job, o.Vector);
-            repeatOf = Path.GetFullPath(layersLog);
-            warnings = LayerCommands.Warnings(layered);
-            job = layered;
-        }
-        else if (IsDrawingJob(result, o))
-        {
-            if (burnedPath is not null || dosePath is not null)
-            {
-                throw new UsageException("--burned and --dose are for images; a drawing's figures are in the log and in --json (pathDeviationUm, pulseSpacingUm)");
-            }
-
-            PreparedDrawing drawing;
-            (drawing, repeatOf, resumeFrom) = BindDrawingJob(result, o, passes);
-            warnings = drawing.Warnings;
-            job = drawing;
-        }
-        else
-        {
-            JobSpec spec;
-            (spec, repeatOf, resumeFrom) = BindJob(result, o);
-            spec = spec with { Passes = passes ?? spec.Passes };
-            var prepared = PreparedJob.Prepare(spec);
-            if (burnedScale is { } scale && PngWriter.ScaledPixels(prepared.Mask.Width, prepared.Mask.Height, scale) > PngWriter.MaxScaledPixels)
-            {
-                throw new UsageException(string.Create(CultureInfo.InvariantCulture, $"--burned-scale {scale}: the {prepared.Mask.Width} x {prepared.Mask.Height} px job would make a burned image of {PngWriter.ScaledPixels(prepared.Mask.Width, prepared.Mask.Height, scale):N0} pixels, more than the {PngWriter.MaxScaledPixels:N0} allowed; use a smaller scale"));
-            }
-
-            if (prepared.EngraveProblem is { } tooShort)
-            {
-                // Known from the plan alone: refused before any port opens, as preflight would refuse it later.
-                throw new UsageException(tooShort);
-            }
-
-            if (prepared.Plan.Timing is not null && SpeedHold.Problem(prepared.Spec.Process.BurnSpeedMmPerS, prepared.Spec.Profile, o.Machine.ExpectsScheduledSwitchOns(result, prepared.Spec.Profile)) is { } tooFast)
-            {
-                // The edge tolerance against this computer's lateness: named before any port opens, not as timing doubts mid-run.
-                throw new UsageException(tooFast);
-            }
-
-            warnings = prepared.Warnings.Select(w => w.Message);
-            job = prepared;
-        }
-
+        var outputs = BindOutputs(result, o);
+        var choice = ChooseJob(result, o, outputs);
+        var job = choice.Job;
         var seam = LogSeam.Value;
         var store = new RunLogStore(result.GetValue(o.LogDir) ?? RunLogStore.DefaultFolder, seam?.Files);
         var run = new EngraveRun(
@@ -147,10 +50,10 @@ internal static class EngraveCommand
                 Job = job,
                 Notes = result.GetValue(o.Notes),
                 SampleId = result.GetValue(o.Sample),
-                RepeatOf = repeatOf,
-                ResumeFrom = resumeFrom,
-                ResumeLayers = resumeLayers,
-                JobFile = layeredFile,
+                RepeatOf = choice.RepeatOf,
+                ResumeFrom = choice.ResumeFrom,
+                ResumeLayers = choice.ResumeLayers,
+                JobFile = choice.JobFile,
                 Home = result.GetValue(o.Home),
                 AcceptNoWatchdog = result.GetValue(o.Machine.AcceptNoWatchdog),
             },
@@ -168,7 +71,7 @@ internal static class EngraveCommand
             throw new UsageException(refusal.Message);
         }
 
-        foreach (var warning in warnings)
+        foreach (var warning in choice.Warnings)
         {
             stderr.WriteLine($"warning: {warning}");
         }
@@ -192,11 +95,23 @@ internal static class EngraveCommand
         {
             stderr.WriteLine(line);
         }
+        var (ended, burn, wallSeconds) = await RunOnMachineAsync(result, o, run, store.Folder, cancellationToken).ConfigureAwait(false);
+        await prepareJson.ConfigureAwait(false);
+        return Report(result, json, ended, burn, outputs, wallSeconds);
+    }
+
+    /// <summary>Opens the machine the options name, runs the job on it with its progress on stderr, and closes it.</summary>
+    /// <returns>How the run ended, on the twin what it burned, and the wall time the run took.</returns>
+    private static async Task<(RunEnd Ended, BurnReport? Burn, double? WallSeconds)> RunOnMachineAsync(ParseResult result, EngraveOptions o, EngraveRun run, string logFolder, CancellationToken cancellationToken)
+    {
+        var stderr = result.InvocationConfiguration.Error;
+        var job = run.Request.Job;
+        var profile = job.Spec.Profile;
         RunEnd ended;
         double? wallSeconds = null;
         ITwinInspector? inspector = null;
         // On real ports every byte in and out is recorded beside the log, so the run's burn can be replayed (`laserengrave replay`).
-        using var recorder = simulate ? null : new WireRecorder(Path.Combine(store.Folder, $"wire_{DateTime.UtcNow:yyyy-MM-dd_HHmmss}_{Guid.NewGuid().ToString("N")[..8]}.jsonl"), TimeProvider.System);
+        using var recorder = result.GetValue(o.Machine.Simulate) ? null : new WireRecorder(Path.Combine(logFolder, $"wire_{DateTime.UtcNow:yyyy-MM-dd_HHmmss}_{Guid.NewGuid().ToString("N")[..8]}.jsonl"), TimeProvider.System);
         OpenMachine opened;
         try
         {
@@ -207,7 +122,6 @@ internal static class EngraveCommand
             recorder?.Discard();
             throw;
         }
-
 
         await using (opened.ConfigureAwait(false))
         {
@@ -231,9 +145,117 @@ internal static class EngraveCommand
             }
         }
 
+        return (ended, inspector?.Report, wallSeconds);
+    }
+
+    /// <summary>What the simulator's burn is written to after the run: --burned (at --burned-scale) and --dose.</summary>
+    private sealed record BurnOutputs(string? BurnedPath, int? BurnedScale, string? DosePath);
+
+    /// <summary>The one job the session runs, whichever kind the options name, with what its log says of where it came from.</summary>
+    private sealed record JobChoice(EngraveJob Job, IEnumerable<string> Warnings, string? RepeatOf = null, RunStopPoint? ResumeFrom = null, LayerResumePoint? ResumeLayers = null, string? JobFile = null);
+
+    private static BurnOutputs BindOutputs(ParseResult result, EngraveOptions o)
+    {
+        var burnedPath = result.GetValue(o.Burned);
+        if (burnedPath is not null && !result.GetValue(o.Machine.Simulate))
+        {
+            throw new UsageException("--burned needs --simulate: only the simulator knows what was burned");
+        }
+
+        OptionChecks.OutputFile(burnedPath, "--burned");
+        var burnedScale = result.GetValue(o.BurnedScale);
+        if (burnedScale is not null && burnedPath is null)
+        {
+            throw new UsageException("--burned-scale needs --burned: it sizes that image");
+        }
+
+        OptionChecks.InRange(burnedScale, 1, MaxBurnedScale, "--burned-scale", " image pixels a job pixel", "to look at a small job's burned.png");
+        return new BurnOutputs(burnedPath, burnedScale, result.GetValue(o.Dose));
+    }
+
+    private static JobChoice ChooseJob(ParseResult result, EngraveOptions o, BurnOutputs outputs)
+    {
+        var passes = result.GetValue(o.Passes);
+        if (passes is { } n && JobRules.Passes(n) is { } rule)
+        {
+            throw new UsageException($"--passes {n}: {rule}");
+        }
+
+        if (result.GetValue(o.JobFile) is null && OptionChecks.IsGiven(result, o.Counter))
+        {
+            throw new UsageException("--counter is for --job: a job file's marks number from it (a repeated or resumed run's log names its own)");
+        }
+
+        if (result.GetValue(o.JobFile) is { } jobFile)
+        {
+            if (new Option[] { o.FromLog, o.Resume, o.Passes, o.Burned, o.Dose }.FirstOrDefault(option => OptionChecks.IsGiven(result, option)) is { } other)
+            {
+                throw new UsageException($"{other.Name} with --job: {(other == o.Passes ? "each layer has its own passes" : other == o.Burned || other == o.Dose ? "--burned and --dose are for one image" : "a job of layers is repeated or resumed by --from-log LOG alone (the log names its job file)")}");
+            }
+
+            var layered = LayerCommands.Prepare(result, jobFile, o.Job, o.Vector, result.GetValue(o.Counter), result.GetValue(o.Sample));
+            return new JobChoice(layered, LayerCommands.Warnings(layered), JobFile: jobFile);
+        }
+
+        // With IMAGE too, the image's way refuses the pair before any log is read.
+        if (result.GetValue(o.Job.Image) is null && result.GetValue(o.FromLog) is { } layersLog && RunLogStore.Read(layersLog).Layers is not null)
+        {
+            if (new Option[] { o.Passes, o.Burned, o.Dose }.FirstOrDefault(option => OptionChecks.IsGiven(result, option)) is { } other)
+            {
+                throw new UsageException($"{other.Name} with --from-log of a job of layers: {(other == o.Passes ? "each layer has its own passes" : "--burned and --dose are for one image")}");
+            }
+
+            var (layered, layeredFile, resumeLayers) = LayerCommands.FromLog(result, layersLog, result.GetValue(o.Resume), o.Job, o.Vector);
+            return new JobChoice(layered, LayerCommands.Warnings(layered), Path.GetFullPath(layersLog), ResumeLayers: resumeLayers, JobFile: layeredFile);
+        }
+
+        if (IsDrawingJob(result, o))
+        {
+            if (outputs.BurnedPath is not null || outputs.DosePath is not null)
+            {
+                throw new UsageException("--burned and --dose are for images; a drawing's figures are in the log and in --json (pathDeviationUm, pulseSpacingUm)");
+            }
+
+            var (drawing, repeatOf, resumeFrom) = BindDrawingJob(result, o, passes);
+            return new JobChoice(drawing, drawing.Warnings, repeatOf, resumeFrom);
+        }
+
+        return ChooseImage(result, o, passes, outputs.BurnedScale);
+    }
+
+    /// <summary>An image's job, from IMAGE or a run log, refused before any port opens when the plan alone shows it cannot burn as asked.</summary>
+    private static JobChoice ChooseImage(ParseResult result, EngraveOptions o, int? passes, int? burnedScale)
+    {
+        var (spec, repeatOf, resumeFrom) = BindJob(result, o);
+        spec = spec with { Passes = passes ?? spec.Passes };
+        var prepared = PreparedJob.Prepare(spec);
+        if (burnedScale is { } scale && PngWriter.ScaledPixels(prepared.Mask.Width, prepared.Mask.Height, scale) > PngWriter.MaxScaledPixels)
+        {
+            throw new UsageException(string.Create(CultureInfo.InvariantCulture, $"--burned-scale {scale}: the {prepared.Mask.Width} x {prepared.Mask.Height} px job would make a burned image of {PngWriter.ScaledPixels(prepared.Mask.Width, prepared.Mask.Height, scale):N0} pixels, more than the {PngWriter.MaxScaledPixels:N0} allowed; use a smaller scale"));
+        }
+
+        if (prepared.EngraveProblem is { } tooShort)
+        {
+            // Known from the plan alone: refused before any port opens, as preflight would refuse it later.
+            throw new UsageException(tooShort);
+        }
+
+        if (prepared.Plan.Timing is not null && SpeedHold.Problem(prepared.Spec.Process.BurnSpeedMmPerS, prepared.Spec.Profile, o.Machine.ExpectsScheduledSwitchOns(result, prepared.Spec.Profile)) is { } tooFast)
+        {
+            // The edge tolerance against this computer's lateness: named before any port opens, not as timing doubts mid-run.
+            throw new UsageException(tooFast);
+        }
+
+        return new JobChoice(prepared, prepared.Warnings.Select(w => w.Message), repeatOf, resumeFrom);
+    }
+
+    /// <summary>The run's end as `engrave` says it: the counter, the log's place, the burn's images, the summary, and the exit code.</summary>
+    private static int Report(ParseResult result, bool json, RunEnd ended, BurnReport? burn, BurnOutputs outputs, double? wallSeconds)
+    {
+        var stdout = result.InvocationConfiguration.Output;
+        var stderr = result.InvocationConfiguration.Error;
         var engraved = ended.Result;
         var record = engraved.Record;
-        var error = engraved.Error;
         if (ended.NextMarkNumber is { } next)
         {
             stderr.WriteLine(string.Create(CultureInfo.InvariantCulture, $"marks: the sample counter's next number is {next}"));
@@ -244,7 +266,6 @@ internal static class EngraveCommand
             stderr.WriteLine($"warning: the sample counter was not advanced: {counterProblem}");
         }
 
-        await prepareJson.ConfigureAwait(false);
         if (engraved.Files is not { } files)
         {
             // The run happened: say so first, in one line, then keep what the log would have said on stderr and the
@@ -267,19 +288,17 @@ internal static class EngraveCommand
             stderr.WriteLine($"laserengrave: {notice}");
         }
 
-        var burn = inspector?.Report;
-
-        if (burnedPath is not null && burn is not null)
+        if (outputs.BurnedPath is { } burnedPath && burn is not null)
         {
-            burn.WritePng(burnedPath, burnedScale ?? 1);
+            burn.WritePng(burnedPath, outputs.BurnedScale ?? 1);
         }
 
-        if (dosePath is not null && burn is not null)
+        if (outputs.DosePath is { } dosePath && burn is not null)
         {
             burn.WriteDosePng(dosePath);
         }
 
-        var summary = EngraveSummary.From(record, files, burnedPath, burn is null ? null : dosePath, wallSeconds);
+        var summary = EngraveSummary.From(record, files, outputs.BurnedPath, burn is null ? null : outputs.DosePath, wallSeconds);
         if (json)
         {
             CliJson.Write(stdout, summary with { LogNotice = files.Notice, RunLog = RecordElement(record) });
@@ -289,7 +308,7 @@ internal static class EngraveCommand
             WriteText(stdout, summary);
         }
 
-        if (error is not null)
+        if (engraved.Error is { } error)
         {
             ExceptionDispatchInfo.Throw(error);
         }
