@@ -1,10 +1,9 @@
-using LaserEngrave.Core.Jobs;
-
 namespace LaserEngrave.App.ViewModels;
 
 /// <summary>
 /// Moves a run's drawn laser on between the engine's reports: a <see cref="LaserPace"/> over the job, asked on a timer of
-/// the app's clock and after each report; once disposed it shows no laser (the machine's own position again).
+/// the app's clock and after each report, each position with the instant of the machine's clock it is for; once
+/// disposed it shows no laser (the machine's own position again).
 /// </summary>
 internal sealed class RunLaserDriver : IDisposable
 {
@@ -13,17 +12,19 @@ internal sealed class RunLaserDriver : IDisposable
     private readonly LaserPace _pace;
     private readonly ITimer _timer;
     private readonly Func<bool?> _moving;
-    private readonly Action<(long X, long Y)?> _show;
+    private readonly Action<PacedLaser?> _show;
     private bool _ended;
 
+    /// <param name="pace">The run's pace, on the machine's clock.</param>
+    /// <param name="timerClock">The app's clock, whose timer asks the pace every <paramref name="interval"/>.</param>
     /// <param name="moving">Whether the run is moving now (the laser drawn along its motion); null before its first report.</param>
-    /// <param name="show">Where to draw the laser; null clears it.</param>
-    public RunLaserDriver(EngraveJob job, TimeProvider time, TimeSpan interval, Func<bool?> moving, Action<(long X, long Y)?> show)
+    /// <param name="show">Where to draw the laser and for when; null clears it.</param>
+    public RunLaserDriver(LaserPace pace, TimeProvider timerClock, TimeSpan interval, Func<bool?> moving, Action<PacedLaser?> show)
     {
-        _pace = new LaserPace(job, time);
+        _pace = pace;
         _moving = moving;
         _show = show;
-        _timer = time.CreateTimer(_ => Tick(), null, interval, interval);
+        _timer = timerClock.CreateTimer(_ => Tick(), null, interval, interval);
     }
 
     /// <summary>A progress report: in layer <paramref name="layer"/>, <paramref name="movesDone"/> of the pass's moves done, the stage at (x, y).</summary>
@@ -49,7 +50,8 @@ internal sealed class RunLaserDriver : IDisposable
         {
             if (!_ended && _moving() is { } moving)
             {
-                _show(_pace.Now(moving));
+                var now = _pace.Now(moving, out var atSeconds);
+                _show(now is { } p ? new PacedLaser(p.X, p.Y, atSeconds) : null);
             }
         }
     }

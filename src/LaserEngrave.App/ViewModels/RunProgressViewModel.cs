@@ -42,6 +42,9 @@ public sealed partial class RunProgressViewModel : ObservableObject
     [ObservableProperty]
     public partial (long X, long Y)? LaserMicrosteps { get; internal set; }
 
+    /// <summary>The drawn laser with the instant on the machine's clock it stands for, in one value (the stage view tells the page both); null with <see cref="LaserMicrosteps"/>.</summary>
+    public PacedLaser? PacedLaser { get; private set; }
+
     /// <summary>The latest progress of the run under way (or of the last one).</summary>
     [ObservableProperty]
     [NotifyPropertyChangedFor(nameof(LayerText), nameof(ProgressUnit))]
@@ -128,6 +131,14 @@ public sealed partial class RunProgressViewModel : ObservableObject
 
             return Math.Max(0, _estimatedSeconds * (1 - Fraction));
         }
+    }
+
+    /// <summary>Draws the laser where the run's pace puts it (null: no laser drawn, the machine's own position again).</summary>
+    internal void ShowLaser(PacedLaser? laser)
+    {
+        // The instant first: whoever is told the position has moved reads the instant that goes with it.
+        PacedLaser = laser;
+        LaserMicrosteps = laser is { } l ? (l.X, l.Y) : null;
     }
 
     /// <summary>A run of <paramref name="job"/> begins now, continuing a stopped one from <paramref name="resumeFrom"/> or <paramref name="resumeLayers"/> when given.</summary>

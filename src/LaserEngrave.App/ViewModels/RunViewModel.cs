@@ -12,9 +12,8 @@ namespace LaserEngrave.App.ViewModels;
 /// <summary>The Preview view's run: start, pause, resume, abort (always allowed), and live progress.</summary>
 /// <remarks>
 /// The run is an <see cref="EngraveRun"/>, the use case the command line and the API run: this view-model only starts it,
-/// forwards pause, resume and abort, and mirrors its state and progress. Progress is stored as the latest value only: the page
-/// samples it at its own pace, so a run of many short moves never floods it. Abort switches the laser off before the
-/// axes stop.
+/// forwards pause, resume and abort, and mirrors its state and progress, the latest value only (the page samples it at
+/// its own pace, so a run of many short moves never floods it). Abort switches the laser off before the axes stop.
 /// </remarks>
 public sealed partial class RunViewModel : ObservableObject
 {
@@ -113,6 +112,8 @@ public sealed partial class RunViewModel : ObservableObject
     public RunStopPoint? StoppedAt { get => Bar.StoppedAt; private set => Bar.StoppedAt = value; }
 
     public (long X, long Y)? LaserMicrosteps => Bar.LaserMicrosteps;
+
+    public PacedLaser? PacedLaser => Bar.PacedLaser;
 
     public bool IsActive => Bar.IsActive;
 
@@ -324,8 +325,9 @@ public sealed partial class RunViewModel : ObservableObject
         using var abort = CancellationTokenSource.CreateLinkedTokenSource(lease.CancellationToken);
         _abort = abort;
 
-        // Every kind of job counts its moves (plan moves, dots, strokes) one for one with the engine: its laser is drawn at their pace.
-        _laser = new RunLaserDriver(job, _time, PaceInterval, () => Progress is { } p ? p.State == RunState.Running : null, at => Bar.LaserMicrosteps = at);
+        // Every kind of job counts its moves one for one with the engine: its laser is drawn at their pace, on the machine's
+        // clock (the engine's), which the simulator's virtual time can hold behind the app's.
+        _laser = new RunLaserDriver(new LaserPace(job, connection.TimeProvider, running.StrokePositionAt), _time, PaceInterval, () => Progress is { } p ? p.State == RunState.Running : null, Bar.ShowLaser);
         try
         {
             result = await _runs.RunAsync(running, new LatestProgress(this, running), abort.Token);
