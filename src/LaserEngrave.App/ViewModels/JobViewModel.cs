@@ -261,9 +261,9 @@ public sealed partial class JobViewModel : ObservableObject
     [ObservableProperty]
     public partial double DotSettleMs { get; set; }
 
-    /// <summary>Energy of one pulse, µJ; 0: not known (no energy per pixel is shown).</summary>
+    /// <summary>Energy of one pulse, µJ; null: not known (no energy per pixel is shown). The job rules refuse 0 and below, as the command line does.</summary>
     [ObservableProperty]
-    public partial double PulseEnergyUj { get; set; }
+    public partial double? PulseEnergyUj { get; set; }
 
     /// <summary>A drawing's paths: outlines, filled with scan lines, or both (the command line's <c>--fill</c>).</summary>
     [ObservableProperty]
@@ -708,6 +708,43 @@ public sealed partial class JobViewModel : ObservableObject
 
     public void EditMicrostepsPerPixel(double microsteps) => EditPitch(microsteps * _profile.X.MicrostepUm);
 
+    /// <summary>
+    /// The job dropped on the stage at (<paramref name="xMm"/>, <paramref name="yMm"/>), snapped to 0.01 mm: placed as the
+    /// same origin typed would be, and refused with the same sentence (the origin goes back) where the job rules refuse
+    /// the typed origin. Returns that sentence, or null when it was placed.
+    /// </summary>
+    public string? PlaceAt(double xMm, double yMm)
+    {
+        if (LockedBecause is { } locked)
+        {
+            return locked;
+        }
+
+        if (ImagePath is null)
+        {
+            return "no job to place";
+        }
+
+        var (x, y) = (Math.Round(xMm, 2), Math.Round(yMm, 2));
+        var (oldX, oldY) = (OriginXMm, OriginYMm);
+        try
+        {
+            Batch(() => (OriginXMm, OriginYMm) = (x, y));
+            if (Errors.TryGetValue(OriginField, out var refused))
+            {
+                Batch(() => (OriginXMm, OriginYMm) = (oldX, oldY));
+                return $"not placed at {N(x)}, {N(y)} mm: {refused}";
+            }
+        }
+        catch (MachineBusyException ex)
+        {
+            // The lock came between the check and the drop.
+            return ex.Message;
+        }
+
+        return null;
+    }
+
     /// <summary>Throws <see cref="MachineBusyException"/> while an operation fixes the job (an upload asks before it is kept).</summary>
     public void ThrowIfLocked() => _activity.ThrowIfJobLocked();
 
@@ -752,7 +789,7 @@ public sealed partial class JobViewModel : ObservableObject
             PulsesPerDot = settings.PulsesPerDot;
             DotPitchMicrosteps = settings.DotPitchMicrosteps;
             DotSettleMs = settings.DotSettleMs;
-            PulseEnergyUj = settings.PulseEnergyUj ?? 0;
+            PulseEnergyUj = settings.PulseEnergyUj;
             DrawingFill = settings.DrawingFill;
             ToleranceUm = settings.ToleranceUm;
             FillPitchUm = settings.FillPitchUm;
@@ -792,7 +829,7 @@ public sealed partial class JobViewModel : ObservableObject
         PulsesPerDot = PulsesPerDot,
         DotPitchMicrosteps = DotPitchMicrosteps,
         DotSettleMs = DotSettleMs,
-        PulseEnergyUj = PulseEnergyUj > 0 ? PulseEnergyUj : null,
+        PulseEnergyUj = PulseEnergyUj,
         DrawingFill = DrawingFill,
         ToleranceUm = ToleranceUm,
         FillPitchUm = FillPitchUm,
@@ -976,9 +1013,17 @@ public sealed partial class JobViewModel : ObservableObject
                 errors[refused.Field] = refused.Message;
             }
 
+            // Off the travel is refused, typed or dropped, as the command line and Start refuse it: the rule's sentence beside the origin.
+            var outside = job is null ? null : JobRules.Placement(job);
+            if (outside is not null)
+            {
+                errors[OriginField] = errors.TryGetValue(OriginField, out var before) ? before + "; " + outside : outside;
+            }
+
             if (job is not null)
             {
-                foreach (var warning in job.Warnings.Where(w => w.Kind is not (JobWarningKind.PitchBelowMicrostep or JobWarningKind.PixelTooShortForTheGate or JobWarningKind.BurstTooLongForTheWatchdog)))
+                foreach (var warning in job.Warnings.Where(w => w.Kind is not (JobWarningKind.PitchBelowMicrostep or JobWarningKind.PixelTooShortForTheGate or JobWarningKind.BurstTooLongForTheWatchdog)
+                    && !(outside is not null && job.Geometry.Warnings.Contains(w))))
                 {
                     var field = warning.Kind switch
                     {
@@ -1068,9 +1113,10 @@ public sealed partial class JobViewModel : ObservableObject
                     warnings[ImageField] = string.Join("; ", drawing.Warnings);
                 }
 
-                if (!drawing.FitsTravel)
+                // Off the travel is refused, typed or dropped, as the command line and Start refuse it.
+                if (JobRules.Placement(drawing) is { } outside)
                 {
-                    warnings[OriginField] = "the drawing, with its strokes' run-ups and run-outs, leaves the stage's travel: move the origin or make it smaller";
+                    errors[OriginField] = outside;
                 }
 
                 // The fields that follow show what the drawing will really be.
@@ -1123,7 +1169,7 @@ public sealed partial class JobViewModel : ObservableObject
         BurnSpeedMmPerS = BurnSpeedMmPerS,
         TravelSpeedMmPerS = TravelSpeedMmPerS,
         AccelerationMmPerS2 = AccelerationMmPerS2,
-        PulseEnergyUj = PulseEnergyUj > 0 ? PulseEnergyUj : null,
+        PulseEnergyUj = PulseEnergyUj,
         Mode = Mode,
         PulsesPerDot = Mode == PlanMode.Dots ? PulsesPerDot : 1,
         DotPitchMicrosteps = Mode == PlanMode.Dots ? DotPitchMicrosteps : 0,

@@ -70,6 +70,7 @@ public sealed partial class TestMovesViewModel : ObservableObject
     public partial double GoToYMm { get; set; }
 
     [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(TestFireProblem))]
     public partial int TestFirePulses { get; set; } = 100;
 
     /// <summary>The last failure of a test move, one line.</summary>
@@ -86,26 +87,14 @@ public sealed partial class TestMovesViewModel : ObservableObject
     [RelayCommand(AllowConcurrentExecutions = true, CanExecute = nameof(CanJog))]
     private Task JogAsync(string direction)
     {
-        var (dx, dy) = direction switch
+        if (JogProblem(direction) is { } problem)
         {
-            "x+" => (1, 0),
-            "x-" => (-1, 0),
-            "y+" => (0, 1),
-            "y-" => (0, -1),
-            _ => (0, 0),
-        };
-        if ((dx, dy) == (0, 0))
-        {
-            Error = $"jog direction '{direction}' is not one of x+, x-, y+, y-";
+            Error = problem;
             return Task.CompletedTask;
         }
 
+        var (dx, dy) = Direction(direction);
         var step = StepUm;
-        if (!(step > 0) || step > 60000)
-        {
-            Error = $"step {N(step)} µm must be above 0 and at most 60000 µm";
-            return Task.CompletedTask;
-        }
 
         lock (_jogLock)
         {
@@ -132,6 +121,34 @@ public sealed partial class TestMovesViewModel : ObservableObject
             return _jogging;
         }
     }
+
+    /// <summary>
+    /// Why a jog in <paramref name="direction"/> by <see cref="StepUm"/> is refused, in the job rules' words (the step up to
+    /// that axis' travel, as the command line's jog); null when it may be made. The page and the API say it before anything moves.
+    /// </summary>
+    public string? JogProblem(string? direction)
+    {
+        var (dx, dy) = Direction(direction);
+        if ((dx, dy) == (0, 0))
+        {
+            return $"jog direction '{direction}' is not one of x+, x-, y+, y-";
+        }
+
+        var axis = dx != 0 ? _machine.Profile.X : _machine.Profile.Y;
+        return JobRules.JogStep((dx + dy) * StepUm, axis.TravelMm, dx != 0 ? "X" : "Y") is { } rule ? $"step {N(StepUm)} µm: {rule}" : null;
+    }
+
+    /// <summary>Why a test fire of <see cref="TestFirePulses"/> is refused, in the job rules' words (as the command line's fire and the devices); null when it may fire.</summary>
+    public string? TestFireProblem => JobRules.TestFirePulses(TestFirePulses) is { } rule ? $"test fire of {TestFirePulses} pulses: {rule}" : null;
+
+    private static (int Dx, int Dy) Direction(string? direction) => direction switch
+    {
+        "x+" => (1, 0),
+        "x-" => (-1, 0),
+        "y+" => (0, 1),
+        "y-" => (0, -1),
+        _ => (0, 0),
+    };
 
     /// <summary>A machine, and nothing but a jog holding it (presses during a jog add to its target).</summary>
     private bool CanJog(string? direction) => (!Activity.IsBusy || Activity.Current?.Kind == MachineOperationKind.Jog) && _machine.IsConnected;
@@ -225,9 +242,9 @@ public sealed partial class TestMovesViewModel : ObservableObject
     [RelayCommand(CanExecute = nameof(CanMove))]
     private Task TestFireAsync() => Run("test fire", $"Firing {TestFirePulses} pulses…", async (moves, ct) =>
     {
-        if (TestFirePulses is < 1 or > 100000)
+        if (TestFireProblem is { } problem)
         {
-            throw new ArgumentException($"test fire of {TestFirePulses} pulses must be 1 to 100000 pulses");
+            throw new ArgumentException(problem);
         }
 
         var frequency = (int)Math.Round(_job.LaserFrequencyHz, MidpointRounding.AwayFromZero);

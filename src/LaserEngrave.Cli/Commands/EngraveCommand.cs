@@ -322,16 +322,10 @@ internal static class EngraveCommand
     /// <summary>Refuses a job that does not fit the travel before any port opens (preflight would refuse it later).</summary>
     internal static void RefuseOutsideTravel(PreparedJob prepared)
     {
-        if (prepared.Geometry.FitsTravel)
+        if (JobRules.Placement(prepared) is { } outside)
         {
-            return;
+            throw new UsageException(outside);
         }
-
-        var g = prepared.Geometry;
-        var spec = prepared.Spec;
-        throw new UsageException(string.Create(
-            CultureInfo.InvariantCulture,
-            $"the job ({g.AchievedWidthMm:0.###} x {g.AchievedHeightMm:0.###} mm at origin {spec.Origin.X:0.###}, {spec.Origin.Y:0.###} mm) does not fit the stage's travel ({spec.Profile.X.TravelMm:0.###} x {spec.Profile.Y.TravelMm:0.###} mm); move --origin-mm or make it smaller"));
     }
 
     /// <summary>Whether the job is a drawing: IMAGE is a .dxf or .svg, or the log repeated is a drawing's.</summary>

@@ -52,12 +52,9 @@ internal static class VectorCommands
     /// <summary>Refuses a drawing whose strokes leave the travel, or that has nothing long enough to burn, before any port opens.</summary>
     public static void RefuseUnrunnable(PreparedDrawing drawing)
     {
-        if (!drawing.FitsTravel)
+        if (JobRules.Placement(drawing) is { } outside)
         {
-            var spec = drawing.Spec;
-            throw new UsageException(string.Create(
-                CultureInfo.InvariantCulture,
-                $"the drawing ({drawing.Plan.WidthMm:0.###} x {drawing.Plan.HeightMm:0.###} mm at origin {spec.Origin.X:0.###}, {spec.Origin.Y:0.###} mm, with its strokes' run-ups and run-outs) does not fit the stage's travel ({spec.Profile.X.TravelMm:0.###} x {spec.Profile.Y.TravelMm:0.###} mm); move --origin-mm or make it smaller"));
+            throw new UsageException(outside);
         }
 
         if (drawing.Schedule.Strokes.Count == 0)

@@ -70,7 +70,7 @@ public sealed class PreparedDrawing
     {
         ArgumentNullException.ThrowIfNull(spec);
         ArgumentNullException.ThrowIfNull(vector);
-        spec.Process.Validate();
+        JobRules.Require(spec.Process, spec.Profile);
         var plan = spec.Size switch
         {
             SizeSpec.ByWidth w => VectorPlanner.Plan(spec.ImagePath, vector with { WidthMm = w.WidthMm, Origin = spec.Origin }, spec.Profile),
@@ -85,7 +85,7 @@ public sealed class PreparedDrawing
     {
         ArgumentNullException.ThrowIfNull(spec);
         ArgumentNullException.ThrowIfNull(vector);
-        spec.Process.Validate();
+        JobRules.Require(spec.Process, spec.Profile);
         var plan = VectorPlanner.Plan(spec.ImagePath, vector with { WidthMm = null, Origin = spec.Origin }, spec.Profile);
 
         // A drawing with no width (one vertical line) is recorded by its height, so a repeat finds the same size.

@@ -385,7 +385,8 @@ public sealed class ApiEndpointsTests : IDisposable
         var profilePath = TestFiles.Asset(Path.Combine("profiles", "frequency-only.json"));
         _app.Services.GetRequiredService<MainViewModel>().UseProfile(profilePath, MachineProfile.Load(profilePath) with { EdgeToleranceUm = 1.5 });
         await UploadAsync(TestFiles.WriteChecker(folder.Path, 8, 6));
-        await PostAsync("/api/job", new { widthMm = 5, originXMm = 0, originYMm = 0, burnSpeedMmPerS = 4 });
+        // The job keeps the speed, as the page's field does, and the edit answers the rule's refusal.
+        await PostAsync("/api/job", new { widthMm = 5, originXMm = 0, originYMm = 0, burnSpeedMmPerS = 4 }, HttpStatusCode.BadRequest);
         await PostAsync("/api/machine/connect", new { useSimulator = true }, HttpStatusCode.Accepted);
         await WaitForAsync(s => s.GetProperty("machine").GetProperty("connected").GetBoolean() && !s.GetProperty("activity").GetProperty("busy").GetBoolean(), TimeSpan.FromSeconds(20));
 
