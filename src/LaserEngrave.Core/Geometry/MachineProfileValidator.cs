@@ -186,7 +186,8 @@ public static class MachineProfileValidator
     {
         ArgumentNullException.ThrowIfNull(profile);
         return profile.X.MicrostepUm == profile.Y.MicrostepUm ? null
-            : $"x.microstepUm {N(profile.X.MicrostepUm)} and y.microstepUm {N(profile.Y.MicrostepUm)} must be equal: a pitch in whole microsteps needs the same microstep on both axes";
+            // Written in full: two microsteps that differ in the sixth digit would read the same shortened.
+            : $"x.microstepUm {profile.X.MicrostepUm.ToString(CultureInfo.InvariantCulture)} and y.microstepUm {profile.Y.MicrostepUm.ToString(CultureInfo.InvariantCulture)} must be equal: a pitch in whole microsteps needs the same microstep on both axes";
     }
 
     // The focus axis beyond what every axis must meet: its own device number, a move speed it takes, and limits inside its travel around the visible focus.
