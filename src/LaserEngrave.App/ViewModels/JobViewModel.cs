@@ -15,7 +15,7 @@ namespace LaserEngrave.App.ViewModels;
 /// values, and what follows from them (the plan, its estimate, warnings beside the fields that cause them).
 /// </summary>
 /// <remarks>Every change of an input re-plans at once; a change of threshold, dither or invert rebuilds the mask first.</remarks>
-public sealed partial class JobViewModel : ObservableObject
+public sealed partial class JobViewModel : ObservableObject, IJobSession
 {
     /// <summary>Field names the page places messages beside.</summary>
     public const string ImageField = "image";
@@ -758,42 +758,56 @@ public sealed partial class JobViewModel : ObservableObject
         ArgumentNullException.ThrowIfNull(settings);
         Batch(() =>
         {
-            ThresholdPercent = settings.ThresholdPercent;
-            Dither = settings.Dither;
-            Invert = settings.Invert;
-            QuarterTurns = settings.QuarterTurns;
-            MirrorX = settings.MirrorX;
-            MirrorY = settings.MirrorY;
-            SizeMode = settings.SizeMode;
+            Assign(settings);
             AspectLocked = settings.SizeMode != SizeMode.WidthAndHeight;
-            WidthMm = settings.WidthMm;
-            HeightMm = settings.HeightMm;
-            PitchUm = settings.PitchUm;
-            OriginXMm = settings.OriginXMm;
-            OriginYMm = settings.OriginYMm;
-            LaserFrequencyHz = settings.LaserFrequencyHz;
-            BurnSpeedMmPerS = settings.BurnSpeedMmPerS;
-            TravelSpeedMmPerS = settings.TravelSpeedMmPerS;
-            AccelerationMmPerS2 = settings.AccelerationMmPerS2;
-            Strategy = settings.Strategy;
-            Bidirectional = settings.Bidirectional;
-            OverscanMm = settings.OverscanMm;
-            Passes = settings.Passes;
-            Mode = settings.Mode;
-            PulsesPerDot = settings.PulsesPerDot;
-            DotPitchMicrosteps = settings.DotPitchMicrosteps;
-            DotSettleMs = settings.DotSettleMs;
-            PulseEnergyUj = settings.PulseEnergyUj;
-            DrawingFill = settings.DrawingFill;
-            ToleranceUm = settings.ToleranceUm;
-            FillPitchUm = settings.FillPitchUm;
-            DrawingLayer = settings.DrawingLayer;
-            DrawingOrder = settings.DrawingOrder;
         });
         if (settings.ImagePath is { } path && path != ImagePath)
         {
             LoadImage(path);
         }
+    }
+
+    /// <inheritdoc/>
+    public void Change(Func<JobSettings, JobSettings> change)
+    {
+        ArgumentNullException.ThrowIfNull(change);
+        var changed = change(ToSettings());
+        Batch(() => Assign(changed));
+    }
+
+    /// <summary>Every field from <paramref name="settings"/> (a value that stays raises nothing), without the file.</summary>
+    private void Assign(JobSettings settings)
+    {
+        ThresholdPercent = settings.ThresholdPercent;
+        Dither = settings.Dither;
+        Invert = settings.Invert;
+        QuarterTurns = settings.QuarterTurns;
+        MirrorX = settings.MirrorX;
+        MirrorY = settings.MirrorY;
+        SizeMode = settings.SizeMode;
+        WidthMm = settings.WidthMm;
+        HeightMm = settings.HeightMm;
+        PitchUm = settings.PitchUm;
+        OriginXMm = settings.OriginXMm;
+        OriginYMm = settings.OriginYMm;
+        LaserFrequencyHz = settings.LaserFrequencyHz;
+        BurnSpeedMmPerS = settings.BurnSpeedMmPerS;
+        TravelSpeedMmPerS = settings.TravelSpeedMmPerS;
+        AccelerationMmPerS2 = settings.AccelerationMmPerS2;
+        Strategy = settings.Strategy;
+        Bidirectional = settings.Bidirectional;
+        OverscanMm = settings.OverscanMm;
+        Passes = settings.Passes;
+        Mode = settings.Mode;
+        PulsesPerDot = settings.PulsesPerDot;
+        DotPitchMicrosteps = settings.DotPitchMicrosteps;
+        DotSettleMs = settings.DotSettleMs;
+        PulseEnergyUj = settings.PulseEnergyUj;
+        DrawingFill = settings.DrawingFill;
+        ToleranceUm = settings.ToleranceUm;
+        FillPitchUm = settings.FillPitchUm;
+        DrawingLayer = settings.DrawingLayer;
+        DrawingOrder = settings.DrawingOrder;
     }
 
     public JobSettings ToSettings() => new()

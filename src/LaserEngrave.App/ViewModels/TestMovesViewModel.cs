@@ -21,7 +21,7 @@ public sealed partial class TestMovesViewModel : ObservableObject
     public static IReadOnlyList<double> StepChoicesUm { get; } = [1, 10, 100, 1000, 10000];
 
     private readonly MachineViewModel _machine;
-    private readonly JobViewModel _job;
+    private readonly IJobSession _job;
     private readonly Lock _jogLock = new();
 
     // The jog under way: the steps pressed so far (µm from where the jog began) and the task that carries them out.
@@ -29,7 +29,7 @@ public sealed partial class TestMovesViewModel : ObservableObject
     private double _jogYUm;
     private Task? _jogging;
 
-    public TestMovesViewModel(MachineViewModel machine, JobViewModel job)
+    public TestMovesViewModel(MachineViewModel machine, IJobSession job)
     {
         ArgumentNullException.ThrowIfNull(machine);
         ArgumentNullException.ThrowIfNull(job);
@@ -52,7 +52,7 @@ public sealed partial class TestMovesViewModel : ObservableObject
         };
         _job.PropertyChanged += (_, e) =>
         {
-            if (e.PropertyName is nameof(JobViewModel.Job) or nameof(JobViewModel.Drawing))
+            if (e.PropertyName is nameof(IJobSession.PlanVersion))
             {
                 RefreshCommands();
                 OnPropertyChanged(nameof(JobMoveUnavailableReason));
@@ -247,10 +247,11 @@ public sealed partial class TestMovesViewModel : ObservableObject
             throw new ArgumentException(problem);
         }
 
-        var frequency = (int)Math.Round(_job.LaserFrequencyHz, MidpointRounding.AwayFromZero);
+        var hz = _job.ToSettings().LaserFrequencyHz;
+        var frequency = (int)Math.Round(hz, MidpointRounding.AwayFromZero);
         if (frequency < 1)
         {
-            throw new ArgumentException($"laser frequency {N(_job.LaserFrequencyHz)} Hz must be at least 1 Hz");
+            throw new ArgumentException($"laser frequency {N(hz)} Hz must be at least 1 Hz");
         }
 
         await moves.FirePulsesAsync(TestFirePulses, frequency, ct);
