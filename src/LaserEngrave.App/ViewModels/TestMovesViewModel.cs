@@ -64,9 +64,11 @@ public sealed partial class TestMovesViewModel : ObservableObject
     public partial double StepUm { get; set; } = 100;
 
     [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(GoToProblem))]
     public partial double GoToXMm { get; set; }
 
     [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(GoToProblem))]
     public partial double GoToYMm { get; set; }
 
     [ObservableProperty]
@@ -216,8 +218,14 @@ public sealed partial class TestMovesViewModel : ObservableObject
         }
     }
 
+    /// <summary>Why Go to is refused for <see cref="GoToXMm"/>, <see cref="GoToYMm"/>, in the job rules' words (as the command line's goto); null when it may go.</summary>
+    public string? GoToProblem =>
+        JobRules.Position(GoToXMm, _machine.Profile.X.TravelMm) is { } x ? $"go to X {N(GoToXMm)} mm: {x}"
+        : JobRules.Position(GoToYMm, _machine.Profile.Y.TravelMm) is { } y ? $"go to Y {N(GoToYMm)} mm: {y}"
+        : null;
+
     [RelayCommand(CanExecute = nameof(CanMove))]
-    private Task GoToAsync() => Move("go to", string.Create(CultureInfo.InvariantCulture, $"Going to {GoToXMm:0.###}, {GoToYMm:0.###} mm, laser off…"), (moves, ct) => moves.GoToAsync(GoToXMm, GoToYMm, ct));
+    private Task GoToAsync() => GoToProblem is { } problem ? Refuse(problem) : Move("go to", string.Create(CultureInfo.InvariantCulture, $"Going to {GoToXMm:0.###}, {GoToYMm:0.###} mm, laser off…"), (moves, ct) => moves.GoToAsync(GoToXMm, GoToYMm, ct));
 
     /// <summary>Moves to the job's top-left corner (<see cref="EngraveJob.FrameBox"/>): an image's first pixel edge, a drawing's bounding box's corner.</summary>
     [RelayCommand(CanExecute = nameof(CanMoveToJob))]
@@ -314,6 +322,12 @@ public sealed partial class TestMovesViewModel : ObservableObject
             await _machine.ReadPositionsAsync(CancellationToken.None);
         }
     });
+
+    private Task Refuse(string problem)
+    {
+        Error = problem;
+        return Task.CompletedTask;
+    }
 
     private async Task Run(string what, string doing, Func<StageTestMoves, CancellationToken, Task> action)
     {

@@ -109,9 +109,9 @@ internal static class ApiEndpoints
 
             main.TestMoves.GoToXMm = request.XMm;
             main.TestMoves.GoToYMm = request.YMm;
-            return Start(main, main.TestMoves.GoToCommand);
+            return main.TestMoves.GoToProblem is { } problem ? Unusable(problem) : Start(main, main.TestMoves.GoToCommand);
         })
-            .WithSummary("202; moves to a position in mm, laser off.");
+            .WithSummary("202; moves to a position in mm, laser off; 400 with the rule's sentence for a position off the travel.");
         api.MapPost("/moves/origin", (MainViewModel main) => Start(main, main.TestMoves.GoToOriginCommand))
             .WithSummary("202; to the job's top-left corner, laser off.");
         api.MapPost("/moves/frame", (MainViewModel main) => Start(main, main.TestMoves.FrameCommand))

@@ -160,9 +160,9 @@ internal static class TestMoveCommands
     /// <summary>Refuses a target off the axis before any port opens.</summary>
     private static void WithinTravel(double mm, double travelMm, string name)
     {
-        if (!(mm >= 0 && mm <= travelMm))
+        if (JobRules.Position(mm, travelMm) is { } rule)
         {
-            throw new UsageException(string.Create(CultureInfo.InvariantCulture, $"{name} {mm}: outside the travel 0..{travelMm} mm"));
+            throw new UsageException(string.Create(CultureInfo.InvariantCulture, $"{name} {mm}: {rule}"));
         }
     }
 

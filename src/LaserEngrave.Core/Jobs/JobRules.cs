@@ -210,7 +210,8 @@ public static partial class JobRules
         : mm > travelMm ? $"at most {N(travelMm)} mm, {travel}"
         : null;
 
-    private static string? Position(double mm, double travelMm) =>
+    /// <summary>Null when <paramref name="mm"/> is a position on an axis of <paramref name="travelMm"/>: a job's origin, a go-to target.</summary>
+    public static string? Position(double mm, double travelMm) =>
         mm >= 0 && mm <= travelMm ? null : $"outside the travel 0..{N(travelMm)} mm";
 
     private static string N(double value) => MachineLimits.Text.N(value);

@@ -103,7 +103,8 @@ public sealed class TestMovesViewModelTests
 
         await _moves.GoToCommand.ExecuteAsync(null);
 
-        Assert.Contains("61 mm is outside the stage travel", _moves.Error, StringComparison.Ordinal);
+        // The command line's goto says the same (issue 35: one rule for a position on the stage).
+        Assert.Equal("go to X 61 mm: outside the travel 0..60 mm", _moves.Error);
         await _fakes.X.DidNotReceive().MoveAbsoluteAsync(Arg.Any<long>(), Arg.Any<CancellationToken>());
     }
 

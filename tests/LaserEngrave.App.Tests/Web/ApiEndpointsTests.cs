@@ -284,6 +284,7 @@ public sealed class ApiEndpointsTests : IDisposable
     [InlineData("/api/moves/fire", """{"pulses":1000001}""", "test fire of 1000001 pulses: must be 1..1000000 pulses (the laser gate's burst range)")]
     [InlineData("/api/moves/fire", """{"pulses":0}""", "test fire of 0 pulses: must be 1..1000000 pulses (the laser gate's burst range)")]
     [InlineData("/api/moves/jog", """{"direction":"y+","stepUm":70000}""", "step 70000 µm: longer than the Y travel (60000 µm)")]
+    [InlineData("/api/moves/goto", """{"xMm":61,"yMm":0}""", "go to X 61 mm: outside the travel 0..60 mm")]
     public async Task Moves_OutsideTheRules_400WithTheRulesSentenceNothingStarted(string path, string body, string expected)
     {
         // Issue 35: these once answered 202 and failed (or, past 100,000 pulses, were refused by the app alone) afterwards.
