@@ -15,6 +15,9 @@ namespace LaserEngrave.App.ViewModels;
 public sealed partial class LayersViewModel : ObservableObject
 {
     private readonly IJobFiles _files;
+    /// <summary>The most a job file chosen in the browser may weigh: a thousand layers of JSON are far below it.</summary>
+    public const long MaxJobFileBytes = 16L << 20;
+
     private readonly IJobSession _job;
     private readonly MachineActivity _activity;
     private IReadOnlyList<JobLayer>? _inFile;
