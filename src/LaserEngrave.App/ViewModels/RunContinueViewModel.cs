@@ -33,20 +33,20 @@ internal sealed record RunOrder(EngraveJob Job, JobSettings Settings, RunStopPoi
 /// </summary>
 public sealed partial class RunContinueViewModel : ObservableObject
 {
-    private readonly JobViewModel _job;
+    private readonly IJobSession _job;
     private readonly MachineViewModel _machine;
     private readonly LogViewModel _log;
     private readonly LayersViewModel? _layers;
     private readonly RunProgressViewModel _bar;
     private readonly Func<RunOrder, Task> _run;
 
-    internal RunContinueViewModel(JobViewModel job, MachineViewModel machine, LogViewModel log, LayersViewModel? layers, RunProgressViewModel bar, Func<RunOrder, Task> run)
+    internal RunContinueViewModel(IJobSession job, MachineViewModel machine, LogViewModel log, LayersViewModel? layers, RunProgressViewModel bar, Func<RunOrder, Task> run)
     {
         (_job, _machine, _log, _layers, _bar, _run) = (job, machine, log, layers, bar, run);
         _bar.PropertyChanged += (_, e) => Changed(reasons: e.PropertyName == nameof(RunProgressViewModel.StoppedAt), commands: e.PropertyName is nameof(RunProgressViewModel.State) or nameof(RunProgressViewModel.StoppedAt) or nameof(RunProgressViewModel.RunPlanVersion));
         _layers?.PropertyChanged += (_, e) => Changed(e.PropertyName is nameof(LayersViewModel.Job) or nameof(LayersViewModel.Layers));
         _machine.Activity.PropertyChanged += (_, e) => Changed(e.PropertyName == nameof(MachineActivity.Current));
-        _job.PropertyChanged += (_, e) => Changed(reasons: e.PropertyName == nameof(JobViewModel.PlanVersion), commands: true);
+        _job.PropertyChanged += (_, e) => Changed(reasons: e.PropertyName == nameof(IJobSession.PlanVersion), commands: true);
         _machine.PropertyChanged += (_, _) => Changed(reasons: false, commands: true);
     }
 

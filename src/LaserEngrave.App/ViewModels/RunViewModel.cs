@@ -18,7 +18,7 @@ namespace LaserEngrave.App.ViewModels;
 public sealed partial class RunViewModel : ObservableObject
 {
     private readonly IRunService _runs;
-    private readonly JobViewModel _job;
+    private readonly IJobSession _job;
     private readonly MachineViewModel _machine;
     private readonly LogViewModel _log;
     private readonly TimeProvider _time;
@@ -31,7 +31,7 @@ public sealed partial class RunViewModel : ObservableObject
     public static readonly TimeSpan PaceInterval = TimeSpan.FromMilliseconds(100);
 
     /// <param name="layers">The job of layers: while it has layers, Start runs them instead of the single job.</param>
-    public RunViewModel(IRunService runs, JobViewModel job, MachineViewModel machine, LogViewModel log, TimeProvider time, LayersViewModel? layers = null)
+    public RunViewModel(IRunService runs, IJobSession job, MachineViewModel machine, LogViewModel log, TimeProvider time, LayersViewModel? layers = null)
     {
         _runs = runs ?? throw new ArgumentNullException(nameof(runs));
         _job = job ?? throw new ArgumentNullException(nameof(job));
@@ -82,7 +82,7 @@ public sealed partial class RunViewModel : ObservableObject
         };
         _job.PropertyChanged += (_, e) =>
         {
-            if (e.PropertyName == nameof(JobViewModel.PlanVersion))
+            if (e.PropertyName == nameof(IJobSession.PlanVersion))
             {
                 ClearStaleProgress();
             }

@@ -96,9 +96,10 @@ internal static class ApiEndpoints
                 main.TestMoves.StepUm = step;
             }
 
-            return Start(main, main.TestMoves.JogCommand, request.Direction);
+            // The job rules' sentence, as the page and the command line's jog say it.
+            return main.TestMoves.JogProblem(request.Direction) is { } problem ? Unusable(problem) : Start(main, main.TestMoves.JogCommand, request.Direction);
         })
-            .WithSummary("202; a step in x+, x-, y+ or y- (1 µm to 60 mm).");
+            .WithSummary("202; a step in x+, x-, y+ or y- (up to the axis' travel); 400 with the rule's sentence for a step the stage cannot make.");
         api.MapPost("/moves/goto", (MainViewModel main, GoToRequest request) =>
         {
             if (Refused(main, main.TestMoves.GoToCommand) is { } refused)
@@ -108,9 +109,9 @@ internal static class ApiEndpoints
 
             main.TestMoves.GoToXMm = request.XMm;
             main.TestMoves.GoToYMm = request.YMm;
-            return Start(main, main.TestMoves.GoToCommand);
+            return main.TestMoves.GoToProblem is { } problem ? Unusable(problem) : Start(main, main.TestMoves.GoToCommand);
         })
-            .WithSummary("202; moves to a position in mm, laser off.");
+            .WithSummary("202; moves to a position in mm, laser off; 400 with the rule's sentence for a position off the travel.");
         api.MapPost("/moves/origin", (MainViewModel main) => Start(main, main.TestMoves.GoToOriginCommand))
             .WithSummary("202; to the job's top-left corner, laser off.");
         api.MapPost("/moves/frame", (MainViewModel main) => Start(main, main.TestMoves.FrameCommand))
@@ -123,9 +124,9 @@ internal static class ApiEndpoints
             }
 
             main.TestMoves.TestFirePulses = request.Pulses;
-            return Start(main, main.TestMoves.TestFireCommand);
+            return main.TestMoves.TestFireProblem is { } problem ? Unusable(problem) : Start(main, main.TestMoves.TestFireCommand);
         })
-            .WithSummary("202; a burst of pulses at the job's frequency where the stage stands.");
+            .WithSummary("202; a burst of pulses (1 to 1,000,000, the gate's burst range) at the job's frequency where the stage stands; 400 with the rule's sentence outside it.");
         api.MapPost("/moves/stop", (MainViewModel main) => Do(main, main.TestMoves.StopCommand.Execute))
             .WithSummary("Stops the test move, jog or homing under way (laser off).");
 
@@ -242,6 +243,9 @@ internal static class ApiEndpoints
                 : Results.Json(new { error = main.Layers.FileError }, statusCode: StatusCodes.Status400BadRequest);
 
     /// <summary>409 with the one line saying what holds the machine (or why the request cannot be done now).</summary>
+    /// <summary>A value the rules refuse: 400 and their one line, nothing started.</summary>
+    private static IResult Unusable(string message) => Results.Json(new { error = message }, statusCode: StatusCodes.Status400BadRequest);
+
     private static IResult Busy(string message) => Results.Json(new { error = message }, statusCode: StatusCodes.Status409Conflict);
 
     /// <summary>A request that changed nothing on purpose (a second Start during a run): 200, the note and the state.</summary>
@@ -340,6 +344,23 @@ internal static class ApiEndpoints
                 }
             }
         });
+
+        // A value the job rules refuse stays, as the page's field keeps it beside its sentence: 400 with that sentence,
+        // so a client hears the same refusal as the page and the command line (Start stays refused until it changes).
+        foreach (var field in changes.Keys)
+        {
+            var shownBeside = field switch
+            {
+                "originXMm" or "originYMm" => JobViewModel.OriginField,
+                "microstepsPerPixel" => JobViewModel.PitchField,
+                _ => field,
+            };
+            if (!problems.ContainsKey(ApiRequests.Quote(field)) && job.Errors.TryGetValue(shownBeside, out var refused))
+            {
+                problems[ApiRequests.Quote(field)] = refused;
+            }
+        }
+
         return problems.Count == 0 ? State(main) : Results.Json(new { errors = problems, state = StateSnapshot.From(main) }, ApiRequests.StateJson, statusCode: 400);
     }
 
@@ -369,7 +390,7 @@ internal static class ApiEndpoints
             case "pulsesPerDot": job.PulsesPerDot = (int)Whole(value, int.MaxValue); break;
             case "dotPitchMicrosteps": job.DotPitchMicrosteps = Whole(value, long.MaxValue); break;
             case "dotSettleMs": job.DotSettleMs = Number(value); break;
-            case "pulseEnergyUj": job.PulseEnergyUj = Number(value); break;
+            case "pulseEnergyUj": job.PulseEnergyUj = value.ValueKind == JsonValueKind.Null ? null : Number(value); break;
             case "quarterTurns": job.QuarterTurns = (int)Whole(value, 3); break;
             case "mirrorX": job.MirrorX = Bool(value); break;
             case "mirrorY": job.MirrorY = Bool(value); break;

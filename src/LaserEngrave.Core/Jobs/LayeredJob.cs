@@ -253,11 +253,11 @@ public sealed record PreparedLayer(JobLayer Layer, PreparedJob? Image, PreparedD
 
     /// <summary>Why it cannot start as planned, one line in the user's words; null when it can.</summary>
     public string? StartProblem => Image is { } image
-        ? !image.Geometry.FitsTravel ? "the job lies outside the stage's travel: move the origin or make it smaller"
+        ? JobRules.Placement(image) is { } outside ? outside
             : image.Statistics.BurnRuns == 0 ? "the mask has no pixel to burn: change the threshold or invert it"
             : null
-        : !Drawing!.FitsTravel ? "the drawing lies outside the stage's travel: move the origin or make it smaller"
-            : Drawing.Schedule.Strokes.Count == 0 ? "the drawing has no path long enough to burn"
+        : JobRules.Placement(Drawing!) is { } beyond ? beyond
+            : Drawing!.Schedule.Strokes.Count == 0 ? "the drawing has no path long enough to burn"
             : null;
 
     /// <summary>

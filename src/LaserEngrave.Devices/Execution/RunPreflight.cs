@@ -267,10 +267,9 @@ internal sealed class RunPreflight
         {
             CheckDrawing(_drawing!, program);
         }
-        else if (!_job!.Geometry.FitsTravel)
+        else if (JobRules.Placement(_job!) is { } outside)
         {
-            var outside = _job.Geometry.Warnings.FirstOrDefault(w => w.Kind == JobWarningKind.OutsideTravel);
-            throw new PreflightException(outside?.Message ?? "the job does not fit the stage travel");
+            throw new PreflightException(outside);
         }
 
         var strategy = _program.Strategy;
@@ -330,9 +329,9 @@ internal sealed class RunPreflight
     /// <summary>Refuses a drawing that leaves the travel or has nothing to burn.</summary>
     private static void CheckDrawing(PreparedDrawing drawing, DrawingProgram program)
     {
-        if (!drawing.FitsTravel)
+        if (JobRules.Placement(drawing) is { } outside)
         {
-            throw new PreflightException(drawing.Warnings.LastOrDefault(w => w.Contains("travel", StringComparison.Ordinal)) ?? "the drawing does not fit the stage travel");
+            throw new PreflightException(outside);
         }
 
         if (program.StrokeCount == 0)

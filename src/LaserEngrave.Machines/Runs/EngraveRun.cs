@@ -130,13 +130,14 @@ public sealed class EngraveRun
             return problem;
         }
 
-        var c = CultureInfo.InvariantCulture;
         var spec = part.Spec;
-        var which = job.Layers is null ? "the job" : $"layer \"{part.Layer.Name}\"";
         if (!part.FitsTravel)
         {
+            // The job rules' sentence, as the origin field and a drop on the stage say it.
             var (width, height) = part.SizeMm;
-            return string.Create(c, $"{which} ({width:0.###} x {height:0.###} mm at origin {spec.Origin.X:0.###}, {spec.Origin.Y:0.###} mm) does not fit the stage's travel ({spec.Profile.X.TravelMm:0.###} x {spec.Profile.Y.TravelMm:0.###} mm); move the origin or make it smaller");
+            var drawing = part.Drawing is not null;
+            var which = job.Layers is null ? (drawing ? "drawing" : "job") : $"layer \"{part.Layer.Name}\"";
+            return JobRules.OutsideTravel(which, width, height, spec, drawing ? ", with its strokes' run-ups and run-outs" : string.Empty);
         }
 
         // Nothing to burn: the part's own words, after the file they are about (and its warnings, which say why).

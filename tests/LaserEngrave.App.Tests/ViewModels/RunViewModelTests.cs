@@ -111,8 +111,8 @@ public sealed class RunViewModelTests
 
         await _run.StartCommand.ExecuteAsync(null);
 
-        // The sentence of the command line and the API, with the job's figures and the travel.
-        Assert.Contains("at origin 1, 57 mm) does not fit the stage's travel (60 x 60 mm)", _run.Error, StringComparison.Ordinal);
+        // The job rules' sentence, as the origin field and the command line say it (issue 35).
+        Assert.Contains("does not fit the stage's travel (60 x 60 mm): move the origin or make it smaller", _run.Error, StringComparison.Ordinal);
         await _runs.DidNotReceive().RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>());
     }
 
