@@ -39,28 +39,33 @@ public static class DxfReader
 
     public static Drawing Read(string path)
     {
-        string text;
         try
         {
-            text = File.ReadAllText(path);
+            // Read as it comes (DxfLines), with the encoding File.ReadAllText would have found: UTF-8 unless a byte order mark says otherwise.
+            using var reader = new StreamReader(path, System.Text.Encoding.UTF8, detectEncodingFromByteOrderMarks: true);
+            return Parse(reader, path);
         }
         catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
         {
             throw new DrawingException($"{path}: cannot read the drawing: {ex.Message}", ex);
         }
-
-        return Parse(text, path);
     }
 
     public static Drawing Parse(string text, string path)
     {
         ArgumentNullException.ThrowIfNull(text);
-        if (text.StartsWith("AutoCAD Binary DXF", StringComparison.Ordinal))
+        return Parse(new StringReader(text), path);
+    }
+
+    private static Drawing Parse(TextReader text, string path)
+    {
+        var lines = new DxfLines(text);
+        if (lines.MoveNext() && lines.Current.StartsWith("AutoCAD Binary DXF", StringComparison.Ordinal))
         {
             throw new DrawingException($"{path}: binary DXF is not read; save the drawing as ASCII DXF");
         }
 
-        var file = Structure(Groups(text, path), path);
+        var file = Structure(Groups(lines, path), path);
         var warnings = new DrawingWarnings();
         var unitsStated = file.InsUnits is { } u && Units.ContainsKey(u);
         double mm = 1;
@@ -88,61 +93,112 @@ public static class DxfReader
         return new Drawing(path, reader.Paths, warnings.ToList(), unitsStated);
     }
 
-    private static List<(int Code, string Value, int Line)> Groups(string text, string path)
+    // The group code / value pairs, each value trimmed, with its line number. The lines come already moved onto the
+    // first (the binary check looks at it).
+    private static IEnumerable<(int Code, string Value, int Line)> Groups(DxfLines lines, string path)
     {
-        var lines = text.Split('\n');
-        var count = lines.Length;
-        while (count > 0 && lines[count - 1].Trim().Length == 0)
+        var values = new ValueStrings();
+        for (var more = lines.Number > 0; more; more = lines.MoveNext())
         {
-            count--;
-        }
-
-        var groups = new List<(int, string, int)>(count / 2);
-        for (var i = 0; i + 1 < count; i += 2)
-        {
-            if (!int.TryParse(lines[i].Trim(), NumberStyles.Integer, CultureInfo.InvariantCulture, out var code))
+            var codeLine = lines.Number;
+            var codeText = lines.Current.Trim();
+            var isCode = int.TryParse(codeText, NumberStyles.Integer, CultureInfo.InvariantCulture, out var code);
+            var notCode = isCode ? null : Shorten(codeText.ToString());
+            if (!lines.MoveNext())
             {
-                throw new DrawingException($"{path}: line {i + 1}: \"{Shorten(lines[i].Trim())}\" is not a DXF group code; is this an ASCII DXF file?");
+                throw new DrawingException($"{path}: line {codeLine}: group code without a value (the file is cut short)");
             }
 
-            groups.Add((code, lines[i + 1].Trim(), i + 2));
-        }
+            if (notCode is not null)
+            {
+                throw new DrawingException($"{path}: line {codeLine}: \"{notCode}\" is not a DXF group code; is this an ASCII DXF file?");
+            }
 
-        if (count % 2 == 1)
+            yield return (code, values.Get(code, lines.Current.Trim()), lines.Number);
+        }
+    }
+
+    /// <summary>
+    /// The values as strings, one string for each repeated word: entity types, layer names, subclass markers and flags
+    /// repeat on every entity of a large drawing; coordinates almost never do, so they are not looked up.
+    /// </summary>
+    private sealed class ValueStrings
+    {
+        private const int MaxKept = 4096;
+        private readonly Dictionary<string, string> _kept = [];
+        private readonly Dictionary<string, string>.AlternateLookup<ReadOnlySpan<char>> _lookup;
+
+        public ValueStrings() => _lookup = _kept.GetAlternateLookup<ReadOnlySpan<char>>();
+
+        public string Get(int code, ReadOnlySpan<char> value)
         {
-            throw new DrawingException($"{path}: line {count}: group code without a value (the file is cut short)");
-        }
+            // Group codes 10-59: coordinates, distances, angles.
+            if (code is >= 10 and <= 59 || value.Length > 64)
+            {
+                return value.ToString();
+            }
 
-        return groups;
+            if (_lookup.TryGetValue(value, out var kept))
+            {
+                return kept;
+            }
+
+            var text = value.ToString();
+            if (_kept.Count < MaxKept)
+            {
+                _kept[text] = text;
+            }
+
+            return text;
+        }
     }
 
     private static string Shorten(string s) => s.Length > 40 ? s[..40] + "..." : s;
 
-    private static DxfFile Structure(List<(int Code, string Value, int Line)> groups, string path)
+    private static DxfFile Structure(IEnumerable<(int Code, string Value, int Line)> source, string path)
+    {
+        using var groups = source.GetEnumerator();
+        try
+        {
+            return Structure(groups, path);
+        }
+        catch (DrawingException)
+        {
+            // Every line is read before the structure is judged, as when the file was split whole first: a line
+            // that is not a group code further on is the error to report.
+            while (groups.MoveNext())
+            {
+            }
+
+            throw;
+        }
+    }
+
+    private static DxfFile Structure(IEnumerator<(int Code, string Value, int Line)> groups, string path)
     {
         var file = new DxfFile();
         string? section = null;
         DxfBlock? block = null;
         var sawSection = false;
-        var i = 0;
-        while (i < groups.Count)
+        var body = new List<(int, string, int)>();
+        var more = groups.MoveNext();
+        while (more)
         {
-            var (code, value, line) = groups[i];
+            var (code, value, line) = groups.Current;
             if (code != 0)
             {
-                i++;
+                more = groups.MoveNext();
                 continue;
             }
 
-            // One entity or table record: everything up to the next group code 0.
-            i++;
-            var body = new List<(int, string, int)>();
-            while (i < groups.Count && groups[i].Code != 0)
+            // One entity or table record: everything up to the next group code 0, kept in a list of its own size.
+            body.Clear();
+            while ((more = groups.MoveNext()) && groups.Current.Code != 0)
             {
-                body.Add(groups[i++]);
+                body.Add(groups.Current);
             }
 
-            var entity = new DxfEntity(path, value, line, body);
+            var entity = new DxfEntity(path, value, line, [.. body]);
             switch (value)
             {
                 case "SECTION":
@@ -167,7 +223,12 @@ public static class DxfReader
                     section = null;
                     continue;
                 case "EOF":
-                    i = groups.Count;
+                    // Nothing after it is drawn, but every line is still read (a line that is not a group code is still an error).
+                    while (groups.MoveNext())
+                    {
+                    }
+
+                    more = false;
                     continue;
             }
 
