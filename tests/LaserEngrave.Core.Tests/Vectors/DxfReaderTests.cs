@@ -257,6 +257,31 @@ public class DxfReaderTests
     }
 
     [Fact]
+    public void Parse_LayerTableAfterTheEntities_StillHidesTheFrozenLayer()
+    {
+        // The entities are converted as they are read; a TABLES section after them (not DXF's order) makes the reader
+        // read the file again, keeping the entities until the layers are known.
+        var entities = Entity("LINE", (8, "OFF"), (10, 0), (20, 0), (11, 1), (21, 0)) + Entity("LINE", (8, "ON"), (10, 0), (20, 1), (11, 1), (21, 1));
+        var text = "0\nSECTION\n2\nENTITIES\n" + entities + "0\nENDSEC\n0\nSECTION\n2\nTABLES\n" + Entity("LAYER", (2, "OFF"), (70, 1)) + "0\nENDSEC\n0\nEOF\n";
+
+        var drawing = DxfReader.Parse(text, "late.dxf");
+
+        Assert.Equal("ON", drawing.Paths.Single().Layer);
+        Assert.Contains(drawing.Warnings, w => w.Contains("off or frozen", StringComparison.Ordinal));
+    }
+
+    [Fact]
+    public void Parse_BadEntityThenABadCodeFurtherOn_ReportsTheBadCode()
+    {
+        var text = Dxf(Entity("LINE", (10, "x"), (20, 0), (11, 1), (21, 0))).Replace("0\nEOF\n", "0\nEOF\nhello\nworld\n", StringComparison.Ordinal);
+
+        var ex = Assert.Throws<DrawingException>(() => DxfReader.Parse(text, "b.dxf"));
+
+        Assert.Contains("\"hello\" is not a DXF group code", ex.Message, StringComparison.Ordinal);
+        Assert.Contains("\"x\" on line", Assert.Throws<DrawingException>(() => DxfReader.Parse(text.Replace("hello\nworld\n", string.Empty, StringComparison.Ordinal), "b.dxf")).Message, StringComparison.Ordinal);
+    }
+
+    [Fact]
     public void Read_File_SameDrawingAsParsingItsText()
     {
         var text = Dxf(Entity("LINE", (8, "A"), (10, 0), (20, 0), (11, 5), (21, 0)) + Entity("CIRCLE", (8, "B"), (10, 1), (20, 1), (40, 2)));
