@@ -6,6 +6,7 @@ using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.Execution;
+using LaserEngrave.Wire.Serial;
 
 namespace LaserEngrave.Cli;
 
@@ -110,7 +111,7 @@ internal static class CliRunner
 
     public static int ExitCodeFor(Exception ex) => ex switch
     {
-        UsageException or InvalidDataException or ProfileException or RunLogException or GeometryException or PlanException or ArgumentException or FormatException => BadInput,
+        UsageException or InvalidDataException or ProfileException or RunLogException or WireRecordingException or GeometryException or PlanException or ArgumentException or FormatException => BadInput,
         _ when ex.GetType().Name == "ImageLoadException" => BadInput,
         Core.Vectors.DrawingException => BadInput,
         Core.Sweeps.SweepException => BadInput,

@@ -1,5 +1,6 @@
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Simulator.Timing;
+using LaserEngrave.Wire.Serial;
 
 namespace LaserEngrave.Simulator;
 
@@ -73,7 +74,7 @@ public sealed record SimulatorOptions
     public string? FaultSpec { get; init; }
 
     /// <summary>Bits per byte on the wire: 8 data bits, no parity, 1 stop bit, plus the start bit.</summary>
-    public int BitsPerByte { get; init; } = 10;
+    public int BitsPerByte { get; init; } = (int)SerialLine.BitsPerByte;
 
     /// <summary>A partial Zaber frame is dropped when the next byte comes later than this after the previous one.</summary>
     public TimeSpan PartialFrameTimeout { get; init; } = TimeSpan.FromMilliseconds(10);

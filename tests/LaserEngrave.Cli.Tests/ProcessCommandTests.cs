@@ -1,4 +1,5 @@
 using System.Text.Json;
+using LaserEngrave.Core.Geometry;
 
 namespace LaserEngrave.Cli.Tests;
 
@@ -85,7 +86,7 @@ public class ProcessCommandTests
         {
             var calibrated = LaserEngrave.Core.Geometry.MachineProfile.Default with
             {
-                Calibration = new LaserEngrave.Core.Calibration.AxisCalibration { SquarenessDegrees = 0.25, ScaleXPpm = 100 },
+                Calibration = new LaserEngrave.Core.Geometry.AxisCalibration { SquarenessDegrees = 0.25, ScaleXPpm = 100 },
             };
             calibrated.Save(profile);
 

@@ -2,6 +2,7 @@ using System.CommandLine;
 using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Input;
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Marks;
 using LaserEngrave.Machines.Marks;
 using LaserEngrave.Simulator.Marks;

@@ -1,3 +1,5 @@
+using LaserEngrave.Core.Geometry;
+
 namespace LaserEngrave.Core.Calibration;
 
 /// <summary>One measurement against what the solved model predicts for it.</summary>

@@ -1,3 +1,5 @@
+using LaserEngrave.Core.Geometry;
+
 namespace LaserEngrave.Core.Camera;
 
 /// <summary>One known jog of the calibration: the stage's move, µm, and the picture's measured shift, pixels, with its misfit to the result.</summary>

@@ -1,3 +1,5 @@
+using LaserEngrave.Core.Geometry;
+
 namespace LaserEngrave.Core.Camera;
 
 /// <summary>Scans a region of the sample frame by frame (laser off) and stitches the frames into one map in stage axes.</summary>

@@ -1,5 +1,4 @@
 using System.Text.Json.Serialization;
-using LaserEngrave.Core.Camera;
 
 namespace LaserEngrave.Core.Geometry;
 

@@ -1,5 +1,4 @@
 using System.Globalization;
-using LaserEngrave.Core.Calibration;
 
 namespace LaserEngrave.Core.Geometry;
 

@@ -1,4 +1,3 @@
-using LaserEngrave.Core.Calibration;
 
 namespace LaserEngrave.Core.Geometry;
 

@@ -1,6 +1,5 @@
 using System.Text.Json;
 using System.Text.Json.Serialization;
-using LaserEngrave.Core.Calibration;
 using LaserEngrave.Core.IO;
 
 namespace LaserEngrave.Core.Geometry;

@@ -164,7 +164,7 @@ public static class MachineProfileValidator
         {
             profile.Calibration?.Validate("calibration");
         }
-        catch (Calibration.CalibrationException ex)
+        catch (CalibrationException ex)
         {
             problems.Add(ex.Message);
         }

@@ -14,6 +14,9 @@ namespace LaserEngrave.Core.Marks;
 /// <param name="MadeAt">For a job file's marks: when they were made ({date}, {time}), so a resumed run makes them again the same.</param>
 public sealed record MarkManifest(string Counter, int FirstNumber, int Count, IReadOnlyList<PlacedMark> Marks, DateTimeOffset? MadeAt = null)
 {
+    /// <summary>The marks' record's file name, beside the job file: the counter, the first number, and each mark.</summary>
+    public const string FileName = "marks.json";
+
     private static readonly JsonSerializerOptions Options = new()
     {
         PropertyNamingPolicy = JsonNamingPolicy.CamelCase,
@@ -40,10 +43,10 @@ public sealed record MarkManifest(string Counter, int FirstNumber, int Count, IR
     /// <exception cref="MarkException">The record is there but unreadable.</exception>
     public static MarkManifest? Beside(string jobFile)
     {
-        var path = Path.Combine(MarksFolder(jobFile), MarkLayout.ManifestFileName);
+        var path = Path.Combine(MarksFolder(jobFile), FileName);
         if (!File.Exists(path))
         {
-            path = Path.Combine(Path.GetDirectoryName(Path.GetFullPath(jobFile)) ?? ".", MarkLayout.ManifestFileName);
+            path = Path.Combine(Path.GetDirectoryName(Path.GetFullPath(jobFile)) ?? ".", FileName);
         }
 
         if (!File.Exists(path))

@@ -1,6 +1,8 @@
 using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Motion;
+using LaserEngrave.Wire.Serial;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Core.Planning;
 
@@ -24,7 +26,6 @@ namespace LaserEngrave.Core.Planning;
 /// </remarks>
 public sealed class DotTiming
 {
-    private const double BitsPerByte = 10;
 
     // Time the host allows itself to react to a reply before acting on it.
     private const double ReactionSeconds = 0.0005;
@@ -42,12 +43,12 @@ public sealed class DotTiming
         TravelSpeed = StageUnits.SpeedMicrostepsPerS(TravelSpeedData);
         Acceleration = StageUnits.AccelerationMicrostepsPerS2(AccelerationData);
 
-        var stageByte = BitsPerByte / process.StageBaudRate;
-        FrameSeconds = TimedSwitching.FrameBytes * stageByte;
+        var stageByte = SerialLine.BitsPerByte / process.StageBaudRate;
+        FrameSeconds = ZaberFrame.Length * stageByte;
         StageAdapterSeconds = Units.MsToSeconds(latency.StageMs);
         StageRoundTripSeconds = (2 * StageAdapterSeconds) + (2 * FrameSeconds);
 
-        var gateByte = BitsPerByte / process.GateBaudRate;
+        var gateByte = SerialLine.BitsPerByte / process.GateBaudRate;
         var gateAdapter = Units.MsToSeconds(latency.GateMs);
         var processing = Units.MsToSeconds(latency.GateProcessingMs);
         BurstCommand = string.Format(CultureInfo.InvariantCulture, gate.BurstCommand, PulsesPerDot, FrequencyHz) + gate.LineTerminator;

@@ -3,6 +3,8 @@ using System.Runtime.CompilerServices;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Motion;
 using LaserEngrave.Core.Programs;
+using LaserEngrave.Wire.Serial;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Core.Planning;
 
@@ -26,8 +28,6 @@ namespace LaserEngrave.Core.Planning;
 /// </remarks>
 public sealed class PlanEstimator
 {
-    private const int ZaberFrameBytes = 6;
-    private const double BitsPerByte = 10;
 
     private readonly PlanStrategy _strategy;
     private readonly double _roundTripSeconds;
@@ -55,8 +55,8 @@ public sealed class PlanEstimator
         gate ??= new LaserGateProfile();
         _strategy = strategy;
 
-        _roundTripSeconds = 2 * ZaberFrameBytes * BitsPerByte / process.StageBaudRate;
-        var gateByteSeconds = BitsPerByte / process.GateBaudRate;
+        _roundTripSeconds = 2 * ZaberFrame.Length * SerialLine.BitsPerByte / process.StageBaudRate;
+        var gateByteSeconds = SerialLine.BitsPerByte / process.GateBaudRate;
         var onCommand = Line(gate, gate.FrequencyCommand, process.LaserFrequencyWholeHz);
         var onReply = gate.AckPrefix + " " + Line(gate, gate.FrequencyCommand, process.LaserFrequencyWholeHz);
         var offCommand = gate.OffCommand + gate.LineTerminator;

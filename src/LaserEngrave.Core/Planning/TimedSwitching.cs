@@ -2,6 +2,8 @@ using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Motion;
 using LaserEngrave.Core.Programs;
+using LaserEngrave.Wire.Serial;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Core.Planning;
 
@@ -23,13 +25,9 @@ namespace LaserEngrave.Core.Planning;
 /// </remarks>
 public sealed class TimedSwitching
 {
-    /// <summary>Bytes of a Zaber binary frame.</summary>
-    public const int FrameBytes = 6;
-
     /// <summary>Most pulses one <c>BURST</c> may count (docs/laser-gate-protocol.md); a longer burn run is refused before anything moves.</summary>
     public const int MaxBurstPulses = 1_000_000;
 
-    private const double BitsPerByte = 10;
 
     // Time the host allows itself to react to a reply before acting on it.
     private const double ReactionSeconds = 0.0005;
@@ -71,14 +69,14 @@ public sealed class TimedSwitching
         TravelSpeed = StageUnits.SpeedMicrostepsPerS(TravelSpeedData);
         Acceleration = StageUnits.AccelerationMicrostepsPerS2(AccelerationData);
 
-        var stageByte = BitsPerByte / process.StageBaudRate;
-        FrameSeconds = FrameBytes * stageByte;
+        var stageByte = SerialLine.BitsPerByte / process.StageBaudRate;
+        FrameSeconds = ZaberFrame.Length * stageByte;
         StageAdapterSeconds = Units.MsToSeconds(latency.StageMs);
         StageJitterSeconds = Units.MsToSeconds(latency.StageJitterMs);
         StageCommandSeconds = StageAdapterSeconds + FrameSeconds;
         StageReplySeconds = FrameSeconds + StageAdapterSeconds;
 
-        var gateByte = BitsPerByte / process.GateBaudRate;
+        var gateByte = SerialLine.BitsPerByte / process.GateBaudRate;
         var frequency = process.LaserFrequencyWholeHz;
         FrequencyHz = frequency;
         _profile = profile;

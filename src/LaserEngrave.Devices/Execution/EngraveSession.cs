@@ -436,7 +436,8 @@ public sealed class EngraveSession
 
         if (Options.Recorder is { } recorder)
         {
-            record = record with { Recording = recorder.Finish() };
+            var recording = recorder.Finish();
+            record = record with { Recording = new RunRecording(recording.File, recording.Events, recording.Truncated) };
         }
 
         RunLogFiles? files = null;

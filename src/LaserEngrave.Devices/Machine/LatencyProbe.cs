@@ -3,6 +3,8 @@ using LaserEngrave.Devices.Abstractions;
 using LaserEngrave.Devices.LaserGate;
 using LaserEngrave.Devices.Zaber;
 using LaserEngrave.Wire.Scheduling;
+using LaserEngrave.Wire.Serial;
+using LaserEngrave.Wire.Zaber;
 
 namespace LaserEngrave.Devices.Machine;
 
@@ -15,8 +17,6 @@ namespace LaserEngrave.Devices.Machine;
 /// </remarks>
 public sealed class LatencyProbe : ILatencyProbe
 {
-    private const int ZaberFrameBytes = 6;
-    private const double BitsPerByte = 10;
 
     // Timed waits per round trip asked for (1000 for the default 200), each as long as a short switching wait: enough
     // that the 99th percentile is not the tail's single worst.
@@ -43,7 +43,7 @@ public sealed class LatencyProbe : ILatencyProbe
     public async Task<LatencyMeasurement> MeasureAsync(int exchanges, CancellationToken cancellationToken)
     {
         ArgumentOutOfRangeException.ThrowIfLessThan(exchanges, 1);
-        var stageWireMs = WireMs(2 * ZaberFrameBytes, _stage.Profile.StageBaudRate);
+        var stageWireMs = WireMs(2 * ZaberFrame.Length, _stage.Profile.StageBaudRate);
         var x = RoundTrips.Of(_stage.X.Description, await TimeAsync(exchanges, i => _stage.X.PingAsync(i, cancellationToken), cancellationToken), stageWireMs);
         var y = RoundTrips.Of(_stage.Y.Description, await TimeAsync(exchanges, i => _stage.Y.PingAsync(i, cancellationToken), cancellationToken), stageWireMs);
 
@@ -84,7 +84,7 @@ public sealed class LatencyProbe : ILatencyProbe
     }
 
     /// <summary>Time <paramref name="bytes"/> take on the wire at <paramref name="baudRate"/>, 10 bits a byte (8N1), ms.</summary>
-    public static double WireMs(int bytes, int baudRate) => Units.SecondsToMs(bytes * BitsPerByte) / baudRate;
+    public static double WireMs(int bytes, int baudRate) => Units.SecondsToMs(bytes * SerialLine.BitsPerByte) / baudRate;
 
     private async Task<double[]> TimeAsync(int exchanges, Func<int, Task> exchange, CancellationToken cancellationToken)
     {

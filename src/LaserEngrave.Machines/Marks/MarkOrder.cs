@@ -1,4 +1,5 @@
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Marks;
 
 namespace LaserEngrave.Machines.Marks;

@@ -34,7 +34,6 @@ public static class RecordedLatency
     /// <summary>Round trips this much beyond the usual ones are the host's at the least (a reader late by less is within a USB adapter's spread).</summary>
     public const double UsualSpreadFloorSeconds = 0.0002;
 
-    private const double BitsPerByte = 10;
 
     /// <summary>The one-way delay, seconds, of each event of <paramref name="events"/> that is a write (0 for the rest; 0 for every write on a link without one usable reply).</summary>
     /// <param name="profile">The machine (baud rates, the gate's line terminator).</param>
@@ -63,7 +62,7 @@ public static class RecordedLatency
 
     private static LinkDelays EstimateLink(IReadOnlyList<WireEvent> events, bool stage, int baud, double?[] roundTrips, double[] rest, WriteDelay[] result)
     {
-        var secondsPerByte = BitsPerByte / baud;
+        var secondsPerByte = SerialLine.BitsPerByte / baud;
         var writes = Enumerable.Range(0, events.Count).Where(i => events[i].Write && events[i].Stage == stage && events[i].Layer is null).ToList();
 
         // The adapters' part of each round trip: what the wire's queue explains is taken out first. With the adapter's
@@ -131,7 +130,7 @@ public static class RecordedLatency
     // Each Zaber write's round trip to its reply (a command that replies at once), and the wire's part of it.
     private static void StageRoundTrips(MachineProfile profile, IReadOnlyList<WireEvent> events, double?[] roundTrips, double[] rest, List<RecordedPosition> positions)
     {
-        var wire = 2 * ZaberFrame.Length * BitsPerByte / profile.StageBaudRate;
+        var wire = 2 * ZaberFrame.Length * SerialLine.BitsPerByte / profile.StageBaudRate;
         var pending = new List<(byte Device, byte Command, int Index)>();
         var bytes = new List<byte>();
         for (var i = 0; i < events.Count; i++)
@@ -183,7 +182,7 @@ public static class RecordedLatency
     private static void GateRoundTrips(MachineProfile profile, IReadOnlyList<WireEvent> events, double?[] roundTrips, double[] rest, Func<byte[], double> processingSeconds)
     {
         var terminator = (byte)profile.Gate.LineTerminator[^1];
-        var secondsPerByte = BitsPerByte / profile.Gate.BaudRate;
+        var secondsPerByte = SerialLine.BitsPerByte / profile.Gate.BaudRate;
         var pending = new Queue<int>();
         var line = 0;
         for (var i = 0; i < events.Count; i++)

@@ -23,7 +23,6 @@ internal static class ReportedPositionFit
     /// <summary>Replays at most this many times to make the replay's stage report what the run's did.</summary>
     public const int MaxPasses = 8;
 
-    private const double BitsPerByte = 10;
 
     // A stage slower than this (microsteps/s) at a query says nothing of the time; a change smaller than this is not a motion change.
     private const double StillMicrostepsPerSecond = 1000;
@@ -226,7 +225,7 @@ internal static class ReportedPositionFit
     // wire (without adapter latency of its own) sends each write's bytes behind those still going out.
     private static Dictionary<(int Write, int Frame), double> StageArrivals(MachineProfile profile, IReadOnlyList<WireEvent> events, IReadOnlyList<double> seconds)
     {
-        var perByte = BitsPerByte / profile.StageBaudRate;
+        var perByte = SerialLine.BitsPerByte / profile.StageBaudRate;
         var result = new Dictionary<(int, int), double>();
         var written = double.NegativeInfinity;
         var wireFree = double.NegativeInfinity;

@@ -1,6 +1,5 @@
 using System.Globalization;
 using System.Text;
-using LaserEngrave.Core.Logging;
 
 namespace LaserEngrave.Wire.Serial;
 
@@ -62,7 +61,7 @@ public sealed class WireRecorder : IDisposable
     }
 
     /// <summary>Ends the file with its end (or truncated) mark and closes it; what the run log says of it.</summary>
-    public RunRecording Finish()
+    public WireRecordingSummary Finish()
     {
         lock (_sync)
         {
@@ -84,7 +83,7 @@ public sealed class WireRecorder : IDisposable
                 }
             }
 
-            return new RunRecording(System.IO.Path.GetFileName(Path), _events, _truncated);
+            return new WireRecordingSummary(System.IO.Path.GetFileName(Path), _events, _truncated);
         }
     }
 
@@ -184,3 +183,7 @@ public sealed class WireRecorder : IDisposable
         public ValueTask DisposeAsync() => inner.DisposeAsync();
     }
 }
+
+/// <summary>What a finished recording is: its file's name (in the log's folder), its events and whether it reached its
+/// size cap. The run log keeps the same three facts as its <c>recording</c> member.</summary>
+public sealed record WireRecordingSummary(string File, long Events, bool Truncated);

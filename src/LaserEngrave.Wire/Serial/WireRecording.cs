@@ -1,5 +1,4 @@
 using System.Text.Json;
-using LaserEngrave.Core.Logging;
 
 namespace LaserEngrave.Wire.Serial;
 
@@ -17,7 +16,7 @@ public sealed record WireEvent(double Seconds, bool Stage, bool Write, byte[] Da
 /// <summary>Reads a flight recorder's file back, whole and checked: a truncated, cut-off or corrupt file is refused in one line.</summary>
 public static class WireRecording
 {
-    /// <summary>The recording's events in file order; throws <see cref="RunLogException"/> naming the file and the problem.</summary>
+    /// <summary>The recording's events in file order; throws <see cref="WireRecordingException"/> naming the file and the problem.</summary>
     public static IReadOnlyList<WireEvent> Read(string path)
     {
         ArgumentException.ThrowIfNullOrWhiteSpace(path);
@@ -28,16 +27,16 @@ public static class WireRecording
         }
         catch (Exception ex) when (ex is FileNotFoundException or DirectoryNotFoundException)
         {
-            throw new RunLogException($"{path}: the run's recording is missing", ex);
+            throw new WireRecordingException($"{path}: the run's recording is missing", ex);
         }
         catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
         {
-            throw new RunLogException($"{path}: cannot read the recording: {ex.Message}", ex);
+            throw new WireRecordingException($"{path}: cannot read the recording: {ex.Message}", ex);
         }
 
         if (lines.Length == 0 || lines[0] != "{\"wire\":1}")
         {
-            throw new RunLogException($"{path}: not a LaserEngrave wire recording (its first line is not {{\"wire\":1}})");
+            throw new WireRecordingException($"{path}: not a LaserEngrave wire recording (its first line is not {{\"wire\":1}})");
         }
 
         var events = new List<WireEvent>(lines.Length);
@@ -51,14 +50,14 @@ public static class WireRecording
                 var root = doc.RootElement;
                 if (root.TryGetProperty("truncated", out _))
                 {
-                    throw new RunLogException($"{where}: the recording is truncated (it reached its size cap), so the rest of the run is not in it and its burn cannot be replayed");
+                    throw new WireRecordingException($"{where}: the recording is truncated (it reached its size cap), so the rest of the run is not in it and its burn cannot be replayed");
                 }
 
                 if (root.TryGetProperty("end", out var end))
                 {
                     if (end.GetInt64() != events.Count || i != lines.Length - 1)
                     {
-                        throw new RunLogException($"{where}: the end mark says {end.GetInt64()} events but {events.Count} precede it (or lines follow it): the recording is corrupt");
+                        throw new WireRecordingException($"{where}: the end mark says {end.GetInt64()} events but {events.Count} precede it (or lines follow it): the recording is corrupt");
                     }
 
                     return events;
@@ -70,7 +69,7 @@ public static class WireRecording
                     // Noted by the host as a layer began, so on its clock as its writes are.
                     if (!double.IsFinite(seconds) || seconds < previous || layer.GetInt32() < 0)
                     {
-                        throw new RunLogException($"{where}: not a layer's start (a time not before the writes after it, a layer from 0): the recording is corrupt");
+                        throw new WireRecordingException($"{where}: not a layer's start (a time not before the writes after it, a layer from 0): the recording is corrupt");
                     }
 
                     previous = seconds;
@@ -83,13 +82,13 @@ public static class WireRecording
                 var data = Convert.FromHexString(root.GetProperty("x").GetString() ?? string.Empty);
                 if (!double.IsFinite(seconds) || seconds < 0 || port is not ("s" or "l") || direction is not ("w" or "r") || data.Length == 0)
                 {
-                    throw new RunLogException($"{where}: not a recorded write or read (time, port s/l, direction w/r, bytes): the recording is corrupt");
+                    throw new WireRecordingException($"{where}: not a recorded write or read (time, port s/l, direction w/r, bytes): the recording is corrupt");
                 }
 
                 // Writes are recorded in the order the host made them, so their times never go back.
                 if (direction == "w" && seconds < previous)
                 {
-                    throw new RunLogException($"{where}: a write at {seconds} s before the one before it ({previous} s): the recording is corrupt");
+                    throw new WireRecordingException($"{where}: a write at {seconds} s before the one before it ({previous} s): the recording is corrupt");
                 }
 
                 previous = direction == "w" ? seconds : previous;
@@ -97,10 +96,10 @@ public static class WireRecording
             }
             catch (Exception ex) when (ex is JsonException or KeyNotFoundException or InvalidOperationException or FormatException)
             {
-                throw new RunLogException($"{where}: not a recorded write or read ({ex.Message.Split('\n')[0]}): the recording is corrupt", ex);
+                throw new WireRecordingException($"{where}: not a recorded write or read ({ex.Message.Split('\n')[0]}): the recording is corrupt", ex);
             }
         }
 
-        throw new RunLogException($"{path}: the recording has no end mark (the run's process was cut off while recording), so its burn cannot be replayed");
+        throw new WireRecordingException($"{path}: the recording has no end mark (the run's process was cut off while recording), so its burn cannot be replayed");
     }
 }

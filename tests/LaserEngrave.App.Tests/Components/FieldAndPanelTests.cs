@@ -1,8 +1,9 @@
-using LaserEngrave.App.Services;
-using NSubstitute;
 using Bunit;
 using LaserEngrave.App.Components.Workspace;
+using LaserEngrave.App.Services;
 using LaserEngrave.App.ViewModels;
+using LaserEngrave.Core.Geometry;
+using NSubstitute;
 
 namespace LaserEngrave.App.Tests.Components;
 
@@ -354,7 +355,7 @@ public sealed class CalibrationPanelTests : ComponentTest
         Assert.Contains("squareness +0.5000°, scale X +500.0 ppm, scale Y -500.0 ppm", cut.FindAll("[data-solution=line]")[0].TextContent, StringComparison.Ordinal);
         cut.Find("#calStore").Click();
 
-        var calibration = Assert.IsType<Core.Calibration.AxisCalibration>(Main.Job.Profile.Calibration);
+        var calibration = Assert.IsType<Core.Geometry.AxisCalibration>(Main.Job.Profile.Calibration);
         Assert.Equal(500, calibration.ScaleXPpm, 6);
         Assert.Equal(0.5, calibration.SquarenessDegrees, 6);
         var path = Path.Combine(DataFolder.Path, "machine-profile.json");

@@ -2,6 +2,7 @@ using Bunit;
 using LaserEngrave.App.Components.Workspace;
 using LaserEngrave.App.Services;
 using LaserEngrave.App.ViewModels;
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Marks;
 using NSubstitute;
 

@@ -1,5 +1,6 @@
 using LaserEngrave.Core.Alignment;
 using LaserEngrave.Core.Calibration;
+using LaserEngrave.Core.Geometry;
 
 namespace LaserEngrave.Core.Tests.Alignment;
 

@@ -1,4 +1,5 @@
 using LaserEngrave.Core.Calibration;
+using LaserEngrave.Core.Geometry;
 
 namespace LaserEngrave.Core.Tests.Calibration;
 

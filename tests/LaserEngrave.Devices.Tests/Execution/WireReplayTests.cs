@@ -128,7 +128,7 @@ public sealed class WireReplayTests : IDisposable
 
         Assert.True(summary.Truncated);
         Assert.InRange(new FileInfo(path).Length, 1, 200);
-        var error = Assert.Throws<RunLogException>(() => WireRecording.Read(path));
+        var error = Assert.Throws<WireRecordingException>(() => WireRecording.Read(path));
         Assert.Contains("truncated", error.Message, StringComparison.Ordinal);
     }
 
@@ -145,7 +145,7 @@ public sealed class WireReplayTests : IDisposable
         var path = Path.Combine(_folder, "broken.jsonl");
         File.WriteAllText(path, text);
 
-        var error = Assert.Throws<RunLogException>(() => WireRecording.Read(path));
+        var error = Assert.Throws<WireRecordingException>(() => WireRecording.Read(path));
 
         Assert.Contains(expected, error.Message, StringComparison.Ordinal);
         Assert.StartsWith(path, error.Message, StringComparison.Ordinal);

@@ -1,9 +1,9 @@
 using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Imaging;
-using LaserEngrave.Core.Jobs;
+using LaserEngrave.Core.Marks;
 
-namespace LaserEngrave.Core.Marks;
+namespace LaserEngrave.Core.Jobs;
 
 /// <summary>
 /// Marks made into a job of layers: each copy's code as an image layer (a 1-bit BMP at a pitch the spot fills) and its
@@ -43,7 +43,7 @@ public sealed class MarkLayout
     public const string JobFileName = "job.json";
 
     /// <summary>The marks' record beside the job file: the counter, the first number, and each mark.</summary>
-    public const string ManifestFileName = "marks.json";
+    public const string ManifestFileName = MarkManifest.FileName;
 
     /// <summary>Checks <paramref name="spec"/>, resolves every copy's text and draws its code and text into <paramref name="folder"/>.</summary>
     /// <param name="first">The first copy's number (the counter's next).</param>

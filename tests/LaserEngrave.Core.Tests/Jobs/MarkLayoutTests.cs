@@ -2,7 +2,7 @@ using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Marks;
 
-namespace LaserEngrave.Core.Tests.Marks;
+namespace LaserEngrave.Core.Tests.Jobs;
 
 /// <summary>Marks made into a job of layers: the array, each copy's number and place, and the layers the run engine burns.</summary>
 public sealed class MarkLayoutTests : IDisposable

@@ -1,7 +1,7 @@
 using System.Globalization;
 using System.Text.Json.Serialization;
 
-namespace LaserEngrave.Core.Calibration;
+namespace LaserEngrave.Core.Geometry;
 
 /// <summary>The stage's identified squareness and scale errors (seed 002), stored in the machine profile and compensated in every job.</summary>
 /// <remarks>

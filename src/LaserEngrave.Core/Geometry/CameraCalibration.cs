@@ -1,4 +1,4 @@
-namespace LaserEngrave.Core.Camera;
+namespace LaserEngrave.Core.Geometry;
 
 /// <summary>How camera pixels map onto the stage: scale, turn, mirror and the laser spot's pixel, with the fit's residual.</summary>
 /// <remarks>

@@ -1,4 +1,6 @@
-namespace LaserEngrave.Core.Calibration;
+using LaserEngrave.Core.Geometry;
+
+namespace LaserEngrave.Core.Geometry;
 
 /// <summary>The inverse of the machine's error: which stage displacement gives a wanted true displacement.</summary>
 /// <remarks>

@@ -1,4 +1,4 @@
-namespace LaserEngrave.Core.Calibration;
+namespace LaserEngrave.Core.Geometry;
 
 /// <summary>Calibration measurements or a stored calibration that cannot be used; the message is one line saying why.</summary>
 public sealed class CalibrationException : Exception
