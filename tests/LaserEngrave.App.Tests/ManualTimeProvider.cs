@@ -11,6 +11,11 @@ internal sealed class ManualTimeProvider : TimeProvider
 
     public override DateTimeOffset GetUtcNow() => _now;
 
+    // Timestamps from the same manual time, so elapsed times (a run's, the laser's pace) move only when told too.
+    public override long GetTimestamp() => _now.UtcTicks;
+
+    public override long TimestampFrequency => TimeSpan.TicksPerSecond;
+
     public int ActiveTimers
     {
         get

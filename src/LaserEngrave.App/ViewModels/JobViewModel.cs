@@ -118,8 +118,8 @@ public sealed partial class JobViewModel : ObservableObject
     [ObservableProperty]
     public partial bool MirrorY { get; set; }
 
-    /// <summary>Whether the job can be turned and mirrored: an image (a drawing cannot yet).</summary>
-    public bool CanTurn => ImagePath is not null && !IsDrawing;
+    /// <summary>Whether the job can be turned and mirrored: an image or a drawing (its plan is turned: VectorOptions.Orientation).</summary>
+    public bool CanTurn => ImagePath is not null;
 
     /// <summary>The turn and mirror in force, as the Size panel says it: "upright", or e.g. "turned 90° clockwise, mirrored left to right".</summary>
     public string OrientationText
@@ -155,8 +155,8 @@ public sealed partial class JobViewModel : ObservableObject
     /// </summary>
     public void Rotate(bool clockwise)
     {
-        var width = Job?.Geometry.AchievedWidthMm;
-        var height = Job?.Geometry.AchievedHeightMm;
+        var width = Job?.Geometry.AchievedWidthMm ?? Drawing?.Plan.WidthMm;
+        var height = Job?.Geometry.AchievedHeightMm ?? Drawing?.Plan.HeightMm;
         Batch(() =>
         {
             QuarterTurns = (QuarterTurns + (clockwise ? 1 : 3)) % 4;
@@ -382,14 +382,17 @@ public sealed partial class JobViewModel : ObservableObject
     /// <summary>Opens an image; a file that cannot be read leaves the previous image and shows the error beside the image.</summary>
     /// <remarks>An image still being opened in the background is dropped first: the later open wins, however slow the earlier.</remarks>
     /// <exception cref="MachineBusyException">A run, homing or a test move is under way.</exception>
-    public bool LoadImage(string path)
+    public bool LoadImage(string path) => LoadImage(path, upright: true);
+
+    private bool LoadImage(string path, bool upright)
     {
         ArgumentException.ThrowIfNullOrWhiteSpace(path);
         _activity.ThrowIfJobLocked();
         CancelLoad();
+        upright &= path != ImagePath;
         if (DrawingReader.IsDrawing(path))
         {
-            return OpenDrawing(path);
+            return OpenDrawing(path, upright);
         }
 
         if (!Open(path))
@@ -397,8 +400,33 @@ public sealed partial class JobViewModel : ObservableObject
             return false;
         }
 
+        if (upright)
+        {
+            Upright();
+        }
+
         RebuildMask();
         return true;
+    }
+
+    /// <summary>
+    /// Another file opens upright, as LightBurn opens one: the last job's turn and mirrors were that artwork's (a job put
+    /// back, from the history or the last session, sets its own afterwards). Only once the file has opened: one that
+    /// cannot be read leaves the open job as it was, turn and all.
+    /// </summary>
+    private void Upright()
+    {
+        Interlocked.Increment(ref _suspended);
+        try
+        {
+            QuarterTurns = 0;
+            MirrorX = false;
+            MirrorY = false;
+        }
+        finally
+        {
+            Interlocked.Decrement(ref _suspended);
+        }
     }
 
     /// <summary>
@@ -409,20 +437,27 @@ public sealed partial class JobViewModel : ObservableObject
     /// </summary>
     /// <returns>True when the image opened; false when it did not (why stands beside the image) or the open was cancelled.</returns>
     /// <exception cref="MachineBusyException">A run, homing or a test move is under way.</exception>
-    public async Task<bool> LoadImageAsync(string path, CancellationToken cancellationToken = default)
+    /// <param name="upright">Whether another file opens upright (<see cref="Upright"/>); false: with the turn in force (the last session's job put back).</param>
+    public async Task<bool> LoadImageAsync(string path, CancellationToken cancellationToken = default, bool upright = true)
     {
         ArgumentException.ThrowIfNullOrWhiteSpace(path);
         _activity.ThrowIfJobLocked();
         if (DrawingReader.IsDrawing(path))
         {
-            return LoadImage(path);
+            return LoadImage(path, upright);
         }
 
         CancelLoad();
         using var loading = CancellationTokenSource.CreateLinkedTokenSource(cancellationToken);
         _loading = loading;
         var name = Path.GetFileName(path);
+        upright &= path != ImagePath;
         var spec = Spec(path);
+        if (upright)
+        {
+            spec = spec with { Mask = spec.Mask with { QuarterTurns = 0, MirrorX = false, MirrorY = false } };
+        }
+
         var progress = new Progress<string>(line =>
         {
             if (ReferenceEquals(Volatile.Read(ref _loading), loading))
@@ -474,6 +509,11 @@ public sealed partial class JobViewModel : ObservableObject
 
         lock (_lock)
         {
+            if (upright)
+            {
+                Upright();
+            }
+
             _image = opened.Image;
             _originalPreview = opened.Preview;
             ImagePath = path;
@@ -588,7 +628,7 @@ public sealed partial class JobViewModel : ObservableObject
     }
 
     /// <summary>A drawing has no pixels: the image and mask go, and the plan reads it (its errors stand beside the image).</summary>
-    private bool OpenDrawing(string path)
+    private bool OpenDrawing(string path, bool upright)
     {
         IReadOnlyList<string> layers;
         try
@@ -609,6 +649,11 @@ public sealed partial class JobViewModel : ObservableObject
 
         lock (_lock)
         {
+            if (upright)
+            {
+                Upright();
+            }
+
             _image = null;
             _originalPreview = null;
             ImageInfo = null;
@@ -761,7 +806,8 @@ public sealed partial class JobViewModel : ObservableObject
         });
         if (settings.ImagePath is { } path && path != ImagePath)
         {
-            LoadImage(path);
+            // The job put back keeps its own turn and mirrors, set above.
+            LoadImage(path, upright: false);
         }
     }
 
@@ -871,6 +917,12 @@ public sealed partial class JobViewModel : ObservableObject
     {
         if (BuildMask() is not { } released)
         {
+            // A drawing has no mask: its turn and mirrors are its plan's.
+            if (IsDrawing)
+            {
+                Replan();
+            }
+
             return;
         }
 

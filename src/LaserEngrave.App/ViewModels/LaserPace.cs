@@ -2,6 +2,7 @@ using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Motion;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Core.Programs;
+using LaserEngrave.Devices.Execution;
 
 namespace LaserEngrave.App.ViewModels;
 
@@ -10,16 +11,21 @@ namespace LaserEngrave.App.ViewModels;
 /// report put the stage, at its planned pace (a travel's ramps at the travel speed, a burn or overscan at the burn
 /// speed). Every kind of job: a raster's plan move by move, a dot job's travel to its next dot, a drawing's travel to its
 /// next stroke and the stroke itself, and each layer of a job of layers with its own process. It reads only the job and
-/// the app's clock, never the ports: a run owns them.
+/// the machine's clock, never the ports: a run owns them.
 /// </summary>
 /// <remarks>
 /// The engine reports when a move (a dot, a stroke) ends; without this the cross stood still for a whole row or stroke
 /// and then jumped. A stroke is drawn at the burn speed from its run-up's start (its ramps are not drawn).
+/// The clock is the machine's (the engine's): the simulator's virtual time may run behind the wall clock, and a cross
+/// paced by the wall clock would then run ahead of the stage it stands for. During a timed raster's stroke the engine
+/// itself says where its timing puts the stage (<see cref="EngraveSession.StrokePositionAt"/>): its flown gaps at the
+/// travel speed and the corrections its position queries found, which the plan's moves alone do not know.
 /// </remarks>
 public sealed class LaserPace
 {
     private readonly IReadOnlyList<PreparedLayer> _parts;
     private readonly TimeProvider _time;
+    private readonly Func<long, StrokePosition?>? _engine;
 
     // The engine reports on its thread and the page's timer asks on another.
     private readonly Lock _lock = new();
@@ -29,14 +35,18 @@ public sealed class LaserPace
     private long _movesDone = -1;
     private (long X, long Y) _from;
     private IReadOnlyList<Leg> _legs = [];
-    private DateTimeOffset _reportedAt;
+    private long _reportedAt;
 
-    public LaserPace(EngraveJob job, TimeProvider time)
+    /// <param name="job">What runs.</param>
+    /// <param name="time">The machine's clock: the one the engine's reports happen on.</param>
+    /// <param name="engine">Where the engine's timing puts the stage at a timestamp of <paramref name="time"/> during a timed stroke (the run's <see cref="EngraveSession.StrokePositionAt"/>); null: the plan alone.</param>
+    public LaserPace(EngraveJob job, TimeProvider time, Func<long, StrokePosition?>? engine = null)
     {
         ArgumentNullException.ThrowIfNull(job);
         ArgumentNullException.ThrowIfNull(time);
         _parts = job.Parts;
         _time = time;
+        _engine = engine;
     }
 
     /// <summary>A progress report of a single job: <paramref name="movesDone"/> of the pass's moves are done and the stage stood at (x, y).</summary>
@@ -62,7 +72,7 @@ public sealed class LaserPace
             _layer = layer;
             _pass = pass;
             _movesDone = movesDone;
-            _reportedAt = _time.GetUtcNow();
+            _reportedAt = _time.GetTimestamp();
             (long X, long Y)? start = null;
             _legs = _part?.LegsAt(movesDone, out start) ?? [];
 
@@ -73,8 +83,14 @@ public sealed class LaserPace
     }
 
     /// <summary>The laser now: on the motion in flight at its planned pace; where the last report put it when none is in flight or the run is not moving; null before the first report.</summary>
-    public (long X, long Y)? Now(bool moving)
+    public (long X, long Y)? Now(bool moving) => Now(moving, out _);
+
+    /// <summary>The laser now, and the instant it is for: seconds on the machine's clock (its timestamp).</summary>
+    public (long X, long Y)? Now(bool moving, out double atSeconds)
     {
+        var now = _time.GetTimestamp();
+        atSeconds = now / (double)_time.TimestampFrequency;
+        var stroke = moving ? _engine?.Invoke(now) : null;
         lock (_lock)
         {
             if (_movesDone < 0)
@@ -87,7 +103,14 @@ public sealed class LaserPace
                 return _from;
             }
 
-            var seconds = (_time.GetUtcNow() - _reportedAt).TotalSeconds;
+            // The engine's motion (a stroke, a travel) while the reports have not gone past the move after it: a travel is
+            // counted done once its commands are sent, while the stage is still on it.
+            if (stroke is { } s && _movesDone <= s.FirstMoveIndex + s.MoveCount)
+            {
+                return (s.X, s.Y);
+            }
+
+            var seconds = _time.GetElapsedTime(_reportedAt, now).TotalSeconds;
             var at = _from;
             foreach (var leg in _legs)
             {

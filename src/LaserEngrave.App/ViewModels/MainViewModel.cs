@@ -225,7 +225,8 @@ public sealed partial class MainViewModel : ObservableObject
             Job.Apply(lastJob with { ImagePath = null });
         }
 
-        return Settings.RecentFiles.FirstOrDefault() is { } last && _files.Exists(last) ? Job.LoadImageAsync(last) : Task.CompletedTask;
+        // The last session's job as it was, its turn and mirrors too (another file opens upright).
+        return Settings.RecentFiles.FirstOrDefault() is { } last && _files.Exists(last) ? Job.LoadImageAsync(last, upright: false) : Task.CompletedTask;
     }
 
     /// <summary>Uses <paramref name="profile"/>, saved at <paramref name="path"/>, from now on: the job plans with it, the next connection uses it, the settings remember it.</summary>

@@ -113,6 +113,9 @@ public sealed partial class RunViewModel : ObservableObject
     [ObservableProperty]
     public partial (long X, long Y)? LaserMicrosteps { get; private set; }
 
+    /// <summary>The drawn laser with the instant on the machine's clock it stands for, in one value (the stage view tells the page both); null with <see cref="LaserMicrosteps"/>.</summary>
+    public PacedLaser? PacedLaser { get; private set; }
+
     /// <summary>The latest progress of the run under way (or of the last one).</summary>
     [ObservableProperty]
     [NotifyPropertyChangedFor(nameof(LayerText), nameof(ProgressUnit))]
@@ -666,8 +669,9 @@ public sealed partial class RunViewModel : ObservableObject
         using var abort = CancellationTokenSource.CreateLinkedTokenSource(lease.CancellationToken);
         _abort = abort;
 
-        // Every kind of job counts its moves (plan moves, dots, strokes) one for one with the engine: its laser is drawn at their pace.
-        var pace = new LaserPace(job, _time);
+        // Every kind of job counts its moves (plan moves, dots, strokes) one for one with the engine: its laser is drawn at
+        // their pace, on the machine's clock (the engine's), which the simulator's virtual time can hold behind the app's.
+        var pace = new LaserPace(job, connection.TimeProvider, running.StrokePositionAt);
         _pace = pace;
         var paceTimer = _time.CreateTimer(_ => MoveLaser(), null, PaceInterval, PaceInterval);
         try
@@ -680,6 +684,7 @@ public sealed partial class RunViewModel : ObservableObject
             lock (_paceLock)
             {
                 _pace = null;
+                PacedLaser = null;
                 LaserMicrosteps = null;
             }
 
@@ -731,7 +736,9 @@ public sealed partial class RunViewModel : ObservableObject
         {
             if (_pace is { } pace && Progress is { } progress)
             {
-                LaserMicrosteps = pace.Now(progress.State == RunState.Running);
+                var now = pace.Now(progress.State == RunState.Running, out var atSeconds);
+                PacedLaser = now is { } p ? new PacedLaser(p.X, p.Y, atSeconds) : null;
+                LaserMicrosteps = now;
             }
         }
     }

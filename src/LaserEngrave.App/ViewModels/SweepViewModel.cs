@@ -286,8 +286,9 @@ public sealed partial class SweepViewModel : ObservableObject
         IsRunning = true;
         Status = $"0 of {cells} cells done";
 
-        // The cells are the sweep job's parts in the order they burn (the labels first): the cross goes at their pace, as in a run.
-        _pace = new LaserPace(EngraveJob.Of(plan), _time);
+        // The cells are the sweep job's parts in the order they burn (the labels first): the cross goes at their pace, as in a
+        // run, on the machine's clock and where each cell's engine puts the stage.
+        _pace = new LaserPace(EngraveJob.Of(plan), connection.TimeProvider, session.StrokePositionAt);
         var paceTimer = _time.CreateTimer(_ => MoveLaser(), null, RunViewModel.PaceInterval, RunViewModel.PaceInterval);
         try
         {

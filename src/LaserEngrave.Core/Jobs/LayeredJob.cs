@@ -155,6 +155,9 @@ public sealed class LayeredJob
             Process = process,
             Profile = profile,
             Passes = layer.Passes,
+
+            // The layer's turn and mirrors, as for an image layer.
+            Mask = layer.Mask,
         };
         var prepared = layer.WidthMm is null ? PreparedDrawing.PrepareOwnSize(spec, options) : PreparedDrawing.Prepare(spec, options);
         return new PreparedLayer(layer, null, prepared);

@@ -71,6 +71,7 @@ public sealed class PreparedDrawing
         ArgumentNullException.ThrowIfNull(spec);
         ArgumentNullException.ThrowIfNull(vector);
         spec.Process.Validate();
+        vector = Oriented(spec, vector);
         var plan = spec.Size switch
         {
             SizeSpec.ByWidth w => VectorPlanner.Plan(spec.ImagePath, vector with { WidthMm = w.WidthMm, Origin = spec.Origin }, spec.Profile),
@@ -86,12 +87,17 @@ public sealed class PreparedDrawing
         ArgumentNullException.ThrowIfNull(spec);
         ArgumentNullException.ThrowIfNull(vector);
         spec.Process.Validate();
+        vector = Oriented(spec, vector);
         var plan = VectorPlanner.Plan(spec.ImagePath, vector with { WidthMm = null, Origin = spec.Origin }, spec.Profile);
 
         // A drawing with no width (one vertical line) is recorded by its height, so a repeat finds the same size.
         var size = plan.WidthMm > 0 ? SizeSpec.Width(plan.WidthMm) : SizeSpec.Height(plan.HeightMm);
         return Build(spec with { Size = size }, vector with { WidthMm = null, Origin = spec.Origin }, plan, motion);
     }
+
+    /// <summary>The job's turn and mirrors (its spec's, where an image's are too) given to the drawing's plan: the one place a drawing takes them.</summary>
+    private static VectorOptions Oriented(JobSpec spec, VectorOptions vector) =>
+        vector with { QuarterTurns = spec.Mask.QuarterTurns, MirrorX = spec.Mask.MirrorX, MirrorY = spec.Mask.MirrorY };
 
     private static VectorPlan OwnHeight(JobSpec spec, VectorOptions vector, double heightMm)
     {

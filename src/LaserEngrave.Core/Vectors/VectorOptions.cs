@@ -28,6 +28,34 @@ public sealed record VectorOptions
     /// <summary>Whether to order the paths (inner first, then shortest travel); false burns them in drawing order.</summary>
     public bool Optimize { get; init; } = true;
 
+    /// <summary>Quarter turns clockwise on the stage, 0..3, after the mirrors; the width is the turned drawing's (as an image's).</summary>
+    public int QuarterTurns { get; init; }
+
+    /// <summary>The drawing flipped left to right in its own axes (before it is turned).</summary>
+    public bool MirrorX { get; init; }
+
+    /// <summary>The drawing flipped top to bottom in its own axes (before it is turned).</summary>
+    public bool MirrorY { get; init; }
+
+    /// <summary>
+    /// The turn and mirrors as one transform of the drawing's millimetres (y downwards, as on the stage): mirrored first,
+    /// then turned clockwise a quarter at a time, so an image and a drawing given the same values come out the same way round.
+    /// </summary>
+    public Affine Orientation()
+    {
+        var mirror = Affine.Scale(MirrorX ? -1 : 1, MirrorY ? -1 : 1);
+
+        // A quarter turn clockwise with y downwards: right goes down, down goes left.
+        var quarter = new Affine(0, 1, -1, 0, 0, 0);
+        var turned = mirror;
+        for (var i = 0; i < ((QuarterTurns % 4) + 4) % 4; i++)
+        {
+            turned = Affine.Compose(turned, quarter);
+        }
+
+        return turned;
+    }
+
     /// <summary>Why a chord tolerance cannot be used, one line; null when it can (the command line and the app ask the same).</summary>
     public static string? ToleranceProblem(double toleranceUm) =>
         ToleranceAllowed(toleranceUm) ? null : $"chord tolerance {Text(toleranceUm)} µm {ToleranceRule}";
@@ -62,6 +90,11 @@ public sealed record VectorOptions
         if (FillPitchProblem(FillPitchUm) is { } pitch)
         {
             throw new GeometryException(pitch);
+        }
+
+        if (QuarterTurns is < 0 or > 3)
+        {
+            throw new GeometryException($"quarter turns {QuarterTurns} must be 0, 1, 2 or 3 (0°, 90°, 180°, 270° clockwise)");
         }
 
         if (!double.IsFinite(Origin.X) || !double.IsFinite(Origin.Y))

@@ -27,7 +27,10 @@ public static class VectorPlanner
             throw new DrawingException($"{drawing.Path}: the drawing has nothing to burn{skipped}");
         }
 
-        var (min, max) = drawing.Bounds();
+        // Turned and mirrored first: the width asked and the origin are the drawing's as it lies on the stage. A quarter
+        // turn or a mirror keeps the axes' directions, so the box's corners give the turned box.
+        var orientation = options.Orientation();
+        var (min, max) = Oriented(drawing.Bounds(), orientation);
         double width = max.X - min.X, height = max.Y - min.Y;
         double scale = 1;
         if (options.WidthMm is { } wanted)
@@ -39,7 +42,7 @@ public static class VectorPlanner
 
         // Drawing millimetres to stage microsteps, unrounded: the bounding box's top-left corner lands on the origin.
         var toStageMm = Affine.Compose(
-            Affine.Compose(Affine.Translate(-min.X, -min.Y), Affine.Scale(scale, scale)),
+            Affine.Compose(Affine.Compose(orientation, Affine.Translate(-min.X, -min.Y)), Affine.Scale(scale, scale)),
             Affine.Translate(options.Origin.X, options.Origin.Y));
         var toleranceMm = Units.UmToMm(options.ToleranceUm);
         var selected = drawing.Paths;
@@ -160,5 +163,17 @@ public static class VectorPlanner
     {
         long maxX = profile.X.TravelMicrosteps, maxY = profile.Y.TravelMicrosteps;
         return paths.All(p => p.Points.All(q => q.X >= 0 && q.Y >= 0 && q.X <= maxX && q.Y <= maxY));
+    }
+
+    /// <summary>The box of <paramref name="box"/>'s corners once <paramref name="orientation"/> (a turn, a mirror) has moved them.</summary>
+    private static (DrawingPoint Min, DrawingPoint Max) Oriented((DrawingPoint Min, DrawingPoint Max) box, Affine orientation)
+    {
+        if (orientation.IsIdentity)
+        {
+            return box;
+        }
+
+        var corners = new[] { box.Min, box.Max, new DrawingPoint(box.Min.X, box.Max.Y), new DrawingPoint(box.Max.X, box.Min.Y) }.Select(orientation.Apply).ToList();
+        return (new DrawingPoint(corners.Min(c => c.X), corners.Min(c => c.Y)), new DrawingPoint(corners.Max(c => c.X), corners.Max(c => c.Y)));
     }
 }

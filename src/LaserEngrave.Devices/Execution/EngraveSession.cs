@@ -147,6 +147,18 @@ public sealed class EngraveSession
         }
     }
 
+    /// <summary>Where the pass under way puts the stage at <paramref name="timestamp"/> (of the machine's clock) by its own timing, during a timed stroke; null otherwise (<see cref="RunExecutor.StrokePositionAt"/>).</summary>
+    public StrokePosition? StrokePositionAt(long timestamp)
+    {
+        RunExecutor? current;
+        lock (_lock)
+        {
+            current = _current;
+        }
+
+        return current?.StrokePositionAt(timestamp);
+    }
+
     /// <summary>Runs every pass on the machine's own runner (the simulation's loop in virtual time), then checks the burn and writes the log.</summary>
     /// <param name="progress">Told of every state change and move, on the run's thread, synchronously: keep it quick.</param>
     /// <param name="cancellationToken">Cancelling it aborts the run, as <see cref="Abort"/>.</param>

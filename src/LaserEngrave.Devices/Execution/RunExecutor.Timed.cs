@@ -56,6 +56,22 @@ public sealed partial class RunExecutor
     /// <summary>How much later than its round trip an OFF written now is answered, behind the timed lines and replies still on the gate's wire.</summary>
     private double GateQueueSeconds() => _timing is { } timing && _engravingStarted ? timing.OffQueuedSeconds(RunSeconds, _gateWireFree, _gateRepliesIn) : 0;
 
+    /// <summary>
+    /// Where this run's own timing puts the stage at <paramref name="timestamp"/> (of <see cref="TimeProvider"/>) from a
+    /// timed run's first stroke on: a stroke's motion from when its move arrived, its flown gaps, moved by what the
+    /// position queries found, and the travels between strokes on their ramps; null before the first stroke or for any
+    /// other kind of run. For a view of the run; it asks the stage nothing.
+    /// </summary>
+    public StrokePosition? StrokePositionAt(long timestamp)
+    {
+        lock (_lock)
+        {
+            return _timing is { } timing && _engravingStarted
+                ? _cut.PositionAt(TimeProvider.GetElapsedTime(_engravingStart, timestamp).TotalSeconds, timing)
+                : null;
+        }
+    }
+
     private async Task ExecuteTimedAsync(RasterProgram program, IEnumerable<RasterStep> steps, long firstIndex, TimedSwitching timing, CancellationToken token)
     {
         _queuedUpTo = firstIndex - 1;
@@ -136,7 +152,7 @@ public sealed partial class RunExecutor
         }
 
         var start = stroke.StartX;
-        var active = new StrokeCut.Stroke(start, stroke.Direction, stroke.EndX, plan) { Origin = times.Arrival };
+        var active = new StrokeCut.Stroke(start, stroke.Direction, stroke.EndX, plan) { Origin = times.Arrival, Y = stroke.Y, FirstMoveIndex = stroke.FirstMoveIndex, MoveCount = stroke.MoveCount };
         lock (_lock)
         {
             _cut.Started(active);
@@ -319,6 +335,11 @@ public sealed partial class RunExecutor
             }));
         }
 
+        lock (_lock)
+        {
+            _cut.Travelling(move, index, times.XArrival, times.YArrival);
+        }
+
         foreach (var (write, send) in sends.OrderBy(s => s.Write))
         {
             await DelayUntilAsync(write, token);
@@ -332,6 +353,10 @@ public sealed partial class RunExecutor
         {
             // A host late to write (a loaded computer) moves this travel's ends, and everything after them, later.
             timeline.Delay(_travelLate, travel: true);
+            lock (_lock)
+            {
+                _cut.Travelling(move, index, times.XArrival + _travelLate, times.YArrival + _travelLate);
+            }
         }
 
         _travelLate = 0;

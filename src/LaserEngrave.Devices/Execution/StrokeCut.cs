@@ -13,6 +13,7 @@ namespace LaserEngrave.Devices.Execution;
 internal sealed class StrokeCut
 {
     private Stroke? _stroke;
+    private Travel? _travel;
     private (Move Move, long Index, Task Acknowledged, double BurstEndsAt)? _burning;
     private double? _faultOffWrite;
     private bool? _stopMatchesMotion;
@@ -22,7 +23,14 @@ internal sealed class StrokeCut
     public Task? SwitchOnAcknowledged => _burning?.Acknowledged;
 
     /// <summary>A stroke starts: from here a stop is cut along its motion.</summary>
-    public void Started(Stroke stroke) => _stroke = stroke;
+    public void Started(Stroke stroke)
+    {
+        _stroke = stroke;
+        _travel = null;
+    }
+
+    /// <summary>A travel's commands leave: <paramref name="move"/> (the plan's <paramref name="index"/>-th), each axis's move arriving then (s on the run's clock; null: that axis stays).</summary>
+    public void Travelling(Move move, long index, double? xArrival, double? yArrival) => _travel = new(move, index, xArrival, yArrival);
 
     /// <summary>A burn run's switch-on was sent (<paramref name="acknowledged"/> its reply; its burst stops by itself by <paramref name="burstEndsAt"/> at the latest, s on the run's clock).</summary>
     public void Burning(Move burn, long index, Task acknowledged, double burstEndsAt = double.PositiveInfinity) => _burning = (burn, index, acknowledged, burstEndsAt);
@@ -176,9 +184,78 @@ internal sealed class StrokeCut
             : stroke.Plan.OffsetAt(seconds);
     }
 
+    /// <summary>
+    /// Where the stroke's motion puts the stage at <paramref name="seconds"/> on the run's clock, with the flown gaps'
+    /// speed bumps as the stage goes through them (the device's ramps to the travel speed and back); null before its
+    /// move arrives or without a stroke.
+    /// </summary>
+    public StrokePosition? PositionAt(double seconds, TimedSwitching timing)
+    {
+        // X where the stroke put it (at rest at its start before its move arrives, at its end after it).
+        long? strokeX = _stroke is { } stroke
+            ? (long)Math.Round(stroke.StartX + (stroke.Direction * (seconds < stroke.Origin ? 0 : Flying(stroke, seconds - stroke.Origin, timing))))
+            : null;
+        if (_travel is { } travel)
+        {
+            // A travel after the stroke: each axis from its move's arrival along the travel's ramps; until then where it was.
+            var move = travel.Move;
+            long Axis(long from, long to, double? arrival) => arrival is { } at && seconds >= at
+                ? from + (Math.Sign(to - from) * (long)Math.Round(timing.Travel(Math.Abs(to - from)).DistanceAt(seconds - at)))
+                : from;
+            var x = travel.XArrival is { } xa && seconds >= xa ? Axis(move.X0, move.X1, xa) : strokeX ?? move.X0;
+            return new StrokePosition(x, Axis(move.Y0, move.Y1, travel.YArrival), travel.Index, 1);
+        }
+
+        return _stroke is { } s ? new StrokePosition(strokeX!.Value, s.Y, s.FirstMoveIndex, s.MoveCount) : null;
+    }
+
+    /// <summary>A travel of a timed run: its move and when each axis's move arrives (s on the run's clock).</summary>
+    private sealed record Travel(Move Move, long Index, double? XArrival, double? YArrival);
+
+    /// <summary>
+    /// <see cref="Along"/>, and inside a flown gap the bump itself: from its speed-up's arrival the device speeds up at its
+    /// acceleration towards the travel speed, and from its speed-down's it slows back to the burn speed (TimedSwitching.Fly).
+    /// </summary>
+    private static double Flying(Stroke stroke, double seconds, TimedSwitching timing)
+    {
+        var a = timing.Acceleration;
+        var flown = 0;
+        foreach (var bump in stroke.Plan.Bumps)
+        {
+            if (seconds <= bump.SpeedUpArrival || flown++ >= stroke.GapsFlown)
+            {
+                break;
+            }
+
+            // The plan's own times hold again from the entry edge on; before it, the stage is past the bump's burn-speed estimate.
+            var hold = bump.SpeedDownArrival - bump.SpeedUpArrival;
+            var rise = Math.Min(a * hold, timing.TravelSpeed - timing.BurnSpeed);
+            if (rise <= 0 || seconds >= stroke.Plan.TimeAt(bump.Entry))
+            {
+                continue;
+            }
+
+            var t = seconds - bump.SpeedUpArrival;
+            double Gain(double s) => a * s < rise ? a * s * s / 2 : (rise * rise / (2 * a)) + (rise * (s - (rise / a)));
+            var down = Math.Min(t - hold, rise / a);
+            var gained = t <= hold ? Gain(t) : Gain(hold) + (rise * down) - (a * down * down / 2);
+            return Math.Min(stroke.Plan.Length, stroke.Plan.OffsetAt(bump.SpeedUpArrival) + (timing.BurnSpeed * t) + gained);
+        }
+
+        return Along(stroke, seconds, timing);
+    }
+
     /// <summary>A stroke under way: one X move from rest to rest along its plan.</summary>
     internal sealed class Stroke(long startX, int direction, long endX, StrokePlan plan)
     {
+        /// <summary>The row's Y, microsteps.</summary>
+        public long Y { get; init; }
+
+        /// <summary>Index in the plan's moves of the stroke's first move, and how many it runs.</summary>
+        public long FirstMoveIndex { get; init; }
+
+        public int MoveCount { get; init; }
+
         public long StartX { get; } = startX;
 
         public int Direction { get; } = direction;

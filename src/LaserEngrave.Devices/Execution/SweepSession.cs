@@ -90,6 +90,18 @@ public sealed class SweepSession
         return TaskRunner.For(Machine.TimeProvider).Run(() => RunJobsAsync(progress, cancellationToken));
     }
 
+    /// <summary>Where the cell under way puts the stage at <paramref name="timestamp"/> (of the machine's clock) by its engine's own timing (<see cref="EngraveSession.StrokePositionAt"/>); null otherwise.</summary>
+    public StrokePosition? StrokePositionAt(long timestamp)
+    {
+        EngraveSession? current;
+        lock (_lock)
+        {
+            current = _current;
+        }
+
+        return current?.StrokePositionAt(timestamp);
+    }
+
     /// <summary>Laser off, then the stage stopped (the focus axis too, when it is moving); no further cell starts.</summary>
     public void Abort()
     {

@@ -9,7 +9,7 @@ using NSubstitute;
 
 namespace LaserEngrave.App.Tests.ViewModels;
 
-/// <summary>The laser drawn at the machine's pace during a run: between the engine's reports, from the plan and the app's clock only.</summary>
+/// <summary>The laser drawn at the machine's pace during a run: between the engine's reports, from the plan and the machine's clock only.</summary>
 public sealed class LaserPaceTests
 {
     private readonly ManualTimeProvider _clock = new();
@@ -23,6 +23,8 @@ public sealed class LaserPaceTests
 
     public LaserPaceTests()
     {
+        // The cross goes at the machine's clock: here the test's.
+        _fakes.Connection.TimeProvider.Returns(_clock);
         _machine = new MachineViewModel(_fakes.Factory, MachineProfile.Default, _activity);
         _job = new JobViewModel(new ImageService(), MachineProfile.Default, _activity);
         var log = new LogViewModel(_store, Substitute.For<IFileAccess>(), _job);
@@ -99,6 +101,36 @@ public sealed class LaserPaceTests
 
         Assert.Equal((burn.X0, burn.Y0), atReport);
         Assert.InRange(halfway.X, Math.Min(burn.X0, burn.X1) + (burn.LengthX / 2) - 60, Math.Min(burn.X0, burn.X1) + (burn.LengthX / 2) + 60);
+    }
+
+    [Fact]
+    public void Now_EngineKnowsTheStrokeUnderWay_DrawsWhereTheEnginePutsTheStageUntilTheReportsPassIt()
+    {
+        // A timed raster's engine knows its row's one motion (flown gaps at the travel speed): the plan's moves do not.
+        _job.LoadImage(TestFiles.Asset("qr-code.bmp"));
+        _job.EditWidth(10);
+        var job = _job.Job!;
+        var moves = job.Plan.Moves().ToList();
+        var index = moves.FindIndex(m => m.Kind == MoveKind.Burn);
+        var burn = moves[index];
+        long? askedAt = null;
+        var engine = new StrokePosition(burn.X0 + 1234, burn.Y0, index, 3);
+        var pace = new LaserPace(job, _clock, at =>
+        {
+            askedAt = at;
+            return engine;
+        });
+
+        pace.Report(1, index, burn.X0, burn.Y0);
+        _clock.Advance(TimeSpan.FromSeconds(0.25));
+        var during = pace.Now(moving: true, out var atSeconds);
+        pace.Report(1, index + 4, burn.X1, burn.Y1);
+        var past = pace.Now(moving: true);
+
+        Assert.Equal((burn.X0 + 1234, burn.Y0), during);
+        Assert.Equal(_clock.GetTimestamp(), askedAt);
+        Assert.Equal(_clock.GetTimestamp() / (double)_clock.TimestampFrequency, atSeconds);
+        Assert.NotEqual((burn.X0 + 1234, burn.Y0), past);
     }
 
     [Fact]

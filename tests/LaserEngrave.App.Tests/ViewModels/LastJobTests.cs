@@ -41,6 +41,35 @@ public sealed class LastJobTests
     }
 
     [Fact]
+    public async Task Restart_LastJobTurnedAndMirrored_OpensAsItWasNotUpright()
+    {
+        using var folder = TestFiles.NewFolder();
+        var store = new JsonSettingsStore(Path.Combine(folder.Path, "settings.json"));
+        var files = Substitute.For<IFileAccess>();
+        files.Exists(Arg.Any<string>()).Returns(c => File.Exists(c.Arg<string>()));
+        files.SampleImages().Returns([]);
+        var logs = Substitute.For<IRunLogStore>();
+        logs.History().Returns([]);
+        async Task<MainViewModel> Start()
+        {
+            var main = new MainViewModel(new ImageService(), new Fakes().Factory, Substitute.For<IRunService>(), logs, store, files, TimeProvider.System, new MachineActivity());
+            await main.Restore();
+            return main;
+        }
+
+        var first = await Start();
+        first.Job.LoadImage(TestFiles.Asset("text-banner.png"));
+        first.Job.Rotate(clockwise: true);
+        first.Job.FlipVertical();
+
+        // Another file opens upright (issue 36); the same job after a restart is the job it was.
+        var second = await Start();
+
+        Assert.Equal((1, true, false), (second.Job.QuarterTurns, second.Job.MirrorX, second.Job.MirrorY));
+        Assert.Equal((60, 308), (second.Job.Mask!.Width, second.Job.Mask.Height));
+    }
+
+    [Fact]
     public async Task Restart_LastImageSlowToRead_OpensInTheBackgroundWithItsProgress()
     {
         using var folder = TestFiles.NewFolder();

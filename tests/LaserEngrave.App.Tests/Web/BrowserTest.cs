@@ -55,6 +55,7 @@ public abstract class BrowserTest : IAsyncLifetime, IClassFixture<SharedBrowser>
             AppFactory.UseTestServices(services, _folder.Path);
             // Only the test of the window's end lets the app end; the others reload the page at will.
             services.AddSingleton(new WindowLifetimeOptions(TestContext.Current.TestMethod?.MethodName == "Window_Closed_AppEnds" ? IdleExit : null));
+            AddServices(services);
         });
         await _app.StartAsync(TestContext.Current.CancellationToken);
         _url = _app.Services.GetRequiredService<IServer>().Features.Get<IServerAddressesFeature>()!.Addresses.First();
@@ -63,6 +64,11 @@ public abstract class BrowserTest : IAsyncLifetime, IClassFixture<SharedBrowser>
         _browser = await TestContext.Current.GetFixture<SharedBrowser>() ?? throw new InvalidOperationException("no browser: the class fixture is missing");
         _driver = _browser.Fresh();
         Open();
+    }
+
+    /// <summary>Services a test class replaces besides the test ones (e.g. the simulator at the machine's pace).</summary>
+    protected virtual void AddServices(IServiceCollection services)
+    {
     }
 
     public async ValueTask DisposeAsync()

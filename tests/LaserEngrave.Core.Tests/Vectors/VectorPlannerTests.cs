@@ -158,4 +158,43 @@ public class VectorPlannerTests
 
         Assert.Contains("width", Assert.Throws<GeometryException>(() => VectorPlanner.Plan(drawing, new VectorOptions { WidthMm = width }, Profile)).Message, StringComparison.Ordinal);
     }
+
+    [Theory]
+    [InlineData(0, false, false, new double[] { 10, 10, 14, 10, 14, 11 })]
+    [InlineData(1, false, false, new double[] { 11, 10, 11, 14, 10, 14 })]
+    [InlineData(2, false, false, new double[] { 14, 11, 10, 11, 10, 10 })]
+    [InlineData(1, true, false, new double[] { 11, 14, 11, 10, 10, 10 })]
+    [InlineData(0, false, true, new double[] { 10, 11, 14, 11, 14, 10 })]
+    public void Plan_TurnedOrMirrored_TheDrawingAsItLiesOnTheStageWithItsCornerOnTheOrigin(int quarterTurns, bool mirrorX, bool mirrorY, double[] expectedMm)
+    {
+        // An L: 4 mm right, then 1 mm down (SVG's y runs down, as the stage's).
+        var drawing = SvgReader.Parse(Svg("<path d=\"M 0 0 L 4 0 L 4 1\" fill=\"none\" stroke=\"black\"/>"), "l.svg");
+
+        var plan = VectorPlanner.Plan(drawing, new VectorOptions { Origin = new OriginMm(10, 10), QuarterTurns = quarterTurns, MirrorX = mirrorX, MirrorY = mirrorY }, Profile);
+
+        var points = Assert.Single(plan.Paths).Points.Select(p => (Math.Round(p.X * MicrostepUm / 1000, 4), Math.Round(p.Y * MicrostepUm / 1000, 4))).ToList();
+        var expected = Enumerable.Range(0, 3).Select(i => (expectedMm[2 * i], expectedMm[(2 * i) + 1])).ToList();
+
+        // The path may be burned from either end.
+        Assert.True(points.SequenceEqual(expected) || points.SequenceEqual(Enumerable.Reverse(expected)), $"burned {string.Join(" ", points)}");
+        Assert.Equal(quarterTurns % 2 == 0 ? (4, 1) : (1, 4), (Math.Round(plan.WidthMm, 6), Math.Round(plan.HeightMm, 6)));
+    }
+
+    [Fact]
+    public void Plan_TurnedAndSizedByWidth_TheWidthIsTheTurnedDrawings()
+    {
+        var drawing = SvgReader.Parse(Svg("<path d=\"M 0 0 L 4 0 L 4 1\" fill=\"none\" stroke=\"black\"/>"), "l.svg");
+
+        var plan = VectorPlanner.Plan(drawing, new VectorOptions { Origin = new OriginMm(10, 10), QuarterTurns = 3, WidthMm = 2 }, Profile);
+
+        Assert.Equal((2, 8), (Math.Round(plan.WidthMm, 6), Math.Round(plan.HeightMm, 6)));
+    }
+
+    [Fact]
+    public void Validate_FiveQuarterTurns_RefusedWithOneLine()
+    {
+        var ex = Assert.Throws<GeometryException>(() => new VectorOptions { QuarterTurns = 5 }.Validate());
+
+        Assert.Equal("quarter turns 5 must be 0, 1, 2 or 3 (0°, 90°, 180°, 270° clockwise)", ex.Message);
+    }
 }

@@ -174,6 +174,11 @@ export function create(host, dotnet) {
       ctx.strokeStyle = css('--marker'); ctx.fillStyle = css('--marker'); ctx.lineWidth = 2;
       ctx.beginPath(); ctx.moveTo(lx - 10, ly); ctx.lineTo(lx + 10, ly); ctx.moveTo(lx, ly - 10); ctx.lineTo(lx, ly + 10); ctx.stroke();
       ctx.beginPath(); ctx.arc(lx, ly, 5, 0, 2 * Math.PI); s.laserOn ? ctx.fill() : ctx.stroke();
+      // The cross as drawn (px) with the view it was drawn in and the instant it stands for (s on the machine's clock, in a run),
+      // for tests that compare it with the simulator's stage at that instant.
+      host.dataset.laserDrawn = `${lx},${ly},${s.scale},${s.ox},${s.oy},${s.laser.at ?? ''}`;
+    } else {
+      delete host.dataset.laserDrawn;
     }
     drawRulers(W, H, major, step);
     // The view's scale and offset (px per mm, px), for tests that drag the job where it is drawn.
@@ -375,7 +380,7 @@ export function create(host, dotnet) {
       return s.moves.length / 5;
     },
     setProgress(movesDone) { s.movesDone = movesDone; extendBurned(); invalidate(); },
-    setLaser(x, y, on) { s.laser = x === null ? null : { x, y }; s.laserOn = on; invalidate(); },
+    setLaser(x, y, on, at) { s.laser = x === null ? null : { x, y, at }; s.laserOn = on; invalidate(); },
     fit,
     zoom(k) { s.userView = true; const r = host.getBoundingClientRect(), cx = r.width / 2, cy = r.height / 2, mm = toMm(cx, cy); s.scale = clampScale(s.scale * k); s.ox = cx - mm.x * s.scale; s.oy = cy - mm.y * s.scale; invalidate(); },
     dispose() { document.removeEventListener('keydown', onKey); document.body.removeEventListener('themeChanged', invalidate); observer.disconnect(); },
