@@ -3,7 +3,8 @@
 // alone and compared with the simulator's own burn, pixel for pixel.
 //   dotnet build -c Release src/LaserEngrave.Cli && dotnet run -c Release --project tools/replay-ports-bench -- [N] [WIDTH_MM]
 // Environment: CLI (laserengrave.dll; default this tree's Release build), LOOPS=1 (two CPU-busy loops meanwhile),
-// MEASURE=0 (the default profile instead of one measured through the ptys first, as tools/ports-bench.sh), OUT.
+// MEASURE=0 (the default profile instead of one measured through the ptys first, as tools/ports-bench.sh), PIECES=3 (every
+// reply in two pieces this many ms apart, as tools/ports-bench.sh's simulator; 0 or unset: whole), OUT.
 using System.Diagnostics;
 using System.Text.Json;
 using LaserEngrave.Core.Jobs;
@@ -30,12 +31,18 @@ if (Environment.GetEnvironmentVariable("LOOPS") == "1")
     }
 }
 
+// The twin stands in for the devices and their adapters, which never wait for this computer: raised as `laserengrave
+// simulator` raises itself (tools/ports-bench.sh's NICE=-10), where the computer allows it.
+using var priority = LaserEngrave.Devices.Scheduling.RunPriority.Raise();
 try
 {
     var profile = LaserEngrave.Core.Geometry.MachineProfile.Default;
+    var pieces = double.TryParse(Environment.GetEnvironmentVariable("PIECES"), System.Globalization.CultureInfo.InvariantCulture, out var gapMs) && gapMs > 0
+        ? new LaserEngrave.Simulator.Serial.ReplyPieces(1, gapMs)
+        : default;
     await using var stage = await SocatPtyPair.StartAsync(CancellationToken.None);
     await using var laser = await SocatPtyPair.StartAsync(CancellationToken.None);
-    var simulator = SimulatedMachine.Attach(SerialPortLink.Open(stage.A, profile.StageBaudRate), SerialPortLink.Open(laser.A, profile.Gate.BaudRate), profile, new SimulatorOptions { StartMm = 1 });
+    var simulator = SimulatedMachine.Attach(SerialPortLink.Open(stage.A, profile.StageBaudRate), SerialPortLink.Open(laser.A, profile.Gate.BaudRate), profile, new SimulatorOptions { StartMm = 1, ReplyPieces = pieces });
     await using (simulator)
     {
         var profilePath = Path.Combine(output, "profile.json");

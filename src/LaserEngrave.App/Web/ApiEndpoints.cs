@@ -159,6 +159,13 @@ internal static class ApiEndpoints
                 return Busy(speed);
             }
 
+            // A run the run use case refuses (nothing to burn, outside the travel, no machine, a log folder that takes no
+            // file, marks burned already) is refused here as a refusal, with its reason, before anything moves.
+            if (main.Run.StartRefusal() is { } refusal)
+            {
+                return Busy(refusal);
+            }
+
             // A job longer than the user's threshold (an hour until set), or of pixels much smaller than the spot, asks as the page's Start does.
             if (!request.Confirm && main.Run.StartQuestion is { } question)
             {
@@ -169,7 +176,7 @@ internal static class ApiEndpoints
             main.Log.SampleId = request.SampleId;
             return Start(main, main.Run.ConfirmStartCommand);
         })
-            .WithSummary("202; runs the planned job (all passes); a second start during a run is ignored (200 with a note); 409 with the question for a job longer than the Machine panel's \"Ask before runs longer than\" (an hour until set) or of pixels much smaller than the spot, unless confirm is true; 409 with the sentence for a gate without a watchdog, unless acceptNoWatchdog is true (or the Machine panel's box is ticked); 409 with the burn speed field's sentence when the job refuses its speed (one this computer cannot hold with this gate).");
+            .WithSummary("202; runs the planned job (all passes); a second start during a run is ignored (200 with a note); 409 with the question for a job longer than the Machine panel's \"Ask before runs longer than\" (an hour until set) or of pixels much smaller than the spot, unless confirm is true; 409 with the sentence for a gate without a watchdog, unless acceptNoWatchdog is true (or the Machine panel's box is ticked); 409 with the burn speed field's sentence when the job refuses its speed (one this computer cannot hold with this gate); 409 with the reason when the run is refused before it starts (no job, nothing to burn, outside the travel, not connected, a log folder that takes no file, marks burned already).");
         api.MapPost("/run/continue", (MainViewModel main) =>
         {
             if (main.Run.IsActive)
@@ -403,7 +410,35 @@ internal static class ApiEndpoints
         var profile = main.Job.Profile;
         var moves = new List<long>();
         var truncated = false;
-        if (job?.Dots is { } dots)
+        if (main.Job.Drawing is { } drawing)
+        {
+            // A drawing: per stroke the travel from where the last one came to rest, its run-up (laser off), then its
+            // path burned vertex to vertex, one move a segment; the run's progress counts strokes.
+            (long X, long Y)? at = null;
+            foreach (var stroke in drawing.Schedule.Strokes)
+            {
+                if (moves.Count >= MaxPlanMoves * 5)
+                {
+                    truncated = true;
+                    break;
+                }
+
+                var (start, path) = (stroke.RunUpStart, stroke.Path.Points);
+                if (at is { } from)
+                {
+                    moves.AddRange([(long)Core.Planning.MoveKind.Travel, from.X, from.Y, start.X, start.Y]);
+                }
+
+                moves.AddRange([(long)Core.Planning.MoveKind.Travel, start.X, start.Y, path[0].X, path[0].Y]);
+                for (var i = 1; i < path.Count; i++)
+                {
+                    moves.AddRange([(long)Core.Planning.MoveKind.Burn, path[i - 1].X, path[i - 1].Y, path[i].X, path[i].Y]);
+                }
+
+                at = (stroke.RestEnd.X, stroke.RestEnd.Y);
+            }
+        }
+        else if (job?.Dots is { } dots)
         {
             // Dot mode: each dot as a short burn stroke a quarter of the dot spacing either side, one a dot, so the
             // run's progress (dots done) marks as many of them burned.
@@ -433,14 +468,15 @@ internal static class ApiEndpoints
             }
         }
 
-        var geometry = job?.Geometry.Geometry;
+        // The job's edges as Frame traces them, whichever kind it is.
+        var box = main.Job.Engraving?.FrameBox;
         return Results.Json(new
         {
             version = main.Job.PlanVersion,
             travelX = profile.X.TravelMicrosteps,
             travelY = profile.Y.TravelMicrosteps,
             microstepUm = profile.X.MicrostepUm,
-            job = geometry is null ? null : new { left = geometry.EdgeX(0), right = geometry.EdgeX(geometry.WidthPx), top = geometry.EdgeY(0), bottom = geometry.EdgeY(geometry.HeightPx) },
+            job = box is not { } edges ? null : new { left = edges.Left, right = edges.Right, top = edges.Top, bottom = edges.Bottom },
             moves,
             truncated,
         });

@@ -3,6 +3,7 @@ using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Devices.Execution;
+using LaserEngrave.Machines.Runs;
 
 namespace LaserEngrave.Cli.Commands;
 
@@ -36,22 +37,9 @@ internal static class TestMoveCommands
         command.Options.Add(visibleHz);
         command.SetAction(async (result, ct) =>
         {
-            if (VectorCommands.IsDrawing(result, job))
-            {
-                var drawing = VectorCommands.Prepare(result, job, vector);
-                OptionChecks.InRange(result.GetValue(visibleHz), 1, drawing.Spec.Profile.MaxFrameFrequencyHz, "--visible-hz", " Hz", "the profile's maxFrameFrequencyHz");
-                if (result.GetValue(visibleHz) is not null)
-                {
-                    machine.RefuseUnacceptedNoWatchdog(result, drawing.Spec.Profile);
-                }
-
-                VectorCommands.RefuseUnrunnable(drawing);
-                var points = drawing.Plan.Paths.SelectMany(p => p.Points).ToList();
-                return await WithMovesAsync(result, machine, drawing.Spec.Profile, drawing.Spec.Process, async moves =>
-                    Describe(await moves.FrameAsync(points.Min(p => p.X), points.Min(p => p.Y), points.Max(p => p.X), points.Max(p => p.Y), result.GetValue(visibleHz), ct), drawing.Spec.Profile));
-            }
-
-            var spec = job.Bind(result);
+            // One job whichever kind the file is: the same rule as a run refuses it, and the box it answers is what is traced.
+            EngraveJob engraving = VectorCommands.IsDrawing(result, job) ? VectorCommands.Prepare(result, job, vector) : PreparedJob.Prepare(job.Bind(result));
+            var spec = engraving.Spec;
 
             // The laser is on around the whole frame: only a low frequency, to see the outline without burning it.
             OptionChecks.InRange(result.GetValue(visibleHz), 1, spec.Profile.MaxFrameFrequencyHz, "--visible-hz", " Hz", "the profile's maxFrameFrequencyHz");
@@ -60,11 +48,14 @@ internal static class TestMoveCommands
                 machine.RefuseUnacceptedNoWatchdog(result, spec.Profile);
             }
 
-            var prepared = PreparedJob.Prepare(spec);
-            EngraveCommand.RefuseOutsideTravel(prepared);
+            if (EngraveRun.Unrunnable(engraving) is { } unrunnable)
+            {
+                throw new UsageException(unrunnable);
+            }
 
-            return await WithMovesAsync(result, machine, prepared.Spec.Profile, prepared.Spec.Process, async moves =>
-                Describe(await moves.FrameAsync(prepared.Geometry.Geometry, result.GetValue(visibleHz), ct), prepared.Spec.Profile));
+            var box = engraving.FrameBox ?? throw new UsageException($"{spec.ImagePath}: no path to frame");
+            return await WithMovesAsync(result, machine, spec.Profile, spec.Process, async moves =>
+                Describe(await moves.FrameAsync(box.Left, box.Top, box.Right, box.Bottom, result.GetValue(visibleHz), ct), spec.Profile));
         });
         return command;
     }

@@ -100,7 +100,9 @@ internal sealed class ReplyWatch
             var settled = watched.Settled();
             if (!await CompletesByAsync(settled, deadline + 0.001, token) && !await StillArrivingAsync(settled, watched.Gate, token))
             {
-                throw _run.Fault($"the stage did not report {watched.What} within {_stallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)");
+                throw _run.Fault(
+                    $"the stage did not report {watched.What} within {_stallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)",
+                    recoverable: !watched.Gate);
             }
         }
     }
@@ -196,9 +198,14 @@ internal sealed class ReplyWatch
 
             if (!reply.IsCompleted)
             {
-                _ = _run.Fault(gate
-                    ? $"{watched.What} within {_stallMarginMs:0} ms of its expected arrival"
-                    : $"the stage did not report {watched.What} within {_stallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)");
+                // A stage reply missing past its grace is a doubt about time, not about the laser: the run stops with the
+                // laser off, and the session goes on from the stop point only if the off was confirmed and no burn run was
+                // cut; a device that is gone fails the recovery's own checks. A gate's reply missing leaves the laser in doubt.
+                _ = _run.Fault(
+                    gate
+                        ? $"{watched.What} within {_stallMarginMs:0} ms of its expected arrival"
+                        : $"the stage did not report {watched.What} within {_stallMarginMs:0} ms of its expected arrival (stalled, or its reply was lost)",
+                    recoverable: !gate);
                 return;
             }
 
@@ -260,7 +267,9 @@ internal interface IReplyWatchRun
     TimedSwitching? Timing { get; }
 
     /// <summary>A reply missing, late, failed or wrong: the run's fault (the laser off at once); returns the exception to throw.</summary>
-    DeviceException Fault(string reason);
+    /// <param name="reason">The fault, one line.</param>
+    /// <param name="recoverable">A stage reply that did not come in time, nothing more: a timing doubt the session may go on from (<see cref="RunResult.Recoverable"/>).</param>
+    DeviceException Fault(string reason, bool recoverable = false);
 
     /// <summary>A switch-off refused or unanswered: the laser may still fire, so the fault's off sequence takes every path.</summary>
     /// <param name="reply">The switch-off's acknowledgement, still awaited when it was late (a late answer confirms the laser off).</param>

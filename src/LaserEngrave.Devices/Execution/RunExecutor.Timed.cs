@@ -847,7 +847,7 @@ public sealed partial class RunExecutor
     private DeviceException Fault(string reason) => Fault(reason, recoverable: false);
 
     /// <param name="reason">The run's fault, one line.</param>
-    /// <param name="recoverable">Only a position query's doubt with the laser off: see <see cref="RunResult.Recoverable"/>.</param>
+    /// <param name="recoverable">Only a doubt about time (a position query or a stage reply too late, a switch-on past the tolerance), never about the laser: see <see cref="RunResult.Recoverable"/>.</param>
     private DeviceException Fault(string reason, bool recoverable)
     {
         var first = false;

@@ -500,7 +500,7 @@ public sealed partial class RunExecutor : ILaserSafetyRun, IReplyWatchRun
 
     TimedSwitching? IReplyWatchRun.Timing => _timing;
 
-    DeviceException IReplyWatchRun.Fault(string reason) => Fault(reason);
+    DeviceException IReplyWatchRun.Fault(string reason, bool recoverable) => Fault(reason, recoverable);
 
     void IReplyWatchRun.SwitchOffFailed(Task reply) => _laser.MarkSwitchOffFailed(reply);
 

@@ -24,8 +24,9 @@ public sealed record RunResult
     /// <summary>
     /// The run failed on a timing doubt that burned nothing wrongly: the laser was off (confirmed) in a flown gap or before
     /// a stroke's first switch-on, no burn run was cut, and the fault says only that a position query answered too late,
-    /// or found the stage too far from its plan, for the next switch-on to be timed (a busy computer). It may go on from
-    /// <see cref="StopPoint"/> at once, as a resume would.
+    /// or found the stage too far from its plan, for the next switch-on to be timed, or that a stage reply did not come
+    /// within its grace (a busy computer, a reply lost). It may go on from <see cref="StopPoint"/> at once, as a resume
+    /// would: the resumed run's preflight asks every device again, so a stage that is gone ends it there.
     /// </summary>
     public bool Recoverable { get; init; }
 

@@ -110,6 +110,13 @@ public sealed class SerialChannel<TMessage> : IAsyncDisposable
         }
     }
 
+    /// <summary>
+    /// When the bytes being framed now arrived (the read's arrival stamp, a timestamp of <see cref="Time"/>): valid inside
+    /// the message callback, for the message the read completed. A round trip counted to it leaves out how late the reader
+    /// and the waiter got to the reply (a busy computer), which is no latency of the link.
+    /// </summary>
+    public long CurrentArrival { get; private set; }
+
     /// <summary>When the latest write completed, as a timestamp of <see cref="Time"/>; null before the first.</summary>
     public long? LastWriteCompleted
     {
@@ -193,6 +200,7 @@ public sealed class SerialChannel<TMessage> : IAsyncDisposable
 
                 Interlocked.Add(ref _bytesReceived, read.Count);
                 _dispatching = true;
+                CurrentArrival = read.ArrivalTimestamp;
                 try
                 {
                     _framer.Push(buffer.AsSpan(0, read.Count), read, _onMessage);

@@ -375,7 +375,8 @@ public sealed class ZaberConnection : IAsyncDisposable
                 var reply = await Signals.WaitAsync(pending.Completion, timeout, _time, () => _channel.IsReceiving, cancellationToken);
                 if (!RepliesOnCompletion.Contains(request.Command) && !holdLine)
                 {
-                    RecordRoundTrip(_time.GetElapsedTime(written).TotalMilliseconds);
+                    // To the reply's arrival, not to when this waiter ran: a host late to read is no latency of the line.
+                    RecordRoundTrip(_time.GetElapsedTime(written, pending.Arrived is { } arrived && arrived >= written ? arrived : _time.GetTimestamp()).TotalMilliseconds);
                 }
 
                 return reply;
@@ -599,6 +600,7 @@ public sealed class ZaberConnection : IAsyncDisposable
             {
                 ExpireZombies(request);
                 var replaced = ReplacedMoves(request);
+                request.Arrived = _channel.CurrentArrival;
                 request.Completion.TrySetResult(frame);
                 foreach (var earlier in replaced)
                 {
@@ -826,6 +828,9 @@ public sealed class ZaberConnection : IAsyncDisposable
 
         /// <summary>Its waiter was failed because a later move pre-empted it; it may still absorb a late reply.</summary>
         public bool Interrupted { get; set; }
+
+        /// <summary>When its reply's last bytes arrived (a timestamp of the connection's clock); null until then.</summary>
+        public long? Arrived { get; set; }
 
         public TaskCompletionSource<ZaberFrame> Completion { get; } = new(TaskCreationOptions.RunContinuationsAsynchronously);
     }

@@ -281,6 +281,52 @@ public sealed class ApiEndpointsTests : IDisposable
     }
 
     [Fact]
+    public async Task StateAndPlan_DrawingOpen_EstimateAndTheMovesOfItsStrokes()
+    {
+        // Issue 35: with hexagons.dxf open, /api/state gave estimate null and /api/plan no move.
+        var state = await PostAsync("/api/image/open", new { path = TestFiles.Asset(Path.Combine("drawings", "hexagons.dxf")) });
+        var plan = await _client.GetFromJsonAsync<JsonElement>("/api/plan", Token);
+
+        var estimate = state.GetProperty("estimate");
+        Assert.True(estimate.GetProperty("seconds").GetDouble() > 0, estimate.ToString());
+        Assert.Equal("stroke", estimate.GetProperty("unit").GetString());
+        var strokes = estimate.GetProperty("rows").GetInt32();
+        Assert.True(strokes > 0);
+        Assert.True(estimate.GetProperty("fitsTravel").GetBoolean());
+        var moves = plan.GetProperty("moves").EnumerateArray().Select(m => m.GetInt64()).ToList();
+        Assert.Equal(0, moves.Count % 5);
+        Assert.True(Enumerable.Range(0, moves.Count / 5).Count(i => moves[i * 5] == (long)Core.Planning.MoveKind.Burn) >= strokes);
+        var box = plan.GetProperty("job");
+        Assert.True(box.GetProperty("right").GetInt64() > box.GetProperty("left").GetInt64());
+        Assert.True(box.GetProperty("bottom").GetInt64() > box.GetProperty("top").GetInt64());
+    }
+
+    [Fact]
+    public async Task RunStart_AllWhiteImage_409WithTheReasonAndNothingRuns()
+    {
+        // Issue 35: the app refused it, the API answered that refusal 202 with the state Failed.
+        using var folder = TestFiles.NewFolder();
+        var white = Path.Combine(folder.Path, "white.bmp");
+        using (var file = File.Create(white))
+        {
+            Core.Imaging.BmpMaskWriter.Write(file, new Core.Imaging.BitMask(8, 6));
+        }
+
+        await UploadAsync(white);
+        await PostAsync("/api/job", new { widthMm = 0.8, originXMm = 0, originYMm = 0 });
+        await PostAsync("/api/machine/connect", new { useSimulator = true }, HttpStatusCode.Accepted);
+        await WaitForAsync(s => s.GetProperty("machine").GetProperty("connected").GetBoolean() && !s.GetProperty("activity").GetProperty("busy").GetBoolean(), TimeSpan.FromSeconds(20));
+
+        var answer = await PostAsync("/api/run/start", new { sampleId = "W-1" }, HttpStatusCode.Conflict);
+
+        var error = answer.GetProperty("error").GetString()!;
+        Assert.Contains("white.bmp: the mask has no pixel to burn", error, StringComparison.Ordinal);
+        var state = await StateAsync();
+        Assert.Equal("Idle", state.GetProperty("run").GetProperty("state").GetString());
+        Assert.Empty(state.GetProperty("log").GetProperty("history").EnumerateArray());
+    }
+
+    [Fact]
     public async Task Connect_PortsWithoutNames_ErrorShown()
     {
         await PostAsync("/api/machine/connect", new { useSimulator = false }, HttpStatusCode.Accepted);

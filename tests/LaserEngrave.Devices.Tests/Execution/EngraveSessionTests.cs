@@ -303,14 +303,67 @@ public class EngraveSessionTests
     [Fact(Timeout = 120_000)]
     public async Task RunAsync_FaultThatIsNoTimingDoubt_EndsTheRunWithoutGoingOn()
     {
-        await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = "silent:stage:after=60" });
+        await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = "error:stage:device=1:command=42:after=3" });
         var log = new RecordingLog();
 
-        await Session(run, Job(), log).RunAsync(null, TestContext.Current.CancellationToken);
+        await Session(run, TestJobs.FromAsset("qr-code.bmp", 5, new PlanOptions()), log).RunAsync(null, TestContext.Current.CancellationToken);
 
         var record = Assert.Single(log.Records);
         Assert.Equal(RunOutcome.Failed, record.Outcome);
+        Assert.Contains("refused Set Target Speed", record.Fault!.Message, StringComparison.Ordinal);
         Assert.Null(record.Recoveries);
+    }
+
+    [Theory(Timeout = 120_000)]
+    [InlineData("delay:stage:device=1:command=42:after=3:ms=300")]
+    [InlineData("delay:stage:device=1:command=42:after=10:ms=300")]
+    [InlineData("drop-reply:stage:device=1:command=42:after=10")]
+    public async Task RunAsync_SetTargetSpeedReplyLateOrLost_GoesOnFromTheStopPointAndBurnsTheMaskOnce(string fault)
+    {
+        // Issue 34: a flown gap's speed reply read past its grace (a host stalled, a reply lost) ended the run; with the
+        // laser off confirmed and no burn run cut it is a doubt about time only, and the run goes on as from a late query.
+        var ct = TestContext.Current.CancellationToken;
+        var job = TestJobs.FromAsset("qr-code.bmp", 5, new PlanOptions());
+        var clean = new RecordingLog();
+        await using (var run = SimulatedRun.Create())
+        {
+            await Session(run, job, clean).RunAsync(null, ct);
+        }
+
+        await using var late = SimulatedRun.Create(new SimulatorOptions { FaultSpec = fault });
+        var log = new RecordingLog();
+        var result = await Session(late, job, log).RunAsync(null, ct);
+
+        var record = Assert.Single(log.Records);
+        var sim = Assert.IsType<RunSimulation>(record.Simulation);
+        var once = Assert.IsType<RunSimulation>(Assert.Single(clean.Records).Simulation);
+        Assert.True(record.Outcome == RunOutcome.Completed, $"{record.Outcome}: {record.Fault?.Message}");
+        Assert.Equal(RunState.Completed, result.State);
+        Assert.Contains(record.Recoveries!, r => r.Fault.StartsWith("the stage did not report Set Target Speed (X", StringComparison.Ordinal));
+        Assert.Equal((0L, 0L, 0), (sim.MissingPixels, sim.ExtraPixels, sim.LaserOnTravelCount));
+        Assert.InRange(sim.PulsesPerPixel.Max, 0, once.PulsesPerPixel.Max + 1);
+        Assert.False(late.Machine.Gate.IsFiring);
+    }
+
+    [Fact(Timeout = 120_000)]
+    public async Task RunAsync_StageSilentMidRun_GoesOnOnceThenFailsOnTheSilentDeviceLaserOff()
+    {
+        // A reply that never comes because the device is gone: the doubt is gone on from once, and the recovery's own
+        // preflight finds the device silent and ends the run, the cause first.
+        await using var run = SimulatedRun.Create(new SimulatorOptions { FaultSpec = "silent:stage:after=60" });
+        var log = new RecordingLog();
+
+        var result = await Session(run, TestJobs.FromAsset("qr-code.bmp", 5, new PlanOptions()), log).RunAsync(null, TestContext.Current.CancellationToken);
+
+        var record = Assert.Single(log.Records);
+        Assert.Equal(RunOutcome.Failed, record.Outcome);
+        Assert.Equal(RunState.Failed, result.State);
+        Assert.Single(record.Recoveries!);
+        Assert.StartsWith("the X axis (device 1) does not answer as it should", record.Fault!.Message, StringComparison.Ordinal);
+        Assert.Contains("while going on after a timing doubt (the stage did not report", record.Fault.Message, StringComparison.Ordinal);
+        Assert.True(record.Fault.LaserOffConfirmed);
+        Assert.Equal((0L, 0), (record.Simulation!.ExtraPixels, record.Simulation.LaserOnTravelCount));
+        Assert.False(run.Machine.Gate.IsFiring);
     }
 
     [Fact(Timeout = 120_000)]

@@ -273,6 +273,73 @@ public class ReplyWatchTests
         Assert.Empty(run.Faults);
     }
 
+    [Fact(Timeout = 60_000)]
+    public async Task Watch_StageReplyMissingPastTheGrace_ReportedAsATimingDoubtToGoOnFrom()
+    {
+        using var time = new VirtualTimeProvider();
+        var run = new FakeRun(time);
+        var replies = new ReplyWatch(time, StallMarginMs, run) { Arriving = _ => false };
+
+        await time.RunTestAsync(async () =>
+        {
+            var watched = replies.Watch(ReplyAfter(time, 1.3), 1.0, "Set Target Speed (X)");
+            await watched.Done.Task;
+        });
+
+        Assert.Equal([$"the stage did not report Set Target Speed (X) {Stalled}"], run.Faults);
+        Assert.Equal([true], run.Recoverable);
+    }
+
+    [Fact(Timeout = 60_000)]
+    public async Task Watch_GateReplyMissingPastTheGrace_ReportedAsAFaultNotADoubt()
+    {
+        using var time = new VirtualTimeProvider();
+        var run = new FakeRun(time);
+        var replies = new ReplyWatch(time, StallMarginMs, run) { Arriving = _ => false };
+
+        await time.RunTestAsync(async () =>
+        {
+            var watched = replies.Watch(new TaskCompletionSource().Task, 1.0, "the laser gate did not acknowledge the switch-off", gate: true, switchOff: true);
+            await watched.Done.Task;
+        });
+
+        Assert.Equal([false], run.Recoverable);
+        Assert.Equal(1, run.SwitchOffsFailed);
+    }
+
+    [Fact(Timeout = 60_000)]
+    public async Task Watch_StageReplyFailed_ReportedAsAFaultNotADoubt()
+    {
+        using var time = new VirtualTimeProvider();
+        var run = new FakeRun(time);
+        var replies = new ReplyWatch(time, StallMarginMs, run);
+
+        await time.RunTestAsync(async () =>
+        {
+            var watched = replies.Watch(Task.FromException(new DeviceException("device 1 replied error 255 to Set Target Speed")), 1.0, "Set Target Speed (X)");
+            await watched.Done.Task;
+        });
+
+        Assert.Equal([false], run.Recoverable);
+    }
+
+    [Fact(Timeout = 60_000)]
+    public async Task AllSettledAsync_StageReplyMissing_ThrowsATimingDoubtToGoOnFrom()
+    {
+        using var time = new VirtualTimeProvider();
+        var run = new FakeRun(time);
+        var replies = new ReplyWatch(time, StallMarginMs, run);
+
+        await time.RunTestAsync(async () =>
+        {
+            replies.Watch(new TaskCompletionSource().Task, 1.0, "the end of a travel (Y)", axis: "Y");
+            await VirtualTime.ThrowsAsync<DeviceException>(replies.AllSettledAsync(CancellationToken.None));
+        });
+
+        Assert.NotEmpty(run.Recoverable);
+        Assert.All(run.Recoverable, Assert.True);
+    }
+
     private static async Task ReplyAfter(TimeProvider time, double seconds) =>
         await PreciseDelay.DelayAsync(time, TimeSpan.FromSeconds(seconds), CancellationToken.None);
 
@@ -289,9 +356,13 @@ public class ReplyWatchTests
 
         public TimedSwitching? Timing => null;
 
-        public DeviceException Fault(string reason)
+        /// <summary>Whether each fault in <see cref="Faults"/> was reported as a timing doubt the session may go on from.</summary>
+        public List<bool> Recoverable { get; } = [];
+
+        public DeviceException Fault(string reason, bool recoverable = false)
         {
             Faults.Add(reason);
+            Recoverable.Add(recoverable);
             return new DeviceException(reason);
         }
 

@@ -26,6 +26,30 @@ public class ZaberConnectionTests
         Assert.Equal(new ZaberFrame(1, ZaberCommand.ReturnCurrentPosition, 4242), reply);
     }
 
+    [Fact(Timeout = 20_000)]
+    public async Task RecentRoundTripsMs_EveryReadLate_CountsToTheReplysArrivalNotToTheLateReader()
+    {
+        // Issue 34: preflight sizes every guard from these round trips; a host late to read one reply (the twin: 5-60 ms)
+        // made it look like adapter spread and widened every line's guards up to 6x for the whole run.
+        var late = new HostLateness(0, 0, 0) { LateReadProbability = 1, LateReadMs = 60 };
+        var options = new LaserEngrave.Simulator.SimulatorOptions { HostLateness = late, AdapterLatency = new Jitter(1, 0) };
+        await using var machine = LaserEngrave.Simulator.SimulatedMachine.CreateInProcess(LaserEngrave.Core.Geometry.MachineProfile.Default, options);
+        var time = machine.TimeProvider;
+        await using var connection = new ZaberConnection(machine.StageLink, time);
+
+        var answeredMs = await machine.RunAsync(async () =>
+        {
+            var start = time.GetTimestamp();
+            await connection.RequestAsync(new ZaberFrame(1, ZaberCommand.EchoData, 7), None);
+            return time.GetElapsedTime(start).TotalMilliseconds;
+        });
+
+        // 6 bytes at 9600 baud each way (6.25 ms) and the adapter's 1 ms each way; the waiter itself ran 5-60 ms later.
+        var roundTrip = Assert.Single(connection.RecentRoundTripsMs);
+        Assert.Equal(14.5, roundTrip, 1);
+        Assert.InRange(answeredMs, 14.5 + HostLateness.ShortestStallMs, 14.5 + 61);
+    }
+
     [Fact]
     public async Task RequestAsync_RepliesOfBothAxesInterleaved_EachReachesItsOwnWaiter()
     {
