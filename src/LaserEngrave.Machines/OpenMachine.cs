@@ -1,3 +1,4 @@
+using LaserEngrave.Devices.Execution;
 using LaserEngrave.Devices.Machine;
 using LaserEngrave.Simulator.Burn;
 using LaserEngrave.Wire.Serial;
@@ -14,6 +15,13 @@ public sealed class OpenMachine(MachineSession session, ITwinInspector? twin, (R
 
     /// <summary>What the twin saw of the sample (the burn check for the log, pulse maps); null on real ports, where nothing can see the burn.</summary>
     public ITwinInspector? Twin => twin;
+
+    /// <summary>The machine a run's session engraves on: the stage and gate, their clock, the ports as the log names them, and on the twin its burn check.</summary>
+    public EngraveMachine Engraving => new(session.Stage, session.Gate, session.TimeProvider, session.StagePort, session.LaserPort)
+    {
+        Simulated = IsSimulated,
+        Inspector = twin,
+    };
 
     /// <summary>Whether this is the twin rather than real ports.</summary>
     public bool IsSimulated => twin is not null;

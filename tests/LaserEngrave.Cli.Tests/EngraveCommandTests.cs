@@ -374,6 +374,25 @@ public sealed class EngraveCommandTests : IDisposable
     }
 
     [Fact]
+    public async Task Engrave_AllWhiteImage_RefusedExit2NamingTheFileBeforeAnythingOpens()
+    {
+        // Issue 35: an all-white BMP homed the stage, exited 0 and logged "completed" with 0 rows; the app refused it.
+        var white = Path.Combine(folder, "white.bmp");
+        using (var file = File.Create(white))
+        {
+            BmpMaskWriter.Write(file, new BitMask(40, 40));
+        }
+
+        var (exit, output, error) = await CliHarness.RunAsync("engrave", white, "--width-mm", "5", "--simulate", "--log-dir", LogDir);
+
+        Assert.Equal(2, exit);
+        var line = Assert.Single(error.TrimEnd().Split('\n'));
+        Assert.StartsWith($"laserengrave: {white}: the mask has no pixel to burn", line, StringComparison.Ordinal);
+        Assert.Empty(output);
+        Assert.False(Directory.Exists(LogDir));
+    }
+
+    [Fact]
     public async Task Engrave_JobOutsideTheTravel_RefusedExit2BeforeAnythingMoves()
     {
         var (exit, _, error) = await CliHarness.RunAsync("engrave", QrCode, "--width-mm", "20", "--origin-mm", "50,0", "--simulate", "--log-dir", LogDir);

@@ -15,7 +15,7 @@ namespace LaserEngrave.App.ViewModels;
 /// values, and what follows from them (the plan, its estimate, warnings beside the fields that cause them).
 /// </summary>
 /// <remarks>Every change of an input re-plans at once; a change of threshold, dither or invert rebuilds the mask first.</remarks>
-public sealed partial class JobViewModel : ObservableObject
+public sealed partial class JobViewModel : ObservableObject, IJobSession
 {
     /// <summary>Field names the page places messages beside.</summary>
     public const string ImageField = "image";
@@ -261,9 +261,9 @@ public sealed partial class JobViewModel : ObservableObject
     [ObservableProperty]
     public partial double DotSettleMs { get; set; }
 
-    /// <summary>Energy of one pulse, µJ; 0: not known (no energy per pixel is shown).</summary>
+    /// <summary>Energy of one pulse, µJ; null: not known (no energy per pixel is shown). The job rules refuse 0 and below, as the command line does.</summary>
     [ObservableProperty]
-    public partial double PulseEnergyUj { get; set; }
+    public partial double? PulseEnergyUj { get; set; }
 
     /// <summary>A drawing's paths: outlines, filled with scan lines, or both (the command line's <c>--fill</c>).</summary>
     [ObservableProperty]
@@ -533,12 +533,6 @@ public sealed partial class JobViewModel : ObservableObject
             _prepared = opened.Job;
         }
 
-        if (opened.Image is null)
-        {
-            // A large image's pixels went with the background's frame: give them back to the system now, as after a mask.
-            GC.Collect(GC.MaxGeneration, GCCollectionMode.Aggressive, blocking: true, compacting: true);
-        }
-
         OnPropertyChanged(nameof(IsDrawing));
         if (opened.MaskOptions != MaskNow)
         {
@@ -753,6 +747,43 @@ public sealed partial class JobViewModel : ObservableObject
 
     public void EditMicrostepsPerPixel(double microsteps) => EditPitch(microsteps * _profile.X.MicrostepUm);
 
+    /// <summary>
+    /// The job dropped on the stage at (<paramref name="xMm"/>, <paramref name="yMm"/>), snapped to 0.01 mm: placed as the
+    /// same origin typed would be, and refused with the same sentence (the origin goes back) where the job rules refuse
+    /// the typed origin. Returns that sentence, or null when it was placed.
+    /// </summary>
+    public string? PlaceAt(double xMm, double yMm)
+    {
+        if (LockedBecause is { } locked)
+        {
+            return locked;
+        }
+
+        if (ImagePath is null)
+        {
+            return "no job to place";
+        }
+
+        var (x, y) = (Math.Round(xMm, 2), Math.Round(yMm, 2));
+        var (oldX, oldY) = (OriginXMm, OriginYMm);
+        try
+        {
+            Batch(() => (OriginXMm, OriginYMm) = (x, y));
+            if (Errors.TryGetValue(OriginField, out var refused))
+            {
+                Batch(() => (OriginXMm, OriginYMm) = (oldX, oldY));
+                return $"not placed at {N(x)}, {N(y)} mm: {refused}";
+            }
+        }
+        catch (MachineBusyException ex)
+        {
+            // The lock came between the check and the drop.
+            return ex.Message;
+        }
+
+        return null;
+    }
+
     /// <summary>Throws <see cref="MachineBusyException"/> while an operation fixes the job (an upload asks before it is kept).</summary>
     public void ThrowIfLocked() => _activity.ThrowIfJobLocked();
 
@@ -772,43 +803,57 @@ public sealed partial class JobViewModel : ObservableObject
         ArgumentNullException.ThrowIfNull(settings);
         Batch(() =>
         {
-            ThresholdPercent = settings.ThresholdPercent;
-            Dither = settings.Dither;
-            Invert = settings.Invert;
-            QuarterTurns = settings.QuarterTurns;
-            MirrorX = settings.MirrorX;
-            MirrorY = settings.MirrorY;
-            SizeMode = settings.SizeMode;
+            Assign(settings);
             AspectLocked = settings.SizeMode != SizeMode.WidthAndHeight;
-            WidthMm = settings.WidthMm;
-            HeightMm = settings.HeightMm;
-            PitchUm = settings.PitchUm;
-            OriginXMm = settings.OriginXMm;
-            OriginYMm = settings.OriginYMm;
-            LaserFrequencyHz = settings.LaserFrequencyHz;
-            BurnSpeedMmPerS = settings.BurnSpeedMmPerS;
-            TravelSpeedMmPerS = settings.TravelSpeedMmPerS;
-            AccelerationMmPerS2 = settings.AccelerationMmPerS2;
-            Strategy = settings.Strategy;
-            Bidirectional = settings.Bidirectional;
-            OverscanMm = settings.OverscanMm;
-            Passes = settings.Passes;
-            Mode = settings.Mode;
-            PulsesPerDot = settings.PulsesPerDot;
-            DotPitchMicrosteps = settings.DotPitchMicrosteps;
-            DotSettleMs = settings.DotSettleMs;
-            PulseEnergyUj = settings.PulseEnergyUj ?? 0;
-            DrawingFill = settings.DrawingFill;
-            ToleranceUm = settings.ToleranceUm;
-            FillPitchUm = settings.FillPitchUm;
-            DrawingLayer = settings.DrawingLayer;
-            DrawingOrder = settings.DrawingOrder;
         });
         if (settings.ImagePath is { } path && path != ImagePath)
         {
             // The job put back keeps its own turn and mirrors, set above.
             LoadImage(path, upright: false);
         }
+    }
+
+    /// <inheritdoc/>
+    public void Change(Func<JobSettings, JobSettings> change)
+    {
+        ArgumentNullException.ThrowIfNull(change);
+        var changed = change(ToSettings());
+        Batch(() => Assign(changed));
+    }
+
+    /// <summary>Every field from <paramref name="settings"/> (a value that stays raises nothing), without the file.</summary>
+    private void Assign(JobSettings settings)
+    {
+        ThresholdPercent = settings.ThresholdPercent;
+        Dither = settings.Dither;
+        Invert = settings.Invert;
+        QuarterTurns = settings.QuarterTurns;
+        MirrorX = settings.MirrorX;
+        MirrorY = settings.MirrorY;
+        SizeMode = settings.SizeMode;
+        WidthMm = settings.WidthMm;
+        HeightMm = settings.HeightMm;
+        PitchUm = settings.PitchUm;
+        OriginXMm = settings.OriginXMm;
+        OriginYMm = settings.OriginYMm;
+        LaserFrequencyHz = settings.LaserFrequencyHz;
+        BurnSpeedMmPerS = settings.BurnSpeedMmPerS;
+        TravelSpeedMmPerS = settings.TravelSpeedMmPerS;
+        AccelerationMmPerS2 = settings.AccelerationMmPerS2;
+        Strategy = settings.Strategy;
+        Bidirectional = settings.Bidirectional;
+        OverscanMm = settings.OverscanMm;
+        Passes = settings.Passes;
+        Mode = settings.Mode;
+        PulsesPerDot = settings.PulsesPerDot;
+        DotPitchMicrosteps = settings.DotPitchMicrosteps;
+        DotSettleMs = settings.DotSettleMs;
+        PulseEnergyUj = settings.PulseEnergyUj;
+        DrawingFill = settings.DrawingFill;
+        ToleranceUm = settings.ToleranceUm;
+        FillPitchUm = settings.FillPitchUm;
+        DrawingLayer = settings.DrawingLayer;
+        DrawingOrder = settings.DrawingOrder;
     }
 
     public JobSettings ToSettings() => new()
@@ -838,7 +883,7 @@ public sealed partial class JobViewModel : ObservableObject
         PulsesPerDot = PulsesPerDot,
         DotPitchMicrosteps = DotPitchMicrosteps,
         DotSettleMs = DotSettleMs,
-        PulseEnergyUj = PulseEnergyUj > 0 ? PulseEnergyUj : null,
+        PulseEnergyUj = PulseEnergyUj,
         DrawingFill = DrawingFill,
         ToleranceUm = ToleranceUm,
         FillPitchUm = FillPitchUm,
@@ -915,36 +960,25 @@ public sealed partial class JobViewModel : ObservableObject
 
     private void RebuildMask()
     {
-        if (BuildMask() is not { } released)
+        // A drawing has no mask: its turn and mirrors are its plan's.
+        if (BuildMask() || IsDrawing)
         {
-            // A drawing has no mask: its turn and mirrors are its plan's.
-            if (IsDrawing)
-            {
-                Replan();
-            }
-
-            return;
+            Replan();
         }
-
-        if (released)
-        {
-            // Give the decoded pixels back to the system now, not at some later collection, so the app's size stays the mask's.
-            GC.Collect(GC.MaxGeneration, GCCollectionMode.Aggressive, blocking: true, compacting: true);
-        }
-
-        Replan();
     }
 
-    /// <summary>Builds the mask; true when a large image's pixels were dropped, null without an image.</summary>
-    /// <remarks>A method of its own: the caller collects once this frame, which held the pixels, is gone.</remarks>
-    private bool? BuildMask()
+    /// <summary>Builds the mask; false without an image.</summary>
+    /// <remarks>
+    /// A method of its own, so no caller's frame keeps a large image's pixels alive: once dropped here they are the
+    /// garbage collector's to take back when it needs to (the app forces no collection; RunMemoryTests watches the heap).
+    /// </remarks>
+    private bool BuildMask()
     {
-        var released = false;
         lock (_lock)
         {
             if (ImagePath is not { } path || ImageInfo is null)
             {
-                return null;
+                return false;
             }
 
             var errors = new Dictionary<string, string>(Errors);
@@ -959,7 +993,6 @@ public sealed partial class JobViewModel : ObservableObject
                 if ((long)image.Stride * image.Height > RetainedImageBytes)
                 {
                     // Only the 1-bit mask stays: a 32768 x 32768 greyscale image would otherwise keep 1 GB.
-                    released = true;
                     _image = null;
                 }
             }
@@ -977,176 +1010,64 @@ public sealed partial class JobViewModel : ObservableObject
             SetErrors(errors);
         }
 
-        return released;
+        return true;
     }
 
     private void Replan()
     {
-        if (IsDrawing)
-        {
-            ReplanDrawing();
-            return;
-        }
-
         lock (_lock)
         {
-            var errors = FieldErrors();
-            foreach (var key in new[] { ImageField, ThresholdField })
+            var errors = JobPlanner.FieldErrors(ToSettings(), _profile);
+            JobPlan plan;
+            if (IsDrawing)
             {
-                if (Errors.TryGetValue(key, out var message))
-                {
-                    errors[key] = message;
-                }
+                plan = JobPlanner.Drawing(Spec(ImagePath!), SizeMode, WidthMm, DrawingOptions(), errors);
             }
-
-            var warnings = new Dictionary<string, string>();
-            PreparedJob? job = null;
-
-            // A plan made while the image was opened serves once; it is not kept beside the job.
-            var prepared = _prepared;
-            _prepared = null;
-            if (Mask is { } mask && ImageInfo is { } info && errors.Count == 0)
+            else
             {
-                try
+                foreach (var key in new[] { ImageField, ThresholdField })
                 {
-                    var spec = Spec(info.Path);
-                    job = prepared is { } ready && ReferenceEquals(ready.Mask, mask) && ready.Spec == spec ? ready.Job : _images.Prepare(spec, info, mask);
-                }
-                catch (GeometryException ex)
-                {
-                    errors[SizeField()] = ex.Message;
-                }
-                catch (PlanException ex)
-                {
-                    errors[OverscanField] = ex.Message;
-                }
-            }
-
-            if (job is not null && JobRules.Check(job) is { } refused)
-            {
-                // The command line or the engine would refuse this job: an error beside the field to change, so Start stays disabled.
-                errors[refused.Field] = refused.Message;
-            }
-
-            if (job is not null)
-            {
-                foreach (var warning in job.Warnings.Where(w => w.Kind is not (JobWarningKind.PitchBelowMicrostep or JobWarningKind.PixelTooShortForTheGate or JobWarningKind.BurstTooLongForTheWatchdog)))
-                {
-                    var field = warning.Kind switch
+                    if (Errors.TryGetValue(key, out var message))
                     {
-                        JobWarningKind.OutsideTravel => OriginField,
-                        JobWarningKind.OverscanClamped => OverscanField,
-                        JobWarningKind.PulseGaps or JobWarningKind.PixelUnderOnePulse => PulsesField,
-                        JobWarningKind.BurstTooLongForTheWatchdog => PulsesPerDotField,
-                        _ => PitchField,
-                    };
-                    warnings[field] = warnings.TryGetValue(field, out var before) ? before + "; " + warning.Message : warning.Message;
-                }
-
-                // The fields that follow show what the job will really be.
-                Interlocked.Increment(ref _suspended);
-                Interlocked.Increment(ref _following);
-                try
-                {
-                    if (SizeMode != SizeMode.Width)
-                    {
-                        WidthMm = Math.Round(job.Geometry.RequestedWidthMm, 4);
-                    }
-
-                    if (SizeMode != SizeMode.Height)
-                    {
-                        HeightMm = Math.Round(job.Geometry.RequestedHeightMm, 4);
-                    }
-
-                    if (SizeMode != SizeMode.Pitch)
-                    {
-                        PitchUm = Math.Round(job.Geometry.PitchUm, 4);
+                        errors[key] = message;
                     }
                 }
-                finally
-                {
-                    Interlocked.Decrement(ref _following);
-                    Interlocked.Decrement(ref _suspended);
-                }
+
+                // A plan made while the image was opened serves once; it is not kept beside the job.
+                var prepared = _prepared;
+                _prepared = null;
+                plan = JobPlanner.Image(Spec(ImageInfo?.Path ?? string.Empty), SizeMode, Mask, ImageInfo, errors, (spec, info, mask) =>
+                    prepared is { } ready && ReferenceEquals(ready.Mask, mask) && ready.Spec == spec ? ready.Job : _images.Prepare(spec, info, mask));
             }
 
-            Job = job;
-            Drawing = null;
-            EstimatedSeconds = job is null ? null : job.Statistics.WholeRunSeconds(Passes);
-            SetErrors(errors);
-            Warnings = warnings;
+            Follow(plan);
+            Job = plan.Job;
+            Drawing = plan.Drawing;
+            EstimatedSeconds = plan.Job?.Statistics.WholeRunSeconds(Passes) ?? plan.Drawing?.WholeRunSeconds(Passes);
+            SetErrors(plan.Errors);
+            Warnings = plan.Warnings;
             OnPropertyChanged(nameof(MicrostepsPerPixel));
             OnPropertyChanged(nameof(PulsesSummary));
+            OnPropertyChanged(nameof(PathOrderSummary));
             PlanVersion++;
         }
     }
 
-    /// <summary>Plans the open drawing: by the width typed (width mode), else in its own units; placed at the origin.</summary>
-    private void ReplanDrawing()
+    /// <summary>The fields that follow the plan show what the job will really be, without planning again.</summary>
+    private void Follow(JobPlan plan)
     {
-        lock (_lock)
+        Interlocked.Increment(ref _suspended);
+        Interlocked.Increment(ref _following);
+        try
         {
-            var errors = FieldErrors();
-
-            var warnings = new Dictionary<string, string>();
-            PreparedDrawing? drawing = null;
-            if (errors.Count == 0)
-            {
-                try
-                {
-                    var spec = Spec(ImagePath!) with { Size = SizeSpec.Width(WidthMm > 0 ? WidthMm : 1) };
-                    drawing = SizeMode == SizeMode.Width && WidthMm > 0
-                        ? PreparedDrawing.Prepare(spec, DrawingOptions())
-                        : PreparedDrawing.PrepareOwnSize(spec, DrawingOptions());
-                }
-                catch (DrawingException ex)
-                {
-                    errors[ImageField] = ex.Message;
-                }
-                catch (GeometryException ex)
-                {
-                    errors[WidthField] = ex.Message;
-                }
-                catch (PlanException ex)
-                {
-                    errors[ImageField] = ex.Message;
-                }
-            }
-
-            if (drawing is not null)
-            {
-                if (drawing.Warnings.Count > 0)
-                {
-                    warnings[ImageField] = string.Join("; ", drawing.Warnings);
-                }
-
-                if (!drawing.FitsTravel)
-                {
-                    warnings[OriginField] = "the drawing, with its strokes' run-ups and run-outs, leaves the stage's travel: move the origin or make it smaller";
-                }
-
-                // The fields that follow show what the drawing will really be.
-                Interlocked.Increment(ref _suspended);
-                Interlocked.Increment(ref _following);
-                try
-                {
-                    WidthMm = Math.Round(drawing.Plan.WidthMm, 4);
-                    HeightMm = Math.Round(drawing.Plan.HeightMm, 4);
-                }
-                finally
-                {
-                    Interlocked.Decrement(ref _following);
-                    Interlocked.Decrement(ref _suspended);
-                }
-            }
-
-            Job = null;
-            Drawing = drawing;
-            EstimatedSeconds = drawing?.WholeRunSeconds(Passes);
-            SetErrors(errors);
-            Warnings = warnings;
-            OnPropertyChanged(nameof(PathOrderSummary));
-            PlanVersion++;
+            WidthMm = plan.WidthMm ?? WidthMm;
+            HeightMm = plan.HeightMm ?? HeightMm;
+            PitchUm = plan.PitchUm ?? PitchUm;
+        }
+        finally
+        {
+            Interlocked.Decrement(ref _following);
+            Interlocked.Decrement(ref _suspended);
         }
     }
 
@@ -1175,7 +1096,7 @@ public sealed partial class JobViewModel : ObservableObject
         BurnSpeedMmPerS = BurnSpeedMmPerS,
         TravelSpeedMmPerS = TravelSpeedMmPerS,
         AccelerationMmPerS2 = AccelerationMmPerS2,
-        PulseEnergyUj = PulseEnergyUj > 0 ? PulseEnergyUj : null,
+        PulseEnergyUj = PulseEnergyUj,
         Mode = Mode,
         PulsesPerDot = Mode == PlanMode.Dots ? PulsesPerDot : 1,
         DotPitchMicrosteps = Mode == PlanMode.Dots ? DotPitchMicrosteps : 0,
@@ -1194,27 +1115,6 @@ public sealed partial class JobViewModel : ObservableObject
 
     /// <summary>The plan options as the fields say them.</summary>
     public PlanOptions PlanOptions() => new() { Strategy = Strategy, Bidirectional = Bidirectional, OverscanMm = OverscanMm };
-
-    private string SizeField() => SizeMode switch
-    {
-        SizeMode.Height => HeightField,
-        SizeMode.Pitch => PitchField,
-        _ => WidthField,
-    };
-
-    /// <summary>Each value checked by the job rules (the command line's and the files' too), so its message stands beside its field.</summary>
-    private Dictionary<string, string> FieldErrors()
-    {
-        var errors = new Dictionary<string, string>();
-        foreach (var problem in JobRules.Check(ToSettings(), MachineLimits.Of(_profile)))
-        {
-            // The page has one origin field for both coordinates.
-            var field = problem.Field is JobField.OriginX or JobField.OriginY ? OriginField : problem.Field;
-            errors[field] = errors.TryGetValue(field, out var before) ? before + "; " + problem.Message : problem.Message;
-        }
-
-        return errors;
-    }
 
     private void SetErrors(Dictionary<string, string> errors) => Errors = errors;
 

@@ -15,14 +15,17 @@ namespace LaserEngrave.App.ViewModels;
 public sealed partial class LayersViewModel : ObservableObject
 {
     private readonly IJobFiles _files;
-    private readonly JobViewModel _job;
+    /// <summary>The most a job file chosen in the browser may weigh: a thousand layers of JSON are far below it.</summary>
+    public const long MaxJobFileBytes = 16L << 20;
+
+    private readonly IJobSession _job;
     private readonly MachineActivity _activity;
     private IReadOnlyList<JobLayer>? _inFile;
 
     // Set while a job file of one layer is put into the single job: that image is the file's, not another.
     private bool _openingSingle;
 
-    public LayersViewModel(IJobFiles files, JobViewModel job, MachineActivity activity)
+    public LayersViewModel(IJobFiles files, IJobSession job, MachineActivity activity)
     {
         ArgumentNullException.ThrowIfNull(files);
         ArgumentNullException.ThrowIfNull(job);
@@ -33,18 +36,18 @@ public sealed partial class LayersViewModel : ObservableObject
         SampleJobs = files.SampleJobs();
         _job.PropertyChanged += (_, e) =>
         {
-            if (e.PropertyName == nameof(JobViewModel.Profile) && IsActive)
+            if (e.PropertyName == nameof(IJobSession.Profile) && IsActive)
             {
                 Replan();
             }
 
-            if (e.PropertyName == nameof(JobViewModel.ImagePath) && !IsActive && !_openingSingle)
+            if (e.PropertyName == nameof(IJobSession.ImagePath) && !IsActive && !_openingSingle)
             {
                 // Another image or drawing is not the job file opened or saved: Save must not write over that file.
                 JobPath = null;
             }
 
-            if (e.PropertyName is nameof(JobViewModel.PlanVersion) or nameof(JobViewModel.ImagePath))
+            if (e.PropertyName is nameof(IJobSession.PlanVersion) or nameof(IJobSession.ImagePath))
             {
                 OnPropertyChanged(nameof(CanSave));
                 OnPropertyChanged(nameof(SuggestedPath));
@@ -255,7 +258,8 @@ public sealed partial class LayersViewModel : ObservableObject
         }
 
         var drawing = _job.IsDrawing;
-        if (!drawing && _job.Mode == PlanMode.Dots)
+        var now = _job.ToSettings();
+        if (!drawing && now.Mode == PlanMode.Dots)
         {
             // A job file's image layer is rastered: written as one, a dots job would burn otherwise than it shows.
             problem = "the open job burns dots, and a job file's image layer is rastered: set the process to raster";
@@ -265,18 +269,18 @@ public sealed partial class LayersViewModel : ObservableObject
         problem = null;
         return new JobLayer
         {
-            Name = Path.GetFileNameWithoutExtension(source) + (drawing && _job.DrawingLayer is { } l ? " " + l : string.Empty),
+            Name = Path.GetFileNameWithoutExtension(source) + (drawing && now.DrawingLayer is { } l ? " " + l : string.Empty),
             Source = source,
-            Mode = drawing ? Mode(_job.DrawingFill) : LayerMode.Raster,
-            DrawingLayer = drawing ? _job.DrawingLayer : null,
-            WidthMm = _job.SizeMode == SizeMode.Width ? _job.WidthMm : drawing ? null : _job.Job!.Geometry.RequestedWidthMm,
-            Origin = new OriginMm(_job.OriginXMm, _job.OriginYMm),
-            SpeedMmPerS = _job.BurnSpeedMmPerS,
-            FrequencyHz = _job.LaserFrequencyHz,
-            Passes = _job.Passes,
-            ToleranceUm = drawing ? _job.ToleranceUm : null,
-            FillPitchUm = drawing ? _job.FillPitchUm : null,
-            Mask = drawing ? Core.Imaging.MaskOptions.Default : _job.ToSettings().ToMask(),
+            Mode = drawing ? Mode(now.DrawingFill) : LayerMode.Raster,
+            DrawingLayer = drawing ? now.DrawingLayer : null,
+            WidthMm = now.SizeMode == SizeMode.Width ? now.WidthMm : drawing ? null : _job.Job!.Geometry.RequestedWidthMm,
+            Origin = new OriginMm(now.OriginXMm, now.OriginYMm),
+            SpeedMmPerS = now.BurnSpeedMmPerS,
+            FrequencyHz = now.LaserFrequencyHz,
+            Passes = now.Passes,
+            ToleranceUm = drawing ? now.ToleranceUm : null,
+            FillPitchUm = drawing ? now.FillPitchUm : null,
+            Mask = drawing ? Core.Imaging.MaskOptions.Default : now.ToMask(),
         };
     }
 
@@ -392,7 +396,7 @@ public sealed partial class LayersViewModel : ObservableObject
             {
                 ImagePath = null,
                 SizeMode = layer.WidthMm is not null ? SizeMode.Width : SizeMode.Pitch,
-                WidthMm = layer.WidthMm ?? _job.WidthMm,
+                WidthMm = layer.WidthMm ?? _job.ToSettings().WidthMm,
                 OriginXMm = layer.Origin.X,
                 OriginYMm = layer.Origin.Y,
                 BurnSpeedMmPerS = layer.SpeedMmPerS ?? profile.BurnSpeedMmPerS,

@@ -12,9 +12,9 @@ public sealed partial class LogViewModel : ObservableObject
 {
     private readonly IRunLogStore _store;
     private readonly IFileAccess _files;
-    private readonly JobViewModel _job;
+    private readonly IJobSession _job;
 
-    public LogViewModel(IRunLogStore store, IFileAccess files, JobViewModel job)
+    public LogViewModel(IRunLogStore store, IFileAccess files, IJobSession job)
     {
         ArgumentNullException.ThrowIfNull(store);
         ArgumentNullException.ThrowIfNull(files);

@@ -11,9 +11,9 @@ namespace LaserEngrave.App.ViewModels;
 public sealed partial class PresetsViewModel : ObservableObject
 {
     private readonly IPresetStore _store;
-    private readonly JobViewModel _job;
+    private readonly IJobSession _job;
 
-    public PresetsViewModel(IPresetStore store, JobViewModel job)
+    public PresetsViewModel(IPresetStore store, IJobSession job)
     {
         ArgumentNullException.ThrowIfNull(store);
         ArgumentNullException.ThrowIfNull(job);
@@ -23,7 +23,7 @@ public sealed partial class PresetsViewModel : ObservableObject
         Selected = Presets.FirstOrDefault()?.Name;
         _job.PropertyChanged += (_, e) =>
         {
-            if (e.PropertyName == nameof(JobViewModel.LockedBecause))
+            if (e.PropertyName == nameof(IJobSession.LockedBecause))
             {
                 ApplyCommand.NotifyCanExecuteChanged();
             }
@@ -81,13 +81,13 @@ public sealed partial class PresetsViewModel : ObservableObject
 
         try
         {
-            _job.Batch(() =>
+            _job.Change(s => s with
             {
-                _job.LaserFrequencyHz = preset.LaserFrequencyHz;
-                _job.BurnSpeedMmPerS = preset.BurnSpeedMmPerS;
-                _job.TravelSpeedMmPerS = preset.TravelSpeedMmPerS;
-                _job.Passes = preset.Passes;
-                _job.OverscanMm = preset.OverscanMm;
+                LaserFrequencyHz = preset.LaserFrequencyHz,
+                BurnSpeedMmPerS = preset.BurnSpeedMmPerS,
+                TravelSpeedMmPerS = preset.TravelSpeedMmPerS,
+                Passes = preset.Passes,
+                OverscanMm = preset.OverscanMm,
             });
         }
         catch (MachineBusyException ex)
@@ -96,9 +96,10 @@ public sealed partial class PresetsViewModel : ObservableObject
             return;
         }
 
-        if (Math.Abs(preset.PitchUm - _job.PitchUm) > 1e-9)
+        var pitchUm = _job.ToSettings().PitchUm;
+        if (Math.Abs(preset.PitchUm - pitchUm) > 1e-9)
         {
-            PitchOffer = new PresetPitchOffer(preset.Name, preset.PitchUm, _job.PitchUm, CurrentSize(), SizeAt(preset.PitchUm));
+            PitchOffer = new PresetPitchOffer(preset.Name, preset.PitchUm, pitchUm, CurrentSize(), SizeAt(preset.PitchUm));
         }
     }
 
@@ -120,7 +121,7 @@ public sealed partial class PresetsViewModel : ObservableObject
 
         try
         {
-            _job.EditPitch(offer.PitchUm);
+            _job.Change(s => s with { PitchUm = offer.PitchUm, SizeMode = SizeMode.Pitch });
             PitchOffer = null;
         }
         catch (MachineBusyException ex)
@@ -147,15 +148,16 @@ public sealed partial class PresetsViewModel : ObservableObject
     private void SaveCurrent()
     {
         var name = NewName!.Trim();
+        var now = _job.ToSettings();
         var preset = new ProcessPreset
         {
             Name = name,
-            LaserFrequencyHz = _job.LaserFrequencyHz,
-            BurnSpeedMmPerS = _job.BurnSpeedMmPerS,
-            TravelSpeedMmPerS = _job.TravelSpeedMmPerS,
-            Passes = _job.Passes,
-            PitchUm = _job.PitchUm,
-            OverscanMm = _job.OverscanMm,
+            LaserFrequencyHz = now.LaserFrequencyHz,
+            BurnSpeedMmPerS = now.BurnSpeedMmPerS,
+            TravelSpeedMmPerS = now.TravelSpeedMmPerS,
+            Passes = now.Passes,
+            PitchUm = now.PitchUm,
+            OverscanMm = now.OverscanMm,
             Notes = string.IsNullOrWhiteSpace(NewNotes) ? null : NewNotes.Trim(),
         };
         if (Store([.. Presets.Where(p => p.Name != name), preset]))

@@ -17,13 +17,13 @@ namespace LaserEngrave.App.ViewModels;
 /// </summary>
 public sealed partial class SweepViewModel : ObservableObject
 {
-    private readonly JobViewModel _job;
+    private readonly IJobSession _job;
     private readonly MachineViewModel _machine;
     private readonly IRunLogStore _logs;
     private readonly TimeProvider _time;
     private SweepSession? _session;
 
-    public SweepViewModel(JobViewModel job, MachineViewModel machine, IRunLogStore logs, TimeProvider time)
+    public SweepViewModel(IJobSession job, MachineViewModel machine, IRunLogStore logs, TimeProvider time)
     {
         ArgumentNullException.ThrowIfNull(job);
         ArgumentNullException.ThrowIfNull(machine);
@@ -35,8 +35,8 @@ public sealed partial class SweepViewModel : ObservableObject
         _time = time;
         _job.PropertyChanged += (_, e) =>
         {
-            if (e.PropertyName is nameof(JobViewModel.PlanVersion) or nameof(JobViewModel.Errors) or nameof(JobViewModel.Profile)
-                || (e.PropertyName is nameof(JobViewModel.Mask) && Pattern == SweepPattern.Image))
+            if (e.PropertyName is nameof(IJobSession.PlanVersion) or nameof(IJobSession.Errors) or nameof(IJobSession.Profile)
+                || (e.PropertyName is nameof(IJobSession.Mask) && Pattern == SweepPattern.Image))
             {
                 Replan();
             }
@@ -146,7 +146,7 @@ public sealed partial class SweepViewModel : ObservableObject
                 CellMm = CellMm,
                 SpacingMm = SpacingMm,
                 PitchUm = PitchUm,
-                Origin = new OriginMm(_job.OriginXMm, _job.OriginYMm),
+                Origin = new OriginMm(_job.ToSettings().OriginXMm, _job.ToSettings().OriginYMm),
                 Rows = SweepAxis.Parse(Rows ?? string.Empty, "Rows"),
                 Columns = string.IsNullOrWhiteSpace(Columns) ? null : SweepAxis.Parse(Columns, "Columns"),
                 Labels = Labels,

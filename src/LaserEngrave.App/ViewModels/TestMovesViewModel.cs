@@ -21,7 +21,7 @@ public sealed partial class TestMovesViewModel : ObservableObject
     public static IReadOnlyList<double> StepChoicesUm { get; } = [1, 10, 100, 1000, 10000];
 
     private readonly MachineViewModel _machine;
-    private readonly JobViewModel _job;
+    private readonly IJobSession _job;
     private readonly Lock _jogLock = new();
 
     // The jog under way: the steps pressed so far (µm from where the jog began) and the task that carries them out.
@@ -29,7 +29,7 @@ public sealed partial class TestMovesViewModel : ObservableObject
     private double _jogYUm;
     private Task? _jogging;
 
-    public TestMovesViewModel(MachineViewModel machine, JobViewModel job)
+    public TestMovesViewModel(MachineViewModel machine, IJobSession job)
     {
         ArgumentNullException.ThrowIfNull(machine);
         ArgumentNullException.ThrowIfNull(job);
@@ -52,7 +52,7 @@ public sealed partial class TestMovesViewModel : ObservableObject
         };
         _job.PropertyChanged += (_, e) =>
         {
-            if (e.PropertyName is nameof(JobViewModel.Job) or nameof(JobViewModel.Drawing))
+            if (e.PropertyName is nameof(IJobSession.PlanVersion))
             {
                 RefreshCommands();
                 OnPropertyChanged(nameof(JobMoveUnavailableReason));
@@ -64,12 +64,15 @@ public sealed partial class TestMovesViewModel : ObservableObject
     public partial double StepUm { get; set; } = 100;
 
     [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(GoToProblem))]
     public partial double GoToXMm { get; set; }
 
     [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(GoToProblem))]
     public partial double GoToYMm { get; set; }
 
     [ObservableProperty]
+    [NotifyPropertyChangedFor(nameof(TestFireProblem))]
     public partial int TestFirePulses { get; set; } = 100;
 
     /// <summary>The last failure of a test move, one line.</summary>
@@ -86,26 +89,14 @@ public sealed partial class TestMovesViewModel : ObservableObject
     [RelayCommand(AllowConcurrentExecutions = true, CanExecute = nameof(CanJog))]
     private Task JogAsync(string direction)
     {
-        var (dx, dy) = direction switch
+        if (JogProblem(direction) is { } problem)
         {
-            "x+" => (1, 0),
-            "x-" => (-1, 0),
-            "y+" => (0, 1),
-            "y-" => (0, -1),
-            _ => (0, 0),
-        };
-        if ((dx, dy) == (0, 0))
-        {
-            Error = $"jog direction '{direction}' is not one of x+, x-, y+, y-";
+            Error = problem;
             return Task.CompletedTask;
         }
 
+        var (dx, dy) = Direction(direction);
         var step = StepUm;
-        if (!(step > 0) || step > 60000)
-        {
-            Error = $"step {N(step)} µm must be above 0 and at most 60000 µm";
-            return Task.CompletedTask;
-        }
 
         lock (_jogLock)
         {
@@ -132,6 +123,34 @@ public sealed partial class TestMovesViewModel : ObservableObject
             return _jogging;
         }
     }
+
+    /// <summary>
+    /// Why a jog in <paramref name="direction"/> by <see cref="StepUm"/> is refused, in the job rules' words (the step up to
+    /// that axis' travel, as the command line's jog); null when it may be made. The page and the API say it before anything moves.
+    /// </summary>
+    public string? JogProblem(string? direction)
+    {
+        var (dx, dy) = Direction(direction);
+        if ((dx, dy) == (0, 0))
+        {
+            return $"jog direction '{direction}' is not one of x+, x-, y+, y-";
+        }
+
+        var axis = dx != 0 ? _machine.Profile.X : _machine.Profile.Y;
+        return JobRules.JogStep((dx + dy) * StepUm, axis.TravelMm, dx != 0 ? "X" : "Y") is { } rule ? $"step {N(StepUm)} µm: {rule}" : null;
+    }
+
+    /// <summary>Why a test fire of <see cref="TestFirePulses"/> is refused, in the job rules' words (as the command line's fire and the devices); null when it may fire.</summary>
+    public string? TestFireProblem => JobRules.TestFirePulses(TestFirePulses) is { } rule ? $"test fire of {TestFirePulses} pulses: {rule}" : null;
+
+    private static (int Dx, int Dy) Direction(string? direction) => direction switch
+    {
+        "x+" => (1, 0),
+        "x-" => (-1, 0),
+        "y+" => (0, 1),
+        "y-" => (0, -1),
+        _ => (0, 0),
+    };
 
     /// <summary>A machine, and nothing but a jog holding it (presses during a jog add to its target).</summary>
     private bool CanJog(string? direction) => (!Activity.IsBusy || Activity.Current?.Kind == MachineOperationKind.Jog) && _machine.IsConnected;
@@ -199,8 +218,14 @@ public sealed partial class TestMovesViewModel : ObservableObject
         }
     }
 
+    /// <summary>Why Go to is refused for <see cref="GoToXMm"/>, <see cref="GoToYMm"/>, in the job rules' words (as the command line's goto); null when it may go.</summary>
+    public string? GoToProblem =>
+        JobRules.Position(GoToXMm, _machine.Profile.X.TravelMm) is { } x ? $"go to X {N(GoToXMm)} mm: {x}"
+        : JobRules.Position(GoToYMm, _machine.Profile.Y.TravelMm) is { } y ? $"go to Y {N(GoToYMm)} mm: {y}"
+        : null;
+
     [RelayCommand(CanExecute = nameof(CanMove))]
-    private Task GoToAsync() => Move("go to", string.Create(CultureInfo.InvariantCulture, $"Going to {GoToXMm:0.###}, {GoToYMm:0.###} mm, laser off…"), (moves, ct) => moves.GoToAsync(GoToXMm, GoToYMm, ct));
+    private Task GoToAsync() => GoToProblem is { } problem ? Refuse(problem) : Move("go to", string.Create(CultureInfo.InvariantCulture, $"Going to {GoToXMm:0.###}, {GoToYMm:0.###} mm, laser off…"), (moves, ct) => moves.GoToAsync(GoToXMm, GoToYMm, ct));
 
     /// <summary>Moves to the job's top-left corner (<see cref="EngraveJob.FrameBox"/>): an image's first pixel edge, a drawing's bounding box's corner.</summary>
     [RelayCommand(CanExecute = nameof(CanMoveToJob))]
@@ -225,15 +250,16 @@ public sealed partial class TestMovesViewModel : ObservableObject
     [RelayCommand(CanExecute = nameof(CanMove))]
     private Task TestFireAsync() => Run("test fire", $"Firing {TestFirePulses} pulses…", async (moves, ct) =>
     {
-        if (TestFirePulses is < 1 or > 100000)
+        if (TestFireProblem is { } problem)
         {
-            throw new ArgumentException($"test fire of {TestFirePulses} pulses must be 1 to 100000 pulses");
+            throw new ArgumentException(problem);
         }
 
-        var frequency = (int)Math.Round(_job.LaserFrequencyHz, MidpointRounding.AwayFromZero);
+        var hz = _job.ToSettings().LaserFrequencyHz;
+        var frequency = (int)Math.Round(hz, MidpointRounding.AwayFromZero);
         if (frequency < 1)
         {
-            throw new ArgumentException($"laser frequency {N(_job.LaserFrequencyHz)} Hz must be at least 1 Hz");
+            throw new ArgumentException($"laser frequency {N(hz)} Hz must be at least 1 Hz");
         }
 
         await moves.FirePulsesAsync(TestFirePulses, frequency, ct);
@@ -296,6 +322,12 @@ public sealed partial class TestMovesViewModel : ObservableObject
             await _machine.ReadPositionsAsync(CancellationToken.None);
         }
     });
+
+    private Task Refuse(string problem)
+    {
+        Error = problem;
+        return Task.CompletedTask;
+    }
 
     private async Task Run(string what, string doing, Func<StageTestMoves, CancellationToken, Task> action)
     {

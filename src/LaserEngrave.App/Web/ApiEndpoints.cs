@@ -96,9 +96,10 @@ internal static class ApiEndpoints
                 main.TestMoves.StepUm = step;
             }
 
-            return Start(main, main.TestMoves.JogCommand, request.Direction);
+            // The job rules' sentence, as the page and the command line's jog say it.
+            return main.TestMoves.JogProblem(request.Direction) is { } problem ? Unusable(problem) : Start(main, main.TestMoves.JogCommand, request.Direction);
         })
-            .WithSummary("202; a step in x+, x-, y+ or y- (1 µm to 60 mm).");
+            .WithSummary("202; a step in x+, x-, y+ or y- (up to the axis' travel); 400 with the rule's sentence for a step the stage cannot make.");
         api.MapPost("/moves/goto", (MainViewModel main, GoToRequest request) =>
         {
             if (Refused(main, main.TestMoves.GoToCommand) is { } refused)
@@ -108,9 +109,9 @@ internal static class ApiEndpoints
 
             main.TestMoves.GoToXMm = request.XMm;
             main.TestMoves.GoToYMm = request.YMm;
-            return Start(main, main.TestMoves.GoToCommand);
+            return main.TestMoves.GoToProblem is { } problem ? Unusable(problem) : Start(main, main.TestMoves.GoToCommand);
         })
-            .WithSummary("202; moves to a position in mm, laser off.");
+            .WithSummary("202; moves to a position in mm, laser off; 400 with the rule's sentence for a position off the travel.");
         api.MapPost("/moves/origin", (MainViewModel main) => Start(main, main.TestMoves.GoToOriginCommand))
             .WithSummary("202; to the job's top-left corner, laser off.");
         api.MapPost("/moves/frame", (MainViewModel main) => Start(main, main.TestMoves.FrameCommand))
@@ -123,9 +124,9 @@ internal static class ApiEndpoints
             }
 
             main.TestMoves.TestFirePulses = request.Pulses;
-            return Start(main, main.TestMoves.TestFireCommand);
+            return main.TestMoves.TestFireProblem is { } problem ? Unusable(problem) : Start(main, main.TestMoves.TestFireCommand);
         })
-            .WithSummary("202; a burst of pulses at the job's frequency where the stage stands.");
+            .WithSummary("202; a burst of pulses (1 to 1,000,000, the gate's burst range) at the job's frequency where the stage stands; 400 with the rule's sentence outside it.");
         api.MapPost("/moves/stop", (MainViewModel main) => Do(main, main.TestMoves.StopCommand.Execute))
             .WithSummary("Stops the test move, jog or homing under way (laser off).");
 
@@ -159,6 +160,13 @@ internal static class ApiEndpoints
                 return Busy(speed);
             }
 
+            // A run the run use case refuses (nothing to burn, outside the travel, no machine, a log folder that takes no
+            // file, marks burned already) is refused here as a refusal, with its reason, before anything moves.
+            if (main.Run.StartRefusal() is { } refusal)
+            {
+                return Busy(refusal);
+            }
+
             // A job longer than the user's threshold (an hour until set), or of pixels much smaller than the spot, asks as the page's Start does.
             if (!request.Confirm && main.Run.StartQuestion is { } question)
             {
@@ -169,7 +177,7 @@ internal static class ApiEndpoints
             main.Log.SampleId = request.SampleId;
             return Start(main, main.Run.ConfirmStartCommand);
         })
-            .WithSummary("202; runs the planned job (all passes); a second start during a run is ignored (200 with a note); 409 with the question for a job longer than the Machine panel's \"Ask before runs longer than\" (an hour until set) or of pixels much smaller than the spot, unless confirm is true; 409 with the sentence for a gate without a watchdog, unless acceptNoWatchdog is true (or the Machine panel's box is ticked); 409 with the burn speed field's sentence when the job refuses its speed (one this computer cannot hold with this gate).");
+            .WithSummary("202; runs the planned job (all passes); a second start during a run is ignored (200 with a note); 409 with the question for a job longer than the Machine panel's \"Ask before runs longer than\" (an hour until set) or of pixels much smaller than the spot, unless confirm is true; 409 with the sentence for a gate without a watchdog, unless acceptNoWatchdog is true (or the Machine panel's box is ticked); 409 with the burn speed field's sentence when the job refuses its speed (one this computer cannot hold with this gate); 409 with the reason when the run is refused before it starts (no job, nothing to burn, outside the travel, not connected, a log folder that takes no file, marks burned already).");
         api.MapPost("/run/continue", (MainViewModel main) =>
         {
             if (main.Run.IsActive)
@@ -235,6 +243,9 @@ internal static class ApiEndpoints
                 : Results.Json(new { error = main.Layers.FileError }, statusCode: StatusCodes.Status400BadRequest);
 
     /// <summary>409 with the one line saying what holds the machine (or why the request cannot be done now).</summary>
+    /// <summary>A value the rules refuse: 400 and their one line, nothing started.</summary>
+    private static IResult Unusable(string message) => Results.Json(new { error = message }, statusCode: StatusCodes.Status400BadRequest);
+
     private static IResult Busy(string message) => Results.Json(new { error = message }, statusCode: StatusCodes.Status409Conflict);
 
     /// <summary>A request that changed nothing on purpose (a second Start during a run): 200, the note and the state.</summary>
@@ -333,6 +344,23 @@ internal static class ApiEndpoints
                 }
             }
         });
+
+        // A value the job rules refuse stays, as the page's field keeps it beside its sentence: 400 with that sentence,
+        // so a client hears the same refusal as the page and the command line (Start stays refused until it changes).
+        foreach (var field in changes.Keys)
+        {
+            var shownBeside = field switch
+            {
+                "originXMm" or "originYMm" => JobViewModel.OriginField,
+                "microstepsPerPixel" => JobViewModel.PitchField,
+                _ => field,
+            };
+            if (!problems.ContainsKey(ApiRequests.Quote(field)) && job.Errors.TryGetValue(shownBeside, out var refused))
+            {
+                problems[ApiRequests.Quote(field)] = refused;
+            }
+        }
+
         return problems.Count == 0 ? State(main) : Results.Json(new { errors = problems, state = StateSnapshot.From(main) }, ApiRequests.StateJson, statusCode: 400);
     }
 
@@ -362,7 +390,7 @@ internal static class ApiEndpoints
             case "pulsesPerDot": job.PulsesPerDot = (int)Whole(value, int.MaxValue); break;
             case "dotPitchMicrosteps": job.DotPitchMicrosteps = Whole(value, long.MaxValue); break;
             case "dotSettleMs": job.DotSettleMs = Number(value); break;
-            case "pulseEnergyUj": job.PulseEnergyUj = Number(value); break;
+            case "pulseEnergyUj": job.PulseEnergyUj = value.ValueKind == JsonValueKind.Null ? null : Number(value); break;
             case "quarterTurns": job.QuarterTurns = (int)Whole(value, 3); break;
             case "mirrorX": job.MirrorX = Bool(value); break;
             case "mirrorY": job.MirrorY = Bool(value); break;
@@ -403,7 +431,35 @@ internal static class ApiEndpoints
         var profile = main.Job.Profile;
         var moves = new List<long>();
         var truncated = false;
-        if (job?.Dots is { } dots)
+        if (main.Job.Drawing is { } drawing)
+        {
+            // A drawing: per stroke the travel from where the last one came to rest, its run-up (laser off), then its
+            // path burned vertex to vertex, one move a segment; the run's progress counts strokes.
+            (long X, long Y)? at = null;
+            foreach (var stroke in drawing.Schedule.Strokes)
+            {
+                if (moves.Count >= MaxPlanMoves * 5)
+                {
+                    truncated = true;
+                    break;
+                }
+
+                var (start, path) = (stroke.RunUpStart, stroke.Path.Points);
+                if (at is { } from)
+                {
+                    moves.AddRange([(long)Core.Planning.MoveKind.Travel, from.X, from.Y, start.X, start.Y]);
+                }
+
+                moves.AddRange([(long)Core.Planning.MoveKind.Travel, start.X, start.Y, path[0].X, path[0].Y]);
+                for (var i = 1; i < path.Count; i++)
+                {
+                    moves.AddRange([(long)Core.Planning.MoveKind.Burn, path[i - 1].X, path[i - 1].Y, path[i].X, path[i].Y]);
+                }
+
+                at = (stroke.RestEnd.X, stroke.RestEnd.Y);
+            }
+        }
+        else if (job?.Dots is { } dots)
         {
             // Dot mode: each dot as a short burn stroke a quarter of the dot spacing either side, one a dot, so the
             // run's progress (dots done) marks as many of them burned.
@@ -433,14 +489,15 @@ internal static class ApiEndpoints
             }
         }
 
-        var geometry = job?.Geometry.Geometry;
+        // The job's edges as Frame traces them, whichever kind it is.
+        var box = main.Job.Engraving?.FrameBox;
         return Results.Json(new
         {
             version = main.Job.PlanVersion,
             travelX = profile.X.TravelMicrosteps,
             travelY = profile.Y.TravelMicrosteps,
             microstepUm = profile.X.MicrostepUm,
-            job = geometry is null ? null : new { left = geometry.EdgeX(0), right = geometry.EdgeX(geometry.WidthPx), top = geometry.EdgeY(0), bottom = geometry.EdgeY(geometry.HeightPx) },
+            job = box is not { } edges ? null : new { left = edges.Left, right = edges.Right, top = edges.Top, bottom = edges.Bottom },
             moves,
             truncated,
         });

@@ -2,6 +2,7 @@ using LaserEngrave.App.ViewModels;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
+using LaserEngrave.Machines.Runs;
 
 namespace LaserEngrave.App.Web;
 
@@ -15,9 +16,10 @@ internal static class StateSnapshot
         var run = main.Run;
         var log = main.Log;
         var info = job.ImageInfo;
-        var prepared = job.Job;
-        var stats = prepared?.Statistics;
-        var geometry = prepared?.Geometry;
+        // Every kind of job has an estimate: the figures all kinds answer from the job, an image's own (moves, lengths, scale) beside them.
+        var engraving = job.Engraving;
+        var stats = job.Job?.Statistics;
+        var geometry = job.Job?.Geometry;
         var progress = run.Progress;
 
         // Read once: the panel's words and the run's laserOn come from this one value, so they cannot disagree.
@@ -90,18 +92,20 @@ internal static class StateSnapshot
                 planVersion = job.PlanVersion,
                 lockedBecause = job.LockedBecause,
             },
-            estimate = stats is null ? null : new
+            estimate = engraving is null ? null : new
             {
                 seconds = job.EstimatedSeconds,
-                stats.Rows,
-                stats.Moves,
-                stats.BurnRuns,
-                stats.BurnLengthMm,
-                stats.TravelLengthMm,
-                achievedWidthMm = geometry!.AchievedWidthMm,
-                achievedHeightMm = geometry.AchievedHeightMm,
-                geometry.ResidualScaleError,
-                geometry.FitsTravel,
+                rows = engraving.Planned.Units,
+                moves = stats?.Moves,
+                burnRuns = engraving.Planned.Runs,
+                burnLengthMm = stats?.BurnLengthMm,
+                travelLengthMm = stats?.TravelLengthMm,
+                achievedWidthMm = engraving.Parts[0].SizeMm.WidthMm,
+                achievedHeightMm = engraving.Parts[0].SizeMm.HeightMm,
+                residualScaleError = geometry?.ResidualScaleError,
+                engraving.FitsTravel,
+                unit = engraving.UnitOf(1),
+                startProblem = EngraveRun.Unrunnable(engraving),
             },
             machine = new
             {
@@ -137,7 +141,7 @@ internal static class StateSnapshot
             },
             run = new
             {
-                state = run.StateName,
+                state = run.Bar.StateName,
                 engineState = run.State.ToString(),
                 active = run.IsActive,
                 run.RunPlanVersion,
@@ -147,15 +151,15 @@ internal static class StateSnapshot
                 rowsTotal = progress?.Run.RowsTotal,
                 pass = progress?.PassInLayer.Pass,
                 passes = progress?.PassInLayer.Passes,
-                layer = run.LayerCount is null ? null : progress?.Layer,
-                layers = run.LayerCount,
+                layer = run.Bar.LayerCount is null ? null : progress?.Layer,
+                layers = run.Bar.LayerCount,
                 pauseRequested = progress?.PauseRequested,
                 x = progress?.Run.XMicrosteps,
                 y = progress?.Run.YMicrosteps,
                 laserOn = progress is null ? (bool?)null : run.IsActive && laser is not null ? laser.Firing : progress.Run.LaserOn,
                 phase = progress is null ? null : run.State.ToString().ToLowerInvariant(),
                 percent = Math.Round(run.Fraction * 100, 1),
-                elapsedSeconds = Math.Round(run.ElapsedSeconds, 1),
+                elapsedSeconds = Math.Round(run.Bar.ElapsedSeconds, 1),
                 remainingSeconds = Math.Round(run.RemainingSeconds, 1),
                 run.Error,
                 run.Notice,

@@ -10,6 +10,7 @@ using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Execution;
 using LaserEngrave.Machines;
+using LaserEngrave.Machines.Runs;
 using LaserEngrave.Simulator.Burn;
 using LaserEngrave.Wire.Serial;
 
@@ -36,116 +37,41 @@ internal static class EngraveCommand
 
     private static async Task<int> RunAsync(ParseResult result, EngraveOptions o, CancellationToken cancellationToken)
     {
-        var stdout = result.InvocationConfiguration.Output;
         var stderr = result.InvocationConfiguration.Error;
         o.Machine.Validate(result);
-        var simulate = result.GetValue(o.Machine.Simulate);
-        var burnedPath = result.GetValue(o.Burned);
-        var dosePath = result.GetValue(o.Dose);
-        if (burnedPath is not null && !simulate)
-        {
-            throw new UsageException("--burned needs --simulate: only the simulator knows what was burned");
-        }
-
-        OptionChecks.OutputFile(burnedPath, "--burned");
-        var burnedScale = result.GetValue(o.BurnedScale);
-        if (burnedScale is not null && burnedPath is null)
-        {
-            throw new UsageException("--burned-scale needs --burned: it sizes that image");
-        }
-
-        OptionChecks.InRange(burnedScale, 1, MaxBurnedScale, "--burned-scale", " image pixels a job pixel", "to look at a small job's burned.png");
-        var passes = result.GetValue(o.Passes);
-        if (passes is { } n && JobRules.Passes(n) is { } rule)
-        {
-            throw new UsageException($"--passes {n}: {rule}");
-        }
-
-        // The one job the session runs, whichever kind the options name.
-        EngraveJob job;
-        string? repeatOf = null;
-        RunStopPoint? resumeFrom = null;
-        LayerResumePoint? resumeLayers = null;
-        string? layeredFile = null;
-        IEnumerable<string> warnings;
-        if (result.GetValue(o.JobFile) is null && OptionChecks.IsGiven(result, o.Counter))
-        {
-            throw new UsageException("--counter is for --job: a job file's marks number from it (a repeated or resumed run's log names its own)");
-        }
-
-        if (result.GetValue(o.JobFile) is { } jobFile)
-        {
-            if (new Option[] { o.FromLog, o.Resume, o.Passes, o.Burned, o.Dose }.FirstOrDefault(option => OptionChecks.IsGiven(result, option)) is { } other)
+        var outputs = BindOutputs(result, o);
+        var choice = ChooseJob(result, o, outputs);
+        var job = choice.Job;
+        var seam = LogSeam.Value;
+        var store = new RunLogStore(result.GetValue(o.LogDir) ?? RunLogStore.DefaultFolder, seam?.Files);
+        var run = new EngraveRun(
+            new RunRequest
             {
-                throw new UsageException($"{other.Name} with --job: {(other == o.Passes ? "each layer has its own passes" : other == o.Burned || other == o.Dose ? "--burned and --dose are for one image" : "a job of layers is repeated or resumed by --from-log LOG alone (the log names its job file)")}");
+                Job = job,
+                Notes = result.GetValue(o.Notes),
+                SampleId = result.GetValue(o.Sample),
+                RepeatOf = choice.RepeatOf,
+                ResumeFrom = choice.ResumeFrom,
+                ResumeLayers = choice.ResumeLayers,
+                JobFile = choice.JobFile,
+                Home = result.GetValue(o.Home),
+                AcceptNoWatchdog = result.GetValue(o.Machine.AcceptNoWatchdog),
+            },
+            // The record is the only thing that resumes a run: a folder that fails during the run must not lose it.
+            new RunLog(FallbackRunLogWriter.For(store, seam?.DataFolder ?? FallbackRunLogWriter.DefaultDataFolder, seam?.Files), store.CheckWritable));
+
+        // Refused before any port opens, nothing moved and the stage not homed: bad input (exit 2), in the use case's words.
+        if (run.Check() is { } refusal)
+        {
+            if (refusal.Cause is { } cause)
+            {
+                ExceptionDispatchInfo.Throw(cause);
             }
 
-            var layered = LayerCommands.Prepare(result, jobFile, o.Job, o.Vector, result.GetValue(o.Counter), result.GetValue(o.Sample));
-            layeredFile = jobFile;
-            if (Core.Marks.MarkManifest.BurnedAlready(jobFile) is { } burned)
-            {
-                throw new Core.Marks.MarkException(burned);
-            }
-
-            warnings = LayerCommands.Warnings(layered);
-            job = layered;
-        }
-        // With IMAGE too, the image's way refuses the pair before any log is read.
-        else if (result.GetValue(o.Job.Image) is null && result.GetValue(o.FromLog) is { } layersLog && RunLogStore.Read(layersLog).Layers is not null)
-        {
-            if (new Option[] { o.Passes, o.Burned, o.Dose }.FirstOrDefault(option => OptionChecks.IsGiven(result, option)) is { } other)
-            {
-                throw new UsageException($"{other.Name} with --from-log of a job of layers: {(other == o.Passes ? "each layer has its own passes" : "--burned and --dose are for one image")}");
-            }
-
-            LayeredJob layered;
-            (layered, layeredFile, resumeLayers) = LayerCommands.FromLog(result, layersLog, result.GetValue(o.Resume), o.Job, o.Vector);
-            repeatOf = Path.GetFullPath(layersLog);
-            warnings = LayerCommands.Warnings(layered);
-            job = layered;
-        }
-        else if (IsDrawingJob(result, o))
-        {
-            if (burnedPath is not null || dosePath is not null)
-            {
-                throw new UsageException("--burned and --dose are for images; a drawing's figures are in the log and in --json (pathDeviationUm, pulseSpacingUm)");
-            }
-
-            PreparedDrawing drawing;
-            (drawing, repeatOf, resumeFrom) = BindDrawingJob(result, o, passes);
-            VectorCommands.RefuseUnrunnable(drawing);
-            warnings = drawing.Warnings;
-            job = drawing;
-        }
-        else
-        {
-            JobSpec spec;
-            (spec, repeatOf, resumeFrom) = BindJob(result, o);
-            spec = spec with { Passes = passes ?? spec.Passes };
-            var prepared = PreparedJob.Prepare(spec);
-            RefuseOutsideTravel(prepared);
-            if (burnedScale is { } scale && PngWriter.ScaledPixels(prepared.Mask.Width, prepared.Mask.Height, scale) > PngWriter.MaxScaledPixels)
-            {
-                throw new UsageException(string.Create(CultureInfo.InvariantCulture, $"--burned-scale {scale}: the {prepared.Mask.Width} x {prepared.Mask.Height} px job would make a burned image of {PngWriter.ScaledPixels(prepared.Mask.Width, prepared.Mask.Height, scale):N0} pixels, more than the {PngWriter.MaxScaledPixels:N0} allowed; use a smaller scale"));
-            }
-
-            if (prepared.EngraveProblem is { } tooShort)
-            {
-                // Known from the plan alone: refused before any port opens, as preflight would refuse it later.
-                throw new UsageException(tooShort);
-            }
-
-            if (prepared.Plan.Timing is not null && SpeedHold.Problem(prepared.Spec.Process.BurnSpeedMmPerS, prepared.Spec.Profile, o.Machine.ExpectsScheduledSwitchOns(result, prepared.Spec.Profile)) is { } tooFast)
-            {
-                // The edge tolerance against this computer's lateness: named before any port opens, not as timing doubts mid-run.
-                throw new UsageException(tooFast);
-            }
-
-            warnings = prepared.Warnings.Select(w => w.Message);
-            job = prepared;
+            throw new UsageException(refusal.Message);
         }
 
-        foreach (var warning in warnings)
+        foreach (var warning in choice.Warnings)
         {
             stderr.WriteLine($"warning: {warning}");
         }
@@ -164,22 +90,28 @@ internal static class EngraveCommand
                 CliJson.Prepare(typeof(EngraveSummary));
             }
         });
-        var seam = LogSeam.Value;
-        var store = new RunLogStore(result.GetValue(o.LogDir) ?? RunLogStore.DefaultFolder, seam?.Files);
-
-        // A run must not start without a place for its log: the folder takes a file and has room for one, before anything moves.
-        store.CheckWritable();
-
         // What was understood, before any port opens: a size, origin or frequency read otherwise than meant shows here.
         foreach (var line in JobUnderstood.Lines(job))
         {
             stderr.WriteLine(line);
         }
-        EngraveResult engraved;
+        var (ended, burn, wallSeconds) = await RunOnMachineAsync(result, o, run, store.Folder, cancellationToken).ConfigureAwait(false);
+        await prepareJson.ConfigureAwait(false);
+        return Report(result, json, ended, burn, outputs, wallSeconds);
+    }
+
+    /// <summary>Opens the machine the options name, runs the job on it with its progress on stderr, and closes it.</summary>
+    /// <returns>How the run ended, on the twin what it burned, and the wall time the run took.</returns>
+    private static async Task<(RunEnd Ended, BurnReport? Burn, double? WallSeconds)> RunOnMachineAsync(ParseResult result, EngraveOptions o, EngraveRun run, string logFolder, CancellationToken cancellationToken)
+    {
+        var stderr = result.InvocationConfiguration.Error;
+        var job = run.Request.Job;
+        var profile = job.Spec.Profile;
+        RunEnd ended;
         double? wallSeconds = null;
         ITwinInspector? inspector = null;
         // On real ports every byte in and out is recorded beside the log, so the run's burn can be replayed (`laserengrave replay`).
-        using var recorder = simulate ? null : new WireRecorder(Path.Combine(store.Folder, $"wire_{DateTime.UtcNow:yyyy-MM-dd_HHmmss}_{Guid.NewGuid().ToString("N")[..8]}.jsonl"), TimeProvider.System);
+        using var recorder = result.GetValue(o.Machine.Simulate) ? null : new WireRecorder(Path.Combine(logFolder, $"wire_{DateTime.UtcNow:yyyy-MM-dd_HHmmss}_{Guid.NewGuid().ToString("N")[..8]}.jsonl"), TimeProvider.System);
         OpenMachine opened;
         try
         {
@@ -191,31 +123,10 @@ internal static class EngraveCommand
             throw;
         }
 
-
         await using (opened.ConfigureAwait(false))
         {
-            var machineSession = opened.Session;
             inspector = opened.Twin;
-            var machine = new EngraveMachine(machineSession.Stage, machineSession.Gate, machineSession.TimeProvider, machineSession.StagePort, machineSession.LaserPort)
-            {
-                Simulated = simulate,
-                Inspector = inspector,
-            };
-            var sessionOptions = new EngraveSessionOptions
-            {
-                Notes = result.GetValue(o.Notes),
-                SampleId = result.GetValue(o.Sample),
-                RepeatOf = repeatOf,
-                ResumeFrom = resumeFrom,
-                ResumeLayers = resumeLayers,
-                JobFile = layeredFile,
-                Home = result.GetValue(o.Home),
-                AcceptNoWatchdog = result.GetValue(o.Machine.AcceptNoWatchdog),
-                // The record is the only thing that resumes a run: a folder that fails during the run must not lose it.
-                Log = FallbackRunLogWriter.For(store, seam?.DataFolder ?? FallbackRunLogWriter.DefaultDataFolder, seam?.Files),
-                Recorder = recorder,
-            };
-            var session = new EngraveSession(machine, job, sessionOptions);
+            var session = run.Open(opened.Engraving, recorder);
             var printer = new ProgressPrinter(stderr, terminal: ReferenceEquals(stderr, Console.Error) && !Console.IsErrorRedirected)
             {
                 Job = job,
@@ -225,7 +136,7 @@ internal static class EngraveCommand
             var wall = Stopwatch.StartNew();
             try
             {
-                engraved = await session.RunAsync(printer, cancellationToken).ConfigureAwait(false);
+                ended = await EngraveRun.RunAsync(session, printer, cancellationToken).ConfigureAwait(false);
             }
             finally
             {
@@ -234,14 +145,127 @@ internal static class EngraveCommand
             }
         }
 
-        var record = engraved.Record;
-        var error = engraved.Error;
-        if (layeredFile is not null)
+        return (ended, inspector?.Report, wallSeconds);
+    }
+
+    /// <summary>What the simulator's burn is written to after the run: --burned (at --burned-scale) and --dose.</summary>
+    private sealed record BurnOutputs(string? BurnedPath, int? BurnedScale, string? DosePath);
+
+    /// <summary>The one job the session runs, whichever kind the options name, with what its log says of where it came from.</summary>
+    private sealed record JobChoice(EngraveJob Job, IEnumerable<string> Warnings, string? RepeatOf = null, RunStopPoint? ResumeFrom = null, LayerResumePoint? ResumeLayers = null, string? JobFile = null);
+
+    private static BurnOutputs BindOutputs(ParseResult result, EngraveOptions o)
+    {
+        var burnedPath = result.GetValue(o.Burned);
+        if (burnedPath is not null && !result.GetValue(o.Machine.Simulate))
         {
-            MarkCommand.AfterRun(layeredFile, record, stderr);
+            throw new UsageException("--burned needs --simulate: only the simulator knows what was burned");
         }
 
-        await prepareJson.ConfigureAwait(false);
+        OptionChecks.OutputFile(burnedPath, "--burned");
+        var burnedScale = result.GetValue(o.BurnedScale);
+        if (burnedScale is not null && burnedPath is null)
+        {
+            throw new UsageException("--burned-scale needs --burned: it sizes that image");
+        }
+
+        OptionChecks.InRange(burnedScale, 1, MaxBurnedScale, "--burned-scale", " image pixels a job pixel", "to look at a small job's burned.png");
+        return new BurnOutputs(burnedPath, burnedScale, result.GetValue(o.Dose));
+    }
+
+    private static JobChoice ChooseJob(ParseResult result, EngraveOptions o, BurnOutputs outputs)
+    {
+        var passes = result.GetValue(o.Passes);
+        if (passes is { } n && JobRules.Passes(n) is { } rule)
+        {
+            throw new UsageException($"--passes {n}: {rule}");
+        }
+
+        if (result.GetValue(o.JobFile) is null && OptionChecks.IsGiven(result, o.Counter))
+        {
+            throw new UsageException("--counter is for --job: a job file's marks number from it (a repeated or resumed run's log names its own)");
+        }
+
+        if (result.GetValue(o.JobFile) is { } jobFile)
+        {
+            if (new Option[] { o.FromLog, o.Resume, o.Passes, o.Burned, o.Dose }.FirstOrDefault(option => OptionChecks.IsGiven(result, option)) is { } other)
+            {
+                throw new UsageException($"{other.Name} with --job: {(other == o.Passes ? "each layer has its own passes" : other == o.Burned || other == o.Dose ? "--burned and --dose are for one image" : "a job of layers is repeated or resumed by --from-log LOG alone (the log names its job file)")}");
+            }
+
+            var layered = LayerCommands.Prepare(result, jobFile, o.Job, o.Vector, result.GetValue(o.Counter), result.GetValue(o.Sample));
+            return new JobChoice(layered, LayerCommands.Warnings(layered), JobFile: jobFile);
+        }
+
+        // With IMAGE too, the image's way refuses the pair before any log is read.
+        if (result.GetValue(o.Job.Image) is null && result.GetValue(o.FromLog) is { } layersLog && RunLogStore.Read(layersLog).Layers is not null)
+        {
+            if (new Option[] { o.Passes, o.Burned, o.Dose }.FirstOrDefault(option => OptionChecks.IsGiven(result, option)) is { } other)
+            {
+                throw new UsageException($"{other.Name} with --from-log of a job of layers: {(other == o.Passes ? "each layer has its own passes" : "--burned and --dose are for one image")}");
+            }
+
+            var (layered, layeredFile, resumeLayers) = LayerCommands.FromLog(result, layersLog, result.GetValue(o.Resume), o.Job, o.Vector);
+            return new JobChoice(layered, LayerCommands.Warnings(layered), Path.GetFullPath(layersLog), ResumeLayers: resumeLayers, JobFile: layeredFile);
+        }
+
+        if (IsDrawingJob(result, o))
+        {
+            if (outputs.BurnedPath is not null || outputs.DosePath is not null)
+            {
+                throw new UsageException("--burned and --dose are for images; a drawing's figures are in the log and in --json (pathDeviationUm, pulseSpacingUm)");
+            }
+
+            var (drawing, repeatOf, resumeFrom) = BindDrawingJob(result, o, passes);
+            return new JobChoice(drawing, drawing.Warnings, repeatOf, resumeFrom);
+        }
+
+        return ChooseImage(result, o, passes, outputs.BurnedScale);
+    }
+
+    /// <summary>An image's job, from IMAGE or a run log, refused before any port opens when the plan alone shows it cannot burn as asked.</summary>
+    private static JobChoice ChooseImage(ParseResult result, EngraveOptions o, int? passes, int? burnedScale)
+    {
+        var (spec, repeatOf, resumeFrom) = BindJob(result, o);
+        spec = spec with { Passes = passes ?? spec.Passes };
+        var prepared = PreparedJob.Prepare(spec);
+        if (burnedScale is { } scale && PngWriter.ScaledPixels(prepared.Mask.Width, prepared.Mask.Height, scale) > PngWriter.MaxScaledPixels)
+        {
+            throw new UsageException(string.Create(CultureInfo.InvariantCulture, $"--burned-scale {scale}: the {prepared.Mask.Width} x {prepared.Mask.Height} px job would make a burned image of {PngWriter.ScaledPixels(prepared.Mask.Width, prepared.Mask.Height, scale):N0} pixels, more than the {PngWriter.MaxScaledPixels:N0} allowed; use a smaller scale"));
+        }
+
+        if (prepared.EngraveProblem is { } tooShort)
+        {
+            // Known from the plan alone: refused before any port opens, as preflight would refuse it later.
+            throw new UsageException(tooShort);
+        }
+
+        if (prepared.Plan.Timing is not null && SpeedHold.Problem(prepared.Spec.Process.BurnSpeedMmPerS, prepared.Spec.Profile, o.Machine.ExpectsScheduledSwitchOns(result, prepared.Spec.Profile)) is { } tooFast)
+        {
+            // The edge tolerance against this computer's lateness: named before any port opens, not as timing doubts mid-run.
+            throw new UsageException(tooFast);
+        }
+
+        return new JobChoice(prepared, prepared.Warnings.Select(w => w.Message), repeatOf, resumeFrom);
+    }
+
+    /// <summary>The run's end as `engrave` says it: the counter, the log's place, the burn's images, the summary, and the exit code.</summary>
+    private static int Report(ParseResult result, bool json, RunEnd ended, BurnReport? burn, BurnOutputs outputs, double? wallSeconds)
+    {
+        var stdout = result.InvocationConfiguration.Output;
+        var stderr = result.InvocationConfiguration.Error;
+        var engraved = ended.Result;
+        var record = engraved.Record;
+        if (ended.NextMarkNumber is { } next)
+        {
+            stderr.WriteLine(string.Create(CultureInfo.InvariantCulture, $"marks: the sample counter's next number is {next}"));
+        }
+
+        if (ended.CounterProblem is { } counterProblem)
+        {
+            stderr.WriteLine($"warning: the sample counter was not advanced: {counterProblem}");
+        }
+
         if (engraved.Files is not { } files)
         {
             // The run happened: say so first, in one line, then keep what the log would have said on stderr and the
@@ -264,19 +288,17 @@ internal static class EngraveCommand
             stderr.WriteLine($"laserengrave: {notice}");
         }
 
-        var burn = inspector?.Report;
-
-        if (burnedPath is not null && burn is not null)
+        if (outputs.BurnedPath is { } burnedPath && burn is not null)
         {
-            burn.WritePng(burnedPath, burnedScale ?? 1);
+            burn.WritePng(burnedPath, outputs.BurnedScale ?? 1);
         }
 
-        if (dosePath is not null && burn is not null)
+        if (outputs.DosePath is { } dosePath && burn is not null)
         {
             burn.WriteDosePng(dosePath);
         }
 
-        var summary = EngraveSummary.From(record, files, burnedPath, burn is null ? null : dosePath, wallSeconds);
+        var summary = EngraveSummary.From(record, files, outputs.BurnedPath, burn is null ? null : outputs.DosePath, wallSeconds);
         if (json)
         {
             CliJson.Write(stdout, summary with { LogNotice = files.Notice, RunLog = RecordElement(record) });
@@ -286,7 +308,7 @@ internal static class EngraveCommand
             WriteText(stdout, summary);
         }
 
-        if (error is not null)
+        if (engraved.Error is { } error)
         {
             ExceptionDispatchInfo.Throw(error);
         }
@@ -317,21 +339,6 @@ internal static class EngraveCommand
     {
         using var document = JsonDocument.Parse(RunRecordJson.Serialize(record));
         return document.RootElement.Clone();
-    }
-
-    /// <summary>Refuses a job that does not fit the travel before any port opens (preflight would refuse it later).</summary>
-    internal static void RefuseOutsideTravel(PreparedJob prepared)
-    {
-        if (prepared.Geometry.FitsTravel)
-        {
-            return;
-        }
-
-        var g = prepared.Geometry;
-        var spec = prepared.Spec;
-        throw new UsageException(string.Create(
-            CultureInfo.InvariantCulture,
-            $"the job ({g.AchievedWidthMm:0.###} x {g.AchievedHeightMm:0.###} mm at origin {spec.Origin.X:0.###}, {spec.Origin.Y:0.###} mm) does not fit the stage's travel ({spec.Profile.X.TravelMm:0.###} x {spec.Profile.Y.TravelMm:0.###} mm); move --origin-mm or make it smaller"));
     }
 
     /// <summary>Whether the job is a drawing: IMAGE is a .dxf or .svg, or the log repeated is a drawing's.</summary>

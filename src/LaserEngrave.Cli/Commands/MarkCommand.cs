@@ -166,23 +166,6 @@ internal static class MarkCommand
         return command;
     }
 
-    /// <summary>After `engrave --job FILE`: a job of marks advances its counter when, and only when, the run completed.</summary>
-    public static void AfterRun(string jobFile, Core.Logging.RunRecord record, TextWriter stderr)
-    {
-        try
-        {
-            if (MarkManifest.AfterRun(jobFile, record.Outcome, record.JobFile?.Marks) is { } next)
-            {
-                stderr.WriteLine(string.Create(CultureInfo.InvariantCulture, $"marks: the sample counter's next number is {next}"));
-            }
-        }
-        catch (Exception ex) when (ex is MarkException or IOException or UnauthorizedAccessException)
-        {
-            // The run is over and logged; a counter that cannot be written must not hide that.
-            stderr.WriteLine($"warning: the sample counter was not advanced: {ex.Message}");
-        }
-    }
-
     /// <summary>The counter beside the app's settings, so the command line and the app count the same samples.</summary>
     public static string DefaultCounterPath() =>
         Path.Combine(Environment.GetFolderPath(Environment.SpecialFolder.ApplicationData, Environment.SpecialFolderOption.Create), "LaserEngrave", MarkCounter.FileName);

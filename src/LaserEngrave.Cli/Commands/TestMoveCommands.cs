@@ -3,18 +3,13 @@ using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Devices.Execution;
+using LaserEngrave.Machines.Runs;
 
 namespace LaserEngrave.Cli.Commands;
 
 /// <summary>`laserengrave frame | jog | goto | fire`: the test moves a technician makes before a run; the laser is off at the end of each.</summary>
 internal static class TestMoveCommands
 {
-    /// <summary>Most pulses one test fire may ask for (10 s at the gate's 100 kHz).</summary>
-    internal const int MaxTestPulses = 1_000_000;
-
-    /// <summary>Longest test fire, ms.</summary>
-    internal const int MaxTestFireMs = 60_000;
-
     public static IEnumerable<Command> All()
     {
         yield return Frame();
@@ -36,22 +31,9 @@ internal static class TestMoveCommands
         command.Options.Add(visibleHz);
         command.SetAction(async (result, ct) =>
         {
-            if (VectorCommands.IsDrawing(result, job))
-            {
-                var drawing = VectorCommands.Prepare(result, job, vector);
-                OptionChecks.InRange(result.GetValue(visibleHz), 1, drawing.Spec.Profile.MaxFrameFrequencyHz, "--visible-hz", " Hz", "the profile's maxFrameFrequencyHz");
-                if (result.GetValue(visibleHz) is not null)
-                {
-                    machine.RefuseUnacceptedNoWatchdog(result, drawing.Spec.Profile);
-                }
-
-                VectorCommands.RefuseUnrunnable(drawing);
-                var points = drawing.Plan.Paths.SelectMany(p => p.Points).ToList();
-                return await WithMovesAsync(result, machine, drawing.Spec.Profile, drawing.Spec.Process, async moves =>
-                    Describe(await moves.FrameAsync(points.Min(p => p.X), points.Min(p => p.Y), points.Max(p => p.X), points.Max(p => p.Y), result.GetValue(visibleHz), ct), drawing.Spec.Profile));
-            }
-
-            var spec = job.Bind(result);
+            // One job whichever kind the file is: the same rule as a run refuses it, and the box it answers is what is traced.
+            EngraveJob engraving = VectorCommands.IsDrawing(result, job) ? VectorCommands.Prepare(result, job, vector) : PreparedJob.Prepare(job.Bind(result));
+            var spec = engraving.Spec;
 
             // The laser is on around the whole frame: only a low frequency, to see the outline without burning it.
             OptionChecks.InRange(result.GetValue(visibleHz), 1, spec.Profile.MaxFrameFrequencyHz, "--visible-hz", " Hz", "the profile's maxFrameFrequencyHz");
@@ -60,11 +42,14 @@ internal static class TestMoveCommands
                 machine.RefuseUnacceptedNoWatchdog(result, spec.Profile);
             }
 
-            var prepared = PreparedJob.Prepare(spec);
-            EngraveCommand.RefuseOutsideTravel(prepared);
+            if (EngraveRun.Unrunnable(engraving) is { } unrunnable)
+            {
+                throw new UsageException(unrunnable);
+            }
 
-            return await WithMovesAsync(result, machine, prepared.Spec.Profile, prepared.Spec.Process, async moves =>
-                Describe(await moves.FrameAsync(prepared.Geometry.Geometry, result.GetValue(visibleHz), ct), prepared.Spec.Profile));
+            var box = engraving.FrameBox ?? throw new UsageException($"{spec.ImagePath}: no path to frame");
+            return await WithMovesAsync(result, machine, spec.Profile, spec.Process, async moves =>
+                Describe(await moves.FrameAsync(box.Left, box.Top, box.Right, box.Bottom, result.GetValue(visibleHz), ct), spec.Profile));
         });
         return command;
     }
@@ -85,16 +70,10 @@ internal static class TestMoveCommands
                 var other => throw new UsageException($"AXIS {other}: use x or y"),
             };
             var stepUm = result.GetValue(step);
-            if (!double.IsFinite(stepUm) || stepUm == 0)
-            {
-                throw new UsageException($"STEP_UM {stepUm.ToString(CultureInfo.InvariantCulture)}: must be a finite number other than 0");
-            }
-
             var machineProfile = LoadProfile(result, profile);
-            var travelUm = Units.MmToUm((name == StageAxisName.X ? machineProfile.X : machineProfile.Y).TravelMm);
-            if (Math.Abs(stepUm) > travelUm)
+            if (JobRules.JogStep(stepUm, (name == StageAxisName.X ? machineProfile.X : machineProfile.Y).TravelMm, name.ToString()) is { } rule)
             {
-                throw new UsageException($"STEP_UM {OptionChecks.N(stepUm)}: longer than the {name} travel ({OptionChecks.N(travelUm)} µm)");
+                throw new UsageException($"STEP_UM {OptionChecks.N(stepUm)}: {rule}");
             }
 
             return await WithMovesAsync(result, machine, machineProfile, null, async moves =>
@@ -138,8 +117,17 @@ internal static class TestMoveCommands
                 throw new UsageException("give one of --pulses N or --ms T");
             }
 
-            OptionChecks.InRange(count, 1, MaxTestPulses, "--pulses", string.Empty, "a test fire");
-            OptionChecks.InRange(duration, 1, MaxTestFireMs, "--ms", " ms", "a test fire");
+            // The job rules' ranges, as the app and the devices refuse them.
+            if (count is { } asked && JobRules.TestFirePulses(asked) is { } pulsesRule)
+            {
+                throw new UsageException($"--pulses {asked}: {pulsesRule}");
+            }
+
+            if (duration is { } length && JobRules.TestFireMs(length) is { } msRule)
+            {
+                throw new UsageException($"--ms {length}: {msRule}");
+            }
+
             var machineProfile = LoadProfile(result, profile);
             OptionChecks.InRange(result.GetValue(frequency), 1, machineProfile.Gate.MaxFrequencyHz, "--frequency-hz", " Hz", "the profile's gate.maxFrequencyHz");
             var hz = result.GetValue(frequency) ?? (int)Math.Round(machineProfile.LaserFrequencyHz, MidpointRounding.AwayFromZero);
@@ -163,9 +151,9 @@ internal static class TestMoveCommands
     /// <summary>Refuses a target off the axis before any port opens.</summary>
     private static void WithinTravel(double mm, double travelMm, string name)
     {
-        if (!(mm >= 0 && mm <= travelMm))
+        if (JobRules.Position(mm, travelMm) is { } rule)
         {
-            throw new UsageException(string.Create(CultureInfo.InvariantCulture, $"{name} {mm}: outside the travel 0..{travelMm} mm"));
+            throw new UsageException(string.Create(CultureInfo.InvariantCulture, $"{name} {mm}: {rule}"));
         }
     }
 

@@ -49,23 +49,6 @@ internal static class VectorCommands
         return width is null ? PreparedDrawing.PrepareOwnSize(spec, options) : PreparedDrawing.Prepare(spec, options);
     }
 
-    /// <summary>Refuses a drawing whose strokes leave the travel, or that has nothing long enough to burn, before any port opens.</summary>
-    public static void RefuseUnrunnable(PreparedDrawing drawing)
-    {
-        if (!drawing.FitsTravel)
-        {
-            var spec = drawing.Spec;
-            throw new UsageException(string.Create(
-                CultureInfo.InvariantCulture,
-                $"the drawing ({drawing.Plan.WidthMm:0.###} x {drawing.Plan.HeightMm:0.###} mm at origin {spec.Origin.X:0.###}, {spec.Origin.Y:0.###} mm, with its strokes' run-ups and run-outs) does not fit the stage's travel ({spec.Profile.X.TravelMm:0.###} x {spec.Profile.Y.TravelMm:0.###} mm); move --origin-mm or make it smaller"));
-        }
-
-        if (drawing.Schedule.Strokes.Count == 0)
-        {
-            throw new UsageException($"{drawing.Spec.ImagePath}: no path is long enough to burn ({string.Join("; ", drawing.Schedule.Warnings)})");
-        }
-    }
-
     public static int Preview(ParseResult result, JobOptions job, VectorOptionSet vector, string path, int maxPx)
     {
         var plan = Build(result, job, vector);

@@ -21,10 +21,10 @@ public static class GeometryResolver
             throw new GeometryException($"an image of {widthPx} x {heightPx} pixels has no area");
         }
 
-        if (profile.X.MicrostepUm != profile.Y.MicrostepUm)
+        // The profile validator's rule; a profile built in code (never loaded) meets it here.
+        if (MachineProfileValidator.EqualMicrosteps(profile) is { } unequal)
         {
-            throw new GeometryException(
-                $"{profile.Name}: the X microstep ({N(profile.X.MicrostepUm)} µm) differs from the Y microstep ({N(profile.Y.MicrostepUm)} µm); one pitch in microsteps needs equal axes");
+            throw new GeometryException($"{profile.Name}: {unequal}");
         }
 
         if (!double.IsFinite(origin.X) || !double.IsFinite(origin.Y))

@@ -100,6 +100,11 @@ public static class MachineProfileValidator
                 $"{name}.maxAccelerationMmPerS2 must be {N(minAcceleration)}..{N(maxAcceleration)} mm/s², the device's acceleration range (got {N(axis.MaxAccelerationMmPerS2)})");
         }
 
+        if (problems.Count == 0 && EqualMicrosteps(profile) is { } unequal)
+        {
+            problems.Add(unequal);
+        }
+
         Require(profile.X.DeviceNumber != profile.Y.DeviceNumber, $"x.deviceNumber and y.deviceNumber cannot both be {profile.X.DeviceNumber}");
         if (profile.Z is { } z)
         {
@@ -170,6 +175,19 @@ public static class MachineProfileValidator
         }
 
         return problems;
+    }
+
+    /// <summary>
+    /// Null when X and Y have the same microstep. A pixel pitch, a dot pitch and a drawing's points are whole microsteps on
+    /// both axes at once, so the planners take only equal axes: a profile that differs is refused when it is read, not
+    /// when the first job is planned.
+    /// </summary>
+    public static string? EqualMicrosteps(MachineProfile profile)
+    {
+        ArgumentNullException.ThrowIfNull(profile);
+        return profile.X.MicrostepUm == profile.Y.MicrostepUm ? null
+            // Written in full: two microsteps that differ in the sixth digit would read the same shortened.
+            : $"x.microstepUm {profile.X.MicrostepUm.ToString(CultureInfo.InvariantCulture)} and y.microstepUm {profile.Y.MicrostepUm.ToString(CultureInfo.InvariantCulture)} must be equal: a pitch in whole microsteps needs the same microstep on both axes";
     }
 
     // The focus axis beyond what every axis must meet: its own device number, a move speed it takes, and limits inside its travel around the visible focus.

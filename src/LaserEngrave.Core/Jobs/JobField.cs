@@ -23,6 +23,15 @@ public static class JobField
     public const string Tolerance = "toleranceUm";
     public const string FillPitch = "fillPitchUm";
 
+    /// <summary>A process' mode, raster or dots (a log's or a program's; the app and the command line name it by word).</summary>
+    public const string Mode = "mode";
+
+    /// <summary>The Zaber chain's baud rate as a process carries it.</summary>
+    public const string StageBaud = "stageBaudRate";
+
+    /// <summary>The laser gate's baud rate as a process carries it.</summary>
+    public const string GateBaud = "gateBaudRate";
+
     /// <summary>What the user calls the field: "burn speed".</summary>
     public static string Label(string field) => field switch
     {
@@ -44,6 +53,8 @@ public static class JobField
         DotSettle => "settle time",
         Tolerance => "chord tolerance",
         FillPitch => "fill pitch",
+        StageBaud => "stage baud rate",
+        GateBaud => "gate baud rate",
         _ => field,
     };
 

@@ -169,13 +169,11 @@ public abstract class ImagePart : JobPart
     public override double? PixelUm => Image.Geometry.PitchUm;
 
     public override string? StartProblem =>
-        !Image.Geometry.FitsTravel ? "the job lies outside the stage's travel: move the origin or make it smaller"
+        JobRules.Placement(Image) is { } outside ? outside
         : Image.Statistics.BurnRuns == 0 ? "the mask has no pixel to burn: change the threshold or invert it"
         : null;
 
-    public override string? PlanProblem => Image.Geometry.FitsTravel
-        ? null
-        : Image.Geometry.Warnings.FirstOrDefault(w => w.Kind == JobWarningKind.OutsideTravel)?.Message ?? "the job does not fit the stage travel";
+    public override string? PlanProblem => JobRules.Placement(Image);
 
     public override string? EngraveProblem => Image.EngraveProblem;
 
@@ -276,12 +274,12 @@ public sealed class DrawingPart : JobPart
     public override double? PixelUm => null;
 
     public override string? StartProblem =>
-        !Drawing.FitsTravel ? "the drawing lies outside the stage's travel: move the origin or make it smaller"
+        JobRules.Placement(Drawing) is { } outside ? outside
         : Drawing.Schedule.Strokes.Count == 0 ? "the drawing has no path long enough to burn"
         : null;
 
     public override string? PlanProblem =>
-        !Drawing.FitsTravel ? Drawing.Warnings.LastOrDefault(w => w.Contains("travel", StringComparison.Ordinal)) ?? "the drawing does not fit the stage travel"
+        JobRules.Placement(Drawing) is { } outside ? outside
         : Drawing.Schedule.Strokes.Count == 0 ? $"{Drawing.Spec.ImagePath}: no path is long enough to burn"
         : null;
 

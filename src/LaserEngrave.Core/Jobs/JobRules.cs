@@ -15,7 +15,7 @@ namespace LaserEngrave.Core.Jobs;
 /// speeds and acceleration within what both axes take (the slower axis' maximum, one unit of Zaber speed data the least),
 /// the frequency within the gate's, positions and sizes within the travel, a pixel no smaller than a microstep.
 /// </remarks>
-public static class JobRules
+public static partial class JobRules
 {
     /// <summary>The most pulses a dot may get: the laser gate's burst range.</summary>
     public const int MaxPulsesPerDot = 1_000_000;
@@ -77,15 +77,14 @@ public static class JobRules
         Add(JobField.Passes, settings.Passes, Passes(settings.Passes));
         if (settings.PulseEnergyUj is { } energy)
         {
-            Add(JobField.PulseEnergy, energy, energy > 0 && double.IsFinite(energy) ? null : "must be a finite number above 0 (or left out: not known)");
+            Add(JobField.PulseEnergy, energy, PulseEnergy(energy));
         }
 
         if (!drawing && settings.Mode == PlanMode.Dots)
         {
             Add(JobField.PulsesPerDot, settings.PulsesPerDot, PulsesPerDot(settings.PulsesPerDot));
-            var travel = Math.Min(limits.TravelXMicrosteps, limits.TravelYMicrosteps);
-            Add(JobField.DotPitch, settings.DotPitchMicrosteps, settings.DotPitchMicrosteps >= 0 && settings.DotPitchMicrosteps <= travel ? null : $"must be 0 (one dot at each pixel's centre) to {travel} (the travel)");
-            Add(JobField.DotSettle, settings.DotSettleMs, settings.DotSettleMs is >= 0 and <= MaxDotSettleMs ? null : $"must be 0..{N(MaxDotSettleMs)} ms");
+            Add(JobField.DotPitch, settings.DotPitchMicrosteps, DotPitch(settings.DotPitchMicrosteps, limits));
+            Add(JobField.DotSettle, settings.DotSettleMs, DotSettle(settings.DotSettleMs));
         }
 
         if (drawing)
@@ -211,7 +210,8 @@ public static class JobRules
         : mm > travelMm ? $"at most {N(travelMm)} mm, {travel}"
         : null;
 
-    private static string? Position(double mm, double travelMm) =>
+    /// <summary>Null when <paramref name="mm"/> is a position on an axis of <paramref name="travelMm"/>: a job's origin, a go-to target.</summary>
+    public static string? Position(double mm, double travelMm) =>
         mm >= 0 && mm <= travelMm ? null : $"outside the travel 0..{N(travelMm)} mm";
 
     private static string N(double value) => MachineLimits.Text.N(value);

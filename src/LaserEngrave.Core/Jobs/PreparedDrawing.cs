@@ -70,7 +70,7 @@ public sealed class PreparedDrawing
     {
         ArgumentNullException.ThrowIfNull(spec);
         ArgumentNullException.ThrowIfNull(vector);
-        spec.Process.Validate();
+        JobRules.Require(spec.Process, spec.Profile);
         vector = Oriented(spec, vector);
         var plan = spec.Size switch
         {
@@ -86,7 +86,7 @@ public sealed class PreparedDrawing
     {
         ArgumentNullException.ThrowIfNull(spec);
         ArgumentNullException.ThrowIfNull(vector);
-        spec.Process.Validate();
+        JobRules.Require(spec.Process, spec.Profile);
         vector = Oriented(spec, vector);
         var plan = VectorPlanner.Plan(spec.ImagePath, vector with { WidthMm = null, Origin = spec.Origin }, spec.Profile);
 

@@ -76,7 +76,7 @@ public sealed class PreparedJob
         RefuseDrawing(spec.ImagePath);
 
         spec.Mask.Validate();
-        spec.Process.Validate();
+        JobRules.Require(spec.Process, spec.Profile);
         var mask = MaskBuilder.FromFile(spec.ImagePath, spec.Mask, out var info);
         return Prepare(spec, info, mask);
     }

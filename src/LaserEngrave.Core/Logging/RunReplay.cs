@@ -168,14 +168,10 @@ public static class RunReplay
                 : problem.MessageFor(LogField(problem.Field));
         }
 
-        // What the rules do not ask (the baud rates, a mode by number) before the process is used.
-        try
+        // What only a process carries (the baud rates, a mode by number), by the same rules, before it is used.
+        if (JobRules.Check(record.Process, MachineLimits.Of(record.Profile)) is [var processProblem, ..])
         {
-            record.Process.Validate();
-        }
-        catch (Planning.PlanException ex)
-        {
-            return $"process: {ex.Message}";
+            return processProblem.MessageFor(LogField(processProblem.Field));
         }
 
         return record.StoppedAt is { } stop ? StopProblem(stop, record.Profile) : null;

@@ -35,7 +35,6 @@ public sealed class DotPlan
         ArgumentNullException.ThrowIfNull(geometry);
         ArgumentNullException.ThrowIfNull(process);
         ArgumentNullException.ThrowIfNull(profile);
-        process.Validate();
         if (mask.Width != geometry.WidthPx || mask.Height != geometry.HeightPx)
         {
             throw new PlanException($"the mask is {mask.Width} x {mask.Height} pixels but the geometry is for {geometry.WidthPx} x {geometry.HeightPx}");

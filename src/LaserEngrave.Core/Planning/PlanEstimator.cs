@@ -50,7 +50,6 @@ public sealed class PlanEstimator
     public PlanEstimator(ProcessSettings process, PlanStrategy strategy, double microstepUm, LaserGateProfile? gate = null, TimedSwitching? timing = null)
     {
         ArgumentNullException.ThrowIfNull(process);
-        process.Validate();
         gate ??= new LaserGateProfile();
         _strategy = strategy;
 

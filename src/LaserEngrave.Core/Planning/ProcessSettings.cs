@@ -67,56 +67,5 @@ public sealed record ProcessSettings
     /// <summary>The laser frequency as the gate is sent it: whole Hz.</summary>
     public int LaserFrequencyWholeHz => (int)Math.Round(LaserFrequencyHz, MidpointRounding.AwayFromZero);
 
-    /// <summary>Throws a <see cref="PlanException"/> naming the first unusable value.</summary>
-    public void Validate()
-    {
-        Positive(BurnSpeedMmPerS, "burn speed", "mm/s");
-        Positive(TravelSpeedMmPerS, "travel speed", "mm/s");
-        Positive(AccelerationMmPerS2, "acceleration", "mm/s²");
-        Positive(LaserFrequencyHz, "laser frequency", "Hz");
-        if (LaserFrequencyWholeHz < 1)
-        {
-            throw new PlanException($"laser frequency {N(LaserFrequencyHz)} Hz rounds to 0 Hz, which is off");
-        }
-
-        if (PulsesPerDot < 1)
-        {
-            throw new PlanException($"pulses per dot {PulsesPerDot} must be 1 or more");
-        }
-
-        if (PulseEnergyUj is { } energy)
-        {
-            Positive(energy, "pulse energy", "µJ");
-        }
-
-        if (!(DotSettleMs >= 0) || double.IsInfinity(DotSettleMs))
-        {
-            throw new PlanException($"dot settle time {N(DotSettleMs)} ms must be 0 or more");
-        }
-
-        if (DotPitchMicrosteps < 0)
-        {
-            throw new PlanException($"dot pitch {DotPitchMicrosteps} microsteps must be 0 (every pixel) or more");
-        }
-
-        if (!Enum.IsDefined(Mode))
-        {
-            throw new PlanException($"mode {Mode} is not known (raster or dots)");
-        }
-
-        if (StageBaudRate <= 0 || GateBaudRate <= 0)
-        {
-            throw new PlanException($"baud rates {StageBaudRate} (stage) and {GateBaudRate} (gate) must be above 0");
-        }
-
-        static void Positive(double value, string what, string unit)
-        {
-            if (!(value > 0) || double.IsInfinity(value))
-            {
-                throw new PlanException($"{what} {N(value)} {unit} must be a finite number above 0");
-            }
-        }
-    }
-
     private static string N(double value) => value.ToString(CultureInfo.InvariantCulture);
 }

@@ -11,8 +11,10 @@ internal sealed class DxfEntity(string file, string type, int line, List<(int Co
 
     public List<(int Code, string Value, int Line)> Groups { get; } = groups;
 
-    /// <summary>Child entities: a POLYLINE's VERTEXes.</summary>
-    public List<DxfEntity> Children { get; } = [];
+    private List<DxfEntity>? _children;
+
+    /// <summary>Child entities: a POLYLINE's VERTEXes (made on first use: most entities have none).</summary>
+    public List<DxfEntity> Children => _children ??= [];
 
     public string? Handle => Text(5);
 

@@ -39,43 +39,62 @@ public static class DxfReader
 
     public static Drawing Read(string path)
     {
-        string text;
         try
         {
-            text = File.ReadAllText(path);
+            // Read as it comes (DxfLines), with the encoding File.ReadAllText would have found: UTF-8 unless a byte order mark says otherwise.
+            return Parse(() => new StreamReader(path, System.Text.Encoding.UTF8, detectEncodingFromByteOrderMarks: true), path);
         }
         catch (Exception ex) when (ex is IOException or UnauthorizedAccessException)
         {
             throw new DrawingException($"{path}: cannot read the drawing: {ex.Message}", ex);
         }
-
-        return Parse(text, path);
     }
 
     public static Drawing Parse(string text, string path)
     {
         ArgumentNullException.ThrowIfNull(text);
-        if (text.StartsWith("AutoCAD Binary DXF", StringComparison.Ordinal))
+        return Parse(() => new StringReader(text), path);
+    }
+
+    private static Drawing Parse(Func<TextReader> open, string path)
+    {
+        using (var text = open())
+        {
+            if (Parse(text, path, streamEntities: true) is { } drawing)
+            {
+                return drawing;
+            }
+        }
+
+        // A HEADER, TABLES or BLOCKS section after the entities (not the order DXF writes them in): read again, keeping
+        // every entity until the whole file is read, since a layer or block defined further on changes them.
+        using var again = open();
+        return Parse(again, path, streamEntities: false)!;
+    }
+
+    // Null when the entities were converted as they came and a section after them could have changed them.
+    private static Drawing? Parse(TextReader text, string path, bool streamEntities)
+    {
+        var lines = new DxfLines(text);
+        if (lines.MoveNext() && lines.Current.StartsWith("AutoCAD Binary DXF", StringComparison.Ordinal))
         {
             throw new DrawingException($"{path}: binary DXF is not read; save the drawing as ASCII DXF");
         }
 
-        var file = Structure(Groups(text, path), path);
+        var stream = streamEntities ? new EntityStream(path) : null;
+        var file = Structure(Groups(lines, path), path, stream);
+        if (stream is { Abandoned: true })
+        {
+            return null;
+        }
+
+        if (stream is { Started: true })
+        {
+            return stream.Finish();
+        }
+
         var warnings = new DrawingWarnings();
-        var unitsStated = file.InsUnits is { } u && Units.ContainsKey(u);
-        double mm = 1;
-        if (unitsStated)
-        {
-            mm = Units[file.InsUnits!.Value].Mm;
-        }
-        else if (file.InsUnits is null or 0)
-        {
-            warnings.Note("the drawing states no units ($INSUNITS): read as millimetres; give --width-mm to size it");
-        }
-        else
-        {
-            throw new DrawingException($"{path}: $INSUNITS {file.InsUnits} is not a unit of length LaserEngrave knows");
-        }
+        var mm = Millimetres(file, warnings, path, out var unitsStated);
 
         // DXF's y grows up; the stage's and LaserEngrave's grow down.
         var toMm = Affine.Scale(mm, -mm);
@@ -88,66 +107,235 @@ public static class DxfReader
         return new Drawing(path, reader.Paths, warnings.ToList(), unitsStated);
     }
 
-    private static List<(int Code, string Value, int Line)> Groups(string text, string path)
+    // The millimetres in one drawing unit ($INSUNITS), noting a drawing that states none.
+    private static double Millimetres(DxfFile file, DrawingWarnings warnings, string path, out bool unitsStated)
     {
-        var lines = text.Split('\n');
-        var count = lines.Length;
-        while (count > 0 && lines[count - 1].Trim().Length == 0)
+        unitsStated = file.InsUnits is { } u && Units.ContainsKey(u);
+        if (unitsStated)
         {
-            count--;
+            return Units[file.InsUnits!.Value].Mm;
         }
 
-        var groups = new List<(int, string, int)>(count / 2);
-        for (var i = 0; i + 1 < count; i += 2)
+        if (file.InsUnits is null or 0)
         {
-            if (!int.TryParse(lines[i].Trim(), NumberStyles.Integer, CultureInfo.InvariantCulture, out var code))
+            warnings.Note("the drawing states no units ($INSUNITS): read as millimetres; give --width-mm to size it");
+            return 1;
+        }
+
+        throw new DrawingException($"{path}: $INSUNITS {file.InsUnits} is not a unit of length LaserEngrave knows");
+    }
+
+    /// <summary>
+    /// The ENTITIES section converted as it is read, each entity dropped once its paths are made: 300 000 LINEs kept as
+    /// their group codes until the end of the file were 120 MiB (issue 38). It starts when the entities do, with the
+    /// header's units, the layers and the blocks read before them (the order DXF writes its sections in); a section of
+    /// those after the entities abandons it, and the file is read again the old way.
+    /// </summary>
+    /// <remarks>
+    /// What is reported stays what reading the whole file first reported: a line that is not a group code or a
+    /// structure error anywhere in the file comes before an error in converting an entity, so that error is kept
+    /// until the end of the file; an $INSUNITS that is no unit leaves the entities to be kept, and reported after.
+    /// </remarks>
+    private sealed class EntityStream(string path)
+    {
+        private DrawingWarnings? _warnings;
+        private Converter? _converter;
+        private Affine _toMm;
+        private bool _unitsStated;
+        private DxfEntity? _last;
+        private DrawingException? _failure;
+
+        public bool Started => _converter is not null;
+
+        public bool Abandoned { get; private set; }
+
+        /// <summary>Starts with the entities' section: false when the header's units are no unit (nothing is streamed then).</summary>
+        public bool Start(DxfFile file)
+        {
+            if (file.InsUnits is { } u && u != 0 && !Units.ContainsKey(u))
             {
-                throw new DrawingException($"{path}: line {i + 1}: \"{Shorten(lines[i].Trim())}\" is not a DXF group code; is this an ASCII DXF file?");
+                return false;
             }
 
-            groups.Add((code, lines[i + 1].Trim(), i + 2));
+            _warnings = new DrawingWarnings();
+            var mm = Millimetres(file, _warnings, path, out _unitsStated);
+            _toMm = Affine.Scale(mm, -mm);
+            _converter = new Converter(file, _warnings, path);
+            return true;
         }
 
-        if (count % 2 == 1)
+        public void Abandon() => Abandoned = true;
+
+        /// <summary>Takes the next entity of the section: a POLYLINE's VERTEXes join it, its SEQEND is dropped (as Add does).</summary>
+        public void Add(DxfEntity entity)
         {
-            throw new DrawingException($"{path}: line {count}: group code without a value (the file is cut short)");
+            if (entity.Type == "VERTEX" && _last?.Type == "POLYLINE")
+            {
+                _last.Children.Add(entity);
+                return;
+            }
+
+            if (entity.Type is "SEQEND" or "VERTEX" && _last?.Type is "POLYLINE" or "INSERT" or "ATTRIB")
+            {
+                return;
+            }
+
+            ConvertLast();
+            _last = entity;
         }
 
-        return groups;
+        public Drawing Finish()
+        {
+            ConvertLast();
+            return _failure is not null
+                ? throw _failure
+                : new Drawing(path, _converter!.Paths, _warnings!.ToList(), _unitsStated);
+        }
+
+        // The entity before is complete once the next one is not one of its VERTEXes.
+        private void ConvertLast()
+        {
+            if (_last is null || _failure is not null)
+            {
+                _last = null;
+                return;
+            }
+
+            try
+            {
+                _converter!.Convert(_last, _toMm, inheritedLayer: null, depth: 0);
+            }
+            catch (DrawingException ex)
+            {
+                _failure = ex;
+            }
+
+            _last = null;
+        }
+    }
+
+    // The group code / value pairs, each value trimmed, with its line number. The lines come already moved onto the
+    // first (the binary check looks at it).
+    private static IEnumerable<(int Code, string Value, int Line)> Groups(DxfLines lines, string path)
+    {
+        var values = new ValueStrings();
+        for (var more = lines.Number > 0; more; more = lines.MoveNext())
+        {
+            var codeLine = lines.Number;
+            var codeText = lines.Current.Trim();
+            var isCode = int.TryParse(codeText, NumberStyles.Integer, CultureInfo.InvariantCulture, out var code);
+            var notCode = isCode ? null : Shorten(codeText.ToString());
+            if (!lines.MoveNext())
+            {
+                throw new DrawingException($"{path}: line {codeLine}: group code without a value (the file is cut short)");
+            }
+
+            if (notCode is not null)
+            {
+                throw new DrawingException($"{path}: line {codeLine}: \"{notCode}\" is not a DXF group code; is this an ASCII DXF file?");
+            }
+
+            yield return (code, values.Get(code, lines.Current.Trim()), lines.Number);
+        }
+    }
+
+    /// <summary>
+    /// The values as strings, one string for each repeated word: entity types, layer names, subclass markers and flags
+    /// repeat on every entity of a large drawing; coordinates almost never do, so they are not looked up.
+    /// </summary>
+    private sealed class ValueStrings
+    {
+        private const int MaxKept = 4096;
+        private readonly Dictionary<string, string> _kept = [];
+        private readonly Dictionary<string, string>.AlternateLookup<ReadOnlySpan<char>> _lookup;
+
+        public ValueStrings() => _lookup = _kept.GetAlternateLookup<ReadOnlySpan<char>>();
+
+        public string Get(int code, ReadOnlySpan<char> value)
+        {
+            // Group codes 10-59: coordinates, distances, angles.
+            if (code is >= 10 and <= 59 || value.Length > 64)
+            {
+                return value.ToString();
+            }
+
+            if (_lookup.TryGetValue(value, out var kept))
+            {
+                return kept;
+            }
+
+            var text = value.ToString();
+            if (_kept.Count < MaxKept)
+            {
+                _kept[text] = text;
+            }
+
+            return text;
+        }
     }
 
     private static string Shorten(string s) => s.Length > 40 ? s[..40] + "..." : s;
 
-    private static DxfFile Structure(List<(int Code, string Value, int Line)> groups, string path)
+    private static DxfFile Structure(IEnumerable<(int Code, string Value, int Line)> source, string path, EntityStream? stream)
+    {
+        using var groups = source.GetEnumerator();
+        try
+        {
+            return Structure(groups, path, stream);
+        }
+        catch (DrawingException)
+        {
+            // Every line is read before the structure is judged, as when the file was split whole first: a line
+            // that is not a group code further on is the error to report.
+            while (groups.MoveNext())
+            {
+            }
+
+            throw;
+        }
+    }
+
+    private static DxfFile Structure(IEnumerator<(int Code, string Value, int Line)> groups, string path, EntityStream? stream)
     {
         var file = new DxfFile();
         string? section = null;
         DxfBlock? block = null;
         var sawSection = false;
-        var i = 0;
-        while (i < groups.Count)
+        var body = new List<(int, string, int)>();
+        var more = groups.MoveNext();
+        while (more)
         {
-            var (code, value, line) = groups[i];
+            var (code, value, line) = groups.Current;
             if (code != 0)
             {
-                i++;
+                more = groups.MoveNext();
                 continue;
             }
 
-            // One entity or table record: everything up to the next group code 0.
-            i++;
-            var body = new List<(int, string, int)>();
-            while (i < groups.Count && groups[i].Code != 0)
+            // One entity or table record: everything up to the next group code 0, kept in a list of its own size.
+            body.Clear();
+            while ((more = groups.MoveNext()) && groups.Current.Code != 0)
             {
-                body.Add(groups[i++]);
+                body.Add(groups.Current);
             }
 
-            var entity = new DxfEntity(path, value, line, body);
+            var entity = new DxfEntity(path, value, line, [.. body]);
             switch (value)
             {
                 case "SECTION":
                     section = entity.Text(2);
                     sawSection = true;
+                    if (stream is { Started: true } && section is "HEADER" or "TABLES" or "BLOCKS")
+                    {
+                        stream.Abandon();
+                        return file;
+                    }
+
+                    if (stream is { Started: false } && section == "ENTITIES" && !stream.Start(file))
+                    {
+                        stream = null;
+                    }
+
                     if (section == "HEADER")
                     {
                         // The header's variables are code 9 / value pairs with no code 0 between them: all in this body.
@@ -167,7 +355,12 @@ public static class DxfReader
                     section = null;
                     continue;
                 case "EOF":
-                    i = groups.Count;
+                    // Nothing after it is drawn, but every line is still read (a line that is not a group code is still an error).
+                    while (groups.MoveNext())
+                    {
+                    }
+
+                    more = false;
                     continue;
             }
 
@@ -192,6 +385,9 @@ public static class DxfReader
                     }
 
                     Add(block.Entities, entity);
+                    break;
+                case "ENTITIES" when stream is not null:
+                    stream.Add(entity);
                     break;
                 case "ENTITIES":
                     Add(file.Entities, entity);

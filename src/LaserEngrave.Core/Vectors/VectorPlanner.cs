@@ -15,9 +15,10 @@ public static class VectorPlanner
         ArgumentNullException.ThrowIfNull(options);
         ArgumentNullException.ThrowIfNull(profile);
         options.Validate();
-        if (Math.Abs(profile.X.MicrostepUm - profile.Y.MicrostepUm) > 1e-12)
+        // The profile validator's rule; a profile built in code (never loaded) meets it here.
+        if (MachineProfileValidator.EqualMicrosteps(profile) is { } unequal)
         {
-            throw new GeometryException($"the axes' microsteps differ ({profile.X.MicrostepUm} and {profile.Y.MicrostepUm} µm); vector jobs need them equal");
+            throw new GeometryException($"{profile.Name}: {unequal}");
         }
 
         var microstepUm = profile.X.MicrostepUm;

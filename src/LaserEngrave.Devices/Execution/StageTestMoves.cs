@@ -1,5 +1,6 @@
 using System.Globalization;
 using LaserEngrave.Core.Geometry;
+using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Devices.Abstractions;
@@ -167,9 +168,15 @@ public sealed class StageTestMoves
     /// <summary>Fires <paramref name="pulses"/> pulses at <paramref name="frequencyHz"/> at the current position (the gate's burst; on a frequency-only gate, timed by the host), then off.</summary>
     public async Task FirePulsesAsync(int pulses, int frequencyHz, CancellationToken cancellationToken)
     {
-        if (pulses <= 0 || frequencyHz <= 0)
+        // The job rules' range, as the command line and the app refuse it before a port opens.
+        if (JobRules.TestFirePulses(pulses) is { } rule)
         {
-            throw new TestMoveException($"test fire of {pulses} pulses at {frequencyHz} Hz: both must be above 0");
+            throw new TestMoveException($"test fire of {pulses} pulses: {rule}");
+        }
+
+        if (frequencyHz <= 0)
+        {
+            throw new TestMoveException($"test fire at {frequencyHz} Hz: the frequency must be above 0");
         }
 
         await SafelyAsync(
@@ -209,9 +216,14 @@ public sealed class StageTestMoves
     /// <summary>Fires at <paramref name="frequencyHz"/> for <paramref name="duration"/> at the current position, then off.</summary>
     public async Task FireForAsync(TimeSpan duration, int frequencyHz, CancellationToken cancellationToken)
     {
-        if (duration <= TimeSpan.Zero || frequencyHz <= 0)
+        if (duration <= TimeSpan.Zero || JobRules.TestFireMs((long)Math.Ceiling(duration.TotalMilliseconds)) is not null)
         {
-            throw new TestMoveException($"test fire for {duration.TotalMilliseconds.ToString(CultureInfo.InvariantCulture)} ms at {frequencyHz} Hz: both must be above 0");
+            throw new TestMoveException($"test fire for {duration.TotalMilliseconds.ToString(CultureInfo.InvariantCulture)} ms: {JobRules.TestFireMs(0)}");
+        }
+
+        if (frequencyHz <= 0)
+        {
+            throw new TestMoveException($"test fire at {frequencyHz} Hz: the frequency must be above 0");
         }
 
         await SafelyAsync(

@@ -30,7 +30,9 @@ internal sealed class LinkSession
     private readonly Action<string> _log;
     private readonly Channel<Delivery> _outgoing = Channel.CreateUnbounded<Delivery>(new() { SingleReader = true });
     private readonly Lock _sendLock = new();
-    private readonly Channel<(double AtSeconds, Action Action)> _actions = Channel.CreateUnbounded<(double, Action)>(new() { SingleReader = true });
+    private readonly TimedSequence _actions;
+    private readonly TimedSequence _deliveries;
+    private string? _writeFailure;
     private readonly CancellationTokenSource _stop = new();
     private double _outBusyUntil;
     private double _lastDelivery;
@@ -46,6 +48,8 @@ internal sealed class LinkSession
         _secondsPerByte = (double)bitsPerByte / baudRate;
         _latency = latency;
         _log = log;
+        _actions = new TimedSequence(clock);
+        _deliveries = new TimedSequence(clock);
     }
 
     public string Name => _link.Name;
@@ -95,7 +99,7 @@ internal sealed class LinkSession
         }
         else
         {
-            _outgoing.Writer.TryWrite(delivery);
+            _deliveries.Add(delivery.AtSeconds, () => Write(delivery.Data));
         }
     }
 
@@ -122,8 +126,14 @@ internal sealed class LinkSession
     public async Task RunAsync(Func<byte, double, double, Action?> onByte, CancellationToken cancellationToken)
     {
         using var linked = CancellationTokenSource.CreateLinkedTokenSource(cancellationToken, _stop.Token);
-        var writer = WriteLoopAsync(linked.Token);
-        var actions = ActionLoopAsync(linked.Token);
+        var writer = _clock.IsWallClock ? WriteLoopAsync(linked.Token) : Task.FromResult<string?>(null);
+
+        // What had not happened yet when the session ends never will (as the loops' delays were cancelled, at once).
+        using var stopping = linked.Token.Register(() =>
+        {
+            _actions.Stop();
+            _deliveries.Stop();
+        });
         var why = "closed";
         try
         {
@@ -133,10 +143,10 @@ internal sealed class LinkSession
         {
             _ended = true;
             _outgoing.Writer.TryComplete();
-            _actions.Writer.TryComplete();
+            _actions.Stop();
+            _deliveries.Stop();
             linked.Cancel();
-            await actions;
-            var writeFailure = await writer;
+            var writeFailure = await writer ?? _writeFailure;
             if (Volatile.Read(ref _closed) == 0 && !cancellationToken.IsCancellationRequested)
             {
                 _log(writeFailure ?? why);
@@ -210,33 +220,39 @@ internal sealed class LinkSession
                 }
                 else
                 {
-                    _actions.Writer.TryWrite((lastAction, action));
+                    _actions.Add(lastAction, action);
                 }
             }
         }
     }
 
-    // One after the other, each at its time: the order of the bytes is the order of what they do.
-    private async Task ActionLoopAsync(CancellationToken cancellationToken)
+    // In virtual time a delivery's bytes go onto the host's end at its instant, in order (_deliveries). The link in
+    // process takes a write at once; once one failed, the link is given up and nothing more is written.
+    private void Write(byte[] data)
     {
+        if (_writeFailure is not null)
+        {
+            return;
+        }
+
         try
         {
-            while (await _actions.Reader.WaitToReadAsync(cancellationToken))
+            var written = _link.WriteAsync(data, CancellationToken.None);
+            if (!written.IsCompletedSuccessfully)
             {
-                while (_actions.Reader.TryRead(out var item))
-                {
-                    await _clock.DelayUntil(item.AtSeconds, cancellationToken);
-                    _clock.RunAt(item.AtSeconds, item.Action);
-                }
+                // Not a link this process serves in virtual time: the order of deliveries could not be kept.
+                throw new InvalidOperationException($"{_link.Name}: a write in virtual time did not complete at once");
             }
         }
-        catch (OperationCanceledException)
+        catch (IOException ex)
         {
-            // The session ended; what had not happened yet never will.
+            _writeFailure = $"link failed: {ex.Message}";
+            _deliveries.Stop();
+            _ = _link.DisposeAsync().AsTask();
         }
     }
 
-    // Returns why writing failed, or null when it simply ended.
+    // On the wall clock: the pacer hands each delivery over at its instant. Returns why writing failed, or null when it simply ended.
     private async Task<string?> WriteLoopAsync(CancellationToken cancellationToken)
     {
         try

@@ -3,8 +3,12 @@ namespace LaserEngrave.Simulator.Timing;
 /// <summary>A timer on a <see cref="SimulationLoop"/>'s heap; its callback runs on the loop when virtual time reaches it.</summary>
 internal sealed class LoopTimer(SimulationLoop loop, TimerCallback callback, object? state) : ITimer
 {
-    // Guarded by the loop's lock: an entry in the heap is live only while its version matches.
-    public long Version { get; set; }
+    // Guarded by the loop's lock: where it is in the loop's TimerHeap (-1: not waiting), when it is due, and the order it was set in.
+    public int HeapIndex { get; set; } = -1;
+
+    public long Due { get; set; }
+
+    public long Sequence { get; set; }
 
     public long PeriodTicks { get; set; }
 

@@ -91,6 +91,9 @@ internal sealed class SimulationClock
         await done.Task;
     }
 
+    /// <summary>Whether <paramref name="atSeconds"/> has come: <see cref="DelayUntil"/> would not wait.</summary>
+    public bool IsDue(double atSeconds) => Until(atSeconds) == TimeSpan.Zero;
+
     // Rounded up to whole ticks so that an event never runs before its time.
     private TimeSpan Until(double atSeconds)
     {

@@ -25,7 +25,7 @@ public sealed class SimulationLoop : SynchronizationContext, IDisposable
     // A plain monitor rather than System.Threading.Lock: the loop waits on it with Monitor.Wait.
     private readonly object _lock = new();
     private readonly Queue<(SendOrPostCallback Callback, object? State)> _ready = new();
-    private readonly PriorityQueue<(LoopTimer Timer, long Version), (long Due, long Sequence)> _timers = new();
+    private readonly TimerHeap _timers = new();
     private readonly List<Root> _roots = [];
     private readonly Thread _thread;
     private readonly LoopTaskScheduler _scheduler;
@@ -65,6 +65,18 @@ public sealed class SimulationLoop : SynchronizationContext, IDisposable
 
     /// <summary>Work posted from another thread while an operation was under way: each one is a place where the result could depend on thread timing.</summary>
     public long ForeignPosts => Interlocked.Read(ref _foreignPosts);
+
+    /// <summary>Timers waiting to fire (a cancelled or disposed one is no longer among them).</summary>
+    internal int PendingTimers
+    {
+        get
+        {
+            lock (_lock)
+            {
+                return _timers.Count;
+            }
+        }
+    }
 
     /// <summary>Whether the caller is the loop's own thread.</summary>
     public bool IsOnLoop => Environment.CurrentManagedThreadId == _thread.ManagedThreadId;
@@ -177,11 +189,14 @@ public sealed class SimulationLoop : SynchronizationContext, IDisposable
     {
         lock (_lock)
         {
-            timer.Version++;
             timer.PeriodTicks = periodTicks > 0 ? periodTicks : 0;
             if (dueTicks >= 0 && !timer.Disposed)
             {
-                _timers.Enqueue((timer, timer.Version), (_now + dueTicks, _sequence++));
+                _timers.Schedule(timer, _now + dueTicks, _sequence++);
+            }
+            else
+            {
+                _timers.Remove(timer);
             }
         }
     }
@@ -191,7 +206,7 @@ public sealed class SimulationLoop : SynchronizationContext, IDisposable
         lock (_lock)
         {
             timer.Disposed = true;
-            timer.Version++;
+            _timers.Remove(timer);
         }
     }
 
@@ -233,9 +248,10 @@ public sealed class SimulationLoop : SynchronizationContext, IDisposable
                         break;
                     }
 
-                    DropStaleTimers();
-                    var hasTimer = _timers.TryPeek(out var head, out var at);
-                    if (!(hasTimer && at.Due <= _now) && _roots.Exists(r => r.Finished))
+                    var head = _timers.Peek();
+                    var hasTimer = head is not null;
+                    var at = head?.Due ?? 0;
+                    if (!(hasTimer && at <= _now) && _roots.Exists(r => r.Finished))
                     {
                         // Quiet at this instant: hand out finished operations before time moves on, so whoever waits
                         // for one sees the simulation standing still.
@@ -250,20 +266,23 @@ public sealed class SimulationLoop : SynchronizationContext, IDisposable
                         _now = Math.Max(_now, WallTicks);
                     }
 
-                    if (_paced && hasTimer && at.Due > _now && _roots.Count > 0 && WallTicks < at.Due)
+                    if (_paced && hasTimer && at > _now && _roots.Count > 0 && WallTicks < at)
                     {
-                        Monitor.Wait(_lock, TimeSpan.FromTicks(Math.Max(1, at.Due - WallTicks)));
+                        Monitor.Wait(_lock, TimeSpan.FromTicks(Math.Max(1, at - WallTicks)));
                         continue;
                     }
 
-                    if (hasTimer && (at.Due <= _now || _roots.Count > 0))
+                    if (hasTimer && (at <= _now || _roots.Count > 0))
                     {
-                        _timers.Dequeue();
-                        _now = Math.Max(_now, at.Due);
-                        due = head.Timer;
+                        _now = Math.Max(_now, at);
+                        due = head!;
                         if (due.PeriodTicks > 0)
                         {
-                            _timers.Enqueue((due, due.Version), (_now + due.PeriodTicks, _sequence++));
+                            _timers.Schedule(due, _now + due.PeriodTicks, _sequence++);
+                        }
+                        else
+                        {
+                            _timers.Remove(due);
                         }
 
                         break;
@@ -357,15 +376,6 @@ public sealed class SimulationLoop : SynchronizationContext, IDisposable
         foreach (var root in roots)
         {
             root.Fail!(error);
-        }
-    }
-
-    // Caller holds _lock. Cancelled and changed timers stay in the heap until they reach its head.
-    private void DropStaleTimers()
-    {
-        while (_timers.TryPeek(out var head, out _) && (head.Timer.Disposed || head.Timer.Version != head.Version))
-        {
-            _timers.Dequeue();
         }
     }
 

@@ -291,6 +291,22 @@ public sealed class ProcessPanelTests : ComponentTest
         Assert.Contains("60.98 pulses per pixel · 304.88 µJ per pixel", cut.Find("#pulses").TextContent, StringComparison.Ordinal);
         Assert.Equal(5, Main.Job.ToSettings().PulseEnergyUj);
     }
+
+    [Fact]
+    public void PulseEnergy_BelowZeroTyped_TheRulesSentenceBesideItAndEmptyIsNotKnown()
+    {
+        // Issue 35: the field once dropped 0 and below without a word, which the command line refuses.
+        OpenQr();
+        var cut = Render<ProcessPanel>(p => p.Add(c => c.Job, Main.Job));
+
+        cut.Find("#pulseEnergyUj").Change("-5");
+
+        Assert.Equal("pulse energy -5 µJ: must be a finite number above 0 (or left out: not known)", cut.Find("[data-error=pulseEnergyUj]").TextContent);
+        cut.Find("#pulseEnergyUj").Change("");
+        Assert.Empty(cut.FindAll("[data-error=pulseEnergyUj]"));
+        Assert.Null(Main.Job.ToSettings().PulseEnergyUj);
+        Assert.Equal(string.Empty, cut.Find("#pulseEnergyUj").GetAttribute("value"));
+    }
 }
 
 public sealed class SweepPanelTests : ComponentTest

@@ -713,7 +713,9 @@ public sealed class StageCanvasTests : ComponentTest
 
         Assert.False(accepted);
         Assert.Equal(1, Main.Job.OriginXMm);
-        Assert.Contains("leave the stage's 60 × 60 mm travel", cut.Find("#drop-refused").TextContent, StringComparison.Ordinal);
+        // The typed origin's sentence (issue 35: the drop once had a rule of its own).
+        Assert.StartsWith("not placed at 55, 1 mm: the job (10 x ", cut.Find("#drop-refused").TextContent, StringComparison.Ordinal);
+        Assert.Contains("does not fit the stage's travel (60 x 60 mm): move the origin or make it smaller", cut.Find("#drop-refused").TextContent, StringComparison.Ordinal);
     }
 
     [Fact]

@@ -58,7 +58,7 @@ public sealed class EngraveRunServiceTests : IAsyncDisposable
         await _run.StartCommand.ExecuteAsync(null);
 
         Assert.Equal(RunState.Completed, _run.State);
-        Assert.Equal("Completed", _run.StateName);
+        Assert.Equal("Completed", _run.Bar.StateName);
         Assert.Equal(1, _run.Fraction);
         Assert.Equal((2, 2), (_run.Progress!.Pass, _run.Progress.Passes));
         Assert.Equal([RunState.Preflight, RunState.Running, RunState.Preflight, RunState.Running, RunState.Completed], Collapse(_states));

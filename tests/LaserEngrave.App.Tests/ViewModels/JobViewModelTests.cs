@@ -249,15 +249,47 @@ public sealed class JobViewModelTests
     }
 
     [Fact]
-    public void OriginX_JobOutsideTravel_WarningBesideOrigin()
+    public void OriginX_JobOutsideTravel_RefusedBesideOriginWithTheRulesSentence()
     {
+        // Issue 35: a typed origin was only warned of while the same place dropped on the stage was refused.
         var job = Loaded();
 
         job.OriginXMm = 58;
 
         Assert.NotNull(job.Job);
         Assert.False(job.Job!.Geometry.FitsTravel);
-        Assert.Contains("travel", job.Warnings[JobViewModel.OriginField], StringComparison.Ordinal);
+        Assert.Equal(JobRules.Placement(job.Job), job.Errors[JobViewModel.OriginField]);
+        Assert.False(job.Warnings.ContainsKey(JobViewModel.OriginField));
+        Assert.Equal(job.Errors[JobViewModel.OriginField], job.Engraving!.StartProblem);
+    }
+
+    [Fact]
+    public void PlaceAt_OffTheTravel_RefusedWithTheTypedOriginsSentenceOriginKept()
+    {
+        var job = Loaded();
+        job.OriginXMm = 1;
+
+        var refused = job.PlaceAt(58, 1);
+        var placed = job.PlaceAt(20.123, 7.456);
+
+        Assert.Equal("not placed at 58, 1 mm: " + JobRules.Placement(PreparedJob.Prepare(job.Job!.Spec with { Origin = new OriginMm(58, 1) })), refused);
+        Assert.Null(placed);
+        Assert.Equal((20.12, 7.46), (job.OriginXMm, job.OriginYMm));
+        Assert.Empty(job.Errors);
+    }
+
+    [Fact]
+    public void PulseEnergy_BelowZero_RefusedBesideItsFieldAsTheCommandLineRefusesIt()
+    {
+        // Issue 35: the app once dropped a pulse energy of 0 or below without a word; the command line refused it.
+        var job = Loaded();
+
+        job.PulseEnergyUj = -5;
+
+        Assert.Equal("pulse energy -5 µJ: must be a finite number above 0 (or left out: not known)", job.Errors[JobViewModel.PulseEnergyField]);
+        job.PulseEnergyUj = null;
+        Assert.Empty(job.Errors);
+        Assert.Null(job.ToSettings().PulseEnergyUj);
     }
 
     [Fact]

@@ -48,6 +48,28 @@ public sealed class RunViewModelTests
     }
 
     [Fact]
+    public async Task Start_AllWhiteImage_RefusedNamingTheFileAndNoRun()
+    {
+        using var folder = TestFiles.NewFolder();
+        var white = Path.Combine(folder.Path, "white.bmp");
+        using (var file = File.Create(white))
+        {
+            Core.Imaging.BmpMaskWriter.Write(file, new Core.Imaging.BitMask(8, 6));
+        }
+
+        _job.LoadImage(white);
+        await _machine.ConnectCommand.ExecuteAsync(null);
+
+        await _run.StartNowAsync();
+
+        // The words the command line and the API give: the file, then what is wrong with it.
+        Assert.StartsWith($"{white}: the mask has no pixel to burn", _run.Error, StringComparison.Ordinal);
+        Assert.Equal(RunState.Failed, _run.State);
+        Assert.Equal(_run.Error, _run.StartRefusal());
+        await _runs.DidNotReceive().RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>());
+    }
+
+    [Fact]
     public async Task Start_NoImage_ErrorAndNoRun()
     {
         await _machine.ConnectCommand.ExecuteAsync(null);
@@ -90,7 +112,8 @@ public sealed class RunViewModelTests
 
         await _run.StartCommand.ExecuteAsync(null);
 
-        Assert.Contains("outside the stage's travel", _run.Error, StringComparison.Ordinal);
+        // The job rules' sentence, as the origin field and the command line say it (issue 35).
+        Assert.Contains("does not fit the stage's travel (60 x 60 mm): move the origin or make it smaller", _run.Error, StringComparison.Ordinal);
         await _runs.DidNotReceive().RunAsync(Arg.Any<EngraveSession>(), Arg.Any<IProgress<EngraveProgress>>(), Arg.Any<CancellationToken>());
     }
 
@@ -211,7 +234,7 @@ public sealed class RunViewModelTests
             .Returns(c =>
             {
                 c.Arg<IProgress<EngraveProgress>>().Report(Report(RunState.Running, 10, 100, 2, 41, pass: 2, passes: 4) with { Layer = 2 });
-                layerText = run.LayerText;
+                layerText = run.Bar.LayerText;
                 return Task.FromResult(Ended(c.Arg<EngraveSession>(), Result(RunOutcome.Completed)));
             });
 

@@ -103,7 +103,8 @@ public sealed class TestMovesViewModelTests
 
         await _moves.GoToCommand.ExecuteAsync(null);
 
-        Assert.Contains("61 mm is outside the stage travel", _moves.Error, StringComparison.Ordinal);
+        // The command line's goto says the same (issue 35: one rule for a position on the stage).
+        Assert.Equal("go to X 61 mm: outside the travel 0..60 mm", _moves.Error);
         await _fakes.X.DidNotReceive().MoveAbsoluteAsync(Arg.Any<long>(), Arg.Any<CancellationToken>());
     }
 
@@ -253,6 +254,72 @@ public sealed class TestMovesViewModelTests
         await _moves.TestFireCommand.ExecuteAsync(null);
 
         await _fakes.Gate.Received(1).BurstAsync(50, 2000, Arg.Any<CancellationToken>());
+    }
+
+    [Fact]
+    public async Task TestFire_TwoHundredThousandPulses_FiredAsTheCommandLineFiresThem()
+    {
+        // Issue 35: the app once refused more than 100,000 pulses, which the command line fired (its range is the gate's burst range).
+        var time = new ManualTimeProvider();
+        _fakes.Connection.TimeProvider.Returns(time);
+        await ConnectAsync();
+        _job.LaserFrequencyHz = 1000;
+        _moves.TestFirePulses = 200_000;
+
+        var firing = _moves.TestFireCommand.ExecuteAsync(null);
+        while (time.ActiveTimers == 0 && !firing.IsCompleted)
+        {
+            // The burst is sent, then the laser is left on its own for 200 s of the test's clock.
+            await Task.Yield();
+        }
+
+        time.Advance(TimeSpan.FromSeconds(200));
+        await firing;
+
+        Assert.Null(_moves.TestFireProblem);
+        Assert.Null(_moves.Error);
+        await _fakes.Gate.Received(1).BurstAsync(200_000, 1000, Arg.Any<CancellationToken>());
+    }
+
+    [Fact]
+    public async Task TestFire_MoreThanTheGatesBurstRange_RefusedWithTheRulesSentenceNothingSent()
+    {
+        await ConnectAsync();
+        _moves.TestFirePulses = 1_000_001;
+
+        await _moves.TestFireCommand.ExecuteAsync(null);
+
+        Assert.Equal("test fire of 1000001 pulses: must be 1..1000000 pulses (the laser gate's burst range)", _moves.TestFireProblem);
+        Assert.Equal(_moves.TestFireProblem, _moves.Error);
+        await _fakes.Gate.DidNotReceive().BurstAsync(Arg.Any<int>(), Arg.Any<int>(), Arg.Any<CancellationToken>());
+    }
+
+    [Fact]
+    public async Task Jog_StepOf100MmOnA150MmStage_MovesAsTheCommandLineWould()
+    {
+        // Issue 35: the app once held a jog step to 60,000 µm whatever the stage; the command line to the axis' travel.
+        var wide = MachineProfile.Default with { X = MachineProfile.Default.X with { TravelMm = 150 } };
+        _fakes.Connection.Profile.Returns(wide);
+        _machine.Profile = wide;
+        await ConnectAsync();
+        _moves.StepUm = 100_000;
+
+        await _moves.JogCommand.ExecuteAsync("x+");
+
+        Assert.Null(_moves.Error);
+        await _fakes.X.Received(1).MoveAbsoluteAsync(1_007_874, Arg.Any<CancellationToken>());
+    }
+
+    [Fact]
+    public async Task Jog_StepLongerThanTheAxisTravel_RefusedWithTheRulesSentence()
+    {
+        await ConnectAsync();
+        _moves.StepUm = 70_000;
+
+        await _moves.JogCommand.ExecuteAsync("y+");
+
+        Assert.Equal("step 70000 µm: longer than the Y travel (60000 µm)", _moves.Error);
+        await _fakes.Y.DidNotReceive().MoveAbsoluteAsync(Arg.Any<long>(), Arg.Any<CancellationToken>());
     }
 
     [Fact]

@@ -255,6 +255,47 @@ public sealed class ApiEndpointsTests : IDisposable
     }
 
     [Fact]
+    public async Task EditJob_PulseEnergyBelowZero_400WithTheRulesSentenceAndNullForNotKnown()
+    {
+        // Issue 35: the API (as the page) once dropped a pulse energy of 0 or below without a word; the command line refused it.
+        await UploadAsync(TestFiles.Asset("qr-code.bmp"));
+
+        var refused = await PostAsync("/api/job", new { pulseEnergyUj = -5 }, HttpStatusCode.BadRequest);
+        var cleared = await PostAsync("/api/job", new Dictionary<string, object?> { ["pulseEnergyUj"] = null });
+
+        Assert.Equal("pulse energy -5 µJ: must be a finite number above 0 (or left out: not known)", refused.GetProperty("errors").GetProperty("pulseEnergyUj").GetString());
+        Assert.Equal(JsonValueKind.Null, cleared.GetProperty("job").GetProperty("pulseEnergyUj").ValueKind);
+        Assert.Empty(cleared.GetProperty("job").GetProperty("errors").EnumerateObject());
+    }
+
+    [Fact]
+    public async Task EditJob_OriginPuttingTheJobOffTheTravel_400WithTheSentenceTheDropAndTheCommandLineSay()
+    {
+        await UploadAsync(TestFiles.Asset("qr-code.bmp"));
+
+        var refused = await PostAsync("/api/job", new { widthMm = 10, originXMm = 55, originYMm = 1 }, HttpStatusCode.BadRequest);
+
+        var error = refused.GetProperty("errors").GetProperty("originXMm").GetString();
+        Assert.StartsWith("the job (10 x ", error, StringComparison.Ordinal);
+        Assert.EndsWith("mm at origin 55, 1 mm) does not fit the stage's travel (60 x 60 mm): move the origin or make it smaller", error, StringComparison.Ordinal);
+    }
+
+    [Theory]
+    [InlineData("/api/moves/fire", """{"pulses":1000001}""", "test fire of 1000001 pulses: must be 1..1000000 pulses (the laser gate's burst range)")]
+    [InlineData("/api/moves/fire", """{"pulses":0}""", "test fire of 0 pulses: must be 1..1000000 pulses (the laser gate's burst range)")]
+    [InlineData("/api/moves/jog", """{"direction":"y+","stepUm":70000}""", "step 70000 µm: longer than the Y travel (60000 µm)")]
+    [InlineData("/api/moves/goto", """{"xMm":61,"yMm":0}""", "go to X 61 mm: outside the travel 0..60 mm")]
+    public async Task Moves_OutsideTheRules_400WithTheRulesSentenceNothingStarted(string path, string body, string expected)
+    {
+        // Issue 35: these once answered 202 and failed (or, past 100,000 pulses, were refused by the app alone) afterwards.
+        using var content = new StringContent(body, System.Text.Encoding.UTF8, "application/json");
+        using var response = await _client.PostAsync(path, content, Token);
+
+        Assert.Equal(HttpStatusCode.BadRequest, response.StatusCode);
+        Assert.Equal(expected, (await response.Content.ReadFromJsonAsync<JsonElement>(Token)).GetProperty("error").GetString());
+    }
+
+    [Fact]
     public async Task Plan_AfterUpload_MovesMatchTheEstimate()
     {
         var state = await UploadAsync(TestFiles.Asset("qr-code.bmp"));
@@ -278,6 +319,52 @@ public sealed class ApiEndpointsTests : IDisposable
         Assert.Equal(563, state.GetProperty("estimate").GetProperty("moves").GetInt64());
         Assert.Equal(563 * 5, plan.GetProperty("moves").GetArrayLength());
         Assert.Equal(1, plan.GetProperty("moves")[0].GetInt64());
+    }
+
+    [Fact]
+    public async Task StateAndPlan_DrawingOpen_EstimateAndTheMovesOfItsStrokes()
+    {
+        // Issue 35: with hexagons.dxf open, /api/state gave estimate null and /api/plan no move.
+        var state = await PostAsync("/api/image/open", new { path = TestFiles.Asset(Path.Combine("drawings", "hexagons.dxf")) });
+        var plan = await _client.GetFromJsonAsync<JsonElement>("/api/plan", Token);
+
+        var estimate = state.GetProperty("estimate");
+        Assert.True(estimate.GetProperty("seconds").GetDouble() > 0, estimate.ToString());
+        Assert.Equal("stroke", estimate.GetProperty("unit").GetString());
+        var strokes = estimate.GetProperty("rows").GetInt32();
+        Assert.True(strokes > 0);
+        Assert.True(estimate.GetProperty("fitsTravel").GetBoolean());
+        var moves = plan.GetProperty("moves").EnumerateArray().Select(m => m.GetInt64()).ToList();
+        Assert.Equal(0, moves.Count % 5);
+        Assert.True(Enumerable.Range(0, moves.Count / 5).Count(i => moves[i * 5] == (long)Core.Planning.MoveKind.Burn) >= strokes);
+        var box = plan.GetProperty("job");
+        Assert.True(box.GetProperty("right").GetInt64() > box.GetProperty("left").GetInt64());
+        Assert.True(box.GetProperty("bottom").GetInt64() > box.GetProperty("top").GetInt64());
+    }
+
+    [Fact]
+    public async Task RunStart_AllWhiteImage_409WithTheReasonAndNothingRuns()
+    {
+        // Issue 35: the app refused it, the API answered that refusal 202 with the state Failed.
+        using var folder = TestFiles.NewFolder();
+        var white = Path.Combine(folder.Path, "white.bmp");
+        using (var file = File.Create(white))
+        {
+            Core.Imaging.BmpMaskWriter.Write(file, new Core.Imaging.BitMask(8, 6));
+        }
+
+        await UploadAsync(white);
+        await PostAsync("/api/job", new { widthMm = 0.8, originXMm = 0, originYMm = 0 });
+        await PostAsync("/api/machine/connect", new { useSimulator = true }, HttpStatusCode.Accepted);
+        await WaitForAsync(s => s.GetProperty("machine").GetProperty("connected").GetBoolean() && !s.GetProperty("activity").GetProperty("busy").GetBoolean(), TimeSpan.FromSeconds(20));
+
+        var answer = await PostAsync("/api/run/start", new { sampleId = "W-1" }, HttpStatusCode.Conflict);
+
+        var error = answer.GetProperty("error").GetString()!;
+        Assert.Contains("white.bmp: the mask has no pixel to burn", error, StringComparison.Ordinal);
+        var state = await StateAsync();
+        Assert.Equal("Idle", state.GetProperty("run").GetProperty("state").GetString());
+        Assert.Empty(state.GetProperty("log").GetProperty("history").EnumerateArray());
     }
 
     [Fact]
@@ -385,7 +472,8 @@ public sealed class ApiEndpointsTests : IDisposable
         var profilePath = TestFiles.Asset(Path.Combine("profiles", "frequency-only.json"));
         _app.Services.GetRequiredService<MainViewModel>().UseProfile(profilePath, MachineProfile.Load(profilePath) with { EdgeToleranceUm = 1.5 });
         await UploadAsync(TestFiles.WriteChecker(folder.Path, 8, 6));
-        await PostAsync("/api/job", new { widthMm = 5, originXMm = 0, originYMm = 0, burnSpeedMmPerS = 4 });
+        // The job keeps the speed, as the page's field does, and the edit answers the rule's refusal.
+        await PostAsync("/api/job", new { widthMm = 5, originXMm = 0, originYMm = 0, burnSpeedMmPerS = 4 }, HttpStatusCode.BadRequest);
         await PostAsync("/api/machine/connect", new { useSimulator = true }, HttpStatusCode.Accepted);
         await WaitForAsync(s => s.GetProperty("machine").GetProperty("connected").GetBoolean() && !s.GetProperty("activity").GetProperty("busy").GetBoolean(), TimeSpan.FromSeconds(20));
 

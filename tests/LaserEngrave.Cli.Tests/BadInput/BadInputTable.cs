@@ -77,6 +77,8 @@ public static class BadInputTable
         ["frequency-1e400"] = ("""{ "laserFrequencyHz": 1e400 }""", "laserFrequencyHz"),
         ["frequency-text-nan"] = ("""{ "laserFrequencyHz": "NaN" }""", "laserFrequencyHz has a value of the wrong type"),
         ["device-fraction"] = ("""{ "x": { "deviceNumber": 1.5 } }""", "x.deviceNumber has a value of the wrong type"),
+        // Issue 35: once refused only by the planners, when the first job was planned (and never by jog, goto or fire).
+        ["microsteps-unequal"] = ("""{ "y": { "deviceNumber": 2, "microstepUm": 0.2 } }""", "x.microstepUm 0.09921875 and y.microstepUm 0.2 must be equal"),
         ["microstep-negative"] = ("""{ "y": { "deviceNumber": 2, "microstepUm": -0.1 } }""", "y.microstepUm must be above 0"),
         ["spot-negative-zero"] = ("""{ "spotDiameterUm": -0.0 }""", "spotDiameterUm must be a finite number above 0"),
         ["array"] = ("""[1, 2]""", "not a valid machine profile"),
@@ -308,6 +310,7 @@ public static class BadInputTable
         Add("STEP_UM abc: is not a number", "jog", "x", "abc", "--simulate");
         Add("give the machine", "jog", "x", "100");
         Add("gate must not be null", "jog", "x", "100", "--simulate", "--profile", "@profile:gate-null");
+        Add("x.microstepUm 0.09921875 and y.microstepUm 0.2 must be equal", "jog", "x", "100", "--simulate", "--profile", "@profile:microsteps-unequal");
         Add("X_MM 100: outside the travel 0..60 mm", "goto", "100", "0", "--simulate");
         Add("Y_MM 100: outside the travel 0..60 mm", "goto", "0", "100", "--simulate");
         Add("X_MM -1: outside the travel", "goto", "-1", "0", "--simulate");
@@ -323,7 +326,7 @@ public static class BadInputTable
         Add("give one of --pulses N or --ms T", "fire", "--pulses", "5", "--ms", "10", "--simulate");
         Add("--pulses 0: must be 1..1000000", "fire", "--pulses", "0", "--simulate");
         Add("--pulses -5: must be 1..1000000", "fire", "--pulses", "-5", "--simulate");
-        Add("--pulses 2000000: must be 1..1000000", "fire", "--pulses", "2000000", "--simulate");
+        Add("--pulses 2000000: must be 1..1000000 pulses (the laser gate's burst range)", "fire", "--pulses", "2000000", "--simulate");
         Add("--ms 0: must be 1..60000 ms", "fire", "--ms", "0", "--simulate");
         Add("--ms -1: must be 1..60000 ms", "fire", "--ms", "-1", "--simulate");
         Add("--ms 100000: must be 1..60000 ms", "fire", "--ms", "100000", "--simulate");

@@ -105,7 +105,7 @@ public sealed class EngraveJobTests
         Assert.Null(EngraveJob.Of(Image()).StartProblem);
         Assert.Null(EngraveJob.Of(Drawing()).StartProblem);
         Assert.Null(Layers().StartProblem);
-        Assert.Equal("the job lies outside the stage's travel: move the origin or make it smaller", EngraveJob.Of(Image(originXMm: travel - 1)).StartProblem);
+        Assert.Equal("the job (4 x 4 mm at origin 59, 2 mm) does not fit the stage's travel (60 x 60 mm): move the origin or make it smaller", EngraveJob.Of(Image(originXMm: travel - 1)).StartProblem);
     }
 
     [Fact]

@@ -137,10 +137,16 @@ public class PlanEstimatorTests
     [InlineData(0.0, 4.0)]
     [InlineData(1.0, double.NaN)]
     [InlineData(-1.0, 4.0)]
-    public void Constructor_UnusableSpeed_ThrowsPlanException(double burn, double travel)
+    public void Require_UnusableSpeed_RefusedByTheJobRulesBeforeAnyEstimate(double burn, double travel)
     {
-        Assert.Throws<PlanException>(() =>
-            new PlanEstimator(ProcessSettings.Default with { BurnSpeedMmPerS = burn, TravelSpeedMmPerS = travel }, PlanStrategy.Optimized, TestMasks.Microstep));
+        // The estimator takes only a process the job rules passed (issue 35: ProcessSettings.Validate, a second and weaker
+        // rule set, is folded into them); the refusal names the speed as the app's field and the command line do.
+        var process = ProcessSettings.Default with { BurnSpeedMmPerS = burn, TravelSpeedMmPerS = travel };
+
+        var ex = Assert.Throws<PlanException>(() => Core.Jobs.JobRules.Require(process, MachineProfile.Default));
+
+        Assert.Contains("speed", ex.Message, StringComparison.Ordinal);
+        Assert.Contains("outside what the stage takes", ex.Message, StringComparison.Ordinal);
     }
 
     [Fact]

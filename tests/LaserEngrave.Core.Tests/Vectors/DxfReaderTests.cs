@@ -209,6 +209,97 @@ public class DxfReaderTests
         Assert.Contains("not a DXF group code", Assert.Throws<DrawingException>(() => DxfReader.Parse("hello\nworld\n", "h.dxf")).Message, StringComparison.Ordinal);
     }
 
+    [Fact]
+    public void Parse_CrLfBlankLinesAndLongLines_ReadsAsTheWholeFileSplitAtLineFeeds()
+    {
+        var line = Entity("LINE", (8, "CUT"), (10, 1), (20, 2), (11, 3), (21, 4));
+        var plain = Dxf(line);
+
+        // Carriage returns, blank lines at the end, a blank value in the middle, and a layer name longer than the reader's buffer.
+        var longLayer = new string('L', 70_000);
+        var crlf = plain.Replace("\n", "\r\n", StringComparison.Ordinal) + "\r\n  \n\n";
+        var blankValue = Dxf(Entity("LINE", (1, ""), (8, "CUT"), (10, 1), (20, 2), (11, 3), (21, 4))) + "\n\n";
+        var longName = Dxf(Entity("LINE", (8, longLayer), (10, 1), (20, 2), (11, 3), (21, 4)));
+
+        var expected = DxfReader.Parse(plain, "t.dxf").Paths.Single();
+        foreach (var text in new[] { crlf, blankValue, plain.TrimEnd('\n') })
+        {
+            var path = DxfReader.Parse(text, "t.dxf").Paths.Single();
+            Assert.Equal(expected.Layer, path.Layer);
+            Assert.Equal(expected.Curves.Count, path.Curves.Count);
+        }
+
+        Assert.Equal(longLayer, DxfReader.Parse(longName, "t.dxf").Paths.Single().Layer);
+    }
+
+    [Fact]
+    public void Parse_ValueMissingAtTheEnd_NamesTheLastLine()
+    {
+        var text = Dxf(Entity("LINE", (10, 0), (20, 0), (11, 1), (21, 0))) + "999\n\n  \n";
+        var lines = text.Split('\n').Length - 3;
+
+        var ex = Assert.Throws<DrawingException>(() => DxfReader.Parse(text, "cut.dxf"));
+
+        Assert.Equal($"cut.dxf: line {lines}: group code without a value (the file is cut short)", ex.Message);
+    }
+
+    [Fact]
+    public void Parse_StructureErrorThenABadCodeFurtherOn_ReportsTheBadCode()
+    {
+        // An entity outside a BLOCK (a structure error) comes first; the line that is not a group code, after EOF, is
+        // what the whole file read first reported, and still is.
+        var text = "0\nSECTION\n2\nBLOCKS\n0\nLINE\n10\n0\n0\nENDSEC\n0\nEOF\nhello\nworld\n";
+
+        var ex = Assert.Throws<DrawingException>(() => DxfReader.Parse(text, "s.dxf"));
+
+        Assert.Equal("s.dxf: line 13: \"hello\" is not a DXF group code; is this an ASCII DXF file?", ex.Message);
+        Assert.Contains("outside a BLOCK", Assert.Throws<DrawingException>(() => DxfReader.Parse(text[..^12], "s.dxf")).Message, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void Parse_LayerTableAfterTheEntities_StillHidesTheFrozenLayer()
+    {
+        // The entities are converted as they are read; a TABLES section after them (not DXF's order) makes the reader
+        // read the file again, keeping the entities until the layers are known.
+        var entities = Entity("LINE", (8, "OFF"), (10, 0), (20, 0), (11, 1), (21, 0)) + Entity("LINE", (8, "ON"), (10, 0), (20, 1), (11, 1), (21, 1));
+        var text = "0\nSECTION\n2\nENTITIES\n" + entities + "0\nENDSEC\n0\nSECTION\n2\nTABLES\n" + Entity("LAYER", (2, "OFF"), (70, 1)) + "0\nENDSEC\n0\nEOF\n";
+
+        var drawing = DxfReader.Parse(text, "late.dxf");
+
+        Assert.Equal("ON", drawing.Paths.Single().Layer);
+        Assert.Contains(drawing.Warnings, w => w.Contains("off or frozen", StringComparison.Ordinal));
+    }
+
+    [Fact]
+    public void Parse_BadEntityThenABadCodeFurtherOn_ReportsTheBadCode()
+    {
+        var text = Dxf(Entity("LINE", (10, "x"), (20, 0), (11, 1), (21, 0))).Replace("0\nEOF\n", "0\nEOF\nhello\nworld\n", StringComparison.Ordinal);
+
+        var ex = Assert.Throws<DrawingException>(() => DxfReader.Parse(text, "b.dxf"));
+
+        Assert.Contains("\"hello\" is not a DXF group code", ex.Message, StringComparison.Ordinal);
+        Assert.Contains("\"x\" on line", Assert.Throws<DrawingException>(() => DxfReader.Parse(text.Replace("hello\nworld\n", string.Empty, StringComparison.Ordinal), "b.dxf")).Message, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void Read_File_SameDrawingAsParsingItsText()
+    {
+        var text = Dxf(Entity("LINE", (8, "A"), (10, 0), (20, 0), (11, 5), (21, 0)) + Entity("CIRCLE", (8, "B"), (10, 1), (20, 1), (40, 2)));
+        var file = Path.Combine(Path.GetTempPath(), $"dxf-{Guid.NewGuid():N}.dxf");
+        System.IO.File.WriteAllText(file, text, new System.Text.UTF8Encoding(encoderShouldEmitUTF8Identifier: true));
+        try
+        {
+            var read = DxfReader.Read(file);
+            var parsed = DxfReader.Parse(text, file);
+
+            Assert.Equal(parsed.Paths.Select(p => (p.Layer, p.Curves.Count)), read.Paths.Select(p => (p.Layer, p.Curves.Count)));
+        }
+        finally
+        {
+            System.IO.File.Delete(file);
+        }
+    }
+
     private static double Basis(int i, int p, double u, double[] k)
     {
         if (p == 0)

@@ -24,7 +24,8 @@ public class PreflightTests
 
         var ex = await Assert.ThrowsAsync<PreflightException>(() => executor.RunAsync(TestContext.Current.CancellationToken));
 
-        Assert.Contains("the stage travels x 0..60 mm", ex.Message, StringComparison.Ordinal);
+        // The job rules' sentence, as the command line, the app's origin field and its Start say it (issue 35).
+        Assert.Equal("the job (5 x 5 mm at origin 58, 10 mm) does not fit the stage's travel (60 x 60 mm): move the origin or make it smaller", ex.Message);
         Assert.DoesNotContain('\n', ex.Message);
         Assert.Equal(RunState.Failed, executor.State);
         await gate.DidNotReceiveWithAnyArgs().SetFrequencyAsync(Arg.Any<int>(), Arg.Any<CancellationToken>());

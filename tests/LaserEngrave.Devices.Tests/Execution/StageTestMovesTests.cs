@@ -135,14 +135,16 @@ public class StageTestMovesTests
     }
 
     [Theory(Timeout = 60_000)]
-    [InlineData(0, 1000)]
-    [InlineData(10, 0)]
-    public async Task FirePulsesAsync_NothingToFire_Refuses(int pulses, int frequencyHz)
+    [InlineData(0, 1000, "test fire of 0 pulses: must be 1..1000000 pulses (the laser gate's burst range)")]
+    [InlineData(1_000_001, 1000, "test fire of 1000001 pulses: must be 1..1000000 pulses (the laser gate's burst range)")]
+    [InlineData(10, 0, "test fire at 0 Hz: the frequency must be above 0")]
+    public async Task FirePulsesAsync_OutsideTheRules_RefusedWithTheRulesSentenceLaserNeverOn(int pulses, int frequencyHz, string expected)
     {
         await using var run = SimulatedRun.Create();
 
         var ex = await Assert.ThrowsAsync<TestMoveException>(() => run.Do(() => run.TestMoves().FirePulsesAsync(pulses, frequencyHz, TestContext.Current.CancellationToken)));
 
-        Assert.Equal($"test fire of {pulses} pulses at {frequencyHz} Hz: both must be above 0", ex.Message);
+        Assert.Equal(expected, ex.Message);
+        Assert.Equal(0, run.Machine.Recorder.Analyze(AnyGrid).LaserOnSeconds);
     }
 }

@@ -66,6 +66,90 @@ public class SimulationLoopTests
     }
 
     [Fact(Timeout = 20_000)]
+    public async Task CreateTimer_CancelledOrDisposed_LeavesTheHeapAtOnce()
+    {
+        using var time = new VirtualTimeProvider();
+
+        var (whileWaiting, afterwards) = await time.Run(async () =>
+        {
+            // A reply answered in time: its watch timer is cancelled long before it would fire.
+            using (var watch = new CancellationTokenSource(TimeSpan.FromSeconds(10), time))
+            {
+                await Task.Delay(TimeSpan.FromMilliseconds(1), time);
+            }
+
+            var timer = time.CreateTimer(_ => { }, null, TimeSpan.FromSeconds(5), Timeout.InfiniteTimeSpan);
+            var waiting = time.Loop.PendingTimers;
+            timer.Change(Timeout.InfiniteTimeSpan, Timeout.InfiniteTimeSpan);
+            var stopped = time.Loop.PendingTimers;
+            timer.Change(TimeSpan.FromSeconds(1), Timeout.InfiniteTimeSpan);
+            timer.Dispose();
+            return (waiting, stopped + time.Loop.PendingTimers);
+        });
+
+        Assert.Equal(1, whileWaiting);
+        Assert.Equal(0, afterwards);
+    }
+
+    [Fact(Timeout = 20_000)]
+    public async Task CreateTimer_ChangedAndSameInstant_FireByTimeThenByWhenSet()
+    {
+        using var time = new VirtualTimeProvider();
+        var log = new List<string>();
+
+        await time.Run(async () =>
+        {
+            var done = new TaskCompletionSource();
+            var timers = new List<ITimer>();
+            foreach (var (name, ms) in new[] { ("a", 30), ("b", 10), ("c", 20), ("d", 10), ("e", 40) })
+            {
+                timers.Add(time.CreateTimer(_ => log.Add($"{name} {time.Elapsed.TotalMilliseconds}"), null, TimeSpan.FromMilliseconds(ms), Timeout.InfiniteTimeSpan));
+            }
+
+            // Moved: a to 10 ms, set after b and d, so it fires after them; c cancelled; e moved earlier, to 5 ms.
+            timers[0].Change(TimeSpan.FromMilliseconds(10), Timeout.InfiniteTimeSpan);
+            timers[2].Dispose();
+            timers[4].Change(TimeSpan.FromMilliseconds(5), Timeout.InfiniteTimeSpan);
+            using var end = time.CreateTimer(_ => done.TrySetResult(), null, TimeSpan.FromMilliseconds(50), Timeout.InfiniteTimeSpan);
+            await done.Task;
+            return true;
+        });
+
+        Assert.Equal(["e 5", "b 10", "d 10", "a 10"], log);
+    }
+
+    [Fact(Timeout = 20_000)]
+    public async Task CreateTimer_Periodic_FiresEveryPeriodUntilDisposed()
+    {
+        using var time = new VirtualTimeProvider();
+        var fired = new List<double>();
+
+        var left = await time.Run(async () =>
+        {
+            ITimer? timer = null;
+            var done = new TaskCompletionSource();
+            timer = time.CreateTimer(
+                _ =>
+                {
+                    fired.Add(time.Elapsed.TotalMilliseconds);
+                    if (fired.Count == 3)
+                    {
+                        timer!.Dispose();
+                        done.TrySetResult();
+                    }
+                },
+                null,
+                TimeSpan.FromMilliseconds(2),
+                TimeSpan.FromMilliseconds(5));
+            await done.Task;
+            return time.Loop.PendingTimers;
+        });
+
+        Assert.Equal([2.0, 7.0, 12.0], fired);
+        Assert.Equal(0, left);
+    }
+
+    [Fact(Timeout = 20_000)]
     public async Task Run_NothingLeftToWaitFor_ReportsADeadlockNamingTheOperation()
     {
         using var time = new VirtualTimeProvider();
