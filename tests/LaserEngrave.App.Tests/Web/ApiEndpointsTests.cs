@@ -29,6 +29,21 @@ public sealed class ApiEndpointsTests : IDisposable
 
     private async Task<JsonElement> StateAsync() => await _client.GetFromJsonAsync<JsonElement>("/api/state", Token);
 
+    [Fact]
+    public async Task State_RunUnderWay_XAndYAreWhereTheEngineTimingPutsTheStageNotItsLastReport()
+    {
+        // Issue 36 finding 1: run.x stayed at the row's start for the whole row (the engine reports once a row).
+        var main = _app.Services.GetRequiredService<MainViewModel>();
+        main.Run.Bar.ShowLaser(new PacedLaser(12_345, 6_789, 2.5));
+
+        var run = (await StateAsync()).GetProperty("run");
+
+        Assert.Equal(12_345, run.GetProperty("x").GetInt64());
+        Assert.Equal(6_789, run.GetProperty("y").GetInt64());
+        Assert.Equal(2.5, run.GetProperty("atSeconds").GetDouble());
+        Assert.Equal(JsonValueKind.Null, run.GetProperty("reportedX").ValueKind);
+    }
+
     private async Task<JsonElement> UploadAsync(string path)
     {
         using var content = new ByteArrayContent(await File.ReadAllBytesAsync(path, Token));
