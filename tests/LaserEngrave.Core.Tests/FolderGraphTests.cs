@@ -11,41 +11,14 @@ namespace LaserEngrave.Core.Tests;
 /// </summary>
 public partial class FolderGraphTests
 {
-    /// <summary>
-    /// Cycles being taken apart elsewhere (the lead's part of issue 35): the edges between each pair are left out until
-    /// they are gone; remove a pair once its folders no longer use each other.
-    /// </summary>
-    private static readonly (string A, string B)[] KnownCycles =
-    [
-        ("Jobs", "Sweeps"),
-        ("Jobs", "Marks"),
-        ("Logging", "Marks"),
-    ];
-
     [Fact]
-    public void FolderGraph_CoreSource_HasNoCycleBesideTheKnown()
+    public void FolderGraph_CoreSource_HasNoCycle()
     {
         var graph = Graph();
         var whole = Describe(graph);
-        foreach (var (a, b) in KnownCycles)
-        {
-            graph[a].Remove(b);
-            graph[b].Remove(a);
-        }
-
         var cycles = Cycles(graph).Select(c => string.Join(" -> ", c.Order(StringComparer.Ordinal))).ToList();
 
         Assert.True(cycles.Count == 0, "Core's folders that use each other: " + string.Join("; ", cycles) + "\n" + whole);
-    }
-
-    [Fact]
-    public void FolderGraph_KnownCycles_EachStillACycle()
-    {
-        // A known cycle that is gone is taken off the list, so that it cannot come back unnoticed.
-        var graph = Graph();
-        var gone = KnownCycles.Where(k => !(Reaches(graph, k.A, k.B) && Reaches(graph, k.B, k.A))).ToList();
-
-        Assert.True(gone.Count == 0, "no longer a cycle, take it off KnownCycles: " + string.Join(", ", gone));
     }
 
     [Fact]
@@ -195,29 +168,6 @@ public partial class FolderGraphTests
         }
 
         return found;
-    }
-
-    private static bool Reaches(Dictionary<string, HashSet<string>> graph, string from, string to)
-    {
-        var seen = new HashSet<string> { from };
-        var queue = new Queue<string>([from]);
-        while (queue.TryDequeue(out var v))
-        {
-            foreach (var w in graph[v])
-            {
-                if (w == to)
-                {
-                    return true;
-                }
-
-                if (seen.Add(w))
-                {
-                    queue.Enqueue(w);
-                }
-            }
-        }
-
-        return false;
     }
 
     private static string Describe(Dictionary<string, HashSet<string>> graph) =>

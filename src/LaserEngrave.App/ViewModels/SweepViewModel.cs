@@ -158,7 +158,7 @@ public sealed partial class SweepViewModel : ObservableObject
 
             // The cells this computer cannot hold with this gate, named before Run (a counting gate is taken to time its
             // switch-ons; the sweep asks it CAPS? before its first cell and refuses then if it does not).
-            if (SpeedHold.SweepProblem(Plan.Cells, _job.Profile, scheduled: _job.Profile.Gate.CountsBursts) is { } tooFast)
+            if (SweepSpeedHold.Problem(Plan.Cells, _job.Profile, scheduled: _job.Profile.Gate.CountsBursts) is { } tooFast)
             {
                 Plan = null;
                 Error = InPanelWords(tooFast);
@@ -288,7 +288,7 @@ public sealed partial class SweepViewModel : ObservableObject
 
         // The cells are the sweep job's parts in the order they burn (the labels first): the cross goes at their pace, as in a
         // run, on the machine's clock and where each cell's engine puts the stage.
-        _pace = new LaserPace(EngraveJob.Of(plan), connection.TimeProvider, session.StrokePositionAt);
+        _pace = new LaserPace(SweepJob.Of(plan), connection.TimeProvider, session.StrokePositionAt);
         var paceTimer = _time.CreateTimer(_ => MoveLaser(), null, RunViewModel.PaceInterval, RunViewModel.PaceInterval);
         try
         {

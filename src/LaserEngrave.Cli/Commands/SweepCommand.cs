@@ -81,7 +81,7 @@ internal static class SweepCommand
 
         SweepResult swept;
         o.Machine.RefuseUnacceptedNoWatchdog(result, plan.Spec.Profile);
-        if (SpeedHold.SweepProblem(plan.Cells, plan.Spec.Profile, o.Machine.ExpectsScheduledSwitchOns(result, plan.Spec.Profile)) is { } tooFast)
+        if (SweepSpeedHold.Problem(plan.Cells, plan.Spec.Profile, o.Machine.ExpectsScheduledSwitchOns(result, plan.Spec.Profile)) is { } tooFast)
         {
             // Before the first cell, not 25 minutes in at the first cell this computer cannot hold (issue 34).
             throw new UsageException(tooFast);

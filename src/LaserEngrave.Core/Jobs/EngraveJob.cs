@@ -1,12 +1,11 @@
 using LaserEngrave.Core.Planning;
 using LaserEngrave.Core.Vectors;
-using LaserEngrave.Core.Sweeps;
 
 namespace LaserEngrave.Core.Jobs;
 
 /// <summary>
 /// A job that can be run, of one of five kinds: <see cref="RasterJob"/>, <see cref="DotJob"/>, <see cref="DrawingJob"/>,
-/// <see cref="LayersJob"/> and <see cref="SweepJob"/> (a job of cells). The hierarchy is closed (the constructor is
+/// <see cref="LayersJob"/> and <c>SweepJob</c> (a job of cells, in Sweeps: a sweep is built of jobs, so it sits above them). The hierarchy is closed (the constructor is
 /// private to Core), so a <c>switch</c> over it is exhaustive; the front ends and the run session take this one type
 /// instead of one nullable per kind.
 /// </summary>
@@ -112,13 +111,6 @@ public abstract class EngraveJob
     /// <summary>The job of layers.</summary>
     public static EngraveJob Of(LayeredJob layers) => new LayersJob(layers);
 
-    /// <summary>The job of a built sweep: one job per cell.</summary>
-    public static SweepJob Of(SweepPlan sweep)
-    {
-        ArgumentNullException.ThrowIfNull(sweep);
-        return new SweepJob(sweep);
-    }
-
     // A prepared image, drawing or job of layers is a job: callers that hold one pass it where a job is taken.
     public static implicit operator EngraveJob(PreparedJob job) => Of(job);
 
@@ -206,23 +198,4 @@ public sealed class LayersJob : EngraveJob
 
     /// <summary>The job of layers' own estimate (one homing, each later layer from where the one before ended).</summary>
     public override double EstimatedSeconds => Layered.EstimatedSeconds;
-}
-
-/// <summary>A test grid: one raster or dot job per cell (the labels' first), each run and logged on its own.</summary>
-public sealed class SweepJob : EngraveJob
-{
-    internal SweepJob(SweepPlan plan)
-        : base([.. plan.Jobs().Select(j => JobPart.Of(SingleLayer(j.Spec, LayerMode.Raster), j))])
-    {
-        Plan = plan;
-        Cells = [.. plan.Jobs().Select(j => EngraveJob.Of(j))];
-    }
-
-    public SweepPlan Plan { get; }
-
-    /// <summary>The sweep's own estimate, focus moves between cells included.</summary>
-    public override double EstimatedSeconds => Plan.EstimatedSeconds;
-
-    /// <summary>The jobs of the labels (when there are) and of every cell, in the order they burn.</summary>
-    public IReadOnlyList<EngraveJob> Cells { get; }
 }

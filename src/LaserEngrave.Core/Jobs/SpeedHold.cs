@@ -1,7 +1,6 @@
 using System.Globalization;
 using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Planning;
-using LaserEngrave.Core.Sweeps;
 
 namespace LaserEngrave.Core.Jobs;
 
@@ -46,39 +45,17 @@ public static class SpeedHold
         return speedMmPerS <= fastest ? null : $"faster than this computer can hold with this gate: {Reason(speedMmPerS, profile)}; the fastest it holds is {N(Floor(fastest))} mm/s{Instead}";
     }
 
-    /// <summary>
-    /// Null when every cell of a sweep that the host times holds; else one sentence naming the cells this computer cannot
-    /// hold and the fastest speed it can: the sweep is refused before it starts, never trimmed (a grid with holes would
-    /// not be the grid asked for).
-    /// </summary>
-    public static string? SweepProblem(IEnumerable<SweepCell> cells, MachineProfile profile, bool scheduled)
-    {
-        ArgumentNullException.ThrowIfNull(cells);
-        var fastest = FastestMmPerS(profile, scheduled);
-        var beyond = cells.Where(c => c.Job.Plan.Timing is not null && c.Job.Spec.Process.BurnSpeedMmPerS > fastest).ToList();
-        if (beyond.Count == 0)
-        {
-            return null;
-        }
-
-        var top = beyond.Max(c => c.Job.Spec.Process.BurnSpeedMmPerS);
-        // A few cells by their place; more by their speeds (the rule is the speed's alone), so the line stays one a person reads.
-        var speeds = beyond.Select(c => c.Job.Spec.Process.BurnSpeedMmPerS).Distinct().Order().Select(N).ToList();
-        var names = beyond.Count <= 4 ? string.Join("; ", beyond.Select(c => c.Describe())) : $"every cell at {string.Join(", ", speeds)} mm/s";
-        return $"{beyond.Count} {(beyond.Count == 1 ? "cell" : "cells")} of the sweep ({names}) {(beyond.Count == 1 ? "burns" : "burn")} faster than this computer can hold with this gate: {Reason(top, profile)}; the fastest it holds is {N(Floor(fastest))} mm/s: sweep speeds up to that{Instead}";
-    }
-
     // What a gate that times its switch-ons would change, said where a host-timed speed is refused.
-    private const string Instead = " (a gate that times its switch-ons, CAPS? listing AFTER, holds any)";
+    internal const string Instead = " (a gate that times its switch-ons, CAPS? listing AFTER, holds any)";
 
-    private static string Reason(double speed, MachineProfile profile)
+    internal static string Reason(double speed, MachineProfile profile)
     {
         var lateness = profile.Latency.HostLatenessMs;
         return $"it wakes up to {N(lateness)} ms late (the profile's latency.hostLatenessMs), {N(Math.Round(speed * lateness, 2))} µm at {N(speed)} mm/s, past the edge tolerance of {N(profile.EdgeToleranceUm)} µm";
     }
 
     // Rounded down to 0.01 mm/s, so that the speed named is one that holds.
-    private static double Floor(double mmPerS) => Math.Floor((mmPerS * 100) + 1e-9) / 100;
+    internal static double Floor(double mmPerS) => Math.Floor((mmPerS * 100) + 1e-9) / 100;
 
-    private static string N(double value) => value.ToString("0.###", CultureInfo.InvariantCulture);
+    internal static string N(double value) => value.ToString("0.###", CultureInfo.InvariantCulture);
 }

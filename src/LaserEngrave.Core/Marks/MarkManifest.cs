@@ -65,18 +65,14 @@ public sealed record MarkManifest(string Counter, int FirstNumber, int Count, IR
     }
 
     /// <summary>After a run of the job beside it: advances the counter when the run completed, and only then.</summary>
+    /// <param name="completed">Whether the run completed (its outcome is the log's to say; marks sit below the log).</param>
+    /// <param name="logged">The numbers the run's log carries when it has them (a resumed run's); else the record's are used.</param>
     /// <returns>The counter's next number after a completed run; null otherwise.</returns>
-    /// <remarks>The numbers are the ones the run's log carries when it has them (a resumed run's), else the record's.</remarks>
-    public static int? AfterRun(string jobFile, Jobs.RunOutcome outcome, Logging.RunJobMarks? logged) =>
-        outcome == Jobs.RunOutcome.Completed && logged is { } marks
-            ? new MarkCounter(marks.Counter).Complete(marks.FirstNumber, marks.Count)
-            : AfterRun(jobFile, outcome);
-
-    /// <inheritdoc cref="AfterRun(string, Jobs.RunOutcome, Logging.RunJobMarks?)"/>
-    public static int? AfterRun(string jobFile, Jobs.RunOutcome outcome) =>
-        outcome == Jobs.RunOutcome.Completed && Beside(jobFile) is { } manifest
-            ? new MarkCounter(manifest.Counter).Complete(manifest.FirstNumber, manifest.Count)
-            : null;
+    public static int? AfterRun(string jobFile, bool completed, (string Counter, int FirstNumber, int Count)? logged = null) =>
+        !completed ? null
+        : logged is { } marks ? new MarkCounter(marks.Counter).Complete(marks.FirstNumber, marks.Count)
+        : Beside(jobFile) is { } manifest ? new MarkCounter(manifest.Counter).Complete(manifest.FirstNumber, manifest.Count)
+        : null;
 
     /// <summary>
     /// Why the marks of <paramref name="jobFile"/> must not burn (again): a completed run has already burned some of their
@@ -91,8 +87,4 @@ public sealed record MarkManifest(string Counter, int FirstNumber, int Count, IR
         new MarkCounter(counter).Burned(first, count)
             ? string.Create(System.Globalization.CultureInfo.InvariantCulture, $"{what}: its marks carry the numbers {first}..{(long)first + count - 1}, which a completed run has burned already (the counter {counter} records them); make the next ones with laserengrave mark into a new folder (or open the job file of marks again), so no two samples carry one number")
             : null;
-
-    /// <summary>The record as a run's log carries it; null when <paramref name="jobFile"/> has no marks.</summary>
-    public static Logging.RunJobMarks? ForLog(string jobFile) =>
-        Beside(jobFile) is { } manifest ? new Logging.RunJobMarks(manifest.Counter, manifest.FirstNumber, manifest.Count, manifest.MadeAt) : null;
 }

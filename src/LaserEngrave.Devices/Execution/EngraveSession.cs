@@ -3,6 +3,7 @@ using LaserEngrave.Core.Geometry;
 using LaserEngrave.Core.Jobs;
 using LaserEngrave.Core.Logging;
 using LaserEngrave.Core.Planning;
+using LaserEngrave.Core.Sweeps;
 using LaserEngrave.Devices.Scheduling;
 using LaserEngrave.Wire.Scheduling;
 
@@ -245,7 +246,7 @@ public sealed class EngraveSession
     {
         try
         {
-            return Core.Marks.MarkManifest.ForLog(jobFile);
+            return RunJobMarks.Beside(jobFile);
         }
         catch (Exception ex) when (ex is Core.Marks.MarkException or IOException or UnauthorizedAccessException)
         {

@@ -129,7 +129,7 @@ public sealed class SweepSession
     private async Task<string?> SpeedsNotHeldAsync(CancellationToken cancellationToken)
     {
         var profile = Plan.Spec.Profile;
-        var hostTimed = SpeedHold.SweepProblem(Plan.Cells, profile, scheduled: false);
+        var hostTimed = SweepSpeedHold.Problem(Plan.Cells, profile, scheduled: false);
         if (hostTimed is null || !profile.Gate.CountsBursts)
         {
             return hostTimed;
@@ -138,7 +138,7 @@ public sealed class SweepSession
         try
         {
             var scheduled = (await Machine.Gate.GetCapabilitiesAsync(cancellationToken)).Contains(LaserGateCapabilities.After);
-            return scheduled ? SpeedHold.SweepProblem(Plan.Cells, profile, scheduled: true) : hostTimed;
+            return scheduled ? SweepSpeedHold.Problem(Plan.Cells, profile, scheduled: true) : hostTimed;
         }
         catch (DeviceException)
         {

@@ -102,7 +102,7 @@ public sealed class EngraveRun
         try
         {
             // A job of marks advances the sample counter when, and only when, its run completed (docs/marking.md).
-            return new RunEnd(result, MarkManifest.AfterRun(jobFile, result.Record.Outcome, result.Record.JobFile?.Marks), null);
+            return new RunEnd(result, MarkManifest.AfterRun(jobFile, result.Record.Outcome == RunOutcome.Completed, result.Record.JobFile?.Marks is { } logged ? (logged.Counter, logged.FirstNumber, logged.Count) : null), null);
         }
         catch (Exception ex) when (ex is MarkException or IOException or UnauthorizedAccessException)
         {

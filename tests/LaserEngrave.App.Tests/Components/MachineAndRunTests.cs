@@ -763,7 +763,7 @@ public sealed class StageCanvasTests : ComponentTest
         Main.Sweep.Labels = true;
         var plan = Assert.IsType<LaserEngrave.Core.Sweeps.SweepPlan>(Main.Sweep.Plan);
 
-        var picture = new LaserEngrave.Core.Preview.StagePicture(LaserEngrave.Core.Jobs.EngraveJob.Of(plan));
+        var picture = new LaserEngrave.Core.Preview.StagePicture(LaserEngrave.Core.Sweeps.SweepJob.Of(plan));
         var boxes = picture.Boxes;
 
         Assert.Equal(5, boxes.Count);

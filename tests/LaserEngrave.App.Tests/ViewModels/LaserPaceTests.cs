@@ -266,7 +266,7 @@ public sealed class LaserPaceTests
         var index = moves.FindIndex(m => m.Kind == MoveKind.Burn && m.LengthX >= 1000);
         var burn = moves[index];
         var perSecond = 2 * 1000 / MachineProfile.Default.X.MicrostepUm;
-        var pace = new LaserPace(EngraveJob.Of(plan), _clock);
+        var pace = new LaserPace(LaserEngrave.Core.Sweeps.SweepJob.Of(plan), _clock);
 
         // The second cell (a sweep's part, as a layer of a job of layers) is reported: its burn, at its 2 mm/s.
         pace.Report(2, 1, index, burn.X0, burn.Y0);

@@ -71,7 +71,7 @@ public class SpeedHoldTests
     {
         var plan = SweepPlan.Build(Sweep("speed=1,2,3.2,4", MachineProfile.Default));
 
-        var problem = SpeedHold.SweepProblem(plan.Cells, MachineProfile.Default, scheduled: false);
+        var problem = SweepSpeedHold.Problem(plan.Cells, MachineProfile.Default, scheduled: false);
 
         Assert.NotNull(problem);
         Assert.StartsWith("4 cells of the sweep (cell row 3, column 1 (", problem, StringComparison.Ordinal);
@@ -85,7 +85,7 @@ public class SpeedHoldTests
     {
         var plan = SweepPlan.Build(Sweep("speed=1,3.2,3.6,4", MachineProfile.Default));
 
-        var problem = SpeedHold.SweepProblem(plan.Cells, MachineProfile.Default, scheduled: false);
+        var problem = SweepSpeedHold.Problem(plan.Cells, MachineProfile.Default, scheduled: false);
 
         Assert.StartsWith("6 cells of the sweep (every cell at 3.2, 3.6, 4 mm/s) burn faster than this computer can hold with this gate: it wakes up to 0.5 ms late", problem, StringComparison.Ordinal);
     }
@@ -95,6 +95,6 @@ public class SpeedHoldTests
     {
         var plan = SweepPlan.Build(Sweep("speed=1,4", MachineProfile.Default));
 
-        Assert.Null(SpeedHold.SweepProblem(plan.Cells, MachineProfile.Default, scheduled: true));
+        Assert.Null(SweepSpeedHold.Problem(plan.Cells, MachineProfile.Default, scheduled: true));
     }
 }

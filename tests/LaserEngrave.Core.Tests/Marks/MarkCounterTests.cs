@@ -97,7 +97,7 @@ public sealed class MarkCounterTests : IDisposable
         Directory.CreateDirectory(Path.GetDirectoryName(job)!);
         MarkManifest.Write(Path.Combine(_folder, "job", MarkLayout.ManifestFileName), new MarkManifest(Counter.Path, 1, 10, []));
 
-        MarkManifest.AfterRun(job, outcome);
+        MarkManifest.AfterRun(job, outcome == RunOutcome.Completed);
 
         Assert.Equal(next, Counter.Next());
     }
@@ -109,12 +109,12 @@ public sealed class MarkCounterTests : IDisposable
         var layout = MarkLayout.Make(new MarkSpec { Text = "S-{n:000}", Code = CodeKind.DataMatrix, SizeMm = 2, Copies = 3 }, Counter.Next(), Context(), Core.Geometry.MachineProfile.Default, folder);
         var job = layout.Save(folder, Counter.Path);
 
-        MarkManifest.AfterRun(job, RunOutcome.Aborted);
+        MarkManifest.AfterRun(job, completed: false);
         Assert.Equal(1, Counter.Next());
 
         // The resume runs the same job file: the same numbers, counted once it completes.
         Assert.Equal(["S-001", "S-002", "S-003"], MarkManifest.Beside(job)!.Marks.Where(m => m.Kind == "datamatrix").Select(m => m.Text));
-        MarkManifest.AfterRun(job, RunOutcome.Completed);
+        MarkManifest.AfterRun(job, completed: true);
         Assert.Equal(4, Counter.Next());
     }
 

@@ -214,7 +214,7 @@ public sealed class StagePictureDotTests
             Labels = true,
             Process = ProcessSettings.Default with { Mode = PlanMode.Dots },
         });
-        var picture = new StagePicture(EngraveJob.Of(plan));
+        var picture = new StagePicture(SweepJob.Of(plan));
         var cell = plan.Cells[1].Job;
         var alone = new StagePicture(EngraveJob.Of(cell));
         var part = picture.Parts.Count - 1;

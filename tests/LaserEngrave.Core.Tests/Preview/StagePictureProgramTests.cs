@@ -74,7 +74,7 @@ public sealed class StagePictureProgramTests
             Labels = true,
         });
 
-        AssertAsBefore(EngraveJob.Of(plan));
+        AssertAsBefore(SweepJob.Of(plan));
     }
 
     [Fact]

@@ -42,7 +42,7 @@ public sealed class EngraveJobTests
         var dots = EngraveJob.Of(Qr(PlanMode.Dots));
         var drawing = EngraveJob.Of(Hexagons());
         var layers = EngraveJob.Of(Layers());
-        var sweep = EngraveJob.Of(Sweep());
+        var sweep = SweepJob.Of(Sweep());
 
         Assert.IsType<RasterJob>(raster);
         Assert.Same(((DotJob)dots).Prepared.Dots, ((DotJob)dots).Plan);
@@ -62,7 +62,7 @@ public sealed class EngraveJobTests
         var machine = new EngraveMachine(run.Stage, run.Gate, run.Time, "simulator", "simulator");
 
         var executor = Assert.Throws<ArgumentException>(() => new RunExecutor(run.Stage, run.Gate, EngraveJob.Of(Layers()), run.Time));
-        var session = Assert.Throws<ArgumentException>(() => new EngraveSession(machine, EngraveJob.Of(Sweep())));
+        var session = Assert.Throws<ArgumentException>(() => new EngraveSession(machine, SweepJob.Of(Sweep())));
 
         Assert.Contains("EngraveSession", executor.Message, StringComparison.Ordinal);
         Assert.Contains("SweepSession", session.Message, StringComparison.Ordinal);
