@@ -57,7 +57,7 @@ public sealed class WireRecorder : IDisposable
     public void MarkLayer(int index)
     {
         ArgumentOutOfRangeException.ThrowIfNegative(index);
-        Append(_time.GetTimestamp(), (seconds, line) => line.Append(CultureInfo.InvariantCulture, $"{{\"t\":{seconds:0.0000000},\"layer\":{index}}}"));
+        Append(null, (seconds, line) => line.Append(CultureInfo.InvariantCulture, $"{{\"t\":{seconds:0.0000000},\"layer\":{index}}}"));
     }
 
     /// <summary>Ends the file with its end (or truncated) mark and closes it; what the run log says of it.</summary>
@@ -96,7 +96,7 @@ public sealed class WireRecorder : IDisposable
         File.Delete(Path);
     }
 
-    private void Record(char port, char direction, long timestamp, ReadOnlySpan<byte> data)
+    private void Record(char port, char direction, long? timestamp, ReadOnlySpan<byte> data)
     {
         if (data.IsEmpty)
         {
@@ -112,8 +112,9 @@ public sealed class WireRecorder : IDisposable
         });
     }
 
-    // One event's line, at its time, unless the recording has ended, failed or reached its cap.
-    private void Append(long timestamp, Action<double, StringBuilder> write)
+    // One event's line, at its time (null: now, stamped under the lock), unless the recording has ended, failed or
+    // reached its cap.
+    private void Append(long? timestamp, Action<double, StringBuilder> write)
     {
         lock (_sync)
         {
@@ -122,7 +123,10 @@ public sealed class WireRecorder : IDisposable
                 return;
             }
 
-            var seconds = (timestamp - _start) / (double)_time.TimestampFrequency;
+            // Writes and layer marks are stamped here, under the lock: the stage's and the gate's writers run on their own
+            // threads, and a stamp taken before the lock could be appended after a later one (a recording replay then
+            // refused as corrupt: a ports run at 15:00 on 2026-11-29 had two writes 4 µs out of order).
+            var seconds = ((timestamp ?? _time.GetTimestamp()) - _start) / (double)_time.TimestampFrequency;
             _line.Clear();
             write(seconds, _line);
             if (_bytes + _line.Length + 1 > _capBytes)
@@ -175,8 +179,9 @@ public sealed class WireRecorder : IDisposable
 
         public async ValueTask WriteAsync(ReadOnlyMemory<byte> data, CancellationToken cancellationToken)
         {
-            // The time the host wrote, before the write may block behind the port's buffer.
-            recorder.Record(port, 'w', recorder._time.GetTimestamp(), data.Span);
+            // The time the host wrote (stamped as it is appended, so writes on the two ports stay in order), before the
+            // write may block behind the port's buffer.
+            recorder.Record(port, 'w', null, data.Span);
             await inner.WriteAsync(data, cancellationToken);
         }
 
