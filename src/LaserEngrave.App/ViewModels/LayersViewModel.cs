@@ -392,7 +392,7 @@ public sealed partial class LayersViewModel : ObservableObject
 
             var profile = JobViewModel.FromProfile(_job.Profile);
             var drawing = layer.Mode != LayerMode.Raster;
-            _job.Apply(_job.ToSettings() with
+            _job.Apply(_job.ToSettings().WithMask(layer.Mask) with
             {
                 ImagePath = null,
                 SizeMode = layer.WidthMm is not null ? SizeMode.Width : SizeMode.Pitch,
@@ -403,13 +403,7 @@ public sealed partial class LayersViewModel : ObservableObject
                 LaserFrequencyHz = layer.FrequencyHz ?? profile.LaserFrequencyHz,
                 Passes = layer.Passes,
                 Mode = PlanMode.Raster,
-                ThresholdPercent = layer.Mask.ThresholdPercent,
-                Dither = layer.Mask.Dither,
-                Invert = layer.Mask.Invert,
-                QuarterTurns = layer.Mask.QuarterTurns,
-                MirrorX = layer.Mask.MirrorX,
-                MirrorY = layer.Mask.MirrorY,
-                DrawingFill = layer.Mode switch { LayerMode.Fill => VectorFillMode.Fill, LayerMode.Both => VectorFillMode.Both, _ => VectorFillMode.Outline },
+                DrawingFill = layer.Fill,
                 DrawingLayer = drawing ? layer.DrawingLayer : null,
                 ToleranceUm = layer.ToleranceUm ?? VectorOptions.Default.ToleranceUm,
                 FillPitchUm = layer.FillPitchUm ?? VectorOptions.Default.FillPitchUm,

@@ -31,6 +31,14 @@ public sealed record JobLayer
     /// <summary>For an image: how it becomes a burn mask (threshold, dither, invert); the defaults when not given.</summary>
     public Imaging.MaskOptions Mask { get; init; } = Imaging.MaskOptions.Default;
 
+    /// <summary>How a drawing layer's shapes are burned (outline, fill or both); an image layer's is outline, unused.</summary>
+    public Vectors.VectorFillMode Fill => Mode switch
+    {
+        LayerMode.Fill => Vectors.VectorFillMode.Fill,
+        LayerMode.Both => Vectors.VectorFillMode.Both,
+        _ => Vectors.VectorFillMode.Outline,
+    };
+
     /// <summary>For a drawing: the chord tolerance, µm (default 1).</summary>
     public double? ToleranceUm { get; init; }
 

@@ -133,19 +133,28 @@ public sealed record JobSettings
         _ => jsonName,
     };
 
+    /// <summary>These values with the image's threshold, dither, inversion, turn and mirror taken from <paramref name="mask"/>.</summary>
+    public JobSettings WithMask(MaskOptions mask)
+    {
+        ArgumentNullException.ThrowIfNull(mask);
+        return this with
+        {
+            ThresholdPercent = mask.ThresholdPercent,
+            Dither = mask.Dither,
+            Invert = mask.Invert,
+            QuarterTurns = mask.QuarterTurns,
+            MirrorX = mask.MirrorX,
+            MirrorY = mask.MirrorY,
+        };
+    }
+
     /// <summary>The values of a job (e.g. one a run log repeats), as the page shows them.</summary>
     public static JobSettings From(JobSpec spec)
     {
         ArgumentNullException.ThrowIfNull(spec);
-        var settings = From(spec.Process, spec.Plan) with
+        var settings = From(spec.Process, spec.Plan).WithMask(spec.Mask) with
         {
             ImagePath = spec.ImagePath,
-            ThresholdPercent = spec.Mask.ThresholdPercent,
-            Dither = spec.Mask.Dither,
-            Invert = spec.Mask.Invert,
-            QuarterTurns = spec.Mask.QuarterTurns,
-            MirrorX = spec.Mask.MirrorX,
-            MirrorY = spec.Mask.MirrorY,
             OriginXMm = spec.Origin.X,
             OriginYMm = spec.Origin.Y,
             Passes = spec.Passes,

@@ -81,15 +81,9 @@ public sealed class LayeredJob
         };
 
         // The job's own rules, as the command line and the app apply them; only the names are the job file's.
-        var settings = JobSettings.From(process) with
+        var settings = JobSettings.From(process).WithMask(layer.Mask) with
         {
             ImagePath = layer.Source,
-            ThresholdPercent = layer.Mask.ThresholdPercent,
-            Dither = layer.Mask.Dither,
-            Invert = layer.Mask.Invert,
-            QuarterTurns = layer.Mask.QuarterTurns,
-            MirrorX = layer.Mask.MirrorX,
-            MirrorY = layer.Mask.MirrorY,
             SizeMode = layer.WidthMm is null ? SizeMode.Height : SizeMode.Width,
             WidthMm = layer.WidthMm ?? 0,
             OriginXMm = layer.Origin.X,
@@ -138,12 +132,7 @@ public sealed class LayeredJob
         {
             ToleranceUm = layer.ToleranceUm ?? VectorOptions.Default.ToleranceUm,
             FillPitchUm = layer.FillPitchUm ?? VectorOptions.Default.FillPitchUm,
-            Fill = layer.Mode switch
-            {
-                LayerMode.Fill => VectorFillMode.Fill,
-                LayerMode.Both => VectorFillMode.Both,
-                _ => VectorFillMode.Outline,
-            },
+            Fill = layer.Fill,
             Layer = layer.DrawingLayer,
         };
         var spec = new JobSpec
